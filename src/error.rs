@@ -1,0 +1,162 @@
+//! The crate's one error type.
+//!
+//! Every solver validates its input and reports what went wrong with the values involved, so a
+//! caller sweeping millions of positions can tell a bad input from a singular position without a
+//! debugger. No solver panics on bad input or returns a NaN or an infinity in place of an error.
+
+use thiserror::Error;
+
+/// A `Result` whose error is [`Error`].
+pub type Result<T> = std::result::Result<T, Error>;
+
+/// What went wrong, with the values involved.
+#[derive(Debug, Clone, PartialEq, Error)]
+#[non_exhaustive]
+pub enum Error {
+    /// An input number is NaN or infinite.
+    #[error("{name} must be finite, got {value}")]
+    NonFinite {
+        /// The input's name, in the crate's notation (for example `"A.x"` or `"l_AB"`).
+        name: &'static str,
+        /// The offending value.
+        value: f64,
+    },
+
+    /// A length (or another quantity that must be positive, such as a mass) is zero or negative.
+    #[error("{name} must be positive, got {value}")]
+    NonPositive {
+        /// The quantity's name.
+        name: &'static str,
+        /// The offending value.
+        value: f64,
+    },
+
+    /// An input lies outside the range in which it has a meaning (for example a pressure angle
+    /// of 90° or more, or a table lookup outside the table).
+    #[error("{name} = {value} lies outside [{min}, {max}]")]
+    OutOfRange {
+        /// The input's name.
+        name: &'static str,
+        /// The offending value.
+        value: f64,
+        /// The smallest admissible value.
+        min: f64,
+        /// The largest admissible value.
+        max: f64,
+    },
+
+    /// A closed form would divide by a quantity that vanishes here: the configuration is
+    /// singular (a dead point, a zero arm, a degenerate group).
+    #[error("{what} is singular: {measure} = {value:e}")]
+    Singular {
+        /// The group, link or system that is singular.
+        what: &'static str,
+        /// The name of the quantity that vanished (for example `"sin(phi3 - phi2)"`).
+        measure: &'static str,
+        /// Its value here (zero, or too small to divide by).
+        value: f64,
+    },
+
+    /// A group cannot be assembled at this position: the closure equations have no real
+    /// solution.
+    #[error("{group} cannot be assembled: closure fails by {gap:e} m")]
+    NotAssemblable {
+        /// The group that cannot be closed.
+        group: &'static str,
+        /// By how much the closure fails (a distance, in metres).
+        gap: f64,
+    },
+
+    /// An integrator met a non-finite state (it diverged).
+    #[error("non-finite state at t = {time} s")]
+    NonFiniteState {
+        /// The time at which the state stopped being finite.
+        time: f64,
+    },
+
+    /// An inertia (mass) matrix is not positive-definite.
+    #[error("inertia matrix is not positive-definite at {at}: det = {det:e}")]
+    NotPositiveDefinite {
+        /// Where it happened (for example the coordinates or the time).
+        at: String,
+        /// The determinant found there.
+        det: f64,
+    },
+
+    /// An error inside one named part of a larger analysis (for example one group of a
+    /// mechanism at one position).
+    #[error("{part}: {source}")]
+    In {
+        /// The part (for example `"group 2 (RRP)"`).
+        part: String,
+        /// What went wrong in it.
+        source: Box<Error>,
+    },
+}
+
+/// Checks that `value` is finite.
+pub(crate) fn finite(name: &'static str, value: f64) -> Result<f64> {
+    if value.is_finite() {
+        Ok(value)
+    } else {
+        Err(Error::NonFinite { name, value })
+    }
+}
+
+/// Checks that `value` is finite and positive.
+pub(crate) fn positive(name: &'static str, value: f64) -> Result<f64> {
+    finite(name, value)?;
+    if value > 0.0 {
+        Ok(value)
+    } else {
+        Err(Error::NonPositive { name, value })
+    }
+}
+
+/// Checks that both components of a point or vector are finite.
+pub(crate) fn finite2(
+    names: [&'static str; 2],
+    v: impl Into<nalgebra::Vector2<f64>>,
+) -> Result<()> {
+    let v = v.into();
+    finite(names[0], v.x)?;
+    finite(names[1], v.y)?;
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn checks_reject_what_they_name() {
+        assert!(matches!(
+            finite("x", f64::NAN),
+            Err(Error::NonFinite { name: "x", value }) if value.is_nan()
+        ));
+        assert!(matches!(
+            positive("l", 0.0),
+            Err(Error::NonPositive { name: "l", .. })
+        ));
+        assert!(matches!(
+            positive("l", f64::INFINITY),
+            Err(Error::NonFinite { .. })
+        ));
+        assert_eq!(positive("l", 2.0), Ok(2.0));
+    }
+
+    #[test]
+    fn messages_carry_the_values() {
+        let e = Error::Singular {
+            what: "RRR dyad",
+            measure: "sin(phi3 - phi2)",
+            value: 0.0,
+        };
+        assert!(e.to_string().contains("sin(phi3 - phi2)"));
+        let nested = Error::In {
+            part: "group 1".into(),
+            source: Box::new(e),
+        };
+        assert!(nested.to_string().starts_with("group 1: RRR dyad"));
+    }
+}

@@ -1,0 +1,42 @@
+//! # tmm — theory of machines and mechanisms
+//!
+//! Planar linkages of the 2nd class and gear drives: the force analysis (kinetostatics) of the
+//! Assur dyads and of the input link, the kinematics of closed vector contours, and the
+//! dynamics of machines with two degrees of freedom. Exact where the textbooks are exact,
+//! honest where the mathematics breaks down (every singular configuration is an [`Error`] that
+//! names the quantity that vanished), and fast: every solver is a pure function of plain data.
+//!
+//! ## Module map
+//! - [`angle`]: direction angles (the seeds' UGL helpers), unit vectors, the 2-D cross product.
+//! - [`load`]: a force at a point plus a moment; d'Alembert's inertia loads.
+//! - [`kinetostatics`]: joint reactions of the RRR, RRP and RPR dyads; the input link driven
+//!   through a coupling (balancing moment) or a gear pair (balancing force).
+//!
+//! ## The seed programs
+//! The crate grew from Ukrainian and Russian course texts whose FORTRAN-era programs have short
+//! names. They are kept as documentation aliases, so searching the docs for `SR1` finds the
+//! RRR dyad:
+//!
+//! | seed   | meaning                                     | in `tmm` |
+//! |--------|---------------------------------------------|----------|
+//! | SR1    | group of the 2nd class, 1st kind            | [`kinetostatics::RrrDyad`] |
+//! | SR2    | group of the 2nd class, 2nd kind            | [`kinetostatics::RrpDyad`] (slider on a guide) |
+//! | SR3    | group of the 2nd class, 3rd kind            | [`kinetostatics::RprDyad`] (rod in a rocking cylinder) |
+//! | SRWL1  | input link driven through a gear pair       | [`kinetostatics::GearDrive`] (balancing force) |
+//! | SRWL2  | input link driven through a coupling        | [`kinetostatics::coupling_drive`] (balancing moment) |
+//! | UGL2–4 | direction angles of vectors and lines       | [`angle::signed_direction`], [`angle::direction`], [`angle::line_of_action`] |
+//!
+//! ## Conventions
+//! SI units (m, kg, s, N, N·m, rad); the plane frame has x to the right and y up; angles are
+//! counter-clockwise from +x, and an angle the crate returns lies in [0, 2π). `R_ij` is the
+//! force that link i exerts on link j, so `R_ji = −R_ij`. Links are numbered as in the seeds:
+//! 1 the input link, 2 and 3 the dyad, 4 the link the dyad meets at its outer pair (often the
+//! frame). Points are [`nalgebra::Point2`], vectors [`nalgebra::Vector2`].
+
+pub mod angle;
+pub mod error;
+
+pub mod load;
+
+pub use error::{Error, Result};
+pub use load::Load;
