@@ -23,7 +23,7 @@
 //! | SR2    | group of the 2nd class, 2nd kind            | [`kinetostatics::RrpDyad`] (slider on a guide) |
 //! | SR3    | group of the 2nd class, 3rd kind            | [`kinetostatics::RprDyad`] (rod in a rocking cylinder) |
 //! | SRWL1  | input link driven through a gear pair       | [`kinetostatics::GearDrive`] (balancing force) |
-//! | SRWL2  | input link driven through a coupling        | [`kinetostatics::coupling_drive`] (balancing moment) |
+//! | SRWL2  | input link driven through a coupling        | [`kinetostatics::CouplingDrive`] (balancing moment) |
 //! | UGL2–4 | direction angles of vectors and lines       | [`angle::signed_direction`], [`angle::direction`], [`angle::line_of_action`] |
 //!
 //! ## Conventions
@@ -35,6 +35,7 @@
 
 pub mod angle;
 pub mod error;
+pub mod kinetostatics;
 
 pub mod load;
 

@@ -1,0 +1,252 @@
+//! The RPR dyad: the group of the 2nd class, 3rd kind (seed program SR3): a rod (or piston
+//! with its rod) 2 hinged to link 1 at A slides in a cylinder (or slotted link) 3 hinged to
+//! link 4 at E. The two links turn together; the sliding axis has the unit direction u.
+//!
+//! Derivation (seed 000, §1.3.3, re-derived; ERRATA E3–E5, N6, N7). Without friction the
+//! sliding pair carries no force along u: R32 = R32ⁿ·u⊥, at an unknown arm h32 from A along
+//! the axis. Link 2's force balance along u gives at once R12 · u = −F2 · u. Write
+//! A − E = a·u + b·u⊥; the whole group's moment about E, a·R12τ − b·R12ⁿ + M2(E) + M3(E) = 0,
+//! gives R12τ, dividing by a = −l_EA (l_EA = (E − A)·u, which is the distance EA when the axis
+//! passes through E, as in the seed). So the group is singular when l_EA = 0. Link 2's force
+//! balance across u gives R32ⁿ = −F2 · u⊥ − R12τ, its moment about A gives the couple of R32
+//! about A, h32·R32ⁿ = −M2(A), and the cylinder's force balance gives R43 = R32 − F3.
+//!
+//! The seed's 1.35 misprints γ2 for γ3 in the moment of F3 (ERRATA E4); the derivation above
+//! does not use it.
+
+use super::conditioning::{ensure_finite, Conditioning};
+use crate::angle::{perp, unit};
+use crate::error::{finite, finite2, positive, Result};
+use crate::Load;
+use nalgebra::{Point2, Vector2};
+
+const WHAT: &str = "RPR dyad";
+const MEASURE: &str = "l_EA";
+
+/// An RPR dyad in Cartesian form: the hinge A of the rod, the pivot E of the cylinder, the
+/// direction of the sliding axis, and the resultant load on each link.
+///
+/// # Examples
+/// A hydraulic cylinder pivoted at E = (0, 0) pushes a lever at A = (−0.5, 0) m; the axis
+/// points from A to E, u = (1, 0). The rod carries a 300 N weight at S2 = (−0.35, 0) and the
+/// cylinder nothing. Moments about E: the weight turns the group by (−0.35)·(−300) = +105 N·m,
+/// so R12's arm 0.5 m needs −0.5·R12y = −105, R12 = (0, 210) N. The cylinder takes the other
+/// 90 N, R32 = (0, 90) N, and the rod's moment about A, 0.15·300 = 45 N·m, puts it at
+/// h32 = 45/90 = 0.5 m from A, that is, at E. The cylinder passes it on: R43 = R32.
+/// ```
+/// use nalgebra::{Point2, Vector2};
+/// use approx::assert_relative_eq;
+/// use tmm::{kinetostatics::RprDyad, Load};
+/// let r = RprDyad {
+///     a: Point2::new(-0.5, 0.0),
+///     e: Point2::new(0.0, 0.0),
+///     axis: Vector2::new(1.0, 0.0),
+///     load2: Load::force_at(Point2::new(-0.35, 0.0), Vector2::new(0.0, -300.0)),
+///     load3: Load::zero(Point2::new(0.0, 0.0)),
+/// }
+/// .solve()?;
+/// assert_relative_eq!(r.r12, Vector2::new(0.0, 210.0), epsilon = 1e-9);
+/// assert_relative_eq!(r.r32, Vector2::new(0.0, 90.0), epsilon = 1e-9);
+/// assert_relative_eq!(r.arm.unwrap(), 0.5, epsilon = 1e-12);
+/// assert_relative_eq!(r.r43, r.r32, epsilon = 1e-12);
+/// # Ok::<(), tmm::Error>(())
+/// ```
+#[doc(alias = "SR3")]
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct RprDyad {
+    /// The hinge of the rod 2 with link 1.
+    pub a: Point2<f64>,
+    /// The pivot of the cylinder 3 on link 4 (often the frame).
+    pub e: Point2<f64>,
+    /// The direction of the sliding axis (any non-zero length). In the seed it points from A
+    /// towards E (φ2).
+    pub axis: Vector2<f64>,
+    /// The resultant load on the rod 2.
+    pub load2: Load,
+    /// The resultant load on the cylinder 3.
+    pub load3: Load,
+}
+
+/// The reactions in the joints of an RPR dyad.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct RprReactions {
+    /// R12, the force of link 1 on the rod at A, N.
+    pub r12: Vector2<f64>,
+    /// R32, the resultant force of the cylinder on the rod, normal to the axis, N
+    /// (R23 = −R32).
+    pub r32: Vector2<f64>,
+    /// R43, the force of link 4 on the cylinder at E, N.
+    pub r43: Vector2<f64>,
+    /// R12's algebraic component along the axis (R12ⁿ), N.
+    pub r12_n: f64,
+    /// R12's algebraic component across the axis, the axis turned +90° (R12τ), N.
+    pub r12_t: f64,
+    /// R32 as an algebraic value along the axis turned +90° (the seeds' R32), N.
+    pub r32_n: f64,
+    /// The moment of R32 about A, N·m (= h32·R32ⁿ = −M2(A)).
+    pub couple: f64,
+    /// h32: where R32's line of action crosses the axis, measured from A along the axis, m.
+    /// `None` when R32 = 0 and the sliding pair carries a pure couple (ERRATA N7).
+    pub arm: Option<f64>,
+    /// The measure l_EA (m) and the amplification ρ/|l_EA|, with ρ the largest distance of A
+    /// and of the loads' points from E.
+    pub conditioning: Conditioning,
+}
+
+impl RprDyad {
+    /// Solves the dyad for its joint reactions.
+    ///
+    /// # Errors
+    /// - [`Error::NonFinite`](crate::Error::NonFinite) for a non-finite coordinate or load;
+    /// - [`Error::NonPositive`](crate::Error::NonPositive) for a zero axis direction (`|axis|`);
+    /// - [`Error::Singular`](crate::Error::Singular) with `l_EA` when A lies on the normal to
+    ///   the axis through E, to working precision (for an axis through E: A at E).
+    pub fn solve(&self) -> Result<RprReactions> {
+        self.validate()?;
+        let u = self.axis / positive("|axis|", self.axis.norm())?;
+        let n = perp(u);
+        let ea = self.a - self.e;
+        let (along, across) = (ea.dot(&u), ea.dot(&n));
+        let l_ea = -along;
+        let rho = [self.a, self.load2.point, self.load3.point]
+            .iter()
+            .map(|p| (p - self.e).norm())
+            .fold(0.0, f64::max);
+        let conditioning = Conditioning::of(WHAT, MEASURE, l_ea, rho)?;
+
+        let f2 = self.load2.force;
+        let r12_n = -f2.dot(&u);
+        let m_e = self.load2.moment_about(self.e) + self.load3.moment_about(self.e);
+        let r12_t = (across * r12_n - m_e) / along;
+        let r32_n = -f2.dot(&n) - r12_t;
+
+        let r12 = u * r12_n + n * r12_t;
+        let r32 = n * r32_n;
+        let r43 = r32 - self.load3.force;
+        let couple = -self.load2.moment_about(self.a);
+        ensure_finite(
+            WHAT,
+            MEASURE,
+            l_ea,
+            &[r12.x, r12.y, r32.x, r32.y, r43.x, r43.y],
+        )?;
+        let arm = Some(couple / r32_n).filter(|h| h.is_finite());
+        Ok(RprReactions {
+            r12,
+            r32,
+            r43,
+            r12_n,
+            r12_t,
+            r32_n,
+            couple,
+            arm,
+            conditioning,
+        })
+    }
+
+    fn validate(&self) -> Result<()> {
+        finite2(["A.x", "A.y"], self.a.coords)?;
+        finite2(["E.x", "E.y"], self.e.coords)?;
+        finite2(["axis.x", "axis.y"], self.axis)?;
+        self.load2.validate()?;
+        self.load3.validate()
+    }
+}
+
+/// An RPR dyad in the seeds' notation (program SR3): a rod of length l_AB (with its piston at
+/// B) in a cylinder of length l_EC (its mouth at C), pivoted at E, with the piston at l_BC
+/// inside the cylinder.
+///
+/// The points lie on the axis in the order A, C, B, E, so l_EA = l_AB − l_BC + l_EC (ERRATA N6).
+/// φ2 is the direction of the axis from A towards E. S2 lies at l_AS2 from A towards E, S3 at
+/// l_ES3 from E towards A. F2, F3 act at S2, S3; M2, M3 are algebraic moments.
+///
+/// # Examples
+/// The example of [`RprDyad`] in the seed's notation: l_AB = 0.3, l_BC = 0.1, l_EC = 0.3, so
+/// l_EA = 0.5 m; φ2 = 0; F2 = 300 N along γ2 = 270° at l_AS2 = 0.15 m.
+/// ```
+/// use approx::assert_relative_eq;
+/// use tmm::kinetostatics::RprSeed;
+/// let r = RprSeed {
+///     l_ab: 0.3, l_ec: 0.3, l_bc: 0.1, l_as2: 0.15, l_es3: 0.1, phi2: 0.0,
+///     f2: 300.0, gamma2: 270f64.to_radians(), f3: 0.0, gamma3: 0.0, m2: 0.0, m3: 0.0,
+/// }
+/// .solve()?;
+/// // (1.35), corrected: R12τ = [F2·l_ES2·sin(φ2 − γ2) + F3·l_ES3·sin(φ2 − γ3) + M2 + M3]/l_EA
+/// //                         = 300·0.35·sin(−270°)/0.5 = 210 N.
+/// assert_relative_eq!(r.r12_t, 210.0, epsilon = 1e-9);
+/// assert_relative_eq!(r.r32_n, 90.0, epsilon = 1e-9);
+/// # Ok::<(), tmm::Error>(())
+/// ```
+#[doc(alias = "SR3")]
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct RprSeed {
+    /// l_AB, the length of the rod with its piston, m.
+    pub l_ab: f64,
+    /// l_EC, the length of the cylinder from its pivot to its mouth, m.
+    pub l_ec: f64,
+    /// l_BC, how far the piston is inside the cylinder, m.
+    pub l_bc: f64,
+    /// l_AS2, the distance of S2 from A along the rod, m.
+    pub l_as2: f64,
+    /// l_ES3, the distance of S3 from E along the cylinder, m.
+    pub l_es3: f64,
+    /// φ2, the direction angle of the axis from A towards E, rad.
+    pub phi2: f64,
+    /// F2, the magnitude of the resultant force on the rod (at S2), N.
+    pub f2: f64,
+    /// γ2, its direction angle, rad.
+    pub gamma2: f64,
+    /// F3, the magnitude of the resultant force on the cylinder (at S3), N.
+    pub f3: f64,
+    /// γ3, its direction angle, rad.
+    pub gamma3: f64,
+    /// M2, the resultant moment on the rod, N·m.
+    pub m2: f64,
+    /// M3, the resultant moment on the cylinder, N·m.
+    pub m3: f64,
+}
+
+impl RprSeed {
+    /// The same dyad in Cartesian form, with E at the origin.
+    ///
+    /// # Errors
+    /// Non-finite numbers, non-positive lengths, or l_EA = l_AB − l_BC + l_EC ≤ 0.
+    pub fn to_dyad(&self) -> Result<RprDyad> {
+        positive("l_AB", self.l_ab)?;
+        positive("l_EC", self.l_ec)?;
+        for (name, v) in [
+            ("l_BC", self.l_bc),
+            ("l_AS2", self.l_as2),
+            ("l_ES3", self.l_es3),
+            ("phi2", self.phi2),
+            ("F2", self.f2),
+            ("gamma2", self.gamma2),
+            ("F3", self.f3),
+            ("gamma3", self.gamma3),
+            ("M2", self.m2),
+            ("M3", self.m3),
+        ] {
+            finite(name, v)?;
+        }
+        let l_ea = positive("l_EA", self.l_ab - self.l_bc + self.l_ec)?;
+        let e = Point2::origin();
+        let u = unit(self.phi2);
+        let a = e - u * l_ea;
+        Ok(RprDyad {
+            a,
+            e,
+            axis: u,
+            load2: Load::polar(a + u * self.l_as2, self.f2, self.gamma2, self.m2),
+            load3: Load::polar(e - u * self.l_es3, self.f3, self.gamma3, self.m3),
+        })
+    }
+
+    /// Solves the dyad; see [`RprDyad::solve`].
+    ///
+    /// # Errors
+    /// As [`RprSeed::to_dyad`] and [`RprDyad::solve`].
+    pub fn solve(&self) -> Result<RprReactions> {
+        self.to_dyad()?.solve()
+    }
+}
