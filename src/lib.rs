@@ -41,3 +41,8 @@ pub mod load;
 
 pub use error::{Error, Result};
 pub use load::Load;
+
+// The README's example is compiled and run as a doc test, so it cannot rot.
+#[cfg(doctest)]
+#[doc = include_str!("../README.md")]
+struct ReadmeDoctests;

@@ -123,7 +123,7 @@ impl RprDyad {
         let r12 = u * r12_n + n * r12_t;
         let r32 = n * r32_n;
         let r43 = r32 - self.load3.force;
-        let couple = -self.load2.moment_about(self.a);
+        let couple = 0.0 - self.load2.moment_about(self.a);
         ensure_finite(
             WHAT,
             MEASURE,

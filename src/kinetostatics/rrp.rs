@@ -113,7 +113,7 @@ impl RrpDyad {
         let r12 = u2 * r12_n + perp(u2) * r12_t;
         let r43 = nu * r43_n;
         let r23 = -(r43 + self.load3.force);
-        let guide_moment = -self.load3.moment_about(self.b);
+        let guide_moment = 0.0 - self.load3.moment_about(self.b);
         ensure_finite(
             WHAT,
             MEASURE,
