@@ -4,13 +4,11 @@
 //! caller sweeping millions of positions can tell a bad input from a singular position without a
 //! debugger. No solver panics on bad input or returns a NaN or an infinity in place of an error.
 
-use thiserror::Error;
-
 /// A `Result` whose error is [`Error`].
 pub type Result<T> = std::result::Result<T, Error>;
 
 /// What went wrong, with the values involved.
-#[derive(Debug, Clone, PartialEq, Error)]
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
 #[non_exhaustive]
 pub enum Error {
     /// An input number is NaN or infinite.
