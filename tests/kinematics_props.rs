@@ -261,8 +261,18 @@ proptest! {
 fn slider_velocity_direction_sanity() {
     // A fixed guide along +y through the origin, the pin A moving along +x at 1 m/s from
     // (−0.1, 0): B is dragged along the guide with AB·(v_B − v_A) = 0, so ṡ = (AB·x̂)/(AB·ŷ)·v_A.x.
-    let a = PointMotion::new(Point2::new(-0.1, 0.0), Vector2::new(1.0, 0.0), Vector2::zeros());
-    let d = rrp_dyad(a, Guide::fixed(Point2::origin(), 0.5 * PI), 0.2, Branch::Plus).unwrap();
+    let a = PointMotion::new(
+        Point2::new(-0.1, 0.0),
+        Vector2::new(1.0, 0.0),
+        Vector2::zeros(),
+    );
+    let d = rrp_dyad(
+        a,
+        Guide::fixed(Point2::origin(), 0.5 * PI),
+        0.2,
+        Branch::Plus,
+    )
+    .unwrap();
     let ab = d.b.p - a.p;
     assert!((d.slide.rate - ab.x / ab.y).abs() <= 1e-14);
 }
