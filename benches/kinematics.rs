@@ -37,6 +37,7 @@ fn per_angle(c: &mut Criterion) {
     let angles = seeded_angles(1024);
     let mut g = c.benchmark_group("four_bar_per_angle");
     g.measurement_time(Duration::from_secs(2))
+        .warm_up_time(Duration::from_millis(500))
         .sample_size(20)
         .throughput(Throughput::Elements(angles.len() as u64));
     g.bench_function("positions", |b| {
@@ -71,7 +72,9 @@ fn per_angle(c: &mut Criterion) {
 
 fn cycles(c: &mut Criterion) {
     let mut g = c.benchmark_group("four_bar_cycle");
-    g.measurement_time(Duration::from_secs(2)).sample_size(10);
+    g.measurement_time(Duration::from_secs(2))
+        .warm_up_time(Duration::from_millis(500))
+        .sample_size(10);
     for n in [100usize, 1_000, 10_000, 100_000] {
         g.throughput(Throughput::Elements(n as u64));
         g.bench_with_input(BenchmarkId::from_parameter(n), &n, |b, &n| {
