@@ -218,13 +218,29 @@ enum Slot {
 #[doc(alias = "Zinoviev")]
 pub fn solve_contour(vectors: &[LoopVector], branch: Branch) -> Result<ContourSolution> {
     let (slots, case) = classify(vectors)?;
-    let (x, y) = position(vectors, slots, case, branch)?;
-    let mut motions = [Motion::fixed(x), Motion::fixed(y)];
-    // Columns of the velocity system: ∂(loop sum)/∂(unknown).
-    let c = [
-        column(vectors, slots, &motions, 0),
-        column(vectors, slots, &motions, 1),
+    let holders = [slot_index(slots[0]), slot_index(slots[1])];
+    // The known vectors' sums and their derivatives, in one pass (one sin_cos per vector).
+    let (kr, kv, ka) = known_sums(vectors, holders);
+    let (x, y) = position(vectors, slots, case, branch, -kr)?;
+    let mut m = [Motion::fixed(x), Motion::fixed(y)];
+    // The vectors holding the unknowns (one vector in the polar case), with their unit
+    // vectors computed once.
+    let mut h = [
+        Holder::new(vectors, holders[0]),
+        Holder::new(vectors, holders[1]),
     ];
+    let count = if holders[0] == holders[1] { 1 } else { 2 };
+    for hk in &mut h[..count] {
+        hk.fill(slots, &m);
+    }
+    // Columns of the velocity system: ∂(loop sum)/∂(unknown).
+    let c = [0, 1].map(|k| {
+        let hk = &h[usize::from(count == 2 && k == 1)];
+        match slots[k] {
+            Slot::Length(_) => hk.e,
+            Slot::Angle(_) => hk.l.value * perp(hk.e),
+        }
+    });
     let det = cross(c[0], c[1]);
     let norm = c[0].norm() * c[1].norm();
     let determinant = if norm > 0.0 { det / norm } else { 0.0 };
@@ -236,21 +252,107 @@ pub fn solve_contour(vectors: &[LoopVector], branch: Branch) -> Result<ContourSo
         });
     }
     // Velocities: the loop's derivative with the unknown rates at zero, then J·ẋ = −that.
-    let (v0, _) = derivatives(vectors, slots, &motions);
+    let v0 = h[..count].iter().fold(kv, |acc, hk| acc + hk.velocity());
     let rates = solve2(c, -v0, det);
-    motions[0].rate = rates[0];
-    motions[1].rate = rates[1];
+    m[0].rate = rates[0];
+    m[1].rate = rates[1];
     // Accelerations: the second derivative with the unknown accelerations at zero (it holds
     // the centripetal and Coriolis terms), then J·ẍ = −that.
-    let (_, a0) = derivatives(vectors, slots, &motions);
+    for hk in &mut h[..count] {
+        hk.fill(slots, &m);
+    }
+    let a0 = h[..count]
+        .iter()
+        .fold(ka, |acc, hk| acc + hk.acceleration());
     let accels = solve2(c, -a0, det);
-    motions[0].accel = accels[0];
-    motions[1].accel = accels[1];
+    m[0].accel = accels[0];
+    m[1].accel = accels[1];
     Ok(ContourSolution {
-        unknowns: motions,
+        unknowns: m,
         determinant,
         case,
     })
+}
+
+/// A vector that holds an unknown: its length and angle motions and its unit vector.
+struct Holder {
+    i: usize,
+    l: Motion,
+    t: Motion,
+    e: Vector2<f64>,
+}
+
+impl Holder {
+    fn new(vectors: &[LoopVector], i: usize) -> Self {
+        let (length, angle) = polar(&vectors[i]).unwrap_or((Part::Unknown, Part::Unknown));
+        Self {
+            i,
+            l: known(length),
+            t: known(angle),
+            e: Vector2::zeros(),
+        }
+    }
+
+    /// Puts the unknowns' current motions into this vector and refreshes its unit vector.
+    fn fill(&mut self, slots: [Slot; 2], m: &[Motion; 2]) {
+        for (k, s) in slots.iter().enumerate() {
+            match *s {
+                Slot::Length(j) if j == self.i => self.l = m[k],
+                Slot::Angle(j) if j == self.i => self.t = m[k],
+                _ => {}
+            }
+        }
+        self.e = unit(self.t.value);
+    }
+
+    fn velocity(&self) -> Vector2<f64> {
+        self.l.rate * self.e + self.l.value * self.t.rate * perp(self.e)
+    }
+
+    /// The second derivative: centripetal −L·θ̇²·e, Coriolis 2·L̇·θ̇·e⊥, and the rest.
+    fn acceleration(&self) -> Vector2<f64> {
+        let (l, t) = (self.l, self.t);
+        (l.accel - l.value * t.rate * t.rate) * self.e
+            + (2.0 * l.rate * t.rate + l.value * t.accel) * perp(self.e)
+    }
+}
+
+/// The sums of the vectors that hold no unknown, and of their first and second derivatives.
+fn known_sums(
+    vectors: &[LoopVector],
+    holders: [usize; 2],
+) -> (Vector2<f64>, Vector2<f64>, Vector2<f64>) {
+    let mut r = Vector2::zeros();
+    let mut v = Vector2::zeros();
+    let mut a = Vector2::zeros();
+    for (i, vec) in vectors.iter().enumerate() {
+        if holders.contains(&i) {
+            continue;
+        }
+        match *vec {
+            LoopVector::Cartesian {
+                r: ri,
+                v: vi,
+                a: ai,
+            } => {
+                r += ri;
+                v += vi;
+                a += ai;
+            }
+            LoopVector::Polar { length, angle } => {
+                let h = Holder {
+                    i,
+                    l: known(length),
+                    t: known(angle),
+                    e: unit(known(angle).value),
+                };
+                r += h.l.value * h.e;
+                v += h.velocity();
+                a += h.acceleration();
+            }
+        }
+    }
+    (r, v, a)
 }
 
 /// Solves only the position problem of a closed contour: the two unknowns in loop order.
@@ -261,7 +363,9 @@ pub fn solve_contour(vectors: &[LoopVector], branch: Branch) -> Result<ContourSo
 /// As [`solve_contour`], except that a vanishing velocity determinant is not an error.
 pub fn solve_contour_position(vectors: &[LoopVector], branch: Branch) -> Result<[f64; 2]> {
     let (slots, case) = classify(vectors)?;
-    let (x, y) = position(vectors, slots, case, branch)?;
+    let holders = [slot_index(slots[0]), slot_index(slots[1])];
+    let (kr, _, _) = known_sums(vectors, holders);
+    let (x, y) = position(vectors, slots, case, branch, -kr)?;
     Ok([x, y])
 }
 
@@ -344,19 +448,10 @@ fn position(
     slots: [Slot; 2],
     case: ContourCase,
     branch: Branch,
+    d: Vector2<f64>,
 ) -> Result<(f64, f64)> {
     // d: what the two vectors holding unknowns must add up to (minus the sum of the rest).
-    let mut d = Vector2::zeros();
     let holders = [slot_index(slots[0]), slot_index(slots[1])];
-    for (i, v) in vectors.iter().enumerate() {
-        if holders.contains(&i) {
-            continue;
-        }
-        d -= match *v {
-            LoopVector::Cartesian { r, .. } => r,
-            LoopVector::Polar { length, angle } => known(length).value * unit(known(angle).value),
-        };
-    }
     let sigma = branch.sign();
     let eps16 = 16.0 * f64::EPSILON;
     match case {
@@ -468,44 +563,6 @@ fn filled(vectors: &[LoopVector], slots: [Slot; 2], m: &[Motion; 2], i: usize) -
         }
     }
     (l, t)
-}
-
-/// The column of the velocity matrix for unknown `k`.
-fn column(vectors: &[LoopVector], slots: [Slot; 2], m: &[Motion; 2], k: usize) -> Vector2<f64> {
-    let i = slot_index(slots[k]);
-    let (l, t) = filled(vectors, slots, m, i);
-    match slots[k] {
-        Slot::Length(_) => unit(t.value),
-        Slot::Angle(_) => l.value * perp(unit(t.value)),
-    }
-}
-
-/// The sums of the first and second time derivatives of all vectors, with the unknowns'
-/// derivatives as currently set in `m`.
-fn derivatives(
-    vectors: &[LoopVector],
-    slots: [Slot; 2],
-    m: &[Motion; 2],
-) -> (Vector2<f64>, Vector2<f64>) {
-    let mut vel = Vector2::zeros();
-    let mut acc = Vector2::zeros();
-    for (i, v) in vectors.iter().enumerate() {
-        match *v {
-            LoopVector::Cartesian { v, a, .. } => {
-                vel += v;
-                acc += a;
-            }
-            LoopVector::Polar { .. } => {
-                let (l, t) = filled(vectors, slots, m, i);
-                let e = unit(t.value);
-                let en = perp(e);
-                vel += l.rate * e + l.value * t.rate * en;
-                acc += (l.accel - l.value * t.rate * t.rate) * e
-                    + (2.0 * l.rate * t.rate + l.value * t.accel) * en;
-            }
-        }
-    }
-    (vel, acc)
 }
 
 /// Cramer's rule for [c0 c1]·x = rhs with det = c0 × c1.
