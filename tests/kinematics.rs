@@ -594,3 +594,50 @@ fn near_a_dead_point_the_determinant_shows_the_amplification() {
         assert!((p - lim).abs() <= 0.02 * lim.abs(), "{products:?}");
     }
 }
+
+#[test]
+fn contour_unknowns_come_back_in_loop_order_whatever_the_order() {
+    // The same line–circle loop written with the slide first and the link second: the
+    // unknowns swap places, the geometry does not.
+    let k = Vector2::new(-0.1, 0.05);
+    let (a, beta) = (0.2, 0.3);
+    let angle_first = [
+        LoopVector::fixed(k),
+        LoopVector::unknown_angle(a),
+        LoopVector::unknown_length(Motion::new(beta, 2.0, -1.0)),
+    ];
+    let length_first = [
+        LoopVector::fixed(k),
+        LoopVector::unknown_length(Motion::new(beta, 2.0, -1.0)),
+        LoopVector::unknown_angle(a),
+    ];
+    for branch in [Branch::Plus, Branch::Minus] {
+        let p = solve_contour(&angle_first, branch).unwrap();
+        let q = solve_contour(&length_first, branch).unwrap();
+        for (x, y) in [
+            (p.unknowns[0], q.unknowns[1]),
+            (p.unknowns[1], q.unknowns[0]),
+        ] {
+            assert!((x.value - y.value).abs() <= 1e-15);
+            assert!((x.rate - y.rate).abs() <= 1e-13);
+            assert!((x.accel - y.accel).abs() <= 1e-12);
+        }
+        assert!((p.determinant + q.determinant).abs() <= 1e-15);
+        // The branch: the link points forward (Plus) or backward (Minus) along the slide.
+        let along = unit_of(p.unknowns[0].value).dot(&unit_of(beta));
+        assert_eq!(along > 0.0, branch == Branch::Plus);
+    }
+    // Polar: Minus gives the same vector with a negative length and the opposite angle.
+    let polar = [
+        LoopVector::fixed(Vector2::new(0.3, -0.4)),
+        LoopVector::unknown(),
+    ];
+    let p = solve_contour(&polar, Branch::Plus).unwrap().unknowns;
+    let m = solve_contour(&polar, Branch::Minus).unwrap().unknowns;
+    assert!((p[0].value - 0.5).abs() <= 1e-15 && (m[0].value + 0.5).abs() <= 1e-15);
+    assert!((p[0].value * unit_of(p[1].value) - m[0].value * unit_of(m[1].value)).norm() <= 1e-15);
+}
+
+fn unit_of(angle: f64) -> Vector2<f64> {
+    tmm::angle::unit(angle)
+}
