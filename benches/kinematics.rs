@@ -75,7 +75,7 @@ fn cycles(c: &mut Criterion) {
     g.measurement_time(Duration::from_secs(2))
         .warm_up_time(Duration::from_millis(500))
         .sample_size(10);
-    for n in [100usize, 1_000, 10_000, 100_000] {
+    for n in [100usize, 360, 1_000, 10_000, 100_000] {
         g.throughput(Throughput::Elements(n as u64));
         g.bench_with_input(BenchmarkId::from_parameter(n), &n, |b, &n| {
             b.iter(|| {

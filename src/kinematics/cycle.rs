@@ -83,6 +83,21 @@ where
 /// a coupler. `point` maps an input angle to the point (for a coupler point, for example
 /// `rrr.link2.point_at(along, across).p`).
 ///
+/// # Examples
+/// The coupler point at the joint B of a crank-rocker traces an arc of the rocker's circle
+/// (radius l_CB = 0.3 m about C):
+/// ```
+/// use nalgebra::Point2;
+/// use tmm::kinematics::{coupler_curve, crank, rrr_dyad, Branch, Motion, PointMotion};
+/// let c = PointMotion::fixed(Point2::new(0.4, 0.0));
+/// let curve = coupler_curve(72, 0.0, |phi| {
+///     let a = crank(Point2::origin(), 0.1, Motion::fixed(phi))?.a;
+///     Ok(rrr_dyad(a, c, 0.35, 0.3, Branch::Plus)?.link2.point_at(0.35, 0.0).p)
+/// })?;
+/// assert!(curve.iter().all(|p| ((p - c.p).norm() - 0.3).abs() < 1e-12));
+/// # Ok::<(), tmm::Error>(())
+/// ```
+///
 /// # Errors
 /// As [`cycle`].
 pub fn coupler_curve<F>(n: usize, start: f64, point: F) -> Result<Vec<Point2<f64>>>
@@ -99,6 +114,25 @@ where
 /// lower < phi < upper (not normalised, so the range is an interval): the two input angles at
 /// which the linkage locks, to machine precision. A non-Grashof four-bar's input rocks between
 /// them.
+///
+/// # Examples
+/// A non-Grashof four-bar (frame 0.3 m, crank 0.2 m, coupler 0.08 m, rocker 0.15 m): the
+/// dyad closes while |AC| ≤ 0.23 m, so the input rocks between ±arccos(0.0771/0.12).
+/// ```
+/// use nalgebra::Point2;
+/// use approx::assert_relative_eq;
+/// use tmm::kinematics::{assembly_range, crank, rrr_dyad, Branch, Motion, PointMotion};
+/// let c = PointMotion::fixed(Point2::new(0.3, 0.0));
+/// let range = assembly_range(0.0, |phi| {
+///     let a = crank(Point2::origin(), 0.2, Motion::fixed(phi))?.a;
+///     rrr_dyad(a, c, 0.08, 0.15, Branch::Plus)
+/// })?;
+/// let (lo, hi) = range.expect("the crank cannot turn fully");
+/// let lock = (0.0771f64 / 0.12).acos();
+/// assert_relative_eq!(hi, lock, epsilon = 1e-12);
+/// assert_relative_eq!(lo, -lock, epsilon = 1e-12);
+/// # Ok::<(), tmm::Error>(())
+/// ```
 ///
 /// # Errors
 /// [`Error::NonFinite`] for a non-finite `phi`; the mechanism's own error if it fails at

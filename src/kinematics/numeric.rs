@@ -58,6 +58,16 @@ pub fn differentiate(y: &[f64], h: f64) -> Result<Vec<f64>> {
 /// spaced nodes (the last node is the one before the period closes): the central formula at
 /// every node, wrapping around. Second order everywhere, so it can be applied twice.
 ///
+/// # Examples
+/// sin x at 4 nodes per period (h = π/2): the central difference gives sin h/h·cos x.
+/// ```
+/// use std::f64::consts::FRAC_PI_2;
+/// let d = tmm::kinematics::differentiate_periodic(&[0.0, 1.0, 0.0, -1.0], FRAC_PI_2)?;
+/// let k = 1.0 / FRAC_PI_2; // sin(π/2)/(π/2)
+/// assert!((d[0] - k).abs() < 1e-15 && (d[2] + k).abs() < 1e-15 && d[1].abs() < 1e-15);
+/// # Ok::<(), tmm::Error>(())
+/// ```
+///
 /// # Errors
 /// As [`differentiate`].
 pub fn differentiate_periodic(y: &[f64], h: f64) -> Result<Vec<f64>> {
