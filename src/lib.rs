@@ -9,6 +9,8 @@
 //! ## Module map
 //! - [`angle`]: direction angles (the seeds' UGL helpers), unit vectors, the 2-D cross product.
 //! - [`load`]: a force at a point plus a moment; d'Alembert's inertia loads.
+//! - [`kinematics`]: closed vector contours; the crank and the RRR, RRP, RPR dyad blocks;
+//!   transfer functions, cycles, extreme positions; numerical differentiation and integration.
 //! - [`kinetostatics`]: joint reactions of the RRR, RRP and RPR dyads; the input link driven
 //!   through a coupling (balancing moment) or a gear pair (balancing force).
 //!
@@ -35,8 +37,8 @@
 
 pub mod angle;
 pub mod error;
+pub mod kinematics;
 pub mod kinetostatics;
-
 pub mod load;
 
 pub use error::{Error, Result};

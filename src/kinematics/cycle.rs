@@ -1,0 +1,186 @@
+//! A cycle of the input link: N positions, coupler curves, and where a linkage locks.
+
+use crate::angle::normalize;
+use crate::error::{finite, Error, Result};
+use nalgebra::Point2;
+use std::f64::consts::TAU;
+
+/// The input angles of `n` equally spaced positions over one turn, starting at `start`:
+/// φk = start + k·2π/n (k = 0 … n−1), each in [0, 2π). With `n = 12` and `start` at the
+/// beginning of the working stroke these are the 12 plans of a course project (see
+/// [`Strokes::plan_positions`](super::Strokes::plan_positions) for a crank turning clockwise).
+#[must_use]
+pub fn cycle_angles(n: usize, start: f64) -> Vec<f64> {
+    let step = TAU / n.max(1) as f64;
+    (0..n).map(|k| normalize(start + k as f64 * step)).collect()
+}
+
+/// Evaluates a mechanism at `n` equally spaced input angles over one turn, from `start`.
+///
+/// `mechanism` maps an input angle to whatever the caller needs (usually a short chain of
+/// block calls with a fixed [`Branch`](super::Branch) per group: the assembly mode is an input
+/// of every block, so it stays the same around the whole cycle). The cost is linear in `n`.
+///
+/// # Examples
+/// A crank-rocker completes its cycle; the rocker's angle comes back after one turn:
+/// ```
+/// use nalgebra::Point2;
+/// use tmm::kinematics::{crank, cycle, rrr_dyad, Branch, Motion, PointMotion};
+/// let c = PointMotion::fixed(Point2::new(0.4, 0.0));
+/// let rocker = |phi: f64| {
+///     let a = crank(Point2::origin(), 0.1, Motion::unit_speed(phi))?.a;
+///     Ok(rrr_dyad(a, c, 0.35, 0.3, Branch::Plus)?.link3.angle)
+/// };
+/// let angles = cycle(360, 0.0, rocker)?;
+/// assert_eq!(angles.len(), 360);
+/// # Ok::<(), tmm::Error>(())
+/// ```
+///
+/// # Errors
+/// [`Error::OutOfRange`] for `n = 0`, [`Error::NonFinite`] for a non-finite `start`. When a
+/// position fails, [`Error::In`] names it and, when the linkage cannot be assembled there,
+/// the input angle at which it locks (found by bisection to machine precision); the source is
+/// the position's own error.
+pub fn cycle<S, F>(n: usize, start: f64, mut mechanism: F) -> Result<Vec<S>>
+where
+    F: FnMut(f64) -> Result<S>,
+{
+    finite("start angle", start)?;
+    if n == 0 {
+        return Err(Error::OutOfRange {
+            name: "number of positions",
+            value: 0.0,
+            min: 1.0,
+            max: f64::INFINITY,
+        });
+    }
+    let step = TAU / n as f64;
+    let mut out = Vec::with_capacity(n);
+    for k in 0..n {
+        let phi = start + k as f64 * step;
+        match mechanism(phi) {
+            Ok(s) => out.push(s),
+            Err(e) => {
+                let mut part = format!("position {k} of {n} (phi1 = {} rad)", normalize(phi));
+                if k > 0 && matches!(e, Error::NotAssemblable { .. } | Error::Singular { .. }) {
+                    let lock = boundary(|x| mechanism(x).is_ok(), phi - step, phi);
+                    part.push_str(&format!(
+                        ": the linkage locks at phi1 = {} rad",
+                        normalize(lock)
+                    ));
+                }
+                return Err(Error::In {
+                    part,
+                    source: Box::new(e),
+                });
+            }
+        }
+    }
+    Ok(out)
+}
+
+/// The trace of a point over one turn of the input: a coupler curve when the point belongs to
+/// a coupler. `point` maps an input angle to the point (for a coupler point, for example
+/// `rrr.link2.point_at(along, across).p`).
+///
+/// # Examples
+/// The coupler point at the joint B of a crank-rocker traces an arc of the rocker's circle
+/// (radius l_CB = 0.3 m about C):
+/// ```
+/// use nalgebra::Point2;
+/// use tmm::kinematics::{coupler_curve, crank, rrr_dyad, Branch, Motion, PointMotion};
+/// let c = PointMotion::fixed(Point2::new(0.4, 0.0));
+/// let curve = coupler_curve(72, 0.0, |phi| {
+///     let a = crank(Point2::origin(), 0.1, Motion::fixed(phi))?.a;
+///     Ok(rrr_dyad(a, c, 0.35, 0.3, Branch::Plus)?.link2.point_at(0.35, 0.0).p)
+/// })?;
+/// assert!(curve.iter().all(|p| ((p - c.p).norm() - 0.3).abs() < 1e-12));
+/// # Ok::<(), tmm::Error>(())
+/// ```
+///
+/// # Errors
+/// As [`cycle`].
+pub fn coupler_curve<F>(n: usize, start: f64, point: F) -> Result<Vec<Point2<f64>>>
+where
+    F: FnMut(f64) -> Result<Point2<f64>>,
+{
+    cycle(n, start, point)
+}
+
+/// The range of input angles, through `phi`, over which a mechanism can be assembled.
+///
+/// Returns `None` if the input can make full turns (the mechanism assembles at 720 equally
+/// spaced angles from `phi`, a full turn being checked), otherwise `(lower, upper)` with
+/// lower < phi < upper (not normalised, so the range is an interval): the two input angles at
+/// which the linkage locks, to machine precision. A non-Grashof four-bar's input rocks between
+/// them.
+///
+/// # Examples
+/// A non-Grashof four-bar (frame 0.3 m, crank 0.2 m, coupler 0.08 m, rocker 0.15 m): the
+/// dyad closes while |AC| ≤ 0.23 m, so the input rocks between ±arccos(0.0771/0.12).
+/// ```
+/// use nalgebra::Point2;
+/// use approx::assert_relative_eq;
+/// use tmm::kinematics::{assembly_range, crank, rrr_dyad, Branch, Motion, PointMotion};
+/// let c = PointMotion::fixed(Point2::new(0.3, 0.0));
+/// let range = assembly_range(0.0, |phi| {
+///     let a = crank(Point2::origin(), 0.2, Motion::fixed(phi))?.a;
+///     rrr_dyad(a, c, 0.08, 0.15, Branch::Plus)
+/// })?;
+/// let (lo, hi) = range.expect("the crank cannot turn fully");
+/// let lock = (0.0771f64 / 0.12).acos();
+/// assert_relative_eq!(hi, lock, epsilon = 1e-12);
+/// assert_relative_eq!(lo, -lock, epsilon = 1e-12);
+/// # Ok::<(), tmm::Error>(())
+/// ```
+///
+/// # Errors
+/// [`Error::NonFinite`] for a non-finite `phi`; the mechanism's own error if it fails at
+/// `phi` itself.
+pub fn assembly_range<S, F>(phi: f64, mut mechanism: F) -> Result<Option<(f64, f64)>>
+where
+    F: FnMut(f64) -> Result<S>,
+{
+    finite("phi", phi)?;
+    mechanism(phi)?;
+    const STEPS: usize = 720;
+    let step = TAU / STEPS as f64;
+    let mut ok = |x: f64| mechanism(x).is_ok();
+    let mut upper = None;
+    for k in 1..=STEPS {
+        let x = phi + k as f64 * step;
+        if !ok(x) {
+            upper = Some(boundary(&mut ok, x - step, x));
+            break;
+        }
+    }
+    let Some(upper) = upper else {
+        return Ok(None);
+    };
+    let mut lower = upper - TAU;
+    for k in 1..=STEPS {
+        let x = phi - k as f64 * step;
+        if !ok(x) {
+            lower = boundary(&mut ok, x + step, x);
+            break;
+        }
+    }
+    Ok(Some((lower, upper)))
+}
+
+/// Bisection for the boundary between `good` (assembles) and `bad` (does not), to the last
+/// bit of the input angle.
+fn boundary<F: FnMut(f64) -> bool>(mut ok: F, mut good: f64, mut bad: f64) -> f64 {
+    for _ in 0..200 {
+        let mid = 0.5 * (good + bad);
+        if mid == good || mid == bad {
+            break;
+        }
+        if ok(mid) {
+            good = mid;
+        } else {
+            bad = mid;
+        }
+    }
+    good
+}

@@ -1,0 +1,258 @@
+//! Extreme (dead-centre) positions of an output link, the working and idle strokes, and the
+//! plans of a course project.
+
+use super::motion::Motion;
+use crate::angle::normalize;
+use crate::error::{finite, Error, Result};
+use std::f64::consts::TAU;
+
+/// Whether an extreme of the output is its largest or its smallest value.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum ExtremeKind {
+    /// A maximum of the output (s″ < 0 or φ″ < 0 there).
+    Max,
+    /// A minimum of the output.
+    Min,
+}
+
+/// An extreme position of the output: where its first transfer function vanishes.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Extreme {
+    /// The input angle φ1 there, in [0, 2π).
+    pub input: f64,
+    /// The output's transfer functions there: `value` = the extreme value, `rate` = the first
+    /// transfer function (zero to rounding), `accel` = the second.
+    pub output: Motion,
+    /// Maximum or minimum.
+    pub kind: ExtremeKind,
+}
+
+/// The direction in which the input crank turns.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum Rotation {
+    /// Counter-clockwise: the input angle increases.
+    Ccw,
+    /// Clockwise: the input angle decreases.
+    Cw,
+}
+
+impl Rotation {
+    fn sign(self) -> f64 {
+        match self {
+            Self::Ccw => 1.0,
+            Self::Cw => -1.0,
+        }
+    }
+}
+
+/// Finds the extreme positions of an output over a full turn of the input.
+///
+/// `transfer` maps an input angle φ1 to the output's transfer functions (value, first,
+/// second), usually `|phi| transfer_functions(chain, phi)`. The first transfer function is
+/// sampled at `samples` equally spaced angles; every sign change is refined by a safeguarded
+/// Newton iteration (Newton steps on φ′ with φ″ as its derivative, falling back to bisection
+/// whenever a step would leave the bracket), to the last bits of φ1. A root exactly at a
+/// sample is kept as it is. Extremes closer together than the sampling step can be missed;
+/// 360 samples suit ordinary linkages.
+///
+/// # Examples
+/// The central slider-crank's slider (crank 0.1 m, rod 0.3 m, guide along +x) is farthest out
+/// at φ1 = 0 (s = 0.4 m) and nearest at φ1 = π (s = 0.2 m):
+/// ```
+/// use nalgebra::Point2;
+/// use approx::assert_relative_eq;
+/// use tmm::kinematics::{
+///     crank, extreme_positions, rrp_dyad, transfer_functions, Branch, ExtremeKind, Guide,
+/// };
+/// let slider = |phi: f64| {
+///     transfer_functions(|input| {
+///         let c = crank(Point2::origin(), 0.1, input)?;
+///         Ok(rrp_dyad(c.a, Guide::fixed(Point2::origin(), 0.0), 0.3, Branch::Plus)?.slide)
+///     }, phi)
+/// };
+/// let ext = extreme_positions(slider, 36)?;
+/// assert_eq!(ext.len(), 2);
+/// let max = ext.iter().find(|e| e.kind == ExtremeKind::Max).unwrap();
+/// let min = ext.iter().find(|e| e.kind == ExtremeKind::Min).unwrap();
+/// assert_relative_eq!(max.output.value, 0.4, epsilon = 1e-15);
+/// assert_relative_eq!(min.input, std::f64::consts::PI, epsilon = 1e-14);
+/// assert_relative_eq!(min.output.value, 0.2, epsilon = 1e-15);
+/// # Ok::<(), tmm::Error>(())
+/// ```
+///
+/// # Errors
+/// [`Error::OutOfRange`] for fewer than 3 samples; the output's error at any sample (a
+/// mechanism that cannot make full turns has no cycle to search).
+pub fn extreme_positions<F>(mut transfer: F, samples: usize) -> Result<Vec<Extreme>>
+where
+    F: FnMut(f64) -> Result<Motion>,
+{
+    if samples < 3 {
+        return Err(Error::OutOfRange {
+            name: "samples",
+            value: samples as f64,
+            min: 3.0,
+            max: f64::INFINITY,
+        });
+    }
+    let step = TAU / samples as f64;
+    let at = |k: usize| k as f64 * step;
+    let values = (0..samples)
+        .map(|k| transfer(at(k)))
+        .collect::<Result<Vec<_>>>()?;
+    let mut out = Vec::new();
+    for k in 0..samples {
+        let (f0, f1) = (values[k], values[(k + 1) % samples]);
+        let root = if f0.rate == 0.0 {
+            // A root on a sample: count it once, and only where the sign really changes.
+            let prev = values[(k + samples - 1) % samples].rate;
+            if prev * f1.rate < 0.0 {
+                Some((at(k), f0))
+            } else {
+                None
+            }
+        } else if f0.rate * f1.rate < 0.0 {
+            Some(refine(&mut transfer, at(k), f0, at(k) + step, f1)?)
+        } else {
+            None
+        };
+        if let Some((x, m)) = root {
+            out.push(Extreme {
+                input: normalize(x),
+                output: m,
+                kind: if f0.rate > 0.0 || f1.rate < 0.0 {
+                    ExtremeKind::Max
+                } else {
+                    ExtremeKind::Min
+                },
+            });
+        }
+    }
+    Ok(out)
+}
+
+/// Safeguarded Newton on the first transfer function inside the bracket [a, b].
+fn refine<F>(
+    transfer: &mut F,
+    mut a: f64,
+    fa: Motion,
+    mut b: f64,
+    fb: Motion,
+) -> Result<(f64, Motion)>
+where
+    F: FnMut(f64) -> Result<Motion>,
+{
+    let a_positive = fa.rate > 0.0;
+    // Start from the secant point: inside the bracket and good for a simple root.
+    let mut x = a - fa.rate * (b - a) / (fb.rate - fa.rate);
+    let mut best = if fa.rate.abs() < fb.rate.abs() {
+        (a, fa)
+    } else {
+        (b, fb)
+    };
+    for _ in 0..100 {
+        let m = transfer(x)?;
+        finite("first transfer function", m.rate)?;
+        if m.rate.abs() <= best.1.rate.abs() {
+            best = (x, m);
+        }
+        if m.rate == 0.0 {
+            return Ok((x, m));
+        }
+        if (m.rate > 0.0) == a_positive {
+            a = x;
+        } else {
+            b = x;
+        }
+        let newton = x - m.rate / m.accel;
+        let mid = 0.5 * (a + b);
+        let next = if m.accel != 0.0 && newton > a.min(b) && newton < a.max(b) {
+            newton
+        } else {
+            mid
+        };
+        if next == x || (b - a).abs() <= 2.0 * f64::EPSILON * x.abs().max(1.0) {
+            break;
+        }
+        x = next;
+    }
+    Ok(best)
+}
+
+/// The working and idle strokes of an output with two extreme positions.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Strokes {
+    /// The input angle at the beginning of the working stroke (in [0, 2π)).
+    pub start: f64,
+    /// The input angle at its end, the beginning of the idle stroke.
+    pub end: f64,
+    /// The working-stroke angle: the larger of the two angles the crank turns through between
+    /// the extreme positions (the slower stroke under uniform rotation).
+    pub working_angle: f64,
+    /// The idle-stroke angle, 2π − working angle.
+    pub idle_angle: f64,
+    /// The time ratio of the strokes, working/idle ≥ 1 (the coefficient of the average speed
+    /// of the return stroke, under uniform rotation of the crank).
+    pub time_ratio: f64,
+    /// The sense in which the crank turns.
+    pub rotation: Rotation,
+}
+
+impl Strokes {
+    /// The strokes between two extreme positions (a maximum and a minimum) for a crank
+    /// turning in the sense `rotation`. The working stroke is the larger angle, as in the
+    /// seed (most machines work on the slower stroke).
+    ///
+    /// # Examples
+    /// Extremes at 10° and 200° with a counter-clockwise crank: the crank turns 190° from the
+    /// first to the second and 170° back, so the working stroke begins at 10°.
+    /// ```
+    /// use approx::assert_relative_eq;
+    /// use tmm::kinematics::{Extreme, ExtremeKind, Motion, Rotation, Strokes};
+    /// let e = |deg: f64, kind| Extreme { input: deg.to_radians(), output: Motion::default(), kind };
+    /// let s = Strokes::new(&[e(10.0, ExtremeKind::Min), e(200.0, ExtremeKind::Max)], Rotation::Ccw)?;
+    /// assert_relative_eq!(s.start.to_degrees(), 10.0, epsilon = 1e-12);
+    /// assert_relative_eq!(s.working_angle.to_degrees(), 190.0, epsilon = 1e-12);
+    /// assert_relative_eq!(s.time_ratio, 190.0 / 170.0, epsilon = 1e-12);
+    /// # Ok::<(), tmm::Error>(())
+    /// ```
+    ///
+    /// # Errors
+    /// [`Error::OutOfRange`] unless there are exactly two extremes.
+    pub fn new(extremes: &[Extreme], rotation: Rotation) -> Result<Self> {
+        let [e0, e1] = extremes else {
+            return Err(Error::OutOfRange {
+                name: "number of extreme positions",
+                value: extremes.len() as f64,
+                min: 2.0,
+                max: 2.0,
+            });
+        };
+        let sg = rotation.sign();
+        // The angle the crank turns through from e0 to e1 in its own sense.
+        let forward = normalize(sg * (e1.input - e0.input));
+        let (start, end, working) = if forward >= TAU - forward {
+            (e0.input, e1.input, forward)
+        } else {
+            (e1.input, e0.input, TAU - forward)
+        };
+        Ok(Self {
+            start,
+            end,
+            working_angle: working,
+            idle_angle: TAU - working,
+            time_ratio: working / (TAU - working),
+            rotation,
+        })
+    }
+
+    /// The input angles of `n` plans, equally spaced in the crank's sense of rotation from
+    /// the beginning of the working stroke (n = 12 in a course project).
+    #[must_use]
+    pub fn plan_positions(&self, n: usize) -> Vec<f64> {
+        let step = self.rotation.sign() * TAU / n.max(1) as f64;
+        (0..n)
+            .map(|k| normalize(self.start + k as f64 * step))
+            .collect()
+    }
+}

@@ -1,0 +1,117 @@
+//! The RPR dyad (group of the 2nd class, 3rd kind; the seeds' SR3): a rod 2 hinged at A that
+//! slides through a rocking cylinder (or slotted block) 3 hinged at C.
+
+use super::contour::{in_group, solve_contour, Branch, LoopVector};
+use super::link::LinkMotion;
+use super::motion::{Motion, PointMotion};
+use crate::angle::{normalize, perp, unit};
+use crate::error::Result;
+use nalgebra::Vector2;
+use std::f64::consts::PI;
+
+/// The solved RPR dyad. The rod and the cylinder turn together (same ω, ε).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct RprState {
+    /// The rod 2: origin A, angle φ2 = direction of A→C (into the cylinder, the seed's φ2).
+    pub link2: LinkMotion,
+    /// The cylinder 3: origin C, angle = direction of C→A (φ2 + π), so that its points
+    /// towards A are at positive `along` distances.
+    pub link3: LinkMotion,
+    /// The distance l_AC with its rate and acceleration: the rod's sliding in the cylinder
+    /// (positive rate: the rod comes out, A moves away from C).
+    pub slide: Motion,
+}
+
+impl RprState {
+    /// The velocity of the rod's point relative to the cylinder's coinciding point: ṡ along
+    /// C→A.
+    #[must_use]
+    pub fn relative_velocity(&self) -> Vector2<f64> {
+        self.slide.rate * self.link3.unit()
+    }
+
+    /// The relative (sliding) acceleration s̈ along C→A.
+    #[must_use]
+    pub fn relative_acceleration(&self) -> Vector2<f64> {
+        self.slide.accel * self.link3.unit()
+    }
+
+    /// The Coriolis acceleration 2·ω × v_rel of the rod's points relative to the cylinder
+    /// (the relative velocity turned 90° in the sense of ω).
+    #[must_use]
+    pub fn coriolis(&self) -> Vector2<f64> {
+        2.0 * self.link3.omega * perp(self.relative_velocity())
+    }
+}
+
+/// Positions, velocities and accelerations of an RPR dyad: a rod hinged at A sliding through
+/// a cylinder hinged at C, with the cylinder's axis through C (no offset).
+///
+/// The unknowns are the polar coordinates of A about C (the contour's polar case), so the
+/// solution is unique and the velocity system has determinant 1; the conditioning is the
+/// length l_AC itself (ω = v⊥/l_AC), and the dyad is singular only when A reaches C.
+///
+/// # Examples
+/// A crank pin at A = (0, 0.1) moving at 1 m/s along −x, the cylinder pivot at C = (0.3, 0.1):
+/// l_AC = 0.3 m, the rod points along +x (φ2 = 0), the pin slides away from C at 1 m/s and the
+/// rod does not turn.
+/// ```
+/// use nalgebra::{Point2, Vector2};
+/// use approx::assert_relative_eq;
+/// use tmm::kinematics::{rpr_dyad, PointMotion};
+/// let a = PointMotion::new(Point2::new(0.0, 0.1), Vector2::new(-1.0, 0.0), Vector2::zeros());
+/// let c = PointMotion::fixed(Point2::new(0.3, 0.1));
+/// let d = rpr_dyad(a, c)?;
+/// assert_relative_eq!(d.slide.value, 0.3, epsilon = 1e-15);
+/// assert_relative_eq!(d.slide.rate, 1.0, epsilon = 1e-15);
+/// assert_eq!(d.link2.angle, 0.0);
+/// assert_relative_eq!(d.link2.omega, 0.0, epsilon = 1e-15);
+/// # Ok::<(), tmm::Error>(())
+/// ```
+///
+/// # Errors
+/// Non-finite input ([`Error::NonFinite`](crate::Error::NonFinite)), or
+/// [`Error::Singular`](crate::Error::Singular) with `measure = "l_AC"` when A coincides with C.
+#[doc(alias = "SR3")]
+pub fn rpr_dyad(a: PointMotion, c: PointMotion) -> Result<RprState> {
+    a.validate(["A.x", "A.y", "v_A.x", "v_A.y", "a_A.x", "a_A.y"])?;
+    c.validate(["C.x", "C.y", "v_C.x", "v_C.y", "a_C.x", "a_C.y"])?;
+    // The loop C → A → C: (A − C) + l_AC·e(φ2) = 0, φ2 the direction of A→C.
+    let loop_ = [
+        LoopVector::Cartesian {
+            r: a.p - c.p,
+            v: a.v - c.v,
+            a: a.a - c.a,
+        },
+        LoopVector::unknown(),
+    ];
+    let s = solve_contour(&loop_, Branch::Plus).map_err(|e| match e {
+        crate::Error::Singular { value, .. } => crate::Error::Singular {
+            what: "RPR dyad",
+            measure: "l_AC",
+            value,
+        },
+        other => in_group(other, "RPR dyad", "l_AC", 1.0),
+    })?;
+    let [slide, phi] = s.unknowns;
+    let link2 = LinkMotion {
+        origin: a,
+        angle: phi.value,
+        omega: phi.rate,
+        epsilon: phi.accel,
+    };
+    let link3 = LinkMotion {
+        origin: c,
+        angle: normalize(phi.value + PI),
+        omega: phi.rate,
+        epsilon: phi.accel,
+    };
+    debug_assert!(
+        (a.p + slide.value * unit(phi.value) - c.p).norm() <= 1e-9 * slide.value.max(1.0)
+    );
+    Ok(RprState {
+        link2,
+        link3,
+        slide,
+    })
+}
