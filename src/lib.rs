@@ -9,6 +9,8 @@
 //! ## Module map
 //! - [`angle`]: direction angles (the seeds' UGL helpers), unit vectors, the 2-D cross product.
 //! - [`load`]: a force at a point plus a moment; d'Alembert's inertia loads.
+//! - [`dynamics`]: 2-DOF machines by Lagrange's equations; finite increments, RK4 and
+//!   Dormand–Prince; the five-bar robot, the R–P arm, the landing-gear and coaxial-propeller drives.
 //! - [`kinetostatics`]: joint reactions of the RRR, RRP and RPR dyads; the input link driven
 //!   through a coupling (balancing moment) or a gear pair (balancing force).
 //!
@@ -34,6 +36,7 @@
 //! frame). Points are [`nalgebra::Point2`], vectors [`nalgebra::Vector2`].
 
 pub mod angle;
+pub mod dynamics;
 pub mod error;
 
 pub mod load;
