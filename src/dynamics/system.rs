@@ -49,18 +49,19 @@ impl State {
 }
 
 /// Relative step of the numerical fallbacks (see [`LagrangeSystem::inertia_derivatives`]).
-const FD_STEP: f64 = 1e-3;
+const FD_STEP: f64 = 2e-4;
 
 /// Fourth-order central difference of `f` along coordinate `k` at `q`:
-/// f'(x) ≈ [f(x−2ε) − 8 f(x−ε) + 8 f(x+ε) − f(x+2ε)] / (12 ε), with ε = 10⁻³·(1 + |qₖ|).
-/// The truncation error is ε⁴/30·f⁽⁵⁾ and the rounding error about 10⁻¹⁶/ε, both near
-/// 10⁻¹³ relative for a function of unit scale that varies on a scale of one unit of qₖ.
+/// f'(x) ≈ [f(x−2ε) − 8 f(x−ε) + 8 f(x+ε) − f(x+2ε)] / (12 ε), with ε = 2·10⁻⁴·max(1, |qₖ|).
+/// The truncation error is ε⁴/30·f⁽⁵⁾ and the rounding error about 10⁻¹⁶·|f|/ε: about
+/// 10⁻¹² relative for a function that varies on a scale of one unit of qₖ, more where it
+/// varies faster (near a singular position).
 fn central_difference<T, F>(q: &Vector2<f64>, k: usize, mut f: F) -> Result<T>
 where
     T: std::ops::Sub<Output = T> + std::ops::Mul<f64, Output = T> + std::ops::Add<Output = T>,
     F: FnMut(&Vector2<f64>) -> Result<T>,
 {
-    let eps = FD_STEP * (1.0 + q[k].abs());
+    let eps = FD_STEP * q[k].abs().max(1.0);
     let at = |d: f64| {
         let mut p = *q;
         p[k] += d;
@@ -93,8 +94,9 @@ pub trait LagrangeSystem {
     /// The partial derivatives [∂A/∂q₁, ∂A/∂q₂].
     ///
     /// The default is the documented numerical fallback: fourth-order central differences of
-    /// [`inertia`](Self::inertia) with the step ε = 10⁻³·(1 + |qₖ|) (8 evaluations of A;
-    /// about 10⁻¹² relative for A of unit scale). Override it where the machine knows the
+    /// [`inertia`](Self::inertia) with the step ε = 2·10⁻⁴·max(1, |qₖ|) in the units of qₖ
+    /// (8 evaluations of A; about 10⁻¹² relative when A varies on a scale of one unit of qₖ,
+    /// and within 10⁻⁸ of the analytic derivatives over the five-bar's workspace). Override it where the machine knows the
     /// derivatives (the five-bar from its second-order velocity analogs; constant-inertia
     /// gear drives with zeros).
     ///

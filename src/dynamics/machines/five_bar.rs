@@ -321,12 +321,14 @@ impl FiveBar {
             self.i4 + m_c3 * self.l_dc * self.l_dc,
         );
         for i in 0..2 {
-            for j in 0..2 {
+            for j in i..2 {
                 a[(i, j)] += m_b * k.b_q[i].dot(&k.b_q[j])
                     + dj2 * k.phi2_q[i] * k.phi2_q[j]
                     + dj3 * k.phi3_q[i] * k.phi3_q[j];
             }
         }
+        // Symmetric by construction, to the last bit.
+        a[(1, 0)] = a[(0, 1)];
         a
     }
 }
