@@ -576,9 +576,11 @@ fn five_bar_inertia_is_symmetric_positive_definite_over_its_workspace() {
 fn five_bar_energy_balance_with_gravity() {
     // Servos that never saturate: a clamp makes Q non-smooth, which lowers the order of any
     // method at the kinks (with the 5 N·m limit the residual falls only as h^1.4).
-    let mut f = FiveBar::default();
-    f.gravity = 9.81;
-    f.j_s2 = Some(0.003);
+    let mut f = FiveBar {
+        gravity: 9.81,
+        j_s2: Some(0.003),
+        ..FiveBar::default()
+    };
     f.drive1.limit = 100.0;
     f.drive4.limit = 100.0;
     let s0 = State::at_rest(Vector2::new(120f64.to_radians(), 60f64.to_radians()));
@@ -737,8 +739,10 @@ fn truncate(tr: &mut Trajectory, n: usize) {
 
 #[test]
 fn landing_gear_with_an_unbraked_failed_motor_falls_back() {
-    let mut g = LandingGear::default();
-    g.failure = Some(Failure::Motor6 { braked: false });
+    let g = LandingGear {
+        failure: Some(Failure::Motor6 { braked: false }),
+        ..LandingGear::default()
+    };
     let mut opts = RunOptions::until(60.0, 1e-3);
     opts.record_every = 10;
     opts.reach = Some(Reach {

@@ -43,14 +43,21 @@ impl LagrangeSystem for Oscillator {
 /// The amplification matrix derived in the module docs, acting on (x, h·x′).
 fn amplification(zeta: f64, big_omega: f64) -> Matrix2<f64> {
     let o = big_omega;
-    Matrix2::new(1.0 - 0.5 * o * o, 1.0 - zeta * o, -o * o, 1.0 - 2.0 * zeta * o)
+    Matrix2::new(
+        1.0 - 0.5 * o * o,
+        1.0 - zeta * o,
+        -o * o,
+        1.0 - 2.0 * zeta * o,
+    )
 }
 
 fn spectral_radius(m: &Matrix2<f64>) -> f64 {
     let (tr, det) = (m.trace(), m.determinant());
     let disc = tr * tr - 4.0 * det;
     if disc >= 0.0 {
-        ((tr + disc.sqrt()) / 2.0).abs().max(((tr - disc.sqrt()) / 2.0).abs())
+        ((tr + disc.sqrt()) / 2.0)
+            .abs()
+            .max(((tr - disc.sqrt()) / 2.0).abs())
     } else {
         det.sqrt()
     }
@@ -70,7 +77,11 @@ fn the_derived_amplification_matrix_is_the_steppers() {
         // Columns: x = 1, y = 0 and x = 0, y = 1 (x′ = 1/h).
         for (col, (x, v)) in [(1.0, 0.0), (0.0, 1.0 / h)].into_iter().enumerate() {
             let s = FiniteIncrement
-                .step(&sys, &State::new(0.0, Vector2::new(x, 0.0), Vector2::new(v, 0.0)), h)
+                .step(
+                    &sys,
+                    &State::new(0.0, Vector2::new(x, 0.0), Vector2::new(v, 0.0)),
+                    h,
+                )
                 .unwrap();
             assert!((s.q[0] - m[(0, col)]).abs() < 1e-9, "{zeta} {o}");
             assert!((s.qd[0] * h - m[(1, col)]).abs() < 1e-9, "{zeta} {o}");
@@ -83,12 +94,21 @@ fn spectral_radius_crosses_one_exactly_at_min_4zeta_inverse_zeta() {
     for i in 1..=60 {
         let zeta = 0.05 * f64::from(i); // 0.05 … 3
         let lim = limit(zeta);
-        assert!(spectral_radius(&amplification(zeta, lim * 0.999)) < 1.0, "ζ = {zeta}");
-        assert!(spectral_radius(&amplification(zeta, lim * 1.001)) > 1.0, "ζ = {zeta}");
+        assert!(
+            spectral_radius(&amplification(zeta, lim * 0.999)) < 1.0,
+            "ζ = {zeta}"
+        );
+        assert!(
+            spectral_radius(&amplification(zeta, lim * 1.001)) > 1.0,
+            "ζ = {zeta}"
+        );
     }
     for i in 1..=300 {
         let o = 0.01 * f64::from(i);
-        assert!(spectral_radius(&amplification(0.0, o)) > 1.0, "ζ = 0, Ω = {o}");
+        assert!(
+            spectral_radius(&amplification(0.0, o)) > 1.0,
+            "ζ = 0, Ω = {o}"
+        );
     }
 }
 
@@ -113,8 +133,14 @@ fn finite_increments_bounded_just_below_the_limit_and_growing_just_above() {
         let worst = below.iter().fold(0.0f64, |m, a| m.max(*a));
         // Near ζ = ½ the two eigenvalues nearly coincide at −1: a transient of a few times
         // the start amplitude, then decay.
-        assert!(worst < 20.0, "ζ = {zeta}: amplitude reached {worst} below the limit");
-        assert!(*below.last().unwrap() < 0.1, "ζ = {zeta}: no decay below the limit");
+        assert!(
+            worst < 20.0,
+            "ζ = {zeta}: amplitude reached {worst} below the limit"
+        );
+        assert!(
+            *below.last().unwrap() < 0.1,
+            "ζ = {zeta}: no decay below the limit"
+        );
         // Growth by more than 10³, or all the way to overflow (an error, never a NaN).
         let grew = match amplitudes(&sys, 1.03 * lim / omega, 40_000) {
             Ok(a) => *a.last().unwrap() > 1e3,
@@ -135,7 +161,10 @@ fn finite_increments_gain_energy_at_every_step_size_without_damping() {
         let expected = (1.0 + 0.5 * o * o).powf(200.0);
         let got = a[399];
         assert!(got > 1.0, "Ω = {o}: amplitude {got}");
-        assert!((got / expected).ln().abs() < 0.7, "Ω = {o}: {got} vs {expected}");
+        assert!(
+            (got / expected).ln().abs() < 0.7,
+            "Ω = {o}: {got} vs {expected}"
+        );
     }
 }
 
@@ -179,13 +208,26 @@ fn divergence_ends_in_an_error_naming_the_time() {
     let h = 2.9 / 50.0;
     let s0 = State::new(0.0, Vector2::zeros(), Vector2::new(1.0, -1.0));
     let e = run(&sys, &Rk4, s0, &RunOptions::until(1e4, h)).unwrap_err();
-    let Error::NonFiniteState { time } = e else { panic!("{e}") };
+    let Error::NonFiniteState { time } = e else {
+        panic!("{e}")
+    };
     // |R(−2.9)| = 1.187…: overflow after about 4100 steps, i.e. near t = 240 s.
     assert!(time > 100.0 && time < 400.0, "diverged at t = {time}");
     assert!(e.to_string().contains(&format!("{time}")));
 
-    let osc = Oscillator { omega: 10.0, zeta: 0.0 };
-    let e = run(&osc, &FiniteIncrement, State::new(0.0, Vector2::new(1.0, 0.0), Vector2::zeros()), &RunOptions::until(1e6, 0.2))
-        .unwrap_err();
-    assert!(matches!(e, Error::NonFiniteState { time } if time.is_finite() && time > 0.0), "{e}");
+    let osc = Oscillator {
+        omega: 10.0,
+        zeta: 0.0,
+    };
+    let e = run(
+        &osc,
+        &FiniteIncrement,
+        State::new(0.0, Vector2::new(1.0, 0.0), Vector2::zeros()),
+        &RunOptions::until(1e6, 0.2),
+    )
+    .unwrap_err();
+    assert!(
+        matches!(e, Error::NonFiniteState { time } if time.is_finite() && time > 0.0),
+        "{e}"
+    );
 }

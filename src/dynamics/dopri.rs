@@ -88,7 +88,7 @@ const E: [f64; 7] = [
 ///     }
 /// }
 /// let dp = Dopri5::new(1e-9).unwrap();
-/// let (mut s, mut h) = (State::new(0.0, Vector2::zeros(), Vector2::new(2.0, 0.0)), 0.1);
+/// let (mut s, mut h) = (State::new(0.0, Vector2::zeros(), Vector2::new(2.0, 0.0)), 0.1_f64);
 /// while s.t < 1.0 {
 ///     let a = dp.advance(&Rotor, &s, h.min(1.0 - s.t)).unwrap();
 ///     (s, h) = (a.state, a.h_next);

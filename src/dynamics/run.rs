@@ -168,10 +168,8 @@ fn locate<S: LagrangeSystem + ?Sized, M: Stepper>(
     sys: &S,
     method: &M,
     r: &Reach,
-    s0: &State,
-    s1: &State,
-    f0: f64,
-    f1: f64,
+    (s0, f0): (&State, f64),
+    (s1, f1): (&State, f64),
     buf: &mut Vec<f64>,
 ) -> Result<State> {
     let h = s1.t - s0.t;
@@ -326,7 +324,7 @@ pub fn run<S: LagrangeSystem + ?Sized, M: Stepper>(
         if let Some(r) = &opts.reach {
             let g1 = watched(sys, r.watch, &s1, &mut buf)? - r.value;
             if crosses(r.direction, g_prev, g1) {
-                let hit = locate(sys, method, r, &s, &s1, g_prev, g1, &mut buf)?;
+                let hit = locate(sys, method, r, (&s, g_prev), (&s1, g1), &mut buf)?;
                 return finish(
                     &mut traj,
                     hit,

@@ -212,7 +212,7 @@ pub(crate) fn checked_inertia(
     let det = a[(0, 0)] * a[(1, 1)] - a12 * a12;
     // Relative test: a determinant that is rounding noise of the products counts as zero.
     let scale = (a[(0, 0)] * a[(1, 1)]).abs().max(a12 * a12);
-    if !(a[(0, 0)] > 0.0 && a[(1, 1)] > 0.0 && det > 1e-14 * scale) || !det.is_finite() {
+    if !(a[(0, 0)] > 0.0 && a[(1, 1)] > 0.0 && det > 1e-14 * scale && det.is_finite()) {
         return Err(Error::NotPositiveDefinite {
             at: format!("t = {t} s, q = ({}, {})", q[0], q[1]),
             det,
