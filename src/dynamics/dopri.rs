@@ -118,6 +118,22 @@ impl Dopri5 {
         })
     }
 
+    /// Both tolerances finite and non-negative, at least one positive.
+    fn check(&self) -> Result<()> {
+        for (name, v) in [("rtol", self.rtol), ("atol", self.atol)] {
+            if !(v.is_finite() && v >= 0.0) {
+                return Err(Error::OutOfRange {
+                    name,
+                    value: v,
+                    min: 0.0,
+                    max: f64::INFINITY,
+                });
+            }
+        }
+        positive("rtol + atol", self.rtol + self.atol)?;
+        Ok(())
+    }
+
     /// One Dormand–Prince step of exactly `h`: the fifth-order solution and the error
     /// estimate.
     fn trial<S: LagrangeSystem + ?Sized>(
@@ -163,9 +179,13 @@ impl Stepper for Dopri5 {
         check_result(unpack(s.t + h, &y5))
     }
 
+    /// # Errors
+    /// As [`step`](Stepper::step); [`Error::OutOfRange`] for a negative or non-finite
+    /// tolerance; [`Error::Singular`] when the step size the accuracy needs falls below
+    /// 10⁻¹²·max(1, |t|).
     fn advance<S: LagrangeSystem + ?Sized>(&self, sys: &S, s: &State, h: f64) -> Result<Advance> {
         check_step(s, h)?;
-        positive("rtol", self.rtol.max(self.atol))?;
+        self.check()?;
         let y = pack(s);
         let h_min = 1e-12 * s.t.abs().max(1.0);
         let mut h = h;

@@ -225,6 +225,21 @@ impl FiveBar {
     /// # Errors
     /// [`Error::NotAssemblable`] when the couplers cannot reach each other;
     /// [`Error::Singular`] (measure `sin(phi3 - phi2)`) when they are collinear.
+    ///
+    /// # Examples
+    /// The default robot at (120°, 60°) is symmetric about x = 0.1 m: A = (−0.075, 0.1299),
+    /// C = (0.275, 0.1299), so B = (0.1, 0.1299 + √(0.25² − 0.175²)) = (0.1, 0.3085), and
+    /// turning crank 1 alone moves B as much (mirrored) as turning crank 4 alone.
+    /// ```
+    /// use nalgebra::Vector2;
+    /// use tmm::dynamics::machines::FiveBar;
+    /// let k = FiveBar::default()
+    ///     .kinematics(&Vector2::new(120f64.to_radians(), 60f64.to_radians()))
+    ///     .unwrap();
+    /// let yb = 0.15 * 60f64.to_radians().sin() + (0.25f64.powi(2) - 0.175f64.powi(2)).sqrt();
+    /// assert!((k.b.x - 0.1).abs() < 1e-12 && (k.b.y - yb).abs() < 1e-12);
+    /// assert!((k.b_q[0].x - k.b_q[1].x).abs() < 1e-12 && (k.b_q[0].y + k.b_q[1].y).abs() < 1e-12);
+    /// ```
     pub fn kinematics(&self, q: &Vector2<f64>) -> Result<FiveBarKinematics> {
         self.check()?;
         finite("phi1", q[0])?;

@@ -121,6 +121,16 @@ impl Default for LandingGear {
 
 impl LandingGear {
     /// The ratios (uH1, uH3·u36) of the carrier: φ̇H = ratios · q̇.
+    ///
+    /// # Examples
+    /// With z1 = 20, z3 = 70, z4 = 60, z6 = 20: uH1 = 20/90, uH3·u36 = (70/90)·(20/60) = 7/27,
+    /// so both motors at 1200 rad/s turn the carrier at 1200·(2/9 + 7/27) = 577.8 rad/s.
+    /// ```
+    /// use nalgebra::Vector2;
+    /// use tmm::dynamics::machines::LandingGear;
+    /// let u = LandingGear::default().carrier_ratios();
+    /// assert!((u.dot(&Vector2::new(1200.0, 1200.0)) - 1200.0 * (2.0 / 9.0 + 7.0 / 27.0)).abs() < 1e-9);
+    /// ```
     #[must_use]
     pub fn carrier_ratios(&self) -> Vector2<f64> {
         let [z1, _, z3, z4, _, z6] = self.z.map(f64::from);
