@@ -1057,3 +1057,34 @@ mod props {
         }
     }
 }
+
+#[test]
+fn gear_drives_accelerations_are_the_seeds_corrected_87_88_and_127_128() {
+    // Coaxial propellers, (127)–(128) (with D39's numerator).
+    let d = CoaxialPropellers::default();
+    let a = d.inertia_matrix().unwrap();
+    let (i44, i4h, ihh) = (a[(0, 0)], a[(0, 1)], a[(1, 1)]);
+    let u = d.input_ratios();
+    let qd = Vector2::new(-40.0, 55.0);
+    let mp1 = d.motor.torque(u.dot(&qd));
+    let (m4, mh) = (d.m_on4, d.m_onh);
+    let phh = ((m4 * i4h - mh * i44) + mp1 * (u[0] * i4h - u[1] * i44)) / (i4h * i4h - i44 * ihh);
+    let p44 = ((m4 * ihh - mh * i4h) + mp1 * (u[0] * ihh - u[1] * i4h)) / (i44 * ihh - i4h * i4h);
+    let ours = accelerations(&d, 0.0, &Vector2::zeros(), &qd).unwrap();
+    assert!((ours - Vector2::new(p44, phh)).norm() < 1e-12 * ours.norm());
+
+    // Landing gear, (87)–(88) with D28's inertia on the Q6 term.
+    let g = LandingGear::default();
+    let a = g.inertia_matrix().unwrap();
+    let (i11, i16, i66) = (a[(0, 0)], a[(0, 1)], a[(1, 1)]);
+    let q = Vector2::new(3000.0, 2500.0);
+    let qd = Vector2::new(900.0, 1100.0);
+    let m_on = g.load.at(g.phi_h(&q)).unwrap();
+    let uh = g.carrier_ratios();
+    let q1 = g.motor1.torque(qd[0]) + m_on * uh[0];
+    let q6 = g.motor6.torque(qd[1]) + m_on * uh[1];
+    let p1 = (q1 * i66 - q6 * i16) / (i11 * i66 - i16 * i16);
+    let p6 = (q1 * i16 - q6 * i11) / (i16 * i16 - i11 * i66);
+    let ours = accelerations(&g, 0.0, &q, &qd).unwrap();
+    assert!((ours - Vector2::new(p1, p6)).norm() < 1e-12 * ours.norm());
+}
