@@ -335,10 +335,17 @@ fn coaxial(dir: &Path) -> Res<()> {
         "  (M_on)4 = 6000 N·m, out of the ratio (ERRATA D41): {}",
         describe(&r.outcome)
     );
+    // Draw 20 s of it, so that the drift shows.
+    let long = RunOptions {
+        t_end: 20.0,
+        steady: None,
+        ..opts
+    };
+    let r = run(&un, &FiniteIncrement, s0, &long)?;
     save(
         dir,
         "coaxial_propellers_unbalanced",
-        "Coaxial propellers, loads out of ratio: φ4, φH and speeds",
+        "Coaxial propellers, loads out of ratio (20 s): φ4, φH and speeds",
         &r,
         &[],
         &["omega_1"],
