@@ -11,6 +11,8 @@
 //! - [`load`]: a force at a point plus a moment; d'Alembert's inertia loads.
 //! - [`kinematics`]: closed vector contours; the crank and the RRR, RRP, RPR dyad blocks;
 //!   transfer functions, cycles, extreme positions; numerical differentiation and integration.
+//! - [`dynamics`]: 2-DOF machines by Lagrange's equations; finite increments, RK4 and
+//!   Dormand–Prince; the five-bar robot, the R–P arm, the landing-gear and coaxial-propeller drives.
 //! - [`kinetostatics`]: joint reactions of the RRR, RRP and RPR dyads; the input link driven
 //!   through a coupling (balancing moment) or a gear pair (balancing force).
 //!
@@ -36,6 +38,7 @@
 //! frame). Points are [`nalgebra::Point2`], vectors [`nalgebra::Vector2`].
 
 pub mod angle;
+pub mod dynamics;
 pub mod error;
 pub mod kinematics;
 pub mod kinetostatics;

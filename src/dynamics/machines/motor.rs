@@ -1,0 +1,62 @@
+//! The linear mechanical characteristic M = a − b·ω of an induction motor (seed 003, eqs.
+//! 85–86 and 126).
+
+use crate::error::{positive, Error, Result};
+
+/// A motor whose driving moment falls linearly with its speed: M = a − b·ω.
+///
+/// Built from the nominal moment and the synchronous (no-load) and nominal speeds, the line
+/// passes through (ω_sync, 0) and (ω_nom, M_nom): b = M_nom/(ω_sync − ω_nom), a = b·ω_sync
+/// (eqs. 85–86; ERRATA D27, D37). This is the working branch of an induction motor's
+/// characteristic, extended down to standstill: the starting moment a is then the nominal
+/// moment times ω_sync/(ω_sync − ω_nom), larger than a real motor gives.
+///
+/// # Examples
+/// A 400 Hz four-pole aircraft motor: 12 000 rpm synchronous, 11 000 rpm nominal, 0.4 N·m:
+/// ```
+/// use tmm::dynamics::machines::LinearMotor;
+/// let rpm = std::f64::consts::PI / 30.0;
+/// let m = LinearMotor::from_nominal(0.4, 12_000.0 * rpm, 11_000.0 * rpm).unwrap();
+/// assert!((m.torque(11_000.0 * rpm) - 0.4).abs() < 1e-12);
+/// assert!(m.torque(12_000.0 * rpm).abs() < 1e-12);
+/// assert!((m.a - 4.8).abs() < 1e-12); // 12 × nominal at standstill
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct LinearMotor {
+    /// The moment at standstill, N·m.
+    pub a: f64,
+    /// The slope, N·m·s/rad.
+    pub b: f64,
+}
+
+impl LinearMotor {
+    /// The characteristic through (ω_sync, 0) and (ω_nom, M_nom).
+    ///
+    /// # Errors
+    /// [`Error::NonPositive`] for a non-positive moment or speed; [`Error::OutOfRange`] when
+    /// the nominal speed is not below the synchronous one.
+    pub fn from_nominal(m_nom: f64, omega_sync: f64, omega_nom: f64) -> Result<Self> {
+        positive("M_nom", m_nom)?;
+        positive("omega_sync", omega_sync)?;
+        positive("omega_nom", omega_nom)?;
+        if omega_nom >= omega_sync {
+            return Err(Error::OutOfRange {
+                name: "omega_nom",
+                value: omega_nom,
+                min: 0.0,
+                max: omega_sync,
+            });
+        }
+        let b = m_nom / (omega_sync - omega_nom);
+        Ok(Self {
+            a: b * omega_sync,
+            b,
+        })
+    }
+
+    /// The driving moment at the shaft speed ω, N·m.
+    #[must_use]
+    pub fn torque(&self, omega: f64) -> f64 {
+        self.a - self.b * omega
+    }
+}

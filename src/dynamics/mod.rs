@@ -1,0 +1,45 @@
+//! Dynamics of machines with two degrees of freedom (seed 003): Lagrange's equations of the
+//! 2nd kind, three integrators behind one interface, stop conditions, and the seed's four
+//! machines.
+//!
+//! - [`LagrangeSystem`]: a machine as its inertia matrix A(q) (I11, I14, I44 in the seed), the
+//!   derivatives of A (analytic or a documented numerical fallback), the generalized forces
+//!   Q(t, q, q̇), a potential Π(q) and Rayleigh's dissipation function; [`accelerations`]
+//!   solves A q̈ = Q − c(q, q̇) − ∇Π − B q̇ with the Christoffel terms c, derived once.
+//! - [`Stepper`]: [`FiniteIncrement`] (the seeds' method, order 1), [`Rk4`] (order 4) and
+//!   [`Dopri5`] (adaptive, Dormand–Prince 5(4), asks for an accuracy instead of a step).
+//! - [`run`]: stops at a final time, when a watched quantity reaches a value (located inside
+//!   the step), or at a steady state, and says when a steady state can never come
+//!   ([`Outcome::Drifting`]). The motion is recorded as a [`Trajectory`] (columns, CSV).
+//! - [`machines`]: the five-bar robot (§2), the R–P arm and its decoupled variant (§3), the
+//!   landing-gear drive (§4) and the coaxial-propeller drive (§5), each with realistic
+//!   default data.
+//!
+//! Errors, never NaN: a non-positive-definite inertia matrix ([`Error::NotPositiveDefinite`],
+//! with the time and coordinates), a non-finite state ([`Error::NonFiniteState`], with the
+//! time), a step that is not positive ([`Error::NonPositive`]), a table lookup outside its
+//! range ([`Error::OutOfRange`]).
+//!
+//! [`Error::NotPositiveDefinite`]: crate::Error::NotPositiveDefinite
+//! [`Error::NonFiniteState`]: crate::Error::NonFiniteState
+//! [`Error::NonPositive`]: crate::Error::NonPositive
+//! [`Error::OutOfRange`]: crate::Error::OutOfRange
+
+mod dopri;
+mod finite_increment;
+pub mod machines;
+mod rk4;
+mod run;
+mod stepper;
+mod system;
+mod table;
+mod trajectory;
+
+pub use dopri::Dopri5;
+pub use finite_increment::FiniteIncrement;
+pub use rk4::Rk4;
+pub use run::{run, Direction, Outcome, Reach, RunOptions, RunResult, Steady, Watch};
+pub use stepper::{Advance, Stepper};
+pub use system::{accelerations, christoffel_terms, kinetic_energy, powers, LagrangeSystem, State};
+pub use table::{Beyond, Table};
+pub use trajectory::Trajectory;

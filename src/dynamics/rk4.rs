@@ -1,0 +1,64 @@
+//! The classic fourth-order Runge–Kutta method.
+
+use super::stepper::{check_result, check_step, pack, rhs, unpack, Stepper};
+use super::system::{LagrangeSystem, State};
+use crate::error::Result;
+
+/// Classic RK4 on the first-order form y = (q, q̇), ẏ = (q̇, q̈).
+///
+/// Fourth-order accurate with four evaluations per step. On ẏ = λy its amplification factor
+/// is 1 + z + z²/2 + z³/6 + z⁴/24 (z = hλ); on the negative real axis it stays within the unit
+/// circle for h|λ| up to ≈ 2.785 (for example 0.879 at 2.7, 1.187 at 2.9).
+///
+/// # Examples
+/// A rotor of 0.5 kg·m² under a viscous moment −0.25·ω spins down from 2 rad/s:
+/// ω(t) = 2·e^(−t/2). One second in ten steps agrees to 1e-7.
+/// ```
+/// use nalgebra::{Matrix2, Vector2};
+/// use tmm::dynamics::{LagrangeSystem, Rk4, State, Stepper};
+/// struct Rotor;
+/// impl LagrangeSystem for Rotor {
+///     fn inertia(&self, _: &Vector2<f64>) -> tmm::Result<Matrix2<f64>> {
+///         Ok(Matrix2::new(0.5, 0.0, 0.0, 1.0))
+///     }
+///     fn forces(&self, _: f64, _: &Vector2<f64>, _: &Vector2<f64>) -> tmm::Result<Vector2<f64>> {
+///         Ok(Vector2::zeros())
+///     }
+///     fn damping(&self, _: &Vector2<f64>) -> tmm::Result<Matrix2<f64>> {
+///         Ok(Matrix2::new(0.25, 0.0, 0.0, 0.0))
+///     }
+/// }
+/// let mut s = State::new(0.0, Vector2::zeros(), Vector2::new(2.0, 0.0));
+/// for _ in 0..10 {
+///     s = Rk4.step(&Rotor, &s, 0.1).unwrap();
+/// }
+/// assert!((s.qd[0] - 2.0 * (-0.5f64).exp()).abs() < 1e-7);
+/// ```
+#[doc(alias = "Runge-Kutta")]
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct Rk4;
+
+impl Stepper for Rk4 {
+    fn name(&self) -> &'static str {
+        "RK4"
+    }
+
+    fn order(&self) -> u32 {
+        4
+    }
+
+    fn evaluations_per_step(&self) -> usize {
+        4
+    }
+
+    fn step<S: LagrangeSystem + ?Sized>(&self, sys: &S, s: &State, h: f64) -> Result<State> {
+        check_step(s, h)?;
+        let y = pack(s);
+        let k1 = rhs(sys, s.t, &y)?;
+        let k2 = rhs(sys, s.t + 0.5 * h, &(y + 0.5 * h * k1))?;
+        let k3 = rhs(sys, s.t + 0.5 * h, &(y + 0.5 * h * k2))?;
+        let k4 = rhs(sys, s.t + h, &(y + h * k3))?;
+        let y1 = y + (h / 6.0) * (k1 + 2.0 * k2 + 2.0 * k3 + k4);
+        check_result(unpack(s.t + h, &y1))
+    }
+}

@@ -1,0 +1,379 @@
+//! Running a machine until a stop condition: a final time, a watched quantity reaching a
+//! value (located inside the step), or a steady state.
+
+use nalgebra::Vector2;
+
+use super::stepper::Stepper;
+use super::system::{accelerations, LagrangeSystem, State};
+use super::trajectory::Trajectory;
+use crate::error::{finite, positive, Error, Result};
+
+/// A quantity a run can watch.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Watch {
+    /// The generalized coordinate qᵢ (i = 0 or 1).
+    Coordinate(usize),
+    /// The generalized speed q̇ᵢ.
+    Speed(usize),
+    /// The machine's i-th extra output (see [`LagrangeSystem::output_names`]), for example
+    /// the carrier angle φ_H of the landing gear.
+    Output(usize),
+}
+
+/// Which crossings of the value count.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Direction {
+    /// From below to the value or above.
+    #[default]
+    Rising,
+    /// From above to the value or below.
+    Falling,
+    /// Either way.
+    Either,
+}
+
+/// Stop when a watched quantity reaches a value.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Reach {
+    /// What to watch.
+    pub watch: Watch,
+    /// The value to reach.
+    pub value: f64,
+    /// Which crossings count (the start state itself never counts).
+    pub direction: Direction,
+}
+
+/// Stop at a steady state: every generalized acceleration (the seed's speed increments per
+/// unit time, which does not depend on the step) stays within `tol` for `hold` seconds.
+///
+/// The same window also detects motions that can never become steady: when the accelerations
+/// stay above `tol` but change by less than `tol` over `hold` seconds, the speeds grow (or
+/// fall) linearly for ever and the run ends with [`Outcome::Drifting`]. A transient whose time
+/// constant is longer than about hold·|q̈|/tol is indistinguishable from such a drift over the
+/// window: choose `hold` longer than the slowest time constant of the machine.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Steady {
+    /// Tolerance on |q̈ᵢ| (rad/s² or m/s²).
+    pub tol: f64,
+    /// How long the condition must hold, s.
+    pub hold: f64,
+}
+
+/// How a run is done and when it stops. The final time always bounds the run.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct RunOptions {
+    /// The latest time, s; the run stops there if nothing else stopped it.
+    pub t_end: f64,
+    /// The step size (fixed-step methods) or the first proposed step (adaptive ones), s.
+    pub h: f64,
+    /// Record every n-th step (1 = every step); the start and the end are always recorded.
+    pub record_every: usize,
+    /// Stop when a quantity reaches a value.
+    pub reach: Option<Reach>,
+    /// Stop at a steady state.
+    pub steady: Option<Steady>,
+}
+
+impl RunOptions {
+    /// Run to `t_end` with steps `h`, recording every step.
+    #[must_use]
+    pub fn until(t_end: f64, h: f64) -> Self {
+        Self {
+            t_end,
+            h,
+            record_every: 1,
+            reach: None,
+            steady: None,
+        }
+    }
+}
+
+/// Why a run stopped.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Outcome {
+    /// The final time was reached (no other stop condition was asked for, or the watched
+    /// value was never reached).
+    FinalTime,
+    /// The watched quantity reached its value at time `t` (located inside the step).
+    Reached {
+        /// The time of the crossing, s.
+        t: f64,
+    },
+    /// The steady state held from `t − hold` to `t`.
+    Steady {
+        /// The time at which the steady state was confirmed, s.
+        t: f64,
+    },
+    /// A steady state was asked for but can never be met: the accelerations settled to a
+    /// non-zero constant, so the speeds change linearly for ever (for example the coaxial
+    /// propellers with resisting moments not in the gear ratio, ERRATA D41).
+    Drifting {
+        /// The time of the verdict, s.
+        t: f64,
+        /// The settled accelerations.
+        acceleration: Vector2<f64>,
+    },
+    /// A steady state was asked for and the final time came first.
+    NotSteady {
+        /// The accelerations at the final time.
+        acceleration: Vector2<f64>,
+    },
+}
+
+/// The result of [`run`].
+#[derive(Debug, Clone, PartialEq)]
+pub struct RunResult {
+    /// The recorded motion.
+    pub trajectory: Trajectory,
+    /// Why it stopped.
+    pub outcome: Outcome,
+    /// The last state (the located crossing for [`Outcome::Reached`]).
+    pub last: State,
+    /// Accepted steps taken.
+    pub steps: usize,
+    /// Evaluations of the accelerations spent by the stepper (location and recording not
+    /// counted).
+    pub evaluations: usize,
+}
+
+fn watched<S: LagrangeSystem + ?Sized>(
+    sys: &S,
+    w: Watch,
+    s: &State,
+    buf: &mut Vec<f64>,
+) -> Result<f64> {
+    Ok(match w {
+        Watch::Coordinate(i) => s.q[i],
+        Watch::Speed(i) => s.qd[i],
+        Watch::Output(i) => {
+            buf.clear();
+            sys.outputs(s.t, &s.q, &s.qd, buf)?;
+            buf[i]
+        }
+    })
+}
+
+fn crosses(d: Direction, g0: f64, g1: f64) -> bool {
+    match d {
+        Direction::Rising => g0 < 0.0 && g1 >= 0.0,
+        Direction::Falling => g0 > 0.0 && g1 <= 0.0,
+        Direction::Either => (g0 < 0.0 && g1 >= 0.0) || (g0 > 0.0 && g1 <= 0.0),
+    }
+}
+
+/// Finds the state inside the step s0 → s1 at which the watched quantity equals the value,
+/// by re-stepping from s0 with θh (regula falsi, Illinois variant): the located state is a
+/// true state of the method, not an interpolation.
+fn locate<S: LagrangeSystem + ?Sized, M: Stepper>(
+    sys: &S,
+    method: &M,
+    r: &Reach,
+    (s0, f0): (&State, f64),
+    (s1, f1): (&State, f64),
+    buf: &mut Vec<f64>,
+) -> Result<State> {
+    let h = s1.t - s0.t;
+    if f1 == 0.0 {
+        return Ok(*s1);
+    }
+    let (mut a, mut fa, mut b, mut fb) = (0.0_f64, f0, 1.0_f64, f1);
+    let mut best = *s1;
+    let scale = f0.abs().max(f1.abs()).max(1e-300);
+    for _ in 0..100 {
+        let c = ((a * fb - b * fa) / (fb - fa)).clamp(a.min(b), a.max(b));
+        if c <= 0.0 {
+            break;
+        }
+        let sc = method.step(sys, s0, c * h)?;
+        let fc = watched(sys, r.watch, &sc, buf)? - r.value;
+        best = sc;
+        if fc.abs() <= 1e-14 * scale || (b - a).abs() * h <= 1e-15 * s0.t.abs().max(h) {
+            break;
+        }
+        if fc * fb < 0.0 {
+            (a, fa) = (b, fb);
+        } else {
+            fa *= 0.5;
+        }
+        (b, fb) = (c, fc);
+    }
+    Ok(best)
+}
+
+/// Runs `sys` from `start` with `method` until a stop condition of `opts`.
+///
+/// # Errors
+/// [`Error::NonPositive`]/[`Error::NonFinite`] for a bad step, final time, tolerance or
+/// record interval; [`Error::OutOfRange`] for a watched index that does not exist;
+/// [`Error::NonFiniteState`] naming the time when the motion diverges; any error of the
+/// system or the method.
+///
+/// # Examples
+/// A 1 kg slider pushed by 2 N from rest reaches x = 1 m at t = 1 s; with steps of 0.3 s the
+/// crossing is still found at t = 1 s (inside the fourth step), not at t = 1.2 s:
+/// ```
+/// use nalgebra::{Matrix2, Vector2};
+/// use tmm::dynamics::{run, Direction, LagrangeSystem, Outcome, Reach, Rk4, RunOptions, State, Watch};
+/// struct Slider;
+/// impl LagrangeSystem for Slider {
+///     fn inertia(&self, _: &Vector2<f64>) -> tmm::Result<Matrix2<f64>> {
+///         Ok(Matrix2::identity())
+///     }
+///     fn forces(&self, _: f64, _: &Vector2<f64>, _: &Vector2<f64>) -> tmm::Result<Vector2<f64>> {
+///         Ok(Vector2::new(2.0, 0.0))
+///     }
+/// }
+/// let mut opts = RunOptions::until(5.0, 0.3);
+/// opts.reach = Some(Reach { watch: Watch::Coordinate(0), value: 1.0, direction: Direction::Rising });
+/// let r = run(&Slider, &Rk4, State::at_rest(Vector2::zeros()), &opts).unwrap();
+/// let Outcome::Reached { t } = r.outcome else { panic!() };
+/// assert!((t - 1.0).abs() < 1e-12 && (r.last.q[0] - 1.0).abs() < 1e-12);
+/// ```
+pub fn run<S: LagrangeSystem + ?Sized, M: Stepper>(
+    sys: &S,
+    method: &M,
+    start: State,
+    opts: &RunOptions,
+) -> Result<RunResult> {
+    positive("step size h", opts.h)?;
+    finite("t_end", opts.t_end)?;
+    positive("t_end - t_start", opts.t_end - start.t)?;
+    positive("record_every", opts.record_every as f64)?;
+    if !start.is_finite() {
+        return Err(Error::NonFiniteState { time: start.t });
+    }
+    let n_out = sys.output_names().len();
+    if let Some(r) = &opts.reach {
+        finite("reach value", r.value)?;
+        let (i, n) = match r.watch {
+            Watch::Coordinate(i) | Watch::Speed(i) => (i, 2),
+            Watch::Output(i) => (i, n_out),
+        };
+        if i >= n {
+            return Err(Error::OutOfRange {
+                name: "watched index",
+                value: i as f64,
+                min: 0.0,
+                max: n as f64 - 1.0,
+            });
+        }
+    }
+    if let Some(st) = &opts.steady {
+        positive("steady tolerance", st.tol)?;
+        finite("steady hold", st.hold)?;
+    }
+
+    let mut traj = Trajectory::for_system(sys);
+    traj.push(sys, &start)?;
+    let mut buf = Vec::with_capacity(n_out);
+    let mut s = start;
+    let mut h = opts.h;
+    let (mut steps, mut evaluations) = (0usize, 0usize);
+    let mut g_prev = match &opts.reach {
+        Some(r) => watched(sys, r.watch, &s, &mut buf)? - r.value,
+        None => 0.0,
+    };
+    let mut steady_since: Option<f64> = None;
+    let mut drift_ref: Option<(f64, Vector2<f64>)> = None;
+    let t_tol = 1e-12 * opts.t_end.abs().max(opts.h);
+
+    let finish = |traj: &mut Trajectory,
+                  last: State,
+                  recorded: bool,
+                  outcome: Outcome,
+                  steps: usize,
+                  evaluations: usize|
+     -> Result<RunResult> {
+        if !recorded {
+            traj.push(sys, &last)?;
+        }
+        Ok(RunResult {
+            trajectory: std::mem::take(traj),
+            outcome,
+            last,
+            steps,
+            evaluations,
+        })
+    };
+
+    loop {
+        let remaining = opts.t_end - s.t;
+        if remaining <= t_tol {
+            let outcome = match &opts.steady {
+                Some(_) => Outcome::NotSteady {
+                    acceleration: accelerations(sys, s.t, &s.q, &s.qd)?,
+                },
+                None => Outcome::FinalTime,
+            };
+            let recorded = traj.t.last() == Some(&s.t);
+            return finish(&mut traj, s, recorded, outcome, steps, evaluations);
+        }
+        let clamped = h >= remaining;
+        let h_try = if clamped { remaining } else { h };
+        let adv = method.advance(sys, &s, h_try)?;
+        let mut s1 = adv.state;
+        if (opts.t_end - s1.t).abs() <= t_tol {
+            s1.t = opts.t_end;
+        }
+        if !clamped {
+            h = adv.h_next;
+        }
+        steps += 1;
+        evaluations += adv.evaluations;
+
+        if let Some(r) = &opts.reach {
+            let g1 = watched(sys, r.watch, &s1, &mut buf)? - r.value;
+            if crosses(r.direction, g_prev, g1) {
+                let hit = locate(sys, method, r, (&s, g_prev), (&s1, g1), &mut buf)?;
+                return finish(
+                    &mut traj,
+                    hit,
+                    false,
+                    Outcome::Reached { t: hit.t },
+                    steps,
+                    evaluations,
+                );
+            }
+            g_prev = g1;
+        }
+
+        let mut recorded = false;
+        if steps % opts.record_every == 0 {
+            traj.push(sys, &s1)?;
+            recorded = true;
+        }
+
+        if let Some(st) = &opts.steady {
+            let acc = accelerations(sys, s1.t, &s1.q, &s1.qd)?;
+            if acc.amax() <= st.tol {
+                drift_ref = None;
+                let since = *steady_since.get_or_insert(s1.t);
+                if s1.t - since >= st.hold {
+                    return finish(
+                        &mut traj,
+                        s1,
+                        recorded,
+                        Outcome::Steady { t: s1.t },
+                        steps,
+                        evaluations,
+                    );
+                }
+            } else {
+                steady_since = None;
+                match drift_ref {
+                    Some((t0, a0)) if (acc - a0).amax() <= st.tol => {
+                        if s1.t - t0 >= st.hold {
+                            let outcome = Outcome::Drifting {
+                                t: s1.t,
+                                acceleration: acc,
+                            };
+                            return finish(&mut traj, s1, recorded, outcome, steps, evaluations);
+                        }
+                    }
+                    _ => drift_ref = Some((s1.t, acc)),
+                }
+            }
+        }
+        s = s1;
+    }
+}

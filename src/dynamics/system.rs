@@ -1,0 +1,302 @@
+//! Lagrange's equations of the 2nd kind for a machine with two generalized coordinates.
+//!
+//! With the kinetic energy T = ½ q̇ᵀ A(q) q̇, a potential Π(q) and Rayleigh's dissipation
+//! function Φ = ½ q̇ᵀ B(q) q̇ (seed 003, eqs. 1–7), Lagrange's equations
+//! d/dt ∂T/∂q̇ᵢ − ∂T/∂qᵢ + ∂Π/∂qᵢ + ∂Φ/∂q̇ᵢ = Qᵢ become
+//!
+//! ```text
+//! A(q) q̈ = Q(t, q, q̇) − c(q, q̇) − ∇Π(q) − B(q) q̇,
+//! cᵢ = Σⱼₖ Γᵢⱼₖ q̇ⱼ q̇ₖ,   Γᵢⱼₖ = ½ (∂Aᵢⱼ/∂qₖ + ∂Aᵢₖ/∂qⱼ − ∂Aⱼₖ/∂qᵢ)   (Christoffel symbols)
+//! ```
+//!
+//! derived once here for any A(q). For two coordinates this is exactly the corrected set of
+//! seed 003's coefficients A0…A44, B0…B44 (ERRATA D10–D13): the seed's (35)–(36) misprint five
+//! of them, this form cannot.
+
+use nalgebra::{Matrix2, Vector2};
+
+use crate::error::{Error, Result};
+
+/// The state of a 2-DOF machine: time, generalized coordinates and their rates.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct State {
+    /// Time t, s.
+    pub t: f64,
+    /// Generalized coordinates q (rad for angles, m for slides).
+    pub q: Vector2<f64>,
+    /// Generalized speeds q̇.
+    pub qd: Vector2<f64>,
+}
+
+impl State {
+    /// A state from its parts.
+    #[must_use]
+    pub fn new(t: f64, q: Vector2<f64>, qd: Vector2<f64>) -> Self {
+        Self { t, q, qd }
+    }
+
+    /// The machine at rest at `q`, at t = 0.
+    #[must_use]
+    pub fn at_rest(q: Vector2<f64>) -> Self {
+        Self::new(0.0, q, Vector2::zeros())
+    }
+
+    /// `true` when t, q and q̇ are all finite.
+    #[must_use]
+    pub fn is_finite(&self) -> bool {
+        self.t.is_finite() && self.q.iter().chain(self.qd.iter()).all(|v| v.is_finite())
+    }
+}
+
+/// Relative step of the numerical fallbacks (see [`LagrangeSystem::inertia_derivatives`]).
+const FD_STEP: f64 = 2e-4;
+
+/// Fourth-order central difference of `f` along coordinate `k` at `q`:
+/// f'(x) ≈ [f(x−2ε) − 8 f(x−ε) + 8 f(x+ε) − f(x+2ε)] / (12 ε), with ε = 2·10⁻⁴·max(1, |qₖ|).
+/// The truncation error is ε⁴/30·f⁽⁵⁾ and the rounding error about 10⁻¹⁶·|f|/ε: about
+/// 10⁻¹² relative for a function that varies on a scale of one unit of qₖ, more where it
+/// varies faster (near a singular position).
+fn central_difference<T, F>(q: &Vector2<f64>, k: usize, mut f: F) -> Result<T>
+where
+    T: std::ops::Sub<Output = T> + std::ops::Mul<f64, Output = T> + std::ops::Add<Output = T>,
+    F: FnMut(&Vector2<f64>) -> Result<T>,
+{
+    let eps = FD_STEP * q[k].abs().max(1.0);
+    let at = |d: f64| {
+        let mut p = *q;
+        p[k] += d;
+        p
+    };
+    let m2 = f(&at(-2.0 * eps))?;
+    let m1 = f(&at(-eps))?;
+    let p1 = f(&at(eps))?;
+    let p2 = f(&at(2.0 * eps))?;
+    Ok(((m2 - p2) + (p1 - m1) * 8.0) * (1.0 / (12.0 * eps)))
+}
+
+/// A machine with two degrees of freedom described by Lagrange's equations of the 2nd kind.
+///
+/// Implement [`inertia`](Self::inertia) and [`forces`](Self::forces); everything else has a
+/// default. The accelerations follow from [`accelerations`].
+pub trait LagrangeSystem {
+    /// Names of the two generalized coordinates (used as column names).
+    fn coordinate_names(&self) -> [&'static str; 2] {
+        ["q1", "q2"]
+    }
+
+    /// The inertia matrix A(q) of T = ½ q̇ᵀ A q̇ (I11, I14, I44 in seed 003). It must be
+    /// symmetric; only its symmetric part is used.
+    ///
+    /// # Errors
+    /// When the machine cannot be assembled at `q` (or a configuration is singular).
+    fn inertia(&self, q: &Vector2<f64>) -> Result<Matrix2<f64>>;
+
+    /// The partial derivatives [∂A/∂q₁, ∂A/∂q₂].
+    ///
+    /// The default is the documented numerical fallback: fourth-order central differences of
+    /// [`inertia`](Self::inertia) with the step ε = 2·10⁻⁴·max(1, |qₖ|) in the units of qₖ
+    /// (8 evaluations of A; about 10⁻¹² relative when A varies on a scale of one unit of qₖ,
+    /// and within 10⁻⁸ of the analytic derivatives over the five-bar's workspace). Override it where the machine knows the
+    /// derivatives (the five-bar from its second-order velocity analogs; constant-inertia
+    /// gear drives with zeros).
+    ///
+    /// # Errors
+    /// As [`inertia`](Self::inertia).
+    fn inertia_derivatives(&self, q: &Vector2<f64>) -> Result<[Matrix2<f64>; 2]> {
+        Ok([
+            central_difference(q, 0, |p| self.inertia(p))?,
+            central_difference(q, 1, |p| self.inertia(p))?,
+        ])
+    }
+
+    /// The generalized forces Q(t, q, q̇) of the loads that are neither potential nor viscous
+    /// (driving and resisting moments and forces), found from their virtual work.
+    ///
+    /// # Errors
+    /// When a load cannot be evaluated (for example a table lookup out of range).
+    fn forces(&self, t: f64, q: &Vector2<f64>, qd: &Vector2<f64>) -> Result<Vector2<f64>>;
+
+    /// The potential energy Π(q), J (gravity, springs). Default: none.
+    ///
+    /// # Errors
+    /// When the machine cannot be assembled at `q`.
+    fn potential(&self, q: &Vector2<f64>) -> Result<f64> {
+        let _ = q;
+        Ok(0.0)
+    }
+
+    /// ∇Π(q), so that the potential forces are −∇Π. Default: fourth-order central
+    /// differences of [`potential`](Self::potential) (as for the inertia derivatives).
+    ///
+    /// # Errors
+    /// As [`potential`](Self::potential).
+    fn potential_gradient(&self, q: &Vector2<f64>) -> Result<Vector2<f64>> {
+        Ok(Vector2::new(
+            central_difference(q, 0, |p| self.potential(p))?,
+            central_difference(q, 1, |p| self.potential(p))?,
+        ))
+    }
+
+    /// The matrix B(q) of Rayleigh's dissipation function Φ = ½ q̇ᵀ B q̇ (viscous friction,
+    /// seed 003 eq. 6), so that the viscous generalized forces are −B q̇. Default: none.
+    ///
+    /// # Errors
+    /// When the machine cannot be assembled at `q`.
+    fn damping(&self, q: &Vector2<f64>) -> Result<Matrix2<f64>> {
+        let _ = q;
+        Ok(Matrix2::zeros())
+    }
+
+    /// Names of the extra outputs of [`outputs`](Self::outputs) (for example the speed of
+    /// every link of a gear drive). Default: none.
+    fn output_names(&self) -> Vec<&'static str> {
+        Vec::new()
+    }
+
+    /// Extra outputs at a state, appended to `out` in the order of
+    /// [`output_names`](Self::output_names).
+    ///
+    /// # Errors
+    /// When the machine cannot be evaluated at this state.
+    fn outputs(
+        &self,
+        t: f64,
+        q: &Vector2<f64>,
+        qd: &Vector2<f64>,
+        out: &mut Vec<f64>,
+    ) -> Result<()> {
+        let _ = (t, q, qd, out);
+        Ok(())
+    }
+}
+
+/// The velocity-dependent (Coriolis and centrifugal) terms cᵢ = Σⱼₖ Γᵢⱼₖ q̇ⱼ q̇ₖ with
+/// Γᵢⱼₖ = ½(∂Aᵢⱼ/∂qₖ + ∂Aᵢₖ/∂qⱼ − ∂Aⱼₖ/∂qᵢ).
+///
+/// # Examples
+/// A point mass m on a rotating arm in polar coordinates (r, θ): A = diag(m, m r²), and the
+/// terms are (−m r θ̇², 2 m r ṙ θ̇): centrifugal and Coriolis.
+/// ```
+/// use nalgebra::{Matrix2, Vector2};
+/// let (m, r) = (2.0, 0.5);
+/// let d_a = [Matrix2::new(0.0, 0.0, 0.0, 2.0 * m * r), Matrix2::zeros()];
+/// let c = tmm::dynamics::christoffel_terms(&d_a, &Vector2::new(3.0, 4.0));
+/// assert!((c[0] - (-m * r * 16.0)).abs() < 1e-12);
+/// assert!((c[1] - 2.0 * m * r * 3.0 * 4.0).abs() < 1e-12);
+/// ```
+#[must_use]
+pub fn christoffel_terms(d_a: &[Matrix2<f64>; 2], qd: &Vector2<f64>) -> Vector2<f64> {
+    let mut c = Vector2::zeros();
+    for i in 0..2 {
+        let mut s = 0.0;
+        for j in 0..2 {
+            for k in 0..2 {
+                let g = 0.5 * (d_a[k][(i, j)] + d_a[j][(i, k)] - d_a[i][(j, k)]);
+                s += g * qd[j] * qd[k];
+            }
+        }
+        c[i] = s;
+    }
+    c
+}
+
+/// Checks that A is symmetric positive-definite (A₁₁ > 0 and det A > 0) and returns its
+/// symmetric part and determinant; the error says where (time and coordinates).
+pub(crate) fn checked_inertia(
+    a: &Matrix2<f64>,
+    t: f64,
+    q: &Vector2<f64>,
+) -> Result<(Matrix2<f64>, f64)> {
+    let a12 = 0.5 * (a[(0, 1)] + a[(1, 0)]);
+    let a = Matrix2::new(a[(0, 0)], a12, a12, a[(1, 1)]);
+    let det = a[(0, 0)] * a[(1, 1)] - a12 * a12;
+    // Relative test: a determinant that is rounding noise of the products counts as zero.
+    let scale = (a[(0, 0)] * a[(1, 1)]).abs().max(a12 * a12);
+    if !(a[(0, 0)] > 0.0 && a[(1, 1)] > 0.0 && det > 1e-14 * scale && det.is_finite()) {
+        return Err(Error::NotPositiveDefinite {
+            at: format!("t = {t} s, q = ({}, {})", q[0], q[1]),
+            det,
+        });
+    }
+    Ok((a, det))
+}
+
+/// The accelerations q̈ from A(q) q̈ = Q − c(q, q̇) − ∇Π − B q̇ (see the module docs).
+///
+/// # Errors
+/// [`Error::NotPositiveDefinite`] when A(q) is not positive-definite (the message gives t and
+/// q); [`Error::NonFiniteState`] when the state or the result is not finite; any error of the
+/// system's own methods.
+///
+/// # Examples
+/// A free body of mass 2 kg pushed by 10 N along q₁ and a 3 kg·m² rotor under 6 N·m:
+/// ```
+/// use nalgebra::{Matrix2, Vector2};
+/// use tmm::dynamics::{accelerations, LagrangeSystem};
+/// struct Two;
+/// impl LagrangeSystem for Two {
+///     fn inertia(&self, _: &Vector2<f64>) -> tmm::Result<Matrix2<f64>> {
+///         Ok(Matrix2::new(2.0, 0.0, 0.0, 3.0))
+///     }
+///     fn forces(&self, _: f64, _: &Vector2<f64>, _: &Vector2<f64>) -> tmm::Result<Vector2<f64>> {
+///         Ok(Vector2::new(10.0, 6.0))
+///     }
+/// }
+/// let a = accelerations(&Two, 0.0, &Vector2::zeros(), &Vector2::zeros()).unwrap();
+/// assert!((a - Vector2::new(5.0, 2.0)).norm() < 1e-12);
+/// ```
+pub fn accelerations<S: LagrangeSystem + ?Sized>(
+    sys: &S,
+    t: f64,
+    q: &Vector2<f64>,
+    qd: &Vector2<f64>,
+) -> Result<Vector2<f64>> {
+    if !State::new(t, *q, *qd).is_finite() {
+        return Err(Error::NonFiniteState { time: t });
+    }
+    let (a, det) = checked_inertia(&sys.inertia(q)?, t, q)?;
+    let d_a = sys.inertia_derivatives(q)?;
+    let rhs = sys.forces(t, q, qd)?
+        - christoffel_terms(&d_a, qd)
+        - sys.potential_gradient(q)?
+        - sys.damping(q)? * qd;
+    // Cramer's rule on the 2×2 system: the determinant is I11·I44 − I14² of the seed.
+    let acc = Vector2::new(
+        (rhs[0] * a[(1, 1)] - rhs[1] * a[(0, 1)]) / det,
+        (rhs[1] * a[(0, 0)] - rhs[0] * a[(0, 1)]) / det,
+    );
+    if acc.iter().all(|v| v.is_finite()) {
+        Ok(acc)
+    } else {
+        Err(Error::NonFiniteState { time: t })
+    }
+}
+
+/// The kinetic energy T = ½ q̇ᵀ A(q) q̇, J.
+///
+/// # Errors
+/// As [`LagrangeSystem::inertia`].
+pub fn kinetic_energy<S: LagrangeSystem + ?Sized>(
+    sys: &S,
+    q: &Vector2<f64>,
+    qd: &Vector2<f64>,
+) -> Result<f64> {
+    Ok(0.5 * qd.dot(&(sys.inertia(q)? * qd)))
+}
+
+/// The power balance at a state: the power Q·q̇ of the applied loads and the power
+/// q̇ᵀ B q̇ = 2Φ lost to viscous friction, W. Along a motion,
+/// d(T + Π)/dt = applied − dissipated.
+///
+/// # Errors
+/// As [`LagrangeSystem::forces`] and [`LagrangeSystem::damping`].
+pub fn powers<S: LagrangeSystem + ?Sized>(
+    sys: &S,
+    t: f64,
+    q: &Vector2<f64>,
+    qd: &Vector2<f64>,
+) -> Result<(f64, f64)> {
+    let applied = sys.forces(t, q, qd)?.dot(qd);
+    let dissipated = qd.dot(&(sys.damping(q)? * qd));
+    Ok((applied, dissipated))
+}
