@@ -11,6 +11,8 @@
 //! - [`load`]: a force at a point plus a moment; d'Alembert's inertia loads.
 //! - [`kinetostatics`]: joint reactions of the RRR, RRP and RPR dyads; the input link driven
 //!   through a coupling (balancing moment) or a gear pair (balancing force).
+//! - [`kinetostatics::passive`]: the group with a parallel coupler (a passive constraint), statically
+//!   indeterminate once, solved by the force method; N, Q, M diagrams of its links.
 //!
 //! ## The seed programs
 //! The crate grew from Ukrainian and Russian course texts whose FORTRAN-era programs have short
@@ -35,6 +37,7 @@
 
 pub mod angle;
 pub mod error;
+pub mod kinetostatics;
 
 pub mod load;
 
