@@ -154,15 +154,30 @@ fn fem(g: &Geometry, loads: &Loads, ei: [f64; 3], ea: Option<[f64; 3]>, at_c: At
         for ld in link_loads(loads, link) {
             let x = ld.at - s0;
             let on_bd = e_index == 2;
-            if x < -1e-12 * l || x > l * (1.0 + 1e-12) || (on_bd && ld.at > l_bd) || (e_index == 3 && ld.at <= l_bd) {
+            if x < -1e-12 * l
+                || x > l * (1.0 + 1e-12)
+                || (on_bd && ld.at > l_bd)
+                || (e_index == 3 && ld.at <= l_bd)
+            {
                 continue;
             }
             let xi = (x / l).clamp(0.0, 1.0);
-            let (pt, pn) = (ld.force.x * c + ld.force.y * s, -ld.force.x * s + ld.force.y * c);
-            let n = [1.0 - 3.0 * xi * xi + 2.0 * xi.powi(3), l * (xi - 2.0 * xi * xi + xi.powi(3)),
-                3.0 * xi * xi - 2.0 * xi.powi(3), l * (-xi * xi + xi.powi(3))];
-            let dn = [(-6.0 * xi + 6.0 * xi * xi) / l, 1.0 - 4.0 * xi + 3.0 * xi * xi,
-                (6.0 * xi - 6.0 * xi * xi) / l, -2.0 * xi + 3.0 * xi * xi];
+            let (pt, pn) = (
+                ld.force.x * c + ld.force.y * s,
+                -ld.force.x * s + ld.force.y * c,
+            );
+            let n = [
+                1.0 - 3.0 * xi * xi + 2.0 * xi.powi(3),
+                l * (xi - 2.0 * xi * xi + xi.powi(3)),
+                3.0 * xi * xi - 2.0 * xi.powi(3),
+                l * (-xi * xi + xi.powi(3)),
+            ];
+            let dn = [
+                (-6.0 * xi + 6.0 * xi * xi) / l,
+                1.0 - 4.0 * xi + 3.0 * xi * xi,
+                (6.0 * xi - 6.0 * xi * xi) / l,
+                -2.0 * xi + 3.0 * xi * xi,
+            ];
             fl[0] += pt * (1.0 - xi);
             fl[3] += pt * xi;
             for (slot, q) in [1usize, 2, 4, 5].into_iter().zip(0..4) {
@@ -218,7 +233,10 @@ fn fem(g: &Geometry, loads: &Loads, ei: [f64; 3], ea: Option<[f64; 3]>, at_c: At
     }
     let mut rhs = DVector::<f64>::zeros(ndof + m);
     rhs.rows_mut(0, ndof).copy_from(&f);
-    let sol = a.full_piv_lu().solve(&rhs).expect("the frame model is not singular");
+    let sol = a
+        .full_piv_lu()
+        .solve(&rhs)
+        .expect("the frame model is not singular");
     // The constraint force on the structure is −Gᵀλ.
     let lam = |r: usize| sol[ndof + first_reaction_row + r];
     let r01 = -Vector2::new(lam(0), lam(1));
@@ -311,11 +329,7 @@ fn link_load(len: f64) -> impl Strategy<Value = LinkLoad> {
 
 fn case() -> impl Strategy<Value = Case> {
     geometry().prop_flat_map(|g| {
-        let (l1, l2, l3) = (
-            g.length(Link::Ab),
-            g.length(Link::Cd),
-            g.length(Link::Bde),
-        );
+        let (l1, l2, l3) = (g.length(Link::Ab), g.length(Link::Cd), g.length(Link::Bde));
         (
             link_load(l1),
             link_load(l2),
@@ -583,7 +597,9 @@ fn the_papers_example_against_the_frame_model() {
     assert_relative_eq!(full.r02.x, -62.426, epsilon = 5e-4);
     // The paper's own static check: the horizontal forces on the whole group.
     let s = &r.solution;
-    let fx = s.reactions.r01.x + s.reactions.r02.x + s.reactions.r03.x
+    let fx = s.reactions.r01.x
+        + s.reactions.r02.x
+        + s.reactions.r03.x
         + s.loads.f1.force.x
         + s.loads.f2.force.x
         + s.loads.f3.force.x;
@@ -621,14 +637,18 @@ fn infinite_axial_stiffness_is_the_bending_only_model() {
         let rigid = p.solve(&Stiffness::bending_only(3.0)).unwrap();
         let err = |ea: f64| {
             let r = p.solve(&Stiffness::with_axial(3.0, ea)).unwrap();
-            (r.x1 - rigid.x1).abs() + (r.solution.reactions.r03 - rigid.solution.reactions.r03).norm()
+            (r.x1 - rigid.x1).abs()
+                + (r.solution.reactions.r03 - rigid.solution.reactions.r03).norm()
         };
         // EA·L²/EI from 4·10⁴ up: past the transition, the error falls like 1/EA.
         let mut previous = err(1e6);
         for k in 7..=11 {
             let e = err(10f64.powi(k));
             let order = (previous / e).log10();
-            assert!((order - 1.0).abs() < 0.01, "EA = 1e{k}: observed order {order}");
+            assert!(
+                (order - 1.0).abs() < 0.01,
+                "EA = 1e{k}: observed order {order}"
+            );
             previous = e;
         }
         assert!(previous < 1e-6 * rigid.x1.abs());
@@ -714,7 +734,10 @@ fn errors_name_what_is_wrong() {
     off.f2.at = 0.3;
     assert!(matches!(
         solve(&g, &off, &ok),
-        Err(Error::OutOfRange { name: "F2 position", .. })
+        Err(Error::OutOfRange {
+            name: "F2 position",
+            ..
+        })
     ));
     assert!(matches!(
         PaperGroup { l3: 0.0, ..p }.solve(&ok),
@@ -722,7 +745,10 @@ fn errors_name_what_is_wrong() {
     ));
     assert!(matches!(
         PaperGroup { alpha4: 0.0, ..p }.solve(&ok),
-        Err(Error::Singular { measure: "distance from E to line AB", .. })
+        Err(Error::Singular {
+            measure: "distance from E to line AB",
+            ..
+        })
     ));
     // E on the line CD with DE along CD: the unit state does not bend any link, so a
     // bending-only model cannot find X1; with axial flexibility it can.
@@ -739,8 +765,46 @@ fn errors_name_what_is_wrong() {
     };
     assert!(matches!(
         solve(&flat, &some, &ok),
-        Err(Error::Singular { measure: "delta11 * EI / size^3", .. })
+        Err(Error::Singular {
+            measure: "delta11 * EI / size^3",
+            ..
+        })
     ));
     let s = solve(&flat, &some, &Stiffness::with_axial(1.0, 1e3)).unwrap();
     assert!(s.delta11.bending.abs() < 1e-18 && s.delta11.axial > 0.0);
+}
+
+/// The paper's "deformation check" (ERRATA P3): the ordinates it multiplies are the total
+/// bending moments M(K) = 11.46, M(D) = 13.25, M(mid DE) = 13.375 N·m and the unit-state
+/// moments 0.03093 and 0.06186 m; the product ∫ M·M1 ds/EI over link 3 is zero.
+#[test]
+fn the_papers_deformation_check() {
+    let r = PaperGroup::example()
+        .solve(&Stiffness::bending_only(1.0))
+        .unwrap();
+    let s = &r.solution;
+    let m = |st: State, x: f64| s.internal_in(st, Link::Bde, x, Side::Before).m;
+    let close = |a: f64, b: f64, tol: f64| assert!((a - b).abs() <= tol, "{a} vs {b}");
+    close(m(State::Total, 0.05).abs(), 11.46, 0.005);
+    close(m(State::Total, 0.1).abs(), 13.25, 0.005);
+    close(m(State::Total, 0.225).abs(), 13.375, 0.0005);
+    close(m(State::Total, 0.35).abs(), 40.0, 1e-12);
+    close(m(State::Unit, 0.05).abs(), 0.03093, 5e-6);
+    close(m(State::Unit, 0.1).abs(), 0.06186, 5e-6);
+    // The check itself, by Simpson's formula on BK, KD and DE (links 1 and 2 do not bend in
+    // the unit state).
+    let after = |st: State, x: f64| s.internal_in(st, Link::Bde, x, Side::After).m;
+    let simpson = |a: f64, b: f64| {
+        let mid = 0.5 * (a + b);
+        (b - a) / 6.0
+            * (after(State::Total, a) * after(State::Unit, a)
+                + 4.0 * m(State::Total, mid) * m(State::Unit, mid)
+                + m(State::Total, b) * m(State::Unit, b))
+    };
+    let check = simpson(0.0, 0.05) + simpson(0.05, 0.1) + simpson(0.1, 0.35);
+    assert!(check.abs() < 1e-15, "∫M·M1 = {check:e}");
+    for link in [Link::Ab, Link::Cd] {
+        let e = s.extremes_in(State::Unit, link).m;
+        assert!(e.max.abs() < 1e-15 && e.min.abs() < 1e-15);
+    }
 }

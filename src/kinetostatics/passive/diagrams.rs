@@ -123,11 +123,23 @@ impl LinkCase {
         };
         let (actions, count) = match link {
             Link::Ab => (
-                [force(0.0, r.r01), load(loads.f1), force(l, -r.r13), none, none],
+                [
+                    force(0.0, r.r01),
+                    load(loads.f1),
+                    force(l, -r.r13),
+                    none,
+                    none,
+                ],
                 3,
             ),
             Link::Cd => (
-                [force(0.0, r.r02), load(loads.f2), force(l, -r.r23), none, none],
+                [
+                    force(0.0, r.r02),
+                    load(loads.f2),
+                    force(l, -r.r23),
+                    none,
+                    none,
+                ],
                 3,
             ),
             Link::Bde => (
@@ -164,8 +176,14 @@ impl LinkCase {
             f += a.force;
             m += a.couple + cross(g.point_at(self.link, a.s) - pole, a.force);
         }
-        let (wf, wm) =
-            distributed_resultant(frame, self.w, self.link, 0.0, frame.l[self.link.index()], pole);
+        let (wf, wm) = distributed_resultant(
+            frame,
+            self.w,
+            self.link,
+            0.0,
+            frame.l[self.link.index()],
+            pole,
+        );
         (f + wf, m + wm)
     }
 

@@ -296,7 +296,10 @@ mod tests {
         h.c = h.d;
         assert!(matches!(
             h.frame(),
-            Err(Error::Singular { measure: "l_CD", .. })
+            Err(Error::Singular {
+                measure: "l_CD",
+                ..
+            })
         ));
         // α4 = 0: E lies on the line AB.
         let flat = Geometry::seed(0.2, 0.2, 0.1, 0.25, 0.0);

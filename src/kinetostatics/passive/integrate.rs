@@ -50,7 +50,11 @@ mod tests {
         let len = 1.7;
         let f = |s: f64| 2.0 - 3.0 * s;
         let g = |s: f64| -1.0 + 0.5 * s + 4.0 * s * s;
-        let v = simpson_product(len, [f(0.0), f(0.5 * len), f(len)], [g(0.0), g(0.5 * len), g(len)]);
+        let v = simpson_product(
+            len,
+            [f(0.0), f(0.5 * len), f(len)],
+            [g(0.0), g(0.5 * len), g(len)],
+        );
         assert_relative_eq!(v, gauss3(len, |s| f(s) * g(s)), max_relative = 1e-14);
     }
 

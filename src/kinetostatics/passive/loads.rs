@@ -156,11 +156,11 @@ impl Loads {
             }
             load.at = load.at.clamp(0.0, l);
         }
-        for (w, names) in out.per_length.iter().zip([
-            ["w1.x", "w1.y"],
-            ["w2.x", "w2.y"],
-            ["w3.x", "w3.y"],
-        ]) {
+        for (w, names) in
+            out.per_length
+                .iter()
+                .zip([["w1.x", "w1.y"], ["w2.x", "w2.y"], ["w3.x", "w3.y"]])
+        {
             finite2(names, *w)?;
         }
         Ok(out)
@@ -200,7 +200,14 @@ pub(crate) fn resultant(
         f += l.force;
         m += l.moment + cross(g.point_at(link, l.at) - pole, l.force);
     }
-    let (wf, wm) = distributed_resultant(frame, loads.per_length[link.index()], link, 0.0, frame.l[link.index()], pole);
+    let (wf, wm) = distributed_resultant(
+        frame,
+        loads.per_length[link.index()],
+        link,
+        0.0,
+        frame.l[link.index()],
+        pole,
+    );
     (f + wf, m + wm)
 }
 

@@ -112,7 +112,13 @@ impl PaperGroup {
         positive("l3", self.l3)?;
         positive("l4", self.l4)?;
         finite("alpha4", self.alpha4)?;
-        Ok(Geometry::seed(self.l1, self.l2, self.l3, self.l4, self.alpha4))
+        Ok(Geometry::seed(
+            self.l1,
+            self.l2,
+            self.l3,
+            self.l4,
+            self.alpha4,
+        ))
     }
 
     /// The loads.
