@@ -177,7 +177,8 @@ pub fn solve(geometry: &Geometry, loads: &Loads, stiffness: &Stiffness) -> Resul
     let ei_max = stiffness.ei.iter().copied().fold(0.0, f64::max);
     let d11_scale = size.powi(3) / ei_max;
     let ratio = d11.total() / d11_scale;
-    if !(ratio > 1e-12) {
+    // Written so that a NaN ratio is caught too.
+    if ratio.is_nan() || ratio <= 1e-12 {
         return Err(Error::Singular {
             what: "parallel-coupler group",
             measure: "delta11 * EI / size^3",

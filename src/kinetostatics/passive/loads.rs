@@ -81,42 +81,6 @@ impl Loads {
         per_length: [Vector2::new(0.0, 0.0); 3],
     };
 
-    /// The seed's loads in its own notation (ERRATA, seed 002), for [`Geometry::seed`]:
-    /// F1 at the middle of AB along α1 + π, F2 at the middle of CD along π − α2, F3 at the
-    /// middle K of BD along α4 + α3 (α3 is measured from the bar), and the couple M
-    /// (counter-clockwise) on link 3 at E. Forces in N, lengths in m, angles in radians.
-    #[allow(clippy::too_many_arguments)]
-    #[must_use]
-    pub fn seed(
-        geometry: &Geometry,
-        f1: f64,
-        alpha1: f64,
-        f2: f64,
-        alpha2: f64,
-        f3: f64,
-        alpha3: f64,
-        alpha4: f64,
-        m: f64,
-    ) -> Self {
-        let l_bd = (geometry.d - geometry.b).norm();
-        Self {
-            f1: LinkLoad::force(
-                0.5 * geometry.length(Link::Ab),
-                Vector2::new(-f1 * alpha1.cos(), -f1 * alpha1.sin()),
-            ),
-            f2: LinkLoad::force(
-                0.5 * geometry.length(Link::Cd),
-                Vector2::new(-f2 * alpha2.cos(), f2 * alpha2.sin()),
-            ),
-            f3: LinkLoad::force(
-                0.5 * l_bd,
-                Vector2::new(f3 * (alpha4 + alpha3).cos(), f3 * (alpha4 + alpha3).sin()),
-            ),
-            m: LinkLoad::couple(geometry.length(Link::Bde), m),
-            per_length: [Vector2::zeros(); 3],
-        }
-    }
-
     /// The point loads on a link.
     pub(crate) fn on(&self, link: Link) -> [LinkLoad; 2] {
         match link {

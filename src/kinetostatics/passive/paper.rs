@@ -6,8 +6,8 @@
 //! and the paper's static check hold identically.
 
 use super::force_method::{solve, Solution, Stiffness};
-use super::geometry::Geometry;
-use super::loads::Loads;
+use super::geometry::{Geometry, Link};
+use super::loads::{LinkLoad, Loads};
 use crate::error::{finite, positive, Result};
 use nalgebra::Vector2;
 
@@ -138,17 +138,17 @@ impl PaperGroup {
         ] {
             finite(name, v)?;
         }
-        Ok(Loads::seed(
-            &g,
-            self.f1,
-            self.alpha1,
-            self.f2,
-            self.alpha2,
-            self.f3,
-            self.alpha3,
-            self.alpha4,
-            self.m,
-        ))
+        // ERRATA, seed 002: F1 at the middle of AB along α1 + π, F2 at the middle of CD along
+        // π − α2, F3 at the middle K of BD along α4 + α3, the couple M on link 3 at E. These
+        // directions make eqs. 5–11, both printed bending moments and the static check hold.
+        let (a1, a2, a34) = (self.alpha1, self.alpha2, self.alpha4 + self.alpha3);
+        Ok(Loads {
+            f1: LinkLoad::force(0.5 * self.l1, -self.f1 * Vector2::new(a1.cos(), a1.sin())),
+            f2: LinkLoad::force(0.5 * self.l2, self.f2 * Vector2::new(-a2.cos(), a2.sin())),
+            f3: LinkLoad::force(0.5 * self.l3, self.f3 * Vector2::new(a34.cos(), a34.sin())),
+            m: LinkLoad::couple(g.length(Link::Bde), self.m),
+            per_length: [Vector2::zeros(); 3],
+        })
     }
 
     /// Solves the seed's problem.
