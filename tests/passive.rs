@@ -461,7 +461,9 @@ proptest! {
         let gap = released.u_c.dot(&t2);
         prop_assert!(gap.abs() < 1e-9 * u_scale, "C moves along CD by {gap:e} (scale {u_scale:e})");
         let full = fem(&c.g, &c.loads, c.ei, Some(ea), AtC::Hinge);
-        assert_reactions_close(&s, &full, 1e-10);
+        // The frame model's matrix mixes EA/l with 12·EI/l³ up to 10⁵ apart: its own
+        // round-off (not the force method's, whose gap is checked above) sets this tolerance.
+        assert_reactions_close(&s, &full, 1e-9);
     }
 
     /// The diagrams: zero bending moment at the free hinge ends, the shear is the slope of the
@@ -815,8 +817,8 @@ fn the_papers_deformation_check() {
     }
 }
 
-/// The same comparisons over 500 seeded groups, with the worst errors printed
-/// (`cargo test --test passive statistics -- --nocapture`).
+/// The same comparisons over 500 seeded groups (or `PASSIVE_STATS_CASES`), with the worst
+/// errors printed (`cargo test --test passive statistics -- --nocapture`).
 #[test]
 fn statistics_over_seeded_groups() {
     use proptest::strategy::ValueTree;
@@ -825,7 +827,7 @@ fn statistics_over_seeded_groups() {
     let strategy = case();
     let (mut eq, mut react_b, mut react_a, mut gap_b, mut gap_a) =
         (0.0f64, 0.0f64, 0.0f64, 0.0f64, 0.0f64);
-    let n = 500;
+    let n: usize = std::env::var("PASSIVE_STATS_CASES").ok().and_then(|v| v.parse().ok()).unwrap_or(500);
     for _ in 0..n {
         let c = strategy.new_tree(&mut runner).unwrap().current();
         let t2 = (c.g.d - c.g.c).normalize();
