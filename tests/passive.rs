@@ -827,7 +827,10 @@ fn statistics_over_seeded_groups() {
     let strategy = case();
     let (mut eq, mut react_b, mut react_a, mut gap_b, mut gap_a) =
         (0.0f64, 0.0f64, 0.0f64, 0.0f64, 0.0f64);
-    let n: usize = std::env::var("PASSIVE_STATS_CASES").ok().and_then(|v| v.parse().ok()).unwrap_or(500);
+    let n: usize = std::env::var("PASSIVE_STATS_CASES")
+        .ok()
+        .and_then(|v| v.parse().ok())
+        .unwrap_or(500);
     for _ in 0..n {
         let c = strategy.new_tree(&mut runner).unwrap().current();
         let t2 = (c.g.d - c.g.c).normalize();
@@ -871,4 +874,33 @@ fn statistics_over_seeded_groups() {
     assert!(eq < 1e-12);
     assert!(react_b < 1e-10 && react_a < 1e-10);
     assert!(gap_b < 1e-11 && gap_a < 1e-11);
+}
+
+/// Near the singular configuration E → line AB the solve still works, reports the shrinking
+/// arm, and keeps every link in equilibrium; the reactions grow like 1/arm.
+#[test]
+fn near_singular_geometry_reports_its_conditioning() {
+    // (δ11 ∝ sin²α4 vanishes too: at α4 = 10⁻⁶ it is below the singular threshold.)
+    let mut last = 0.0;
+    for k in 1..=4 {
+        let alpha4 = 10f64.powi(-k);
+        let p = PaperGroup {
+            alpha4,
+            ..PaperGroup::example()
+        };
+        let r = p.solve(&Stiffness::bending_only(1.0)).unwrap();
+        let s = &r.solution;
+        assert_relative_eq!(
+            s.arm_ratio * s.geometry.size(),
+            0.35 * alpha4.sin(),
+            max_relative = 1e-9
+        );
+        assert!(equilibrium_residual(s) < 1e-12);
+        let big = s.reactions.r01.norm();
+        assert!(
+            big > 5.0 * last,
+            "reactions grow like 1/arm: {big} after {last}"
+        );
+        last = big;
+    }
 }

@@ -107,6 +107,16 @@ pub struct Solution {
     pub unit: Reactions,
     /// The hinge forces of the real group: `loaded + x1·unit`.
     pub reactions: Reactions,
+    /// |distance from E to the line AB| / size: the divisor of the released structure's
+    /// statics. The hinge forces amplify rounding errors (and any error of the geometry) by
+    /// about 1/`arm_ratio`; a well-shaped group has a ratio of a few tenths. At 8ε the group
+    /// is singular (an error).
+    pub arm_ratio: f64,
+    /// δ11·EI_max/size³: the divisor of the compatibility equation, made dimensionless. It
+    /// vanishes when X1 no longer deforms the released structure (for example, bending only,
+    /// with E on the line CD and DE along it); the seed's example has 0.0040. Below 10⁻¹²
+    /// the group is singular (an error).
+    pub delta11_ratio: f64,
     frame: Frame,
 }
 
@@ -204,6 +214,8 @@ pub fn solve(geometry: &Geometry, loads: &Loads, stiffness: &Stiffness) -> Resul
         loaded,
         unit,
         reactions,
+        arm_ratio: frame.arm.abs() / size,
+        delta11_ratio: ratio,
         frame,
     })
 }

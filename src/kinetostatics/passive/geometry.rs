@@ -220,7 +220,9 @@ impl Geometry {
         let l_bd = member("l_BD", self.b, self.d)?;
         let l_de = member("l_DE", self.d, self.e)?;
         let arm = self.arm_e_ab();
-        if arm.abs() <= 1e-9 * size {
+        // Below 8ε·size the arm, computed from coordinates of size `size`, has no significant
+        // digit left; above it, `Solution::arm_ratio` tells how much the reactions amplify.
+        if arm.is_nan() || arm.abs() <= 8.0 * f64::EPSILON * size {
             return Err(Error::Singular {
                 what: "parallel-coupler group",
                 measure: "distance from E to line AB",
