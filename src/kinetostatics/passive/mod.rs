@@ -3,9 +3,10 @@
 //!
 //! An Assur group of the 2nd class (links 1 = AB and 3 = B–D–E, hinged to the frame at A and
 //! E) gets a second coupler 2 = CD parallel to AB, hinged to the frame at C and to link 3 at
-//! D. The extra link adds two hinge unknowns and three equations less two: the group is
-//! statically indeterminate once ([`indeterminacy`]: n = 3σ − p1 = 2p1 − 3m = 1), and rigid-body
-//! statics cannot say how the load is shared between the two couplers. The force method can:
+//! D. The extra link brings two hinges (four force components) but only three equations: the
+//! group is statically indeterminate once ([`indeterminacy`]: n = 3σ − p1 = 2p1 − 3m = 1), and
+//! rigid-body statics cannot say how the load is shared between the two couplers. The force
+//! method can:
 //! release the hinge C along CD, call the frame's force there X1, and demand that C does not
 //! move, δ11·X1 + Δ1F = 0, with δ11 and Δ1F from the bending (and, optionally, axial)
 //! deformation of the links ([`solve`]).
@@ -19,7 +20,15 @@
 //!   the limit EA → ∞, and the redundant is sensitive to it (for the seed's example
 //!   X1 = −62.4 N inextensible, about −46 N at EA·L²/EI = 10³);
 //! - the internal forces N, Q, M at any section of every link, their extremes and where they
-//!   occur ([`Solution::internal`], [`Solution::extremes`]).
+//!   occur ([`Solution::internal`], [`Solution::extremes`]), for the real group and for the
+//!   loaded and unit states of the method ([`State`]);
+//! - how close the group is to a singular configuration ([`Solution::arm_ratio`],
+//!   [`Solution::delta11_ratio`]).
+//!
+//! Checked against an independent direct-stiffness frame model (tests/passive.rs): over 5000
+//! random groups the hinge forces agree to 3e-11 of the largest force (inextensible links) and
+//! 6e-11 (with EA), the released hinge's gap is at round-off, and every link is in equilibrium
+//! to 2e-15 of the loads.
 //!
 //! The paper's example, in its notation, is [`PaperGroup`]; its printed Δ1F, X1 and R01ⁿ
 //! carry a rounding slip, and its R02ᵗ a sign (see the example there and ERRATA.md).
