@@ -6,7 +6,7 @@
 //! SVG file.
 //!
 //! Run: `cargo run --example passive_diagrams [-- <output folder>]`
-//! (the default folder is `target/charts`).
+//! (the default folder is `target/passive`).
 
 use plotters::prelude::*;
 use std::error::Error;
@@ -126,7 +126,7 @@ fn main() -> Result<(), Box<dyn Error>> {
 
     let dir = std::env::args()
         .nth(1)
-        .map_or_else(|| PathBuf::from("target/charts"), PathBuf::from);
+        .map_or_else(|| PathBuf::from("target/passive"), PathBuf::from);
     std::fs::create_dir_all(&dir)?;
     let file = dir.join("passive_diagrams.svg");
     draw(&file, s, with_axial.as_ref().ok_or("no EA solution")?)?;
