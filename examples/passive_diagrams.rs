@@ -11,7 +11,9 @@
 use plotters::prelude::*;
 use std::error::Error;
 use std::path::PathBuf;
-use tmm::kinetostatics::passive::{Link, PaperGroup, Side, Solution, State, Stiffness};
+use tmm::kinetostatics::passive::{
+    Link, PaperGroup, PaperResult, Side, Solution, State, Stiffness,
+};
 
 /// The length scale of the axial-stiffness ratio EA·L²/EI: link 3, l3 + l4.
 const L: f64 = 0.35;
@@ -130,9 +132,15 @@ fn main() -> Result<(), Box<dyn Error>> {
     std::fs::create_dir_all(&dir)?;
     let file = dir.join("passive_diagrams.svg");
     draw(&file, s, with_axial.as_ref().ok_or("no EA solution")?)?;
+    let file2 = dir.join("passive_axial_stiffness.svg");
+    draw_sensitivity(&file2, &p, &r)?;
     println!(
         "\nN, Q, M diagrams of every link written to {}",
         file.display()
+    );
+    println!(
+        "X1 and the frame reactions against EA·L²/EI written to {}",
+        file2.display()
     );
     println!("charts folder: {}", dir.display());
     Ok(())
@@ -203,6 +211,71 @@ fn draw(file: &std::path::Path, rigid: &Solution, axial: &Solution) -> Result<()
             chart.draw_series(LineSeries::new(b, RED.stroke_width(1)))?;
         }
     }
+    root.present()?;
+    Ok(())
+}
+
+/// X1 and the frame reactions as the links' axial stiffness grows, against the paper's
+/// inextensible model (dashed).
+fn draw_sensitivity(
+    file: &std::path::Path,
+    p: &PaperGroup,
+    rigid: &PaperResult,
+) -> Result<(), Box<dyn Error>> {
+    let ratios: Vec<f64> = (0..=120)
+        .map(|k| 10f64.powf(1.0 + 6.0 * f64::from(k) / 120.0))
+        .collect();
+    let mut curves: [Vec<(f64, f64)>; 3] = [Vec::new(), Vec::new(), Vec::new()];
+    for &ratio in &ratios {
+        let q = p.solve(&Stiffness::with_axial(1.0, ratio / (L * L)))?;
+        curves[0].push((ratio, q.x1));
+        curves[1].push((ratio, q.r01n));
+        curves[2].push((ratio, q.solution.reactions.r03.norm()));
+    }
+    let limits = [rigid.x1, rigid.r01n, rigid.solution.reactions.r03.norm()];
+    let (lo, hi) = curves
+        .iter()
+        .flatten()
+        .fold((0.0f64, 0.0f64), |(lo, hi), &(_, v)| (lo.min(v), hi.max(v)));
+    let root = SVGBackend::new(file, (900, 560)).into_drawing_area();
+    root.fill(&WHITE)?;
+    let mut chart = ChartBuilder::on(&root)
+        .caption(
+            "Seed 002: the redundant X1 and the frame reactions against the links' axial stiffness",
+            ("sans-serif", 17),
+        )
+        .margin(12)
+        .x_label_area_size(40)
+        .y_label_area_size(60)
+        .build_cartesian_2d((10.0..1e7).log_scale(), (lo - 20.0)..(hi + 20.0))?;
+    chart
+        .configure_mesh()
+        .x_desc("EA·L²/EI (L = l3 + l4 = 0.35 m; dashed: inextensible links, as in the paper)")
+        .y_desc("force, N")
+        .draw()?;
+    let colors = [BLUE, RED, GREEN];
+    let names = ["X1 = R02n", "R01n", "|R03|"];
+    for ((curve, limit), (color, name)) in
+        curves.into_iter().zip(limits).zip(colors.iter().zip(names))
+    {
+        let c = *color;
+        chart
+            .draw_series(LineSeries::new(curve, c.stroke_width(2)))?
+            .label(name)
+            .legend(move |(x, y)| PathElement::new([(x, y), (x + 20, y)], c.stroke_width(2)));
+        chart.draw_series(DashedLineSeries::new(
+            [(10.0, limit), (1e7, limit)],
+            6,
+            4,
+            c.into(),
+        ))?;
+    }
+    chart
+        .configure_series_labels()
+        .background_style(WHITE.mix(0.8))
+        .border_style(BLACK)
+        .position(SeriesLabelPosition::LowerRight)
+        .draw()?;
     root.present()?;
     Ok(())
 }
