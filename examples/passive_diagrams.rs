@@ -1,9 +1,9 @@
 //! Seed 002's example: the group with a parallel coupler, solved by the force method.
 //!
 //! Prints the paper's numbers beside ours, shows how the redundant force moves with the links'
-//! axial stiffness, lists the extreme internal forces of every link, and draws the N, Q and M
-//! diagrams of every link (inextensible links as in the paper, and EA·L²/EI = 10³) into an
-//! SVG file.
+//! axial stiffness, lists the extreme internal forces of every link, and writes two SVG charts:
+//! the N, Q and M diagrams of every link (inextensible links as in the paper, and
+//! EA·L²/EI = 10³), and X1 with the frame reactions against EA·L²/EI.
 //!
 //! Run: `cargo run --example passive_diagrams [-- <output folder>]`
 //! (the default folder is `target/passive`).
