@@ -15,6 +15,8 @@
 //!   Dormand–Prince; the five-bar robot, the R–P arm, the landing-gear and coaxial-propeller drives.
 //! - [`kinetostatics`]: joint reactions of the RRR, RRP and RPR dyads; the input link driven
 //!   through a coupling (balancing moment) or a gear pair (balancing force).
+//! - [`kinetostatics::passive`]: the group with a parallel coupler (a passive constraint), statically
+//!   indeterminate once, solved by the force method; N, Q, M diagrams of its links.
 //!
 //! ## The seed programs
 //! The crate grew from Ukrainian and Russian course texts whose FORTRAN-era programs have short

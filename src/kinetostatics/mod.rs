@@ -21,10 +21,14 @@
 //! | RPR (SR3) | [`RprDyad`] | the hinge A on the normal to the axis through E: l_EA = 0 |
 //! | gear input (SRWL1) | [`GearDrive`] | zero arm of the tooth force: r_w·cos α_w = 0 |
 //! | coupling input (SRWL2) | [`CouplingDrive`] | never |
+//!
+//! The group with a parallel coupler (seed 002), a passive constraint that makes it statically
+//! indeterminate once, is solved by the force method in [`passive`].
 
 mod conditioning;
 mod coupling;
 mod gear;
+pub mod passive;
 mod rpr;
 mod rrp;
 mod rrr;

@@ -1,0 +1,145 @@
+//! The degree of static indeterminacy of a hinged chain attached to the frame (seed 002,
+//! eqs. 1 and 2).
+//!
+//! Eq. 2 counts directly: every simple hinge carries two unknown force components and every
+//! link gives three equations of equilibrium, so n = 2·p1 − 3·m. Eq. 1 counts the closed
+//! contours of the structural scheme in which every hinge to the frame is replaced by two
+//! hinged support bars (the seed's Fig. 1b, frame counted as one disk): each closed contour
+//! of a hinged system has three redundant internal forces, and each simple hinge releases one,
+//! so n = 3·σ − p1. For a chain of m links with h_i hinges between links and h_0 hinges to the
+//! frame, the scheme has 1 + m + 2·h_0 disks and 4·h_0 + h_i hinges, so
+//! σ = 2·h_0 + h_i − m and both formulas give 2·(h_0 + h_i) − 3·m.
+
+/// Eq. 1: n = 3·σ − p1, with σ closed contours and p1 simple hinges of the scheme.
+///
+/// # Examples
+/// The seed's Fig. 1b: σ = 5, p1 = 14, so the group is statically indeterminate once.
+/// ```
+/// assert_eq!(tmm::kinetostatics::passive::indeterminacy::by_contours(5, 14), 1);
+/// ```
+#[must_use]
+pub fn by_contours(contours: u32, simple_hinges: u32) -> i64 {
+    3 * i64::from(contours) - i64::from(simple_hinges)
+}
+
+/// Eq. 2: n = 2·p1 − 3·m, with p1 simple hinges (to the frame and between links) and m links.
+/// A negative n means the chain moves (−n degrees of freedom, if no part is over-constrained).
+///
+/// # Examples
+/// The group with the parallel coupler (m = 3, p1 = 5) and a plain RRR dyad (m = 2, p1 = 3):
+/// ```
+/// use tmm::kinetostatics::passive::indeterminacy::by_links;
+/// assert_eq!(by_links(5, 3), 1);
+/// assert_eq!(by_links(3, 2), 0);
+/// ```
+#[must_use]
+pub fn by_links(simple_hinges: u32, links: u32) -> i64 {
+    2 * i64::from(simple_hinges) - 3 * i64::from(links)
+}
+
+/// The number of independent closed contours of a connected system of `disks` rigid disks
+/// joined by `hinges` simple hinges: σ = hinges − disks + 1 (the cyclomatic number of its
+/// graph). `None` if there are too few hinges to connect the disks.
+#[must_use]
+pub fn contours(hinges: u32, disks: u32) -> Option<u32> {
+    (hinges + 1).checked_sub(disks)
+}
+
+/// A chain of links joined by simple hinges, some of them to the frame.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub struct HingedChain {
+    /// Number of moving links, m.
+    pub links: u32,
+    /// Hinges between two moving links.
+    pub inner_hinges: u32,
+    /// Hinges of a moving link to the frame.
+    pub frame_hinges: u32,
+}
+
+/// The structural scheme of eq. 1: every hinge to the frame replaced by two support bars.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub struct SupportBarScheme {
+    /// Rigid disks: the frame, the links and the support bars.
+    pub disks: u32,
+    /// Simple hinges: two at the ends of every support bar, plus the inner hinges.
+    pub hinges: u32,
+}
+
+impl HingedChain {
+    /// The seed's group: links AB, CD, B–D–E; inner hinges B, D; frame hinges A, C, E.
+    pub const PARALLEL_COUPLER: HingedChain = HingedChain {
+        links: 3,
+        inner_hinges: 2,
+        frame_hinges: 3,
+    };
+
+    /// p1 of eq. 2: all simple hinges of the chain.
+    #[must_use]
+    pub fn simple_hinges(&self) -> u32 {
+        self.inner_hinges + self.frame_hinges
+    }
+
+    /// The scheme of the seed's Fig. 1b.
+    #[must_use]
+    pub fn support_bar_scheme(&self) -> SupportBarScheme {
+        SupportBarScheme {
+            disks: 1 + self.links + 2 * self.frame_hinges,
+            hinges: 4 * self.frame_hinges + self.inner_hinges,
+        }
+    }
+
+    /// n by eq. 2.
+    #[must_use]
+    pub fn by_links(&self) -> i64 {
+        by_links(self.simple_hinges(), self.links)
+    }
+
+    /// n by eq. 1, on the support-bar scheme; `None` if that scheme is not connected.
+    ///
+    /// # Examples
+    /// ```
+    /// use tmm::kinetostatics::passive::indeterminacy::HingedChain;
+    /// let g = HingedChain::PARALLEL_COUPLER;
+    /// let scheme = g.support_bar_scheme();
+    /// assert_eq!((scheme.disks, scheme.hinges), (10, 14));
+    /// assert_eq!(g.by_contours(), Some(1));
+    /// assert_eq!(g.by_links(), 1);
+    /// ```
+    #[must_use]
+    pub fn by_contours(&self) -> Option<i64> {
+        let s = self.support_bar_scheme();
+        contours(s.hinges, s.disks).map(|sigma| by_contours(sigma, s.hinges))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn both_formulas_agree_for_every_connected_chain() {
+        for links in 1..8 {
+            for inner in 0..12 {
+                for frame in 0..8 {
+                    let c = HingedChain {
+                        links,
+                        inner_hinges: inner,
+                        frame_hinges: frame,
+                    };
+                    if let Some(n) = c.by_contours() {
+                        assert_eq!(n, c.by_links(), "{c:?}");
+                    }
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn the_seeds_counts() {
+        // σ = 14 − 10 + 1 = 5 for Fig. 1b.
+        assert_eq!(contours(14, 10), Some(5));
+        assert_eq!(by_contours(5, 14), 1);
+        assert_eq!(by_links(5, 3), 1);
+        assert_eq!(contours(3, 5), None);
+    }
+}
