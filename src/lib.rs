@@ -13,6 +13,8 @@
 //!   transfer functions, cycles, extreme positions; numerical differentiation and integration.
 //! - [`kinetostatics`]: joint reactions of the RRR, RRP and RPR dyads; the input link driven
 //!   through a coupling (balancing moment) or a gear pair (balancing force).
+//! - [`mechanism`]: whole mechanisms over a cycle (four-bar, slider-crank, compressor, six-bar,
+//!   rocking cylinder): kinematics, inertia loads, reactions, balancing moment, CSV tables.
 //!
 //! ## The seed programs
 //! The crate grew from Ukrainian and Russian course texts whose FORTRAN-era programs have short
@@ -40,6 +42,7 @@ pub mod error;
 pub mod kinematics;
 pub mod kinetostatics;
 pub mod load;
+pub mod mechanism;
 
 pub use error::{Error, Result};
 pub use load::Load;
