@@ -45,26 +45,26 @@
 //! # Ok::<(), tmm::Error>(())
 //! ```
 
-// mod compressor;
+mod compressor;
 mod drive;
-// mod four_bar;
+mod four_bar;
 mod link;
 mod power;
 mod pressure;
-// mod rocking_cylinder;
+mod rocking_cylinder;
 mod six_bar;
-// mod slider_crank;
+mod slider_crank;
 mod table;
 
-// pub use compressor::{Compressor, CompressorPosition};
+pub use compressor::{Compressor, CompressorPosition};
 pub use drive::{Balance, Drive};
-// pub use four_bar::{FourBar, FourBarPosition};
+pub use four_bar::{FourBar, FourBarPosition};
 pub use link::LinkMass;
 pub use power::{power_of, virtual_power_moment, FreeBody, Residual};
 pub use pressure::IndicatorDiagram;
-// pub use rocking_cylinder::{RockingCylinder, RockingCylinderPosition};
+pub use rocking_cylinder::{RockingCylinder, RockingCylinderPosition};
 pub use six_bar::{SixBar, SixBarPosition};
-// pub use slider_crank::{SliderCrank, SliderCrankPosition};
+pub use slider_crank::{SliderCrank, SliderCrankPosition};
 pub use table::{Column, Table, Tabulate};
 
 use crate::error::{Error, Result};
