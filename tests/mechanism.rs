@@ -36,7 +36,10 @@ fn check_cycle<P: Analysed>(name: &str, positions: &[Result<P>]) -> (f64, f64) {
         // The drive's power, F_b·v_P for a gear, is M_b·ω1.
         let o1 = p.free_bodies()[0].motion.origin.p;
         let power = p.balance().power(o1, p.input().rate);
-        assert!((power - check.chain * p.input().rate).abs() <= 1e-12 * check.scale * p.input().rate.abs());
+        assert!(
+            (power - check.chain * p.input().rate).abs()
+                <= 1e-12 * check.scale * p.input().rate.abs()
+        );
         for body in p.free_bodies() {
             let r = body.residual();
             assert!(
@@ -60,35 +63,78 @@ fn inputs(omega1: f64) -> Vec<Motion> {
 fn every_ready_mechanism_balances_by_virtual_power_and_link_by_link() {
     let mut report = Vec::new();
     for drive in [Drive::Coupling, GEAR] {
-        let six = SixBar { drive, ..SixBar::course_example() };
-        report.push(check_cycle("six-bar", &run_cycle(&inputs(10.0), |i| six.analyse(i))));
-        let four = FourBar { drive, ..FourBar::course_example() };
-        report.push(check_cycle("four-bar", &run_cycle(&inputs(-12.0), |i| four.analyse(i))));
-        let sc = SliderCrank { drive, ..SliderCrank::course_example() };
-        report.push(check_cycle("slider-crank", &run_cycle(&inputs(150.0), |i| sc.analyse(i))));
-        let comp = Compressor { drive, ..Compressor::course_example() };
+        let six = SixBar {
+            drive,
+            ..SixBar::course_example()
+        };
+        report.push(check_cycle(
+            "six-bar",
+            &run_cycle(&inputs(10.0), |i| six.analyse(i)),
+        ));
+        let four = FourBar {
+            drive,
+            ..FourBar::course_example()
+        };
+        report.push(check_cycle(
+            "four-bar",
+            &run_cycle(&inputs(-12.0), |i| four.analyse(i)),
+        ));
+        let sc = SliderCrank {
+            drive,
+            ..SliderCrank::course_example()
+        };
+        report.push(check_cycle(
+            "slider-crank",
+            &run_cycle(&inputs(150.0), |i| sc.analyse(i)),
+        ));
+        let comp = Compressor {
+            drive,
+            ..Compressor::course_example()
+        };
         let w = Compressor::seed_speed();
-        report.push(check_cycle("compressor", &run_cycle(&inputs(w), |i| comp.analyse(i))));
-        let rc = RockingCylinder { drive, ..RockingCylinder::course_example() };
-        report.push(check_cycle("rocking cylinder", &run_cycle(&inputs(20.0), |i| rc.analyse(i))));
+        report.push(check_cycle(
+            "compressor",
+            &run_cycle(&inputs(w), |i| comp.analyse(i)),
+        ));
+        let rc = RockingCylinder {
+            drive,
+            ..RockingCylinder::course_example()
+        };
+        report.push(check_cycle(
+            "rocking cylinder",
+            &run_cycle(&inputs(20.0), |i| rc.analyse(i)),
+        ));
     }
-    let worst = report.iter().fold((0.0f64, 0.0f64), |a, b| (a.0.max(b.0), a.1.max(b.1)));
-    println!("largest relative differences: virtual power {:.1e}, link equilibrium {:.1e}", worst.0, worst.1);
+    let worst = report
+        .iter()
+        .fold((0.0f64, 0.0f64), |a, b| (a.0.max(b.0), a.1.max(b.1)));
+    println!(
+        "largest relative differences: virtual power {:.1e}, link equilibrium {:.1e}",
+        worst.0, worst.1
+    );
 }
 
 #[test]
 fn a_gear_supplies_the_same_moment_as_a_coupling() {
     let coupled = SixBar::course_example();
-    let geared = SixBar { drive: GEAR, ..coupled };
+    let geared = SixBar {
+        drive: GEAR,
+        ..coupled
+    };
     for input in inputs(10.0) {
-        let (c, g) = (coupled.analyse(input).unwrap(), geared.analyse(input).unwrap());
+        let (c, g) = (
+            coupled.analyse(input).unwrap(),
+            geared.analyse(input).unwrap(),
+        );
         let mb = c.balance.moment;
         assert!((g.balance.moment - mb).abs() <= 1e-12 * mb.abs().max(1.0));
         // |F_b| = |M_b| / (r_w cos α_w), along one of the two lines of action.
         let arm = 0.2 * 20f64.to_radians().cos();
         assert!((g.balance.force.norm() - mb.abs() / arm).abs() <= 1e-9 * mb.abs().max(1.0));
         // The frame takes the difference: R01 changes by −F_b.
-        assert!((g.balance.r01 - (c.balance.r01 - g.balance.force)).norm() <= 1e-9 * mb.abs().max(1.0));
+        assert!(
+            (g.balance.r01 - (c.balance.r01 - g.balance.force)).norm() <= 1e-9 * mb.abs().max(1.0)
+        );
     }
 }
 
@@ -108,14 +154,30 @@ fn cycle_work<P: Analysed>(positions: &[Result<P>]) -> (f64, f64) {
 #[test]
 fn inertia_and_weights_do_no_net_work_over_a_cycle() {
     let n = 720;
-    let six = SixBar { resistance: 0.0, ..SixBar::course_example() };
-    let (w, abs) = cycle_work(&run_cycle(&uniform_inputs(n, 0.0, 10.0, 0.0), |i| six.analyse(i)));
+    let six = SixBar {
+        resistance: 0.0,
+        ..SixBar::course_example()
+    };
+    let (w, abs) = cycle_work(&run_cycle(&uniform_inputs(n, 0.0, 10.0, 0.0), |i| {
+        six.analyse(i)
+    }));
     assert!(w.abs() <= 1e-9 * abs, "six-bar: {w} of {abs}");
-    let four = FourBar { resisting_moment: 0.0, ..FourBar::course_example() };
-    let (w, abs) = cycle_work(&run_cycle(&uniform_inputs(n, 0.0, 10.0, 0.0), |i| four.analyse(i)));
+    let four = FourBar {
+        resisting_moment: 0.0,
+        ..FourBar::course_example()
+    };
+    let (w, abs) = cycle_work(&run_cycle(&uniform_inputs(n, 0.0, 10.0, 0.0), |i| {
+        four.analyse(i)
+    }));
     assert!(w.abs() <= 1e-9 * abs, "four-bar: {w} of {abs}");
-    let rc = RockingCylinder { force_in: 0.0, force_out: 0.0, ..RockingCylinder::course_example() };
-    let (w, abs) = cycle_work(&run_cycle(&uniform_inputs(n, 0.0, 20.0, 0.0), |i| rc.analyse(i)));
+    let rc = RockingCylinder {
+        force_in: 0.0,
+        force_out: 0.0,
+        ..RockingCylinder::course_example()
+    };
+    let (w, abs) = cycle_work(&run_cycle(&uniform_inputs(n, 0.0, 20.0, 0.0), |i| {
+        rc.analyse(i)
+    }));
     assert!(w.abs() <= 1e-9 * abs, "rocking cylinder: {w} of {abs}");
 }
 
@@ -132,7 +194,9 @@ fn the_crank_supplies_the_indicator_work_per_cycle() {
     let stroke = 2.0 * sc.l1; // a central slider-crank
     let work = d.area * stroke * (trapezoid(&d.inward) - trapezoid(&d.outward));
     let n = 20_000;
-    let (w, _) = cycle_work(&run_cycle(&uniform_inputs(n, 0.0, 150.0, 0.0), |i| sc.analyse(i)));
+    let (w, _) = cycle_work(&run_cycle(&uniform_inputs(n, 0.0, 150.0, 0.0), |i| {
+        sc.analyse(i)
+    }));
     let rel = (w - work).abs() / work;
     println!("indicator work {work:.4} J, ∮M_b dφ = {w:.4} J, relative {rel:.1e}");
     assert!(rel <= 1e-6, "{w} vs {work}");
@@ -175,12 +239,18 @@ fn a_dead_point_fails_its_position_naming_the_group_and_the_cycle_goes_on() {
 #[test]
 fn a_six_bar_whose_slider_group_locks_names_that_group() {
     // Lower the guide until the rod CD cannot reach it at part of the cycle.
-    let m = SixBar { guide_point: Point2::new(0.0, 0.62), ..SixBar::course_example() };
+    let m = SixBar {
+        guide_point: Point2::new(0.0, 0.62),
+        ..SixBar::course_example()
+    };
     let positions = run_cycle(&uniform_inputs(36, 0.0, 10.0, 0.0), |i| m.analyse(i));
     let failed: Vec<_> = positions.iter().filter_map(|p| p.as_ref().err()).collect();
     assert!(!failed.is_empty() && failed.len() < 36);
     for e in failed {
-        assert!(matches!(e, Error::In { part, .. } if part == "group II(4,5) RRP"), "{e}");
+        assert!(
+            matches!(e, Error::In { part, .. } if part == "group II(4,5) RRP"),
+            "{e}"
+        );
     }
 }
 
@@ -189,9 +259,17 @@ fn bad_input_is_an_error_naming_the_input_link() {
     let e = SixBar::course_example()
         .analyse(Motion::new(f64::NAN, 1.0, 0.0))
         .unwrap_err();
-    assert!(matches!(e, Error::In { ref part, .. } if part == "link 1 (crank)"), "{e}");
-    let p = SixBar::course_example().analyse(Motion::new(1.0, 0.0, 0.0)).unwrap();
-    assert!(p.power_check().is_err(), "ω1 = 0 has no virtual-power balance");
+    assert!(
+        matches!(e, Error::In { ref part, .. } if part == "link 1 (crank)"),
+        "{e}"
+    );
+    let p = SixBar::course_example()
+        .analyse(Motion::new(1.0, 0.0, 0.0))
+        .unwrap();
+    assert!(
+        p.power_check().is_err(),
+        "ω1 = 0 has no virtual-power balance"
+    );
 }
 
 #[test]
@@ -205,7 +283,13 @@ fn course_positions_start_at_the_working_stroke() {
     // along −x, as the example's resistance assumes).
     let scale = 10.0 * six.l1;
     assert!(first.group45.slide.rate.abs() <= 1e-9 * scale);
-    let mid = six.analyse(Motion::new(strokes.start + 0.5 * strokes.working_angle, 10.0, 0.0)).unwrap();
+    let mid = six
+        .analyse(Motion::new(
+            strokes.start + 0.5 * strokes.working_angle,
+            10.0,
+            0.0,
+        ))
+        .unwrap();
     assert!(mid.group45.slide.rate * six.working_direction > 0.0);
     assert!(strokes.time_ratio > 1.0);
 
@@ -270,14 +354,21 @@ fn the_parallel_cycle_equals_the_serial_one_bit_for_bit() {
     let a = Table::of(&run_cycle(&inputs, |i| comp.analyse(i)));
     let b = Table::of(&run_cycle_parallel(&inputs, |i| comp.analyse(i)));
     for (x, y) in a.columns.iter().zip(&b.columns) {
-        assert!(x.values.iter().zip(&y.values).all(|(p, q)| p.to_bits() == q.to_bits()));
+        assert!(x
+            .values
+            .iter()
+            .zip(&y.values)
+            .all(|(p, q)| p.to_bits() == q.to_bits()));
     }
 }
 
 #[cfg(feature = "serde")]
 #[test]
 fn mechanisms_and_results_survive_a_serde_round_trip() {
-    let six = SixBar { drive: GEAR, ..SixBar::course_example() };
+    let six = SixBar {
+        drive: GEAR,
+        ..SixBar::course_example()
+    };
     let back: SixBar = serde_json::from_str(&serde_json::to_string(&six).unwrap()).unwrap();
     assert_eq!(back, six);
     let comp = Compressor::course_example();
@@ -300,4 +391,49 @@ fn mechanisms_and_results_survive_a_serde_round_trip() {
 fn back_analyse(m: &Compressor, i: Motion) -> Result<tmm::mechanism::CompressorPosition> {
     let copy: Compressor = serde_json::from_str(&serde_json::to_string(m).unwrap()).unwrap();
     copy.analyse(i)
+}
+
+/// Seed 001's closed forms (2.10)–(2.14) for one contour, with the errata K1 and K2, in the
+/// seed's convention (angles clockwise from +y): (φ2, l3, ω2, v3, ε2, a3).
+fn seed_contour(l1: f64, l: f64, psi: f64, w1: f64, e1: f64) -> [f64; 6] {
+    let phi2 = (-l1 * psi.sin() / l).asin();
+    let l3 = l1 * psi.cos() + l * phi2.cos();
+    let w2 = -l1 * w1 * psi.cos() / (l * phi2.cos());
+    let v3 = -l1 * w1 * psi.sin() - l * w2 * phi2.sin();
+    let e2 = (l1 * w1 * w1 * psi.sin() - l1 * e1 * psi.cos() + l * w2 * w2 * phi2.sin())
+        / (l * phi2.cos());
+    let a3 = -l1 * w1 * w1 * psi.cos()
+        - l1 * e1 * psi.sin()
+        - l * w2 * w2 * phi2.cos()
+        - l * e2 * phi2.sin();
+    [phi2, l3, w2, v3, e2, a3]
+}
+
+#[test]
+fn the_compressor_reproduces_seed_001s_closed_forms_for_both_pistons() {
+    let m = Compressor::course_example();
+    let (w1, e1) = (-Compressor::seed_speed(), 250.0); // the seed's clockwise ω1 > 0
+    let mut worst = 0.0f64;
+    for k in 0..36 {
+        let psi = k as f64 * TAU / 36.0;
+        // Seed angle ψ clockwise from +y → crate angle π/2 − ψ; rates change sign.
+        let p = m.analyse(Motion::new(0.5 * PI - psi, -w1, -e1)).unwrap();
+        for (g, throw) in [(&p.group23, 0.0), (&p.group45, PI)] {
+            let s = seed_contour(m.l1, m.l2, psi + throw, w1, e1);
+            let phi2 = tmm::angle::normalize(0.5 * PI - g.link2.angle + PI) - PI;
+            let got = [
+                phi2,
+                g.slide.value,
+                -g.link2.omega,
+                g.slide.rate,
+                -g.link2.epsilon,
+                g.slide.accel,
+            ];
+            let scales = [1.0, m.l1, w1, m.l1 * w1, w1 * w1, m.l1 * w1 * w1];
+            for i in 0..6 {
+                worst = worst.max((got[i] - s[i]).abs() / scales[i]);
+            }
+        }
+    }
+    assert!(worst <= 1e-12, "{worst}");
 }

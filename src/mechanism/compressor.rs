@@ -189,8 +189,8 @@ impl Compressor {
         let pin_c = crank.link.point_at(self.l1 * c, self.l1 * s);
         let g23 = rrp_dyad(crank.a, self.guide(0), self.l2, self.branches[0])
             .map_err(within(GROUP_23))?;
-        let g45 = rrp_dyad(pin_c, self.guide(1), self.l4, self.branches[1])
-            .map_err(within(GROUP_45))?;
+        let g45 =
+            rrp_dyad(pin_c, self.guide(1), self.l4, self.branches[1]).map_err(within(GROUP_45))?;
         Ok((crank, pin_c, g23, g45))
     }
 
@@ -229,7 +229,9 @@ impl Compressor {
                 );
                 gas_forces[k] = piston
                     .and_then(|p| p.gas_force(d, &pins[k]))
-                    .map_err(within(["gas pressure, cylinder 1", "gas pressure, cylinder 2"][k]))?;
+                    .map_err(within(
+                        ["gas pressure, cylinder 1", "gas pressure, cylinder 2"][k],
+                    ))?;
             }
         }
         let piston = |load: Load, b: Point2<f64>, f: Vector2<f64>| {

@@ -139,7 +139,11 @@ impl FourBar {
             *load = self.mass[k].load(&links[k], self.gravity)?;
         }
         let rocker_moment = -self.resisting_moment * sign(g23.link3.omega);
-        let rocker = Load::new(loads[2].point, loads[2].force, loads[2].moment + rocker_moment);
+        let rocker = Load::new(
+            loads[2].point,
+            loads[2].force,
+            loads[2].moment + rocker_moment,
+        );
         let r = RrrDyad {
             a: crank.a.p,
             b: g23.b.p,
@@ -209,7 +213,10 @@ impl Analysed for FourBarPosition {
             FreeBody {
                 name: "link 3 (rocker)",
                 motion: self.group23.link3,
-                loads: vec![self.loads[2], Load::new(o3, Vector2::zeros(), self.rocker_moment)],
+                loads: vec![
+                    self.loads[2],
+                    Load::new(o3, Vector2::zeros(), self.rocker_moment),
+                ],
                 drive: None,
                 reactions: vec![f(b, self.r23), f(o3, self.r03)],
             },

@@ -1,7 +1,7 @@
 //! A gas-pressure (indicator) diagram over the piston stroke, and the gas force it gives.
 
-use crate::error::{finite, Error, Result};
 use crate::angle::{cross, unit};
+use crate::error::{finite, Error, Result};
 use crate::kinematics::{Branch, PointMotion};
 use nalgebra::{Point2, Vector2};
 
@@ -178,7 +178,11 @@ impl Piston {
     ///
     /// # Errors
     /// As [`IndicatorDiagram::force`].
-    pub(crate) fn gas_force(&self, diagram: &IndicatorDiagram, b: &PointMotion) -> Result<Vector2<f64>> {
+    pub(crate) fn gas_force(
+        &self,
+        diagram: &IndicatorDiagram,
+        b: &PointMotion,
+    ) -> Result<Vector2<f64>> {
         diagram.force(
             (b.p - self.foot).dot(&self.head),
             b.v.dot(&self.head),

@@ -9,7 +9,9 @@ use super::power::FreeBody;
 use super::table::{push, push_vector, Tabulate};
 use super::{output_strokes, within, Analysed};
 use crate::error::Result;
-use crate::kinematics::{crank, rpr_dyad, CrankState, Motion, PointMotion, Rotation, RprState, Strokes};
+use crate::kinematics::{
+    crank, rpr_dyad, CrankState, Motion, PointMotion, Rotation, RprState, Strokes,
+};
 use crate::kinetostatics::RprDyad;
 use crate::Load;
 use nalgebra::{Point2, Vector2};
@@ -131,14 +133,15 @@ impl RockingCylinder {
         // u points from A into the cylinder; moving in (ṡ < 0) the fluid pushes the rod out.
         let u = g23.link2.unit();
         let rate = g23.slide.rate;
-        let push_out = if rate < 0.0 { self.force_in } else { -self.force_out };
+        let push_out = if rate < 0.0 {
+            self.force_in
+        } else {
+            -self.force_out
+        };
         let piston = crank.a.p + self.l_piston * u;
         let fluid = Load::force_at(piston, -push_out * sign(rate).abs() * u);
         let rod = Load::sum_about(&[loads[1], fluid], crank.a.p);
-        let cylinder = Load::sum_about(
-            &[loads[2], Load::force_at(piston, -fluid.force)],
-            self.c,
-        );
+        let cylinder = Load::sum_about(&[loads[2], Load::force_at(piston, -fluid.force)], self.c);
         let r = RprDyad {
             a: crank.a.p,
             e: self.c,

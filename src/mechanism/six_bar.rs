@@ -9,8 +9,8 @@ use super::table::{push, push_vector, Tabulate};
 use super::{output_strokes, within, Analysed};
 use crate::error::Result;
 use crate::kinematics::{
-    crank, rrp_dyad, rrr_dyad, Branch, CrankState, Guide, Motion, PointMotion, Rotation,
-    RrpState, RrrState, Strokes,
+    crank, rrp_dyad, rrr_dyad, Branch, CrankState, Guide, Motion, PointMotion, Rotation, RrpState,
+    RrrState, Strokes,
 };
 use crate::kinetostatics::{RrpDyad, RrrDyad};
 use crate::Load;
@@ -150,10 +150,14 @@ impl SixBar {
     ///
     /// # Errors
     /// [`Error::In`](crate::Error::In) naming the part that failed.
-    pub fn kinematics(&self, input: Motion) -> Result<(CrankState, RrrState, PointMotion, RrpState)> {
+    pub fn kinematics(
+        &self,
+        input: Motion,
+    ) -> Result<(CrankState, RrrState, PointMotion, RrpState)> {
         let crank = crank(self.o1, self.l1, input).map_err(within(INPUT))?;
         let o2 = PointMotion::fixed(self.o2);
-        let g23 = rrr_dyad(crank.a, o2, self.l2, self.l3, self.branch23).map_err(within(GROUP_23))?;
+        let g23 =
+            rrr_dyad(crank.a, o2, self.l2, self.l3, self.branch23).map_err(within(GROUP_23))?;
         let c = g23.link3.point_at(self.c_along, self.c_across);
         let g45 = rrp_dyad(c, self.guide(), self.l4, self.branch45).map_err(within(GROUP_45))?;
         Ok((crank, g23, c, g45))
@@ -246,12 +250,7 @@ impl Analysed for SixBarPosition {
     }
 
     fn free_bodies(&self) -> Vec<FreeBody> {
-        let (a, b, c, d) = (
-            self.crank.a.p,
-            self.group23.b.p,
-            self.c.p,
-            self.group45.b.p,
-        );
+        let (a, b, c, d) = (self.crank.a.p, self.group23.b.p, self.c.p, self.group45.b.p);
         let (o1, o2) = (self.crank.link.origin.p, self.group23.link3.origin.p);
         let f = Load::force_at;
         let body = |name, motion, loads, reactions| FreeBody {

@@ -8,7 +8,9 @@ use super::pressure::{IndicatorDiagram, Piston};
 use super::table::{push, push_vector, Tabulate};
 use super::{output_strokes, within, Analysed};
 use crate::error::Result;
-use crate::kinematics::{crank, rrp_dyad, Branch, CrankState, Guide, Motion, Rotation, RrpState, Strokes};
+use crate::kinematics::{
+    crank, rrp_dyad, Branch, CrankState, Guide, Motion, Rotation, RrpState, Strokes,
+};
 use crate::kinetostatics::RrpDyad;
 use crate::Load;
 use nalgebra::{Point2, Vector2};
@@ -129,7 +131,8 @@ impl SliderCrank {
     /// [`Error::In`](crate::Error::In) naming the part that failed.
     pub fn kinematics(&self, input: Motion) -> Result<(CrankState, RrpState)> {
         let crank = crank(self.o1, self.l1, input).map_err(within(INPUT))?;
-        let g23 = rrp_dyad(crank.a, self.guide(), self.l2, self.branch).map_err(within(GROUP_23))?;
+        let g23 =
+            rrp_dyad(crank.a, self.guide(), self.l2, self.branch).map_err(within(GROUP_23))?;
         Ok((crank, g23))
     }
 
