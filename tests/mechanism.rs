@@ -437,3 +437,17 @@ fn the_compressor_reproduces_seed_001s_closed_forms_for_both_pistons() {
     }
     assert!(worst <= 1e-12, "{worst}");
 }
+
+#[test]
+fn uniform_inputs_follow_the_sense_of_rotation() {
+    let ccw = uniform_inputs(4, 0.0, 2.0, 0.5);
+    let cw = uniform_inputs(4, 0.0, -2.0, 0.5);
+    let deg = |v: &[Motion]| {
+        v.iter()
+            .map(|m| m.value.to_degrees().round())
+            .collect::<Vec<_>>()
+    };
+    assert_eq!(deg(&ccw), [0.0, 90.0, 180.0, 270.0]);
+    assert_eq!(deg(&cw), [0.0, 270.0, 180.0, 90.0]);
+    assert!(cw.iter().all(|m| m.rate == -2.0 && m.accel == 0.5));
+}

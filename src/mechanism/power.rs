@@ -19,7 +19,7 @@ use nalgebra::Point2;
 /// A 10 N force across a crank of 0.2 m turning at 3 rad/s, at the crank's end: v = 0.6 m/s
 /// along the force, P = 6 W; a couple of 2 N·m adds 2·3 = 6 W.
 /// ```
-/// use nalgebra::Point2;
+/// use nalgebra::{Point2, Vector2};
 /// use tmm::kinematics::{LinkMotion, PointMotion};
 /// use tmm::{mechanism::power_of, Load};
 /// let crank = LinkMotion { origin: PointMotion::fixed(Point2::origin()), angle: 0.0, omega: 3.0, epsilon: 0.0 };
