@@ -16,6 +16,14 @@ use crate::Load;
 use nalgebra::{Point2, Vector2};
 use std::f64::consts::{FRAC_PI_2, PI, TAU};
 
+/// The links' names, for errors and free bodies.
+const LINKS: [&str; 5] = [
+    "link 1 (crank)",
+    "link 2 (rod 1)",
+    "link 3 (piston 1)",
+    "link 4 (rod 2)",
+    "link 5 (piston 2)",
+];
 const INPUT: &str = "link 1 (crank)";
 const GROUP_23: &str = "group II(2,3) RRP";
 const GROUP_45: &str = "group II(4,5) RRP";
@@ -212,7 +220,9 @@ impl Compressor {
         let links = [crank.link, g23.link2, g23.link3, g45.link2, g45.link3];
         let mut loads = [Load::zero(self.o1); 5];
         for (k, load) in loads.iter_mut().enumerate() {
-            *load = self.mass[k].load(&links[k], self.gravity)?;
+            *load = self.mass[k]
+                .load(&links[k], self.gravity)
+                .map_err(within(LINKS[k]))?;
         }
         let rods = [self.l2, self.l4];
         let pins = [g23.b, g45.b];
@@ -302,35 +312,35 @@ impl Analysed for CompressorPosition {
         let f = Load::force_at;
         vec![
             FreeBody {
-                name: "link 1 (crank)",
+                name: LINKS[0],
                 motion: self.crank.link,
                 loads: vec![self.loads[0]],
                 drive: Some(self.balance.load()),
                 reactions: vec![f(a, -self.r12), f(c, -self.r14), f(o1, self.balance.r01)],
             },
             FreeBody {
-                name: "link 2 (rod 1)",
+                name: LINKS[1],
                 motion: self.group23.link2,
                 loads: vec![self.loads[1]],
                 drive: None,
                 reactions: vec![f(a, self.r12), f(b, -self.r23)],
             },
             FreeBody {
-                name: "link 3 (piston 1)",
+                name: LINKS[2],
                 motion: self.group23.link3,
                 loads: vec![self.loads[2], f(b, self.gas_forces[0])],
                 drive: None,
                 reactions: vec![f(b, self.r23), Load::new(b, self.r03, self.wall_moments[0])],
             },
             FreeBody {
-                name: "link 4 (rod 2)",
+                name: LINKS[3],
                 motion: self.group45.link2,
                 loads: vec![self.loads[3]],
                 drive: None,
                 reactions: vec![f(c, self.r14), f(d, -self.r45)],
             },
             FreeBody {
-                name: "link 5 (piston 2)",
+                name: LINKS[4],
                 motion: self.group45.link3,
                 loads: vec![self.loads[4], f(d, self.gas_forces[1])],
                 drive: None,

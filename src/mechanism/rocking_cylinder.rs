@@ -16,6 +16,8 @@ use crate::kinetostatics::RprDyad;
 use crate::Load;
 use nalgebra::{Point2, Vector2};
 
+/// The links' names, for errors and free bodies.
+const LINKS: [&str; 3] = ["link 1 (crank)", "link 2 (rod)", "link 3 (cylinder)"];
 const INPUT: &str = "link 1 (crank)";
 const GROUP_23: &str = "group II(2,3) RPR";
 
@@ -128,7 +130,9 @@ impl RockingCylinder {
         let links = [crank.link, g23.link2, g23.link3];
         let mut loads = [Load::zero(self.o1); 3];
         for (k, load) in loads.iter_mut().enumerate() {
-            *load = self.mass[k].load(&links[k], self.gravity)?;
+            *load = self.mass[k]
+                .load(&links[k], self.gravity)
+                .map_err(within(LINKS[k]))?;
         }
         // u points from A into the cylinder; moving in (ṡ < 0) the fluid pushes the rod out.
         let u = g23.link2.unit();
@@ -189,21 +193,21 @@ impl Analysed for RockingCylinderPosition {
         let on_cylinder = Load::force_at(self.fluid.point, -self.fluid.force);
         vec![
             FreeBody {
-                name: "link 1 (crank)",
+                name: LINKS[0],
                 motion: self.crank.link,
                 loads: vec![self.loads[0]],
                 drive: Some(self.balance.load()),
                 reactions: vec![f(a, -self.r12), f(o1, self.balance.r01)],
             },
             FreeBody {
-                name: "link 2 (rod)",
+                name: LINKS[1],
                 motion: self.group23.link2,
                 loads: vec![self.loads[1], self.fluid],
                 drive: None,
                 reactions: vec![f(a, self.r12), Load::new(a, self.r32, self.r32_moment)],
             },
             FreeBody {
-                name: "link 3 (cylinder)",
+                name: LINKS[2],
                 motion: self.group23.link3,
                 loads: vec![self.loads[2], on_cylinder],
                 drive: None,

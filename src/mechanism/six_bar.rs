@@ -16,6 +16,14 @@ use crate::kinetostatics::{RrpDyad, RrrDyad};
 use crate::Load;
 use nalgebra::{Point2, Vector2};
 
+/// The links' names, for errors and free bodies.
+const LINKS: [&str; 5] = [
+    "link 1 (crank)",
+    "link 2 (coupler)",
+    "link 3 (rocker)",
+    "link 4 (rod)",
+    "link 5 (slider)",
+];
 const INPUT: &str = "link 1 (crank)";
 const GROUP_23: &str = "group II(2,3) RRR";
 const GROUP_45: &str = "group II(4,5) RRP";
@@ -185,7 +193,9 @@ impl SixBar {
         let links = [crank.link, g23.link2, g23.link3, g45.link2, g45.link3];
         let mut loads = [Load::zero(self.o1); 5];
         for (k, load) in loads.iter_mut().enumerate() {
-            *load = self.mass[k].load(&links[k], self.gravity)?;
+            *load = self.mass[k]
+                .load(&links[k], self.gravity)
+                .map_err(within(LINKS[k]))?;
         }
         let v5 = g45.slide.rate;
         let resistance = if v5 * self.working_direction > 0.0 {
@@ -264,32 +274,32 @@ impl Analysed for SixBarPosition {
             FreeBody {
                 drive: Some(self.balance.load()),
                 ..body(
-                    "link 1 (crank)",
+                    LINKS[0],
                     self.crank.link,
                     vec![self.loads[0]],
                     vec![f(a, -self.r12), f(o1, self.balance.r01)],
                 )
             },
             body(
-                "link 2 (coupler)",
+                LINKS[1],
                 self.group23.link2,
                 vec![self.loads[1]],
                 vec![f(a, self.r12), f(b, -self.r23)],
             ),
             body(
-                "link 3 (rocker)",
+                LINKS[2],
                 self.group23.link3,
                 vec![self.loads[2]],
                 vec![f(b, self.r23), f(o2, self.r03), f(c, -self.r34)],
             ),
             body(
-                "link 4 (rod)",
+                LINKS[3],
                 self.group45.link2,
                 vec![self.loads[3]],
                 vec![f(c, self.r34), f(d, -self.r45)],
             ),
             body(
-                "link 5 (slider)",
+                LINKS[4],
                 self.group45.link3,
                 vec![self.loads[4], f(d, self.resistance)],
                 vec![f(d, self.r45), Load::new(d, self.r05, self.r05_moment)],

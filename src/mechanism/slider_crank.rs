@@ -16,6 +16,12 @@ use crate::Load;
 use nalgebra::{Point2, Vector2};
 use std::f64::consts::PI;
 
+/// The links' names, for errors and free bodies.
+const LINKS: [&str; 3] = [
+    "link 1 (crank)",
+    "link 2 (connecting rod)",
+    "link 3 (piston)",
+];
 const INPUT: &str = "link 1 (crank)";
 const GROUP_23: &str = "group II(2,3) RRP";
 
@@ -154,7 +160,9 @@ impl SliderCrank {
         let links = [crank.link, g23.link2, g23.link3];
         let mut loads = [Load::zero(self.o1); 3];
         for (k, load) in loads.iter_mut().enumerate() {
-            *load = self.mass[k].load(&links[k], self.gravity)?;
+            *load = self.mass[k]
+                .load(&links[k], self.gravity)
+                .map_err(within(LINKS[k]))?;
         }
         let gas_force = match &self.diagram {
             Some(d) => Piston::new(
@@ -213,21 +221,21 @@ impl Analysed for SliderCrankPosition {
         let f = Load::force_at;
         vec![
             FreeBody {
-                name: "link 1 (crank)",
+                name: LINKS[0],
                 motion: self.crank.link,
                 loads: vec![self.loads[0]],
                 drive: Some(self.balance.load()),
                 reactions: vec![f(a, -self.r12), f(o1, self.balance.r01)],
             },
             FreeBody {
-                name: "link 2 (connecting rod)",
+                name: LINKS[1],
                 motion: self.group23.link2,
                 loads: vec![self.loads[1]],
                 drive: None,
                 reactions: vec![f(a, self.r12), f(b, -self.r23)],
             },
             FreeBody {
-                name: "link 3 (piston)",
+                name: LINKS[2],
                 motion: self.group23.link3,
                 loads: vec![self.loads[2], f(b, self.gas_force)],
                 drive: None,
