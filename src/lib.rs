@@ -17,6 +17,8 @@
 //!   through a coupling (balancing moment) or a gear pair (balancing force).
 //! - [`kinetostatics::passive`]: the group with a parallel coupler (a passive constraint), statically
 //!   indeterminate once, solved by the force method; N, Q, M diagrams of its links.
+//! - [`mechanism`]: whole mechanisms over a cycle (four-bar, slider-crank, compressor, six-bar,
+//!   rocking cylinder): kinematics, inertia loads, reactions, balancing moment, CSV tables.
 //!
 //! ## The seed programs
 //! The crate grew from Ukrainian and Russian course texts whose FORTRAN-era programs have short
@@ -45,6 +47,7 @@ pub mod error;
 pub mod kinematics;
 pub mod kinetostatics;
 pub mod load;
+pub mod mechanism;
 
 pub use error::{Error, Result};
 pub use load::Load;

@@ -1,0 +1,400 @@
+//! Whole mechanisms over a cycle, as in a course project on the theory of machines: the
+//! six-bar of seed 001's figure 2.10 type and seed 001's two-cylinder compressor, then the
+//! other ready mechanisms (four-bar, slider-crank driven through a gear pair, rocking
+//! cylinder).
+//!
+//! For each: the 12 plans from the beginning of the working stroke (positions, velocities,
+//! accelerations, the reactions in every pair, the balancing moment), the balancing moment
+//! checked by the principle of virtual power, and over a 360-position cycle the CSV tables and
+//! SVG charts (kinematic diagrams s(φ), v(φ), a(φ) of the output, the reactions, the balancing
+//! moment) written to `target/tmm-charts/mechanisms/`.
+//!
+//! Run with `cargo run --release --example mechanisms`.
+
+use plotters::prelude::*;
+use std::error::Error as StdError;
+use std::fs::{create_dir_all, File};
+use std::io::BufWriter;
+use std::path::{Path, PathBuf};
+use tmm::kinematics::{Motion, Rotation};
+use tmm::mechanism::{
+    course_inputs, run_cycle, uniform_inputs, Analysed, Compressor, FourBar, RockingCylinder,
+    SixBar, SliderCrank, Table,
+};
+
+type Res<T> = std::result::Result<T, Box<dyn StdError>>;
+
+/// The largest virtual-power disagreement and link-equilibrium residual over a cycle.
+fn checks<P: Analysed>(positions: &[tmm::Result<P>]) -> Res<(f64, f64)> {
+    let mut worst = (0.0f64, 0.0f64);
+    for p in positions {
+        let p = p.as_ref().map_err(|e| e.to_string())?;
+        worst.0 = worst.0.max(p.power_check()?.relative_error());
+        worst.1 = worst.1.max(p.worst_residual());
+    }
+    Ok(worst)
+}
+
+/// One SVG line chart of several columns of a table against φ1 in degrees.
+fn chart(path: &Path, title: &str, table: &Table, columns: &[&str], y_label: &str) -> Res<()> {
+    let phi: Vec<f64> = table
+        .column("phi1 [rad]")
+        .ok_or("no phi1 column")?
+        .iter()
+        .map(|p| p.to_degrees())
+        .collect();
+    let series: Vec<(&str, &[f64])> = columns
+        .iter()
+        .map(|c| Ok((*c, table.column(c).ok_or(format!("no column {c}"))?)))
+        .collect::<Res<_>>()?;
+    let (lo, hi) = series
+        .iter()
+        .flat_map(|(_, v)| v.iter())
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &v| {
+            (a.min(v), b.max(v))
+        });
+    let pad = 0.05 * (hi - lo).max(1e-12);
+    let root = SVGBackend::new(path, (900, 480)).into_drawing_area();
+    root.fill(&WHITE)?;
+    let mut c = ChartBuilder::on(&root)
+        .caption(title, ("sans-serif", 20))
+        .margin(12)
+        .x_label_area_size(40)
+        .y_label_area_size(70)
+        .build_cartesian_2d(0.0..360.0, (lo - pad)..(hi + pad))?;
+    c.configure_mesh()
+        .x_desc("crank angle phi1, deg")
+        .y_desc(y_label)
+        .draw()?;
+    let palette = [
+        BLUE,
+        RED,
+        GREEN,
+        MAGENTA,
+        CYAN,
+        BLACK,
+        RGBColor(230, 130, 0),
+    ];
+    for (k, (name, values)) in series.iter().enumerate() {
+        let colour = palette[k % palette.len()];
+        let mut points: Vec<(f64, f64)> = phi.iter().copied().zip(values.iter().copied()).collect();
+        points.sort_by(|a, b| a.0.total_cmp(&b.0));
+        c.draw_series(LineSeries::new(points, colour))?
+            .label(*name)
+            .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 18, y)], colour));
+    }
+    c.configure_series_labels()
+        .background_style(WHITE.mix(0.8))
+        .border_style(BLACK)
+        .draw()?;
+    root.present()?;
+    Ok(())
+}
+
+/// Writes a table as CSV and returns the path.
+fn csv(dir: &Path, name: &str, table: &Table) -> Res<PathBuf> {
+    let path = dir.join(format!("{name}.csv"));
+    table.write_csv(BufWriter::new(File::create(&path)?))?;
+    Ok(path)
+}
+
+fn six_bar(dir: &Path) -> Res<()> {
+    let m = SixBar::course_example();
+    let w1 = 10.0;
+    let strokes = m.strokes(Rotation::Ccw)?;
+    println!("== Six-bar (crank + RRR + RRP, seed 001 fig. 2.10 type), omega1 = {w1} rad/s CCW ==");
+    println!(
+        "working stroke from phi1 = {:.2} deg over {:.2} deg, time ratio {:.4}",
+        strokes.start.to_degrees(),
+        strokes.working_angle.to_degrees(),
+        strokes.time_ratio
+    );
+    let plans = run_cycle(&course_inputs(&strokes, 12, w1), |i| m.analyse(i));
+    println!(
+        "{:>3} {:>7} {:>8} {:>8} {:>9} {:>8} {:>9} {:>7} {:>8}",
+        "pos", "phi1°", "s5 mm", "v5 m/s", "a5 m/s²", "ω3 1/s", "ε3 1/s²", "vC m/s", "aC m/s²"
+    );
+    for (k, p) in plans.iter().enumerate() {
+        let p = p.as_ref().map_err(|e| e.to_string())?;
+        let g = &p.group45;
+        println!(
+            "{:>3} {:>7.2} {:>8.2} {:>8.4} {:>9.3} {:>8.4} {:>9.3} {:>7.4} {:>8.3}",
+            k,
+            p.input.value.to_degrees(),
+            g.slide.value * 1e3,
+            g.slide.rate,
+            g.slide.accel,
+            p.group23.link3.omega,
+            p.group23.link3.epsilon,
+            p.c.v.norm(),
+            p.c.a.norm()
+        );
+    }
+    println!(
+        "{:>3} {:>8} {:>8} {:>8} {:>8} {:>8} {:>8} {:>8} {:>9} {:>9} {:>8}",
+        "pos",
+        "R12 N",
+        "R23 N",
+        "R03 N",
+        "R34 N",
+        "R45 N",
+        "R05 N",
+        "R01 N",
+        "Mb N·m",
+        "Mb(VP)",
+        "rel.err"
+    );
+    for (k, p) in plans.iter().enumerate() {
+        let p = p.as_ref().map_err(|e| e.to_string())?;
+        let c = p.power_check()?;
+        println!(
+            "{:>3} {:>8.1} {:>8.1} {:>8.1} {:>8.1} {:>8.1} {:>8.1} {:>8.1} {:>9.3} {:>9.3} {:>8.1e}",
+            k,
+            p.r12.norm(),
+            p.r23.norm(),
+            p.r03.norm(),
+            p.r34.norm(),
+            p.r45.norm(),
+            p.r05.norm(),
+            p.balance.r01.norm(),
+            c.chain,
+            c.virtual_power,
+            c.relative_error()
+        );
+    }
+    let cycle = run_cycle(&uniform_inputs(360, 0.0, w1, 0.0), |i| m.analyse(i));
+    let (vp, eq) = checks(&cycle)?;
+    println!("360 positions: virtual power agrees to {vp:.1e}, links in equilibrium to {eq:.1e}\n");
+    let table = Table::of(&cycle);
+    csv(dir, "six_bar", &table)?;
+    chart(
+        &dir.join("six_bar_s.svg"),
+        "Six-bar: slider position s5",
+        &table,
+        &["s5 [m]"],
+        "m",
+    )?;
+    chart(
+        &dir.join("six_bar_v.svg"),
+        "Six-bar: slider velocity v5",
+        &table,
+        &["v5 [m/s]"],
+        "m/s",
+    )?;
+    chart(
+        &dir.join("six_bar_a.svg"),
+        "Six-bar: slider acceleration a5",
+        &table,
+        &["a5 [m/s^2]"],
+        "m/s²",
+    )?;
+    chart(
+        &dir.join("six_bar_reactions.svg"),
+        "Six-bar: joint reactions",
+        &table,
+        &[
+            "|R12| [N]",
+            "|R23| [N]",
+            "|R03| [N]",
+            "|R34| [N]",
+            "|R45| [N]",
+            "|R05| [N]",
+            "|R01| [N]",
+        ],
+        "N",
+    )?;
+    chart(
+        &dir.join("six_bar_mb.svg"),
+        "Six-bar: balancing moment",
+        &table,
+        &["Mb [N*m]"],
+        "N·m",
+    )?;
+    Ok(())
+}
+
+fn compressor(dir: &Path) -> Res<()> {
+    let m = Compressor::course_example();
+    let w1 = Compressor::seed_speed();
+    let strokes = m.strokes(Rotation::Cw)?;
+    println!("== Two-cylinder compressor (seed 001), 960 rpm clockwise, omega1 = {w1:.3} rad/s ==");
+    println!(
+        "piston 3's working stroke from phi1 = {:.2} deg (crate angle, CCW from +x)",
+        strokes.start.to_degrees()
+    );
+    let plans = run_cycle(&course_inputs(&strokes, 12, w1), |i| m.analyse(i));
+    println!(
+        "{:>3} {:>7} {:>8} {:>8} {:>9} {:>8} {:>8} {:>9} {:>9} {:>9}",
+        "pos",
+        "phi1°",
+        "s3 mm",
+        "v3 m/s",
+        "a3 m/s²",
+        "s5 mm",
+        "v5 m/s",
+        "a5 m/s²",
+        "Fgas3 N",
+        "Fgas5 N"
+    );
+    for (k, p) in plans.iter().enumerate() {
+        let p = p.as_ref().map_err(|e| e.to_string())?;
+        let (g3, g5) = (&p.group23, &p.group45);
+        println!(
+            "{:>3} {:>7.2} {:>8.2} {:>8.3} {:>9.1} {:>8.2} {:>8.3} {:>9.1} {:>9.1} {:>9.1}",
+            k,
+            p.input.value.to_degrees(),
+            g3.slide.value * 1e3,
+            g3.slide.rate,
+            g3.slide.accel,
+            g5.slide.value * 1e3,
+            g5.slide.rate,
+            g5.slide.accel,
+            p.gas_forces[0].y,
+            p.gas_forces[1].y
+        );
+    }
+    println!(
+        "{:>3} {:>8} {:>8} {:>8} {:>8} {:>8} {:>8} {:>8} {:>9} {:>9} {:>8}",
+        "pos",
+        "R12 N",
+        "R23 N",
+        "R03 N",
+        "R14 N",
+        "R45 N",
+        "R05 N",
+        "R01 N",
+        "Mb N·m",
+        "Mb(VP)",
+        "rel.err"
+    );
+    for (k, p) in plans.iter().enumerate() {
+        let p = p.as_ref().map_err(|e| e.to_string())?;
+        let c = p.power_check()?;
+        println!(
+            "{:>3} {:>8.1} {:>8.1} {:>8.1} {:>8.1} {:>8.1} {:>8.1} {:>8.1} {:>9.2} {:>9.2} {:>8.1e}",
+            k,
+            p.r12.norm(),
+            p.r23.norm(),
+            p.r03.norm(),
+            p.r14.norm(),
+            p.r45.norm(),
+            p.r05.norm(),
+            p.balance.r01.norm(),
+            c.chain,
+            c.virtual_power,
+            c.relative_error()
+        );
+    }
+    let cycle = run_cycle(&uniform_inputs(360, 0.0, w1, 0.0), |i| m.analyse(i));
+    let (vp, eq) = checks(&cycle)?;
+    let table = Table::of(&cycle);
+    let mb = table.column("Mb [N*m]").ok_or("no Mb")?;
+    let mean = mb.iter().sum::<f64>() / mb.len() as f64;
+    println!("360 positions: virtual power agrees to {vp:.1e}, links in equilibrium to {eq:.1e}");
+    println!(
+        "mean balancing moment {mean:.2} N·m: the drive's power {:.2} kW\n",
+        (mean * w1).abs() / 1e3
+    );
+    csv(dir, "compressor", &table)?;
+    chart(
+        &dir.join("compressor_s.svg"),
+        "Compressor: pistons' positions",
+        &table,
+        &["s3 [m]", "s5 [m]"],
+        "m",
+    )?;
+    chart(
+        &dir.join("compressor_v.svg"),
+        "Compressor: pistons' velocities",
+        &table,
+        &["v3 [m/s]", "v5 [m/s]"],
+        "m/s",
+    )?;
+    chart(
+        &dir.join("compressor_a.svg"),
+        "Compressor: pistons' accelerations",
+        &table,
+        &["a3 [m/s^2]", "a5 [m/s^2]"],
+        "m/s²",
+    )?;
+    chart(
+        &dir.join("compressor_reactions.svg"),
+        "Compressor: joint reactions",
+        &table,
+        &[
+            "|R12| [N]",
+            "|R23| [N]",
+            "|R03| [N]",
+            "|R14| [N]",
+            "|R45| [N]",
+            "|R05| [N]",
+            "|R01| [N]",
+        ],
+        "N",
+    )?;
+    chart(
+        &dir.join("compressor_mb.svg"),
+        "Compressor: balancing moment",
+        &table,
+        &["Mb [N*m]"],
+        "N·m",
+    )?;
+    Ok(())
+}
+
+/// A one-line summary of a ready mechanism over 360 positions, its CSV and its M_b chart.
+fn summary<P, F>(dir: &Path, name: &str, title: &str, inputs: &[Motion], analyse: F) -> Res<()>
+where
+    P: Analysed + tmm::mechanism::Tabulate,
+    F: Fn(Motion) -> tmm::Result<P>,
+{
+    let cycle = run_cycle(inputs, analyse);
+    let (vp, eq) = checks(&cycle)?;
+    let table = Table::of(&cycle);
+    let mb = table.column("Mb [N*m]").ok_or("no Mb")?;
+    let peak = mb.iter().fold(0.0f64, |a, m| a.max(m.abs()));
+    println!("{title}: max |Mb| = {peak:.2} N·m; virtual power agrees to {vp:.1e}, equilibrium to {eq:.1e}");
+    csv(dir, name, &table)?;
+    chart(
+        &dir.join(format!("{name}_mb.svg")),
+        &format!("{title}: balancing moment"),
+        &table,
+        &["Mb [N*m]"],
+        "N·m",
+    )?;
+    Ok(())
+}
+
+fn main() -> Res<()> {
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("target/tmm-charts/mechanisms");
+    create_dir_all(&dir)?;
+    six_bar(&dir)?;
+    compressor(&dir)?;
+    println!("== The other ready mechanisms, 360 positions each ==");
+    let four = FourBar::course_example();
+    summary(
+        &dir,
+        "four_bar",
+        "Four-bar (crank-rocker)",
+        &uniform_inputs(360, 0.0, 10.0, 0.0),
+        |i| four.analyse(i),
+    )?;
+    let sc = SliderCrank::geared_example();
+    summary(
+        &dir,
+        "slider_crank_geared",
+        "Slider-crank driven through a gear pair",
+        &uniform_inputs(360, 0.0, 150.0, 0.0),
+        |i| sc.analyse(i),
+    )?;
+    let rc = RockingCylinder::course_example();
+    summary(
+        &dir,
+        "rocking_cylinder",
+        "Rocking-cylinder pump (RPR)",
+        &uniform_inputs(360, 0.0, 20.0, 0.0),
+        |i| rc.analyse(i),
+    )?;
+    println!("\nCSV tables and SVG charts written to {}", dir.display());
+    Ok(())
+}

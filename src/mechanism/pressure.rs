@@ -1,0 +1,251 @@
+//! A gas-pressure (indicator) diagram over the piston stroke, and the gas force it gives.
+
+use crate::angle::{cross, unit};
+use crate::error::{finite, Error, Result};
+use crate::kinematics::{Branch, PointMotion};
+use nalgebra::{Point2, Vector2};
+
+/// An indicator diagram: the gas pressure on a piston as a table over its stroke, one branch
+/// for each direction of motion, linearly interpolated.
+///
+/// The position on the stroke is the fraction x = (s_head − s)/(s_head − s_crank) ∈ [0, 1]:
+/// 0 at the head-end dead centre (the piston nearest the cylinder head, the largest s along the
+/// guide), 1 at the crank-end dead centre. `outward` holds the pressures while the piston moves
+/// away from the head (x increasing: suction or expansion), `inward` while it moves towards it
+/// (x decreasing: compression and delivery). The pressure is gauge pressure, Pa; it pushes the
+/// piston away from the head with the force p·A. At rest (ṡ = 0, a dead centre) the `outward`
+/// branch is used: a closed diagram has equal pressures at the two ends of its branches.
+///
+/// Each branch lists points (x, p) with x strictly increasing from 0 to 1.
+#[derive(Debug, Clone, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+pub struct IndicatorDiagram {
+    /// The piston area A, m².
+    pub area: f64,
+    /// (x, p) while the piston moves away from the head, Pa.
+    pub outward: Vec<[f64; 2]>,
+    /// (x, p) while the piston moves towards the head, Pa.
+    pub inward: Vec<[f64; 2]>,
+}
+
+/// How far outside [0, 1] a stroke fraction may come from rounding and still be clamped.
+const STROKE_SLACK: f64 = 1e-9;
+
+impl IndicatorDiagram {
+    /// The idealised diagram of a single-stage air compressor: suction at `p_suction`,
+    /// polytropic compression p·V^n = const from the crank end until `p_delivery`, delivery at
+    /// `p_delivery`, polytropic re-expansion of the clearance volume (a fraction `clearance` of
+    /// the swept volume). Pressures absolute in the process, stored as gauge pressures over
+    /// `p_atm`; tabulated at `points` stations per branch.
+    ///
+    /// # Examples
+    /// Air from 0.1 MPa to 0.3 MPa (absolute) with n = 1.3 and 5 % clearance: the diagram
+    /// reads 0 at the crank end of both strokes and 0.2 MPa gauge at the head end.
+    /// ```
+    /// use approx::assert_relative_eq;
+    /// use tmm::mechanism::IndicatorDiagram;
+    /// let d = IndicatorDiagram::compressor(0.01, 1.0e5, 3.0e5, 1.0e5, 1.3, 0.05, 41);
+    /// assert_relative_eq!(d.pressure(1.0, false).unwrap(), 0.0, epsilon = 1e-9);
+    /// assert_relative_eq!(d.pressure(0.0, true).unwrap(), 2.0e5, epsilon = 1e-6);
+    /// // Compression from the crank end: p_s·(c + 1)^n = p(x)·(c + x)^n; x = 0.5 is a station.
+    /// let p = 1.0e5 * (1.05f64 / 0.55).powf(1.3) - 1.0e5;
+    /// assert_relative_eq!(d.pressure(0.5, true).unwrap(), p, max_relative = 1e-14);
+    /// ```
+    #[must_use]
+    pub fn compressor(
+        area: f64,
+        p_suction: f64,
+        p_delivery: f64,
+        p_atm: f64,
+        n: f64,
+        clearance: f64,
+        points: usize,
+    ) -> Self {
+        let points = points.max(2);
+        // Volume per unit swept volume at the fraction x from the head end.
+        let vol = |x: f64| clearance + x;
+        let station = |k: usize| k as f64 / (points - 1) as f64;
+        let inward = (0..points)
+            .map(|k| {
+                let x = station(k);
+                let p = (p_suction * (vol(1.0) / vol(x)).powf(n)).min(p_delivery);
+                [x, p - p_atm]
+            })
+            .collect();
+        let outward = (0..points)
+            .map(|k| {
+                let x = station(k);
+                let p = (p_delivery * (vol(0.0) / vol(x)).powf(n)).max(p_suction);
+                [x, p - p_atm]
+            })
+            .collect();
+        Self {
+            area,
+            outward,
+            inward,
+        }
+    }
+
+    /// The gauge pressure at the stroke fraction `x` on the branch of the motion: `inward`
+    /// (towards the head) or outward.
+    ///
+    /// # Errors
+    /// [`Error::OutOfRange`] for x outside [0, 1] by more than rounding, or a branch whose
+    /// stations do not cover x; [`Error::NonFinite`] for a non-finite x.
+    pub fn pressure(&self, x: f64, inward: bool) -> Result<f64> {
+        finite("stroke fraction", x)?;
+        if !(-STROKE_SLACK..=1.0 + STROKE_SLACK).contains(&x) {
+            return Err(Error::OutOfRange {
+                name: "stroke fraction",
+                value: x,
+                min: 0.0,
+                max: 1.0,
+            });
+        }
+        let x = x.clamp(0.0, 1.0);
+        let table = if inward { &self.inward } else { &self.outward };
+        interpolate(table, x)
+    }
+
+    /// The gas force on the piston at the slide coordinate s moving at ṡ along the guide
+    /// direction `guide` (unit), with the head-end dead centre at `s_head` and the crank-end one
+    /// at `s_crank` (s_head > s_crank). The force pushes away from the head: −p·A·guide.
+    ///
+    /// # Errors
+    /// As [`IndicatorDiagram::pressure`], and [`Error::NonPositive`] for a stroke
+    /// s_head − s_crank ≤ 0.
+    pub fn force(
+        &self,
+        s: f64,
+        s_rate: f64,
+        guide: Vector2<f64>,
+        s_head: f64,
+        s_crank: f64,
+    ) -> Result<Vector2<f64>> {
+        let stroke = crate::error::positive("piston stroke", s_head - s_crank)?;
+        let x = (s_head - s) / stroke;
+        let p = self.pressure(x, s_rate > 0.0)?;
+        Ok(-p * finite("piston area", self.area)? * guide)
+    }
+}
+
+/// A piston driven by a crank (l1 about O1) through a rod l2 on a fixed straight guide: where
+/// its two dead centres lie, so that an [`IndicatorDiagram`] can be read at any position.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct Piston {
+    /// The unit vector along the guide from the crank towards the cylinder head.
+    head: Vector2<f64>,
+    /// The foot of the perpendicular from O1 on the guide.
+    foot: Point2<f64>,
+    /// The distance of the head-end dead centre from the foot, along `head`.
+    d_head: f64,
+    /// The distance of the crank-end dead centre from the foot, along `head`.
+    d_crank: f64,
+}
+
+impl Piston {
+    /// The piston of a slider-crank whose slider B is on `branch` of the RRP dyad (ahead of
+    /// the foot of A along the guide for `Plus`, so the head lies ahead).
+    ///
+    /// # Errors
+    /// [`Error::NotAssemblable`] when the crank cannot turn fully (l2 − l1 ≤ offset).
+    pub(crate) fn new(
+        o1: Point2<f64>,
+        l1: f64,
+        l2: f64,
+        guide_point: Point2<f64>,
+        guide_angle: f64,
+        branch: Branch,
+    ) -> Result<Self> {
+        let g = unit(guide_angle);
+        let offset = cross(g, o1 - guide_point).abs();
+        let gap = offset - (l2 - l1);
+        if gap >= 0.0 || !gap.is_finite() {
+            return Err(Error::NotAssemblable {
+                group: "piston (crank cannot turn fully)",
+                gap,
+            });
+        }
+        Ok(Self {
+            head: branch.sign() * g,
+            foot: guide_point + (o1 - guide_point).dot(&g) * g,
+            d_head: ((l1 + l2).powi(2) - offset * offset).sqrt(),
+            d_crank: ((l2 - l1).powi(2) - offset * offset).sqrt(),
+        })
+    }
+
+    /// The gas force of `diagram` on the piston whose pin B moves with `b`.
+    ///
+    /// # Errors
+    /// As [`IndicatorDiagram::force`].
+    pub(crate) fn gas_force(
+        &self,
+        diagram: &IndicatorDiagram,
+        b: &PointMotion,
+    ) -> Result<Vector2<f64>> {
+        diagram.force(
+            (b.p - self.foot).dot(&self.head),
+            b.v.dot(&self.head),
+            self.head,
+            self.d_head,
+            self.d_crank,
+        )
+    }
+}
+
+/// Linear interpolation in a table of (x, y) with x increasing.
+fn interpolate(table: &[[f64; 2]], x: f64) -> Result<f64> {
+    let out_of_table = |value: f64| Error::OutOfRange {
+        name: "indicator diagram station",
+        value,
+        min: table.first().map_or(f64::NAN, |p| p[0]),
+        max: table.last().map_or(f64::NAN, |p| p[0]),
+    };
+    let k = table.partition_point(|p| p[0] <= x);
+    if k == 0 {
+        return Err(out_of_table(x));
+    }
+    let [x0, y0] = table[k - 1];
+    if x == x0 {
+        return finite("pressure", y0);
+    }
+    let Some(&[x1, y1]) = table.get(k) else {
+        return Err(out_of_table(x));
+    };
+    if x1 <= x0 {
+        return Err(out_of_table(x1));
+    }
+    finite("pressure", y0 + (y1 - y0) * (x - x0) / (x1 - x0))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn interpolation_is_exact_on_a_line_and_rejects_gaps() {
+        let t = [[0.0, 1.0], [0.5, 2.0], [1.0, 3.0]];
+        for k in 0..=20 {
+            let x = f64::from(k) / 20.0;
+            assert!((interpolate(&t, x).unwrap() - (1.0 + 2.0 * x)).abs() < 1e-15);
+        }
+        assert!(interpolate(&t[..2], 0.75).is_err());
+        assert!(interpolate(&[], 0.5).is_err());
+    }
+
+    #[test]
+    fn the_force_pushes_away_from_the_head() {
+        let d = IndicatorDiagram {
+            area: 0.01,
+            outward: vec![[0.0, 1e5], [1.0, 0.0]],
+            inward: vec![[0.0, 1e5], [1.0, 1e5]],
+        };
+        let g = Vector2::new(0.0, 1.0);
+        // Halfway out: 0.5e5 Pa on 0.01 m² = 500 N along −y.
+        let f = d.force(0.25, -1.0, g, 0.3, 0.2).unwrap();
+        assert!((f - Vector2::new(0.0, -500.0)).norm() < 1e-9);
+        let f = d.force(0.25, 1.0, g, 0.3, 0.2).unwrap();
+        assert!((f - Vector2::new(0.0, -1000.0)).norm() < 1e-9);
+        assert!(d.force(0.35, 1.0, g, 0.3, 0.2).is_err());
+    }
+}

@@ -1,0 +1,271 @@
+//! A slider-crank: the crank O1A drives the piston 3 along a fixed guide through the
+//! connecting rod AB (one RRP group), with the gas force of an indicator diagram.
+
+use super::drive::{Balance, Drive};
+use super::link::LinkMass;
+use super::power::FreeBody;
+use super::pressure::{IndicatorDiagram, Piston};
+use super::table::{push, push_vector, Tabulate};
+use super::{output_strokes, within, Analysed};
+use crate::error::Result;
+use crate::kinematics::{
+    crank, rrp_dyad, Branch, CrankState, Guide, Motion, Rotation, RrpState, Strokes,
+};
+use crate::kinetostatics::RrpDyad;
+use crate::Load;
+use nalgebra::{Point2, Vector2};
+use std::f64::consts::PI;
+
+/// The links' names, for errors and free bodies.
+const LINKS: [&str; 3] = [
+    "link 1 (crank)",
+    "link 2 (connecting rod)",
+    "link 3 (piston)",
+];
+const INPUT: &str = "link 1 (crank)";
+const GROUP_23: &str = "group II(2,3) RRP";
+
+/// A slider-crank: input link 1 (O1A), RRP group II(2,3) (connecting rod 2 = AB, piston 3 at
+/// B on a fixed guide), optionally loaded by the gas pressure of an [`IndicatorDiagram`].
+///
+/// Link frames: link 1 from O1 along O1A, link 2 from A along AB, the piston at B along the
+/// guide. The cylinder head lies on the piston's side of the crank (ahead along the guide for
+/// `branch = Plus`).
+#[derive(Debug, Clone, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+pub struct SliderCrank {
+    /// O1, the crank's pivot, m.
+    pub o1: Point2<f64>,
+    /// l_O1A, the crank, m.
+    pub l1: f64,
+    /// l_AB, the connecting rod, m.
+    pub l2: f64,
+    /// A point of the piston's guide (the cylinder axis), m.
+    pub guide_point: Point2<f64>,
+    /// The direction angle of the guide, rad.
+    pub guide_angle: f64,
+    /// Assembly mode (B ahead of the foot of A along the guide for `Plus`).
+    #[cfg_attr(feature = "serde", serde(with = "super::serde_remote::BranchDef"))]
+    pub branch: Branch,
+    /// The mass properties of links 1 to 3.
+    pub mass: [LinkMass; 3],
+    /// g, m/s², along −y (0 to neglect weights).
+    pub gravity: f64,
+    /// The gas pressure on the piston, if any.
+    pub diagram: Option<IndicatorDiagram>,
+    /// How the crank is driven.
+    pub drive: Drive,
+}
+
+/// One analysed position of a [`SliderCrank`].
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SliderCrankPosition {
+    /// φ1, ω1, ε1.
+    pub input: Motion,
+    /// The crank and its pin A.
+    pub crank: CrankState,
+    /// The RRP group: rod 2, piston 3 at B, its coordinate `slide`.
+    pub group23: RrpState,
+    /// The own loads of links 1–3 (inertia and weight) at their centres of mass.
+    pub loads: [Load; 3],
+    /// The gas force on the piston, at B, N.
+    pub gas_force: Vector2<f64>,
+    /// R12, the crank on the rod at A, N.
+    pub r12: Vector2<f64>,
+    /// R23, the rod on the piston at B, N.
+    pub r23: Vector2<f64>,
+    /// R03, the cylinder wall on the piston (normal to the guide), N.
+    pub r03: Vector2<f64>,
+    /// The moment of R03 about B, N·m.
+    pub r03_moment: f64,
+    /// The balancing moment (or force) and R01.
+    pub balance: Balance,
+}
+
+impl SliderCrank {
+    /// A single-stage horizontal air compressor: central slider-crank, crank 0.05 m, rod
+    /// 0.20 m, piston 80 mm in diameter, air from 0.1 to 0.4 MPa (absolute, n = 1.3, 5 %
+    /// clearance); crank 2.5 kg balanced about O1 (J = 0.004 kg·m²), rod 1.2 kg uniform,
+    /// piston 0.8 kg; weights neglected in a horizontal machine's plane (g = 0); driven
+    /// through a coupling (the examples turn it at 150 rad/s).
+    #[must_use]
+    pub fn course_example() -> Self {
+        let area = PI * 0.08 * 0.08 / 4.0;
+        Self {
+            o1: Point2::origin(),
+            l1: 0.05,
+            l2: 0.20,
+            guide_point: Point2::origin(),
+            guide_angle: 0.0,
+            branch: Branch::Plus,
+            mass: [
+                LinkMass::on_line(2.5, 0.004, 0.0),
+                LinkMass::rod(1.2, 0.20),
+                LinkMass::point(0.8),
+            ],
+            gravity: 0.0,
+            diagram: Some(IndicatorDiagram::compressor(
+                area, 1.0e5, 4.0e5, 1.0e5, 1.3, 0.05, 61,
+            )),
+            drive: Drive::Coupling,
+        }
+    }
+
+    /// The course example driven through a gear pair instead of a coupling: a wheel of
+    /// r_w = 0.15 m on the crank, the pitch point on the −x side of O1, α_w = 20°.
+    #[must_use]
+    pub fn geared_example() -> Self {
+        Self {
+            drive: Drive::Gear {
+                pitch_radius: 0.15,
+                pitch_angle: PI,
+                pressure_angle: 20f64.to_radians(),
+            },
+            ..Self::course_example()
+        }
+    }
+
+    /// The piston's fixed guide.
+    #[must_use]
+    pub fn guide(&self) -> Guide {
+        Guide::fixed(self.guide_point, self.guide_angle)
+    }
+
+    /// The kinematics alone: crank and RRP group.
+    ///
+    /// # Errors
+    /// [`Error::In`](crate::Error::In) naming the part that failed.
+    pub fn kinematics(&self, input: Motion) -> Result<(CrankState, RrpState)> {
+        let crank = crank(self.o1, self.l1, input).map_err(within(INPUT))?;
+        let g23 =
+            rrp_dyad(crank.a, self.guide(), self.l2, self.branch).map_err(within(GROUP_23))?;
+        Ok((crank, g23))
+    }
+
+    /// The strokes of the piston for a crank turning in the sense `rotation`.
+    ///
+    /// # Errors
+    /// A position of the cycle that fails, or not exactly two extremes.
+    pub fn strokes(&self, rotation: Rotation) -> Result<Strokes> {
+        output_strokes(|m| Ok(self.kinematics(m)?.1.slide), rotation)
+    }
+
+    /// The whole analysis at one input position.
+    ///
+    /// # Errors
+    /// [`Error::In`](crate::Error::In) naming the part that failed; an error of the indicator
+    /// diagram (`"gas pressure"`).
+    pub fn analyse(&self, input: Motion) -> Result<SliderCrankPosition> {
+        let (crank, g23) = self.kinematics(input)?;
+        let links = [crank.link, g23.link2, g23.link3];
+        let mut loads = [Load::zero(self.o1); 3];
+        for (k, load) in loads.iter_mut().enumerate() {
+            *load = self.mass[k]
+                .load(&links[k], self.gravity)
+                .map_err(within(LINKS[k]))?;
+        }
+        let gas_force = match &self.diagram {
+            Some(d) => Piston::new(
+                self.o1,
+                self.l1,
+                self.l2,
+                self.guide_point,
+                self.guide_angle,
+                self.branch,
+            )
+            .and_then(|p| p.gas_force(d, &g23.b))
+            .map_err(within("gas pressure"))?,
+            None => Vector2::zeros(),
+        };
+        let b = g23.b.p;
+        let piston = Load::sum_about(&[loads[2], Load::force_at(b, gas_force)], b);
+        let r = RrpDyad {
+            a: crank.a.p,
+            b,
+            guide: self.guide().unit(),
+            load2: loads[1],
+            load3: piston,
+        }
+        .solve()
+        .map_err(within(GROUP_23))?;
+        let balance = self
+            .drive
+            .balance(self.o1, &[loads[0], Load::force_at(crank.a.p, -r.r12)])
+            .map_err(within(INPUT))?;
+        Ok(SliderCrankPosition {
+            input,
+            crank,
+            group23: g23,
+            loads,
+            gas_force,
+            r12: r.r12,
+            r23: r.r23,
+            r03: r.r43,
+            r03_moment: r.guide_moment,
+            balance,
+        })
+    }
+}
+
+impl Analysed for SliderCrankPosition {
+    fn input(&self) -> Motion {
+        self.input
+    }
+
+    fn balance(&self) -> Balance {
+        self.balance
+    }
+
+    fn free_bodies(&self) -> Vec<FreeBody> {
+        let (a, b, o1) = (self.crank.a.p, self.group23.b.p, self.crank.link.origin.p);
+        let f = Load::force_at;
+        vec![
+            FreeBody {
+                name: LINKS[0],
+                motion: self.crank.link,
+                loads: vec![self.loads[0]],
+                drive: Some(self.balance.load()),
+                reactions: vec![f(a, -self.r12), f(o1, self.balance.r01)],
+            },
+            FreeBody {
+                name: LINKS[1],
+                motion: self.group23.link2,
+                loads: vec![self.loads[1]],
+                drive: None,
+                reactions: vec![f(a, self.r12), f(b, -self.r23)],
+            },
+            FreeBody {
+                name: LINKS[2],
+                motion: self.group23.link3,
+                loads: vec![self.loads[2], f(b, self.gas_force)],
+                drive: None,
+                reactions: vec![f(b, self.r23), Load::new(b, self.r03, self.r03_moment)],
+            },
+        ]
+    }
+}
+
+impl Tabulate for SliderCrankPosition {
+    fn row(&self) -> Vec<(String, f64)> {
+        let mut r = Vec::with_capacity(30);
+        push(&mut r, "phi1", "rad", self.input.value);
+        push(&mut r, "omega1", "rad/s", self.input.rate);
+        push(&mut r, "s3", "m", self.group23.slide.value);
+        push(&mut r, "v3", "m/s", self.group23.slide.rate);
+        push(&mut r, "a3", "m/s^2", self.group23.slide.accel);
+        push(&mut r, "omega2", "rad/s", self.group23.link2.omega);
+        push(&mut r, "eps2", "rad/s^2", self.group23.link2.epsilon);
+        push_vector(&mut r, "F_gas", "N", self.gas_force);
+        for (name, v) in [
+            ("R12", self.r12),
+            ("R23", self.r23),
+            ("R03", self.r03),
+            ("R01", self.balance.r01),
+            ("Fb", self.balance.force),
+        ] {
+            push_vector(&mut r, name, "N", v);
+        }
+        push(&mut r, "Mb", "N*m", self.balance.moment);
+        r
+    }
+}
