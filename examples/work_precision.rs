@@ -67,7 +67,14 @@ fn log_range(v: impl Iterator<Item = f64>) -> std::ops::Range<f64> {
     10f64.powf(lo.log10().floor())..10f64.powf(hi.log10().ceil())
 }
 
-fn loglog(area: &Area, title: &str, x_desc: &str, y_desc: &str, curves: &[Curve]) -> Res<()> {
+fn loglog(
+    area: &Area,
+    title: &str,
+    axes: [&str; 2],
+    legend: SeriesLabelPosition,
+    curves: &[Curve],
+) -> Res<()> {
+    let [x_desc, y_desc] = axes;
     let xr = log_range(curves.iter().flat_map(|c| c.points.iter().map(|p| p.0)));
     let yr = log_range(curves.iter().flat_map(|c| c.points.iter().map(|p| p.1)));
     let mut ch = ChartBuilder::on(area)
@@ -82,6 +89,7 @@ fn loglog(area: &Area, title: &str, x_desc: &str, y_desc: &str, curves: &[Curve]
         .x_label_formatter(&|v| format!("{v:.0e}"))
         .y_label_formatter(&|v| format!("{v:.0e}"))
         .label_style(("sans-serif", 11))
+        .light_line_style(TRANSPARENT)
         .draw()?;
     for c in curves {
         let colour = c.colour;
@@ -98,7 +106,7 @@ fn loglog(area: &Area, title: &str, x_desc: &str, y_desc: &str, curves: &[Curve]
         .label_font(("sans-serif", 11))
         .background_style(WHITE.mix(0.85))
         .border_style(BLACK)
-        .position(SeriesLabelPosition::UpperRight)
+        .position(legend)
         .draw()?;
     Ok(())
 }
@@ -109,13 +117,13 @@ fn dynamics(dir: &Path) -> Res<()> {
     fs::write(dir.join("dynamics_work_precision.csv"), dynamics_data::to_csv(&lines))?;
     println!("Dynamics: error at the final time (observed order = slope of log error vs log h):");
     let path = dir.join("dynamics_work_precision.svg");
-    let root = SVGBackend::new(&path, (1000, 1150)).into_drawing_area();
+    let root = SVGBackend::new(&path, (1000, 1500)).into_drawing_area();
     root.fill(&WHITE)?;
     let root = root.titled(
         "Work-precision of the steppers: error at the final time vs cost",
         ("sans-serif", 20),
     )?;
-    let panels = root.split_evenly((3, 2));
+    let panels = root.split_evenly((4, 2));
     for (m, machine) in MACHINES.into_iter().enumerate() {
         let ls: Vec<&Line> = lines.iter().filter(|l| l.machine == machine).collect();
         for l in &ls {
@@ -160,8 +168,8 @@ fn dynamics(dir: &Path) -> Res<()> {
             loglog(
                 &panels[2 * m + k],
                 &format!("{machine} ({reference})"),
-                "error at the final time",
-                ylabel,
+                ["error at the final time", ylabel],
+                SeriesLabelPosition::LowerLeft,
                 &curves,
             )?;
         }
@@ -195,6 +203,7 @@ fn stability(dir: &Path) -> Res<()> {
     ch.configure_mesh()
         .x_desc("Ω = ωh")
         .y_desc("spectral radius")
+        .light_line_style(TRANSPARENT)
         .draw()?;
     ch.draw_series(LineSeries::new([(0.0, 1.0), (4.0, 1.0)], BLACK.stroke_width(1)))?;
     for (i, z) in ZETAS.into_iter().enumerate() {
@@ -231,7 +240,11 @@ fn stability(dir: &Path) -> Res<()> {
         .x_label_area_size(35)
         .y_label_area_size(45)
         .build_cartesian_2d(-3.5..0.0, 0.0..2.0)?;
-    ch.configure_mesh().x_desc("hλ").y_desc("|R(hλ)|").draw()?;
+    ch.configure_mesh()
+        .x_desc("hλ")
+        .y_desc("|R(hλ)|")
+        .light_line_style(TRANSPARENT)
+        .draw()?;
     ch.draw_series(LineSeries::new([(-3.5, 1.0), (0.0, 1.0)], BLACK.stroke_width(1)))?;
     ch.draw_series(LineSeries::new(st.rk4.iter().map(|&(x, g)| (x, g.min(2.0))), BLUE.stroke_width(2)))?
         .label(format!("RK4, limit hλ = {:.3}", st.rk4_limit))
@@ -308,15 +321,15 @@ fn kinetostatics(dir: &Path) -> Res<()> {
         loglog(
             &panels[2 * g],
             &format!("{group}: worst relative error, {measure} → 0"),
-            "condition (closed form's Conditioning)",
-            "error / scale",
+            ["condition (closed form's Conditioning)", "error / scale"],
+            SeriesLabelPosition::UpperLeft,
             &err_curves,
         )?;
         loglog(
             &panels[2 * g + 1],
             &format!("{group}: time per call (varies with the machine)"),
-            "condition",
-            "ns per call",
+            ["condition", "ns per call"],
+            SeriesLabelPosition::UpperRight,
             &time_curves,
         )?;
     }
@@ -356,7 +369,11 @@ fn kinematics(dir: &Path) -> Res<()> {
         .x_label_area_size(35)
         .y_label_area_size(45)
         .build_cartesian_2d(0.0..360.0, (lo - 0.1)..(hi + 0.1))?;
-    ch.configure_mesh().x_desc("φ1, °").y_desc("φ3′").draw()?;
+    ch.configure_mesh()
+        .x_desc("φ1, °")
+        .y_desc("φ3′")
+        .light_line_style(TRANSPARENT)
+        .draw()?;
     ch.draw_series(LineSeries::new(fine.clone(), BLUE.stroke_width(2)))?
         .label("exact transfer function")
         .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 18, y)], BLUE.stroke_width(2)));
@@ -367,6 +384,7 @@ fn kinematics(dir: &Path) -> Res<()> {
         .label_font(("sans-serif", 11))
         .background_style(WHITE.mix(0.85))
         .border_style(BLACK)
+        .position(SeriesLabelPosition::UpperRight)
         .draw()?;
 
     let mut curves = Vec::new();
@@ -395,8 +413,8 @@ fn kinematics(dir: &Path) -> Res<()> {
     loglog(
         &right,
         "Error vs positions per cycle (slope −2 = order 2)",
-        "positions per cycle N",
-        "relative error",
+        ["positions per cycle N", "relative error"],
+        SeriesLabelPosition::UpperRight,
         &curves,
     )?;
     root.present()?;

@@ -3,7 +3,8 @@
 //!
 //! - Coaxial propellers (linear, constant inertia): the error is against the exact solution
 //!   (`CoaxialPropellers::exact`, a matrix exponential).
-//! - Five-bar robot and landing gear: the error is against a tight reference, Dormand–Prince
+//! - Five-bar robot (its default servos, which saturate at 5 N·m, and the same machine with
+//!   servos that never saturate) and landing gear: the error is against a tight reference, Dormand–Prince
 //!   at a tolerance of 10⁻¹³; its own error is estimated by the distance to the run at 10⁻¹²
 //!   and reported, and only errors well above it are used for the slopes.
 //!
@@ -12,7 +13,7 @@
 use std::time::Instant;
 
 use nalgebra::{Matrix2, Vector2};
-use tmm::dynamics::machines::{CoaxialPropellers, FiveBar, LandingGear};
+use tmm::dynamics::machines::{CoaxialPropellers, FiveBar, LandingGear, Servo};
 use tmm::dynamics::{
     run, Dopri5, FiniteIncrement, LagrangeSystem, Rk4, RunOptions, RunResult, State, Stepper,
 };
@@ -20,7 +21,12 @@ use tmm::dynamics::{
 /// The three steppers, in chart order.
 pub const METHODS: [&str; 3] = ["finite increments", "RK4", "Dormand-Prince"];
 /// The three machines, in chart order.
-pub const MACHINES: [&str; 3] = ["coaxial propellers", "five-bar", "landing gear"];
+pub const MACHINES: [&str; 4] = [
+    "coaxial propellers",
+    "five-bar (servos saturating)",
+    "five-bar (servos unsaturated)",
+    "landing gear",
+];
 
 /// One run.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -73,7 +79,7 @@ fn setup(machine: &str) -> Setup {
             rk4_steps: doubling(10, 7),
             tolerances,
         },
-        "five-bar" => Setup {
+        "five-bar (servos saturating)" | "five-bar (servos unsaturated)" => Setup {
             t_end: 0.5,
             start: State::at_rest(Vector2::new(120f64.to_radians(), 60f64.to_radians())),
             fi_steps: doubling(100, 8),
@@ -184,6 +190,23 @@ fn lines_for<S: LagrangeSystem>(
     Ok(out)
 }
 
+/// The default five-bar with servos that never saturate (limit 10⁶ N·m): the same machine
+/// with a smooth right-hand side, to show what the clamp of the default servos costs.
+pub fn smooth_five_bar() -> FiveBar {
+    let f = FiveBar::default();
+    FiveBar {
+        drive1: Servo {
+            limit: 1e6,
+            ..f.drive1
+        },
+        drive4: Servo {
+            limit: 1e6,
+            ..f.drive4
+        },
+        ..f
+    }
+}
+
 /// Every stepper on every machine; timed when `timed`.
 ///
 /// # Errors
@@ -194,7 +217,8 @@ pub fn work_precision(timed: bool) -> tmm::Result<Vec<Line>> {
     let exact = coax.exact(&su.start, su.t_end)?;
     let mut lines = lines_for(&coax, MACHINES[0], Some(exact), timed)?;
     lines.extend(lines_for(&FiveBar::default(), MACHINES[1], None, timed)?);
-    lines.extend(lines_for(&LandingGear::default(), MACHINES[2], None, timed)?);
+    lines.extend(lines_for(&smooth_five_bar(), MACHINES[2], None, timed)?);
+    lines.extend(lines_for(&LandingGear::default(), MACHINES[3], None, timed)?);
     Ok(lines)
 }
 
