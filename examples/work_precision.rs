@@ -31,21 +31,28 @@ mod dd;
 #[path = "work_precision/dynamics_data.rs"]
 mod dynamics_data;
 #[path = "work_precision/fit.rs"]
+#[allow(dead_code)] // its CSV reader serves the test
 mod fit;
+#[path = "../tests/kinetostatics/general_solve.rs"]
+#[allow(dead_code)]
+mod general_solve;
 #[path = "work_precision/kinematics_data.rs"]
 mod kinematics_data;
 #[path = "work_precision/kinetostatics_data.rs"]
 mod kinetostatics_data;
 #[path = "work_precision/rng.rs"]
 mod rng;
-#[path = "../tests/kinetostatics/general_solve.rs"]
-#[allow(dead_code)]
-mod general_solve;
 
 type Res<T> = std::result::Result<T, Box<dyn Error>>;
 type Area<'a> = DrawingArea<SVGBackend<'a>, Shift>;
 
-const COLOURS: [RGBColor; 5] = [RED, BLUE, RGBColor(0, 150, 0), MAGENTA, RGBColor(230, 140, 0)];
+const COLOURS: [RGBColor; 5] = [
+    RED,
+    BLUE,
+    RGBColor(0, 150, 0),
+    MAGENTA,
+    RGBColor(230, 140, 0),
+];
 
 /// One line of a log–log panel.
 struct Curve {
@@ -93,11 +100,18 @@ fn loglog(
         .draw()?;
     for c in curves {
         let colour = c.colour;
-        let pts: Vec<(f64, f64)> = c.points.iter().copied().filter(|p| p.0 > 0.0 && p.1 > 0.0).collect();
+        let pts: Vec<(f64, f64)> = c
+            .points
+            .iter()
+            .copied()
+            .filter(|p| p.0 > 0.0 && p.1 > 0.0)
+            .collect();
         let width = if c.markers { 2 } else { 1 };
         ch.draw_series(LineSeries::new(pts.clone(), colour.stroke_width(width)))?
             .label(c.label.clone())
-            .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 18, y)], colour.stroke_width(2)));
+            .legend(move |(x, y)| {
+                PathElement::new(vec![(x, y), (x + 18, y)], colour.stroke_width(2))
+            });
         if c.markers {
             ch.draw_series(pts.iter().map(|&p| Circle::new(p, 3, colour.filled())))?;
         }
@@ -114,7 +128,10 @@ fn loglog(
 fn dynamics(dir: &Path) -> Res<()> {
     use dynamics_data::{asymptotic, Line, MACHINES, METHODS};
     let lines = dynamics_data::work_precision(true)?;
-    fs::write(dir.join("dynamics_work_precision.csv"), dynamics_data::to_csv(&lines))?;
+    fs::write(
+        dir.join("dynamics_work_precision.csv"),
+        dynamics_data::to_csv(&lines),
+    )?;
     println!("Dynamics: error at the final time (observed order = slope of log error vs log h):");
     let path = dir.join("dynamics_work_precision.svg");
     let root = SVGBackend::new(&path, (1000, 1500)).into_drawing_area();
@@ -135,7 +152,11 @@ fn dynamics(dir: &Path) -> Res<()> {
                 let e: Vec<f64> = a.iter().map(|p| p.error).collect();
                 format!("observed order {:.2}", fit::slope(&h, &e))
             };
-            let row: Vec<String> = l.points.iter().map(|p| format!("{:.1e}/{}", p.error, p.evaluations)).collect();
+            let row: Vec<String> = l
+                .points
+                .iter()
+                .map(|p| format!("{:.1e}/{}", p.error, p.evaluations))
+                .collect();
             println!(
                 "  {machine:<19} {:<18} {order:<22} (reference error {:.0e}) error/evaluations: {}",
                 l.method,
@@ -149,7 +170,11 @@ fn dynamics(dir: &Path) -> Res<()> {
             format!("reference error {:.0e}", ls[0].reference_error)
         };
         for (k, (ylabel, pick)) in [
-            ("evaluations of q''", (|p: &dynamics_data::Point| p.evaluations as f64) as fn(&dynamics_data::Point) -> f64),
+            (
+                "evaluations of q''",
+                (|p: &dynamics_data::Point| p.evaluations as f64)
+                    as fn(&dynamics_data::Point) -> f64,
+            ),
             ("wall time, s", |p: &dynamics_data::Point| p.seconds),
         ]
         .into_iter()
@@ -161,7 +186,11 @@ fn dynamics(dir: &Path) -> Res<()> {
                 .map(|(i, l)| Curve {
                     label: l.method.to_owned(),
                     colour: COLOURS[i],
-                    points: l.points.iter().map(|p| (p.error.max(1e-17), pick(p))).collect(),
+                    points: l
+                        .points
+                        .iter()
+                        .map(|p| (p.error.max(1e-17), pick(p)))
+                        .collect(),
                     markers: true,
                 })
                 .collect();
@@ -186,7 +215,10 @@ fn stability(dir: &Path) -> Res<()> {
     fs::write(dir.join("stability_rk4.csv"), rk)?;
     println!("Stability (where the growth per step crosses 1):");
     for (z, c) in &st.fi_limits {
-        println!("  finite increments, ζ = {z}: Ω = {c:.6} (min(4ζ, 1/ζ) = {:.6})", finite_increment_limit(*z));
+        println!(
+            "  finite increments, ζ = {z}: Ω = {c:.6} (min(4ζ, 1/ζ) = {:.6})",
+            finite_increment_limit(*z)
+        );
     }
     println!("  RK4 on the negative real axis: hλ = {:.6}", st.rk4_limit);
 
@@ -195,7 +227,10 @@ fn stability(dir: &Path) -> Res<()> {
     root.fill(&WHITE)?;
     let (left, right) = root.split_horizontally(560);
     let mut ch = ChartBuilder::on(&left)
-        .caption("Finite increments on x'' + 2ζωx' + ω²x = 0: growth per step", ("sans-serif", 15))
+        .caption(
+            "Finite increments on x'' + 2ζωx' + ω²x = 0: growth per step",
+            ("sans-serif", 15),
+        )
         .margin(8)
         .x_label_area_size(35)
         .y_label_area_size(45)
@@ -205,7 +240,10 @@ fn stability(dir: &Path) -> Res<()> {
         .y_desc("spectral radius")
         .light_line_style(TRANSPARENT)
         .draw()?;
-    ch.draw_series(LineSeries::new([(0.0, 1.0), (4.0, 1.0)], BLACK.stroke_width(1)))?;
+    ch.draw_series(LineSeries::new(
+        [(0.0, 1.0), (4.0, 1.0)],
+        BLACK.stroke_width(1),
+    ))?;
     for (i, z) in ZETAS.into_iter().enumerate() {
         let colour = COLOURS[i];
         let pts: Vec<(f64, f64)> = st
@@ -222,9 +260,14 @@ fn stability(dir: &Path) -> Res<()> {
         };
         ch.draw_series(LineSeries::new(pts, colour.stroke_width(2)))?
             .label(label)
-            .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 18, y)], colour.stroke_width(2)));
+            .legend(move |(x, y)| {
+                PathElement::new(vec![(x, y), (x + 18, y)], colour.stroke_width(2))
+            });
         if z > 0.0 {
-            ch.draw_series(LineSeries::new([(lim, 0.0), (lim, 2.0)], colour.mix(0.6).stroke_width(1)))?;
+            ch.draw_series(LineSeries::new(
+                [(lim, 0.0), (lim, 2.0)],
+                colour.mix(0.6).stroke_width(1),
+            ))?;
         }
     }
     ch.configure_series_labels()
@@ -245,10 +288,16 @@ fn stability(dir: &Path) -> Res<()> {
         .y_desc("|R(hλ)|")
         .light_line_style(TRANSPARENT)
         .draw()?;
-    ch.draw_series(LineSeries::new([(-3.5, 1.0), (0.0, 1.0)], BLACK.stroke_width(1)))?;
-    ch.draw_series(LineSeries::new(st.rk4.iter().map(|&(x, g)| (x, g.min(2.0))), BLUE.stroke_width(2)))?
-        .label(format!("RK4, limit hλ = {:.3}", st.rk4_limit))
-        .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 18, y)], BLUE.stroke_width(2)));
+    ch.draw_series(LineSeries::new(
+        [(-3.5, 1.0), (0.0, 1.0)],
+        BLACK.stroke_width(1),
+    ))?;
+    ch.draw_series(LineSeries::new(
+        st.rk4.iter().map(|&(x, g)| (x, g.min(2.0))),
+        BLUE.stroke_width(2),
+    ))?
+    .label(format!("RK4, limit hλ = {:.3}", st.rk4_limit))
+    .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 18, y)], BLUE.stroke_width(2)));
     ch.draw_series(LineSeries::new(
         [(st.rk4_limit, 0.0), (st.rk4_limit, 2.0)],
         RED.stroke_width(1),
@@ -266,7 +315,10 @@ fn stability(dir: &Path) -> Res<()> {
 fn kinetostatics(dir: &Path) -> Res<()> {
     use kinetostatics_data::{GROUPS, SOLVERS};
     let rows = kinetostatics_data::sweep(16, true)?;
-    fs::write(dir.join("kinetostatics.csv"), kinetostatics_data::to_csv(&rows))?;
+    fs::write(
+        dir.join("kinetostatics.csv"),
+        kinetostatics_data::to_csv(&rows),
+    )?;
     println!("Kinetostatics (16 random groups per δ, δ = 1 … 1e-8; error / condition, worst):");
     let path = dir.join("kinetostatics.svg");
     let root = SVGBackend::new(&path, (1000, 1050)).into_drawing_area();
@@ -280,7 +332,10 @@ fn kinetostatics(dir: &Path) -> Res<()> {
         let mut err_curves = Vec::new();
         let mut time_curves = Vec::new();
         for (s, solver) in SOLVERS.into_iter().enumerate() {
-            let rs: Vec<_> = rows.iter().filter(|r| r.group == group && r.solver == solver).collect();
+            let rs: Vec<_> = rows
+                .iter()
+                .filter(|r| r.group == group && r.solver == solver)
+                .collect();
             let worst = rs.iter().map(|r| r.error_per_condition).fold(0.0, f64::max);
             let ns: Vec<f64> = rs.iter().map(|r| r.ns_per_call).collect();
             println!(
@@ -293,7 +348,10 @@ fn kinetostatics(dir: &Path) -> Res<()> {
             err_curves.push(Curve {
                 label: solver.to_owned(),
                 colour: COLOURS[s],
-                points: rs.iter().map(|r| (r.condition, r.error.max(1e-18))).collect(),
+                points: rs
+                    .iter()
+                    .map(|r| (r.condition, r.error.max(1e-18)))
+                    .collect(),
                 markers: true,
             });
             time_curves.push(Curve {
@@ -303,8 +361,15 @@ fn kinetostatics(dir: &Path) -> Res<()> {
                 markers: true,
             });
         }
-        let conds: Vec<f64> = rows.iter().filter(|r| r.group == group).map(|r| r.condition).collect();
-        let (lo, hi) = (conds.iter().copied().fold(f64::INFINITY, f64::min), conds.iter().copied().fold(0.0, f64::max));
+        let conds: Vec<f64> = rows
+            .iter()
+            .filter(|r| r.group == group)
+            .map(|r| r.condition)
+            .collect();
+        let (lo, hi) = (
+            conds.iter().copied().fold(f64::INFINITY, f64::min),
+            conds.iter().copied().fold(0.0, f64::max),
+        );
         err_curves.push(Curve {
             label: "condition × 1e-16".to_owned(),
             colour: BLACK,
@@ -362,9 +427,16 @@ fn kinematics(dir: &Path) -> Res<()> {
         curve_csv += &format!("{x},{y:.12e}\n");
     }
     fs::write(dir.join("kinematics_transfer_function.csv"), curve_csv)?;
-    let (lo, hi) = fine.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), p| (a.min(p.1), b.max(p.1)));
+    let (lo, hi) = fine
+        .iter()
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), p| {
+            (a.min(p.1), b.max(p.1))
+        });
     let mut ch = ChartBuilder::on(&left)
-        .caption("Four-bar rocker: φ3′(φ1), exact and 3-point from 12 positions", ("sans-serif", 14))
+        .caption(
+            "Four-bar rocker: φ3′(φ1), exact and 3-point from 12 positions",
+            ("sans-serif", 14),
+        )
         .margin(8)
         .x_label_area_size(35)
         .y_label_area_size(45)
@@ -377,9 +449,13 @@ fn kinematics(dir: &Path) -> Res<()> {
     ch.draw_series(LineSeries::new(fine.clone(), BLUE.stroke_width(2)))?
         .label("exact transfer function")
         .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 18, y)], BLUE.stroke_width(2)));
-    ch.draw_series(d.iter().enumerate().map(|(i, v)| Circle::new((30.0 * i as f64, *v), 4, RED.filled())))?
-        .label("3-point formulas, N = 12")
-        .legend(|(x, y)| Circle::new((x + 9, y), 4, RED.filled()));
+    ch.draw_series(
+        d.iter()
+            .enumerate()
+            .map(|(i, v)| Circle::new((30.0 * i as f64, *v), 4, RED.filled())),
+    )?
+    .label("3-point formulas, N = 12")
+    .legend(|(x, y)| Circle::new((x + 9, y), 4, RED.filled()));
     ch.configure_series_labels()
         .label_font(("sans-serif", 11))
         .background_style(WHITE.mix(0.85))
@@ -404,7 +480,11 @@ fn kinematics(dir: &Path) -> Res<()> {
             let colour = COLOURS[q];
             curves.push(Curve {
                 label: format!("{quantity} ({})", ["four-bar", "slider-crank"][m]),
-                colour: if m == 0 { colour } else { RGBColor(colour.0 / 2 + 100, colour.1 / 2 + 100, colour.2 / 2 + 100) },
+                colour: if m == 0 {
+                    colour
+                } else {
+                    RGBColor(colour.0 / 2 + 100, colour.1 / 2 + 100, colour.2 / 2 + 100)
+                },
                 points: pts,
                 markers: m == 0,
             });

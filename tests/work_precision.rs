@@ -35,7 +35,12 @@ fn committed(name: &str) -> Csv {
 /// asymptotic points.
 fn order(l: &Line) -> f64 {
     let a = asymptotic(l);
-    assert!(a.len() >= 4, "{} {}: too few asymptotic points", l.machine, l.method);
+    assert!(
+        a.len() >= 4,
+        "{} {}: too few asymptotic points",
+        l.machine,
+        l.method
+    );
     let h: Vec<f64> = a.iter().map(|p| p.parameter).collect();
     let e: Vec<f64> = a.iter().map(|p| p.error).collect();
     slope(&h, &e)
@@ -76,7 +81,12 @@ fn steppers_show_their_orders() {
         .find(|l| l.machine == MACHINES[0] && l.method == METHODS[2])
         .unwrap();
     for p in &dp.points {
-        assert!(p.error < 10.0 * p.parameter, "tol {}: error {}", p.parameter, p.error);
+        assert!(
+            p.error < 10.0 * p.parameter,
+            "tol {}: error {}",
+            p.parameter,
+            p.error
+        );
     }
     assert!(dp.points.last().unwrap().error < 1e-3 * dp.points[0].error);
     // The committed data are these runs: the same evaluations and errors.
@@ -108,7 +118,12 @@ fn committed_dynamics_data_show_the_orders() {
         .map(|(machine, method)| {
             let key = [("machine", machine), ("method", method)];
             let col = |c| csv.select(&key, c);
-            let (h, e, n, s) = (col("parameter"), col("error"), col("evaluations"), col("steps"));
+            let (h, e, n, s) = (
+                col("parameter"),
+                col("error"),
+                col("evaluations"),
+                col("steps"),
+            );
             Line {
                 machine,
                 method,
@@ -133,7 +148,10 @@ fn stability_limits_on_the_chart_are_the_derived_ones() {
     let st = dynamics_data::stability().unwrap();
     for (zeta, c) in &st.fi_limits {
         let lim = dynamics_data::finite_increment_limit(*zeta);
-        assert!((c - lim).abs() < 1e-9 * lim, "ζ = {zeta}: crossing {c}, limit {lim}");
+        assert!(
+            (c - lim).abs() < 1e-9 * lim,
+            "ζ = {zeta}: crossing {c}, limit {lim}"
+        );
     }
     for &(zeta, o, rho) in &st.finite_increments {
         let lim = dynamics_data::finite_increment_limit(zeta);
@@ -162,7 +180,11 @@ fn stability_limits_on_the_chart_are_the_derived_ones() {
         }
     }
     let rk = committed("stability_rk4.csv");
-    for (x, g) in rk.select(&[], "h_lambda").iter().zip(rk.select(&[], "growth")) {
+    for (x, g) in rk
+        .select(&[], "h_lambda")
+        .iter()
+        .zip(rk.select(&[], "growth"))
+    {
         if *x < 0.0 {
             assert_eq!(g < 1.0, *x > -2.785, "hλ = {x}: |R| = {g}");
         }
@@ -271,9 +293,16 @@ fn numerical_differentiation_and_integration_are_second_order() {
         .iter()
         .map(|r| {
             let n = r.2.to_string();
-            let e = csv.select(&[("mechanism", r.0), ("quantity", r.1), ("positions", &n)], "error");
+            let e = csv.select(
+                &[("mechanism", r.0), ("quantity", r.1), ("positions", &n)],
+                "error",
+            );
             assert_eq!(e.len(), 1, "{r:?}");
-            assert!((e[0] - r.3).abs() <= 1e-6 * r.3, "{r:?}: committed {}", e[0]);
+            assert!(
+                (e[0] - r.3).abs() <= 1e-6 * r.3,
+                "{r:?}: committed {}",
+                e[0]
+            );
             (r.0, r.1, r.2, e[0])
         })
         .collect();

@@ -102,25 +102,28 @@ impl Div for Dd {
 /// double-double. `None` when a pivot is exactly zero.
 pub fn solve<const N: usize>(mut m: [[Dd; N]; N], mut b: [Dd; N]) -> Option<[Dd; N]> {
     for k in 0..N {
-        let p = (k..N).max_by(|&i, &j| m[i][k].abs().to_f64().total_cmp(&m[j][k].abs().to_f64()))?;
+        let p =
+            (k..N).max_by(|&i, &j| m[i][k].abs().to_f64().total_cmp(&m[j][k].abs().to_f64()))?;
         if m[p][k].to_f64() == 0.0 {
             return None;
         }
         m.swap(k, p);
         b.swap(k, p);
-        for i in k + 1..N {
-            let f = m[i][k] / m[k][k];
-            for j in k..N {
-                m[i][j] = m[i][j] - f * m[k][j];
+        let pivot_row = m[k];
+        let pivot_b = b[k];
+        for (row, bi) in m.iter_mut().zip(b.iter_mut()).skip(k + 1) {
+            let f = row[k] / pivot_row[k];
+            for (mij, mkj) in row.iter_mut().zip(&pivot_row).skip(k) {
+                *mij = *mij - f * *mkj;
             }
-            b[i] = b[i] - f * b[k];
+            *bi = *bi - f * pivot_b;
         }
     }
     let mut x = [Dd::default(); N];
     for k in (0..N).rev() {
         let mut s = b[k];
-        for j in k + 1..N {
-            s = s - m[k][j] * x[j];
+        for (mkj, xj) in m[k].iter().zip(&x).skip(k + 1) {
+            s = s - *mkj * *xj;
         }
         x[k] = s / m[k][k];
     }

@@ -111,7 +111,12 @@ fn run_method<S: LagrangeSystem>(
     su: &Setup,
 ) -> tmm::Result<RunResult> {
     match method {
-        "finite increments" => run(sys, &FiniteIncrement, su.start, &options(su.t_end, parameter)),
+        "finite increments" => run(
+            sys,
+            &FiniteIncrement,
+            su.start,
+            &options(su.t_end, parameter),
+        ),
         "RK4" => run(sys, &Rk4, su.start, &options(su.t_end, parameter)),
         _ => run(
             sys,
@@ -218,7 +223,12 @@ pub fn work_precision(timed: bool) -> tmm::Result<Vec<Line>> {
     let mut lines = lines_for(&coax, MACHINES[0], Some(exact), timed)?;
     lines.extend(lines_for(&FiveBar::default(), MACHINES[1], None, timed)?);
     lines.extend(lines_for(&smooth_five_bar(), MACHINES[2], None, timed)?);
-    lines.extend(lines_for(&LandingGear::default(), MACHINES[3], None, timed)?);
+    lines.extend(lines_for(
+        &LandingGear::default(),
+        MACHINES[3],
+        None,
+        timed,
+    )?);
     Ok(lines)
 }
 
@@ -309,7 +319,11 @@ pub fn rk4_growth(h_lambda: f64) -> tmm::Result<f64> {
 ///
 /// # Errors
 /// A step's error.
-pub fn crossing(mut lo: f64, mut hi: f64, growth: impl Fn(f64) -> tmm::Result<f64>) -> tmm::Result<f64> {
+pub fn crossing(
+    mut lo: f64,
+    mut hi: f64,
+    growth: impl Fn(f64) -> tmm::Result<f64>,
+) -> tmm::Result<f64> {
     for _ in 0..60 {
         let mid = 0.5 * (lo + hi);
         if growth(mid)? < 1.0 {
@@ -380,12 +394,20 @@ pub fn stability() -> tmm::Result<Stability> {
 
 /// The work-precision lines as CSV.
 pub fn to_csv(lines: &[Line]) -> String {
-    let mut s = String::from("machine,method,parameter,steps,evaluations,error,seconds,reference_error\n");
+    let mut s =
+        String::from("machine,method,parameter,steps,evaluations,error,seconds,reference_error\n");
     for l in lines {
         for p in &l.points {
             s += &format!(
                 "{},{},{:e},{},{},{:e},{:e},{:e}\n",
-                l.machine, l.method, p.parameter, p.steps, p.evaluations, p.error, p.seconds, l.reference_error
+                l.machine,
+                l.method,
+                p.parameter,
+                p.steps,
+                p.evaluations,
+                p.error,
+                p.seconds,
+                l.reference_error
             );
         }
     }

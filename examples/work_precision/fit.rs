@@ -4,7 +4,8 @@
 /// The least-squares slope of log10(y) against log10(x).
 pub fn slope(x: &[f64], y: &[f64]) -> f64 {
     let n = x.len() as f64;
-    let (lx, ly): (Vec<f64>, Vec<f64>) = x.iter().zip(y).map(|(a, b)| (a.log10(), b.log10())).unzip();
+    let (lx, ly): (Vec<f64>, Vec<f64>) =
+        x.iter().zip(y).map(|(a, b)| (a.log10(), b.log10())).unzip();
     let (mx, my) = (lx.iter().sum::<f64>() / n, ly.iter().sum::<f64>() / n);
     let sxy: f64 = lx.iter().zip(&ly).map(|(a, b)| (a - mx) * (b - my)).sum();
     let sxx: f64 = lx.iter().map(|a| (a - mx) * (a - mx)).sum();

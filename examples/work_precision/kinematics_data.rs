@@ -38,9 +38,15 @@ pub fn exact(mechanism: &str, phi1: f64) -> tmm::Result<Motion> {
         transfer_functions(
             |m| {
                 let a = crank(Point2::origin(), 0.1, m)?.a;
-                Ok(rrr_dyad(a, PointMotion::fixed(Point2::new(0.4, 0.05)), 0.35, 0.3, Branch::Plus)?
-                    .link3
-                    .angle_motion())
+                Ok(rrr_dyad(
+                    a,
+                    PointMotion::fixed(Point2::new(0.4, 0.05)),
+                    0.35,
+                    0.3,
+                    Branch::Plus,
+                )?
+                .link3
+                .angle_motion())
             },
             phi1,
         )
@@ -65,8 +71,7 @@ pub fn table(mechanism: &str, n: usize) -> tmm::Result<(f64, Vec<Motion>)> {
     for i in 0..=n {
         let mut m = exact(mechanism, h * i as f64)?;
         if let (Some(prev), true) = (out.last(), mechanism == MECHANISMS[0]) {
-            let d = (m.value - prev.value + std::f64::consts::PI)
-                .rem_euclid(std::f64::consts::TAU)
+            let d = (m.value - prev.value + std::f64::consts::PI).rem_euclid(std::f64::consts::TAU)
                 - std::f64::consts::PI;
             m.value = prev.value + d;
         }
@@ -95,7 +100,9 @@ pub fn errors(mechanism: &str, n: usize) -> tmm::Result<[f64; 4]> {
     let integral = integrate_trapezoid(&rate, h)?;
     let (lo, hi) = value
         .iter()
-        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), v| (a.min(*v), b.max(*v)));
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), v| {
+            (a.min(*v), b.max(*v))
+        });
     let trapezoid = amax((0..=n).map(|i| integral[i] - (value[i] - value[0]))) / (hi - lo);
     // One period: the last node is the first again.
     let d2 = differentiate_periodic(&differentiate_periodic(&value[..n], h)?, h)?;

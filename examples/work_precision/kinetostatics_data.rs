@@ -378,7 +378,8 @@ pub fn sweep(samples: usize, timed: bool) -> tmm::Result<Vec<Row>> {
 
 /// The rows as CSV.
 pub fn to_csv(rows: &[Row]) -> String {
-    let mut s = String::from("group,solver,delta,condition,error,error_per_condition,ns_per_call\n");
+    let mut s =
+        String::from("group,solver,delta,condition,error,error_per_condition,ns_per_call\n");
     for r in rows {
         s += &format!(
             "{},{},{:e},{:e},{:e},{:e},{:.1}\n",
