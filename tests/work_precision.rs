@@ -89,7 +89,8 @@ fn steppers_show_their_orders() {
         );
     }
     assert!(dp.points.last().unwrap().error < 1e-3 * dp.points[0].error);
-    // The committed data are these runs: the same evaluations and errors.
+    // The committed data are these runs: the same evaluations and errors (to a margin for
+    // another machine's last-bit rounding in the elementary functions).
     let csv = committed("dynamics_work_precision.csv");
     for l in &lines {
         let key = [("machine", l.machine), ("method", l.method)];
@@ -99,7 +100,7 @@ fn steppers_show_their_orders() {
         for ((p, e), n) in l.points.iter().zip(&errors).zip(&evals) {
             assert_eq!(p.evaluations as f64, *n, "{} {}", l.machine, l.method);
             assert!(
-                (p.error - e).abs() <= 1e-6 * e.abs() + 1e-15,
+                (p.error - e).abs() <= 1e-6 * e.abs() + 1e-13,
                 "{} {}: committed error {e}, now {}",
                 l.machine,
                 l.method,
