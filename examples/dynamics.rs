@@ -1,7 +1,6 @@
 //! Runs the four machines of seed 003 on their built-in data, prints a summary of each,
-//! writes every motion as CSV and draws φ(t) and φ̇(t) of each machine as SVG, plus a
-//! work-precision chart of the three steppers on the coaxial-propeller drive (which has an
-//! exact solution).
+//! writes every motion as CSV and draws φ(t) and φ̇(t) of each machine as SVG. The steppers'
+//! work-precision charts and stability limits are drawn by the `work_precision` example.
 //!
 //! `cargo run --release --example dynamics [output folder]` (default `target/dynamics`).
 
@@ -14,7 +13,7 @@ use plotters::prelude::*;
 use tmm::dynamics::machines::{CoaxialPropellers, Failure, FiveBar, LandingGear, RpArm};
 use tmm::dynamics::{
     run, Direction, Dopri5, FiniteIncrement, Outcome, Reach, Rk4, RunOptions, RunResult, State,
-    Steady, Stepper, Trajectory, Watch,
+    Steady, Trajectory, Watch,
 };
 
 type Res<T> = std::result::Result<T, Box<dyn Error>>;
@@ -352,72 +351,6 @@ fn coaxial(dir: &Path) -> Res<()> {
         ["rad", "rad/s"],
     )?;
 
-    // Work-precision on the exact solution: error at t = 1 s against evaluations.
-    let t_end = 1.0;
-    let exact = d.exact(&s0, t_end)?;
-    let err = |s: &State| {
-        ((s.qd - exact.qd).norm() / exact.qd.norm()).max((s.q - exact.q).norm() / exact.q.norm())
-    };
-    let mut lines: Vec<(String, Vec<(f64, f64)>)> = Vec::new();
-    for (name, counts) in [
-        ("finite increments", [100, 300, 1000, 3000, 10_000]),
-        ("RK4", [10, 20, 40, 80, 160]),
-    ] {
-        let mut pts = Vec::new();
-        for n in counts {
-            let h = t_end / n as f64;
-            let r = if name == "RK4" {
-                run(&d, &Rk4, s0, &RunOptions::until(t_end, h))?
-            } else {
-                run(&d, &FiniteIncrement, s0, &RunOptions::until(t_end, h))?
-            };
-            pts.push((err(&r.last), r.evaluations as f64));
-        }
-        lines.push((name.into(), pts));
-    }
-    let mut pts = Vec::new();
-    for tol in [1e-4, 1e-6, 1e-8, 1e-10, 1e-12] {
-        let r = run(&d, &Dopri5::new(tol)?, s0, &RunOptions::until(t_end, 1e-2))?;
-        pts.push((err(&r.last), r.evaluations as f64));
-    }
-    lines.push((Dopri5::new(1.0)?.name().into(), pts));
-    println!("  work-precision at t = 1 s (relative error, evaluations of q̈):");
-    for (name, pts) in &lines {
-        let row: Vec<String> = pts.iter().map(|(e, n)| format!("{e:.1e}/{n:.0}")).collect();
-        println!("    {name:<20} {}", row.join("  "));
-    }
-    let wp_path = dir.join("work_precision.svg");
-    let root = SVGBackend::new(&wp_path, (800, 600)).into_drawing_area();
-    root.fill(&WHITE)?;
-    let mut c = ChartBuilder::on(&root)
-        .caption(
-            "Coaxial propellers: error at t = 1 s vs evaluations",
-            ("sans-serif", 22),
-        )
-        .margin(10)
-        .x_label_area_size(40)
-        .y_label_area_size(60)
-        .build_cartesian_2d((1e-16f64..1.0).log_scale(), (1.0f64..1e6).log_scale())?;
-    c.configure_mesh()
-        .x_desc("relative error")
-        .y_desc("evaluations")
-        .x_label_formatter(&|v| format!("{v:.0e}"))
-        .y_label_formatter(&|v| format!("{v:.0}"))
-        .draw()?;
-    for ((name, pts), colour) in lines.iter().zip([RED, BLUE, GREEN]) {
-        let pts: Vec<(f64, f64)> = pts.iter().map(|&(e, n)| (e.max(1e-16), n)).collect();
-        c.draw_series(LineSeries::new(pts.clone(), colour.stroke_width(2)))?
-            .label(name.as_str())
-            .legend(move |(x, y)| {
-                PathElement::new(vec![(x, y), (x + 20, y)], colour.stroke_width(2))
-            });
-        c.draw_series(pts.iter().map(|&p| Circle::new(p, 4, colour.filled())))?;
-    }
-    c.configure_series_labels()
-        .background_style(WHITE.mix(0.8))
-        .border_style(BLACK)
-        .draw()?;
-    root.present()?;
     Ok(())
 }
 
@@ -431,5 +364,6 @@ fn main() -> Res<()> {
     landing_gear(&dir)?;
     coaxial(&dir)?;
     println!("CSV files and SVG charts written to {}", dir.display());
+    println!("Work-precision of the steppers: cargo run --release --example work_precision");
     Ok(())
 }

@@ -1,0 +1,155 @@
+//! tmm's steppers beside a well-kept ODE crate, ode_solvers (its `Rk4` and `Dopri5`), on the
+//! same right-hand side: `tmm::dynamics::accelerations` of the coaxial-propeller drive and of
+//! the five-bar robot, packed as y = (q1, q2, q̇1, q̇2). The two integrate the same problem at
+//! the same step size (RK4) or the same tolerance (rtol = atol, Dormand–Prince), in one
+//! group per machine, so the ratio is measured side by side. Before timing, each pair's
+//! evaluation counts and final-time difference are printed, so that the times compare equal
+//! work. ode_solvers stores every step it takes (it has no "final state only" mode); tmm's run
+//! is told to record nothing on the way.
+
+use std::hint::black_box;
+use std::time::Duration;
+
+use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion};
+use nalgebra::Vector2;
+use ode_solvers::dop_shared::OutputType;
+use tmm::dynamics::machines::{CoaxialPropellers, FiveBar};
+use tmm::dynamics::{accelerations, run, Dopri5, LagrangeSystem, Rk4, RunOptions, State};
+
+type Y = ode_solvers::Vector4<f64>;
+
+/// A tmm machine as an ode_solvers system.
+struct Peer<'a, S>(&'a S);
+
+impl<S: LagrangeSystem> ode_solvers::System<f64, Y> for Peer<'_, S> {
+    fn system(&self, t: f64, y: &Y, dy: &mut Y) {
+        let (q, qd) = (Vector2::new(y[0], y[1]), Vector2::new(y[2], y[3]));
+        // A failure (none on these runs) becomes a NaN, which ends the comparison visibly.
+        let a = accelerations(self.0, t, &q, &qd).unwrap_or(Vector2::repeat(f64::NAN));
+        *dy = Y::new(qd[0], qd[1], a[0], a[1]);
+    }
+}
+
+fn options(t_end: f64, h: f64) -> RunOptions {
+    RunOptions {
+        record_every: usize::MAX,
+        ..RunOptions::until(t_end, h)
+    }
+}
+
+fn tmm_rk4<S: LagrangeSystem>(sys: &S, s0: State, t_end: f64, h: f64) -> (State, usize) {
+    let r = run(sys, &Rk4, s0, &options(t_end, h)).expect("runs");
+    (r.last, r.evaluations)
+}
+
+fn tmm_dopri<S: LagrangeSystem>(sys: &S, s0: State, t_end: f64, tol: f64) -> (State, usize) {
+    let dp = Dopri5::new(tol).expect("positive tolerance");
+    let r = run(sys, &dp, s0, &options(t_end, 1e-3 * t_end)).expect("runs");
+    (r.last, r.evaluations)
+}
+
+fn y0(s: State) -> Y {
+    Y::new(s.q[0], s.q[1], s.qd[0], s.qd[1])
+}
+
+fn peer_rk4<S: LagrangeSystem>(sys: &S, s0: State, t_end: f64, h: f64) -> (Y, u32) {
+    let mut p = ode_solvers::Rk4::new(Peer(sys), s0.t, y0(s0), t_end, h);
+    let stats = p.integrate().expect("integrates");
+    (*p.y_out().last().expect("a state"), stats.num_eval)
+}
+
+fn peer_dopri<S: LagrangeSystem>(sys: &S, s0: State, t_end: f64, tol: f64) -> (Y, u32) {
+    let mut p = ode_solvers::Dopri5::from_param(
+        Peer(sys),
+        s0.t,
+        t_end,
+        t_end,
+        y0(s0),
+        tol,
+        tol,
+        0.9,
+        0.04,
+        0.2,
+        10.0,
+        t_end,
+        1e-3 * t_end,
+        100_000,
+        1000,
+        OutputType::Sparse,
+    );
+    let stats = p.integrate().expect("integrates");
+    (*p.y_out().last().expect("a state"), stats.num_eval)
+}
+
+fn difference(a: &State, b: &Y) -> f64 {
+    [a.q[0] - b[0], a.q[1] - b[1], a.qd[0] - b[2], a.qd[1] - b[3]]
+        .iter()
+        .fold(0.0, |m: f64, d| m.max(d.abs()))
+}
+
+fn side_by_side<S: LagrangeSystem>(
+    c: &mut Criterion,
+    machine: &str,
+    sys: &S,
+    s0: State,
+    t_end: f64,
+    h: f64,
+    tol: f64,
+) {
+    let (a, na) = tmm_rk4(sys, s0, t_end, h);
+    let (b, nb) = peer_rk4(sys, s0, t_end, h);
+    println!(
+        "{machine}, RK4 h = {h}: tmm {na} evaluations, ode_solvers {nb}; final states differ by {:.1e}",
+        difference(&a, &b)
+    );
+    let (a, na) = tmm_dopri(sys, s0, t_end, tol);
+    let (b, nb) = peer_dopri(sys, s0, t_end, tol);
+    println!(
+        "{machine}, Dormand-Prince tol = {tol}: tmm {na} evaluations, ode_solvers {nb}; final states differ by {:.1e}",
+        difference(&a, &b)
+    );
+
+    let mut g = c.benchmark_group(format!("peers/{machine}"));
+    g.measurement_time(Duration::from_secs(1))
+        .warm_up_time(Duration::from_millis(300))
+        .sample_size(20);
+    g.bench_with_input(BenchmarkId::new("tmm RK4", h), &h, |bch, &h| {
+        bch.iter(|| tmm_rk4(black_box(sys), black_box(s0), t_end, h))
+    });
+    g.bench_with_input(BenchmarkId::new("ode_solvers Rk4", h), &h, |bch, &h| {
+        bch.iter(|| peer_rk4(black_box(sys), black_box(s0), t_end, h))
+    });
+    g.bench_with_input(BenchmarkId::new("tmm Dopri5", tol), &tol, |bch, &tol| {
+        bch.iter(|| tmm_dopri(black_box(sys), black_box(s0), t_end, tol))
+    });
+    g.bench_with_input(
+        BenchmarkId::new("ode_solvers Dopri5", tol),
+        &tol,
+        |bch, &tol| bch.iter(|| peer_dopri(black_box(sys), black_box(s0), t_end, tol)),
+    );
+    g.finish();
+}
+
+fn peers(c: &mut Criterion) {
+    side_by_side(
+        c,
+        "coaxial propellers 1 s",
+        &CoaxialPropellers::default(),
+        State::at_rest(Vector2::zeros()),
+        1.0,
+        1e-2,
+        1e-8,
+    );
+    side_by_side(
+        c,
+        "five-bar 0.5 s",
+        &FiveBar::default(),
+        State::at_rest(Vector2::new(120f64.to_radians(), 60f64.to_radians())),
+        0.5,
+        1e-3,
+        1e-8,
+    );
+}
+
+criterion_group!(benches, peers);
+criterion_main!(benches);
