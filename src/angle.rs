@@ -107,6 +107,7 @@ pub fn line_of_action(phi: f64, alpha: f64, mirrored: bool) -> f64 {
 
 /// A vector as a magnitude and a direction angle, the way the seeds tabulate forces.
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct Polar {
     /// The magnitude, never negative.
     pub magnitude: f64,

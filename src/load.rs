@@ -12,6 +12,7 @@ use nalgebra::{Point2, Vector2};
 ///
 /// Units: N, m, N·m. The moment is algebraic, counter-clockwise positive.
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct Load {
     /// The point of application of the force (usually the link's centre of mass).
     pub point: Point2<f64>,

@@ -381,6 +381,11 @@ fn mechanisms_and_results_survive_a_serde_round_trip() {
     // The loaded mechanism gives the same results.
     let again = Table::of(&run_cycle(&inputs, |i| back_analyse(&comp, i)));
     assert_eq!(again, table);
+    // A whole analysed position (kinematic states, loads, reactions, balance) too.
+    let position = six.analyse(inputs[5]).unwrap();
+    let back: tmm::mechanism::SixBarPosition =
+        serde_json::from_str(&serde_json::to_string(&position).unwrap()).unwrap();
+    assert_eq!(back, position);
     let balance = comp.analyse(inputs[3]).unwrap().balance;
     let back: tmm::mechanism::Balance =
         serde_json::from_str(&serde_json::to_string(&balance).unwrap()).unwrap();

@@ -47,6 +47,7 @@ pub const SINGULAR_DETERMINANT: f64 = 1e-12;
 /// A mechanism keeps one branch for a whole cycle: the two branches meet only at a position
 /// where the determinant vanishes (a dead point), which a continuous motion cannot cross.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub enum Branch {
     /// The "+" sign in front of the square root.
     Plus,
@@ -76,6 +77,7 @@ impl Branch {
 
 /// A length or an angle of a loop vector: known (with its time derivatives), or unknown.
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub enum Part {
     /// A known scalar with its rate and acceleration.
     Known(Motion),
@@ -85,6 +87,7 @@ pub enum Part {
 
 /// One vector of a closed contour.
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub enum LoopVector {
     /// A fully known vector with its first and second time derivatives (for example the
     /// vector between two joints whose motion is known).
@@ -149,6 +152,7 @@ impl LoopVector {
 
 /// Which of the four closed forms a contour needed.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub enum ContourCase {
     /// Two unknown angles: the intersection of two circles.
     CircleCircle,
@@ -162,6 +166,7 @@ pub enum ContourCase {
 
 /// The solved contour: its two unknowns with their rates and accelerations.
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct ContourSolution {
     /// The unknowns in loop order (vector by vector; within one vector the length first).
     /// Unknown angles are in [0, 2π).

@@ -8,6 +8,7 @@ use nalgebra::Point2;
 
 /// The state of a crank O A: its link motion (origin O) and the motion of its pin A.
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct CrankState {
     /// The crank pin A.
     pub a: PointMotion,

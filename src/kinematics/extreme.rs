@@ -8,6 +8,7 @@ use std::f64::consts::TAU;
 
 /// Whether an extreme of the output is its largest or its smallest value.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub enum ExtremeKind {
     /// A maximum of the output (s″ < 0 or φ″ < 0 there).
     Max,
@@ -17,6 +18,7 @@ pub enum ExtremeKind {
 
 /// An extreme position of the output: where its first transfer function vanishes.
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct Extreme {
     /// The input angle φ1 there, in [0, 2π).
     pub input: f64,
@@ -29,6 +31,7 @@ pub struct Extreme {
 
 /// The direction in which the input crank turns.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub enum Rotation {
     /// Counter-clockwise: the input angle increases.
     Ccw,
@@ -181,6 +184,7 @@ where
 
 /// The working and idle strokes of an output with two extreme positions.
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct Strokes {
     /// The input angle at the beginning of the working stroke (in [0, 2π)).
     pub start: f64,

@@ -11,6 +11,7 @@ use nalgebra::{Point2, Vector2};
 /// v_P = v_O + ω × OP and a_P = a_O + ε × OP − ω²·OP. This is how the centre of mass of a
 /// link is found for the inertia loads ([`Load::inertia`](crate::Load::inertia)).
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct LinkMotion {
     /// The link's reference point (a joint) with its velocity and acceleration.
     pub origin: PointMotion,

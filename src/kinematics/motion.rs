@@ -14,6 +14,7 @@ use nalgebra::{Point2, Vector2};
 /// For an angle: φ (rad), ω (rad/s), ε (rad/s²). For a sliding coordinate: s (m), v (m/s),
 /// a (m/s²). For a transfer function (input at unit speed): φ, φ′, φ″ or s, s′, s″.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct Motion {
     /// The coordinate.
     pub value: f64,
@@ -81,6 +82,7 @@ impl Motion {
 
 /// A point with its velocity and acceleration (m, m/s, m/s²).
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct PointMotion {
     /// The position.
     pub p: Point2<f64>,

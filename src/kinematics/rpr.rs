@@ -11,6 +11,7 @@ use std::f64::consts::PI;
 
 /// The solved RPR dyad. The rod and the cylinder turn together (same ω, ε).
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct RprState {
     /// The rod 2: origin A, angle φ2 = direction of A→C (into the cylinder, the seed's φ2).
     pub link2: LinkMotion,

@@ -16,6 +16,7 @@ use std::f64::consts::PI;
 /// those of the link's point at G, and the angle turns with the link's ω and ε; then the
 /// slider's acceleration has a Coriolis part 2·ω4·v_rel.
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct Guide {
     /// A point of the guide line, with its motion.
     pub point: PointMotion,
@@ -52,6 +53,7 @@ impl Guide {
 
 /// The solved RRP dyad.
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct RrpState {
     /// The joint B (the slider's hinge) with its absolute velocity and acceleration.
     pub b: PointMotion,

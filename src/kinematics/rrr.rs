@@ -10,6 +10,7 @@ use std::f64::consts::PI;
 
 /// The solved RRR dyad.
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct RrrState {
     /// The inner joint B.
     pub b: PointMotion,

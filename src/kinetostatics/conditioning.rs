@@ -10,6 +10,7 @@ use crate::error::{Error, Result};
 /// largest load or reaction: expect relative errors of about `condition × 1e-16`. A well-shaped
 /// group has a condition of a few units; near a dead point it grows like 1/|measure|.
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct Conditioning {
     /// The quantity that vanishes at the singular configuration.
     pub measure: f64,

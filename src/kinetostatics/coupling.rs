@@ -30,6 +30,7 @@ use nalgebra::{Point2, Vector2};
 /// ```
 #[doc(alias = "SRWL2")]
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct CouplingDrive {
     /// The centre of the frame hinge O1.
     pub o1: Point2<f64>,
@@ -37,6 +38,7 @@ pub struct CouplingDrive {
 
 /// The balancing moment of an input link driven through a coupling, and the frame's reaction.
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct CouplingBalance {
     /// M_b, the moment the motor applies to link 1, N·m, counter-clockwise positive.
     pub balancing_moment: f64,
@@ -94,6 +96,7 @@ impl CouplingDrive {
 /// ```
 #[doc(alias = "SRWL2")]
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct CouplingSeed {
     /// l_O1A, the length of the input link, m.
     pub l_o1a: f64,

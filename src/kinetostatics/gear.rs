@@ -27,6 +27,7 @@ const MEASURE: &str = "r_w cos(alpha_w)";
 
 /// Which tooth flank carries the balancing force.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub enum Flank {
     /// The seed's preliminary direction (0.5π − α_w for P on the −x side of O1): the tooth
     /// force turns link 1 clockwise.
@@ -61,6 +62,7 @@ pub enum Flank {
 /// ```
 #[doc(alias = "SRWL1")]
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct GearDrive {
     /// The centre of the frame hinge O1, which is also the wheel's centre.
     pub o1: Point2<f64>,
@@ -72,6 +74,7 @@ pub struct GearDrive {
 
 /// The balancing force of an input link driven through a gear pair, and the frame's reaction.
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct GearBalance {
     /// F_b, the force of the driving pinion on the wheel at the pitch point, N.
     pub force: Vector2<f64>,
@@ -182,6 +185,7 @@ impl GearDrive {
 /// ```
 #[doc(alias = "SRWL1")]
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct GearSeed {
     /// l_O1A, the length of the input link, m.
     pub l_o1a: f64,

@@ -53,6 +53,7 @@ const MEASURE: &str = "l_EA";
 /// ```
 #[doc(alias = "SR3")]
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct RprDyad {
     /// The hinge of the rod 2 with link 1.
     pub a: Point2<f64>,
@@ -69,6 +70,7 @@ pub struct RprDyad {
 
 /// The reactions in the joints of an RPR dyad.
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct RprReactions {
     /// R12, the force of link 1 on the rod at A, N.
     pub r12: Vector2<f64>,
@@ -180,6 +182,7 @@ impl RprDyad {
 /// ```
 #[doc(alias = "SR3")]
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct RprSeed {
     /// l_AB, the length of the rod with its piston, m.
     pub l_ab: f64,

@@ -48,6 +48,7 @@ const MEASURE: &str = "cos(phi2 - phi4)";
 /// ```
 #[doc(alias = "SR2")]
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct RrpDyad {
     /// The hinge of link 2 with link 1.
     pub a: Point2<f64>,
@@ -63,6 +64,7 @@ pub struct RrpDyad {
 
 /// The reactions in the joints of an RRP dyad.
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct RrpReactions {
     /// R12, the force of link 1 on link 2 at A, N.
     pub r12: Vector2<f64>,
@@ -168,6 +170,7 @@ impl RrpDyad {
 /// ```
 #[doc(alias = "SR2")]
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct RrpSeed {
     /// l_BA, the length of link 2, m.
     pub l_ba: f64,

@@ -46,6 +46,7 @@ const MEASURE: &str = "sin(phi3 - phi2)";
 /// ```
 #[doc(alias = "SR1")]
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct RrrDyad {
     /// The hinge of link 2 with link 1.
     pub a: Point2<f64>,
@@ -61,6 +62,7 @@ pub struct RrrDyad {
 
 /// The reactions in the joints of an RRR dyad.
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct RrrReactions {
     /// R12, the force of link 1 on link 2 at A, N.
     pub r12: Vector2<f64>,
@@ -165,6 +167,7 @@ impl RrrDyad {
 /// ```
 #[doc(alias = "SR1")]
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct RrrSeed {
     /// l_BA, the length of link 2, m.
     pub l_ba: f64,

@@ -86,6 +86,7 @@ mod branches {
 
 /// One analysed position of a [`Compressor`].
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct CompressorPosition {
     /// φ1, ω1, ε1.
     pub input: Motion,

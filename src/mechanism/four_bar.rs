@@ -51,6 +51,7 @@ pub struct FourBar {
 
 /// One analysed position of a [`FourBar`].
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct FourBarPosition {
     /// φ1, ω1, ε1.
     pub input: Motion,

@@ -74,6 +74,7 @@ use crate::kinematics::{
 
 /// The balancing moment found two ways at one position.
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct PowerCheck {
     /// M_b from the group-by-group chain, N·m.
     pub chain: f64,

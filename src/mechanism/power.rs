@@ -34,6 +34,7 @@ pub fn power_of(load: &Load, link: &LinkMotion) -> f64 {
 /// One link cut free: its motion, the loads applied to it (external, weight, inertia, and the
 /// drive's on the input link) and the reactions of the links it touches.
 #[derive(Debug, Clone, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct FreeBody {
     /// The link's name, for example `"link 3 (rocker)"`.
     pub name: &'static str,
@@ -51,6 +52,7 @@ pub struct FreeBody {
 
 /// How far one link is from equilibrium.
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct Residual {
     /// |Σ F|, N.
     pub force: f64,

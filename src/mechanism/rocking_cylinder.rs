@@ -54,6 +54,7 @@ pub struct RockingCylinder {
 
 /// One analysed position of a [`RockingCylinder`].
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct RockingCylinderPosition {
     /// φ1, ω1, ε1.
     pub input: Motion,

@@ -78,6 +78,7 @@ pub struct SixBar {
 
 /// One analysed position of a [`SixBar`].
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct SixBarPosition {
     /// φ1, ω1, ε1.
     pub input: Motion,

@@ -59,6 +59,7 @@ pub struct SliderCrank {
 
 /// One analysed position of a [`SliderCrank`].
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct SliderCrankPosition {
     /// φ1, ω1, ε1.
     pub input: Motion,
