@@ -2,7 +2,7 @@
 //! writes every motion as CSV and draws φ(t) and φ̇(t) of each machine as SVG. The steppers'
 //! work-precision charts and stability limits are drawn by the `work_precision` example.
 //!
-//! `cargo run --release --example dynamics [output folder]` (default `target/dynamics`).
+//! `cargo run --release --example dynamics [output folder]` (default `target/tmm-charts/dynamics`).
 
 use std::error::Error;
 use std::fs;
@@ -357,7 +357,7 @@ fn coaxial(dir: &Path) -> Res<()> {
 fn main() -> Res<()> {
     let dir: PathBuf = std::env::args()
         .nth(1)
-        .map_or_else(|| PathBuf::from("target/dynamics"), PathBuf::from);
+        .map_or_else(|| PathBuf::from("target/tmm-charts/dynamics"), PathBuf::from);
     fs::create_dir_all(&dir)?;
     five_bar(&dir)?;
     rp_arm(&dir)?;

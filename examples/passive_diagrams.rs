@@ -6,7 +6,7 @@
 //! EA·L²/EI = 10³), and X1 with the frame reactions against EA·L²/EI.
 //!
 //! Run: `cargo run --example passive_diagrams [-- <output folder>]`
-//! (the default folder is `target/passive`).
+//! (the default folder is `target/tmm-charts/passive`).
 
 use plotters::prelude::*;
 use std::error::Error;
@@ -128,7 +128,7 @@ fn main() -> Result<(), Box<dyn Error>> {
 
     let dir = std::env::args()
         .nth(1)
-        .map_or_else(|| PathBuf::from("target/passive"), PathBuf::from);
+        .map_or_else(|| PathBuf::from("target/tmm-charts/passive"), PathBuf::from);
     std::fs::create_dir_all(&dir)?;
     let file = dir.join("passive_diagrams.svg");
     draw(&file, s, with_axial.as_ref().ok_or("no EA solution")?)?;
