@@ -355,9 +355,10 @@ fn coaxial(dir: &Path) -> Res<()> {
 }
 
 fn main() -> Res<()> {
-    let dir: PathBuf = std::env::args()
-        .nth(1)
-        .map_or_else(|| PathBuf::from("target/tmm-charts/dynamics"), PathBuf::from);
+    let dir: PathBuf = std::env::args().nth(1).map_or_else(
+        || PathBuf::from("target/tmm-charts/dynamics"),
+        PathBuf::from,
+    );
     fs::create_dir_all(&dir)?;
     five_bar(&dir)?;
     rp_arm(&dir)?;
