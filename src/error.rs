@@ -111,6 +111,13 @@ pub(crate) fn positive(name: &'static str, value: f64) -> Result<f64> {
     }
 }
 
+/// Checks that every named number is finite; the error names the first that is not.
+pub(crate) fn all_finite(named: &[(&'static str, f64)]) -> Result<()> {
+    named
+        .iter()
+        .try_for_each(|&(name, v)| finite(name, v).map(|_| ()))
+}
+
 /// Checks that both components of a point or vector are finite.
 pub(crate) fn finite2(
     names: [&'static str; 2],

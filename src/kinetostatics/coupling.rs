@@ -8,7 +8,7 @@
 
 use super::conditioning::{ensure_finite, Conditioning};
 use crate::angle::unit;
-use crate::error::{finite, finite2, positive, Result};
+use crate::error::{all_finite, finite2, positive, Result};
 use crate::Load;
 use nalgebra::{Point2, Vector2};
 
@@ -151,9 +151,7 @@ impl CouplingSeed {
 /// Link 1's loads from the seeds' numbers, in the order l_O1S1, φ1, F1, γ1, R21, γ21, M1.
 pub(super) fn input_link_loads(l_o1a: f64, numbers: [(&'static str, f64); 7]) -> Result<[Load; 2]> {
     positive("l_O1A", l_o1a)?;
-    for (name, v) in numbers {
-        finite(name, v)?;
-    }
+    all_finite(&numbers)?;
     let [l_o1s1, phi1, f1, gamma1, r21, gamma21, m1] = numbers.map(|(_, v)| v);
     let u1 = unit(phi1);
     Ok([

@@ -16,7 +16,7 @@
 
 use super::conditioning::{ensure_finite, Conditioning};
 use crate::angle::{perp, unit};
-use crate::error::{finite, finite2, positive, Result};
+use crate::error::{all_finite, finite2, positive, Result};
 use crate::Load;
 use nalgebra::{Point2, Vector2};
 
@@ -218,7 +218,7 @@ impl RprSeed {
     pub fn to_dyad(&self) -> Result<RprDyad> {
         positive("l_AB", self.l_ab)?;
         positive("l_EC", self.l_ec)?;
-        for (name, v) in [
+        all_finite(&[
             ("l_BC", self.l_bc),
             ("l_AS2", self.l_as2),
             ("l_ES3", self.l_es3),
@@ -229,9 +229,7 @@ impl RprSeed {
             ("gamma3", self.gamma3),
             ("M2", self.m2),
             ("M3", self.m3),
-        ] {
-            finite(name, v)?;
-        }
+        ])?;
         let l_ea = positive("l_EA", self.l_ab - self.l_bc + self.l_ec)?;
         let e = Point2::origin();
         let u = unit(self.phi2);

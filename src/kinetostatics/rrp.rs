@@ -13,7 +13,7 @@
 
 use super::conditioning::{ensure_finite, Conditioning};
 use crate::angle::{cross, perp, unit};
-use crate::error::{finite, finite2, positive, Result};
+use crate::error::{all_finite, finite2, positive, Result};
 use crate::Load;
 use nalgebra::{Point2, Vector2};
 
@@ -201,7 +201,7 @@ impl RrpSeed {
     /// Non-finite numbers, or a non-positive link length.
     pub fn to_dyad(&self) -> Result<RrpDyad> {
         positive("l_BA", self.l_ba)?;
-        for (name, v) in [
+        all_finite(&[
             ("l_BS2", self.l_bs2),
             ("phi2", self.phi2),
             ("phi4", self.phi4),
@@ -211,9 +211,7 @@ impl RrpSeed {
             ("gamma3", self.gamma3),
             ("M2", self.m2),
             ("M3", self.m3),
-        ] {
-            finite(name, v)?;
-        }
+        ])?;
         let b = Point2::origin();
         let u2 = unit(self.phi2);
         Ok(RrpDyad {

@@ -11,7 +11,7 @@
 
 use super::conditioning::{ensure_finite, Conditioning};
 use crate::angle::{cross, perp, unit};
-use crate::error::{finite, finite2, positive, Result};
+use crate::error::{all_finite, finite2, positive, Result};
 use crate::Load;
 use nalgebra::{Point2, Vector2};
 
@@ -204,7 +204,7 @@ impl RrrSeed {
     pub fn to_dyad(&self) -> Result<RrrDyad> {
         positive("l_BA", self.l_ba)?;
         positive("l_BC", self.l_bc)?;
-        for (name, v) in [
+        all_finite(&[
             ("l_BS2", self.l_bs2),
             ("l_BS3", self.l_bs3),
             ("phi2", self.phi2),
@@ -215,9 +215,7 @@ impl RrrSeed {
             ("gamma3", self.gamma3),
             ("M2", self.m2),
             ("M3", self.m3),
-        ] {
-            finite(name, v)?;
-        }
+        ])?;
         let b = Point2::origin();
         let (u2, u3) = (unit(self.phi2), unit(self.phi3));
         Ok(RrrDyad {
