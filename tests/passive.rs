@@ -754,9 +754,31 @@ fn errors_name_what_is_wrong() {
     assert!(matches!(
         PaperGroup { alpha4: 0.0, ..p }.solve(&ok),
         Err(Error::Singular {
+            what: "parallel-coupler group",
             measure: "distance from E to line AB",
             ..
         })
+    ));
+    // α4 = π: E on the line AB again, with sin α4 a rounding error of size 1e-16 (not 0).
+    assert!(matches!(
+        PaperGroup {
+            alpha4: std::f64::consts::PI,
+            ..p
+        }
+        .solve(&ok),
+        Err(Error::Singular {
+            measure: "distance from E to line AB",
+            ..
+        })
+    ));
+    // The accessors that do not validate give a NaN for a NaN coordinate, never a panic
+    // (`f64::clamp` would panic on the NaN length).
+    let mut nan = g;
+    nan.b.x = f64::NAN;
+    assert!(nan.point_at(Link::Ab, 0.1).x.is_nan());
+    assert!(matches!(
+        solve(&nan, &loads, &ok),
+        Err(Error::NonFinite { name: "B.x", .. })
     ));
     // E on the line CD with DE along CD: the unit state does not bend any link, so a
     // bending-only model cannot find X1; with axial flexibility it can.
@@ -894,6 +916,18 @@ fn near_singular_geometry_reports_its_conditioning() {
             s.arm_ratio * s.geometry.size(),
             0.35 * alpha4.sin(),
             max_relative = 1e-9
+        );
+        // The crate-wide figure: the signed arm (E lies to the left of A → B here) and the
+        // amplification size/|arm|.
+        assert_relative_eq!(
+            s.conditioning.measure,
+            0.35 * alpha4.sin(),
+            max_relative = 1e-9
+        );
+        assert_relative_eq!(
+            s.conditioning.condition,
+            1.0 / s.arm_ratio,
+            max_relative = 1e-12
         );
         assert!(equilibrium_residual(s) < 1e-12);
         let big = s.reactions.r01.norm();

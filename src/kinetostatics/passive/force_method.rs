@@ -3,10 +3,11 @@
 //! δ11·X1 + Δ1F = 0 (seed 002, eqs. 3, 4, 8).
 
 use super::diagrams::{DiagramExtremes, InternalForces, LinkCase};
-use super::geometry::{Frame, Geometry, Link, Side};
+use super::geometry::{Frame, Geometry, Link, Side, WHAT};
 use super::loads::Loads;
 use super::statics::{released, Reactions};
 use crate::error::{finite, positive, Error, Result};
+use crate::kinetostatics::Conditioning;
 use nalgebra::{Point2, Vector2};
 
 /// The links' stiffnesses: bending EI (N·m²) and, optionally, axial EA (N), for links 1, 2, 3
@@ -112,6 +113,10 @@ pub struct Solution {
     /// about 1/`arm_ratio`; a well-shaped group has a ratio of a few tenths. At 8ε the group
     /// is singular (an error).
     pub arm_ratio: f64,
+    /// The same divisor in the form every kinetostatic solver of the crate reports:
+    /// `measure` is the signed distance from E to the line AB, m ([`Geometry::arm_e_ab`]),
+    /// and `condition` = max(1, 1/`arm_ratio`).
+    pub conditioning: Conditioning,
     /// δ11·EI_max/size³: the divisor of the compatibility equation, made dimensionless. It
     /// vanishes when X1 no longer deforms the released structure (for example, bending only,
     /// with E on the line CD and DE along it); the seed's example has 0.0040. Below 10⁻¹²
@@ -150,6 +155,10 @@ pub struct Solution {
 /// assert_relative_eq!(s.x1, -100.0, epsilon = 1e-9);
 /// assert_relative_eq!(s.reactions.r01.norm(), 0.0, epsilon = 1e-9);
 /// assert_relative_eq!(s.reactions.r03.norm(), 0.0, epsilon = 1e-9);
+/// // The statics divide by the distance from E to the line AB, 0.3 m; the group's size is
+/// // AE = √(0.2² + 0.3²) ≈ 0.3606 m, so rounding errors are amplified about 1.2 times.
+/// assert_relative_eq!(s.conditioning.measure, 0.3, epsilon = 1e-12);
+/// assert_relative_eq!(s.conditioning.condition, 0.13f64.sqrt() / 0.3, epsilon = 1e-12);
 /// # Ok::<(), tmm::Error>(())
 /// ```
 ///
@@ -190,7 +199,7 @@ pub fn solve(geometry: &Geometry, loads: &Loads, stiffness: &Stiffness) -> Resul
     // Written so that a NaN ratio is caught too.
     if ratio.is_nan() || ratio <= 1e-12 {
         return Err(Error::Singular {
-            what: "parallel-coupler group",
+            what: WHAT,
             measure: "delta11 * EI / size^3",
             value: ratio,
         });
@@ -215,6 +224,7 @@ pub fn solve(geometry: &Geometry, loads: &Loads, stiffness: &Stiffness) -> Resul
         unit,
         reactions,
         arm_ratio: frame.arm.abs() / size,
+        conditioning: frame.conditioning,
         delta11_ratio: ratio,
         frame,
     })
@@ -238,7 +248,7 @@ impl Solution {
     /// The point of a link's axis at arc length `s` from its start.
     #[must_use]
     pub fn point_at(&self, link: Link, s: f64) -> Point2<f64> {
-        self.geometry.point_at(link, s)
+        self.frame.g.point_at(link, s)
     }
 
     /// The internal forces N, Q, M of the real group at the section `s` of `link` (arc length

@@ -7,7 +7,13 @@
 
 use crate::angle::{cross, perp};
 use crate::error::{finite2, Error, Result};
+use crate::kinetostatics::Conditioning;
 use nalgebra::{Point2, Vector2};
+
+/// The name of the group in its errors.
+pub(crate) const WHAT: &str = "parallel-coupler group";
+/// The divisor of the released structure's statics, as named in its conditioning and errors.
+pub(crate) const ARM: &str = "distance from E to line AB";
 
 /// The positions of the five hinges, m.
 ///
@@ -116,9 +122,20 @@ impl Geometry {
     }
 
     /// The point of the link's axis at arc length `s` from its start (clamped to the link).
+    /// This accessor does not validate: a NaN `s` or coordinate gives a NaN point (the
+    /// solvers reject such input with an error).
     #[must_use]
     pub fn point_at(&self, link: Link, s: f64) -> Point2<f64> {
-        let s = s.clamp(0.0, self.length(link));
+        // Not `f64::clamp`, which panics on a NaN bound (a geometry with a NaN coordinate):
+        // a NaN here gives a NaN point instead.
+        let len = self.length(link);
+        let s = if s > len {
+            len
+        } else if s < 0.0 {
+            0.0
+        } else {
+            s
+        };
         let (start, t, s0) = self.member(link, s, Side::After);
         start + (s - s0) * t
     }
@@ -129,7 +146,8 @@ impl Geometry {
         let dir = |p: Point2<f64>, q: Point2<f64>| {
             let v = q - p;
             let n = v.norm();
-            if n > 0.0 {
+            // A NaN stays a NaN (an unvalidated geometry must not look valid).
+            if n > 0.0 || n.is_nan() {
                 v / n
             } else {
                 Vector2::x()
@@ -209,7 +227,7 @@ impl Geometry {
                 Ok(l)
             } else {
                 Err(Error::Singular {
-                    what: "parallel-coupler group",
+                    what: WHAT,
                     measure: name,
                     value: l,
                 })
@@ -221,14 +239,9 @@ impl Geometry {
         let l_de = member("l_DE", self.d, self.e)?;
         let arm = self.arm_e_ab();
         // Below 8ε·size the arm, computed from coordinates of size `size`, has no significant
-        // digit left; above it, `Solution::arm_ratio` tells how much the reactions amplify.
-        if arm.is_nan() || arm.abs() <= 8.0 * f64::EPSILON * size {
-            return Err(Error::Singular {
-                what: "parallel-coupler group",
-                measure: "distance from E to line AB",
-                value: arm,
-            });
-        }
+        // digit left (an error); above it, the condition size/|arm| tells how much the
+        // reactions amplify rounding errors.
+        let conditioning = Conditioning::of(WHAT, ARM, arm, size)?;
         let t1 = (self.b - self.a) / l1;
         let t2 = (self.d - self.c) / l2;
         Ok(Frame {
@@ -240,6 +253,7 @@ impl Geometry {
             t2,
             n2: perp(t2),
             arm,
+            conditioning,
         })
     }
 }
@@ -258,6 +272,8 @@ pub(crate) struct Frame {
     pub n2: Vector2<f64>,
     /// Signed distance from E to the line AB.
     pub arm: f64,
+    /// The conditioning of the division by `arm`.
+    pub conditioning: Conditioning,
 }
 
 impl Frame {

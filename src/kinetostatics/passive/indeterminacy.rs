@@ -39,10 +39,14 @@ pub fn by_links(simple_hinges: u32, links: u32) -> i64 {
 
 /// The number of independent closed contours of a connected system of `disks` rigid disks
 /// joined by `hinges` simple hinges: σ = hinges − disks + 1 (the cyclomatic number of its
-/// graph). `None` if there are too few hinges to connect the disks.
+/// graph). `None` if there are too few hinges to connect the disks (or no disk at all with
+/// `u32::MAX` hinges, when σ does not fit in a `u32`).
 #[must_use]
 pub fn contours(hinges: u32, disks: u32) -> Option<u32> {
-    (hinges + 1).checked_sub(disks)
+    // In u64, so that `hinges + 1` cannot overflow.
+    (u64::from(hinges) + 1)
+        .checked_sub(u64::from(disks))
+        .and_then(|sigma| u32::try_from(sigma).ok())
 }
 
 /// A chain of links joined by simple hinges, some of them to the frame.
@@ -73,25 +77,39 @@ impl HingedChain {
         frame_hinges: 3,
     };
 
-    /// p1 of eq. 2: all simple hinges of the chain.
+    /// p1 of eq. 2: all simple hinges of the chain (saturating at `u32::MAX`, far beyond any
+    /// real chain; [`HingedChain::by_links`] counts exactly).
     #[must_use]
     pub fn simple_hinges(&self) -> u32 {
-        self.inner_hinges + self.frame_hinges
+        self.inner_hinges.saturating_add(self.frame_hinges)
     }
 
-    /// The scheme of the seed's Fig. 1b.
+    /// The scheme of the seed's Fig. 1b (each count saturating at `u32::MAX`, far beyond any
+    /// real chain; [`HingedChain::by_contours`] counts exactly).
     #[must_use]
     pub fn support_bar_scheme(&self) -> SupportBarScheme {
+        let (disks, hinges) = self.scheme_counts();
         SupportBarScheme {
-            disks: 1 + self.links + 2 * self.frame_hinges,
-            hinges: 4 * self.frame_hinges + self.inner_hinges,
+            disks: u32::try_from(disks).unwrap_or(u32::MAX),
+            hinges: u32::try_from(hinges).unwrap_or(u32::MAX),
         }
+    }
+
+    /// The disks and hinges of the support-bar scheme, in i64 (no overflow for any u32 input).
+    fn scheme_counts(&self) -> (i64, i64) {
+        let (m, h0, hi) = (
+            i64::from(self.links),
+            i64::from(self.frame_hinges),
+            i64::from(self.inner_hinges),
+        );
+        (1 + m + 2 * h0, 4 * h0 + hi)
     }
 
     /// n by eq. 2.
     #[must_use]
     pub fn by_links(&self) -> i64 {
-        by_links(self.simple_hinges(), self.links)
+        2 * (i64::from(self.inner_hinges) + i64::from(self.frame_hinges))
+            - 3 * i64::from(self.links)
     }
 
     /// n by eq. 1, on the support-bar scheme; `None` if that scheme is not connected.
@@ -107,8 +125,9 @@ impl HingedChain {
     /// ```
     #[must_use]
     pub fn by_contours(&self) -> Option<i64> {
-        let s = self.support_bar_scheme();
-        contours(s.hinges, s.disks).map(|sigma| by_contours(sigma, s.hinges))
+        let (disks, hinges) = self.scheme_counts();
+        let sigma = hinges - disks + 1;
+        (sigma >= 0).then(|| 3 * sigma - hinges)
     }
 }
 
@@ -141,5 +160,22 @@ mod tests {
         assert_eq!(by_contours(5, 14), 1);
         assert_eq!(by_links(5, 3), 1);
         assert_eq!(contours(3, 5), None);
+    }
+
+    #[test]
+    fn huge_counts_do_not_overflow() {
+        assert_eq!(contours(u32::MAX, 1), Some(u32::MAX));
+        assert_eq!(contours(u32::MAX, 0), None);
+        let c = HingedChain {
+            links: u32::MAX,
+            inner_hinges: u32::MAX,
+            frame_hinges: u32::MAX,
+        };
+        let max = i64::from(u32::MAX);
+        assert_eq!(c.by_links(), 4 * max - 3 * max);
+        assert_eq!(c.by_contours(), Some(c.by_links()));
+        assert_eq!(c.simple_hinges(), u32::MAX);
+        let s = c.support_bar_scheme();
+        assert_eq!((s.disks, s.hinges), (u32::MAX, u32::MAX));
     }
 }

@@ -22,7 +22,8 @@
 //! - the internal forces N, Q, M at any section of every link, their extremes and where they
 //!   occur ([`Solution::internal`], [`Solution::extremes`]), for the real group and for the
 //!   loaded and unit states of the method ([`State`]);
-//! - how close the group is to a singular configuration ([`Solution::arm_ratio`],
+//! - how close the group is to a singular configuration ([`Solution::conditioning`], the same
+//!   figure every kinetostatic solver of the crate reports, with [`Solution::arm_ratio`] and
 //!   [`Solution::delta11_ratio`]).
 //!
 //! Checked against an independent direct-stiffness frame model (tests/passive.rs): over 5000
