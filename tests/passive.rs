@@ -938,3 +938,20 @@ fn near_singular_geometry_reports_its_conditioning() {
         last = big;
     }
 }
+
+#[cfg(feature = "serde")]
+#[test]
+fn the_paper_problem_and_its_solution_survive_a_serde_round_trip() {
+    use tmm::kinetostatics::passive::{PaperGroup, Stiffness};
+    let group = PaperGroup::example();
+    let back: PaperGroup = serde_json::from_str(&serde_json::to_string(&group).unwrap()).unwrap();
+    assert_eq!(back, group);
+    let stiffness = Stiffness::bending_only(1.0);
+    let solved = group.solve(&stiffness).unwrap();
+    let json = serde_json::to_string(&solved).unwrap();
+    let again = back.solve(&stiffness).unwrap();
+    assert_eq!(json, serde_json::to_string(&again).unwrap());
+    // X1 survives to the last bit.
+    let v: serde_json::Value = serde_json::from_str(&json).unwrap();
+    assert_eq!(v["x1"].as_f64().unwrap(), solved.x1);
+}

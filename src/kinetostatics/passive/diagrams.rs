@@ -18,6 +18,7 @@ use nalgebra::Vector2;
 /// The internal forces at a section: axial force N (N, tension positive), shear force Q (N)
 /// and bending moment M (N·m).
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct InternalForces {
     /// Axial force, N, tension positive.
     pub n: f64,
@@ -30,6 +31,7 @@ pub struct InternalForces {
 /// The largest and smallest value of one diagram along a link, and where they occur (arc
 /// length from the link's start, m).
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct Extreme {
     /// The largest value.
     pub max: f64,
@@ -75,6 +77,7 @@ impl Extreme {
 
 /// The extremes of the three diagrams of one link.
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct DiagramExtremes {
     /// Axial force N.
     pub n: Extreme,
@@ -86,6 +89,7 @@ pub struct DiagramExtremes {
 
 /// A force and a couple applied to a link at the arc length `s`.
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub(crate) struct Action {
     pub s: f64,
     pub force: Vector2<f64>,
@@ -95,6 +99,7 @@ pub(crate) struct Action {
 /// Everything that acts on one link in one state: point actions (hinge forces and loads) and
 /// a uniform load per unit length.
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub(crate) struct LinkCase {
     pub link: Link,
     actions: [Action; 5],

@@ -17,6 +17,7 @@ use nalgebra::{Point2, Vector2};
 /// term ∫N1·N_F/EA enters δ11 and Δ1F. The redundant depends only on the ratios of the
 /// stiffnesses, so in the seed's model a common EI drops out.
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct Stiffness {
     /// Bending stiffness EI of links 1, 2, 3, N·m².
     pub ei: [f64; 3],
@@ -59,6 +60,7 @@ impl Stiffness {
 /// A displacement of the force method split into its bending and axial parts, m (per newton
 /// for δ11, m/N).
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct Flexibility {
     /// ∫ M·M'/EI ds over every link.
     pub bending: f64,
@@ -76,6 +78,7 @@ impl Flexibility {
 
 /// Which state of the force method a diagram belongs to.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub enum State {
     /// The released structure under the known loads (the seed's "loaded state", M_zF).
     Loaded,
@@ -88,6 +91,7 @@ pub enum State {
 
 /// The solved group: the redundant, every hinge force, and the internal forces of every link.
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct Solution {
     /// The geometry solved.
     pub geometry: Geometry,

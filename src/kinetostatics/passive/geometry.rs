@@ -23,6 +23,7 @@ pub(crate) const ARM: &str = "distance from E to line AB";
 /// itself does not need the parallelogram: any once-indeterminate frame of this topology is
 /// solved the same way.
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct Geometry {
     /// Hinge of link 1 to the frame.
     pub a: Point2<f64>,
@@ -38,6 +39,7 @@ pub struct Geometry {
 
 /// One link of the group.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub enum Link {
     /// Link 1, from A to B.
     Ab,
@@ -76,6 +78,7 @@ impl Link {
 /// Which one-sided limit to take at a section where a diagram jumps (under a point load, at a
 /// hinge, at the bend of link 3).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub enum Side {
     /// The limit from smaller `s`: loads at the section itself are not yet included.
     Before,
@@ -260,6 +263,7 @@ impl Geometry {
 
 /// A validated geometry with the derived lengths and directions.
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub(crate) struct Frame {
     pub g: Geometry,
     /// Lengths of links 1, 2, 3.

@@ -51,6 +51,7 @@ pub fn contours(hinges: u32, disks: u32) -> Option<u32> {
 
 /// A chain of links joined by simple hinges, some of them to the frame.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct HingedChain {
     /// Number of moving links, m.
     pub links: u32,
@@ -62,6 +63,7 @@ pub struct HingedChain {
 
 /// The structural scheme of eq. 1: every hinge to the frame replaced by two support bars.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct SupportBarScheme {
     /// Rigid disks: the frame, the links and the support bars.
     pub disks: u32,

@@ -12,6 +12,7 @@ use nalgebra::{Point2, Vector2};
 /// which runs B → D → E), m. Force in N (global x, y components), couple in N·m,
 /// counter-clockwise positive.
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct LinkLoad {
     /// Arc length of the section from the link's start, m.
     pub at: f64,
@@ -57,6 +58,7 @@ impl LinkLoad {
 /// −J_S·ε) fits in one [`LinkLoad`]. `per_length` adds a uniformly distributed load along
 /// each link (its weight, say), which makes the bending-moment diagrams piecewise quadratic.
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct Loads {
     /// F1: the load on link 1 (AB), `at` measured from A.
     pub f1: LinkLoad,

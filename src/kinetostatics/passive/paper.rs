@@ -19,6 +19,7 @@ use nalgebra::Vector2;
 /// middle of CD along π − α2, F3 at K along α4 + α3, and the couple M (counter-clockwise) on
 /// link 3 at E.
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct PaperGroup {
     /// F1, N.
     pub f1: f64,
@@ -51,6 +52,7 @@ pub struct PaperGroup {
 /// Normal and tangential components: at A and C, n is +x and t is +y; at E, n points from E
 /// into the bar (−u, u = (cos α4, sin α4)) and t is (sin α4, −cos α4).
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct PaperResult {
     /// X̄_AF: the x force of the frame on link 1 at A in the loaded state, N (eq. 5).
     pub x_af: f64,

@@ -18,6 +18,7 @@ use nalgebra::Vector2;
 /// `R_ij` is the force that link i exerts on link j (0 is the frame), so the force of link 3
 /// on link 1 at B is `-r13`.
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct Reactions {
     /// R01: the frame on link 1 at A.
     pub r01: Vector2<f64>,
