@@ -179,6 +179,9 @@ impl Compressor {
     }
 
     /// The fixed guide of piston 3 (`k = 0`) or 5 (`k = 1`).
+    ///
+    /// # Panics
+    /// For `k` > 1 (there are two guides).
     #[must_use]
     pub fn guide(&self, k: usize) -> Guide {
         Guide::fixed(self.guide_point, self.guide_angles[k])

@@ -7,7 +7,7 @@ use super::link::{own_loads, LinkMass};
 use super::power::FreeBody;
 use super::table::{push, push_reactions, Tabulate};
 use super::{output_strokes, within, Analysed, CRANK};
-use crate::error::Result;
+use crate::error::{Error, Result};
 use crate::kinematics::{
     crank, rrp_dyad, rrr_dyad, Branch, CrankState, Guide, Motion, PointMotion, Rotation, RrpState,
     RrrState, Strokes,
@@ -69,7 +69,7 @@ pub struct SixBar {
     /// velocity while the slider moves in the working direction, and is zero on the return).
     pub resistance: f64,
     /// The working direction: +1 when the slider works moving along the guide direction
-    /// (ṡ > 0), −1 against it.
+    /// (ṡ > 0), −1 against it (only its sign counts; it must be finite and non-zero).
     pub working_direction: f64,
     /// How the crank is driven.
     pub drive: Drive,
@@ -185,8 +185,17 @@ impl SixBar {
     ///
     /// # Errors
     /// [`Error::In`](crate::Error::In) naming the part that failed (for example
-    /// `"group II(2,3) RRR"` at a dead point of the RRR group).
+    /// `"group II(2,3) RRR"` at a dead point of the RRR group); a `working_direction` that is
+    /// zero or not finite (`"link 5 (slider)"`).
     pub fn analyse(&self, input: Motion) -> Result<SixBarPosition> {
+        if !(self.working_direction.is_finite() && self.working_direction != 0.0) {
+            return Err(within(LINKS[4])(Error::OutOfRange {
+                name: "working direction",
+                value: self.working_direction,
+                min: -1.0,
+                max: 1.0,
+            }));
+        }
         // 1. Kinematics, in the order the groups are attached.
         let (crank, g23, c, g45) = self.kinematics(input)?;
         // 2. Loads: inertia and weight of every link, the resistance on the slider.

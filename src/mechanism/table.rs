@@ -123,8 +123,20 @@ impl Table {
     /// comma or a quote are quoted.
     ///
     /// # Errors
-    /// The writer's I/O error.
+    /// The writer's I/O error; [`io::ErrorKind::InvalidInput`] when the columns are not all of
+    /// the same length (a table built by hand), before anything is written.
     pub fn write_csv<W: io::Write>(&self, mut w: W) -> io::Result<()> {
+        if let Some(c) = self.columns.iter().find(|c| c.values.len() != self.len()) {
+            return Err(io::Error::new(
+                io::ErrorKind::InvalidInput,
+                format!(
+                    "column {:?} has {} values, the first column {}",
+                    c.name,
+                    c.values.len(),
+                    self.len()
+                ),
+            ));
+        }
         let quote = |s: &str| {
             if s.contains([',', '"', '\n']) {
                 format!("\"{}\"", s.replace('"', "\"\""))
