@@ -98,6 +98,53 @@ fn csv(dir: &Path, name: &str, table: &Table) -> Res<PathBuf> {
     Ok(path)
 }
 
+/// Prints the magnitudes of six joint reactions (named in `names`, given by `reactions`) and
+/// R01 at each plan, with M_b by the chain and by virtual power.
+fn print_reactions<P, F>(plans: &[tmm::Result<P>], names: [&str; 6], reactions: F) -> Res<()>
+where
+    P: Analysed,
+    F: Fn(&P) -> [f64; 6],
+{
+    print!("{:>3}", "pos");
+    for name in names {
+        print!(" {:>8}", format!("{name} N"));
+    }
+    println!(
+        " {:>8} {:>9} {:>9} {:>8}",
+        "R01 N", "Mb N·m", "Mb(VP)", "rel.err"
+    );
+    for (k, p) in plans.iter().enumerate() {
+        let p = p.as_ref().map_err(|e| e.to_string())?;
+        let c = p.power_check()?;
+        print!("{k:>3}");
+        for r in reactions(p) {
+            print!(" {r:>8.1}");
+        }
+        println!(
+            " {:>8.1} {:>9.3} {:>9.3} {:>8.1e}",
+            p.balance().r01.norm(),
+            c.chain,
+            c.virtual_power,
+            c.relative_error()
+        );
+    }
+    Ok(())
+}
+
+/// Draws one chart per entry `(file suffix, title, columns, unit)` as `{name}_{suffix}.svg`.
+fn charts(dir: &Path, name: &str, table: &Table, list: &[(&str, &str, &[&str], &str)]) -> Res<()> {
+    for &(suffix, title, columns, unit) in list {
+        chart(
+            &dir.join(format!("{name}_{suffix}.svg")),
+            title,
+            table,
+            columns,
+            unit,
+        )?;
+    }
+    Ok(())
+}
+
 fn six_bar(dir: &Path) -> Res<()> {
     let m = SixBar::course_example();
     let w1 = 10.0;
@@ -130,87 +177,40 @@ fn six_bar(dir: &Path) -> Res<()> {
             p.c.a.norm()
         );
     }
-    println!(
-        "{:>3} {:>8} {:>8} {:>8} {:>8} {:>8} {:>8} {:>8} {:>9} {:>9} {:>8}",
-        "pos",
-        "R12 N",
-        "R23 N",
-        "R03 N",
-        "R34 N",
-        "R45 N",
-        "R05 N",
-        "R01 N",
-        "Mb N·m",
-        "Mb(VP)",
-        "rel.err"
-    );
-    for (k, p) in plans.iter().enumerate() {
-        let p = p.as_ref().map_err(|e| e.to_string())?;
-        let c = p.power_check()?;
-        println!(
-            "{:>3} {:>8.1} {:>8.1} {:>8.1} {:>8.1} {:>8.1} {:>8.1} {:>8.1} {:>9.3} {:>9.3} {:>8.1e}",
-            k,
-            p.r12.norm(),
-            p.r23.norm(),
-            p.r03.norm(),
-            p.r34.norm(),
-            p.r45.norm(),
-            p.r05.norm(),
-            p.balance.r01.norm(),
-            c.chain,
-            c.virtual_power,
-            c.relative_error()
-        );
-    }
+    print_reactions(&plans, ["R12", "R23", "R03", "R34", "R45", "R05"], |p| {
+        [p.r12, p.r23, p.r03, p.r34, p.r45, p.r05].map(|r| r.norm())
+    })?;
     let cycle = run_cycle(&uniform_inputs(360, 0.0, w1, 0.0), |i| m.analyse(i));
     let (vp, eq) = checks(&cycle)?;
     println!("360 positions: virtual power agrees to {vp:.1e}, links in equilibrium to {eq:.1e}\n");
     let table = Table::of(&cycle);
     csv(dir, "six_bar", &table)?;
-    chart(
-        &dir.join("six_bar_s.svg"),
-        "Six-bar: slider position s5",
-        &table,
-        &["s5 [m]"],
-        "m",
-    )?;
-    chart(
-        &dir.join("six_bar_v.svg"),
-        "Six-bar: slider velocity v5",
-        &table,
-        &["v5 [m/s]"],
-        "m/s",
-    )?;
-    chart(
-        &dir.join("six_bar_a.svg"),
-        "Six-bar: slider acceleration a5",
-        &table,
-        &["a5 [m/s^2]"],
-        "m/s²",
-    )?;
-    chart(
-        &dir.join("six_bar_reactions.svg"),
-        "Six-bar: joint reactions",
+    let reactions = [
+        "|R12| [N]",
+        "|R23| [N]",
+        "|R03| [N]",
+        "|R34| [N]",
+        "|R45| [N]",
+        "|R05| [N]",
+        "|R01| [N]",
+    ];
+    charts(
+        dir,
+        "six_bar",
         &table,
         &[
-            "|R12| [N]",
-            "|R23| [N]",
-            "|R03| [N]",
-            "|R34| [N]",
-            "|R45| [N]",
-            "|R05| [N]",
-            "|R01| [N]",
+            ("s", "Six-bar: slider position s5", &["s5 [m]"], "m"),
+            ("v", "Six-bar: slider velocity v5", &["v5 [m/s]"], "m/s"),
+            (
+                "a",
+                "Six-bar: slider acceleration a5",
+                &["a5 [m/s^2]"],
+                "m/s²",
+            ),
+            ("reactions", "Six-bar: joint reactions", &reactions, "N"),
+            ("mb", "Six-bar: balancing moment", &["Mb [N*m]"], "N·m"),
         ],
-        "N",
-    )?;
-    chart(
-        &dir.join("six_bar_mb.svg"),
-        "Six-bar: balancing moment",
-        &table,
-        &["Mb [N*m]"],
-        "N·m",
-    )?;
-    Ok(())
+    )
 }
 
 fn compressor(dir: &Path) -> Res<()> {
@@ -253,38 +253,9 @@ fn compressor(dir: &Path) -> Res<()> {
             p.gas_forces[1].y
         );
     }
-    println!(
-        "{:>3} {:>8} {:>8} {:>8} {:>8} {:>8} {:>8} {:>8} {:>9} {:>9} {:>8}",
-        "pos",
-        "R12 N",
-        "R23 N",
-        "R03 N",
-        "R14 N",
-        "R45 N",
-        "R05 N",
-        "R01 N",
-        "Mb N·m",
-        "Mb(VP)",
-        "rel.err"
-    );
-    for (k, p) in plans.iter().enumerate() {
-        let p = p.as_ref().map_err(|e| e.to_string())?;
-        let c = p.power_check()?;
-        println!(
-            "{:>3} {:>8.1} {:>8.1} {:>8.1} {:>8.1} {:>8.1} {:>8.1} {:>8.1} {:>9.2} {:>9.2} {:>8.1e}",
-            k,
-            p.r12.norm(),
-            p.r23.norm(),
-            p.r03.norm(),
-            p.r14.norm(),
-            p.r45.norm(),
-            p.r05.norm(),
-            p.balance.r01.norm(),
-            c.chain,
-            c.virtual_power,
-            c.relative_error()
-        );
-    }
+    print_reactions(&plans, ["R12", "R23", "R03", "R14", "R45", "R05"], |p| {
+        [p.r12, p.r23, p.r03, p.r14, p.r45, p.r05].map(|r| r.norm())
+    })?;
     let cycle = run_cycle(&uniform_inputs(360, 0.0, w1, 0.0), |i| m.analyse(i));
     let (vp, eq) = checks(&cycle)?;
     let table = Table::of(&cycle);
@@ -296,50 +267,42 @@ fn compressor(dir: &Path) -> Res<()> {
         (mean * w1).abs() / 1e3
     );
     csv(dir, "compressor", &table)?;
-    chart(
-        &dir.join("compressor_s.svg"),
-        "Compressor: pistons' positions",
-        &table,
-        &["s3 [m]", "s5 [m]"],
-        "m",
-    )?;
-    chart(
-        &dir.join("compressor_v.svg"),
-        "Compressor: pistons' velocities",
-        &table,
-        &["v3 [m/s]", "v5 [m/s]"],
-        "m/s",
-    )?;
-    chart(
-        &dir.join("compressor_a.svg"),
-        "Compressor: pistons' accelerations",
-        &table,
-        &["a3 [m/s^2]", "a5 [m/s^2]"],
-        "m/s²",
-    )?;
-    chart(
-        &dir.join("compressor_reactions.svg"),
-        "Compressor: joint reactions",
+    let reactions = [
+        "|R12| [N]",
+        "|R23| [N]",
+        "|R03| [N]",
+        "|R14| [N]",
+        "|R45| [N]",
+        "|R05| [N]",
+        "|R01| [N]",
+    ];
+    charts(
+        dir,
+        "compressor",
         &table,
         &[
-            "|R12| [N]",
-            "|R23| [N]",
-            "|R03| [N]",
-            "|R14| [N]",
-            "|R45| [N]",
-            "|R05| [N]",
-            "|R01| [N]",
+            (
+                "s",
+                "Compressor: pistons' positions",
+                &["s3 [m]", "s5 [m]"],
+                "m",
+            ),
+            (
+                "v",
+                "Compressor: pistons' velocities",
+                &["v3 [m/s]", "v5 [m/s]"],
+                "m/s",
+            ),
+            (
+                "a",
+                "Compressor: pistons' accelerations",
+                &["a3 [m/s^2]", "a5 [m/s^2]"],
+                "m/s²",
+            ),
+            ("reactions", "Compressor: joint reactions", &reactions, "N"),
+            ("mb", "Compressor: balancing moment", &["Mb [N*m]"], "N·m"),
         ],
-        "N",
-    )?;
-    chart(
-        &dir.join("compressor_mb.svg"),
-        "Compressor: balancing moment",
-        &table,
-        &["Mb [N*m]"],
-        "N·m",
-    )?;
-    Ok(())
+    )
 }
 
 /// A one-line summary of a ready mechanism over 360 positions, its CSV and its M_b chart.
@@ -355,14 +318,17 @@ where
     let peak = mb.iter().fold(0.0f64, |a, m| a.max(m.abs()));
     println!("{title}: max |Mb| = {peak:.2} N·m; virtual power agrees to {vp:.1e}, equilibrium to {eq:.1e}");
     csv(dir, name, &table)?;
-    chart(
-        &dir.join(format!("{name}_mb.svg")),
-        &format!("{title}: balancing moment"),
+    charts(
+        dir,
+        name,
         &table,
-        &["Mb [N*m]"],
-        "N·m",
-    )?;
-    Ok(())
+        &[(
+            "mb",
+            &format!("{title}: balancing moment"),
+            &["Mb [N*m]"],
+            "N·m",
+        )],
+    )
 }
 
 fn main() -> Res<()> {

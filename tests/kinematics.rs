@@ -569,6 +569,37 @@ fn bad_inputs_are_errors_never_nan() {
 }
 
 #[test]
+fn finite_inputs_that_overflow_are_errors_never_infinities() {
+    // A step of a few ulps or values near f64::MAX overflow the differences and the sums.
+    let nf = |r: tmm::Result<Vec<f64>>| matches!(r, Err(Error::NonFinite { .. }));
+    assert!(nf(differentiate(&[1.0, 2.0, 4.0], 1e-320)));
+    assert!(nf(differentiate(&[1e308, -1e308, 1e308], 1.0)));
+    assert!(nf(differentiate_periodic(&[1e308, -1e308, 1e308], 1.0)));
+    assert!(nf(integrate_trapezoid(&[1e308, 1e308, 1e308], 1.0)));
+    // l_OA·ω1² beyond f64::MAX.
+    assert!(matches!(
+        crank(O, 1e300, Motion::new(0.0, 1e200, 0.0)),
+        Err(Error::NonFinite { name: "v_A.y", .. })
+    ));
+    // A non-finite angle never reaches the user's closure.
+    assert!(matches!(
+        transfer_functions(Ok, f64::NAN),
+        Err(Error::NonFinite { name: "phi1", .. })
+    ));
+    // Extremes built by hand with a NaN angle.
+    let e = |input, kind| tmm::kinematics::Extreme {
+        input,
+        output: Motion::default(),
+        kind,
+    };
+    let bad = [e(f64::NAN, ExtremeKind::Max), e(1.0, ExtremeKind::Min)];
+    assert!(matches!(
+        Strokes::new(&bad, Rotation::Ccw),
+        Err(Error::NonFinite { .. })
+    ));
+}
+
+#[test]
 fn near_a_dead_point_the_determinant_shows_the_amplification() {
     // A moves at 1 m/s away from C along the line C A of an RRR dyad that is nearly
     // stretched out (|AC| = l2 + l3 − δ), the one motion the stretched dyad cannot follow:

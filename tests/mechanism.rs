@@ -6,7 +6,7 @@ use nalgebra::Point2;
 use std::f64::consts::{PI, TAU};
 use tmm::kinematics::{Motion, Rotation};
 use tmm::mechanism::{
-    course_inputs, run_cycle, uniform_inputs, Analysed, Compressor, Drive, FourBar,
+    course_inputs, run_cycle, uniform_inputs, Analysed, Column, Compressor, Drive, FourBar,
     RockingCylinder, SixBar, SliderCrank, Table, Tabulate,
 };
 use tmm::{Error, Result};
@@ -200,6 +200,97 @@ fn the_crank_supplies_the_indicator_work_per_cycle() {
     let rel = (w - work).abs() / work;
     println!("indicator work {work:.4} J, ∮M_b dφ = {w:.4} J, relative {rel:.1e}");
     assert!(rel <= 1e-6, "{w} vs {work}");
+}
+
+/// Each resistance opposes its link's motion, so over one turn at constant ω1 it takes its
+/// magnitude times the path it acts over, and ∮ M_b dφ1 equals that work: the four-bar's
+/// moment 2·M_r·Δφ3 over both swings of the rocker, the six-bar's force R·H on the working
+/// stroke only, the rocking cylinder's fluid (F_in + F_out)·2·l1 (l_AC runs between
+/// |O1C| − l1 and |O1C| + l1). A resistance with the wrong sign would do the opposite work.
+#[test]
+fn each_resistance_takes_its_closed_form_work_per_cycle() {
+    let n = 4000;
+    let wrap = |d: f64| (d + PI).rem_euclid(TAU) - PI;
+    let check = |name: &str, w: f64, work: f64| {
+        let rel = (w - work).abs() / work;
+        println!("{name}: ∮M_b dφ = {w:.6} J, closed form {work:.6} J, relative {rel:.1e}");
+        assert!(rel <= 1e-5, "{name}: {w} vs {work}");
+    };
+
+    let four = FourBar::course_example();
+    let s = four.strokes(Rotation::Ccw).unwrap();
+    let phi3 = |phi1| {
+        four.kinematics(Motion::new(phi1, 1.0, 0.0))
+            .unwrap()
+            .1
+            .link3
+            .angle
+    };
+    let swing = wrap(phi3(s.end) - phi3(s.start)).abs();
+    let (w, _) = cycle_work(&run_cycle(&uniform_inputs(n, 0.0, 10.0, 0.0), |i| {
+        four.analyse(i)
+    }));
+    check("four-bar", w, 2.0 * four.resisting_moment * swing);
+
+    let six = SixBar::course_example();
+    let s = six.strokes(Rotation::Ccw).unwrap();
+    let s5 = |phi1| {
+        six.kinematics(Motion::new(phi1, 1.0, 0.0))
+            .unwrap()
+            .3
+            .slide
+            .value
+    };
+    let stroke = (s5(s.end) - s5(s.start)).abs();
+    let (w, _) = cycle_work(&run_cycle(&uniform_inputs(n, 0.0, 10.0, 0.0), |i| {
+        six.analyse(i)
+    }));
+    check("six-bar", w, six.resistance * stroke);
+
+    let rc = RockingCylinder::course_example();
+    let (w, _) = cycle_work(&run_cycle(&uniform_inputs(n, 0.0, 20.0, 0.0), |i| {
+        rc.analyse(i)
+    }));
+    check(
+        "rocking cylinder",
+        w,
+        (rc.force_in + rc.force_out) * 2.0 * rc.l1,
+    );
+}
+
+#[test]
+fn a_six_bar_without_a_working_direction_is_an_error() {
+    for wd in [0.0, f64::NAN, f64::INFINITY] {
+        let m = SixBar {
+            working_direction: wd,
+            ..SixBar::course_example()
+        };
+        let e = m.analyse(Motion::new(1.0, 10.0, 0.0)).unwrap_err();
+        assert!(
+            matches!(e, Error::In { ref part, .. } if part == "link 5 (slider)"),
+            "{e}"
+        );
+    }
+}
+
+#[test]
+fn a_ragged_table_is_an_io_error_not_a_panic() {
+    let t = Table {
+        columns: vec![
+            Column {
+                name: "a".into(),
+                values: vec![1.0, 2.0],
+            },
+            Column {
+                name: "b".into(),
+                values: vec![1.0],
+            },
+        ],
+    };
+    let mut out = Vec::new();
+    let e = t.write_csv(&mut out).unwrap_err();
+    assert_eq!(e.kind(), std::io::ErrorKind::InvalidInput);
+    assert!(out.is_empty());
 }
 
 #[test]

@@ -36,7 +36,9 @@ pub struct CrankState {
 ///
 /// # Errors
 /// [`Error::NonFinite`](crate::Error::NonFinite) or
-/// [`Error::NonPositive`](crate::Error::NonPositive) for a bad input.
+/// [`Error::NonPositive`](crate::Error::NonPositive) for a bad input, or
+/// [`Error::NonFinite`](crate::Error::NonFinite) naming the pin's velocity or acceleration when
+/// finite inputs overflow (for example l_OA·ω1² beyond f64::MAX).
 pub fn crank(o: Point2<f64>, l_oa: f64, phi: Motion) -> Result<CrankState> {
     finite2(["O.x", "O.y"], o.coords)?;
     positive("l_OA", l_oa)?;
@@ -48,5 +50,6 @@ pub fn crank(o: Point2<f64>, l_oa: f64, phi: Motion) -> Result<CrankState> {
         epsilon: phi.accel,
     };
     let a = link.motion_of(o + l_oa * unit(phi.value));
+    a.validate(["A.x", "A.y", "v_A.x", "v_A.y", "a_A.x", "a_A.y"])?;
     Ok(CrankState { a, link })
 }

@@ -222,7 +222,8 @@ impl Strokes {
     /// ```
     ///
     /// # Errors
-    /// [`Error::OutOfRange`] unless there are exactly two extremes.
+    /// [`Error::OutOfRange`] unless there are exactly two extremes; [`Error::NonFinite`] for
+    /// an extreme's input angle that is not finite.
     pub fn new(extremes: &[Extreme], rotation: Rotation) -> Result<Self> {
         let [e0, e1] = extremes else {
             return Err(Error::OutOfRange {
@@ -232,6 +233,8 @@ impl Strokes {
                 max: 2.0,
             });
         };
+        finite("extreme position's input angle", e0.input)?;
+        finite("extreme position's input angle", e1.input)?;
         let sg = rotation.sign();
         // The angle the crank turns through from e0 to e1 in its own sense.
         let forward = normalize(sg * (e1.input - e0.input));

@@ -29,6 +29,14 @@ fn check(y: &[f64], h: f64, min: usize) -> Result<()> {
     Ok(())
 }
 
+/// The result, unless a finite input overflowed (a step of a few ulps, values near f64::MAX).
+fn finite_result(name: &'static str, out: Vec<f64>) -> Result<Vec<f64>> {
+    for &v in &out {
+        finite(name, v)?;
+    }
+    Ok(out)
+}
+
 /// The derivative of a function tabulated at equally spaced nodes (step `h`), by the
 /// three-point formulas: central inside, one-sided second order at both ends.
 ///
@@ -42,7 +50,7 @@ fn check(y: &[f64], h: f64, min: usize) -> Result<()> {
 ///
 /// # Errors
 /// [`Error::OutOfRange`] for fewer than 3 nodes; a non-positive or non-finite `h`, or a
-/// non-finite value.
+/// non-finite value; [`Error::NonFinite`] when the result overflows.
 pub fn differentiate(y: &[f64], h: f64) -> Result<Vec<f64>> {
     check(y, h, 3)?;
     let n = y.len();
@@ -51,7 +59,7 @@ pub fn differentiate(y: &[f64], h: f64) -> Result<Vec<f64>> {
     d.push(k * (-y[2] + 4.0 * y[1] - 3.0 * y[0]));
     d.extend(y.windows(3).map(|w| k * (w[2] - w[0])));
     d.push(k * (3.0 * y[n - 1] - 4.0 * y[n - 2] + y[n - 3]));
-    Ok(d)
+    finite_result("derivative", d)
 }
 
 /// The derivative of a periodic function tabulated over one period at `y.len()` equally
@@ -74,9 +82,12 @@ pub fn differentiate_periodic(y: &[f64], h: f64) -> Result<Vec<f64>> {
     check(y, h, 3)?;
     let n = y.len();
     let k = 0.5 / h;
-    Ok((0..n)
-        .map(|i| k * (y[(i + 1) % n] - y[(i + n - 1) % n]))
-        .collect())
+    finite_result(
+        "derivative",
+        (0..n)
+            .map(|i| k * (y[(i + 1) % n] - y[(i + n - 1) % n]))
+            .collect(),
+    )
 }
 
 /// The running integral I(xᵢ) = ∫ from x₁ to xᵢ of a function tabulated at equally spaced
@@ -92,7 +103,7 @@ pub fn differentiate_periodic(y: &[f64], h: f64) -> Result<Vec<f64>> {
 ///
 /// # Errors
 /// [`Error::OutOfRange`] for fewer than 2 nodes; a non-positive or non-finite `h`, or a
-/// non-finite value.
+/// non-finite value; [`Error::NonFinite`] when the result overflows.
 pub fn integrate_trapezoid(y: &[f64], h: f64) -> Result<Vec<f64>> {
     check(y, h, 2)?;
     let mut acc = 0.0;
@@ -102,5 +113,5 @@ pub fn integrate_trapezoid(y: &[f64], h: f64) -> Result<Vec<f64>> {
         acc += 0.5 * h * (w[0] + w[1]);
         out.push(acc);
     }
-    Ok(out)
+    finite_result("integral", out)
 }

@@ -12,7 +12,7 @@
 //! out of step with the velocity solution.
 
 use super::motion::Motion;
-use crate::error::Result;
+use crate::error::{finite, Result};
 
 /// The transfer functions of an output at the input coordinate `phi1`: `value` = the
 /// position function, `rate` = the first transfer function, `accel` = the second.
@@ -39,10 +39,12 @@ use crate::error::Result;
 /// ```
 ///
 /// # Errors
-/// Whatever `output` returns.
+/// [`Error::NonFinite`](crate::Error::NonFinite) for a non-finite `phi1`; whatever `output`
+/// returns.
 pub fn transfer_functions<F>(output: F, phi1: f64) -> Result<Motion>
 where
     F: FnOnce(Motion) -> Result<Motion>,
 {
+    finite("phi1", phi1)?;
     output(Motion::unit_speed(phi1))
 }

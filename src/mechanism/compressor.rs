@@ -2,11 +2,11 @@
 //! pistons through two RRP groups, II(2,3) and II(4,5).
 
 use super::drive::{Balance, Drive};
-use super::link::LinkMass;
+use super::link::{own_loads, LinkMass};
 use super::power::FreeBody;
 use super::pressure::{IndicatorDiagram, Piston};
-use super::table::{push, push_vector, Tabulate};
-use super::{output_strokes, within, Analysed};
+use super::table::{push, push_reactions, push_vector, Tabulate};
+use super::{output_strokes, within, Analysed, CRANK};
 use crate::error::Result;
 use crate::kinematics::{
     crank, rrp_dyad, Branch, CrankState, Guide, Motion, PointMotion, Rotation, RrpState, Strokes,
@@ -18,13 +18,12 @@ use std::f64::consts::{FRAC_PI_2, PI, TAU};
 
 /// The links' names, for errors and free bodies.
 const LINKS: [&str; 5] = [
-    "link 1 (crank)",
+    CRANK,
     "link 2 (rod 1)",
     "link 3 (piston 1)",
     "link 4 (rod 2)",
     "link 5 (piston 2)",
 ];
-const INPUT: &str = "link 1 (crank)";
 const GROUP_23: &str = "group II(2,3) RRP";
 const GROUP_45: &str = "group II(4,5) RRP";
 
@@ -180,6 +179,9 @@ impl Compressor {
     }
 
     /// The fixed guide of piston 3 (`k = 0`) or 5 (`k = 1`).
+    ///
+    /// # Panics
+    /// For `k` > 1 (there are two guides).
     #[must_use]
     pub fn guide(&self, k: usize) -> Guide {
         Guide::fixed(self.guide_point, self.guide_angles[k])
@@ -193,7 +195,7 @@ impl Compressor {
         &self,
         input: Motion,
     ) -> Result<(CrankState, PointMotion, RrpState, RrpState)> {
-        let crank = crank(self.o1, self.l1, input).map_err(within(INPUT))?;
+        let crank = crank(self.o1, self.l1, input).map_err(within(CRANK))?;
         let (s, c) = self.throw_angle.sin_cos();
         let pin_c = crank.link.point_at(self.l1 * c, self.l1 * s);
         let g23 = rrp_dyad(crank.a, self.guide(0), self.l2, self.branches[0])
@@ -219,12 +221,7 @@ impl Compressor {
     pub fn analyse(&self, input: Motion) -> Result<CompressorPosition> {
         let (crank, c, g23, g45) = self.kinematics(input)?;
         let links = [crank.link, g23.link2, g23.link3, g45.link2, g45.link3];
-        let mut loads = [Load::zero(self.o1); 5];
-        for (k, load) in loads.iter_mut().enumerate() {
-            *load = self.mass[k]
-                .load(&links[k], self.gravity)
-                .map_err(within(LINKS[k]))?;
-        }
+        let loads = own_loads(&self.mass, &links, &LINKS, self.gravity)?;
         let rods = [self.l2, self.l4];
         let pins = [g23.b, g45.b];
         let mut gas_forces = [Vector2::zeros(); 2];
@@ -277,7 +274,7 @@ impl Compressor {
                     Load::force_at(c.p, -r45.r12),
                 ],
             )
-            .map_err(within(INPUT))?;
+            .map_err(within(CRANK))?;
         Ok(CompressorPosition {
             input,
             crank,
@@ -309,16 +306,15 @@ impl Analysed for CompressorPosition {
 
     fn free_bodies(&self) -> Vec<FreeBody> {
         let (a, c, b, d) = (self.crank.a.p, self.c.p, self.group23.b.p, self.group45.b.p);
-        let o1 = self.crank.link.origin.p;
         let f = Load::force_at;
         vec![
-            FreeBody {
-                name: LINKS[0],
-                motion: self.crank.link,
-                loads: vec![self.loads[0]],
-                drive: Some(self.balance.load()),
-                reactions: vec![f(a, -self.r12), f(c, -self.r14), f(o1, self.balance.r01)],
-            },
+            FreeBody::input_link(
+                LINKS[0],
+                &self.crank,
+                self.loads[0],
+                &self.balance,
+                vec![f(a, -self.r12), f(c, -self.r14)],
+            ),
             FreeBody {
                 name: LINKS[1],
                 motion: self.group23.link2,
@@ -368,19 +364,18 @@ impl Tabulate for CompressorPosition {
         push(&mut r, "eps4", "rad/s^2", self.group45.link2.epsilon);
         push_vector(&mut r, "F_gas3", "N", self.gas_forces[0]);
         push_vector(&mut r, "F_gas5", "N", self.gas_forces[1]);
-        for (name, v) in [
-            ("R12", self.r12),
-            ("R23", self.r23),
-            ("R03", self.r03),
-            ("R14", self.r14),
-            ("R45", self.r45),
-            ("R05", self.r05),
-            ("R01", self.balance.r01),
-            ("Fb", self.balance.force),
-        ] {
-            push_vector(&mut r, name, "N", v);
-        }
-        push(&mut r, "Mb", "N*m", self.balance.moment);
+        push_reactions(
+            &mut r,
+            &[
+                ("R12", self.r12),
+                ("R23", self.r23),
+                ("R03", self.r03),
+                ("R14", self.r14),
+                ("R45", self.r45),
+                ("R05", self.r05),
+            ],
+            &self.balance,
+        );
         r
     }
 }

@@ -2,10 +2,10 @@
 //! RRR group).
 
 use super::drive::{Balance, Drive};
-use super::link::LinkMass;
+use super::link::{own_loads, LinkMass};
 use super::power::FreeBody;
-use super::table::{push, push_vector, Tabulate};
-use super::{output_strokes, within, Analysed};
+use super::table::{push, push_reactions, Tabulate};
+use super::{output_strokes, sign, within, Analysed, CRANK};
 use crate::error::Result;
 use crate::kinematics::{
     crank, rrr_dyad, Branch, CrankState, Motion, PointMotion, Rotation, RrrState, Strokes,
@@ -15,8 +15,7 @@ use crate::Load;
 use nalgebra::{Point2, Vector2};
 
 /// The links' names, for errors and free bodies.
-const LINKS: [&str; 3] = ["link 1 (crank)", "link 2 (coupler)", "link 3 (rocker)"];
-const INPUT: &str = "link 1 (crank)";
+const LINKS: [&str; 3] = [CRANK, "link 2 (coupler)", "link 3 (rocker)"];
 const GROUP_23: &str = "group II(2,3) RRR";
 
 /// A four-bar: input link 1 (O1A), RRR group II(2,3) (coupler 2 = AB, rocker 3 = O3B).
@@ -103,7 +102,7 @@ impl FourBar {
     /// # Errors
     /// [`Error::In`](crate::Error::In) naming the part that failed.
     pub fn kinematics(&self, input: Motion) -> Result<(CrankState, RrrState)> {
-        let crank = crank(self.o1, self.l1, input).map_err(within(INPUT))?;
+        let crank = crank(self.o1, self.l1, input).map_err(within(CRANK))?;
         let o3 = PointMotion::fixed(self.o3);
         let g23 = rrr_dyad(crank.a, o3, self.l2, self.l3, self.branch).map_err(within(GROUP_23))?;
         Ok((crank, g23))
@@ -137,12 +136,7 @@ impl FourBar {
     pub fn analyse(&self, input: Motion) -> Result<FourBarPosition> {
         let (crank, g23) = self.kinematics(input)?;
         let links = [crank.link, g23.link2, g23.link3];
-        let mut loads = [Load::zero(self.o1); 3];
-        for (k, load) in loads.iter_mut().enumerate() {
-            *load = self.mass[k]
-                .load(&links[k], self.gravity)
-                .map_err(within(LINKS[k]))?;
-        }
+        let loads = own_loads(&self.mass, &links, &LINKS, self.gravity)?;
         let rocker_moment = -self.resisting_moment * sign(g23.link3.omega);
         let rocker = Load::new(
             loads[2].point,
@@ -161,7 +155,7 @@ impl FourBar {
         let balance = self
             .drive
             .balance(self.o1, &[loads[0], Load::force_at(crank.a.p, -r.r12)])
-            .map_err(within(INPUT))?;
+            .map_err(within(CRANK))?;
         Ok(FourBarPosition {
             input,
             crank,
@@ -176,17 +170,6 @@ impl FourBar {
     }
 }
 
-/// +1, −1, or 0 for a zero (a resistance vanishes at rest).
-pub(crate) fn sign(x: f64) -> f64 {
-    if x > 0.0 {
-        1.0
-    } else if x < 0.0 {
-        -1.0
-    } else {
-        0.0
-    }
-}
-
 impl Analysed for FourBarPosition {
     fn input(&self) -> Motion {
         self.input
@@ -198,16 +181,16 @@ impl Analysed for FourBarPosition {
 
     fn free_bodies(&self) -> Vec<FreeBody> {
         let (a, b) = (self.crank.a.p, self.group23.b.p);
-        let (o1, o3) = (self.crank.link.origin.p, self.group23.link3.origin.p);
+        let o3 = self.group23.link3.origin.p;
         let f = Load::force_at;
         vec![
-            FreeBody {
-                name: LINKS[0],
-                motion: self.crank.link,
-                loads: vec![self.loads[0]],
-                drive: Some(self.balance.load()),
-                reactions: vec![f(a, -self.r12), f(o1, self.balance.r01)],
-            },
+            FreeBody::input_link(
+                LINKS[0],
+                &self.crank,
+                self.loads[0],
+                &self.balance,
+                vec![f(a, -self.r12)],
+            ),
             FreeBody {
                 name: LINKS[1],
                 motion: self.group23.link2,
@@ -241,16 +224,11 @@ impl Tabulate for FourBarPosition {
         push(&mut r, "eps2", "rad/s^2", self.group23.link2.epsilon);
         push(&mut r, "|v_B|", "m/s", self.group23.b.v.norm());
         push(&mut r, "|a_B|", "m/s^2", self.group23.b.a.norm());
-        for (name, v) in [
-            ("R12", self.r12),
-            ("R23", self.r23),
-            ("R03", self.r03),
-            ("R01", self.balance.r01),
-            ("Fb", self.balance.force),
-        ] {
-            push_vector(&mut r, name, "N", v);
-        }
-        push(&mut r, "Mb", "N*m", self.balance.moment);
+        push_reactions(
+            &mut r,
+            &[("R12", self.r12), ("R23", self.r23), ("R03", self.r03)],
+            &self.balance,
+        );
         r
     }
 }

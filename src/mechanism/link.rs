@@ -1,8 +1,10 @@
 //! The mass properties of one link: mass, central moment of inertia, centre of mass.
 
+use super::within;
 use crate::error::{finite, Result};
 use crate::kinematics::{LinkMotion, PointMotion};
 use crate::Load;
+use nalgebra::Point2;
 
 /// The mass properties of a rigid link, with its centre of mass S given on the link.
 ///
@@ -87,4 +89,19 @@ impl LinkMass {
             inertia.moment + weight.moment,
         ))
     }
+}
+
+/// The own loads (inertia and weight, [`LinkMass::load`]) of the links `links` with the mass
+/// properties `mass`, in the same order; an error names its link from `names`.
+pub(crate) fn own_loads<const N: usize>(
+    mass: &[LinkMass; N],
+    links: &[LinkMotion; N],
+    names: &[&'static str; N],
+    gravity: f64,
+) -> Result<[Load; N]> {
+    let mut loads = [Load::zero(Point2::origin()); N];
+    for (k, load) in loads.iter_mut().enumerate() {
+        *load = mass[k].load(&links[k], gravity).map_err(within(names[k]))?;
+    }
+    Ok(loads)
 }

@@ -130,6 +130,21 @@ pub trait Analysed {
     }
 }
 
+/// The input link's name in every ready mechanism, for errors and free bodies.
+pub(crate) const CRANK: &str = "link 1 (crank)";
+
+/// +1, −1, or 0 for a zero: the sense a resistance opposes. Unlike [`f64::signum`] it gives 0
+/// at rest, where a resistance vanishes.
+pub(crate) fn sign(x: f64) -> f64 {
+    if x > 0.0 {
+        1.0
+    } else if x < 0.0 {
+        -1.0
+    } else {
+        0.0
+    }
+}
+
 /// Wraps an error of one part of a mechanism (a group, the input link) so that it names it.
 pub(crate) fn within(part: &'static str) -> impl Fn(Error) -> Error {
     move |e| Error::In {

@@ -7,8 +7,9 @@
 //! Σ (F_i·v_i + M_i·ω_i) over all external, gravity and inertia loads, plus the drive's power
 //! M_b·ω1 (or F_b·v_P), is zero at every position. Both must agree to rounding.
 
+use super::drive::Balance;
 use crate::error::{Error, Result};
-use crate::kinematics::LinkMotion;
+use crate::kinematics::{CrankState, LinkMotion};
 use crate::Load;
 use nalgebra::Point2;
 
@@ -75,6 +76,25 @@ impl Residual {
 }
 
 impl FreeBody {
+    /// The input link `crank` cut free: its own load, the drive's load, the reactions of the
+    /// groups attached to it (`groups`, each −R_1j at its pin) and the frame's R01 at O1.
+    pub(crate) fn input_link(
+        name: &'static str,
+        crank: &CrankState,
+        load: Load,
+        balance: &Balance,
+        mut groups: Vec<Load>,
+    ) -> Self {
+        groups.push(Load::force_at(crank.link.origin.p, balance.r01));
+        Self {
+            name,
+            motion: crank.link,
+            loads: vec![load],
+            drive: Some(balance.load()),
+            reactions: groups,
+        }
+    }
+
     /// The resultant of all loads and reactions on the link, and its scale.
     #[must_use]
     pub fn residual(&self) -> Residual {

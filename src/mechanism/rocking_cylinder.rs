@@ -3,11 +3,10 @@
 //! cylinder pump, or a crank and slotted lever.
 
 use super::drive::{Balance, Drive};
-use super::four_bar::sign;
-use super::link::LinkMass;
+use super::link::{own_loads, LinkMass};
 use super::power::FreeBody;
-use super::table::{push, push_vector, Tabulate};
-use super::{output_strokes, within, Analysed};
+use super::table::{push, push_reactions, push_vector, Tabulate};
+use super::{output_strokes, sign, within, Analysed, CRANK};
 use crate::error::Result;
 use crate::kinematics::{
     crank, rpr_dyad, CrankState, Motion, PointMotion, Rotation, RprState, Strokes,
@@ -17,8 +16,7 @@ use crate::Load;
 use nalgebra::{Point2, Vector2};
 
 /// The links' names, for errors and free bodies.
-const LINKS: [&str; 3] = ["link 1 (crank)", "link 2 (rod)", "link 3 (cylinder)"];
-const INPUT: &str = "link 1 (crank)";
+const LINKS: [&str; 3] = [CRANK, "link 2 (rod)", "link 3 (cylinder)"];
 const GROUP_23: &str = "group II(2,3) RPR";
 
 /// A crank and an RPR group: input link 1 (O1A), rod 2 hinged at A sliding along the axis of
@@ -108,7 +106,7 @@ impl RockingCylinder {
     /// # Errors
     /// [`Error::In`](crate::Error::In) naming the part that failed.
     pub fn kinematics(&self, input: Motion) -> Result<(CrankState, RprState)> {
-        let crank = crank(self.o1, self.l1, input).map_err(within(INPUT))?;
+        let crank = crank(self.o1, self.l1, input).map_err(within(CRANK))?;
         let g23 = rpr_dyad(crank.a, PointMotion::fixed(self.c)).map_err(within(GROUP_23))?;
         Ok((crank, g23))
     }
@@ -129,12 +127,7 @@ impl RockingCylinder {
     pub fn analyse(&self, input: Motion) -> Result<RockingCylinderPosition> {
         let (crank, g23) = self.kinematics(input)?;
         let links = [crank.link, g23.link2, g23.link3];
-        let mut loads = [Load::zero(self.o1); 3];
-        for (k, load) in loads.iter_mut().enumerate() {
-            *load = self.mass[k]
-                .load(&links[k], self.gravity)
-                .map_err(within(LINKS[k]))?;
-        }
+        let loads = own_loads(&self.mass, &links, &LINKS, self.gravity)?;
         // u points from A into the cylinder; moving in (ṡ < 0) the fluid pushes the rod out.
         let u = g23.link2.unit();
         let rate = g23.slide.rate;
@@ -159,7 +152,7 @@ impl RockingCylinder {
         let balance = self
             .drive
             .balance(self.o1, &[loads[0], Load::force_at(crank.a.p, -r.r12)])
-            .map_err(within(INPUT))?;
+            .map_err(within(CRANK))?;
         Ok(RockingCylinderPosition {
             input,
             crank,
@@ -185,21 +178,17 @@ impl Analysed for RockingCylinderPosition {
     }
 
     fn free_bodies(&self) -> Vec<FreeBody> {
-        let (a, o1, c) = (
-            self.crank.a.p,
-            self.crank.link.origin.p,
-            self.group23.link3.origin.p,
-        );
+        let (a, c) = (self.crank.a.p, self.group23.link3.origin.p);
         let f = Load::force_at;
         let on_cylinder = Load::force_at(self.fluid.point, -self.fluid.force);
         vec![
-            FreeBody {
-                name: LINKS[0],
-                motion: self.crank.link,
-                loads: vec![self.loads[0]],
-                drive: Some(self.balance.load()),
-                reactions: vec![f(a, -self.r12), f(o1, self.balance.r01)],
-            },
+            FreeBody::input_link(
+                LINKS[0],
+                &self.crank,
+                self.loads[0],
+                &self.balance,
+                vec![f(a, -self.r12)],
+            ),
             FreeBody {
                 name: LINKS[1],
                 motion: self.group23.link2,
@@ -230,16 +219,11 @@ impl Tabulate for RockingCylinderPosition {
         push(&mut r, "v_rel", "m/s", self.group23.slide.rate);
         push(&mut r, "a_rel", "m/s^2", self.group23.slide.accel);
         push_vector(&mut r, "F_fluid", "N", self.fluid.force);
-        for (name, v) in [
-            ("R12", self.r12),
-            ("R32", self.r32),
-            ("R03", self.r03),
-            ("R01", self.balance.r01),
-            ("Fb", self.balance.force),
-        ] {
-            push_vector(&mut r, name, "N", v);
-        }
-        push(&mut r, "Mb", "N*m", self.balance.moment);
+        push_reactions(
+            &mut r,
+            &[("R12", self.r12), ("R32", self.r32), ("R03", self.r03)],
+            &self.balance,
+        );
         r
     }
 }

@@ -3,11 +3,11 @@
 //! slider 5 along a fixed guide through the connecting rod CD.
 
 use super::drive::{Balance, Drive};
-use super::link::LinkMass;
+use super::link::{own_loads, LinkMass};
 use super::power::FreeBody;
-use super::table::{push, push_vector, Tabulate};
-use super::{output_strokes, within, Analysed};
-use crate::error::Result;
+use super::table::{push, push_reactions, Tabulate};
+use super::{output_strokes, within, Analysed, CRANK};
+use crate::error::{Error, Result};
 use crate::kinematics::{
     crank, rrp_dyad, rrr_dyad, Branch, CrankState, Guide, Motion, PointMotion, Rotation, RrpState,
     RrrState, Strokes,
@@ -18,13 +18,12 @@ use nalgebra::{Point2, Vector2};
 
 /// The links' names, for errors and free bodies.
 const LINKS: [&str; 5] = [
-    "link 1 (crank)",
+    CRANK,
     "link 2 (coupler)",
     "link 3 (rocker)",
     "link 4 (rod)",
     "link 5 (slider)",
 ];
-const INPUT: &str = "link 1 (crank)";
 const GROUP_23: &str = "group II(2,3) RRR";
 const GROUP_45: &str = "group II(4,5) RRP";
 
@@ -70,7 +69,7 @@ pub struct SixBar {
     /// velocity while the slider moves in the working direction, and is zero on the return).
     pub resistance: f64,
     /// The working direction: +1 when the slider works moving along the guide direction
-    /// (ṡ > 0), −1 against it.
+    /// (ṡ > 0), −1 against it (only its sign counts; it must be finite and non-zero).
     pub working_direction: f64,
     /// How the crank is driven.
     pub drive: Drive,
@@ -163,7 +162,7 @@ impl SixBar {
         &self,
         input: Motion,
     ) -> Result<(CrankState, RrrState, PointMotion, RrpState)> {
-        let crank = crank(self.o1, self.l1, input).map_err(within(INPUT))?;
+        let crank = crank(self.o1, self.l1, input).map_err(within(CRANK))?;
         let o2 = PointMotion::fixed(self.o2);
         let g23 =
             rrr_dyad(crank.a, o2, self.l2, self.l3, self.branch23).map_err(within(GROUP_23))?;
@@ -186,18 +185,22 @@ impl SixBar {
     ///
     /// # Errors
     /// [`Error::In`](crate::Error::In) naming the part that failed (for example
-    /// `"group II(2,3) RRR"` at a dead point of the RRR group).
+    /// `"group II(2,3) RRR"` at a dead point of the RRR group); a `working_direction` that is
+    /// zero or not finite (`"link 5 (slider)"`).
     pub fn analyse(&self, input: Motion) -> Result<SixBarPosition> {
+        if !(self.working_direction.is_finite() && self.working_direction != 0.0) {
+            return Err(within(LINKS[4])(Error::OutOfRange {
+                name: "working direction",
+                value: self.working_direction,
+                min: -1.0,
+                max: 1.0,
+            }));
+        }
         // 1. Kinematics, in the order the groups are attached.
         let (crank, g23, c, g45) = self.kinematics(input)?;
         // 2. Loads: inertia and weight of every link, the resistance on the slider.
         let links = [crank.link, g23.link2, g23.link3, g45.link2, g45.link3];
-        let mut loads = [Load::zero(self.o1); 5];
-        for (k, load) in loads.iter_mut().enumerate() {
-            *load = self.mass[k]
-                .load(&links[k], self.gravity)
-                .map_err(within(LINKS[k]))?;
-        }
+        let loads = own_loads(&self.mass, &links, &LINKS, self.gravity)?;
         let v5 = g45.slide.rate;
         let resistance = if v5 * self.working_direction > 0.0 {
             -v5.signum() * self.resistance * self.guide().unit()
@@ -230,7 +233,7 @@ impl SixBar {
         let balance = self
             .drive
             .balance(self.o1, &[loads[0], Load::force_at(crank.a.p, -r23.r12)])
-            .map_err(within(INPUT))?;
+            .map_err(within(CRANK))?;
         Ok(SixBarPosition {
             input,
             crank,
@@ -262,7 +265,7 @@ impl Analysed for SixBarPosition {
 
     fn free_bodies(&self) -> Vec<FreeBody> {
         let (a, b, c, d) = (self.crank.a.p, self.group23.b.p, self.c.p, self.group45.b.p);
-        let (o1, o2) = (self.crank.link.origin.p, self.group23.link3.origin.p);
+        let o2 = self.group23.link3.origin.p;
         let f = Load::force_at;
         let body = |name, motion, loads, reactions| FreeBody {
             name,
@@ -272,15 +275,13 @@ impl Analysed for SixBarPosition {
             reactions,
         };
         vec![
-            FreeBody {
-                drive: Some(self.balance.load()),
-                ..body(
-                    LINKS[0],
-                    self.crank.link,
-                    vec![self.loads[0]],
-                    vec![f(a, -self.r12), f(o1, self.balance.r01)],
-                )
-            },
+            FreeBody::input_link(
+                LINKS[0],
+                &self.crank,
+                self.loads[0],
+                &self.balance,
+                vec![f(a, -self.r12)],
+            ),
             body(
                 LINKS[1],
                 self.group23.link2,
@@ -326,19 +327,18 @@ impl Tabulate for SixBarPosition {
         push(&mut r, "|a_B|", "m/s^2", self.group23.b.a.norm());
         push(&mut r, "|v_C|", "m/s", self.c.v.norm());
         push(&mut r, "|a_C|", "m/s^2", self.c.a.norm());
-        for (name, v) in [
-            ("R12", self.r12),
-            ("R23", self.r23),
-            ("R03", self.r03),
-            ("R34", self.r34),
-            ("R45", self.r45),
-            ("R05", self.r05),
-            ("R01", self.balance.r01),
-            ("Fb", self.balance.force),
-        ] {
-            push_vector(&mut r, name, "N", v);
-        }
-        push(&mut r, "Mb", "N*m", self.balance.moment);
+        push_reactions(
+            &mut r,
+            &[
+                ("R12", self.r12),
+                ("R23", self.r23),
+                ("R03", self.r03),
+                ("R34", self.r34),
+                ("R45", self.r45),
+                ("R05", self.r05),
+            ],
+            &self.balance,
+        );
         r
     }
 }

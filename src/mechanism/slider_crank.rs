@@ -2,11 +2,11 @@
 //! connecting rod AB (one RRP group), with the gas force of an indicator diagram.
 
 use super::drive::{Balance, Drive};
-use super::link::LinkMass;
+use super::link::{own_loads, LinkMass};
 use super::power::FreeBody;
 use super::pressure::{IndicatorDiagram, Piston};
-use super::table::{push, push_vector, Tabulate};
-use super::{output_strokes, within, Analysed};
+use super::table::{push, push_reactions, push_vector, Tabulate};
+use super::{output_strokes, within, Analysed, CRANK};
 use crate::error::Result;
 use crate::kinematics::{
     crank, rrp_dyad, Branch, CrankState, Guide, Motion, Rotation, RrpState, Strokes,
@@ -17,12 +17,7 @@ use nalgebra::{Point2, Vector2};
 use std::f64::consts::PI;
 
 /// The links' names, for errors and free bodies.
-const LINKS: [&str; 3] = [
-    "link 1 (crank)",
-    "link 2 (connecting rod)",
-    "link 3 (piston)",
-];
-const INPUT: &str = "link 1 (crank)";
+const LINKS: [&str; 3] = [CRANK, "link 2 (connecting rod)", "link 3 (piston)"];
 const GROUP_23: &str = "group II(2,3) RRP";
 
 /// A slider-crank: input link 1 (O1A), RRP group II(2,3) (connecting rod 2 = AB, piston 3 at
@@ -137,7 +132,7 @@ impl SliderCrank {
     /// # Errors
     /// [`Error::In`](crate::Error::In) naming the part that failed.
     pub fn kinematics(&self, input: Motion) -> Result<(CrankState, RrpState)> {
-        let crank = crank(self.o1, self.l1, input).map_err(within(INPUT))?;
+        let crank = crank(self.o1, self.l1, input).map_err(within(CRANK))?;
         let g23 =
             rrp_dyad(crank.a, self.guide(), self.l2, self.branch).map_err(within(GROUP_23))?;
         Ok((crank, g23))
@@ -159,12 +154,7 @@ impl SliderCrank {
     pub fn analyse(&self, input: Motion) -> Result<SliderCrankPosition> {
         let (crank, g23) = self.kinematics(input)?;
         let links = [crank.link, g23.link2, g23.link3];
-        let mut loads = [Load::zero(self.o1); 3];
-        for (k, load) in loads.iter_mut().enumerate() {
-            *load = self.mass[k]
-                .load(&links[k], self.gravity)
-                .map_err(within(LINKS[k]))?;
-        }
+        let loads = own_loads(&self.mass, &links, &LINKS, self.gravity)?;
         let gas_force = match &self.diagram {
             Some(d) => Piston::new(
                 self.o1,
@@ -192,7 +182,7 @@ impl SliderCrank {
         let balance = self
             .drive
             .balance(self.o1, &[loads[0], Load::force_at(crank.a.p, -r.r12)])
-            .map_err(within(INPUT))?;
+            .map_err(within(CRANK))?;
         Ok(SliderCrankPosition {
             input,
             crank,
@@ -218,16 +208,16 @@ impl Analysed for SliderCrankPosition {
     }
 
     fn free_bodies(&self) -> Vec<FreeBody> {
-        let (a, b, o1) = (self.crank.a.p, self.group23.b.p, self.crank.link.origin.p);
+        let (a, b) = (self.crank.a.p, self.group23.b.p);
         let f = Load::force_at;
         vec![
-            FreeBody {
-                name: LINKS[0],
-                motion: self.crank.link,
-                loads: vec![self.loads[0]],
-                drive: Some(self.balance.load()),
-                reactions: vec![f(a, -self.r12), f(o1, self.balance.r01)],
-            },
+            FreeBody::input_link(
+                LINKS[0],
+                &self.crank,
+                self.loads[0],
+                &self.balance,
+                vec![f(a, -self.r12)],
+            ),
             FreeBody {
                 name: LINKS[1],
                 motion: self.group23.link2,
@@ -257,16 +247,11 @@ impl Tabulate for SliderCrankPosition {
         push(&mut r, "omega2", "rad/s", self.group23.link2.omega);
         push(&mut r, "eps2", "rad/s^2", self.group23.link2.epsilon);
         push_vector(&mut r, "F_gas", "N", self.gas_force);
-        for (name, v) in [
-            ("R12", self.r12),
-            ("R23", self.r23),
-            ("R03", self.r03),
-            ("R01", self.balance.r01),
-            ("Fb", self.balance.force),
-        ] {
-            push_vector(&mut r, name, "N", v);
-        }
-        push(&mut r, "Mb", "N*m", self.balance.moment);
+        push_reactions(
+            &mut r,
+            &[("R12", self.r12), ("R23", self.r23), ("R03", self.r03)],
+            &self.balance,
+        );
         r
     }
 }

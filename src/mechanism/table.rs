@@ -1,5 +1,6 @@
 //! Results over a cycle as named columns, written as CSV.
 
+use super::drive::Balance;
 use crate::error::Result;
 use nalgebra::Vector2;
 use std::io;
@@ -39,6 +40,21 @@ pub(crate) fn push_vector(row: &mut Vec<(String, f64)>, name: &str, unit: &str, 
 /// Appends one scalar column `"{name} [unit]"`.
 pub(crate) fn push(row: &mut Vec<(String, f64)>, name: &str, unit: &str, value: f64) {
     row.push((format!("{name} [{unit}]"), value));
+}
+
+/// Appends the joint reactions `reactions` (x, y and magnitude each, N), then the balance's
+/// R01 and F_b (N) and M_b (N·m): the last columns of every ready mechanism's row.
+pub(crate) fn push_reactions(
+    row: &mut Vec<(String, f64)>,
+    reactions: &[(&str, Vector2<f64>)],
+    balance: &Balance,
+) {
+    for &(name, v) in reactions {
+        push_vector(row, name, "N", v);
+    }
+    push_vector(row, "R01", "N", balance.r01);
+    push_vector(row, "Fb", "N", balance.force);
+    push(row, "Mb", "N*m", balance.moment);
 }
 
 impl Table {
@@ -107,8 +123,20 @@ impl Table {
     /// comma or a quote are quoted.
     ///
     /// # Errors
-    /// The writer's I/O error.
+    /// The writer's I/O error; [`io::ErrorKind::InvalidInput`] when the columns are not all of
+    /// the same length (a table built by hand), before anything is written.
     pub fn write_csv<W: io::Write>(&self, mut w: W) -> io::Result<()> {
+        if let Some(c) = self.columns.iter().find(|c| c.values.len() != self.len()) {
+            return Err(io::Error::new(
+                io::ErrorKind::InvalidInput,
+                format!(
+                    "column {:?} has {} values, the first column {}",
+                    c.name,
+                    c.values.len(),
+                    self.len()
+                ),
+            ));
+        }
         let quote = |s: &str| {
             if s.contains([',', '"', '\n']) {
                 format!("\"{}\"", s.replace('"', "\"\""))
