@@ -297,17 +297,23 @@ pub fn kinetic_energy<S: LagrangeSystem + ?Sized>(
 /// d(T + Π)/dt = applied − dissipated.
 ///
 /// # Errors
-/// [`Error::NonFinite`] for a non-finite t, q or q̇ (or a power that is not finite); as
-/// [`LagrangeSystem::forces`] and [`LagrangeSystem::damping`].
+/// [`Error::NonFiniteState`] naming t for a non-finite t, q or q̇, or a power that
+/// overflows; as [`LagrangeSystem::forces`] and [`LagrangeSystem::damping`].
 pub fn powers<S: LagrangeSystem + ?Sized>(
     sys: &S,
     t: f64,
     q: &Vector2<f64>,
     qd: &Vector2<f64>,
 ) -> Result<(f64, f64)> {
-    finite("t", t)?;
-    finite_q_qd(q, qd)?;
-    let applied = finite("applied power Q·q_dot", sys.forces(t, q, qd)?.dot(qd))?;
-    let dissipated = finite("dissipated power", qd.dot(&(sys.damping(q)? * qd)))?;
-    Ok((applied, dissipated))
+    let non_finite = Error::NonFiniteState { time: t };
+    if !State::new(t, *q, *qd).is_finite() {
+        return Err(non_finite);
+    }
+    let applied = sys.forces(t, q, qd)?.dot(qd);
+    let dissipated = qd.dot(&(sys.damping(q)? * qd));
+    if applied.is_finite() && dissipated.is_finite() {
+        Ok((applied, dissipated))
+    } else {
+        Err(non_finite)
+    }
 }
