@@ -1088,3 +1088,244 @@ fn gear_drives_accelerations_are_the_seeds_corrected_87_88_and_127_128() {
     let ours = accelerations(&g, 0.0, &q, &qd).unwrap();
     assert!((ours - Vector2::new(p1, p6)).norm() < 1e-12 * ours.norm());
 }
+
+/// A rotor of 0.5 kg·m² under a viscous moment −0.25·ω (ω(t) = ω0·e^(−t/2)) beside a
+/// second coordinate that never moves; `short` outputs fewer values than it names.
+struct SpinDown {
+    short: bool,
+}
+impl LagrangeSystem for SpinDown {
+    fn inertia(&self, _: &Vector2<f64>) -> tmm::Result<Matrix2<f64>> {
+        Ok(Matrix2::new(0.5, 0.0, 0.0, 1.0))
+    }
+    fn forces(&self, _: f64, _: &Vector2<f64>, _: &Vector2<f64>) -> tmm::Result<Vector2<f64>> {
+        Ok(Vector2::zeros())
+    }
+    fn damping(&self, _: &Vector2<f64>) -> tmm::Result<Matrix2<f64>> {
+        Ok(Matrix2::new(0.25, 0.0, 0.0, 0.0))
+    }
+    fn output_names(&self) -> Vec<&'static str> {
+        vec!["omega", "twice omega"]
+    }
+    fn outputs(
+        &self,
+        _: f64,
+        _: &Vector2<f64>,
+        qd: &Vector2<f64>,
+        out: &mut Vec<f64>,
+    ) -> tmm::Result<()> {
+        out.push(qd[0]);
+        if !self.short {
+            out.push(2.0 * qd[0]);
+        }
+        Ok(())
+    }
+}
+
+#[test]
+fn dormand_prince_first_same_as_last_saves_an_evaluation_and_changes_nothing() {
+    let sys = SpinDown { short: false };
+    let dp = Dopri5::new(1e-9).unwrap();
+    let s0 = State::new(0.0, Vector2::zeros(), Vector2::new(2.0, 0.0));
+    // One step: the last stage is q̈ at the end state, to the last bit.
+    let a = dp.advance(&sys, &s0, 0.1).unwrap();
+    let end = a.end_acceleration.unwrap();
+    assert_eq!(
+        end,
+        accelerations(&sys, a.state.t, &a.state.q, &a.state.qd).unwrap()
+    );
+    // Given it, the next step is the same step for one evaluation less.
+    let fresh = dp.advance(&sys, &a.state, a.h_next).unwrap();
+    let reused = dp
+        .advance_from(&sys, &a.state, a.h_next, Some(end))
+        .unwrap();
+    assert_eq!((fresh.state, fresh.h_next), (reused.state, reused.h_next));
+    assert_eq!(fresh.evaluations, reused.evaluations + 1);
+    // A run passes it on: the same motion as stepping without reuse, and exactly one
+    // evaluation saved per step after the first.
+    let t_end = 3.0;
+    let r = run(&sys, &dp, s0, &RunOptions::until(t_end, 0.1)).unwrap();
+    let (mut s, mut h, mut evals, mut steps) = (s0, 0.1_f64, 0, 0);
+    while s.t < t_end - 1e-12 {
+        let a = dp.advance(&sys, &s, h.min(t_end - s.t)).unwrap();
+        if h < t_end - s.t {
+            h = a.h_next;
+        }
+        (s, evals, steps) = (a.state, evals + a.evaluations, steps + 1);
+    }
+    assert_eq!(r.steps, steps);
+    assert_eq!((r.last.q, r.last.qd), (s.q, s.qd));
+    assert_eq!(r.evaluations, evals - (steps - 1));
+    assert!((r.last.qd[0] - 2.0 * (-0.5 * t_end).exp()).abs() < 1e-8);
+}
+
+#[test]
+fn dormand_prince_pure_relative_tolerance_and_tiny_requested_steps() {
+    // atol = 0 with a coordinate at rest: its error and its scale are both zero (0/0 used
+    // to reject every step).
+    let sys = SpinDown { short: false };
+    let dp = Dopri5 {
+        rtol: 1e-9,
+        atol: 0.0,
+    };
+    let s0 = State::new(0.0, Vector2::zeros(), Vector2::new(2.0, 0.0));
+    let r = run(&sys, &dp, s0, &RunOptions::until(1.0, 0.1)).unwrap();
+    assert!((r.last.qd[0] - 2.0 * (-0.5f64).exp()).abs() < 1e-8);
+    assert_eq!(r.last.q[1], 0.0);
+    // A step the caller asks for below the controller's floor is taken, not refused.
+    let a = Dopri5::new(1e-9)
+        .unwrap()
+        .advance(&sys, &s0, 1e-13)
+        .unwrap();
+    assert_eq!(a.state.t, 1e-13);
+    assert!((a.state.qd[0] - 2.0 * (-0.5e-13f64).exp()).abs() < 1e-15);
+}
+
+#[test]
+fn run_options_cannot_loop_for_ever_panic_or_stop_early() {
+    let sys = SpinDown { short: false };
+    let s0 = State::new(0.0, Vector2::zeros(), Vector2::new(2.0, 0.0));
+    // A step longer than the whole run takes the run to its end in one step.
+    for h in [1.0, 10.0, 1e13] {
+        let r = run(&sys, &Rk4, s0, &RunOptions::until(1.0, h)).unwrap();
+        assert_eq!((r.steps, r.last.t), (1, 1.0), "h = {h}");
+        let one = Rk4.step(&sys, &s0, 1.0).unwrap();
+        assert_eq!(r.last.qd, one.qd);
+    }
+    // A step below the rounding of t cannot advance the run: an error, not an endless loop.
+    let late = State::new(1e10, Vector2::zeros(), Vector2::new(2.0, 0.0));
+    let e = run(&sys, &Rk4, late, &RunOptions::until(1e10 + 1.0, 1e-7)).unwrap_err();
+    assert!(matches!(e, Error::Singular { what: "run", .. }), "{e}");
+    let e = run(
+        &sys,
+        &FiniteIncrement,
+        late,
+        &RunOptions::until(1e10 + 1.0, 1e-7),
+    )
+    .unwrap_err();
+    assert!(matches!(e, Error::Singular { what: "run", .. }), "{e}");
+    // Bad numbers in the options are errors.
+    let mut bad = Vec::new();
+    for (t_end, h) in [
+        (f64::NAN, 0.1),
+        (1.0, f64::NAN),
+        (1.0, f64::INFINITY),
+        (0.0, 0.1),
+        (-1.0, 0.1),
+    ] {
+        bad.push(RunOptions::until(t_end, h));
+    }
+    let mut o = RunOptions::until(1.0, 0.1);
+    o.record_every = 0;
+    bad.push(o);
+    // (Hold zero would make any two steps with equal accelerations a drift verdict.)
+    for (tol, hold) in [
+        (0.0, 1.0),
+        (f64::NAN, 1.0),
+        (1e-3, 0.0),
+        (1e-3, -1.0),
+        (1e-3, f64::NAN),
+    ] {
+        let mut o = RunOptions::until(1.0, 0.1);
+        o.steady = Some(Steady { tol, hold });
+        bad.push(o);
+    }
+    for value in [f64::NAN, f64::INFINITY] {
+        let mut o = RunOptions::until(1.0, 0.1);
+        o.reach = Some(Reach {
+            watch: Watch::Speed(0),
+            value,
+            direction: Direction::Falling,
+        });
+        bad.push(o);
+    }
+    for watch in [Watch::Coordinate(2), Watch::Speed(7), Watch::Output(2)] {
+        let mut o = RunOptions::until(1.0, 0.1);
+        o.reach = Some(Reach {
+            watch,
+            value: 1.0,
+            direction: Direction::Either,
+        });
+        bad.push(o);
+    }
+    for o in &bad {
+        for r in [
+            run(&sys, &Rk4, s0, o),
+            run(&sys, &FiniteIncrement, s0, o),
+            run(&sys, &Dopri5::new(1e-8).unwrap(), s0, o),
+        ] {
+            assert!(r.is_err(), "{o:?}");
+        }
+    }
+    // Steady once |q̈| = 0.5 ω ≤ 0.1, i.e. ω ≤ 0.2 from t = 2 ln 10 = 4.605 s, held 3 s (longer
+    // than the time constant 2 s, so that the decay is not taken for a drift).
+    let mut o = RunOptions::until(10.0, 0.01);
+    o.steady = Some(Steady {
+        tol: 0.1,
+        hold: 3.0,
+    });
+    for r in [
+        run(&sys, &Rk4, s0, &o).unwrap(),
+        run(&sys, &Dopri5::new(1e-10).unwrap(), s0, &o).unwrap(),
+    ] {
+        let Outcome::Steady { t } = r.outcome else {
+            panic!("{:?}", r.outcome)
+        };
+        let t_s = 2.0 * 10f64.ln() + 3.0;
+        assert!(t >= t_s && t < t_s + 0.5, "{t}");
+    }
+    // A system that gives fewer outputs than it names: an error, not an index panic.
+    let mut o = RunOptions::until(1.0, 0.1);
+    o.reach = Some(Reach {
+        watch: Watch::Output(1),
+        value: 1.0,
+        direction: Direction::Falling,
+    });
+    let e = run(&SpinDown { short: true }, &Rk4, s0, &o).unwrap_err();
+    assert!(matches!(e, Error::OutOfRange { .. }), "{e}");
+}
+
+#[test]
+fn energies_and_closed_forms_refuse_non_finite_input() {
+    let sys = SpinDown { short: false };
+    let (q, nan) = (Vector2::zeros(), Vector2::new(f64::NAN, 0.0));
+    assert!(tmm::dynamics::kinetic_energy(&sys, &q, &nan).is_err());
+    assert!(tmm::dynamics::kinetic_energy(&sys, &nan, &q).is_err());
+    assert!(tmm::dynamics::powers(&sys, 0.0, &q, &nan).is_err());
+    assert!(tmm::dynamics::powers(&sys, f64::NAN, &q, &q).is_err());
+    let huge = Vector2::new(1e200, 0.0);
+    assert!(tmm::dynamics::kinetic_energy(&sys, &q, &huge).is_err());
+    // T = ½·0.5·2² = 1 J; no applied load; dissipated q̇ᵀBq̇ = 0.25·2² = 1 W.
+    assert_eq!(
+        tmm::dynamics::kinetic_energy(&sys, &q, &Vector2::new(2.0, 0.0)),
+        Ok(1.0)
+    );
+    assert_eq!(
+        tmm::dynamics::powers(&sys, 0.0, &q, &Vector2::new(2.0, 0.0)),
+        Ok((0.0, 1.0))
+    );
+
+    let d = CoaxialPropellers::default();
+    let s0 = State::at_rest(Vector2::zeros());
+    assert!(d.exact(&s0, f64::NAN).is_err());
+    assert!(d.exact(&State::new(0.0, nan, q), 1.0).is_err());
+    let arm = RpArm::default().decoupled();
+    assert!(arm.closed_form(&s0, f64::INFINITY).is_err());
+    assert!(
+        arm.closed_form(&s0, -1e6).is_err(),
+        "e^(+c·1e6/m) overflows"
+    );
+    assert!(arm.closed_form(&State::new(f64::NAN, q, q), 1.0).is_err());
+
+    // A constant-moment motor (b = 0): no damping, so the accelerations are those of the
+    // start for ever (they used to be 0/0).
+    let mut c = CoaxialPropellers::default();
+    c.motor.b = 0.0;
+    let drift = c.drift_acceleration().unwrap();
+    let a0 = accelerations(&c, 0.0, &q, &Vector2::new(50.0, -30.0)).unwrap();
+    assert!((drift - a0).norm() <= 1e-12 * a0.norm(), "{drift} vs {a0}");
+    c.motor.b = -1.0;
+    assert!(c.drift_acceleration().is_err());
+    c.motor.b = f64::NAN;
+    assert!(c.drift_acceleration().is_err() && c.exact(&s0, 1.0).is_err());
+}

@@ -1,6 +1,6 @@
 //! The adaptive embedded Runge–Kutta method of Dormand and Prince, order 5(4).
 
-use nalgebra::Vector4;
+use nalgebra::{Vector2, Vector4};
 
 use super::stepper::{check_result, check_step, pack, rhs, unpack, Advance, Stepper};
 use super::system::{LagrangeSystem, State};
@@ -134,29 +134,63 @@ impl Dopri5 {
         Ok(())
     }
 
-    /// One Dormand–Prince step of exactly `h`: the fifth-order solution and the error
-    /// estimate.
-    fn trial<S: LagrangeSystem + ?Sized>(
+    /// The weighted RMS norm of the error estimate `err` of the step y → y5 (see the type's
+    /// docs). A component whose scale is zero (atol = 0 and yᵢ = ŷᵢ = 0) counts only if its
+    /// error is not zero: 0/0 would otherwise reject every step of a machine with a
+    /// coordinate at rest.
+    fn error_norm(&self, y: &Vector4<f64>, y5: &Vector4<f64>, err: &Vector4<f64>) -> f64 {
+        let mut sum = 0.0;
+        for i in 0..4 {
+            if err[i] != 0.0 {
+                let sc = self.atol + self.rtol * y[i].abs().max(y5[i].abs());
+                sum += (err[i] / sc).powi(2);
+            }
+        }
+        (sum / 4.0).sqrt()
+    }
+
+    /// The fifth-order solution of one step of exactly `h` from (t, y), whose first stage
+    /// k1 = f(t, y) is given, and the stages k1…k6 (5 evaluations).
+    fn solution<S: LagrangeSystem + ?Sized>(
         sys: &S,
-        s: &State,
+        t: f64,
+        y: &Vector4<f64>,
+        k1: &Vector4<f64>,
         h: f64,
-    ) -> Result<(Vector4<f64>, Vector4<f64>)> {
-        let y = pack(s);
-        let mut k = [Vector4::zeros(); 7];
-        for i in 0..7 {
-            let mut yi = y;
+    ) -> Result<(Vector4<f64>, [Vector4<f64>; 6])> {
+        let mut k = [*k1; 6];
+        for i in 1..6 {
+            let mut yi = *y;
             for (j, kj) in k.iter().enumerate().take(i) {
                 yi += h * A[i][j] * kj;
             }
-            k[i] = rhs(sys, s.t + C[i] * h, &yi)?;
+            k[i] = rhs(sys, t + C[i] * h, &yi)?;
         }
-        let mut y5 = y;
+        let mut y5 = *y;
+        for (b, ki) in B.iter().zip(&k) {
+            y5 += h * b * ki;
+        }
+        Ok((y5, k))
+    }
+
+    /// One step of exactly `h` (k1 given): the fifth-order solution, the error estimate and
+    /// the last stage k7 = f(t + h, y5), the next step's k1 (6 evaluations).
+    fn trial<S: LagrangeSystem + ?Sized>(
+        sys: &S,
+        t: f64,
+        y: &Vector4<f64>,
+        k1: &Vector4<f64>,
+        h: f64,
+    ) -> Result<(Vector4<f64>, Vector4<f64>, Vector4<f64>)> {
+        let (y5, k) = Self::solution(sys, t, y, k1, h)?;
+        // C[6] = 1: the last stage is taken at t + h, the time the accepted state carries.
+        let k7 = rhs(sys, t + C[6] * h, &y5)?;
         let mut err = Vector4::zeros();
-        for i in 0..7 {
-            y5 += h * B[i] * k[i];
-            err += h * E[i] * k[i];
+        for (e, ki) in E.iter().zip(&k) {
+            err += h * e * ki;
         }
-        Ok((y5, err))
+        err += h * E[6] * k7;
+        Ok((y5, err, k7))
     }
 }
 
@@ -169,13 +203,16 @@ impl Stepper for Dopri5 {
         5
     }
 
+    /// Six: a step without error control needs no last stage (its weight in the
+    /// fifth-order solution is zero).
     fn evaluations_per_step(&self) -> usize {
-        7
+        6
     }
 
     fn step<S: LagrangeSystem + ?Sized>(&self, sys: &S, s: &State, h: f64) -> Result<State> {
         check_step(s, h)?;
-        let (y5, _) = Self::trial(sys, s, h)?;
+        let y = pack(s);
+        let (y5, _) = Self::solution(sys, s.t, &y, &rhs(sys, s.t, &y)?, h)?;
         check_result(unpack(s.t + h, &y5))
     }
 
@@ -184,37 +221,46 @@ impl Stepper for Dopri5 {
     /// tolerance; [`Error::Singular`] when the step size the accuracy needs falls below
     /// 10⁻¹²·max(1, |t|).
     fn advance<S: LagrangeSystem + ?Sized>(&self, sys: &S, s: &State, h: f64) -> Result<Advance> {
+        self.advance_from(sys, s, h, None)
+    }
+
+    /// The first stage of a step is q̈ at its start, the same as the last stage of the step
+    /// before ("first same as last"): given `start_acceleration`, an accepted step costs six
+    /// evaluations instead of seven. A rejected trial reuses it too.
+    ///
+    /// # Errors
+    /// As [`advance`](Stepper::advance).
+    fn advance_from<S: LagrangeSystem + ?Sized>(
+        &self,
+        sys: &S,
+        s: &State,
+        h: f64,
+        start_acceleration: Option<Vector2<f64>>,
+    ) -> Result<Advance> {
         check_step(s, h)?;
         self.check()?;
         let y = pack(s);
+        let (k1, mut evaluations) = match start_acceleration {
+            Some(a) if a.iter().all(|v| v.is_finite()) => (Vector4::new(y[2], y[3], a[0], a[1]), 0),
+            _ => (rhs(sys, s.t, &y)?, 1),
+        };
+        // The step the caller asks for is tried as it is; only a step the error control
+        // shrinks below this is a sign of a singular or too stiff motion.
         let h_min = 1e-12 * s.t.abs().max(1.0);
         let mut h = h;
-        let mut evaluations = 0;
         loop {
-            if h < h_min {
-                return Err(Error::Singular {
-                    what: "adaptive step (Dormand-Prince)",
-                    measure: "step size h",
-                    value: h,
-                });
-            }
             // A trial that overflows is a rejected step, not yet a divergence.
-            let trial = match Self::trial(sys, s, h) {
+            let trial = match Self::trial(sys, s.t, &y, &k1, h) {
                 Ok(v) => Some(v),
                 Err(Error::NonFiniteState { .. }) => None,
                 Err(e) => return Err(e),
             };
-            evaluations += 7;
-            let norm = trial.map_or(f64::INFINITY, |(y5, err)| {
-                let mut sum = 0.0;
-                for i in 0..4 {
-                    let sc = self.atol + self.rtol * y[i].abs().max(y5[i].abs());
-                    sum += (err[i] / sc).powi(2);
-                }
-                (sum / 4.0).sqrt()
-            });
-            if norm.is_finite() && norm <= 1.0 {
-                let (y5, _) = trial.expect("finite norm implies a trial");
+            evaluations += 6;
+            let norm = trial
+                .as_ref()
+                .map_or(f64::INFINITY, |(y5, err, _)| self.error_norm(&y, y5, err));
+            // NaN and ∞ fail the test: such a trial is rejected.
+            if let Some((y5, _, k7)) = trial.filter(|_| norm <= 1.0) {
                 let grow = if norm == 0.0 {
                     5.0
                 } else {
@@ -224,6 +270,7 @@ impl Stepper for Dopri5 {
                     state: check_result(unpack(s.t + h, &y5))?,
                     h_next: h * grow,
                     evaluations,
+                    end_acceleration: Some(Vector2::new(k7[2], k7[3])),
                 });
             }
             let shrink = if norm.is_finite() {
@@ -232,6 +279,13 @@ impl Stepper for Dopri5 {
                 0.2
             };
             h *= shrink;
+            if h < h_min {
+                return Err(Error::Singular {
+                    what: "adaptive step (Dormand-Prince)",
+                    measure: "step size h",
+                    value: h,
+                });
+            }
         }
     }
 }

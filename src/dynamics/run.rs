@@ -55,7 +55,7 @@ pub struct Reach {
 pub struct Steady {
     /// Tolerance on |q̈ᵢ| (rad/s² or m/s²).
     pub tol: f64,
-    /// How long the condition must hold, s.
+    /// How long the condition must hold, s (positive).
     pub hold: f64,
 }
 
@@ -148,7 +148,13 @@ fn watched<S: LagrangeSystem + ?Sized>(
         Watch::Output(i) => {
             buf.clear();
             sys.outputs(s.t, &s.q, &s.qd, buf)?;
-            buf[i]
+            // A system whose outputs are fewer than its output names: an error, not a panic.
+            *buf.get(i).ok_or(Error::OutOfRange {
+                name: "watched output index (outputs given by the system)",
+                value: i as f64,
+                min: 0.0,
+                max: buf.len() as f64 - 1.0,
+            })?
         }
     })
 }
@@ -203,10 +209,11 @@ fn locate<S: LagrangeSystem + ?Sized, M: Stepper>(
 /// Runs `sys` from `start` with `method` until a stop condition of `opts`.
 ///
 /// # Errors
-/// [`Error::NonPositive`]/[`Error::NonFinite`] for a bad step, final time, tolerance or
-/// record interval; [`Error::OutOfRange`] for a watched index that does not exist;
-/// [`Error::NonFiniteState`] naming the time when the motion diverges; any error of the
-/// system or the method.
+/// [`Error::NonPositive`]/[`Error::NonFinite`] for a bad step, final time, steady tolerance
+/// or hold, or record interval; [`Error::OutOfRange`] for a watched index that does not exist;
+/// [`Error::Singular`] when a step is too short to advance the time
+/// (h below the rounding of t); [`Error::NonFiniteState`] naming the time when the motion
+/// diverges; any error of the system or the method.
 ///
 /// # Examples
 /// A 1 kg slider pushed by 2 N from rest reaches x = 1 m at t = 1 s; with steps of 0.3 s the
@@ -260,7 +267,8 @@ pub fn run<S: LagrangeSystem + ?Sized, M: Stepper>(
     }
     if let Some(st) = &opts.steady {
         positive("steady tolerance", st.tol)?;
-        finite("steady hold", st.hold)?;
+        // Zero would also turn any two steps with equal accelerations into a drift verdict.
+        positive("steady hold", st.hold)?;
     }
 
     let mut traj = Trajectory::for_system(sys);
@@ -275,7 +283,11 @@ pub fn run<S: LagrangeSystem + ?Sized, M: Stepper>(
     };
     let mut steady_since: Option<f64> = None;
     let mut drift_ref: Option<(f64, Vector2<f64>)> = None;
-    let t_tol = 1e-12 * opts.t_end.abs().max(opts.h);
+    // The end counts as reached within rounding of the times (not of h: a step longer than
+    // the whole run must still take the run to its end).
+    let t_tol = 1e-12 * opts.t_end.abs().max(start.t.abs());
+    // q̈ at `s` when the last step gave them (Dormand–Prince's last stage), for the next one.
+    let mut acc_s: Option<Vector2<f64>> = None;
 
     let finish = |traj: &mut Trajectory,
                   last: State,
@@ -310,10 +322,20 @@ pub fn run<S: LagrangeSystem + ?Sized, M: Stepper>(
         }
         let clamped = h >= remaining;
         let h_try = if clamped { remaining } else { h };
-        let adv = method.advance(sys, &s, h_try)?;
+        let adv = method.advance_from(sys, &s, h_try, acc_s)?;
         let mut s1 = adv.state;
+        // A step too short to change t (h below the rounding of t) would repeat for ever.
+        if s1.t <= s.t || s1.t.is_nan() {
+            return Err(Error::Singular {
+                what: "run",
+                measure: "time advanced by a step (h below the rounding of t)",
+                value: s1.t - s.t,
+            });
+        }
+        acc_s = adv.end_acceleration;
         if (opts.t_end - s1.t).abs() <= t_tol {
             s1.t = opts.t_end;
+            acc_s = None; // they belong to the unsnapped time
         }
         if !clamped {
             h = adv.h_next;
@@ -344,7 +366,10 @@ pub fn run<S: LagrangeSystem + ?Sized, M: Stepper>(
         }
 
         if let Some(st) = &opts.steady {
-            let acc = accelerations(sys, s1.t, &s1.q, &s1.qd)?;
+            let acc = match acc_s {
+                Some(a) => a,
+                None => accelerations(sys, s1.t, &s1.q, &s1.qd)?,
+            };
             if acc.amax() <= st.tol {
                 drift_ref = None;
                 let since = *steady_since.get_or_insert(s1.t);

@@ -55,6 +55,10 @@ pub struct Advance {
     pub h_next: f64,
     /// Evaluations of the accelerations spent (rejected trial steps included).
     pub evaluations: usize,
+    /// The accelerations q̈ at [`state`](Self::state) when the method evaluated them anyway
+    /// (the last stage of Dormand–Prince: "first same as last"), else `None`. Passed to the
+    /// next [`Stepper::advance_from`], they save that step its first evaluation.
+    pub end_acceleration: Option<Vector2<f64>>,
 }
 
 /// An integrator of Lagrange's equations.
@@ -89,6 +93,25 @@ pub trait Stepper {
             state: self.step(sys, s, h)?,
             h_next: h,
             evaluations: self.evaluations_per_step(),
+            end_acceleration: None,
         })
+    }
+
+    /// As [`advance`](Self::advance), given the accelerations q̈ at `s` when the caller has
+    /// them (the [`end_acceleration`](Advance::end_acceleration) of the step that ended at
+    /// `s`). A method whose first stage is q̈ at `s` uses them instead of evaluating again;
+    /// the default ignores them. They must belong to `s` exactly.
+    ///
+    /// # Errors
+    /// As [`step`](Self::step).
+    fn advance_from<S: LagrangeSystem + ?Sized>(
+        &self,
+        sys: &S,
+        s: &State,
+        h: f64,
+        start_acceleration: Option<Vector2<f64>>,
+    ) -> Result<Advance> {
+        let _ = start_acceleration;
+        self.advance(sys, s, h)
     }
 }

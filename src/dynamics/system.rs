@@ -15,7 +15,7 @@
 
 use nalgebra::{Matrix2, Vector2};
 
-use crate::error::{Error, Result};
+use crate::error::{finite, finite2, Error, Result};
 
 /// The state of a 2-DOF machine: time, generalized coordinates and their rates.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -272,16 +272,24 @@ pub fn accelerations<S: LagrangeSystem + ?Sized>(
     }
 }
 
+/// Checks that q and q̇ are finite, naming the component that is not.
+fn finite_q_qd(q: &Vector2<f64>, qd: &Vector2<f64>) -> Result<()> {
+    finite2(["q1", "q2"], *q)?;
+    finite2(["q1_dot", "q2_dot"], *qd)
+}
+
 /// The kinetic energy T = ½ q̇ᵀ A(q) q̇, J.
 ///
 /// # Errors
-/// As [`LagrangeSystem::inertia`].
+/// [`Error::NonFinite`] for a non-finite q or q̇ (or a T that overflows); as
+/// [`LagrangeSystem::inertia`].
 pub fn kinetic_energy<S: LagrangeSystem + ?Sized>(
     sys: &S,
     q: &Vector2<f64>,
     qd: &Vector2<f64>,
 ) -> Result<f64> {
-    Ok(0.5 * qd.dot(&(sys.inertia(q)? * qd)))
+    finite_q_qd(q, qd)?;
+    finite("kinetic energy T", 0.5 * qd.dot(&(sys.inertia(q)? * qd)))
 }
 
 /// The power balance at a state: the power Q·q̇ of the applied loads and the power
@@ -289,14 +297,23 @@ pub fn kinetic_energy<S: LagrangeSystem + ?Sized>(
 /// d(T + Π)/dt = applied − dissipated.
 ///
 /// # Errors
-/// As [`LagrangeSystem::forces`] and [`LagrangeSystem::damping`].
+/// [`Error::NonFiniteState`] naming t for a non-finite t, q or q̇, or a power that
+/// overflows; as [`LagrangeSystem::forces`] and [`LagrangeSystem::damping`].
 pub fn powers<S: LagrangeSystem + ?Sized>(
     sys: &S,
     t: f64,
     q: &Vector2<f64>,
     qd: &Vector2<f64>,
 ) -> Result<(f64, f64)> {
+    let non_finite = Error::NonFiniteState { time: t };
+    if !State::new(t, *q, *qd).is_finite() {
+        return Err(non_finite);
+    }
     let applied = sys.forces(t, q, qd)?.dot(qd);
     let dissipated = qd.dot(&(sys.damping(q)? * qd));
-    Ok((applied, dissipated))
+    if applied.is_finite() && dissipated.is_finite() {
+        Ok((applied, dissipated))
+    } else {
+        Err(non_finite)
+    }
 }

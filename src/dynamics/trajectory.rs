@@ -3,7 +3,7 @@
 use std::fmt::Write as _;
 
 use super::system::{accelerations, kinetic_energy, powers, LagrangeSystem, State};
-use crate::error::Result;
+use crate::error::{Error, Result};
 
 /// A motion recorded as columns: time, q, q̇, q̈, the energies and powers, and the
 /// machine's own outputs (for the gear drives the speed of every link).
@@ -49,10 +49,17 @@ impl Trajectory {
     /// Appends a state with everything derived from it.
     ///
     /// # Errors
-    /// Any error of the system at this state.
+    /// Any error of the system at this state; [`Error::NonFiniteState`] naming the time when
+    /// a derived quantity overflows. Nothing is appended then (the columns stay of equal
+    /// length).
     pub fn push<S: LagrangeSystem + ?Sized>(&mut self, sys: &S, s: &State) -> Result<()> {
         let a = accelerations(sys, s.t, &s.q, &s.qd)?;
         let (pa, pd) = powers(sys, s.t, &s.q, &s.qd)?;
+        let kinetic = kinetic_energy(sys, &s.q, &s.qd).map_err(|e| match e {
+            Error::NonFinite { .. } => Error::NonFiniteState { time: s.t },
+            e => e,
+        })?;
+        let potential = sys.potential(&s.q)?;
         let mut out = Vec::with_capacity(self.outputs.len());
         sys.outputs(s.t, &s.q, &s.qd, &mut out)?;
         self.t.push(s.t);
@@ -61,8 +68,8 @@ impl Trajectory {
             self.qd[i].push(s.qd[i]);
             self.qdd[i].push(a[i]);
         }
-        self.kinetic.push(kinetic_energy(sys, &s.q, &s.qd)?);
-        self.potential.push(sys.potential(&s.q)?);
+        self.kinetic.push(kinetic);
+        self.potential.push(potential);
         self.power_applied.push(pa);
         self.power_dissipated.push(pd);
         for (col, v) in self.outputs.iter_mut().zip(out) {

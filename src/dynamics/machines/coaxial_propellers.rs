@@ -3,8 +3,9 @@
 use nalgebra::{Matrix2, Vector2};
 
 use super::{gear_inertia, GearLink, LinearMotor};
+use crate::dynamics::stepper::check_result;
 use crate::dynamics::system::{checked_inertia, LagrangeSystem, State};
-use crate::error::{positive, Result};
+use crate::error::{finite, positive, Result};
 
 /// One motor drives two counter-rotating propellers through a differential: sun z1 (the
 /// input, on the motor shaft), a block of k planets z2–z3 on the carrier H (the front
@@ -185,18 +186,30 @@ impl CoaxialPropellers {
     }
 
     /// The accelerations (φ̈4, φ̈H) that the motion tends to for t → ∞: zero when a steady
-    /// state exists, otherwise the constant drift of D41.
+    /// state exists, otherwise the constant drift of D41. A motor with no slope (b = 0, a
+    /// constant moment) gives no damping: the accelerations are constant from the start.
     ///
     /// # Errors
-    /// As [`inertia_matrix`](Self::inertia_matrix).
+    /// As [`inertia_matrix`](Self::inertia_matrix); [`Error::NonFinite`](crate::Error::NonFinite) for a non-finite
+    /// motor or resisting moment; [`Error::NonPositive`](crate::Error::NonPositive) for a motor slope b < 0 (its moment
+    /// grows with speed and the motion runs away: nothing to tend to).
     pub fn drift_acceleration(&self) -> Result<Vector2<f64>> {
         let (k, lambda, c) = self.linear_parts()?;
+        if self.motor.b == 0.0 {
+            return Ok(c);
+        }
+        positive("motor slope b", self.motor.b)?;
+        // λ = b·uᵀA⁻¹u > 0 here (A⁻¹ is positive-definite).
         Ok(c - k * c / lambda)
     }
 
     /// v̇ = −K v + c with K = b·A⁻¹u uᵀ (rank one, K² = λK, λ = b·uᵀA⁻¹u) and
     /// c = A⁻¹(a·u + M_on).
     fn linear_parts(&self) -> Result<(Matrix2<f64>, f64, Vector2<f64>)> {
+        finite("motor a", self.motor.a)?;
+        finite("motor b", self.motor.b)?;
+        finite("(M_on)4", self.m_on4)?;
+        finite("(M_on)H", self.m_onh)?;
         let a = self.inertia_matrix()?;
         let (a, det) = checked_inertia(&a, 0.0, &Vector2::zeros())?;
         let inv = Matrix2::new(a[(1, 1)], -a[(0, 1)], -a[(1, 0)], a[(0, 0)]) / det;
@@ -219,7 +232,9 @@ impl CoaxialPropellers {
     /// ```
     ///
     /// # Errors
-    /// As [`inertia_matrix`](Self::inertia_matrix).
+    /// As [`inertia_matrix`](Self::inertia_matrix); [`Error::NonFinite`](crate::Error::NonFinite) for a non-finite
+    /// `t`, motor or resisting moment; [`Error::NonFiniteState`](crate::Error::NonFiniteState) for a non-finite `start` or
+    /// a result that overflows.
     ///
     /// # Examples
     /// Started at the steady motor speed with balanced loads, the propellers keep their speeds:
@@ -236,6 +251,8 @@ impl CoaxialPropellers {
     /// ```
     pub fn exact(&self, start: &State, t: f64) -> Result<State> {
         let (k, lambda, c) = self.linear_parts()?;
+        finite("t", t)?;
+        check_result(*start)?;
         let tau = t - start.t;
         let (f1, f2, f3) = phi_functions(lambda * tau);
         let (q0, v0) = (start.q, start.qd);
@@ -243,7 +260,7 @@ impl CoaxialPropellers {
         let q = q0 + v0 * tau + 0.5 * c * tau * tau
             - tau * tau * f2 * (k * v0)
             - tau.powi(3) * f3 * (k * c);
-        Ok(State::new(t, q, qd))
+        check_result(State::new(t, q, qd))
     }
 }
 

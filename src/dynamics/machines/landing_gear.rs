@@ -112,6 +112,9 @@ impl Default for LandingGear {
             ih: 3e-4,
             motor1: motor,
             motor6: motor,
+            // Constant data, no input reaches it: ten finite points, x strictly increasing
+            // (0°…90° every 10°, times the ratio). The unit tests build it, so a change that
+            // broke it would fail there, not in a user's program.
             load: Table::new(x, y, Beyond::HoldEnds).expect("a valid built-in table"),
             phi_h_max: ratio * std::f64::consts::FRAC_PI_2,
             failure: None,

@@ -2,6 +2,7 @@
 
 use nalgebra::{Matrix2, Vector2};
 
+use crate::dynamics::stepper::check_result;
 use crate::dynamics::system::{LagrangeSystem, State};
 use crate::error::{finite, positive, Result};
 
@@ -133,7 +134,10 @@ impl DecoupledRpArm {
     ///
     /// # Errors
     /// [`Error::NonPositive`](crate::Error::NonPositive) when a viscous coefficient is not
-    /// positive (the closed form divides by it) or a datum is invalid.
+    /// positive (the closed form divides by it) or a datum is invalid;
+    /// [`Error::NonFinite`](crate::Error::NonFinite) for a non-finite `t`;
+    /// [`Error::NonFiniteState`](crate::Error::NonFiniteState) for a non-finite `start` or a
+    /// result that overflows.
     ///
     /// # Examples
     /// From rest, the default arm's slide (m2 = 5 kg, b2 = 20 N·s/m, F = 10 N) reaches
@@ -148,6 +152,8 @@ impl DecoupledRpArm {
         let a = &self.arm;
         a.check()?;
         let c = [positive("b1", a.b1)? * a.r0 * a.r0, positive("b2", a.b2)?];
+        finite("t", t)?;
+        check_result(*start)?;
         let m = [a.iz1 + a.iz2, a.m2];
         let f = [a.mp1, a.fp2];
         let tau = t - start.t;
@@ -160,7 +166,8 @@ impl DecoupledRpArm {
             s.qd[i] = vinf + (start.qd[i] - vinf) * (1.0 - one_minus);
             s.q[i] = start.q[i] + vinf * tau + (start.qd[i] - vinf) / r * one_minus;
         }
-        Ok(s)
+        // Far back in time (τ ≪ −m/c) e^(−rτ) overflows.
+        check_result(s)
     }
 }
 
