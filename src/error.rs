@@ -81,6 +81,16 @@ pub enum Error {
         det: f64,
     },
 
+    /// A linkage description is malformed: `item` names the joint, link, load or field, and
+    /// `problem` says what is wrong with it.
+    #[error("{item}: {problem}")]
+    Description {
+        /// The joint, link, load or field at fault (for example `"joint B"`).
+        item: String,
+        /// What is wrong, with the values involved.
+        problem: String,
+    },
+
     /// An error inside one named part of a larger analysis (for example one group of a
     /// mechanism at one position).
     #[error("{part}: {source}")]

@@ -46,8 +46,9 @@ pub mod dynamics;
 pub mod error;
 pub mod kinematics;
 pub mod kinetostatics;
+pub mod linkage;
 pub mod load;
-pub mod mechanism;
+// pub mod mechanism; (being rebuilt on the linkage engine)
 
 pub use error::{Error, Result};
 pub use load::Load;

@@ -1,9 +1,7 @@
 //! A gas-pressure (indicator) diagram over the piston stroke, and the gas force it gives.
 
-use crate::angle::{cross, unit};
 use crate::error::{finite, Error, Result};
-use crate::kinematics::{Branch, PointMotion};
-use nalgebra::{Point2, Vector2};
+use nalgebra::Vector2;
 
 /// An indicator diagram: the gas pressure on a piston as a table over its stroke, one branch
 /// for each direction of motion, linearly interpolated.
@@ -43,7 +41,7 @@ impl IndicatorDiagram {
     /// reads 0 at the crank end of both strokes and 0.2 MPa gauge at the head end.
     /// ```
     /// use approx::assert_relative_eq;
-    /// use tmm::mechanism::IndicatorDiagram;
+    /// use tmm::linkage::IndicatorDiagram;
     /// let d = IndicatorDiagram::compressor(0.01, 1.0e5, 3.0e5, 1.0e5, 1.3, 0.05, 41);
     /// assert_relative_eq!(d.pressure(1.0, false).unwrap(), 0.0, epsilon = 1e-9);
     /// assert_relative_eq!(d.pressure(0.0, true).unwrap(), 2.0e5, epsilon = 1e-6);
@@ -126,70 +124,6 @@ impl IndicatorDiagram {
         let x = (s_head - s) / stroke;
         let p = self.pressure(x, s_rate > 0.0)?;
         Ok(-p * finite("piston area", self.area)? * guide)
-    }
-}
-
-/// A piston driven by a crank (l1 about O1) through a rod l2 on a fixed straight guide: where
-/// its two dead centres lie, so that an [`IndicatorDiagram`] can be read at any position.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub(crate) struct Piston {
-    /// The unit vector along the guide from the crank towards the cylinder head.
-    head: Vector2<f64>,
-    /// The foot of the perpendicular from O1 on the guide.
-    foot: Point2<f64>,
-    /// The distance of the head-end dead centre from the foot, along `head`.
-    d_head: f64,
-    /// The distance of the crank-end dead centre from the foot, along `head`.
-    d_crank: f64,
-}
-
-impl Piston {
-    /// The piston of a slider-crank whose slider B is on `branch` of the RRP dyad (ahead of
-    /// the foot of A along the guide for `Plus`, so the head lies ahead).
-    ///
-    /// # Errors
-    /// [`Error::NotAssemblable`] when the crank cannot turn fully (l2 − l1 ≤ offset).
-    pub(crate) fn new(
-        o1: Point2<f64>,
-        l1: f64,
-        l2: f64,
-        guide_point: Point2<f64>,
-        guide_angle: f64,
-        branch: Branch,
-    ) -> Result<Self> {
-        let g = unit(guide_angle);
-        let offset = cross(g, o1 - guide_point).abs();
-        let gap = offset - (l2 - l1);
-        if gap >= 0.0 || !gap.is_finite() {
-            return Err(Error::NotAssemblable {
-                group: "piston (crank cannot turn fully)",
-                gap,
-            });
-        }
-        Ok(Self {
-            head: branch.sign() * g,
-            foot: guide_point + (o1 - guide_point).dot(&g) * g,
-            d_head: ((l1 + l2).powi(2) - offset * offset).sqrt(),
-            d_crank: ((l2 - l1).powi(2) - offset * offset).sqrt(),
-        })
-    }
-
-    /// The gas force of `diagram` on the piston whose pin B moves with `b`.
-    ///
-    /// # Errors
-    /// As [`IndicatorDiagram::force`].
-    pub(crate) fn gas_force(
-        &self,
-        diagram: &IndicatorDiagram,
-        b: &PointMotion,
-    ) -> Result<Vector2<f64>> {
-        diagram.force(
-            (b.p - self.foot).dot(&self.head),
-            b.v.dot(&self.head),
-            self.head,
-            self.d_head,
-            self.d_crank,
-        )
     }
 }
 

@@ -1,6 +1,6 @@
 //! Results over a cycle as named columns, written as CSV.
 
-use super::drive::Balance;
+use super::analysis::Analysis;
 use crate::error::Result;
 use nalgebra::Vector2;
 use std::io;
@@ -30,7 +30,8 @@ pub trait Tabulate {
     fn row(&self) -> Vec<(String, f64)>;
 }
 
-/// Appends a vector's x, y and magnitude as three columns `"{name}_x [unit]"`, … .
+/// Appends a vector's x, y and magnitude as three columns `"{name}_x [unit]"`, `"{name}_y
+/// [unit]"`, `"|{name}| [unit]"`.
 pub(crate) fn push_vector(row: &mut Vec<(String, f64)>, name: &str, unit: &str, v: Vector2<f64>) {
     row.push((format!("{name}_x [{unit}]"), v.x));
     row.push((format!("{name}_y [{unit}]"), v.y));
@@ -42,19 +43,60 @@ pub(crate) fn push(row: &mut Vec<(String, f64)>, name: &str, unit: &str, value: 
     row.push((format!("{name} [{unit}]"), value));
 }
 
-/// Appends the joint reactions `reactions` (x, y and magnitude each, N), then the balance's
-/// R01 and F_b (N) and M_b (N·m): the last columns of every ready mechanism's row.
-pub(crate) fn push_reactions(
-    row: &mut Vec<(String, f64)>,
-    reactions: &[(&str, Vector2<f64>)],
-    balance: &Balance,
-) {
-    for &(name, v) in reactions {
-        push_vector(row, name, "N", v);
+impl Tabulate for Analysis<'_> {
+    /// The course table's row: the input, every moving link's angle, ω and ε, every joint's
+    /// position, velocity and acceleration magnitudes, every prismatic joint's slide, the
+    /// reaction in every joint (R_by,on: x, y, magnitude), and, when the input moves, the
+    /// balancing value beside its virtual-power value.
+    fn row(&self) -> Vec<(String, f64)> {
+        let plan = self.plan();
+        let links = plan.link_names();
+        let mut r = Vec::with_capacity(8 * plan.joint_names().len() + 4 * links.len());
+        let (q, unit, rate, accel) = if plan.input_is_crank() {
+            ("phi_in", "rad", "rad/s", "rad/s^2")
+        } else {
+            ("s_in", "m", "m/s", "m/s^2")
+        };
+        let i = self.input();
+        push(&mut r, q, unit, i.value);
+        push(&mut r, &format!("{q}'"), rate, i.rate);
+        push(&mut r, &format!("{q}''"), accel, i.accel);
+        for (k, name) in links.iter().enumerate().skip(1) {
+            let m = self.link_angle_index(k);
+            push(&mut r, &format!("phi({name})"), "rad", m.value);
+            push(&mut r, &format!("omega({name})"), "rad/s", m.rate);
+            push(&mut r, &format!("eps({name})"), "rad/s^2", m.accel);
+        }
+        for (j, name) in plan.joint_names().iter().enumerate() {
+            let p = self.joint_motion(j);
+            push(&mut r, &format!("x({name})"), "m", p.p.x);
+            push(&mut r, &format!("y({name})"), "m", p.p.y);
+            push(&mut r, &format!("|v({name})|"), "m/s", p.v.norm());
+            push(&mut r, &format!("|a({name})|"), "m/s^2", p.a.norm());
+            if plan.is_prismatic(j) {
+                let s = self.slide_index(j);
+                push(&mut r, &format!("s({name})"), "m", s.value);
+                push(&mut r, &format!("v_rel({name})"), "m/s", s.rate);
+                push(&mut r, &format!("a_rel({name})"), "m/s^2", s.accel);
+            }
+        }
+        if self.has_statics() {
+            for (j, name) in plan.joint_names().iter().enumerate() {
+                let re = self.reaction_index(j);
+                let label = format!("R({},{})@{name}", links[re.by], links[re.on]);
+                push_vector(&mut r, &label, "N", re.force);
+                if plan.is_prismatic(j) {
+                    push(&mut r, &format!("M({},{})@{name}", links[re.by], links[re.on]), "N*m", re.moment);
+                }
+            }
+            let b = self.balance();
+            let (name, unit) = if plan.input_is_crank() { ("Mb", "N*m") } else { ("Fb", "N") };
+            push(&mut r, name, unit, b.value);
+            let vp = self.power_check().map_or(f64::NAN, |c| c.virtual_power);
+            push(&mut r, &format!("{name} (virtual power)"), unit, vp);
+        }
+        r
     }
-    push_vector(row, "R01", "N", balance.r01);
-    push_vector(row, "Fb", "N", balance.force);
-    push(row, "Mb", "N*m", balance.moment);
 }
 
 impl Table {
@@ -63,7 +105,7 @@ impl Table {
     ///
     /// # Examples
     /// ```
-    /// use tmm::mechanism::{Table, Tabulate};
+    /// use tmm::linkage::{Table, Tabulate};
     /// struct P(f64);
     /// impl Tabulate for P {
     ///     fn row(&self) -> Vec<(String, f64)> { vec![("phi1 [rad]".into(), self.0)] }

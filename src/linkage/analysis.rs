@@ -1,0 +1,754 @@
+//! One analysed position of a planned linkage: the kinematics of every link, the loads, the
+//! reaction in every joint and the balancing moment or force, with the two independent checks
+//! (virtual power and every link's equilibrium).
+//!
+//! An [`Analysis`] owns its buffers: [`Plan::analyse_into`] refills one without allocating,
+//! so a sweep over millions of positions reuses a single one.
+
+use super::description::Drive;
+use super::plan::{Group, GroupKind, InputPlan, LoadPlan, Plan};
+use crate::angle::{cross, unit};
+use crate::error::{Error, Result};
+use crate::kinematics::{rpr_dyad, rrp_dyad, rrr_dyad, Guide, LinkMotion, Motion, PointMotion};
+use crate::kinetostatics::{Conditioning, CouplingDrive, GearDrive, RprDyad, RrpDyad, RrrDyad};
+use crate::Load;
+use nalgebra::{Point2, Vector2};
+
+/// The reaction in one joint: the force (and, in a sliding pair, the couple) that link `by`
+/// exerts on link `on`, R_by,on. The other link feels the opposite.
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+pub struct Reaction {
+    /// The link that exerts it (index into [`Plan::link_names`]).
+    pub by: usize,
+    /// The link it acts on.
+    pub on: usize,
+    /// The force, N.
+    pub force: Vector2<f64>,
+    /// The point the force is reduced to (the hinge, or a point on a sliding pair's axis), m.
+    pub point: Point2<f64>,
+    /// The couple about `point`, N·m (zero in a hinge; in a sliding pair it places the normal
+    /// force's line of action, see [`Reaction::offset`]).
+    pub moment: f64,
+}
+
+impl Reaction {
+    /// The reaction as a load on link `on`.
+    #[must_use]
+    pub fn load(&self) -> Load {
+        Load::new(self.point, self.force, self.moment)
+    }
+
+    /// The load on link `link`: the reaction itself if `link == on`, its opposite if
+    /// `link == by`.
+    #[must_use]
+    pub fn load_on(&self, link: usize) -> Load {
+        if link == self.on {
+            self.load()
+        } else {
+            Load::new(self.point, -self.force, -self.moment)
+        }
+    }
+
+    /// For a sliding pair with the axis direction `axis`: where the normal force's line of
+    /// action crosses the axis through `point`, measured from `point` along `axis`, m. `None`
+    /// when the force vanishes and the pair carries a pure couple.
+    #[must_use]
+    pub fn offset(&self, axis: Vector2<f64>) -> Option<f64> {
+        let h = self.moment / cross(axis / axis.norm(), self.force);
+        h.is_finite().then_some(h)
+    }
+}
+
+/// What the drive supplies to the input link and what the frame holds.
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+pub struct Balance {
+    /// The balancing generalized force: for a crank M_b about its pivot, N·m, counter-clockwise
+    /// positive (for a gear drive the moment of the tooth force); for a slider the force along
+    /// its guide direction, N.
+    pub value: f64,
+    /// The balancing force: the pinion's tooth force at the pitch point (gear drive), the
+    /// drive's force along the guide (slider), zero for a coupling, N.
+    pub force: Vector2<f64>,
+    /// Where `force` acts: the pitch point, the slider's reference point, or the pivot, m.
+    pub point: Point2<f64>,
+    /// The conditioning of the balance (the gear drive's arm; 1 otherwise).
+    pub conditioning: Conditioning,
+}
+
+/// The balancing value found two ways at one position.
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+pub struct PowerCheck {
+    /// From the group-by-group chain.
+    pub chain: f64,
+    /// From the principle of virtual power: −Σ P_i / q̇ over every applied load.
+    pub virtual_power: f64,
+    /// The scale of the comparison: the largest of |chain| and Σ|P_i|/|q̇|.
+    pub scale: f64,
+}
+
+impl PowerCheck {
+    /// |chain − virtual power| / scale.
+    #[must_use]
+    pub fn relative_error(&self) -> f64 {
+        let d = (self.chain - self.virtual_power).abs();
+        if self.scale > 0.0 {
+            d / self.scale
+        } else {
+            d
+        }
+    }
+}
+
+/// One analysed position of a [`Plan`].
+#[derive(Debug, Clone)]
+pub struct Analysis<'p> {
+    plan: &'p Plan,
+    input: Motion,
+    links: Vec<LinkMotion>,
+    dets: Vec<f64>,
+    applied: Vec<(usize, Load)>,
+    acc: Vec<Load>,
+    reactions: Vec<Reaction>,
+    conditioning: Vec<Conditioning>,
+    balance: Balance,
+    statics_done: bool,
+}
+
+/// Wraps an error of one part so that it names the part.
+fn within(part: &str) -> impl Fn(Error) -> Error + '_ {
+    move |e| Error::In {
+        part: part.to_owned(),
+        source: Box::new(e),
+    }
+}
+
+fn point(link: &LinkMotion, local: Vector2<f64>) -> PointMotion {
+    link.point_at(local.x, local.y)
+}
+
+impl<'p> Analysis<'p> {
+    /// Buffers for analysing positions of `plan` (allocated once).
+    #[must_use]
+    pub fn new(plan: &'p Plan) -> Self {
+        let n = plan.link_names.len();
+        let zero = Reaction {
+            by: 0,
+            on: 0,
+            force: Vector2::zeros(),
+            point: Point2::origin(),
+            moment: 0.0,
+        };
+        Self {
+            plan,
+            input: Motion::default(),
+            links: vec![Plan::frame_motion(); n],
+            dets: vec![0.0; plan.groups.len()],
+            applied: Vec::with_capacity(n + plan.loads.len() * 2),
+            acc: vec![Load::zero(Point2::origin()); n],
+            reactions: vec![zero; plan.joints.len()],
+            conditioning: vec![Conditioning { measure: 1.0, condition: 1.0 }; plan.groups.len()],
+            balance: Balance {
+                value: 0.0,
+                force: Vector2::zeros(),
+                point: Point2::origin(),
+                conditioning: Conditioning { measure: 1.0, condition: 1.0 },
+            },
+            statics_done: false,
+        }
+    }
+
+    /// The plan this position belongs to.
+    #[must_use]
+    pub fn plan(&self) -> &'p Plan {
+        self.plan
+    }
+
+    /// Positions, velocities and accelerations of every link at the input `input` (φ1, ω1,
+    /// ε1 for a crank; s, ṡ, s̈ for a slider), group by group in attachment order.
+    ///
+    /// # Errors
+    /// Non-finite input; [`Error::In`] naming the group that cannot be assembled or is at a
+    /// dead point.
+    pub fn solve_kinematics(&mut self, input: Motion) -> Result<()> {
+        self.statics_done = false;
+        input.validate(["input", "input rate", "input acceleration"])?;
+        let plan = self.plan;
+        self.input = input;
+        match plan.input {
+            InputPlan::Crank { link, pivot, .. } => {
+                self.links[link] = LinkMotion {
+                    origin: PointMotion::fixed(pivot),
+                    angle: crate::angle::normalize(input.value),
+                    omega: input.rate,
+                    epsilon: input.accel,
+                };
+            }
+            InputPlan::Slider { link, at, angle, .. } => {
+                let d = unit(angle);
+                let o = PointMotion::new(at + input.value * d, input.rate * d, input.accel * d);
+                o.validate(["slider x", "slider y", "v.x", "v.y", "a.x", "a.y"])?;
+                self.links[link] = LinkMotion {
+                    origin: o,
+                    angle,
+                    omega: 0.0,
+                    epsilon: 0.0,
+                };
+            }
+        }
+        for (g, group) in plan.groups.iter().enumerate() {
+            let [l2, l3] = group.links;
+            let [ka, kc] = group.known;
+            let a = point(&self.links[ka], group.a_local);
+            let (s2, s3, det) = match group.kind {
+                GroupKind::Rrr => {
+                    let c = point(&self.links[kc], group.c_local);
+                    let s = rrr_dyad(a, c, group.lengths[0], group.lengths[1], group.branch)
+                        .map_err(within(&group.name))?;
+                    (s.link2, s.link3, s.det)
+                }
+                GroupKind::Rrp => {
+                    let k = &self.links[kc];
+                    let guide = Guide {
+                        point: point(k, group.c_local),
+                        angle: Motion::new(k.angle + group.guide_offset, k.omega, k.epsilon),
+                    };
+                    let s = rrp_dyad(a, guide, group.lengths[0], group.branch)
+                        .map_err(within(&group.name))?;
+                    (s.link2, s.link3, s.det)
+                }
+                GroupKind::Rpr => {
+                    let c = point(&self.links[kc], group.c_local);
+                    let s = rpr_dyad(a, c).map_err(within(&group.name))?;
+                    (s.link2, s.link3, s.slide.value)
+                }
+            };
+            self.links[l2] = s2;
+            self.links[l3] = s3;
+            self.dets[g] = det;
+        }
+        Ok(())
+    }
+
+    /// Kinematics, loads, the reactions from the last group back to the input link, and the
+    /// balancing moment or force.
+    ///
+    /// # Errors
+    /// As [`Analysis::solve_kinematics`]; a load that cannot be evaluated (a non-finite
+    /// inertia load, an indicator diagram read outside its stroke); [`Error::In`] naming the
+    /// group or the input link whose closed form is singular.
+    pub fn solve(&mut self, input: Motion) -> Result<()> {
+        self.solve_kinematics(input)?;
+        self.apply_loads()?;
+        self.solve_statics()
+    }
+
+    fn apply_loads(&mut self) -> Result<()> {
+        let plan = self.plan;
+        self.applied.clear();
+        for (k, lp) in plan.links.iter().enumerate().skip(1) {
+            if lp.mass == 0.0 && lp.inertia == 0.0 {
+                continue;
+            }
+            let link = &self.links[k];
+            let s = point(link, lp.centre);
+            let inertia = Load::inertia(s.p, lp.mass, s.a, lp.inertia, link.epsilon)
+                .map_err(within(&plan.link_names[k]))?;
+            self.applied.push((
+                k,
+                Load::new(s.p, inertia.force + lp.mass * plan.gravity, inertia.moment),
+            ));
+        }
+        for lp in &plan.loads {
+            match lp {
+                LoadPlan::Force { link, local, force } => {
+                    let p = point(&self.links[*link], *local).p;
+                    self.applied.push((*link, Load::force_at(p, *force)));
+                }
+                LoadPlan::Moment { link, moment } => {
+                    let p = self.links[*link].origin.p;
+                    self.applied.push((*link, Load::new(p, Vector2::zeros(), *moment)));
+                }
+                LoadPlan::Turning {
+                    link,
+                    forward,
+                    backward,
+                } => {
+                    let l = &self.links[*link];
+                    let m = resist(l.omega, *forward, *backward);
+                    self.applied
+                        .push((*link, Load::new(l.origin.p, Vector2::zeros(), m)));
+                }
+                LoadPlan::Sliding {
+                    joint,
+                    local,
+                    forward,
+                    backward,
+                } => {
+                    let (slider, guide, d) = self.slide_parts(*joint);
+                    let s = self.slide_index(*joint);
+                    let p = point(&self.links[slider], *local).p;
+                    let f = resist(s.rate, *forward, *backward) * d;
+                    self.applied.push((slider, Load::force_at(p, f)));
+                    if guide != 0 {
+                        self.applied.push((guide, Load::force_at(p, -f)));
+                    }
+                }
+                LoadPlan::Indicator {
+                    joint,
+                    head,
+                    diagram,
+                    ends,
+                } => {
+                    let (slider, _, d) = self.slide_parts(*joint);
+                    let s = self.slide_index(*joint);
+                    let p = self.joint_index_on(*joint, slider).p;
+                    let f = diagram
+                        .force(head * s.value, head * s.rate, *head * d, ends[0], ends[1])
+                        .map_err(within(&format!("piston of joint {}", plan.joint_names[*joint])))?;
+                    self.applied.push((slider, Load::force_at(p, f)));
+                }
+                LoadPlan::Custom { link, f } => {
+                    let l = (f.0)(self).map_err(within(&plan.link_names[*link]))?;
+                    l.validate().map_err(within(&plan.link_names[*link]))?;
+                    self.applied.push((*link, l));
+                }
+            }
+        }
+        Ok(())
+    }
+
+    fn solve_statics(&mut self) -> Result<()> {
+        let plan = self.plan;
+        for (k, acc) in self.acc.iter_mut().enumerate() {
+            *acc = Load::zero(self.links[k].origin.p);
+        }
+        for &(k, l) in &self.applied {
+            add(&mut self.acc[k], &l);
+        }
+        for (g, group) in plan.groups.iter().enumerate().rev() {
+            self.solve_group(g, group)?;
+        }
+        self.solve_input()?;
+        self.statics_done = true;
+        Ok(())
+    }
+
+    fn solve_group(&mut self, g: usize, group: &Group) -> Result<()> {
+        let [l2, l3] = group.links;
+        let [ja, jb, jc] = group.joints;
+        let [ka, kc] = group.known;
+        let a = self.links[l2].origin.p;
+        let (load2, load3) = (self.acc[l2], self.acc[l3]);
+        let name = &group.name;
+        let (ra, rb, rc, cond) = match group.kind {
+            GroupKind::Rrr => {
+                let b = self.joint_index_on(jb, l2).p;
+                let c = self.links[l3].origin.p;
+                let r = RrrDyad { a, b, c, load2, load3 }
+                    .solve()
+                    .map_err(within(name))?;
+                (
+                    Reaction { by: ka, on: l2, force: r.r12, point: a, moment: 0.0 },
+                    Reaction { by: l2, on: l3, force: r.r23, point: b, moment: 0.0 },
+                    Reaction { by: kc, on: l3, force: r.r43, point: c, moment: 0.0 },
+                    r.conditioning,
+                )
+            }
+            GroupKind::Rrp => {
+                let b = self.links[l3].origin.p;
+                let r = RrpDyad { a, b, guide: self.links[l3].unit(), load2, load3 }
+                    .solve()
+                    .map_err(within(name))?;
+                (
+                    Reaction { by: ka, on: l2, force: r.r12, point: a, moment: 0.0 },
+                    Reaction { by: l2, on: l3, force: r.r23, point: b, moment: 0.0 },
+                    Reaction { by: kc, on: l3, force: r.r43, point: b, moment: r.guide_moment },
+                    r.conditioning,
+                )
+            }
+            GroupKind::Rpr => {
+                let c = self.links[l3].origin.p;
+                let r = RprDyad { a, e: c, axis: self.links[l2].unit(), load2, load3 }
+                    .solve()
+                    .map_err(within(name))?;
+                (
+                    Reaction { by: ka, on: l2, force: r.r12, point: a, moment: 0.0 },
+                    Reaction { by: l3, on: l2, force: r.r32, point: a, moment: r.couple },
+                    Reaction { by: kc, on: l3, force: r.r43, point: c, moment: 0.0 },
+                    r.conditioning,
+                )
+            }
+        };
+        add(&mut self.acc[ka], &ra.load_on(ka));
+        add(&mut self.acc[kc], &rc.load_on(kc));
+        self.reactions[ja] = ra;
+        self.reactions[jb] = rb;
+        self.reactions[jc] = rc;
+        self.conditioning[g] = cond;
+        Ok(())
+    }
+
+    fn solve_input(&mut self) -> Result<()> {
+        let plan = self.plan;
+        let link = plan.input_link();
+        let load = self.acc[link];
+        let part = &plan.link_names[link];
+        match plan.input {
+            InputPlan::Crank { joint, pivot, drive, .. } => {
+                let (value, force, at, r01, conditioning) = match drive {
+                    Drive::Coupling => {
+                        let b = CouplingDrive { o1: pivot }.solve(&[load]).map_err(within(part))?;
+                        (b.balancing_moment, Vector2::zeros(), pivot, b.r01, b.conditioning)
+                    }
+                    Drive::Gear { pitch_radius, pitch_angle, pressure_angle } => {
+                        let d = GearDrive::at_angle(pivot, pitch_radius, pitch_angle, pressure_angle);
+                        let b = d.solve(&[load]).map_err(within(part))?;
+                        (b.balancing_moment, b.force, d.pitch_point, b.r01, b.conditioning)
+                    }
+                };
+                self.reactions[joint] =
+                    Reaction { by: 0, on: link, force: r01, point: pivot, moment: 0.0 };
+                self.balance = Balance { value, force, point: at, conditioning };
+            }
+            InputPlan::Slider { joint, angle, .. } => {
+                let d = unit(angle);
+                let f = load.force;
+                let fb = -f.dot(&d);
+                let normal = -(f + fb * d);
+                self.reactions[joint] = Reaction {
+                    by: 0,
+                    on: link,
+                    force: normal,
+                    point: load.point,
+                    moment: -load.moment,
+                };
+                self.balance = Balance {
+                    value: fb,
+                    force: fb * d,
+                    point: load.point,
+                    conditioning: Conditioning { measure: 1.0, condition: 1.0 },
+                };
+                let all = [fb, normal.x, normal.y, load.moment];
+                if !all.iter().all(|v| v.is_finite()) {
+                    return Err(within(part)(Error::NonFinite { name: "balancing force", value: fb }));
+                }
+            }
+        }
+        Ok(())
+    }
+
+    // ---- kinematic results -------------------------------------------------------------
+
+    /// The input φ1, ω1, ε1 (or s, ṡ, s̈).
+    #[must_use]
+    pub fn input(&self) -> Motion {
+        self.input
+    }
+
+    /// The motion of link `k` in the frame the engine uses for it (its origin a joint).
+    #[must_use]
+    pub fn link_motion(&self, k: usize) -> &LinkMotion {
+        &self.links[k]
+    }
+
+    /// The angle of link `k` along its declared reference direction, with ω and ε.
+    #[must_use]
+    pub fn link_angle_index(&self, k: usize) -> Motion {
+        let l = &self.links[k];
+        Motion::new(
+            crate::angle::normalize(l.angle + self.plan.links[k].angle_offset),
+            l.omega,
+            l.epsilon,
+        )
+    }
+
+    /// The angle of the link called `name` (rad, along its reference direction), ω and ε.
+    ///
+    /// # Errors
+    /// An unknown name.
+    pub fn link(&self, name: &str) -> Result<Motion> {
+        Ok(self.link_angle_index(self.plan.link_index(name)?))
+    }
+
+    /// The motion of joint `j` as a point of the `side`-th of its two links.
+    #[must_use]
+    pub fn joint_on(&self, j: usize, side: usize) -> PointMotion {
+        let jp = &self.plan.joints[j];
+        point(&self.links[jp.links[side]], jp.local[side])
+    }
+
+    /// The motion of joint `j` as a point of link `link` (one of its two links).
+    #[must_use]
+    pub fn joint_index_on(&self, j: usize, link: usize) -> PointMotion {
+        let side = usize::from(self.plan.joints[j].links[1] == link);
+        self.joint_on(j, side)
+    }
+
+    /// The motion of the joint called `name` (for a prismatic joint, its point on the sliding
+    /// link).
+    ///
+    /// # Errors
+    /// An unknown name.
+    pub fn joint(&self, name: &str) -> Result<PointMotion> {
+        let j = self.plan.joint_index(name)?;
+        Ok(self.joint_motion(j))
+    }
+
+    /// The motion of joint `j` (for a prismatic joint, its point on the sliding link).
+    #[must_use]
+    pub fn joint_motion(&self, j: usize) -> PointMotion {
+        let side = match self.plan.joints[j].prismatic {
+            Some((guide, _)) => 1 - guide,
+            None => 0,
+        };
+        self.joint_on(j, side)
+    }
+
+    /// The motion of the named point `name`.
+    ///
+    /// # Errors
+    /// An unknown name.
+    pub fn point(&self, name: &str) -> Result<PointMotion> {
+        Ok(self.point_motion(self.plan.point_index(name)?))
+    }
+
+    /// The motion of named point `k`.
+    #[must_use]
+    pub fn point_motion(&self, k: usize) -> PointMotion {
+        let (link, local) = self.plan.point_local(k);
+        point(&self.links[link], local)
+    }
+
+    /// The sliding link, the guide's link and the guide's current unit direction of the
+    /// prismatic joint `j` (zero direction for a revolute joint).
+    fn slide_parts(&self, j: usize) -> (usize, usize, Vector2<f64>) {
+        let jp = &self.plan.joints[j];
+        let Some((g, offsets)) = jp.prismatic else {
+            return (jp.links[0], jp.links[1], Vector2::zeros());
+        };
+        let guide = jp.links[g];
+        (jp.links[1 - g], guide, unit(self.links[guide].angle + offsets[g]))
+    }
+
+    /// The slide of prismatic joint `j`: the sliding link's displacement along the guide from
+    /// the reference pose, with its velocity and acceleration relative to the guide (zero for
+    /// a revolute joint).
+    #[must_use]
+    pub fn slide_index(&self, j: usize) -> Motion {
+        let jp = &self.plan.joints[j];
+        let Some((g, _)) = jp.prismatic else {
+            return Motion::default();
+        };
+        let (_, guide, d) = self.slide_parts(j);
+        let on_slider = self.joint_on(j, 1 - g);
+        let on_guide = self.joint_on(j, g);
+        let w = self.links[guide].omega;
+        // r = s·d with d turning at ω: v_r = ṡ·d + s·ω·d⊥, a_r = (s̈ − s·ω²)·d + (…)·d⊥.
+        let s = (on_slider.p - on_guide.p).dot(&d);
+        let v = (on_slider.v - on_guide.v).dot(&d);
+        let a = (on_slider.a - on_guide.a).dot(&d) + s * w * w;
+        Motion::new(s, v, a)
+    }
+
+    /// The slide of the prismatic joint called `name`.
+    ///
+    /// # Errors
+    /// An unknown name, or a revolute joint.
+    pub fn slide(&self, name: &str) -> Result<Motion> {
+        let j = self.plan.joint_index(name)?;
+        if !self.plan.is_prismatic(j) {
+            return Err(Error::Description {
+                item: format!("joint {name}"),
+                problem: "is not prismatic: it has no slide".to_owned(),
+            });
+        }
+        Ok(self.slide_index(j))
+    }
+
+    /// The kinematic conditioning of every group in attachment order: sin(φ3 − φ2) for RRR,
+    /// cos(φ2 − φ4) for RRP, l_AC (m) for RPR.
+    #[must_use]
+    pub fn group_determinants(&self) -> &[f64] {
+        &self.dets
+    }
+
+    // ---- kinetostatic results ----------------------------------------------------------
+
+    /// The reaction in joint `j` (valid after [`Analysis::solve`]).
+    #[must_use]
+    pub fn reaction_index(&self, j: usize) -> Reaction {
+        self.reactions[j]
+    }
+
+    /// The reaction in the joint called `name`, as the force of one of its links on the other.
+    ///
+    /// # Errors
+    /// An unknown name.
+    pub fn reaction(&self, name: &str) -> Result<Reaction> {
+        Ok(self.reactions[self.plan.joint_index(name)?])
+    }
+
+    /// The balancing moment (crank) or force (slider).
+    #[must_use]
+    pub fn balance(&self) -> Balance {
+        self.balance
+    }
+
+    /// Each group's conditioning in the kinetostatics (the divisor of its closed form).
+    #[must_use]
+    pub fn conditioning(&self) -> &[Conditioning] {
+        &self.conditioning
+    }
+
+    /// Every applied load (own inertia and weight, external) with the link it acts on.
+    #[must_use]
+    pub fn applied_loads(&self) -> &[(usize, Load)] {
+        &self.applied
+    }
+
+    /// The drive's load on the input link: the balancing couple, or the balancing force.
+    #[must_use]
+    pub fn drive_load(&self) -> Load {
+        let b = &self.balance;
+        match self.plan.input {
+            InputPlan::Crank { drive: Drive::Coupling, .. } => {
+                Load::new(b.point, Vector2::zeros(), b.value)
+            }
+            _ => Load::force_at(b.point, b.force),
+        }
+    }
+
+    /// Every load on link `k` as a free body: applied loads, reactions of its joints, and
+    /// the drive on the input link.
+    #[must_use]
+    pub fn free_body(&self, k: usize) -> Vec<Load> {
+        let mut all: Vec<Load> = self
+            .applied
+            .iter()
+            .filter(|(l, _)| *l == k)
+            .map(|(_, l)| *l)
+            .collect();
+        for (j, jp) in self.plan.joints.iter().enumerate() {
+            if jp.links.contains(&k) {
+                all.push(self.reactions[j].load_on(k));
+            }
+        }
+        if k == self.plan.input_link() {
+            all.push(self.drive_load());
+        }
+        all
+    }
+
+    /// How far link `k` is from equilibrium: the larger of |ΣF|/F_scale and |ΣM|/M_scale,
+    /// with the scales the largest force and the largest moment (or force × arm).
+    #[must_use]
+    pub fn residual(&self, k: usize) -> f64 {
+        let all = self.free_body(k);
+        let pole = self.links[k].origin.p;
+        let sum = Load::sum_about(&all, pole);
+        let fs = all.iter().map(|l| l.force.norm()).fold(0.0, f64::max);
+        let arm = all.iter().map(|l| (l.point - pole).norm()).fold(0.0, f64::max);
+        let ms = all.iter().map(|l| l.moment.abs()).fold(fs * arm, f64::max);
+        let rel = |r: f64, s: f64| if s > 0.0 { r / s } else { r };
+        rel(sum.force.norm(), fs).max(rel(sum.moment.abs(), ms))
+    }
+
+    /// The worst [`Analysis::residual`] over the moving links.
+    #[must_use]
+    pub fn worst_residual(&self) -> f64 {
+        (1..self.links.len())
+            .map(|k| self.residual(k))
+            .fold(0.0, f64::max)
+    }
+
+    /// The power of every applied load, W: Σ F·v + M·ω.
+    fn powers(&self) -> (f64, f64) {
+        self.applied.iter().fold((0.0, 0.0), |(s, a), (k, l)| {
+            let link = &self.links[*k];
+            let p = l.force.dot(&link.motion_of(l.point).v) + l.moment * link.omega;
+            (s + p, a + p.abs())
+        })
+    }
+
+    /// The balancing value by the chain and by the principle of virtual power.
+    ///
+    /// # Errors
+    /// [`Error::Singular`] when the input does not move (q̇ = 0).
+    pub fn power_check(&self) -> Result<PowerCheck> {
+        let q = self.input.rate;
+        if q == 0.0 || !q.is_finite() {
+            return Err(Error::Singular {
+                what: "virtual power balance",
+                measure: "input rate",
+                value: q,
+            });
+        }
+        let (sum, abs) = self.powers();
+        let (vp, scale) = (-sum / q, abs / q.abs());
+        if !(vp.is_finite() && scale.is_finite()) {
+            return Err(Error::NonFinite { name: "virtual power", value: vp });
+        }
+        Ok(PowerCheck {
+            chain: self.balance.value,
+            virtual_power: vp,
+            scale: scale.max(self.balance.value.abs()),
+        })
+    }
+
+    /// Whether the kinetostatics of this position has been solved.
+    #[must_use]
+    pub fn has_statics(&self) -> bool {
+        self.statics_done
+    }
+}
+
+/// A resistance of magnitude `forward` while `rate` > 0 and `backward` while it is < 0,
+/// opposing the motion; zero at rest.
+fn resist(rate: f64, forward: f64, backward: f64) -> f64 {
+    if rate > 0.0 {
+        -forward
+    } else if rate < 0.0 {
+        backward
+    } else {
+        0.0
+    }
+}
+
+/// Adds `l` to the resultant `acc` (kept at its point).
+fn add(acc: &mut Load, l: &Load) {
+    acc.moment += l.moment + cross(l.point - acc.point, l.force);
+    acc.force += l.force;
+}
+
+impl Plan {
+    /// Analyses one position (allocating its buffers; see [`Plan::analyse_into`] for sweeps).
+    ///
+    /// # Errors
+    /// As [`Analysis::solve`].
+    pub fn analyse(&self, input: Motion) -> Result<Analysis<'_>> {
+        let mut a = Analysis::new(self);
+        a.solve(input)?;
+        Ok(a)
+    }
+
+    /// Analyses one position into existing buffers: no allocation.
+    ///
+    /// # Errors
+    /// As [`Analysis::solve`].
+    pub fn analyse_into(&self, input: Motion, into: &mut Analysis<'_>) -> Result<()> {
+        into.solve(input)
+    }
+
+    /// The kinematics alone at one position.
+    ///
+    /// # Errors
+    /// As [`Analysis::solve_kinematics`].
+    pub fn kinematics(&self, input: Motion) -> Result<Analysis<'_>> {
+        let mut a = Analysis::new(self);
+        a.solve_kinematics(input)?;
+        Ok(a)
+    }
+}

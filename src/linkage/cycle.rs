@@ -1,0 +1,229 @@
+//! A planned linkage over its cycle: outputs, extreme positions and strokes, the inputs of a
+//! course project's plans, lock positions, and runs over many positions.
+
+use super::analysis::Analysis;
+use super::plan::Plan;
+use crate::error::{Error, Result};
+use crate::kinematics::{
+    assembly_range, cycle_angles, extreme_positions, transfer_functions, Extreme, Motion,
+    Rotation, Strokes,
+};
+
+/// An output coordinate of a linkage, for its extreme positions and strokes.
+#[derive(Debug, Clone, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "serde", serde(rename_all = "snake_case"))]
+pub enum Output {
+    /// A link's angle along its reference direction, rad.
+    Angle(String),
+    /// A prismatic joint's slide, m.
+    Slide(String),
+    /// A joint's or named point's x coordinate, m.
+    X(String),
+    /// A joint's or named point's y coordinate, m.
+    Y(String),
+}
+
+/// An output resolved to indices.
+#[derive(Debug, Clone, Copy)]
+enum Resolved {
+    Angle(usize),
+    Slide(usize),
+    Joint(usize, bool),
+    Point(usize, bool),
+}
+
+impl Plan {
+    fn resolve(&self, output: &Output) -> Result<Resolved> {
+        Ok(match output {
+            Output::Angle(n) => Resolved::Angle(self.link_index(n)?),
+            Output::Slide(n) => {
+                let j = self.joint_index(n)?;
+                if !self.is_prismatic(j) {
+                    return Err(Error::Description {
+                        item: format!("joint {n}"),
+                        problem: "is not prismatic: it has no slide".to_owned(),
+                    });
+                }
+                Resolved::Slide(j)
+            }
+            Output::X(n) | Output::Y(n) => {
+                let y = matches!(output, Output::Y(_));
+                match self.joint_index(n) {
+                    Ok(j) => Resolved::Joint(j, y),
+                    Err(_) => Resolved::Point(self.point_index(n)?, y),
+                }
+            }
+        })
+    }
+
+    /// The value, rate and acceleration of `output` at one position.
+    ///
+    /// # Errors
+    /// An unknown name; the kinematics' errors.
+    pub fn output(&self, output: &Output, input: Motion) -> Result<Motion> {
+        let r = self.resolve(output)?;
+        let mut a = Analysis::new(self);
+        a.solve_kinematics(input)?;
+        Ok(read(&a, r))
+    }
+
+    /// The transfer functions of `output` at the input `q` (its value, first and second
+    /// derivatives with respect to the input coordinate).
+    ///
+    /// # Errors
+    /// As [`Plan::output`].
+    pub fn transfer(&self, output: &Output, q: f64) -> Result<Motion> {
+        let r = self.resolve(output)?;
+        let mut a = Analysis::new(self);
+        transfer_functions(
+            |m| {
+                a.solve_kinematics(m)?;
+                Ok(read(&a, r))
+            },
+            q,
+        )
+    }
+
+    /// The extreme positions of `output` over a full turn of the crank (360 samples, each
+    /// refined to machine precision).
+    ///
+    /// # Errors
+    /// A slider input (it has no turn); a position where the linkage fails.
+    pub fn extremes(&self, output: &Output) -> Result<Vec<Extreme>> {
+        self.need_crank("extreme positions over a turn")?;
+        let r = self.resolve(output)?;
+        let mut a = Analysis::new(self);
+        extreme_positions(
+            |phi| {
+                transfer_functions(
+                    |m| {
+                        a.solve_kinematics(m)?;
+                        Ok(read(&a, r))
+                    },
+                    phi,
+                )
+            },
+            360,
+        )
+    }
+
+    /// The working and idle strokes of `output` for a crank turning in the sense `rotation`:
+    /// its two extreme positions, the crank angles of the strokes and the time ratio.
+    ///
+    /// # Errors
+    /// As [`Plan::extremes`]; an output without exactly two extreme positions (one that turns
+    /// fully, or one with more extremes per turn).
+    pub fn strokes(&self, output: &Output, rotation: Rotation) -> Result<Strokes> {
+        Strokes::new(&self.extremes(output)?, rotation)
+    }
+
+    /// The range of the crank angle, through `phi`, over which the linkage assembles: `None`
+    /// when the crank turns fully, otherwise the two angles where it locks.
+    ///
+    /// # Errors
+    /// A slider input; the linkage's error at `phi` itself.
+    pub fn lock_positions(&self, phi: f64) -> Result<Option<(f64, f64)>> {
+        self.need_crank("lock positions")?;
+        let mut a = Analysis::new(self);
+        assembly_range(phi, |x| a.solve_kinematics(Motion::fixed(x)))
+    }
+
+    fn need_crank(&self, what: &str) -> Result<()> {
+        if self.input_is_crank() {
+            Ok(())
+        } else {
+            Err(Error::Description {
+                item: "field input".to_owned(),
+                problem: format!("{what} need a crank input, this linkage is driven by a slider"),
+            })
+        }
+    }
+
+    /// Analyses every input in turn, reusing one set of buffers, and hands each position (or
+    /// its error) to `visit`: a sweep of any length without a table of full results.
+    pub fn for_each<F>(&self, inputs: &[Motion], mut visit: F)
+    where
+        F: FnMut(Motion, Result<&Analysis<'_>>),
+    {
+        let mut a = Analysis::new(self);
+        for &i in inputs {
+            match a.solve(i) {
+                Ok(()) => visit(i, Ok(&a)),
+                Err(e) => visit(i, Err(e)),
+            }
+        }
+    }
+}
+
+fn read(a: &Analysis<'_>, r: Resolved) -> Motion {
+    match r {
+        Resolved::Angle(k) => a.link_angle_index(k),
+        Resolved::Slide(j) => a.slide_index(j),
+        Resolved::Joint(j, y) => coord(a.joint_motion(j), y),
+        Resolved::Point(p, y) => coord(a.point_motion(p), y),
+    }
+}
+
+fn coord(p: crate::kinematics::PointMotion, y: bool) -> Motion {
+    if y {
+        Motion::new(p.p.y, p.v.y, p.a.y)
+    } else {
+        Motion::new(p.p.x, p.v.x, p.a.x)
+    }
+}
+
+/// The inputs of `n` equally spaced positions over one turn from `start`, at the constant
+/// speed ω1 = `omega1` and acceleration ε1 = `epsilon1`. A negative ω1 turns clockwise: the
+/// angles then decrease from `start`, in the order the crank reaches them.
+#[must_use]
+pub fn uniform_inputs(n: usize, start: f64, omega1: f64, epsilon1: f64) -> Vec<Motion> {
+    let angles = cycle_angles(n, start);
+    let mut a = Vec::with_capacity(angles.len());
+    if omega1 < 0.0 {
+        a.extend(angles.first().copied());
+        a.extend(angles.iter().skip(1).rev().copied());
+    } else {
+        a.extend(angles);
+    }
+    a.into_iter()
+        .map(|phi| Motion::new(phi, omega1, epsilon1))
+        .collect()
+}
+
+/// The inputs of the `n` plans of a course project (12 in the seeds): equally spaced from the
+/// beginning of the working stroke in the crank's sense of rotation, at the speed |ω1| =
+/// `omega1` (its sign follows the rotation).
+#[must_use]
+pub fn course_inputs(strokes: &Strokes, n: usize, omega1: f64) -> Vec<Motion> {
+    let w = match strokes.rotation {
+        Rotation::Ccw => omega1.abs(),
+        Rotation::Cw => -omega1.abs(),
+    };
+    strokes
+        .plan_positions(n)
+        .into_iter()
+        .map(|phi| Motion::new(phi, w, 0.0))
+        .collect()
+}
+
+/// Runs an analysis at every input, position by position. A position that fails (for example
+/// a group at a dead point) gives its `Err` in its place and the cycle goes on.
+pub fn run_cycle<P, F>(inputs: &[Motion], analyse: F) -> Vec<Result<P>>
+where
+    F: Fn(Motion) -> Result<P>,
+{
+    inputs.iter().map(|&i| analyse(i)).collect()
+}
+
+/// [`run_cycle`] on all cores (feature `rayon`): the same results, bit for bit, in the same
+/// order, because every position is a pure function of its input.
+#[cfg(feature = "rayon")]
+pub fn run_cycle_parallel<P, F>(inputs: &[Motion], analyse: F) -> Vec<Result<P>>
+where
+    P: Send,
+    F: Fn(Motion) -> Result<P> + Sync,
+{
+    use rayon::prelude::*;
+    inputs.par_iter().map(|&i| analyse(i)).collect()
+}

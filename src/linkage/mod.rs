@@ -1,0 +1,59 @@
+//! Any linkage of the 2nd class as data: one engine for its kinematics, loads, reactions and
+//! balancing moment.
+//!
+//! The engine works in three steps:
+//! 1. a **description** ([`Linkage`]): plain data a person writes, in Rust or as a JSON file
+//!    (feature `serde`, see [`Linkage::from_json`] and `docs/linkage-format.md`) — joints
+//!    with their coordinates in a reference pose, links as sets of joints and named points,
+//!    the input and its drive, masses and loads;
+//! 2. a **plan** ([`Plan::new`]), made once: the structure (the mobility by Chebyshev's
+//!    formula, the Assur dyads of the 2nd class in attachment order), every length and local
+//!    coordinate read off the reference pose, the assembly mode of every group, the loads.
+//!    Whatever is wrong with a description is found here, and the error names the joint,
+//!    link, load or field;
+//! 3. a **solve** per position ([`Plan::analyse`], or [`Plan::analyse_into`] to reuse buffers):
+//!    kinematics group by group in attachment order, the loads, the reactions from the last
+//!    group back to the input link, and the balancing moment (crank through a coupling), the
+//!    balancing force of a gear pair, or the driving force of a slider. Every result can be
+//!    checked by the principle of virtual power ([`Analysis::power_check`]) and every link's
+//!    equilibrium ([`Analysis::worst_residual`]).
+//!
+//! Conventions: angles of links are measured along each link's declared reference direction
+//! (default: its first joint to its second); the reaction in a joint is the force of one of
+//! its links on the other ([`Reaction`], R_by,on); a prismatic joint's slide is the sliding
+//! link's displacement along the guide from the reference pose.
+//!
+//! # Example
+//! The bundled Watt I six-bar, its balancing moment over a turn, each position checked:
+//! ```
+//! use tmm::linkage::{bundled, Plan};
+//! use tmm::kinematics::Motion;
+//! let plan = Plan::new(&bundled::watt_six_bar())?;
+//! assert_eq!(plan.groups().len(), 2);
+//! for k in 0..12 {
+//!     let phi = plan.reference_input() + k as f64 * std::f64::consts::PI / 6.0;
+//!     let a = plan.analyse(Motion::new(phi, 10.0, 0.0))?;
+//!     assert!(a.power_check()?.relative_error() < 1e-9);
+//!     assert!(a.worst_residual() < 1e-12);
+//! }
+//! # Ok::<(), tmm::Error>(())
+//! ```
+
+mod analysis;
+pub mod bundled;
+mod cycle;
+mod description;
+mod indicator;
+mod plan;
+mod structure;
+mod table;
+
+pub use analysis::{Analysis, Balance, PowerCheck, Reaction};
+pub use cycle::{course_inputs, run_cycle, uniform_inputs, Output};
+#[cfg(feature = "rayon")]
+pub use cycle::run_cycle_parallel;
+pub use description::{At, Drive, Input, Joint, JointKind, Link, Linkage, LoadSpec, Mass, Mode, NamedPoint};
+pub use indicator::IndicatorDiagram;
+pub use plan::{Group, GroupKind, Plan};
+pub use structure::chebyshev;
+pub use table::{Column, Table, Tabulate};

@@ -1,0 +1,1120 @@
+//! The solve plan made once from a description: indices instead of names, lengths and local
+//! coordinates read off the reference pose, assembly modes, the groups in attachment order and
+//! the loads with the links they act on. Everything that can be wrong with a description is
+//! found here and named.
+
+use super::analysis::Analysis;
+use super::description::{At, Drive, JointKind, Linkage, LoadSpec};
+use super::indicator::IndicatorDiagram;
+use super::structure::{decompose, Edge, Pair};
+use crate::angle::{cross, direction, perp};
+use crate::error::{Error, Result};
+use crate::kinematics::{Branch, LinkMotion, Motion};
+use crate::Load;
+use nalgebra::{Point2, Vector2};
+use std::collections::HashMap;
+use std::fmt;
+use std::sync::Arc;
+
+/// The kind of an Assur dyad of the 2nd class, by its joints from one outer joint through the
+/// inner joint to the other (R revolute, P prismatic).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+pub enum GroupKind {
+    /// Three hinges (the seeds' SR1).
+    Rrr,
+    /// A hinge, a hinge, and a slider on a guide of a known link (SR2).
+    Rrp,
+    /// A rod hinged to a known link sliding in a cylinder hinged to another (SR3).
+    Rpr,
+}
+
+impl GroupKind {
+    /// "RRR", "RRP" or "RPR".
+    #[must_use]
+    pub fn label(self) -> &'static str {
+        match self {
+            Self::Rrr => "RRR",
+            Self::Rrp => "RRP",
+            Self::Rpr => "RPR",
+        }
+    }
+}
+
+/// A dyad of the plan, in attachment order.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Group {
+    /// Its kind.
+    pub kind: GroupKind,
+    /// A name for tables and errors, for example `"group (coupler, rocker) RRR"`.
+    pub name: String,
+    /// Its two links (indices into [`Plan::link_names`]); the second is the slider of an RRP.
+    pub links: [usize; 2],
+    /// Its joints: the first link's outer joint, the inner joint, the second link's outer
+    /// joint (indices into [`Plan::joint_names`]).
+    pub joints: [usize; 3],
+    /// The known links its outer joints attach to.
+    pub known: [usize; 2],
+    /// The assembly mode (read off the reference pose unless overridden).
+    pub branch: Branch,
+    pub(crate) a_local: Vector2<f64>,
+    pub(crate) c_local: Vector2<f64>,
+    pub(crate) lengths: [f64; 2],
+    pub(crate) guide_offset: f64,
+}
+
+/// How the plan drives the input link.
+#[derive(Debug, Clone, PartialEq)]
+pub(crate) enum InputPlan {
+    Crank {
+        link: usize,
+        joint: usize,
+        pivot: Point2<f64>,
+        drive: Drive,
+    },
+    Slider {
+        link: usize,
+        joint: usize,
+        at: Point2<f64>,
+        angle: f64,
+    },
+}
+
+#[derive(Debug, Clone, PartialEq)]
+pub(crate) struct LinkPlan {
+    pub angle_offset: f64,
+    pub mass: f64,
+    pub inertia: f64,
+    pub centre: Vector2<f64>,
+    pub size: f64,
+}
+
+#[derive(Debug, Clone, PartialEq)]
+pub(crate) struct JointPlan {
+    pub links: [usize; 2],
+    pub local: [Vector2<f64>; 2],
+    /// For a prismatic joint: which of `links` carries the guide, and the guide's direction
+    /// relative to each link's frame angle.
+    pub prismatic: Option<(usize, [f64; 2])>,
+}
+
+#[derive(Debug, Clone, PartialEq)]
+pub(crate) struct PointPlan {
+    pub link: usize,
+    pub local: Vector2<f64>,
+}
+
+/// A user-supplied load: a function of the kinematic state at a position.
+#[derive(Clone)]
+pub(crate) struct LoadFn(pub Arc<dyn Fn(&Analysis<'_>) -> Result<Load> + Send + Sync>);
+
+impl fmt::Debug for LoadFn {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str("LoadFn")
+    }
+}
+
+impl PartialEq for LoadFn {
+    fn eq(&self, other: &Self) -> bool {
+        Arc::ptr_eq(&self.0, &other.0)
+    }
+}
+
+#[derive(Debug, Clone, PartialEq)]
+pub(crate) enum LoadPlan {
+    Force {
+        link: usize,
+        local: Vector2<f64>,
+        force: Vector2<f64>,
+    },
+    Moment {
+        link: usize,
+        moment: f64,
+    },
+    Turning {
+        link: usize,
+        forward: f64,
+        backward: f64,
+    },
+    Sliding {
+        joint: usize,
+        local: Vector2<f64>,
+        forward: f64,
+        backward: f64,
+    },
+    Indicator {
+        joint: usize,
+        head: f64,
+        diagram: IndicatorDiagram,
+        /// The dead centres as the slide s·head at the head end and at the crank end.
+        ends: [f64; 2],
+    },
+    Custom {
+        link: usize,
+        f: LoadFn,
+    },
+}
+
+/// A linkage checked and planned for solving: made once, used at every position.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Plan {
+    pub(crate) name: String,
+    pub(crate) link_names: Vec<String>,
+    pub(crate) joint_names: Vec<String>,
+    pub(crate) point_names: Vec<String>,
+    pub(crate) links: Vec<LinkPlan>,
+    pub(crate) joints: Vec<JointPlan>,
+    pub(crate) points: Vec<PointPlan>,
+    pub(crate) input: InputPlan,
+    pub(crate) groups: Vec<Group>,
+    pub(crate) loads: Vec<LoadPlan>,
+    pub(crate) gravity: Vector2<f64>,
+    pub(crate) mobility: i64,
+    pub(crate) reference_input: f64,
+    pub(crate) size: f64,
+}
+
+fn bad(item: impl Into<String>, problem: impl Into<String>) -> Error {
+    Error::Description {
+        item: item.into(),
+        problem: problem.into(),
+    }
+}
+
+fn finite_pair(item: &str, field: &str, v: [f64; 2]) -> Result<Vector2<f64>> {
+    if v.iter().all(|x| x.is_finite()) {
+        Ok(Vector2::new(v[0], v[1]))
+    } else {
+        Err(bad(
+            item,
+            format!("{field} must be finite, got [{}, {}]", v[0], v[1]),
+        ))
+    }
+}
+
+fn finite_num(item: &str, field: &str, v: f64) -> Result<f64> {
+    if v.is_finite() {
+        Ok(v)
+    } else {
+        Err(bad(item, format!("{field} must be finite, got {v}")))
+    }
+}
+
+fn non_negative(item: &str, field: &str, v: f64) -> Result<f64> {
+    if finite_num(item, field, v)? >= 0.0 {
+        Ok(v)
+    } else {
+        Err(bad(item, format!("{field} must be ≥ 0, got {v}")))
+    }
+}
+
+/// The frame of a link in the reference pose: its origin and direction angle.
+#[derive(Debug, Clone, Copy)]
+struct Frame {
+    origin: Point2<f64>,
+    angle: f64,
+}
+
+impl Frame {
+    fn local(&self, p: Point2<f64>) -> Vector2<f64> {
+        let e = crate::angle::unit(self.angle);
+        let r = p - self.origin;
+        Vector2::new(r.dot(&e), r.dot(&perp(e)))
+    }
+}
+
+/// Name look-up tables of a description.
+struct Names<'a> {
+    links: HashMap<&'a str, usize>,
+    joints: HashMap<&'a str, usize>,
+    points: HashMap<&'a str, (usize, Point2<f64>)>,
+    joint_at: Vec<Point2<f64>>,
+}
+
+impl<'a> Names<'a> {
+    fn link(&self, name: &str, item: &str) -> Result<usize> {
+        self.links
+            .get(name)
+            .copied()
+            .ok_or_else(|| bad(item, format!("names the unknown link \"{name}\"")))
+    }
+
+    fn joint(&self, name: &str, item: &str) -> Result<usize> {
+        self.joints
+            .get(name)
+            .copied()
+            .ok_or_else(|| bad(item, format!("names the unknown joint \"{name}\"")))
+    }
+}
+
+impl Plan {
+    /// Checks a description and plans its solve: the structure (mobility, the dyads in
+    /// attachment order), every length and local coordinate from the reference pose, the
+    /// assembly mode of every group, and the loads.
+    ///
+    /// # Errors
+    /// [`Error::Description`] naming the joint, link, load or field at fault: unknown or
+    /// repeated names, a joint not joining exactly two links, a link with fewer than two
+    /// joints, a guide without a direction, non-finite numbers, negative masses, a linkage
+    /// outside the 2nd class or of the wrong mobility, a pose that does not close, a group at a
+    /// dead point in the reference pose without a given mode.
+    pub fn new(linkage: &Linkage) -> Result<Self> {
+        let names = index_names(linkage)?;
+        let frame = names.link(&linkage.frame, "field frame")?;
+        // Link 0 is the frame: reorder so that it comes first.
+        let mut order: Vec<usize> = (0..linkage.links.len()).collect();
+        order.swap(0, frame);
+        let mut link_index = vec![0; order.len()];
+        for (new, &old) in order.iter().enumerate() {
+            link_index[old] = new;
+        }
+        let link_names: Vec<String> = order
+            .iter()
+            .map(|&k| linkage.links[k].name.clone())
+            .collect();
+
+        // Joints: each joins exactly two links.
+        let mut owners: Vec<Vec<usize>> = vec![Vec::new(); linkage.joints.len()];
+        for (k, link) in linkage.links.iter().enumerate() {
+            let item = format!("link {}", link.name);
+            if link.joints.len() < 2 && k != frame {
+                return Err(bad(
+                    item,
+                    format!(
+                        "has {} joint(s); a moving link needs at least two",
+                        link.joints.len()
+                    ),
+                ));
+            }
+            for j in &link.joints {
+                let ji = names.joint(j, &item)?;
+                if owners[ji].contains(&link_index[k]) {
+                    return Err(bad(item, format!("lists joint {j} twice")));
+                }
+                owners[ji].push(link_index[k]);
+            }
+        }
+        let mut edges = Vec::with_capacity(linkage.joints.len());
+        for (j, joint) in linkage.joints.iter().enumerate() {
+            let item = format!("joint {}", joint.name);
+            finite_pair(&item, "at", joint.at)?;
+            if owners[j].len() != 2 {
+                let listed: Vec<&str> = owners[j].iter().map(|&k| link_names[k].as_str()).collect();
+                return Err(bad(
+                    item,
+                    format!(
+                        "is listed by {} link(s) [{}]; a joint joins exactly two links (use two \
+                         joints at one place for a hinge of three links)",
+                        owners[j].len(),
+                        listed.join(", ")
+                    ),
+                ));
+            }
+            let pair = match &joint.kind {
+                JointKind::Revolute => Pair::Revolute,
+                JointKind::Prismatic { guide, direction } => {
+                    let g = names.link(guide, &item)?;
+                    if !owners[j].contains(&link_index[g]) {
+                        return Err(bad(
+                            item,
+                            format!("has its guide on link {guide}, which does not list it"),
+                        ));
+                    }
+                    let d = finite_pair(&item, "direction", *direction)?;
+                    if !(d.norm() > 0.0) || !d.norm().is_finite() {
+                        return Err(bad(item, "guide direction must be a non-zero vector"));
+                    }
+                    Pair::Prismatic
+                }
+            };
+            edges.push(Edge {
+                pair,
+                links: [owners[j][0], owners[j][1]],
+            });
+        }
+
+        // The input link and its joint with the frame.
+        let input = link_index[names.link(&linkage.input.link, "field input.link")?];
+        if input == 0 {
+            return Err(bad("field input.link", "the input cannot be the frame"));
+        }
+        let to_frame: Vec<usize> = (0..edges.len())
+            .filter(|&j| edges[j].links.contains(&0) && edges[j].links.contains(&input))
+            .collect();
+        let [input_joint] = to_frame[..] else {
+            return Err(bad(
+                format!("link {}", link_names[input]),
+                format!(
+                    "is the input but has {} joints with the frame; it needs exactly one (a \
+                     crank's pivot or a slider's guide)",
+                    to_frame.len()
+                ),
+            ));
+        };
+        let explicit: Vec<[usize; 2]> = linkage
+            .groups
+            .iter()
+            .map(|[a, b]| {
+                Ok([
+                    link_index[names.link(a, "field groups")?],
+                    link_index[names.link(b, "field groups")?],
+                ])
+            })
+            .collect::<Result<_>>()?;
+        let dyads = decompose(&edges, &link_names, input, &explicit)?;
+        let mobility = super::structure::chebyshev(link_names.len() - 1, edges.len());
+
+        let at = |j: usize| {
+            let a = linkage.joints[j].at;
+            Point2::new(a[0], a[1])
+        };
+        let dir = |j: usize| match &linkage.joints[j].kind {
+            JointKind::Prismatic { direction, .. } => Vector2::new(direction[0], direction[1]),
+            JointKind::Revolute => Vector2::zeros(),
+        };
+
+        // Frames in the reference pose.
+        let mut frames = vec![
+            Frame {
+                origin: Point2::origin(),
+                angle: 0.0
+            };
+            link_names.len()
+        ];
+        let (input_plan, reference_input) = match edges[input_joint].pair {
+            Pair::Revolute => {
+                let pivot = at(input_joint);
+                let item = format!("link {}", link_names[input]);
+                let reference = reference_direction(linkage, &order, input, &names, &item)?
+                    .ok_or_else(|| bad(&item, "the crank's joints coincide: it has no direction"))?;
+                frames[input] = Frame {
+                    origin: pivot,
+                    angle: reference,
+                };
+                check_drive(&linkage.input.drive)?;
+                (
+                    InputPlan::Crank {
+                        link: input,
+                        joint: input_joint,
+                        pivot,
+                        drive: linkage.input.drive,
+                    },
+                    crate::angle::normalize(reference),
+                )
+            }
+            Pair::Prismatic => {
+                let angle = direction(dir(input_joint));
+                frames[input] = Frame {
+                    origin: at(input_joint),
+                    angle,
+                };
+                (
+                    InputPlan::Slider {
+                        link: input,
+                        joint: input_joint,
+                        at: at(input_joint),
+                        angle,
+                    },
+                    0.0,
+                )
+            }
+        };
+        let mut groups = Vec::with_capacity(dyads.len());
+        for d in &dyads {
+            groups.push(plan_group(d, &edges, &link_names, linkage, &mut frames, &at, &dir)?);
+        }
+
+        // Local coordinates of joints and points.
+        let joints: Vec<JointPlan> = edges
+            .iter()
+            .enumerate()
+            .map(|(j, e)| JointPlan {
+                links: e.links,
+                local: e.links.map(|k| frames[k].local(at(j))),
+                prismatic: match &linkage.joints[j].kind {
+                    JointKind::Revolute => None,
+                    JointKind::Prismatic { guide, .. } => {
+                        let g = link_index[names.links[guide.as_str()]];
+                        let side = usize::from(e.links[1] == g);
+                        let d = direction(dir(j));
+                        Some((side, e.links.map(|k| d - frames[k].angle)))
+                    }
+                },
+            })
+            .collect();
+        let mut point_names = Vec::new();
+        let mut points = Vec::new();
+        for (k, link) in linkage.links.iter().enumerate() {
+            for p in &link.points {
+                let item = format!("point {}", p.name);
+                let xy = finite_pair(&item, "at", p.at)?;
+                let li = link_index[k];
+                point_names.push(p.name.clone());
+                points.push(PointPlan {
+                    link: li,
+                    local: frames[li].local(Point2::from(xy)),
+                });
+            }
+        }
+
+        // Links: reference directions, masses, sizes.
+        let size = linkage
+            .joints
+            .iter()
+            .flat_map(|j| {
+                linkage
+                    .joints
+                    .iter()
+                    .map(move |k| ((j.at[0] - k.at[0]).powi(2) + (j.at[1] - k.at[1]).powi(2)).sqrt())
+            })
+            .fold(0.0, f64::max);
+        if !size.is_finite() {
+            return Err(bad("linkage", format!("its size overflows ({size} m)")));
+        }
+        let mut links = Vec::with_capacity(link_names.len());
+        for (li, &k) in order.iter().enumerate() {
+            let link = &linkage.links[k];
+            let item = format!("link {}", link.name);
+            let reference = if li == 0 {
+                frames[0].angle
+            } else {
+                reference_direction(linkage, &order, li, &names, &item)?.unwrap_or(frames[li].angle)
+            };
+            let (mass, inertia, centre) = match &link.mass {
+                None => (0.0, 0.0, Vector2::zeros()),
+                Some(m) => {
+                    let c = place(&m.centre, &names, li, &link_index, &item, "mass.centre")?;
+                    (
+                        non_negative(&item, "mass.m", m.m)?,
+                        non_negative(&item, "mass.j", m.j)?,
+                        frames[li].local(c),
+                    )
+                }
+            };
+            links.push(LinkPlan {
+                angle_offset: reference - frames[li].angle,
+                mass,
+                inertia,
+                centre,
+                size: 0.0,
+            });
+        }
+        for (j, e) in edges.iter().enumerate() {
+            for k in e.links {
+                links[k].size = links[k].size.max(frames[k].local(at(j)).norm());
+            }
+        }
+        let gravity = finite_pair("field gravity", "gravity", linkage.gravity)?;
+
+        let mut plan = Self {
+            name: linkage.name.clone(),
+            link_names,
+            joint_names: linkage.joints.iter().map(|j| j.name.clone()).collect(),
+            point_names,
+            links,
+            joints,
+            points,
+            input: input_plan,
+            groups,
+            loads: Vec::new(),
+            gravity,
+            mobility,
+            reference_input,
+            size,
+        };
+        for (i, spec) in linkage.loads.iter().enumerate() {
+            let lp = plan_load(spec, i, &names, &link_index, &frames, &plan)?;
+            plan.loads.push(lp);
+        }
+        plan.check_closure(linkage)?;
+        plan.find_dead_centres()?;
+        Ok(plan)
+    }
+
+    /// Solves the reference pose and compares every joint with its given position.
+    fn check_closure(&self, linkage: &Linkage) -> Result<()> {
+        let mut a = Analysis::new(self);
+        let input = Motion::new(self.reference_input, 0.0, 0.0);
+        a.solve_kinematics(input)
+            .map_err(|e| bad("reference pose", format!("does not assemble: {e}")))?;
+        let tol = 1e-9 * self.size.max(f64::MIN_POSITIVE);
+        for (j, joint) in linkage.joints.iter().enumerate() {
+            let given = Point2::new(joint.at[0], joint.at[1]);
+            for side in 0..2 {
+                let p = a.joint_on(j, side).p;
+                let gap = (p - given).norm();
+                if !(gap <= tol) {
+                    return Err(bad(
+                        format!("joint {}", joint.name),
+                        format!(
+                            "the reference pose does not close: the joint as carried by link \
+                             {} lies {gap:.3e} m from its given position",
+                            self.link_names[self.joints[j].links[side]]
+                        ),
+                    ));
+                }
+            }
+        }
+        Ok(())
+    }
+
+    /// The dead centres of every piston loaded by an indicator diagram.
+    fn find_dead_centres(&mut self) -> Result<()> {
+        for k in 0..self.loads.len() {
+            let LoadPlan::Indicator { joint, head, .. } = self.loads[k] else {
+                continue;
+            };
+            let name = format!("joint {}", self.joint_names[joint]);
+            let mut a = Analysis::new(self);
+            let ext = crate::kinematics::extreme_positions(
+                |phi| {
+                    crate::kinematics::transfer_functions(
+                        |m| {
+                            a.solve_kinematics(m)?;
+                            let s = a.slide_index(joint);
+                            Ok(Motion::new(head * s.value, head * s.rate, head * s.accel))
+                        },
+                        phi,
+                    )
+                },
+                360,
+            )
+            .map_err(|e| bad(&name, format!("its piston's dead centres cannot be found: {e}")))?;
+            let hi = ext.iter().map(|e| e.output.value).fold(f64::NEG_INFINITY, f64::max);
+            let lo = ext.iter().map(|e| e.output.value).fold(f64::INFINITY, f64::min);
+            if !(hi > lo) {
+                return Err(bad(name, "the piston has no stroke over a turn of the input"));
+            }
+            if let LoadPlan::Indicator { ends, .. } = &mut self.loads[k] {
+                *ends = [hi, lo];
+            }
+        }
+        Ok(())
+    }
+
+    /// Adds a load computed by `f` from the kinematic state at each position (a force at a
+    /// point plus a couple, on `link`): anything the description's load kinds do not cover.
+    ///
+    /// # Errors
+    /// [`Error::Description`] for an unknown link.
+    ///
+    /// # Examples
+    /// A spring of 2 kN/m from a fixed point (0.5, 0.5) m to the coupler's point B:
+    /// ```
+    /// # use tmm::linkage::{Plan, bundled};
+    /// use tmm::Load;
+    /// let mut plan = Plan::new(&bundled::four_bar())?;
+    /// plan.add_load_fn("coupler", |a| {
+    ///     let b = a.joint("B")?.p;
+    ///     let stretch = b - nalgebra::Point2::new(0.5, 0.5);
+    ///     Ok(Load::force_at(b, -2000.0 * stretch))
+    /// })?;
+    /// let r = plan.analyse(tmm::kinematics::Motion::new(1.0, 10.0, 0.0))?;
+    /// assert!(r.power_check()?.relative_error() < 1e-9);
+    /// # Ok::<(), tmm::Error>(())
+    /// ```
+    pub fn add_load_fn<F>(&mut self, link: &str, f: F) -> Result<()>
+    where
+        F: Fn(&Analysis<'_>) -> Result<Load> + Send + Sync + 'static,
+    {
+        let link = self.link_index(link)?;
+        self.loads.push(LoadPlan::Custom {
+            link,
+            f: LoadFn(Arc::new(f)),
+        });
+        Ok(())
+    }
+
+    /// The linkage's name.
+    #[must_use]
+    pub fn name(&self) -> &str {
+        &self.name
+    }
+
+    /// The mobility by Chebyshev's formula (1 for every plan).
+    #[must_use]
+    pub fn mobility(&self) -> i64 {
+        self.mobility
+    }
+
+    /// The dyads in attachment order.
+    #[must_use]
+    pub fn groups(&self) -> &[Group] {
+        &self.groups
+    }
+
+    /// The links' names; index 0 is the frame.
+    #[must_use]
+    pub fn link_names(&self) -> &[String] {
+        &self.link_names
+    }
+
+    /// The joints' names, in the description's order.
+    #[must_use]
+    pub fn joint_names(&self) -> &[String] {
+        &self.joint_names
+    }
+
+    /// The named points' names.
+    #[must_use]
+    pub fn point_names(&self) -> &[String] {
+        &self.point_names
+    }
+
+    /// The input coordinate in the reference pose: the crank's angle (rad), or 0 for a
+    /// slider (its coordinate is measured from the reference pose).
+    #[must_use]
+    pub fn reference_input(&self) -> f64 {
+        self.reference_input
+    }
+
+    /// Whether the input is a crank (an angle) rather than a slider (a length).
+    #[must_use]
+    pub fn input_is_crank(&self) -> bool {
+        matches!(self.input, InputPlan::Crank { .. })
+    }
+
+    /// The input link's index.
+    #[must_use]
+    pub fn input_link(&self) -> usize {
+        match self.input {
+            InputPlan::Crank { link, .. } | InputPlan::Slider { link, .. } => link,
+        }
+    }
+
+    /// The largest distance between two joints in the reference pose, m.
+    #[must_use]
+    pub fn size(&self) -> f64 {
+        self.size
+    }
+
+    /// The index of the link called `name`.
+    ///
+    /// # Errors
+    /// [`Error::Description`] for an unknown name.
+    pub fn link_index(&self, name: &str) -> Result<usize> {
+        self.link_names
+            .iter()
+            .position(|n| n == name)
+            .ok_or_else(|| bad(format!("link {name}"), "is not a link of this linkage"))
+    }
+
+    /// The index of the joint called `name`.
+    ///
+    /// # Errors
+    /// [`Error::Description`] for an unknown name.
+    pub fn joint_index(&self, name: &str) -> Result<usize> {
+        self.joint_names
+            .iter()
+            .position(|n| n == name)
+            .ok_or_else(|| bad(format!("joint {name}"), "is not a joint of this linkage"))
+    }
+
+    /// The index of the named point called `name`.
+    ///
+    /// # Errors
+    /// [`Error::Description`] for an unknown name.
+    pub fn point_index(&self, name: &str) -> Result<usize> {
+        self.point_names
+            .iter()
+            .position(|n| n == name)
+            .ok_or_else(|| bad(format!("point {name}"), "is not a named point of this linkage"))
+    }
+
+    /// The link a named point belongs to and its local coordinates, for [`LinkMotion::point_at`].
+    #[must_use]
+    pub fn point_local(&self, point: usize) -> (usize, Vector2<f64>) {
+        (self.points[point].link, self.points[point].local)
+    }
+
+    /// Whether joint `joint` is prismatic.
+    #[must_use]
+    pub fn is_prismatic(&self, joint: usize) -> bool {
+        self.joints[joint].prismatic.is_some()
+    }
+
+    /// The two links a joint joins.
+    #[must_use]
+    pub fn joint_links(&self, joint: usize) -> [usize; 2] {
+        self.joints[joint].links
+    }
+
+    /// The frame's link motion (at rest at the origin).
+    pub(crate) fn frame_motion() -> LinkMotion {
+        LinkMotion {
+            origin: crate::kinematics::PointMotion::fixed(Point2::origin()),
+            angle: 0.0,
+            omega: 0.0,
+            epsilon: 0.0,
+        }
+    }
+}
+
+fn check_drive(drive: &Drive) -> Result<()> {
+    if let Drive::Gear {
+        pitch_radius,
+        pitch_angle,
+        pressure_angle,
+    } = *drive
+    {
+        let item = "field input.drive";
+        if !(finite_num(item, "pitch_radius", pitch_radius)? > 0.0) {
+            return Err(bad(item, format!("pitch_radius must be > 0, got {pitch_radius}")));
+        }
+        finite_num(item, "pitch_angle", pitch_angle)?;
+        let a = finite_num(item, "pressure_angle", pressure_angle)?;
+        if !(0.0..std::f64::consts::FRAC_PI_2).contains(&a) {
+            return Err(bad(
+                item,
+                format!("pressure_angle must lie in [0, π/2), got {a} rad"),
+            ));
+        }
+    }
+    Ok(())
+}
+
+/// Checks names: unique, non-empty; builds the look-up tables.
+fn index_names(linkage: &Linkage) -> Result<Names<'_>> {
+    let mut links = HashMap::new();
+    for (k, l) in linkage.links.iter().enumerate() {
+        if l.name.is_empty() || links.insert(l.name.as_str(), k).is_some() {
+            return Err(bad(
+                format!("link \"{}\"", l.name),
+                "link names must be non-empty and unique",
+            ));
+        }
+    }
+    let mut joints = HashMap::new();
+    for (j, jt) in linkage.joints.iter().enumerate() {
+        if jt.name.is_empty() || joints.insert(jt.name.as_str(), j).is_some() {
+            return Err(bad(
+                format!("joint \"{}\"", jt.name),
+                "joint names must be non-empty and unique",
+            ));
+        }
+    }
+    let mut points = HashMap::new();
+    for (k, l) in linkage.links.iter().enumerate() {
+        for p in &l.points {
+            if p.name.is_empty()
+                || joints.contains_key(p.name.as_str())
+                || points
+                    .insert(p.name.as_str(), (k, Point2::new(p.at[0], p.at[1])))
+                    .is_some()
+            {
+                return Err(bad(
+                    format!("point \"{}\"", p.name),
+                    "point names must be non-empty and unique among joints and points",
+                ));
+            }
+        }
+    }
+    if linkage.links.is_empty() {
+        return Err(bad("field links", "a linkage needs links"));
+    }
+    let joint_at = linkage
+        .joints
+        .iter()
+        .map(|j| Point2::new(j.at[0], j.at[1]))
+        .collect();
+    Ok(Names {
+        links,
+        joints,
+        points,
+        joint_at,
+    })
+}
+
+/// The position of a named joint or point of the link with the new index `li`, or given
+/// coordinates.
+fn place(
+    at: &At,
+    names: &Names<'_>,
+    li: usize,
+    link_index: &[usize],
+    item: &str,
+    field: &str,
+) -> Result<Point2<f64>> {
+    match at {
+        At::Coords(c) => Ok(Point2::from(finite_pair(item, field, *c)?)),
+        At::Name(n) => {
+            if let Some(&(k, p)) = names.points.get(n.as_str()) {
+                return if link_index[k] == li {
+                    Ok(p)
+                } else {
+                    Err(bad(item, format!("{field} names point {n}, which is on another link")))
+                };
+            }
+            match names.joints.get(n.as_str()) {
+                Some(&j) => Ok(names.joint_at[j]),
+                None => Err(bad(
+                    item,
+                    format!("{field} names \"{n}\", which is neither a joint nor a point"),
+                )),
+            }
+        }
+    }
+}
+
+/// The angle of a link's declared reference direction in the reference pose.
+fn reference_direction(
+    linkage: &Linkage,
+    order: &[usize],
+    li: usize,
+    names: &Names<'_>,
+    item: &str,
+) -> Result<Option<f64>> {
+    let link = &linkage.links[order[li]];
+    let pos = |n: &str| -> Result<Point2<f64>> {
+        if let Some(&j) = names.joints.get(n) {
+            if link.joints.iter().any(|x| x == n) {
+                let a = linkage.joints[j].at;
+                return Ok(Point2::new(a[0], a[1]));
+            }
+        }
+        if let Some(&(k, p)) = names.points.get(n) {
+            if k == order[li] {
+                return Ok(p);
+            }
+        }
+        Err(bad(item, format!("reference names \"{n}\", which is not on this link")))
+    };
+    let (a, b) = match &link.reference {
+        Some([a, b]) => (pos(a)?, pos(b)?),
+        None => {
+            // The first two distinct joints; a link whose joints all coincide (a slider
+            // block) keeps the engine's frame: `None`.
+            let ps: Vec<Point2<f64>> = link.joints.iter().map(|j| pos(j)).collect::<Result<_>>()?;
+            match ps.iter().skip(1).find(|p| **p != ps[0]) {
+                Some(&b) => (ps[0], b),
+                None => return Ok(None),
+            }
+        }
+    };
+    let d = b - a;
+    if !(d.norm() > 0.0) {
+        return Err(bad(
+            item,
+            "its reference direction joins two coincident points; name two distinct ones in \
+             `reference`",
+        ));
+    }
+    Ok(Some(direction(d)))
+}
+
+/// Classifies a dyad, orders its links so that an RRP's slider comes second, sets the frames
+/// of its links in the reference pose and reads its assembly mode off the pose.
+#[allow(clippy::too_many_arguments)]
+fn plan_group(
+    d: &super::structure::Dyad,
+    edges: &[Edge],
+    link_names: &[String],
+    linkage: &Linkage,
+    frames: &mut [Frame],
+    at: &dyn Fn(usize) -> Point2<f64>,
+    dir: &dyn Fn(usize) -> Vector2<f64>,
+) -> Result<Group> {
+    let pairs = d.joints.map(|j| edges[j].pair);
+    let (links, joints, kind) = match pairs {
+        [Pair::Revolute, Pair::Revolute, Pair::Revolute] => (d.links, d.joints, GroupKind::Rrr),
+        [Pair::Revolute, Pair::Revolute, Pair::Prismatic] => (d.links, d.joints, GroupKind::Rrp),
+        [Pair::Prismatic, Pair::Revolute, Pair::Revolute] => (
+            [d.links[1], d.links[0]],
+            [d.joints[2], d.joints[1], d.joints[0]],
+            GroupKind::Rrp,
+        ),
+        [Pair::Revolute, Pair::Prismatic, Pair::Revolute] => (d.links, d.joints, GroupKind::Rpr),
+        _ => {
+            let label: String = pairs
+                .iter()
+                .map(|p| if *p == Pair::Revolute { 'R' } else { 'P' })
+                .collect();
+            return Err(bad(
+                format!("group ({}, {})", link_names[d.links[0]], link_names[d.links[1]]),
+                format!("is a {label} dyad, which the engine does not solve (it solves RRR, RRP and RPR)"),
+            ));
+        }
+    };
+    let other = |j: usize, l: usize| {
+        let e = edges[j].links;
+        if e[0] == l {
+            e[1]
+        } else {
+            e[0]
+        }
+    };
+    let known = [other(joints[0], links[0]), other(joints[2], links[1])];
+    let name = format!(
+        "group ({}, {}) {}",
+        link_names[links[0]],
+        link_names[links[1]],
+        kind.label()
+    );
+    let (a, b, c) = (at(joints[0]), at(joints[1]), at(joints[2]));
+    let mode = linkage
+        .modes
+        .iter()
+        .find(|m| m.joint == linkage.joints[joints[1]].name)
+        .map(|m| m.branch);
+    let need_mode = |what: &str| {
+        bad(
+            name.clone(),
+            format!("{what} in the reference pose; give its assembly mode in `modes` (joint {})", linkage.joints[joints[1]].name),
+        )
+    };
+    let mut lengths = [0.0; 2];
+    let mut guide_offset = 0.0;
+    let branch;
+    match kind {
+        GroupKind::Rrr => {
+            lengths = [(b - a).norm(), (b - c).norm()];
+            if !(lengths[0] > 0.0 && lengths[1] > 0.0) {
+                return Err(bad(name, "has a link of zero length in the reference pose"));
+            }
+            frames[links[0]] = Frame { origin: a, angle: direction(b - a) };
+            frames[links[1]] = Frame { origin: c, angle: direction(b - c) };
+            let side = cross(c - a, b - a);
+            branch = match mode {
+                Some(m) => m,
+                None if side > 0.0 => Branch::Plus,
+                None if side < 0.0 => Branch::Minus,
+                None => return Err(need_mode("is at a dead point (its three hinges collinear)")),
+            };
+        }
+        GroupKind::Rrp => {
+            lengths[0] = (b - a).norm();
+            if !(lengths[0] > 0.0) {
+                return Err(bad(name, "has a link of zero length in the reference pose"));
+            }
+            let g = dir(joints[2]);
+            let ga = direction(g);
+            frames[links[0]] = Frame { origin: a, angle: direction(b - a) };
+            frames[links[1]] = Frame { origin: b, angle: ga };
+            guide_offset = ga - frames[known[1]].angle;
+            let ahead = (b - a).dot(&g);
+            branch = match mode {
+                Some(m) => m,
+                None if ahead > 0.0 => Branch::Plus,
+                None if ahead < 0.0 => Branch::Minus,
+                None => return Err(need_mode("has its rod perpendicular to the guide")),
+            };
+        }
+        GroupKind::Rpr => {
+            let ac = c - a;
+            if !(ac.norm() > 0.0) {
+                return Err(bad(name, "has its two hinges at one place in the reference pose"));
+            }
+            let u = dir(joints[1]);
+            if cross(u / u.norm(), ac).abs() > 1e-9 * ac.norm() {
+                return Err(bad(
+                    format!("joint {}", linkage.joints[joints[1]].name),
+                    "the sliding axis of an RPR group must pass through both of its hinges \
+                     (an offset axis is not supported)",
+                ));
+            }
+            frames[links[0]] = Frame { origin: a, angle: direction(ac) };
+            frames[links[1]] = Frame { origin: c, angle: direction(-ac) };
+            branch = Branch::Plus;
+        }
+    }
+    Ok(Group {
+        kind,
+        name,
+        links,
+        joints,
+        known,
+        branch,
+        a_local: frames[known[0]].local(a),
+        c_local: frames[known[1]].local(if kind == GroupKind::Rrp { b } else { c }),
+        lengths,
+        guide_offset,
+    })
+}
+
+fn plan_load(
+    spec: &LoadSpec,
+    i: usize,
+    names: &Names<'_>,
+    link_index: &[usize],
+    frames: &[Frame],
+    plan: &Plan,
+) -> Result<LoadPlan> {
+    let item = format!("load {}", i + 1);
+    let link_of = |n: &str| names.link(n, &item).map(|k| link_index[k]);
+    let at_on = |a: &At, li: usize, field: &str| -> Result<Vector2<f64>> {
+        Ok(frames[li].local(place(a, names, li, link_index, &item, field)?))
+    };
+    Ok(match spec {
+        LoadSpec::Force { link, at, force } => {
+            let link = link_of(link)?;
+            LoadPlan::Force {
+                link,
+                local: at_on(at, link, "at")?,
+                force: finite_pair(&item, "force", *force)?,
+            }
+        }
+        LoadSpec::Moment { link, moment } => LoadPlan::Moment {
+            link: link_of(link)?,
+            moment: finite_num(&item, "moment", *moment)?,
+        },
+        LoadSpec::Resistance {
+            on,
+            forward,
+            backward,
+            at,
+        } => {
+            let forward = non_negative(&item, "forward", *forward)?;
+            let backward = non_negative(&item, "backward", *backward)?;
+            if let Some(&j) = names.joints.get(on.as_str()) {
+                let Some((side, _)) = plan.joints[j].prismatic else {
+                    return Err(bad(&item, format!("resists joint {on}, which is not prismatic")));
+                };
+                let slider = plan.joints[j].links[1 - side];
+                let local = match at {
+                    None => plan.joints[j].local[1 - side],
+                    Some(a) => at_on(a, slider, "at")?,
+                };
+                LoadPlan::Sliding {
+                    joint: j,
+                    local,
+                    forward,
+                    backward,
+                }
+            } else {
+                LoadPlan::Turning {
+                    link: link_of(on)?,
+                    forward,
+                    backward,
+                }
+            }
+        }
+        LoadSpec::Indicator {
+            joint,
+            diagram,
+            head,
+        } => {
+            let j = names.joint(joint, &item)?;
+            match plan.joints[j].prismatic {
+                Some((side, _)) if plan.joints[j].links[side] == 0 => {}
+                _ => {
+                    return Err(bad(
+                        &item,
+                        format!("joint {joint} must be prismatic with its guide on the frame"),
+                    ))
+                }
+            }
+            if !(*head == 1.0 || *head == -1.0) {
+                return Err(bad(&item, format!("head must be +1 or −1, got {head}")));
+            }
+            if !(diagram.area.is_finite() && diagram.area > 0.0) {
+                return Err(bad(&item, format!("diagram.area must be > 0, got {}", diagram.area)));
+            }
+            LoadPlan::Indicator {
+                joint: j,
+                head: *head,
+                diagram: diagram.clone(),
+                ends: [0.0, 0.0],
+            }
+        }
+    })
+}
