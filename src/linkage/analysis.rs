@@ -533,6 +533,13 @@ impl<'p> Analysis<'p> {
         (jp.links[1 - g], guide, unit(self.links[guide].angle + offsets[g]))
     }
 
+    /// The current unit direction of the guide of prismatic joint `j` (zero for a revolute
+    /// joint).
+    #[must_use]
+    pub fn guide_direction(&self, j: usize) -> Vector2<f64> {
+        self.slide_parts(j).2
+    }
+
     /// The slide of prismatic joint `j`: the sliding link's displacement along the guide from
     /// the reference pose, with its velocity and acceleration relative to the guide (zero for
     /// a revolute joint).

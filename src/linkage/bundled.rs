@@ -2,6 +2,7 @@
 //! and the tests check. The same linkages are bundled as JSON files under `linkages/` (feature
 //! `serde`; a test checks that each file reads back as the linkage built here).
 
+use super::cycle::Output;
 use super::description::{At, Drive, Input, Joint, Link, Linkage, LoadSpec, Mass};
 
 fn rod(m: f64, a: [f64; 2], b: [f64; 2]) -> Mass {
@@ -46,6 +47,7 @@ pub fn four_bar() -> Linkage {
                 force: [0.0, -50.0],
             },
         ],
+        output: Some(Output::Angle("rocker".to_owned())),
         ..Linkage::default()
     }
 }
@@ -96,6 +98,7 @@ pub fn watt_six_bar() -> Linkage {
             backward: 30.0,
             at: None,
         }],
+        output: Some(Output::Angle("link 5".to_owned())),
         ..Linkage::default()
     }
 }
@@ -129,6 +132,7 @@ pub fn stephenson_six_bar() -> Linkage {
             backward: 0.0,
             at: None,
         }],
+        output: Some(Output::Angle("link 5".to_owned())),
         ..Linkage::default()
     }
 }
@@ -168,6 +172,7 @@ pub fn shaper() -> Linkage {
             backward: 1500.0,
             at: None,
         }],
+        output: Some(Output::Slide("Q".to_owned())),
         ..Linkage::default()
     }
 }

@@ -3,6 +3,7 @@
 //! or, with the `serde` feature, in a JSON file); [`Plan::new`](super::Plan::new) checks it and
 //! turns it into the solve plan.
 
+use super::cycle::Output;
 use super::indicator::IndicatorDiagram;
 use crate::kinematics::Branch;
 
@@ -67,6 +68,14 @@ pub struct Linkage {
     /// inner joint (the joint between its two links).
     #[cfg_attr(feature = "serde", serde(default))]
     pub modes: Vec<Mode>,
+    /// The output whose extreme positions start the 12 course positions (a link's angle, a
+    /// slide, a point's coordinate), if any.
+    #[cfg_attr(feature = "serde", serde(default))]
+    pub output: Option<Output>,
+    /// The input speed of the course table, rad/s (m/s for a slider); negative turns the
+    /// crank clockwise. Default 10.
+    #[cfg_attr(feature = "serde", serde(default))]
+    pub speed: Option<f64>,
 }
 
 #[cfg(feature = "serde")]
@@ -93,6 +102,8 @@ impl Default for Linkage {
             loads: Vec::new(),
             groups: Vec::new(),
             modes: Vec::new(),
+            output: None,
+            speed: None,
         }
     }
 }
@@ -386,4 +397,65 @@ pub enum LoadSpec {
         /// +1: the head lies along the guide direction; −1: against it.
         head: f64,
     },
+}
+
+#[cfg(feature = "serde")]
+impl Linkage {
+    /// Reads a description from JSON (feature `serde`); the format is documented field by
+    /// field in `docs/linkage-format.md`.
+    ///
+    /// # Errors
+    /// [`Error::Description`](crate::Error::Description) with the parser's message, which
+    /// names the field and the line and column.
+    ///
+    /// # Examples
+    /// ```
+    /// let l = tmm::linkage::Linkage::from_json(r#"{
+    ///   "joints": [{"name": "O1", "at": [0, 0]}, {"name": "A", "at": [0.1, 0]},
+    ///              {"name": "B", "at": [0.3, 0.25]}, {"name": "O3", "at": [0.4, 0]}],
+    ///   "links": [{"name": "frame", "joints": ["O1", "O3"]}, {"name": "crank", "joints": ["O1", "A"]},
+    ///             {"name": "coupler", "joints": ["A", "B"]}, {"name": "rocker", "joints": ["O3", "B"]}],
+    ///   "input": {"link": "crank"}
+    /// }"#)?;
+    /// assert_eq!(tmm::linkage::Plan::new(&l)?.groups().len(), 1);
+    /// let bad = tmm::linkage::Linkage::from_json(r#"{"joints": [], "links": [], "input": {"lnk": "x"}}"#);
+    /// assert!(bad.unwrap_err().to_string().contains("lnk"));
+    /// # Ok::<(), tmm::Error>(())
+    /// ```
+    pub fn from_json(text: &str) -> crate::Result<Self> {
+        serde_json::from_str(text).map_err(|e| crate::Error::Description {
+            item: "description file".to_owned(),
+            problem: e.to_string(),
+        })
+    }
+
+    /// The description as pretty-printed JSON (feature `serde`).
+    ///
+    /// # Errors
+    /// [`Error::Description`](crate::Error::Description) if a number cannot be written (JSON
+    /// has no NaN or infinity).
+    pub fn to_json(&self) -> crate::Result<String> {
+        if let Some(bad) = self.non_finite() {
+            return Err(crate::Error::Description {
+                item: bad,
+                problem: "JSON cannot hold a non-finite number".to_owned(),
+            });
+        }
+        serde_json::to_string_pretty(self).map_err(|e| crate::Error::Description {
+            item: "description".to_owned(),
+            problem: e.to_string(),
+        })
+    }
+
+    fn non_finite(&self) -> Option<String> {
+        let bad = |v: &[f64]| v.iter().any(|x| !x.is_finite());
+        self.joints
+            .iter()
+            .find(|j| {
+                bad(&j.at)
+                    || matches!(&j.kind, JointKind::Prismatic { direction, .. } if bad(direction))
+            })
+            .map(|j| format!("joint {}", j.name))
+            .or_else(|| bad(&self.gravity).then(|| "field gravity".to_owned()))
+    }
 }
