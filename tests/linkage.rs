@@ -1,0 +1,380 @@
+//! The linkage engine against independent references: one LU solve of the whole linkage's
+//! Newton–Euler system (all links at once, written here), the principle of virtual power,
+//! every link's equilibrium, 8th-order finite differences of positions, random linkages from
+//! random poses, and bad descriptions.
+
+use nalgebra::{DMatrix, DVector, Point2, Vector2};
+use proptest::prelude::*;
+use std::f64::consts::TAU;
+use tmm::kinematics::Motion;
+use tmm::linkage::{bundled, At, Drive, Input, Joint, Link, Linkage, LoadSpec, Mass, Plan};
+use tmm::Error;
+
+fn bundled_all() -> Vec<Linkage> {
+    vec![
+        bundled::four_bar(),
+        bundled::geared_four_bar(),
+        bundled::watt_six_bar(),
+        bundled::stephenson_six_bar(),
+        bundled::shaper(),
+    ]
+}
+
+fn cross(a: Vector2<f64>, b: Vector2<f64>) -> f64 {
+    a.x * b.y - a.y * b.x
+}
+
+/// The whole linkage's Newton–Euler system, solved by LU: unknowns are every joint's reaction
+/// (of the joint's first link on its second: x and y at a hinge; the normal force and the couple
+/// at a sliding pair, reduced to the joint's point on its second link) and the drive's
+/// magnitude. Returns the largest difference from the engine's reactions and balance,
+/// relative to the largest reaction.
+fn lu_difference(plan: &Plan, a: &tmm::linkage::Analysis<'_>) -> f64 {
+    let nl = plan.link_names().len();
+    let nj = plan.joint_names().len();
+    let n_eq = 3 * (nl - 1);
+    let mut m = DMatrix::<f64>::zeros(n_eq, n_eq);
+    let mut rhs = DVector::<f64>::zeros(n_eq);
+    let row = |k: usize| 3 * (k - 1);
+    let pole = |k: usize| a.link_motion(k).origin.p;
+    // Applied loads go to the right-hand side.
+    for &(k, l) in a.applied_loads() {
+        let r = row(k);
+        rhs[r] -= l.force.x;
+        rhs[r + 1] -= l.force.y;
+        rhs[r + 2] -= l.moment + cross(l.point - pole(k), l.force);
+    }
+    let mut col = 0;
+    let mut cols = Vec::new();
+    for j in 0..nj {
+        let [p, q] = plan.joint_links(j);
+        let at = a.joint_on(j, 1).p;
+        // A unit unknown: force f and couple c on q (and −f, −c on p).
+        let mut put = |col: usize, f: Vector2<f64>, c: f64| {
+            for (k, s) in [(q, 1.0), (p, -1.0)] {
+                if k == 0 {
+                    continue;
+                }
+                let r = row(k);
+                m[(r, col)] += s * f.x;
+                m[(r + 1, col)] += s * f.y;
+                m[(r + 2, col)] += s * (c + cross(at - pole(k), f));
+            }
+        };
+        if plan.is_prismatic(j) {
+            let d = a.guide_direction(j);
+            put(col, Vector2::new(-d.y, d.x), 0.0);
+            put(col + 1, Vector2::zeros(), 1.0);
+        } else {
+            put(col, Vector2::x(), 0.0);
+            put(col + 1, Vector2::y(), 0.0);
+        }
+        cols.push(col);
+        col += 2;
+    }
+    // The drive.
+    let input = plan.input_link();
+    let b = a.balance();
+    let r = row(input);
+    let crank_coupling = plan.input_is_crank() && b.force == Vector2::zeros();
+    let drive_dir = if crank_coupling {
+        m[(r + 2, col)] = 1.0;
+        Vector2::zeros()
+    } else {
+        let d = if plan.input_is_crank() {
+            b.force / b.force.norm()
+        } else {
+            a.guide_direction(
+                (0..nj)
+                    .find(|&j| plan.joint_links(j).contains(&input) && plan.joint_links(j).contains(&0))
+                    .unwrap(),
+            )
+        };
+        m[(r, col)] = d.x;
+        m[(r + 1, col)] = d.y;
+        m[(r + 2, col)] = cross(b.point - pole(input), d);
+        d
+    };
+    assert_eq!(col + 1, n_eq, "unknowns = equations for W = 1");
+    let x = m.lu().solve(&rhs).expect("the whole system is regular");
+    let mut scale: f64 = 0.0;
+    let mut worst: f64 = 0.0;
+    for j in 0..nj {
+        let [p, q] = plan.joint_links(j);
+        let re = a.reaction_index(j);
+        let load = re.load_on(q);
+        let at = a.joint_on(j, 1).p;
+        let (f, c) = if plan.is_prismatic(j) {
+            let d = a.guide_direction(j);
+            (x[cols[j]] * Vector2::new(-d.y, d.x), x[cols[j] + 1])
+        } else {
+            (Vector2::new(x[cols[j]], x[cols[j] + 1]), 0.0)
+        };
+        // The engine's couple about the same point.
+        let c_engine = load.moment + cross(load.point - at, load.force);
+        let arm = plan.size();
+        scale = scale.max(f.norm()).max(load.force.norm());
+        worst = worst.max((f - load.force).norm()).max((c - c_engine).abs() / arm);
+        let _ = p;
+    }
+    let drive = x[col];
+    let engine = if crank_coupling { b.value } else { b.force.dot(&drive_dir) };
+    let drive_scale = if crank_coupling { plan.size() } else { 1.0 };
+    scale = scale.max(drive.abs() / drive_scale);
+    worst = worst.max((drive - engine).abs() / drive_scale);
+    worst / scale
+}
+
+#[test]
+fn bundled_linkages_agree_with_the_whole_system_virtual_power_and_equilibrium() {
+    let mut report = Vec::new();
+    for l in bundled_all() {
+        let plan = Plan::new(&l).unwrap();
+        let (mut lu, mut vp, mut eq) = (0.0f64, 0.0f64, 0.0f64);
+        for k in 0..72 {
+            let phi = plan.reference_input() + TAU * f64::from(k) / 72.0;
+            let a = plan.analyse(Motion::new(phi, 12.0, -7.0)).unwrap();
+            lu = lu.max(lu_difference(&plan, &a));
+            vp = vp.max(a.power_check().unwrap().relative_error());
+            eq = eq.max(a.worst_residual());
+        }
+        report.push(format!("{}: LU {lu:.1e}, virtual power {vp:.1e}, equilibrium {eq:.1e}", l.name));
+        assert!(lu < 1e-11, "{}: LU {lu:e}", l.name);
+        assert!(vp < 1e-9, "{}: virtual power {vp:e}", l.name);
+        assert!(eq < 1e-12, "{}: equilibrium {eq:e}", l.name);
+    }
+    println!("{}", report.join("\n"));
+}
+
+/// 8th-order central differences of f at x with step h: first and second derivatives.
+fn fd8(f: &dyn Fn(f64) -> f64, x: f64, h: f64) -> (f64, f64) {
+    const D1: [f64; 4] = [4.0 / 5.0, -1.0 / 5.0, 4.0 / 105.0, -1.0 / 280.0];
+    const D2: [f64; 4] = [8.0 / 5.0, -1.0 / 5.0, 8.0 / 315.0, -1.0 / 560.0];
+    let f0 = f(x);
+    let (mut d1, mut d2) = (0.0, -205.0 / 72.0 * f0);
+    for k in 0..4 {
+        let s = (k + 1) as f64 * h;
+        let (fp, fm) = (f(x + s), f(x - s));
+        d1 += D1[k] * (fp - fm);
+        d2 += D2[k] * (fp + fm);
+    }
+    (d1 / h, d2 / (h * h))
+}
+
+#[test]
+fn velocities_and_accelerations_match_finite_differences_of_positions() {
+    for l in bundled_all() {
+        let plan = Plan::new(&l).unwrap();
+        let (w, e) = (3.0, -2.0);
+        // The step balances truncation (h⁸ times the 10th derivative) against rounding
+        // (≈ 6.5·ε·|x|/h²); the shaper's positions carry a few ulps more rounding.
+        let h = if l.name == "shaper" { 4e-3 } else { 2e-3 };
+        let mut worst: f64 = 0.0;
+        for k in 0..72 {
+            let phi = plan.reference_input() + TAU * (f64::from(k) + 0.3) / 72.0;
+            let a = plan.kinematics(Motion::new(phi, w, e)).unwrap();
+            let pos = |x: f64| plan.kinematics(Motion::fixed(x)).unwrap();
+            for j in 0..plan.joint_names().len() {
+                for (c, get) in [(0, 0usize), (1, 1)] {
+                    let f = |x: f64| pos(x).joint_motion(j).p[get];
+                    let (d1, d2) = fd8(&f, phi, h);
+                    let m = a.joint_motion(j);
+                    let (v, acc) = (m.v[c], m.a[c]);
+                    let scale = plan.size() * (w * w + e.abs());
+                    worst = worst.max((v - d1 * w).abs() / scale);
+                    worst = worst.max((acc - (d2 * w * w + d1 * e)).abs() / scale);
+                }
+            }
+            for li in 1..plan.link_names().len() {
+                let base = a.link_angle_index(li).value;
+                let f = |x: f64| {
+                    let v = pos(x).link_angle_index(li).value - base;
+                    v - TAU * (v / TAU).round()
+                };
+                let (d1, d2) = fd8(&f, phi, h);
+                let m = a.link_angle_index(li);
+                worst = worst.max((m.rate - d1 * w).abs() / (w * w + e.abs()));
+                worst = worst.max((m.accel - (d2 * w * w + d1 * e)).abs() / (w * w + e.abs()));
+            }
+        }
+        assert!(worst < 1e-9, "{}: {worst:e}", l.name);
+    }
+}
+
+// ---- random linkages from random poses -------------------------------------------------
+
+fn pt() -> impl Strategy<Value = [f64; 2]> {
+    [-1.0..1.0f64, -1.0..1.0f64]
+}
+
+/// A Stephenson III or Watt six-bar (or a four-bar when `six` is false) through random poses.
+fn random_linkage(points: Vec<[f64; 2]>, watt: bool, six: bool, masses: Vec<f64>) -> Linkage {
+    let names = ["O1", "A", "B", "O3", "C", "D", "O5"];
+    let joints: Vec<Joint> = names.iter().zip(&points).map(|(n, p)| Joint::revolute(n, *p)).collect();
+    let mass = |k: usize, a: [f64; 2], b: [f64; 2]| Mass::rod(masses[k], a, b);
+    let mut links = vec![
+        Link::new("frame", &["O1", "O3"]),
+        Link::new("crank", &["O1", "A"]).with_mass(mass(0, points[0], points[1])),
+    ];
+    if !six {
+        links.push(Link::new("coupler", &["A", "B"]).with_mass(mass(1, points[1], points[2])));
+        links.push(Link::new("rocker", &["O3", "B"]).with_mass(mass(2, points[3], points[2])));
+    } else if watt {
+        // C on the coupler, D free, O5 on the rocker: E→G and F→G of a Watt chain.
+        links.push(Link::new("coupler", &["A", "B", "C"]).with_mass(mass(1, points[1], points[4])));
+        links.push(Link::new("rocker", &["O3", "B", "O5"]).with_mass(mass(2, points[3], points[6])));
+        links.push(Link::new("link 4", &["C", "D"]).with_mass(mass(3, points[4], points[5])));
+        links.push(Link::new("link 5", &["O5", "D"]).with_mass(mass(4, points[6], points[5])));
+    } else {
+        links[0] = Link::new("frame", &["O1", "O3", "O5"]);
+        links.push(Link::new("coupler", &["A", "B", "C"]).with_mass(mass(1, points[1], points[4])));
+        links.push(Link::new("rocker", &["O3", "B"]).with_mass(mass(2, points[3], points[2])));
+        links.push(Link::new("link 4", &["C", "D"]).with_mass(mass(3, points[4], points[5])));
+        links.push(Link::new("link 5", &["O5", "D"]).with_mass(mass(4, points[6], points[5])));
+    }
+    let n = if six { 7 } else { 4 };
+    let last = if six { "link 5" } else { "rocker" };
+    Linkage {
+        joints: joints.into_iter().take(n).collect(),
+        links,
+        input: Input::crank("crank"),
+        loads: vec![
+            LoadSpec::Moment { link: last.to_owned(), moment: masses[0] * 10.0 - 20.0 },
+            LoadSpec::Force { link: "coupler".to_owned(), at: At::name("B"), force: [masses[1] * 30.0, -50.0] },
+        ],
+        ..Linkage::default()
+    }
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(400))]
+    #[test]
+    fn random_four_bars_and_six_bars_decompose_and_match_the_whole_system(
+        points in prop::collection::vec(pt(), 7),
+        masses in prop::collection::vec(0.1..5.0f64, 5),
+        kind in 0..3usize,
+        w in -20.0..20.0f64,
+        e in -50.0..50.0f64,
+    ) {
+        let l = random_linkage(points, kind == 1, kind > 0, masses);
+        let plan = match Plan::new(&l) {
+            Ok(p) => p,
+            // A random pose may put a group exactly at a dead point: the error names it.
+            Err(Error::Description { item, .. }) => { prop_assert!(item.starts_with("group")); return Ok(()); }
+            Err(other) => return Err(TestCaseError::fail(format!("{other}"))),
+        };
+        prop_assert_eq!(plan.groups().len(), if kind == 0 { 1 } else { 2 });
+        let a = plan.analyse(Motion::new(plan.reference_input(), w, e));
+        let a = match a { Ok(a) => a, Err(_) => return Ok(()) };
+        // Well-conditioned groups only: the closed forms are as good as LU there.
+        let cond = a.conditioning().iter().map(|c| c.condition).fold(1.0, f64::max);
+        prop_assume!(cond < 1e3);
+        let d = lu_difference(&plan, &a);
+        prop_assert!(d < 1e-13 * cond.max(10.0), "LU {} at condition {}", d, cond);
+        prop_assert!(a.worst_residual() < 1e-12 * cond.max(10.0));
+        if w.abs() > 1e-3 {
+            prop_assert!(a.power_check().unwrap().relative_error() < 1e-11 * cond.max(10.0));
+        }
+    }
+}
+
+// ---- bad descriptions ------------------------------------------------------------------
+
+fn described(e: Error) -> (String, String) {
+    match e {
+        Error::Description { item, problem } => (item, problem),
+        other => panic!("expected a description error, got {other}"),
+    }
+}
+
+#[test]
+fn bad_descriptions_name_the_joint_link_or_field() {
+    let base = bundled::four_bar();
+    let check = |l: Linkage, item: &str, words: &str| {
+        let (i, p) = described(Plan::new(&l).unwrap_err());
+        assert!(i.contains(item) && p.contains(words), "{i}: {p}");
+    };
+    let mut l = base.clone();
+    l.links[2].joints[1] = "Bx".into();
+    check(l, "link coupler", "unknown joint \"Bx\"");
+    let mut l = base.clone();
+    l.links[3].joints.pop();
+    check(l, "link rocker", "at least two");
+    let mut l = base.clone();
+    l.joints[2].kind = tmm::linkage::JointKind::Prismatic { guide: "rocker".into(), direction: [0.0, 0.0] };
+    check(l, "joint B", "non-zero");
+    let mut l = base.clone();
+    l.joints[1].at[0] = f64::NAN;
+    check(l, "joint A", "finite");
+    let mut l = base.clone();
+    l.links[3].mass = Some(Mass::new(-2.0, 0.0, At::name("B")));
+    check(l, "link rocker", "mass.m must be ≥ 0");
+    let mut l = base.clone();
+    l.input = Input::crank("coupler");
+    check(l, "link coupler", "joints with the frame");
+    let mut l = base.clone();
+    l.input.drive = Drive::Gear { pitch_radius: 0.1, pitch_angle: 0.0, pressure_angle: 2.0 };
+    check(l, "input.drive", "pressure_angle");
+    let mut l = base.clone();
+    l.loads.push(LoadSpec::Force { link: "rocker".into(), at: At::name("Z"), force: [1.0, 0.0] });
+    check(l, "load 3", "\"Z\"");
+    // A joint listed by three links.
+    let mut l = base.clone();
+    l.links[0].joints.push("B".into());
+    check(l, "joint B", "listed by 3");
+    // A third link hinged to the frame and the coupler's point: W = 0.
+    let mut l = base.clone();
+    l.joints.push(Joint::revolute("X", [0.5, 0.5]));
+    l.joints.push(Joint::revolute("Y", [0.2, 0.2]));
+    l.links[0].joints.push("X".into());
+    l.links.push(Link::new("extra", &["X", "Y"]));
+    l.links[2].joints.push("Y".into());
+    check(l, "linkage", "W = 0");
+    // An RPR whose sliding axis misses a hinge: the pose cannot close.
+    let mut s = bundled::shaper();
+    if let tmm::linkage::JointKind::Prismatic { direction, .. } = &mut s.joints[2].kind {
+        *direction = [0.1, 1.0];
+    }
+    check(s, "joint P", "must pass through both");
+}
+
+#[test]
+fn a_dead_point_in_a_cycle_is_an_error_naming_the_group_and_the_cycle_goes_on() {
+    // A parallelogram four-bar: all links collinear at φ1 = 0 and π.
+    let l = Linkage {
+        joints: vec![
+            Joint::revolute("O1", [0.0, 0.0]),
+            Joint::revolute("A", [0.0, 0.1]),
+            Joint::revolute("B", [0.3, 0.1]),
+            Joint::revolute("O3", [0.3, 0.0]),
+        ],
+        links: vec![
+            Link::new("frame", &["O1", "O3"]),
+            Link::new("crank", &["O1", "A"]),
+            Link::new("coupler", &["A", "B"]),
+            Link::new("rocker", &["O3", "B"]),
+        ],
+        input: Input::crank("crank"),
+        ..Linkage::default()
+    };
+    let plan = Plan::new(&l).unwrap();
+    let e = plan.analyse(Motion::new(0.0, 1.0, 0.0)).unwrap_err();
+    assert!(matches!(e, Error::In { ref part, .. } if part.contains("(coupler, rocker) RRR")), "{e}");
+    assert!(plan.analyse(Motion::new(1.0, 1.0, 0.0)).is_ok());
+    let b = plan.analyse(Motion::new(1.0, 1.0, 0.0)).unwrap().joint("B").unwrap().p;
+    // The parallelogram keeps its mode: B = A + (0.3, 0).
+    assert!((b - Point2::new(0.1f64.mul_add(1f64.cos(), 0.3), 0.1 * 1f64.sin())).norm() < 1e-14);
+}
+
+#[test]
+fn strokes_and_lock_positions() {
+    let plan = Plan::new(&bundled::shaper()).unwrap();
+    let out = tmm::linkage::Output::Slide("Q".into());
+    let s = plan.strokes(&out, tmm::kinematics::Rotation::Ccw).unwrap();
+    // At the extremes the ram's first transfer function vanishes.
+    for phi in [s.start, s.end] {
+        assert!(plan.transfer(&out, phi).unwrap().rate.abs() < 1e-12);
+    }
+    assert!(s.time_ratio > 1.0);
+    assert_eq!(plan.lock_positions(0.3).unwrap(), None);
+}
