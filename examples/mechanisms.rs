@@ -112,7 +112,12 @@ fn csv(dir: &Path, name: &str, table: &Table) -> Res<PathBuf> {
 fn reaction_label(plan: &Plan, a: &Analysis<'_>, j: usize) -> String {
     let r = a.reaction_index(j);
     let links = plan.link_names();
-    format!("R({},{})@{}", links[r.by], links[r.on], plan.joint_names()[j])
+    format!(
+        "R({},{})@{}",
+        links[r.by],
+        links[r.on],
+        plan.joint_names()[j]
+    )
 }
 
 /// Prints the magnitude of the reaction in every joint at each plan, with M_b by the chain
@@ -212,14 +217,24 @@ fn six_bar(dir: &Path) -> Res<()> {
         &table,
         &[
             ("s", "Six-bar: slider position s5", &["s(Q) [m]"], "m"),
-            ("v", "Six-bar: slider velocity v5", &["v_rel(Q) [m/s]"], "m/s"),
+            (
+                "v",
+                "Six-bar: slider velocity v5",
+                &["v_rel(Q) [m/s]"],
+                "m/s",
+            ),
             (
                 "a",
                 "Six-bar: slider acceleration a5",
                 &["a_rel(Q) [m/s^2]"],
                 "m/s²",
             ),
-            ("reactions", "Six-bar: joint reactions", &reaction_columns(&table), "N"),
+            (
+                "reactions",
+                "Six-bar: joint reactions",
+                &reaction_columns(&table),
+                "N",
+            ),
             ("mb", "Six-bar: balancing moment", &["Mb [N*m]"], "N·m"),
         ],
     )
@@ -312,7 +327,12 @@ fn compressor(dir: &Path) -> Res<()> {
                 &["a_rel(P1) [m/s^2]", "a_rel(P2) [m/s^2]"],
                 "m/s²",
             ),
-            ("reactions", "Compressor: joint reactions", &reaction_columns(&table), "N"),
+            (
+                "reactions",
+                "Compressor: joint reactions",
+                &reaction_columns(&table),
+                "N",
+            ),
             ("mb", "Compressor: balancing moment", &["Mb [N*m]"], "N·m"),
         ],
     )

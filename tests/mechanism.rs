@@ -73,21 +73,49 @@ fn every_ready_mechanism_balances_by_virtual_power_and_link_by_link() {
     let mut report = Vec::new();
     for drive in [Drive::Coupling, GEAR] {
         let plans = [
-            ("six-bar", SixBar { drive, ..SixBar::course_example() }.plan(), 10.0),
-            ("four-bar", FourBar { drive, ..FourBar::course_example() }.plan(), -12.0),
+            (
+                "six-bar",
+                SixBar {
+                    drive,
+                    ..SixBar::course_example()
+                }
+                .plan(),
+                10.0,
+            ),
+            (
+                "four-bar",
+                FourBar {
+                    drive,
+                    ..FourBar::course_example()
+                }
+                .plan(),
+                -12.0,
+            ),
             (
                 "slider-crank",
-                SliderCrank { drive, ..SliderCrank::course_example() }.plan(),
+                SliderCrank {
+                    drive,
+                    ..SliderCrank::course_example()
+                }
+                .plan(),
                 150.0,
             ),
             (
                 "compressor",
-                Compressor { drive, ..Compressor::course_example() }.plan(),
+                Compressor {
+                    drive,
+                    ..Compressor::course_example()
+                }
+                .plan(),
                 Compressor::seed_speed(),
             ),
             (
                 "rocking cylinder",
-                RockingCylinder { drive, ..RockingCylinder::course_example() }.plan(),
+                RockingCylinder {
+                    drive,
+                    ..RockingCylinder::course_example()
+                }
+                .plan(),
                 20.0,
             ),
         ];
@@ -115,7 +143,10 @@ fn a_gear_supplies_the_same_moment_as_a_coupling() {
     .plan()
     .unwrap();
     for input in inputs(10.0) {
-        let (c, g) = (coupled.analyse(input).unwrap(), geared.analyse(input).unwrap());
+        let (c, g) = (
+            coupled.analyse(input).unwrap(),
+            geared.analyse(input).unwrap(),
+        );
         let mb = c.balance().value;
         assert!((g.balance().value - mb).abs() <= 1e-12 * mb.abs().max(1.0));
         // |F_b| = |M_b| / (r_w cos α_w), along one of the two lines of action.
@@ -146,10 +177,22 @@ fn cycle_work(positions: &[Result<Analysis<'_>>]) -> (f64, f64) {
 fn inertia_and_weights_do_no_net_work_over_a_cycle() {
     let n = 720;
     let plans = [
-        ("six-bar", SixBar { resistance: 0.0, ..SixBar::course_example() }.plan(), 10.0),
+        (
+            "six-bar",
+            SixBar {
+                resistance: 0.0,
+                ..SixBar::course_example()
+            }
+            .plan(),
+            10.0,
+        ),
         (
             "four-bar",
-            FourBar { resisting_moment: 0.0, ..FourBar::course_example() }.plan(),
+            FourBar {
+                resisting_moment: 0.0,
+                ..FourBar::course_example()
+            }
+            .plan(),
             10.0,
         ),
         (
@@ -205,7 +248,9 @@ fn each_resistance_takes_its_closed_form_work_per_cycle() {
         assert!(rel <= 1e-5, "{name}: {w} vs {work}");
     };
     let at = |plan: &Plan, output: &Output, phi1: f64| {
-        plan.output(output, Motion::new(phi1, 1.0, 0.0)).unwrap().value
+        plan.output(output, Motion::new(phi1, 1.0, 0.0))
+            .unwrap()
+            .value
     };
 
     let four = FourBar::course_example();
@@ -227,7 +272,11 @@ fn each_resistance_takes_its_closed_form_work_per_cycle() {
     let rc = RockingCylinder::course_example();
     let plan = rc.plan().unwrap();
     let (w, _) = cycle_work(&cycle(&plan, &uniform_inputs(n, 0.0, 20.0, 0.0)));
-    check("rocking cylinder", w, (rc.force_in + rc.force_out) * 2.0 * rc.l1);
+    check(
+        "rocking cylinder",
+        w,
+        (rc.force_in + rc.force_out) * 2.0 * rc.l1,
+    );
 }
 
 #[test]
@@ -238,14 +287,20 @@ fn a_six_bar_without_a_working_direction_is_an_error() {
             ..SixBar::course_example()
         };
         let e = m.plan().unwrap_err();
-        assert!(matches!(e, Error::In { ref part, .. } if part == "slider"), "{e}");
+        assert!(
+            matches!(e, Error::In { ref part, .. } if part == "slider"),
+            "{e}"
+        );
     }
     // Either finite sign plans, and the resistance changes side with it.
     let back = SixBar {
         working_direction: 1.0,
         ..SixBar::course_example()
     };
-    let (wf, _) = cycle_work(&cycle(&back.plan().unwrap(), &uniform_inputs(720, 0.0, 10.0, 0.0)));
+    let (wf, _) = cycle_work(&cycle(
+        &back.plan().unwrap(),
+        &uniform_inputs(720, 0.0, 10.0, 0.0),
+    ));
     let (wb, _) = cycle_work(&cycle(
         &SixBar::course_example().plan().unwrap(),
         &uniform_inputs(720, 0.0, 10.0, 0.0),
@@ -346,7 +401,11 @@ fn course_positions_start_at_the_working_stroke() {
     let scale = 10.0 * six.l1;
     assert!(first.slide("Q").unwrap().rate.abs() <= 1e-9 * scale);
     let mid = plan
-        .analyse(Motion::new(strokes.start + 0.5 * strokes.working_angle, 10.0, 0.0))
+        .analyse(Motion::new(
+            strokes.start + 0.5 * strokes.working_angle,
+            10.0,
+            0.0,
+        ))
         .unwrap();
     assert!(mid.slide("Q").unwrap().rate * six.working_direction > 0.0);
     assert!(strokes.time_ratio > 1.0);

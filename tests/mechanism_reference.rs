@@ -53,7 +53,11 @@ impl Position<'_, '_> {
         let plan = a.plan();
         let at = a.input().value;
         // Links: angle (relative to 2π), ω, ε (relative to the largest ω, ε + ω²).
-        let w_scale = self.links.iter().map(|l| l.1.omega.abs()).fold(0.0, f64::max);
+        let w_scale = self
+            .links
+            .iter()
+            .map(|l| l.1.omega.abs())
+            .fold(0.0, f64::max);
         let e_scale = self
             .links
             .iter()
@@ -61,9 +65,21 @@ impl Position<'_, '_> {
             .fold(w_scale * w_scale, f64::max);
         for (name, h) in &self.links {
             let e = a.link(name).unwrap();
-            w.note(&format!("{name} angle at {at}"), wrap(e.value - h.angle).abs(), 1.0);
-            w.note(&format!("{name} ω at {at}"), (e.rate - h.omega).abs(), w_scale);
-            w.note(&format!("{name} ε at {at}"), (e.accel - h.epsilon).abs(), e_scale);
+            w.note(
+                &format!("{name} angle at {at}"),
+                wrap(e.value - h.angle).abs(),
+                1.0,
+            );
+            w.note(
+                &format!("{name} ω at {at}"),
+                (e.rate - h.omega).abs(),
+                w_scale,
+            );
+            w.note(
+                &format!("{name} ε at {at}"),
+                (e.accel - h.epsilon).abs(),
+                e_scale,
+            );
         }
         let v_scale = self.joints.iter().map(|j| j.1.v.norm()).fold(0.0, f64::max);
         let a_scale = self.joints.iter().map(|j| j.1.a.norm()).fold(0.0, f64::max);
@@ -73,8 +89,16 @@ impl Position<'_, '_> {
             w.note(&format!("{name} v at {at}"), (e.v - h.v).norm(), v_scale);
             w.note(&format!("{name} a at {at}"), (e.a - h.a).norm(), a_scale);
         }
-        let r_scale = self.reactions.iter().map(|r| r.3.norm()).fold(0.0, f64::max);
-        assert_eq!(self.reactions.len(), plan.joint_names().len(), "every joint compared");
+        let r_scale = self
+            .reactions
+            .iter()
+            .map(|r| r.3.norm())
+            .fold(0.0, f64::max);
+        assert_eq!(
+            self.reactions.len(),
+            plan.joint_names().len(),
+            "every joint compared"
+        );
         for (joint, by, on, force, moment) in &self.reactions {
             let r = a.reaction(joint).unwrap();
             let (by, on) = (plan.link_index(by).unwrap(), plan.link_index(on).unwrap());
@@ -84,7 +108,11 @@ impl Position<'_, '_> {
                 assert_eq!((r.on, r.by), (by, on), "joint {joint} joins other links");
                 -1.0
             };
-            w.note(&format!("R {joint} at {at}"), (s * r.force - force).norm(), r_scale);
+            w.note(
+                &format!("R {joint} at {at}"),
+                (s * r.force - force).norm(),
+                r_scale,
+            );
             w.note(
                 &format!("R {joint} moment at {at}"),
                 (s * r.moment - moment).abs(),
@@ -93,33 +121,57 @@ impl Position<'_, '_> {
         }
         let check = a.power_check().unwrap();
         let b = a.balance();
-        w.note(&format!("M_b at {at}"), (b.value - self.moment).abs(), check.scale);
-        w.note(&format!("F_b at {at}"), (b.force - self.gear_force).norm(), r_scale);
+        w.note(
+            &format!("M_b at {at}"),
+            (b.value - self.moment).abs(),
+            check.scale,
+        );
+        w.note(
+            &format!("F_b at {at}"),
+            (b.force - self.gear_force).norm(),
+            r_scale,
+        );
         assert!(check.relative_error() < 1e-9 && a.worst_residual() < 1e-11);
     }
 }
 
 fn inputs(omega1: f64) -> Vec<Motion> {
     (0..360)
-        .map(|k| Motion::new((f64::from(k) + 0.25).to_radians(), omega1, 0.7 * omega1.abs() + 3.0))
+        .map(|k| {
+            Motion::new(
+                (f64::from(k) + 0.25).to_radians(),
+                omega1,
+                0.7 * omega1.abs() + 3.0,
+            )
+        })
         .collect()
 }
 
 fn report(name: &str, w: &Worst) {
-    println!("{name}: largest relative difference {:.3e} ({})", w.value, w.what);
+    println!(
+        "{name}: largest relative difference {:.3e} ({})",
+        w.value, w.what
+    );
     assert!(w.value < TOL, "{name}: {:.3e} at {}", w.value, w.what);
 }
 
 #[test]
 fn the_four_bar_agrees_with_its_hand_chain() {
-    let (m, h) = (FourBar::course_example(), hand::four_bar::FourBar::course_example());
+    let (m, h) = (
+        FourBar::course_example(),
+        hand::four_bar::FourBar::course_example(),
+    );
     let plan = m.plan().unwrap();
     let mut w = Worst::default();
     for i in inputs(10.0) {
         let (a, p) = (plan.analyse(i).unwrap(), h.analyse(i).unwrap());
         Position {
             a: &a,
-            links: vec![("crank", p.crank.link), ("coupler", p.group23.link2), ("rocker", p.group23.link3)],
+            links: vec![
+                ("crank", p.crank.link),
+                ("coupler", p.group23.link2),
+                ("rocker", p.group23.link3),
+            ],
             joints: vec![("A", p.crank.a), ("B", p.group23.b)],
             reactions: vec![
                 ("O1", "frame", "crank", p.balance.r01, 0.0),
@@ -141,11 +193,23 @@ fn slider_crank(m: &SliderCrank, h: &hand::slider_crank::SliderCrank, name: &str
     for i in inputs(150.0) {
         let (a, p) = (plan.analyse(i).unwrap(), h.analyse(i).unwrap());
         let s = a.slide("P").unwrap();
-        w.note("slide rate", (s.rate - p.group23.slide.rate).abs(), p.crank.a.v.norm());
-        w.note("slide accel", (s.accel - p.group23.slide.accel).abs(), p.crank.a.a.norm());
+        w.note(
+            "slide rate",
+            (s.rate - p.group23.slide.rate).abs(),
+            p.crank.a.v.norm(),
+        );
+        w.note(
+            "slide accel",
+            (s.accel - p.group23.slide.accel).abs(),
+            p.crank.a.a.norm(),
+        );
         Position {
             a: &a,
-            links: vec![("crank", p.crank.link), ("rod", p.group23.link2), ("piston", p.group23.link3)],
+            links: vec![
+                ("crank", p.crank.link),
+                ("rod", p.group23.link2),
+                ("piston", p.group23.link3),
+            ],
             joints: vec![("A", p.crank.a), ("B", p.group23.b)],
             reactions: vec![
                 ("O1", "frame", "crank", p.balance.r01, 0.0),
@@ -174,12 +238,19 @@ fn the_slider_crank_agrees_with_its_hand_chain() {
 fn the_geared_slider_crank_agrees_with_its_hand_chain() {
     let m = SliderCrank::geared_example();
     assert!(matches!(m.drive, Drive::Gear { .. }));
-    slider_crank(&m, &hand::slider_crank::SliderCrank::geared_example(), "geared slider-crank");
+    slider_crank(
+        &m,
+        &hand::slider_crank::SliderCrank::geared_example(),
+        "geared slider-crank",
+    );
 }
 
 #[test]
 fn the_compressor_agrees_with_its_hand_chain() {
-    let (m, h) = (Compressor::course_example(), hand::compressor::Compressor::course_example());
+    let (m, h) = (
+        Compressor::course_example(),
+        hand::compressor::Compressor::course_example(),
+    );
     let plan = m.plan().unwrap();
     let mut w = Worst::default();
     for i in inputs(Compressor::seed_speed()) {
@@ -193,7 +264,12 @@ fn the_compressor_agrees_with_its_hand_chain() {
                 ("rod 2", p.group45.link2),
                 ("piston 2", p.group45.link3),
             ],
-            joints: vec![("A", p.crank.a), ("C", p.c), ("B", p.group23.b), ("D", p.group45.b)],
+            joints: vec![
+                ("A", p.crank.a),
+                ("C", p.c),
+                ("B", p.group23.b),
+                ("D", p.group45.b),
+            ],
             reactions: vec![
                 ("O1", "frame", "crank", p.balance.r01, 0.0),
                 ("A", "crank", "rod 1", p.r12, 0.0),
@@ -213,7 +289,10 @@ fn the_compressor_agrees_with_its_hand_chain() {
 
 #[test]
 fn the_six_bar_agrees_with_its_hand_chain() {
-    let (m, h) = (SixBar::course_example(), hand::six_bar::SixBar::course_example());
+    let (m, h) = (
+        SixBar::course_example(),
+        hand::six_bar::SixBar::course_example(),
+    );
     let plan = m.plan().unwrap();
     let mut w = Worst::default();
     let mut working = 0;
@@ -229,7 +308,12 @@ fn the_six_bar_agrees_with_its_hand_chain() {
                 ("rod", p.group45.link2),
                 ("slider", p.group45.link3),
             ],
-            joints: vec![("A", p.crank.a), ("B", p.group23.b), ("C", p.c), ("D", p.group45.b)],
+            joints: vec![
+                ("A", p.crank.a),
+                ("B", p.group23.b),
+                ("C", p.c),
+                ("D", p.group45.b),
+            ],
             reactions: vec![
                 ("O1", "frame", "crank", p.balance.r01, 0.0),
                 ("A", "crank", "coupler", p.r12, 0.0),
@@ -244,7 +328,10 @@ fn the_six_bar_agrees_with_its_hand_chain() {
         }
         .compare(&mut w, plan.size());
     }
-    assert!(working > 100 && working < 260, "both strokes visited: {working}");
+    assert!(
+        working > 100 && working < 260,
+        "both strokes visited: {working}"
+    );
     report("six-bar", &w);
 }
 
@@ -259,13 +346,25 @@ fn the_rocking_cylinder_agrees_with_its_hand_chain() {
     for i in inputs(20.0) {
         let (a, p) = (plan.analyse(i).unwrap(), h.analyse(i).unwrap());
         let s = a.slide("Q").unwrap();
-        w.note("slide rate", (s.rate - p.group23.slide.rate).abs(), p.crank.a.v.norm());
-        w.note("slide accel", (s.accel - p.group23.slide.accel).abs(), p.crank.a.a.norm());
+        w.note(
+            "slide rate",
+            (s.rate - p.group23.slide.rate).abs(),
+            p.crank.a.v.norm(),
+        );
+        w.note(
+            "slide accel",
+            (s.accel - p.group23.slide.accel).abs(),
+            p.crank.a.a.norm(),
+        );
         let piston = a.point("P").unwrap();
         w.note("piston", (piston.p - p.fluid.point).norm(), plan.size());
         Position {
             a: &a,
-            links: vec![("crank", p.crank.link), ("rod", p.group23.link2), ("cylinder", p.group23.link3)],
+            links: vec![
+                ("crank", p.crank.link),
+                ("rod", p.group23.link2),
+                ("cylinder", p.group23.link3),
+            ],
             joints: vec![("A", p.crank.a)],
             reactions: vec![
                 ("O1", "frame", "crank", p.balance.r01, 0.0),

@@ -173,11 +173,9 @@ impl Compressor {
                 Link::new("frame", &["O1", "P1", "P2"]),
                 Link::new("crank", &["O1", "A", "C"]).with_mass(m[0].at(xy(self.o1), phi)),
                 Link::new("rod 1", &["A", "B"]).with_mass(m[1].at(xy(a), direction(b - a))),
-                Link::new("piston 1", &["B", "P1"])
-                    .with_mass(m[2].at(xy(b), self.guide_angles[0])),
+                Link::new("piston 1", &["B", "P1"]).with_mass(m[2].at(xy(b), self.guide_angles[0])),
                 Link::new("rod 2", &["C", "D"]).with_mass(m[3].at(xy(c), direction(d - c))),
-                Link::new("piston 2", &["D", "P2"])
-                    .with_mass(m[4].at(xy(d), self.guide_angles[1])),
+                Link::new("piston 2", &["D", "P2"]).with_mass(m[4].at(xy(d), self.guide_angles[1])),
             ],
             input: Input {
                 link: "crank".to_owned(),
@@ -216,6 +214,7 @@ impl Compressor {
     /// # Errors
     /// As [`Compressor::plan`] and [`Plan::strokes`].
     pub fn strokes(&self, rotation: Rotation) -> Result<Strokes> {
-        self.plan()?.strokes(&Output::Slide("P1".to_owned()), rotation)
+        self.plan()?
+            .strokes(&Output::Slide("P1".to_owned()), rotation)
     }
 }

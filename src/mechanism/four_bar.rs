@@ -72,7 +72,13 @@ impl FourBar {
     pub fn linkage(&self) -> Linkage {
         let pose = reference_pose(|phi| {
             let c = crank(self.o1, self.l1, Motion::new(phi, 0.0, 0.0))?;
-            let g = rrr_dyad(c.a, PointMotion::fixed(self.o3), self.l2, self.l3, self.branch)?;
+            let g = rrr_dyad(
+                c.a,
+                PointMotion::fixed(self.o3),
+                self.l2,
+                self.l3,
+                self.branch,
+            )?;
             Ok(((c.a.p, g.b.p), g.det))
         });
         let (phi, (a, b)) = pose.unwrap_or_else(|| {

@@ -199,6 +199,7 @@ impl SixBar {
     /// # Errors
     /// As [`SixBar::plan`] and [`Plan::strokes`].
     pub fn strokes(&self, rotation: Rotation) -> Result<Strokes> {
-        self.plan()?.strokes(&Output::Slide("Q".to_owned()), rotation)
+        self.plan()?
+            .strokes(&Output::Slide("Q".to_owned()), rotation)
     }
 }

@@ -154,6 +154,7 @@ impl SliderCrank {
     /// # Errors
     /// As [`SliderCrank::plan`] and [`Plan::strokes`].
     pub fn strokes(&self, rotation: Rotation) -> Result<Strokes> {
-        self.plan()?.strokes(&Output::Slide("P".to_owned()), rotation)
+        self.plan()?
+            .strokes(&Output::Slide("P".to_owned()), rotation)
     }
 }

@@ -4,16 +4,16 @@
 use super::drive::{Balance, Drive};
 use super::link::{own_loads, LinkMass};
 use super::Piston;
-use tmm::linkage::IndicatorDiagram;
 use super::{output_strokes, within, CRANK};
+use nalgebra::{Point2, Vector2};
+use std::f64::consts::{FRAC_PI_2, PI, TAU};
 use tmm::error::Result;
 use tmm::kinematics::{
     crank, rrp_dyad, Branch, CrankState, Guide, Motion, PointMotion, Rotation, RrpState, Strokes,
 };
 use tmm::kinetostatics::RrpDyad;
+use tmm::linkage::IndicatorDiagram;
 use tmm::Load;
-use nalgebra::{Point2, Vector2};
-use std::f64::consts::{FRAC_PI_2, PI, TAU};
 
 /// The links' names, for errors and free bodies.
 const LINKS: [&str; 5] = [
@@ -60,7 +60,6 @@ pub struct Compressor {
     /// How the crank is driven.
     pub drive: Drive,
 }
-
 
 /// One analysed position of a [`Compressor`].
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -272,4 +271,3 @@ impl Compressor {
         })
     }
 }
-

@@ -1,9 +1,9 @@
 // How the motor drives the input link: through a coupling or through a gear pair.
 
+use nalgebra::{Point2, Vector2};
 use tmm::error::Result;
 use tmm::kinetostatics::{CouplingDrive, GearDrive};
 use tmm::Load;
-use nalgebra::{Point2, Vector2};
 
 /// How the input link is driven, for its kinetostatics (the last step of the analysis).
 #[derive(Debug, Clone, Copy, PartialEq)]

@@ -4,13 +4,13 @@
 use super::drive::{Balance, Drive};
 use super::link::{own_loads, LinkMass};
 use super::{output_strokes, sign, within, CRANK};
+use nalgebra::{Point2, Vector2};
 use tmm::error::Result;
 use tmm::kinematics::{
     crank, rrr_dyad, Branch, CrankState, Motion, PointMotion, Rotation, RrrState, Strokes,
 };
 use tmm::kinetostatics::RrrDyad;
 use tmm::Load;
-use nalgebra::{Point2, Vector2};
 
 /// The links' names, for errors and free bodies.
 const LINKS: [&str; 3] = [CRANK, "link 2 (coupler)", "link 3 (rocker)"];
@@ -164,4 +164,3 @@ impl FourBar {
         })
     }
 }
-

@@ -1,10 +1,10 @@
 // The mass properties of one link: mass, central moment of inertia, centre of mass.
 
 use super::within;
+use nalgebra::Point2;
 use tmm::error::Result;
 use tmm::kinematics::{LinkMotion, PointMotion};
 use tmm::Load;
-use nalgebra::Point2;
 
 /// The mass properties of a rigid link, with its centre of mass S given on the link.
 ///

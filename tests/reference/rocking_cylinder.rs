@@ -5,13 +5,13 @@
 use super::drive::{Balance, Drive};
 use super::link::{own_loads, LinkMass};
 use super::{output_strokes, sign, within, CRANK};
+use nalgebra::{Point2, Vector2};
 use tmm::error::Result;
 use tmm::kinematics::{
     crank, rpr_dyad, CrankState, Motion, PointMotion, Rotation, RprState, Strokes,
 };
 use tmm::kinetostatics::RprDyad;
 use tmm::Load;
-use nalgebra::{Point2, Vector2};
 
 /// The links' names, for errors and free bodies.
 const LINKS: [&str; 3] = [CRANK, "link 2 (rod)", "link 3 (cylinder)"];
@@ -163,4 +163,3 @@ impl RockingCylinder {
         })
     }
 }
-

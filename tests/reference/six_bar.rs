@@ -5,6 +5,7 @@
 use super::drive::{Balance, Drive};
 use super::link::{own_loads, LinkMass};
 use super::{output_strokes, within, CRANK};
+use nalgebra::{Point2, Vector2};
 use tmm::error::{Error, Result};
 use tmm::kinematics::{
     crank, rrp_dyad, rrr_dyad, Branch, CrankState, Guide, Motion, PointMotion, Rotation, RrpState,
@@ -12,7 +13,6 @@ use tmm::kinematics::{
 };
 use tmm::kinetostatics::{RrpDyad, RrrDyad};
 use tmm::Load;
-use nalgebra::{Point2, Vector2};
 
 /// The links' names, for errors and free bodies.
 const LINKS: [&str; 5] = [
@@ -247,4 +247,3 @@ impl SixBar {
         })
     }
 }
-

@@ -4,16 +4,16 @@
 use super::drive::{Balance, Drive};
 use super::link::{own_loads, LinkMass};
 use super::Piston;
-use tmm::linkage::IndicatorDiagram;
 use super::{output_strokes, within, CRANK};
+use nalgebra::{Point2, Vector2};
+use std::f64::consts::PI;
 use tmm::error::Result;
 use tmm::kinematics::{
     crank, rrp_dyad, Branch, CrankState, Guide, Motion, Rotation, RrpState, Strokes,
 };
 use tmm::kinetostatics::RrpDyad;
+use tmm::linkage::IndicatorDiagram;
 use tmm::Load;
-use nalgebra::{Point2, Vector2};
-use std::f64::consts::PI;
 
 /// The links' names, for errors and free bodies.
 const LINKS: [&str; 3] = [CRANK, "link 2 (connecting rod)", "link 3 (piston)"];
@@ -193,4 +193,3 @@ impl SliderCrank {
         })
     }
 }
-
