@@ -1,13 +1,14 @@
-//! Benches of whole mechanisms: one six-bar analysis (kinematics, inertia loads, both groups'
-//! kinetostatics and the balancing moment) per position, with and without the virtual-power
-//! check, and a cycle of N positions (36, 360, 3600; throughput per position, so a linear cost
+//! Benches of whole mechanisms: one analysis of the six-bar's plan (kinematics, inertia loads,
+//! both groups' kinetostatics and the balancing moment) per position, with and without the
+//! virtual-power check, reusing one set of buffers (`analyse_into`), and a cycle of N positions (36, 360, 3600; throughput per position, so a linear cost
 //! shows as a flat rate), serial and, with `--features rayon`, parallel.
 
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion, Throughput};
 use std::hint::black_box;
 use std::time::Duration;
 use tmm::kinematics::Motion;
-use tmm::mechanism::{run_cycle, uniform_inputs, Analysed, SixBar};
+use tmm::linkage::{run_cycle, uniform_inputs, Analysis};
+use tmm::mechanism::SixBar;
 
 /// Input angles from a fixed-seed linear congruential generator (reproducible, no deps).
 fn seeded_inputs(n: usize) -> Vec<Motion> {
@@ -24,7 +25,7 @@ fn seeded_inputs(n: usize) -> Vec<Motion> {
 }
 
 fn per_position(c: &mut Criterion) {
-    let m = SixBar::course_example();
+    let m = SixBar::course_example().plan().unwrap();
     let inputs = seeded_inputs(256);
     let mut g = c.benchmark_group("six_bar_per_position");
     g.measurement_time(Duration::from_secs(2))
@@ -35,7 +36,18 @@ fn per_position(c: &mut Criterion) {
         b.iter(|| {
             let mut acc = 0.0;
             for &i in &inputs {
-                acc += black_box(&m).analyse(black_box(i)).unwrap().balance.moment;
+                acc += black_box(&m).analyse(black_box(i)).unwrap().balance().value;
+            }
+            black_box(acc)
+        });
+    });
+    g.bench_function("analyse_into", |b| {
+        let mut a = Analysis::new(&m);
+        b.iter(|| {
+            let mut acc = 0.0;
+            for &i in &inputs {
+                black_box(&m).analyse_into(black_box(i), &mut a).unwrap();
+                acc += a.balance().value;
             }
             black_box(acc)
         });
@@ -54,7 +66,7 @@ fn per_position(c: &mut Criterion) {
 }
 
 fn per_cycle(c: &mut Criterion) {
-    let m = SixBar::course_example();
+    let m = SixBar::course_example().plan().unwrap();
     let mut g = c.benchmark_group("six_bar_cycle");
     g.measurement_time(Duration::from_secs(2))
         .warm_up_time(Duration::from_millis(500))
@@ -68,7 +80,7 @@ fn per_cycle(c: &mut Criterion) {
         #[cfg(feature = "rayon")]
         g.bench_with_input(BenchmarkId::new("parallel", n), &inputs, |b, inputs| {
             b.iter(|| {
-                black_box(tmm::mechanism::run_cycle_parallel(black_box(inputs), |i| {
+                black_box(tmm::linkage::run_cycle_parallel(black_box(inputs), |i| {
                     m.analyse(i)
                 }))
             });

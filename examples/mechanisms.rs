@@ -9,6 +9,9 @@
 //! SVG charts (kinematic diagrams s(φ), v(φ), a(φ) of the output, the reactions, the balancing
 //! moment) written to `target/tmm-charts/mechanisms/`.
 //!
+//! Each ready mechanism is a struct of parameters whose `plan()` is a linkage planned by the
+//! engine (`tmm::linkage`); every position is `plan.analyse(motion)`.
+//!
 //! Run with `cargo run --release --example mechanisms`.
 
 use plotters::prelude::*;
@@ -17,15 +20,22 @@ use std::fs::{create_dir_all, File};
 use std::io::BufWriter;
 use std::path::{Path, PathBuf};
 use tmm::kinematics::{Motion, Rotation};
-use tmm::mechanism::{
-    course_inputs, run_cycle, uniform_inputs, Analysed, Compressor, FourBar, RockingCylinder,
-    SixBar, SliderCrank, Table,
-};
+use tmm::linkage::{course_inputs, run_cycle, uniform_inputs, Analysis, Plan, Table};
+use tmm::mechanism::{Compressor, FourBar, RockingCylinder, SixBar, SliderCrank};
 
 type Res<T> = std::result::Result<T, Box<dyn StdError>>;
 
+/// The positions of `plan` at `inputs`, every one of which must be analysed.
+fn analyse_all<'p>(plan: &'p Plan, inputs: &[Motion]) -> Res<Vec<tmm::Result<Analysis<'p>>>> {
+    let positions = run_cycle(inputs, |i| plan.analyse(i));
+    if let Some(Err(e)) = positions.iter().find(|p| p.is_err()) {
+        return Err(e.to_string().into());
+    }
+    Ok(positions)
+}
+
 /// The largest virtual-power disagreement and link-equilibrium residual over a cycle.
-fn checks<P: Analysed>(positions: &[tmm::Result<P>]) -> Res<(f64, f64)> {
+fn checks(positions: &[tmm::Result<Analysis<'_>>]) -> Res<(f64, f64)> {
     let mut worst = (0.0f64, 0.0f64);
     for p in positions {
         let p = p.as_ref().map_err(|e| e.to_string())?;
@@ -38,8 +48,8 @@ fn checks<P: Analysed>(positions: &[tmm::Result<P>]) -> Res<(f64, f64)> {
 /// One SVG line chart of several columns of a table against φ1 in degrees.
 fn chart(path: &Path, title: &str, table: &Table, columns: &[&str], y_label: &str) -> Res<()> {
     let phi: Vec<f64> = table
-        .column("phi1 [rad]")
-        .ok_or("no phi1 column")?
+        .column("phi_in [rad]")
+        .ok_or("no phi_in column")?
         .iter()
         .map(|p| p.to_degrees())
         .collect();
@@ -98,37 +108,54 @@ fn csv(dir: &Path, name: &str, table: &Table) -> Res<PathBuf> {
     Ok(path)
 }
 
-/// Prints the magnitudes of six joint reactions (named in `names`, given by `reactions`) and
-/// R01 at each plan, with M_b by the chain and by virtual power.
-fn print_reactions<P, F>(plans: &[tmm::Result<P>], names: [&str; 6], reactions: F) -> Res<()>
-where
-    P: Analysed,
-    F: Fn(&P) -> [f64; 6],
-{
+/// The label of the reaction in joint `j`: R(by,on)@joint.
+fn reaction_label(plan: &Plan, a: &Analysis<'_>, j: usize) -> String {
+    let r = a.reaction_index(j);
+    let links = plan.link_names();
+    format!(
+        "R({},{})@{}",
+        links[r.by],
+        links[r.on],
+        plan.joint_names()[j]
+    )
+}
+
+/// Prints the magnitude of the reaction in every joint at each plan, with M_b by the chain
+/// and by virtual power.
+fn print_reactions(plan: &Plan, plans: &[tmm::Result<Analysis<'_>>]) -> Res<()> {
+    let first = plans[0].as_ref().map_err(|e| e.to_string())?;
+    let joints = plan.joint_names().len();
+    println!("reactions |R(by,on)@joint|, N:");
     print!("{:>3}", "pos");
-    for name in names {
-        print!(" {:>8}", format!("{name} N"));
+    for j in 0..joints {
+        print!(" {:>22}", reaction_label(plan, first, j));
     }
-    println!(
-        " {:>8} {:>9} {:>9} {:>8}",
-        "R01 N", "Mb N·m", "Mb(VP)", "rel.err"
-    );
+    println!(" {:>9} {:>9} {:>8}", "Mb N·m", "Mb(VP)", "rel.err");
     for (k, p) in plans.iter().enumerate() {
         let p = p.as_ref().map_err(|e| e.to_string())?;
         let c = p.power_check()?;
         print!("{k:>3}");
-        for r in reactions(p) {
-            print!(" {r:>8.1}");
+        for j in 0..joints {
+            print!(" {:>22.1}", p.reaction_index(j).force.norm());
         }
         println!(
-            " {:>8.1} {:>9.3} {:>9.3} {:>8.1e}",
-            p.balance().r01.norm(),
+            " {:>9.3} {:>9.3} {:>8.1e}",
             c.chain,
             c.virtual_power,
             c.relative_error()
         );
     }
     Ok(())
+}
+
+/// The |R| columns of every joint of a table.
+fn reaction_columns(table: &Table) -> Vec<&str> {
+    table
+        .columns
+        .iter()
+        .map(|c| c.name.as_str())
+        .filter(|n| n.starts_with("|R("))
+        .collect()
 }
 
 /// Draws one chart per entry `(file suffix, title, columns, unit)` as `{name}_{suffix}.svg`.
@@ -147,6 +174,7 @@ fn charts(dir: &Path, name: &str, table: &Table, list: &[(&str, &str, &[&str], &
 
 fn six_bar(dir: &Path) -> Res<()> {
     let m = SixBar::course_example();
+    let plan = m.plan()?;
     let w1 = 10.0;
     let strokes = m.strokes(Rotation::Ccw)?;
     println!("== Six-bar (crank + RRR + RRP, seed 001 fig. 2.10 type), omega1 = {w1} rad/s CCW ==");
@@ -156,58 +184,57 @@ fn six_bar(dir: &Path) -> Res<()> {
         strokes.working_angle.to_degrees(),
         strokes.time_ratio
     );
-    let plans = run_cycle(&course_inputs(&strokes, 12, w1), |i| m.analyse(i));
+    let plans = analyse_all(&plan, &course_inputs(&strokes, 12, w1))?;
     println!(
         "{:>3} {:>7} {:>8} {:>8} {:>9} {:>8} {:>9} {:>7} {:>8}",
-        "pos", "phi1°", "s5 mm", "v5 m/s", "a5 m/s²", "ω3 1/s", "ε3 1/s²", "vC m/s", "aC m/s²"
+        "pos", "phi1°", "xD mm", "v5 m/s", "a5 m/s²", "ω3 1/s", "ε3 1/s²", "vC m/s", "aC m/s²"
     );
     for (k, p) in plans.iter().enumerate() {
         let p = p.as_ref().map_err(|e| e.to_string())?;
-        let g = &p.group45;
+        let (s, rocker, c) = (p.slide("Q")?, p.link("rocker")?, p.joint("C")?);
         println!(
             "{:>3} {:>7.2} {:>8.2} {:>8.4} {:>9.3} {:>8.4} {:>9.3} {:>7.4} {:>8.3}",
             k,
-            p.input.value.to_degrees(),
-            g.slide.value * 1e3,
-            g.slide.rate,
-            g.slide.accel,
-            p.group23.link3.omega,
-            p.group23.link3.epsilon,
-            p.c.v.norm(),
-            p.c.a.norm()
+            p.input().value.to_degrees(),
+            p.joint("D")?.p.x * 1e3,
+            s.rate,
+            s.accel,
+            rocker.rate,
+            rocker.accel,
+            c.v.norm(),
+            c.a.norm()
         );
     }
-    print_reactions(&plans, ["R12", "R23", "R03", "R34", "R45", "R05"], |p| {
-        [p.r12, p.r23, p.r03, p.r34, p.r45, p.r05].map(|r| r.norm())
-    })?;
-    let cycle = run_cycle(&uniform_inputs(360, 0.0, w1, 0.0), |i| m.analyse(i));
+    print_reactions(&plan, &plans)?;
+    let cycle = analyse_all(&plan, &uniform_inputs(360, 0.0, w1, 0.0))?;
     let (vp, eq) = checks(&cycle)?;
     println!("360 positions: virtual power agrees to {vp:.1e}, links in equilibrium to {eq:.1e}\n");
     let table = Table::of(&cycle);
     csv(dir, "six_bar", &table)?;
-    let reactions = [
-        "|R12| [N]",
-        "|R23| [N]",
-        "|R03| [N]",
-        "|R34| [N]",
-        "|R45| [N]",
-        "|R05| [N]",
-        "|R01| [N]",
-    ];
     charts(
         dir,
         "six_bar",
         &table,
         &[
-            ("s", "Six-bar: slider position s5", &["s5 [m]"], "m"),
-            ("v", "Six-bar: slider velocity v5", &["v5 [m/s]"], "m/s"),
+            ("s", "Six-bar: slider position s5", &["s(Q) [m]"], "m"),
+            (
+                "v",
+                "Six-bar: slider velocity v5",
+                &["v_rel(Q) [m/s]"],
+                "m/s",
+            ),
             (
                 "a",
                 "Six-bar: slider acceleration a5",
-                &["a5 [m/s^2]"],
+                &["a_rel(Q) [m/s^2]"],
                 "m/s²",
             ),
-            ("reactions", "Six-bar: joint reactions", &reactions, "N"),
+            (
+                "reactions",
+                "Six-bar: joint reactions",
+                &reaction_columns(&table),
+                "N",
+            ),
             ("mb", "Six-bar: balancing moment", &["Mb [N*m]"], "N·m"),
         ],
     )
@@ -215,48 +242,58 @@ fn six_bar(dir: &Path) -> Res<()> {
 
 fn compressor(dir: &Path) -> Res<()> {
     let m = Compressor::course_example();
+    let plan = m.plan()?;
     let w1 = Compressor::seed_speed();
     let strokes = m.strokes(Rotation::Cw)?;
     println!("== Two-cylinder compressor (seed 001), 960 rpm clockwise, omega1 = {w1:.3} rad/s ==");
     println!(
-        "piston 3's working stroke from phi1 = {:.2} deg (crate angle, CCW from +x)",
+        "piston 1's working stroke from phi1 = {:.2} deg (crate angle, CCW from +x)",
         strokes.start.to_degrees()
     );
-    let plans = run_cycle(&course_inputs(&strokes, 12, w1), |i| m.analyse(i));
+    let plans = analyse_all(&plan, &course_inputs(&strokes, 12, w1))?;
     println!(
         "{:>3} {:>7} {:>8} {:>8} {:>9} {:>8} {:>8} {:>9} {:>9} {:>9}",
         "pos",
         "phi1°",
-        "s3 mm",
-        "v3 m/s",
-        "a3 m/s²",
-        "s5 mm",
-        "v5 m/s",
-        "a5 m/s²",
-        "Fgas3 N",
-        "Fgas5 N"
+        "yB mm",
+        "vB m/s",
+        "aB m/s²",
+        "yD mm",
+        "vD m/s",
+        "aD m/s²",
+        "Fgas1 N",
+        "Fgas2 N"
     );
+    let (p1, p2) = (plan.link_index("piston 1")?, plan.link_index("piston 2")?);
     for (k, p) in plans.iter().enumerate() {
         let p = p.as_ref().map_err(|e| e.to_string())?;
-        let (g3, g5) = (&p.group23, &p.group45);
+        let (b, d) = (p.joint("B")?, p.joint("D")?);
+        // The gas forces: the applied loads on the pistons other than their own weight and
+        // inertia (which act at the same point), i.e. the external ones, listed after them.
+        let gas = |piston: usize| {
+            p.applied_loads()
+                .iter()
+                .filter(|(l, _)| *l == piston)
+                .skip(1)
+                .map(|(_, f)| f.force.y)
+                .sum::<f64>()
+        };
         println!(
             "{:>3} {:>7.2} {:>8.2} {:>8.3} {:>9.1} {:>8.2} {:>8.3} {:>9.1} {:>9.1} {:>9.1}",
             k,
-            p.input.value.to_degrees(),
-            g3.slide.value * 1e3,
-            g3.slide.rate,
-            g3.slide.accel,
-            g5.slide.value * 1e3,
-            g5.slide.rate,
-            g5.slide.accel,
-            p.gas_forces[0].y,
-            p.gas_forces[1].y
+            p.input().value.to_degrees(),
+            b.p.y * 1e3,
+            b.v.y,
+            b.a.y,
+            d.p.y * 1e3,
+            d.v.y,
+            d.a.y,
+            gas(p1),
+            gas(p2)
         );
     }
-    print_reactions(&plans, ["R12", "R23", "R03", "R14", "R45", "R05"], |p| {
-        [p.r12, p.r23, p.r03, p.r14, p.r45, p.r05].map(|r| r.norm())
-    })?;
-    let cycle = run_cycle(&uniform_inputs(360, 0.0, w1, 0.0), |i| m.analyse(i));
+    print_reactions(&plan, &plans)?;
+    let cycle = analyse_all(&plan, &uniform_inputs(360, 0.0, w1, 0.0))?;
     let (vp, eq) = checks(&cycle)?;
     let table = Table::of(&cycle);
     let mb = table.column("Mb [N*m]").ok_or("no Mb")?;
@@ -267,15 +304,6 @@ fn compressor(dir: &Path) -> Res<()> {
         (mean * w1).abs() / 1e3
     );
     csv(dir, "compressor", &table)?;
-    let reactions = [
-        "|R12| [N]",
-        "|R23| [N]",
-        "|R03| [N]",
-        "|R14| [N]",
-        "|R45| [N]",
-        "|R05| [N]",
-        "|R01| [N]",
-    ];
     charts(
         dir,
         "compressor",
@@ -284,34 +312,35 @@ fn compressor(dir: &Path) -> Res<()> {
             (
                 "s",
                 "Compressor: pistons' positions",
-                &["s3 [m]", "s5 [m]"],
+                &["y(B) [m]", "y(D) [m]"],
                 "m",
             ),
             (
                 "v",
                 "Compressor: pistons' velocities",
-                &["v3 [m/s]", "v5 [m/s]"],
+                &["v_rel(P1) [m/s]", "v_rel(P2) [m/s]"],
                 "m/s",
             ),
             (
                 "a",
                 "Compressor: pistons' accelerations",
-                &["a3 [m/s^2]", "a5 [m/s^2]"],
+                &["a_rel(P1) [m/s^2]", "a_rel(P2) [m/s^2]"],
                 "m/s²",
             ),
-            ("reactions", "Compressor: joint reactions", &reactions, "N"),
+            (
+                "reactions",
+                "Compressor: joint reactions",
+                &reaction_columns(&table),
+                "N",
+            ),
             ("mb", "Compressor: balancing moment", &["Mb [N*m]"], "N·m"),
         ],
     )
 }
 
 /// A one-line summary of a ready mechanism over 360 positions, its CSV and its M_b chart.
-fn summary<P, F>(dir: &Path, name: &str, title: &str, inputs: &[Motion], analyse: F) -> Res<()>
-where
-    P: Analysed + tmm::mechanism::Tabulate,
-    F: Fn(Motion) -> tmm::Result<P>,
-{
-    let cycle = run_cycle(inputs, analyse);
+fn summary(dir: &Path, name: &str, title: &str, plan: &Plan, inputs: &[Motion]) -> Res<()> {
+    let cycle = analyse_all(plan, inputs)?;
     let (vp, eq) = checks(&cycle)?;
     let table = Table::of(&cycle);
     let mb = table.column("Mb [N*m]").ok_or("no Mb")?;
@@ -337,29 +366,26 @@ fn main() -> Res<()> {
     six_bar(&dir)?;
     compressor(&dir)?;
     println!("== The other ready mechanisms, 360 positions each ==");
-    let four = FourBar::course_example();
     summary(
         &dir,
         "four_bar",
         "Four-bar (crank-rocker)",
+        &FourBar::course_example().plan()?,
         &uniform_inputs(360, 0.0, 10.0, 0.0),
-        |i| four.analyse(i),
     )?;
-    let sc = SliderCrank::geared_example();
     summary(
         &dir,
         "slider_crank_geared",
         "Slider-crank driven through a gear pair",
+        &SliderCrank::geared_example().plan()?,
         &uniform_inputs(360, 0.0, 150.0, 0.0),
-        |i| sc.analyse(i),
     )?;
-    let rc = RockingCylinder::course_example();
     summary(
         &dir,
         "rocking_cylinder",
         "Rocking-cylinder pump (RPR)",
+        &RockingCylinder::course_example().plan()?,
         &uniform_inputs(360, 0.0, 20.0, 0.0),
-        |i| rc.analyse(i),
     )?;
     println!("\nCSV tables and SVG charts written to {}", dir.display());
     Ok(())

@@ -17,8 +17,9 @@
 //!   through a coupling (balancing moment) or a gear pair (balancing force).
 //! - [`kinetostatics::passive`]: the group with a parallel coupler (a passive constraint), statically
 //!   indeterminate once, solved by the force method; N, Q, M diagrams of its links.
-//! - [`mechanism`]: whole mechanisms over a cycle (four-bar, slider-crank, compressor, six-bar,
-//!   rocking cylinder): kinematics, inertia loads, reactions, balancing moment, CSV tables.
+//! - [`linkage`]: any linkage of the 2nd class as data, planned once and analysed per position.
+//! - [`mechanism`]: five ready mechanisms as linkages (four-bar, slider-crank, compressor, six-bar,
+//!   rocking cylinder), each a struct of parameters whose `linkage()` the engine plans.
 //!
 //! ## The seed programs
 //! The crate grew from Ukrainian and Russian course texts whose FORTRAN-era programs have short
@@ -48,7 +49,7 @@ pub mod kinematics;
 pub mod kinetostatics;
 pub mod linkage;
 pub mod load;
-// pub mod mechanism; (being rebuilt on the linkage engine)
+pub mod mechanism;
 
 pub use error::{Error, Result};
 pub use load::Load;

@@ -1,14 +1,15 @@
-//! Whole mechanisms: the group-by-group chain against the principle of virtual power, every
-//! link's equilibrium, the energy balance over a cycle, dead points inside a cycle, the
-//! course-project positions, CSV, and the optional features (rayon, serde).
+//! The ready mechanisms through the linkage engine: the group-by-group chain against the
+//! principle of virtual power, every link's equilibrium, the energy balance over a cycle,
+//! dead points inside a cycle, the course-project positions, CSV, and the optional features
+//! (rayon, serde).
 
 use nalgebra::Point2;
 use std::f64::consts::{PI, TAU};
 use tmm::kinematics::{Motion, Rotation};
-use tmm::mechanism::{
-    course_inputs, run_cycle, uniform_inputs, Analysed, Column, Compressor, Drive, FourBar,
-    RockingCylinder, SixBar, SliderCrank, Table, Tabulate,
+use tmm::linkage::{
+    course_inputs, run_cycle, uniform_inputs, Analysis, Drive, Output, Plan, Table, Tabulate,
 };
+use tmm::mechanism::{Compressor, FourBar, RockingCylinder, SixBar, SliderCrank};
 use tmm::{Error, Result};
 
 /// A gear drive for any mechanism: a wheel of 0.2 m on the crank, P at 200°, α_w = 20°.
@@ -20,7 +21,7 @@ const GEAR: Drive = Drive::Gear {
 
 /// Checks the virtual-power agreement and the equilibrium of every link at every position;
 /// returns the largest of each.
-fn check_cycle<P: Analysed>(name: &str, positions: &[Result<P>]) -> (f64, f64) {
+fn check_cycle(name: &str, positions: &[Result<Analysis<'_>>]) -> (f64, f64) {
     let (mut worst_power, mut worst_link) = (0.0f64, 0.0f64);
     for (k, p) in positions.iter().enumerate() {
         let p = p
@@ -34,18 +35,22 @@ fn check_cycle<P: Analysed>(name: &str, positions: &[Result<P>]) -> (f64, f64) {
             check.virtual_power
         );
         // The drive's power, F_b·v_P for a gear, is M_b·ω1.
-        let o1 = p.free_bodies()[0].motion.origin.p;
-        let power = p.balance().power(o1, p.input().rate);
-        assert!(
-            (power - check.chain * p.input().rate).abs()
-                <= 1e-12 * check.scale * p.input().rate.abs()
-        );
-        for body in p.free_bodies() {
-            let r = body.residual();
+        let plan = p.plan();
+        let crank = p.link_motion(plan.input_link());
+        let b = p.balance();
+        let w1 = p.input().rate;
+        let power = if b.force.norm() > 0.0 {
+            b.force.dot(&crank.motion_of(b.point).v)
+        } else {
+            b.value * w1
+        };
+        assert!((power - check.chain * w1).abs() <= 1e-12 * check.scale * w1.abs());
+        for k in 1..plan.link_names().len() {
+            let r = p.residual(k);
             assert!(
-                r.relative() <= 1e-12,
-                "{name}: position {k}: {} off equilibrium by {r:?}",
-                body.name
+                r <= 1e-12,
+                "{name}: position {k}: {} off equilibrium by {r:e}",
+                plan.link_names()[k]
             );
         }
         worst_power = worst_power.max(check.relative_error());
@@ -59,51 +64,65 @@ fn inputs(omega1: f64) -> Vec<Motion> {
     uniform_inputs(72, 0.1, omega1, 0.3 * omega1.abs())
 }
 
+fn cycle<'p>(plan: &'p Plan, inputs: &[Motion]) -> Vec<Result<Analysis<'p>>> {
+    run_cycle(inputs, |i| plan.analyse(i))
+}
+
 #[test]
 fn every_ready_mechanism_balances_by_virtual_power_and_link_by_link() {
     let mut report = Vec::new();
     for drive in [Drive::Coupling, GEAR] {
-        let six = SixBar {
-            drive,
-            ..SixBar::course_example()
-        };
-        report.push(check_cycle(
-            "six-bar",
-            &run_cycle(&inputs(10.0), |i| six.analyse(i)),
-        ));
-        let four = FourBar {
-            drive,
-            ..FourBar::course_example()
-        };
-        report.push(check_cycle(
-            "four-bar",
-            &run_cycle(&inputs(-12.0), |i| four.analyse(i)),
-        ));
-        let sc = SliderCrank {
-            drive,
-            ..SliderCrank::course_example()
-        };
-        report.push(check_cycle(
-            "slider-crank",
-            &run_cycle(&inputs(150.0), |i| sc.analyse(i)),
-        ));
-        let comp = Compressor {
-            drive,
-            ..Compressor::course_example()
-        };
-        let w = Compressor::seed_speed();
-        report.push(check_cycle(
-            "compressor",
-            &run_cycle(&inputs(w), |i| comp.analyse(i)),
-        ));
-        let rc = RockingCylinder {
-            drive,
-            ..RockingCylinder::course_example()
-        };
-        report.push(check_cycle(
-            "rocking cylinder",
-            &run_cycle(&inputs(20.0), |i| rc.analyse(i)),
-        ));
+        let plans = [
+            (
+                "six-bar",
+                SixBar {
+                    drive,
+                    ..SixBar::course_example()
+                }
+                .plan(),
+                10.0,
+            ),
+            (
+                "four-bar",
+                FourBar {
+                    drive,
+                    ..FourBar::course_example()
+                }
+                .plan(),
+                -12.0,
+            ),
+            (
+                "slider-crank",
+                SliderCrank {
+                    drive,
+                    ..SliderCrank::course_example()
+                }
+                .plan(),
+                150.0,
+            ),
+            (
+                "compressor",
+                Compressor {
+                    drive,
+                    ..Compressor::course_example()
+                }
+                .plan(),
+                Compressor::seed_speed(),
+            ),
+            (
+                "rocking cylinder",
+                RockingCylinder {
+                    drive,
+                    ..RockingCylinder::course_example()
+                }
+                .plan(),
+                20.0,
+            ),
+        ];
+        for (name, plan, w) in plans {
+            let plan = plan.unwrap();
+            report.push(check_cycle(name, &cycle(&plan, &inputs(w))));
+        }
     }
     let worst = report
         .iter()
@@ -116,35 +135,38 @@ fn every_ready_mechanism_balances_by_virtual_power_and_link_by_link() {
 
 #[test]
 fn a_gear_supplies_the_same_moment_as_a_coupling() {
-    let coupled = SixBar::course_example();
+    let coupled = SixBar::course_example().plan().unwrap();
     let geared = SixBar {
         drive: GEAR,
-        ..coupled
-    };
+        ..SixBar::course_example()
+    }
+    .plan()
+    .unwrap();
     for input in inputs(10.0) {
         let (c, g) = (
             coupled.analyse(input).unwrap(),
             geared.analyse(input).unwrap(),
         );
-        let mb = c.balance.moment;
-        assert!((g.balance.moment - mb).abs() <= 1e-12 * mb.abs().max(1.0));
+        let mb = c.balance().value;
+        assert!((g.balance().value - mb).abs() <= 1e-12 * mb.abs().max(1.0));
         // |F_b| = |M_b| / (r_w cos α_w), along one of the two lines of action.
         let arm = 0.2 * 20f64.to_radians().cos();
-        assert!((g.balance.force.norm() - mb.abs() / arm).abs() <= 1e-9 * mb.abs().max(1.0));
+        let fb = g.balance().force;
+        assert!((fb.norm() - mb.abs() / arm).abs() <= 1e-9 * mb.abs().max(1.0));
         // The frame takes the difference: R01 changes by −F_b.
-        assert!(
-            (g.balance.r01 - (c.balance.r01 - g.balance.force)).norm() <= 1e-9 * mb.abs().max(1.0)
-        );
+        let (rc, rg) = (c.reaction("O1").unwrap(), g.reaction("O1").unwrap());
+        assert_eq!((rc.by, rc.on), (0, coupled.link_index("crank").unwrap()));
+        assert!((rg.force - (rc.force - fb)).norm() <= 1e-9 * mb.abs().max(1.0));
     }
 }
 
 /// Over one turn at constant ω1 the kinetic energy comes back and gravity does no net work:
 /// ∮ M_b dφ1 = −(the work of the external loads per cycle).
-fn cycle_work<P: Analysed>(positions: &[Result<P>]) -> (f64, f64) {
+fn cycle_work(positions: &[Result<Analysis<'_>>]) -> (f64, f64) {
     let n = positions.len() as f64;
     let (mut w, mut abs) = (0.0, 0.0);
     for p in positions {
-        let m = p.as_ref().unwrap().balance().moment;
+        let m = p.as_ref().unwrap().balance().value;
         w += m * TAU / n;
         abs += m.abs() * TAU / n;
     }
@@ -154,31 +176,42 @@ fn cycle_work<P: Analysed>(positions: &[Result<P>]) -> (f64, f64) {
 #[test]
 fn inertia_and_weights_do_no_net_work_over_a_cycle() {
     let n = 720;
-    let six = SixBar {
-        resistance: 0.0,
-        ..SixBar::course_example()
-    };
-    let (w, abs) = cycle_work(&run_cycle(&uniform_inputs(n, 0.0, 10.0, 0.0), |i| {
-        six.analyse(i)
-    }));
-    assert!(w.abs() <= 1e-9 * abs, "six-bar: {w} of {abs}");
-    let four = FourBar {
-        resisting_moment: 0.0,
-        ..FourBar::course_example()
-    };
-    let (w, abs) = cycle_work(&run_cycle(&uniform_inputs(n, 0.0, 10.0, 0.0), |i| {
-        four.analyse(i)
-    }));
-    assert!(w.abs() <= 1e-9 * abs, "four-bar: {w} of {abs}");
-    let rc = RockingCylinder {
-        force_in: 0.0,
-        force_out: 0.0,
-        ..RockingCylinder::course_example()
-    };
-    let (w, abs) = cycle_work(&run_cycle(&uniform_inputs(n, 0.0, 20.0, 0.0), |i| {
-        rc.analyse(i)
-    }));
-    assert!(w.abs() <= 1e-9 * abs, "rocking cylinder: {w} of {abs}");
+    let plans = [
+        (
+            "six-bar",
+            SixBar {
+                resistance: 0.0,
+                ..SixBar::course_example()
+            }
+            .plan(),
+            10.0,
+        ),
+        (
+            "four-bar",
+            FourBar {
+                resisting_moment: 0.0,
+                ..FourBar::course_example()
+            }
+            .plan(),
+            10.0,
+        ),
+        (
+            "rocking cylinder",
+            RockingCylinder {
+                force_in: 0.0,
+                force_out: 0.0,
+                ..RockingCylinder::course_example()
+            }
+            .plan(),
+            20.0,
+        ),
+    ];
+    for (name, plan, omega) in plans {
+        let plan = plan.unwrap();
+        let (w, abs) = cycle_work(&cycle(&plan, &uniform_inputs(n, 0.0, omega, 0.0)));
+        assert!(abs > 1.0, "{name}: the inertia loads do work along the way");
+        assert!(w.abs() <= 1e-9 * abs, "{name}: {w} of {abs}");
+    }
 }
 
 #[test]
@@ -193,10 +226,8 @@ fn the_crank_supplies_the_indicator_work_per_cycle() {
     };
     let stroke = 2.0 * sc.l1; // a central slider-crank
     let work = d.area * stroke * (trapezoid(&d.inward) - trapezoid(&d.outward));
-    let n = 20_000;
-    let (w, _) = cycle_work(&run_cycle(&uniform_inputs(n, 0.0, 150.0, 0.0), |i| {
-        sc.analyse(i)
-    }));
+    let plan = sc.plan().unwrap();
+    let (w, _) = cycle_work(&cycle(&plan, &uniform_inputs(20_000, 0.0, 150.0, 0.0)));
     let rel = (w - work).abs() / work;
     println!("indicator work {work:.4} J, ∮M_b dφ = {w:.4} J, relative {rel:.1e}");
     assert!(rel <= 1e-6, "{w} vs {work}");
@@ -216,41 +247,31 @@ fn each_resistance_takes_its_closed_form_work_per_cycle() {
         println!("{name}: ∮M_b dφ = {w:.6} J, closed form {work:.6} J, relative {rel:.1e}");
         assert!(rel <= 1e-5, "{name}: {w} vs {work}");
     };
+    let at = |plan: &Plan, output: &Output, phi1: f64| {
+        plan.output(output, Motion::new(phi1, 1.0, 0.0))
+            .unwrap()
+            .value
+    };
 
     let four = FourBar::course_example();
+    let plan = four.plan().unwrap();
     let s = four.strokes(Rotation::Ccw).unwrap();
-    let phi3 = |phi1| {
-        four.kinematics(Motion::new(phi1, 1.0, 0.0))
-            .unwrap()
-            .1
-            .link3
-            .angle
-    };
-    let swing = wrap(phi3(s.end) - phi3(s.start)).abs();
-    let (w, _) = cycle_work(&run_cycle(&uniform_inputs(n, 0.0, 10.0, 0.0), |i| {
-        four.analyse(i)
-    }));
+    let rocker = Output::Angle("rocker".to_owned());
+    let swing = wrap(at(&plan, &rocker, s.end) - at(&plan, &rocker, s.start)).abs();
+    let (w, _) = cycle_work(&cycle(&plan, &uniform_inputs(n, 0.0, 10.0, 0.0)));
     check("four-bar", w, 2.0 * four.resisting_moment * swing);
 
     let six = SixBar::course_example();
+    let plan = six.plan().unwrap();
     let s = six.strokes(Rotation::Ccw).unwrap();
-    let s5 = |phi1| {
-        six.kinematics(Motion::new(phi1, 1.0, 0.0))
-            .unwrap()
-            .3
-            .slide
-            .value
-    };
-    let stroke = (s5(s.end) - s5(s.start)).abs();
-    let (w, _) = cycle_work(&run_cycle(&uniform_inputs(n, 0.0, 10.0, 0.0), |i| {
-        six.analyse(i)
-    }));
+    let slide = Output::Slide("Q".to_owned());
+    let stroke = (at(&plan, &slide, s.end) - at(&plan, &slide, s.start)).abs();
+    let (w, _) = cycle_work(&cycle(&plan, &uniform_inputs(n, 0.0, 10.0, 0.0)));
     check("six-bar", w, six.resistance * stroke);
 
     let rc = RockingCylinder::course_example();
-    let (w, _) = cycle_work(&run_cycle(&uniform_inputs(n, 0.0, 20.0, 0.0), |i| {
-        rc.analyse(i)
-    }));
+    let plan = rc.plan().unwrap();
+    let (w, _) = cycle_work(&cycle(&plan, &uniform_inputs(n, 0.0, 20.0, 0.0)));
     check(
         "rocking cylinder",
         w,
@@ -265,32 +286,27 @@ fn a_six_bar_without_a_working_direction_is_an_error() {
             working_direction: wd,
             ..SixBar::course_example()
         };
-        let e = m.analyse(Motion::new(1.0, 10.0, 0.0)).unwrap_err();
+        let e = m.plan().unwrap_err();
         assert!(
-            matches!(e, Error::In { ref part, .. } if part == "link 5 (slider)"),
+            matches!(e, Error::In { ref part, .. } if part == "slider"),
             "{e}"
         );
     }
-}
-
-#[test]
-fn a_ragged_table_is_an_io_error_not_a_panic() {
-    let t = Table {
-        columns: vec![
-            Column {
-                name: "a".into(),
-                values: vec![1.0, 2.0],
-            },
-            Column {
-                name: "b".into(),
-                values: vec![1.0],
-            },
-        ],
+    // Either finite sign plans, and the resistance changes side with it.
+    let back = SixBar {
+        working_direction: 1.0,
+        ..SixBar::course_example()
     };
-    let mut out = Vec::new();
-    let e = t.write_csv(&mut out).unwrap_err();
-    assert_eq!(e.kind(), std::io::ErrorKind::InvalidInput);
-    assert!(out.is_empty());
+    let (wf, _) = cycle_work(&cycle(
+        &back.plan().unwrap(),
+        &uniform_inputs(720, 0.0, 10.0, 0.0),
+    ));
+    let (wb, _) = cycle_work(&cycle(
+        &SixBar::course_example().plan().unwrap(),
+        &uniform_inputs(720, 0.0, 10.0, 0.0),
+    ));
+    // Both strokes have the same length H, so the work per cycle is R·H either way.
+    assert!((wf - wb).abs() <= 1e-6 * wb.abs() && wb > 0.0);
 }
 
 #[test]
@@ -304,13 +320,14 @@ fn a_dead_point_fails_its_position_naming_the_group_and_the_cycle_goes_on() {
         l3: 0.1,
         ..FourBar::course_example()
     };
-    let positions = run_cycle(&uniform_inputs(36, 0.0, 10.0, 0.0), |i| m.analyse(i));
+    let plan = m.plan().unwrap();
+    let positions = cycle(&plan, &uniform_inputs(36, 0.0, 10.0, 0.0));
     assert_eq!(positions.len(), 36);
     for (k, p) in positions.iter().enumerate() {
         match p {
             Err(Error::In { part, source }) => {
                 assert!(k == 0 || k == 18, "position {k} failed: {source}");
-                assert_eq!(part, "group II(2,3) RRR");
+                assert_eq!(part, "group (coupler, rocker) RRR");
                 assert!(matches!(
                     **source,
                     Error::Singular { .. } | Error::NotAssemblable { .. }
@@ -334,29 +351,37 @@ fn a_six_bar_whose_slider_group_locks_names_that_group() {
         guide_point: Point2::new(0.0, 0.62),
         ..SixBar::course_example()
     };
-    let positions = run_cycle(&uniform_inputs(36, 0.0, 10.0, 0.0), |i| m.analyse(i));
+    let plan = m.plan().unwrap();
+    let positions = cycle(&plan, &uniform_inputs(36, 0.0, 10.0, 0.0));
     let failed: Vec<_> = positions.iter().filter_map(|p| p.as_ref().err()).collect();
     assert!(!failed.is_empty() && failed.len() < 36);
     for e in failed {
         assert!(
-            matches!(e, Error::In { part, .. } if part == "group II(4,5) RRP"),
+            matches!(e, Error::In { part, .. } if part == "group (rod, slider) RRP"),
             "{e}"
         );
     }
 }
 
 #[test]
-fn bad_input_is_an_error_naming_the_input_link() {
-    let e = SixBar::course_example()
-        .analyse(Motion::new(f64::NAN, 1.0, 0.0))
-        .unwrap_err();
-    assert!(
-        matches!(e, Error::In { ref part, .. } if part == "link 1 (crank)"),
-        "{e}"
-    );
-    let p = SixBar::course_example()
-        .analyse(Motion::new(1.0, 0.0, 0.0))
-        .unwrap();
+fn a_mechanism_that_assembles_nowhere_fails_its_plan() {
+    // A coupler and rocker of 0.05 and 0.1 m reach at most 0.15 m from O3; A never comes
+    // closer than 0.30 m.
+    let m = FourBar {
+        l2: 0.05,
+        l3: 0.1,
+        ..FourBar::course_example()
+    };
+    let e = m.plan().unwrap_err();
+    assert!(matches!(e, Error::Description { .. }), "{e}");
+}
+
+#[test]
+fn bad_input_is_an_error_not_a_panic() {
+    let plan = SixBar::course_example().plan().unwrap();
+    let e = plan.analyse(Motion::new(f64::NAN, 1.0, 0.0)).unwrap_err();
+    assert!(matches!(e, Error::NonFinite { .. }), "{e}");
+    let p = plan.analyse(Motion::new(1.0, 0.0, 0.0)).unwrap();
     assert!(
         p.power_check().is_err(),
         "ω1 = 0 has no virtual-power balance"
@@ -366,32 +391,34 @@ fn bad_input_is_an_error_naming_the_input_link() {
 #[test]
 fn course_positions_start_at_the_working_stroke() {
     let six = SixBar::course_example();
+    let plan = six.plan().unwrap();
     let strokes = six.strokes(Rotation::Ccw).unwrap();
-    let plan = course_inputs(&strokes, 12, 10.0);
-    assert_eq!(plan.len(), 12);
-    let first = six.analyse(plan[0]).unwrap();
-    // An extreme position: the slider is at rest there, at its largest s (the stroke works
-    // along −x, as the example's resistance assumes).
+    let inputs = course_inputs(&strokes, 12, 10.0);
+    assert_eq!(inputs.len(), 12);
+    let first = plan.analyse(inputs[0]).unwrap();
+    // An extreme position: the slider is at rest there (the stroke works along −x, as the
+    // example's resistance assumes).
     let scale = 10.0 * six.l1;
-    assert!(first.group45.slide.rate.abs() <= 1e-9 * scale);
-    let mid = six
+    assert!(first.slide("Q").unwrap().rate.abs() <= 1e-9 * scale);
+    let mid = plan
         .analyse(Motion::new(
             strokes.start + 0.5 * strokes.working_angle,
             10.0,
             0.0,
         ))
         .unwrap();
-    assert!(mid.group45.slide.rate * six.working_direction > 0.0);
+    assert!(mid.slide("Q").unwrap().rate * six.working_direction > 0.0);
     assert!(strokes.time_ratio > 1.0);
 
-    // The compressor turns clockwise: its plans go clockwise from piston 3's dead centre.
+    // The compressor turns clockwise: its plans go clockwise from piston 1's dead centre.
     let comp = Compressor::course_example();
+    let plan = comp.plan().unwrap();
     let strokes = comp.strokes(Rotation::Cw).unwrap();
-    let plan = course_inputs(&strokes, 12, Compressor::seed_speed());
-    assert!(plan.iter().all(|m| m.rate < 0.0));
-    let p0 = comp.analyse(plan[0]).unwrap();
-    assert!(p0.group23.slide.rate.abs() <= 1e-9 * comp.l1 * 100.0);
-    for pair in plan.windows(2) {
+    let inputs = course_inputs(&strokes, 12, Compressor::seed_speed());
+    assert!(inputs.iter().all(|m| m.rate < 0.0));
+    let p0 = plan.analyse(inputs[0]).unwrap();
+    assert!(p0.slide("P1").unwrap().rate.abs() <= 1e-9 * comp.l1 * 100.0);
+    for pair in inputs.windows(2) {
         let step = tmm::angle::normalize(pair[0].value - pair[1].value);
         assert!((step - TAU / 12.0).abs() < 1e-12);
     }
@@ -399,94 +426,123 @@ fn course_positions_start_at_the_working_stroke() {
 
 #[test]
 fn csv_holds_every_column_and_reads_back_bit_for_bit() {
-    let six = SixBar::course_example();
-    let positions = run_cycle(&uniform_inputs(36, 0.0, 10.0, 0.0), |i| six.analyse(i));
+    let plan = SixBar::course_example().plan().unwrap();
+    let positions = cycle(&plan, &uniform_inputs(36, 0.0, 10.0, 0.0));
     let table = Table::of(&positions);
     assert_eq!(table.len(), 36);
     let row = positions[0].as_ref().unwrap().row();
     assert_eq!(table.columns.len(), row.len());
-    for name in ["R12", "R23", "R03", "R34", "R45", "R05"] {
+    for name in [
+        "R(frame,crank)@O1",
+        "R(crank,coupler)@A",
+        "R(coupler,rocker)@B",
+        "R(frame,rocker)@O2",
+        "R(rocker,rod)@C",
+        "R(rod,slider)@D",
+        "R(frame,slider)@Q",
+    ] {
         assert!(table.column(&format!("|{name}| [N]")).is_some(), "{name}");
     }
     let mut csv = Vec::new();
     table.write_csv(&mut csv).unwrap();
     let text = String::from_utf8(csv).unwrap();
     let mut lines = text.lines();
-    let header: Vec<&str> = lines.next().unwrap().split(',').collect();
-    assert_eq!(header.len(), table.columns.len());
+    // The names hold commas, R(by,on): they are quoted.
+    let header = split_quoted(lines.next().unwrap());
+    let names: Vec<&str> = table.columns.iter().map(|c| c.name.as_str()).collect();
+    assert_eq!(header, names);
     for (k, line) in lines.enumerate() {
         for (j, cell) in line.split(',').enumerate() {
             let v: f64 = cell.parse().unwrap();
             assert_eq!(v.to_bits(), table.columns[j].values[k].to_bits());
         }
     }
-    // |R| columns are the norms of the x, y columns.
+    // |R| columns are the norms of the x, y columns; M_b beside its virtual-power value.
     let (x, y, m) = (
-        table.column("R12_x [N]").unwrap(),
-        table.column("R12_y [N]").unwrap(),
-        table.column("|R12| [N]").unwrap(),
+        table.column("R(crank,coupler)@A_x [N]").unwrap(),
+        table.column("R(crank,coupler)@A_y [N]").unwrap(),
+        table.column("|R(crank,coupler)@A| [N]").unwrap(),
+    );
+    let (mb, vp) = (
+        table.column("Mb [N*m]").unwrap(),
+        table.column("Mb (virtual power) [N*m]").unwrap(),
     );
     for k in 0..36 {
         assert!((x[k].hypot(y[k]) - m[k]).abs() <= 1e-12 * m[k]);
+        assert!((mb[k] - vp[k]).abs() <= 1e-9 * mb.iter().fold(0.0f64, |a, b| a.max(b.abs())));
     }
+}
+
+/// The cells of one CSV line whose cells may be quoted (no quotes inside quotes here).
+fn split_quoted(line: &str) -> Vec<String> {
+    let (mut cells, mut cell, mut quoted) = (Vec::new(), String::new(), false);
+    for ch in line.chars() {
+        match ch {
+            '"' => quoted = !quoted,
+            ',' if !quoted => cells.push(std::mem::take(&mut cell)),
+            _ => cell.push(ch),
+        }
+    }
+    cells.push(cell);
+    cells
 }
 
 #[cfg(feature = "rayon")]
 #[test]
 fn the_parallel_cycle_equals_the_serial_one_bit_for_bit() {
-    use tmm::mechanism::run_cycle_parallel;
+    use tmm::linkage::run_cycle_parallel;
     let inputs = uniform_inputs(360, 0.2, 10.0, 1.0);
-    let six = SixBar::course_example();
-    assert_eq!(
-        run_cycle(&inputs, |i| six.analyse(i)),
-        run_cycle_parallel(&inputs, |i| six.analyse(i))
-    );
-    let comp = Compressor::course_example();
-    let a = Table::of(&run_cycle(&inputs, |i| comp.analyse(i)));
-    let b = Table::of(&run_cycle_parallel(&inputs, |i| comp.analyse(i)));
-    for (x, y) in a.columns.iter().zip(&b.columns) {
-        assert!(x
-            .values
-            .iter()
-            .zip(&y.values)
-            .all(|(p, q)| p.to_bits() == q.to_bits()));
+    for plan in [
+        SixBar::course_example().plan().unwrap(),
+        Compressor::course_example().plan().unwrap(),
+    ] {
+        let a = Table::of(&run_cycle(&inputs, |i| plan.analyse(i)));
+        let b = Table::of(&run_cycle_parallel(&inputs, |i| plan.analyse(i)));
+        assert_eq!(a.len(), 360);
+        assert_eq!(a.columns.len(), b.columns.len());
+        for (x, y) in a.columns.iter().zip(&b.columns) {
+            assert_eq!(x.name, y.name);
+            assert!(x
+                .values
+                .iter()
+                .zip(&y.values)
+                .all(|(p, q)| p.to_bits() == q.to_bits()));
+        }
     }
 }
 
 #[cfg(feature = "serde")]
 #[test]
 fn mechanisms_and_results_survive_a_serde_round_trip() {
+    fn round<T: serde::Serialize + serde::de::DeserializeOwned>(t: &T) -> T {
+        serde_json::from_str(&serde_json::to_string(t).unwrap()).unwrap()
+    }
     let six = SixBar {
         drive: GEAR,
         ..SixBar::course_example()
     };
-    let back: SixBar = serde_json::from_str(&serde_json::to_string(&six).unwrap()).unwrap();
-    assert_eq!(back, six);
+    assert_eq!(round(&six), six);
+    let four = FourBar::course_example();
+    assert_eq!(round(&four), four);
+    let sc = SliderCrank::geared_example();
+    assert_eq!(round(&sc), sc);
+    let rc = RockingCylinder::course_example();
+    assert_eq!(round(&rc), rc);
     let comp = Compressor::course_example();
-    let back: Compressor = serde_json::from_str(&serde_json::to_string(&comp).unwrap()).unwrap();
+    let back = round(&comp);
     assert_eq!(back, comp);
+    // Its description too, and the loaded mechanism gives the same results bit for bit.
+    assert_eq!(round(&comp.linkage()), comp.linkage());
     let inputs = uniform_inputs(36, 0.0, -100.0, 0.0);
-    let table = Table::of(&run_cycle(&inputs, |i| comp.analyse(i)));
-    let back: Table = serde_json::from_str(&serde_json::to_string(&table).unwrap()).unwrap();
-    assert_eq!(back, table);
-    // The loaded mechanism gives the same results.
-    let again = Table::of(&run_cycle(&inputs, |i| back_analyse(&comp, i)));
-    assert_eq!(again, table);
-    // A whole analysed position (kinematic states, loads, reactions, balance) too.
-    let position = six.analyse(inputs[5]).unwrap();
-    let back: tmm::mechanism::SixBarPosition =
-        serde_json::from_str(&serde_json::to_string(&position).unwrap()).unwrap();
-    assert_eq!(back, position);
-    let balance = comp.analyse(inputs[3]).unwrap().balance;
-    let back: tmm::mechanism::Balance =
-        serde_json::from_str(&serde_json::to_string(&balance).unwrap()).unwrap();
-    assert_eq!(back, balance);
-}
-
-#[cfg(feature = "serde")]
-fn back_analyse(m: &Compressor, i: Motion) -> Result<tmm::mechanism::CompressorPosition> {
-    let copy: Compressor = serde_json::from_str(&serde_json::to_string(m).unwrap()).unwrap();
-    copy.analyse(i)
+    let plan = comp.plan().unwrap();
+    let table = Table::of(&cycle(&plan, &inputs));
+    assert_eq!(round(&table), table);
+    let plan_back = back.plan().unwrap();
+    assert_eq!(Table::of(&cycle(&plan_back, &inputs)), table);
+    // A reaction and a balance.
+    let a = plan.analyse(inputs[3]).unwrap();
+    assert_eq!(round(&a.reaction("P1").unwrap()), a.reaction("P1").unwrap());
+    assert_eq!(round(&a.balance()), a.balance());
 }
 
 /// Seed 001's closed forms (2.10)–(2.14) for one contour, with the errata K1 and K2, in the
@@ -508,23 +564,21 @@ fn seed_contour(l1: f64, l: f64, psi: f64, w1: f64, e1: f64) -> [f64; 6] {
 #[test]
 fn the_compressor_reproduces_seed_001s_closed_forms_for_both_pistons() {
     let m = Compressor::course_example();
+    let plan = m.plan().unwrap();
     let (w1, e1) = (-Compressor::seed_speed(), 250.0); // the seed's clockwise ω1 > 0
     let mut worst = 0.0f64;
     for k in 0..36 {
         let psi = k as f64 * TAU / 36.0;
         // Seed angle ψ clockwise from +y → crate angle π/2 − ψ; rates change sign.
-        let p = m.analyse(Motion::new(0.5 * PI - psi, -w1, -e1)).unwrap();
-        for (g, throw) in [(&p.group23, 0.0), (&p.group45, PI)] {
+        let p = plan.analyse(Motion::new(0.5 * PI - psi, -w1, -e1)).unwrap();
+        for (rod, pin, slide, throw) in [("rod 1", "B", "P1", 0.0), ("rod 2", "D", "P2", PI)] {
             let s = seed_contour(m.l1, m.l2, psi + throw, w1, e1);
-            let phi2 = tmm::angle::normalize(0.5 * PI - g.link2.angle + PI) - PI;
-            let got = [
-                phi2,
-                g.slide.value,
-                -g.link2.omega,
-                g.slide.rate,
-                -g.link2.epsilon,
-                g.slide.accel,
-            ];
+            let r = p.link(rod).unwrap();
+            let phi2 = tmm::angle::normalize(0.5 * PI - r.value + PI) - PI;
+            // Both guides run along +y through O1: l3 is the pin's y.
+            let y = p.joint(pin).unwrap().p.y;
+            let sl = p.slide(slide).unwrap();
+            let got = [phi2, y, -r.rate, sl.rate, -r.accel, sl.accel];
             let scales = [1.0, m.l1, w1, m.l1 * w1, w1 * w1, m.l1 * w1 * w1];
             for i in 0..6 {
                 worst = worst.max((got[i] - s[i]).abs() / scales[i]);

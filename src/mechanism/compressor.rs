@@ -1,39 +1,26 @@
-//! Seed 001's two-cylinder air compressor: one crank with two throws O A and O C drives two
-//! pistons through two RRP groups, II(2,3) and II(4,5).
+//! Seed 001's two-cylinder air compressor: one crank with two throws O1A and O1C drives two
+//! pistons through two RRP groups.
 
-use super::drive::{Balance, Drive};
-use super::link::{own_loads, LinkMass};
-use super::power::FreeBody;
-use super::pressure::{IndicatorDiagram, Piston};
-use super::table::{push, push_reactions, push_vector, Tabulate};
-use super::{output_strokes, within, Analysed, CRANK};
+use super::link::{reference_pose, xy, LinkMass};
+use crate::angle::{direction, unit};
 use crate::error::Result;
-use crate::kinematics::{
-    crank, rrp_dyad, Branch, CrankState, Guide, Motion, PointMotion, Rotation, RrpState, Strokes,
+use crate::kinematics::{crank, rrp_dyad, Branch, Guide, Motion, Rotation, Strokes};
+use crate::linkage::{
+    Drive, IndicatorDiagram, Input, Joint, Link, Linkage, LoadSpec, Mode, Output, Plan,
 };
-use crate::kinetostatics::RrpDyad;
-use crate::Load;
-use nalgebra::{Point2, Vector2};
+use nalgebra::Point2;
 use std::f64::consts::{FRAC_PI_2, PI, TAU};
 
-/// The links' names, for errors and free bodies.
-const LINKS: [&str; 5] = [
-    CRANK,
-    "link 2 (rod 1)",
-    "link 3 (piston 1)",
-    "link 4 (rod 2)",
-    "link 5 (piston 2)",
-];
-const GROUP_23: &str = "group II(2,3) RRP";
-const GROUP_45: &str = "group II(4,5) RRP";
-
-/// A two-cylinder compressor: the crank 1 (throws O1A and O1C, the second turned by
-/// `throw_angle` from the first), RRP group II(2,3) (rod 2 = AB, piston 3 at B) and RRP group
-/// II(4,5) (rod 4 = CD, piston 5 at D), each piston on its own fixed guide through
+/// A two-cylinder compressor: the crank with the throws O1A and O1C (the second turned by
+/// `throw_angle` from the first), the RRP group of rod 1 (AB) and piston 1 at B, and the RRP
+/// group of rod 2 (CD) and piston 2 at D, each piston on its own fixed guide through
 /// `guide_point`.
 ///
-/// Link frames: link 1 from O1 along O1A, rod 2 from A along AB, rod 4 from C along CD, the
-/// pistons at B and D along their guides.
+/// Its [`linkage`](Compressor::linkage) has the joints `O1`, `A`, `C`, `B`, `D` and the
+/// prismatic `P1` (at B) and `P2` (at D), and the links `frame`, `crank` (angle along O1→A),
+/// `rod 1`, `piston 1`, `rod 2`, `piston 2`. Link frames of [`LinkMass`]: the crank from O1
+/// along O1A, rod 1 from A along AB, rod 2 from C along CD, the pistons at B and D along
+/// their guides.
 #[derive(Debug, Clone, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct Compressor {
@@ -49,16 +36,16 @@ pub struct Compressor {
     pub l4: f64,
     /// A point of both guides (the cylinders' axes cross it), m.
     pub guide_point: Point2<f64>,
-    /// The direction angles of the guides of pistons 3 and 5, rad.
+    /// The direction angles of the guides of pistons 1 and 2, rad.
     pub guide_angles: [f64; 2],
-    /// Assembly modes of the groups II(2,3) and II(4,5).
+    /// Assembly modes of the two RRP groups (as [`SliderCrank::branch`](super::SliderCrank)).
     #[cfg_attr(feature = "serde", serde(with = "branches"))]
     pub branches: [Branch; 2],
-    /// The mass properties of links 1 to 5.
+    /// The mass properties of the crank, rod 1, piston 1, rod 2, piston 2.
     pub mass: [LinkMass; 5],
     /// g, m/s², along −y (0 to neglect weights).
     pub gravity: f64,
-    /// The indicator diagrams of the cylinders of pistons 3 and 5.
+    /// The indicator diagrams of the cylinders of pistons 1 and 2.
     pub diagrams: [Option<IndicatorDiagram>; 2],
     /// How the crank is driven.
     pub drive: Drive,
@@ -66,8 +53,8 @@ pub struct Compressor {
 
 #[cfg(feature = "serde")]
 mod branches {
+    use super::super::serde_remote::BranchDef;
     use crate::kinematics::Branch;
-    use crate::mechanism::serde_remote::BranchDef;
     use serde::{Deserialize, Deserializer, Serialize, Serializer};
 
     #[derive(Serialize, Deserialize)]
@@ -81,42 +68,6 @@ mod branches {
         let [B(x), B(y)] = <[B; 2]>::deserialize(d)?;
         Ok([x, y])
     }
-}
-
-/// One analysed position of a [`Compressor`].
-#[derive(Debug, Clone, Copy, PartialEq)]
-#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
-pub struct CompressorPosition {
-    /// φ1, ω1, ε1.
-    pub input: Motion,
-    /// The crank and its first pin A.
-    pub crank: CrankState,
-    /// The second crank pin C.
-    pub c: PointMotion,
-    /// The group II(2,3): rod 2, piston 3 at B.
-    pub group23: RrpState,
-    /// The group II(4,5): rod 4, piston 5 at D.
-    pub group45: RrpState,
-    /// The own loads of links 1–5 (inertia and weight) at their centres of mass.
-    pub loads: [Load; 5],
-    /// The gas forces on pistons 3 (at B) and 5 (at D), N.
-    pub gas_forces: [Vector2<f64>; 2],
-    /// R12, the crank on rod 2 at A, N.
-    pub r12: Vector2<f64>,
-    /// R23, rod 2 on piston 3 at B, N.
-    pub r23: Vector2<f64>,
-    /// R03, the first cylinder on piston 3, N.
-    pub r03: Vector2<f64>,
-    /// R14, the crank on rod 4 at C, N.
-    pub r14: Vector2<f64>,
-    /// R45, rod 4 on piston 5 at D, N.
-    pub r45: Vector2<f64>,
-    /// R05, the second cylinder on piston 5, N.
-    pub r05: Vector2<f64>,
-    /// The moments of R03 about B and of R05 about D, N·m.
-    pub wall_moments: [f64; 2],
-    /// The balancing moment (or force) and R01.
-    pub balance: Balance,
 }
 
 impl Compressor {
@@ -178,204 +129,92 @@ impl Compressor {
         -960.0 * TAU / 60.0
     }
 
-    /// The fixed guide of piston 3 (`k = 0`) or 5 (`k = 1`).
-    ///
-    /// # Panics
-    /// For `k` > 1 (there are two guides).
+    /// The description for the engine, in a reference pose where both groups assemble (B
+    /// and D as `branches` put them; not finite if it assembles nowhere, which [`Plan::new`]
+    /// rejects naming the joint).
     #[must_use]
-    pub fn guide(&self, k: usize) -> Guide {
-        Guide::fixed(self.guide_point, self.guide_angles[k])
-    }
-
-    /// The kinematics alone: crank, the second pin C, both RRP groups.
-    ///
-    /// # Errors
-    /// [`Error::In`](crate::Error::In) naming the part that failed.
-    pub fn kinematics(
-        &self,
-        input: Motion,
-    ) -> Result<(CrankState, PointMotion, RrpState, RrpState)> {
-        let crank = crank(self.o1, self.l1, input).map_err(within(CRANK))?;
-        let (s, c) = self.throw_angle.sin_cos();
-        let pin_c = crank.link.point_at(self.l1 * c, self.l1 * s);
-        let g23 = rrp_dyad(crank.a, self.guide(0), self.l2, self.branches[0])
-            .map_err(within(GROUP_23))?;
-        let g45 =
-            rrp_dyad(pin_c, self.guide(1), self.l4, self.branches[1]).map_err(within(GROUP_45))?;
-        Ok((crank, pin_c, g23, g45))
-    }
-
-    /// The strokes of piston 3 for a crank turning in the sense `rotation`.
-    ///
-    /// # Errors
-    /// A position of the cycle that fails, or not exactly two extremes.
-    pub fn strokes(&self, rotation: Rotation) -> Result<Strokes> {
-        output_strokes(|m| Ok(self.kinematics(m)?.2.slide), rotation)
-    }
-
-    /// The whole analysis at one input position: kinematics, loads (with both gas forces),
-    /// the groups II(4,5) and II(2,3), then the crank with both reactions.
-    ///
-    /// # Errors
-    /// [`Error::In`](crate::Error::In) naming the part that failed.
-    pub fn analyse(&self, input: Motion) -> Result<CompressorPosition> {
-        let (crank, c, g23, g45) = self.kinematics(input)?;
-        let links = [crank.link, g23.link2, g23.link3, g45.link2, g45.link3];
-        let loads = own_loads(&self.mass, &links, &LINKS, self.gravity)?;
-        let rods = [self.l2, self.l4];
-        let pins = [g23.b, g45.b];
-        let mut gas_forces = [Vector2::zeros(); 2];
-        for k in 0..2 {
-            if let Some(d) = &self.diagrams[k] {
-                let piston = Piston::new(
-                    self.o1,
-                    self.l1,
-                    rods[k],
-                    self.guide_point,
-                    self.guide_angles[k],
-                    self.branches[k],
-                );
-                gas_forces[k] = piston
-                    .and_then(|p| p.gas_force(d, &pins[k]))
-                    .map_err(within(
-                        ["gas pressure, cylinder 1", "gas pressure, cylinder 2"][k],
-                    ))?;
+    pub fn linkage(&self) -> Linkage {
+        let guides = self.guide_angles.map(|a| Guide::fixed(self.guide_point, a));
+        let (st, ct) = self.throw_angle.sin_cos();
+        let pose = reference_pose(|phi| {
+            let c = crank(self.o1, self.l1, Motion::new(phi, 0.0, 0.0))?;
+            let pin_c = c.link.point_at(self.l1 * ct, self.l1 * st);
+            let g23 = rrp_dyad(c.a, guides[0], self.l2, self.branches[0])?;
+            let g45 = rrp_dyad(pin_c, guides[1], self.l4, self.branches[1])?;
+            let q = g23.det.abs().min(g45.det.abs());
+            Ok(((c.a.p, pin_c.p, g23.b.p, g45.b.p), q))
+        });
+        let nan = Point2::new(f64::NAN, f64::NAN);
+        let (phi, (a, c, b, d)) = pose.unwrap_or((0.0, (nan, nan, nan, nan)));
+        let (ga, gb) = (unit(self.guide_angles[0]), unit(self.guide_angles[1]));
+        let mut loads = Vec::new();
+        for (k, joint) in ["P1", "P2"].iter().enumerate() {
+            if let Some(diagram) = &self.diagrams[k] {
+                loads.push(LoadSpec::Indicator {
+                    joint: (*joint).to_owned(),
+                    diagram: diagram.clone(),
+                    head: self.branches[k].sign(),
+                });
             }
         }
-        let piston = |load: Load, b: Point2<f64>, f: Vector2<f64>| {
-            Load::sum_about(&[load, Load::force_at(b, f)], b)
-        };
-        // Both groups hang on the crank; II(4,5) was attached last.
-        let r45 = RrpDyad {
-            a: c.p,
-            b: g45.b.p,
-            guide: self.guide(1).unit(),
-            load2: loads[3],
-            load3: piston(loads[4], g45.b.p, gas_forces[1]),
-        }
-        .solve()
-        .map_err(within(GROUP_45))?;
-        let r23 = RrpDyad {
-            a: crank.a.p,
-            b: g23.b.p,
-            guide: self.guide(0).unit(),
-            load2: loads[1],
-            load3: piston(loads[2], g23.b.p, gas_forces[0]),
-        }
-        .solve()
-        .map_err(within(GROUP_23))?;
-        let balance = self
-            .drive
-            .balance(
-                self.o1,
-                &[
-                    loads[0],
-                    Load::force_at(crank.a.p, -r23.r12),
-                    Load::force_at(c.p, -r45.r12),
-                ],
-            )
-            .map_err(within(CRANK))?;
-        Ok(CompressorPosition {
-            input,
-            crank,
-            c,
-            group23: g23,
-            group45: g45,
-            loads,
-            gas_forces,
-            r12: r23.r12,
-            r23: r23.r23,
-            r03: r23.r43,
-            r14: r45.r12,
-            r45: r45.r23,
-            r05: r45.r43,
-            wall_moments: [r23.guide_moment, r45.guide_moment],
-            balance,
-        })
-    }
-}
-
-impl Analysed for CompressorPosition {
-    fn input(&self) -> Motion {
-        self.input
-    }
-
-    fn balance(&self) -> Balance {
-        self.balance
-    }
-
-    fn free_bodies(&self) -> Vec<FreeBody> {
-        let (a, c, b, d) = (self.crank.a.p, self.c.p, self.group23.b.p, self.group45.b.p);
-        let f = Load::force_at;
-        vec![
-            FreeBody::input_link(
-                LINKS[0],
-                &self.crank,
-                self.loads[0],
-                &self.balance,
-                vec![f(a, -self.r12), f(c, -self.r14)],
-            ),
-            FreeBody {
-                name: LINKS[1],
-                motion: self.group23.link2,
-                loads: vec![self.loads[1]],
-                drive: None,
-                reactions: vec![f(a, self.r12), f(b, -self.r23)],
-            },
-            FreeBody {
-                name: LINKS[2],
-                motion: self.group23.link3,
-                loads: vec![self.loads[2], f(b, self.gas_forces[0])],
-                drive: None,
-                reactions: vec![f(b, self.r23), Load::new(b, self.r03, self.wall_moments[0])],
-            },
-            FreeBody {
-                name: LINKS[3],
-                motion: self.group45.link2,
-                loads: vec![self.loads[3]],
-                drive: None,
-                reactions: vec![f(c, self.r14), f(d, -self.r45)],
-            },
-            FreeBody {
-                name: LINKS[4],
-                motion: self.group45.link3,
-                loads: vec![self.loads[4], f(d, self.gas_forces[1])],
-                drive: None,
-                reactions: vec![f(d, self.r45), Load::new(d, self.r05, self.wall_moments[1])],
-            },
-        ]
-    }
-}
-
-impl Tabulate for CompressorPosition {
-    fn row(&self) -> Vec<(String, f64)> {
-        let mut r = Vec::with_capacity(50);
-        push(&mut r, "phi1", "rad", self.input.value);
-        push(&mut r, "omega1", "rad/s", self.input.rate);
-        push(&mut r, "s3", "m", self.group23.slide.value);
-        push(&mut r, "v3", "m/s", self.group23.slide.rate);
-        push(&mut r, "a3", "m/s^2", self.group23.slide.accel);
-        push(&mut r, "s5", "m", self.group45.slide.value);
-        push(&mut r, "v5", "m/s", self.group45.slide.rate);
-        push(&mut r, "a5", "m/s^2", self.group45.slide.accel);
-        push(&mut r, "omega2", "rad/s", self.group23.link2.omega);
-        push(&mut r, "eps2", "rad/s^2", self.group23.link2.epsilon);
-        push(&mut r, "omega4", "rad/s", self.group45.link2.omega);
-        push(&mut r, "eps4", "rad/s^2", self.group45.link2.epsilon);
-        push_vector(&mut r, "F_gas3", "N", self.gas_forces[0]);
-        push_vector(&mut r, "F_gas5", "N", self.gas_forces[1]);
-        push_reactions(
-            &mut r,
-            &[
-                ("R12", self.r12),
-                ("R23", self.r23),
-                ("R03", self.r03),
-                ("R14", self.r14),
-                ("R45", self.r45),
-                ("R05", self.r05),
+        let m = &self.mass;
+        Linkage {
+            name: "two-cylinder compressor".to_owned(),
+            joints: vec![
+                Joint::revolute("O1", xy(self.o1)),
+                Joint::revolute("A", xy(a)),
+                Joint::revolute("C", xy(c)),
+                Joint::revolute("B", xy(b)),
+                Joint::revolute("D", xy(d)),
+                Joint::prismatic("P1", xy(b), "frame", [ga.x, ga.y]),
+                Joint::prismatic("P2", xy(d), "frame", [gb.x, gb.y]),
             ],
-            &self.balance,
-        );
-        r
+            links: vec![
+                Link::new("frame", &["O1", "P1", "P2"]),
+                Link::new("crank", &["O1", "A", "C"]).with_mass(m[0].at(xy(self.o1), phi)),
+                Link::new("rod 1", &["A", "B"]).with_mass(m[1].at(xy(a), direction(b - a))),
+                Link::new("piston 1", &["B", "P1"]).with_mass(m[2].at(xy(b), self.guide_angles[0])),
+                Link::new("rod 2", &["C", "D"]).with_mass(m[3].at(xy(c), direction(d - c))),
+                Link::new("piston 2", &["D", "P2"]).with_mass(m[4].at(xy(d), self.guide_angles[1])),
+            ],
+            input: Input {
+                link: "crank".to_owned(),
+                drive: self.drive,
+            },
+            gravity: [0.0, -self.gravity],
+            loads,
+            groups: vec![
+                ["rod 1".to_owned(), "piston 1".to_owned()],
+                ["rod 2".to_owned(), "piston 2".to_owned()],
+            ],
+            modes: vec![
+                Mode {
+                    joint: "B".to_owned(),
+                    branch: self.branches[0],
+                },
+                Mode {
+                    joint: "D".to_owned(),
+                    branch: self.branches[1],
+                },
+            ],
+            ..Linkage::default()
+        }
+    }
+
+    /// The plan of [`Compressor::linkage`].
+    ///
+    /// # Errors
+    /// As [`Plan::new`].
+    pub fn plan(&self) -> Result<Plan> {
+        Plan::new(&self.linkage())
+    }
+
+    /// The strokes of piston 1 for a crank turning in the sense `rotation`.
+    ///
+    /// # Errors
+    /// As [`Compressor::plan`] and [`Plan::strokes`].
+    pub fn strokes(&self, rotation: Rotation) -> Result<Strokes> {
+        self.plan()?
+            .strokes(&Output::Slide("P1".to_owned()), rotation)
     }
 }

@@ -1,26 +1,18 @@
 //! A crank-rocker four-bar: the crank O1A drives the rocker O3B through the coupler AB (one
 //! RRR group).
 
-use super::drive::{Balance, Drive};
-use super::link::{own_loads, LinkMass};
-use super::power::FreeBody;
-use super::table::{push, push_reactions, Tabulate};
-use super::{output_strokes, sign, within, Analysed, CRANK};
+use super::link::{reference_pose, xy, LinkMass};
 use crate::error::Result;
-use crate::kinematics::{
-    crank, rrr_dyad, Branch, CrankState, Motion, PointMotion, Rotation, RrrState, Strokes,
-};
-use crate::kinetostatics::RrrDyad;
-use crate::Load;
-use nalgebra::{Point2, Vector2};
+use crate::kinematics::{crank, rrr_dyad, Branch, Motion, PointMotion, Rotation, Strokes};
+use crate::linkage::{Drive, Input, Joint, Link, Linkage, LoadSpec, Mode, Output, Plan};
+use nalgebra::Point2;
 
-/// The links' names, for errors and free bodies.
-const LINKS: [&str; 3] = [CRANK, "link 2 (coupler)", "link 3 (rocker)"];
-const GROUP_23: &str = "group II(2,3) RRR";
-
-/// A four-bar: input link 1 (O1A), RRR group II(2,3) (coupler 2 = AB, rocker 3 = O3B).
+/// A four-bar: the crank O1A, the RRR group of the coupler AB and the rocker O3B.
 ///
-/// Link frames: link 1 from O1 along O1A, link 2 from A along AB, link 3 from O3 along O3B.
+/// Its [`linkage`](FourBar::linkage) has the joints `O1`, `A`, `B`, `O3` and the links
+/// `frame`, `crank` (O1A), `coupler` (AB) and `rocker` (O3B), whose angles are measured along
+/// O1→A, A→B and O3→B. Link frames of [`LinkMass`]: the crank from O1 along O1A, the coupler
+/// from A along AB, the rocker from O3 along O3B.
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct FourBar {
@@ -37,7 +29,7 @@ pub struct FourBar {
     /// Assembly mode (B to the left of A→O3 for `Plus`).
     #[cfg_attr(feature = "serde", serde(with = "super::serde_remote::BranchDef"))]
     pub branch: Branch,
-    /// The mass properties of links 1 to 3.
+    /// The mass properties of the crank, the coupler and the rocker.
     pub mass: [LinkMass; 3],
     /// g, m/s², along −y (0 to neglect weights).
     pub gravity: f64,
@@ -46,30 +38,6 @@ pub struct FourBar {
     pub resisting_moment: f64,
     /// How the crank is driven.
     pub drive: Drive,
-}
-
-/// One analysed position of a [`FourBar`].
-#[derive(Debug, Clone, Copy, PartialEq)]
-#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
-pub struct FourBarPosition {
-    /// φ1, ω1, ε1.
-    pub input: Motion,
-    /// The crank and its pin A.
-    pub crank: CrankState,
-    /// The RRR group: B, coupler 2, rocker 3.
-    pub group23: RrrState,
-    /// The own loads of links 1–3 (inertia and weight) at their centres of mass.
-    pub loads: [Load; 3],
-    /// The resisting moment on the rocker, N·m.
-    pub rocker_moment: f64,
-    /// R12, the crank on the coupler at A, N.
-    pub r12: Vector2<f64>,
-    /// R23, the coupler on the rocker at B, N.
-    pub r23: Vector2<f64>,
-    /// R03, the frame on the rocker at O3, N.
-    pub r03: Vector2<f64>,
-    /// The balancing moment (or force) and R01.
-    pub balance: Balance,
 }
 
 impl FourBar {
@@ -97,30 +65,66 @@ impl FourBar {
         }
     }
 
-    /// The kinematics alone: crank and RRR group.
-    ///
-    /// # Errors
-    /// [`Error::In`](crate::Error::In) naming the part that failed.
-    pub fn kinematics(&self, input: Motion) -> Result<(CrankState, RrrState)> {
-        let crank = crank(self.o1, self.l1, input).map_err(within(CRANK))?;
-        let o3 = PointMotion::fixed(self.o3);
-        let g23 = rrr_dyad(crank.a, o3, self.l2, self.l3, self.branch).map_err(within(GROUP_23))?;
-        Ok((crank, g23))
+    /// The description for the engine, in a reference pose where the four-bar assembles
+    /// (B as `branch` puts it). If it assembles nowhere, B is not finite and
+    /// [`Plan::new`] rejects it naming the joint.
+    #[must_use]
+    pub fn linkage(&self) -> Linkage {
+        let pose = reference_pose(|phi| {
+            let c = crank(self.o1, self.l1, Motion::new(phi, 0.0, 0.0))?;
+            let g = rrr_dyad(
+                c.a,
+                PointMotion::fixed(self.o3),
+                self.l2,
+                self.l3,
+                self.branch,
+            )?;
+            Ok(((c.a.p, g.b.p), g.det))
+        });
+        let (phi, (a, b)) = pose.unwrap_or_else(|| {
+            let nan = Point2::new(f64::NAN, f64::NAN);
+            (0.0, (self.o1 + self.l1 * crate::angle::unit(0.0), nan))
+        });
+        let (o1, o3) = (self.o1, self.o3);
+        let dir = |p: Point2<f64>, q: Point2<f64>| crate::angle::direction(q - p);
+        Linkage {
+            name: "four-bar".to_owned(),
+            joints: vec![
+                Joint::revolute("O1", xy(o1)),
+                Joint::revolute("A", xy(a)),
+                Joint::revolute("B", xy(b)),
+                Joint::revolute("O3", xy(o3)),
+            ],
+            links: vec![
+                Link::new("frame", &["O1", "O3"]),
+                Link::new("crank", &["O1", "A"]).with_mass(self.mass[0].at(xy(o1), phi)),
+                Link::new("coupler", &["A", "B"]).with_mass(self.mass[1].at(xy(a), dir(a, b))),
+                Link::new("rocker", &["O3", "B"]).with_mass(self.mass[2].at(xy(o3), dir(o3, b))),
+            ],
+            input: Input {
+                link: "crank".to_owned(),
+                drive: self.drive,
+            },
+            gravity: [0.0, -self.gravity],
+            loads: vec![LoadSpec::Resistance {
+                on: "rocker".to_owned(),
+                forward: self.resisting_moment,
+                backward: self.resisting_moment,
+                at: None,
+            }],
+            groups: vec![["coupler".to_owned(), "rocker".to_owned()]],
+            modes: vec![Mode {
+                joint: "B".to_owned(),
+                branch: self.branch,
+            }],
+            ..Linkage::default()
+        }
     }
 
-    /// The strokes of the rocker (its angle) for a crank turning in the sense `rotation`.
+    /// The plan of [`FourBar::linkage`].
     ///
     /// # Errors
-    /// A position of the cycle that fails, or not exactly two extremes.
-    pub fn strokes(&self, rotation: Rotation) -> Result<Strokes> {
-        output_strokes(|m| Ok(self.kinematics(m)?.1.link3.angle_motion()), rotation)
-    }
-
-    /// The whole analysis at one input position.
-    ///
-    /// # Errors
-    /// [`Error::In`](crate::Error::In) naming the part that failed (`"group II(2,3) RRR"` at a
-    /// dead point of the group).
+    /// As [`Plan::new`].
     ///
     /// # Examples
     /// A parallelogram four-bar (crank = rocker, coupler = frame) has a dead point where all
@@ -129,106 +133,22 @@ impl FourBar {
     /// use nalgebra::Point2;
     /// use tmm::{kinematics::Motion, mechanism::FourBar, Error};
     /// let m = FourBar { o3: Point2::new(0.3, 0.0), l1: 0.1, l2: 0.3, l3: 0.1, ..FourBar::course_example() };
-    /// let e = m.analyse(Motion::new(0.0, 10.0, 0.0)).unwrap_err();
-    /// assert!(matches!(e, Error::In { ref part, .. } if part == "group II(2,3) RRR"));
-    /// assert!(m.analyse(Motion::new(1.0, 10.0, 0.0)).is_ok());
+    /// let plan = m.plan()?;
+    /// let e = plan.analyse(Motion::new(0.0, 10.0, 0.0)).unwrap_err();
+    /// assert!(matches!(e, Error::In { ref part, .. } if part == "group (coupler, rocker) RRR"));
+    /// assert!(plan.analyse(Motion::new(1.0, 10.0, 0.0)).is_ok());
+    /// # Ok::<(), tmm::Error>(())
     /// ```
-    pub fn analyse(&self, input: Motion) -> Result<FourBarPosition> {
-        let (crank, g23) = self.kinematics(input)?;
-        let links = [crank.link, g23.link2, g23.link3];
-        let loads = own_loads(&self.mass, &links, &LINKS, self.gravity)?;
-        let rocker_moment = -self.resisting_moment * sign(g23.link3.omega);
-        let rocker = Load::new(
-            loads[2].point,
-            loads[2].force,
-            loads[2].moment + rocker_moment,
-        );
-        let r = RrrDyad {
-            a: crank.a.p,
-            b: g23.b.p,
-            c: self.o3,
-            load2: loads[1],
-            load3: rocker,
-        }
-        .solve()
-        .map_err(within(GROUP_23))?;
-        let balance = self
-            .drive
-            .balance(self.o1, &[loads[0], Load::force_at(crank.a.p, -r.r12)])
-            .map_err(within(CRANK))?;
-        Ok(FourBarPosition {
-            input,
-            crank,
-            group23: g23,
-            loads,
-            rocker_moment,
-            r12: r.r12,
-            r23: r.r23,
-            r03: r.r43,
-            balance,
-        })
-    }
-}
-
-impl Analysed for FourBarPosition {
-    fn input(&self) -> Motion {
-        self.input
+    pub fn plan(&self) -> Result<Plan> {
+        Plan::new(&self.linkage())
     }
 
-    fn balance(&self) -> Balance {
-        self.balance
-    }
-
-    fn free_bodies(&self) -> Vec<FreeBody> {
-        let (a, b) = (self.crank.a.p, self.group23.b.p);
-        let o3 = self.group23.link3.origin.p;
-        let f = Load::force_at;
-        vec![
-            FreeBody::input_link(
-                LINKS[0],
-                &self.crank,
-                self.loads[0],
-                &self.balance,
-                vec![f(a, -self.r12)],
-            ),
-            FreeBody {
-                name: LINKS[1],
-                motion: self.group23.link2,
-                loads: vec![self.loads[1]],
-                drive: None,
-                reactions: vec![f(a, self.r12), f(b, -self.r23)],
-            },
-            FreeBody {
-                name: LINKS[2],
-                motion: self.group23.link3,
-                loads: vec![
-                    self.loads[2],
-                    Load::new(o3, Vector2::zeros(), self.rocker_moment),
-                ],
-                drive: None,
-                reactions: vec![f(b, self.r23), f(o3, self.r03)],
-            },
-        ]
-    }
-}
-
-impl Tabulate for FourBarPosition {
-    fn row(&self) -> Vec<(String, f64)> {
-        let mut r = Vec::with_capacity(24);
-        push(&mut r, "phi1", "rad", self.input.value);
-        push(&mut r, "omega1", "rad/s", self.input.rate);
-        push(&mut r, "phi3", "rad", self.group23.link3.angle);
-        push(&mut r, "omega3", "rad/s", self.group23.link3.omega);
-        push(&mut r, "eps3", "rad/s^2", self.group23.link3.epsilon);
-        push(&mut r, "omega2", "rad/s", self.group23.link2.omega);
-        push(&mut r, "eps2", "rad/s^2", self.group23.link2.epsilon);
-        push(&mut r, "|v_B|", "m/s", self.group23.b.v.norm());
-        push(&mut r, "|a_B|", "m/s^2", self.group23.b.a.norm());
-        push_reactions(
-            &mut r,
-            &[("R12", self.r12), ("R23", self.r23), ("R03", self.r03)],
-            &self.balance,
-        );
-        r
+    /// The strokes of the rocker (its angle) for a crank turning in the sense `rotation`.
+    ///
+    /// # Errors
+    /// As [`FourBar::plan`] and [`Plan::strokes`].
+    pub fn strokes(&self, rotation: Rotation) -> Result<Strokes> {
+        self.plan()?
+            .strokes(&Output::Angle("rocker".to_owned()), rotation)
     }
 }

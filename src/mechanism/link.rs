@@ -1,17 +1,18 @@
-//! The mass properties of one link: mass, central moment of inertia, centre of mass.
+//! The mass properties of one link given in its own frame, and the search for a reference
+//! pose.
 
-use super::within;
-use crate::error::{finite, Result};
-use crate::kinematics::{LinkMotion, PointMotion};
-use crate::Load;
+use crate::angle::unit;
+use crate::error::Result;
+use crate::linkage::{At, Mass};
 use nalgebra::Point2;
 
 /// The mass properties of a rigid link, with its centre of mass S given on the link.
 ///
 /// S lies `along` metres from the link's origin along its direction and `across` metres to the
-/// left of it, in the frame of the [`LinkMotion`] the kinematic block returns for this link
-/// (for example the crank's origin is O1 and its direction O1→A; an RRR dyad's link 3 starts at
-/// its frame pivot C). Units: kg, kg·m², m. A massless link is `LinkMass::default()`.
+/// left of it, in the link's frame as each ready mechanism documents it (for example the
+/// crank's origin is O1 and its direction O1→A; a rocker starts at its frame pivot). Units:
+/// kg, kg·m², m. A massless link is `LinkMass::default()`. [`LinkMass::at`] turns it into the
+/// engine's [`Mass`] at a pose.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct LinkMass {
@@ -49,59 +50,50 @@ impl LinkMass {
         Self::on_line(mass, 0.0, 0.0)
     }
 
-    /// The motion of the centre of mass S of a link moving with `link`.
-    #[must_use]
-    pub fn centre(&self, link: &LinkMotion) -> PointMotion {
-        link.point_at(self.along, self.across)
-    }
-
-    /// The link's own load at S: the d'Alembert inertia load (−m·a_S, −J_S·ε) plus its
-    /// weight under `gravity` (m/s², acting along −y; 0 to neglect weights).
+    /// The engine's [`Mass`] of a link whose frame, in the reference pose, starts at `origin`
+    /// with the direction angle `angle`: S at origin + along·e + across·e⊥.
     ///
     /// # Examples
-    /// A 2 kg rod of 0.3 m turning about its end at ω = 10 rad/s without ε, at 0°: S is at
-    /// 0.15 m, a_S = −ω²·0.15 = −15 m/s² along the rod, so the inertia force pulls outwards
-    /// with 30 N; gravity adds 2·9.81 N downwards.
     /// ```
-    /// use nalgebra::{Point2, Vector2};
-    /// use approx::assert_relative_eq;
-    /// use tmm::kinematics::{LinkMotion, PointMotion};
+    /// use tmm::linkage::At;
     /// use tmm::mechanism::LinkMass;
-    /// let link = LinkMotion { origin: PointMotion::fixed(Point2::origin()), angle: 0.0, omega: 10.0, epsilon: 0.0 };
-    /// let load = LinkMass::rod(2.0, 0.3).load(&link, 9.81)?;
-    /// assert_relative_eq!(load.point, Point2::new(0.15, 0.0));
-    /// assert_relative_eq!(load.force, Vector2::new(30.0, -19.62), epsilon = 1e-12);
-    /// assert_eq!(load.moment, 0.0);
-    /// # Ok::<(), tmm::Error>(())
+    /// let m = LinkMass::rod(2.0, 0.3).at([1.0, 0.0], std::f64::consts::FRAC_PI_2);
+    /// let At::Coords(s) = m.centre else { unreachable!() };
+    /// assert!((s[0] - 1.0).abs() < 1e-15 && (s[1] - 0.15).abs() < 1e-15);
+    /// assert_eq!((m.m, m.j), (2.0, 2.0 * 0.09 / 12.0));
     /// ```
-    ///
-    /// # Errors
-    /// A negative or non-finite mass or moment of inertia, or non-finite kinematics
-    /// (see [`Load::inertia`]).
-    pub fn load(&self, link: &LinkMotion, gravity: f64) -> Result<Load> {
-        finite("g", gravity)?;
-        let s = self.centre(link);
-        let inertia = Load::inertia(s.p, self.mass, s.a, self.inertia, link.epsilon)?;
-        let weight = Load::weight(s.p, self.mass, gravity);
-        Ok(Load::new(
-            s.p,
-            inertia.force + weight.force,
-            inertia.moment + weight.moment,
-        ))
+    #[must_use]
+    pub fn at(&self, origin: [f64; 2], angle: f64) -> Mass {
+        let e = unit(angle);
+        let s = [
+            origin[0] + self.along * e.x - self.across * e.y,
+            origin[1] + self.along * e.y + self.across * e.x,
+        ];
+        Mass::new(self.mass, self.inertia, At::Coords(s))
     }
 }
 
-/// The own loads (inertia and weight, [`LinkMass::load`]) of the links `links` with the mass
-/// properties `mass`, in the same order; an error names its link from `names`.
-pub(crate) fn own_loads<const N: usize>(
-    mass: &[LinkMass; N],
-    links: &[LinkMotion; N],
-    names: &[&'static str; N],
-    gravity: f64,
-) -> Result<[Load; N]> {
-    let mut loads = [Load::zero(Point2::origin()); N];
-    for (k, load) in loads.iter_mut().enumerate() {
-        *load = mass[k].load(&links[k], gravity).map_err(within(names[k]))?;
+/// A point as the engine's coordinates.
+pub(crate) fn xy(p: Point2<f64>) -> [f64; 2] {
+    [p.x, p.y]
+}
+
+/// The reference crank angle of a ready mechanism and its pose there: the first of a fixed
+/// list of angles where `pose` assembles with a conditioning (its second value, 0 at a dead
+/// point, 1 at best) of at least 0.2, else the best-conditioned one that assembles; `None`
+/// when the mechanism assembles at none of them.
+pub(crate) fn reference_pose<T>(pose: impl Fn(f64) -> Result<(T, f64)>) -> Option<(f64, T)> {
+    let mut best: Option<(f64, f64, T)> = None;
+    for k in 0..24 {
+        let phi = 1.0 + f64::from(k) * std::f64::consts::TAU / 24.0;
+        let Ok((t, q)) = pose(phi) else { continue };
+        let q = q.abs();
+        if q >= 0.2 {
+            return Some((phi, t));
+        }
+        if best.as_ref().map_or(true, |b| q > b.1) {
+            best = Some((phi, q, t));
+        }
     }
-    Ok(loads)
+    best.map(|(phi, _, t)| (phi, t))
 }

@@ -1,32 +1,28 @@
-//! A crank-driven RPR drive: the crank O1A drives a rod (piston rod, or slider block) 2 that
-//! slides in a cylinder (or slotted lever) 3 rocking about the frame pivot C: an oscillating-
-//! cylinder pump, or a crank and slotted lever.
+//! A crank-driven RPR drive: the crank O1A drives a rod (piston rod, or slider block) that
+//! slides in a cylinder (or slotted lever) rocking about the frame pivot C: an
+//! oscillating-cylinder pump, or a crank and slotted lever.
 
-use super::drive::{Balance, Drive};
-use super::link::{own_loads, LinkMass};
-use super::power::FreeBody;
-use super::table::{push, push_reactions, push_vector, Tabulate};
-use super::{output_strokes, sign, within, Analysed, CRANK};
+use super::link::{reference_pose, xy, LinkMass};
+use crate::angle::direction;
 use crate::error::Result;
-use crate::kinematics::{
-    crank, rpr_dyad, CrankState, Motion, PointMotion, Rotation, RprState, Strokes,
-};
-use crate::kinetostatics::RprDyad;
-use crate::Load;
-use nalgebra::{Point2, Vector2};
+use crate::kinematics::{crank, rpr_dyad, Motion, PointMotion, Rotation, Strokes};
+use crate::linkage::{At, Drive, Input, Joint, Link, Linkage, LoadSpec, Output, Plan};
+use nalgebra::Point2;
 
-/// The links' names, for errors and free bodies.
-const LINKS: [&str; 3] = [CRANK, "link 2 (rod)", "link 3 (cylinder)"];
-const GROUP_23: &str = "group II(2,3) RPR";
-
-/// A crank and an RPR group: input link 1 (O1A), rod 2 hinged at A sliding along the axis of
-/// cylinder 3, which rocks about the frame pivot C (the axis passes through C).
+/// A crank and an RPR group: the crank O1A, the rod hinged at A sliding along the axis of the
+/// cylinder, which rocks about the frame pivot C (the axis passes through C).
 ///
 /// The fluid in the cylinder resists the sliding: while the rod moves in (l_AC decreasing)
 /// it pushes the rod out with `force_in`, while it moves out it pulls the rod in with
 /// `force_out`; the cylinder takes the opposite force along the same axis, at the piston P,
-/// `l_piston` from A along A→C. Link frames: link 1 from O1 along O1A, the rod from A along
-/// A→C, the cylinder from C along C→A.
+/// `l_piston` from A along A→C.
+///
+/// Its [`linkage`](RockingCylinder::linkage) has the joints `O1`, `A`, `C` and the prismatic
+/// `Q` (the rod in the cylinder, at A, its slide growing as the rod comes out along C→A), the
+/// links `frame`, `crank`, `rod` (with the point `P`, the piston; angle along A→C) and
+/// `cylinder` (angle along C→A). The fluid is a [`LoadSpec::Resistance`] on `Q` at `P`:
+/// `forward = force_out`, `backward = force_in`. Link frames of [`LinkMass`]: the crank from
+/// O1 along O1A, the rod from A along A→C, the cylinder from C along C→A.
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct RockingCylinder {
@@ -38,7 +34,7 @@ pub struct RockingCylinder {
     pub l1: f64,
     /// The distance of the piston from A along the rod, m.
     pub l_piston: f64,
-    /// The mass properties of links 1 to 3.
+    /// The mass properties of the crank, the rod and the cylinder.
     pub mass: [LinkMass; 3],
     /// g, m/s², along −y (0 to neglect weights).
     pub gravity: f64,
@@ -48,32 +44,6 @@ pub struct RockingCylinder {
     pub force_out: f64,
     /// How the crank is driven.
     pub drive: Drive,
-}
-
-/// One analysed position of a [`RockingCylinder`].
-#[derive(Debug, Clone, Copy, PartialEq)]
-#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
-pub struct RockingCylinderPosition {
-    /// φ1, ω1, ε1.
-    pub input: Motion,
-    /// The crank and its pin A.
-    pub crank: CrankState,
-    /// The RPR group: rod 2, cylinder 3, the length l_AC with its rates.
-    pub group23: RprState,
-    /// The own loads of links 1–3 (inertia and weight) at their centres of mass.
-    pub loads: [Load; 3],
-    /// The piston P and the fluid's force on the rod there, N (the cylinder takes −F).
-    pub fluid: Load,
-    /// R12, the crank on the rod at A, N.
-    pub r12: Vector2<f64>,
-    /// R32, the cylinder on the rod (normal to the axis), N.
-    pub r32: Vector2<f64>,
-    /// The moment of R32 about A, N·m.
-    pub r32_moment: f64,
-    /// R03, the frame on the cylinder at C, N.
-    pub r03: Vector2<f64>,
-    /// The balancing moment (or force) and R01.
-    pub balance: Balance,
 }
 
 impl RockingCylinder {
@@ -101,129 +71,68 @@ impl RockingCylinder {
         }
     }
 
-    /// The kinematics alone: crank and RPR group.
+    /// The description for the engine, in a reference pose where A is off C (not finite if
+    /// there is none, which [`Plan::new`] rejects naming the joint).
+    #[must_use]
+    pub fn linkage(&self) -> Linkage {
+        let size = self.l1 + (self.c - self.o1).norm();
+        let pose = reference_pose(|phi| {
+            let k = crank(self.o1, self.l1, Motion::new(phi, 0.0, 0.0))?;
+            let g = rpr_dyad(k.a, PointMotion::fixed(self.c))?;
+            Ok((k.a.p, g.slide.value / size))
+        });
+        let (phi, a) = pose.unwrap_or((0.0, Point2::new(f64::NAN, f64::NAN)));
+        let c = self.c;
+        let (to_c, out) = (c - a, a - c);
+        let p = a + self.l_piston * to_c / to_c.norm();
+        Linkage {
+            name: "rocking cylinder".to_owned(),
+            joints: vec![
+                Joint::revolute("O1", xy(self.o1)),
+                Joint::revolute("A", xy(a)),
+                Joint::revolute("C", xy(c)),
+                Joint::prismatic("Q", xy(a), "cylinder", [out.x, out.y]),
+            ],
+            links: vec![
+                Link::new("frame", &["O1", "C"]),
+                Link::new("crank", &["O1", "A"]).with_mass(self.mass[0].at(xy(self.o1), phi)),
+                Link::new("rod", &["A", "Q"])
+                    .with_point("P", xy(p))
+                    .with_mass(self.mass[1].at(xy(a), direction(to_c))),
+                Link::new("cylinder", &["C", "Q"])
+                    .with_mass(self.mass[2].at(xy(c), direction(out))),
+            ],
+            input: Input {
+                link: "crank".to_owned(),
+                drive: self.drive,
+            },
+            gravity: [0.0, -self.gravity],
+            loads: vec![LoadSpec::Resistance {
+                on: "Q".to_owned(),
+                forward: self.force_out,
+                backward: self.force_in,
+                at: Some(At::name("P")),
+            }],
+            groups: vec![["rod".to_owned(), "cylinder".to_owned()]],
+            ..Linkage::default()
+        }
+    }
+
+    /// The plan of [`RockingCylinder::linkage`].
     ///
     /// # Errors
-    /// [`Error::In`](crate::Error::In) naming the part that failed.
-    pub fn kinematics(&self, input: Motion) -> Result<(CrankState, RprState)> {
-        let crank = crank(self.o1, self.l1, input).map_err(within(CRANK))?;
-        let g23 = rpr_dyad(crank.a, PointMotion::fixed(self.c)).map_err(within(GROUP_23))?;
-        Ok((crank, g23))
+    /// As [`Plan::new`].
+    pub fn plan(&self) -> Result<Plan> {
+        Plan::new(&self.linkage())
     }
 
     /// The strokes of the cylinder's swing (its angle) for a crank turning in the sense
     /// `rotation`.
     ///
     /// # Errors
-    /// A position of the cycle that fails, or not exactly two extremes.
+    /// As [`RockingCylinder::plan`] and [`Plan::strokes`].
     pub fn strokes(&self, rotation: Rotation) -> Result<Strokes> {
-        output_strokes(|m| Ok(self.kinematics(m)?.1.link3.angle_motion()), rotation)
-    }
-
-    /// The whole analysis at one input position.
-    ///
-    /// # Errors
-    /// [`Error::In`](crate::Error::In) naming the part that failed.
-    pub fn analyse(&self, input: Motion) -> Result<RockingCylinderPosition> {
-        let (crank, g23) = self.kinematics(input)?;
-        let links = [crank.link, g23.link2, g23.link3];
-        let loads = own_loads(&self.mass, &links, &LINKS, self.gravity)?;
-        // u points from A into the cylinder; moving in (ṡ < 0) the fluid pushes the rod out.
-        let u = g23.link2.unit();
-        let rate = g23.slide.rate;
-        let push_out = if rate < 0.0 {
-            self.force_in
-        } else {
-            -self.force_out
-        };
-        let piston = crank.a.p + self.l_piston * u;
-        let fluid = Load::force_at(piston, -push_out * sign(rate).abs() * u);
-        let rod = Load::sum_about(&[loads[1], fluid], crank.a.p);
-        let cylinder = Load::sum_about(&[loads[2], Load::force_at(piston, -fluid.force)], self.c);
-        let r = RprDyad {
-            a: crank.a.p,
-            e: self.c,
-            axis: u,
-            load2: rod,
-            load3: cylinder,
-        }
-        .solve()
-        .map_err(within(GROUP_23))?;
-        let balance = self
-            .drive
-            .balance(self.o1, &[loads[0], Load::force_at(crank.a.p, -r.r12)])
-            .map_err(within(CRANK))?;
-        Ok(RockingCylinderPosition {
-            input,
-            crank,
-            group23: g23,
-            loads,
-            fluid,
-            r12: r.r12,
-            r32: r.r32,
-            r32_moment: r.couple,
-            r03: r.r43,
-            balance,
-        })
-    }
-}
-
-impl Analysed for RockingCylinderPosition {
-    fn input(&self) -> Motion {
-        self.input
-    }
-
-    fn balance(&self) -> Balance {
-        self.balance
-    }
-
-    fn free_bodies(&self) -> Vec<FreeBody> {
-        let (a, c) = (self.crank.a.p, self.group23.link3.origin.p);
-        let f = Load::force_at;
-        let on_cylinder = Load::force_at(self.fluid.point, -self.fluid.force);
-        vec![
-            FreeBody::input_link(
-                LINKS[0],
-                &self.crank,
-                self.loads[0],
-                &self.balance,
-                vec![f(a, -self.r12)],
-            ),
-            FreeBody {
-                name: LINKS[1],
-                motion: self.group23.link2,
-                loads: vec![self.loads[1], self.fluid],
-                drive: None,
-                reactions: vec![f(a, self.r12), Load::new(a, self.r32, self.r32_moment)],
-            },
-            FreeBody {
-                name: LINKS[2],
-                motion: self.group23.link3,
-                loads: vec![self.loads[2], on_cylinder],
-                drive: None,
-                reactions: vec![Load::new(a, -self.r32, -self.r32_moment), f(c, self.r03)],
-            },
-        ]
-    }
-}
-
-impl Tabulate for RockingCylinderPosition {
-    fn row(&self) -> Vec<(String, f64)> {
-        let mut r = Vec::with_capacity(30);
-        push(&mut r, "phi1", "rad", self.input.value);
-        push(&mut r, "omega1", "rad/s", self.input.rate);
-        push(&mut r, "phi3", "rad", self.group23.link3.angle);
-        push(&mut r, "omega3", "rad/s", self.group23.link3.omega);
-        push(&mut r, "eps3", "rad/s^2", self.group23.link3.epsilon);
-        push(&mut r, "l_AC", "m", self.group23.slide.value);
-        push(&mut r, "v_rel", "m/s", self.group23.slide.rate);
-        push(&mut r, "a_rel", "m/s^2", self.group23.slide.accel);
-        push_vector(&mut r, "F_fluid", "N", self.fluid.force);
-        push_reactions(
-            &mut r,
-            &[("R12", self.r12), ("R32", self.r32), ("R03", self.r03)],
-            &self.balance,
-        );
-        r
+        self.plan()?
+            .strokes(&Output::Angle("cylinder".to_owned()), rotation)
     }
 }

@@ -1,37 +1,24 @@
 //! A six-bar of a crank, an RRR group and an RRP group (seed 001, figure 2.10's type): the
 //! crank O1A drives the rocker O2B through the coupler AB; a point C of the rocker drives the
-//! slider 5 along a fixed guide through the connecting rod CD.
+//! slider along a fixed guide through the rod CD.
 
-use super::drive::{Balance, Drive};
-use super::link::{own_loads, LinkMass};
-use super::power::FreeBody;
-use super::table::{push, push_reactions, Tabulate};
-use super::{output_strokes, within, Analysed, CRANK};
+use super::link::{reference_pose, xy, LinkMass};
+use crate::angle::{direction, unit};
 use crate::error::{Error, Result};
 use crate::kinematics::{
-    crank, rrp_dyad, rrr_dyad, Branch, CrankState, Guide, Motion, PointMotion, Rotation, RrpState,
-    RrrState, Strokes,
+    crank, rrp_dyad, rrr_dyad, Branch, Guide, Motion, PointMotion, Rotation, Strokes,
 };
-use crate::kinetostatics::{RrpDyad, RrrDyad};
-use crate::Load;
-use nalgebra::{Point2, Vector2};
+use crate::linkage::{Drive, Input, Joint, Link, Linkage, LoadSpec, Mode, Output, Plan};
+use nalgebra::Point2;
 
-/// The links' names, for errors and free bodies.
-const LINKS: [&str; 5] = [
-    CRANK,
-    "link 2 (coupler)",
-    "link 3 (rocker)",
-    "link 4 (rod)",
-    "link 5 (slider)",
-];
-const GROUP_23: &str = "group II(2,3) RRR";
-const GROUP_45: &str = "group II(4,5) RRP";
-
-/// A crank–rocker–slider six-bar: input link 1 (O1A), RRR group II(2,3) (coupler 2 = AB,
-/// rocker 3 = O2B carrying C), RRP group II(4,5) (rod 4 = CD, slider 5 at D on a fixed guide).
+/// A crank–rocker–slider six-bar: the crank O1A, the RRR group of the coupler AB and the
+/// rocker O2B (carrying C), the RRP group of the rod CD and the slider at D on a fixed guide.
 ///
-/// Link frames (for the centres of mass, [`LinkMass`]): link 1 from O1 along O1A, link 2 from
-/// A along AB, link 3 from O2 along O2B, link 4 from C along CD, slider 5 at D along the guide.
+/// Its [`linkage`](SixBar::linkage) has the joints `O1`, `A`, `B`, `O2`, `C`, `D` and the
+/// prismatic `Q` (the slider on its guide, at D), and the links `frame`, `crank`, `coupler`,
+/// `rocker` (angle along O2→B), `rod` and `slider`. Link frames of [`LinkMass`]: the crank
+/// from O1 along O1A, the coupler from A along AB, the rocker from O2 along O2B, the rod from
+/// C along CD, the slider at D along the guide.
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct SixBar {
@@ -49,7 +36,7 @@ pub struct SixBar {
     pub c_along: f64,
     /// C on the rocker: its distance to the left of O2B, m.
     pub c_across: f64,
-    /// l_CD, the connecting rod of the slider, m.
+    /// l_CD, the rod of the slider, m.
     pub l4: f64,
     /// A point of the slider's fixed guide, m.
     pub guide_point: Point2<f64>,
@@ -61,7 +48,7 @@ pub struct SixBar {
     /// Assembly mode of the RRP group (D ahead of the foot of C along the guide for `Plus`).
     #[cfg_attr(feature = "serde", serde(with = "super::serde_remote::BranchDef"))]
     pub branch45: Branch,
-    /// The mass properties of links 1 to 5.
+    /// The mass properties of the crank, coupler, rocker, rod and slider.
     pub mass: [LinkMass; 5],
     /// g, m/s², along −y (0 to neglect weights).
     pub gravity: f64,
@@ -73,42 +60,6 @@ pub struct SixBar {
     pub working_direction: f64,
     /// How the crank is driven.
     pub drive: Drive,
-}
-
-/// One analysed position of a [`SixBar`].
-#[derive(Debug, Clone, Copy, PartialEq)]
-#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
-pub struct SixBarPosition {
-    /// φ1, ω1, ε1.
-    pub input: Motion,
-    /// The crank and its pin A.
-    pub crank: CrankState,
-    /// The RRR group: B, coupler 2, rocker 3.
-    pub group23: RrrState,
-    /// The rocker's point C.
-    pub c: PointMotion,
-    /// The RRP group: rod 4, slider 5 at D (`group45.b`), its coordinate `group45.slide`.
-    pub group45: RrpState,
-    /// The own loads of links 1–5 (inertia and weight) at their centres of mass.
-    pub loads: [Load; 5],
-    /// The resistance on the slider, at D, N.
-    pub resistance: Vector2<f64>,
-    /// R12, the crank on the coupler at A, N.
-    pub r12: Vector2<f64>,
-    /// R23, the coupler on the rocker at B, N.
-    pub r23: Vector2<f64>,
-    /// R03, the frame on the rocker at O2, N.
-    pub r03: Vector2<f64>,
-    /// R34, the rocker on the rod at C, N.
-    pub r34: Vector2<f64>,
-    /// R45, the rod on the slider at D, N.
-    pub r45: Vector2<f64>,
-    /// R05, the guide on the slider (normal to the guide), N.
-    pub r05: Vector2<f64>,
-    /// The moment of R05 about D, N·m (non-zero when the slider's loads miss D).
-    pub r05_moment: f64,
-    /// The balancing moment (or force) and R01.
-    pub balance: Balance,
 }
 
 impl SixBar {
@@ -148,197 +99,107 @@ impl SixBar {
         }
     }
 
-    /// The slider's fixed guide.
+    /// The description for the engine, in a reference pose where both groups assemble (B
+    /// and D as the branches put them; not finite if it assembles nowhere, which
+    /// [`Plan::new`] rejects naming the joint). The working-stroke resistance is a
+    /// [`LoadSpec::Resistance`] on `Q`, zero in the direction opposite `working_direction`.
     #[must_use]
-    pub fn guide(&self) -> Guide {
-        Guide::fixed(self.guide_point, self.guide_angle)
+    pub fn linkage(&self) -> Linkage {
+        let guide = Guide::fixed(self.guide_point, self.guide_angle);
+        let pose = reference_pose(|phi| {
+            let c = crank(self.o1, self.l1, Motion::new(phi, 0.0, 0.0))?;
+            let o2 = PointMotion::fixed(self.o2);
+            let g23 = rrr_dyad(c.a, o2, self.l2, self.l3, self.branch23)?;
+            let pc = g23.link3.point_at(self.c_along, self.c_across);
+            let g45 = rrp_dyad(pc, guide, self.l4, self.branch45)?;
+            let q = g23.det.abs().min(g45.det.abs());
+            Ok(((c.a.p, g23.b.p, pc.p, g45.b.p), q))
+        });
+        let nan = Point2::new(f64::NAN, f64::NAN);
+        let (phi, (a, b, c, d)) = pose.unwrap_or((0.0, (nan, nan, nan, nan)));
+        let g = unit(self.guide_angle);
+        let (forward, backward) = if self.working_direction > 0.0 {
+            (self.resistance, 0.0)
+        } else {
+            (0.0, self.resistance)
+        };
+        let m = &self.mass;
+        Linkage {
+            name: "six-bar".to_owned(),
+            joints: vec![
+                Joint::revolute("O1", xy(self.o1)),
+                Joint::revolute("A", xy(a)),
+                Joint::revolute("B", xy(b)),
+                Joint::revolute("O2", xy(self.o2)),
+                Joint::revolute("C", xy(c)),
+                Joint::revolute("D", xy(d)),
+                Joint::prismatic("Q", xy(d), "frame", [g.x, g.y]),
+            ],
+            links: vec![
+                Link::new("frame", &["O1", "O2", "Q"]),
+                Link::new("crank", &["O1", "A"]).with_mass(m[0].at(xy(self.o1), phi)),
+                Link::new("coupler", &["A", "B"]).with_mass(m[1].at(xy(a), direction(b - a))),
+                Link::new("rocker", &["O2", "B", "C"])
+                    .with_mass(m[2].at(xy(self.o2), direction(b - self.o2))),
+                Link::new("rod", &["C", "D"]).with_mass(m[3].at(xy(c), direction(d - c))),
+                Link::new("slider", &["D", "Q"]).with_mass(m[4].at(xy(d), self.guide_angle)),
+            ],
+            input: Input {
+                link: "crank".to_owned(),
+                drive: self.drive,
+            },
+            gravity: [0.0, -self.gravity],
+            loads: vec![LoadSpec::Resistance {
+                on: "Q".to_owned(),
+                forward,
+                backward,
+                at: None,
+            }],
+            groups: vec![
+                ["coupler".to_owned(), "rocker".to_owned()],
+                ["rod".to_owned(), "slider".to_owned()],
+            ],
+            modes: vec![
+                Mode {
+                    joint: "B".to_owned(),
+                    branch: self.branch23,
+                },
+                Mode {
+                    joint: "D".to_owned(),
+                    branch: self.branch45,
+                },
+            ],
+            ..Linkage::default()
+        }
     }
 
-    /// The kinematics alone: crank, RRR group, C, RRP group.
+    /// The plan of [`SixBar::linkage`].
     ///
     /// # Errors
-    /// [`Error::In`](crate::Error::In) naming the part that failed.
-    pub fn kinematics(
-        &self,
-        input: Motion,
-    ) -> Result<(CrankState, RrrState, PointMotion, RrpState)> {
-        let crank = crank(self.o1, self.l1, input).map_err(within(CRANK))?;
-        let o2 = PointMotion::fixed(self.o2);
-        let g23 =
-            rrr_dyad(crank.a, o2, self.l2, self.l3, self.branch23).map_err(within(GROUP_23))?;
-        let c = g23.link3.point_at(self.c_along, self.c_across);
-        let g45 = rrp_dyad(c, self.guide(), self.l4, self.branch45).map_err(within(GROUP_45))?;
-        Ok((crank, g23, c, g45))
+    /// [`Error::In`] naming `"slider"` for a `working_direction` that is zero or not
+    /// finite; otherwise as [`Plan::new`].
+    pub fn plan(&self) -> Result<Plan> {
+        if !(self.working_direction.is_finite() && self.working_direction != 0.0) {
+            return Err(Error::In {
+                part: "slider".to_owned(),
+                source: Box::new(Error::OutOfRange {
+                    name: "working direction",
+                    value: self.working_direction,
+                    min: -1.0,
+                    max: 1.0,
+                }),
+            });
+        }
+        Plan::new(&self.linkage())
     }
 
     /// The strokes of the slider for a crank turning in the sense `rotation` (its extreme
     /// positions found on the first transfer function, the working stroke the longer one).
     ///
     /// # Errors
-    /// A position of the cycle that fails, or not exactly two extremes.
+    /// As [`SixBar::plan`] and [`Plan::strokes`].
     pub fn strokes(&self, rotation: Rotation) -> Result<Strokes> {
-        output_strokes(|m| Ok(self.kinematics(m)?.3.slide), rotation)
-    }
-
-    /// The whole analysis at one input position: kinematics, loads, kinetostatics of group
-    /// II(4,5), then II(2,3), then the crank.
-    ///
-    /// # Errors
-    /// [`Error::In`](crate::Error::In) naming the part that failed (for example
-    /// `"group II(2,3) RRR"` at a dead point of the RRR group); a `working_direction` that is
-    /// zero or not finite (`"link 5 (slider)"`).
-    pub fn analyse(&self, input: Motion) -> Result<SixBarPosition> {
-        if !(self.working_direction.is_finite() && self.working_direction != 0.0) {
-            return Err(within(LINKS[4])(Error::OutOfRange {
-                name: "working direction",
-                value: self.working_direction,
-                min: -1.0,
-                max: 1.0,
-            }));
-        }
-        // 1. Kinematics, in the order the groups are attached.
-        let (crank, g23, c, g45) = self.kinematics(input)?;
-        // 2. Loads: inertia and weight of every link, the resistance on the slider.
-        let links = [crank.link, g23.link2, g23.link3, g45.link2, g45.link3];
-        let loads = own_loads(&self.mass, &links, &LINKS, self.gravity)?;
-        let v5 = g45.slide.rate;
-        let resistance = if v5 * self.working_direction > 0.0 {
-            -v5.signum() * self.resistance * self.guide().unit()
-        } else {
-            Vector2::zeros()
-        };
-        let d = g45.b.p;
-        let slider = Load::sum_about(&[loads[4], Load::force_at(d, resistance)], d);
-        // 3. Kinetostatics: the group attached last first.
-        let r45 = RrpDyad {
-            a: c.p,
-            b: d,
-            guide: self.guide().unit(),
-            load2: loads[3],
-            load3: slider,
-        }
-        .solve()
-        .map_err(within(GROUP_45))?;
-        let rocker = Load::sum_about(&[loads[2], Load::force_at(c.p, -r45.r12)], self.o2);
-        let r23 = RrrDyad {
-            a: crank.a.p,
-            b: g23.b.p,
-            c: self.o2,
-            load2: loads[1],
-            load3: rocker,
-        }
-        .solve()
-        .map_err(within(GROUP_23))?;
-        // 4. The crank: its own load and the coupler's reaction R21 = −R12.
-        let balance = self
-            .drive
-            .balance(self.o1, &[loads[0], Load::force_at(crank.a.p, -r23.r12)])
-            .map_err(within(CRANK))?;
-        Ok(SixBarPosition {
-            input,
-            crank,
-            group23: g23,
-            c,
-            group45: g45,
-            loads,
-            resistance,
-            r12: r23.r12,
-            r23: r23.r23,
-            r03: r23.r43,
-            r34: r45.r12,
-            r45: r45.r23,
-            r05: r45.r43,
-            r05_moment: r45.guide_moment,
-            balance,
-        })
-    }
-}
-
-impl Analysed for SixBarPosition {
-    fn input(&self) -> Motion {
-        self.input
-    }
-
-    fn balance(&self) -> Balance {
-        self.balance
-    }
-
-    fn free_bodies(&self) -> Vec<FreeBody> {
-        let (a, b, c, d) = (self.crank.a.p, self.group23.b.p, self.c.p, self.group45.b.p);
-        let o2 = self.group23.link3.origin.p;
-        let f = Load::force_at;
-        let body = |name, motion, loads, reactions| FreeBody {
-            name,
-            motion,
-            loads,
-            drive: None,
-            reactions,
-        };
-        vec![
-            FreeBody::input_link(
-                LINKS[0],
-                &self.crank,
-                self.loads[0],
-                &self.balance,
-                vec![f(a, -self.r12)],
-            ),
-            body(
-                LINKS[1],
-                self.group23.link2,
-                vec![self.loads[1]],
-                vec![f(a, self.r12), f(b, -self.r23)],
-            ),
-            body(
-                LINKS[2],
-                self.group23.link3,
-                vec![self.loads[2]],
-                vec![f(b, self.r23), f(o2, self.r03), f(c, -self.r34)],
-            ),
-            body(
-                LINKS[3],
-                self.group45.link2,
-                vec![self.loads[3]],
-                vec![f(c, self.r34), f(d, -self.r45)],
-            ),
-            body(
-                LINKS[4],
-                self.group45.link3,
-                vec![self.loads[4], f(d, self.resistance)],
-                vec![f(d, self.r45), Load::new(d, self.r05, self.r05_moment)],
-            ),
-        ]
-    }
-}
-
-impl Tabulate for SixBarPosition {
-    fn row(&self) -> Vec<(String, f64)> {
-        let mut r = Vec::with_capacity(40);
-        push(&mut r, "phi1", "rad", self.input.value);
-        push(&mut r, "omega1", "rad/s", self.input.rate);
-        push(&mut r, "s5", "m", self.group45.slide.value);
-        push(&mut r, "v5", "m/s", self.group45.slide.rate);
-        push(&mut r, "a5", "m/s^2", self.group45.slide.accel);
-        push(&mut r, "phi3", "rad", self.group23.link3.angle);
-        push(&mut r, "omega3", "rad/s", self.group23.link3.omega);
-        push(&mut r, "eps3", "rad/s^2", self.group23.link3.epsilon);
-        push(&mut r, "omega2", "rad/s", self.group23.link2.omega);
-        push(&mut r, "omega4", "rad/s", self.group45.link2.omega);
-        push(&mut r, "|v_B|", "m/s", self.group23.b.v.norm());
-        push(&mut r, "|a_B|", "m/s^2", self.group23.b.a.norm());
-        push(&mut r, "|v_C|", "m/s", self.c.v.norm());
-        push(&mut r, "|a_C|", "m/s^2", self.c.a.norm());
-        push_reactions(
-            &mut r,
-            &[
-                ("R12", self.r12),
-                ("R23", self.r23),
-                ("R03", self.r03),
-                ("R34", self.r34),
-                ("R45", self.r45),
-                ("R05", self.r05),
-            ],
-            &self.balance,
-        );
-        r
+        self.plan()?
+            .strokes(&Output::Slide("Q".to_owned()), rotation)
     }
 }

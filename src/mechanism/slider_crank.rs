@@ -1,31 +1,24 @@
-//! A slider-crank: the crank O1A drives the piston 3 along a fixed guide through the
-//! connecting rod AB (one RRP group), with the gas force of an indicator diagram.
+//! A slider-crank: the crank O1A drives the piston along a fixed guide through the connecting
+//! rod AB (one RRP group), with the gas force of an indicator diagram.
 
-use super::drive::{Balance, Drive};
-use super::link::{own_loads, LinkMass};
-use super::power::FreeBody;
-use super::pressure::{IndicatorDiagram, Piston};
-use super::table::{push, push_reactions, push_vector, Tabulate};
-use super::{output_strokes, within, Analysed, CRANK};
+use super::link::{reference_pose, xy, LinkMass};
+use crate::angle::{direction, unit};
 use crate::error::Result;
-use crate::kinematics::{
-    crank, rrp_dyad, Branch, CrankState, Guide, Motion, Rotation, RrpState, Strokes,
+use crate::kinematics::{crank, rrp_dyad, Branch, Guide, Motion, Rotation, Strokes};
+use crate::linkage::{
+    Drive, IndicatorDiagram, Input, Joint, Link, Linkage, LoadSpec, Mode, Output, Plan,
 };
-use crate::kinetostatics::RrpDyad;
-use crate::Load;
-use nalgebra::{Point2, Vector2};
+use nalgebra::Point2;
 use std::f64::consts::PI;
 
-/// The links' names, for errors and free bodies.
-const LINKS: [&str; 3] = [CRANK, "link 2 (connecting rod)", "link 3 (piston)"];
-const GROUP_23: &str = "group II(2,3) RRP";
-
-/// A slider-crank: input link 1 (O1A), RRP group II(2,3) (connecting rod 2 = AB, piston 3 at
-/// B on a fixed guide), optionally loaded by the gas pressure of an [`IndicatorDiagram`].
+/// A slider-crank: the crank O1A, the RRP group of the connecting rod AB and the piston at B
+/// on a fixed guide, optionally loaded by the gas pressure of an [`IndicatorDiagram`].
 ///
-/// Link frames: link 1 from O1 along O1A, link 2 from A along AB, the piston at B along the
-/// guide. The cylinder head lies on the piston's side of the crank (ahead along the guide for
-/// `branch = Plus`).
+/// Its [`linkage`](SliderCrank::linkage) has the joints `O1`, `A`, `B` and the prismatic `P`
+/// (the piston in its cylinder, at B, along the guide) and the links `frame`, `crank`, `rod`
+/// and `piston`. The piston's slide is `P`'s. Link frames of [`LinkMass`]: the crank from O1
+/// along O1A, the rod from A along AB, the piston at B along the guide. The cylinder head lies
+/// on the piston's side of the crank (ahead along the guide for `branch = Plus`).
 #[derive(Debug, Clone, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct SliderCrank {
@@ -42,7 +35,7 @@ pub struct SliderCrank {
     /// Assembly mode (B ahead of the foot of A along the guide for `Plus`).
     #[cfg_attr(feature = "serde", serde(with = "super::serde_remote::BranchDef"))]
     pub branch: Branch,
-    /// The mass properties of links 1 to 3.
+    /// The mass properties of the crank, the rod and the piston.
     pub mass: [LinkMass; 3],
     /// g, m/s², along −y (0 to neglect weights).
     pub gravity: f64,
@@ -50,32 +43,6 @@ pub struct SliderCrank {
     pub diagram: Option<IndicatorDiagram>,
     /// How the crank is driven.
     pub drive: Drive,
-}
-
-/// One analysed position of a [`SliderCrank`].
-#[derive(Debug, Clone, Copy, PartialEq)]
-#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
-pub struct SliderCrankPosition {
-    /// φ1, ω1, ε1.
-    pub input: Motion,
-    /// The crank and its pin A.
-    pub crank: CrankState,
-    /// The RRP group: rod 2, piston 3 at B, its coordinate `slide`.
-    pub group23: RrpState,
-    /// The own loads of links 1–3 (inertia and weight) at their centres of mass.
-    pub loads: [Load; 3],
-    /// The gas force on the piston, at B, N.
-    pub gas_force: Vector2<f64>,
-    /// R12, the crank on the rod at A, N.
-    pub r12: Vector2<f64>,
-    /// R23, the rod on the piston at B, N.
-    pub r23: Vector2<f64>,
-    /// R03, the cylinder wall on the piston (normal to the guide), N.
-    pub r03: Vector2<f64>,
-    /// The moment of R03 about B, N·m.
-    pub r03_moment: f64,
-    /// The balancing moment (or force) and R01.
-    pub balance: Balance,
 }
 
 impl SliderCrank {
@@ -121,137 +88,73 @@ impl SliderCrank {
         }
     }
 
-    /// The piston's fixed guide.
+    /// The description for the engine, in a reference pose where the slider-crank assembles
+    /// (B as `branch` puts it; not finite if it assembles nowhere, which [`Plan::new`]
+    /// rejects naming the joint).
     #[must_use]
-    pub fn guide(&self) -> Guide {
-        Guide::fixed(self.guide_point, self.guide_angle)
+    pub fn linkage(&self) -> Linkage {
+        let guide = Guide::fixed(self.guide_point, self.guide_angle);
+        let pose = reference_pose(|phi| {
+            let c = crank(self.o1, self.l1, Motion::new(phi, 0.0, 0.0))?;
+            let g = rrp_dyad(c.a, guide, self.l2, self.branch)?;
+            Ok(((c.a.p, g.b.p), g.det))
+        });
+        let nan = Point2::new(f64::NAN, f64::NAN);
+        let (phi, (a, b)) = pose.unwrap_or((0.0, (self.o1 + self.l1 * unit(0.0), nan)));
+        let g = unit(self.guide_angle);
+        let mut loads = Vec::new();
+        if let Some(d) = &self.diagram {
+            loads.push(LoadSpec::Indicator {
+                joint: "P".to_owned(),
+                diagram: d.clone(),
+                head: self.branch.sign(),
+            });
+        }
+        Linkage {
+            name: "slider-crank".to_owned(),
+            joints: vec![
+                Joint::revolute("O1", xy(self.o1)),
+                Joint::revolute("A", xy(a)),
+                Joint::revolute("B", xy(b)),
+                Joint::prismatic("P", xy(b), "frame", [g.x, g.y]),
+            ],
+            links: vec![
+                Link::new("frame", &["O1", "P"]),
+                Link::new("crank", &["O1", "A"]).with_mass(self.mass[0].at(xy(self.o1), phi)),
+                Link::new("rod", &["A", "B"]).with_mass(self.mass[1].at(xy(a), direction(b - a))),
+                Link::new("piston", &["B", "P"])
+                    .with_mass(self.mass[2].at(xy(b), self.guide_angle)),
+            ],
+            input: Input {
+                link: "crank".to_owned(),
+                drive: self.drive,
+            },
+            gravity: [0.0, -self.gravity],
+            loads,
+            groups: vec![["rod".to_owned(), "piston".to_owned()]],
+            modes: vec![Mode {
+                joint: "B".to_owned(),
+                branch: self.branch,
+            }],
+            ..Linkage::default()
+        }
     }
 
-    /// The kinematics alone: crank and RRP group.
+    /// The plan of [`SliderCrank::linkage`].
     ///
     /// # Errors
-    /// [`Error::In`](crate::Error::In) naming the part that failed.
-    pub fn kinematics(&self, input: Motion) -> Result<(CrankState, RrpState)> {
-        let crank = crank(self.o1, self.l1, input).map_err(within(CRANK))?;
-        let g23 =
-            rrp_dyad(crank.a, self.guide(), self.l2, self.branch).map_err(within(GROUP_23))?;
-        Ok((crank, g23))
+    /// As [`Plan::new`] (for example a piston whose crank cannot turn fully, so that its
+    /// dead centres cannot be found).
+    pub fn plan(&self) -> Result<Plan> {
+        Plan::new(&self.linkage())
     }
 
     /// The strokes of the piston for a crank turning in the sense `rotation`.
     ///
     /// # Errors
-    /// A position of the cycle that fails, or not exactly two extremes.
+    /// As [`SliderCrank::plan`] and [`Plan::strokes`].
     pub fn strokes(&self, rotation: Rotation) -> Result<Strokes> {
-        output_strokes(|m| Ok(self.kinematics(m)?.1.slide), rotation)
-    }
-
-    /// The whole analysis at one input position.
-    ///
-    /// # Errors
-    /// [`Error::In`](crate::Error::In) naming the part that failed; an error of the indicator
-    /// diagram (`"gas pressure"`).
-    pub fn analyse(&self, input: Motion) -> Result<SliderCrankPosition> {
-        let (crank, g23) = self.kinematics(input)?;
-        let links = [crank.link, g23.link2, g23.link3];
-        let loads = own_loads(&self.mass, &links, &LINKS, self.gravity)?;
-        let gas_force = match &self.diagram {
-            Some(d) => Piston::new(
-                self.o1,
-                self.l1,
-                self.l2,
-                self.guide_point,
-                self.guide_angle,
-                self.branch,
-            )
-            .and_then(|p| p.gas_force(d, &g23.b))
-            .map_err(within("gas pressure"))?,
-            None => Vector2::zeros(),
-        };
-        let b = g23.b.p;
-        let piston = Load::sum_about(&[loads[2], Load::force_at(b, gas_force)], b);
-        let r = RrpDyad {
-            a: crank.a.p,
-            b,
-            guide: self.guide().unit(),
-            load2: loads[1],
-            load3: piston,
-        }
-        .solve()
-        .map_err(within(GROUP_23))?;
-        let balance = self
-            .drive
-            .balance(self.o1, &[loads[0], Load::force_at(crank.a.p, -r.r12)])
-            .map_err(within(CRANK))?;
-        Ok(SliderCrankPosition {
-            input,
-            crank,
-            group23: g23,
-            loads,
-            gas_force,
-            r12: r.r12,
-            r23: r.r23,
-            r03: r.r43,
-            r03_moment: r.guide_moment,
-            balance,
-        })
-    }
-}
-
-impl Analysed for SliderCrankPosition {
-    fn input(&self) -> Motion {
-        self.input
-    }
-
-    fn balance(&self) -> Balance {
-        self.balance
-    }
-
-    fn free_bodies(&self) -> Vec<FreeBody> {
-        let (a, b) = (self.crank.a.p, self.group23.b.p);
-        let f = Load::force_at;
-        vec![
-            FreeBody::input_link(
-                LINKS[0],
-                &self.crank,
-                self.loads[0],
-                &self.balance,
-                vec![f(a, -self.r12)],
-            ),
-            FreeBody {
-                name: LINKS[1],
-                motion: self.group23.link2,
-                loads: vec![self.loads[1]],
-                drive: None,
-                reactions: vec![f(a, self.r12), f(b, -self.r23)],
-            },
-            FreeBody {
-                name: LINKS[2],
-                motion: self.group23.link3,
-                loads: vec![self.loads[2], f(b, self.gas_force)],
-                drive: None,
-                reactions: vec![f(b, self.r23), Load::new(b, self.r03, self.r03_moment)],
-            },
-        ]
-    }
-}
-
-impl Tabulate for SliderCrankPosition {
-    fn row(&self) -> Vec<(String, f64)> {
-        let mut r = Vec::with_capacity(30);
-        push(&mut r, "phi1", "rad", self.input.value);
-        push(&mut r, "omega1", "rad/s", self.input.rate);
-        push(&mut r, "s3", "m", self.group23.slide.value);
-        push(&mut r, "v3", "m/s", self.group23.slide.rate);
-        push(&mut r, "a3", "m/s^2", self.group23.slide.accel);
-        push(&mut r, "omega2", "rad/s", self.group23.link2.omega);
-        push(&mut r, "eps2", "rad/s^2", self.group23.link2.epsilon);
-        push_vector(&mut r, "F_gas", "N", self.gas_force);
-        push_reactions(
-            &mut r,
-            &[("R12", self.r12), ("R23", self.r23), ("R03", self.r03)],
-            &self.balance,
-        );
-        r
+        self.plan()?
+            .strokes(&Output::Slide("P".to_owned()), rotation)
     }
 }

@@ -1,13 +1,12 @@
-//! How the motor drives the input link: through a coupling or through a gear pair.
+// How the motor drives the input link: through a coupling or through a gear pair.
 
-use crate::error::Result;
-use crate::kinetostatics::{CouplingDrive, GearDrive};
-use crate::Load;
 use nalgebra::{Point2, Vector2};
+use tmm::error::Result;
+use tmm::kinetostatics::{CouplingDrive, GearDrive};
+use tmm::Load;
 
 /// How the input link is driven, for its kinetostatics (the last step of the analysis).
 #[derive(Debug, Clone, Copy, PartialEq)]
-#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub enum Drive {
     /// Through a coupling on its shaft: a balancing moment (the seeds' SRWL2).
     Coupling,
@@ -26,7 +25,6 @@ pub enum Drive {
 
 /// The balance of the input link: what the drive supplies and what the frame holds.
 #[derive(Debug, Clone, Copy, PartialEq)]
-#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct Balance {
     /// M_b, the balancing moment about O1, N·m, counter-clockwise positive. For a gear drive
     /// it is the moment of the balancing force about O1.
@@ -59,7 +57,7 @@ impl Balance {
             self.moment * omega1
         } else {
             let r = self.pitch_point - o1;
-            self.force.dot(&(omega1 * crate::angle::perp(r)))
+            self.force.dot(&(omega1 * tmm::angle::perp(r)))
         }
     }
 }
