@@ -274,7 +274,7 @@ fn landing_gear(dir: &Path) -> Res<()> {
         let label = match failure {
             None => "both motors",
             Some(Failure::Motor6 { braked: true }) => "D6 failed, braked (planetary gear)",
-            _ => "D6 failed, not braked (ERRATA D31)",
+            _ => "D6 failed, not braked (docs/errata.md#d31)",
         };
         println!(
             "  {label}: {}; highest leg angle {:.1}°",
@@ -331,7 +331,7 @@ fn coaxial(dir: &Path) -> Res<()> {
     };
     let r = run(&un, &FiniteIncrement, s0, &opts)?;
     println!(
-        "  (M_on)4 = 6000 N·m, out of the ratio (ERRATA D41): {}",
+        "  (M_on)4 = 6000 N·m, out of the ratio (docs/errata.md#d41): {}",
         describe(&r.outcome)
     );
     // Draw 20 s of it, so that the drift shows.

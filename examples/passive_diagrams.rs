@@ -32,7 +32,7 @@ fn main() -> Result<(), Box<dyn Error>> {
             "δ11·EI",
             "4.4645e-4",
             format!("{:.5e}", r.delta11),
-            "4.4643e-4 in eq. 8 (ERRATA P2)",
+            "4.4643e-4 in eq. 8 (docs/errata.md#p2)",
         ),
         (
             "Δ1F·EI",

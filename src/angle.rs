@@ -32,7 +32,7 @@ pub fn normalize(angle: f64) -> f64 {
 /// The direction angle of a vector from its projections, in [0, 2π) (the seeds' UGL3).
 ///
 /// Uses `atan2`, so it never divides by a projection (the seeds' piecewise arctangents divide
-/// by Fx, see ERRATA N4). The zero vector has no direction; it gets 0 by convention.
+/// by Fx, see docs/errata.md#n4). The zero vector has no direction; it gets 0 by convention.
 ///
 /// # Examples
 /// ```

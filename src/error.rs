@@ -3,6 +3,10 @@
 //! Every solver validates its input and reports what went wrong with the values involved, so a
 //! caller sweeping millions of positions can tell a bad input from a singular position without a
 //! debugger. No solver panics on bad input or returns a NaN or an infinity in place of an error.
+//!
+//! The messages are for a person: numbers with four significant digits (`closure fails by
+//! 0.267 m`, `det = -3.1e-18`), units in SI as everywhere in the crate (m, s, N, N·m, rad).
+//! The fields keep the exact values for a program.
 
 /// A `Result` whose error is [`Error`].
 pub type Result<T> = std::result::Result<T, Error>;
@@ -21,7 +25,7 @@ pub enum Error {
     },
 
     /// A length (or another quantity that must be positive, such as a mass) is zero or negative.
-    #[error("{name} must be positive, got {value}")]
+    #[error("{name} must be positive, got {}", sig(*.value))]
     NonPositive {
         /// The quantity's name.
         name: &'static str,
@@ -31,7 +35,7 @@ pub enum Error {
 
     /// An input lies outside the range in which it has a meaning (for example a pressure angle
     /// of 90° or more, or a table lookup outside the table).
-    #[error("{name} = {value} lies outside [{min}, {max}]")]
+    #[error("{name} {}", outside(*.value, *.min, *.max))]
     OutOfRange {
         /// The input's name.
         name: &'static str,
@@ -45,7 +49,7 @@ pub enum Error {
 
     /// A closed form would divide by a quantity that vanishes here: the configuration is
     /// singular (a dead point, a zero arm, a degenerate group).
-    #[error("{what} is singular: {measure} = {value:e}")]
+    #[error("{what} is singular: {measure} = {}", sig(*.value))]
     Singular {
         /// The group, link or system that is singular.
         what: &'static str,
@@ -57,7 +61,7 @@ pub enum Error {
 
     /// A group cannot be assembled at this position: the closure equations have no real
     /// solution.
-    #[error("{group} cannot be assembled: closure fails by {gap:e} m")]
+    #[error("{group} cannot be assembled: closure fails by {} m", sig(*.gap))]
     NotAssemblable {
         /// The group that cannot be closed.
         group: &'static str,
@@ -66,14 +70,14 @@ pub enum Error {
     },
 
     /// An integrator met a non-finite state (it diverged).
-    #[error("non-finite state at t = {time} s")]
+    #[error("non-finite state at t = {} s", sig(*.time))]
     NonFiniteState {
         /// The time at which the state stopped being finite.
         time: f64,
     },
 
     /// An inertia (mass) matrix is not positive-definite.
-    #[error("inertia matrix is not positive-definite at {at}: det = {det:e}")]
+    #[error("inertia matrix is not positive-definite at {at}: det = {}", sig(*.det))]
     NotPositiveDefinite {
         /// Where it happened (for example the coordinates or the time).
         at: String,
@@ -100,6 +104,58 @@ pub enum Error {
         /// What went wrong in it.
         source: Box<Error>,
     },
+}
+
+/// `x` with `digits` significant digits for a message: plain notation from 10⁻³ up to 10⁶
+/// (`0.267`, `1500`), scientific outside it (`2.67e-9`), trailing zeros dropped.
+fn sig_digits(x: f64, digits: i32) -> String {
+    if !x.is_finite() || x == 0.0 {
+        return if x == 0.0 { "0".into() } else { x.to_string() };
+    }
+    let a = x.abs();
+    let trim = |s: String| {
+        if s.contains('.') {
+            s.trim_end_matches('0').trim_end_matches('.').to_string()
+        } else {
+            s
+        }
+    };
+    if (1e-3..1e6).contains(&a) {
+        // The exponent is between −3 and 5 here, so the cast cannot truncate.
+        #[allow(clippy::cast_possible_truncation)]
+        let exponent = a.log10().floor() as i32;
+        let decimals = usize::try_from((digits - 1 - exponent).max(0)).unwrap_or(0);
+        trim(format!("{x:.decimals$}"))
+    } else {
+        let decimals = usize::try_from(digits - 1).unwrap_or(0);
+        let s = format!("{x:.decimals$e}");
+        match s.split_once('e') {
+            Some((mantissa, exponent)) => format!("{}e{exponent}", trim(mantissa.to_string())),
+            None => s,
+        }
+    }
+}
+
+/// `x` with four significant digits, for a message (the error's field keeps the exact value).
+fn sig(x: f64) -> String {
+    sig_digits(x, 4)
+}
+
+/// "= value lies outside [min, max]", with as many digits as it takes to tell the value from
+/// the bound it crossed (a value just past a bound would otherwise print equal to it).
+fn outside(value: f64, min: f64, max: f64) -> String {
+    let mut digits = 4;
+    loop {
+        let (v, lo, hi) = (
+            sig_digits(value, digits),
+            sig_digits(min, digits),
+            sig_digits(max, digits),
+        );
+        if (v != lo && v != hi) || digits >= 17 {
+            return format!("= {v} lies outside [{lo}, {hi}]");
+        }
+        digits += 1;
+    }
 }
 
 /// Checks that `value` is finite.
@@ -173,5 +229,57 @@ mod tests {
             source: Box::new(e),
         };
         assert!(nested.to_string().starts_with("group 1: RRR dyad"));
+    }
+
+    #[test]
+    fn messages_round_numbers_and_keep_exact_fields() {
+        let e = Error::NotAssemblable {
+            group: "RRR dyad",
+            gap: 0.267_123_456_789,
+        };
+        assert_eq!(
+            e.to_string(),
+            "RRR dyad cannot be assembled: closure fails by 0.2671 m"
+        );
+        assert!(matches!(e, Error::NotAssemblable { gap, .. } if gap == 0.267_123_456_789));
+        let e = Error::Singular {
+            what: "RRR dyad",
+            measure: "sin(phi3 - phi2)",
+            value: 1.234_567e-17,
+        };
+        assert_eq!(
+            e.to_string(),
+            "RRR dyad is singular: sin(phi3 - phi2) = 1.235e-17"
+        );
+        let e = Error::NonFiniteState { time: 239.712_345 };
+        assert_eq!(e.to_string(), "non-finite state at t = 239.7 s");
+        let e = Error::NonPositive {
+            name: "l_AB",
+            value: -2.0,
+        };
+        assert_eq!(e.to_string(), "l_AB must be positive, got -2");
+        // Just past a bound: enough digits to see that it is past.
+        let e = Error::OutOfRange {
+            name: "alpha_w",
+            value: std::f64::consts::FRAC_PI_2 + 1e-9,
+            min: 0.0,
+            max: std::f64::consts::FRAC_PI_2,
+        };
+        assert_eq!(
+            e.to_string(),
+            "alpha_w = 1.570796328 lies outside [0, 1.570796327]"
+        );
+        for (x, s) in [
+            (0.0, "0"),
+            (1500.0, "1500"),
+            (999.96, "1000"),
+            (-0.001_234_56, "-0.001235"),
+            (2.67e-9, "2.67e-9"),
+            (3.0e12, "3e12"),
+            (f64::NAN, "NaN"),
+            (f64::NEG_INFINITY, "-inf"),
+        ] {
+            assert_eq!(sig(x), s, "{x}");
+        }
     }
 }

@@ -22,9 +22,12 @@
 //!   rocking cylinder), each a struct of parameters whose `linkage()` the engine plans.
 //!
 //! ## The seed programs
-//! The crate grew from Ukrainian and Russian course texts whose FORTRAN-era programs have short
-//! names. They are kept as documentation aliases, so searching the docs for `SR1` finds the
-//! RRR dyad:
+//! The crate grew from four Ukrainian and Russian course texts, called seed 000 to seed 003 in
+//! its comments (kinetostatics, kinematics, passive constraints, dynamics of 2-DOF machines);
+//! `docs/sources.md` in the repository names them, and `docs/errata.md` lists every misprint of
+//! theirs that the crate corrects, each with its derivation and the test that checks it. Their
+//! FORTRAN-era programs have short names, kept as documentation aliases, so searching the docs
+//! for `SR1` finds the RRR dyad:
 //!
 //! | seed   | meaning                                     | in `tmm` |
 //! |--------|---------------------------------------------|----------|
@@ -41,6 +44,14 @@
 //! force that link i exerts on link j, so `R_ji = −R_ij`. Links are numbered as in the seeds:
 //! 1 the input link, 2 and 3 the dyad, 4 the link the dyad meets at its outer pair (often the
 //! frame). Points are [`nalgebra::Point2`], vectors [`nalgebra::Vector2`].
+//!
+//! ## Optional features
+//! - `serde`: serialization of the crate's plain-data types (inputs, results, tables).
+//! - `rayon`: cycles of mechanism positions in parallel, bit-identical to the serial run.
+//!
+//! On docs.rs every item that needs a feature says so.
+
+#![cfg_attr(docsrs, feature(doc_cfg))]
 
 pub mod angle;
 pub mod dynamics;
@@ -53,6 +64,12 @@ pub mod mechanism;
 
 pub use error::{Error, Result};
 pub use load::Load;
+
+/// The linear algebra crate whose types appear in every signature of `tmm` (`Point2`,
+/// `Vector2`, `Matrix2`). Re-exported so that a user builds those types from the very version
+/// `tmm` was compiled against, without adding (and keeping in step) a dependency of their own:
+/// `use tmm::nalgebra::{Point2, Vector2};`.
+pub use nalgebra;
 
 // The README's example is compiled and run as a doc test, so it cannot rot.
 #[cfg(doctest)]

@@ -639,7 +639,7 @@ fn five_bar_analytic_derivatives_match_the_numerical_fallback_and_the_seeds_coef
         for m in 0..2 {
             worst = worst.max((da[m] - dn[m]).amax() / da[m].amax());
         }
-        // The corrected coefficient set of seed 003 (ERRATA after D13).
+        // The corrected coefficient set of seed 003 (docs/errata.md#d11).
         let a = f.inertia(&q).unwrap();
         let (i11, i14, i44) = (a[(0, 0)], a[(0, 1)], a[(1, 1)]);
         let (i11_1, i11_4, i14_1, i14_4, i44_1, i44_4) = (

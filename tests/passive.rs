@@ -6,7 +6,7 @@
 //!   group's reactions, and the compatibility of the released structure under the library's
 //!   X1 (the released hinge C must not move along CD).
 //! - Equilibrium of every link, summed here from the returned reactions and the input loads.
-//! - The seed's closed forms (eqs. 4–7, 9–11, with the sign of ERRATA P4) for the seed's type.
+//! - The seed's closed forms (eqs. 4–7, 9–11, with the sign of docs/errata.md#p4) for the seed's type.
 //! - The degree of indeterminacy from the rank of the group's equilibrium matrix.
 //! - The limit EA → ∞, with its observed order.
 
@@ -516,7 +516,7 @@ proptest! {
         }
     }
 
-    /// The seed's closed forms (eqs. 4–7, 9–11), read with the ERRATA's geometry, for its
+    /// The seed's closed forms (eqs. 4–7, 9–11), read with the geometry of docs/errata.md#passive-geometry, for its
     /// whole type: δ11, the loaded state, X1's distribution to A and E.
     #[test]
     fn seed_closed_forms_hold(
@@ -550,7 +550,7 @@ proptest! {
             ("R01n", r.r01n, x_a),
             ("R01t", r.r01t, f[0] / 2.0 * s1),
             ("R02n", r.r02n, x1),
-            // ERRATA P4: measured upward, Y_C = −(F2/2)·sin α2.
+            // docs/errata.md#p4: measured upward, Y_C = −(F2/2)·sin α2.
             ("R02t", r.r02t, -f[1] / 2.0 * s2),
             ("R03n", r.r03n, x_ef + (x1 - x_af + x_a) * c4),
             ("R03t", r.r03t, y_ef - (x1 - x_af + x_a) * s4),
@@ -614,7 +614,7 @@ fn the_papers_example_against_the_frame_model() {
     assert!(fx.abs() < 1e-12 * 300.0);
 }
 
-/// ERRATA, seed 002: with finite axial stiffness the redundant changes a lot: X1 = −46.2 N at
+/// docs/errata.md#passive-axial: with finite axial stiffness the redundant changes a lot: X1 = −46.2 N at
 /// EA·L²/EI = 10³ and −60.7 N at 10⁴ (L = l3 + l4 = 0.35 m, the same EA for every link).
 #[test]
 fn axial_flexibility_moves_the_redundant() {
@@ -804,7 +804,7 @@ fn errors_name_what_is_wrong() {
     assert!(s.delta11.bending.abs() < 1e-18 && s.delta11.axial > 0.0);
 }
 
-/// The paper's "deformation check" (ERRATA P3): the ordinates it multiplies are the total
+/// The paper's "deformation check" (docs/errata.md#p3): the ordinates it multiplies are the total
 /// bending moments M(K) = 11.46, M(D) = 13.25, M(mid DE) = 13.375 N·m and the unit-state
 /// moments 0.03093 and 0.06186 m; the product ∫ M·M1 ds/EI over link 3 is zero.
 #[test]

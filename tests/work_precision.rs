@@ -1,24 +1,25 @@
 //! The observed orders and error bounds of the work-precision charts, asserted from the same
-//! functions that draw them (`examples/work_precision/`) and from the CSV files committed
-//! beside the charts in `docs/charts/`.
+//! functions that draw them (`tests/work_precision/`; the charts themselves are drawn by
+//! `bench/examples/work_precision.rs`) and from the CSV files committed beside the charts in
+//! `docs/charts/`.
 
-#[path = "../examples/work_precision/dd.rs"]
+#[path = "work_precision/dd.rs"]
 mod dd;
-#[path = "../examples/work_precision/dynamics_data.rs"]
+#[path = "work_precision/dynamics_data.rs"]
 #[allow(dead_code)] // the CSV writers serve the example
 mod dynamics_data;
-#[path = "../examples/work_precision/fit.rs"]
+#[path = "work_precision/fit.rs"]
 mod fit;
 #[path = "kinetostatics/general_solve.rs"]
 #[allow(dead_code)]
 mod general_solve;
-#[path = "../examples/work_precision/kinematics_data.rs"]
+#[path = "work_precision/kinematics_data.rs"]
 #[allow(dead_code)] // the CSV writers serve the example
 mod kinematics_data;
-#[path = "../examples/work_precision/kinetostatics_data.rs"]
+#[path = "work_precision/kinetostatics_data.rs"]
 #[allow(dead_code)] // the CSV writers serve the example
 mod kinetostatics_data;
-#[path = "../examples/work_precision/rng.rs"]
+#[path = "work_precision/rng.rs"]
 mod rng;
 
 use dynamics_data::{asymptotic, Line, MACHINES, METHODS};

@@ -11,7 +11,7 @@ use crate::error::Result;
 /// Δq̇ = q̈ₙ·Δt,   q̇ₙ₊₁ = q̇ₙ + Δq̇,   qₙ₊₁ = qₙ + (q̇ₙ + ½ Δq̇)·Δt
 /// ```
 ///
-/// (eqs. 95–104 with the velocity at the start of the interval, ERRATA D29). It is first-order
+/// (eqs. 95–104 with the velocity at the start of the interval, docs/errata.md#d29). It is first-order
 /// accurate (the velocity update is Euler's), needs one evaluation per step, and on the
 /// damped oscillator x″ + 2ζωx′ + ω²x = 0 it is stable only for ωΔt < min(4ζ, 1/ζ): its
 /// amplification matrix has determinant 1 − 2ζΩ + Ω²/2 (> 1 when Ω > 4ζ) and the eigenvalue

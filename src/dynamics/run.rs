@@ -106,7 +106,7 @@ pub enum Outcome {
     },
     /// A steady state was asked for but can never be met: the accelerations settled to a
     /// non-zero constant, so the speeds change linearly for ever (for example the coaxial
-    /// propellers with resisting moments not in the gear ratio, ERRATA D41).
+    /// propellers with resisting moments not in the gear ratio, docs/errata.md#d41).
     Drifting {
         /// The time of the verdict, s.
         t: f64,

@@ -10,7 +10,7 @@
 //! ```
 //!
 //! derived once here for any A(q). For two coordinates this is exactly the corrected set of
-//! seed 003's coefficients A0…A44, B0…B44 (ERRATA D10–D13): the seed's (35)–(36) misprint five
+//! seed 003's coefficients A0…A44, B0…B44 (docs/errata.md#d11): the seed's (35)–(36) misprint five
 //! of them, this form cannot.
 
 use nalgebra::{Matrix2, Vector2};

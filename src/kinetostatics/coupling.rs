@@ -4,7 +4,7 @@
 //! Link 1's moment about O1, M_b + Σ M_i(O1) = 0, gives the balancing moment
 //! M_b = −Σ M_i(O1), and its force balance the frame's reaction R01 = −Σ F_i. The seed's 1.56
 //! prints M_b without the minus sign, which is the moment of the known loads, not the one that
-//! balances them (ERRATA E7, E8).
+//! balances them (docs/errata.md#e7, #e8).
 
 use super::conditioning::{ensure_finite, Conditioning};
 use crate::angle::unit;

@@ -3,7 +3,7 @@
 //! Link 1 carries a gear wheel of pitch radius r_w = |O1P|; the motor's pinion drives it with a
 //! tooth force at the pitch point P along a line of action inclined at the pressure angle α_w
 //! to the tangent of the pitch circle. A tooth force can only push, so the sign of the moment
-//! it must supply decides which tooth flank carries it (the seeds' flank rule, ERRATA N2):
+//! it must supply decides which tooth flank carries it (the seeds' flank rule, docs/errata.md#n2):
 //! with e the unit vector O1→P and t = e turned −90° (the tangent),
 //! - [`Flank::Preliminary`]: direction t·cos α_w − e·sin α_w, a clockwise moment
 //!   −r_w·cos α_w·F about O1 (the seed's 0.5π − α_w for P on the −x side of O1);
@@ -12,7 +12,7 @@
 //!
 //! Both push towards O1. The magnitude is F = |M_b|/(r_w·cos α_w) with M_b = −Σ M_i(O1), and
 //! the frame's reaction is R01 = −(Σ F_i + F_b). The seed writes P only on the −x side of O1
-//! (ERRATA N1); here P may lie anywhere on the pitch circle.
+//! (docs/errata.md#n1); here P may lie anywhere on the pitch circle.
 
 use super::conditioning::{ensure_finite, Conditioning};
 use super::coupling::input_link_loads;

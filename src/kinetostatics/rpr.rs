@@ -2,7 +2,7 @@
 //! with its rod) 2 hinged to link 1 at A slides in a cylinder (or slotted link) 3 hinged to
 //! link 4 at E. The two links turn together; the sliding axis has the unit direction u.
 //!
-//! Derivation (seed 000, §1.3.3, re-derived; ERRATA E3–E5, N6, N7). Without friction the
+//! Derivation (seed 000, §1.3.3, re-derived; docs/errata.md#e3, #e4, #e5, #n6, #n7). Without friction the
 //! sliding pair carries no force along u: R32 = R32ⁿ·u⊥, at an unknown arm h32 from A along
 //! the axis. Link 2's force balance along u gives at once R12 · u = −F2 · u. Write
 //! A − E = a·u + b·u⊥; the whole group's moment about E, a·R12τ − b·R12ⁿ + M2(E) + M3(E) = 0,
@@ -11,7 +11,7 @@
 //! balance across u gives R32ⁿ = −F2 · u⊥ − R12τ, its moment about A gives the couple of R32
 //! about A, h32·R32ⁿ = −M2(A), and the cylinder's force balance gives R43 = R32 − F3.
 //!
-//! The seed's 1.35 misprints γ2 for γ3 in the moment of F3 (ERRATA E4); the derivation above
+//! The seed's 1.35 misprints γ2 for γ3 in the moment of F3 (docs/errata.md#e4); the derivation above
 //! does not use it.
 
 use super::conditioning::{ensure_finite, Conditioning};
@@ -88,7 +88,7 @@ pub struct RprReactions {
     /// The moment of R32 about A, N·m (= h32·R32ⁿ = −M2(A)).
     pub couple: f64,
     /// h32: where R32's line of action crosses the axis, measured from A along the axis, m.
-    /// `None` when R32 = 0 and the sliding pair carries a pure couple (ERRATA N7).
+    /// `None` when R32 = 0 and the sliding pair carries a pure couple (docs/errata.md#n7).
     pub arm: Option<f64>,
     /// The measure l_EA (m) and the amplification ρ/|l_EA|, with ρ the largest distance of A
     /// and of the loads' points from E.
@@ -159,7 +159,7 @@ impl RprDyad {
 /// B) in a cylinder of length l_EC (its mouth at C), pivoted at E, with the piston at l_BC
 /// inside the cylinder.
 ///
-/// The points lie on the axis in the order A, C, B, E, so l_EA = l_AB − l_BC + l_EC (ERRATA N6).
+/// The points lie on the axis in the order A, C, B, E, so l_EA = l_AB − l_BC + l_EC (docs/errata.md#n6).
 /// φ2 is the direction of the axis from A towards E. S2 lies at l_AS2 from A towards E, S3 at
 /// l_ES3 from E towards A. F2, F3 act at S2, S3; M2, M3 are algebraic moments.
 ///

@@ -1,7 +1,7 @@
 //! The RRP dyad: the group of the 2nd class, 2nd kind (seed program SR2): link 2 hinged to
 //! link 1 at A and to the slider 3 at B; the slider moves along a guide of link 4.
 //!
-//! Derivation (seed 000, §1.3.2, re-derived; ERRATA E2, N3): without friction the guide pushes
+//! Derivation (seed 000, §1.3.2, re-derived; docs/errata.md#e2, #n3): without friction the guide pushes
 //! on the slider along the guide's normal ν = g⊥ (g the guide's unit direction), with a
 //! magnitude R43 and a line of action that need not pass through B. Link 2's moment about B
 //! gives R12τ = M2(B)/l_AB as in the RRR dyad. The group's force balance

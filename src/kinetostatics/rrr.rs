@@ -140,7 +140,7 @@ impl RrrDyad {
 /// as magnitudes with direction angles.
 ///
 /// φ2 is the direction of the vector AB and φ3 that of CB. The centres of mass lie on the
-/// links at the distances l_BS2 and l_BS3 from B (ERRATA E1). F2 and F3 act at S2 and S3; M2
+/// links at the distances l_BS2 and l_BS3 from B (docs/errata.md#e1). F2 and F3 act at S2 and S3; M2
 /// and M3 are algebraic, counter-clockwise positive. All angles in radians, lengths in m.
 ///
 /// # Examples

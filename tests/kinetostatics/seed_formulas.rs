@@ -1,4 +1,4 @@
-//! The seed's own scalar formulas (seed 000), with the ERRATA corrections (E2, E4, E5, E8),
+//! The seed's own scalar formulas (seed 000), with the corrections of docs/errata.md (E2, E4, E5, E8),
 //! written out independently of the crate: a second derivation to compare against.
 
 use std::f64::consts::{FRAC_PI_2, PI};
@@ -44,7 +44,7 @@ pub fn sr2(s: &RrpSeed) -> (f64, f64, f64) {
     )
 }
 
-/// (1.35) corrected (γ3 in the F3 term, ERRATA E4), (1.37) and its solution, (1.46).
+/// (1.35) corrected (γ3 in the F3 term, docs/errata.md#e4), (1.37) and its solution, (1.46).
 /// Returns (R12τ, R12ⁿ, R32, h32).
 pub fn sr3(s: &RprSeed) -> (f64, f64, f64, Option<f64>) {
     let l_ea = s.l_ab - s.l_bc + s.l_ec;

@@ -12,7 +12,7 @@ use crate::error::{finite, positive, Result};
 /// propeller), and the internal ring z4 (the rear propeller). The generalized coordinates are
 /// q = (φ4, φH).
 ///
-/// Kinematics (Willis; ERRATA D32): φ̇1 = u14·φ̇4 + u1H·φ̇H with u14 = −z2z4/(z1z3) and
+/// Kinematics (Willis; docs/errata.md#d32): φ̇1 = u14·φ̇4 + u1H·φ̇H with u14 = −z2z4/(z1z3) and
 /// u1H = 1 + z2z4/(z1z3); the planets turn at φ̇2 = (z4/z3)·φ̇4 + (1 − z4/z3)·φ̇H and their
 /// centres move at (r_w1 + r_w2)·φ̇H. The inertia matrix is constant (eqs. 112–114 with the k
 /// of D34), and Q = M_p1·(u14, u1H) + ((M_on)4, (M_on)H) with M_p1 = a − b·φ̇1 (eqs. 122–126,
@@ -22,7 +22,7 @@ use crate::error::{finite, positive, Result};
 ///
 /// The equations are linear with constant coefficients, so [`exact`](Self::exact) gives the
 /// motion in closed form. With constant resisting moments a steady state exists only when
-/// (M_on)4/(M_on)H = u14/u1H (ERRATA D41, [`steady_state_exists`](Self::steady_state_exists));
+/// (M_on)4/(M_on)H = u14/u1H (docs/errata.md#d41, [`steady_state_exists`](Self::steady_state_exists));
 /// otherwise the motor speed settles but the propellers drift apart with the constant
 /// accelerations of [`drift_acceleration`](Self::drift_acceleration).
 #[derive(Debug, Clone, PartialEq)]
@@ -166,7 +166,7 @@ impl CoaxialPropellers {
         ]
     }
 
-    /// The constant inertia matrix [[I44, I4H], [I4H, IHH]] (eqs. 112–114, ERRATA D34).
+    /// The constant inertia matrix [[I44, I4H], [I4H, IHH]] (eqs. 112–114, docs/errata.md#d34).
     ///
     /// # Errors
     /// [`Error::NonPositive`](crate::Error::NonPositive) for a non-positive datum.
@@ -176,7 +176,7 @@ impl CoaxialPropellers {
     }
 
     /// `true` when the resisting moments stand in the gear ratio, so that a steady state
-    /// exists (ERRATA D41): (M_on)4·u1H = (M_on)H·u14, to 10⁻⁹ relative.
+    /// exists (docs/errata.md#d41): (M_on)4·u1H = (M_on)H·u14, to 10⁻⁹ relative.
     #[must_use]
     pub fn steady_state_exists(&self) -> bool {
         let u = self.input_ratios();

@@ -47,7 +47,7 @@ pub struct FiveBarKinematics {
     pub b_q: [Vector2<f64>; 2],
     /// ∂φ2/∂φₖ.
     pub phi2_q: [f64; 2],
-    /// ∂φ3/∂φₖ (U31^(4) and U34^(1) of ERRATA D9).
+    /// ∂φ3/∂φₖ (U31^(4) and U34^(1) of docs/errata.md#d9).
     pub phi3_q: [f64; 2],
     /// ∂²B/∂φⱼ∂φₖ.
     pub b_qq: [[Vector2<f64>; 2]; 2],
@@ -69,11 +69,11 @@ pub struct FiveBarKinematics {
 ///
 /// with the analogs from the closure A + l_AB·e(φ2) = C + l_CB·e(φ3) and the derivatives of A
 /// from the second-order analogs. The two-point distribution drops the couplers' own
-/// moment of inertia (ERRATA D4: it gives m·l_AS·l_SB about S instead of J_S); set `j_s2`,
+/// moment of inertia (docs/errata.md#d4: it gives m·l_AS·l_SB about S instead of J_S); set `j_s2`,
 /// `j_s3` to add the difference (J_S − m·l_AS·l_SB)·φ̇² and get the rigid bodies' exact T.
 ///
 /// The generalized forces are Q1 = M_p1 − M_on·∂φ3/∂φ1, Q4 = M_p4 − M_on·∂φ3/∂φ4 (eqs.
-/// 29–32, ERRATA D9; M_on > 0 opposes increasing φ3), and gravity g (along −y, zero for a
+/// 29–32, docs/errata.md#d9; M_on > 0 opposes increasing φ3), and gravity g (along −y, zero for a
 /// robot working in a horizontal plane) acts on the distributed masses through the potential
 /// (exact for the couplers, which keep their centres of mass; the cranks are taken as
 /// balanced about their axes).

@@ -28,7 +28,7 @@ pub enum Failure {
 /// gear's moment M_on(φ_H), given as a [`Table`]. The generalized coordinates are
 /// q = (φ1, φ6).
 ///
-/// Kinematics (Willis; ERRATA D23): φ̇H = uH1·φ̇1 + uH3·u36·φ̇6 with uH1 = z1/(z1+z3),
+/// Kinematics (Willis; docs/errata.md#d23): φ̇H = uH1·φ̇1 + uH3·u36·φ̇6 with uH1 = z1/(z1+z3),
 /// uH3 = z3/(z1+z3), u36 = z6/z4; the planets turn at φ̇2 = u21·φ̇1 + u23·u36·φ̇6 with
 /// u21 = z1(z2−z3)/(z2(z1+z3)), u23 = (z1+z2)z3/(z2(z1+z3)); the idler at u56 = −z6/z5. The
 /// inertia matrix is constant (eqs. 71–73, D24, D25). Q = (M_p1, M_p6) + M_on·(uH1, uH3·u36)
@@ -38,7 +38,7 @@ pub enum Failure {
 /// its shaft: the brake moment is the reaction that keeps that coordinate's acceleration zero
 /// (it is an output), and the differential works as a planetary gear, as the seed says. If it
 /// is not braked, nothing holds the failed shaft: the working motor spins it backwards and
-/// the gear falls back under its load (ERRATA D31).
+/// the gear falls back under its load (docs/errata.md#d31).
 #[derive(Debug, Clone, PartialEq)]
 pub struct LandingGear {
     /// Teeth z1 (sun), z2 (planet), z3 (ring), z4 (on the ring), z5 (idler), z6 (pinion).

@@ -7,7 +7,7 @@ use crate::error::{positive, Error, Result};
 ///
 /// Built from the nominal moment and the synchronous (no-load) and nominal speeds, the line
 /// passes through (ω_sync, 0) and (ω_nom, M_nom): b = M_nom/(ω_sync − ω_nom), a = b·ω_sync
-/// (eqs. 85–86; ERRATA D27, D37). This is the working branch of an induction motor's
+/// (eqs. 85–86; docs/errata.md#d37). This is the working branch of an induction motor's
 /// characteristic, extended down to standstill: the starting moment a is then the nominal
 /// moment times ω_sync/(ω_sync − ω_nom), larger than a real motor gives.
 ///

@@ -11,7 +11,7 @@ use crate::error::{finite, positive, Result};
 /// the axis point C), driven by a moment M_p1 and a force F_p2, with viscous friction in both
 /// joints. q = (φ10, l).
 ///
-/// T = ½(I_z1 + I_z2 + m2 l²)·φ̇² + ½ m2 l̇² (eq. 41 with the dot of ERRATA D15),
+/// T = ½(I_z1 + I_z2 + m2 l²)·φ̇² + ½ m2 l̇² (eq. 41 with the dot of docs/errata.md#d15),
 /// Φ = ½ b1 r0² φ̇² + ½ b2 l̇² (D14), Q = (M_p1, F_p2); gravity does no work. Lagrange's
 /// equations give (52) and the corrected (53) (D17):
 ///
@@ -113,7 +113,7 @@ impl LagrangeSystem for RpArm {
 }
 
 /// The R–P arm decoupled by counter-masses (§3): the centre of mass of the sliding parts
-/// stays at C, and in the seed's idealization (ERRATA D19) the inertia about the axis stays
+/// stays at C, and in the seed's idealization (docs/errata.md#d19) the inertia about the axis stays
 /// J = I_z1 + I_z2 and the translating mass m2, so the equations separate (56 and the
 /// corrected 57, D20):
 ///

@@ -99,7 +99,7 @@ impl Geometry {
         Self { a, b, c, d, e }
     }
 
-    /// The seed's geometry (ERRATA, seed 002): link 3 straight with the frame hinge E at the
+    /// The seed's geometry (docs/errata.md#passive-geometry): link 3 straight with the frame hinge E at the
     /// origin, D = E − l4·u, B = E − (l3 + l4)·u with u = (cos α4, sin α4); links 1 and 2
     /// horizontal, with A = B − (l1, 0) and C = D − (l2, 0) on the left.
     ///

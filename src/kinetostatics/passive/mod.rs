@@ -32,7 +32,7 @@
 //! to 2e-15 of the loads.
 //!
 //! The paper's example, in its notation, is [`PaperGroup`]; its printed Δ1F, X1 and R01ⁿ
-//! carry a rounding slip, and its R02ᵗ a sign (see the example there and ERRATA.md).
+//! carry a rounding slip, and its R02ᵗ a sign (see the example there, and docs/errata.md#p4 and #p5).
 
 mod diagrams;
 mod force_method;

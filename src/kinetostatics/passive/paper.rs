@@ -2,7 +2,7 @@
 //! angles α1…α4, and the reactions as normal (n) and tangential (t) components.
 //!
 //! The figures of the paper are lost; the geometry and the load directions follow the
-//! reconstruction in ERRATA.md (seed 002), under which eqs. 5–11, both printed bending moments
+//! reconstruction in docs/errata.md#passive-geometry, under which eqs. 5–11, both printed bending moments
 //! and the paper's static check hold identically.
 
 use super::force_method::{solve, Solution, Stiffness};
@@ -73,7 +73,7 @@ pub struct PaperResult {
     /// R02ⁿ = X̄_C = X̄1, N (eq. 10).
     pub r02n: f64,
     /// R02ᵗ = Ȳ_C, N, measured upward (eq. 10; the paper prints +129.9 for −129.9, see
-    /// ERRATA P4).
+    /// docs/errata.md#p4).
     pub r02t: f64,
     /// R03ⁿ = X̄_E, N (eq. 11).
     pub r03n: f64,
@@ -140,7 +140,7 @@ impl PaperGroup {
         ] {
             finite(name, v)?;
         }
-        // ERRATA, seed 002: F1 at the middle of AB along α1 + π, F2 at the middle of CD along
+        // docs/errata.md#passive-geometry: F1 at the middle of AB along α1 + π, F2 at the middle of CD along
         // π − α2, F3 at the middle K of BD along α4 + α3, the couple M on link 3 at E. These
         // directions make eqs. 5–11, both printed bending moments and the static check hold.
         let (a1, a2, a34) = (self.alpha1, self.alpha2, self.alpha4 + self.alpha3);
@@ -163,20 +163,20 @@ impl PaperGroup {
     /// use approx::assert_abs_diff_eq;
     /// let r = PaperGroup::example().solve(&Stiffness::bending_only(1.0))?;
     /// // δ11·EI = l3²·l4²·sin²α4 / (3(l3 + l4)) (eq. 4); the paper prints 4.4645e-4 once and
-    /// // uses 4.4643e-4 (ERRATA P2).
+    /// // uses 4.4643e-4 (docs/errata.md#p2).
     /// assert_abs_diff_eq!(r.delta11, 4.4643e-4, epsilon = 1e-8);
     /// assert_abs_diff_eq!(r.x_af, 282.45, epsilon = 0.005);
     /// assert_abs_diff_eq!(r.y_ef, 197.56, epsilon = 0.005);
     /// assert_abs_diff_eq!(r.x_ef, 74.24, epsilon = 0.005);
     /// // The paper prints Δ1F·EI = 0.02796, X1 = −62.6 N and R01n = 327.2 N: it rounded
     /// // Y_EF to 197.5 before forming M_z(D) = Y_EF·l4 − M, a difference that cancels most of
-    /// // its digits (ERRATA, seed 002). With exact intermediates:
+    /// // its digits (docs/errata.md#p5). With exact intermediates:
     /// assert_abs_diff_eq!(r.delta1f, 0.02787, epsilon = 5e-6);
     /// assert_abs_diff_eq!(r.x1, -62.43, epsilon = 0.005);
     /// assert_abs_diff_eq!(r.r01n, 327.04, epsilon = 0.005);
     /// assert_abs_diff_eq!(r.r01t, 108.25, epsilon = 0.005);
     /// assert_abs_diff_eq!(r.r02n, r.x1, epsilon = 1e-12);
-    /// // Measured upward, Y_C points down: the paper's +129.9 is its magnitude (ERRATA P4).
+    /// // Measured upward, Y_C points down: the paper's +129.9 is its magnitude (docs/errata.md#p4).
     /// assert_abs_diff_eq!(r.r02t, -129.90, epsilon = 0.005);
     /// assert_abs_diff_eq!(r.r03n, 65.32, epsilon = 0.005);
     /// assert_abs_diff_eq!(r.r03t, 213.00, epsilon = 0.005);

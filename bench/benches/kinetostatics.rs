@@ -9,7 +9,7 @@ use std::time::Duration;
 use tmm::kinetostatics::{CouplingDrive, GearDrive, RprDyad, RrpDyad, RrrDyad};
 use tmm::Load;
 
-#[path = "../tests/kinetostatics/general_solve.rs"]
+#[path = "../../tests/kinetostatics/general_solve.rs"]
 #[allow(dead_code)]
 mod general_solve;
 

@@ -1,9 +1,9 @@
 //! Speed against accuracy across the crate: work-precision charts as SVG and their data as
 //! CSV, all from the crate's own runs.
 //!
-//! `cargo run --release --example work_precision [output folder]`
+//! `cargo run --release -p tmm-bench --example work_precision [output folder]`
 //! (default `target/tmm-charts/work-precision`; the README's charts come from
-//! `cargo run --release --example work_precision docs/charts`).
+//! `cargo run --release -p tmm-bench --example work_precision docs/charts`, from the root).
 //!
 //! - `dynamics_work_precision.svg`: each stepper on three machines, error at the final time
 //!   against evaluations of q̈ and against wall time;
@@ -26,21 +26,21 @@ use std::path::{Path, PathBuf};
 use plotters::coord::Shift;
 use plotters::prelude::*;
 
-#[path = "work_precision/dd.rs"]
+#[path = "../../tests/work_precision/dd.rs"]
 mod dd;
-#[path = "work_precision/dynamics_data.rs"]
+#[path = "../../tests/work_precision/dynamics_data.rs"]
 mod dynamics_data;
-#[path = "work_precision/fit.rs"]
+#[path = "../../tests/work_precision/fit.rs"]
 #[allow(dead_code)] // its CSV reader serves the test
 mod fit;
-#[path = "../tests/kinetostatics/general_solve.rs"]
+#[path = "../../tests/kinetostatics/general_solve.rs"]
 #[allow(dead_code)]
 mod general_solve;
-#[path = "work_precision/kinematics_data.rs"]
+#[path = "../../tests/work_precision/kinematics_data.rs"]
 mod kinematics_data;
-#[path = "work_precision/kinetostatics_data.rs"]
+#[path = "../../tests/work_precision/kinetostatics_data.rs"]
 mod kinetostatics_data;
-#[path = "work_precision/rng.rs"]
+#[path = "../../tests/work_precision/rng.rs"]
 mod rng;
 
 type Res<T> = std::result::Result<T, Box<dyn Error>>;
