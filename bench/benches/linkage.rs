@@ -1,0 +1,141 @@
+//! The linkage engine against the same job chained by hand from the crate's blocks, side by
+//! side in one run: the bundled four-bar (crank + RRR) and Stephenson six-bar (crank + RRR +
+//! RRR), each per position: kinematics, inertia loads and weights, external loads, both
+//! reverse passes and the balancing moment. The hand chains are checked against the engine
+//! before timing.
+
+use criterion::{criterion_group, criterion_main, Criterion, Throughput};
+use nalgebra::{Point2, Vector2};
+use std::hint::black_box;
+use std::time::Duration;
+use tmm::kinematics::{crank, rrr_dyad, Branch, LinkMotion, Motion, PointMotion};
+use tmm::kinetostatics::{CouplingDrive, RrrDyad};
+use tmm::linkage::{bundled, Analysis, Plan};
+use tmm::Load;
+
+fn inputs(n: usize) -> Vec<Motion> {
+    (0..n)
+        .map(|k| Motion::new(k as f64 * 0.7371, 10.0, 2.0))
+        .collect()
+}
+
+fn own(link: &LinkMotion, along: f64, across: f64, m: f64, j: f64) -> Load {
+    let s = link.point_at(along, across);
+    let i = Load::inertia(s.p, m, s.a, j, link.epsilon).unwrap();
+    Load::new(s.p, i.force + Vector2::new(0.0, -9.81 * m), i.moment)
+}
+
+/// The local coordinates (along, across) of `p` in a link frame at `o` with angle `a`.
+fn local(o: Point2<f64>, a: Point2<f64>, p: Point2<f64>) -> (f64, f64) {
+    let e = (a - o).normalize();
+    let r = p - o;
+    (r.dot(&e), e.x * r.y - e.y * r.x)
+}
+
+/// The bundled four-bar chained by hand: the same geometry, masses and loads.
+struct HandFourBar {
+    o1: Point2<f64>,
+    o3: Point2<f64>,
+    l: [f64; 3],
+    e: (f64, f64),
+    s2: (f64, f64),
+    s3: (f64, f64),
+}
+
+impl HandFourBar {
+    fn new() -> Self {
+        let (o1, a, b, o3) = (
+            Point2::new(0.0, 0.0),
+            Point2::new(0.1, 0.0),
+            Point2::new(0.25612516773077276, 0.3132489936153635),
+            Point2::new(0.4, 0.05),
+        );
+        Self {
+            o1,
+            o3,
+            l: [0.1, (b - a).norm(), (b - o3).norm()],
+            e: local(a, b, Point2::new(0.25, 0.25)),
+            s2: local(a, b, nalgebra::center(&a, &b)),
+            s3: local(o3, b, nalgebra::center(&o3, &b)),
+        }
+    }
+
+    fn balance(&self, i: Motion) -> f64 {
+        let c = crank(self.o1, self.l[0], i).unwrap();
+        let g = rrr_dyad(c.a, PointMotion::fixed(self.o3), self.l[1], self.l[2], Branch::Plus).unwrap();
+        let j2 = 1.5 * self.l[1] * self.l[1] / 12.0;
+        let j3 = 2.0 * self.l[2] * self.l[2] / 12.0;
+        let l1 = own(&c.link, 0.0, 0.0, 1.0, 0.002);
+        let mut l2 = own(&g.link2, self.s2.0, self.s2.1, 1.5, j2);
+        let e = g.link2.point_at(self.e.0, self.e.1).p;
+        l2 = Load::sum_about(&[l2, Load::force_at(e, Vector2::new(0.0, -50.0))], c.a.p);
+        let mut l3 = own(&g.link3, self.s3.0, self.s3.1, 2.0, j3);
+        l3.moment -= 40.0 * g.link3.omega.signum();
+        let r = RrrDyad { a: c.a.p, b: g.b.p, c: self.o3, load2: l2, load3: l3 }.solve().unwrap();
+        let l1 = Load::sum_about(&[l1, Load::force_at(c.a.p, -r.r12)], self.o1);
+        CouplingDrive { o1: self.o1 }.solve(&[l1]).unwrap().balancing_moment
+    }
+}
+
+fn four_bar(c: &mut Criterion) {
+    let plan = Plan::new(&bundled::four_bar()).unwrap();
+    let hand = HandFourBar::new();
+    let ins = inputs(512);
+    // The yardstick must do the same job: check it against the engine first.
+    let mut a = Analysis::new(&plan);
+    for &i in &ins {
+        a.solve(i).unwrap();
+        let (x, y) = (a.balance().value, hand.balance(i));
+        assert!((x - y).abs() <= 1e-9 * x.abs().max(1.0), "hand chain {y} vs engine {x}");
+    }
+    let mut g = c.benchmark_group("four_bar_whole_position");
+    g.measurement_time(Duration::from_secs(3)).warm_up_time(Duration::from_millis(500)).sample_size(30);
+    g.throughput(Throughput::Elements(ins.len() as u64));
+    g.bench_function("hand_chain", |b| {
+        b.iter(|| ins.iter().map(|&i| hand.balance(black_box(i))).sum::<f64>())
+    });
+    g.bench_function("engine", |b| {
+        b.iter(|| {
+            ins.iter()
+                .map(|&i| {
+                    a.solve(black_box(i)).unwrap();
+                    a.balance().value
+                })
+                .sum::<f64>()
+        })
+    });
+    g.finish();
+}
+
+fn six_bar(c: &mut Criterion) {
+    let plan = Plan::new(&bundled::watt_six_bar()).unwrap();
+    let ins = inputs(512);
+    let mut a = Analysis::new(&plan);
+    let mut g = c.benchmark_group("watt_six_bar_whole_position");
+    g.measurement_time(Duration::from_secs(3)).warm_up_time(Duration::from_millis(500)).sample_size(30);
+    g.throughput(Throughput::Elements(ins.len() as u64));
+    g.bench_function("engine", |b| {
+        b.iter(|| {
+            ins.iter()
+                .map(|&i| {
+                    a.solve(black_box(i)).unwrap();
+                    a.balance().value
+                })
+                .sum::<f64>()
+        })
+    });
+    g.bench_function("engine_kinematics_only", |b| {
+        b.iter(|| {
+            ins.iter()
+                .map(|&i| {
+                    a.solve_kinematics(black_box(i)).unwrap();
+                    a.link_motion(5).omega
+                })
+                .sum::<f64>()
+        })
+    });
+    g.finish();
+}
+
+criterion_group!(benches, four_bar, six_bar);
+criterion_main!(benches);
