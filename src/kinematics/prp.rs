@@ -1,34 +1,8 @@
 //! The PRP dyad (group of the 2nd class with two outer sliding pairs; the 4th kind in
 //! Artobolevsky's numbering): a slider 2 on a guide of a known link 1 and a slider 3 on a
-//! guide of a known link 4, hinged to each other at B. The cross-slide and the Scotch yoke's
-//! block-and-yoke are of this kind.
-//!
-//! # The geometry in words
-//! ```text
-//!                       g3 (a line of link 4, direction φg3)
-//!                      /
-//!          G2 ───────[2]B──────────▶ g2 (a line of link 1, direction φg2)
-//!                    /[3]
-//!                  G3
-//! ```
-//! Each guide is the line that the hinge B traces on the link carrying it: through a point
-//! G (with that link point's motion) along a direction φg (with the link's ω and ε). B is
-//! where the two lines meet, so the position is always unique: B = G2 + s2·e(φg2) =
-//! G3 + s3·e(φg3). A pin B off the axis of its slot (an offset e) traces the axis shifted
-//! sideways by e: give the guide through a point of that shifted line
-//! ([`Guide::on_link`] at that point, with the slot's angle to the link as its offset angle).
-//!
-//! # The formulas
-//! The loop G3 → G2 → B → G3 is (G2 − G3) + s2·e(φg2) − s3·e(φg3) = 0: two unknown lengths,
-//! the contour's two-lines case. With u2 = e(φg2), u3 = e(φg3) and d = G3 − G2,
-//! s2 = (d × u3)/(u2 × u3) and s3 = (d × u2)/(u2 × u3), and the divisor is
-//! u2 × u3 = sin(φg3 − φg2): it vanishes when the guides are parallel (the sliders could then
-//! slide together along them, or not meet at all). Differentiating the loop once gives
-//! ṡ2·u2 − ṡ3·u3 = −(v_G2 + s2·ω2·u2⊥) + (v_G3 + s3·ω3·u3⊥): the same matrix, so ṡ2, ṡ3 and
-//! likewise s̈2, s̈3 (whose right side carries the centripetal −s·ω²·u and the Coriolis
-//! 2·ṡ·ω·u⊥ of each slide on its turning guide) are two more 2×2 solves with the same
-//! divisor. B's absolute motion follows on guide 2: v_B = v_G2 + s2·ω2·u2⊥ + ṡ2·u2 and
-//! a_B = a_G2 + (s̈2 − s2·ω2²)·u2 + (s2·ε2 + 2·ṡ2·ω2)·u2⊥.
+//! guide of a known link 4, hinged to each other at B. The cross-slide (two sliders pinned
+//! together, each in a guide of its own) and the slotted-crank drive of a slider (a block in a
+//! slot of the crank, hinged to a slider on a frame guide) are of this kind.
 
 use super::contour::{in_group, solve_contour, Branch, LoopVector};
 use super::link::LinkMotion;
@@ -122,10 +96,37 @@ pub(crate) fn finite_outputs(
 /// Positions, velocities and accelerations of a PRP dyad: the slider 2 on `guide2` (a line of
 /// link 1) and the slider 3 on `guide3` (a line of link 4), hinged together at B.
 ///
-/// Each guide is the line B traces on its link (see the [module docs](self) for offsets);
+/// Each guide is the line B traces on its link (offsets: see below);
 /// B is where they meet, so the solution is unique and there is no assembly mode. For a
 /// guide cut in a moving link use [`Guide::on_link`]: then each slide's acceleration has the
 /// Coriolis part [`PrpState::coriolis2`] / [`PrpState::coriolis3`].
+///
+/// # The geometry in words
+/// ```text
+///                       g3 (a line of link 4, direction φg3)
+///                      /
+///          G2 ───────[2]B──────────▶ g2 (a line of link 1, direction φg2)
+///                    /[3]
+///                  G3
+/// ```
+/// Each guide is the line that the hinge B traces on the link carrying it: through a point
+/// G (with that link point's motion) along a direction φg (with the link's ω and ε). B is
+/// where the two lines meet, so the position is always unique: B = G2 + s2·e(φg2) =
+/// G3 + s3·e(φg3). A pin B off the axis of its slot (an offset e) traces the axis shifted
+/// sideways by e: give the guide through a point of that shifted line
+/// ([`Guide::on_link`] at that point, with the slot's angle to the link as its offset angle).
+///
+/// # The formulas
+/// The loop G3 → G2 → B → G3 is (G2 − G3) + s2·e(φg2) − s3·e(φg3) = 0: two unknown lengths,
+/// the contour's two-lines case. With u2 = e(φg2), u3 = e(φg3) and d = G3 − G2,
+/// s2 = (d × u3)/(u2 × u3) and s3 = (d × u2)/(u2 × u3), and the divisor is
+/// u2 × u3 = sin(φg3 − φg2): it vanishes when the guides are parallel (the sliders could then
+/// slide together along them, or not meet at all). Differentiating the loop once gives
+/// ṡ2·u2 − ṡ3·u3 = −(v_G2 + s2·ω2·u2⊥) + (v_G3 + s3·ω3·u3⊥): the same matrix, so ṡ2, ṡ3 and
+/// likewise s̈2, s̈3 (whose right side carries the centripetal −s·ω²·u and the Coriolis
+/// 2·ṡ·ω·u⊥ of each slide on its turning guide) are two more 2×2 solves with the same
+/// divisor. B's absolute motion follows on guide 2: v_B = v_G2 + s2·ω2·u2⊥ + ṡ2·u2 and
+/// a_B = a_G2 + (s̈2 − s2·ω2²)·u2 + (s2·ε2 + 2·ṡ2·ω2)·u2⊥.
 ///
 /// # Examples
 /// A vertical slot of link 1 through G2 = (0.3, 0) m that translates along +x at 1 m/s, and a

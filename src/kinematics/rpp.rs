@@ -3,38 +3,6 @@
 //! of a known link 4, and a sliding pair between links 2 and 3. The sine mechanism (Scotch
 //! yoke: a block on the crank pin in the slot of a yoke that slides in the frame) and the
 //! tangent mechanism are of this kind.
-//!
-//! # The geometry in words
-//! ```text
-//!                  A ●   the hinge with link 1; link 2 (a block, or a slotted link) turns on it
-//!                    ║   the slide between links 2 and 3: direction φg + α, through A
-//!                    ║
-//!      G ────────────B═════════════▶  the guide of link 4: direction φg, through G
-//!                    └─ link 3 (the yoke) slides along the guide; B is a point of it
-//! ```
-//! The guide is the line that a point of link 3 traces on link 4: through a point G (with that
-//! link-4 point's motion) along φg (with link 4's ω and ε), as a [`Guide`]. The sliding pair
-//! between links 2 and 3 makes the constant angle α with the guide (α = π/2 for a Scotch
-//! yoke): relative to link 3, A (a point of link 2, which only translates relative to link 3)
-//! runs along the line through A with direction φg + α. Call B the point of link 3 where that
-//! line crosses the guide: it is one material point of link 3, and it runs along the guide.
-//!
-//! Neither sliding pair lets its links turn relative to each other, so links 2 and 3 both turn
-//! with link 4 (ω2 = ω3 = ω4). Offsets need no parameter: a pin off the slot's axis or a slot
-//! off the yoke's axis only moves B along link 3 (a reference point of link 3 at a distance d
-//! from B along the guide is at s3 + d), and a guide off the line of a link is given through a
-//! point of the shifted line ([`Guide::on_link`] at that point).
-//!
-//! # The formulas
-//! The loop A → G → B → A is (G − A) + s3·u + s2·v = 0 with u = e(φg), v = e(φg + α), the
-//! contour's two-lines case: s3 = (d × v)/(u × v) and s2 = (u × d)/(u × v) for d = A − G. The
-//! divisor is u × v = sin α, a constant of the design: the group is singular only if the slide
-//! is parallel to the guide (then links 2 and 3 could slide together along it), never at some
-//! position of a working mechanism. Differentiating once and twice gives the rates and the
-//! accelerations through the same matrix; both directions turn at ω4, so the right sides carry
-//! the centripetal −s·ω4²·e and the Coriolis 2·ṡ·ω4·e⊥ of each slide. B moves as the point at
-//! s3 on the guide: v_B = v_G + s3·ω4·u⊥ + ṡ3·u, a_B = a_G + (s̈3 − s3·ω4²)·u +
-//! (s3·ε4 + 2·ṡ3·ω4)·u⊥.
 
 use super::contour::{in_group, solve_contour, Branch, LoopVector};
 use super::link::LinkMotion;
@@ -102,7 +70,39 @@ impl RppState {
 /// which link 3 slides on link 4.
 ///
 /// The solution is unique (two lines meet), so there is no assembly mode; see the
-/// [module docs](self) for the figure and for offsets.
+/// figure and the offsets below.
+///
+/// # The geometry in words
+/// ```text
+///                  A ●   the hinge with link 1; link 2 (a block, or a slotted link) turns on it
+///                    ║   the slide between links 2 and 3: direction φg + α, through A
+///                    ║
+///      G ────────────B═════════════▶  the guide of link 4: direction φg, through G
+///                    └─ link 3 (the yoke) slides along the guide; B is a point of it
+/// ```
+/// The guide is the line that a point of link 3 traces on link 4: through a point G (with that
+/// link-4 point's motion) along φg (with link 4's ω and ε), as a [`Guide`]. The sliding pair
+/// between links 2 and 3 makes the constant angle α with the guide (α = π/2 for a Scotch
+/// yoke): relative to link 3, A (a point of link 2, which only translates relative to link 3)
+/// runs along the line through A with direction φg + α. Call B the point of link 3 where that
+/// line crosses the guide: it is one material point of link 3, and it runs along the guide.
+///
+/// Neither sliding pair lets its links turn relative to each other, so links 2 and 3 both turn
+/// with link 4 (ω2 = ω3 = ω4). Offsets need no parameter: a pin off the slot's axis or a slot
+/// off the yoke's axis only moves B along link 3 (a reference point of link 3 at a distance d
+/// from B along the guide is at s3 + d), and a guide off the line of a link is given through a
+/// point of the shifted line ([`Guide::on_link`] at that point).
+///
+/// # The formulas
+/// The loop A → G → B → A is (G − A) + s3·u + s2·v = 0 with u = e(φg), v = e(φg + α), the
+/// contour's two-lines case: s3 = (d × v)/(u × v) and s2 = (u × d)/(u × v) for d = A − G. The
+/// divisor is u × v = sin α, a constant of the design: the group is singular only if the slide
+/// is parallel to the guide (then links 2 and 3 could slide together along it), never at some
+/// position of a working mechanism. Differentiating once and twice gives the rates and the
+/// accelerations through the same matrix; both directions turn at ω4, so the right sides carry
+/// the centripetal −s·ω4²·e and the Coriolis 2·ṡ·ω4·e⊥ of each slide. B moves as the point at
+/// s3 on the guide: v_B = v_G + s3·ω4·u⊥ + ṡ3·u, a_B = a_G + (s̈3 − s3·ω4²)·u +
+/// (s3·ε4 + 2·ṡ3·ω4)·u⊥.
 ///
 /// # Examples
 /// A Scotch yoke: crank 0.1 m at φ1 = 30° turning at 10 rad/s, a yoke sliding along the x
