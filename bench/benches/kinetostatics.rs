@@ -6,7 +6,7 @@ use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion, Through
 use nalgebra::{Point2, Vector2};
 use std::hint::black_box;
 use std::time::Duration;
-use tmm::kinetostatics::{CouplingDrive, GearDrive, RprDyad, RrpDyad, RrrDyad};
+use tmm::kinetostatics::{CouplingDrive, GearDrive, PrpDyad, RppDyad, RprDyad, RrpDyad, RrrDyad};
 use tmm::Load;
 
 #[path = "../../tests/kinetostatics/general_solve.rs"]
@@ -64,6 +64,22 @@ fn per_call(c: &mut Criterion) {
         load2: rng.load(),
         load3: rng.load(),
     };
+    // The two dyads with two sliding pairs, of the same size and loads as the RRP beside them.
+    let prp = PrpDyad {
+        b: rrr.b,
+        guide2: Vector2::new(1.0, 0.2),
+        guide3: Vector2::new(-0.3, 1.0),
+        load2: rng.load(),
+        load3: rng.load(),
+    };
+    let rpp = RppDyad {
+        a: rrr.a,
+        b: rrr.b,
+        guide: Vector2::new(1.0, 0.2),
+        slot: rrr.a - rrr.b,
+        load2: rng.load(),
+        load3: rng.load(),
+    };
     let loads = [rng.load(), rng.load()];
     let o1 = Point2::origin();
     let gear = GearDrive::at_angle(o1, 0.2, 3.0, 0.35);
@@ -83,6 +99,20 @@ fn per_call(c: &mut Criterion) {
         b.iter(|| {
             let d = black_box(&rrp);
             general_solve::rrp(d.a, d.b, d.guide, &d.load2, &d.load3)
+        })
+    });
+    g.bench_function("prp/closed_form", |b| b.iter(|| black_box(&prp).solve()));
+    g.bench_function("prp/general_lu", |b| {
+        b.iter(|| {
+            let d = black_box(&prp);
+            general_solve::prp(d.b, d.guide2, d.guide3, &d.load2, &d.load3)
+        })
+    });
+    g.bench_function("rpp/closed_form", |b| b.iter(|| black_box(&rpp).solve()));
+    g.bench_function("rpp/general_lu", |b| {
+        b.iter(|| {
+            let d = black_box(&rpp);
+            general_solve::rpp(d.a, d.b, d.guide, d.slot, &d.load2, &d.load3)
         })
     });
     g.bench_function("rpr/closed_form", |b| b.iter(|| black_box(&rpr).solve()));

@@ -13,6 +13,10 @@
 //!   acceleration, and [`LinkMotion::motion_of`] for any point of a link (centres of mass,
 //!   coupler points). Their outputs are what [`Load::inertia`](crate::Load::inertia) and the
 //!   kinetostatic solvers take;
+//! - [`prp_dyad`] (two sliders hinged together, each on a guide of a known link) and
+//!   [`rpp_dyad`] (a link hinged at A sliding in a link that slides on a guide, as in the
+//!   Scotch yoke): the two slides with their relative velocities and accelerations and the
+//!   Coriolis terms on turning guides;
 //! - transfer functions ([`transfer_functions`], [`Motion::at_input_speed`]);
 //! - a cycle of positions ([`cycle`]), where a linkage locks ([`assembly_range`]), extreme
 //!   positions ([`extreme_positions`]), the strokes and the 12 plans ([`Strokes`]);
@@ -22,6 +26,8 @@
 //! velocities grow like 1/det near a dead point, and at a dead point the block returns
 //! [`Error::Singular`](crate::Error::Singular) instead of an infinity. A position that cannot
 //! be assembled is [`Error::NotAssemblable`](crate::Error::NotAssemblable) with the gap.
+//! PRP and RPP report sin(φg3 − φg2) (the angle between the two guides) and sin α (between
+//! the slide and the guide, a constant of the design) the same way; they always assemble.
 //!
 //! # Example: a crank-rocker four-bar
 //! Frame O C = 0.4 m along +x, crank 0.1 m, coupler 0.35 m, rocker 0.3 m, the crank at 60°
@@ -56,6 +62,8 @@ mod extreme;
 mod link;
 mod motion;
 mod numeric;
+mod prp;
+mod rpp;
 mod rpr;
 mod rrp;
 mod rrr;
@@ -71,6 +79,8 @@ pub use extreme::{extreme_positions, Extreme, ExtremeKind, Rotation, Strokes};
 pub use link::LinkMotion;
 pub use motion::{Motion, PointMotion};
 pub use numeric::{differentiate, differentiate_periodic, integrate_trapezoid};
+pub use prp::{prp_dyad, PrpState};
+pub use rpp::{rpp_dyad, RppState};
 pub use rpr::{rpr_dyad, RprState};
 pub use rrp::{rrp_dyad, Guide, RrpState};
 pub use rrr::{rrr_dyad, RrrState};

@@ -19,6 +19,8 @@
 //! | RRR (SR1) | [`RrrDyad`] | links 2 and 3 collinear: sin(φ3 − φ2) = 0 |
 //! | RRP (SR2) | [`RrpDyad`] | link 2 perpendicular to the guide: cos(φ2 − φ4) = 0 |
 //! | RPR (SR3) | [`RprDyad`] | the hinge A on the normal to the axis through E: l_EA = 0 |
+//! | PRP | [`PrpDyad`] | the two guides parallel: sin(φg3 − φg2) = 0 |
+//! | RPP | [`RppDyad`] | the slide parallel to the guide: sin α = 0 (a constant of the design) |
 //! | gear input (SRWL1) | [`GearDrive`] | zero arm of the tooth force: r_w·cos α_w = 0 |
 //! | coupling input (SRWL2) | [`CouplingDrive`] | never |
 //!
@@ -29,6 +31,8 @@ mod conditioning;
 mod coupling;
 mod gear;
 pub mod passive;
+mod prp;
+mod rpp;
 mod rpr;
 mod rrp;
 mod rrr;
@@ -36,6 +40,8 @@ mod rrr;
 pub use conditioning::Conditioning;
 pub use coupling::{CouplingBalance, CouplingDrive, CouplingSeed};
 pub use gear::{Flank, GearBalance, GearDrive, GearSeed};
+pub use prp::{PrpDyad, PrpReactions};
+pub use rpp::{RppDyad, RppReactions};
 pub use rpr::{RprDyad, RprReactions, RprSeed};
 pub use rrp::{RrpDyad, RrpReactions, RrpSeed};
 pub use rrr::{RrrDyad, RrrReactions, RrrSeed};

@@ -2,6 +2,7 @@
 //! virtual power, the seeds' own (corrected) scalar formulas, and behaviour at singularities.
 
 mod general_solve;
+mod prismatic;
 mod seed_formulas;
 mod strategies;
 
