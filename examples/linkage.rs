@@ -18,7 +18,10 @@ const BUNDLED: &str = include_str!("../linkages/shaper.json");
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let (text, source) = match std::env::args().nth(1) {
         Some(path) => (fs::read_to_string(&path)?, path),
-        None => (BUNDLED.to_owned(), "linkages/shaper.json (bundled)".to_owned()),
+        None => (
+            BUNDLED.to_owned(),
+            "linkages/shaper.json (bundled)".to_owned(),
+        ),
     };
     let linkage = Linkage::from_json(&text)?;
     let plan = Plan::new(&linkage)?;
@@ -26,10 +29,18 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     println!(
         "mobility W = {} (Chebyshev); groups in attachment order: {}",
         plan.mobility(),
-        plan.groups().iter().map(|g| g.name.as_str()).collect::<Vec<_>>().join(", ")
+        plan.groups()
+            .iter()
+            .map(|g| g.name.as_str())
+            .collect::<Vec<_>>()
+            .join(", ")
     );
     let speed = linkage.speed.unwrap_or(10.0);
-    let rotation = if speed < 0.0 { Rotation::Cw } else { Rotation::Ccw };
+    let rotation = if speed < 0.0 {
+        Rotation::Cw
+    } else {
+        Rotation::Ccw
+    };
     let inputs = match (&linkage.output, plan.input_is_crank()) {
         (Some(out), true) => {
             let s = plan.strokes(out, rotation)?;
@@ -43,8 +54,16 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         }
         _ => (0..12)
             .map(|k| {
-                let step = if plan.input_is_crank() { TAU / 12.0 } else { 0.01 };
-                Motion::new(plan.reference_input() + speed.signum() * step * f64::from(k), speed, 0.0)
+                let step = if plan.input_is_crank() {
+                    TAU / 12.0
+                } else {
+                    0.01
+                };
+                Motion::new(
+                    plan.reference_input() + speed.signum() * step * f64::from(k),
+                    speed,
+                    0.0,
+                )
             })
             .collect(),
     };

@@ -86,7 +86,9 @@ fn lu_difference(plan: &Plan, a: &tmm::linkage::Analysis<'_>) -> f64 {
         } else {
             a.guide_direction(
                 (0..nj)
-                    .find(|&j| plan.joint_links(j).contains(&input) && plan.joint_links(j).contains(&0))
+                    .find(|&j| {
+                        plan.joint_links(j).contains(&input) && plan.joint_links(j).contains(&0)
+                    })
                     .unwrap(),
             )
         };
@@ -114,11 +116,17 @@ fn lu_difference(plan: &Plan, a: &tmm::linkage::Analysis<'_>) -> f64 {
         let c_engine = load.moment + cross(load.point - at, load.force);
         let arm = plan.size();
         scale = scale.max(f.norm()).max(load.force.norm());
-        worst = worst.max((f - load.force).norm()).max((c - c_engine).abs() / arm);
+        worst = worst
+            .max((f - load.force).norm())
+            .max((c - c_engine).abs() / arm);
         let _ = p;
     }
     let drive = x[col];
-    let engine = if crank_coupling { b.value } else { b.force.dot(&drive_dir) };
+    let engine = if crank_coupling {
+        b.value
+    } else {
+        b.force.dot(&drive_dir)
+    };
     let drive_scale = if crank_coupling { plan.size() } else { 1.0 };
     scale = scale.max(drive.abs() / drive_scale);
     worst = worst.max((drive - engine).abs() / drive_scale);
@@ -138,7 +146,10 @@ fn bundled_linkages_agree_with_the_whole_system_virtual_power_and_equilibrium() 
             vp = vp.max(a.power_check().unwrap().relative_error());
             eq = eq.max(a.worst_residual());
         }
-        report.push(format!("{}: LU {lu:.1e}, virtual power {vp:.1e}, equilibrium {eq:.1e}", l.name));
+        report.push(format!(
+            "{}: LU {lu:.1e}, virtual power {vp:.1e}, equilibrium {eq:.1e}",
+            l.name
+        ));
         assert!(lu < 1e-11, "{}: LU {lu:e}", l.name);
         assert!(vp < 1e-9, "{}: virtual power {vp:e}", l.name);
         assert!(eq < 1e-12, "{}: equilibrium {eq:e}", l.name);
@@ -210,7 +221,11 @@ fn pt() -> impl Strategy<Value = [f64; 2]> {
 /// A Stephenson III or Watt six-bar (or a four-bar when `six` is false) through random poses.
 fn random_linkage(points: Vec<[f64; 2]>, watt: bool, six: bool, masses: Vec<f64>) -> Linkage {
     let names = ["O1", "A", "B", "O3", "C", "D", "O5"];
-    let joints: Vec<Joint> = names.iter().zip(&points).map(|(n, p)| Joint::revolute(n, *p)).collect();
+    let joints: Vec<Joint> = names
+        .iter()
+        .zip(&points)
+        .map(|(n, p)| Joint::revolute(n, *p))
+        .collect();
     let mass = |k: usize, a: [f64; 2], b: [f64; 2]| Mass::rod(masses[k], a, b);
     let mut links = vec![
         Link::new("frame", &["O1", "O3"]),
@@ -222,7 +237,8 @@ fn random_linkage(points: Vec<[f64; 2]>, watt: bool, six: bool, masses: Vec<f64>
     } else if watt {
         // C on the coupler, D free, O5 on the rocker: E→G and F→G of a Watt chain.
         links.push(Link::new("coupler", &["A", "B", "C"]).with_mass(mass(1, points[1], points[4])));
-        links.push(Link::new("rocker", &["O3", "B", "O5"]).with_mass(mass(2, points[3], points[6])));
+        links
+            .push(Link::new("rocker", &["O3", "B", "O5"]).with_mass(mass(2, points[3], points[6])));
         links.push(Link::new("link 4", &["C", "D"]).with_mass(mass(3, points[4], points[5])));
         links.push(Link::new("link 5", &["O5", "D"]).with_mass(mass(4, points[6], points[5])));
     } else {
@@ -239,8 +255,15 @@ fn random_linkage(points: Vec<[f64; 2]>, watt: bool, six: bool, masses: Vec<f64>
         links,
         input: Input::crank("crank"),
         loads: vec![
-            LoadSpec::Moment { link: last.to_owned(), moment: masses[0] * 10.0 - 20.0 },
-            LoadSpec::Force { link: "coupler".to_owned(), at: At::name("B"), force: [masses[1] * 30.0, -50.0] },
+            LoadSpec::Moment {
+                link: last.to_owned(),
+                moment: masses[0] * 10.0 - 20.0,
+            },
+            LoadSpec::Force {
+                link: "coupler".to_owned(),
+                at: At::name("B"),
+                force: [masses[1] * 30.0, -50.0],
+            },
         ],
         ..Linkage::default()
     }
@@ -301,7 +324,10 @@ fn bad_descriptions_name_the_joint_link_or_field() {
     l.links[3].joints.pop();
     check(l, "link rocker", "at least two");
     let mut l = base.clone();
-    l.joints[2].kind = tmm::linkage::JointKind::Prismatic { guide: "rocker".into(), direction: [0.0, 0.0] };
+    l.joints[2].kind = tmm::linkage::JointKind::Prismatic {
+        guide: "rocker".into(),
+        direction: [0.0, 0.0],
+    };
     check(l, "joint B", "non-zero");
     let mut l = base.clone();
     l.joints[1].at[0] = f64::NAN;
@@ -313,10 +339,18 @@ fn bad_descriptions_name_the_joint_link_or_field() {
     l.input = Input::crank("coupler");
     check(l, "link coupler", "joints with the frame");
     let mut l = base.clone();
-    l.input.drive = Drive::Gear { pitch_radius: 0.1, pitch_angle: 0.0, pressure_angle: 2.0 };
+    l.input.drive = Drive::Gear {
+        pitch_radius: 0.1,
+        pitch_angle: 0.0,
+        pressure_angle: 2.0,
+    };
     check(l, "input.drive", "pressure_angle");
     let mut l = base.clone();
-    l.loads.push(LoadSpec::Force { link: "rocker".into(), at: At::name("Z"), force: [1.0, 0.0] });
+    l.loads.push(LoadSpec::Force {
+        link: "rocker".into(),
+        at: At::name("Z"),
+        force: [1.0, 0.0],
+    });
     check(l, "load 3", "\"Z\"");
     // A joint listed by three links.
     let mut l = base.clone();
@@ -359,9 +393,17 @@ fn a_dead_point_in_a_cycle_is_an_error_naming_the_group_and_the_cycle_goes_on() 
     };
     let plan = Plan::new(&l).unwrap();
     let e = plan.analyse(Motion::new(0.0, 1.0, 0.0)).unwrap_err();
-    assert!(matches!(e, Error::In { ref part, .. } if part.contains("(coupler, rocker) RRR")), "{e}");
+    assert!(
+        matches!(e, Error::In { ref part, .. } if part.contains("(coupler, rocker) RRR")),
+        "{e}"
+    );
     assert!(plan.analyse(Motion::new(1.0, 1.0, 0.0)).is_ok());
-    let b = plan.analyse(Motion::new(1.0, 1.0, 0.0)).unwrap().joint("B").unwrap().p;
+    let b = plan
+        .analyse(Motion::new(1.0, 1.0, 0.0))
+        .unwrap()
+        .joint("B")
+        .unwrap()
+        .p;
     // The parallelogram keeps its mode: B = A + (0.3, 0).
     assert!((b - Point2::new(0.1f64.mul_add(1f64.cos(), 0.3), 0.1 * 1f64.sin())).norm() < 1e-14);
 }

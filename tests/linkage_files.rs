@@ -6,11 +6,31 @@ use tmm::linkage::{bundled, Linkage};
 
 fn files() -> Vec<(&'static str, &'static str, Linkage)> {
     vec![
-        ("four-bar.json", include_str!("../linkages/four-bar.json"), bundled::four_bar()),
-        ("geared-four-bar.json", include_str!("../linkages/geared-four-bar.json"), bundled::geared_four_bar()),
-        ("watt-six-bar.json", include_str!("../linkages/watt-six-bar.json"), bundled::watt_six_bar()),
-        ("stephenson-six-bar.json", include_str!("../linkages/stephenson-six-bar.json"), bundled::stephenson_six_bar()),
-        ("shaper.json", include_str!("../linkages/shaper.json"), bundled::shaper()),
+        (
+            "four-bar.json",
+            include_str!("../linkages/four-bar.json"),
+            bundled::four_bar(),
+        ),
+        (
+            "geared-four-bar.json",
+            include_str!("../linkages/geared-four-bar.json"),
+            bundled::geared_four_bar(),
+        ),
+        (
+            "watt-six-bar.json",
+            include_str!("../linkages/watt-six-bar.json"),
+            bundled::watt_six_bar(),
+        ),
+        (
+            "stephenson-six-bar.json",
+            include_str!("../linkages/stephenson-six-bar.json"),
+            bundled::stephenson_six_bar(),
+        ),
+        (
+            "shaper.json",
+            include_str!("../linkages/shaper.json"),
+            bundled::shaper(),
+        ),
     ]
 }
 

@@ -62,7 +62,14 @@ impl HandFourBar {
 
     fn balance(&self, i: Motion) -> f64 {
         let c = crank(self.o1, self.l[0], i).unwrap();
-        let g = rrr_dyad(c.a, PointMotion::fixed(self.o3), self.l[1], self.l[2], Branch::Plus).unwrap();
+        let g = rrr_dyad(
+            c.a,
+            PointMotion::fixed(self.o3),
+            self.l[1],
+            self.l[2],
+            Branch::Plus,
+        )
+        .unwrap();
         let j2 = 1.5 * self.l[1] * self.l[1] / 12.0;
         let j3 = 2.0 * self.l[2] * self.l[2] / 12.0;
         let l1 = own(&c.link, 0.0, 0.0, 1.0, 0.002);
@@ -71,9 +78,20 @@ impl HandFourBar {
         l2 = Load::sum_about(&[l2, Load::force_at(e, Vector2::new(0.0, -50.0))], c.a.p);
         let mut l3 = own(&g.link3, self.s3.0, self.s3.1, 2.0, j3);
         l3.moment -= 40.0 * g.link3.omega.signum();
-        let r = RrrDyad { a: c.a.p, b: g.b.p, c: self.o3, load2: l2, load3: l3 }.solve().unwrap();
+        let r = RrrDyad {
+            a: c.a.p,
+            b: g.b.p,
+            c: self.o3,
+            load2: l2,
+            load3: l3,
+        }
+        .solve()
+        .unwrap();
         let l1 = Load::sum_about(&[l1, Load::force_at(c.a.p, -r.r12)], self.o1);
-        CouplingDrive { o1: self.o1 }.solve(&[l1]).unwrap().balancing_moment
+        CouplingDrive { o1: self.o1 }
+            .solve(&[l1])
+            .unwrap()
+            .balancing_moment
     }
 }
 
@@ -86,10 +104,15 @@ fn four_bar(c: &mut Criterion) {
     for &i in &ins {
         a.solve(i).unwrap();
         let (x, y) = (a.balance().value, hand.balance(i));
-        assert!((x - y).abs() <= 1e-9 * x.abs().max(1.0), "hand chain {y} vs engine {x}");
+        assert!(
+            (x - y).abs() <= 1e-9 * x.abs().max(1.0),
+            "hand chain {y} vs engine {x}"
+        );
     }
     let mut g = c.benchmark_group("four_bar_whole_position");
-    g.measurement_time(Duration::from_secs(3)).warm_up_time(Duration::from_millis(500)).sample_size(30);
+    g.measurement_time(Duration::from_secs(3))
+        .warm_up_time(Duration::from_millis(500))
+        .sample_size(30);
     g.throughput(Throughput::Elements(ins.len() as u64));
     g.bench_function("hand_chain", |b| {
         b.iter(|| ins.iter().map(|&i| hand.balance(black_box(i))).sum::<f64>())
@@ -112,7 +135,9 @@ fn six_bar(c: &mut Criterion) {
     let ins = inputs(512);
     let mut a = Analysis::new(&plan);
     let mut g = c.benchmark_group("watt_six_bar_whole_position");
-    g.measurement_time(Duration::from_secs(3)).warm_up_time(Duration::from_millis(500)).sample_size(30);
+    g.measurement_time(Duration::from_secs(3))
+        .warm_up_time(Duration::from_millis(500))
+        .sample_size(30);
     g.throughput(Throughput::Elements(ins.len() as u64));
     g.bench_function("engine", |b| {
         b.iter(|| {

@@ -149,12 +149,21 @@ impl<'p> Analysis<'p> {
             applied: Vec::with_capacity(n + plan.loads.len() * 2),
             acc: vec![Load::zero(Point2::origin()); n],
             reactions: vec![zero; plan.joints.len()],
-            conditioning: vec![Conditioning { measure: 1.0, condition: 1.0 }; plan.groups.len()],
+            conditioning: vec![
+                Conditioning {
+                    measure: 1.0,
+                    condition: 1.0
+                };
+                plan.groups.len()
+            ],
             balance: Balance {
                 value: 0.0,
                 force: Vector2::zeros(),
                 point: Point2::origin(),
-                conditioning: Conditioning { measure: 1.0, condition: 1.0 },
+                conditioning: Conditioning {
+                    measure: 1.0,
+                    condition: 1.0,
+                },
             },
             statics_done: false,
         }
@@ -186,7 +195,9 @@ impl<'p> Analysis<'p> {
                     epsilon: input.accel,
                 };
             }
-            InputPlan::Slider { link, at, angle, .. } => {
+            InputPlan::Slider {
+                link, at, angle, ..
+            } => {
                 let d = unit(angle);
                 let o = PointMotion::new(at + input.value * d, input.rate * d, input.accel * d);
                 o.validate(["slider x", "slider y", "v.x", "v.y", "a.x", "a.y"])?;
@@ -269,7 +280,8 @@ impl<'p> Analysis<'p> {
                 }
                 LoadPlan::Moment { link, moment } => {
                     let p = self.links[*link].origin.p;
-                    self.applied.push((*link, Load::new(p, Vector2::zeros(), *moment)));
+                    self.applied
+                        .push((*link, Load::new(p, Vector2::zeros(), *moment)));
                 }
                 LoadPlan::Turning {
                     link,
@@ -307,7 +319,10 @@ impl<'p> Analysis<'p> {
                     let p = self.joint_index_on(*joint, slider).p;
                     let f = diagram
                         .force(head * s.value, head * s.rate, *head * d, ends[0], ends[1])
-                        .map_err(within(&format!("piston of joint {}", plan.joint_names[*joint])))?;
+                        .map_err(within(&format!(
+                            "piston of joint {}",
+                            plan.joint_names[*joint]
+                        )))?;
                     self.applied.push((slider, Load::force_at(p, f)));
                 }
                 LoadPlan::Custom { link, f } => {
@@ -347,37 +362,109 @@ impl<'p> Analysis<'p> {
             GroupKind::Rrr => {
                 let b = self.joint_index_on(jb, l2).p;
                 let c = self.links[l3].origin.p;
-                let r = RrrDyad { a, b, c, load2, load3 }
-                    .solve()
-                    .map_err(within(name))?;
+                let r = RrrDyad {
+                    a,
+                    b,
+                    c,
+                    load2,
+                    load3,
+                }
+                .solve()
+                .map_err(within(name))?;
                 (
-                    Reaction { by: ka, on: l2, force: r.r12, point: a, moment: 0.0 },
-                    Reaction { by: l2, on: l3, force: r.r23, point: b, moment: 0.0 },
-                    Reaction { by: kc, on: l3, force: r.r43, point: c, moment: 0.0 },
+                    Reaction {
+                        by: ka,
+                        on: l2,
+                        force: r.r12,
+                        point: a,
+                        moment: 0.0,
+                    },
+                    Reaction {
+                        by: l2,
+                        on: l3,
+                        force: r.r23,
+                        point: b,
+                        moment: 0.0,
+                    },
+                    Reaction {
+                        by: kc,
+                        on: l3,
+                        force: r.r43,
+                        point: c,
+                        moment: 0.0,
+                    },
                     r.conditioning,
                 )
             }
             GroupKind::Rrp => {
                 let b = self.links[l3].origin.p;
-                let r = RrpDyad { a, b, guide: self.links[l3].unit(), load2, load3 }
-                    .solve()
-                    .map_err(within(name))?;
+                let r = RrpDyad {
+                    a,
+                    b,
+                    guide: self.links[l3].unit(),
+                    load2,
+                    load3,
+                }
+                .solve()
+                .map_err(within(name))?;
                 (
-                    Reaction { by: ka, on: l2, force: r.r12, point: a, moment: 0.0 },
-                    Reaction { by: l2, on: l3, force: r.r23, point: b, moment: 0.0 },
-                    Reaction { by: kc, on: l3, force: r.r43, point: b, moment: r.guide_moment },
+                    Reaction {
+                        by: ka,
+                        on: l2,
+                        force: r.r12,
+                        point: a,
+                        moment: 0.0,
+                    },
+                    Reaction {
+                        by: l2,
+                        on: l3,
+                        force: r.r23,
+                        point: b,
+                        moment: 0.0,
+                    },
+                    Reaction {
+                        by: kc,
+                        on: l3,
+                        force: r.r43,
+                        point: b,
+                        moment: r.guide_moment,
+                    },
                     r.conditioning,
                 )
             }
             GroupKind::Rpr => {
                 let c = self.links[l3].origin.p;
-                let r = RprDyad { a, e: c, axis: self.links[l2].unit(), load2, load3 }
-                    .solve()
-                    .map_err(within(name))?;
+                let r = RprDyad {
+                    a,
+                    e: c,
+                    axis: self.links[l2].unit(),
+                    load2,
+                    load3,
+                }
+                .solve()
+                .map_err(within(name))?;
                 (
-                    Reaction { by: ka, on: l2, force: r.r12, point: a, moment: 0.0 },
-                    Reaction { by: l3, on: l2, force: r.r32, point: a, moment: r.couple },
-                    Reaction { by: kc, on: l3, force: r.r43, point: c, moment: 0.0 },
+                    Reaction {
+                        by: ka,
+                        on: l2,
+                        force: r.r12,
+                        point: a,
+                        moment: 0.0,
+                    },
+                    Reaction {
+                        by: l3,
+                        on: l2,
+                        force: r.r32,
+                        point: a,
+                        moment: r.couple,
+                    },
+                    Reaction {
+                        by: kc,
+                        on: l3,
+                        force: r.r43,
+                        point: c,
+                        moment: 0.0,
+                    },
                     r.conditioning,
                 )
             }
@@ -397,21 +484,55 @@ impl<'p> Analysis<'p> {
         let load = self.acc[link];
         let part = &plan.link_names[link];
         match plan.input {
-            InputPlan::Crank { joint, pivot, drive, .. } => {
+            InputPlan::Crank {
+                joint,
+                pivot,
+                drive,
+                ..
+            } => {
                 let (value, force, at, r01, conditioning) = match drive {
                     Drive::Coupling => {
-                        let b = CouplingDrive { o1: pivot }.solve(&[load]).map_err(within(part))?;
-                        (b.balancing_moment, Vector2::zeros(), pivot, b.r01, b.conditioning)
+                        let b = CouplingDrive { o1: pivot }
+                            .solve(&[load])
+                            .map_err(within(part))?;
+                        (
+                            b.balancing_moment,
+                            Vector2::zeros(),
+                            pivot,
+                            b.r01,
+                            b.conditioning,
+                        )
                     }
-                    Drive::Gear { pitch_radius, pitch_angle, pressure_angle } => {
-                        let d = GearDrive::at_angle(pivot, pitch_radius, pitch_angle, pressure_angle);
+                    Drive::Gear {
+                        pitch_radius,
+                        pitch_angle,
+                        pressure_angle,
+                    } => {
+                        let d =
+                            GearDrive::at_angle(pivot, pitch_radius, pitch_angle, pressure_angle);
                         let b = d.solve(&[load]).map_err(within(part))?;
-                        (b.balancing_moment, b.force, d.pitch_point, b.r01, b.conditioning)
+                        (
+                            b.balancing_moment,
+                            b.force,
+                            d.pitch_point,
+                            b.r01,
+                            b.conditioning,
+                        )
                     }
                 };
-                self.reactions[joint] =
-                    Reaction { by: 0, on: link, force: r01, point: pivot, moment: 0.0 };
-                self.balance = Balance { value, force, point: at, conditioning };
+                self.reactions[joint] = Reaction {
+                    by: 0,
+                    on: link,
+                    force: r01,
+                    point: pivot,
+                    moment: 0.0,
+                };
+                self.balance = Balance {
+                    value,
+                    force,
+                    point: at,
+                    conditioning,
+                };
             }
             InputPlan::Slider { joint, angle, .. } => {
                 let d = unit(angle);
@@ -429,11 +550,17 @@ impl<'p> Analysis<'p> {
                     value: fb,
                     force: fb * d,
                     point: load.point,
-                    conditioning: Conditioning { measure: 1.0, condition: 1.0 },
+                    conditioning: Conditioning {
+                        measure: 1.0,
+                        condition: 1.0,
+                    },
                 };
                 let all = [fb, normal.x, normal.y, load.moment];
                 if !all.iter().all(|v| v.is_finite()) {
-                    return Err(within(part)(Error::NonFinite { name: "balancing force", value: fb }));
+                    return Err(within(part)(Error::NonFinite {
+                        name: "balancing force",
+                        value: fb,
+                    }));
                 }
             }
         }
@@ -530,7 +657,11 @@ impl<'p> Analysis<'p> {
             return (jp.links[0], jp.links[1], Vector2::zeros());
         };
         let guide = jp.links[g];
-        (jp.links[1 - g], guide, unit(self.links[guide].angle + offsets[g]))
+        (
+            jp.links[1 - g],
+            guide,
+            unit(self.links[guide].angle + offsets[g]),
+        )
     }
 
     /// The current unit direction of the guide of prismatic joint `j` (zero for a revolute
@@ -621,9 +752,10 @@ impl<'p> Analysis<'p> {
     pub fn drive_load(&self) -> Load {
         let b = &self.balance;
         match self.plan.input {
-            InputPlan::Crank { drive: Drive::Coupling, .. } => {
-                Load::new(b.point, Vector2::zeros(), b.value)
-            }
+            InputPlan::Crank {
+                drive: Drive::Coupling,
+                ..
+            } => Load::new(b.point, Vector2::zeros(), b.value),
             _ => Load::force_at(b.point, b.force),
         }
     }
@@ -657,7 +789,10 @@ impl<'p> Analysis<'p> {
         let pole = self.links[k].origin.p;
         let sum = Load::sum_about(&all, pole);
         let fs = all.iter().map(|l| l.force.norm()).fold(0.0, f64::max);
-        let arm = all.iter().map(|l| (l.point - pole).norm()).fold(0.0, f64::max);
+        let arm = all
+            .iter()
+            .map(|l| (l.point - pole).norm())
+            .fold(0.0, f64::max);
         let ms = all.iter().map(|l| l.moment.abs()).fold(fs * arm, f64::max);
         let rel = |r: f64, s: f64| if s > 0.0 { r / s } else { r };
         rel(sum.force.norm(), fs).max(rel(sum.moment.abs(), ms))
@@ -696,7 +831,10 @@ impl<'p> Analysis<'p> {
         let (sum, abs) = self.powers();
         let (vp, scale) = (-sum / q, abs / q.abs());
         if !(vp.is_finite() && scale.is_finite()) {
-            return Err(Error::NonFinite { name: "virtual power", value: vp });
+            return Err(Error::NonFinite {
+                name: "virtual power",
+                value: vp,
+            });
         }
         Ok(PowerCheck {
             chain: self.balance.value,

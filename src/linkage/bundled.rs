@@ -86,8 +86,16 @@ pub fn watt_six_bar() -> Linkage {
         links: vec![
             Link::new("frame", &["O1", "O3"]),
             Link::new("crank", &["O1", "A"]).with_mass(Mass::new(1.0, 0.002, At::Coords(o1))),
-            Link::new("coupler", &["A", "B", "E"]).with_mass(Mass::new(3.0, 0.02, At::Coords([0.21, 0.25]))),
-            Link::new("rocker", &["O3", "B", "F"]).with_mass(Mass::new(2.5, 0.015, At::Coords([0.4, 0.19]))),
+            Link::new("coupler", &["A", "B", "E"]).with_mass(Mass::new(
+                3.0,
+                0.02,
+                At::Coords([0.21, 0.25]),
+            )),
+            Link::new("rocker", &["O3", "B", "F"]).with_mass(Mass::new(
+                2.5,
+                0.015,
+                At::Coords([0.4, 0.19]),
+            )),
             Link::new("link 4", &["E", "G"]).with_mass(rod(1.0, e, g)),
             Link::new("link 5", &["F", "G"]).with_mass(rod(1.0, f, g)),
         ],
@@ -109,7 +117,11 @@ pub fn watt_six_bar() -> Linkage {
 #[must_use]
 pub fn stephenson_six_bar() -> Linkage {
     let (o1, a, b, o3) = ([0.0, 0.0], [0.0, 0.1], [0.3, 0.35], [0.35, 0.0]);
-    let (c, d, o5) = ([0.2, 0.5], [0.6245894940175953, 0.6490763615395896], [0.65, 0.3]);
+    let (c, d, o5) = (
+        [0.2, 0.5],
+        [0.6245894940175953, 0.6490763615395896],
+        [0.65, 0.3],
+    );
     Linkage {
         name: "Stephenson III six-bar".to_owned(),
         joints: ["O1", "A", "B", "O3", "C", "D", "O5"]
@@ -120,7 +132,11 @@ pub fn stephenson_six_bar() -> Linkage {
         links: vec![
             Link::new("frame", &["O1", "O3", "O5"]),
             Link::new("crank", &["O1", "A"]).with_mass(Mass::new(1.0, 0.002, At::Coords(o1))),
-            Link::new("coupler", &["A", "B", "C"]).with_mass(Mass::new(2.0, 0.012, At::Coords([0.17, 0.32]))),
+            Link::new("coupler", &["A", "B", "C"]).with_mass(Mass::new(
+                2.0,
+                0.012,
+                At::Coords([0.17, 0.32]),
+            )),
             Link::new("rocker", &["O3", "B"]).with_mass(rod(1.5, o3, b)),
             Link::new("link 4", &["C", "D"]).with_mass(rod(1.0, c, d)),
             Link::new("link 5", &["O5", "D"]).with_mass(rod(1.2, o5, d)),

@@ -5,8 +5,8 @@ use super::analysis::Analysis;
 use super::plan::Plan;
 use crate::error::{Error, Result};
 use crate::kinematics::{
-    assembly_range, cycle_angles, extreme_positions, transfer_functions, Extreme, Motion,
-    Rotation, Strokes,
+    assembly_range, cycle_angles, extreme_positions, transfer_functions, Extreme, Motion, Rotation,
+    Strokes,
 };
 
 /// An output coordinate of a linkage, for its extreme positions and strokes.

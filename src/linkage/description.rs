@@ -151,7 +151,10 @@ impl Joint {
 /// The kind of a joint.
 #[derive(Debug, Clone, PartialEq, Default)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
-#[cfg_attr(feature = "serde", serde(rename_all = "snake_case", deny_unknown_fields))]
+#[cfg_attr(
+    feature = "serde",
+    serde(rename_all = "snake_case", deny_unknown_fields)
+)]
 pub enum JointKind {
     /// A hinge: the two links turn relative to each other about the joint.
     #[default]
@@ -307,7 +310,10 @@ impl Input {
 /// How a crank is driven, for its kinetostatics (the last step of the analysis).
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
-#[cfg_attr(feature = "serde", serde(rename_all = "snake_case", deny_unknown_fields))]
+#[cfg_attr(
+    feature = "serde",
+    serde(rename_all = "snake_case", deny_unknown_fields)
+)]
 pub enum Drive {
     /// Through a coupling on its shaft: a balancing moment (the seeds' SRWL2).
     #[default]
@@ -351,7 +357,10 @@ enum BranchDef {
 /// An external load of the linkage.
 #[derive(Debug, Clone, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
-#[cfg_attr(feature = "serde", serde(rename_all = "snake_case", deny_unknown_fields))]
+#[cfg_attr(
+    feature = "serde",
+    serde(rename_all = "snake_case", deny_unknown_fields)
+)]
 pub enum LoadSpec {
     /// A constant force (fixed direction in the plane) at a point of a link, N.
     Force {

@@ -3,7 +3,7 @@
 //!
 //! The engine works in three steps:
 //! 1. a **description** ([`Linkage`]): plain data a person writes, in Rust or as a JSON file
-//!    (feature `serde`, see [`Linkage::from_json`] and `docs/linkage-format.md`) — joints
+//!    (feature `serde`, `Linkage::from_json`; the format is in `docs/linkage-format.md`) — joints
 //!    with their coordinates in a reference pose, links as sets of joints and named points,
 //!    the input and its drive, masses and loads;
 //! 2. a **plan** ([`Plan::new`]), made once: the structure (the mobility by Chebyshev's
@@ -49,10 +49,12 @@ mod structure;
 mod table;
 
 pub use analysis::{Analysis, Balance, PowerCheck, Reaction};
-pub use cycle::{course_inputs, run_cycle, uniform_inputs, Output};
 #[cfg(feature = "rayon")]
 pub use cycle::run_cycle_parallel;
-pub use description::{At, Drive, Input, Joint, JointKind, Link, Linkage, LoadSpec, Mass, Mode, NamedPoint};
+pub use cycle::{course_inputs, run_cycle, uniform_inputs, Output};
+pub use description::{
+    At, Drive, Input, Joint, JointKind, Link, Linkage, LoadSpec, Mass, Mode, NamedPoint,
+};
 pub use indicator::IndicatorDiagram;
 pub use plan::{Group, GroupKind, Plan};
 pub use structure::chebyshev;

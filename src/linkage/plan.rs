@@ -1,3 +1,4 @@
+#![allow(clippy::neg_cmp_op_on_partial_ord)] // `!(x > 0.0)` rejects NaN too, on purpose.
 //! The solve plan made once from a description: indices instead of names, lengths and local
 //! coordinates read off the reference pose, assembly modes, the groups in attachment order and
 //! the loads with the links they act on. Everything that can be wrong with a description is
@@ -15,6 +16,9 @@ use nalgebra::{Point2, Vector2};
 use std::collections::HashMap;
 use std::fmt;
 use std::sync::Arc;
+
+/// A user's load as a function of the kinematic state.
+type LoadFnBox = Arc<dyn Fn(&Analysis<'_>) -> Result<Load> + Send + Sync>;
 
 /// The kind of an Assur dyad of the 2nd class, by its joints from one outer joint through the
 /// inner joint to the other (R revolute, P prismatic).
@@ -106,7 +110,7 @@ pub(crate) struct PointPlan {
 
 /// A user-supplied load: a function of the kinematic state at a position.
 #[derive(Clone)]
-pub(crate) struct LoadFn(pub Arc<dyn Fn(&Analysis<'_>) -> Result<Load> + Send + Sync>);
+pub(crate) struct LoadFn(pub LoadFnBox);
 
 impl fmt::Debug for LoadFn {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
@@ -386,7 +390,9 @@ impl Plan {
                 let pivot = at(input_joint);
                 let item = format!("link {}", link_names[input]);
                 let reference = reference_direction(linkage, &order, input, &names, &item)?
-                    .ok_or_else(|| bad(&item, "the crank's joints coincide: it has no direction"))?;
+                    .ok_or_else(|| {
+                        bad(&item, "the crank's joints coincide: it has no direction")
+                    })?;
                 frames[input] = Frame {
                     origin: pivot,
                     angle: reference,
@@ -421,7 +427,15 @@ impl Plan {
         };
         let mut groups = Vec::with_capacity(dyads.len());
         for d in &dyads {
-            groups.push(plan_group(d, &edges, &link_names, linkage, &mut frames, &at, &dir)?);
+            groups.push(plan_group(
+                d,
+                &edges,
+                &link_names,
+                linkage,
+                &mut frames,
+                &at,
+                &dir,
+            )?);
         }
 
         // Local coordinates of joints and points.
@@ -462,10 +476,9 @@ impl Plan {
             .joints
             .iter()
             .flat_map(|j| {
-                linkage
-                    .joints
-                    .iter()
-                    .map(move |k| ((j.at[0] - k.at[0]).powi(2) + (j.at[1] - k.at[1]).powi(2)).sqrt())
+                linkage.joints.iter().map(move |k| {
+                    ((j.at[0] - k.at[0]).powi(2) + (j.at[1] - k.at[1]).powi(2)).sqrt()
+                })
             })
             .fold(0.0, f64::max);
         if !size.is_finite() {
@@ -579,11 +592,25 @@ impl Plan {
                 },
                 360,
             )
-            .map_err(|e| bad(&name, format!("its piston's dead centres cannot be found: {e}")))?;
-            let hi = ext.iter().map(|e| e.output.value).fold(f64::NEG_INFINITY, f64::max);
-            let lo = ext.iter().map(|e| e.output.value).fold(f64::INFINITY, f64::min);
+            .map_err(|e| {
+                bad(
+                    &name,
+                    format!("its piston's dead centres cannot be found: {e}"),
+                )
+            })?;
+            let hi = ext
+                .iter()
+                .map(|e| e.output.value)
+                .fold(f64::NEG_INFINITY, f64::max);
+            let lo = ext
+                .iter()
+                .map(|e| e.output.value)
+                .fold(f64::INFINITY, f64::min);
             if !(hi > lo) {
-                return Err(bad(name, "the piston has no stroke over a turn of the input"));
+                return Err(bad(
+                    name,
+                    "the piston has no stroke over a turn of the input",
+                ));
             }
             if let LoadPlan::Indicator { ends, .. } = &mut self.loads[k] {
                 *ends = [hi, lo];
@@ -718,7 +745,12 @@ impl Plan {
         self.point_names
             .iter()
             .position(|n| n == name)
-            .ok_or_else(|| bad(format!("point {name}"), "is not a named point of this linkage"))
+            .ok_or_else(|| {
+                bad(
+                    format!("point {name}"),
+                    "is not a named point of this linkage",
+                )
+            })
     }
 
     /// The link a named point belongs to and its local coordinates, for [`LinkMotion::point_at`].
@@ -759,7 +791,10 @@ fn check_drive(drive: &Drive) -> Result<()> {
     {
         let item = "field input.drive";
         if !(finite_num(item, "pitch_radius", pitch_radius)? > 0.0) {
-            return Err(bad(item, format!("pitch_radius must be > 0, got {pitch_radius}")));
+            return Err(bad(
+                item,
+                format!("pitch_radius must be > 0, got {pitch_radius}"),
+            ));
         }
         finite_num(item, "pitch_angle", pitch_angle)?;
         let a = finite_num(item, "pressure_angle", pressure_angle)?;
@@ -842,7 +877,10 @@ fn place(
                 return if link_index[k] == li {
                     Ok(p)
                 } else {
-                    Err(bad(item, format!("{field} names point {n}, which is on another link")))
+                    Err(bad(
+                        item,
+                        format!("{field} names point {n}, which is on another link"),
+                    ))
                 };
             }
             match names.joints.get(n.as_str()) {
@@ -877,7 +915,10 @@ fn reference_direction(
                 return Ok(p);
             }
         }
-        Err(bad(item, format!("reference names \"{n}\", which is not on this link")))
+        Err(bad(
+            item,
+            format!("reference names \"{n}\", which is not on this link"),
+        ))
     };
     let (a, b) = match &link.reference {
         Some([a, b]) => (pos(a)?, pos(b)?),
@@ -959,7 +1000,10 @@ fn plan_group(
     let need_mode = |what: &str| {
         bad(
             name.clone(),
-            format!("{what} in the reference pose; give its assembly mode in `modes` (joint {})", linkage.joints[joints[1]].name),
+            format!(
+                "{what} in the reference pose; give its assembly mode in `modes` (joint {})",
+                linkage.joints[joints[1]].name
+            ),
         )
     };
     let mut lengths = [0.0; 2];
@@ -971,8 +1015,14 @@ fn plan_group(
             if !(lengths[0] > 0.0 && lengths[1] > 0.0) {
                 return Err(bad(name, "has a link of zero length in the reference pose"));
             }
-            frames[links[0]] = Frame { origin: a, angle: direction(b - a) };
-            frames[links[1]] = Frame { origin: c, angle: direction(b - c) };
+            frames[links[0]] = Frame {
+                origin: a,
+                angle: direction(b - a),
+            };
+            frames[links[1]] = Frame {
+                origin: c,
+                angle: direction(b - c),
+            };
             let side = cross(c - a, b - a);
             branch = match mode {
                 Some(m) => m,
@@ -988,8 +1038,14 @@ fn plan_group(
             }
             let g = dir(joints[2]);
             let ga = direction(g);
-            frames[links[0]] = Frame { origin: a, angle: direction(b - a) };
-            frames[links[1]] = Frame { origin: b, angle: ga };
+            frames[links[0]] = Frame {
+                origin: a,
+                angle: direction(b - a),
+            };
+            frames[links[1]] = Frame {
+                origin: b,
+                angle: ga,
+            };
             guide_offset = ga - frames[known[1]].angle;
             let ahead = (b - a).dot(&g);
             branch = match mode {
@@ -1002,7 +1058,10 @@ fn plan_group(
         GroupKind::Rpr => {
             let ac = c - a;
             if !(ac.norm() > 0.0) {
-                return Err(bad(name, "has its two hinges at one place in the reference pose"));
+                return Err(bad(
+                    name,
+                    "has its two hinges at one place in the reference pose",
+                ));
             }
             let u = dir(joints[1]);
             if cross(u / u.norm(), ac).abs() > 1e-9 * ac.norm() {
@@ -1012,8 +1071,14 @@ fn plan_group(
                      (an offset axis is not supported)",
                 ));
             }
-            frames[links[0]] = Frame { origin: a, angle: direction(ac) };
-            frames[links[1]] = Frame { origin: c, angle: direction(-ac) };
+            frames[links[0]] = Frame {
+                origin: a,
+                angle: direction(ac),
+            };
+            frames[links[1]] = Frame {
+                origin: c,
+                angle: direction(-ac),
+            };
             branch = Branch::Plus;
         }
     }
@@ -1067,7 +1132,10 @@ fn plan_load(
             let backward = non_negative(&item, "backward", *backward)?;
             if let Some(&j) = names.joints.get(on.as_str()) {
                 let Some((side, _)) = plan.joints[j].prismatic else {
-                    return Err(bad(&item, format!("resists joint {on}, which is not prismatic")));
+                    return Err(bad(
+                        &item,
+                        format!("resists joint {on}, which is not prismatic"),
+                    ));
                 };
                 let slider = plan.joints[j].links[1 - side];
                 let local = match at {
@@ -1107,7 +1175,10 @@ fn plan_load(
                 return Err(bad(&item, format!("head must be +1 or −1, got {head}")));
             }
             if !(diagram.area.is_finite() && diagram.area > 0.0) {
-                return Err(bad(&item, format!("diagram.area must be > 0, got {}", diagram.area)));
+                return Err(bad(
+                    &item,
+                    format!("diagram.area must be > 0, got {}", diagram.area),
+                ));
             }
             LoadPlan::Indicator {
                 joint: j,

@@ -179,7 +179,15 @@ mod tests {
     fn a_third_class_group_is_named() {
         // Crank 1 drives link 3; a ternary link 2 is hinged to 3, 4 and 5; 4 and 5 are hinged
         // to the frame: a group of the 3rd class (four links, six joints), W = 3·5 − 2·7 = 1.
-        let e = [r(0, 1), r(1, 3), r(3, 2), r(2, 4), r(2, 5), r(4, 0), r(5, 0)];
+        let e = [
+            r(0, 1),
+            r(1, 3),
+            r(3, 2),
+            r(2, 4),
+            r(2, 5),
+            r(4, 0),
+            r(5, 0),
+        ];
         let err = decompose(&e, &names(6), 1, &[]).unwrap_err().to_string();
         assert!(err.contains("links 2, 3, 4, 5"), "{err}");
         assert!(err.contains("W = 1"), "{err}");

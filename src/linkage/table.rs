@@ -86,11 +86,20 @@ impl Tabulate for Analysis<'_> {
                 let label = format!("R({},{})@{name}", links[re.by], links[re.on]);
                 push_vector(&mut r, &label, "N", re.force);
                 if plan.is_prismatic(j) {
-                    push(&mut r, &format!("M({},{})@{name}", links[re.by], links[re.on]), "N*m", re.moment);
+                    push(
+                        &mut r,
+                        &format!("M({},{})@{name}", links[re.by], links[re.on]),
+                        "N*m",
+                        re.moment,
+                    );
                 }
             }
             let b = self.balance();
-            let (name, unit) = if plan.input_is_crank() { ("Mb", "N*m") } else { ("Fb", "N") };
+            let (name, unit) = if plan.input_is_crank() {
+                ("Mb", "N*m")
+            } else {
+                ("Fb", "N")
+            };
             push(&mut r, name, unit, b.value);
             let vp = self.power_check().map_or(f64::NAN, |c| c.virtual_power);
             push(&mut r, &format!("{name} (virtual power)"), unit, vp);
