@@ -91,7 +91,7 @@ pub(crate) fn reference_pose<T>(pose: impl Fn(f64) -> Result<(T, f64)>) -> Optio
         if q >= 0.2 {
             return Some((phi, t));
         }
-        if best.as_ref().map_or(true, |b| q > b.1) {
+        if best.as_ref().is_none_or(|b| q > b.1) {
             best = Some((phi, q, t));
         }
     }
