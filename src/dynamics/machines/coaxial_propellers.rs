@@ -5,7 +5,7 @@ use nalgebra::{Matrix2, Vector2};
 use super::{gear_inertia, GearLink, LinearMotor};
 use crate::dynamics::stepper::check_result;
 use crate::dynamics::system::{checked_inertia, LagrangeSystem, State};
-use crate::error::{finite, positive, Result};
+use crate::error::{computed, computed_all, finite, positive, Result};
 
 /// One motor drives two counter-rotating propellers through a differential: sun z1 (the
 /// input, on the motor shaft), a block of k planets z2–z3 on the carrier H (the front
@@ -137,6 +137,9 @@ impl CoaxialPropellers {
         positive("I2", self.i2)?;
         positive("I4", self.i4)?;
         positive("IH", self.ih)?;
+        self.motor.check()?;
+        finite("(M_on)4", self.m_on4)?;
+        finite("(M_on)H", self.m_onh)?;
         Ok(())
     }
 
@@ -172,7 +175,9 @@ impl CoaxialPropellers {
     /// [`Error::NonPositive`](crate::Error::NonPositive) for a non-positive datum.
     pub fn inertia_matrix(&self) -> Result<Matrix2<f64>> {
         self.check()?;
-        Ok(gear_inertia(&self.links()))
+        let a = gear_inertia(&self.links());
+        computed_all("inertia matrix", a.iter())?;
+        Ok(a)
     }
 
     /// `true` when the resisting moments stand in the gear ratio, so that a steady state
@@ -194,18 +199,23 @@ impl CoaxialPropellers {
     /// motor or resisting moment; [`Error::NonPositive`](crate::Error::NonPositive) for a motor slope b < 0 (its moment
     /// grows with speed and the motion runs away: nothing to tend to).
     pub fn drift_acceleration(&self) -> Result<Vector2<f64>> {
-        let (k, lambda, c) = self.linear_parts()?;
+        let (_, _, c, w) = self.linear_parts()?;
         if self.motor.b == 0.0 {
             return Ok(c);
         }
         positive("motor slope b", self.motor.b)?;
-        // λ = b·uᵀA⁻¹u > 0 here (A⁻¹ is positive-definite).
-        Ok(c - k * c / lambda)
+        // c − K c/λ = c − w·(uᵀc)/(uᵀw) with w = A⁻¹u: b cancels, so a tiny slope cannot
+        // overflow (uᵀw > 0 because A⁻¹ is positive-definite).
+        let u = self.input_ratios();
+        let drift = c - w * (u.dot(&c) / u.dot(&w));
+        computed_all("drift acceleration", drift.iter())?;
+        Ok(drift)
     }
 
     /// v̇ = −K v + c with K = b·A⁻¹u uᵀ (rank one, K² = λK, λ = b·uᵀA⁻¹u) and
     /// c = A⁻¹(a·u + M_on).
-    fn linear_parts(&self) -> Result<(Matrix2<f64>, f64, Vector2<f64>)> {
+    /// Also returns w = A⁻¹u.
+    fn linear_parts(&self) -> Result<(Matrix2<f64>, f64, Vector2<f64>, Vector2<f64>)> {
         finite("motor a", self.motor.a)?;
         finite("motor b", self.motor.b)?;
         finite("(M_on)4", self.m_on4)?;
@@ -218,7 +228,9 @@ impl CoaxialPropellers {
         let k = self.motor.b * w * u.transpose();
         let lambda = self.motor.b * u.dot(&w);
         let c = inv * (self.motor.a * u + Vector2::new(self.m_on4, self.m_onh));
-        Ok((k, lambda, c))
+        computed_all("linear parts K, c", k.iter().chain(c.iter()))?;
+        computed("lambda = b*u'A^-1 u", lambda)?;
+        Ok((k, lambda, c, w))
     }
 
     /// The exact motion at time `t` from the state `start` (a closed form of the linear
@@ -250,7 +262,7 @@ impl CoaxialPropellers {
     /// assert!((s.qd - qd).norm() < 1e-9 * qd.norm());
     /// ```
     pub fn exact(&self, start: &State, t: f64) -> Result<State> {
-        let (k, lambda, c) = self.linear_parts()?;
+        let (k, lambda, c, _) = self.linear_parts()?;
         finite("t", t)?;
         check_result(*start)?;
         let tau = t - start.t;
@@ -278,9 +290,12 @@ impl LagrangeSystem for CoaxialPropellers {
     }
 
     fn forces(&self, _t: f64, _q: &Vector2<f64>, qd: &Vector2<f64>) -> Result<Vector2<f64>> {
+        self.check()?;
         let u = self.input_ratios();
-        let mp1 = self.motor.torque(u.dot(qd));
-        Ok(mp1 * u + Vector2::new(self.m_on4, self.m_onh))
+        let mp1 = self.motor.torque(u.dot(qd))?;
+        let q = mp1 * u + Vector2::new(self.m_on4, self.m_onh);
+        computed_all("generalized forces", q.iter())?;
+        Ok(q)
     }
 
     fn output_names(&self) -> Vec<&'static str> {
@@ -294,16 +309,19 @@ impl LagrangeSystem for CoaxialPropellers {
         qd: &Vector2<f64>,
         out: &mut Vec<f64>,
     ) -> Result<()> {
+        self.check()?;
         let u = self.input_ratios();
         let w1 = u.dot(qd);
-        out.extend([
+        let values = [
             u.dot(q),
             w1,
             self.planet_ratios().dot(qd),
             qd[0],
             qd[1],
-            self.motor.torque(w1),
-        ]);
+            self.motor.torque(w1)?,
+        ];
+        computed_all("coaxial propellers' outputs", values.iter())?;
+        out.extend(values);
         Ok(())
     }
 }
