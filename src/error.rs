@@ -158,6 +158,20 @@ pub(crate) fn computed_all<'a>(
     }
 }
 
+/// The length of a vector made of finite inputs, which must be positive: [`Error::Overflow`]
+/// when it overflows (components beyond about 1.3·10¹⁵⁴), [`Error::NonPositive`] when it is
+/// zero, [`Error::NonFinite`] when a component is not finite.
+pub(crate) fn length(name: &'static str, v: nalgebra::Vector2<f64>) -> Result<f64> {
+    if !(v.x.is_finite() && v.y.is_finite()) {
+        return Err(Error::Overflow { what: name });
+    }
+    let l = v.norm();
+    if !l.is_finite() {
+        return Err(Error::Overflow { what: name });
+    }
+    positive(name, l)
+}
+
 /// Checks that both components of a point or vector are finite.
 pub(crate) fn finite2(
     names: [&'static str; 2],

@@ -5,14 +5,45 @@ use crate::error::{finite, Error, Result};
 use nalgebra::Point2;
 use std::f64::consts::TAU;
 
+/// The most positions a cycle may have (2²⁴, about 16.8 million): a bound on the memory and
+/// time of [`cycle`], [`try_cycle_angles`] and [`Strokes::try_plan_positions`](super::Strokes::try_plan_positions).
+pub const MAX_POSITIONS: usize = 1 << 24;
+
+/// Checks a number of positions: 1 ≤ n ≤ [`MAX_POSITIONS`].
+pub(crate) fn check_positions(n: usize) -> Result<()> {
+    if n == 0 || n > MAX_POSITIONS {
+        return Err(Error::OutOfRange {
+            name: "number of positions",
+            value: n as f64,
+            min: 1.0,
+            max: MAX_POSITIONS as f64,
+        });
+    }
+    Ok(())
+}
+
 /// The input angles of `n` equally spaced positions over one turn, starting at `start`:
 /// φk = start + k·2π/n (k = 0 … n−1), each in [0, 2π). With `n = 12` and `start` at the
 /// beginning of the working stroke these are the 12 plans of a course project (see
 /// [`Strokes::plan_positions`](super::Strokes::plan_positions) for a crank turning clockwise).
+///
+/// Input that has no angles gives none: an empty vector for `n = 0`, `n` above
+/// [`MAX_POSITIONS`] or a non-finite `start` (never a NaN). [`try_cycle_angles`] says why.
 #[must_use]
 pub fn cycle_angles(n: usize, start: f64) -> Vec<f64> {
-    let step = TAU / n.max(1) as f64;
-    (0..n).map(|k| normalize(start + k as f64 * step)).collect()
+    try_cycle_angles(n, start).unwrap_or_default()
+}
+
+/// As [`cycle_angles`], with an error for input that has no angles.
+///
+/// # Errors
+/// [`Error::NonFinite`] for a non-finite `start`; [`Error::OutOfRange`] for `n = 0` or `n`
+/// above [`MAX_POSITIONS`].
+pub fn try_cycle_angles(n: usize, start: f64) -> Result<Vec<f64>> {
+    finite("start angle", start)?;
+    check_positions(n)?;
+    let step = TAU / n as f64;
+    Ok((0..n).map(|k| normalize(start + k as f64 * step)).collect())
 }
 
 /// Evaluates a mechanism at `n` equally spaced input angles over one turn, from `start`.
@@ -37,7 +68,8 @@ pub fn cycle_angles(n: usize, start: f64) -> Vec<f64> {
 /// ```
 ///
 /// # Errors
-/// [`Error::OutOfRange`] for `n = 0`, [`Error::NonFinite`] for a non-finite `start`. When a
+/// [`Error::OutOfRange`] for `n = 0` or above [`MAX_POSITIONS`], [`Error::NonFinite`] for a
+/// non-finite `start`. When a
 /// position fails, [`Error::In`] names it and, when the linkage cannot be assembled there,
 /// the input angle at which it locks (found by bisection to machine precision); the source is
 /// the position's own error.
@@ -46,16 +78,9 @@ where
     F: FnMut(f64) -> Result<S>,
 {
     finite("start angle", start)?;
-    if n == 0 {
-        return Err(Error::OutOfRange {
-            name: "number of positions",
-            value: 0.0,
-            min: 1.0,
-            max: f64::INFINITY,
-        });
-    }
+    check_positions(n)?;
     let step = TAU / n as f64;
-    let mut out = Vec::with_capacity(n);
+    let mut out = Vec::with_capacity(n.min(4096));
     for k in 0..n {
         let phi = start + k as f64 * step;
         match mechanism(phi) {
