@@ -228,7 +228,10 @@ pub fn solve_contour(vectors: &[LoopVector], branch: Branch) -> Result<ContourSo
     let (kr, kv, ka) = known_sums(vectors, holders);
     computed_all("sum of the known loop vectors", kr.iter())?;
     let (x, y) = checked_position(vectors, slots, case, branch, -kr)?;
-    computed_all("rates of the known loop vectors", kv.iter().chain(ka.iter()))?;
+    computed_all(
+        "rates of the known loop vectors",
+        kv.iter().chain(ka.iter()),
+    )?;
     let mut m = [Motion::fixed(x), Motion::fixed(y)];
     // The vectors holding the unknowns (one vector in the polar case), with their unit
     // vectors computed once.

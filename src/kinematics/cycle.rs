@@ -140,6 +140,13 @@ where
 /// which the linkage locks, to machine precision. A non-Grashof four-bar's input rocks between
 /// them.
 ///
+/// Only [`Error::NotAssemblable`] counts as "cannot assemble": a position that is
+/// [`Error::Singular`] (a dead point, or an isolated branch point where the two assembly
+/// modes touch) is assembled, only not solvable for its velocities. A failure that the
+/// mechanism recovers from within [`ISOLATED_GAP`] rad (rounding at a tangent closure, where
+/// the closure's discriminant touches zero) is an isolated branch point, not a lock, so the
+/// answer does not depend on whether the scan happens to land on it.
+///
 /// # Examples
 /// A non-Grashof four-bar (frame 0.3 m, crank 0.2 m, coupler 0.08 m, rocker 0.15 m): the
 /// dyad closes while |AC| ≤ 0.23 m, so the input rocks between ±arccos(0.0771/0.12).
@@ -161,22 +168,39 @@ where
 ///
 /// # Errors
 /// [`Error::NonFinite`] for a non-finite `phi`; the mechanism's own error if it fails at
-/// `phi` itself.
+/// `phi` itself (other than [`Error::Singular`]).
 pub fn assembly_range<S, F>(phi: f64, mut mechanism: F) -> Result<Option<(f64, f64)>>
 where
     F: FnMut(f64) -> Result<S>,
 {
     finite("phi", phi)?;
-    mechanism(phi)?;
+    match mechanism(phi) {
+        Ok(_) | Err(Error::Singular { .. }) => {}
+        Err(e) => return Err(e),
+    }
     const STEPS: usize = 720;
     let step = TAU / STEPS as f64;
-    let mut ok = |x: f64| mechanism(x).is_ok();
+    let mut ok = |x: f64| matches!(mechanism(x), Ok(_) | Err(Error::Singular { .. }));
+    // A lock at the failure `x` (reached from `x - dir·step`), or None for an isolated point.
+    let lock_at = |ok: &mut dyn FnMut(f64) -> bool, x: f64, dir: f64| -> Option<f64> {
+        let scale = x.abs().max(1.0);
+        let mut d = 1e-13 * scale;
+        while d <= ISOLATED_GAP * scale {
+            if ok(x + dir * d) {
+                return None;
+            }
+            d *= 4.0;
+        }
+        Some(boundary(&mut *ok, x - dir * step, x))
+    };
     let mut upper = None;
     for k in 1..=STEPS {
         let x = phi + k as f64 * step;
         if !ok(x) {
-            upper = Some(boundary(&mut ok, x - step, x));
-            break;
+            if let Some(b) = lock_at(&mut ok, x, 1.0) {
+                upper = Some(b);
+                break;
+            }
         }
     }
     let Some(upper) = upper else {
@@ -186,12 +210,18 @@ where
     for k in 1..=STEPS {
         let x = phi - k as f64 * step;
         if !ok(x) {
-            lower = boundary(&mut ok, x + step, x);
-            break;
+            if let Some(b) = lock_at(&mut ok, x, -1.0) {
+                lower = b;
+                break;
+            }
         }
     }
     Ok(Some((lower, upper)))
 }
+
+/// The widest gap in assembly (rad, relative to max(1, |φ|)) that [`assembly_range`] takes
+/// for rounding at an isolated branch point rather than for a lock: 10⁻⁶.
+pub const ISOLATED_GAP: f64 = 1e-6;
 
 /// Bisection for the boundary between `good` (assembles) and `bad` (does not), to the last
 /// bit of the input angle.

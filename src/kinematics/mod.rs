@@ -67,7 +67,8 @@ pub use contour::{
 };
 pub use crank::{crank, CrankState};
 pub use cycle::{
-    assembly_range, coupler_curve, cycle, cycle_angles, try_cycle_angles, MAX_POSITIONS,
+    assembly_range, coupler_curve, cycle, cycle_angles, try_cycle_angles, ISOLATED_GAP,
+    MAX_POSITIONS,
 };
 pub use extreme::{extreme_positions, Extreme, ExtremeKind, Rotation, Strokes};
 pub use link::LinkMotion;

@@ -132,7 +132,9 @@ impl RprDyad {
             WHAT,
             MEASURE,
             l_ea / rho,
-            &[r12.x, r12.y, r32.x, r32.y, r43.x, r43.y, r12_n, r12_t, r32_n, couple],
+            &[
+                r12.x, r12.y, r32.x, r32.y, r43.x, r43.y, r12_n, r12_t, r32_n, couple,
+            ],
         )?;
         let arm = Some(couple / r32_n).filter(|h| h.is_finite());
         Ok(RprReactions {

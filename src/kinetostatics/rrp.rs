@@ -120,7 +120,18 @@ impl RrpDyad {
             WHAT,
             MEASURE,
             det,
-            &[r12.x, r12.y, r43.x, r43.y, r23.x, r23.y, r12_n, r12_t, r43_n, guide_moment],
+            &[
+                r12.x,
+                r12.y,
+                r43.x,
+                r43.y,
+                r23.x,
+                r23.y,
+                r12_n,
+                r12_t,
+                r43_n,
+                guide_moment,
+            ],
         )?;
         let offset = Some(guide_moment / r43_n).filter(|h| h.is_finite());
         Ok(RrpReactions {

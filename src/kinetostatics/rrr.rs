@@ -113,7 +113,9 @@ impl RrrDyad {
             WHAT,
             MEASURE,
             det,
-            &[r12.x, r12.y, r43.x, r43.y, r23.x, r23.y, r12_n, r12_t, r43_n, r43_t],
+            &[
+                r12.x, r12.y, r43.x, r43.y, r23.x, r23.y, r12_n, r12_t, r43_n, r43_t,
+            ],
         )?;
         Ok(RrrReactions {
             r12,
