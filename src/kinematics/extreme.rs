@@ -84,24 +84,30 @@ impl Rotation {
 /// ```
 ///
 /// # Errors
-/// [`Error::OutOfRange`] for fewer than 3 samples; the output's error at any sample (a
+/// [`Error::OutOfRange`] for fewer than 3 samples or more than
+/// [`MAX_POSITIONS`](super::MAX_POSITIONS); [`Error::NonFinite`] for an output that is not
+/// finite; the output's error at any sample (a
 /// mechanism that cannot make full turns has no cycle to search).
 pub fn extreme_positions<F>(mut transfer: F, samples: usize) -> Result<Vec<Extreme>>
 where
     F: FnMut(f64) -> Result<Motion>,
 {
-    if samples < 3 {
+    if !(3..=super::MAX_POSITIONS).contains(&samples) {
         return Err(Error::OutOfRange {
             name: "samples",
             value: samples as f64,
             min: 3.0,
-            max: f64::INFINITY,
+            max: super::MAX_POSITIONS as f64,
         });
     }
     let step = TAU / samples as f64;
     let at = |k: usize| k as f64 * step;
     let values = (0..samples)
-        .map(|k| transfer(at(k)))
+        .map(|k| {
+            let m = transfer(at(k))?;
+            m.validate(["output", "output rate", "output accel"])?;
+            Ok(m)
+        })
         .collect::<Result<Vec<_>>>()?;
     let mut out = Vec::new();
     for k in 0..samples {

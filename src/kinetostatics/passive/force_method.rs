@@ -6,7 +6,7 @@ use super::diagrams::{DiagramExtremes, InternalForces, LinkCase};
 use super::geometry::{Frame, Geometry, Link, Side, WHAT};
 use super::loads::Loads;
 use super::statics::{released, Reactions};
-use crate::error::{finite, positive, Error, Result};
+use crate::error::{positive, Error, Result};
 use crate::kinetostatics::Conditioning;
 use nalgebra::{Point2, Vector2};
 
