@@ -129,7 +129,7 @@ fn save(
     chart(
         &dir.join(format!("{name}.svg")),
         title,
-        &r.trajectory.t(),
+        r.trajectory.t(),
         &top,
         &bottom,
         units,

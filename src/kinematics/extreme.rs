@@ -252,7 +252,7 @@ impl Strokes {
         };
         let idle = TAU - working;
         // Extremes at the same input angle (to rounding) have no idle stroke: no time ratio.
-        if !(idle > 4.0 * f64::EPSILON * TAU) {
+        if idle.is_nan() || idle <= 4.0 * f64::EPSILON * TAU {
             return Err(Error::Singular {
                 what: "strokes",
                 measure: "angle between the extreme positions",

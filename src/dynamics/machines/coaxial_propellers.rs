@@ -81,6 +81,9 @@ impl Default for CoaxialPropellers {
     }
 }
 
+/// K, λ, c and w = A⁻¹u of [`CoaxialPropellers::linear_parts`].
+type LinearParts = (Matrix2<f64>, f64, Vector2<f64>, Vector2<f64>);
+
 /// (1 − e^(−x))/x, (x − 1 + e^(−x))/x², (x²/2 − x + 1 − e^(−x))/x³, by series near 0.
 fn phi_functions(x: f64) -> (f64, f64, f64) {
     if x.abs() < 0.1 {
@@ -215,7 +218,7 @@ impl CoaxialPropellers {
     /// v̇ = −K v + c with K = b·A⁻¹u uᵀ (rank one, K² = λK, λ = b·uᵀA⁻¹u) and
     /// c = A⁻¹(a·u + M_on).
     /// Also returns w = A⁻¹u.
-    fn linear_parts(&self) -> Result<(Matrix2<f64>, f64, Vector2<f64>, Vector2<f64>)> {
+    fn linear_parts(&self) -> Result<LinearParts> {
         finite("motor a", self.motor.a)?;
         finite("motor b", self.motor.b)?;
         finite("(M_on)4", self.m_on4)?;
