@@ -834,3 +834,27 @@ fn assembly_range_tells_a_branch_point_from_a_lock() {
     .unwrap();
     assert!(r.is_some());
 }
+
+#[test]
+fn coaxial_closed_form_holds_at_large_lambda_t() {
+    // A stiff motor: λτ in the thousands. The exact motion composes with itself (the flow
+    // property) to 1e-12 relative, which the old form lost to cancellation of terms ~2e7.
+    let mut cp = CoaxialPropellers::default();
+    cp.motor.b = 1200.0;
+    cp.motor.a = 1200.0 * 1100.0;
+    let s0 = State::new(0.0, Vector2::zeros(), Vector2::new(-10.0, 10.0));
+    let direct = cp.exact(&s0, 20.0).unwrap();
+    let mid = cp.exact(&s0, 7.0).unwrap();
+    let composed = cp.exact(&mid, 20.0).unwrap();
+    for i in 0..2 {
+        let scale = direct.q[i].abs().max(1.0);
+        assert!(
+            (direct.q[i] - composed.q[i]).abs() <= 1e-12 * scale,
+            "q{i}: {} vs {}",
+            direct.q[i],
+            composed.q[i]
+        );
+        let scale = direct.qd[i].abs().max(1.0);
+        assert!((direct.qd[i] - composed.qd[i]).abs() <= 1e-12 * scale);
+    }
+}

@@ -265,16 +265,35 @@ impl CoaxialPropellers {
     /// assert!((s.qd - qd).norm() < 1e-9 * qd.norm());
     /// ```
     pub fn exact(&self, start: &State, t: f64) -> Result<State> {
-        let (k, lambda, c, _) = self.linear_parts()?;
+        let (k, lambda, c, w) = self.linear_parts()?;
         finite("t", t)?;
         check_result(*start)?;
         let tau = t - start.t;
-        let (f1, f2, f3) = phi_functions(lambda * tau);
+        let x = lambda * tau;
+        let (f1, f2, f3) = phi_functions(x);
         let (q0, v0) = (start.q, start.qd);
-        let qd = v0 + c * tau - tau * f1 * (k * v0) - tau * tau * f2 * (k * c);
-        let q = q0 + v0 * tau + 0.5 * c * tau * tau
-            - tau * tau * f2 * (k * v0)
-            - tau.powi(3) * f3 * (k * c);
+        if self.motor.b == 0.0 || !x.is_finite() {
+            let qd = v0 + c * tau - tau * f1 * (k * v0) - tau * tau * f2 * (k * c);
+            let q = q0 + v0 * tau + 0.5 * c * tau * tau
+                - tau * tau * f2 * (k * v0)
+                - tau.powi(3) * f3 * (k * c);
+            return check_result(State::new(t, q, qd));
+        }
+        // With the projector P = K/λ = w uᵀ/(uᵀw) and x f2 = 1 − f1, x f3 = ½ − f2, the same
+        // closed form splits into the undamped part (I − P) and the damped part P, with no
+        // terms that grow like τ² and cancel (1e-12 relative at large λτ):
+        // q̇ = (I−P)(v0 + cτ) + P(e⁻ˣ v0 + τ f1 c),
+        // q  = q0 + (I−P)(v0 τ + cτ²/2) + P(τ f1 v0 + τ² f2 c).
+        let u = self.input_ratios();
+        let p = |v: Vector2<f64>| w * (u.dot(&v) / u.dot(&w));
+        let (pv, pc) = (p(v0), p(c));
+        let decay = (-x).exp();
+        let qd = (v0 - pv) + (c - pc) * tau + pv * decay + pc * (tau * f1);
+        let q = q0
+            + (v0 - pv) * tau
+            + (c - pc) * (0.5 * tau * tau)
+            + pv * (tau * f1)
+            + pc * (tau * tau * f2);
         check_result(State::new(t, q, qd))
     }
 }
