@@ -79,25 +79,25 @@ fn series<'a>(
     extra_pos: &[&str],
     extra_speed: &[&str],
 ) -> (Vec<Series<'a>>, Vec<Series<'a>>) {
-    let [a, b] = tr.coordinate_names;
+    let [a, b] = tr.coordinate_names();
     let mut top = vec![
         Series {
             label: a.into(),
-            y: &tr.q[0],
+            y: &tr.q()[0],
         },
         Series {
             label: b.into(),
-            y: &tr.q[1],
+            y: &tr.q()[1],
         },
     ];
     let mut bottom = vec![
         Series {
             label: format!("{a}_dot"),
-            y: &tr.qd[0],
+            y: &tr.qd()[0],
         },
         Series {
             label: format!("{b}_dot"),
-            y: &tr.qd[1],
+            y: &tr.qd()[1],
         },
     ];
     for n in extra_pos {
@@ -129,7 +129,7 @@ fn save(
     chart(
         &dir.join(format!("{name}.svg")),
         title,
-        &r.trajectory.t,
+        r.trajectory.t(),
         &top,
         &bottom,
         units,
@@ -169,8 +169,8 @@ fn five_bar(dir: &Path) -> Res<()> {
     println!(
         "  {} steps; φ1 = {:.3}°, φ4 = {:.3}°, B = ({:.4}, {:.4}) m; smallest |sin(φ3 − φ2)| on the way {:.3}",
         r.steps,
-        tr.q[0][n].to_degrees(),
-        tr.q[1][n].to_degrees(),
+        tr.q()[0][n].to_degrees(),
+        tr.q()[1][n].to_degrees(),
         tr.output("x_B").map_or(f64::NAN, |c| c[n]),
         tr.output("y_B").map_or(f64::NAN, |c| c[n]),
         worst_sin
@@ -312,8 +312,8 @@ fn coaxial(dir: &Path) -> Res<()> {
     println!(
         "  loads in the gear ratio: {}; φ̇4 = {:.2}, φ̇H = {:.2}, φ̇1 = {:.2} rad/s",
         describe(&r.outcome),
-        r.trajectory.qd[0][n],
-        r.trajectory.qd[1][n],
+        r.trajectory.qd()[0][n],
+        r.trajectory.qd()[1][n],
         r.trajectory.output("omega_1").map_or(f64::NAN, |c| c[n])
     );
     save(

@@ -95,6 +95,25 @@ pub enum Error {
         problem: String,
     },
 
+    /// A computed quantity overflowed (or lost all meaning) although every input was finite:
+    /// the inputs are too large (or too small) for `f64` at this point.
+    #[error("{what} overflows for these inputs")]
+    Overflow {
+        /// The quantity that overflowed.
+        what: &'static str,
+    },
+
+    /// A run used up its budget of steps, evaluations or recorded rows before it ended.
+    #[error("{what} budget of {limit} exhausted at t = {time} s")]
+    Budget {
+        /// The budget used up (for example `"step"` or `"evaluation"`).
+        what: &'static str,
+        /// Its limit.
+        limit: usize,
+        /// The time the run had reached, s.
+        time: f64,
+    },
+
     /// An error inside one named part of a larger analysis (for example one group of a
     /// mechanism at one position).
     #[error("{part}: {source}")]
@@ -182,6 +201,41 @@ pub(crate) fn all_finite(named: &[(&'static str, f64)]) -> Result<()> {
     named
         .iter()
         .try_for_each(|&(name, v)| finite(name, v).map(|_| ()))
+}
+
+/// Checks that a value computed from finite inputs is finite: [`Error::Overflow`] otherwise.
+pub(crate) fn computed(what: &'static str, value: f64) -> Result<f64> {
+    if value.is_finite() {
+        Ok(value)
+    } else {
+        Err(Error::Overflow { what })
+    }
+}
+
+/// As [`computed`], for every component of a vector or matrix.
+pub(crate) fn computed_all<'a>(
+    what: &'static str,
+    values: impl IntoIterator<Item = &'a f64>,
+) -> Result<()> {
+    if values.into_iter().all(|v| v.is_finite()) {
+        Ok(())
+    } else {
+        Err(Error::Overflow { what })
+    }
+}
+
+/// The length of a vector made of finite inputs, which must be positive: [`Error::Overflow`]
+/// when it overflows (components beyond about 1.3·10¹⁵⁴), [`Error::NonPositive`] when it is
+/// zero, [`Error::NonFinite`] when a component is not finite.
+pub(crate) fn length(name: &'static str, v: nalgebra::Vector2<f64>) -> Result<f64> {
+    if !(v.x.is_finite() && v.y.is_finite()) {
+        return Err(Error::Overflow { what: name });
+    }
+    let l = v.norm();
+    if !l.is_finite() {
+        return Err(Error::Overflow { what: name });
+    }
+    positive(name, l)
 }
 
 /// Checks that both components of a point or vector are finite.

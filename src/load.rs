@@ -129,7 +129,8 @@ impl Load {
     /// ```
     ///
     /// # Errors
-    /// A negative or non-finite mass or moment of inertia, or a non-finite acceleration.
+    /// A negative or non-finite mass or moment of inertia, or a non-finite acceleration;
+    /// [`Error::Overflow`](crate::Error::Overflow) when the force or the couple overflows.
     pub fn inertia(
         centre: Point2<f64>,
         mass: f64,
@@ -142,11 +143,11 @@ impl Load {
         finite2(["a_S.x", "a_S.y"], accel_centre)?;
         finite("epsilon", angular_accel)?;
         finite2(["S.x", "S.y"], centre.coords)?;
-        Ok(Self::new(
-            centre,
-            -mass * accel_centre,
-            -inertia_centre * angular_accel,
-        ))
+        let force = -mass * accel_centre;
+        let moment = -inertia_centre * angular_accel;
+        crate::error::computed_all("inertia force -m*a_S", force.iter())?;
+        crate::error::computed("inertia couple -J_S*epsilon", moment)?;
+        Ok(Self::new(centre, force, moment))
     }
 }
 

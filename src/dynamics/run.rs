@@ -59,7 +59,9 @@ pub struct Steady {
     pub hold: f64,
 }
 
-/// How a run is done and when it stops. The final time always bounds the run.
+/// How a run is done and when it stops. The final time always bounds the run, and so do
+/// three budgets (steps, evaluations, recorded rows) whose exhaustion is an
+/// [`Error::Budget`] naming the time reached: no run is endless or takes unbounded memory.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct RunOptions {
     /// The latest time, s; the run stops there if nothing else stopped it.
@@ -72,10 +74,26 @@ pub struct RunOptions {
     pub reach: Option<Reach>,
     /// Stop at a steady state.
     pub steady: Option<Steady>,
+    /// The most accepted steps the run may take (default
+    /// [`DEFAULT_MAX_STEPS`](Self::DEFAULT_MAX_STEPS)).
+    pub max_steps: usize,
+    /// The most evaluations of the accelerations the stepper may spend, rejected trial steps
+    /// included (default [`DEFAULT_MAX_EVALUATIONS`](Self::DEFAULT_MAX_EVALUATIONS)).
+    pub max_evaluations: usize,
+    /// The most rows the trajectory may hold, start and end included (default
+    /// [`DEFAULT_MAX_ROWS`](Self::DEFAULT_MAX_ROWS)); record fewer with `record_every`.
+    pub max_rows: usize,
 }
 
 impl RunOptions {
-    /// Run to `t_end` with steps `h`, recording every step.
+    /// The default step budget: ten million steps.
+    pub const DEFAULT_MAX_STEPS: usize = 10_000_000;
+    /// The default evaluation budget: a hundred million evaluations.
+    pub const DEFAULT_MAX_EVALUATIONS: usize = 100_000_000;
+    /// The default row budget: a million rows (some 100–200 MB of columns).
+    pub const DEFAULT_MAX_ROWS: usize = 1_000_000;
+
+    /// Run to `t_end` with steps `h`, recording every step, with the default budgets.
     #[must_use]
     pub fn until(t_end: f64, h: f64) -> Self {
         Self {
@@ -84,6 +102,9 @@ impl RunOptions {
             record_every: 1,
             reach: None,
             steady: None,
+            max_steps: Self::DEFAULT_MAX_STEPS,
+            max_evaluations: Self::DEFAULT_MAX_EVALUATIONS,
+            max_rows: Self::DEFAULT_MAX_ROWS,
         }
     }
 }
@@ -213,7 +234,9 @@ fn locate<S: LagrangeSystem + ?Sized, M: Stepper>(
 /// or hold, or record interval; [`Error::OutOfRange`] for a watched index that does not exist;
 /// [`Error::Singular`] when a step is too short to advance the time
 /// (h below the rounding of t); [`Error::NonFiniteState`] naming the time when the motion
-/// diverges; any error of the system or the method.
+/// diverges (or a recorded quantity overflows); [`Error::Budget`] naming the time reached
+/// when the steps, evaluations or rows of `opts` run out (or [`Error::OutOfRange`] for a row
+/// budget below 2); any error of the system or the method.
 ///
 /// # Examples
 /// A 1 kg slider pushed by 2 N from rest reaches x = 1 m at t = 1 s; with steps of 0.3 s the
@@ -246,6 +269,17 @@ pub fn run<S: LagrangeSystem + ?Sized, M: Stepper>(
     finite("t_end", opts.t_end)?;
     positive("t_end - t_start", opts.t_end - start.t)?;
     positive("record_every", opts.record_every as f64)?;
+    positive("max_steps", opts.max_steps as f64)?;
+    positive("max_evaluations", opts.max_evaluations as f64)?;
+    // The start and the end are always recorded.
+    if opts.max_rows < 2 {
+        return Err(Error::OutOfRange {
+            name: "max_rows",
+            value: opts.max_rows as f64,
+            min: 2.0,
+            max: usize::MAX as f64,
+        });
+    }
     if !start.is_finite() {
         return Err(Error::NonFiniteState { time: start.t });
     }
@@ -297,6 +331,7 @@ pub fn run<S: LagrangeSystem + ?Sized, M: Stepper>(
                   evaluations: usize|
      -> Result<RunResult> {
         if !recorded {
+            // The end may take the row kept free for it.
             traj.push(sys, &last)?;
         }
         Ok(RunResult {
@@ -317,8 +352,22 @@ pub fn run<S: LagrangeSystem + ?Sized, M: Stepper>(
                 },
                 None => Outcome::FinalTime,
             };
-            let recorded = traj.t.last() == Some(&s.t);
+            let recorded = traj.t().last() == Some(&s.t);
             return finish(&mut traj, s, recorded, outcome, steps, evaluations);
+        }
+        if steps >= opts.max_steps {
+            return Err(Error::Budget {
+                what: "step",
+                limit: opts.max_steps,
+                time: s.t,
+            });
+        }
+        if evaluations >= opts.max_evaluations {
+            return Err(Error::Budget {
+                what: "evaluation",
+                limit: opts.max_evaluations,
+                time: s.t,
+            });
         }
         let clamped = h >= remaining;
         let h_try = if clamped { remaining } else { h };
@@ -361,6 +410,14 @@ pub fn run<S: LagrangeSystem + ?Sized, M: Stepper>(
 
         let mut recorded = false;
         if steps % opts.record_every == 0 {
+            // One row stays free for the end.
+            if traj.len() + 1 >= opts.max_rows && (opts.t_end - s1.t) > t_tol {
+                return Err(Error::Budget {
+                    what: "recorded row",
+                    limit: opts.max_rows,
+                    time: s1.t,
+                });
+            }
             traj.push(sys, &s1)?;
             recorded = true;
         }

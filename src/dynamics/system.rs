@@ -15,7 +15,7 @@
 
 use nalgebra::{Matrix2, Vector2};
 
-use crate::error::{finite, finite2, Error, Result};
+use crate::error::{computed_all, finite, finite2, Error, Result};
 
 /// The state of a 2-DOF machine: time, generalized coordinates and their rates.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -180,12 +180,21 @@ pub trait LagrangeSystem {
 /// use nalgebra::{Matrix2, Vector2};
 /// let (m, r) = (2.0, 0.5);
 /// let d_a = [Matrix2::new(0.0, 0.0, 0.0, 2.0 * m * r), Matrix2::zeros()];
-/// let c = tmm::dynamics::christoffel_terms(&d_a, &Vector2::new(3.0, 4.0));
+/// let c = tmm::dynamics::christoffel_terms(&d_a, &Vector2::new(3.0, 4.0)).unwrap();
 /// assert!((c[0] - (-m * r * 16.0)).abs() < 1e-12);
 /// assert!((c[1] - 2.0 * m * r * 3.0 * 4.0).abs() < 1e-12);
 /// ```
-#[must_use]
-pub fn christoffel_terms(d_a: &[Matrix2<f64>; 2], qd: &Vector2<f64>) -> Vector2<f64> {
+///
+/// # Errors
+/// [`Error::NonFinite`] for a non-finite derivative or speed; [`Error::Overflow`] when a term
+/// overflows.
+pub fn christoffel_terms(d_a: &[Matrix2<f64>; 2], qd: &Vector2<f64>) -> Result<Vector2<f64>> {
+    for m in d_a {
+        for &v in m.iter() {
+            finite("dA/dq", v)?;
+        }
+    }
+    finite2(["q1_dot", "q2_dot"], *qd)?;
     let mut c = Vector2::zeros();
     for i in 0..2 {
         let mut s = 0.0;
@@ -197,7 +206,8 @@ pub fn christoffel_terms(d_a: &[Matrix2<f64>; 2], qd: &Vector2<f64>) -> Vector2<
         }
         c[i] = s;
     }
-    c
+    computed_all("Christoffel terms", c.iter())?;
+    Ok(c)
 }
 
 /// Checks that A is symmetric positive-definite (A₁₁ > 0 and det A > 0) and returns its
@@ -256,10 +266,18 @@ pub fn accelerations<S: LagrangeSystem + ?Sized>(
     }
     let (a, det) = checked_inertia(&sys.inertia(q)?, t, q)?;
     let d_a = sys.inertia_derivatives(q)?;
-    let rhs = sys.forces(t, q, qd)?
-        - christoffel_terms(&d_a, qd)
-        - sys.potential_gradient(q)?
-        - sys.damping(q)? * qd;
+    // Every part is checked, so that a NaN a system lets through is named, not hidden in q̈.
+    let non_finite = |e: Error| match e {
+        Error::NonFinite { .. } | Error::Overflow { .. } => Error::NonFiniteState { time: t },
+        e => e,
+    };
+    let forces = sys.forces(t, q, qd)?;
+    computed_all("generalized forces Q", forces.iter()).map_err(non_finite)?;
+    let gradient = sys.potential_gradient(q)?;
+    computed_all("potential gradient", gradient.iter()).map_err(non_finite)?;
+    let damping = sys.damping(q)?;
+    computed_all("damping matrix B", damping.iter()).map_err(non_finite)?;
+    let rhs = forces - christoffel_terms(&d_a, qd).map_err(non_finite)? - gradient - damping * qd;
     // Cramer's rule on the 2×2 system: the determinant is I11·I44 − I14² of the seed.
     let acc = Vector2::new(
         (rhs[0] * a[(1, 1)] - rhs[1] * a[(0, 1)]) / det,
@@ -309,8 +327,13 @@ pub fn powers<S: LagrangeSystem + ?Sized>(
     if !State::new(t, *q, *qd).is_finite() {
         return Err(non_finite);
     }
-    let applied = sys.forces(t, q, qd)?.dot(qd);
-    let dissipated = qd.dot(&(sys.damping(q)? * qd));
+    let forces = sys.forces(t, q, qd)?;
+    let damping = sys.damping(q)?;
+    if !forces.iter().chain(damping.iter()).all(|v| v.is_finite()) {
+        return Err(non_finite);
+    }
+    let applied = forces.dot(qd);
+    let dissipated = qd.dot(&(damping * qd));
     if applied.is_finite() && dissipated.is_finite() {
         Ok((applied, dissipated))
     } else {

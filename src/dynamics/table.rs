@@ -107,7 +107,20 @@ impl Table {
             .partition_point(|&xi| xi <= x)
             .clamp(1, self.x.len() - 1)
             - 1;
-        let s = (x - self.x[i]) / (self.x[i + 1] - self.x[i]);
-        Ok(self.y[i] + s * (self.y[i + 1] - self.y[i]))
+        let (x0, x1, y0, y1) = (self.x[i], self.x[i + 1], self.y[i], self.y[i + 1]);
+        // (x − x0)/(x1 − x0), without overflowing the differences of abscissae near ±f64::MAX.
+        let s = if (x1 - x0).is_finite() {
+            (x - x0) / (x1 - x0)
+        } else {
+            (x / 2.0 - x0 / 2.0) / (x1 / 2.0 - x0 / 2.0)
+        };
+        let y = y0 + s * (y1 - y0);
+        // Values of opposite signs near ±f64::MAX: the weighted form cannot overflow.
+        let y = if y.is_finite() {
+            y
+        } else {
+            (1.0 - s) * y0 + s * y1
+        };
+        crate::error::computed("table value", y)
     }
 }

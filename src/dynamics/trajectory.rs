@@ -7,30 +7,23 @@ use crate::error::{Error, Result};
 
 /// A motion recorded as columns: time, q, q̇, q̈, the energies and powers, and the
 /// machine's own outputs (for the gear drives the speed of every link).
+///
+/// The columns are private and grow only through [`push`](Self::push), which appends a whole
+/// row of finite numbers or nothing: every column has [`len`](Self::len) entries, and no
+/// recorded number is NaN or infinite. Read them through the accessors.
 #[derive(Debug, Clone, PartialEq, Default)]
 pub struct Trajectory {
-    /// Names of the two generalized coordinates.
-    pub coordinate_names: [&'static str; 2],
-    /// Time, s.
-    pub t: Vec<f64>,
-    /// Generalized coordinates, one column each.
-    pub q: [Vec<f64>; 2],
-    /// Generalized speeds.
-    pub qd: [Vec<f64>; 2],
-    /// Generalized accelerations.
-    pub qdd: [Vec<f64>; 2],
-    /// Kinetic energy T, J.
-    pub kinetic: Vec<f64>,
-    /// Potential energy Π, J.
-    pub potential: Vec<f64>,
-    /// Power of the applied loads Q·q̇, W.
-    pub power_applied: Vec<f64>,
-    /// Power lost to viscous friction q̇ᵀBq̇ = 2Φ, W.
-    pub power_dissipated: Vec<f64>,
-    /// Names of the machine's extra outputs.
-    pub output_names: Vec<&'static str>,
-    /// The extra outputs, one column per name.
-    pub outputs: Vec<Vec<f64>>,
+    coordinate_names: [&'static str; 2],
+    t: Vec<f64>,
+    q: [Vec<f64>; 2],
+    qd: [Vec<f64>; 2],
+    qdd: [Vec<f64>; 2],
+    kinetic: Vec<f64>,
+    potential: Vec<f64>,
+    power_applied: Vec<f64>,
+    power_dissipated: Vec<f64>,
+    output_names: Vec<&'static str>,
+    outputs: Vec<Vec<f64>>,
 }
 
 impl Trajectory {
@@ -46,13 +39,85 @@ impl Trajectory {
         }
     }
 
+    /// Names of the two generalized coordinates.
+    #[must_use]
+    pub fn coordinate_names(&self) -> [&'static str; 2] {
+        self.coordinate_names
+    }
+
+    /// Time, s.
+    #[must_use]
+    pub fn t(&self) -> &[f64] {
+        &self.t
+    }
+
+    /// Generalized coordinates, one column each.
+    #[must_use]
+    pub fn q(&self) -> &[Vec<f64>; 2] {
+        &self.q
+    }
+
+    /// Generalized speeds, one column each.
+    #[must_use]
+    pub fn qd(&self) -> &[Vec<f64>; 2] {
+        &self.qd
+    }
+
+    /// Generalized accelerations, one column each.
+    #[must_use]
+    pub fn qdd(&self) -> &[Vec<f64>; 2] {
+        &self.qdd
+    }
+
+    /// Kinetic energy T, J.
+    #[must_use]
+    pub fn kinetic(&self) -> &[f64] {
+        &self.kinetic
+    }
+
+    /// Potential energy Π, J.
+    #[must_use]
+    pub fn potential(&self) -> &[f64] {
+        &self.potential
+    }
+
+    /// Power of the applied loads Q·q̇, W.
+    #[must_use]
+    pub fn power_applied(&self) -> &[f64] {
+        &self.power_applied
+    }
+
+    /// Power lost to viscous friction q̇ᵀBq̇ = 2Φ, W.
+    #[must_use]
+    pub fn power_dissipated(&self) -> &[f64] {
+        &self.power_dissipated
+    }
+
+    /// Names of the machine's extra outputs.
+    #[must_use]
+    pub fn output_names(&self) -> &[&'static str] {
+        &self.output_names
+    }
+
+    /// The extra outputs, one column per name.
+    #[must_use]
+    pub fn outputs(&self) -> &[Vec<f64>] {
+        &self.outputs
+    }
+
     /// Appends a state with everything derived from it.
     ///
     /// # Errors
     /// Any error of the system at this state; [`Error::NonFiniteState`] naming the time when
-    /// a derived quantity overflows. Nothing is appended then (the columns stay of equal
-    /// length).
+    /// a derived quantity (an energy, a power, an output) is not finite;
+    /// [`Error::OutOfRange`] when the system gives a number of outputs other than its
+    /// output names (or other names than the trajectory was made for). Nothing is appended
+    /// then (the columns stay of equal length).
     pub fn push<S: LagrangeSystem + ?Sized>(&mut self, sys: &S, s: &State) -> Result<()> {
+        if self.t.is_empty() && self.output_names.is_empty() && self.outputs.is_empty() {
+            // A default (empty) trajectory takes the system's columns on its first row.
+            *self = Self::for_system(sys);
+        }
         let a = accelerations(sys, s.t, &s.q, &s.qd)?;
         let (pa, pd) = powers(sys, s.t, &s.q, &s.qd)?;
         let kinetic = kinetic_energy(sys, &s.q, &s.qd).map_err(|e| match e {
@@ -62,6 +127,17 @@ impl Trajectory {
         let potential = sys.potential(&s.q)?;
         let mut out = Vec::with_capacity(self.outputs.len());
         sys.outputs(s.t, &s.q, &s.qd, &mut out)?;
+        if out.len() != self.outputs.len() {
+            return Err(Error::OutOfRange {
+                name: "number of outputs given by the system (must match its output names)",
+                value: out.len() as f64,
+                min: self.outputs.len() as f64,
+                max: self.outputs.len() as f64,
+            });
+        }
+        if !(potential.is_finite() && out.iter().all(|v| v.is_finite())) {
+            return Err(Error::NonFiniteState { time: s.t });
+        }
         self.t.push(s.t);
         for i in 0..2 {
             self.q[i].push(s.q[i]);
@@ -76,6 +152,28 @@ impl Trajectory {
             col.push(v);
         }
         Ok(())
+    }
+
+    /// Keeps the first `n` rows (all of them when there are fewer), in every column.
+    pub fn truncate(&mut self, n: usize) {
+        self.t.truncate(n);
+        for c in self
+            .q
+            .iter_mut()
+            .chain(self.qd.iter_mut())
+            .chain(self.qdd.iter_mut())
+            .chain(self.outputs.iter_mut())
+        {
+            c.truncate(n);
+        }
+        for c in [
+            &mut self.kinetic,
+            &mut self.potential,
+            &mut self.power_applied,
+            &mut self.power_dissipated,
+        ] {
+            c.truncate(n);
+        }
     }
 
     /// Number of rows.

@@ -24,7 +24,7 @@
 
 use super::motion::Motion;
 use crate::angle::{cross, direction, perp, unit};
-use crate::error::{finite, finite2, Error, Result};
+use crate::error::{computed, computed_all, finite, finite2, Error, Result};
 use nalgebra::Vector2;
 
 /// Below this |normalised determinant| the velocity system is treated as singular.
@@ -226,7 +226,12 @@ pub fn solve_contour(vectors: &[LoopVector], branch: Branch) -> Result<ContourSo
     let holders = [slot_index(slots[0]), slot_index(slots[1])];
     // The known vectors' sums and their derivatives, in one pass (one sin_cos per vector).
     let (kr, kv, ka) = known_sums(vectors, holders);
-    let (x, y) = position(vectors, slots, case, branch, -kr)?;
+    computed_all("sum of the known loop vectors", kr.iter())?;
+    let (x, y) = checked_position(vectors, slots, case, branch, -kr)?;
+    computed_all(
+        "rates of the known loop vectors",
+        kv.iter().chain(ka.iter()),
+    )?;
     let mut m = [Motion::fixed(x), Motion::fixed(y)];
     // The vectors holding the unknowns (one vector in the polar case), with their unit
     // vectors computed once.
@@ -272,6 +277,10 @@ pub fn solve_contour(vectors: &[LoopVector], branch: Branch) -> Result<ContourSo
     let accels = solve2(c, -a0, det);
     m[0].accel = accels[0];
     m[1].accel = accels[1];
+    computed_all(
+        "contour velocities and accelerations",
+        [m[0].rate, m[1].rate, m[0].accel, m[1].accel].iter(),
+    )?;
     Ok(ContourSolution {
         unknowns: m,
         determinant,
@@ -370,8 +379,25 @@ pub fn solve_contour_position(vectors: &[LoopVector], branch: Branch) -> Result<
     let (slots, case) = classify(vectors)?;
     let holders = [slot_index(slots[0]), slot_index(slots[1])];
     let (kr, _, _) = known_sums(vectors, holders);
-    let (x, y) = position(vectors, slots, case, branch, -kr)?;
+    computed_all("sum of the known loop vectors", kr.iter())?;
+    let (x, y) = checked_position(vectors, slots, case, branch, -kr)?;
     Ok([x, y])
+}
+
+/// [`position`], with [`Error::Overflow`] for a result (or a closure vector) that is not
+/// finite although the inputs are: |d| above about 1.3·10¹⁵⁴ m overflows its square.
+fn checked_position(
+    vectors: &[LoopVector],
+    slots: [Slot; 2],
+    case: ContourCase,
+    branch: Branch,
+    d: Vector2<f64>,
+) -> Result<(f64, f64)> {
+    computed("length of the closing vector", d.norm())?;
+    let (x, y) = position(vectors, slots, case, branch, d)?;
+    computed("contour position", x)?;
+    computed("contour position", y)?;
+    Ok((x, y))
 }
 
 /// Finds the two unknowns, checks the inputs, and names the case.

@@ -3,7 +3,7 @@
 use super::link::LinkMotion;
 use super::motion::{Motion, PointMotion};
 use crate::angle::{normalize, unit};
-use crate::error::{finite2, positive, Result};
+use crate::error::{computed_all, finite2, positive, Result};
 use nalgebra::Point2;
 
 /// The state of a crank O A: its link motion (origin O) and the motion of its pin A.
@@ -37,7 +37,7 @@ pub struct CrankState {
 /// # Errors
 /// [`Error::NonFinite`](crate::Error::NonFinite) or
 /// [`Error::NonPositive`](crate::Error::NonPositive) for a bad input, or
-/// [`Error::NonFinite`](crate::Error::NonFinite) naming the pin's velocity or acceleration when
+/// [`Error::Overflow`](crate::Error::Overflow) naming the pin's motion when
 /// finite inputs overflow (for example l_OA·ω1² beyond f64::MAX).
 pub fn crank(o: Point2<f64>, l_oa: f64, phi: Motion) -> Result<CrankState> {
     finite2(["O.x", "O.y"], o.coords)?;
@@ -50,6 +50,9 @@ pub fn crank(o: Point2<f64>, l_oa: f64, phi: Motion) -> Result<CrankState> {
         epsilon: phi.accel,
     };
     let a = link.motion_of(o + l_oa * unit(phi.value));
-    a.validate(["A.x", "A.y", "v_A.x", "v_A.y", "a_A.x", "a_A.y"])?;
+    computed_all(
+        "crank pin A (position, velocity, acceleration)",
+        [a.p.x, a.p.y, a.v.x, a.v.y, a.a.x, a.a.y].iter(),
+    )?;
     Ok(CrankState { a, link })
 }

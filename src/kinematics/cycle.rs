@@ -5,14 +5,45 @@ use crate::error::{finite, Error, Result};
 use nalgebra::Point2;
 use std::f64::consts::TAU;
 
+/// The most positions a cycle may have (2²⁴, about 16.8 million): a bound on the memory and
+/// time of [`cycle`], [`try_cycle_angles`] and [`Strokes::try_plan_positions`](super::Strokes::try_plan_positions).
+pub const MAX_POSITIONS: usize = 1 << 24;
+
+/// Checks a number of positions: 1 ≤ n ≤ [`MAX_POSITIONS`].
+pub(crate) fn check_positions(n: usize) -> Result<()> {
+    if n == 0 || n > MAX_POSITIONS {
+        return Err(Error::OutOfRange {
+            name: "number of positions",
+            value: n as f64,
+            min: 1.0,
+            max: MAX_POSITIONS as f64,
+        });
+    }
+    Ok(())
+}
+
 /// The input angles of `n` equally spaced positions over one turn, starting at `start`:
 /// φk = start + k·2π/n (k = 0 … n−1), each in [0, 2π). With `n = 12` and `start` at the
 /// beginning of the working stroke these are the 12 plans of a course project (see
 /// [`Strokes::plan_positions`](super::Strokes::plan_positions) for a crank turning clockwise).
+///
+/// Input that has no angles gives none: an empty vector for `n = 0`, `n` above
+/// [`MAX_POSITIONS`] or a non-finite `start` (never a NaN). [`try_cycle_angles`] says why.
 #[must_use]
 pub fn cycle_angles(n: usize, start: f64) -> Vec<f64> {
-    let step = TAU / n.max(1) as f64;
-    (0..n).map(|k| normalize(start + k as f64 * step)).collect()
+    try_cycle_angles(n, start).unwrap_or_default()
+}
+
+/// As [`cycle_angles`], with an error for input that has no angles.
+///
+/// # Errors
+/// [`Error::NonFinite`] for a non-finite `start`; [`Error::OutOfRange`] for `n = 0` or `n`
+/// above [`MAX_POSITIONS`].
+pub fn try_cycle_angles(n: usize, start: f64) -> Result<Vec<f64>> {
+    finite("start angle", start)?;
+    check_positions(n)?;
+    let step = TAU / n as f64;
+    Ok((0..n).map(|k| normalize(start + k as f64 * step)).collect())
 }
 
 /// Evaluates a mechanism at `n` equally spaced input angles over one turn, from `start`.
@@ -37,7 +68,8 @@ pub fn cycle_angles(n: usize, start: f64) -> Vec<f64> {
 /// ```
 ///
 /// # Errors
-/// [`Error::OutOfRange`] for `n = 0`, [`Error::NonFinite`] for a non-finite `start`. When a
+/// [`Error::OutOfRange`] for `n = 0` or above [`MAX_POSITIONS`], [`Error::NonFinite`] for a
+/// non-finite `start`. When a
 /// position fails, [`Error::In`] names it and, when the linkage cannot be assembled there,
 /// the input angle at which it locks (found by bisection to machine precision); the source is
 /// the position's own error.
@@ -46,16 +78,9 @@ where
     F: FnMut(f64) -> Result<S>,
 {
     finite("start angle", start)?;
-    if n == 0 {
-        return Err(Error::OutOfRange {
-            name: "number of positions",
-            value: 0.0,
-            min: 1.0,
-            max: f64::INFINITY,
-        });
-    }
+    check_positions(n)?;
     let step = TAU / n as f64;
-    let mut out = Vec::with_capacity(n);
+    let mut out = Vec::with_capacity(n.min(4096));
     for k in 0..n {
         let phi = start + k as f64 * step;
         match mechanism(phi) {
@@ -115,6 +140,13 @@ where
 /// which the linkage locks, to machine precision. A non-Grashof four-bar's input rocks between
 /// them.
 ///
+/// Only [`Error::NotAssemblable`] counts as "cannot assemble": a position that is
+/// [`Error::Singular`] (a dead point, or an isolated branch point where the two assembly
+/// modes touch) is assembled, only not solvable for its velocities. A failure that the
+/// mechanism recovers from within [`ISOLATED_GAP`] rad (rounding at a tangent closure, where
+/// the closure's discriminant touches zero) is an isolated branch point, not a lock, so the
+/// answer does not depend on whether the scan happens to land on it.
+///
 /// # Examples
 /// A non-Grashof four-bar (frame 0.3 m, crank 0.2 m, coupler 0.08 m, rocker 0.15 m): the
 /// dyad closes while |AC| ≤ 0.23 m, so the input rocks between ±arccos(0.0771/0.12).
@@ -136,22 +168,39 @@ where
 ///
 /// # Errors
 /// [`Error::NonFinite`] for a non-finite `phi`; the mechanism's own error if it fails at
-/// `phi` itself.
+/// `phi` itself (other than [`Error::Singular`]).
 pub fn assembly_range<S, F>(phi: f64, mut mechanism: F) -> Result<Option<(f64, f64)>>
 where
     F: FnMut(f64) -> Result<S>,
 {
     finite("phi", phi)?;
-    mechanism(phi)?;
+    match mechanism(phi) {
+        Ok(_) | Err(Error::Singular { .. }) => {}
+        Err(e) => return Err(e),
+    }
     const STEPS: usize = 720;
     let step = TAU / STEPS as f64;
-    let mut ok = |x: f64| mechanism(x).is_ok();
+    let mut ok = |x: f64| matches!(mechanism(x), Ok(_) | Err(Error::Singular { .. }));
+    // A lock at the failure `x` (reached from `x - dir·step`), or None for an isolated point.
+    let lock_at = |ok: &mut dyn FnMut(f64) -> bool, x: f64, dir: f64| -> Option<f64> {
+        let scale = x.abs().max(1.0);
+        let mut d = 1e-13 * scale;
+        while d <= ISOLATED_GAP * scale {
+            if ok(x + dir * d) {
+                return None;
+            }
+            d *= 4.0;
+        }
+        Some(boundary(&mut *ok, x - dir * step, x))
+    };
     let mut upper = None;
     for k in 1..=STEPS {
         let x = phi + k as f64 * step;
         if !ok(x) {
-            upper = Some(boundary(&mut ok, x - step, x));
-            break;
+            if let Some(b) = lock_at(&mut ok, x, 1.0) {
+                upper = Some(b);
+                break;
+            }
         }
     }
     let Some(upper) = upper else {
@@ -161,12 +210,18 @@ where
     for k in 1..=STEPS {
         let x = phi - k as f64 * step;
         if !ok(x) {
-            lower = boundary(&mut ok, x + step, x);
-            break;
+            if let Some(b) = lock_at(&mut ok, x, -1.0) {
+                lower = b;
+                break;
+            }
         }
     }
     Ok(Some((lower, upper)))
 }
+
+/// The widest gap in assembly (rad, relative to max(1, |φ|)) that [`assembly_range`] takes
+/// for rounding at an isolated branch point rather than for a lock: 10⁻⁶.
+pub const ISOLATED_GAP: f64 = 1e-6;
 
 /// Bisection for the boundary between `good` (assembles) and `bad` (does not), to the last
 /// bit of the input angle.

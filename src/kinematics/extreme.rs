@@ -84,24 +84,30 @@ impl Rotation {
 /// ```
 ///
 /// # Errors
-/// [`Error::OutOfRange`] for fewer than 3 samples; the output's error at any sample (a
+/// [`Error::OutOfRange`] for fewer than 3 samples or more than
+/// [`MAX_POSITIONS`](super::MAX_POSITIONS); [`Error::NonFinite`] for an output that is not
+/// finite; the output's error at any sample (a
 /// mechanism that cannot make full turns has no cycle to search).
 pub fn extreme_positions<F>(mut transfer: F, samples: usize) -> Result<Vec<Extreme>>
 where
     F: FnMut(f64) -> Result<Motion>,
 {
-    if samples < 3 {
+    if !(3..=super::MAX_POSITIONS).contains(&samples) {
         return Err(Error::OutOfRange {
             name: "samples",
             value: samples as f64,
             min: 3.0,
-            max: f64::INFINITY,
+            max: super::MAX_POSITIONS as f64,
         });
     }
     let step = TAU / samples as f64;
     let at = |k: usize| k as f64 * step;
     let values = (0..samples)
-        .map(|k| transfer(at(k)))
+        .map(|k| {
+            let m = transfer(at(k))?;
+            m.validate(["output", "output rate", "output accel"])?;
+            Ok(m)
+        })
         .collect::<Result<Vec<_>>>()?;
     let mut out = Vec::new();
     for k in 0..samples {
@@ -223,7 +229,8 @@ impl Strokes {
     ///
     /// # Errors
     /// [`Error::OutOfRange`] unless there are exactly two extremes; [`Error::NonFinite`] for
-    /// an extreme's input angle that is not finite.
+    /// an extreme's input angle that is not finite; [`Error::Singular`] when the two extremes
+    /// lie at the same input angle (to rounding), so that there is no idle stroke.
     pub fn new(extremes: &[Extreme], rotation: Rotation) -> Result<Self> {
         let [e0, e1] = extremes else {
             return Err(Error::OutOfRange {
@@ -243,23 +250,47 @@ impl Strokes {
         } else {
             (e1.input, e0.input, TAU - forward)
         };
+        let idle = TAU - working;
+        // Extremes at the same input angle (to rounding) have no idle stroke: no time ratio.
+        if idle.is_nan() || idle <= 4.0 * f64::EPSILON * TAU {
+            return Err(Error::Singular {
+                what: "strokes",
+                measure: "angle between the extreme positions",
+                value: idle,
+            });
+        }
         Ok(Self {
-            start,
-            end,
+            start: normalize(start),
+            end: normalize(end),
             working_angle: working,
-            idle_angle: TAU - working,
-            time_ratio: working / (TAU - working),
+            idle_angle: idle,
+            time_ratio: working / idle,
             rotation,
         })
     }
 
     /// The input angles of `n` plans, equally spaced in the crank's sense of rotation from
     /// the beginning of the working stroke (n = 12 in a course project).
+    ///
+    /// Input that has no plans gives none: an empty vector for `n = 0`, `n` above
+    /// [`MAX_POSITIONS`](super::MAX_POSITIONS) or a non-finite start (a hand-built value);
+    /// [`try_plan_positions`](Self::try_plan_positions) says why.
     #[must_use]
     pub fn plan_positions(&self, n: usize) -> Vec<f64> {
-        let step = self.rotation.sign() * TAU / n.max(1) as f64;
-        (0..n)
+        self.try_plan_positions(n).unwrap_or_default()
+    }
+
+    /// As [`plan_positions`](Self::plan_positions), with an error for input that has no plans.
+    ///
+    /// # Errors
+    /// [`Error::NonFinite`] for a non-finite start; [`Error::OutOfRange`] for `n = 0` or `n`
+    /// above [`MAX_POSITIONS`](super::MAX_POSITIONS).
+    pub fn try_plan_positions(&self, n: usize) -> Result<Vec<f64>> {
+        finite("start of the working stroke", self.start)?;
+        super::cycle::check_positions(n)?;
+        let step = self.rotation.sign() * TAU / n as f64;
+        Ok((0..n)
             .map(|k| normalize(self.start + k as f64 * step))
-            .collect()
+            .collect())
     }
 }

@@ -74,7 +74,10 @@ pub use contour::{
     LoopVector, Part, SINGULAR_DETERMINANT,
 };
 pub use crank::{crank, CrankState};
-pub use cycle::{assembly_range, coupler_curve, cycle, cycle_angles};
+pub use cycle::{
+    assembly_range, coupler_curve, cycle, cycle_angles, try_cycle_angles, ISOLATED_GAP,
+    MAX_POSITIONS,
+};
 pub use extreme::{extreme_positions, Extreme, ExtremeKind, Rotation, Strokes};
 pub use link::LinkMotion;
 pub use motion::{Motion, PointMotion};

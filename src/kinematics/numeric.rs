@@ -32,7 +32,7 @@ fn check(y: &[f64], h: f64, min: usize) -> Result<()> {
 /// The result, unless a finite input overflowed (a step of a few ulps, values near f64::MAX).
 fn finite_result(name: &'static str, out: Vec<f64>) -> Result<Vec<f64>> {
     for &v in &out {
-        finite(name, v)?;
+        crate::error::computed(name, v)?;
     }
     Ok(out)
 }
@@ -50,7 +50,7 @@ fn finite_result(name: &'static str, out: Vec<f64>) -> Result<Vec<f64>> {
 ///
 /// # Errors
 /// [`Error::OutOfRange`] for fewer than 3 nodes; a non-positive or non-finite `h`, or a
-/// non-finite value; [`Error::NonFinite`] when the result overflows.
+/// non-finite value; [`Error::Overflow`] when the result overflows.
 pub fn differentiate(y: &[f64], h: f64) -> Result<Vec<f64>> {
     check(y, h, 3)?;
     let n = y.len();
@@ -103,7 +103,7 @@ pub fn differentiate_periodic(y: &[f64], h: f64) -> Result<Vec<f64>> {
 ///
 /// # Errors
 /// [`Error::OutOfRange`] for fewer than 2 nodes; a non-positive or non-finite `h`, or a
-/// non-finite value; [`Error::NonFinite`] when the result overflows.
+/// non-finite value; [`Error::Overflow`] when the result overflows.
 pub fn integrate_trapezoid(y: &[f64], h: f64) -> Result<Vec<f64>> {
     check(y, h, 2)?;
     let mut acc = 0.0;

@@ -5,7 +5,7 @@ use super::contour::{in_group, solve_contour, Branch, LoopVector};
 use super::link::LinkMotion;
 use super::motion::{Motion, PointMotion};
 use crate::angle::{normalize, perp, unit};
-use crate::error::Result;
+use crate::error::{computed_all, Result};
 use nalgebra::Vector2;
 use std::f64::consts::PI;
 
@@ -77,6 +77,11 @@ impl RprState {
 pub fn rpr_dyad(a: PointMotion, c: PointMotion) -> Result<RprState> {
     a.validate(["A.x", "A.y", "v_A.x", "v_A.y", "a_A.x", "a_A.y"])?;
     c.validate(["C.x", "C.y", "v_C.x", "v_C.y", "a_C.x", "a_C.y"])?;
+    let (ac, vac, aac) = (a.p - c.p, a.v - c.v, a.a - c.a);
+    computed_all(
+        "RPR dyad: A - C",
+        ac.iter().chain(vac.iter()).chain(aac.iter()),
+    )?;
     // The loop C → A → C: (A − C) + l_AC·e(φ2) = 0, φ2 the direction of A→C.
     let loop_ = [
         LoopVector::Cartesian {
@@ -110,6 +115,18 @@ pub fn rpr_dyad(a: PointMotion, c: PointMotion) -> Result<RprState> {
     debug_assert!(
         (a.p + slide.value * unit(phi.value) - c.p).norm() <= 1e-9 * slide.value.max(1.0)
     );
+    computed_all(
+        "RPR dyad",
+        [
+            link2.angle,
+            link2.omega,
+            link2.epsilon,
+            slide.value,
+            slide.rate,
+            slide.accel,
+        ]
+        .iter(),
+    )?;
     Ok(RprState {
         link2,
         link3,

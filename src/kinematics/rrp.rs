@@ -5,7 +5,7 @@ use super::contour::{in_group, solve_contour, Branch, LoopVector};
 use super::link::LinkMotion;
 use super::motion::{Motion, PointMotion};
 use crate::angle::{normalize, unit};
-use crate::error::{positive, Result};
+use crate::error::{computed_all, positive, Result};
 use nalgebra::{Point2, Vector2};
 use std::f64::consts::PI;
 
@@ -107,6 +107,11 @@ pub fn rrp_dyad(a: PointMotion, guide: Guide, l_ab: f64, branch: Branch) -> Resu
     positive("l_AB", l_ab)?;
     let g = guide.point;
     let beta = guide.angle;
+    let (ag, vag, aag) = (a.p - g.p, a.v - g.v, a.a - g.a);
+    computed_all(
+        "RRP dyad: A - G",
+        ag.iter().chain(vag.iter()).chain(aag.iter()),
+    )?;
     // The loop G → A → B → G: (A − G) + l_AB·e(φ2) + s·e(φ4 + π) = 0.
     let loop_ = [
         LoopVector::Cartesian {
@@ -134,6 +139,27 @@ pub fn rrp_dyad(a: PointMotion, guide: Guide, l_ab: f64, branch: Branch) -> Resu
         omega: beta.rate,
         epsilon: beta.accel,
     };
+    computed_all(
+        "RRP dyad",
+        [
+            b.p.x,
+            b.p.y,
+            b.v.x,
+            b.v.y,
+            b.a.x,
+            b.a.y,
+            link2.angle,
+            link2.omega,
+            link2.epsilon,
+            link3.angle,
+            link3.omega,
+            link3.epsilon,
+            slide.value,
+            slide.rate,
+            slide.accel,
+        ]
+        .iter(),
+    )?;
     Ok(RrpState {
         b,
         link2,

@@ -5,7 +5,7 @@ use super::contour::{in_group, solve_contour, Branch, LoopVector};
 use super::link::LinkMotion;
 use super::motion::PointMotion;
 use crate::angle::{normalize, unit};
-use crate::error::{positive, Result};
+use crate::error::{computed_all, positive, Result};
 use std::f64::consts::PI;
 
 /// The solved RRR dyad.
@@ -65,6 +65,11 @@ pub fn rrr_dyad(
     c.validate(["C.x", "C.y", "v_C.x", "v_C.y", "a_C.x", "a_C.y"])?;
     positive("l_AB", l_ab)?;
     positive("l_CB", l_cb)?;
+    let (ac, vac, aac) = (a.p - c.p, a.v - c.v, a.a - c.a);
+    computed_all(
+        "RRR dyad: A - C",
+        ac.iter().chain(vac.iter()).chain(aac.iter()),
+    )?;
     // The loop C → A → B → C: (A − C) + l_AB·e(φ2) + l_CB·e(φ3 + π) = 0.
     let loop_ = [
         LoopVector::Cartesian {
@@ -91,6 +96,24 @@ pub fn rrr_dyad(
         epsilon: p3.accel,
     };
     let b = link2.motion_of(a.p + l_ab * unit(p2.value));
+    computed_all(
+        "RRR dyad",
+        [
+            b.p.x,
+            b.p.y,
+            b.v.x,
+            b.v.y,
+            b.a.x,
+            b.a.y,
+            link2.angle,
+            link2.omega,
+            link2.epsilon,
+            link3.angle,
+            link3.omega,
+            link3.epsilon,
+        ]
+        .iter(),
+    )?;
     Ok(RrrState {
         b,
         link2,

@@ -39,12 +39,14 @@ use crate::error::{finite, Result};
 /// ```
 ///
 /// # Errors
-/// [`Error::NonFinite`](crate::Error::NonFinite) for a non-finite `phi1`; whatever `output`
-/// returns.
+/// [`Error::NonFinite`](crate::Error::NonFinite) for a non-finite `phi1` or a non-finite
+/// output; whatever `output` returns.
 pub fn transfer_functions<F>(output: F, phi1: f64) -> Result<Motion>
 where
     F: FnOnce(Motion) -> Result<Motion>,
 {
     finite("phi1", phi1)?;
-    output(Motion::unit_speed(phi1))
+    let m = output(Motion::unit_speed(phi1))?;
+    m.validate(["output", "output rate", "output accel"])?;
+    Ok(m)
 }

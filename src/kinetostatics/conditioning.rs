@@ -57,8 +57,10 @@ impl Conditioning {
     }
 }
 
-/// Turns an overflow in a result into an error naming the measure, so that no solver returns
-/// an infinity.
+/// Turns an overflow in a result into an error, so that no solver returns an infinity:
+/// [`Error::Singular`] naming the measure when the (relative) measure is below √ε, so that
+/// the division by it did the damage near a dead point, else [`Error::Overflow`] naming the
+/// group (the inputs are too large for `f64`).
 pub(crate) fn ensure_finite(
     what: &'static str,
     name: &'static str,
@@ -67,11 +69,13 @@ pub(crate) fn ensure_finite(
 ) -> Result<()> {
     if values.iter().all(|v| v.is_finite()) {
         Ok(())
-    } else {
+    } else if measure.abs() < f64::EPSILON.sqrt() {
         Err(Error::Singular {
             what,
             measure: name,
             value: measure,
         })
+    } else {
+        Err(Error::Overflow { what })
     }
 }

@@ -130,12 +130,13 @@ impl GearDrive {
         }
         loads.iter().try_for_each(Load::validate)?;
         let op = self.pitch_point - self.o1;
-        let r_w = positive("r_w", op.norm())?;
+        let r_w = crate::error::length("r_w", op)?;
         let arm = r_w * alpha.cos();
         let rho = loads
             .iter()
             .map(|l| (l.point - self.o1).norm())
             .fold(r_w, f64::max);
+        crate::error::computed("distance of a load from O1", rho)?;
         let conditioning = Conditioning::of(WHAT, MEASURE, arm, rho)?;
 
         let total = Load::sum_about(loads, self.o1);
@@ -152,7 +153,7 @@ impl GearDrive {
         let magnitude = balancing_moment.abs() / arm;
         let force = direction * magnitude;
         let r01 = -(total.force + force);
-        ensure_finite(WHAT, MEASURE, arm, &[magnitude, r01.x, r01.y])?;
+        ensure_finite(WHAT, MEASURE, arm / rho, &[magnitude, r01.x, r01.y])?;
         Ok(GearBalance {
             force,
             magnitude,

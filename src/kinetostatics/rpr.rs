@@ -16,7 +16,7 @@
 
 use super::conditioning::{ensure_finite, Conditioning};
 use crate::angle::{perp, unit};
-use crate::error::{all_finite, finite2, positive, Result};
+use crate::error::{all_finite, finite2, length, positive, Result};
 use crate::Load;
 use nalgebra::{Point2, Vector2};
 
@@ -105,7 +105,7 @@ impl RprDyad {
     ///   the axis through E, to working precision (for an axis through E: A at E).
     pub fn solve(&self) -> Result<RprReactions> {
         self.validate()?;
-        let u = self.axis / positive("|axis|", self.axis.norm())?;
+        let u = self.axis / length("|axis|", self.axis)?;
         let n = perp(u);
         let ea = self.a - self.e;
         let (along, across) = (ea.dot(&u), ea.dot(&n));
@@ -114,6 +114,8 @@ impl RprDyad {
             .iter()
             .map(|p| (p - self.e).norm())
             .fold(0.0, f64::max);
+        crate::error::computed("distance of a point from E", rho)?;
+        crate::error::computed("l_EA", l_ea)?;
         let conditioning = Conditioning::of(WHAT, MEASURE, l_ea, rho)?;
 
         let f2 = self.load2.force;
@@ -129,8 +131,10 @@ impl RprDyad {
         ensure_finite(
             WHAT,
             MEASURE,
-            l_ea,
-            &[r12.x, r12.y, r32.x, r32.y, r43.x, r43.y],
+            l_ea / rho,
+            &[
+                r12.x, r12.y, r32.x, r32.y, r43.x, r43.y, r12_n, r12_t, r32_n, couple,
+            ],
         )?;
         let arm = Some(couple / r32_n).filter(|h| h.is_finite());
         Ok(RprReactions {

@@ -13,7 +13,7 @@
 
 use super::conditioning::{ensure_finite, Conditioning};
 use crate::angle::{cross, perp, unit};
-use crate::error::{all_finite, finite2, positive, Result};
+use crate::error::{all_finite, finite2, length, positive, Result};
 use crate::Load;
 use nalgebra::{Point2, Vector2};
 
@@ -101,8 +101,8 @@ impl RrpDyad {
     pub fn solve(&self) -> Result<RrpReactions> {
         self.validate()?;
         let ab = self.b - self.a;
-        let l2 = positive("l_AB", ab.norm())?;
-        let g = self.guide / positive("|guide|", self.guide.norm())?;
+        let l2 = length("l_AB", ab)?;
+        let g = self.guide / length("|guide|", self.guide)?;
         let (u2, nu) = (ab / l2, perp(g));
         let det = cross(u2, nu);
         let conditioning = Conditioning::of(WHAT, MEASURE, det, 1.0)?;
@@ -120,7 +120,18 @@ impl RrpDyad {
             WHAT,
             MEASURE,
             det,
-            &[r12.x, r12.y, r43.x, r43.y, r23.x, r23.y],
+            &[
+                r12.x,
+                r12.y,
+                r43.x,
+                r43.y,
+                r23.x,
+                r23.y,
+                r12_n,
+                r12_t,
+                r43_n,
+                guide_moment,
+            ],
         )?;
         let offset = Some(guide_moment / r43_n).filter(|h| h.is_finite());
         Ok(RrpReactions {

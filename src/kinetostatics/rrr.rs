@@ -11,7 +11,7 @@
 
 use super::conditioning::{ensure_finite, Conditioning};
 use crate::angle::{cross, perp, unit};
-use crate::error::{all_finite, finite2, positive, Result};
+use crate::error::{all_finite, finite2, length, positive, Result};
 use crate::Load;
 use nalgebra::{Point2, Vector2};
 
@@ -94,8 +94,8 @@ impl RrrDyad {
         self.validate()?;
         let ab = self.b - self.a;
         let cb = self.b - self.c;
-        let l2 = positive("l_AB", ab.norm())?;
-        let l3 = positive("l_CB", cb.norm())?;
+        let l2 = length("l_AB", ab)?;
+        let l3 = length("l_CB", cb)?;
         let (u2, u3) = (ab / l2, cb / l3);
         let det = cross(u2, u3);
         let conditioning = Conditioning::of(WHAT, MEASURE, det, 1.0)?;
@@ -113,7 +113,9 @@ impl RrrDyad {
             WHAT,
             MEASURE,
             det,
-            &[r12.x, r12.y, r43.x, r43.y, r23.x, r23.y],
+            &[
+                r12.x, r12.y, r43.x, r43.y, r23.x, r23.y, r12_n, r12_t, r43_n, r43_t,
+            ],
         )?;
         Ok(RrrReactions {
             r12,

@@ -5,7 +5,7 @@ use nalgebra::{Matrix2, Vector2};
 use super::{gear_inertia, GearLink, LinearMotor};
 use crate::dynamics::stepper::check_result;
 use crate::dynamics::system::{checked_inertia, LagrangeSystem, State};
-use crate::error::{finite, positive, Result};
+use crate::error::{computed, computed_all, finite, positive, Result};
 
 /// One motor drives two counter-rotating propellers through a differential: sun z1 (the
 /// input, on the motor shaft), a block of k planets z2–z3 on the carrier H (the front
@@ -81,6 +81,9 @@ impl Default for CoaxialPropellers {
     }
 }
 
+/// K, λ, c and w = A⁻¹u of [`CoaxialPropellers::linear_parts`].
+type LinearParts = (Matrix2<f64>, f64, Vector2<f64>, Vector2<f64>);
+
 /// (1 − e^(−x))/x, (x − 1 + e^(−x))/x², (x²/2 − x + 1 − e^(−x))/x³, by series near 0.
 fn phi_functions(x: f64) -> (f64, f64, f64) {
     if x.abs() < 0.1 {
@@ -137,6 +140,9 @@ impl CoaxialPropellers {
         positive("I2", self.i2)?;
         positive("I4", self.i4)?;
         positive("IH", self.ih)?;
+        self.motor.check()?;
+        finite("(M_on)4", self.m_on4)?;
+        finite("(M_on)H", self.m_onh)?;
         Ok(())
     }
 
@@ -172,7 +178,9 @@ impl CoaxialPropellers {
     /// [`Error::NonPositive`](crate::Error::NonPositive) for a non-positive datum.
     pub fn inertia_matrix(&self) -> Result<Matrix2<f64>> {
         self.check()?;
-        Ok(gear_inertia(&self.links()))
+        let a = gear_inertia(&self.links());
+        computed_all("inertia matrix", a.iter())?;
+        Ok(a)
     }
 
     /// `true` when the resisting moments stand in the gear ratio, so that a steady state
@@ -194,18 +202,23 @@ impl CoaxialPropellers {
     /// motor or resisting moment; [`Error::NonPositive`](crate::Error::NonPositive) for a motor slope b < 0 (its moment
     /// grows with speed and the motion runs away: nothing to tend to).
     pub fn drift_acceleration(&self) -> Result<Vector2<f64>> {
-        let (k, lambda, c) = self.linear_parts()?;
+        let (_, _, c, w) = self.linear_parts()?;
         if self.motor.b == 0.0 {
             return Ok(c);
         }
         positive("motor slope b", self.motor.b)?;
-        // λ = b·uᵀA⁻¹u > 0 here (A⁻¹ is positive-definite).
-        Ok(c - k * c / lambda)
+        // c − K c/λ = c − w·(uᵀc)/(uᵀw) with w = A⁻¹u: b cancels, so a tiny slope cannot
+        // overflow (uᵀw > 0 because A⁻¹ is positive-definite).
+        let u = self.input_ratios();
+        let drift = c - w * (u.dot(&c) / u.dot(&w));
+        computed_all("drift acceleration", drift.iter())?;
+        Ok(drift)
     }
 
     /// v̇ = −K v + c with K = b·A⁻¹u uᵀ (rank one, K² = λK, λ = b·uᵀA⁻¹u) and
     /// c = A⁻¹(a·u + M_on).
-    fn linear_parts(&self) -> Result<(Matrix2<f64>, f64, Vector2<f64>)> {
+    /// Also returns w = A⁻¹u.
+    fn linear_parts(&self) -> Result<LinearParts> {
         finite("motor a", self.motor.a)?;
         finite("motor b", self.motor.b)?;
         finite("(M_on)4", self.m_on4)?;
@@ -218,7 +231,9 @@ impl CoaxialPropellers {
         let k = self.motor.b * w * u.transpose();
         let lambda = self.motor.b * u.dot(&w);
         let c = inv * (self.motor.a * u + Vector2::new(self.m_on4, self.m_onh));
-        Ok((k, lambda, c))
+        computed_all("linear parts K, c", k.iter().chain(c.iter()))?;
+        computed("lambda = b*u'A^-1 u", lambda)?;
+        Ok((k, lambda, c, w))
     }
 
     /// The exact motion at time `t` from the state `start` (a closed form of the linear
@@ -250,16 +265,35 @@ impl CoaxialPropellers {
     /// assert!((s.qd - qd).norm() < 1e-9 * qd.norm());
     /// ```
     pub fn exact(&self, start: &State, t: f64) -> Result<State> {
-        let (k, lambda, c) = self.linear_parts()?;
+        let (k, lambda, c, w) = self.linear_parts()?;
         finite("t", t)?;
         check_result(*start)?;
         let tau = t - start.t;
-        let (f1, f2, f3) = phi_functions(lambda * tau);
+        let x = lambda * tau;
+        let (f1, f2, f3) = phi_functions(x);
         let (q0, v0) = (start.q, start.qd);
-        let qd = v0 + c * tau - tau * f1 * (k * v0) - tau * tau * f2 * (k * c);
-        let q = q0 + v0 * tau + 0.5 * c * tau * tau
-            - tau * tau * f2 * (k * v0)
-            - tau.powi(3) * f3 * (k * c);
+        if self.motor.b == 0.0 || !x.is_finite() {
+            let qd = v0 + c * tau - tau * f1 * (k * v0) - tau * tau * f2 * (k * c);
+            let q = q0 + v0 * tau + 0.5 * c * tau * tau
+                - tau * tau * f2 * (k * v0)
+                - tau.powi(3) * f3 * (k * c);
+            return check_result(State::new(t, q, qd));
+        }
+        // With the projector P = K/λ = w uᵀ/(uᵀw) and x f2 = 1 − f1, x f3 = ½ − f2, the same
+        // closed form splits into the undamped part (I − P) and the damped part P, with no
+        // terms that grow like τ² and cancel (1e-12 relative at large λτ):
+        // q̇ = (I−P)(v0 + cτ) + P(e⁻ˣ v0 + τ f1 c),
+        // q  = q0 + (I−P)(v0 τ + cτ²/2) + P(τ f1 v0 + τ² f2 c).
+        let u = self.input_ratios();
+        let p = |v: Vector2<f64>| w * (u.dot(&v) / u.dot(&w));
+        let (pv, pc) = (p(v0), p(c));
+        let decay = (-x).exp();
+        let qd = (v0 - pv) + (c - pc) * tau + pv * decay + pc * (tau * f1);
+        let q = q0
+            + (v0 - pv) * tau
+            + (c - pc) * (0.5 * tau * tau)
+            + pv * (tau * f1)
+            + pc * (tau * tau * f2);
         check_result(State::new(t, q, qd))
     }
 }
@@ -278,9 +312,12 @@ impl LagrangeSystem for CoaxialPropellers {
     }
 
     fn forces(&self, _t: f64, _q: &Vector2<f64>, qd: &Vector2<f64>) -> Result<Vector2<f64>> {
+        self.check()?;
         let u = self.input_ratios();
-        let mp1 = self.motor.torque(u.dot(qd));
-        Ok(mp1 * u + Vector2::new(self.m_on4, self.m_onh))
+        let mp1 = self.motor.torque(u.dot(qd))?;
+        let q = mp1 * u + Vector2::new(self.m_on4, self.m_onh);
+        computed_all("generalized forces", q.iter())?;
+        Ok(q)
     }
 
     fn output_names(&self) -> Vec<&'static str> {
@@ -294,16 +331,19 @@ impl LagrangeSystem for CoaxialPropellers {
         qd: &Vector2<f64>,
         out: &mut Vec<f64>,
     ) -> Result<()> {
+        self.check()?;
         let u = self.input_ratios();
         let w1 = u.dot(qd);
-        out.extend([
+        let values = [
             u.dot(q),
             w1,
             self.planet_ratios().dot(qd),
             qd[0],
             qd[1],
-            self.motor.torque(w1),
-        ]);
+            self.motor.torque(w1)?,
+        ];
+        computed_all("coaxial propellers' outputs", values.iter())?;
+        out.extend(values);
         Ok(())
     }
 }

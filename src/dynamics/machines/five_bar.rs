@@ -20,10 +20,40 @@ pub struct Servo {
 }
 
 impl Servo {
+    /// Checks the servo's data: finite target and gains, a finite non-negative limit.
+    ///
+    /// # Errors
+    /// [`Error::NonFinite`] for a non-finite target, gain or limit; [`Error::OutOfRange`] for a
+    /// negative limit.
+    pub fn check(&self) -> Result<()> {
+        finite("servo target", self.target)?;
+        finite("servo k_p", self.kp)?;
+        finite("servo k_d", self.kd)?;
+        finite("servo limit", self.limit)?;
+        if self.limit < 0.0 {
+            return Err(Error::OutOfRange {
+                name: "servo limit",
+                value: self.limit,
+                min: 0.0,
+                max: f64::MAX,
+            });
+        }
+        Ok(())
+    }
+
     /// The driving moment at angle `phi` and speed `omega`, N·m.
-    #[must_use]
-    pub fn torque(&self, phi: f64, omega: f64) -> f64 {
-        (self.kp * (self.target - phi) - self.kd * omega).clamp(-self.limit.abs(), self.limit.abs())
+    ///
+    /// # Errors
+    /// As [`check`](Self::check); [`Error::NonFinite`] for a non-finite `phi` or `omega`. A
+    /// demand that overflows saturates at the limit (it is clamped, as any other).
+    pub fn torque(&self, phi: f64, omega: f64) -> Result<f64> {
+        self.check()?;
+        finite("phi", phi)?;
+        finite("omega", omega)?;
+        let demand = self.kp * (self.target - phi) - self.kd * omega;
+        // ∞ − ∞ is the only way to NaN here; the two terms then push opposite ways at once.
+        let demand = if demand.is_nan() { 0.0 } else { demand };
+        Ok(demand.clamp(-self.limit, self.limit))
     }
 }
 
@@ -188,6 +218,14 @@ impl FiveBar {
         }
         finite("gravity", self.gravity)?;
         finite("M_on", self.m_on)?;
+        if let Some(j) = self.j_s2 {
+            finite("J_S2", j)?;
+        }
+        if let Some(j) = self.j_s3 {
+            finite("J_S3", j)?;
+        }
+        self.drive1.check()?;
+        self.drive4.check()?;
         if self.mode.abs() != 1.0 {
             return Err(Error::OutOfRange {
                 name: "mode (+1 or -1)",
@@ -200,8 +238,17 @@ impl FiveBar {
     }
 
     /// The point masses (m_A2, m_B, m_C3) of the static distribution (eqs. 12–16).
-    #[must_use]
-    pub fn point_masses(&self) -> [f64; 3] {
+    ///
+    /// # Errors
+    /// Any error of the robot's data (non-finite or non-positive lengths and masses, a centre
+    /// of mass off its coupler, a bad servo); [`Error::Overflow`] when a mass overflows.
+    pub fn point_masses(&self) -> Result<[f64; 3]> {
+        self.check()?;
+        Ok(self.masses())
+    }
+
+    /// [`point_masses`](Self::point_masses) for checked data.
+    fn masses(&self) -> [f64; 3] {
         let m_a2 = self.m2 * (self.l_ab - self.l_as2) / self.l_ab;
         let m_b2 = self.m2 * self.l_as2 / self.l_ab;
         let m_b3 = self.m3 * (self.l_cb - self.l_bs3) / self.l_cb;
@@ -327,7 +374,7 @@ impl FiveBar {
     }
 
     fn inertia_from(&self, k: &FiveBarKinematics) -> Matrix2<f64> {
-        let [m_a2, m_b, m_c3] = self.point_masses();
+        let [m_a2, m_b, m_c3] = self.masses();
         let [dj2, dj3] = self.delta_j();
         let mut a = Matrix2::new(
             self.i1 + m_a2 * self.l_oa * self.l_oa,
@@ -361,7 +408,7 @@ impl LagrangeSystem for FiveBar {
     /// second-order analogs.
     fn inertia_derivatives(&self, q: &Vector2<f64>) -> Result<[Matrix2<f64>; 2]> {
         let k = self.kinematics(q)?;
-        let [_, m_b, _] = self.point_masses();
+        let [_, m_b, _] = self.masses();
         let [dj2, dj3] = self.delta_j();
         let mut d = [Matrix2::zeros(); 2];
         for (n, dn) in d.iter_mut().enumerate() {
@@ -379,20 +426,20 @@ impl LagrangeSystem for FiveBar {
     fn forces(&self, _t: f64, q: &Vector2<f64>, qd: &Vector2<f64>) -> Result<Vector2<f64>> {
         let k = self.kinematics(q)?;
         Ok(Vector2::new(
-            self.drive1.torque(q[0], qd[0]) - self.m_on * k.phi3_q[0],
-            self.drive4.torque(q[1], qd[1]) - self.m_on * k.phi3_q[1],
+            self.drive1.torque(q[0], qd[0])? - self.m_on * k.phi3_q[0],
+            self.drive4.torque(q[1], qd[1])? - self.m_on * k.phi3_q[1],
         ))
     }
 
     fn potential(&self, q: &Vector2<f64>) -> Result<f64> {
         let k = self.kinematics(q)?;
-        let [m_a2, m_b, m_c3] = self.point_masses();
+        let [m_a2, m_b, m_c3] = self.masses();
         Ok(self.gravity * (m_a2 * k.a.y + m_b * k.b.y + m_c3 * k.c.y))
     }
 
     fn potential_gradient(&self, q: &Vector2<f64>) -> Result<Vector2<f64>> {
         let k = self.kinematics(q)?;
-        let [m_a2, m_b, m_c3] = self.point_masses();
+        let [m_a2, m_b, m_c3] = self.masses();
         let (e1, e4) = (unit(q[0]), unit(q[1]));
         Ok(self.gravity
             * Vector2::new(
@@ -426,8 +473,8 @@ impl LagrangeSystem for FiveBar {
             k.b.y,
             k.phi2,
             k.phi3,
-            self.drive1.torque(q[0], qd[0]),
-            self.drive4.torque(q[1], qd[1]),
+            self.drive1.torque(q[0], qd[0])?,
+            self.drive4.torque(q[1], qd[1])?,
             k.sin_phi3_minus_phi2,
         ]);
         Ok(())

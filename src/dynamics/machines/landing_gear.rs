@@ -5,7 +5,7 @@ use nalgebra::{Matrix2, Vector2};
 use super::{gear_inertia, GearLink, LinearMotor};
 use crate::dynamics::system::LagrangeSystem;
 use crate::dynamics::table::{Beyond, Table};
-use crate::error::{positive, Result};
+use crate::error::{computed, computed_all, finite, finite2, positive, Result};
 
 /// A failed motor of the [`LandingGear`].
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -174,6 +174,9 @@ impl LandingGear {
         ] {
             positive(n, v)?;
         }
+        self.motor1.check()?;
+        self.motor6.check()?;
+        finite("phi_H max", self.phi_h_max)?;
         Ok(())
     }
 
@@ -185,7 +188,7 @@ impl LandingGear {
         self.check()?;
         let [s1, s2, sh, s3, s5, s6] = self.link_ratios();
         let k = f64::from(self.k);
-        Ok(gear_inertia(&[
+        let a = gear_inertia(&[
             GearLink {
                 inertia: self.i1,
                 speed: s1,
@@ -214,13 +217,19 @@ impl LandingGear {
                 inertia: self.i6,
                 speed: s6,
             },
-        ]))
+        ]);
+        computed_all("inertia matrix", a.iter())?;
+        Ok(a)
     }
 
     /// The carrier angle φ_H = uH1·φ1 + uH3·u36·φ6 (zero when q = 0).
-    #[must_use]
-    pub fn phi_h(&self, q: &Vector2<f64>) -> f64 {
-        self.carrier_ratios().dot(q)
+    ///
+    /// # Errors
+    /// [`Error::NonFinite`](crate::Error::NonFinite) for a non-finite q;
+    /// [`Error::Overflow`](crate::Error::Overflow) when φ_H overflows.
+    pub fn phi_h(&self, q: &Vector2<f64>) -> Result<f64> {
+        finite2(["phi_1", "phi_6"], *q)?;
+        computed("phi_H", self.carrier_ratios().dot(q))
     }
 
     /// The motor moments, the gear's moment, the brake moment and Q, in that order.
@@ -229,8 +238,9 @@ impl LandingGear {
         q: &Vector2<f64>,
         qd: &Vector2<f64>,
     ) -> Result<(f64, f64, f64, f64, Vector2<f64>)> {
-        let mut mp1 = self.motor1.torque(qd[0]);
-        let mut mp6 = self.motor6.torque(qd[1]);
+        self.check()?;
+        let mut mp1 = self.motor1.torque(qd[0])?;
+        let mut mp6 = self.motor6.torque(qd[1])?;
         let mut braked = None;
         match self.failure {
             Some(Failure::Motor1 { braked: b }) => {
@@ -243,7 +253,7 @@ impl LandingGear {
             }
             None => {}
         }
-        let m_on = self.load.at(self.phi_h(q))?;
+        let m_on = self.load.at(self.phi_h(q)?)?;
         let mut qf = Vector2::new(mp1, mp6) + m_on * self.carrier_ratios();
         let mut brake = 0.0;
         if let Some(j) = braked {
@@ -254,6 +264,8 @@ impl LandingGear {
             brake = a[(j, o)] * qf[o] / a[(o, o)] - qf[j];
             qf[j] += brake;
         }
+        computed_all("generalized forces", qf.iter())?;
+        computed("brake moment", brake)?;
         Ok((mp1, mp6, m_on, brake, qf))
     }
 }
@@ -289,9 +301,12 @@ impl LagrangeSystem for LandingGear {
         qd: &Vector2<f64>,
         out: &mut Vec<f64>,
     ) -> Result<()> {
-        out.push(self.phi_h(q));
-        out.extend(self.link_ratios().iter().map(|s| s.dot(qd)));
+        let phi_h = self.phi_h(q)?;
         let (mp1, mp6, m_on, brake, _) = self.loads(q, qd)?;
+        let speeds = self.link_ratios().map(|s| s.dot(qd));
+        computed_all("link speeds", speeds.iter())?;
+        out.push(phi_h);
+        out.extend(speeds);
         out.extend([mp1, mp6, m_on, brake]);
         Ok(())
     }

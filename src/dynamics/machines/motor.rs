@@ -1,7 +1,7 @@
 //! The linear mechanical characteristic M = a − b·ω of an induction motor (seed 003, eqs.
 //! 85–86 and 126).
 
-use crate::error::{positive, Error, Result};
+use crate::error::{computed, finite, positive, Error, Result};
 
 /// A motor whose driving moment falls linearly with its speed: M = a − b·ω.
 ///
@@ -17,8 +17,8 @@ use crate::error::{positive, Error, Result};
 /// use tmm::dynamics::machines::LinearMotor;
 /// let rpm = std::f64::consts::PI / 30.0;
 /// let m = LinearMotor::from_nominal(0.4, 12_000.0 * rpm, 11_000.0 * rpm).unwrap();
-/// assert!((m.torque(11_000.0 * rpm) - 0.4).abs() < 1e-12);
-/// assert!(m.torque(12_000.0 * rpm).abs() < 1e-12);
+/// assert!((m.torque(11_000.0 * rpm).unwrap() - 0.4).abs() < 1e-12);
+/// assert!(m.torque(12_000.0 * rpm).unwrap().abs() < 1e-12);
 /// assert!((m.a - 4.8).abs() < 1e-12); // 12 × nominal at standstill
 /// ```
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -34,7 +34,8 @@ impl LinearMotor {
     ///
     /// # Errors
     /// [`Error::NonPositive`] for a non-positive moment or speed; [`Error::OutOfRange`] when
-    /// the nominal speed is not below the synchronous one.
+    /// the nominal speed is not below the synchronous one; [`Error::Overflow`] when the slope
+    /// or the starting moment overflows (or the slope underflows to zero).
     pub fn from_nominal(m_nom: f64, omega_sync: f64, omega_nom: f64) -> Result<Self> {
         positive("M_nom", m_nom)?;
         positive("omega_sync", omega_sync)?;
@@ -47,16 +48,36 @@ impl LinearMotor {
                 max: omega_sync,
             });
         }
-        let b = m_nom / (omega_sync - omega_nom);
+        let b = computed("motor slope b", m_nom / (omega_sync - omega_nom))?;
+        if b == 0.0 {
+            return Err(Error::Overflow {
+                what: "motor slope b (underflows to zero)",
+            });
+        }
         Ok(Self {
-            a: b * omega_sync,
+            a: computed("motor starting moment a", b * omega_sync)?,
             b,
         })
     }
 
+    /// Checks the characteristic: finite a and b.
+    ///
+    /// # Errors
+    /// [`Error::NonFinite`] naming the coefficient that is not finite.
+    pub fn check(&self) -> Result<()> {
+        finite("motor a", self.a)?;
+        finite("motor b", self.b)?;
+        Ok(())
+    }
+
     /// The driving moment at the shaft speed ω, N·m.
-    #[must_use]
-    pub fn torque(&self, omega: f64) -> f64 {
-        self.a - self.b * omega
+    ///
+    /// # Errors
+    /// As [`check`](Self::check); [`Error::NonFinite`] for a non-finite ω;
+    /// [`Error::Overflow`] when the moment overflows.
+    pub fn torque(&self, omega: f64) -> Result<f64> {
+        self.check()?;
+        finite("omega", omega)?;
+        computed("motor moment a - b*omega", self.a - self.b * omega)
     }
 }

@@ -97,6 +97,7 @@ impl LagrangeSystem for RpArm {
     }
 
     fn inertia_derivatives(&self, q: &Vector2<f64>) -> Result<[Matrix2<f64>; 2]> {
+        self.check()?;
         Ok([
             Matrix2::zeros(),
             Matrix2::new(2.0 * self.m2 * q[1], 0.0, 0.0, 0.0),
@@ -104,10 +105,12 @@ impl LagrangeSystem for RpArm {
     }
 
     fn forces(&self, _t: f64, _q: &Vector2<f64>, _qd: &Vector2<f64>) -> Result<Vector2<f64>> {
+        self.check()?;
         Ok(Vector2::new(self.mp1, self.fp2))
     }
 
     fn damping(&self, _q: &Vector2<f64>) -> Result<Matrix2<f64>> {
+        self.check()?;
         Ok(Matrix2::new(self.b1 * self.r0 * self.r0, 0.0, 0.0, self.b2))
     }
 }

@@ -6,7 +6,7 @@ use super::diagrams::{DiagramExtremes, InternalForces, LinkCase};
 use super::geometry::{Frame, Geometry, Link, Side, WHAT};
 use super::loads::Loads;
 use super::statics::{released, Reactions};
-use crate::error::{finite, positive, Error, Result};
+use crate::error::{positive, Error, Result};
 use crate::kinetostatics::Conditioning;
 use nalgebra::{Point2, Vector2};
 
@@ -170,7 +170,8 @@ pub struct Solution {
 /// Non-finite inputs ([`Error::NonFinite`]); non-positive EI or EA
 /// ([`Error::NonPositive`]); a load placed off its link ([`Error::OutOfRange`]); coincident
 /// hinges, E on the line AB, or a vanishing δ11 (the redundant does not deform the released
-/// structure) ([`Error::Singular`], naming the measure).
+/// structure) ([`Error::Singular`], naming the measure); [`Error::Overflow`] when a
+/// flexibility, the redundant or a reaction overflows.
 pub fn solve(geometry: &Geometry, loads: &Loads, stiffness: &Stiffness) -> Result<Solution> {
     let frame = geometry.frame()?;
     let loads = loads.checked(&frame)?;
@@ -208,14 +209,25 @@ pub fn solve(geometry: &Geometry, loads: &Loads, stiffness: &Stiffness) -> Resul
             value: ratio,
         });
     }
+    // A flexibility that over- or underflows (EI of 1e-300 or 5e-324) carries no digits.
+    crate::error::computed_all(
+        "flexibilities delta11, delta1F",
+        [
+            d11.bending,
+            d11.axial,
+            d1f.bending,
+            d1f.axial,
+            d11.total(),
+            d1f.total(),
+            ratio,
+        ]
+        .iter(),
+    )?;
     let x1 = -d1f.total() / d11.total();
-    finite("X1", x1)?;
+    crate::error::computed("X1", x1)?;
     let reactions = loaded.plus_scaled(x1, &unit);
     if !reactions.is_finite() {
-        return Err(Error::NonFinite {
-            name: "reactions",
-            value: f64::INFINITY,
-        });
+        return Err(Error::Overflow { what: "reactions" });
     }
     Ok(Solution {
         geometry: *geometry,

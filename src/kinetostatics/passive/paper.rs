@@ -193,6 +193,17 @@ impl PaperGroup {
         let en = -u;
         let et = Vector2::new(self.alpha4.sin(), -self.alpha4.cos());
         let r = &s.reactions;
+        crate::error::computed_all(
+            "passive group's table values",
+            [
+                s.loaded.r01.x,
+                s.loaded.r03.dot(&en),
+                s.loaded.r03.dot(&et),
+                r.r03.dot(&en),
+                r.r03.dot(&et),
+            ]
+            .iter(),
+        )?;
         Ok(PaperResult {
             x_af: s.loaded.r01.x,
             x_ef: s.loaded.r03.dot(&en),

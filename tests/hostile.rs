@@ -1,0 +1,860 @@
+//! Adversarial tests: every public entry point of kinematics, kinetostatics, load and
+//! dynamics keeps its promise under hostile input. Bad input gives an `Error`: never a panic,
+//! never an `Ok` holding a NaN or an infinity; every run is bounded.
+//!
+//! Entry points covered by the generated sweeps (`sweep_*` tests):
+//!
+//! - kinematics: `crank`, `rrr_dyad`, `rrp_dyad`, `rpr_dyad`, `solve_contour`,
+//!   `solve_contour_position`, `contour_residual`, `cycle`, `cycle_angles`,
+//!   `try_cycle_angles`, `coupler_curve`, `assembly_range`, `extreme_positions`,
+//!   `Strokes::new`, `Strokes::plan_positions`, `Strokes::try_plan_positions`,
+//!   `transfer_functions`, `differentiate`, `differentiate_periodic`, `integrate_trapezoid`;
+//! - kinetostatics: `RrrDyad::solve`, `RrpDyad::solve`, `RprDyad::solve`,
+//!   `CouplingDrive::solve`, `GearDrive::solve`, `passive::PaperGroup::solve`;
+//! - load: `Load::inertia`;
+//! - dynamics: `accelerations`, `powers`, `kinetic_energy`, `christoffel_terms`,
+//!   `FiniteIncrement`/`Rk4`/`Dopri5` `step` and `advance`, `run`, `Trajectory::push`,
+//!   `Table::new`, `Table::at`, `LinearMotor::from_nominal`, `LinearMotor::torque`,
+//!   `Servo::torque`, `FiveBar::kinematics`, `FiveBar::point_masses`,
+//!   `CoaxialPropellers::exact`, `CoaxialPropellers::drift_acceleration`,
+//!   `DecoupledRpArm::closed_form`, `LandingGear::phi_h`.
+//!
+//! 41 entry points. The number of generated cases per sweep is `TMM_HOSTILE_CASES`
+//! (default 200; run with a larger number in release, for example
+//! `TMM_HOSTILE_CASES=100000 cargo test --release --test hostile`).
+
+#![allow(clippy::field_reassign_with_default)]
+
+use std::fmt::Debug;
+use std::panic::{catch_unwind, AssertUnwindSafe};
+
+use nalgebra::{Matrix2, Point2, Vector2};
+use tmm::dynamics::machines::{CoaxialPropellers, FiveBar, LandingGear, LinearMotor, RpArm};
+use tmm::dynamics::{
+    accelerations, christoffel_terms, kinetic_energy, powers, run, Beyond, Dopri5, FiniteIncrement,
+    LagrangeSystem, Rk4, RunOptions, State, Stepper, Table, Trajectory,
+};
+use tmm::kinematics::{
+    assembly_range, contour_residual, coupler_curve, crank, cycle, cycle_angles, differentiate,
+    differentiate_periodic, extreme_positions, integrate_trapezoid, rpr_dyad, rrp_dyad, rrr_dyad,
+    solve_contour, solve_contour_position, transfer_functions, try_cycle_angles, Branch, Extreme,
+    ExtremeKind, Guide, LoopVector, Motion, PointMotion, Rotation, Strokes,
+};
+use tmm::kinetostatics::passive::{PaperGroup, Stiffness};
+use tmm::kinetostatics::{CouplingDrive, GearDrive, RprDyad, RrpDyad, RrrDyad};
+use tmm::{Error, Load};
+
+// ---------------------------------------------------------------------------------------
+// Generators and checks
+// ---------------------------------------------------------------------------------------
+
+fn cases() -> usize {
+    std::env::var("TMM_HOSTILE_CASES")
+        .ok()
+        .and_then(|s| s.parse().ok())
+        .unwrap_or(200)
+}
+
+/// A small deterministic generator (xorshift64*), so that a failure can be replayed.
+struct Gen(u64);
+
+const SPECIAL: [f64; 24] = [
+    f64::NAN,
+    f64::INFINITY,
+    f64::NEG_INFINITY,
+    0.0,
+    -0.0,
+    5e-324,
+    -5e-324,
+    f64::MIN_POSITIVE,
+    1e-300,
+    -1e-300,
+    1e-16,
+    1e300,
+    -1e300,
+    f64::MAX,
+    f64::MIN,
+    1e155,
+    -1e155,
+    1e160,
+    1.0,
+    -1.0,
+    0.5,
+    2.0,
+    0.1,
+    std::f64::consts::PI,
+];
+
+impl Gen {
+    fn new(seed: u64) -> Self {
+        Self(seed.wrapping_mul(0x9E37_79B9_7F4A_7C15) | 1)
+    }
+    fn next(&mut self) -> u64 {
+        self.0 ^= self.0 >> 12;
+        self.0 ^= self.0 << 25;
+        self.0 ^= self.0 >> 27;
+        self.0.wrapping_mul(0x2545_F491_4F6C_DD1D)
+    }
+    fn unit(&mut self) -> f64 {
+        (self.next() >> 11) as f64 / (1u64 << 53) as f64
+    }
+    /// A hostile number: a special value, an ordinary one, or a random magnitude.
+    fn f(&mut self) -> f64 {
+        match self.next() % 4 {
+            0 => SPECIAL[(self.next() % SPECIAL.len() as u64) as usize],
+            1 => 2.0 * self.unit() - 1.0,
+            2 => (self.unit() - 0.5) * 10f64.powi((self.next() % 600) as i32 - 300),
+            _ => self.unit() * 0.5 + 0.05,
+        }
+    }
+    /// A mostly ordinary positive length, sometimes hostile.
+    fn len(&mut self) -> f64 {
+        if self.next().is_multiple_of(3) {
+            self.f()
+        } else {
+            0.05 + self.unit()
+        }
+    }
+    fn v(&mut self) -> Vector2<f64> {
+        Vector2::new(self.f(), self.f())
+    }
+    fn p(&mut self) -> Point2<f64> {
+        Point2::from(self.v())
+    }
+    fn pm(&mut self) -> PointMotion {
+        PointMotion::new(self.p(), self.v(), self.v())
+    }
+    fn motion(&mut self) -> Motion {
+        Motion::new(self.f(), self.f(), self.f())
+    }
+    fn load(&mut self) -> Load {
+        Load::new(self.p(), self.v(), self.f())
+    }
+    fn branch(&mut self) -> Branch {
+        if self.next().is_multiple_of(2) {
+            Branch::Plus
+        } else {
+            Branch::Minus
+        }
+    }
+}
+
+/// `true` when a `Debug` rendering holds a NaN or an infinity.
+fn has_non_finite(s: &str) -> bool {
+    s.split(|c: char| !(c.is_ascii_alphanumeric() || c == '_'))
+        .any(|t| t == "NaN" || t == "inf")
+}
+
+/// Runs one case: no panic, and an `Ok` holds only finite numbers. Returns the result.
+fn check<T: Debug>(entry: &str, case: &dyn Debug, f: impl FnOnce() -> tmm::Result<T>) {
+    let r = catch_unwind(AssertUnwindSafe(f));
+    match r {
+        Err(_) => panic!("{entry} panicked on {case:?}"),
+        Ok(Ok(v)) => {
+            let s = format!("{v:?}");
+            assert!(
+                !has_non_finite(&s),
+                "{entry} returned a non-finite Ok on {case:?}: {s}"
+            );
+        }
+        Ok(Err(e)) => {
+            // The message renders too (no panic in Display).
+            let _ = e.to_string();
+        }
+    }
+}
+
+/// As [`check`] for a function without `Result`.
+fn check_plain<T: Debug>(entry: &str, case: &dyn Debug, f: impl FnOnce() -> T) {
+    check(entry, case, || Ok(f()));
+}
+
+fn sweep(seed: u64, mut body: impl FnMut(&mut Gen)) {
+    let mut g = Gen::new(seed);
+    for _ in 0..cases() {
+        body(&mut g);
+    }
+}
+
+// ---------------------------------------------------------------------------------------
+// Sweeps: kinematics
+// ---------------------------------------------------------------------------------------
+
+#[test]
+fn sweep_kinematic_blocks() {
+    sweep(1, |g| {
+        let (o, l, phi) = (g.p(), g.len(), g.motion());
+        check("crank", &(o, l, phi), || crank(o, l, phi));
+        let (a, c, l2, l3, b) = (g.pm(), g.pm(), g.len(), g.len(), g.branch());
+        check("rrr_dyad", &(a, c, l2, l3, b), || rrr_dyad(a, c, l2, l3, b));
+        let guide = Guide {
+            point: g.pm(),
+            angle: g.motion(),
+        };
+        check("rrp_dyad", &(a, guide, l2, b), || rrp_dyad(a, guide, l2, b));
+        check("rpr_dyad", &(a, c), || rpr_dyad(a, c));
+        // Ordinary dyads driven hard: huge speeds, coincident and collinear points.
+        let a = PointMotion::new(Point2::origin(), g.v(), g.v());
+        let c = PointMotion::fixed(Point2::new(g.len(), 0.0));
+        check("rrr_dyad", &(a, c), || {
+            rrr_dyad(a, c, 1.0, 1.0, Branch::Plus)
+        });
+        check("rpr_dyad", &(a, a), || rpr_dyad(a, a));
+    });
+}
+
+#[test]
+fn sweep_contours() {
+    sweep(2, |g| {
+        let mut vs = Vec::new();
+        for _ in 0..(g.next() % 4) {
+            vs.push(LoopVector::fixed(g.v()));
+        }
+        match g.next() % 4 {
+            0 => vs.push(LoopVector::unknown()),
+            1 => {
+                vs.push(LoopVector::unknown_angle(g.len()));
+                vs.push(LoopVector::unknown_angle(g.len()));
+            }
+            2 => {
+                vs.push(LoopVector::unknown_angle(g.len()));
+                vs.push(LoopVector::unknown_length(g.motion()));
+            }
+            _ => {
+                vs.push(LoopVector::unknown_length(g.motion()));
+                vs.push(LoopVector::unknown_length(g.motion()));
+            }
+        }
+        let b = g.branch();
+        check("solve_contour", &vs, || solve_contour(&vs, b));
+        check("solve_contour_position", &vs, || {
+            solve_contour_position(&vs, b)
+        });
+        let x = [g.f(), g.f()];
+        check("contour_residual", &(&vs, x), || contour_residual(&vs, x));
+    });
+}
+
+#[test]
+fn sweep_cycles_and_strokes() {
+    let sizes = [0usize, 1, 2, 3, 12, 1 << 25, 1 << 62, usize::MAX];
+    sweep(3, |g| {
+        let n = sizes[(g.next() % sizes.len() as u64) as usize];
+        let start = g.f();
+        let big = n > 1 << 20;
+        if !big {
+            check_plain("cycle_angles", &(n, start), || cycle_angles(n, start));
+            check("try_cycle_angles", &(n, start), || {
+                try_cycle_angles(n, start)
+            });
+        } else {
+            assert!(try_cycle_angles(n, start).is_err() || n <= tmm::kinematics::MAX_POSITIONS);
+            assert!(cycle_angles(n, start).is_empty());
+        }
+        let l = g.len();
+        let f = |phi: f64| Ok(crank(Point2::origin(), l, Motion::unit_speed(phi))?.a.p);
+        if !big {
+            check("cycle", &(n, start, l), || cycle(n, start, f));
+            check("coupler_curve", &(n, start, l), || {
+                coupler_curve(n, start, f)
+            });
+        } else {
+            assert!(cycle(n, start, f).is_err());
+        }
+        let (x, y) = (g.f(), g.f());
+        let rot = if g.next().is_multiple_of(2) {
+            Rotation::Ccw
+        } else {
+            Rotation::Cw
+        };
+        let e = |input, kind| Extreme {
+            input,
+            output: Motion::default(),
+            kind,
+        };
+        let ex = [e(x, ExtremeKind::Min), e(y, ExtremeKind::Max)];
+        check("Strokes::new", &ex, || Strokes::new(&ex, rot));
+        if let Ok(s) = Strokes::new(&ex, rot) {
+            if !big {
+                check_plain("Strokes::plan_positions", &n, || s.plan_positions(n));
+            }
+            check("Strokes::try_plan_positions", &n, || {
+                s.try_plan_positions(n)
+            });
+        }
+        let phi = g.f();
+        let (lc, lr) = (g.len(), g.len());
+        check("assembly_range", &(phi, lc, lr), || {
+            assembly_range(phi, |p| {
+                let a = crank(Point2::origin(), lc, Motion::fixed(p))?.a;
+                rrr_dyad(
+                    a,
+                    PointMotion::fixed(Point2::new(0.3, 0.0)),
+                    lr,
+                    0.15,
+                    Branch::Plus,
+                )
+            })
+        });
+        let samples = [0usize, 2, 3, 7, 36, usize::MAX][(g.next() % 6) as usize];
+        let amp = g.f();
+        check("extreme_positions", &(samples, amp), || {
+            extreme_positions(
+                |p| Ok(Motion::new(amp * p.sin(), amp * p.cos(), 0.0)),
+                samples,
+            )
+        });
+        let (p1, m) = (g.f(), g.motion());
+        check("transfer_functions", &(p1, m), || {
+            transfer_functions(|_| Ok(m), p1)
+        });
+    });
+}
+
+#[test]
+fn sweep_numeric() {
+    sweep(4, |g| {
+        let n = (g.next() % 6) as usize;
+        let y: Vec<f64> = (0..n).map(|_| g.f()).collect();
+        let h = g.f();
+        check("differentiate", &(&y, h), || differentiate(&y, h));
+        check("differentiate_periodic", &(&y, h), || {
+            differentiate_periodic(&y, h)
+        });
+        check("integrate_trapezoid", &(&y, h), || {
+            integrate_trapezoid(&y, h)
+        });
+    });
+}
+
+// ---------------------------------------------------------------------------------------
+// Sweeps: kinetostatics and loads
+// ---------------------------------------------------------------------------------------
+
+#[test]
+fn sweep_kinetostatics() {
+    sweep(5, |g| {
+        let d = RrrDyad {
+            a: g.p(),
+            b: g.p(),
+            c: g.p(),
+            load2: g.load(),
+            load3: g.load(),
+        };
+        check("RrrDyad::solve", &d, || d.solve());
+        let d = RrpDyad {
+            a: g.p(),
+            b: g.p(),
+            guide: g.v(),
+            load2: g.load(),
+            load3: g.load(),
+        };
+        check("RrpDyad::solve", &d, || d.solve());
+        let d = RprDyad {
+            a: g.p(),
+            e: g.p(),
+            axis: g.v(),
+            load2: g.load(),
+            load3: g.load(),
+        };
+        check("RprDyad::solve", &d, || d.solve());
+        let loads = [g.load(), g.load()];
+        let c = CouplingDrive { o1: g.p() };
+        check("CouplingDrive::solve", &(c, loads), || c.solve(&loads));
+        let gd = GearDrive::at_angle(g.p(), g.len(), g.f(), g.f());
+        check("GearDrive::solve", &(gd, loads), || gd.solve(&loads));
+        let (m, a, j, e, s) = (g.f(), g.v(), g.f(), g.f(), g.p());
+        check("Load::inertia", &(m, a, j, e), || {
+            Load::inertia(s, m, a, j, e)
+        });
+    });
+}
+
+#[test]
+fn sweep_passive_group() {
+    // The force method is heavier: a tenth of the cases.
+    let mut g = Gen::new(6);
+    for _ in 0..cases().div_ceil(10) {
+        let mut p = PaperGroup::example();
+        match g.next() % 4 {
+            0 => p.l1 = g.len(),
+            1 => p.f2 = g.f(),
+            2 => p.alpha4 = g.f(),
+            _ => p.m = g.f(),
+        }
+        let st = Stiffness {
+            ei: [g.f(), g.len(), g.f()],
+            ea: if g.next().is_multiple_of(2) {
+                None
+            } else {
+                Some([g.f(), g.f(), g.f()])
+            },
+        };
+        check("PaperGroup::solve", &(&p, st), || p.solve(&st));
+    }
+}
+
+// ---------------------------------------------------------------------------------------
+// Sweeps: dynamics
+// ---------------------------------------------------------------------------------------
+
+/// A hostile 2-DOF system: its numbers come from the generator.
+#[derive(Debug, Clone, Copy)]
+struct Hostile {
+    m: [f64; 3],
+    q: [f64; 2],
+    b: f64,
+    k: f64,
+    w: f64,
+}
+
+impl LagrangeSystem for Hostile {
+    fn inertia(&self, _: &Vector2<f64>) -> tmm::Result<Matrix2<f64>> {
+        Ok(Matrix2::new(self.m[0], self.m[1], self.m[1], self.m[2]))
+    }
+    fn forces(&self, t: f64, q: &Vector2<f64>, _: &Vector2<f64>) -> tmm::Result<Vector2<f64>> {
+        Ok(Vector2::new(
+            self.q[0] * (self.w * t).sin() - self.k * q[0],
+            self.q[1],
+        ))
+    }
+    fn damping(&self, _: &Vector2<f64>) -> tmm::Result<Matrix2<f64>> {
+        Ok(Matrix2::new(self.b, 0.0, 0.0, self.b))
+    }
+    fn output_names(&self) -> Vec<&'static str> {
+        vec!["x"]
+    }
+    fn outputs(
+        &self,
+        _: f64,
+        q: &Vector2<f64>,
+        _: &Vector2<f64>,
+        out: &mut Vec<f64>,
+    ) -> tmm::Result<()> {
+        out.push(q[0] * self.k);
+        Ok(())
+    }
+}
+
+fn hostile_system(g: &mut Gen) -> Hostile {
+    Hostile {
+        m: [g.len(), g.f() * 0.01, g.len()],
+        q: [g.f(), g.f()],
+        b: g.f(),
+        k: g.f(),
+        w: g.f(),
+    }
+}
+
+fn small_budget(t_end: f64, h: f64) -> RunOptions {
+    RunOptions {
+        max_steps: 2_000,
+        max_evaluations: 20_000,
+        max_rows: 500,
+        ..RunOptions::until(t_end, h)
+    }
+}
+
+#[test]
+fn sweep_dynamics_core() {
+    sweep(7, |g| {
+        let sys = hostile_system(g);
+        let s = State::new(g.f(), g.v(), g.v());
+        check("accelerations", &(sys, s), || {
+            accelerations(&sys, s.t, &s.q, &s.qd)
+        });
+        check("powers", &(sys, s), || powers(&sys, s.t, &s.q, &s.qd));
+        check("kinetic_energy", &(sys, s), || {
+            kinetic_energy(&sys, &s.q, &s.qd)
+        });
+        let d = [
+            Matrix2::new(g.f(), g.f(), g.f(), g.f()),
+            Matrix2::new(g.f(), g.f(), g.f(), g.f()),
+        ];
+        check("christoffel_terms", &(d, s.qd), || {
+            christoffel_terms(&d, &s.qd)
+        });
+        let h = g.f();
+        check("FiniteIncrement::step", &(sys, s, h), || {
+            FiniteIncrement.step(&sys, &s, h)
+        });
+        check("Rk4::step", &(sys, s, h), || Rk4.step(&sys, &s, h));
+        let dp = Dopri5 {
+            rtol: g.f(),
+            atol: g.f(),
+        };
+        check("Dopri5::advance", &(sys, s, h, dp), || {
+            dp.advance(&sys, &s, h)
+        });
+        let mut tr = Trajectory::for_system(&sys);
+        check("Trajectory::push", &(sys, s), || tr.push(&sys, &s));
+        assert!(tr.q()[0].len() == tr.len() && tr.outputs()[0].len() == tr.len());
+        let _ = tr.to_csv();
+        let _ = tr.last_state();
+    });
+}
+
+#[test]
+fn sweep_runs() {
+    // Runs are the heaviest: a twentieth of the cases, each under a small budget.
+    let mut g = Gen::new(8);
+    for i in 0..cases().div_ceil(20) {
+        let sys = hostile_system(&mut g);
+        let s = State::new(0.0, g.v() * 1e-3, g.v() * 1e-3);
+        let opts = small_budget([1.0, 1e300, g.f()][i % 3], [0.01, 1e-9, g.f()][i % 3]);
+        let which = g.next() % 3;
+        let started = std::time::Instant::now();
+        check("run", &(sys, s, opts, which), || match which {
+            0 => run(&sys, &FiniteIncrement, s, &opts),
+            1 => run(&sys, &Rk4, s, &opts),
+            _ => run(&sys, &Dopri5::new(1e-6)?, s, &opts),
+        });
+        assert!(started.elapsed().as_secs() < 5, "{sys:?} {opts:?}");
+    }
+}
+
+#[test]
+fn sweep_machines() {
+    sweep(9, |g| {
+        let (x, y, z) = (g.f(), g.f(), g.f());
+        check("Table::new", &(x, y), || {
+            Table::new(vec![0.0, x.abs(), 1e308], vec![y, z, -y], Beyond::HoldEnds)
+        });
+        let t = Table::new(vec![-1e308, 0.0, 1e308], vec![y, z, -y], Beyond::Error);
+        if let Ok(t) = t {
+            let x = g.f();
+            check("Table::at", &x, || t.at(x));
+        }
+        let (m, ws, wn) = (g.f(), g.f(), g.f());
+        check("LinearMotor::from_nominal", &(m, ws, wn), || {
+            LinearMotor::from_nominal(m, ws, wn)
+        });
+        let motor = LinearMotor { a: g.f(), b: g.f() };
+        let w = g.f();
+        check("LinearMotor::torque", &(motor, w), || motor.torque(w));
+
+        let mut fb = FiveBar::default();
+        match g.next() % 5 {
+            0 => fb.drive1.limit = g.f(),
+            1 => fb.drive4.kp = g.f(),
+            2 => fb.l_ab = g.len(),
+            3 => fb.m_on = g.f(),
+            _ => fb.j_s2 = Some(g.f()),
+        }
+        let q = Vector2::new(g.f(), g.f());
+        let qd = g.v();
+        check("Servo::torque", &(fb.drive1, q), || {
+            fb.drive1.torque(q[0], qd[0])
+        });
+        check("FiveBar::point_masses", &fb, || fb.point_masses());
+        check("FiveBar::kinematics", &(fb, q), || fb.kinematics(&q));
+        check("FiveBar accelerations", &(fb, q), || {
+            accelerations(&fb, 0.0, &q, &qd)
+        });
+
+        let mut cp = CoaxialPropellers::default();
+        match g.next() % 4 {
+            0 => cp.motor.b = g.f(),
+            1 => cp.m_on4 = g.f(),
+            2 => cp.i4 = g.len(),
+            _ => cp.motor.a = g.f(),
+        }
+        let s = State::new(g.f(), g.v(), g.v());
+        let t = g.f();
+        check("CoaxialPropellers::exact", &(&cp, s, t), || cp.exact(&s, t));
+        check("CoaxialPropellers::drift_acceleration", &cp, || {
+            cp.drift_acceleration()
+        });
+        let mut arm = RpArm::default();
+        arm.b1 = g.f();
+        check("DecoupledRpArm::closed_form", &(arm, s, t), || {
+            arm.decoupled().closed_form(&s, t)
+        });
+        let lg = LandingGear::default();
+        check("LandingGear::phi_h", &q, || lg.phi_h(&q));
+        check("LandingGear accelerations", &(q, qd), || {
+            accelerations(&lg, 0.0, &q, &qd)
+        });
+    });
+}
+
+// ---------------------------------------------------------------------------------------
+// Regressions: the reproductions of the issue
+// ---------------------------------------------------------------------------------------
+
+#[test]
+fn repro_1_servo_with_nan_limit_is_an_error() {
+    let mut fb = FiveBar::default();
+    fb.drive1.limit = f64::NAN;
+    let q = Vector2::new(1.7453292519943295, 1.3962634015954636);
+    assert!(accelerations(&fb, 0.0, &q, &Vector2::zeros()).is_err());
+    assert!(powers(&fb, 0.0, &q, &Vector2::zeros()).is_err());
+    assert!(Trajectory::for_system(&fb)
+        .push(&fb, &State::at_rest(q))
+        .is_err());
+    let s = State::at_rest(q);
+    assert!(Rk4.step(&fb, &s, 1e-3).is_err());
+    assert!(FiniteIncrement.step(&fb, &s, 1e-3).is_err());
+    assert!(Dopri5::new(1e-6).unwrap().advance(&fb, &s, 1e-3).is_err());
+    assert!(run(&fb, &Rk4, s, &RunOptions::until(0.1, 1e-3)).is_err());
+    assert!(matches!(
+        fb.drive1.torque(0.0, 0.0),
+        Err(Error::NonFinite { .. })
+    ));
+    fb.drive1.limit = -1.0;
+    assert!(matches!(
+        fb.drive1.torque(0.0, 0.0),
+        Err(Error::OutOfRange { .. })
+    ));
+}
+
+#[test]
+fn repro_2_trajectory_columns_cannot_desynchronise() {
+    // The columns are private: a trajectory is built only by push, a whole row at a time.
+    let tr = Trajectory::default();
+    assert_eq!(tr.to_csv().lines().count(), 1);
+    assert!(tr.last_state().is_none());
+    assert!(tr.output("x").is_none());
+    let sys = Hostile {
+        m: [1.0, 0.0, 1.0],
+        q: [1.0, 1.0],
+        b: 0.0,
+        k: 1.0,
+        w: 1.0,
+    };
+    let mut tr = Trajectory::default();
+    tr.push(&sys, &State::at_rest(Vector2::new(1.0, 0.0)))
+        .unwrap();
+    assert_eq!(tr.output("x"), Some(&[1.0][..]));
+    assert_eq!(tr.to_csv().lines().count(), 2);
+    tr.truncate(0);
+    assert!(tr.is_empty() && tr.outputs()[0].is_empty());
+}
+
+#[test]
+fn repro_3_huge_cycles_are_errors() {
+    let f = |phi: f64| Ok(phi);
+    assert!(matches!(
+        cycle(1 << 62, 0.0, f),
+        Err(Error::OutOfRange { .. })
+    ));
+    assert!(cycle_angles(usize::MAX, 0.0).is_empty());
+    assert!(try_cycle_angles(usize::MAX, 0.0).is_err());
+}
+
+#[test]
+fn repro_4_coincident_extremes_have_no_time_ratio() {
+    let e = |kind| Extreme {
+        input: 2.0,
+        output: Motion::default(),
+        kind,
+    };
+    for rot in [Rotation::Cw, Rotation::Ccw] {
+        let r = Strokes::new(&[e(ExtremeKind::Min), e(ExtremeKind::Max)], rot);
+        assert!(matches!(r, Err(Error::Singular { .. })), "{r:?}");
+    }
+}
+
+#[test]
+fn repro_5_dyads_and_contours_check_their_results() {
+    let a = PointMotion::new(Point2::origin(), Vector2::new(0.0, 1e155), Vector2::zeros());
+    let c = PointMotion::fixed(Point2::new(1.0, 0.0));
+    let r = rrr_dyad(a, c, 1.0, 1.0, Branch::Plus);
+    assert!(matches!(r, Err(Error::Overflow { .. })), "{r:?}");
+    let vs = [
+        LoopVector::fixed(Vector2::new(1e200, 0.0)),
+        LoopVector::unknown(),
+    ];
+    let r = solve_contour_position(&vs, Branch::Plus);
+    assert!(matches!(r, Err(Error::Overflow { .. })), "{r:?}");
+}
+
+#[test]
+fn repro_6_passive_group_with_extreme_stiffness() {
+    let r = PaperGroup::example().solve(&Stiffness {
+        ei: [1e300, 5e-324, 1e-16],
+        ea: None,
+    });
+    assert!(r.is_err(), "{r:?}");
+}
+
+#[test]
+fn repro_7_side_outputs_overflow_as_overflow() {
+    let big = Load::force_at(Point2::new(1e160, 0.0), Vector2::new(0.0, 1e160));
+    let rrp = RrpDyad {
+        a: Point2::new(-1.0, 1.0),
+        b: Point2::origin(),
+        guide: Vector2::new(1.0, 0.0),
+        load2: Load::zero(Point2::origin()),
+        load3: big,
+    };
+    let r = rrp.solve();
+    assert!(matches!(r, Err(Error::Overflow { .. })), "{r:?}");
+    let rpr = RprDyad {
+        a: Point2::new(1.0, 0.0),
+        e: Point2::origin(),
+        axis: Vector2::new(-1.0, 0.0),
+        load2: Load::force_at(Point2::new(1e160, 0.0), Vector2::new(0.0, 1e160)),
+        load3: Load::zero(Point2::origin()),
+    };
+    assert!(rpr.solve().is_err());
+    assert!(matches!(
+        Load::inertia(Point2::origin(), 1e300, Vector2::new(1e308, 0.0), 0.0, 0.0),
+        Err(Error::Overflow { .. })
+    ));
+    assert!(matches!(
+        LinearMotor::from_nominal(1e308, 0.5, 1e-12),
+        Err(Error::Overflow { .. })
+    ));
+    let mut cp = CoaxialPropellers::default();
+    cp.motor.b = 5e-324;
+    let d = cp.drift_acceleration().unwrap();
+    assert!(d.iter().all(|v| v.is_finite()));
+    let t = Table::new(vec![0.0, 1.0], vec![-1e308, 1e308], Beyond::Error).unwrap();
+    let r = t.at(0.5);
+    assert!(r.as_ref().map_or(true, |v| v.is_finite()), "{r:?}");
+    // Finite coordinates whose distance overflows: overflow, not "must be finite".
+    let d = RrrDyad {
+        a: Point2::new(-1e154, -1e154),
+        b: Point2::new(1e154, 1e154),
+        c: Point2::new(1e154, 0.0),
+        load2: Load::zero(Point2::origin()),
+        load3: Load::zero(Point2::origin()),
+    };
+    assert!(matches!(d.solve(), Err(Error::Overflow { .. })));
+    let mut arm = RpArm::default();
+    arm.mp1 = f64::NAN;
+    assert!(arm
+        .forces(0.0, &Vector2::zeros(), &Vector2::zeros())
+        .is_err());
+}
+
+#[test]
+fn repro_8_run_checks_recorded_outputs() {
+    let cp = CoaxialPropellers::default();
+    let s = State::at_rest(Vector2::new(f64::MAX, 0.0));
+    let r = run(&cp, &Rk4, s, &RunOptions::until(1.0, 0.1));
+    assert!(r.is_err(), "{:?}", r.map(|r| r.last));
+}
+
+#[test]
+fn repro_9_every_run_is_bounded() {
+    let spring = |k: f64| Hostile {
+        m: [1.0, 0.0, 1.0],
+        q: [0.0, 0.0],
+        b: 0.0,
+        k,
+        w: 0.0,
+    };
+    let s = State::at_rest(Vector2::new(1.0, 0.0));
+    let budget = |r: tmm::Result<tmm::dynamics::RunResult>| matches!(r, Err(Error::Budget { time, .. }) if time.is_finite());
+    // A fixed step of 1e-9 over 1 s, and t_end = 1e300.
+    assert!(budget(run(&spring(1.0), &Rk4, s, &small_budget(1.0, 1e-9))));
+    assert!(budget(run(
+        &spring(1.0),
+        &Rk4,
+        s,
+        &small_budget(1e300, 0.1)
+    )));
+    // A step below the rounding of t.
+    assert!(run(&spring(1.0), &Rk4, s, &RunOptions::until(1.0, 5e-324)).is_err());
+    // Dormand–Prince on a stiff spring.
+    let dp = Dopri5::new(1e-9).unwrap();
+    assert!(budget(run(&spring(1e12), &dp, s, &small_budget(1.0, 1e-3))));
+    // A forcing sin(1e300·t).
+    let mut f = spring(1.0);
+    f.q = [1.0, 0.0];
+    f.w = 1e300;
+    assert!(budget(run(&f, &dp, s, &small_budget(1.0, 1e-3))));
+    // The coaxial propellers to t_end = f64::MAX: memory bounded by the rows.
+    let cp = CoaxialPropellers::default();
+    let r = run(
+        &cp,
+        &Rk4,
+        State::at_rest(Vector2::zeros()),
+        &small_budget(f64::MAX, 1e-3),
+    );
+    assert!(r.is_err());
+    // The default budgets exist and can be changed.
+    let o = RunOptions::until(1.0, 0.1);
+    assert_eq!(o.max_steps, RunOptions::DEFAULT_MAX_STEPS);
+    assert!(o.max_evaluations > 0 && o.max_rows >= 2);
+    let tiny = RunOptions { max_rows: 1, ..o };
+    assert!(run(&spring(1.0), &Rk4, s, &tiny).is_err());
+    // A run within its budgets ends with at most max_rows rows.
+    let opts = RunOptions {
+        max_rows: 50,
+        record_every: 3,
+        ..RunOptions::until(1.0, 0.01)
+    };
+    let r = run(&spring(1.0), &Rk4, s, &opts).unwrap();
+    assert!(r.trajectory.len() <= 50);
+}
+
+#[test]
+fn functions_without_result_cannot_give_nan() {
+    assert!(cycle_angles(12, f64::NAN).is_empty());
+    let lg = LandingGear::default();
+    assert!(lg.phi_h(&Vector2::new(f64::NAN, 0.0)).is_err());
+    let d = [Matrix2::from_element(f64::NAN), Matrix2::zeros()];
+    assert!(christoffel_terms(&d, &Vector2::new(1.0, 1.0)).is_err());
+    let m = LinearMotor {
+        a: f64::NAN,
+        b: 1.0,
+    };
+    assert!(m.torque(1.0).is_err());
+    let mut fb = FiveBar::default();
+    fb.m2 = f64::NAN;
+    assert!(fb.point_masses().is_err());
+}
+
+#[test]
+fn assembly_range_tells_a_branch_point_from_a_lock() {
+    // Crank 0.125 m about O driving an RRP dyad of l = 0.1875 on a guide through (0, 0.0625)
+    // along x: the crank turns fully; the two assembly modes touch at 270°.
+    let mech = |phi: f64| {
+        let a = crank(Point2::origin(), 0.125, Motion::unit_speed(phi))?.a;
+        rrp_dyad(
+            a,
+            Guide::fixed(Point2::new(0.0, 0.0625), 0.0),
+            0.1875,
+            Branch::Plus,
+        )
+    };
+    for start in [0.0, 0.1, -0.3, 1.0, 1.5 * std::f64::consts::PI] {
+        let r = assembly_range(start, mech);
+        assert_eq!(r, Ok(None), "from {start}");
+    }
+    // A real lock is still found.
+    let c = PointMotion::fixed(Point2::new(0.3, 0.0));
+    let r = assembly_range(0.0, |phi| {
+        let a = crank(Point2::origin(), 0.2, Motion::fixed(phi))?.a;
+        rrr_dyad(a, c, 0.08, 0.15, Branch::Plus)
+    })
+    .unwrap();
+    assert!(r.is_some());
+}
+
+#[test]
+fn coaxial_closed_form_holds_at_large_lambda_t() {
+    // A stiff motor: λτ in the thousands. The exact motion composes with itself (the flow
+    // property) to 1e-12 relative, which the old form lost to cancellation of terms ~2e7.
+    let mut cp = CoaxialPropellers::default();
+    cp.motor.b = 1200.0;
+    cp.motor.a = 1200.0 * 1100.0;
+    let s0 = State::new(0.0, Vector2::zeros(), Vector2::new(-10.0, 10.0));
+    let direct = cp.exact(&s0, 20.0).unwrap();
+    let mid = cp.exact(&s0, 7.0).unwrap();
+    let composed = cp.exact(&mid, 20.0).unwrap();
+    for i in 0..2 {
+        let scale = direct.q[i].abs().max(1.0);
+        assert!(
+            (direct.q[i] - composed.q[i]).abs() <= 1e-12 * scale,
+            "q{i}: {} vs {}",
+            direct.q[i],
+            composed.q[i]
+        );
+        let scale = direct.qd[i].abs().max(1.0);
+        assert!((direct.qd[i] - composed.qd[i]).abs() <= 1e-12 * scale);
+    }
+}
