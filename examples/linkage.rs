@@ -11,7 +11,7 @@ use std::f64::consts::TAU;
 use std::fs;
 use std::path::Path;
 use tmm::kinematics::{Motion, Rotation};
-use tmm::linkage::{course_inputs, Linkage, Plan, Table, Tabulate};
+use tmm::linkage::{course_inputs, Linkage, Plan, Table};
 
 const BUNDLED: &str = include_str!("../linkages/shaper.json");
 
@@ -91,7 +91,6 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let file = dir.join(format!("{}.csv", linkage.name.replace([' ', '/'], "_")));
     table.write_csv(fs::File::create(&file)?)?;
     println!("course table written to {}", file.display());
-    let _ = positions.first().map(|p| p.as_ref().map(Tabulate::row));
     Ok(())
 }
 

@@ -102,7 +102,7 @@ fn lu_difference(plan: &Plan, a: &tmm::linkage::Analysis<'_>) -> f64 {
     let mut scale: f64 = 0.0;
     let mut worst: f64 = 0.0;
     for j in 0..nj {
-        let [p, q] = plan.joint_links(j);
+        let [_, q] = plan.joint_links(j);
         let re = a.reaction_index(j);
         let load = re.load_on(q);
         let at = a.joint_on(j, 1).p;
@@ -119,7 +119,6 @@ fn lu_difference(plan: &Plan, a: &tmm::linkage::Analysis<'_>) -> f64 {
         worst = worst
             .max((f - load.force).norm())
             .max((c - c_engine).abs() / arm);
-        let _ = p;
     }
     let drive = x[col];
     let engine = if crank_coupling {
@@ -195,6 +194,16 @@ fn velocities_and_accelerations_match_finite_differences_of_positions() {
                     worst = worst.max((v - d1 * w).abs() / scale);
                     worst = worst.max((acc - (d2 * w * w + d1 * e)).abs() / scale);
                 }
+            }
+            // The slide of every sliding pair, also on a turning guide (the shaper's lever), where
+            // its acceleration carries the s·ω² term of the guide's rotation.
+            for j in (0..plan.joint_names().len()).filter(|&j| plan.is_prismatic(j)) {
+                let f = |x: f64| pos(x).slide_index(j).value;
+                let (d1, d2) = fd8(&f, phi, h);
+                let m = a.slide_index(j);
+                let scale = plan.size() * (w * w + e.abs());
+                worst = worst.max((m.rate - d1 * w).abs() / scale);
+                worst = worst.max((m.accel - (d2 * w * w + d1 * e)).abs() / scale);
             }
             for li in 1..plan.link_names().len() {
                 let base = a.link_angle_index(li).value;
@@ -288,7 +297,13 @@ proptest! {
         };
         prop_assert_eq!(plan.groups().len(), if kind == 0 { 1 } else { 2 });
         let a = plan.analyse(Motion::new(plan.reference_input(), w, e));
-        let a = match a { Ok(a) => a, Err(_) => return Ok(()) };
+        // The reference pose always assembles; only a group too near a dead point may fail,
+        // and then the error names the group.
+        let a = match a {
+            Ok(a) => a,
+            Err(Error::In { part, .. }) => { prop_assert!(part.starts_with("group")); return Ok(()) }
+            Err(other) => return Err(TestCaseError::fail(format!("{other}"))),
+        };
         // Well-conditioned groups only: the closed forms are as good as LU there.
         let cond = a.conditioning().iter().map(|c| c.condition).fold(1.0, f64::max);
         prop_assume!(cond < 1e3);
@@ -370,6 +385,13 @@ fn bad_descriptions_name_the_joint_link_or_field() {
         *direction = [0.1, 1.0];
     }
     check(s, "joint P", "must pass through both");
+    // A mode for a joint that is no group's inner joint.
+    let mut l = base.clone();
+    l.modes.push(tmm::linkage::Mode {
+        joint: "A".into(),
+        branch: tmm::kinematics::Branch::Minus,
+    });
+    check(l, "mode for joint A", "inner joint");
 }
 
 #[test]

@@ -47,14 +47,3 @@ fn the_watt_file_is_at_most_40_lines() {
     let text = include_str!("../linkages/watt-six-bar.json");
     assert!(text.lines().count() <= 40, "{} lines", text.lines().count());
 }
-
-/// `TMM_DUMP=1 cargo test --test linkage_files dump -- --nocapture` prints the bundled
-/// linkages as JSON (the source of the files, compacted by hand).
-#[test]
-fn dump() {
-    if std::env::var_os("TMM_DUMP").is_some() {
-        for (name, _, l) in files() {
-            println!("=== {name}\n{}", l.to_json().unwrap());
-        }
-    }
-}

@@ -33,6 +33,24 @@ pub struct Reaction {
 }
 
 impl Reaction {
+    /// The force (and couple) of link `by` on link `on`, reduced to `point`.
+    #[must_use]
+    pub fn new(by: usize, on: usize, force: Vector2<f64>, point: Point2<f64>, moment: f64) -> Self {
+        Self {
+            by,
+            on,
+            force,
+            point,
+            moment,
+        }
+    }
+
+    /// A hinge's reaction: a force at the hinge, no couple.
+    #[must_use]
+    pub fn hinge(by: usize, on: usize, force: Vector2<f64>, point: Point2<f64>) -> Self {
+        Self::new(by, on, force, point, 0.0)
+    }
+
     /// The reaction as a load on link `on`.
     #[must_use]
     pub fn load(&self) -> Load {
@@ -372,27 +390,9 @@ impl<'p> Analysis<'p> {
                 .solve()
                 .map_err(within(name))?;
                 (
-                    Reaction {
-                        by: ka,
-                        on: l2,
-                        force: r.r12,
-                        point: a,
-                        moment: 0.0,
-                    },
-                    Reaction {
-                        by: l2,
-                        on: l3,
-                        force: r.r23,
-                        point: b,
-                        moment: 0.0,
-                    },
-                    Reaction {
-                        by: kc,
-                        on: l3,
-                        force: r.r43,
-                        point: c,
-                        moment: 0.0,
-                    },
+                    Reaction::hinge(ka, l2, r.r12, a),
+                    Reaction::hinge(l2, l3, r.r23, b),
+                    Reaction::hinge(kc, l3, r.r43, c),
                     r.conditioning,
                 )
             }
@@ -408,27 +408,9 @@ impl<'p> Analysis<'p> {
                 .solve()
                 .map_err(within(name))?;
                 (
-                    Reaction {
-                        by: ka,
-                        on: l2,
-                        force: r.r12,
-                        point: a,
-                        moment: 0.0,
-                    },
-                    Reaction {
-                        by: l2,
-                        on: l3,
-                        force: r.r23,
-                        point: b,
-                        moment: 0.0,
-                    },
-                    Reaction {
-                        by: kc,
-                        on: l3,
-                        force: r.r43,
-                        point: b,
-                        moment: r.guide_moment,
-                    },
+                    Reaction::hinge(ka, l2, r.r12, a),
+                    Reaction::hinge(l2, l3, r.r23, b),
+                    Reaction::new(kc, l3, r.r43, b, r.guide_moment),
                     r.conditioning,
                 )
             }
@@ -444,27 +426,9 @@ impl<'p> Analysis<'p> {
                 .solve()
                 .map_err(within(name))?;
                 (
-                    Reaction {
-                        by: ka,
-                        on: l2,
-                        force: r.r12,
-                        point: a,
-                        moment: 0.0,
-                    },
-                    Reaction {
-                        by: l3,
-                        on: l2,
-                        force: r.r32,
-                        point: a,
-                        moment: r.couple,
-                    },
-                    Reaction {
-                        by: kc,
-                        on: l3,
-                        force: r.r43,
-                        point: c,
-                        moment: 0.0,
-                    },
+                    Reaction::hinge(ka, l2, r.r12, a),
+                    Reaction::new(l3, l2, r.r32, a, r.couple),
+                    Reaction::hinge(kc, l3, r.r43, c),
                     r.conditioning,
                 )
             }
@@ -520,13 +484,7 @@ impl<'p> Analysis<'p> {
                         )
                     }
                 };
-                self.reactions[joint] = Reaction {
-                    by: 0,
-                    on: link,
-                    force: r01,
-                    point: pivot,
-                    moment: 0.0,
-                };
+                self.reactions[joint] = Reaction::hinge(0, link, r01, pivot);
                 self.balance = Balance {
                     value,
                     force,
@@ -539,13 +497,7 @@ impl<'p> Analysis<'p> {
                 let f = load.force;
                 let fb = -f.dot(&d);
                 let normal = -(f + fb * d);
-                self.reactions[joint] = Reaction {
-                    by: 0,
-                    on: link,
-                    force: normal,
-                    point: load.point,
-                    moment: -load.moment,
-                };
+                self.reactions[joint] = Reaction::new(0, link, normal, load.point, -load.moment);
                 self.balance = Balance {
                     value: fb,
                     force: fb * d,

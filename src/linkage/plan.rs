@@ -425,6 +425,16 @@ impl Plan {
                 )
             }
         };
+        // A mode must name some group's inner joint; a mode that matches none is a typo.
+        for m in &linkage.modes {
+            let inner = |d: &super::structure::Dyad| linkage.joints[d.joints[1]].name == m.joint;
+            if !dyads.iter().any(inner) {
+                return Err(bad(
+                    format!("mode for joint {}", m.joint),
+                    "names no group's inner joint (the joint between a group's two links)",
+                ));
+            }
+        }
         let mut groups = Vec::with_capacity(dyads.len());
         for d in &dyads {
             groups.push(plan_group(
