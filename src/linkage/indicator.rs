@@ -34,7 +34,9 @@ impl IndicatorDiagram {
     /// polytropic compression p·V^n = const from the crank end until `p_delivery`, delivery at
     /// `p_delivery`, polytropic re-expansion of the clearance volume (a fraction `clearance` of
     /// the swept volume). Pressures absolute in the process, stored as gauge pressures over
-    /// `p_atm`; tabulated at `points` stations per branch.
+    /// `p_atm`; tabulated at `points` stations per branch, at least 2 and at most 100 001 (a
+    /// finer table adds nothing to a linear interpolation, and `usize::MAX` stations would not
+    /// fit in memory).
     ///
     /// # Examples
     /// Air from 0.1 MPa to 0.3 MPa (absolute) with n = 1.3 and 5 % clearance: the diagram
@@ -59,7 +61,7 @@ impl IndicatorDiagram {
         clearance: f64,
         points: usize,
     ) -> Self {
-        let points = points.max(2);
+        let points = points.clamp(2, 100_001);
         // Volume per unit swept volume at the fraction x from the head end.
         let vol = |x: f64| clearance + x;
         let station = |k: usize| k as f64 / (points - 1) as f64;
