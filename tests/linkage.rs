@@ -11,13 +11,15 @@ use tmm::linkage::{bundled, At, Drive, Input, Joint, Link, Linkage, LoadSpec, Ma
 use tmm::Error;
 
 fn bundled_all() -> Vec<Linkage> {
-    vec![
-        bundled::four_bar(),
-        bundled::geared_four_bar(),
-        bundled::watt_six_bar(),
-        bundled::stephenson_six_bar(),
-        bundled::shaper(),
-    ]
+    let all = bundled::all();
+    // The list covers every kind of group the engine solves.
+    let kinds: std::collections::BTreeSet<&str> = all
+        .iter()
+        .flat_map(|l| Plan::new(l).unwrap().groups().to_vec())
+        .map(|g| g.kind.label())
+        .collect();
+    assert_eq!(kinds.len(), 5, "{kinds:?}");
+    all
 }
 
 fn cross(a: Vector2<f64>, b: Vector2<f64>) -> f64 {
@@ -392,6 +394,74 @@ fn bad_descriptions_name_the_joint_link_or_field() {
         branch: tmm::kinematics::Branch::Minus,
     });
     check(l, "mode for joint A", "inner joint");
+    // A Scotch yoke whose slot is turned along the yoke's guide: the RPP's links could slide
+    // together.
+    let mut y = bundled::scotch_yoke();
+    if let tmm::linkage::JointKind::Prismatic { direction, .. } = &mut y.joints[2].kind {
+        *direction = [-2.0, 0.0];
+    }
+    check(y, "group (block, yoke) RPP", "sin(alpha)");
+    // The slotted rocker's frame guide turned along the rocker's slot: parallel PRP guides.
+    let mut r = bundled::slotted_rocker();
+    let slot = match &r.joints[4].kind {
+        tmm::linkage::JointKind::Prismatic { direction, .. } => *direction,
+        _ => unreachable!(),
+    };
+    if let tmm::linkage::JointKind::Prismatic { direction, .. } = &mut r.joints[6].kind {
+        *direction = slot;
+    }
+    check(r, "group (block, slider) PRP", "parallel guides");
+    // Three sliding pairs in one group (the yoke's hinge A made a sliding pair).
+    let mut y = bundled::scotch_yoke();
+    y.joints[1].kind = tmm::linkage::JointKind::Prismatic {
+        guide: "crank".into(),
+        direction: [1.0, 1.0],
+    };
+    check(y, "group (block, yoke)", "PPP group");
+}
+
+#[test]
+fn prismatic_groups_match_their_closed_forms_over_a_turn() {
+    // Scotch yoke: the yoke follows the crank pin's x, x = r·cos φ; ẋ and ẍ by differentiation.
+    let plan = Plan::new(&bundled::scotch_yoke()).unwrap();
+    let (r, w, e) = (0.1, 7.0, -3.0);
+    let mut worst: f64 = 0.0;
+    for k in 0..72 {
+        let phi = TAU * (f64::from(k) + 0.25) / 72.0;
+        let a = plan.kinematics(Motion::new(phi, w, e)).unwrap();
+        let s = a.slide("Q").unwrap();
+        let (sin, cos) = phi.sin_cos();
+        let exact = [r * cos - r, -r * w * sin, -r * (w * w * cos + e * sin)];
+        for (got, want) in [s.value, s.rate, s.accel].into_iter().zip(exact) {
+            worst = worst.max((got - want).abs() / (r * (w * w + e.abs())));
+        }
+        // The block rides the slot: its height is the pin's.
+        worst = worst.max((a.joint("S").unwrap().p.y - r * sin).abs() / r);
+    }
+    assert!(worst < 1e-14, "Scotch yoke: {worst:e}");
+
+    // Slotted rocker: the slider sits where the rocker's line crosses y = y_O3 + 0.2, so
+    // x = x_O3 + 0.2·cot θ with θ the rocker's angle; ẋ = −0.2·θ̇/sin²θ.
+    let plan = Plan::new(&bundled::slotted_rocker()).unwrap();
+    let o3 = plan
+        .kinematics(Motion::fixed(0.0))
+        .unwrap()
+        .joint("O3")
+        .unwrap()
+        .p;
+    let mut worst: f64 = 0.0;
+    for k in 0..72 {
+        let phi = TAU * (f64::from(k) + 0.25) / 72.0;
+        let a = plan.kinematics(Motion::new(phi, w, e)).unwrap();
+        let b = a.joint("B").unwrap().p - o3;
+        let theta = b.y.atan2(b.x);
+        let rate = a.link("rocker").unwrap().rate;
+        let f = a.joint("F").unwrap();
+        worst = worst.max((f.p.x - (o3.x + 0.2 / theta.tan())).abs() / 0.2);
+        worst = worst.max((f.p.y - (o3.y + 0.2)).abs() / 0.2);
+        worst = worst.max((f.v.x + 0.2 * rate / theta.sin().powi(2)).abs() / (0.2 * w));
+    }
+    assert!(worst < 1e-13, "slotted rocker: {worst:e}");
 }
 
 #[test]

@@ -9,8 +9,12 @@ use super::description::Drive;
 use super::plan::{Group, GroupKind, InputPlan, LoadPlan, Plan};
 use crate::angle::{cross, unit};
 use crate::error::{Error, Result};
-use crate::kinematics::{rpr_dyad, rrp_dyad, rrr_dyad, Guide, LinkMotion, Motion, PointMotion};
-use crate::kinetostatics::{Conditioning, CouplingDrive, GearDrive, RprDyad, RrpDyad, RrrDyad};
+use crate::kinematics::{
+    prp_dyad, rpp_dyad, rpr_dyad, rrp_dyad, rrr_dyad, Guide, LinkMotion, Motion, PointMotion,
+};
+use crate::kinetostatics::{
+    Conditioning, CouplingDrive, GearDrive, PrpDyad, RppDyad, RprDyad, RrpDyad, RrrDyad,
+};
 use crate::Load;
 use nalgebra::{Point2, Vector2};
 
@@ -143,6 +147,15 @@ fn within(part: &str) -> impl Fn(Error) -> Error + '_ {
     }
 }
 
+/// The guide through the point at `local` of `link`, at `offset` to the link's frame angle,
+/// moving with the link.
+fn guide_on(link: &LinkMotion, local: Vector2<f64>, offset: f64) -> Guide {
+    Guide {
+        point: point(link, local),
+        angle: Motion::new(link.angle + offset, link.omega, link.epsilon),
+    }
+}
+
 fn point(link: &LinkMotion, local: Vector2<f64>) -> PointMotion {
     link.point_at(local.x, local.y)
 }
@@ -242,7 +255,7 @@ impl<'p> Analysis<'p> {
                     let k = &self.links[kc];
                     let guide = Guide {
                         point: point(k, group.c_local),
-                        angle: Motion::new(k.angle + group.guide_offset, k.omega, k.epsilon),
+                        angle: Motion::new(k.angle + group.guide_offsets[1], k.omega, k.epsilon),
                     };
                     let s = rrp_dyad(a, guide, group.lengths[0], group.branch)
                         .map_err(within(&group.name))?;
@@ -252,6 +265,17 @@ impl<'p> Analysis<'p> {
                     let c = point(&self.links[kc], group.c_local);
                     let s = rpr_dyad(a, c).map_err(within(&group.name))?;
                     (s.link2, s.link3, s.slide.value)
+                }
+                GroupKind::Prp => {
+                    let g2 = guide_on(&self.links[ka], group.a_local, group.guide_offsets[0]);
+                    let g3 = guide_on(&self.links[kc], group.c_local, group.guide_offsets[1]);
+                    let s = prp_dyad(g2, g3).map_err(within(&group.name))?;
+                    (s.link2, s.link3, s.det)
+                }
+                GroupKind::Rpp => {
+                    let g = guide_on(&self.links[kc], group.c_local, group.guide_offsets[1]);
+                    let s = rpp_dyad(a, g, group.slide_angle).map_err(within(&group.name))?;
+                    (s.link2, s.link3, s.det)
                 }
             };
             self.links[l2] = s2;
@@ -429,6 +453,43 @@ impl<'p> Analysis<'p> {
                     Reaction::hinge(ka, l2, r.r12, a),
                     Reaction::new(l3, l2, r.r32, a, r.couple),
                     Reaction::hinge(kc, l3, r.r43, c),
+                    r.conditioning,
+                )
+            }
+            GroupKind::Prp => {
+                let b = self.links[l2].origin.p;
+                let r = PrpDyad {
+                    b,
+                    guide2: self.links[l2].unit(),
+                    guide3: self.links[l3].unit(),
+                    load2,
+                    load3,
+                }
+                .solve()
+                .map_err(within(name))?;
+                (
+                    Reaction::new(ka, l2, r.r12, b, r.moment12),
+                    Reaction::hinge(l2, l3, r.r23, b),
+                    Reaction::new(kc, l3, r.r43, b, r.moment43),
+                    r.conditioning,
+                )
+            }
+            GroupKind::Rpp => {
+                let b = self.links[l3].origin.p;
+                let r = RppDyad {
+                    a,
+                    b,
+                    guide: self.links[l3].unit(),
+                    slot: self.links[l2].unit(),
+                    load2,
+                    load3,
+                }
+                .solve()
+                .map_err(within(name))?;
+                (
+                    Reaction::hinge(ka, l2, r.r12, a),
+                    Reaction::new(l3, l2, r.r32, a, r.moment32),
+                    Reaction::new(kc, l3, r.r43, b, r.moment43),
                     r.conditioning,
                 )
             }

@@ -89,14 +89,14 @@ impl Tabulate for Analysis<'_> {
                     push(
                         &mut r,
                         &format!("M({},{})@{name}", links[re.by], links[re.on]),
-                        "N*m",
+                        "N·m",
                         re.moment,
                     );
                 }
             }
             let b = self.balance();
             let (name, unit) = if plan.input_is_crank() {
-                ("Mb", "N*m")
+                ("Mb", "N·m")
             } else {
                 ("Fb", "N")
             };
@@ -167,6 +167,43 @@ impl Table {
             .iter()
             .find(|c| c.name == name)
             .map(|c| c.values.as_slice())
+    }
+
+    /// The table as text for a terminal, transposed: one line per column (its name, then its
+    /// values across the positions) with `decimals` digits after the point. A value that
+    /// rounds to zero prints as zero, never as "-0.0000"; a non-finite one as `NaN` or `inf`.
+    ///
+    /// # Examples
+    /// ```
+    /// use tmm::linkage::{Table, Tabulate};
+    /// struct P(f64);
+    /// impl Tabulate for P {
+    ///     fn row(&self) -> Vec<(String, f64)> { vec![("x [m]".into(), self.0)] }
+    /// }
+    /// let t = Table::of(&[Ok(P(-1e-9)), Ok(P(0.25))]);
+    /// assert_eq!(t.to_text(3), format!("{:<28} {:>11} {:>11}\n", "x [m]", "0.000", "0.250"));
+    /// ```
+    #[must_use]
+    pub fn to_text(&self, decimals: usize) -> String {
+        let decimals = decimals.min(12);
+        let mut out = String::new();
+        for c in &self.columns {
+            out.push_str(&format!("{:<28}", c.name));
+            for &v in &c.values {
+                let text = format!("{v:.decimals$}");
+                // "-0.000": the sign of something that rounds to zero says nothing.
+                let text = if text.starts_with('-')
+                    && text[1..].chars().all(|ch| ch == '0' || ch == '.')
+                {
+                    text[1..].to_owned()
+                } else {
+                    text
+                };
+                out.push_str(&format!(" {text:>11}"));
+            }
+            out.push('\n');
+        }
+        out
     }
 
     /// Writes the table as CSV: a header of the column names, then one line per row, numbers
