@@ -130,15 +130,103 @@ fn four_bar(c: &mut Criterion) {
     g.finish();
 }
 
+/// The bundled Watt six-bar chained by hand: crank, RRR (coupler ABE, rocker O3BF), RRR
+/// (link 4 EG, link 5 FG), the same masses and the resisting moment on link 5.
+struct HandWatt {
+    o1: Point2<f64>,
+    o3: Point2<f64>,
+    l: [f64; 5],
+    e: (f64, f64),
+    f: (f64, f64),
+    s2: (f64, f64),
+    s3: (f64, f64),
+}
+
+impl HandWatt {
+    fn new() -> Self {
+        let p = Point2::new;
+        let (o1, a, b, o3) = (p(0.0, 0.0), p(0.08, 0.0), p(0.3, 0.3), p(0.38, 0.0));
+        let (e, f, g) = (p(0.25, 0.45), p(0.52, 0.28), p(0.45, 0.6));
+        Self {
+            o1,
+            o3,
+            l: [
+                0.08,
+                (b - a).norm(),
+                (b - o3).norm(),
+                (g - e).norm(),
+                (g - f).norm(),
+            ],
+            e: local(a, b, e),
+            f: local(o3, b, f),
+            s2: local(a, b, p(0.21, 0.25)),
+            s3: local(o3, b, p(0.4, 0.19)),
+        }
+    }
+
+    fn balance(&self, i: Motion) -> f64 {
+        let c = crank(self.o1, self.l[0], i).unwrap();
+        let fixed = PointMotion::fixed(self.o3);
+        let g1 = rrr_dyad(c.a, fixed, self.l[1], self.l[2], Branch::Plus).unwrap();
+        let e = g1.link2.point_at(self.e.0, self.e.1);
+        let f = g1.link3.point_at(self.f.0, self.f.1);
+        let g2 = rrr_dyad(e, f, self.l[3], self.l[4], Branch::Plus).unwrap();
+        let (j4, j5) = (self.l[3].powi(2) / 12.0, self.l[4].powi(2) / 12.0);
+        let l4 = own(&g2.link2, self.l[3] / 2.0, 0.0, 1.0, j4);
+        let mut l5 = own(&g2.link3, self.l[4] / 2.0, 0.0, 1.0, j5);
+        l5.moment -= 30.0 * g2.link3.omega.signum();
+        let r2 = RrrDyad {
+            a: e.p,
+            b: g2.b.p,
+            c: f.p,
+            load2: l4,
+            load3: l5,
+        }
+        .solve()
+        .unwrap();
+        let l2 = own(&g1.link2, self.s2.0, self.s2.1, 3.0, 0.02);
+        let l2 = Load::sum_about(&[l2, Load::force_at(e.p, -r2.r12)], c.a.p);
+        let l3 = own(&g1.link3, self.s3.0, self.s3.1, 2.5, 0.015);
+        let l3 = Load::sum_about(&[l3, Load::force_at(f.p, -r2.r43)], self.o3);
+        let r1 = RrrDyad {
+            a: c.a.p,
+            b: g1.b.p,
+            c: self.o3,
+            load2: l2,
+            load3: l3,
+        }
+        .solve()
+        .unwrap();
+        let l1 = own(&c.link, 0.0, 0.0, 1.0, 0.002);
+        let l1 = Load::sum_about(&[l1, Load::force_at(c.a.p, -r1.r12)], self.o1);
+        CouplingDrive { o1: self.o1 }
+            .solve(&[l1])
+            .unwrap()
+            .balancing_moment
+    }
+}
+
 fn six_bar(c: &mut Criterion) {
     let plan = Plan::new(&bundled::watt_six_bar()).unwrap();
+    let hand = HandWatt::new();
     let ins = inputs(512);
     let mut a = Analysis::new(&plan);
+    for &i in &ins {
+        a.solve(i).unwrap();
+        let (x, y) = (a.balance().value, hand.balance(i));
+        assert!(
+            (x - y).abs() <= 1e-9 * x.abs().max(1.0),
+            "hand chain {y} vs engine {x}"
+        );
+    }
     let mut g = c.benchmark_group("watt_six_bar_whole_position");
     g.measurement_time(Duration::from_secs(3))
         .warm_up_time(Duration::from_millis(500))
         .sample_size(30);
     g.throughput(Throughput::Elements(ins.len() as u64));
+    g.bench_function("hand_chain", |b| {
+        b.iter(|| ins.iter().map(|&i| hand.balance(black_box(i))).sum::<f64>())
+    });
     g.bench_function("engine", |b| {
         b.iter(|| {
             ins.iter()

@@ -7,7 +7,7 @@
 
 use super::description::Drive;
 use super::plan::{Group, GroupKind, InputPlan, LoadPlan, Plan};
-use crate::angle::{cross, unit};
+use crate::angle::{cross, perp, unit};
 use crate::error::{Error, Result};
 use crate::kinematics::{
     prp_dyad, rpp_dyad, rpr_dyad, rrp_dyad, rrr_dyad, Guide, LinkMotion, Motion, PointMotion,
@@ -130,6 +130,9 @@ pub struct Analysis<'p> {
     plan: &'p Plan,
     input: Motion,
     links: Vec<LinkMotion>,
+    /// Each link's unit vector e(φ), computed once per position: every point of a link is
+    /// placed with it, so no trigonometry is repeated.
+    units: Vec<Vector2<f64>>,
     dets: Vec<f64>,
     applied: Vec<(usize, Load)>,
     acc: Vec<Load>,
@@ -147,17 +150,16 @@ fn within(part: &str) -> impl Fn(Error) -> Error + '_ {
     }
 }
 
-/// The guide through the point at `local` of `link`, at `offset` to the link's frame angle,
-/// moving with the link.
-fn guide_on(link: &LinkMotion, local: Vector2<f64>, offset: f64) -> Guide {
-    Guide {
-        point: point(link, local),
-        angle: Motion::new(link.angle + offset, link.omega, link.epsilon),
-    }
-}
 
-fn point(link: &LinkMotion, local: Vector2<f64>) -> PointMotion {
-    link.point_at(local.x, local.y)
+/// The motion of the point at `local` (along, across) of `link`, whose unit vector is `e`.
+#[inline]
+fn point_with(link: &LinkMotion, e: Vector2<f64>, local: Vector2<f64>) -> PointMotion {
+    let r = local.x * e + local.y * perp(e);
+    PointMotion::new(
+        link.origin.p + r,
+        link.origin.v + link.omega * perp(r),
+        link.origin.a + link.epsilon * perp(r) - link.omega * link.omega * r,
+    )
 }
 
 impl<'p> Analysis<'p> {
@@ -176,6 +178,7 @@ impl<'p> Analysis<'p> {
             plan,
             input: Motion::default(),
             links: vec![Plan::frame_motion(); n],
+            units: vec![Vector2::x(); n],
             dets: vec![0.0; plan.groups.len()],
             applied: Vec::with_capacity(n + plan.loads.len() * 2),
             acc: vec![Load::zero(Point2::origin()); n],
@@ -200,6 +203,29 @@ impl<'p> Analysis<'p> {
         }
     }
 
+    /// The motion of the point at `local` in link `k`'s frame.
+    #[inline]
+    fn at(&self, k: usize, local: Vector2<f64>) -> PointMotion {
+        point_with(&self.links[k], self.units[k], local)
+    }
+
+    /// Stores link `k`'s motion with its unit vector.
+    #[inline]
+    fn set_link(&mut self, k: usize, m: LinkMotion) {
+        self.units[k] = m.unit();
+        self.links[k] = m;
+    }
+
+    /// The guide through the point at `local` of link `k`, at `offset` to the link's frame
+    /// angle, moving with the link.
+    fn guide_on(&self, k: usize, local: Vector2<f64>, offset: f64) -> Guide {
+        let link = &self.links[k];
+        Guide {
+            point: self.at(k, local),
+            angle: Motion::new(link.angle + offset, link.omega, link.epsilon),
+        }
+    }
+
     /// The plan this position belongs to.
     #[must_use]
     pub fn plan(&self) -> &'p Plan {
@@ -219,12 +245,15 @@ impl<'p> Analysis<'p> {
         self.input = input;
         match plan.input {
             InputPlan::Crank { link, pivot, .. } => {
-                self.links[link] = LinkMotion {
-                    origin: PointMotion::fixed(pivot),
-                    angle: crate::angle::normalize(input.value),
-                    omega: input.rate,
-                    epsilon: input.accel,
-                };
+                self.set_link(
+                    link,
+                    LinkMotion {
+                        origin: PointMotion::fixed(pivot),
+                        angle: crate::angle::normalize(input.value),
+                        omega: input.rate,
+                        epsilon: input.accel,
+                    },
+                );
             }
             InputPlan::Slider {
                 link, at, angle, ..
@@ -232,54 +261,53 @@ impl<'p> Analysis<'p> {
                 let d = unit(angle);
                 let o = PointMotion::new(at + input.value * d, input.rate * d, input.accel * d);
                 o.validate(["slider x", "slider y", "v.x", "v.y", "a.x", "a.y"])?;
-                self.links[link] = LinkMotion {
-                    origin: o,
-                    angle,
-                    omega: 0.0,
-                    epsilon: 0.0,
-                };
+                self.set_link(
+                    link,
+                    LinkMotion {
+                        origin: o,
+                        angle,
+                        omega: 0.0,
+                        epsilon: 0.0,
+                    },
+                );
             }
         }
         for (g, group) in plan.groups.iter().enumerate() {
             let [l2, l3] = group.links;
             let [ka, kc] = group.known;
-            let a = point(&self.links[ka], group.a_local);
+            let a = self.at(ka, group.a_local);
             let (s2, s3, det) = match group.kind {
                 GroupKind::Rrr => {
-                    let c = point(&self.links[kc], group.c_local);
+                    let c = self.at(kc, group.c_local);
                     let s = rrr_dyad(a, c, group.lengths[0], group.lengths[1], group.branch)
                         .map_err(within(&group.name))?;
                     (s.link2, s.link3, s.det)
                 }
                 GroupKind::Rrp => {
-                    let k = &self.links[kc];
-                    let guide = Guide {
-                        point: point(k, group.c_local),
-                        angle: Motion::new(k.angle + group.guide_offsets[1], k.omega, k.epsilon),
-                    };
+                    let guide = self.guide_on(kc, group.c_local, group.guide_offsets[1]);
                     let s = rrp_dyad(a, guide, group.lengths[0], group.branch)
                         .map_err(within(&group.name))?;
                     (s.link2, s.link3, s.det)
                 }
                 GroupKind::Rpr => {
-                    let c = point(&self.links[kc], group.c_local);
+                    let c = self.at(kc, group.c_local);
                     let s = rpr_dyad(a, c).map_err(within(&group.name))?;
                     (s.link2, s.link3, s.slide.value)
                 }
                 GroupKind::Prp => {
-                    let g2 = guide_on(&self.links[ka], group.a_local, group.guide_offsets[0]);
-                    let g3 = guide_on(&self.links[kc], group.c_local, group.guide_offsets[1]);
+                    let g2 = self.guide_on(ka, group.a_local, group.guide_offsets[0]);
+                    let g3 = self.guide_on(kc, group.c_local, group.guide_offsets[1]);
                     let s = prp_dyad(g2, g3).map_err(within(&group.name))?;
                     (s.link2, s.link3, s.det)
                 }
                 GroupKind::Rpp => {
-                    let g = guide_on(&self.links[kc], group.c_local, group.guide_offsets[1]);
+                    let g = self.guide_on(kc, group.c_local, group.guide_offsets[1]);
                     let s = rpp_dyad(a, g, group.slide_angle).map_err(within(&group.name))?;
                     (s.link2, s.link3, s.det)
                 }
             };
-            self.links[l2] = s2;
-            self.links[l3] = s3;
+            self.set_link(l2, s2);
+            self.set_link(l3, s3);
             self.dets[g] = det;
         }
         Ok(())
@@ -305,9 +333,8 @@ impl<'p> Analysis<'p> {
             if lp.mass == 0.0 && lp.inertia == 0.0 {
                 continue;
             }
-            let link = &self.links[k];
-            let s = point(link, lp.centre);
-            let inertia = Load::inertia(s.p, lp.mass, s.a, lp.inertia, link.epsilon)
+            let s = self.at(k, lp.centre);
+            let inertia = Load::inertia(s.p, lp.mass, s.a, lp.inertia, self.links[k].epsilon)
                 .map_err(within(&plan.link_names[k]))?;
             self.applied.push((
                 k,
@@ -317,7 +344,7 @@ impl<'p> Analysis<'p> {
         for lp in &plan.loads {
             match lp {
                 LoadPlan::Force { link, local, force } => {
-                    let p = point(&self.links[*link], *local).p;
+                    let p = self.at(*link, *local).p;
                     self.applied.push((*link, Load::force_at(p, *force)));
                 }
                 LoadPlan::Moment { link, moment } => {
@@ -343,7 +370,7 @@ impl<'p> Analysis<'p> {
                 } => {
                     let (slider, guide, d) = self.slide_parts(*joint);
                     let s = self.slide_index(*joint);
-                    let p = point(&self.links[slider], *local).p;
+                    let p = self.at(slider, *local).p;
                     let f = resist(s.rate, *forward, *backward) * d;
                     self.applied.push((slider, Load::force_at(p, f)));
                     if guide != 0 {
@@ -425,7 +452,7 @@ impl<'p> Analysis<'p> {
                 let r = RrpDyad {
                     a,
                     b,
-                    guide: self.links[l3].unit(),
+                    guide: self.units[l3],
                     load2,
                     load3,
                 }
@@ -443,7 +470,7 @@ impl<'p> Analysis<'p> {
                 let r = RprDyad {
                     a,
                     e: c,
-                    axis: self.links[l2].unit(),
+                    axis: self.units[l2],
                     load2,
                     load3,
                 }
@@ -460,8 +487,8 @@ impl<'p> Analysis<'p> {
                 let b = self.links[l2].origin.p;
                 let r = PrpDyad {
                     b,
-                    guide2: self.links[l2].unit(),
-                    guide3: self.links[l3].unit(),
+                    guide2: self.units[l2],
+                    guide3: self.units[l3],
                     load2,
                     load3,
                 }
@@ -479,8 +506,8 @@ impl<'p> Analysis<'p> {
                 let r = RppDyad {
                     a,
                     b,
-                    guide: self.links[l3].unit(),
-                    slot: self.links[l2].unit(),
+                    guide: self.units[l3],
+                    slot: self.units[l2],
                     load2,
                     load3,
                 }
@@ -617,7 +644,7 @@ impl<'p> Analysis<'p> {
     #[must_use]
     pub fn joint_on(&self, j: usize, side: usize) -> PointMotion {
         let jp = &self.plan.joints[j];
-        point(&self.links[jp.links[side]], jp.local[side])
+        self.at(jp.links[side], jp.local[side])
     }
 
     /// The motion of joint `j` as a point of link `link` (one of its two links).
@@ -659,7 +686,7 @@ impl<'p> Analysis<'p> {
     #[must_use]
     pub fn point_motion(&self, k: usize) -> PointMotion {
         let (link, local) = self.plan.point_local(k);
-        point(&self.links[link], local)
+        self.at(link, local)
     }
 
     /// The sliding link, the guide's link and the guide's current unit direction of the
