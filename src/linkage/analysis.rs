@@ -150,7 +150,6 @@ fn within(part: &str) -> impl Fn(Error) -> Error + '_ {
     }
 }
 
-
 /// The motion of the point at `local` (along, across) of `link`, whose unit vector is `e`.
 #[inline]
 fn point_with(link: &LinkMotion, e: Vector2<f64>, local: Vector2<f64>) -> PointMotion {
@@ -242,6 +241,12 @@ impl<'p> Analysis<'p> {
         self.statics_done = false;
         input.validate(["input", "input rate", "input acceleration"])?;
         let plan = self.plan;
+        // The input's ω² and ε times the linkage's size bound its points' accelerations: past
+        // f64's range the motion overflows whatever the groups do.
+        crate::error::computed(
+            "the input's accelerations (size·(ω² + |ε|))",
+            plan.size * (input.rate * input.rate + input.accel.abs()),
+        )?;
         self.input = input;
         match plan.input {
             InputPlan::Crank { link, pivot, .. } => {
