@@ -511,4 +511,51 @@ fn strokes_and_lock_positions() {
     }
     assert!(s.time_ratio > 1.0);
     assert_eq!(plan.lock_positions(0.3).unwrap(), None);
+    // The ram works against the cut while its slide falls (the resistance acts backward only),
+    // and that is the slower stroke: the working stroke starts at the maximum.
+    assert!(!s.working_rises);
+    let at = |phi: f64| plan.transfer(&out, phi).unwrap().value;
+    assert!(at(s.start) > at(s.end));
+    // The stroke is the range of the slide, sampled densely around the turn: the samples fall
+    // short of each true extreme by at most max|s″|·h²/8 (h the step), and never overshoot.
+    let n = 20_000;
+    let h = TAU / f64::from(n);
+    let tf: Vec<_> = (0..n)
+        .map(|k| plan.transfer(&out, h * f64::from(k)).unwrap())
+        .collect();
+    let (hi, lo) = tf.iter().fold((f64::MIN, f64::MAX), |(hi, lo), m| {
+        (hi.max(m.value), lo.min(m.value))
+    });
+    let curvature = tf.iter().map(|m| m.accel.abs()).fold(0.0, f64::max);
+    let short = s.stroke - (hi - lo);
+    assert!(
+        short >= -1e-12 && short <= 2.0 * curvature * h * h / 8.0,
+        "stroke {} vs sampled range {}",
+        s.stroke,
+        hi - lo
+    );
+    // Cutting on the other stroke (forward): the working stroke is then the faster one.
+    let mut other = bundled::shaper();
+    other.loads[0] = LoadSpec::Resistance {
+        on: "Q".into(),
+        forward: 1500.0,
+        backward: 0.0,
+        at: None,
+    };
+    let o = Plan::new(&other)
+        .unwrap()
+        .strokes(&out, tmm::kinematics::Rotation::Ccw)
+        .unwrap();
+    assert!(o.working_rises);
+    assert_eq!((o.start, o.end), (s.end, s.start));
+    assert!((o.time_ratio * s.time_ratio - 1.0).abs() < 1e-12);
+    // A crank's own angle turns fully: no strokes, and the error says so.
+    let e = plan
+        .strokes(
+            &tmm::linkage::Output::Angle("crank".into()),
+            tmm::kinematics::Rotation::Ccw,
+        )
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("no extreme positions"), "{e}");
 }

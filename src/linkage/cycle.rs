@@ -2,7 +2,7 @@
 //! course project's plans, lock positions, and runs over many positions.
 
 use super::analysis::Analysis;
-use super::plan::Plan;
+use super::plan::{LoadPlan, Plan};
 use crate::error::{Error, Result};
 use crate::kinematics::{
     assembly_range, cycle_angles, extreme_positions, transfer_functions, Extreme, Motion, Rotation,
@@ -109,13 +109,41 @@ impl Plan {
     }
 
     /// The working and idle strokes of `output` for a crank turning in the sense `rotation`:
-    /// its two extreme positions, the crank angles of the strokes and the time ratio.
+    /// its two extreme positions, the crank angles of the strokes, the time ratio and the
+    /// stroke (or swing).
+    ///
+    /// The working direction is derived from the loads where they tell it: a resistance on the
+    /// output itself (on its link for an angle, on its joint for a slide) that is larger in
+    /// one direction makes that direction the working stroke, even if it is the faster one.
+    /// Otherwise the working stroke is the slower one (the larger crank angle).
     ///
     /// # Errors
     /// As [`Plan::extremes`]; an output without exactly two extreme positions (one that turns
     /// fully, or one with more extremes per turn).
     pub fn strokes(&self, output: &Output, rotation: Rotation) -> Result<Strokes> {
-        Strokes::new(&self.extremes(output)?, rotation)
+        let strokes = Strokes::new(&self.extremes(output)?, rotation)?;
+        let resolved = self.resolve(output)?;
+        let worked = self.loads.iter().find_map(|l| match (l, resolved) {
+            (
+                LoadPlan::Turning {
+                    link,
+                    forward,
+                    backward,
+                },
+                Resolved::Angle(k),
+            ) if *link == k && forward != backward => Some(forward > backward),
+            (
+                LoadPlan::Sliding {
+                    joint,
+                    forward,
+                    backward,
+                    ..
+                },
+                Resolved::Slide(j),
+            ) if *joint == j && forward != backward => Some(forward > backward),
+            _ => None,
+        });
+        Ok(worked.map_or(strokes, |rises| strokes.working_in(rises)))
     }
 
     /// The range of the crank angle, through `phi`, over which the linkage assembles: `None`

@@ -46,8 +46,9 @@ pub(crate) fn push(row: &mut Vec<(String, f64)>, name: &str, unit: &str, value: 
 impl Tabulate for Analysis<'_> {
     /// The course table's row: the input, every moving link's angle, ω and ε, every joint's
     /// position, velocity and acceleration magnitudes, every prismatic joint's slide, the
-    /// reaction in every joint (R_by,on: x, y, magnitude), and, when the input moves, the
-    /// balancing value beside its virtual-power value.
+    /// reaction in every joint (R_by,on: x, y, magnitude), and the balancing moment
+    /// `Mb [N·m, + counter-clockwise]` (or force `Fb [N, + along the guide]`) beside its value
+    /// by virtual power (`NaN` when the input is at rest: the virtual power then has no rate).
     fn row(&self) -> Vec<(String, f64)> {
         let plan = self.plan();
         let links = plan.link_names();
@@ -95,14 +96,18 @@ impl Tabulate for Analysis<'_> {
                 }
             }
             let b = self.balance();
+            // The sign convention rides in the header: a clockwise machine's driving moment is
+            // negative, and its reader should not have to guess why.
             let (name, unit) = if plan.input_is_crank() {
-                ("Mb", "N·m")
+                ("Mb", "N·m, + counter-clockwise")
             } else {
-                ("Fb", "N")
+                ("Fb", "N, + along the guide")
             };
             push(&mut r, name, unit, b.value);
+            // At rest the virtual power has no rate to divide by: the cell is NaN ("not
+            // available"), as `Table` documents.
             let vp = self.power_check().map_or(f64::NAN, |c| c.virtual_power);
-            push(&mut r, &format!("{name} (virtual power)"), unit, vp);
+            push(&mut r, &format!("{name} by virtual power"), unit, vp);
         }
         r
     }
