@@ -14,7 +14,9 @@
 //! | = | any | change point: it passes through positions where all four links are collinear and can switch its assembly mode there |
 //! | > | any | triple rocker (non-Grashof): no link turns fully |
 
-use crate::error::{Error, Result};
+use crate::error::Result;
+#[cfg(doc)]
+use crate::error::Error;
 
 /// Grashof's classification of a four-bar (see the module's table).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -110,6 +112,7 @@ pub fn grashof(frame: f64, input: f64, coupler: f64, output: f64) -> Result<Gras
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::error::Error;
 
     #[test]
     fn each_class_and_bad_lengths() {
