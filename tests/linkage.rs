@@ -559,3 +559,45 @@ fn strokes_and_lock_positions() {
         .to_string();
     assert!(e.contains("no extreme positions"), "{e}");
 }
+
+#[test]
+fn transmission_angles_match_the_law_of_cosines_and_their_classical_minimum() {
+    // Four-bar: the angle γ between coupler AB and rocker O3B follows from the triangle A B O3:
+    // cos γ = (b² + c² − |A O3|²)/(2bc); μ is γ folded into [0, π/2].
+    let plan = Plan::new(&bundled::four_bar()).unwrap();
+    let (a, b, c) = (0.1f64, 0.35f64, 0.3f64);
+    let o3 = Vector2::new(0.4, 0.05);
+    let d = o3.norm();
+    let fold = |g: f64| g.min(std::f64::consts::PI - g);
+    let mut worst: f64 = 0.0;
+    for k in 0..72 {
+        let phi = TAU * (f64::from(k) + 0.5) / 72.0;
+        let an = plan.kinematics(Motion::fixed(phi)).unwrap();
+        let ao3 = (o3 - Vector2::new(a * phi.cos(), a * phi.sin())).norm();
+        let gamma = ((b * b + c * c - ao3 * ao3) / (2.0 * b * c)).acos();
+        worst = worst.max((an.transmission_angle(0).unwrap() - fold(gamma)).abs());
+    }
+    assert!(worst < 1e-13, "{worst:e}");
+    // Its minimum lies where the crank lines up with the frame: |A O3| = d ∓ a.
+    let at_line = |ao3: f64| fold(((b * b + c * c - ao3 * ao3) / (2.0 * b * c)).acos());
+    let classical = at_line(d - a).min(at_line(d + a));
+    let (mu_min, phi) = plan.min_transmission_angle(0).unwrap();
+    assert!(
+        (mu_min - classical).abs() < 1e-12,
+        "{mu_min} vs {classical}"
+    );
+    let frame_dir = o3.y.atan2(o3.x);
+    let off = (phi - frame_dir).rem_euclid(std::f64::consts::PI);
+    assert!(off.min(std::f64::consts::PI - off) < 1e-6, "at {phi}");
+    // The Scotch yoke's slot is square to its guide (μ = π/2); the slotted rocker's PRP angle
+    // is the rocker's angle to the horizontal guide.
+    let y = Plan::new(&bundled::scotch_yoke()).unwrap();
+    let ya = y.kinematics(Motion::fixed(0.7)).unwrap();
+    assert!((ya.transmission_angle(0).unwrap() - std::f64::consts::FRAC_PI_2).abs() < 1e-15);
+    let r = Plan::new(&bundled::slotted_rocker()).unwrap();
+    let ra = r.kinematics(Motion::fixed(0.7)).unwrap();
+    let theta = ra.link("rocker").unwrap().value;
+    let expect = fold(theta.rem_euclid(std::f64::consts::PI));
+    assert!((ra.transmission_angle(1).unwrap() - expect).abs() < 1e-13);
+    assert!(ra.transmission_angle(2).is_err());
+}

@@ -14,9 +14,9 @@
 //! | = | any | change point: it passes through positions where all four links are collinear and can switch its assembly mode there |
 //! | > | any | triple rocker (non-Grashof): no link turns fully |
 
-use crate::error::Result;
 #[cfg(doc)]
 use crate::error::Error;
+use crate::error::Result;
 
 /// Grashof's classification of a four-bar (see the module's table).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]

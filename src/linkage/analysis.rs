@@ -751,6 +751,40 @@ impl<'p> Analysis<'p> {
         Ok(self.slide_index(j))
     }
 
+    /// The transmission angle μ of group `g` (in attachment order) at this position, rad in
+    /// [0, π/2]: the acute angle between the force a group's driving link can pass on and the
+    /// motion of the point it drives, complemented (μ = π/2 − the pressure angle). Engineers
+    /// keep it above about 40° over the cycle; it vanishes at a dead point.
+    ///
+    /// - RRR: the angle between the lines of its two links at the inner joint (the coupler and
+    ///   the rocker);
+    /// - RRP: π/2 minus the angle between the rod and the guide (μ = 0 with the rod across the
+    ///   guide);
+    /// - PRP: the angle between the two guides; RPP: between the slide and the guide (the
+    ///   force crosses each sliding pair along its normal);
+    /// - RPR: π/2 always: the sliding pair pushes the cylinder across its axis, which is the
+    ///   direction its point there moves in.
+    ///
+    /// # Errors
+    /// [`Error::OutOfRange`] for `g` not a group's index.
+    pub fn transmission_angle(&self, g: usize) -> Result<f64> {
+        let Some(group) = self.plan.groups.get(g) else {
+            return Err(Error::OutOfRange {
+                name: "group index",
+                value: g as f64,
+                min: 0.0,
+                max: self.plan.groups.len() as f64 - 1.0,
+            });
+        };
+        let (u2, u3) = (self.units[group.links[0]], self.units[group.links[1]]);
+        let between = |a: Vector2<f64>, b: Vector2<f64>| cross(a, b).abs().atan2(a.dot(&b).abs());
+        Ok(match group.kind {
+            GroupKind::Rrr | GroupKind::Prp | GroupKind::Rpp => between(u2, u3),
+            GroupKind::Rrp => std::f64::consts::FRAC_PI_2 - between(u2, u3),
+            GroupKind::Rpr => std::f64::consts::FRAC_PI_2,
+        })
+    }
+
     /// The kinematic conditioning of every group in attachment order: sin(φ3 − φ2) for RRR,
     /// cos(φ2 − φ4) for RRP, l_AC (m) for RPR.
     #[must_use]

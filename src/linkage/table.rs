@@ -45,7 +45,8 @@ pub(crate) fn push(row: &mut Vec<(String, f64)>, name: &str, unit: &str, value: 
 
 impl Tabulate for Analysis<'_> {
     /// The course table's row: the input, every moving link's angle, ω and ε, every joint's
-    /// position, velocity and acceleration magnitudes, every prismatic joint's slide, the
+    /// position, velocity and acceleration magnitudes, every prismatic joint's slide, every
+    /// group's transmission angle, the
     /// reaction in every joint (R_by,on: x, y, magnitude), and the balancing moment
     /// `Mb [N·m, + counter-clockwise]` (or force `Fb [N, + along the guide]`) beside its value
     /// by virtual power (`NaN` when the input is at rest: the virtual power then has no rate).
@@ -80,6 +81,10 @@ impl Tabulate for Analysis<'_> {
                 push(&mut r, &format!("v_rel({name})"), "m/s", s.rate);
                 push(&mut r, &format!("a_rel({name})"), "m/s^2", s.accel);
             }
+        }
+        for (g, group) in plan.groups().iter().enumerate() {
+            let mu = self.transmission_angle(g).unwrap_or(f64::NAN);
+            push(&mut r, &format!("mu({})", group.name), "rad", mu);
         }
         if self.has_statics() {
             for (j, name) in plan.joint_names().iter().enumerate() {
