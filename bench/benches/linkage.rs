@@ -250,5 +250,33 @@ fn six_bar(c: &mut Criterion) {
     g.finish();
 }
 
-criterion_group!(benches, four_bar, six_bar);
+/// The cost per position of a streamed sweep (inputs generated on the fly, each position's
+/// balancing moment folded into a peak): flat from 10³ to 10⁶ positions, since nothing is
+/// stored or allocated per position.
+fn streamed_sweep(c: &mut Criterion) {
+    let plan = Plan::new(&bundled::watt_six_bar()).unwrap();
+    let mut g = c.benchmark_group("watt_six_bar_streamed_sweep");
+    g.sample_size(10)
+        .warm_up_time(Duration::from_millis(500))
+        .measurement_time(Duration::from_secs(3));
+    for n in [1_000u32, 10_000, 100_000, 1_000_000] {
+        g.throughput(Throughput::Elements(u64::from(n)));
+        g.bench_function(format!("positions_{n}"), |b| {
+            b.iter(|| {
+                let step = std::f64::consts::TAU / f64::from(n);
+                let inputs = (0..n).map(|k| Motion::new(f64::from(k) * step, 10.0, 0.0));
+                let mut peak = 0.0f64;
+                plan.for_each(inputs, |_, a| {
+                    if let Ok(a) = a {
+                        peak = peak.max(a.balance().value.abs());
+                    }
+                });
+                black_box(peak)
+            })
+        });
+    }
+    g.finish();
+}
+
+criterion_group!(benches, four_bar, six_bar, streamed_sweep);
 criterion_main!(benches);

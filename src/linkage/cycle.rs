@@ -217,13 +217,37 @@ impl Plan {
     }
 
     /// Analyses every input in turn, reusing one set of buffers, and hands each position (or
-    /// its error) to `visit`: a sweep of any length without a table of full results.
-    pub fn for_each<F>(&self, inputs: &[Motion], mut visit: F)
+    /// its error) to `visit`: a sweep of any length without a table of full results, nothing
+    /// allocated per position. `inputs` may be a slice or any iterator of inputs (generated on
+    /// the fly, so a sweep of millions of positions needs no list of them either).
+    ///
+    /// # Examples
+    /// The largest balancing moment of the Watt six-bar over 10⁴ positions, streamed:
+    /// ```
+    /// use tmm::kinematics::Motion;
+    /// use tmm::linkage::{bundled, Plan};
+    /// let plan = Plan::new(&bundled::watt_six_bar())?;
+    /// let n = 10_000;
+    /// let inputs = (0..n).map(|k| Motion::new(k as f64 * std::f64::consts::TAU / n as f64, 10.0, 0.0));
+    /// let mut peak = 0.0f64;
+    /// plan.for_each(inputs, |_, a| {
+    ///     if let Ok(a) = a {
+    ///         peak = peak.max(a.balance().value.abs());
+    ///     }
+    /// });
+    /// assert!(peak > 0.0);
+    /// # Ok::<(), tmm::Error>(())
+    /// ```
+    pub fn for_each<I, F>(&self, inputs: I, mut visit: F)
     where
+        I: IntoIterator,
+        I::Item: std::borrow::Borrow<Motion>,
         F: FnMut(Motion, Result<&Analysis<'_>>),
     {
+        use std::borrow::Borrow;
         let mut a = Analysis::new(self);
-        for &i in inputs {
+        for i in inputs {
+            let i = *i.borrow();
             match a.solve(i) {
                 Ok(()) => visit(i, Ok(&a)),
                 Err(e) => visit(i, Err(e)),
