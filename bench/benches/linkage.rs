@@ -95,6 +95,78 @@ impl HandFourBar {
     }
 }
 
+/// The same four-bar as a straight Cartesian closed form: no angles, no validation, nothing
+/// rebuilt from an angle, inlined — the speed of the job itself (issue 13's yardstick).
+struct CartesianFourBar {
+    a: f64,
+    l2: f64,
+    l3: f64,
+    o3: Vector2<f64>,
+    e: (f64, f64),
+}
+
+#[inline]
+fn perp2(v: Vector2<f64>) -> Vector2<f64> {
+    Vector2::new(-v.y, v.x)
+}
+
+#[inline]
+fn cross2(a: Vector2<f64>, b: Vector2<f64>) -> f64 {
+    a.x * b.y - a.y * b.x
+}
+
+impl CartesianFourBar {
+    fn new() -> Self {
+        let hand = HandFourBar::new();
+        Self {
+            a: hand.l[0],
+            l2: hand.l[1],
+            l3: hand.l[2],
+            o3: hand.o3.coords,
+            e: hand.e,
+        }
+    }
+
+    #[inline]
+    fn balance(&self, i: Motion) -> f64 {
+        let (w, eps) = (i.rate, i.accel);
+        let (sn, cs) = i.value.sin_cos();
+        let ra = Vector2::new(self.a * cs, self.a * sn);
+        let (va, aa) = (w * perp2(ra), eps * perp2(ra) - w * w * ra);
+        // B on the left of A→O3, at l2 from A and l3 from O3.
+        let d = self.o3 - ra;
+        let dd = d.norm_squared();
+        let along = (self.l2 * self.l2 - self.l3 * self.l3 + dd) / (2.0 * dd);
+        let across = (self.l2 * self.l2 / dd - along * along).sqrt();
+        let b = ra + along * d + across * perp2(d);
+        let (r2, r3) = (b - ra, b - self.o3);
+        let x = cross2(r2, r3);
+        let (w2, w3) = (-va.dot(&r3) / x, -va.dot(&r2) / x);
+        let q = -aa + w2 * w2 * r2 - w3 * w3 * r3;
+        let (e2, e3) = (q.dot(&r3) / x, q.dot(&r2) / x);
+        // Loads: inertia and weight at the rods' middles, the force at E, the resisting moment.
+        let g = Vector2::new(0.0, -9.81);
+        let (m2, m3) = (1.5, 2.0);
+        let (j2, j3) = (m2 * self.l2 * self.l2 / 12.0, m3 * self.l3 * self.l3 / 12.0);
+        let a_s2 = aa + 0.5 * (e2 * perp2(r2) - w2 * w2 * r2);
+        let a_s3 = 0.5 * (e3 * perp2(r3) - w3 * w3 * r3);
+        let (f2, f3) = (m2 * (g - a_s2), m3 * (g - a_s3));
+        let fe = Vector2::new(0.0, -50.0);
+        let re = (self.e.0 * r2 + self.e.1 * perp2(r2)) / self.l2;
+        // Moments about B of each link's loads (S2 − B = −r2/2, E − B = re − r2, S3 − B = −r3/2).
+        let m2b = -j2 * e2 + cross2(-0.5 * r2, f2) + cross2(re - r2, fe);
+        let m3b = -j3 * e3 - 40.0 * w3.signum() + cross2(-0.5 * r3, f3);
+        let f = f2 + f3 + fe;
+        // R12 (frame of link 2's moments about B) and R43 = −F − R12 (link 3's).
+        let (p, qq) = (-r2, -r3);
+        let det = cross2(p, qq);
+        let (b1, b2) = (-m2b, m3b - cross2(qq, f));
+        let r12 = Vector2::new((b1 * qq.x - p.x * b2) / det, (-p.y * b2 + qq.y * b1) / det);
+        // The crank: its weight acts at O1; Mb balances R21 = −R12 at A and −J1·ε.
+        cross2(ra, r12) + 0.002 * eps
+    }
+}
+
 fn four_bar(c: &mut Criterion) {
     let plan = Plan::new(&bundled::four_bar()).unwrap();
     let hand = HandFourBar::new();
@@ -109,11 +181,23 @@ fn four_bar(c: &mut Criterion) {
             "hand chain {y} vs engine {x}"
         );
     }
+    let cart = CartesianFourBar::new();
+    for &i in &ins {
+        a.solve(i).unwrap();
+        let (x, y) = (a.balance().value, cart.balance(i));
+        assert!(
+            (x - y).abs() <= 1e-9 * x.abs().max(1.0),
+            "Cartesian closed form {y} vs engine {x}"
+        );
+    }
     let mut g = c.benchmark_group("four_bar_whole_position");
     g.measurement_time(Duration::from_secs(3))
         .warm_up_time(Duration::from_millis(500))
         .sample_size(30);
     g.throughput(Throughput::Elements(ins.len() as u64));
+    g.bench_function("cartesian_closed_form", |b| {
+        b.iter(|| ins.iter().map(|&i| cart.balance(black_box(i))).sum::<f64>())
+    });
     g.bench_function("hand_chain", |b| {
         b.iter(|| ins.iter().map(|&i| hand.balance(black_box(i))).sum::<f64>())
     });
