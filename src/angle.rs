@@ -143,6 +143,7 @@ impl Polar {
 
 /// The unit vector of a direction angle, (cos θ, sin θ).
 #[must_use]
+#[inline]
 pub fn unit(angle: f64) -> Vector2<f64> {
     let (s, c) = angle.sin_cos();
     Vector2::new(c, s)
@@ -151,12 +152,14 @@ pub fn unit(angle: f64) -> Vector2<f64> {
 /// The z component of the cross product a × b: the moment of the force `b` applied at the
 /// arm `a`, counter-clockwise positive.
 #[must_use]
+#[inline]
 pub fn cross(a: Vector2<f64>, b: Vector2<f64>) -> f64 {
     a.x * b.y - a.y * b.x
 }
 
 /// The vector turned by +90° (counter-clockwise): (−y, x).
 #[must_use]
+#[inline]
 pub fn perp(v: Vector2<f64>) -> Vector2<f64> {
     Vector2::new(-v.y, v.x)
 }

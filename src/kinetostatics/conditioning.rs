@@ -48,6 +48,23 @@ impl Conditioning {
         })
     }
 
+    /// For a solver's fast path, which multiplies by `inverse` = 1/`measure` instead of
+    /// dividing: the conditioning (the same as [`of`](Self::of) up to the rounding of the
+    /// inverse) and whether the configuration is clearly regular, that is, at least twice as
+    /// far from singular as [`of`](Self::of) requires. Near the threshold the fast path gives
+    /// way to the checked one, so that a rounding difference between the two cannot move a
+    /// configuration across it: [`Error::Singular`] is reported exactly where it was.
+    #[inline]
+    pub(crate) fn fast(measure: f64, inverse: f64, scale: f64) -> (Self, bool) {
+        (
+            Self {
+                measure,
+                condition: (inverse.abs() * scale).max(1.0),
+            },
+            measure.abs() > 2.0 * SINGULAR_BELOW * scale,
+        )
+    }
+
     /// The conditioning of a solver that never divides by a configuration-dependent quantity.
     pub(crate) fn perfect() -> Self {
         Self {
@@ -55,6 +72,13 @@ impl Conditioning {
             condition: 1.0,
         }
     }
+}
+
+/// `true` when every value is finite: one test over all of them (no early exit, no branch per
+/// value), for a solver's fast path; its checked path then names the value that is not.
+#[inline]
+pub(crate) fn all_finite_fast<const N: usize>(values: [f64; N]) -> bool {
+    values.iter().fold(true, |ok, v| ok & v.is_finite())
 }
 
 /// Turns an overflow in a result into an error, so that no solver returns an infinity:
