@@ -11,7 +11,7 @@
 //! line of action lies at h43 = −M3(B)/R43 along the guide from B. The seed's h43 = 0 holds only
 //! when the slider's load passes through B (N3). R23 = −(R43 + F3) from the slider.
 
-use super::conditioning::{ensure_finite, Conditioning};
+use super::conditioning::{all_finite_fast, ensure_finite, Conditioning};
 use crate::angle::{cross, perp, unit};
 use crate::error::{all_finite, finite2, length, positive, Result};
 use crate::Load;
@@ -98,7 +98,92 @@ impl RrpDyad {
     ///   direction is zero (`|guide|`);
     /// - [`Error::Singular`](crate::Error::Singular) with `cos(phi2 - phi4)` when link 2 is
     ///   perpendicular to the guide to working precision.
+    #[inline]
     pub fn solve(&self) -> Result<RrpReactions> {
+        match self.fast() {
+            Some(r) => Ok(r),
+            None => self.solve_checked(),
+        }
+    }
+
+    /// The closed form on AB and the guide as they are (not unit vectors), with every check
+    /// folded into one test at the end (as [`RrrDyad`](super::RrrDyad)'s): `None` wherever
+    /// [`solve_checked`](Self::solve_checked) fails, and near its thresholds, so that it
+    /// decides there and names the cause.
+    #[inline(always)]
+    fn fast(&self) -> Option<RrpReactions> {
+        let ab = self.b - self.a;
+        let nu = perp(self.guide);
+        let (q2, qg) = (ab.norm_squared(), self.guide.norm_squared());
+        let t2 = self.load2.moment_about(self.b) / q2;
+        let w = perp(ab) * t2 + self.load2.force + self.load3.force;
+        let d = cross(ab, nu);
+        let i_d = 1.0 / d;
+        let n2 = -cross(w, nu) * i_d;
+        let k = -cross(ab, w) * i_d;
+        let r12 = ab * n2 + perp(ab) * t2;
+        let r43 = nu * k;
+        let r23 = -(r43 + self.load3.force);
+        let guide_moment = 0.0 - self.load3.moment_about(self.b);
+
+        let (l2, lg) = (q2.sqrt(), qg.sqrt());
+        let l2g = l2 * lg;
+        let det = d / l2g;
+        let (conditioning, regular) = Conditioning::fast(det, i_d * l2g, 1.0);
+        let (r12_n, r12_t, r43_n) = (n2 * l2, t2 * l2, k * lg);
+        let (l2_, l3_) = (self.load2, self.load3);
+        let ok = all_finite_fast([
+            self.a.x,
+            self.a.y,
+            self.b.x,
+            self.b.y,
+            self.guide.x,
+            self.guide.y,
+            l2_.point.x,
+            l2_.point.y,
+            l2_.force.x,
+            l2_.force.y,
+            l2_.moment,
+            l3_.point.x,
+            l3_.point.y,
+            l3_.force.x,
+            l3_.force.y,
+            l3_.moment,
+            q2,
+            qg,
+            d,
+            i_d,
+            r12.x,
+            r12.y,
+            r43.x,
+            r43.y,
+            r23.x,
+            r23.y,
+            r12_n,
+            r12_t,
+            r43_n,
+            guide_moment,
+            det,
+        ]) & (q2 >= f64::MIN_POSITIVE)
+            & (qg >= f64::MIN_POSITIVE)
+            & regular;
+        ok.then(|| RrpReactions {
+            r12,
+            r43,
+            r23,
+            r12_n,
+            r12_t,
+            r43_n,
+            guide_moment,
+            offset: Some(guide_moment / r43_n).filter(|h| h.is_finite()),
+            conditioning,
+        })
+    }
+
+    /// The closed form checked step by step, naming what fails.
+    #[cold]
+    #[inline(never)]
+    fn solve_checked(&self) -> Result<RrpReactions> {
         self.validate()?;
         let ab = self.b - self.a;
         let l2 = length("l_AB", ab)?;

@@ -104,13 +104,20 @@ impl RrrDyad {
     /// root; the lengths only scale the components and the conditioning. `None` wherever
     /// [`solve_checked`](Self::solve_checked) fails, and near its thresholds, so that it
     /// decides there and names the cause.
-    #[inline]
+    #[inline(always)]
     fn fast(&self) -> Option<RrrReactions> {
         let ab = self.b - self.a;
         let cb = self.b - self.c;
         let (q2, q3) = (ab.norm_squared(), cb.norm_squared());
-        let t2 = self.load2.moment_about(self.b) / q2;
-        let t3 = self.load3.moment_about(self.b) / q3;
+        // Pairs of divisions and of square roots, written so that each pair is one vector
+        // instruction: the divider is what limits a batch of dyads.
+        let q = Vector2::new(q2, q3);
+        let t = Vector2::new(
+            self.load2.moment_about(self.b),
+            self.load3.moment_about(self.b),
+        )
+        .component_div(&q);
+        let (t2, t3) = (t.x, t.y);
         let w = perp(ab) * t2 + perp(cb) * t3 + self.load2.force + self.load3.force;
         let d = cross(ab, cb);
         let i_d = 1.0 / d;
@@ -120,7 +127,8 @@ impl RrrDyad {
         let r43 = cb * n3 + perp(cb) * t3;
         let r23 = -(r43 + self.load3.force);
 
-        let (l2, l3) = (q2.sqrt(), q3.sqrt());
+        let l = q.map(f64::sqrt);
+        let (l2, l3) = (l.x, l.y);
         let l23 = l2 * l3;
         let det = d / l23;
         let (conditioning, regular) = Conditioning::fast(det, i_d * l23, 1.0);
