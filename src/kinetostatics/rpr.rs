@@ -143,24 +143,11 @@ impl RprDyad {
             .sqrt();
         let (conditioning, regular) = Conditioning::fast(l_ea, la * i_along, rho);
         let (r12_n, r12_t, r32_n) = (p * la, q * la, k * la);
-        let (l2_, l3_) = (self.load2, self.load3);
+        // The inputs need no test of their own: a non-finite axis makes |axis|² non-finite,
+        // a non-finite A or E (with a finite axis) the projection `along`, and a non-finite
+        // load its moment about E or A (a product with an infinite factor is infinite or NaN,
+        // and no sum makes it finite again), so r12_t or the couple, or R43 through F3.
         let ok = all_finite_fast([
-            self.a.x,
-            self.a.y,
-            self.e.x,
-            self.e.y,
-            u.x,
-            u.y,
-            l2_.point.x,
-            l2_.point.y,
-            l2_.force.x,
-            l2_.force.y,
-            l2_.moment,
-            l3_.point.x,
-            l3_.point.y,
-            l3_.force.x,
-            l3_.force.y,
-            l3_.moment,
             qa,
             along,
             i_along,

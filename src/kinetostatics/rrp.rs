@@ -131,24 +131,11 @@ impl RrpDyad {
         let det = d / l2g;
         let (conditioning, regular) = Conditioning::fast(det, i_d * l2g, 1.0);
         let (r12_n, r12_t, r43_n) = (n2 * l2, t2 * l2, k * lg);
-        let (l2_, l3_) = (self.load2, self.load3);
+        // The inputs need no test of their own: a non-finite coordinate makes |AB|² or
+        // |guide|² non-finite, and a non-finite load makes its moment about B non-finite (a
+        // product with an infinite factor is infinite or NaN, and no sum makes it finite
+        // again), so r12_t or the guide's moment, or R23 through F3.
         let ok = all_finite_fast([
-            self.a.x,
-            self.a.y,
-            self.b.x,
-            self.b.y,
-            self.guide.x,
-            self.guide.y,
-            l2_.point.x,
-            l2_.point.y,
-            l2_.force.x,
-            l2_.force.y,
-            l2_.moment,
-            l3_.point.x,
-            l3_.point.y,
-            l3_.force.x,
-            l3_.force.y,
-            l3_.moment,
             q2,
             qg,
             d,

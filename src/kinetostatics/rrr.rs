@@ -133,38 +133,12 @@ impl RrrDyad {
         let det = d / l23;
         let (conditioning, regular) = Conditioning::fast(det, i_d * l23, 1.0);
         let (r12_n, r12_t, r43_n, r43_t) = (n2 * l2, t2 * l2, n3 * l3, t3 * l3);
-        let (l2_, l3_) = (self.load2, self.load3);
+        // The inputs need no test of their own: a non-finite coordinate makes |AB|² or |CB|²
+        // non-finite, and a non-finite load makes its moment about B non-finite (a product
+        // with an infinite factor is infinite or NaN, and no sum makes it finite again), so
+        // r12_t or r43_t, or R23 through F3.
         let ok = all_finite_fast([
-            self.a.x,
-            self.a.y,
-            self.b.x,
-            self.b.y,
-            self.c.x,
-            self.c.y,
-            l2_.point.x,
-            l2_.point.y,
-            l2_.force.x,
-            l2_.force.y,
-            l2_.moment,
-            l3_.point.x,
-            l3_.point.y,
-            l3_.force.x,
-            l3_.force.y,
-            l3_.moment,
-            q2,
-            q3,
-            d,
-            i_d,
-            r12.x,
-            r12.y,
-            r43.x,
-            r43.y,
-            r23.x,
-            r23.y,
-            r12_n,
-            r12_t,
-            r43_n,
-            r43_t,
+            q2, q3, d, i_d, r12.x, r12.y, r43.x, r43.y, r23.x, r23.y, r12_n, r12_t, r43_n, r43_t,
             det,
         ]) & (q2 >= f64::MIN_POSITIVE)
             & (q3 >= f64::MIN_POSITIVE)
