@@ -134,13 +134,16 @@ impl RprDyad {
         let r43 = r32 - self.load3.force;
         let couple = 0.0 - self.load2.moment_about(self.a);
 
-        let la = qa.sqrt();
-        let l_ea = -along / la;
-        let rho = (self.load2.point - self.e)
+        let rho_sq = (self.load2.point - self.e)
             .norm_squared()
             .max((self.load3.point - self.e).norm_squared())
-            .max(ea.norm_squared())
-            .sqrt();
+            .max(ea.norm_squared());
+        // 1/|axis| and ρ as one pair of square roots (one vector instruction), with no
+        // further division.
+        let roots = Vector2::new(i_qa, rho_sq).map(f64::sqrt);
+        let (i_la, rho) = (roots.x, roots.y);
+        let la = qa * i_la;
+        let l_ea = -along * i_la;
         let (conditioning, regular) = Conditioning::fast(l_ea, la * i_along, rho);
         let (r12_n, r12_t, r32_n) = (p * la, q * la, k * la);
         // The inputs need no test of their own: a non-finite axis makes |axis|² non-finite,

@@ -114,8 +114,12 @@ impl RrpDyad {
     fn fast(&self) -> Option<RrpReactions> {
         let ab = self.b - self.a;
         let nu = perp(self.guide);
-        let (q2, qg) = (ab.norm_squared(), self.guide.norm_squared());
-        let t2 = self.load2.moment_about(self.b) / q2;
+        let q = Vector2::new(ab.norm_squared(), self.guide.norm_squared());
+        let (q2, qg) = (q.x, q.y);
+        // 1/|AB|² and 1/|guide|² as one pair of divisions, then their square roots as one
+        // pair (one vector instruction each).
+        let i_q = Vector2::repeat(1.0).component_div(&q);
+        let t2 = self.load2.moment_about(self.b) * i_q.x;
         let w = perp(ab) * t2 + self.load2.force + self.load3.force;
         let d = cross(ab, nu);
         let i_d = 1.0 / d;
@@ -126,10 +130,10 @@ impl RrpDyad {
         let r23 = -(r43 + self.load3.force);
         let guide_moment = 0.0 - self.load3.moment_about(self.b);
 
-        let (l2, lg) = (q2.sqrt(), qg.sqrt());
-        let l2g = l2 * lg;
-        let det = d / l2g;
-        let (conditioning, regular) = Conditioning::fast(det, i_d * l2g, 1.0);
+        let i_l = i_q.map(f64::sqrt);
+        let (l2, lg) = (q2 * i_l.x, qg * i_l.y);
+        let det = d * (i_l.x * i_l.y);
+        let (conditioning, regular) = Conditioning::fast(det, i_d * (l2 * lg), 1.0);
         let (r12_n, r12_t, r43_n) = (n2 * l2, t2 * l2, k * lg);
         // The inputs need no test of their own: a non-finite coordinate makes |AB|² or
         // |guide|² non-finite, and a non-finite load makes its moment about B non-finite (a

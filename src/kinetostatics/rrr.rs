@@ -112,11 +112,12 @@ impl RrrDyad {
         // Pairs of divisions and of square roots, written so that each pair is one vector
         // instruction: the divider is what limits a batch of dyads.
         let q = Vector2::new(q2, q3);
+        let i_q = Vector2::repeat(1.0).component_div(&q);
         let t = Vector2::new(
             self.load2.moment_about(self.b),
             self.load3.moment_about(self.b),
         )
-        .component_div(&q);
+        .component_mul(&i_q);
         let (t2, t3) = (t.x, t.y);
         let w = perp(ab) * t2 + perp(cb) * t3 + self.load2.force + self.load3.force;
         let d = cross(ab, cb);
@@ -127,10 +128,10 @@ impl RrrDyad {
         let r43 = cb * n3 + perp(cb) * t3;
         let r23 = -(r43 + self.load3.force);
 
-        let l = q.map(f64::sqrt);
-        let (l2, l3) = (l.x, l.y);
+        let i_l = i_q.map(f64::sqrt);
+        let (l2, l3) = (q2 * i_l.x, q3 * i_l.y);
         let l23 = l2 * l3;
-        let det = d / l23;
+        let det = d * (i_l.x * i_l.y);
         let (conditioning, regular) = Conditioning::fast(det, i_d * l23, 1.0);
         let (r12_n, r12_t, r43_n, r43_t) = (n2 * l2, t2 * l2, n3 * l3, t3 * l3);
         // The inputs need no test of their own: a non-finite coordinate makes |AB|² or |CB|²
