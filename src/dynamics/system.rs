@@ -43,8 +43,11 @@ impl State {
 
     /// `true` when t, q and q̇ are all finite.
     #[must_use]
+    #[inline]
     pub fn is_finite(&self) -> bool {
-        self.t.is_finite() && self.q.iter().chain(self.qd.iter()).all(|v| v.is_finite())
+        [self.t, self.q[0], self.q[1], self.qd[0], self.qd[1]]
+            .iter()
+            .fold(true, |ok, v| ok & v.is_finite())
     }
 }
 
@@ -214,7 +217,7 @@ pub fn christoffel_terms(d_a: &[Matrix2<f64>; 2], qd: &Vector2<f64>) -> Result<V
 /// of all the derivatives and of the result (`None` where [`christoffel_terms`] fails, for
 /// which [`accelerations`] reports the same error: a non-finite state). Written as
 /// cᵢ = [(Σₖ q̇ₖ ∂A/∂qₖ) q̇]ᵢ − ½ q̇ᵀ (∂A/∂qᵢ) q̇, the same sum with fewer products.
-#[inline]
+#[inline(always)]
 fn christoffel_fast(d_a: &[Matrix2<f64>; 2], qd: &Vector2<f64>) -> Option<Vector2<f64>> {
     let m = d_a[0] * qd[0] + d_a[1] * qd[1];
     let first = m * qd;
