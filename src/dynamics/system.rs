@@ -215,14 +215,21 @@ pub fn christoffel_terms(d_a: &[Matrix2<f64>; 2], qd: &Vector2<f64>) -> Result<V
 
 /// The Christoffel terms of [`christoffel_terms`] for a q̇ known to be finite, with one check
 /// of all the derivatives and of the result (`None` where [`christoffel_terms`] fails, for
-/// which [`accelerations`] reports the same error: a non-finite state). Written as
-/// cᵢ = [(Σₖ q̇ₖ ∂A/∂qₖ) q̇]ᵢ − ½ q̇ᵀ (∂A/∂qᵢ) q̇, the same sum with fewer products.
+/// which [`accelerations`] reports the same error: a non-finite state). The same sums in the
+/// same order, so the same bits.
 #[inline(always)]
 fn christoffel_fast(d_a: &[Matrix2<f64>; 2], qd: &Vector2<f64>) -> Option<Vector2<f64>> {
-    let m = d_a[0] * qd[0] + d_a[1] * qd[1];
-    let first = m * qd;
-    let second = Vector2::new(qd.dot(&(d_a[0] * qd)), qd.dot(&(d_a[1] * qd)));
-    let c = first - 0.5 * second;
+    let mut c = Vector2::zeros();
+    for i in 0..2 {
+        let mut s = 0.0;
+        for j in 0..2 {
+            for k in 0..2 {
+                let g = 0.5 * (d_a[k][(i, j)] + d_a[j][(i, k)] - d_a[i][(j, k)]);
+                s += g * qd[j] * qd[k];
+            }
+        }
+        c[i] = s;
+    }
     let (d0, d1) = (&d_a[0], &d_a[1]);
     let ok = [
         d0[0], d0[1], d0[2], d0[3], d1[0], d1[1], d1[2], d1[3], c[0], c[1],
