@@ -60,7 +60,40 @@ fn every_file_reads_back_as_its_linkage_built_in_rust() {
     assert_eq!(on_disk, files.len());
     for (name, text, built) in files {
         let read = Linkage::from_json(text).unwrap_or_else(|e| panic!("{name}: {e}"));
-        assert_eq!(read, built, "{name}");
+        // The ready mechanisms compute their reference poses: their numbers may move in the
+        // last bits when the blocks' arithmetic is reordered, so numbers agree to 1e-13.
+        let as_value = |l: &Linkage| serde_json::from_str(&l.to_json().unwrap()).unwrap();
+        if let Err(at) = same(&as_value(&read), &as_value(&built), name.to_owned()) {
+            panic!("{name} differs from its linkage at {at}");
+        }
+    }
+}
+
+/// Equal JSON values, numbers to a relative 1e-13; `Err` names the first place they differ.
+fn same(a: &serde_json::Value, b: &serde_json::Value, at: String) -> Result<(), String> {
+    use serde_json::Value;
+    match (a, b) {
+        (Value::Number(x), Value::Number(y)) => {
+            let (x, y) = (x.as_f64().unwrap(), y.as_f64().unwrap());
+            if (x - y).abs() <= 1e-13 * x.abs().max(y.abs()).max(1.0) {
+                Ok(())
+            } else {
+                Err(format!("{at}: {x} vs {y}"))
+            }
+        }
+        (Value::Array(x), Value::Array(y)) if x.len() == y.len() => x
+            .iter()
+            .zip(y)
+            .enumerate()
+            .try_for_each(|(k, (x, y))| same(x, y, format!("{at}[{k}]"))),
+        (Value::Object(x), Value::Object(y)) if x.len() == y.len() => {
+            x.iter().try_for_each(|(k, v)| match y.get(k) {
+                Some(w) => same(v, w, format!("{at}.{k}")),
+                None => Err(format!("{at}.{k} missing")),
+            })
+        }
+        _ if a == b => Ok(()),
+        _ => Err(format!("{at}: {a} vs {b}")),
     }
 }
 
