@@ -781,6 +781,14 @@ impl Plan {
         self.joints[joint].links
     }
 
+    /// For a prismatic joint, the link that carries its guide (one of
+    /// [`joint_links`](Self::joint_links)); `None` for a revolute joint.
+    #[must_use]
+    pub fn guide_link(&self, joint: usize) -> Option<usize> {
+        let j = &self.joints[joint];
+        j.prismatic.map(|(side, _)| j.links[side])
+    }
+
     /// The frame's link motion (at rest at the origin).
     pub(crate) fn frame_motion() -> LinkMotion {
         LinkMotion {
