@@ -83,13 +83,18 @@ fn assert_hinges(plan: &Plan, input: Motion, pic: &Picture, p: &Pixmap, style: &
             continue;
         }
         let c = pic.frame.to_pixel(a.joint_motion(j).p);
-        assert!(ink(p, c) > 120, "{what}: centre of hinge {name} at {c:?} is not drawn");
+        assert!(
+            ink(p, c) > 120,
+            "{what}: centre of hinge {name} at {c:?} is not drawn"
+        );
         let r = style.hinge_radius;
         for k in 0..8 {
             let t = f64::from(k) * TAU / 8.0;
             let ring = [c[0] + r * t.cos(), c[1] + r * t.sin()];
             let near = (-1..=1)
-                .flat_map(|dx| (-1..=1).map(move |dy| [ring[0] + f64::from(dx), ring[1] + f64::from(dy)]))
+                .flat_map(|dx| {
+                    (-1..=1).map(move |dy| [ring[0] + f64::from(dx), ring[1] + f64::from(dy)])
+                })
                 .map(|q| ink(p, q))
                 .max()
                 .unwrap();
@@ -111,7 +116,9 @@ fn every_scheme_shows_its_hinges_where_its_frame_says() {
         for k in 0..4 {
             let phi = plan.reference_input() + f64::from(k) * TAU / 4.0;
             let input = Motion::new(phi, 10.0, 0.0);
-            let Ok(_) = plan.kinematics(input) else { continue };
+            let Ok(_) = plan.kinematics(input) else {
+                continue;
+            };
             let pic = scheme(&plan, input, &style).unwrap();
             let p = render(&pic.svg, &format!("scheme {name} {k}"));
             let f = inked(&p);
@@ -150,7 +157,10 @@ fn a_ternary_link_is_a_filled_polygon_and_a_slider_a_block() {
     let a = plan.kinematics(input).unwrap();
     // The centroid of the coupler's triangle A B E is inside its fill.
     let c = Point2::from(
-        (a.joint("A").unwrap().p.coords + a.joint("B").unwrap().p.coords + a.joint("E").unwrap().p.coords) / 3.0,
+        (a.joint("A").unwrap().p.coords
+            + a.joint("B").unwrap().p.coords
+            + a.joint("E").unwrap().p.coords)
+            / 3.0,
     );
     assert!(ink(&p, pic.frame.to_pixel(c)) > 20);
     assert!(pic.svg.contains("<polygon"));
@@ -173,7 +183,11 @@ fn a_ternary_link_is_a_filled_polygon_and_a_slider_a_block() {
 fn the_plan_draws_every_course_position_and_the_extremes_bold() {
     let style = Style::default();
     for (linkage, output, paths) in [
-        (bundled::watt_six_bar(), Output::Angle("link 5".into()), vec!["E", "G"]),
+        (
+            bundled::watt_six_bar(),
+            Output::Angle("link 5".into()),
+            vec!["E", "G"],
+        ),
         (bundled::shaper(), Output::Slide("Q".into()), vec!["D"]),
     ] {
         let plan = Plan::new(&linkage).unwrap();
@@ -200,7 +214,10 @@ fn the_plan_draws_every_course_position_and_the_extremes_bold() {
                 if hidden.iter().any(|h| (h[0] - c[0]).hypot(h[1] - c[1]) < r) {
                     continue;
                 }
-                assert!(ink(&p, c) > 30, "position {k}: joint {name} not drawn at {c:?}");
+                assert!(
+                    ink(&p, c) > 30,
+                    "position {k}: joint {name} not drawn at {c:?}"
+                );
             }
         }
         // The extreme positions are bold: their links' middles are dark.
@@ -219,19 +236,32 @@ fn the_plan_draws_every_course_position_and_the_extremes_bold() {
                     }
                 }
             }
-            assert!(dark >= 1, "{}: no bold link at the extreme {m:?}", plan.name());
+            assert!(
+                dark >= 1,
+                "{}: no bold link at the extreme {m:?}",
+                plan.name()
+            );
         }
         // The coupler curves: most of their points are on drawn (dashed) pixels.
         for name in &paths {
             let inputs = uniform_inputs(72, 0.0, 1.0, 0.0);
             let mut on = 0;
             for &m in &inputs {
-                let c = pic.frame.to_pixel(plan.kinematics(m).unwrap().joint(name).unwrap().p);
-                if (-1..=1).any(|d| ink(&p, [c[0] + f64::from(d), c[1]]) > 30 || ink(&p, [c[0], c[1] + f64::from(d)]) > 30) {
+                let c = pic
+                    .frame
+                    .to_pixel(plan.kinematics(m).unwrap().joint(name).unwrap().p);
+                if (-1..=1).any(|d| {
+                    ink(&p, [c[0] + f64::from(d), c[1]]) > 30
+                        || ink(&p, [c[0], c[1] + f64::from(d)]) > 30
+                }) {
                     on += 1;
                 }
             }
-            assert!(on >= 45, "{}: only {on} of 72 points of the path of {name} drawn", plan.name());
+            assert!(
+                on >= 45,
+                "{}: only {on} of 72 points of the path of {name} drawn",
+                plan.name()
+            );
         }
     }
 }
@@ -269,7 +299,12 @@ fn the_animation_has_one_frame_per_position_and_each_frame_is_solved() {
         let labels = plan.joint_names().len() + plan.point_names().len();
         assert_eq!(anims.len(), 4 * links + 2 * labels);
         for (attr, values) in &anims {
-            assert_eq!(values.len(), n, "{attr}: {} frames for {n} positions", values.len());
+            assert_eq!(
+                values.len(),
+                n,
+                "{attr}: {} frames for {n} positions",
+                values.len()
+            );
         }
         // The still picture is the first position.
         let p = render(&pic.svg, &format!("animation {}", plan.name()));
@@ -327,19 +362,30 @@ fn assert_frames(plan: &Plan, inputs: &[Motion], pic: &Picture) {
             }
         }
     }
-    let hinges: Vec<usize> = (0..plan.joint_names().len()).filter(|&j| !plan.is_prismatic(j)).collect();
+    let hinges: Vec<usize> = (0..plan.joint_names().len())
+        .filter(|&j| !plan.is_prismatic(j))
+        .collect();
     assert_eq!(circles.len(), hinges.len(), "one circle per hinge");
     for (k, &m) in inputs.iter().enumerate() {
         let a = plan.kinematics(m).unwrap();
-        let want: Vec<[f64; 2]> = hinges.iter().map(|&j| pic.frame.to_pixel(a.joint_motion(j).p)).collect();
+        let want: Vec<[f64; 2]> = hinges
+            .iter()
+            .map(|&j| pic.frame.to_pixel(a.joint_motion(j).p))
+            .collect();
         for (t, r, c) in &circles {
             let (s, co) = r[k].to_radians().sin_cos();
-            let q = [t[k][0] + c[0] * co - c[1] * s, t[k][1] + c[0] * s + c[1] * co];
+            let q = [
+                t[k][0] + c[0] * co - c[1] * s,
+                t[k][1] + c[0] * s + c[1] * co,
+            ];
             let best = want
                 .iter()
                 .map(|w| (w[0] - q[0]).hypot(w[1] - q[1]))
                 .fold(f64::INFINITY, f64::min);
-            assert!(best < 0.2, "frame {k}: a hinge drawn at {q:?} is {best} px from every solved hinge");
+            assert!(
+                best < 0.2,
+                "frame {k}: a hinge drawn at {q:?} is {best} px from every solved hinge"
+            );
         }
     }
 }
@@ -366,7 +412,10 @@ fn forces_are_arrows_to_scale_from_their_points() {
             let from = pic.frame.to_pixel(r.point);
             let dir = [r.force.x / r.force.norm(), -r.force.y / r.force.norm()];
             let q = [from[0] + dir[0] * len * 0.66, from[1] + dir[1] * len * 0.66];
-            let c = p.pixel(q[0].floor() as u32, q[1].floor() as u32).unwrap().demultiply();
+            let c = p
+                .pixel(q[0].floor() as u32, q[1].floor() as u32)
+                .unwrap()
+                .demultiply();
             assert!(
                 c.red() > 120 && c.green() < 90,
                 "{}: the arrow of the reaction in {} is not at {q:?}",
@@ -403,7 +452,9 @@ fn diagrams_cover_their_data_with_si_units_and_mark_the_course() {
             for panel in &chart.panels {
                 for l in [&panel.x_label, &panel.y_label] {
                     assert!(
-                        [", rad", ", m", ", N", "rad/s", "m/s", "/rad", "N·m"].iter().any(|u| l.contains(u)),
+                        [", rad", ", m", ", N", "rad/s", "m/s", "/rad", "N·m"]
+                            .iter()
+                            .any(|u| l.contains(u)),
                         "no unit in {l}"
                     );
                     assert!(!l.contains("Nm") && !l.contains("N*m") && !l.contains("N m"));
@@ -412,8 +463,16 @@ fn diagrams_cover_their_data_with_si_units_and_mark_the_course() {
                 let n = panel.series.iter().map(|s| s.1.len()).sum::<usize>();
                 assert!(n >= 360, "{d:?}: {n} points");
                 for [x, y] in panel.series.iter().flat_map(|s| s.1.iter()) {
-                    assert!(panel.x_range[0] <= *x && *x <= panel.x_range[1], "{d:?}: x {x} outside {:?}", panel.x_range);
-                    assert!(panel.y_range[0] <= *y && *y <= panel.y_range[1], "{d:?}: y {y} outside {:?}", panel.y_range);
+                    assert!(
+                        panel.x_range[0] <= *x && *x <= panel.x_range[1],
+                        "{d:?}: x {x} outside {:?}",
+                        panel.x_range
+                    );
+                    assert!(
+                        panel.y_range[0] <= *y && *y <= panel.y_range[1],
+                        "{d:?}: y {y} outside {:?}",
+                        panel.y_range
+                    );
                 }
                 // The marks are drawn on the picture (black dots where the axes say).
                 assert!(panel.marks.len() >= 12);
@@ -442,9 +501,19 @@ fn a_clockwise_crank_is_plotted_along_its_own_sense() {
     let out = Output::Angle("link 5".into());
     for speed in [10.0, -10.0] {
         let course = Course::new(&plan, Some(&out), 12, speed).unwrap();
-        let chart = diagram(&plan, &course, &Diagram::Kinematics(out.clone()), &Style::default()).unwrap();
+        let chart = diagram(
+            &plan,
+            &course,
+            &Diagram::Kinematics(out.clone()),
+            &Style::default(),
+        )
+        .unwrap();
         let panel = &chart.panels[0];
-        assert!(panel.x_label.contains(if speed < 0.0 { "clockwise" } else { "counter-clockwise" }));
+        assert!(panel.x_label.contains(if speed < 0.0 {
+            "clockwise"
+        } else {
+            "counter-clockwise"
+        }));
         // Position k is reached after k twelfths of a turn: left to right, in the crank's sense.
         for (k, m) in &panel.marks {
             #[allow(clippy::cast_precision_loss)]
@@ -455,7 +524,10 @@ fn a_clockwise_crank_is_plotted_along_its_own_sense() {
         let first = course.inputs[0].value;
         for [x, y] in panel.series[0].1.iter().step_by(37) {
             let phi = first + speed.signum() * x;
-            let want = plan.output(&out, Motion::new(phi, speed, 0.0)).unwrap().value;
+            let want = plan
+                .output(&out, Motion::new(phi, speed, 0.0))
+                .unwrap()
+                .value;
             let d = (y - want).rem_euclid(TAU);
             assert!(d < 1e-9 || TAU - d < 1e-9, "x = {x}: {y} vs {want}");
         }
@@ -468,20 +540,50 @@ fn bad_inputs_are_errors_not_panics() {
     let style = Style::default();
     let good = Motion::new(1.0, 10.0, 0.0);
     assert!(scheme(&plan, Motion::new(f64::NAN, 1.0, 0.0), &style).is_err());
-    assert!(scheme(&plan, good, &Style { width: 0, ..Style::default() }).is_err());
-    assert!(scheme(&plan, good, &Style { margin: 400.0, ..Style::default() }).is_err());
-    assert!(scheme(&plan, good, &Style { hinge_radius: f64::INFINITY, ..Style::default() }).is_err());
+    assert!(scheme(
+        &plan,
+        good,
+        &Style {
+            width: 0,
+            ..Style::default()
+        }
+    )
+    .is_err());
+    assert!(scheme(
+        &plan,
+        good,
+        &Style {
+            margin: 400.0,
+            ..Style::default()
+        }
+    )
+    .is_err());
+    assert!(scheme(
+        &plan,
+        good,
+        &Style {
+            hinge_radius: f64::INFINITY,
+            ..Style::default()
+        }
+    )
+    .is_err());
     assert!(animation(&plan, &[], 1.0, &style).is_err());
     assert!(animation(&plan, &[good], 0.0, &style).is_err());
     assert!(animation(&plan, &[good], f64::NAN, &style).is_err());
     let too_many = vec![good; MAX_FRAMES + 1];
-    assert!(matches!(animation(&plan, &too_many, 1.0, &style), Err(tmm::Error::OutOfRange { .. })));
+    assert!(matches!(
+        animation(&plan, &too_many, 1.0, &style),
+        Err(tmm::Error::OutOfRange { .. })
+    ));
     assert!(animation(&plan, &[Motion::new(1.0, f64::INFINITY, 0.0)], 1.0, &style).is_err());
     assert!(Course::new(&plan, None, 0, 10.0).is_err());
     assert!(Course::new(&plan, None, 12, 0.0).is_err());
     assert!(Course::new(&plan, Some(&Output::Angle("nothing".into())), 12, 10.0).is_err());
     let course = Course::new(&plan, None, 12, 10.0).unwrap();
-    let empty = Course { inputs: vec![], extremes: vec![] };
+    let empty = Course {
+        inputs: vec![],
+        extremes: vec![],
+    };
     assert!(plan_view(&plan, &empty, &[], &style).is_err());
     assert!(plan_view(&plan, &course, &["Z"], &style).is_err());
     for d in [
@@ -494,7 +596,16 @@ fn bad_inputs_are_errors_not_panics() {
         assert!(matches!(e, tmm::Error::Description { .. }), "{d:?}: {e}");
     }
     assert!(diagram(&plan, &empty, &Diagram::Balance, &style).is_err());
-    assert!(diagram(&plan, &course, &Diagram::Balance, &Style { samples: 1, ..Style::default() }).is_err());
+    assert!(diagram(
+        &plan,
+        &course,
+        &Diagram::Balance,
+        &Style {
+            samples: 1,
+            ..Style::default()
+        }
+    )
+    .is_err());
     // A position that cannot be assembled is named.
     let mut l: Linkage = bundled::four_bar();
     l.joints[1].at = [0.2, 0.0];

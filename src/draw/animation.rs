@@ -62,7 +62,7 @@ pub fn animation(plan: &Plan, inputs: &[Motion], seconds: f64, style: &Style) ->
     for p in &poses {
         p.cover(&topo, &ext, &mut cover);
     }
-    let frame = geometry::fit(&cover, style)?;
+    let frame = geometry::fit_with_input(&topo, &poses[0], &mut cover, style)?;
     let first = &poses[0];
     let dur = format!("{seconds}s");
     let animate = |kind: &str, values: String| {

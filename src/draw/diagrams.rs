@@ -236,7 +236,10 @@ pub fn diagram(plan: &Plan, course: &Course, diagram: &Diagram, style: &Style) -
             })
             .flatten()
             .collect();
-        let all = series.iter().flat_map(|(_, s)| s.iter()).chain(marks.iter().map(|(_, m)| m));
+        let all = series
+            .iter()
+            .flat_map(|(_, s)| s.iter())
+            .chain(marks.iter().map(|(_, m)| m));
         let (mut lo, mut hi) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
         for q in all {
             for i in 0..2 {
@@ -245,7 +248,10 @@ pub fn diagram(plan: &Plan, course: &Course, diagram: &Diagram, style: &Style) -
             }
         }
         let (xr, yr) = if hodograph {
-            (pad(lo[0].min(0.0), hi[0].max(0.0), 0.05), pad(lo[1].min(0.0), hi[1].max(0.0), 0.05))
+            (
+                pad(lo[0].min(0.0), hi[0].max(0.0), 0.05),
+                pad(lo[1].min(0.0), hi[1].max(0.0), 0.05),
+            )
         } else {
             (x_range, pad(lo[1], hi[1], 0.05))
         };
@@ -370,7 +376,10 @@ fn panel_specs(plan: &Plan, d: &Diagram, input_unit: &str) -> Result<Vec<Spec>> 
             } else {
                 [
                     (format!("{what}"), format!("position, {u}")),
-                    (format!("velocity of the {what}"), format!("velocity, {u}/s")),
+                    (
+                        format!("velocity of the {what}"),
+                        format!("velocity, {u}/s"),
+                    ),
                     (
                         format!("acceleration of the {what}"),
                         format!("acceleration, {u}/s²"),
@@ -395,12 +404,19 @@ fn panel_specs(plan: &Plan, d: &Diagram, input_unit: &str) -> Result<Vec<Spec>> 
             } else {
                 ("driving force", "F_b, N")
             };
-            vec![one(format!("{name}: {t}"), y.to_owned(), vec![t.to_owned()])]
+            vec![one(
+                format!("{name}: {t}"),
+                y.to_owned(),
+                vec![t.to_owned()],
+            )]
         }
         Diagram::Reactions => vec![one(
             format!("{name}: reactions in the joints"),
             "|R|, N".to_owned(),
-            plan.joint_names().iter().map(|j| format!("R in {j}")).collect(),
+            plan.joint_names()
+                .iter()
+                .map(|j| format!("R in {j}"))
+                .collect(),
         )],
         Diagram::Hodograph(j) => {
             let r = format!("R in {j}");
@@ -416,7 +432,12 @@ fn panel_specs(plan: &Plan, d: &Diagram, input_unit: &str) -> Result<Vec<Spec>> 
 }
 
 /// The values of every panel's curves at one input.
-fn specs_values(plan: &Plan, d: &Diagram, a: &mut Analysis<'_>, m: Motion) -> Result<Vec<Vec<f64>>> {
+fn specs_values(
+    plan: &Plan,
+    d: &Diagram,
+    a: &mut Analysis<'_>,
+    m: Motion,
+) -> Result<Vec<Vec<f64>>> {
     let finite = |v: Vec<Vec<f64>>| {
         if v.iter().flatten().all(|x| x.is_finite()) {
             Ok(v)
@@ -467,7 +488,8 @@ fn render(panels: &mut [Panel], style: &Style, hodograph: bool) -> Result<String
     let fail = |e: &dyn std::fmt::Display| drawing("a diagram", e.to_string());
     let mut svg = String::new();
     {
-        let root = SVGBackend::with_string(&mut svg, (style.width, style.height)).into_drawing_area();
+        let root =
+            SVGBackend::with_string(&mut svg, (style.width, style.height)).into_drawing_area();
         root.fill(&WHITE).map_err(|e| fail(&e))?;
         let areas = root.split_evenly((panels.len(), 1));
         for (panel, area) in panels.iter_mut().zip(&areas) {
@@ -480,7 +502,11 @@ fn render(panels: &mut [Panel], style: &Style, hodograph: bool) -> Result<String
 
 type DrawResult<T> = std::result::Result<T, DrawingAreaErrorKind<std::io::Error>>;
 
-fn draw_panel(panel: &mut Panel, area: &DrawingArea<SVGBackend<'_>, Shift>, hodograph: bool) -> DrawResult<()> {
+fn draw_panel(
+    panel: &mut Panel,
+    area: &DrawingArea<SVGBackend<'_>, Shift>,
+    hodograph: bool,
+) -> DrawResult<()> {
     let mut chart = ChartBuilder::on(area)
         .caption(&panel.title, ("sans-serif", 15))
         .margin(8)
@@ -527,14 +553,18 @@ fn draw_panel(panel: &mut Panel, area: &DrawingArea<SVGBackend<'_>, Shift>, hodo
         for (i, run) in runs.into_iter().enumerate() {
             let series = chart.draw_series(LineSeries::new(run, c.stroke_width(2)))?;
             if several && i == 0 {
-                series
-                    .label(name.as_str())
-                    .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 16, y)], c.stroke_width(2)));
+                series.label(name.as_str()).legend(move |(x, y)| {
+                    PathElement::new(vec![(x, y), (x + 16, y)], c.stroke_width(2))
+                });
             }
         }
     }
     if hodograph {
-        chart.draw_series(std::iter::once(Cross::new((0.0, 0.0), 5, BLACK.stroke_width(1))))?;
+        chart.draw_series(std::iter::once(Cross::new(
+            (0.0, 0.0),
+            5,
+            BLACK.stroke_width(1),
+        )))?;
     }
     chart.draw_series(
         panel

@@ -58,7 +58,7 @@ pub fn forces(plan: &Plan, input: Motion, style: &Style) -> Result<Picture> {
         cover.push(r.point + r.force * m_per_n);
     }
     cover.push(balance.point + balance.force * m_per_n);
-    let frame = geometry::fit(&cover, style)?;
+    let frame = geometry::fit_with_input(&topo, &pose, &mut cover, style)?;
     let force_scale = (fmax > 0.0).then(|| fmax / (longest * frame.scale));
 
     let title = format!("{} — reactions at input {:.4}", plan.name(), input.value);
@@ -120,13 +120,21 @@ pub fn forces(plan: &Plan, input: Motion, style: &Style) -> Result<Picture> {
         let q0 = frame.to_pixel(pose.joints[j][0]);
         let sense = if balance.value < 0.0 { -1.0 } else { 1.0 };
         let r = style.hinge_radius.max(2.0);
-        let (arc, at) = geometry::arc_arrow(q0, 5.0 * r, 0.5 * std::f64::consts::PI, sense, r, blue);
+        let (arc, at) =
+            geometry::arc_arrow(q0, 5.0 * r, 0.5 * std::f64::consts::PI, sense, r, blue);
         doc.append(arc.set("class", "balance"));
         let text = format!("M_b = {} N·m", geometry::short(balance.value));
         if style.labels {
-            doc.append(geometry::text(&text, [at[0] + 8.0, at[1] - 4.0], 12.0, blue));
+            doc.append(geometry::text(
+                &text,
+                [at[0] + 8.0, at[1] - 4.0],
+                12.0,
+                blue,
+            ));
         }
-        legend.push(format!("balancing moment {text} (counter-clockwise positive)"));
+        legend.push(format!(
+            "balancing moment {text} (counter-clockwise positive)"
+        ));
     }
     if let Some(s) = force_scale {
         legend.push(format!("scale: 1 px = {} N", geometry::short(s)));

@@ -38,19 +38,35 @@ impl Frame {
     /// # Errors
     /// [`Error::NonFinite`] for a non-finite corner; [`Error::Drawing`] for a picture with no
     /// room inside its margins, or a box of no extent (a single point).
-    pub fn fit(lo: Point2<f64>, hi: Point2<f64>, width: f64, height: f64, margin: f64) -> Result<Self> {
+    pub fn fit(
+        lo: Point2<f64>,
+        hi: Point2<f64>,
+        width: f64,
+        height: f64,
+        margin: f64,
+    ) -> Result<Self> {
         crate::error::finite2(["lo.x", "lo.y"], lo.coords)?;
         crate::error::finite2(["hi.x", "hi.y"], hi.coords)?;
         let room = [width - 2.0 * margin, height - 2.0 * margin];
         if !(room[0] > 0.0 && room[1] > 0.0 && margin >= 0.0) {
             return Err(drawing(
                 "a frame",
-                format!("a picture of {width} × {height} px has no room inside margins of {margin} px"),
+                format!(
+                    "a picture of {width} × {height} px has no room inside margins of {margin} px"
+                ),
             ));
         }
         let span = hi - lo;
-        let sx = if span.x > 0.0 { room[0] / span.x } else { f64::INFINITY };
-        let sy = if span.y > 0.0 { room[1] / span.y } else { f64::INFINITY };
+        let sx = if span.x > 0.0 {
+            room[0] / span.x
+        } else {
+            f64::INFINITY
+        };
+        let sy = if span.y > 0.0 {
+            room[1] / span.y
+        } else {
+            f64::INFINITY
+        };
         let scale = sx.min(sy);
         if !scale.is_finite() || scale <= 0.0 {
             return Err(drawing(
@@ -70,7 +86,10 @@ impl Frame {
     /// The pixel of the point `p` of the plane.
     #[must_use]
     pub fn to_pixel(&self, p: Point2<f64>) -> [f64; 2] {
-        [self.origin[0] + self.scale * p.x, self.origin[1] - self.scale * p.y]
+        [
+            self.origin[0] + self.scale * p.x,
+            self.origin[1] - self.scale * p.y,
+        ]
     }
 
     /// The point of the plane at pixel `q` (the inverse of [`Frame::to_pixel`]).

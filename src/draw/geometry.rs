@@ -167,7 +167,9 @@ impl Pose {
         let plan = a.plan();
         let nj = plan.joint_names().len();
         let pose = Self {
-            joints: (0..nj).map(|j| [a.joint_on(j, 0).p, a.joint_on(j, 1).p]).collect(),
+            joints: (0..nj)
+                .map(|j| [a.joint_on(j, 0).p, a.joint_on(j, 1).p])
+                .collect(),
             guides: (0..nj).map(|j| a.guide_direction(j)).collect(),
             links: (0..plan.link_names().len())
                 .map(|k| {
@@ -355,7 +357,11 @@ pub(crate) fn link_body(
                 .set("stroke-linecap", "round"),
         );
     };
-    let h = if pts.len() >= 3 { hull(&pts) } else { pts.clone() };
+    let h = if pts.len() >= 3 {
+        hull(&pts)
+    } else {
+        pts.clone()
+    };
     if h.len() >= 3 {
         let points: Vec<String> = h
             .iter()
@@ -388,7 +394,8 @@ pub(crate) fn link_body(
     for &j in &topo.link_joints[k] {
         match topo.guide[j] {
             Some(gl) if gl != k => {
-                let corners = block_corners(pose.on(topo, j, k), pose.guides[j], ext.block, scale, style);
+                let corners =
+                    block_corners(pose.on(topo, j, k), pose.guides[j], ext.block, scale, style);
                 let mut b = block(&corners.map(map), c, lw * 0.6);
                 if !pen.block_fill {
                     b = b.set("fill", "none");
@@ -403,7 +410,13 @@ pub(crate) fn link_body(
 
 /// The corners of a slider block at `p` along `d`: half-length `half` m, and a height of four
 /// hinge radii (so that the hinge on it shows).
-fn block_corners(p: Point2<f64>, d: Vector2<f64>, half: f64, scale: f64, style: &Style) -> [Point2<f64>; 4] {
+fn block_corners(
+    p: Point2<f64>,
+    d: Vector2<f64>,
+    half: f64,
+    scale: f64,
+    style: &Style,
+) -> [Point2<f64>; 4] {
     let n = Vector2::new(-d.y, d.x);
     let hw = (2.0 * style.hinge_radius.max(2.0)) / scale;
     let hl = half.max(1.5 * hw);
@@ -467,15 +480,27 @@ pub(crate) fn link_hinges(
     }
     for (i, &l) in topo.point_link.iter().enumerate() {
         if l == k {
-            g.append(dot(map(pose.points[i]), 0.6 * style.hinge_radius + 1.0, colour(k)));
+            g.append(dot(
+                map(pose.points[i]),
+                0.6 * style.hinge_radius + 1.0,
+                colour(k),
+            ));
         }
     }
     g
 }
 
 /// The frame: a hatched base under every ground pivot, a hatched line along every fixed guide.
-pub(crate) fn ground(topo: &Topo, pose: &Pose, ext: &Extents, frame: &Frame, style: &Style) -> Group {
-    let mut g = Group::new().set("stroke", "#000000").set("stroke-width", 1.5);
+pub(crate) fn ground(
+    topo: &Topo,
+    pose: &Pose,
+    ext: &Extents,
+    frame: &Frame,
+    style: &Style,
+) -> Group {
+    let mut g = Group::new()
+        .set("stroke", "#000000")
+        .set("stroke-width", 1.5);
     let r = style.hinge_radius.max(2.0);
     for &j in &topo.link_joints[0] {
         match topo.guide[j] {
@@ -507,7 +532,13 @@ pub(crate) fn ground(topo: &Topo, pose: &Pose, ext: &Extents, frame: &Frame, sty
             }
             Some(k) => {
                 // The frame slides in a guide of a moving link: a fixed block.
-                let corners = block_corners(pose.on(topo, j, 0), pose.guides[j], ext.block, frame.scale, style);
+                let corners = block_corners(
+                    pose.on(topo, j, 0),
+                    pose.guides[j],
+                    ext.block,
+                    frame.scale,
+                    style,
+                );
                 g.append(block(&corners.map(|p| frame.to_pixel(p)), colour(k), 1.5));
             }
         }
@@ -525,14 +556,21 @@ fn hatch(g: &mut Group, a: [f64; 2], b: [f64; 2], r: f64) {
     let t = [dx / len, dy / len];
     // The normal pointing to the right of a→b on screen (below a line drawn left to right).
     let n = [-t[1], t[0]];
-    let mut d = Data::new().move_to((r2(a[0]), r2(a[1]))).line_to((r2(b[0]), r2(b[1])));
+    let mut d = Data::new()
+        .move_to((r2(a[0]), r2(a[1])))
+        .line_to((r2(b[0]), r2(b[1])));
     let step = (1.4 * r).max(4.0);
     let h = 1.6 * r;
     let mut s = step * 0.5;
     while s < len {
         let p = [a[0] + t[0] * s, a[1] + t[1] * s];
-        let q = [p[0] + h * (n[0] - t[0]) * 0.7, p[1] + h * (n[1] - t[1]) * 0.7];
-        d = d.move_to((r2(p[0]), r2(p[1]))).line_to((r2(q[0]), r2(q[1])));
+        let q = [
+            p[0] + h * (n[0] - t[0]) * 0.7,
+            p[1] + h * (n[1] - t[1]) * 0.7,
+        ];
+        d = d
+            .move_to((r2(p[0]), r2(p[1])))
+            .line_to((r2(q[0]), r2(q[1])));
         s += step;
     }
     g.append(Path::new().set("d", d).set("fill", "none"));
@@ -623,16 +661,7 @@ pub(crate) fn input_arrow(topo: &Topo, pose: &Pose, frame: &Frame, style: &Style
     let c = "#000000";
     let mut g = Group::new();
     if topo.crank {
-        let pivot = pose.joints[j][0];
-        let q0 = frame.to_pixel(pivot);
-        // The crank's direction: to its farthest joint.
-        let tip = topo.link_joints[topo.input]
-            .iter()
-            .map(|&i| pose.on(topo, i, topo.input))
-            .max_by(|a, b| (a - pivot).norm().total_cmp(&(b - pivot).norm()))?;
-        let len = (tip - pivot).norm() * frame.scale;
-        let radius = (0.5 * len).clamp(3.5 * r, 32.0_f64.max(3.5 * r));
-        let theta = (tip - pivot).y.atan2((tip - pivot).x) + std::f64::consts::PI;
+        let (q0, radius, theta) = crank_arc(topo, pose, frame, style)?;
         let (arc, label) = arc_arrow(q0, radius, theta, sense, r, c);
         g.append(arc);
         if style.labels {
@@ -645,13 +674,68 @@ pub(crate) fn input_arrow(topo: &Topo, pose: &Pose, frame: &Frame, style: &Style
         let dp = [d.x, -d.y];
         let n = [-dp[1], dp[0]];
         let a = [q[0] + n[0] * 5.0 * r, q[1] + n[1] * 5.0 * r];
-        let b = [a[0] + sense * dp[0] * 8.0 * r, a[1] + sense * dp[1] * 8.0 * r];
+        let b = [
+            a[0] + sense * dp[0] * 8.0 * r,
+            a[1] + sense * dp[1] * 8.0 * r,
+        ];
         g.append(arrow(a, b, 1.5, c));
         if style.labels {
             g.append(text("v1", [b[0] + 4.0, b[1] - 4.0], 14.0, c));
         }
     }
     Some(g)
+}
+
+/// Where a crank's arc arrow goes: the pivot's pixel, the radius (px) and the direction of
+/// the arc's middle (opposite the crank, rad on the picture).
+fn crank_arc(
+    topo: &Topo,
+    pose: &Pose,
+    frame: &Frame,
+    style: &Style,
+) -> Option<([f64; 2], f64, f64)> {
+    let j = topo.input_joint()?;
+    let r = style.hinge_radius.max(2.0);
+    let pivot = pose.joints[j][0];
+    let q0 = frame.to_pixel(pivot);
+    // The crank's direction: to its farthest joint.
+    let tip = topo.link_joints[topo.input]
+        .iter()
+        .map(|&i| pose.on(topo, i, topo.input))
+        .max_by(|a, b| (a - pivot).norm().total_cmp(&(b - pivot).norm()))?;
+    let len = (tip - pivot).norm() * frame.scale;
+    let radius = (0.5 * len).clamp(3.5 * r, 32.0_f64.max(3.5 * r));
+    let theta = (tip - pivot).y.atan2((tip - pivot).x) + std::f64::consts::PI;
+    Some((q0, radius, theta))
+}
+
+/// The frame that shows `cover` and the input's arrow with its label: fitted once to the
+/// linkage, then again with the arrow's reach (a fixed size in pixels) added.
+pub(crate) fn fit_with_input(
+    topo: &Topo,
+    pose: &Pose,
+    cover: &mut Vec<Point2<f64>>,
+    style: &Style,
+) -> Result<Frame> {
+    let f = fit(cover, style)?;
+    let reach = if topo.crank {
+        crank_arc(topo, pose, &f, style).map(|(q0, radius, theta)| (q0, radius + 24.0, theta))
+    } else {
+        topo.input_joint().map(|j| {
+            let q = f.to_pixel(pose.at(topo, j));
+            // The arrow lies off the guide along the picture's normal (d_y, d_x) px.
+            let d = pose.guides[j];
+            (q, 14.0 * style.hinge_radius.max(2.0), (-d.x).atan2(d.y))
+        })
+    };
+    let Some((q0, radius, theta)) = reach else {
+        return Ok(f);
+    };
+    for i in 0..=8 {
+        let a = theta + (-1.3 + 2.6 * f64::from(i) / 8.0);
+        cover.push(f.to_world([q0[0] + radius * a.cos(), q0[1] - radius * a.sin()]));
+    }
+    fit(cover, style)
 }
 
 /// An arc arrow about the pixel `q0`, of radius `radius` px, spanning two radians about the
@@ -697,7 +781,10 @@ pub(crate) fn arc_arrow(
     let l = at(theta);
     let out = [l[0] - q0[0], l[1] - q0[1]];
     let ol = out[0].hypot(out[1]).max(1e-9);
-    let label = [l[0] + out[0] / ol * 12.0 - 6.0, l[1] + out[1] / ol * 12.0 + 5.0];
+    let label = [
+        l[0] + out[0] / ol * 12.0 - 6.0,
+        l[1] + out[1] / ol * 12.0 + 5.0,
+    ];
     (g, label)
 }
 
@@ -733,7 +820,13 @@ pub(crate) fn document(style: &Style, title: &str) -> svg::Document {
 }
 
 /// The labels of every joint and named point at `pose`.
-pub(crate) fn labels(topo: &Topo, pose: &Pose, frame: &Frame, style: &Style, placed: &mut Labels) -> Group {
+pub(crate) fn labels(
+    topo: &Topo,
+    pose: &Pose,
+    frame: &Frame,
+    style: &Style,
+    placed: &mut Labels,
+) -> Group {
     let mut g = Group::new();
     for (j, name) in topo.joint_names.iter().enumerate() {
         let p = placed.place(frame.to_pixel(pose.at(topo, j)), style);

@@ -38,7 +38,10 @@ pub fn plan_view(plan: &Plan, course: &Course, paths: &[&str], style: &Style) ->
     style.check()?;
     course.check()?;
     let topo = Topo::new(plan);
-    let tracers: Vec<Tracer> = paths.iter().map(|n| topo.tracer(n)).collect::<Result<_>>()?;
+    let tracers: Vec<Tracer> = paths
+        .iter()
+        .map(|n| topo.tracer(n))
+        .collect::<Result<_>>()?;
     let mut a = Analysis::new(plan);
     let mut solve = |m: Motion, what: &str, k: usize| -> Result<Pose> {
         a.solve_kinematics(m).map_err(|e| Error::In {
@@ -61,7 +64,8 @@ pub fn plan_view(plan: &Plan, course: &Course, paths: &[&str], style: &Style) ->
         .collect::<Result<_>>()?;
     // The paths over a turn (a slider's input over the course's range).
     let samples = path_inputs(plan, course, style.samples);
-    let mut curves: Vec<Vec<Option<Point2<f64>>>> = vec![Vec::with_capacity(samples.len()); tracers.len()];
+    let mut curves: Vec<Vec<Option<Point2<f64>>>> =
+        vec![Vec::with_capacity(samples.len()); tracers.len()];
     for &m in &samples {
         let ok = a.solve_kinematics(m).is_ok();
         for (c, &t) in curves.iter_mut().zip(&tracers) {
@@ -82,7 +86,7 @@ pub fn plan_view(plan: &Plan, course: &Course, paths: &[&str], style: &Style) ->
         p.cover(&topo, &ext, &mut cover);
     }
     cover.extend(curves.iter().flatten().flatten().copied());
-    let frame = geometry::fit(&cover, style)?;
+    let frame = geometry::fit_with_input(&topo, &poses[0], &mut cover, style)?;
 
     let title = format!("{} — plan in {} positions", plan.name(), poses.len());
     let mut doc = geometry::document(style, &title);
@@ -95,7 +99,11 @@ pub fn plan_view(plan: &Plan, course: &Course, paths: &[&str], style: &Style) ->
                 Some(p) => {
                     let q = frame.to_pixel(*p);
                     let xy = (r2(q[0]), r2(q[1]));
-                    d = if pen_down { d.line_to(xy) } else { d.move_to(xy) };
+                    d = if pen_down {
+                        d.line_to(xy)
+                    } else {
+                        d.move_to(xy)
+                    };
                     pen_down = true;
                 }
                 None => pen_down = false,
@@ -174,8 +182,16 @@ pub(crate) fn path_inputs(plan: &Plan, course: &Course, n: usize) -> Vec<Motion>
             .map(|m| Motion::new(m.value, first.rate, first.accel))
             .collect()
     } else {
-        let lo = course.inputs.iter().map(|m| m.value).fold(f64::INFINITY, f64::min);
-        let hi = course.inputs.iter().map(|m| m.value).fold(f64::NEG_INFINITY, f64::max);
+        let lo = course
+            .inputs
+            .iter()
+            .map(|m| m.value)
+            .fold(f64::INFINITY, f64::min);
+        let hi = course
+            .inputs
+            .iter()
+            .map(|m| m.value)
+            .fold(f64::NEG_INFINITY, f64::max);
         #[allow(clippy::cast_precision_loss)]
         (0..n)
             .map(|i| {

@@ -42,16 +42,33 @@ pub fn scheme(plan: &Plan, input: Motion, style: &Style) -> Result<Picture> {
     ext.add(&topo, &pose);
     let mut cover = Vec::new();
     pose.cover(&topo, &ext, &mut cover);
-    let frame = geometry::fit(&cover, style)?;
-    let title = format!("{} — kinematic scheme at input {:.4}", plan.name(), input.value);
+    let frame = geometry::fit_with_input(&topo, &pose, &mut cover, style)?;
+    let title = format!(
+        "{} — kinematic scheme at input {:.4}",
+        plan.name(),
+        input.value
+    );
     let mut doc = geometry::document(style, &title);
     doc.append(geometry::ground(&topo, &pose, &ext, &frame, style));
-    doc.append(geometry::position(&topo, &pose, &ext, &frame, style, Pen::NORMAL));
+    doc.append(geometry::position(
+        &topo,
+        &pose,
+        &ext,
+        &frame,
+        style,
+        Pen::NORMAL,
+    ));
     if let Some(arrow) = geometry::input_arrow(&topo, &pose, &frame, style) {
         doc.append(arrow);
     }
     if style.labels {
-        doc.append(geometry::labels(&topo, &pose, &frame, style, &mut Labels::default()));
+        doc.append(geometry::labels(
+            &topo,
+            &pose,
+            &frame,
+            style,
+            &mut Labels::default(),
+        ));
     }
     Ok(Picture {
         svg: doc.to_string(),
