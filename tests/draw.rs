@@ -323,21 +323,23 @@ fn assert_frames(plan: &Plan, inputs: &[Motion], pic: &Picture) {
     let mut in_hinges = false;
     let mut translate: Vec<[f64; 2]> = Vec::new();
     let mut rotate: Vec<f64> = Vec::new();
-    let mut circles: Vec<(Vec<[f64; 2]>, Vec<f64>, [f64; 2])> = Vec::new();
+    // Each hinge: the translations and rotations of its link, and its centre in the link.
+    type Carried = (Vec<[f64; 2]>, Vec<f64>, [f64; 2]);
+    let mut circles: Vec<Carried> = Vec::new();
     for event in svg::read(&pic.svg).unwrap() {
         if let Event::Tag(name, kind, a) = event {
             match (name, kind) {
                 ("g", svg::node::element::tag::Type::Start) => {
-                    if a.get("class").is_some_and(|c| c.to_string() == "hinges") {
+                    if a.get("class").is_some_and(|c| *c == "hinges") {
                         in_hinges = true;
                     }
-                    if a.get("class").is_some_and(|c| c.to_string() == "labels") {
+                    if a.get("class").is_some_and(|c| *c == "labels") {
                         in_hinges = false;
                     }
                 }
                 ("animateTransform", _) if in_hinges => {
                     let values = a["values"].to_string();
-                    if a["type"].to_string() == "translate" {
+                    if a["type"] == "translate" {
                         translate = values
                             .split(';')
                             .map(|v| {
@@ -354,7 +356,7 @@ fn assert_frames(plan: &Plan, inputs: &[Motion], pic: &Picture) {
                         a["cx"].to_string().parse().unwrap(),
                         a["cy"].to_string().parse().unwrap(),
                     ];
-                    if a["fill"].to_string() == "#ffffff" {
+                    if a["fill"] == "#ffffff" {
                         circles.push((translate.clone(), rotate.clone(), c));
                     }
                 }

@@ -154,10 +154,9 @@ pub fn diagram(plan: &Plan, course: &Course, diagram: &Diagram, style: &Style) -
     // What each panel plots at one position.
     let specs = panel_specs(plan, diagram, input_unit)?;
     let mut a = Analysis::new(plan);
-    let eval = |a: &mut Analysis<'_>, m: Motion| -> Result<Vec<Vec<f64>>> {
-        specs_values(plan, diagram, a, m)
-    };
-    let mut data: Vec<Option<Vec<Vec<f64>>>> = Vec::with_capacity(samples.len());
+    let eval =
+        |a: &mut Analysis<'_>, m: Motion| -> Result<Values> { specs_values(plan, diagram, a, m) };
+    let mut data: Vec<Option<Values>> = Vec::with_capacity(samples.len());
     let mut first_error = None;
     for &m in &samples {
         match eval(&mut a, m) {
@@ -171,7 +170,7 @@ pub fn diagram(plan: &Plan, course: &Course, diagram: &Diagram, style: &Style) -
     if data.iter().all(Option::is_none) {
         return Err(first_error.unwrap_or_else(|| drawing("a diagram", "no position")));
     }
-    let marks_data: Vec<(usize, f64, Option<Vec<Vec<f64>>>)> = course
+    let marks_data: Vec<(usize, f64, Option<Values>)> = course
         .inputs
         .iter()
         .enumerate()
@@ -300,6 +299,9 @@ fn pad(lo: f64, hi: f64, frac: f64) -> [f64; 2] {
     }
 }
 
+/// The values at one position: per panel, per curve.
+type Values = Vec<Vec<f64>>;
+
 /// One panel's titles and the names of its curves.
 struct Spec {
     title: String,
@@ -363,7 +365,7 @@ fn panel_specs(plan: &Plan, d: &Diagram, input_unit: &str) -> Result<Vec<Spec>> 
             let transfer = matches!(d, Diagram::Transfer(_));
             let labels: [(String, String); 3] = if transfer {
                 [
-                    (format!("{what}"), format!("value, {u}")),
+                    (what.clone(), format!("value, {u}")),
                     (
                         format!("first transfer function of the {what}"),
                         format!("d/dq1, {u}/{input_unit}"),
@@ -375,7 +377,7 @@ fn panel_specs(plan: &Plan, d: &Diagram, input_unit: &str) -> Result<Vec<Spec>> 
                 ]
             } else {
                 [
-                    (format!("{what}"), format!("position, {u}")),
+                    (what.clone(), format!("position, {u}")),
                     (
                         format!("velocity of the {what}"),
                         format!("velocity, {u}/s"),
@@ -540,15 +542,29 @@ fn draw_panel(
             let s = 1.5 * (panel.x_range[1] - panel.x_range[0]) / (n - 1) as f64;
             s
         };
-        let mut last: Option<f64> = None;
+        // A hodograph breaks where the reaction jumps (a load switching on): a step far
+        // longer than the typical one.
+        let jump = if hodograph {
+            let mut steps: Vec<f64> = pts
+                .windows(2)
+                .map(|w| (w[1][0] - w[0][0]).hypot(w[1][1] - w[0][1]))
+                .collect();
+            steps.sort_by(f64::total_cmp);
+            20.0 * steps.get(steps.len() / 2).copied().unwrap_or(f64::INFINITY)
+        } else {
+            f64::INFINITY
+        };
+        let mut last: Option<[f64; 2]> = None;
         for p in pts {
             if let Some(l) = last {
-                if p[0] - l > step {
+                if p[0] - l[0] > step || (p[0] - l[0]).hypot(p[1] - l[1]) > jump {
                     runs.push(Vec::new());
                 }
             }
-            last = Some(p[0]);
-            runs.last_mut().map(|r| r.push((p[0], p[1])));
+            last = Some(*p);
+            if let Some(r) = runs.last_mut() {
+                r.push((p[0], p[1]));
+            }
         }
         for (i, run) in runs.into_iter().enumerate() {
             let series = chart.draw_series(LineSeries::new(run, c.stroke_width(2)))?;

@@ -73,7 +73,7 @@ pub fn forces(plan: &Plan, input: Motion, style: &Style) -> Result<Picture> {
     let w = (0.8 * style.line_width).max(1.5);
     let mut labels = geometry::Labels::default();
     for r in &reactions {
-        if !(r.force.norm() > 0.0) {
+        if r.force.norm() <= 0.0 || r.force.norm().is_nan() {
             continue;
         }
         let from = frame.to_pixel(r.point);

@@ -550,7 +550,7 @@ pub(crate) fn ground(
 fn hatch(g: &mut Group, a: [f64; 2], b: [f64; 2], r: f64) {
     let (dx, dy) = (b[0] - a[0], b[1] - a[1]);
     let len = dx.hypot(dy);
-    if !(len > 0.0) {
+    if len.is_nan() || len <= 0.0 {
         return;
     }
     let t = [dx / len, dy / len];
@@ -581,7 +581,7 @@ pub(crate) fn arrow(a: [f64; 2], b: [f64; 2], width: f64, c: &str) -> Group {
     let (dx, dy) = (b[0] - a[0], b[1] - a[1]);
     let len = dx.hypot(dy);
     let mut g = Group::new();
-    if !(len > 0.0) {
+    if len.is_nan() || len <= 0.0 {
         return g;
     }
     let t = [dx / len, dy / len];
