@@ -42,6 +42,19 @@ impl Course {
     /// [`Error::Drawing`] for a non-finite or zero speed; [`Error::Description`] for a slider
     /// input (give its positions as a `Course` by hand) or an unknown output; the errors of
     /// [`Plan::strokes`].
+    ///
+    /// # Examples
+    /// A clockwise crank reaches its positions with decreasing angles:
+    /// ```
+    /// use tmm::draw::Course;
+    /// use tmm::linkage::{bundled, Plan};
+    /// let plan = Plan::new(&bundled::four_bar())?;
+    /// let course = Course::new(&plan, None, 4, -10.0)?;
+    /// assert_eq!(course.inputs[0].value, plan.reference_input());
+    /// assert!(course.inputs.iter().all(|m| m.rate == -10.0));
+    /// assert!(Course::new(&plan, None, 0, 10.0).is_err());
+    /// # Ok::<(), tmm::Error>(())
+    /// ```
     pub fn new(plan: &Plan, output: Option<&Output>, n: usize, speed: f64) -> Result<Self> {
         check_count("number of positions", n)?;
         crate::error::finite("speed", speed)?;

@@ -11,6 +11,23 @@ use plotters::prelude::*;
 use std::f64::consts::TAU;
 
 /// A diagram over the cycle, for [`diagram`].
+///
+/// # Examples
+/// Every diagram of the Watt six-bar's output, link 5:
+/// ```
+/// use tmm::draw::{diagram, Course, Diagram, Style};
+/// use tmm::linkage::{bundled, Output, Plan};
+/// let plan = Plan::new(&bundled::watt_six_bar())?;
+/// let out = Output::Angle("link 5".into());
+/// let course = Course::new(&plan, Some(&out), 12, 10.0)?;
+/// let style = Style { samples: 72, ..Style::default() };
+/// for d in [Diagram::Kinematics(out.clone()), Diagram::Transfer(out), Diagram::Balance,
+///           Diagram::Reactions, Diagram::Hodograph("A".into())] {
+///     let chart = diagram(&plan, &course, &d, &style)?;
+///     assert!(!chart.panels.is_empty());
+/// }
+/// # Ok::<(), tmm::Error>(())
+/// ```
 #[derive(Debug, Clone, PartialEq)]
 pub enum Diagram {
     /// The output's position, velocity and acceleration against the input (three panels), at
@@ -33,6 +50,20 @@ pub enum Diagram {
 }
 
 /// One panel of a [`Chart`]: its axes, what it plots and where on the picture.
+///
+/// # Examples
+/// The three panels of an output's motion, with their units:
+/// ```
+/// use tmm::draw::{diagram, Course, Diagram, Style};
+/// use tmm::linkage::{bundled, Output, Plan};
+/// let plan = Plan::new(&bundled::shaper())?;
+/// let out = Output::Slide("Q".into());
+/// let course = Course::new(&plan, Some(&out), 12, 10.0)?;
+/// let chart = diagram(&plan, &course, &Diagram::Kinematics(out), &Style::default())?;
+/// let units: Vec<&str> = chart.panels.iter().map(|p| p.y_label.as_str()).collect();
+/// assert_eq!(units, ["position, m", "velocity, m/s", "acceleration, m/s²"]);
+/// # Ok::<(), tmm::Error>(())
+/// ```
 #[derive(Debug, Clone, PartialEq)]
 pub struct Panel {
     /// The panel's title.
@@ -59,6 +90,19 @@ pub struct Panel {
 
 impl Panel {
     /// The pixel where the point (x, y) of the panel's axes lands.
+    ///
+    /// # Examples
+    /// ```
+    /// use tmm::draw::{diagram, Course, Diagram, Style};
+    /// use tmm::linkage::{bundled, Plan};
+    /// let plan = Plan::new(&bundled::four_bar())?;
+    /// let course = Course::new(&plan, None, 12, 10.0)?;
+    /// let chart = diagram(&plan, &course, &Diagram::Balance, &Style::default())?;
+    /// let p = &chart.panels[0];
+    /// let [left, bottom] = p.to_pixel(p.x_range[0], p.y_range[0]);
+    /// assert_eq!([left, bottom], [p.x_pixels[0], p.y_pixels[0]]);
+    /// # Ok::<(), tmm::Error>(())
+    /// ```
     #[must_use]
     pub fn to_pixel(&self, x: f64, y: f64) -> [f64; 2] {
         let tx = (x - self.x_range[0]) / (self.x_range[1] - self.x_range[0]);
@@ -71,6 +115,18 @@ impl Panel {
 }
 
 /// A drawn diagram: its SVG text and its panels.
+///
+/// # Examples
+/// ```
+/// use tmm::draw::{diagram, Course, Diagram, Style};
+/// use tmm::linkage::{bundled, Plan};
+/// let plan = Plan::new(&bundled::four_bar())?;
+/// let course = Course::new(&plan, None, 12, 10.0)?;
+/// let chart = diagram(&plan, &course, &Diagram::Reactions, &Style::default())?;
+/// assert_eq!(chart.panels[0].series.len(), plan.joint_names().len());
+/// assert!(chart.svg.contains("|R|, N"));
+/// # Ok::<(), tmm::Error>(())
+/// ```
 #[derive(Debug, Clone, PartialEq)]
 pub struct Chart {
     /// The SVG document.

@@ -38,6 +38,17 @@ impl Frame {
     /// # Errors
     /// [`Error::NonFinite`] for a non-finite corner; [`Error::Drawing`] for a picture with no
     /// room inside its margins, or a box of no extent (a single point).
+    ///
+    /// # Examples
+    /// A box twice as wide as high in a square picture: the width decides the scale.
+    /// ```
+    /// use tmm::draw::Frame;
+    /// use tmm::nalgebra::Point2;
+    /// let f = Frame::fit(Point2::new(-1.0, 0.0), Point2::new(1.0, 1.0), 100.0, 100.0, 0.0)?;
+    /// assert_eq!(f.scale, 50.0);
+    /// assert!(Frame::fit(Point2::origin(), Point2::origin(), 100.0, 100.0, 0.0).is_err());
+    /// # Ok::<(), tmm::Error>(())
+    /// ```
     pub fn fit(
         lo: Point2<f64>,
         hi: Point2<f64>,
@@ -84,6 +95,14 @@ impl Frame {
     }
 
     /// The pixel of the point `p` of the plane.
+    ///
+    /// # Examples
+    /// ```
+    /// use tmm::draw::Frame;
+    /// use tmm::nalgebra::Point2;
+    /// let f = Frame { scale: 100.0, origin: [10.0, 90.0], width: 100.0, height: 100.0 };
+    /// assert_eq!(f.to_pixel(Point2::new(0.5, 0.5)), [60.0, 40.0]); // y up in the plane, down in px
+    /// ```
     #[must_use]
     pub fn to_pixel(&self, p: Point2<f64>) -> [f64; 2] {
         [
@@ -93,6 +112,14 @@ impl Frame {
     }
 
     /// The point of the plane at pixel `q` (the inverse of [`Frame::to_pixel`]).
+    ///
+    /// # Examples
+    /// ```
+    /// use tmm::draw::Frame;
+    /// use tmm::nalgebra::Point2;
+    /// let f = Frame { scale: 100.0, origin: [10.0, 90.0], width: 100.0, height: 100.0 };
+    /// assert_eq!(f.to_world([60.0, 40.0]), Point2::new(0.5, 0.5));
+    /// ```
     #[must_use]
     pub fn to_world(&self, q: [f64; 2]) -> Point2<f64> {
         Point2::new(

@@ -865,3 +865,74 @@ pub(crate) fn position(
     }
     g
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::linkage::bundled;
+
+    #[test]
+    fn the_hull_keeps_the_corners_counter_clockwise() {
+        let p = |x, y| Point2::new(x, y);
+        let h = hull(&[
+            p(0.0, 0.0),
+            p(1.0, 1.0),
+            p(0.5, 0.5),
+            p(1.0, 0.0),
+            p(0.0, 1.0),
+        ]);
+        assert_eq!(h, [p(0.0, 0.0), p(1.0, 0.0), p(1.0, 1.0), p(0.0, 1.0)]);
+        // Collinear points: the two ends.
+        assert_eq!(hull(&[p(0.0, 0.0), p(1.0, 0.0), p(2.0, 0.0)]).len(), 2);
+    }
+
+    #[test]
+    fn labels_move_off_each_other() {
+        let style = Style::default();
+        let mut l = Labels::default();
+        let a = l.place([100.0, 100.0], &style);
+        let b = l.place([100.0, 100.0], &style);
+        let c = l.place([300.0, 100.0], &style);
+        assert_eq!(a, [108.0, 92.0]);
+        assert_eq!(b, [108.0, 106.0]);
+        assert_eq!(c, [308.0, 92.0]);
+    }
+
+    #[test]
+    fn short_numbers_keep_four_digits() {
+        assert_eq!(short(1469.4), "1469");
+        assert_eq!(short(726.94), "726.9");
+        assert_eq!(short(-0.4624), "-0.462");
+        assert_eq!(short(0.0), "0");
+        assert_eq!(short(1.5e-5), "1.500e-5");
+    }
+
+    #[test]
+    fn a_slider_travels_along_its_guide() {
+        let plan = Plan::new(&bundled::shaper()).unwrap();
+        let topo = Topo::new(&plan);
+        let q = plan.joint_index("Q").unwrap();
+        assert_eq!(topo.guide[q], Some(0));
+        let mut ext = Extents::new(&topo);
+        for k in 0..36 {
+            let a = plan
+                .kinematics(Motion::new(f64::from(k) * 0.1745, 1.0, 0.0))
+                .unwrap();
+            ext.add(&topo, &Pose::of(&a).unwrap());
+        }
+        let [lo, hi] = ext.travel[q];
+        // The ram's stroke, about 0.3 m for this shaper, on either side of its reference.
+        assert!(hi - lo > 0.2 && hi - lo < 0.5, "{lo} {hi}");
+        // A hinge has no travel.
+        assert_eq!(ext.travel[0], [f64::INFINITY, f64::NEG_INFINITY]);
+    }
+
+    #[test]
+    fn a_picture_of_one_point_has_no_frame() {
+        let style = Style::default();
+        assert!(fit(&[Point2::new(1.0, 1.0)], &style).is_err());
+        let f = fit(&[Point2::new(0.0, 0.0), Point2::new(1.0, 0.0)], &style).unwrap();
+        assert_eq!(f.scale, 720.0);
+        assert_eq!(f.to_pixel(Point2::new(0.5, 0.0)), [400.0, 300.0]);
+    }
+}

@@ -63,9 +63,33 @@ pub use style::Style;
 /// The most positions one picture draws (frames of an animation, positions of a plan,
 /// samples of a curve or a diagram): beyond it the SVG text would grow past what a browser
 /// plays smoothly.
+///
+/// # Examples
+/// ```
+/// use tmm::draw::{animation, Style, MAX_FRAMES};
+/// use tmm::kinematics::Motion;
+/// use tmm::linkage::{bundled, Plan};
+/// let plan = Plan::new(&bundled::four_bar())?;
+/// let too_many = vec![Motion::new(1.0, 10.0, 0.0); MAX_FRAMES + 1];
+/// assert!(animation(&plan, &too_many, 1.0, &Style::default()).is_err());
+/// # Ok::<(), tmm::Error>(())
+/// ```
 pub const MAX_FRAMES: usize = 20_000;
 
 /// A drawn picture: its SVG text and the mapping from the plane of the linkage to its pixels.
+///
+/// # Examples
+/// Written to a file as it is:
+/// ```no_run
+/// use tmm::draw::{scheme, Style};
+/// use tmm::kinematics::Motion;
+/// use tmm::linkage::{bundled, Plan};
+/// let plan = Plan::new(&bundled::shaper())?;
+/// let picture = scheme(&plan, Motion::new(0.3, 10.0, 0.0), &Style::default())?;
+/// std::fs::write("shaper.svg", &picture.svg)?;
+/// assert_eq!(picture.force_scale, None);
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
 #[derive(Debug, Clone, PartialEq)]
 pub struct Picture {
     /// The SVG document.
