@@ -618,3 +618,61 @@ fn bad_inputs_are_errors_not_panics() {
         }
     }
 }
+
+#[test]
+fn a_slider_input_is_drawn_and_animated() {
+    use tmm::linkage::{Input, Joint, Link};
+    // A slider driving a crank through a rod (an inverted slider-crank).
+    let l = Linkage {
+        name: "slider-driven crank".into(),
+        joints: vec![
+            Joint::revolute("O", [0.0, 0.0]),
+            Joint::revolute("A", [0.05, 0.086_602_540_378_443_87]),
+            Joint::revolute("B", [0.3, 0.0]),
+            Joint::prismatic("S", [0.3, 0.0], "frame", [1.0, 0.0]),
+        ],
+        links: vec![
+            Link::new("frame", &["O", "S"]),
+            Link::new("slider", &["S", "B"]),
+            Link::new("rod", &["B", "A"]),
+            Link::new("crank", &["O", "A"]),
+        ],
+        input: Input::crank("slider"),
+        ..Linkage::default()
+    };
+    let plan = Plan::new(&l).unwrap();
+    assert!(!plan.input_is_crank());
+    let style = Style::default();
+    let input = Motion::new(0.02, -0.5, 0.0);
+    let pic = scheme(&plan, input, &style).unwrap();
+    let p = render(&pic.svg, "slider input");
+    assert_hinges(&plan, input, &pic, &p, &style, "slider input");
+    // The slider's block sits on the hatched guide: the guide is drawn beside the block.
+    let s = plan.kinematics(input).unwrap().joint("S").unwrap().p;
+    let q = pic.frame.to_pixel(s);
+    let half = 0.06 * plan.size() * pic.frame.scale;
+    assert!(
+        ink(&p, [q[0] + half + 6.0, q[1]]) > 60,
+        "no guide beside the block"
+    );
+    let inputs: Vec<Motion> = (0..20)
+        .map(|k| Motion::new(-0.05 + 0.005 * f64::from(k), 0.5, 0.0))
+        .collect();
+    let pic = animation(&plan, &inputs, 1.0, &style).unwrap();
+    assert!(animations(&pic.svg).iter().all(|(_, v)| v.len() == 20));
+    assert_frames(&plan, &inputs, &pic);
+    let course = Course {
+        inputs: inputs.clone(),
+        extremes: vec![],
+    };
+    let chart = diagram(
+        &plan,
+        &course,
+        &Diagram::Kinematics(Output::Angle("crank".into())),
+        &style,
+    )
+    .unwrap();
+    assert_eq!(chart.panels[0].x_label, "s1, m");
+    assert!(plan_view(&plan, &course, &["A"], &style).is_ok());
+    assert!(Course::new(&plan, None, 12, 1.0).is_err());
+}

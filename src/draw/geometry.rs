@@ -240,7 +240,9 @@ impl Pose {
         let [lo, hi] = ext.travel[j];
         let d = self.guides[j];
         let base = self.on(topo, j, g);
-        Some((base + d * (lo - ext.block), base + d * (hi + ext.block)))
+        // A fixed guide reaches well past the block, so that it shows on both sides.
+        let reach = if g == 0 { 2.5 * ext.block } else { ext.block };
+        Some((base + d * (lo - reach), base + d * (hi + reach)))
     }
 }
 
