@@ -18,6 +18,8 @@
 //! - [`kinetostatics::passive`]: the group with a parallel coupler (a passive constraint), statically
 //!   indeterminate once, solved by the force method; N, Q, M diagrams of its links.
 //! - [`linkage`]: any linkage of the 2nd class as data, planned once and analysed per position.
+//! - `draw` (feature `draw`): pictures of a linkage as SVG — the scheme, the plan of positions,
+//!   an animation, force arrows, the diagrams over the cycle.
 //! - [`mechanism`]: five ready mechanisms as linkages (four-bar, slider-crank, compressor, six-bar,
 //!   rocking cylinder), each a struct of parameters whose `linkage()` the engine plans.
 //!
@@ -48,12 +50,17 @@
 //! ## Optional features
 //! - `serde`: serialization of the crate's plain-data types (inputs, results, tables).
 //! - `rayon`: cycles of mechanism positions in parallel, bit-identical to the serial run.
+//! - `draw` (on by default): pictures of any linkage as SVG ([`draw`]): the kinematic scheme,
+//!   the plan in 12 positions, an animated cycle, reaction forces, and the diagrams.
 //!
 //! On docs.rs every item that needs a feature says so.
 
 #![cfg_attr(docsrs, feature(doc_cfg))]
 
 pub mod angle;
+#[cfg(feature = "draw")]
+#[cfg_attr(docsrs, doc(cfg(feature = "draw")))]
+pub mod draw;
 pub mod dynamics;
 pub mod error;
 pub mod kinematics;

@@ -794,6 +794,24 @@ impl Plan {
         self.joints[joint].links
     }
 
+    /// For a prismatic joint, the link that carries its guide (one of
+    /// [`joint_links`](Self::joint_links)); `None` for a revolute joint.
+    ///
+    /// # Examples
+    /// The shaper's ram slides on a guide of the frame (link 0):
+    /// ```
+    /// use tmm::linkage::{bundled, Plan};
+    /// let plan = Plan::new(&bundled::shaper())?;
+    /// assert_eq!(plan.guide_link(plan.joint_index("Q")?), Some(0));
+    /// assert_eq!(plan.guide_link(plan.joint_index("O1")?), None);
+    /// # Ok::<(), tmm::Error>(())
+    /// ```
+    #[must_use]
+    pub fn guide_link(&self, joint: usize) -> Option<usize> {
+        let j = &self.joints[joint];
+        j.prismatic.map(|(side, _)| j.links[side])
+    }
+
     /// The frame's link motion (at rest at the origin).
     pub(crate) fn frame_motion() -> LinkMotion {
         LinkMotion {

@@ -179,8 +179,9 @@ impl Table {
             .map(|c| c.values.as_slice())
     }
 
-    /// The table as text for a terminal, transposed: one line per column (its name, then its
-    /// values across the positions) with `decimals` digits after the point. A value that
+    /// The table as text for a terminal, transposed: one line per column (its name, padded to
+    /// the longest, then its values across the positions) with `decimals` digits after the
+    /// point (at most 12). A value that
     /// rounds to zero prints as zero, never as "-0.0000"; a non-finite one as `NaN` or `inf`.
     ///
     /// # Examples
@@ -191,14 +192,20 @@ impl Table {
     ///     fn row(&self) -> Vec<(String, f64)> { vec![("x [m]".into(), self.0)] }
     /// }
     /// let t = Table::of(&[Ok(P(-1e-9)), Ok(P(0.25))]);
-    /// assert_eq!(t.to_text(3), format!("{:<28} {:>11} {:>11}\n", "x [m]", "0.000", "0.250"));
+    /// assert_eq!(t.to_text(3), format!("x [m] {:>11} {:>11}\n", "0.000", "0.250"));
     /// ```
     #[must_use]
     pub fn to_text(&self, decimals: usize) -> String {
         let decimals = decimals.min(12);
+        let width = self
+            .columns
+            .iter()
+            .map(|c| c.name.chars().count())
+            .max()
+            .unwrap_or(0);
         let mut out = String::new();
         for c in &self.columns {
-            out.push_str(&format!("{:<28}", c.name));
+            out.push_str(&format!("{:<width$}", c.name));
             for &v in &c.values {
                 let text = format!("{v:.decimals$}");
                 // "-0.000": the sign of something that rounds to zero says nothing.
