@@ -60,17 +60,12 @@ fn inked(p: &Pixmap) -> f64 {
     f
 }
 
-fn plans() -> Vec<(&'static str, Plan)> {
-    [
-        ("four-bar", bundled::four_bar()),
-        ("geared four-bar", bundled::geared_four_bar()),
-        ("watt", bundled::watt_six_bar()),
-        ("stephenson", bundled::stephenson_six_bar()),
-        ("shaper", bundled::shaper()),
-    ]
-    .into_iter()
-    .map(|(n, l)| (n, Plan::new(&l).unwrap()))
-    .collect()
+/// Every bundled linkage (all five kinds of groups among them), planned.
+fn plans() -> Vec<(String, Plan)> {
+    bundled::all()
+        .into_iter()
+        .map(|l| (l.name.clone(), Plan::new(&l).unwrap()))
+        .collect()
 }
 
 /// Every hinge of the position `input` drawn where `frame` puts it: a dark centre mark, a dark
@@ -106,7 +101,7 @@ fn assert_hinges(plan: &Plan, input: Motion, pic: &Picture, p: &Pixmap, style: &
         }
         checked += 1;
     }
-    assert!(checked >= 3, "{what}: only {checked} hinges");
+    assert!(checked >= 2, "{what}: only {checked} hinges");
 }
 
 #[test]
@@ -123,7 +118,7 @@ fn every_scheme_shows_its_hinges_where_its_frame_says() {
             let p = render(&pic.svg, &format!("scheme {name} {k}"));
             let f = inked(&p);
             assert!(f > 0.005 && f < 0.5, "{name}: {f} of the picture inked");
-            assert_hinges(&plan, input, &pic, &p, &style, name);
+            assert_hinges(&plan, input, &pic, &p, &style, &name);
             // The corners, far from the linkage, stay white.
             assert_eq!(ink(&p, [2.0, 2.0]), 0);
             assert_eq!(ink(&p, [797.0, 597.0]), 0);
