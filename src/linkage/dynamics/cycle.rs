@@ -73,7 +73,10 @@ pub struct Turn {
     pub omega_max: f64,
     /// The smallest speed over the turn, rad/s (likewise).
     pub omega_min: f64,
-    /// The coefficient of speed fluctuation δ = (ω_max − ω_min)/ω_mean.
+    /// The coefficient of speed fluctuation δ = (ω_max − ω_min)/ω_m with the textbook's
+    /// ω_m = (ω_max + ω_min)/2, as the flywheel's design uses it (the time mean
+    /// [`omega_mean`](Self::omega_mean) differs from it by at most δ/2, relative, depending
+    /// on the shape of ω(φ)).
     pub delta: f64,
     /// +1 counter-clockwise, −1 clockwise.
     pub direction: f64,
@@ -258,7 +261,7 @@ impl LinkageSystem {
             omega_mean,
             omega_max,
             omega_min,
-            delta: (omega_max - omega_min) / omega_mean,
+            delta: 2.0 * (omega_max - omega_min) / (omega_max + omega_min),
             direction,
         };
         Ok((turn, r))

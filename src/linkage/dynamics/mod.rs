@@ -36,7 +36,9 @@
 //! [`LinkageSystem::run_up`] starts the machine from rest and integrates it turn by turn;
 //! the steady state is reached when the mean speed of a turn, ω_m = 2π/T_turn, differs from
 //! the previous turn's by less than a relative tolerance. The coefficient of speed
-//! fluctuation of a turn is δ = (ω_max − ω_min)/ω_m ([`Turn`]).
+//! fluctuation of a turn is δ = (ω_max − ω_min)/ω_m ([`Turn`]) with the textbook's
+//! ω_m = (ω_max + ω_min)/2 (the time mean 2π/T_turn may differ from it by up to δ/2,
+//! relative: by a first-order amount, which would blur a check of δ to a few per cent).
 //!
 //! # The flywheel (energy–mass method of Wittenbauer)
 //! The textbook problem: a constant driving moment M_d balances the loads over a turn,
