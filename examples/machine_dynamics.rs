@@ -29,14 +29,22 @@ type Res<T> = std::result::Result<T, Box<dyn Error>>;
 const RPM: f64 = PI / 30.0;
 
 /// One chart of a few lines against a common abscissa.
-fn chart(path: &Path, title: &str, x_desc: &str, y_desc: &str, lines: &[(&str, &[f64], &[f64])]) -> Res<()> {
+fn chart(
+    path: &Path,
+    title: &str,
+    x_desc: &str,
+    y_desc: &str,
+    lines: &[(&str, &[f64], &[f64])],
+) -> Res<()> {
     let root = SVGBackend::new(path, (900, 500)).into_drawing_area();
     root.fill(&WHITE)?;
-    let all = |f: fn(&(&str, &[f64], &[f64])) -> &[f64]| {
-        lines.iter().flat_map(f).fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), v| (a.min(*v), b.max(*v)))
+    let span = |v: &mut dyn Iterator<Item = f64>| {
+        v.fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), x| {
+            (a.min(x), b.max(x))
+        })
     };
-    let (x0, x1) = all(|l| l.1);
-    let (y0, y1) = all(|l| l.2);
+    let (x0, x1) = span(&mut lines.iter().flat_map(|l| l.1.iter().copied()));
+    let (y0, y1) = span(&mut lines.iter().flat_map(|l| l.2.iter().copied()));
     let pad = 0.05 * (y1 - y0).max(1e-9);
     let mut c = ChartBuilder::on(&root)
         .caption(title, ("sans-serif", 20))
@@ -47,11 +55,17 @@ fn chart(path: &Path, title: &str, x_desc: &str, y_desc: &str, lines: &[(&str, &
     c.configure_mesh().x_desc(x_desc).y_desc(y_desc).draw()?;
     for (i, (label, x, y)) in lines.iter().enumerate() {
         let colour = [RED, BLUE, GREEN, BLACK][i % 4];
-        c.draw_series(LineSeries::new(x.iter().copied().zip(y.iter().copied()), colour.stroke_width(2)))?
-            .label(*label)
-            .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], colour));
+        c.draw_series(LineSeries::new(
+            x.iter().copied().zip(y.iter().copied()),
+            colour.stroke_width(2),
+        ))?
+        .label(*label)
+        .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], colour));
     }
-    c.configure_series_labels().background_style(WHITE.mix(0.8)).border_style(BLACK).draw()?;
+    c.configure_series_labels()
+        .background_style(WHITE.mix(0.8))
+        .border_style(BLACK)
+        .draw()?;
     root.present()?;
     Ok(())
 }
@@ -79,9 +93,10 @@ fn turn_row(k: usize, t: &Turn) -> String {
 }
 
 fn main() -> Res<()> {
-    let dir = std::env::args()
-        .nth(1)
-        .map_or_else(|| PathBuf::from("target/tmm-charts/machine_dynamics"), PathBuf::from);
+    let dir = std::env::args().nth(1).map_or_else(
+        || PathBuf::from("target/tmm-charts/machine_dynamics"),
+        PathBuf::from,
+    );
     fs::create_dir_all(&dir)?;
 
     let compressor = Compressor::course_example();
@@ -91,7 +106,10 @@ fn main() -> Res<()> {
     // 1. The machine reduced to its crank over a turn at the seed's speed.
     let reduced = bare.reduced_cycle(360, omega_seed)?;
     let m_mean = reduced.iter().map(|r| r.loads).sum::<f64>() / reduced.len() as f64;
-    println!("Two-cylinder compressor, {:.0} rpm clockwise", -omega_seed / RPM);
+    println!(
+        "Two-cylinder compressor, {:.0} rpm clockwise",
+        -omega_seed / RPM
+    );
     println!("\nReduced to the crank (every 30°; the loads' mean {m_mean:.2} N·m):");
     println!("  φ, deg   J_red, kg·m²   dJ/dφ, kg·m²   M_red, N·m");
     for r in reduced.iter().step_by(30) {
@@ -106,7 +124,9 @@ fn main() -> Res<()> {
     csv(
         &dir.join("reduced.csv"),
         "phi,J_red,dJ_dphi,M_red",
-        reduced.iter().map(|r| vec![r.phi, r.inertia, r.inertia_derivative, r.loads]),
+        reduced
+            .iter()
+            .map(|r| vec![r.phi, r.inertia, r.inertia_derivative, r.loads]),
     )?;
 
     // 2. The motor: an induction motor of 1000 rpm synchronous speed whose nominal moment at
@@ -114,21 +134,30 @@ fn main() -> Res<()> {
     let power = -m_mean * omega_seed;
     let m_nom = 1.1 * m_mean.abs();
     let motor = LinearMotor::from_nominal(m_nom, 1000.0 * RPM, 960.0 * RPM)?;
-    let clockwise = LinearMotor { a: -motor.a, b: motor.b };
+    let clockwise = LinearMotor {
+        a: -motor.a,
+        b: motor.b,
+    };
     println!(
         "\nMotor: mean load power {:.2} kW; nominal {m_nom:.1} N·m at 960 rpm, M = −{:.1} − {:.3}·ω N·m",
         power / 1000.0,
         motor.a,
         motor.b
     );
-    let machine = bare.clone().with_motor(0, Motor::Linear(clockwise))?.with_inertia(0, 0.06)?;
+    let machine = bare
+        .clone()
+        .with_motor(0, Motor::Linear(clockwise))?
+        .with_inertia(0, 0.06)?;
 
     // 3. The run-up from rest.
     let mut opts = RunUpOptions::new(2e-5);
     opts.tol = 1e-7;
     opts.record_every = 5;
     let r = machine.run_up(&Rk4, &opts)?;
-    println!("\nRun-up from rest (RK4, h = 20 µs): steady after {} turns", r.turns.len());
+    println!(
+        "\nRun-up from rest (RK4, h = 20 µs): steady after {} turns",
+        r.turns.len()
+    );
     println!("turn   t0, s     T, s      n_m, rpm  n_max, rpm n_min, rpm    δ");
     for (k, t) in r.turns.iter().enumerate() {
         if k < 6 || k + 3 >= r.turns.len() {
@@ -157,7 +186,11 @@ fn main() -> Res<()> {
     let phi0 = tr.q()[0][0];
     let turned: Vec<f64> = tr.q()[0].iter().map(|p| (phi0 - p).to_degrees()).collect();
     let n_steady: Vec<f64> = tr.qd()[0].iter().map(|w| -w / RPM).collect();
-    println!("\nSteady turn: n_m = {:.2} rpm, δ = {:.4}", steady.omega_mean / RPM, steady.delta);
+    println!(
+        "\nSteady turn: n_m = {:.2} rpm, δ = {:.4}",
+        steady.omega_mean / RPM,
+        steady.delta
+    );
     println!("  turned, deg   n, rpm");
     let step = (turned.len() / 12).max(1);
     for i in (0..turned.len()).step_by(step) {
@@ -173,7 +206,10 @@ fn main() -> Res<()> {
     let omega_m = steady.direction * steady.omega_mean;
     let mut lines = vec![("no flywheel".to_owned(), turned.clone(), n_steady.clone())];
     let mut rows = Vec::new();
-    println!("\nFlywheel at n_m = {:.1} rpm (constant driving moment, energy–mass method):", omega_m.abs() / RPM);
+    println!(
+        "\nFlywheel at n_m = {:.1} rpm (constant driving moment, energy–mass method):",
+        omega_m.abs() / RPM
+    );
     println!("  δ      J_F, kg·m²  simplified  ΔE, J    M_d, N·m   δ integrated  δ with the motor");
     for delta in [1.0 / 20.0, 1.0 / 50.0] {
         // The machine with the motor's rotor, without the motor: the textbook's problem.
@@ -229,9 +265,17 @@ fn main() -> Res<()> {
         "delta,J_F,J_F_simplified,energy_range,M_d,delta_integrated,delta_with_motor",
         rows.into_iter(),
     )?;
-    let refs: Vec<(&str, &[f64], &[f64])> =
-        lines.iter().map(|(l, x, y)| (l.as_str(), x.as_slice(), y.as_slice())).collect();
-    chart(&dir.join("steady.svg"), "Compressor: steady turn under the motor", "crank turned, deg", "n, rpm", &refs)?;
+    let refs: Vec<(&str, &[f64], &[f64])> = lines
+        .iter()
+        .map(|(l, x, y)| (l.as_str(), x.as_slice(), y.as_slice()))
+        .collect();
+    chart(
+        &dir.join("steady.svg"),
+        "Compressor: steady turn under the motor",
+        "crank turned, deg",
+        "n, rpm",
+        &refs,
+    )?;
     println!("\nCSV and SVG written to {}", dir.display());
     Ok(())
 }

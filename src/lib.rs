@@ -17,7 +17,9 @@
 //!   through a coupling (balancing moment) or a gear pair (balancing force).
 //! - [`kinetostatics::passive`]: the group with a parallel coupler (a passive constraint), statically
 //!   indeterminate once, solved by the force method; N, Q, M diagrams of its links.
-//! - [`linkage`]: any linkage of the 2nd class as data, planned once and analysed per position.
+//! - [`linkage`]: any linkage of the 2nd class as data (one input, or two for mobility 2),
+//!   planned once and analysed per position; [`linkage::dynamics`]: its equation of motion
+//!   from the exact transfer functions, run-up under a motor, speed fluctuation, flywheel.
 //! - [`mechanism`]: five ready mechanisms as linkages (four-bar, slider-crank, compressor, six-bar,
 //!   rocking cylinder), each a struct of parameters whose `linkage()` the engine plans.
 //!

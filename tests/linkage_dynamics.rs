@@ -64,7 +64,8 @@ fn five_bar_terms_equal_the_hand_model() {
             worst_a = worst_a.max(max_abs(&(t.inertia - a)) / max_abs(&a));
             let da_scale = max_abs(&da[0]).max(max_abs(&da[1]));
             worst_da = worst_da.max(
-                max_abs(&(t.inertia_derivatives[0] - da[0])).max(max_abs(&(t.inertia_derivatives[1] - da[1])))
+                max_abs(&(t.inertia_derivatives[0] - da[0]))
+                    .max(max_abs(&(t.inertia_derivatives[1] - da[1])))
                     / da_scale,
             );
             let q_scale = forces.amax().max(fb.m_on);
@@ -72,7 +73,9 @@ fn five_bar_terms_equal_the_hand_model() {
             cases += 1;
         }
     }
-    println!("five-bar over {cases} states: A {worst_a:.1e}, dA/dq {worst_da:.1e}, Q {worst_q:.1e}");
+    println!(
+        "five-bar over {cases} states: A {worst_a:.1e}, dA/dq {worst_da:.1e}, Q {worst_q:.1e}"
+    );
     assert!(worst_a <= 1e-12, "A differs by {worst_a:e}");
     assert!(worst_da <= 1e-12, "dA/dq differs by {worst_da:e}");
     assert!(worst_q <= 1e-12, "Q differs by {worst_q:e}");
@@ -166,7 +169,10 @@ fn inverse_dynamics_equals_the_balancing_moment() {
         report.push(format!("{name}: {worst:.1e} over {cases}"));
         assert!(worst <= 1e-9, "{name}: {worst:e}");
     }
-    println!("inverse dynamics vs balancing moment: {}", report.join("; "));
+    println!(
+        "inverse dynamics vs balancing moment: {}",
+        report.join("; ")
+    );
 }
 
 /// A load added as a function of the state (a spring from a fixed point to B, a viscous
@@ -176,7 +182,10 @@ fn inverse_dynamics_with_state_dependent_loads() {
     let mut plan = Plan::new(&bundled::four_bar()).unwrap();
     plan.add_load_fn("coupler", |a| {
         let b = a.joint("B")?;
-        Ok(Load::force_at(b.p, -2000.0 * (b.p - Point2::new(0.5, 0.5)) - 30.0 * b.v))
+        Ok(Load::force_at(
+            b.p,
+            -2000.0 * (b.p - Point2::new(0.5, 0.5)) - 30.0 * b.v,
+        ))
     })
     .unwrap();
     plan.add_load_fn("rocker", |a| {
@@ -190,7 +199,11 @@ fn inverse_dynamics_with_state_dependent_loads() {
         let phi = f64::from(k) * TAU / 72.0;
         let a = plan.analyse(Motion::new(phi, 12.0, 0.0)).unwrap();
         let m = sys
-            .inverse_dynamics(&Vector2::new(phi, 0.0), &Vector2::new(12.0, 0.0), &Vector2::zeros())
+            .inverse_dynamics(
+                &Vector2::new(phi, 0.0),
+                &Vector2::new(12.0, 0.0),
+                &Vector2::zeros(),
+            )
             .unwrap();
         worst = worst.max((m[0] - a.balance().value).abs() / balance_scale(&a));
     }
@@ -206,11 +219,17 @@ fn five_bar_inverse_dynamics_equals_both_balancing_moments() {
     let sys = LinkageSystem::new(plan.clone()).unwrap();
     let mut worst = 0.0f64;
     for i in 0..8 {
-        let q = Vector2::new((100.0 + 5.0 * f64::from(i)).to_radians(), (45.0 + 4.0 * f64::from(i)).to_radians());
+        let q = Vector2::new(
+            (100.0 + 5.0 * f64::from(i)).to_radians(),
+            (45.0 + 4.0 * f64::from(i)).to_radians(),
+        );
         let qd = Vector2::new(2.0 - 0.5 * f64::from(i), 1.0);
         let qdd = Vector2::new(3.0, -2.0 + f64::from(i));
         let a = plan
-            .analyse_inputs(&[Motion::new(q[0], qd[0], qdd[0]), Motion::new(q[1], qd[1], qdd[1])])
+            .analyse_inputs(&[
+                Motion::new(q[0], qd[0], qdd[0]),
+                Motion::new(q[1], qd[1], qdd[1]),
+            ])
             .unwrap();
         assert!(a.worst_residual() < 1e-12);
         let m = sys.inverse_dynamics(&q, &qd, &qdd).unwrap();
@@ -243,7 +262,13 @@ fn energy_error(sys: &LinkageSystem, h: f64, t_end: f64) -> (f64, f64) {
         .collect();
     let work = simpson(h, &net);
     let d_t = tr.kinetic().last().unwrap() - tr.kinetic()[0];
-    let scale = simpson(h, &tr.power_applied().iter().map(|p| p.abs()).collect::<Vec<_>>());
+    let scale = simpson(
+        h,
+        &tr.power_applied()
+            .iter()
+            .map(|p| p.abs())
+            .collect::<Vec<_>>(),
+    );
     ((work - d_t).abs() / scale, d_t)
 }
 
@@ -253,7 +278,8 @@ fn energy_error(sys: &LinkageSystem, h: f64, t_end: f64) -> (f64, f64) {
 #[test]
 fn energy_balance_over_a_run() {
     let mut l = bundled::four_bar();
-    l.loads.retain(|x| !matches!(x, LoadSpec::Resistance { .. }));
+    l.loads
+        .retain(|x| !matches!(x, LoadSpec::Resistance { .. }));
     let sys = LinkageSystem::from_linkage(&l)
         .unwrap()
         .with_motor(0, Motor::Linear(LinearMotor { a: 30.0, b: 1.0 }))
@@ -272,7 +298,9 @@ fn energy_balance_over_a_run() {
         .unwrap();
     let (e1, dt) = energy_error(&sys, 2e-3, 1.0);
     let (e2, _) = energy_error(&sys, 1e-3, 1.0);
-    println!("energy balance: ΔT = {dt:.3} J, relative error {e1:.1e} (h = 2 ms), {e2:.1e} (h = 1 ms)");
+    println!(
+        "energy balance: ΔT = {dt:.3} J, relative error {e1:.1e} (h = 2 ms), {e2:.1e} (h = 1 ms)"
+    );
     assert!(dt > 1.0);
     assert!(e2 <= 1e-6, "{e2:e}");
     assert!(e2 <= e1 / 8.0 || e2 <= 1e-12, "{e1:e} -> {e2:e}");
@@ -291,7 +319,11 @@ fn flywheel_gives_the_required_delta() {
         ("four-bar", bundled::four_bar(), 10.0),
         ("Watt six-bar", bundled::watt_six_bar(), 15.0),
         ("shaper", bundled::shaper(), 6.0),
-        ("compressor", Compressor::course_example().linkage(), Compressor::seed_speed()),
+        (
+            "compressor",
+            Compressor::course_example().linkage(),
+            Compressor::seed_speed(),
+        ),
     ];
     let mut report = Vec::new();
     for (name, l, omega) in cases {
@@ -305,7 +337,11 @@ fn flywheel_gives_the_required_delta() {
                 .unwrap()
                 .with_inertia(0, f.moment_of_inertia)
                 .unwrap();
-            let start = State::new(0.0, Vector2::new(f.phi_start, 0.0), Vector2::new(f.omega_start.unwrap(), 0.0));
+            let start = State::new(
+                0.0,
+                Vector2::new(f.phi_start, 0.0),
+                Vector2::new(f.omega_start.unwrap(), 0.0),
+            );
             let mut opts = RunUpOptions::new(TAU / omega.abs() / 4000.0);
             opts.max_turn_time = 10.0 * TAU / omega.abs();
             let (turn, r) = with.turn(&Rk4, start, &opts).unwrap();
@@ -324,7 +360,10 @@ fn flywheel_gives_the_required_delta() {
             ));
             assert!(rel <= 0.02, "{name}, δ = {delta}: measured {}", turn.delta);
             assert!(back <= 1e-6, "{name}: the turn does not close ({back:e})");
-            assert!(mid.abs() <= 1e-3 * delta, "{name}: mean speed off by {mid:e}");
+            assert!(
+                mid.abs() <= 1e-3 * delta,
+                "{name}: mean speed off by {mid:e}"
+            );
         }
     }
     println!("{}", report.join("\n"));
@@ -336,7 +375,12 @@ fn flywheel_gives_the_required_delta() {
 fn run_up_reaches_a_steady_state_within_its_budget() {
     let sys = LinkageSystem::from_linkage(&bundled::watt_six_bar())
         .unwrap()
-        .with_motor(0, Motor::Linear(LinearMotor::from_nominal(40.0, 2.0 * PI * 25.0, 2.0 * PI * 24.0).unwrap()))
+        .with_motor(
+            0,
+            Motor::Linear(
+                LinearMotor::from_nominal(40.0, 2.0 * PI * 25.0, 2.0 * PI * 24.0).unwrap(),
+            ),
+        )
         .unwrap()
         .with_inertia(0, 0.05)
         .unwrap();
@@ -346,7 +390,10 @@ fn run_up_reaches_a_steady_state_within_its_budget() {
     let r = sys.run_up(&Rk4, &opts).unwrap();
     let n = r.turns.len();
     let last = r.turns[n - 1];
-    println!("run-up: {n} turns, steady ω_m = {:.4} rad/s, δ = {:.4}", last.omega_mean, last.delta);
+    println!(
+        "run-up: {n} turns, steady ω_m = {:.4} rad/s, δ = {:.4}",
+        last.omega_mean, last.delta
+    );
     assert!(n >= 3);
     assert!((last.omega_mean - r.turns[n - 2].omega_mean).abs() <= opts.tol * last.omega_mean);
     assert!(last.omega_mean < 2.0 * PI * 25.0 && last.omega_mean > 2.0 * PI * 20.0);
@@ -355,7 +402,17 @@ fn run_up_reaches_a_steady_state_within_its_budget() {
     // The budget: too few turns is an error naming it, not an endless run.
     opts.max_turns = 2;
     let e = sys.run_up(&Rk4, &opts).unwrap_err();
-    assert!(matches!(e, Error::Budget { what: "turn", limit: 2, .. }), "{e}");
+    assert!(
+        matches!(
+            e,
+            Error::Budget {
+                what: "turn",
+                limit: 2,
+                ..
+            }
+        ),
+        "{e}"
+    );
 }
 
 /// A machine that cannot turn (no motor, or one too weak for its loads) is an error, found
@@ -368,7 +425,10 @@ fn a_machine_that_does_not_turn_is_an_error() {
     let idle = LinkageSystem::from_linkage(&l).unwrap();
     let mut opts = RunUpOptions::new(1e-3);
     opts.max_turn_time = 1.0;
-    assert!(matches!(idle.run_up(&Rk4, &opts), Err(Error::Singular { .. })));
+    assert!(matches!(
+        idle.run_up(&Rk4, &opts),
+        Err(Error::Singular { .. })
+    ));
     let weak = LinkageSystem::from_linkage(&bundled::four_bar())
         .unwrap()
         .with_motor(0, Motor::Constant(1.0))
@@ -382,27 +442,53 @@ fn a_machine_that_does_not_turn_is_an_error() {
 fn bad_input_is_an_error() {
     let sys = LinkageSystem::from_linkage(&bundled::four_bar()).unwrap();
     let z = Vector2::zeros();
-    assert!(matches!(sys.terms(&Vector2::new(f64::NAN, 0.0), &z), Err(Error::NonFinite { .. })));
-    assert!(matches!(sys.terms(&z, &Vector2::new(f64::INFINITY, 0.0)), Err(Error::NonFinite { .. })));
+    assert!(matches!(
+        sys.terms(&Vector2::new(f64::NAN, 0.0), &z),
+        Err(Error::NonFinite { .. })
+    ));
+    assert!(matches!(
+        sys.terms(&z, &Vector2::new(f64::INFINITY, 0.0)),
+        Err(Error::NonFinite { .. })
+    ));
     assert!(sys.clone().with_motor(1, Motor::Constant(1.0)).is_err());
-    assert!(sys.clone().with_motor(0, Motor::Constant(f64::NAN)).is_err());
+    assert!(sys
+        .clone()
+        .with_motor(0, Motor::Constant(f64::NAN))
+        .is_err());
     assert!(sys.clone().with_inertia(0, -1.0).is_err());
     assert!(sys.clone().with_inertia(0, f64::NAN).is_err());
-    assert!(sys.clone().with_damper(&Damper::Link { link: "nope".into(), c: 1.0 }).is_err());
-    assert!(sys.clone().with_damper(&Damper::Joint { joint: "B".into(), c: -1.0 }).is_err());
+    assert!(sys
+        .clone()
+        .with_damper(&Damper::Link {
+            link: "nope".into(),
+            c: 1.0
+        })
+        .is_err());
+    assert!(sys
+        .clone()
+        .with_damper(&Damper::Joint {
+            joint: "B".into(),
+            c: -1.0
+        })
+        .is_err());
     for d in [0.0, -0.1, 2.0, f64::NAN] {
         assert!(sys.flywheel(d, 10.0, 360).is_err());
     }
     assert!(sys.flywheel(0.05, 0.0, 360).is_err());
     assert!(sys.flywheel(0.05, 10.0, 3).is_err());
     assert!(sys.reduced_cycle(0, 10.0).is_err());
-    assert!(sys.inverse_dynamics(&z, &z, &Vector2::new(f64::NAN, 0.0)).is_err());
+    assert!(sys
+        .inverse_dynamics(&z, &z, &Vector2::new(f64::NAN, 0.0))
+        .is_err());
     let mut opts = RunUpOptions::new(1e-3);
     opts.tol = 0.0;
     assert!(sys.run_up(&Rk4, &opts).is_err());
     // Two inputs: the one-crank tools refuse, a pose that cannot assemble is an error.
     let five = LinkageSystem::from_linkage(&bundled::five_bar_robot()).unwrap();
-    assert!(matches!(five.reduced(1.0, 1.0), Err(Error::Description { .. })));
+    assert!(matches!(
+        five.reduced(1.0, 1.0),
+        Err(Error::Description { .. })
+    ));
     assert!(five.flywheel(0.05, 10.0, 360).is_err());
     let far = five.terms(&Vector2::new(PI, 0.0), &z);
     assert!(far.is_err());
@@ -427,5 +513,8 @@ fn a_second_input_reads_and_writes_as_json() {
     let text = l.to_json().unwrap();
     assert!(text.contains("second_input"));
     assert_eq!(Linkage::from_json(&text).unwrap(), l);
-    assert!(!bundled::four_bar().to_json().unwrap().contains("second_input"));
+    assert!(!bundled::four_bar()
+        .to_json()
+        .unwrap()
+        .contains("second_input"));
 }

@@ -351,7 +351,12 @@ impl Plan {
         // The input links (one, or two for a linkage of mobility 2) and their joints with the
         // frame.
         let specs: Vec<(&Input, &str)> = std::iter::once((&linkage.input, "field input"))
-            .chain(linkage.second_input.as_ref().map(|i| (i, "field second_input")))
+            .chain(
+                linkage
+                    .second_input
+                    .as_ref()
+                    .map(|i| (i, "field second_input")),
+            )
             .collect();
         let mut inputs = Vec::with_capacity(specs.len());
         for &(spec, field) in &specs {

@@ -197,7 +197,9 @@ mod tests {
         // One more hinge from the frame to 3 makes W = −1.
         let mut e2 = e.to_vec();
         e2.push(r(3, 0));
-        let err = decompose(&e2, &names(6), &[1], &[]).unwrap_err().to_string();
+        let err = decompose(&e2, &names(6), &[1], &[])
+            .unwrap_err()
+            .to_string();
         assert!(err.contains("W = -1"), "{err}");
     }
 }

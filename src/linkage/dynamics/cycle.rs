@@ -318,10 +318,9 @@ impl LinkageSystem {
             out.steps += r.steps;
             out.evaluations += r.evaluations;
             s = r.last;
-            let steady = out
-                .turns
-                .last()
-                .is_some_and(|p| (turn.omega_mean - p.omega_mean).abs() <= opts.tol * turn.omega_mean);
+            let steady = out.turns.last().is_some_and(|p| {
+                (turn.omega_mean - p.omega_mean).abs() <= opts.tol * turn.omega_mean
+            });
             out.turns.push(turn);
             out.steady = r;
             if steady {

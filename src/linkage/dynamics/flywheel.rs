@@ -96,17 +96,26 @@ impl LinkageSystem {
         let (psi_p, psi_m) = (0.5 * w_max * w_max, 0.5 * w_min * w_min);
         let fold = |f: &dyn Fn(usize) -> f64, max: bool| {
             (0..n).map(f).fold(
-                if max { f64::NEG_INFINITY } else { f64::INFINITY },
+                if max {
+                    f64::NEG_INFINITY
+                } else {
+                    f64::INFINITY
+                },
                 |a, b| if max { a.max(b) } else { a.min(b) },
             )
         };
         let c_max = fold(&|i| psi_p * j[i] - w[i], false);
         let c_min = fold(&|i| psi_m * j[i] - w[i], true);
-        let j_f = computed("flywheel moment of inertia", (c_min - c_max) / (psi_p - psi_m))?;
+        let j_f = computed(
+            "flywheel moment of inertia",
+            (c_min - c_max) / (psi_p - psi_m),
+        )?;
         let e0 = c_max + psi_p * j_f;
         let omega_start = {
             let o2 = 2.0 * e0 / (j_f + j[0]);
-            (o2 > 0.0 && o2.is_finite() && j_f + j.iter().copied().fold(f64::INFINITY, f64::min) > 0.0)
+            (o2 > 0.0
+                && o2.is_finite()
+                && j_f + j.iter().copied().fold(f64::INFINITY, f64::min) > 0.0)
                 .then(|| dir * o2.sqrt())
         };
         let j_mean = j.iter().sum::<f64>() / n as f64;

@@ -353,7 +353,10 @@ impl LinkageSystem {
         }
         let damping = self.damping_from(&tr);
         computed_all("generalized inertia A", a.iter())?;
-        computed_all("inertia derivatives dA/dq", da.iter().flat_map(|m| m.iter()))?;
+        computed_all(
+            "inertia derivatives dA/dq",
+            da.iter().flat_map(|m| m.iter()),
+        )?;
         computed_all("generalized forces Q", loads.iter().chain(drives.iter()))?;
         computed_all("damping matrix B", damping.iter())?;
         Ok(Terms {
@@ -443,10 +446,7 @@ impl LinkageSystem {
                 LoadPlan::Custom { link, f } => {
                     if actual.is_none() {
                         let mut an = Analysis::new(plan);
-                        let m = [
-                            Motion::new(q[0], qd[0], 0.0),
-                            Motion::new(q[1], qd[1], 0.0),
-                        ];
+                        let m = [Motion::new(q[0], qd[0], 0.0), Motion::new(q[1], qd[1], 0.0)];
                         an.solve_kinematics_inputs(&m[..n])?;
                         actual = Some(an);
                     }
@@ -472,9 +472,10 @@ impl LinkageSystem {
         let mut b = Matrix2::zeros();
         for d in &self.dampers {
             let (c, r): (f64, [f64; 2]) = match *d {
-                DamperPlan::Link { link, c } => {
-                    (c, [0, 1].map(|k| if k < n { tr.omega(k, link) } else { 0.0 }))
-                }
+                DamperPlan::Link { link, c } => (
+                    c,
+                    [0, 1].map(|k| if k < n { tr.omega(k, link) } else { 0.0 }),
+                ),
                 DamperPlan::Hinge { links, c } => (
                     c,
                     [0, 1].map(|k| {
@@ -546,7 +547,9 @@ impl LagrangeSystem for LinkageSystem {
     }
 
     fn inertia_derivatives(&self, q: &Vector2<f64>) -> Result<[Matrix2<f64>; 2]> {
-        Ok(self.evaluate(q, &Vector2::zeros(), false)?.inertia_derivatives)
+        Ok(self
+            .evaluate(q, &Vector2::zeros(), false)?
+            .inertia_derivatives)
     }
 
     fn forces(&self, _t: f64, q: &Vector2<f64>, qd: &Vector2<f64>) -> Result<Vector2<f64>> {
