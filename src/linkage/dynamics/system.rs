@@ -321,7 +321,7 @@ impl LinkageSystem {
                     loads[i] += m * plan.gravity.dot(&v[i]);
                 }
             }
-            for s in 0..n {
+            for (s, da_s) in da.iter_mut().enumerate().take(n) {
                 let acc = [0, 1].map(|i| {
                     if i < n {
                         tr.acc(i, s, l, lp.centre)
@@ -332,7 +332,7 @@ impl LinkageSystem {
                 let eps = [0, 1].map(|i| if i < n { tr.eps(i, s, l) } else { 0.0 });
                 for i in 0..n {
                     for k in 0..n {
-                        da[s][(i, k)] += m * (acc[i].dot(&v[k]) + v[i].dot(&acc[k]))
+                        da_s[(i, k)] += m * (acc[i].dot(&v[k]) + v[i].dot(&acc[k]))
                             + j * (eps[i] * w[k] + w[i] * eps[k]);
                     }
                 }
