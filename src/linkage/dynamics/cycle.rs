@@ -204,6 +204,23 @@ impl LinkageSystem {
     /// Integrates one turn of the crank from `start` with `method`: the crank's angle
     /// advances by 2π in the direction it moves (or, from rest, in the direction it starts).
     ///
+    /// # Examples
+    /// The Watt six-bar coasting at 20 rad/s with no loads, gravity off: T is constant, so
+    /// the speed comes back to 20 rad/s after the turn.
+    /// ```
+    /// use nalgebra::Vector2;
+    /// use tmm::dynamics::{Rk4, State};
+    /// use tmm::linkage::{bundled, dynamics::{LinkageSystem, RunUpOptions}};
+    /// let mut l = bundled::watt_six_bar();
+    /// l.loads.clear();
+    /// l.gravity = [0.0, 0.0];
+    /// let sys = LinkageSystem::from_linkage(&l)?;
+    /// let start = State::new(0.0, Vector2::new(sys.plan().reference_input(), 0.0), Vector2::new(20.0, 0.0));
+    /// let (turn, r) = sys.turn(&Rk4, start, &RunUpOptions::new(1e-4))?;
+    /// assert!((r.last.qd[0] - 20.0).abs() < 1e-6 && turn.delta > 0.0);
+    /// # Ok::<(), tmm::Error>(())
+    /// ```
+    ///
     /// # Errors
     /// [`Error::Singular`] when the machine does not start from rest, or does not complete
     /// the turn within `opts.max_turn_time` (it stalls or turns back); as

@@ -75,6 +75,18 @@ impl Motor {
 
 /// A viscous damper: a term of Rayleigh's dissipation function Φ = ½·c·r², where r is the
 /// rate it resists; its generalized forces are −∂Φ/∂q̇ = −B·q̇ with B = Σ c·(∂r/∂q̇)(∂r/∂q̇)ᵀ.
+///
+/// # Examples
+/// A damper of 2 N·m·s/rad on the four-bar's crank bearing: B₁₁ = c·(∂ω/∂q̇)² = 2.
+/// ```
+/// use nalgebra::Vector2;
+/// use tmm::linkage::{bundled, dynamics::{Damper, LinkageSystem}};
+/// let sys = LinkageSystem::from_linkage(&bundled::four_bar())?
+///     .with_damper(&Damper::Link { link: "crank".into(), c: 2.0 })?;
+/// let b = sys.terms(&Vector2::new(0.3, 0.0), &Vector2::zeros())?.damping;
+/// assert!((b[(0, 0)] - 2.0).abs() < 1e-15);
+/// # Ok::<(), tmm::Error>(())
+/// ```
 #[derive(Debug, Clone, PartialEq)]
 pub enum Damper {
     /// On a link's absolute angular velocity ω (bearing friction against the frame, air

@@ -15,6 +15,21 @@ use crate::linkage::{Analysis, Linkage, Plan};
 /// For a linkage with one input the second coordinate is a decoupled unit mass that nothing
 /// drives (A₂₂ = 1, A₁₂ = 0, Q₂ = 0): it stays at rest, and the first row is the textbook's
 /// equation of the machine reduced to its input, J_red(φ)·ε + ½·J_red′(φ)·ω² = M_red.
+///
+/// # Examples
+/// The five-bar robot's inertia matrix is symmetric and positive-definite:
+/// ```
+/// use nalgebra::Vector2;
+/// use tmm::linkage::{bundled, dynamics::LinkageSystem};
+/// let sys = LinkageSystem::from_linkage(&bundled::five_bar_robot())?;
+/// let q = Vector2::new(2.0, 1.1);
+/// let t = sys.terms(&q, &Vector2::new(1.0, -1.0))?;
+/// let a = t.inertia;
+/// assert_eq!(a[(0, 1)], a[(1, 0)]);
+/// assert!(a[(0, 0)] > 0.0 && a.determinant() > 0.0);
+/// assert_eq!(t.forces(), t.drives + t.loads);
+/// # Ok::<(), tmm::Error>(())
+/// ```
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Terms {
     /// The generalized inertia A(q) of T = ½ q̇ᵀ A q̇ (kg·m² for crank angles, kg for slides):
@@ -71,50 +86,42 @@ pub struct LinkageSystem {
 }
 
 /// The exact first- and second-order transfer functions of every link at one position:
-/// velocity analyses at unit input rates and zero input accelerations.
+/// kinematic solves at unit input rates and zero input accelerations, made with one set of
+/// buffers.
 struct Transfer<'p> {
     n: usize,
-    /// `unit[k]`: q̇ = e_k, q̈ = 0. Its velocities are the first-order transfer functions
-    /// ∂v/∂q_k, its accelerations the second-order ones ∂²r/∂q_k².
-    unit: [Option<Analysis<'p>>; 2],
-    /// q̇ = (1, 1), q̈ = 0 (two inputs): its accelerations are Σ_jk ∂²r/∂q_j∂q_k, so the mixed
-    /// derivative is (a_mixed − a_11 − a_22)/2.
-    mixed: Option<Analysis<'p>>,
+    nl: usize,
+    /// The link motions of the solves, one block of `nl` per solve: q̇ = e₁ (and, for two
+    /// inputs, e₂ and (1, 1)). The velocities of solve k are the first-order transfer
+    /// functions ∂v/∂q̇_k, its accelerations the second-order ones ∂²r/∂q_k²; those of the
+    /// solve at (1, 1) are Σ_jk ∂²r/∂q_j∂q_k, so the mixed derivative is
+    /// (a_(1,1) − a_11 − a_22)/2.
+    links: Vec<LinkMotion>,
+    /// The buffers of the solves: their positions serve the position-only look-ups.
+    an: Analysis<'p>,
 }
 
 impl<'p> Transfer<'p> {
     fn new(plan: &'p Plan, n: usize, q: &Vector2<f64>) -> Result<Self> {
-        let solve = |rates: [f64; 2]| -> Result<Analysis<'p>> {
-            let mut a = Analysis::new(plan);
-            let m = [
-                Motion::new(q[0], rates[0], 0.0),
-                Motion::new(q[1], rates[1], 0.0),
-            ];
-            a.solve_kinematics_inputs(&m[..n])?;
-            Ok(a)
-        };
-        let unit = [
-            Some(solve([1.0, 0.0])?),
-            if n == 2 {
-                Some(solve([0.0, 1.0])?)
-            } else {
-                None
-            },
-        ];
-        let mixed = if n == 2 {
-            Some(solve([1.0, 1.0])?)
+        let mut an = Analysis::new(plan);
+        let nl = plan.link_names.len();
+        let rates: &[[f64; 2]] = if n == 1 {
+            &[[1.0, 0.0]]
         } else {
-            None
+            &[[1.0, 0.0], [0.0, 1.0], [1.0, 1.0]]
         };
-        Ok(Self { n, unit, mixed })
+        let mut links = Vec::with_capacity(nl * rates.len());
+        for r in rates {
+            let m = [Motion::new(q[0], r[0], 0.0), Motion::new(q[1], r[1], 0.0)];
+            an.solve_kinematics_inputs(&m[..n])?;
+            links.extend((0..nl).map(|l| *an.link_motion(l)));
+        }
+        Ok(Self { n, nl, links, an })
     }
 
-    fn analysis(&self, k: usize) -> &Analysis<'p> {
-        self.unit[k].as_ref().expect("one analysis per coordinate")
-    }
-
-    fn link(&self, k: usize, l: usize) -> &LinkMotion {
-        self.analysis(k).link_motion(l)
+    /// Link `l` in solve `s` (0, 1: unit rate of input s; 2: both).
+    fn link(&self, s: usize, l: usize) -> &LinkMotion {
+        &self.links[s * self.nl + l]
     }
 
     /// ∂ω_l/∂q̇_k.
@@ -132,26 +139,16 @@ impl<'p> Transfer<'p> {
         self.link(k, l).motion_of(p).v
     }
 
-    /// ∂²r_P/∂q_i∂q_k.
-    fn acc(&self, i: usize, k: usize, l: usize, local: Vector2<f64>) -> Vector2<f64> {
-        let at = |a: &Analysis<'_>| a.link_motion(l).point_at(local.x, local.y).a;
-        if i == k {
-            at(self.analysis(i))
-        } else {
-            let m = self.mixed.as_ref().expect("two inputs");
-            0.5 * (at(m) - at(self.analysis(0)) - at(self.analysis(1)))
-        }
-    }
-
-    /// ∂²φ_l/∂q_i∂q_k.
-    fn eps(&self, i: usize, k: usize, l: usize) -> f64 {
-        let at = |a: &Analysis<'_>| a.link_motion(l).epsilon;
-        if i == k {
-            at(self.analysis(i))
-        } else {
-            let m = self.mixed.as_ref().expect("two inputs");
-            0.5 * (at(m) - at(self.analysis(0)) - at(self.analysis(1)))
-        }
+    /// ∂ṡ/∂q̇_k of the slide of prismatic joint `j`: the relative velocity of its point on the
+    /// sliding link and on the guide's link, along the guide.
+    fn slide_rate(&self, k: usize, j: usize) -> f64 {
+        let jp = &self.an.plan().joints[j];
+        let g = jp.prismatic.map_or(0, |(g, _)| g);
+        let on = |side: usize| {
+            let local = jp.local[side];
+            self.link(k, jp.links[side]).point_at(local.x, local.y).v
+        };
+        (on(1 - g) - on(g)).dot(&self.an.guide_direction(j))
     }
 
     /// The actual rate Σ_k (∂r/∂q_k)·q̇_k of a quantity with transfer functions `f(k)`.
@@ -296,23 +293,41 @@ impl LinkageSystem {
         finite2(["q1_dot", "q2_dot"], *qd)?;
         let plan = &self.plan;
         let n = self.dof();
-        let tr = Transfer::new(plan, n, q)?;
+        let mut tr = Transfer::new(plan, n, q)?;
         let mut a = Matrix2::zeros();
         let mut da = [Matrix2::zeros(); 2];
         let mut loads = Vector2::zeros();
+        let solves = 2 * n - 1;
         for (l, lp) in plan.links.iter().enumerate().skip(1) {
             if lp.mass == 0.0 && lp.inertia == 0.0 {
                 continue;
             }
             let (m, j) = (lp.mass, lp.inertia);
-            let v = [0, 1].map(|k| {
-                if k < n {
-                    tr.vel(k, l, lp.centre)
+            // The centre of mass in every solve, once.
+            let mut pts = [crate::kinematics::PointMotion::fixed(Point2::origin()); 3];
+            let mut rot = [(0.0, 0.0); 3];
+            for s in 0..solves {
+                let lm = tr.link(s, l);
+                pts[s] = lm.point_at(lp.centre.x, lp.centre.y);
+                rot[s] = (lm.omega, lm.epsilon);
+            }
+            let v = [pts[0].v, pts[1].v];
+            let w = [rot[0].0, rot[1].0];
+            // ∂²r_S/∂q_i∂q_k and ∂²φ/∂q_i∂q_k.
+            let acc = |i: usize, k: usize| {
+                if i == k {
+                    pts[i].a
                 } else {
-                    Vector2::zeros()
+                    0.5 * (pts[2].a - pts[0].a - pts[1].a)
                 }
-            });
-            let w = [0, 1].map(|k| if k < n { tr.omega(k, l) } else { 0.0 });
+            };
+            let eps = |i: usize, k: usize| {
+                if i == k {
+                    rot[i].1
+                } else {
+                    0.5 * (rot[2].1 - rot[0].1 - rot[1].1)
+                }
+            };
             for i in 0..n {
                 for k in 0..n {
                     a[(i, k)] += m * v[i].dot(&v[k]) + j * w[i] * w[k];
@@ -322,18 +337,10 @@ impl LinkageSystem {
                 }
             }
             for (s, da_s) in da.iter_mut().enumerate().take(n) {
-                let acc = [0, 1].map(|i| {
-                    if i < n {
-                        tr.acc(i, s, l, lp.centre)
-                    } else {
-                        Vector2::zeros()
-                    }
-                });
-                let eps = [0, 1].map(|i| if i < n { tr.eps(i, s, l) } else { 0.0 });
                 for i in 0..n {
                     for k in 0..n {
-                        da_s[(i, k)] += m * (acc[i].dot(&v[k]) + v[i].dot(&acc[k]))
-                            + j * (eps[i] * w[k] + w[i] * eps[k]);
+                        da_s[(i, k)] += m * (acc(i, s).dot(&v[k]) + v[i].dot(&acc(k, s)))
+                            + j * (eps(i, s) * w[k] + w[i] * eps(k, s));
                     }
                 }
             }
@@ -346,7 +353,7 @@ impl LinkageSystem {
         }
         let mut drives = Vector2::zeros();
         if forces {
-            self.add_loads(&tr, q, qd, &mut loads)?;
+            self.add_loads(&mut tr, q, qd, &mut loads)?;
             for i in 0..n {
                 drives[i] = self.motors[i].moment(q[i], qd[i])?;
             }
@@ -372,15 +379,14 @@ impl LinkageSystem {
     /// M·∂ω/∂q̇_k, each load evaluated at the actual rates.
     fn add_loads(
         &self,
-        tr: &Transfer<'_>,
+        tr: &mut Transfer<'_>,
         q: &Vector2<f64>,
         qd: &Vector2<f64>,
         loads: &mut Vector2<f64>,
     ) -> Result<()> {
         let plan = &self.plan;
         let n = tr.n;
-        let first = tr.analysis(0);
-        let mut actual: Option<Analysis<'_>> = None;
+        let mut custom = false;
         for lp in &plan.loads {
             match lp {
                 LoadPlan::Force { link, local, force } => {
@@ -412,10 +418,10 @@ impl LinkageSystem {
                     let jp = &plan.joints[*joint];
                     let g = jp.prismatic.map_or(0, |(g, _)| g);
                     let (slider, guide) = (jp.links[1 - g], jp.links[g]);
-                    let d = first.guide_direction(*joint);
-                    let rate = tr.rate(qd, |k| tr.analysis(k).slide_index(*joint).rate);
+                    let d = tr.an.guide_direction(*joint);
+                    let rate = tr.rate(qd, |k| tr.slide_rate(k, *joint));
                     let f = resist(rate, *forward, *backward) * d;
-                    let p = first.link_motion(slider).point_at(local.x, local.y).p;
+                    let p = tr.link(0, slider).point_at(local.x, local.y).p;
                     for k in 0..n {
                         loads[k] += f.dot(&(tr.vel_of(k, slider, p) - tr.vel_of(k, guide, p)));
                     }
@@ -429,10 +435,11 @@ impl LinkageSystem {
                     let jp = &plan.joints[*joint];
                     let g = jp.prismatic.map_or(0, |(g, _)| g);
                     let slider = jp.links[1 - g];
-                    let d = first.guide_direction(*joint);
-                    let s = first.slide_index(*joint).value;
-                    let rate = tr.rate(qd, |k| tr.analysis(k).slide_index(*joint).rate);
-                    let p = first.joint_index_on(*joint, slider).p;
+                    let d = tr.an.guide_direction(*joint);
+                    let s = tr.an.slide_index(*joint).value;
+                    let rate = tr.rate(qd, |k| tr.slide_rate(k, *joint));
+                    let local = jp.local[1 - g];
+                    let p = tr.link(0, slider).point_at(local.x, local.y).p;
                     let f = diagram
                         .force(head * s, head * rate, *head * d, ends[0], ends[1])
                         .map_err(|e| Error::In {
@@ -443,25 +450,29 @@ impl LinkageSystem {
                         loads[k] += f.dot(&tr.vel_of(k, slider, p));
                     }
                 }
-                LoadPlan::Custom { link, f } => {
-                    if actual.is_none() {
-                        let mut an = Analysis::new(plan);
-                        let m = [Motion::new(q[0], qd[0], 0.0), Motion::new(q[1], qd[1], 0.0)];
-                        an.solve_kinematics_inputs(&m[..n])?;
-                        actual = Some(an);
-                    }
-                    let an = actual.as_ref().expect("solved above");
-                    let part = |e: Error| Error::In {
-                        part: plan.link_names[*link].clone(),
-                        source: Box::new(e),
-                    };
-                    let load = (f.0)(an).map_err(part)?;
-                    load.validate().map_err(part)?;
-                    for k in 0..n {
-                        loads[k] += load.force.dot(&tr.vel_of(k, *link, load.point))
-                            + load.moment * tr.omega(k, *link);
-                    }
-                }
+                LoadPlan::Custom { .. } => custom = true,
+            }
+        }
+        if !custom {
+            return Ok(());
+        }
+        // Loads given as functions of the state see it solved at the actual rates (the same
+        // positions; the transfer functions are kept in `tr.links`).
+        let m = [Motion::new(q[0], qd[0], 0.0), Motion::new(q[1], qd[1], 0.0)];
+        tr.an.solve_kinematics_inputs(&m[..n])?;
+        for lp in &plan.loads {
+            let LoadPlan::Custom { link, f } = lp else {
+                continue;
+            };
+            let part = |e: Error| Error::In {
+                part: plan.link_names[*link].clone(),
+                source: Box::new(e),
+            };
+            let load = (f.0)(&tr.an).map_err(part)?;
+            load.validate().map_err(part)?;
+            for k in 0..n {
+                loads[k] += load.force.dot(&tr.vel_of(k, *link, load.point))
+                    + load.moment * tr.omega(k, *link);
             }
         }
         Ok(())
@@ -488,13 +499,7 @@ impl LinkageSystem {
                 ),
                 DamperPlan::Slide { joint, c } => (
                     c,
-                    [0, 1].map(|k| {
-                        if k < n {
-                            tr.analysis(k).slide_index(joint).rate
-                        } else {
-                            0.0
-                        }
-                    }),
+                    [0, 1].map(|k| if k < n { tr.slide_rate(k, joint) } else { 0.0 }),
                 ),
             };
             for i in 0..n {
