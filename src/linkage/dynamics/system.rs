@@ -139,16 +139,30 @@ impl<'p> Transfer<'p> {
         self.link(k, l).motion_of(p).v
     }
 
-    /// ∂ṡ/∂q̇_k of the slide of prismatic joint `j`: the relative velocity of its point on the
-    /// sliding link and on the guide's link, along the guide.
-    fn slide_rate(&self, k: usize, j: usize) -> f64 {
+    /// The sliding link and the guide's link of prismatic joint `j`, and the guide's unit
+    /// direction now.
+    fn slide_parts(&self, j: usize) -> (usize, usize, Vector2<f64>) {
         let jp = &self.an.plan().joints[j];
         let g = jp.prismatic.map_or(0, |(g, _)| g);
-        let on = |side: usize| {
+        (jp.links[1 - g], jp.links[g], self.an.guide_direction(j))
+    }
+
+    /// The motions of prismatic joint `j`'s point on its sliding link and on its guide's
+    /// link in solve `k`.
+    fn slide_points(&self, k: usize, j: usize) -> [crate::kinematics::PointMotion; 2] {
+        let jp = &self.an.plan().joints[j];
+        let g = jp.prismatic.map_or(0, |(g, _)| g);
+        [1 - g, g].map(|side| {
             let local = jp.local[side];
-            self.link(k, jp.links[side]).point_at(local.x, local.y).v
-        };
-        (on(1 - g) - on(g)).dot(&self.an.guide_direction(j))
+            self.link(k, jp.links[side]).point_at(local.x, local.y)
+        })
+    }
+
+    /// ∂ṡ/∂q̇_k of the slide of prismatic joint `j` along the guide direction `d`: the
+    /// relative velocity of its points on the sliding link and on the guide's link.
+    fn slide_rate(&self, k: usize, j: usize, d: Vector2<f64>) -> f64 {
+        let [on, guide] = self.slide_points(k, j);
+        (on.v - guide.v).dot(&d)
     }
 
     /// The actual rate Σ_k (∂r/∂q_k)·q̇_k of a quantity with transfer functions `f(k)`.
@@ -415,11 +429,8 @@ impl LinkageSystem {
                     forward,
                     backward,
                 } => {
-                    let jp = &plan.joints[*joint];
-                    let g = jp.prismatic.map_or(0, |(g, _)| g);
-                    let (slider, guide) = (jp.links[1 - g], jp.links[g]);
-                    let d = tr.an.guide_direction(*joint);
-                    let rate = tr.rate(qd, |k| tr.slide_rate(k, *joint));
+                    let (slider, guide, d) = tr.slide_parts(*joint);
+                    let rate = tr.rate(qd, |k| tr.slide_rate(k, *joint, d));
                     let f = resist(rate, *forward, *backward) * d;
                     let p = tr.link(0, slider).point_at(local.x, local.y).p;
                     for k in 0..n {
@@ -432,14 +443,17 @@ impl LinkageSystem {
                     diagram,
                     ends,
                 } => {
-                    let jp = &plan.joints[*joint];
-                    let g = jp.prismatic.map_or(0, |(g, _)| g);
-                    let slider = jp.links[1 - g];
-                    let d = tr.an.guide_direction(*joint);
-                    let s = tr.an.slide_index(*joint).value;
-                    let rate = tr.rate(qd, |k| tr.slide_rate(k, *joint));
-                    let local = jp.local[1 - g];
-                    let p = tr.link(0, slider).point_at(local.x, local.y).p;
+                    // The piston's guide is the frame: its point on the piston moves with v.
+                    let (_, _, d) = tr.slide_parts(*joint);
+                    let mut on = [crate::kinematics::PointMotion::fixed(Point2::origin()); 2];
+                    let mut rate = 0.0;
+                    let mut s = 0.0;
+                    for k in 0..n {
+                        let [piston, guide] = tr.slide_points(k, *joint);
+                        s = (piston.p - guide.p).dot(&d);
+                        rate += (piston.v - guide.v).dot(&d) * qd[k];
+                        on[k] = piston;
+                    }
                     let f = diagram
                         .force(head * s, head * rate, *head * d, ends[0], ends[1])
                         .map_err(|e| Error::In {
@@ -447,7 +461,7 @@ impl LinkageSystem {
                             source: Box::new(e),
                         })?;
                     for k in 0..n {
-                        loads[k] += f.dot(&tr.vel_of(k, slider, p));
+                        loads[k] += f.dot(&on[k].v);
                     }
                 }
                 LoadPlan::Custom { .. } => custom = true,
@@ -497,10 +511,19 @@ impl LinkageSystem {
                         }
                     }),
                 ),
-                DamperPlan::Slide { joint, c } => (
-                    c,
-                    [0, 1].map(|k| if k < n { tr.slide_rate(k, joint) } else { 0.0 }),
-                ),
+                DamperPlan::Slide { joint, c } => {
+                    let d = tr.an.guide_direction(joint);
+                    (
+                        c,
+                        [0, 1].map(|k| {
+                            if k < n {
+                                tr.slide_rate(k, joint, d)
+                            } else {
+                                0.0
+                            }
+                        }),
+                    )
+                }
             };
             for i in 0..n {
                 for k in 0..n {
