@@ -984,6 +984,20 @@ impl Plan {
     ///
     /// # Errors
     /// As [`Analysis::solve_inputs`].
+    ///
+    /// # Examples
+    /// The five-bar robot held still against its tool moment: both drives hold it.
+    /// ```
+    /// use tmm::kinematics::Motion;
+    /// use tmm::linkage::{bundled, Plan};
+    /// let plan = Plan::new(&bundled::five_bar_robot())?;
+    /// let r = plan.reference_inputs();
+    /// let a = plan.analyse_inputs(&[Motion::fixed(r[0]), Motion::fixed(r[1])])?;
+    /// let (m1, m4) = (a.balance().value, a.second_balance().unwrap().value);
+    /// assert!(m1.abs() > 0.0 && m4.abs() > 0.0);
+    /// assert!(a.worst_residual() < 1e-12);
+    /// # Ok::<(), tmm::Error>(())
+    /// ```
     pub fn analyse_inputs(&self, inputs: &[Motion]) -> Result<Analysis<'_>> {
         let mut a = Analysis::new(self);
         a.solve_inputs(inputs)?;

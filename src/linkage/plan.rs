@@ -770,6 +770,15 @@ impl Plan {
     }
 
     /// The second input link's index, for a linkage with two inputs.
+    ///
+    /// # Examples
+    /// ```
+    /// use tmm::linkage::{bundled, Plan};
+    /// let plan = Plan::new(&bundled::five_bar_robot())?;
+    /// assert_eq!(plan.second_input_link(), Some(plan.link_index("crank 4")?));
+    /// assert_eq!(Plan::new(&bundled::four_bar())?.second_input_link(), None);
+    /// # Ok::<(), tmm::Error>(())
+    /// ```
     #[must_use]
     pub fn second_input_link(&self) -> Option<usize> {
         self.second_input.as_ref().map(|(ip, _)| ip.link())
@@ -777,6 +786,15 @@ impl Plan {
 
     /// The input coordinates in the reference pose, one per input (see
     /// [`reference_input`](Self::reference_input)).
+    ///
+    /// # Examples
+    /// The five-bar robot is drawn with its cranks at 120° and 60°:
+    /// ```
+    /// use tmm::linkage::{bundled, Plan};
+    /// let r = Plan::new(&bundled::five_bar_robot())?.reference_inputs();
+    /// assert!((r[0].to_degrees() - 120.0).abs() < 1e-12 && (r[1].to_degrees() - 60.0).abs() < 1e-12);
+    /// # Ok::<(), tmm::Error>(())
+    /// ```
     #[must_use]
     pub fn reference_inputs(&self) -> Vec<f64> {
         std::iter::once(self.reference_input)

@@ -343,7 +343,7 @@ impl LinkageSystem {
                 }
             };
             for i in 0..n {
-                for k in 0..n {
+                for k in i..n {
                     a[(i, k)] += m * v[i].dot(&v[k]) + j * w[i] * w[k];
                 }
                 if forces {
@@ -352,12 +352,17 @@ impl LinkageSystem {
             }
             for (s, da_s) in da.iter_mut().enumerate().take(n) {
                 for i in 0..n {
-                    for k in 0..n {
+                    for k in i..n {
                         da_s[(i, k)] += m * (acc(i, s).dot(&v[k]) + v[i].dot(&acc(k, s)))
                             + j * (eps(i, s) * w[k] + w[i] * eps(k, s));
                     }
                 }
             }
+        }
+        // Symmetric by construction, to the last bit.
+        a[(1, 0)] = a[(0, 1)];
+        for da_s in &mut da {
+            da_s[(1, 0)] = da_s[(0, 1)];
         }
         for i in 0..n {
             a[(i, i)] += self.extra[i];
@@ -526,11 +531,12 @@ impl LinkageSystem {
                 }
             };
             for i in 0..n {
-                for k in 0..n {
+                for k in i..n {
                     b[(i, k)] += c * r[i] * r[k];
                 }
             }
         }
+        b[(1, 0)] = b[(0, 1)];
         b
     }
 
