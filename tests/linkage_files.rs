@@ -31,6 +31,11 @@ fn files() -> Vec<(&'static str, &'static str, Linkage)> {
             include_str!("../linkages/shaper.json"),
             bundled::shaper(),
         ),
+        (
+            "five-bar-robot.json",
+            include_str!("../linkages/five-bar-robot.json"),
+            bundled::five_bar_robot(),
+        ),
     ]
 }
 

@@ -200,7 +200,8 @@ pub fn shaper() -> Linkage {
 /// φ4 = 60°. The cranks carry I1 = I4 = 0.02 kg·m² about their pivots; each coupler 0.6 kg
 /// at its middle with J_S = m·l²/4 (the seed's two point masses m/2 at its hinges, as a rigid
 /// body); a tool moment of 0.3 N·m resists on coupler 3 (−0.3 N·m: it opposes increasing
-/// φ3 as a positive M_on of the seed); no gravity (a horizontal robot).
+/// φ3 as a positive M_on of the seed); no gravity (a horizontal robot). The same linkage is
+/// `linkages/five-bar-robot.json`.
 ///
 /// # Examples
 /// ```
