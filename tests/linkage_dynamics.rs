@@ -9,7 +9,7 @@ use tmm::dynamics::machines::{FiveBar, LinearMotor};
 use tmm::dynamics::{run, LagrangeSystem, Rk4, RunOptions, State, Trajectory};
 use tmm::kinematics::Motion;
 use tmm::linkage::dynamics::{Damper, LinkageSystem, Motor, RunUpOptions};
-use tmm::linkage::{bundled, Linkage, LoadSpec, Plan};
+use tmm::linkage::{bundled, At, Linkage, LoadSpec, Mass, Plan};
 use tmm::mechanism::{Compressor, RockingCylinder, SixBar, SliderCrank};
 use tmm::{Error, Load};
 
@@ -89,6 +89,53 @@ fn five_bar_terms_equal_the_hand_model() {
     assert!(worst_a <= 1e-12, "A differs by {worst_a:e}");
     assert!(worst_da <= 1e-12, "dA/dq differs by {worst_da:e}");
     assert!(worst_q <= 1e-12, "Q differs by {worst_q:e}");
+}
+
+/// The couplers as rigid bodies with their own J_S and centres off the middle: the hand
+/// model's exact variant (`j_s2`, `j_s3` set) equals the description with those masses.
+#[test]
+fn five_bar_with_rigid_couplers_equals_the_hand_model() {
+    let fb = FiveBar {
+        l_as2: 0.1,
+        l_bs3: 0.08,
+        j_s2: Some(0.004),
+        j_s3: Some(0.006),
+        ..FiveBar::default()
+    };
+    let mut l = bundled::five_bar_robot();
+    let at = |n: &str| {
+        let j = l.joints.iter().find(|j| j.name == n).unwrap();
+        Vector2::new(j.at[0], j.at[1])
+    };
+    let (a, b, c) = (at("A"), at("B"), at("C"));
+    let s2 = a + 0.1 * (b - a).normalize();
+    let s3 = b + 0.08 * (c - b).normalize();
+    l.links[2].mass = Some(Mass::new(0.6, 0.004, At::Coords([s2.x, s2.y])));
+    l.links[3].mass = Some(Mass::new(0.6, 0.006, At::Coords([s3.x, s3.y])));
+    let sys = LinkageSystem::from_linkage(&l)
+        .unwrap()
+        .with_motor(0, Motor::Servo(fb.drive1))
+        .unwrap()
+        .with_motor(1, Motor::Servo(fb.drive4))
+        .unwrap();
+    let mut worst = 0.0f64;
+    for (p1, p4) in [
+        (100.0, 50.0),
+        (120.0, 60.0),
+        (140.0, 80.0),
+        (110.0, 40.0),
+        (130.0, 75.0),
+    ] {
+        let q = Vector2::new(f64::to_radians(p1), f64::to_radians(p4));
+        let t = sys.terms(&q, &Vector2::new(0.3, 1.2)).unwrap();
+        let a = fb.inertia(&q).unwrap();
+        let da = fb.inertia_derivatives(&q).unwrap();
+        worst = worst
+            .max(max_abs(&(t.inertia - a)) / max_abs(&a))
+            .max(max_abs(&(t.inertia_derivatives[0] - da[0])) / max_abs(&da[0]))
+            .max(max_abs(&(t.inertia_derivatives[1] - da[1])) / max_abs(&da[1]));
+    }
+    assert!(worst <= 1e-12, "{worst:e}");
 }
 
 /// With gravity the hand model takes it through its potential, the linkage as a load: Q of
@@ -205,7 +252,7 @@ fn inverse_dynamics_of_a_slider_input() {
         },
         LoadSpec::Force {
             link: "rod".to_owned(),
-            at: tmm::linkage::At::name("A"),
+            at: At::name("A"),
             force: [30.0, -40.0],
         },
     ];
