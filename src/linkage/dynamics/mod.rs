@@ -32,6 +32,15 @@
 //! [`Plan::add_load_fn`](crate::linkage::Plan::add_load_fn)) is evaluated at the state's
 //! actual rates; it must not depend on the accelerations, which the equation is solved for.
 //!
+//! # Cost
+//! [`LinkageSystem::terms`] makes one set of buffers and one kinematic solve for a linkage
+//! with one input (three for two inputs: q̇ = e₁, e₂ and (1, 1) — the three second-order
+//! transfer functions need three quadratic forms), then sums over the links and loads. The
+//! bench `linkage_dynamics` (bench/) measured it at 1.5–1.7× one kinematic position of the
+//! same linkage for the four-bar, the Watt six-bar and the compressor, and 3.6× for the
+//! five-bar robot. A [`LagrangeSystem`](crate::dynamics::LagrangeSystem) evaluation of the
+//! accelerations asks for A, ∂A/∂q and Q separately: three such builds per right-hand side.
+//!
 //! # Steady state, speed fluctuation
 //! [`LinkageSystem::run_up`] starts the machine from rest and integrates it turn by turn;
 //! the steady state is reached when the mean speed of a turn, ω_m = 2π/T_turn, differs from
