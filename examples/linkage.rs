@@ -85,24 +85,11 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         }
     }
     let table = Table::of(&positions);
-    println!("\n{}", header_and_rows(&table));
+    println!("\n{}", table.to_text(4));
     let dir = Path::new("target/tmm-charts/linkage");
     fs::create_dir_all(dir)?;
     let file = dir.join(format!("{}.csv", linkage.name.replace([' ', '/'], "_")));
     table.write_csv(fs::File::create(&file)?)?;
     println!("course table written to {}", file.display());
     Ok(())
-}
-
-/// The table transposed: one line per column, the 12 positions across.
-fn header_and_rows(t: &Table) -> String {
-    let mut out = String::new();
-    for c in &t.columns {
-        out.push_str(&format!("{:<28}", c.name));
-        for v in &c.values {
-            out.push_str(&format!(" {v:>11.4}"));
-        }
-        out.push('\n');
-    }
-    out
 }

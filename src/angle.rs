@@ -19,8 +19,17 @@ use std::f64::consts::{PI, TAU};
 /// assert_eq!(tmm::angle::normalize(2.0 * PI), 0.0);
 /// ```
 #[must_use]
+#[inline]
 pub fn normalize(angle: f64) -> f64 {
-    let r = angle.rem_euclid(TAU);
+    // The same as rem_euclid, without its fmod for the angles a hot path meets: within one
+    // turn either side of 0 (the remainder of such an angle is the angle itself).
+    let r = if (0.0..TAU).contains(&angle) {
+        angle
+    } else if angle > -TAU && angle < 0.0 {
+        angle + TAU
+    } else {
+        angle.rem_euclid(TAU)
+    };
     // rem_euclid of a tiny negative angle rounds up to exactly 2π; that is the angle 0.
     if r >= TAU {
         0.0
@@ -44,6 +53,7 @@ pub fn normalize(angle: f64) -> f64 {
 /// ```
 #[doc(alias = "UGL3")]
 #[must_use]
+#[inline]
 pub fn direction(v: Vector2<f64>) -> f64 {
     if v.x == 0.0 && v.y == 0.0 {
         return 0.0;
@@ -143,6 +153,7 @@ impl Polar {
 
 /// The unit vector of a direction angle, (cos θ, sin θ).
 #[must_use]
+#[inline]
 pub fn unit(angle: f64) -> Vector2<f64> {
     let (s, c) = angle.sin_cos();
     Vector2::new(c, s)
@@ -151,12 +162,14 @@ pub fn unit(angle: f64) -> Vector2<f64> {
 /// The z component of the cross product a × b: the moment of the force `b` applied at the
 /// arm `a`, counter-clockwise positive.
 #[must_use]
+#[inline]
 pub fn cross(a: Vector2<f64>, b: Vector2<f64>) -> f64 {
     a.x * b.y - a.y * b.x
 }
 
 /// The vector turned by +90° (counter-clockwise): (−y, x).
 #[must_use]
+#[inline]
 pub fn perp(v: Vector2<f64>) -> Vector2<f64> {
     Vector2::new(-v.y, v.x)
 }

@@ -9,11 +9,11 @@
 //! ## Module map
 //! - [`angle`]: direction angles (the seeds' UGL helpers), unit vectors, the 2-D cross product.
 //! - [`load`]: a force at a point plus a moment; d'Alembert's inertia loads.
-//! - [`kinematics`]: closed vector contours; the crank and the RRR, RRP, RPR dyad blocks;
+//! - [`kinematics`]: closed vector contours; the crank and the RRR, RRP, RPR, PRP, RPP dyad blocks;
 //!   transfer functions, cycles, extreme positions; numerical differentiation and integration.
 //! - [`dynamics`]: 2-DOF machines by Lagrange's equations; finite increments, RK4 and
 //!   Dormand–Prince; the five-bar robot, the R–P arm, the landing-gear and coaxial-propeller drives.
-//! - [`kinetostatics`]: joint reactions of the RRR, RRP and RPR dyads; the input link driven
+//! - [`kinetostatics`]: joint reactions of the RRR, RRP, RPR, PRP and RPP dyads; the input link driven
 //!   through a coupling (balancing moment) or a gear pair (balancing force).
 //! - [`kinetostatics::passive`]: the group with a parallel coupler (a passive constraint), statically
 //!   indeterminate once, solved by the force method; N, Q, M diagrams of its links.

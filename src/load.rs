@@ -62,6 +62,7 @@ impl Load {
 
     /// The moment of this load about a point: the couple plus (point − pole) × force.
     #[must_use]
+    #[inline]
     pub fn moment_about(&self, pole: Point2<f64>) -> f64 {
         self.moment + cross(self.point - pole, self.force)
     }

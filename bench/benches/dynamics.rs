@@ -1,12 +1,112 @@
 //! One step of each stepper on each machine, and RK4 on the five-bar across step sizes.
+//!
+//! The yardstick: the Lagrange right-hand side of a small linear system (constant inertia,
+//! damping and stiffness, a constant drive) written by hand as a bare Cramer solve of
+//! A q̈ = Q − K q − B q̇, checked against `accelerations` before timing, over the same batch of
+//! seeded states; the bench prints the ratio tmm/yardstick (a `yardstick | …` line).
 
 use std::hint::black_box;
 use std::time::Duration;
 
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion};
-use nalgebra::Vector2;
+use nalgebra::{Matrix2, Vector2};
 use tmm::dynamics::machines::{CoaxialPropellers, FiveBar, LandingGear, RpArm};
-use tmm::dynamics::{Dopri5, FiniteIncrement, LagrangeSystem, Rk4, State, Stepper};
+use tmm::dynamics::{accelerations, Dopri5, FiniteIncrement, LagrangeSystem, Rk4, State, Stepper};
+
+#[path = "common/yardstick.rs"]
+mod yardstick;
+
+/// A small linear machine: A q̈ + B q̇ + K q = f, all constant.
+struct Linear {
+    a: Matrix2<f64>,
+    b: Matrix2<f64>,
+    k: Matrix2<f64>,
+    f: Vector2<f64>,
+}
+
+impl LagrangeSystem for Linear {
+    fn inertia(&self, _: &Vector2<f64>) -> tmm::Result<Matrix2<f64>> {
+        Ok(self.a)
+    }
+    fn inertia_derivatives(&self, _: &Vector2<f64>) -> tmm::Result<[Matrix2<f64>; 2]> {
+        Ok([Matrix2::zeros(); 2])
+    }
+    fn forces(&self, _: f64, _: &Vector2<f64>, _: &Vector2<f64>) -> tmm::Result<Vector2<f64>> {
+        Ok(self.f)
+    }
+    fn potential_gradient(&self, q: &Vector2<f64>) -> tmm::Result<Vector2<f64>> {
+        Ok(self.k * q)
+    }
+    fn damping(&self, _: &Vector2<f64>) -> tmm::Result<Matrix2<f64>> {
+        Ok(self.b)
+    }
+}
+
+/// The same right-hand side by hand: Cramer's rule on A q̈ = f − K q − B q̇.
+#[inline]
+fn linear_by_hand(s: &Linear, q: &Vector2<f64>, qd: &Vector2<f64>) -> Vector2<f64> {
+    let r = s.f - s.k * q - s.b * qd;
+    let a = &s.a;
+    let det = a[(0, 0)] * a[(1, 1)] - a[(0, 1)] * a[(1, 0)];
+    Vector2::new(
+        (r[0] * a[(1, 1)] - r[1] * a[(0, 1)]) / det,
+        (r[1] * a[(0, 0)] - r[0] * a[(1, 0)]) / det,
+    )
+}
+
+fn lagrange_yardstick(c: &mut Criterion) {
+    let sys = Linear {
+        a: Matrix2::new(2.0, 0.3, 0.3, 1.5),
+        b: Matrix2::new(0.4, 0.1, 0.1, 0.2),
+        k: Matrix2::new(50.0, -10.0, -10.0, 30.0),
+        f: Vector2::new(1.0, -2.0),
+    };
+    let mut rng = Rng(11);
+    let states: Vec<(Vector2<f64>, Vector2<f64>)> = (0..1024)
+        .map(|_| {
+            (
+                Vector2::new(rng.next() - 0.5, rng.next() - 0.5),
+                Vector2::new(rng.next() - 0.5, rng.next() - 0.5),
+            )
+        })
+        .collect();
+    for (q, qd) in &states {
+        let a = accelerations(&sys, 0.0, q, qd).expect("regular");
+        let b = linear_by_hand(&sys, q, qd);
+        assert!(
+            (a - b).norm() <= 1e-12 * (1.0 + b.norm()),
+            "Lagrange yardstick"
+        );
+    }
+    let tmm = || {
+        states
+            .iter()
+            .map(|(q, qd)| accelerations(black_box(&sys), 0.0, q, qd).map_or(0.0, |a| a[0] + a[1]))
+            .sum::<f64>()
+    };
+    let by_hand = || {
+        states
+            .iter()
+            .map(|(q, qd)| {
+                let a = linear_by_hand(black_box(&sys), q, qd);
+                a[0] + a[1]
+            })
+            .sum::<f64>()
+    };
+    yardstick::print_ratio(
+        "Lagrange right-hand side (linear, 2 DOF)",
+        1024,
+        tmm,
+        by_hand,
+    );
+    let mut g = c.benchmark_group("lagrange_rhs_yardstick");
+    g.measurement_time(Duration::from_secs(2))
+        .warm_up_time(Duration::from_millis(500))
+        .throughput(criterion::Throughput::Elements(1024));
+    g.bench_function("tmm", |b| b.iter(tmm));
+    g.bench_function("yardstick", |b| b.iter(by_hand));
+    g.finish();
+}
 
 /// A deterministic generator (SplitMix64) for the start states.
 struct Rng(u64);
@@ -102,5 +202,5 @@ fn run_length(c: &mut Criterion) {
     g.finish();
 }
 
-criterion_group!(benches, steps, run_length);
+criterion_group!(benches, lagrange_yardstick, steps, run_length);
 criterion_main!(benches);

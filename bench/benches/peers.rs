@@ -16,6 +16,9 @@ use ode_solvers::dop_shared::OutputType;
 use tmm::dynamics::machines::{CoaxialPropellers, FiveBar};
 use tmm::dynamics::{accelerations, run, Dopri5, LagrangeSystem, Rk4, RunOptions, State};
 
+#[path = "common/yardstick.rs"]
+mod yardstick;
+
 type Y = ode_solvers::Vector4<f64>;
 
 /// A tmm machine as an ode_solvers system.
@@ -109,6 +112,18 @@ fn side_by_side<S: LagrangeSystem>(
         difference(&a, &b)
     );
 
+    yardstick::print_ratio(
+        &format!("{machine}, RK4 (ode_solvers as the yardstick)"),
+        1,
+        || tmm_rk4(black_box(sys), black_box(s0), t_end, h),
+        || peer_rk4(black_box(sys), black_box(s0), t_end, h),
+    );
+    yardstick::print_ratio(
+        &format!("{machine}, Dormand-Prince (ode_solvers as the yardstick)"),
+        1,
+        || tmm_dopri(black_box(sys), black_box(s0), t_end, tol),
+        || peer_dopri(black_box(sys), black_box(s0), t_end, tol),
+    );
     let mut g = c.benchmark_group(format!("peers/{machine}"));
     g.measurement_time(Duration::from_secs(1))
         .warm_up_time(Duration::from_millis(300))

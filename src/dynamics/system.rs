@@ -43,8 +43,11 @@ impl State {
 
     /// `true` when t, q and q̇ are all finite.
     #[must_use]
+    #[inline]
     pub fn is_finite(&self) -> bool {
-        self.t.is_finite() && self.q.iter().chain(self.qd.iter()).all(|v| v.is_finite())
+        [self.t, self.q[0], self.q[1], self.qd[0], self.qd[1]]
+            .iter()
+            .fold(true, |ok, v| ok & v.is_finite())
     }
 }
 
@@ -210,8 +213,35 @@ pub fn christoffel_terms(d_a: &[Matrix2<f64>; 2], qd: &Vector2<f64>) -> Result<V
     Ok(c)
 }
 
+/// The Christoffel terms of [`christoffel_terms`] for a q̇ known to be finite, with one check
+/// of all the derivatives and of the result (`None` where [`christoffel_terms`] fails, for
+/// which [`accelerations`] reports the same error: a non-finite state). The same sums in the
+/// same order, so the same bits.
+#[inline(always)]
+fn christoffel_fast(d_a: &[Matrix2<f64>; 2], qd: &Vector2<f64>) -> Option<Vector2<f64>> {
+    let mut c = Vector2::zeros();
+    for i in 0..2 {
+        let mut s = 0.0;
+        for j in 0..2 {
+            for k in 0..2 {
+                let g = 0.5 * (d_a[k][(i, j)] + d_a[j][(i, k)] - d_a[i][(j, k)]);
+                s += g * qd[j] * qd[k];
+            }
+        }
+        c[i] = s;
+    }
+    let (d0, d1) = (&d_a[0], &d_a[1]);
+    let ok = [
+        d0[0], d0[1], d0[2], d0[3], d1[0], d1[1], d1[2], d1[3], c[0], c[1],
+    ]
+    .iter()
+    .fold(true, |ok, v| ok & v.is_finite());
+    ok.then_some(c)
+}
+
 /// Checks that A is symmetric positive-definite (A₁₁ > 0 and det A > 0) and returns its
 /// symmetric part and determinant; the error says where (time and coordinates).
+#[inline]
 pub(crate) fn checked_inertia(
     a: &Matrix2<f64>,
     t: f64,
@@ -223,12 +253,18 @@ pub(crate) fn checked_inertia(
     // Relative test: a determinant that is rounding noise of the products counts as zero.
     let scale = (a[(0, 0)] * a[(1, 1)]).abs().max(a12 * a12);
     if !(a[(0, 0)] > 0.0 && a[(1, 1)] > 0.0 && det > 1e-14 * scale && det.is_finite()) {
-        return Err(Error::NotPositiveDefinite {
-            at: format!("t = {t} s, q = ({}, {})", q[0], q[1]),
-            det,
-        });
+        return Err(not_positive_definite(t, q, det));
     }
     Ok((a, det))
+}
+
+#[cold]
+#[inline(never)]
+fn not_positive_definite(t: f64, q: &Vector2<f64>, det: f64) -> Error {
+    Error::NotPositiveDefinite {
+        at: format!("t = {t} s, q = ({}, {})", q[0], q[1]),
+        det,
+    }
 }
 
 /// The accelerations q̈ from A(q) q̈ = Q − c(q, q̇) − ∇Π − B q̇ (see the module docs).
@@ -255,38 +291,46 @@ pub(crate) fn checked_inertia(
 /// let a = accelerations(&Two, 0.0, &Vector2::zeros(), &Vector2::zeros()).unwrap();
 /// assert!((a - Vector2::new(5.0, 2.0)).norm() < 1e-12);
 /// ```
+#[inline]
 pub fn accelerations<S: LagrangeSystem + ?Sized>(
     sys: &S,
     t: f64,
     q: &Vector2<f64>,
     qd: &Vector2<f64>,
 ) -> Result<Vector2<f64>> {
-    if !State::new(t, *q, *qd).is_finite() {
-        return Err(Error::NonFiniteState { time: t });
+    let non_finite = || Error::NonFiniteState { time: t };
+    let finite = |v: &[f64]| v.iter().fold(true, |ok, x| ok & x.is_finite());
+    if !finite(&[t, q[0], q[1], qd[0], qd[1]]) {
+        return Err(non_finite());
     }
     let (a, det) = checked_inertia(&sys.inertia(q)?, t, q)?;
     let d_a = sys.inertia_derivatives(q)?;
-    // Every part is checked, so that a NaN a system lets through is named, not hidden in q̈.
-    let non_finite = |e: Error| match e {
-        Error::NonFinite { .. } | Error::Overflow { .. } => Error::NonFiniteState { time: t },
-        e => e,
-    };
+    // Every part is checked, so that a NaN a system lets through is named (as a non-finite
+    // state at t), not hidden in q̈; each check comes before the next part is evaluated, so
+    // that the first failure is the one reported.
     let forces = sys.forces(t, q, qd)?;
-    computed_all("generalized forces Q", forces.iter()).map_err(non_finite)?;
+    if !finite(forces.as_slice()) {
+        return Err(non_finite());
+    }
     let gradient = sys.potential_gradient(q)?;
-    computed_all("potential gradient", gradient.iter()).map_err(non_finite)?;
+    if !finite(gradient.as_slice()) {
+        return Err(non_finite());
+    }
     let damping = sys.damping(q)?;
-    computed_all("damping matrix B", damping.iter()).map_err(non_finite)?;
-    let rhs = forces - christoffel_terms(&d_a, qd).map_err(non_finite)? - gradient - damping * qd;
+    if !finite(damping.as_slice()) {
+        return Err(non_finite());
+    }
+    let c = christoffel_fast(&d_a, qd).ok_or_else(non_finite)?;
+    let rhs = forces - c - gradient - damping * qd;
     // Cramer's rule on the 2×2 system: the determinant is I11·I44 − I14² of the seed.
     let acc = Vector2::new(
         (rhs[0] * a[(1, 1)] - rhs[1] * a[(0, 1)]) / det,
         (rhs[1] * a[(0, 0)] - rhs[0] * a[(0, 1)]) / det,
     );
-    if acc.iter().all(|v| v.is_finite()) {
+    if finite(acc.as_slice()) {
         Ok(acc)
     } else {
-        Err(Error::NonFiniteState { time: t })
+        Err(non_finite())
     }
 }
 

@@ -1,10 +1,10 @@
 //! The RRR dyad (group of the 2nd class, 1st kind; the seeds' SR1): links 2 = A B and
 //! 3 = C B joined at B, attached to known joints A and C.
 
-use super::contour::{in_group, solve_contour, Branch, LoopVector};
+use super::contour::{in_group, solve_contour, Branch, LoopVector, SINGULAR_DETERMINANT};
 use super::link::LinkMotion;
 use super::motion::PointMotion;
-use crate::angle::{normalize, unit};
+use crate::angle::{cross, direction, normalize, perp, unit};
 use crate::error::{computed_all, positive, Result};
 use std::f64::consts::PI;
 
@@ -54,7 +54,101 @@ pub struct RrrState {
 /// - [`Error::Singular`](crate::Error::Singular) with `measure = "sin(phi3 - phi2)"` at a dead
 ///   point (links 2 and 3 collinear).
 #[doc(alias = "SR1")]
+#[inline]
 pub fn rrr_dyad(
+    a: PointMotion,
+    c: PointMotion,
+    l_ab: f64,
+    l_cb: f64,
+    branch: Branch,
+) -> Result<RrrState> {
+    match rrr_fast(a, c, l_ab, l_cb, branch) {
+        Some(s) => Ok(s),
+        None => rrr_checked(a, c, l_ab, l_cb, branch),
+    }
+}
+
+/// The RRR dyad in Cartesian form, with every check folded into one test at the end.
+///
+/// B = A + x·e + σ·h·e⊥ on the unit vector e from A to C (the circle–circle intersection of
+/// [`solve_contour`]); the velocity and acceleration systems are solved on the link vectors
+/// r2 = B − A and r3 = B − C, with D = r2 × r3 = l_AB·l_CB·sin(φ3 − φ2):
+/// ω2 = (v_C − v_A)·r3/D, ω3 = (v_C − v_A)·r2/D, and likewise ε2, ε3 with the centripetal
+/// terms. Each angle is one `atan2`, and nothing is rebuilt from an angle.
+///
+/// `None` wherever [`rrr_checked`] fails, and near its thresholds (the tangent case and the
+/// dead point, each with a margin of 2), so that it decides there and names the cause.
+#[inline]
+fn rrr_fast(
+    a: PointMotion,
+    c: PointMotion,
+    l_ab: f64,
+    l_cb: f64,
+    branch: Branch,
+) -> Option<RrrState> {
+    let d = c.p - a.p;
+    let dv = c.v - a.v;
+    let da = c.a - a.a;
+    let l_sq = d.norm_squared();
+    let l = l_sq.sqrt();
+    // The same closed form as the contour's: x = (l² + a² − b²)/(2l), h² = a² − x².
+    let x = 0.5 * (l + (l_ab - l_cb) * (l_ab + l_cb) / l);
+    let h2 = (l_ab - x) * (l_ab + x);
+    let tol = 16.0 * f64::EPSILON * (l_ab * l_ab + l_cb * l_cb + l_sq);
+    let h = h2.sqrt();
+    let e = d / l;
+    let r2 = x * e + (branch.sign() * h) * perp(e);
+    let r3 = r2 - d;
+    let big_d = cross(r2, r3);
+    let det = big_d / (l_ab * l_cb);
+    let i_d = 1.0 / big_d;
+    let omega2 = dv.dot(&r3) * i_d;
+    let omega3 = dv.dot(&r2) * i_d;
+    let rhs = da + omega2 * omega2 * r2 - omega3 * omega3 * r3;
+    let epsilon2 = rhs.dot(&r3) * i_d;
+    let epsilon3 = rhs.dot(&r2) * i_d;
+    let b = PointMotion {
+        p: a.p + r2,
+        v: a.v + omega2 * perp(r2),
+        a: a.a + epsilon2 * perp(r2) - omega2 * omega2 * r2,
+    };
+    let ok = all_finite([
+        a.p.x, a.p.y, a.v.x, a.v.y, a.a.x, a.a.y, c.p.x, c.p.y, c.v.x, c.v.y, c.a.x, c.a.y, l_ab,
+        l_cb, l_sq, dv.x, dv.y, da.x, da.y, h, omega2, omega3, epsilon2, epsilon3, b.p.x, b.p.y,
+        b.v.x, b.v.y, b.a.x, b.a.y, det,
+    ]) & (l_ab > 0.0)
+        & (l_cb > 0.0)
+        & (l_sq >= f64::MIN_POSITIVE)
+        & (h2 > 2.0 * tol)
+        & (det.abs() > 2.0 * SINGULAR_DETERMINANT);
+    ok.then(|| RrrState {
+        b,
+        link2: LinkMotion {
+            origin: a,
+            angle: direction(r2),
+            omega: omega2,
+            epsilon: epsilon2,
+        },
+        link3: LinkMotion {
+            origin: c,
+            angle: direction(r3),
+            omega: omega3,
+            epsilon: epsilon3,
+        },
+        det,
+    })
+}
+
+/// `true` when every value is finite: one test over all of them.
+#[inline]
+pub(crate) fn all_finite<const N: usize>(values: [f64; N]) -> bool {
+    values.iter().fold(true, |ok, v| ok & v.is_finite())
+}
+
+/// The RRR dyad through the general contour solver, checked step by step.
+#[cold]
+#[inline(never)]
+fn rrr_checked(
     a: PointMotion,
     c: PointMotion,
     l_ab: f64,

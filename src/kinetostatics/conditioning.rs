@@ -48,6 +48,23 @@ impl Conditioning {
         })
     }
 
+    /// For a solver's fast path, which multiplies by `inverse` = 1/`measure` instead of
+    /// dividing: the conditioning (the same as [`of`](Self::of) up to the rounding of the
+    /// inverse) and whether the configuration is clearly regular, that is, at least twice as
+    /// far from singular as [`of`](Self::of) requires. Near the threshold the fast path gives
+    /// way to the checked one, so that a rounding difference between the two cannot move a
+    /// configuration across it: [`Error::Singular`] is reported exactly where it was.
+    #[inline]
+    pub(crate) fn fast(measure: f64, inverse: f64, scale: f64) -> (Self, bool) {
+        (
+            Self {
+                measure,
+                condition: (inverse.abs() * scale).max(1.0),
+            },
+            measure.abs() > 2.0 * SINGULAR_BELOW * scale,
+        )
+    }
+
     /// The conditioning of a solver that never divides by a configuration-dependent quantity.
     pub(crate) fn perfect() -> Self {
         Self {
@@ -55,6 +72,20 @@ impl Conditioning {
             condition: 1.0,
         }
     }
+}
+
+/// `true` when every value is finite, by one test of their sum: a sum with an infinity or a
+/// NaN among its terms is not finite. A sum of finite values can still overflow; then this
+/// says `false` too, and the solver's checked path, which names the value at fault, runs
+/// instead: the test may send a good case there, never let a bad one through. The sum runs
+/// in four partial sums, so that it is a few vector additions, not a chain.
+#[inline(always)]
+pub(crate) fn all_finite_fast<const N: usize>(values: [f64; N]) -> bool {
+    let mut acc = [0.0; 4];
+    for (i, v) in values.iter().enumerate() {
+        acc[i % 4] += v;
+    }
+    ((acc[0] + acc[1]) + (acc[2] + acc[3])).is_finite()
 }
 
 /// Turns an overflow in a result into an error, so that no solver returns an infinity:

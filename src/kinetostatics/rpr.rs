@@ -14,7 +14,7 @@
 //! The seed's 1.35 misprints γ2 for γ3 in the moment of F3 (docs/errata.md#e4); the derivation above
 //! does not use it.
 
-use super::conditioning::{ensure_finite, Conditioning};
+use super::conditioning::{all_finite_fast, ensure_finite, Conditioning};
 use crate::angle::{perp, unit};
 use crate::error::{all_finite, finite2, length, positive, Result};
 use crate::Load;
@@ -103,7 +103,89 @@ impl RprDyad {
     /// - [`Error::NonPositive`](crate::Error::NonPositive) for a zero axis direction (`|axis|`);
     /// - [`Error::Singular`](crate::Error::Singular) with `l_EA` when A lies on the normal to
     ///   the axis through E, to working precision (for an axis through E: A at E).
+    #[inline]
     pub fn solve(&self) -> Result<RprReactions> {
+        match self.fast() {
+            Some(r) => Ok(r),
+            None => self.solve_checked(),
+        }
+    }
+
+    /// The closed form on the axis vector as it is (not a unit vector): R12 = p·a + q·a⊥
+    /// with p = −F2·a/|a|² and q from the group's moment about E, with every check folded
+    /// into one test at the end (as [`RrrDyad`](super::RrrDyad)'s): `None` wherever
+    /// [`solve_checked`](Self::solve_checked) fails, and near its thresholds, so that it
+    /// decides there and names the cause.
+    #[inline(always)]
+    fn fast(&self) -> Option<RprReactions> {
+        let (u, n) = (self.axis, perp(self.axis));
+        let qa = u.norm_squared();
+        let i_qa = 1.0 / qa;
+        let ea = self.a - self.e;
+        let (along, across) = (ea.dot(&u), ea.dot(&n));
+        let i_along = 1.0 / along;
+        let f2 = self.load2.force;
+        let m_e = self.load2.moment_about(self.e) + self.load3.moment_about(self.e);
+        let p = -f2.dot(&u) * i_qa;
+        let q = (across * p - m_e) * i_along;
+        let k = -f2.dot(&n) * i_qa - q;
+        let r12 = u * p + n * q;
+        let r32 = n * k;
+        let r43 = r32 - self.load3.force;
+        let couple = 0.0 - self.load2.moment_about(self.a);
+
+        let rho_sq = (self.load2.point - self.e)
+            .norm_squared()
+            .max((self.load3.point - self.e).norm_squared())
+            .max(ea.norm_squared());
+        // 1/|axis| and ρ as one pair of square roots (one vector instruction), with no
+        // further division.
+        let roots = Vector2::new(i_qa, rho_sq).map(f64::sqrt);
+        let (i_la, rho) = (roots.x, roots.y);
+        let la = qa * i_la;
+        let l_ea = -along * i_la;
+        let (conditioning, regular) = Conditioning::fast(l_ea, la * i_along, rho);
+        let (r12_n, r12_t, r32_n) = (p * la, q * la, k * la);
+        // The inputs need no test of their own: a non-finite axis makes |axis|² non-finite,
+        // a non-finite A or E (with a finite axis) the projection `along`, and a non-finite
+        // load its moment about E or A (a product with an infinite factor is infinite or NaN,
+        // and no sum makes it finite again), so r12_t or the couple, or R43 through F3.
+        let ok = all_finite_fast([
+            qa,
+            along,
+            i_along,
+            rho,
+            l_ea,
+            r12.x,
+            r12.y,
+            r32.x,
+            r32.y,
+            r43.x,
+            r43.y,
+            r12_n,
+            r12_t,
+            r32_n,
+            couple,
+            conditioning.condition,
+        ]) & (qa >= f64::MIN_POSITIVE)
+            & regular;
+        ok.then(|| RprReactions {
+            r12,
+            r32,
+            r43,
+            r12_n,
+            r12_t,
+            r32_n,
+            couple,
+            arm: Some(couple / r32_n).filter(|h| h.is_finite()),
+            conditioning,
+        })
+    }
+
+    /// The closed form checked step by step, naming what fails.
+    #[cold]
+    #[inline(never)]
+    fn solve_checked(&self) -> Result<RprReactions> {
         self.validate()?;
         let u = self.axis / length("|axis|", self.axis)?;
         let n = perp(u);

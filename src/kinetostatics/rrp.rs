@@ -11,7 +11,7 @@
 //! line of action lies at h43 = −M3(B)/R43 along the guide from B. The seed's h43 = 0 holds only
 //! when the slider's load passes through B (N3). R23 = −(R43 + F3) from the slider.
 
-use super::conditioning::{ensure_finite, Conditioning};
+use super::conditioning::{all_finite_fast, ensure_finite, Conditioning};
 use crate::angle::{cross, perp, unit};
 use crate::error::{all_finite, finite2, length, positive, Result};
 use crate::Load;
@@ -98,7 +98,83 @@ impl RrpDyad {
     ///   direction is zero (`|guide|`);
     /// - [`Error::Singular`](crate::Error::Singular) with `cos(phi2 - phi4)` when link 2 is
     ///   perpendicular to the guide to working precision.
+    #[inline]
     pub fn solve(&self) -> Result<RrpReactions> {
+        match self.fast() {
+            Some(r) => Ok(r),
+            None => self.solve_checked(),
+        }
+    }
+
+    /// The closed form on AB and the guide as they are (not unit vectors), with every check
+    /// folded into one test at the end (as [`RrrDyad`](super::RrrDyad)'s): `None` wherever
+    /// [`solve_checked`](Self::solve_checked) fails, and near its thresholds, so that it
+    /// decides there and names the cause.
+    #[inline(always)]
+    fn fast(&self) -> Option<RrpReactions> {
+        let ab = self.b - self.a;
+        let nu = perp(self.guide);
+        let q = Vector2::new(ab.norm_squared(), self.guide.norm_squared());
+        let (q2, qg) = (q.x, q.y);
+        // 1/|AB|² and 1/|guide|² as one pair of divisions, then their square roots as one
+        // pair (one vector instruction each).
+        let i_q = Vector2::repeat(1.0).component_div(&q);
+        let t2 = self.load2.moment_about(self.b) * i_q.x;
+        let w = perp(ab) * t2 + self.load2.force + self.load3.force;
+        let d = cross(ab, nu);
+        let i_d = 1.0 / d;
+        let n2 = -cross(w, nu) * i_d;
+        let k = -cross(ab, w) * i_d;
+        let r12 = ab * n2 + perp(ab) * t2;
+        let r43 = nu * k;
+        let r23 = -(r43 + self.load3.force);
+        let guide_moment = 0.0 - self.load3.moment_about(self.b);
+
+        let i_l = i_q.map(f64::sqrt);
+        let (l2, lg) = (q2 * i_l.x, qg * i_l.y);
+        let det = d * (i_l.x * i_l.y);
+        let (conditioning, regular) = Conditioning::fast(det, i_d * (l2 * lg), 1.0);
+        let (r12_n, r12_t, r43_n) = (n2 * l2, t2 * l2, k * lg);
+        // The inputs need no test of their own: a non-finite coordinate makes |AB|² or
+        // |guide|² non-finite, and a non-finite load makes its moment about B non-finite (a
+        // product with an infinite factor is infinite or NaN, and no sum makes it finite
+        // again), so r12_t or the guide's moment, or R23 through F3.
+        let ok = all_finite_fast([
+            q2,
+            qg,
+            d,
+            i_d,
+            r12.x,
+            r12.y,
+            r43.x,
+            r43.y,
+            r23.x,
+            r23.y,
+            r12_n,
+            r12_t,
+            r43_n,
+            guide_moment,
+            det,
+        ]) & (q2 >= f64::MIN_POSITIVE)
+            & (qg >= f64::MIN_POSITIVE)
+            & regular;
+        ok.then(|| RrpReactions {
+            r12,
+            r43,
+            r23,
+            r12_n,
+            r12_t,
+            r43_n,
+            guide_moment,
+            offset: Some(guide_moment / r43_n).filter(|h| h.is_finite()),
+            conditioning,
+        })
+    }
+
+    /// The closed form checked step by step, naming what fails.
+    #[cold]
+    #[inline(never)]
+    fn solve_checked(&self) -> Result<RrpReactions> {
         self.validate()?;
         let ab = self.b - self.a;
         let l2 = length("l_AB", ab)?;

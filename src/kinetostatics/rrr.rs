@@ -9,7 +9,7 @@
 //! determinant u2 × u3 = sin(φ3 − φ2), which vanishes when A, B, C are collinear (a dead
 //! point). Finally R23 = −(R43 + F3) from link 3.
 
-use super::conditioning::{ensure_finite, Conditioning};
+use super::conditioning::{all_finite_fast, ensure_finite, Conditioning};
 use crate::angle::{cross, perp, unit};
 use crate::error::{all_finite, finite2, length, positive, Result};
 use crate::Load;
@@ -90,7 +90,76 @@ impl RrrDyad {
     /// - [`Error::NonPositive`](crate::Error::NonPositive) when A = B or C = B (`l_AB`, `l_CB`);
     /// - [`Error::Singular`](crate::Error::Singular) with `sin(phi3 - phi2)` when A, B and C are
     ///   collinear to working precision (a dead point: the normal components are indeterminate).
+    #[inline]
     pub fn solve(&self) -> Result<RrrReactions> {
+        match self.fast() {
+            Some(r) => Ok(r),
+            None => self.solve_checked(),
+        }
+    }
+
+    /// The closed form on the link vectors as they are (not unit vectors), with every check
+    /// folded into one test at the end: R12 = n·AB + t·AB⊥ with t = M2(B)/|AB|², likewise
+    /// R43 along CB, and Cramer's rule on AB × CB, so that the reactions wait for no square
+    /// root; the lengths only scale the components and the conditioning. `None` wherever
+    /// [`solve_checked`](Self::solve_checked) fails, and near its thresholds, so that it
+    /// decides there and names the cause.
+    #[inline(always)]
+    fn fast(&self) -> Option<RrrReactions> {
+        let ab = self.b - self.a;
+        let cb = self.b - self.c;
+        let (q2, q3) = (ab.norm_squared(), cb.norm_squared());
+        // Pairs of divisions and of square roots, written so that each pair is one vector
+        // instruction: the divider is what limits a batch of dyads.
+        let q = Vector2::new(q2, q3);
+        let i_q = Vector2::repeat(1.0).component_div(&q);
+        let t = Vector2::new(
+            self.load2.moment_about(self.b),
+            self.load3.moment_about(self.b),
+        )
+        .component_mul(&i_q);
+        let (t2, t3) = (t.x, t.y);
+        let w = perp(ab) * t2 + perp(cb) * t3 + self.load2.force + self.load3.force;
+        let d = cross(ab, cb);
+        let i_d = 1.0 / d;
+        let n2 = -cross(w, cb) * i_d;
+        let n3 = -cross(ab, w) * i_d;
+        let r12 = ab * n2 + perp(ab) * t2;
+        let r43 = cb * n3 + perp(cb) * t3;
+        let r23 = -(r43 + self.load3.force);
+
+        let i_l = i_q.map(f64::sqrt);
+        let (l2, l3) = (q2 * i_l.x, q3 * i_l.y);
+        let l23 = l2 * l3;
+        let det = d * (i_l.x * i_l.y);
+        let (conditioning, regular) = Conditioning::fast(det, i_d * l23, 1.0);
+        let (r12_n, r12_t, r43_n, r43_t) = (n2 * l2, t2 * l2, n3 * l3, t3 * l3);
+        // The inputs need no test of their own: a non-finite coordinate makes |AB|² or |CB|²
+        // non-finite, and a non-finite load makes its moment about B non-finite (a product
+        // with an infinite factor is infinite or NaN, and no sum makes it finite again), so
+        // r12_t or r43_t, or R23 through F3.
+        let ok = all_finite_fast([
+            q2, q3, d, i_d, r12.x, r12.y, r43.x, r43.y, r23.x, r23.y, r12_n, r12_t, r43_n, r43_t,
+            det,
+        ]) & (q2 >= f64::MIN_POSITIVE)
+            & (q3 >= f64::MIN_POSITIVE)
+            & regular;
+        ok.then_some(RrrReactions {
+            r12,
+            r43,
+            r23,
+            r12_n,
+            r12_t,
+            r43_n,
+            r43_t,
+            conditioning,
+        })
+    }
+
+    /// The closed form checked step by step, naming what fails.
+    #[cold]
+    #[inline(never)]
+    fn solve_checked(&self) -> Result<RrrReactions> {
         self.validate()?;
         let ab = self.b - self.a;
         let cb = self.b - self.c;

@@ -129,7 +129,33 @@ impl CoaxialPropellers {
         Vector2::new(r, 1.0 - r)
     }
 
+    #[inline]
     fn check(&self) -> Result<()> {
+        // One combined test on the hot path (every evaluation of the right-hand side); the
+        // step-by-step checks below name what fails.
+        let positive = [
+            self.m2,
+            self.carrier_arm,
+            self.i1,
+            self.i2,
+            self.i4,
+            self.ih,
+        ]
+        .iter()
+        .fold(true, |ok, v| ok & (*v > 0.0) & v.is_finite());
+        let finite = [self.motor.a, self.motor.b, self.m_on4, self.m_onh]
+            .iter()
+            .fold(true, |ok, v| ok & v.is_finite());
+        let counts = self.z.iter().fold(true, |ok, z| ok & (*z > 0)) & (self.k > 0);
+        if positive & finite & counts {
+            return Ok(());
+        }
+        self.check_each()
+    }
+
+    #[cold]
+    #[inline(never)]
+    fn check_each(&self) -> Result<()> {
         for (i, &z) in self.z.iter().enumerate() {
             positive(["z1", "z2", "z3", "z4"][i], f64::from(z))?;
         }
