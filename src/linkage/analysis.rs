@@ -235,6 +235,12 @@ impl<'p> Analysis<'p> {
         point_with(&self.links[k], self.units[k], local)
     }
 
+    /// The unit vector along link `k`'s frame angle (kept with its motion).
+    #[inline]
+    pub(crate) fn link_unit(&self, k: usize) -> Vector2<f64> {
+        self.units[k]
+    }
+
     /// Stores link `k`'s motion with its unit vector.
     #[inline]
     fn set_link(&mut self, k: usize, m: LinkMotion) {

@@ -4,9 +4,10 @@
 use nalgebra::{Matrix2, Point2, Vector2};
 
 use super::drive::{Damper, DamperPlan, Motor};
+use crate::angle::perp;
 use crate::dynamics::{christoffel_terms, LagrangeSystem};
 use crate::error::{computed_all, finite, finite2, Error, Result};
-use crate::kinematics::{LinkMotion, Motion};
+use crate::kinematics::{LinkMotion, Motion, PointMotion};
 use crate::linkage::plan::LoadPlan;
 use crate::linkage::{Analysis, Linkage, Plan};
 
@@ -97,6 +98,8 @@ struct Transfer<'p> {
     /// solve at (1, 1) are Σ_jk ∂²r/∂q_j∂q_k, so the mixed derivative is
     /// (a_(1,1) − a_11 − a_22)/2.
     links: Vec<LinkMotion>,
+    /// Every link's unit vector (the same in every solve).
+    units: Vec<Vector2<f64>>,
     /// The buffers of the solves: their positions serve the position-only look-ups.
     an: Analysis<'p>,
 }
@@ -116,7 +119,25 @@ impl<'p> Transfer<'p> {
             an.solve_kinematics_inputs(&m[..n])?;
             links.extend((0..nl).map(|l| *an.link_motion(l)));
         }
-        Ok(Self { n, nl, links, an })
+        let units = (0..nl).map(|l| an.link_unit(l)).collect();
+        Ok(Self {
+            n,
+            nl,
+            links,
+            units,
+            an,
+        })
+    }
+
+    /// The motion of the point at `local` (along, across) of link `l` in solve `s`.
+    fn point(&self, s: usize, l: usize, local: Vector2<f64>) -> PointMotion {
+        let (m, e) = (self.link(s, l), self.units[l]);
+        let r = local.x * e + local.y * perp(e);
+        PointMotion::new(
+            m.origin.p + r,
+            m.origin.v + m.omega * perp(r),
+            m.origin.a + m.epsilon * perp(r) - m.omega * m.omega * r,
+        )
     }
 
     /// Link `l` in solve `s` (0, 1: unit rate of input s; 2: both).
@@ -131,7 +152,7 @@ impl<'p> Transfer<'p> {
 
     /// ∂v_P/∂q̇_k of the point of link `l` at the local coordinates `local`.
     fn vel(&self, k: usize, l: usize, local: Vector2<f64>) -> Vector2<f64> {
-        self.link(k, l).point_at(local.x, local.y).v
+        self.point(k, l, local).v
     }
 
     /// ∂v_P/∂q̇_k of the point of link `l` at `p`.
@@ -149,12 +170,12 @@ impl<'p> Transfer<'p> {
 
     /// The motions of prismatic joint `j`'s point on its sliding link and on its guide's
     /// link in solve `k`.
-    fn slide_points(&self, k: usize, j: usize) -> [crate::kinematics::PointMotion; 2] {
+    fn slide_points(&self, k: usize, j: usize) -> [PointMotion; 2] {
         let jp = &self.an.plan().joints[j];
         let g = jp.prismatic.map_or(0, |(g, _)| g);
         [1 - g, g].map(|side| {
             let local = jp.local[side];
-            self.link(k, jp.links[side]).point_at(local.x, local.y)
+            self.point(k, jp.links[side], local)
         })
     }
 
@@ -318,11 +339,11 @@ impl LinkageSystem {
             }
             let (m, j) = (lp.mass, lp.inertia);
             // The centre of mass in every solve, once.
-            let mut pts = [crate::kinematics::PointMotion::fixed(Point2::origin()); 3];
+            let mut pts = [PointMotion::fixed(Point2::origin()); 3];
             let mut rot = [(0.0, 0.0); 3];
             for s in 0..solves {
                 let lm = tr.link(s, l);
-                pts[s] = lm.point_at(lp.centre.x, lp.centre.y);
+                pts[s] = tr.point(s, l, lp.centre);
                 rot[s] = (lm.omega, lm.epsilon);
             }
             let v = [pts[0].v, pts[1].v];
@@ -437,7 +458,7 @@ impl LinkageSystem {
                     let (slider, guide, d) = tr.slide_parts(*joint);
                     let rate = tr.rate(qd, |k| tr.slide_rate(k, *joint, d));
                     let f = resist(rate, *forward, *backward) * d;
-                    let p = tr.link(0, slider).point_at(local.x, local.y).p;
+                    let p = tr.point(0, slider, *local).p;
                     for k in 0..n {
                         loads[k] += f.dot(&(tr.vel_of(k, slider, p) - tr.vel_of(k, guide, p)));
                     }
@@ -450,7 +471,7 @@ impl LinkageSystem {
                 } => {
                     // The piston's guide is the frame: its point on the piston moves with v.
                     let (_, _, d) = tr.slide_parts(*joint);
-                    let mut on = [crate::kinematics::PointMotion::fixed(Point2::origin()); 2];
+                    let mut on = [PointMotion::fixed(Point2::origin()); 2];
                     let mut rate = 0.0;
                     let mut s = 0.0;
                     for k in 0..n {
