@@ -36,8 +36,8 @@
 //! [`LinkageSystem::terms`] makes one set of buffers and one kinematic solve for a linkage
 //! with one input (three for two inputs: q̇ = e₁, e₂ and (1, 1) — the three second-order
 //! transfer functions need three quadratic forms), then sums over the links and loads. The
-//! bench `linkage_dynamics` (bench/) measured it at 1.5–1.7× one kinematic position of the
-//! same linkage for the four-bar, the Watt six-bar and the compressor, and 3.6× for the
+//! bench `linkage_dynamics` (bench/) measured it at 1.3–1.7× one kinematic position of the
+//! same linkage for the four-bar, the Watt six-bar and the compressor, and 3.2× for the
 //! five-bar robot. A [`LagrangeSystem`](crate::dynamics::LagrangeSystem) evaluation of the
 //! accelerations asks for A, ∂A/∂q and Q separately: three such builds per right-hand side.
 //!
