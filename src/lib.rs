@@ -20,6 +20,9 @@
 //! - [`linkage`]: any linkage of the 2nd class as data, planned once and analysed per position.
 //! - `draw` (feature `draw`): pictures of a linkage as SVG — the scheme, the plan of positions,
 //!   an animation, force arrows, the diagrams over the cycle.
+//! - [`linkage`]: any linkage of the 2nd class as data (one input, or two for mobility 2),
+//!   planned once and analysed per position; [`linkage::dynamics`]: its equation of motion
+//!   from the exact transfer functions, run-up under a motor, speed fluctuation, flywheel.
 //! - [`mechanism`]: five ready mechanisms as linkages (four-bar, slider-crank, compressor, six-bar,
 //!   rocking cylinder), each a struct of parameters whose `linkage()` the engine plans.
 //!

@@ -40,6 +40,7 @@ fn files() -> Vec<(&'static str, &'static str, Linkage)> {
             "mechanism-rocking-cylinder.json",
             RockingCylinder::course_example().linkage()
         ),
+        file!("five-bar-robot.json", bundled::five_bar_robot()),
     ]
 }
 
@@ -102,9 +103,20 @@ fn every_file_balances_by_virtual_power_over_a_turn() {
     for (name, text, _) in files() {
         let plan = Plan::new(&Linkage::from_json(text).unwrap()).unwrap();
         let (mut vp, mut eq) = (0.0f64, 0.0f64);
+        let r = plan.reference_inputs();
         for k in 0..72 {
-            let phi = plan.reference_input() + TAU * (f64::from(k) + 0.5) / 72.0;
-            let a = plan.analyse(Motion::new(phi, 10.0, 3.0)).unwrap();
+            let theta = TAU * (f64::from(k) + 0.5) / 72.0;
+            let a = if r.len() == 1 {
+                plan.analyse(Motion::new(r[0] + theta, 10.0, 3.0)).unwrap()
+            } else {
+                // Two inputs (the five-bar robot): a loop of ±0.3 rad around the reference
+                // pose, both cranks moving.
+                let m = [
+                    Motion::new(r[0] + 0.3 * theta.sin(), 10.0, 3.0),
+                    Motion::new(r[1] + 0.3 * theta.cos(), -7.0, 2.0),
+                ];
+                plan.analyse_inputs(&m).unwrap()
+            };
             vp = vp.max(a.power_check().unwrap().relative_error());
             eq = eq.max(a.worst_residual());
         }

@@ -129,6 +129,7 @@ impl PowerCheck {
 pub struct Analysis<'p> {
     plan: &'p Plan,
     input: Motion,
+    second_input: Option<Motion>,
     links: Vec<LinkMotion>,
     /// Each link's unit vector e(φ), computed once per position: every point of a link is
     /// placed with it, so no trigonometry is repeated.
@@ -139,6 +140,7 @@ pub struct Analysis<'p> {
     reactions: Vec<Reaction>,
     conditioning: Vec<Conditioning>,
     balance: Balance,
+    second_balance: Option<Balance>,
     statics_done: bool,
 }
 
@@ -148,6 +150,29 @@ fn within(part: &str) -> impl Fn(Error) -> Error + '_ {
         part: part.to_owned(),
         source: Box::new(e),
     }
+}
+
+/// The motion of an input link at its input coordinate.
+fn input_motion(ip: &InputPlan, input: Motion) -> Result<LinkMotion> {
+    Ok(match *ip {
+        InputPlan::Crank { pivot, .. } => LinkMotion {
+            origin: PointMotion::fixed(pivot),
+            angle: crate::angle::normalize(input.value),
+            omega: input.rate,
+            epsilon: input.accel,
+        },
+        InputPlan::Slider { at, angle, .. } => {
+            let d = unit(angle);
+            let o = PointMotion::new(at + input.value * d, input.rate * d, input.accel * d);
+            o.validate(["slider x", "slider y", "v.x", "v.y", "a.x", "a.y"])?;
+            LinkMotion {
+                origin: o,
+                angle,
+                omega: 0.0,
+                epsilon: 0.0,
+            }
+        }
+    })
 }
 
 /// The motion of the point at `local` (along, across) of `link`, whose unit vector is `e`.
@@ -176,6 +201,7 @@ impl<'p> Analysis<'p> {
         Self {
             plan,
             input: Motion::default(),
+            second_input: None,
             links: vec![Plan::frame_motion(); n],
             units: vec![Vector2::x(); n],
             dets: vec![0.0; plan.groups.len()],
@@ -198,6 +224,7 @@ impl<'p> Analysis<'p> {
                     condition: 1.0,
                 },
             },
+            second_balance: None,
             statics_done: false,
         }
     }
@@ -206,6 +233,12 @@ impl<'p> Analysis<'p> {
     #[inline]
     fn at(&self, k: usize, local: Vector2<f64>) -> PointMotion {
         point_with(&self.links[k], self.units[k], local)
+    }
+
+    /// The unit vector along link `k`'s frame angle (kept with its motion).
+    #[inline]
+    pub(crate) fn link_unit(&self, k: usize) -> Vector2<f64> {
+        self.units[k]
     }
 
     /// Stores link `k`'s motion with its unit vector.
@@ -236,46 +269,75 @@ impl<'p> Analysis<'p> {
     ///
     /// # Errors
     /// Non-finite input; [`Error::In`] naming the group that cannot be assembled or is at a
-    /// dead point.
+    /// dead point; [`Error::Description`] for a linkage with two inputs (use
+    /// [`Analysis::solve_kinematics_inputs`]).
     pub fn solve_kinematics(&mut self, input: Motion) -> Result<()> {
+        self.solve_kinematics_inputs(&[input])
+    }
+
+    /// As [`Analysis::solve_kinematics`], with one motion per input: one for a linkage with
+    /// one input, two for a linkage with a [`second_input`](super::Linkage::second_input).
+    ///
+    /// # Errors
+    /// As [`Analysis::solve_kinematics`]; [`Error::Description`] when the number of motions is
+    /// not the number of inputs.
+    ///
+    /// # Examples
+    /// The five-bar robot: both cranks at their reference angles, crank 1 turning at 1 rad/s;
+    /// the end effector B moves.
+    /// ```
+    /// use tmm::kinematics::Motion;
+    /// use tmm::linkage::{bundled, Analysis, Plan};
+    /// let plan = Plan::new(&bundled::five_bar_robot())?;
+    /// let [q1, q2] = plan.reference_inputs()[..] else { unreachable!() };
+    /// let mut a = Analysis::new(&plan);
+    /// a.solve_kinematics_inputs(&[Motion::new(q1, 1.0, 0.0), Motion::new(q2, 0.0, 0.0)])?;
+    /// assert!(a.joint("B")?.v.norm() > 0.0);
+    /// assert!(a.solve_kinematics(Motion::new(q1, 1.0, 0.0)).is_err());
+    /// # Ok::<(), tmm::Error>(())
+    /// ```
+    pub fn solve_kinematics_inputs(&mut self, inputs: &[Motion]) -> Result<()> {
         self.statics_done = false;
-        input.validate(["input", "input rate", "input acceleration"])?;
         let plan = self.plan;
+        let (input, second) = match (inputs, &plan.second_input) {
+            ([i], None) => (*i, None),
+            ([i, j], Some((ip, _))) => (*i, Some((*j, ip))),
+            _ => {
+                return Err(Error::Description {
+                    item: "inputs".to_owned(),
+                    problem: format!(
+                        "the linkage has {} input(s), {} motion(s) given",
+                        plan.input_count(),
+                        inputs.len()
+                    ),
+                })
+            }
+        };
+        input.validate(["input", "input rate", "input acceleration"])?;
         // The input's ω² and ε times the linkage's size bound its points' accelerations: past
         // f64's range the motion overflows whatever the groups do.
-        crate::error::computed(
-            "the input's accelerations (size·(ω² + |ε|))",
-            plan.size * (input.rate * input.rate + input.accel.abs()),
-        )?;
+        let bound = |m: &Motion| {
+            crate::error::computed(
+                "the input's accelerations (size·(ω² + |ε|))",
+                plan.size * (m.rate * m.rate + m.accel.abs()),
+            )
+        };
+        bound(&input)?;
         self.input = input;
-        match plan.input {
-            InputPlan::Crank { link, pivot, .. } => {
-                self.set_link(
-                    link,
-                    LinkMotion {
-                        origin: PointMotion::fixed(pivot),
-                        angle: crate::angle::normalize(input.value),
-                        omega: input.rate,
-                        epsilon: input.accel,
-                    },
-                );
-            }
-            InputPlan::Slider {
-                link, at, angle, ..
-            } => {
-                let d = unit(angle);
-                let o = PointMotion::new(at + input.value * d, input.rate * d, input.accel * d);
-                o.validate(["slider x", "slider y", "v.x", "v.y", "a.x", "a.y"])?;
-                self.set_link(
-                    link,
-                    LinkMotion {
-                        origin: o,
-                        angle,
-                        omega: 0.0,
-                        epsilon: 0.0,
-                    },
-                );
-            }
+        let link = plan.input.link();
+        let motion = input_motion(&plan.input, input)?;
+        self.set_link(link, motion);
+        self.second_input = None;
+        if let Some((m, ip)) = second {
+            m.validate([
+                "second input",
+                "second input rate",
+                "second input acceleration",
+            ])?;
+            bound(&m)?;
+            let motion = input_motion(ip, m)?;
+            self.set_link(ip.link(), motion);
+            self.second_input = Some(m);
         }
         for (g, group) in plan.groups.iter().enumerate() {
             let [l2, l3] = group.links;
@@ -326,7 +388,33 @@ impl<'p> Analysis<'p> {
     /// inertia load, an indicator diagram read outside its stroke); [`Error::In`] naming the
     /// group or the input link whose closed form is singular.
     pub fn solve(&mut self, input: Motion) -> Result<()> {
-        self.solve_kinematics(input)?;
+        self.solve_inputs(&[input])
+    }
+
+    /// As [`Analysis::solve`], with one motion per input (see
+    /// [`Analysis::solve_kinematics_inputs`]): a linkage with two inputs gets two balancing
+    /// moments or forces, [`Analysis::balance`] and [`Analysis::second_balance`].
+    ///
+    /// # Errors
+    /// As [`Analysis::solve`] and [`Analysis::solve_kinematics_inputs`].
+    ///
+    /// # Examples
+    /// The five-bar robot turning both cranks: the two balancing moments supply the power of
+    /// every load, and every link is in equilibrium.
+    /// ```
+    /// use tmm::kinematics::Motion;
+    /// use tmm::linkage::{bundled, Analysis, Plan};
+    /// let plan = Plan::new(&bundled::five_bar_robot())?;
+    /// let r = plan.reference_inputs();
+    /// let mut a = Analysis::new(&plan);
+    /// a.solve_inputs(&[Motion::new(r[0], 2.0, 1.0), Motion::new(r[1], -1.0, 3.0)])?;
+    /// assert!(a.second_balance().is_some());
+    /// assert!(a.power_check()?.relative_error() < 1e-12);
+    /// assert!(a.worst_residual() < 1e-12);
+    /// # Ok::<(), tmm::Error>(())
+    /// ```
+    pub fn solve_inputs(&mut self, inputs: &[Motion]) -> Result<()> {
+        self.solve_kinematics_inputs(inputs)?;
         self.apply_loads()?;
         self.solve_statics()
     }
@@ -537,10 +625,22 @@ impl<'p> Analysis<'p> {
 
     fn solve_input(&mut self) -> Result<()> {
         let plan = self.plan;
-        let link = plan.input_link();
+        self.balance = self.solve_drive(&plan.input)?;
+        self.second_balance = match &plan.second_input {
+            Some((ip, _)) => Some(self.solve_drive(ip)?),
+            None => None,
+        };
+        Ok(())
+    }
+
+    /// The balancing moment or force of one input link, and its reaction with the frame.
+    fn solve_drive(&mut self, ip: &InputPlan) -> Result<Balance> {
+        let plan = self.plan;
+        let link = ip.link();
         let load = self.acc[link];
         let part = &plan.link_names[link];
-        match plan.input {
+        let balance;
+        match *ip {
             InputPlan::Crank {
                 joint,
                 pivot,
@@ -578,7 +678,7 @@ impl<'p> Analysis<'p> {
                     }
                 };
                 self.reactions[joint] = Reaction::hinge(0, link, r01, pivot);
-                self.balance = Balance {
+                balance = Balance {
                     value,
                     force,
                     point: at,
@@ -591,7 +691,7 @@ impl<'p> Analysis<'p> {
                 let fb = -f.dot(&d);
                 let normal = -(f + fb * d);
                 self.reactions[joint] = Reaction::new(0, link, normal, load.point, -load.moment);
-                self.balance = Balance {
+                balance = Balance {
                     value: fb,
                     force: fb * d,
                     point: load.point,
@@ -609,7 +709,7 @@ impl<'p> Analysis<'p> {
                 }
             }
         }
-        Ok(())
+        Ok(balance)
     }
 
     // ---- kinematic results -------------------------------------------------------------
@@ -618,6 +718,12 @@ impl<'p> Analysis<'p> {
     #[must_use]
     pub fn input(&self) -> Motion {
         self.input
+    }
+
+    /// The second input's motion, for a linkage with two inputs.
+    #[must_use]
+    pub fn second_input(&self) -> Option<Motion> {
+        self.second_input
     }
 
     /// The motion of link `k` in the frame the engine uses for it (its origin a joint).
@@ -808,10 +914,17 @@ impl<'p> Analysis<'p> {
         Ok(self.reactions[self.plan.joint_index(name)?])
     }
 
-    /// The balancing moment (crank) or force (slider).
+    /// The balancing moment (crank) or force (slider) of the (first) input.
     #[must_use]
     pub fn balance(&self) -> Balance {
         self.balance
+    }
+
+    /// The balancing moment or force of the second input, for a linkage with two inputs
+    /// (valid after [`Analysis::solve_inputs`]).
+    #[must_use]
+    pub fn second_balance(&self) -> Option<Balance> {
+        self.second_balance
     }
 
     /// Each group's conditioning in the kinetostatics (the divisor of its closed form).
@@ -829,13 +942,15 @@ impl<'p> Analysis<'p> {
     /// The drive's load on the input link: the balancing couple, or the balancing force.
     #[must_use]
     pub fn drive_load(&self) -> Load {
-        let b = &self.balance;
-        match self.plan.input {
-            InputPlan::Crank {
-                drive: Drive::Coupling,
-                ..
-            } => Load::new(b.point, Vector2::zeros(), b.value),
-            _ => Load::force_at(b.point, b.force),
+        drive_load(&self.plan.input, &self.balance)
+    }
+
+    /// The second drive's load on the second input link, for a linkage with two inputs.
+    #[must_use]
+    pub fn second_drive_load(&self) -> Option<Load> {
+        match (&self.plan.second_input, &self.second_balance) {
+            (Some((ip, _)), Some(b)) => Some(drive_load(ip, b)),
+            _ => None,
         }
     }
 
@@ -856,6 +971,9 @@ impl<'p> Analysis<'p> {
         }
         if k == self.plan.input_link() {
             all.push(self.drive_load());
+        }
+        if Some(k) == self.plan.second_input_link() {
+            all.extend(self.second_drive_load());
         }
         all
     }
@@ -894,11 +1012,29 @@ impl<'p> Analysis<'p> {
         })
     }
 
-    /// The balancing value by the chain and by the principle of virtual power.
+    /// The balancing value by the chain and by the principle of virtual power. For a linkage
+    /// with two inputs the comparison is of powers, W: the drives' Σ B_k·q̇_k against
+    /// −Σ P_i of every applied load.
     ///
     /// # Errors
     /// [`Error::Singular`] when the input does not move (q̇ = 0).
     pub fn power_check(&self) -> Result<PowerCheck> {
+        if let (Some(m), Some(b)) = (self.second_input, self.second_balance) {
+            // Two inputs: the drives' power against the loads' power, W.
+            let (sum, abs) = self.powers();
+            let chain = self.balance.value * self.input.rate + b.value * m.rate;
+            if !(chain.is_finite() && sum.is_finite()) {
+                return Err(Error::NonFinite {
+                    name: "virtual power",
+                    value: sum,
+                });
+            }
+            return Ok(PowerCheck {
+                chain,
+                virtual_power: -sum,
+                scale: abs.max(chain.abs()),
+            });
+        }
         let q = self.input.rate;
         if q == 0.0 || !q.is_finite() {
             return Err(Error::Singular {
@@ -941,6 +1077,17 @@ fn resist(rate: f64, forward: f64, backward: f64) -> f64 {
     }
 }
 
+/// The load a drive exerts on its input link: the balancing couple, or the balancing force.
+fn drive_load(ip: &InputPlan, b: &Balance) -> Load {
+    match ip {
+        InputPlan::Crank {
+            drive: Drive::Coupling,
+            ..
+        } => Load::new(b.point, Vector2::zeros(), b.value),
+        _ => Load::force_at(b.point, b.force),
+    }
+}
+
 /// Adds `l` to the resultant `acc` (kept at its point).
 fn add(acc: &mut Load, l: &Load) {
     acc.moment += l.moment + cross(l.point - acc.point, l.force);
@@ -964,6 +1111,40 @@ impl Plan {
     /// As [`Analysis::solve`].
     pub fn analyse_into(&self, input: Motion, into: &mut Analysis<'_>) -> Result<()> {
         into.solve(input)
+    }
+
+    /// Analyses one position of a linkage with one or two inputs (one motion per input).
+    ///
+    /// # Errors
+    /// As [`Analysis::solve_inputs`].
+    ///
+    /// # Examples
+    /// The five-bar robot held still against its tool moment: both drives hold it.
+    /// ```
+    /// use tmm::kinematics::Motion;
+    /// use tmm::linkage::{bundled, Plan};
+    /// let plan = Plan::new(&bundled::five_bar_robot())?;
+    /// let r = plan.reference_inputs();
+    /// let a = plan.analyse_inputs(&[Motion::fixed(r[0]), Motion::fixed(r[1])])?;
+    /// let (m1, m4) = (a.balance().value, a.second_balance().unwrap().value);
+    /// assert!(m1.abs() > 0.0 && m4.abs() > 0.0);
+    /// assert!(a.worst_residual() < 1e-12);
+    /// # Ok::<(), tmm::Error>(())
+    /// ```
+    pub fn analyse_inputs(&self, inputs: &[Motion]) -> Result<Analysis<'_>> {
+        let mut a = Analysis::new(self);
+        a.solve_inputs(inputs)?;
+        Ok(a)
+    }
+
+    /// The kinematics alone at one position of a linkage with one or two inputs.
+    ///
+    /// # Errors
+    /// As [`Analysis::solve_kinematics_inputs`].
+    pub fn kinematics_inputs(&self, inputs: &[Motion]) -> Result<Analysis<'_>> {
+        let mut a = Analysis::new(self);
+        a.solve_kinematics_inputs(inputs)?;
+        Ok(a)
     }
 
     /// The kinematics alone at one position.

@@ -280,3 +280,70 @@ pub fn all() -> Vec<Linkage> {
         slotted_rocker(),
     ]
 }
+
+/// The five-bar robot of [`FiveBar::default`](crate::dynamics::machines::FiveBar) as a
+/// linkage with two inputs: cranks `crank 1` (O–A, 0.15 m) and `crank 4` (D–C, 0.15 m) on
+/// the frame hinges O = (0, 0) and D = (0.2, 0) m, couplers `coupler 2` (A–B) and
+/// `coupler 3` (C–B) of 0.25 m meeting at the end effector B; reference pose φ1 = 120°,
+/// φ4 = 60°. The cranks carry I1 = I4 = 0.02 kg·m² about their pivots; each coupler 0.6 kg
+/// at its middle with J_S = m·l²/4 (the seed's two point masses m/2 at its hinges, as a rigid
+/// body); a tool moment of 0.3 N·m resists on coupler 3 (−0.3 N·m: it opposes increasing
+/// φ3 as a positive M_on of the seed); no gravity (a horizontal robot). The same linkage is
+/// `linkages/five-bar-robot.json`.
+///
+/// # Examples
+/// ```
+/// let plan = tmm::linkage::Plan::new(&tmm::linkage::bundled::five_bar_robot())?;
+/// assert_eq!((plan.mobility(), plan.input_count(), plan.groups().len()), (2, 2, 1));
+/// # Ok::<(), tmm::Error>(())
+/// ```
+#[must_use]
+pub fn five_bar_robot() -> Linkage {
+    let (l1, l2, l3, l4) = (0.15, 0.25, 0.25, 0.15);
+    let (o, d) = ([0.0, 0.0], [0.2, 0.0]);
+    let (p1, p4) = (120f64.to_radians(), 60f64.to_radians());
+    let a = [o[0] + l1 * p1.cos(), o[1] + l1 * p1.sin()];
+    let c = [d[0] + l4 * p4.cos(), d[1] + l4 * p4.sin()];
+    // B: to the left of A→C, l2 from A and l3 from C.
+    let (dx, dy) = (c[0] - a[0], c[1] - a[1]);
+    let dist = dx.hypot(dy);
+    let along = (l2 * l2 - l3 * l3 + dist * dist) / (2.0 * dist);
+    let height = (l2 * l2 - along * along).sqrt();
+    let (ex, ey) = (dx / dist, dy / dist);
+    let b = [
+        a[0] + along * ex - height * ey,
+        a[1] + along * ey + height * ex,
+    ];
+    let coupler = |m: f64, l: f64, p: [f64; 2], q: [f64; 2]| {
+        Mass::new(
+            m,
+            m * l * l / 4.0,
+            At::Coords([0.5 * (p[0] + q[0]), 0.5 * (p[1] + q[1])]),
+        )
+    };
+    Linkage {
+        name: "five-bar robot".to_owned(),
+        joints: vec![
+            Joint::revolute("O", o),
+            Joint::revolute("A", a),
+            Joint::revolute("B", b),
+            Joint::revolute("C", c),
+            Joint::revolute("D", d),
+        ],
+        links: vec![
+            Link::new("frame", &["O", "D"]),
+            Link::new("crank 1", &["O", "A"]).with_mass(Mass::new(0.0, 0.02, At::name("O"))),
+            Link::new("coupler 2", &["A", "B"]).with_mass(coupler(0.6, l2, a, b)),
+            Link::new("coupler 3", &["C", "B"]).with_mass(coupler(0.6, l3, c, b)),
+            Link::new("crank 4", &["D", "C"]).with_mass(Mass::new(0.0, 0.02, At::name("D"))),
+        ],
+        input: Input::crank("crank 1"),
+        second_input: Some(Input::crank("crank 4")),
+        gravity: [0.0, 0.0],
+        loads: vec![LoadSpec::Moment {
+            link: "coupler 3".to_owned(),
+            moment: -0.3,
+        }],
+        ..Linkage::default()
+    }
+}

@@ -54,6 +54,13 @@ pub struct Linkage {
     pub links: Vec<Link>,
     /// The input link and how it is driven.
     pub input: Input,
+    /// A second input, for a linkage of mobility 2 driven by two motors (for example the
+    /// five-bar robot: two cranks and one RRR dyad). `None` (the default): one input.
+    #[cfg_attr(
+        feature = "serde",
+        serde(default, skip_serializing_if = "Option::is_none")
+    )]
+    pub second_input: Option<Input>,
     /// The acceleration of gravity as a vector, m/s². Default (0, −9.81): y points up.
     #[cfg_attr(feature = "serde", serde(default = "default_gravity"))]
     pub gravity: [f64; 2],
@@ -98,6 +105,7 @@ impl Default for Linkage {
             joints: Vec::new(),
             links: Vec::new(),
             input: Input::crank("crank"),
+            second_input: None,
             gravity: [0.0, -9.81],
             loads: Vec::new(),
             groups: Vec::new(),

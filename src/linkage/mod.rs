@@ -44,6 +44,7 @@ mod analysis;
 pub mod bundled;
 mod cycle;
 mod description;
+pub mod dynamics;
 mod indicator;
 mod plan;
 mod structure;

@@ -5,7 +5,7 @@
 //! found here and named.
 
 use super::analysis::Analysis;
-use super::description::{At, Drive, JointKind, Linkage, LoadSpec};
+use super::description::{At, Drive, Input, JointKind, Linkage, LoadSpec};
 use super::indicator::IndicatorDiagram;
 use super::structure::{decompose, Edge, Pair};
 use crate::angle::{cross, direction, perp};
@@ -80,7 +80,7 @@ pub struct Group {
     pub(crate) slide_angle: f64,
 }
 
-/// How the plan drives the input link.
+/// How the plan drives an input link.
 #[derive(Debug, Clone, PartialEq)]
 pub(crate) enum InputPlan {
     Crank {
@@ -95,6 +95,15 @@ pub(crate) enum InputPlan {
         at: Point2<f64>,
         angle: f64,
     },
+}
+
+impl InputPlan {
+    /// The input link.
+    pub(crate) fn link(&self) -> usize {
+        match *self {
+            Self::Crank { link, .. } | Self::Slider { link, .. } => link,
+        }
+    }
 }
 
 #[derive(Debug, Clone, PartialEq)]
@@ -183,6 +192,8 @@ pub struct Plan {
     pub(crate) joints: Vec<JointPlan>,
     pub(crate) points: Vec<PointPlan>,
     pub(crate) input: InputPlan,
+    /// The second input of a linkage of mobility 2, with its reference coordinate.
+    pub(crate) second_input: Option<(InputPlan, f64)>,
     pub(crate) groups: Vec<Group>,
     pub(crate) loads: Vec<LoadPlan>,
     pub(crate) gravity: Vector2<f64>,
@@ -350,24 +361,41 @@ impl Plan {
             });
         }
 
-        // The input link and its joint with the frame.
-        let input = link_index[names.link(&linkage.input.link, "field input.link")?];
-        if input == 0 {
-            return Err(bad("field input.link", "the input cannot be the frame"));
-        }
-        let to_frame: Vec<usize> = (0..edges.len())
-            .filter(|&j| edges[j].links.contains(&0) && edges[j].links.contains(&input))
+        // The input links (one, or two for a linkage of mobility 2) and their joints with the
+        // frame.
+        let specs: Vec<(&Input, &str)> = std::iter::once((&linkage.input, "field input"))
+            .chain(
+                linkage
+                    .second_input
+                    .as_ref()
+                    .map(|i| (i, "field second_input")),
+            )
             .collect();
-        let [input_joint] = to_frame[..] else {
-            return Err(bad(
-                format!("link {}", link_names[input]),
-                format!(
-                    "is the input but has {} joints with the frame; it needs exactly one (a \
-                     crank's pivot or a slider's guide)",
-                    to_frame.len()
-                ),
-            ));
-        };
+        let mut inputs = Vec::with_capacity(specs.len());
+        for &(spec, field) in &specs {
+            let item = format!("{field}.link");
+            let input = link_index[names.link(&spec.link, &item)?];
+            if input == 0 {
+                return Err(bad(item, "the input cannot be the frame"));
+            }
+            if inputs.iter().any(|&(l, _)| l == input) {
+                return Err(bad(item, "names the same link as the first input"));
+            }
+            let to_frame: Vec<usize> = (0..edges.len())
+                .filter(|&j| edges[j].links.contains(&0) && edges[j].links.contains(&input))
+                .collect();
+            let [input_joint] = to_frame[..] else {
+                return Err(bad(
+                    format!("link {}", link_names[input]),
+                    format!(
+                        "is the input but has {} joints with the frame; it needs exactly one (a \
+                         crank's pivot or a slider's guide)",
+                        to_frame.len()
+                    ),
+                ));
+            };
+            inputs.push((input, input_joint));
+        }
         let explicit: Vec<[usize; 2]> = linkage
             .groups
             .iter()
@@ -378,7 +406,8 @@ impl Plan {
                 ])
             })
             .collect::<Result<_>>()?;
-        let dyads = decompose(&edges, &link_names, input, &explicit)?;
+        let input_links: Vec<usize> = inputs.iter().map(|&(l, _)| l).collect();
+        let dyads = decompose(&edges, &link_names, &input_links, &explicit)?;
         let mobility = super::structure::chebyshev(link_names.len() - 1, edges.len());
 
         let at = |j: usize| {
@@ -398,46 +427,51 @@ impl Plan {
             };
             link_names.len()
         ];
-        let (input_plan, reference_input) = match edges[input_joint].pair {
-            Pair::Revolute => {
-                let pivot = at(input_joint);
-                let item = format!("link {}", link_names[input]);
-                let reference = reference_direction(linkage, &order, input, &names, &item)?
-                    .ok_or_else(|| {
-                        bad(&item, "the crank's joints coincide: it has no direction")
-                    })?;
-                frames[input] = Frame {
-                    origin: pivot,
-                    angle: reference,
-                };
-                check_drive(&linkage.input.drive)?;
-                (
-                    InputPlan::Crank {
-                        link: input,
-                        joint: input_joint,
-                        pivot,
-                        drive: linkage.input.drive,
-                    },
-                    crate::angle::normalize(reference),
-                )
-            }
-            Pair::Prismatic => {
-                let angle = direction(dir(input_joint));
-                frames[input] = Frame {
-                    origin: at(input_joint),
-                    angle,
-                };
-                (
-                    InputPlan::Slider {
-                        link: input,
-                        joint: input_joint,
-                        at: at(input_joint),
+        let mut planned = Vec::with_capacity(inputs.len());
+        for (&(input, input_joint), &(spec, _)) in inputs.iter().zip(&specs) {
+            planned.push(match edges[input_joint].pair {
+                Pair::Revolute => {
+                    let pivot = at(input_joint);
+                    let item = format!("link {}", link_names[input]);
+                    let reference = reference_direction(linkage, &order, input, &names, &item)?
+                        .ok_or_else(|| {
+                            bad(&item, "the crank's joints coincide: it has no direction")
+                        })?;
+                    frames[input] = Frame {
+                        origin: pivot,
+                        angle: reference,
+                    };
+                    check_drive(&spec.drive)?;
+                    (
+                        InputPlan::Crank {
+                            link: input,
+                            joint: input_joint,
+                            pivot,
+                            drive: spec.drive,
+                        },
+                        crate::angle::normalize(reference),
+                    )
+                }
+                Pair::Prismatic => {
+                    let angle = direction(dir(input_joint));
+                    frames[input] = Frame {
+                        origin: at(input_joint),
                         angle,
-                    },
-                    0.0,
-                )
-            }
-        };
+                    };
+                    (
+                        InputPlan::Slider {
+                            link: input,
+                            joint: input_joint,
+                            at: at(input_joint),
+                            angle,
+                        },
+                        0.0,
+                    )
+                }
+            });
+        }
+        let second_input = planned.get(1).cloned();
+        let (input_plan, reference_input) = planned.swap_remove(0);
         // A mode must name some group's inner joint; a mode that matches none is a typo.
         for m in &linkage.modes {
             let inner = |d: &super::structure::Dyad| linkage.joints[d.joints[1]].name == m.joint;
@@ -551,6 +585,7 @@ impl Plan {
             joints,
             points,
             input: input_plan,
+            second_input,
             groups,
             loads: Vec::new(),
             gravity,
@@ -570,8 +605,7 @@ impl Plan {
     /// Solves the reference pose and compares every joint with its given position.
     fn check_closure(&self, linkage: &Linkage) -> Result<()> {
         let mut a = Analysis::new(self);
-        let input = Motion::new(self.reference_input, 0.0, 0.0);
-        a.solve_kinematics(input)
+        a.solve_kinematics_inputs(&self.reference_motions())
             .map_err(|e| bad("reference pose", format!("does not assemble: {e}")))?;
         let tol = 1e-9 * self.size.max(f64::MIN_POSITIVE);
         for (j, joint) in linkage.joints.iter().enumerate() {
@@ -681,7 +715,8 @@ impl Plan {
         &self.name
     }
 
-    /// The mobility by Chebyshev's formula (1 for every plan).
+    /// The mobility by Chebyshev's formula: the number of inputs (1, or 2 with a
+    /// [`second_input`](super::Linkage::second_input)).
     #[must_use]
     pub fn mobility(&self) -> i64 {
         self.mobility
@@ -730,6 +765,62 @@ impl Plan {
         match self.input {
             InputPlan::Crank { link, .. } | InputPlan::Slider { link, .. } => link,
         }
+    }
+
+    /// The number of inputs (degrees of freedom): 1, or 2 for a linkage with a
+    /// [`second_input`](super::Linkage::second_input).
+    ///
+    /// # Examples
+    /// ```
+    /// use tmm::linkage::{bundled, Plan};
+    /// assert_eq!(Plan::new(&bundled::four_bar())?.input_count(), 1);
+    /// assert_eq!(Plan::new(&bundled::five_bar_robot())?.input_count(), 2);
+    /// # Ok::<(), tmm::Error>(())
+    /// ```
+    #[must_use]
+    pub fn input_count(&self) -> usize {
+        1 + usize::from(self.second_input.is_some())
+    }
+
+    /// The second input link's index, for a linkage with two inputs.
+    ///
+    /// # Examples
+    /// ```
+    /// use tmm::linkage::{bundled, Plan};
+    /// let plan = Plan::new(&bundled::five_bar_robot())?;
+    /// assert_eq!(plan.second_input_link(), Some(plan.link_index("crank 4")?));
+    /// assert_eq!(Plan::new(&bundled::four_bar())?.second_input_link(), None);
+    /// # Ok::<(), tmm::Error>(())
+    /// ```
+    #[must_use]
+    pub fn second_input_link(&self) -> Option<usize> {
+        self.second_input.as_ref().map(|(ip, _)| ip.link())
+    }
+
+    /// The input coordinates in the reference pose, one per input (see
+    /// [`reference_input`](Self::reference_input)).
+    ///
+    /// # Examples
+    /// The five-bar robot is drawn with its cranks at 120° and 60°:
+    /// ```
+    /// use tmm::linkage::{bundled, Plan};
+    /// let r = Plan::new(&bundled::five_bar_robot())?.reference_inputs();
+    /// assert!((r[0].to_degrees() - 120.0).abs() < 1e-12 && (r[1].to_degrees() - 60.0).abs() < 1e-12);
+    /// # Ok::<(), tmm::Error>(())
+    /// ```
+    #[must_use]
+    pub fn reference_inputs(&self) -> Vec<f64> {
+        std::iter::once(self.reference_input)
+            .chain(self.second_input.as_ref().map(|(_, r)| *r))
+            .collect()
+    }
+
+    /// The reference pose at rest, one motion per input.
+    pub(crate) fn reference_motions(&self) -> Vec<Motion> {
+        self.reference_inputs()
+            .into_iter()
+            .map(|r| Motion::new(r, 0.0, 0.0))
+            .collect()
     }
 
     /// The largest distance between two joints in the reference pose, m.

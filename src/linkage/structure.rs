@@ -73,18 +73,20 @@ fn as_dyad(edges: &[Edge], a: usize, b: usize, inner: usize, known: &[bool]) -> 
 
 /// The dyads in attachment order, found automatically (`explicit` empty) or checked from the
 /// given pairs of links. `names` are the links' names for errors; link 0 is the frame and
-/// `input` the input link.
+/// `inputs` the input links (one per degree of freedom).
 pub(crate) fn decompose(
     edges: &[Edge],
     names: &[String],
-    input: usize,
+    inputs: &[usize],
     explicit: &[[usize; 2]],
 ) -> Result<Vec<Dyad>> {
     let n = names.len();
     let mobility = chebyshev(n - 1, edges.len());
     let mut known = vec![false; n];
     known[0] = true;
-    known[input] = true;
+    for &input in inputs {
+        known[input] = true;
+    }
     let mut dyads = Vec::new();
     if explicit.is_empty() {
         while let Some(d) = next_dyad(edges, &known) {
@@ -115,9 +117,10 @@ pub(crate) fn decompose(
         .filter(|&k| !known[k])
         .map(|k| names[k].as_str())
         .collect();
-    if !left.is_empty() || mobility != 1 {
+    let wanted = inputs.len() as i64;
+    if !left.is_empty() || mobility != wanted {
         let problem = if left.is_empty() {
-            format!("has mobility W = {mobility} by Chebyshev's formula (3·{} moving links − 2·{} lower pairs); the engine needs W = 1", n - 1, edges.len())
+            format!("has mobility W = {mobility} by Chebyshev's formula (3·{} moving links − 2·{} lower pairs); the engine needs W = {wanted}, one per declared input", n - 1, edges.len())
         } else {
             format!(
                 "links {} do not decompose into dyads of the 2nd class (mobility W = {mobility} \
@@ -164,7 +167,7 @@ mod tests {
     #[test]
     fn a_four_bar_is_one_dyad() {
         let e = [r(0, 1), r(1, 2), r(2, 3), r(3, 0)];
-        let d = decompose(&e, &names(4), 1, &[]).unwrap();
+        let d = decompose(&e, &names(4), &[1], &[]).unwrap();
         assert_eq!(
             d,
             vec![Dyad {
@@ -188,13 +191,15 @@ mod tests {
             r(4, 0),
             r(5, 0),
         ];
-        let err = decompose(&e, &names(6), 1, &[]).unwrap_err().to_string();
+        let err = decompose(&e, &names(6), &[1], &[]).unwrap_err().to_string();
         assert!(err.contains("links 2, 3, 4, 5"), "{err}");
         assert!(err.contains("W = 1"), "{err}");
         // One more hinge from the frame to 3 makes W = −1.
         let mut e2 = e.to_vec();
         e2.push(r(3, 0));
-        let err = decompose(&e2, &names(6), 1, &[]).unwrap_err().to_string();
+        let err = decompose(&e2, &names(6), &[1], &[])
+            .unwrap_err()
+            .to_string();
         assert!(err.contains("W = -1"), "{err}");
     }
 }

@@ -1,0 +1,353 @@
+//! A machine with one input over its turn: the reduced moment of inertia and moment, the
+//! run-up from rest to the steady state, and each turn's speed fluctuation.
+
+use std::f64::consts::TAU;
+
+use nalgebra::Vector2;
+
+use super::system::LinkageSystem;
+use crate::dynamics::{
+    accelerations, run, Direction, Outcome, Reach, RunOptions, RunResult, State, Stepper, Watch,
+};
+use crate::error::{finite, positive, Error, Result};
+
+/// The machine reduced to its crank at one position.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Reduced {
+    /// The crank angle φ, rad.
+    pub phi: f64,
+    /// The reduced moment of inertia J_red(φ) = A₁₁ (added inertia included), kg·m².
+    pub inertia: f64,
+    /// dJ_red/dφ, kg·m²/rad.
+    pub inertia_derivative: f64,
+    /// The reduced moment of gravity and the loads M_red, N·m (motor excluded).
+    pub loads: f64,
+    /// The motor's moment at this position and speed, N·m.
+    pub drive: f64,
+}
+
+/// How [`LinkageSystem::run_up`] integrates and when it stops.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct RunUpOptions {
+    /// The step (fixed-step methods) or the first proposed step (adaptive ones), s.
+    pub h: f64,
+    /// The steady state: the relative change of a turn's mean speed from the previous
+    /// turn's at most this.
+    pub tol: f64,
+    /// The most turns the run-up may take ([`Error::Budget`] beyond).
+    pub max_turns: usize,
+    /// The longest one turn may take, s: a machine that stalls or turns back fails with an
+    /// error, not a run without end.
+    pub max_turn_time: f64,
+    /// Record every n-th step of each turn (the turn's ends always).
+    pub record_every: usize,
+}
+
+impl RunUpOptions {
+    /// Steps of `h`, a relative tolerance of 10⁻⁶ on the mean speed, at most 2 000 turns of
+    /// at most 60 s each, every step recorded.
+    #[must_use]
+    pub fn new(h: f64) -> Self {
+        Self {
+            h,
+            tol: 1e-6,
+            max_turns: 2000,
+            max_turn_time: 60.0,
+            record_every: 1,
+        }
+    }
+}
+
+/// One turn of the crank: its duration and speeds (as magnitudes, in the direction of the
+/// motion).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Turn {
+    /// When the turn began, s.
+    pub t_start: f64,
+    /// How long it took, s.
+    pub period: f64,
+    /// The mean speed 2π/period, rad/s.
+    pub omega_mean: f64,
+    /// The largest speed over the turn, rad/s (between recorded steps by a parabola through
+    /// the three steps around the largest).
+    pub omega_max: f64,
+    /// The smallest speed over the turn, rad/s (likewise).
+    pub omega_min: f64,
+    /// The coefficient of speed fluctuation δ = (ω_max − ω_min)/ω_m with the textbook's
+    /// ω_m = (ω_max + ω_min)/2, as the flywheel's design uses it (the time mean
+    /// [`omega_mean`](Self::omega_mean) differs from it by at most δ/2, relative, depending
+    /// on the shape of ω(φ)).
+    pub delta: f64,
+    /// +1 counter-clockwise, −1 clockwise.
+    pub direction: f64,
+}
+
+/// The run-up from rest to the steady state.
+#[derive(Debug, Clone, PartialEq)]
+pub struct RunUp {
+    /// Every turn, the last one steady.
+    pub turns: Vec<Turn>,
+    /// The recorded times of the whole run, s.
+    pub t: Vec<f64>,
+    /// The crank angle at those times, rad.
+    pub phi: Vec<f64>,
+    /// The crank speed at those times, rad/s.
+    pub omega: Vec<f64>,
+    /// The last (steady) turn as the integrator recorded it.
+    pub steady: RunResult,
+    /// Accepted steps over the whole run.
+    pub steps: usize,
+    /// Evaluations of the accelerations over the whole run.
+    pub evaluations: usize,
+}
+
+/// The vertex of the parabola through three points (t, s), the middle one the extreme;
+/// the middle value when the points are collinear.
+fn vertex(t: [f64; 3], s: [f64; 3]) -> f64 {
+    let f01 = (s[1] - s[0]) / (t[1] - t[0]);
+    let f12 = (s[2] - s[1]) / (t[2] - t[1]);
+    let f012 = (f12 - f01) / (t[2] - t[0]);
+    if !(f012 != 0.0 && f012.is_finite()) {
+        return s[1];
+    }
+    let ts = (0.5 * (t[0] + t[1]) - f01 / (2.0 * f012)).clamp(t[0], t[2]);
+    let v = s[0] + f01 * (ts - t[0]) + f012 * (ts - t[0]) * (ts - t[1]);
+    if v.is_finite() {
+        v
+    } else {
+        s[1]
+    }
+}
+
+/// The extreme of `s` over the samples (largest when `max`), refined by a parabola when it
+/// lies inside.
+fn extreme(t: &[f64], s: &[f64], max: bool) -> f64 {
+    let better = |a: f64, b: f64| if max { a > b } else { a < b };
+    let mut k = 0;
+    for i in 1..s.len() {
+        if better(s[i], s[k]) {
+            k = i;
+        }
+    }
+    if k == 0 || k + 1 >= s.len() {
+        return s[k];
+    }
+    vertex([t[k - 1], t[k], t[k + 1]], [s[k - 1], s[k], s[k + 1]])
+}
+
+impl LinkageSystem {
+    /// Checks that the machine has one input, a crank.
+    fn one_crank(&self, what: &str) -> Result<()> {
+        if self.dof() == 1 && self.plan().input_is_crank() {
+            Ok(())
+        } else {
+            Err(Error::Description {
+                item: "field input".to_owned(),
+                problem: format!("{what} need one input, a crank"),
+            })
+        }
+    }
+
+    /// The machine reduced to its crank at the angle `phi` turning at `omega` (the speed
+    /// matters for the loads that depend on the motion and for the motor).
+    ///
+    /// # Errors
+    /// [`Error::Description`] for a machine with two inputs or a slider input; as
+    /// [`terms`](Self::terms).
+    ///
+    /// # Examples
+    /// The four-bar's crank alone has 0.002 kg·m²; the coupler and rocker add more:
+    /// ```
+    /// use tmm::linkage::{bundled, dynamics::LinkageSystem};
+    /// let sys = LinkageSystem::from_linkage(&bundled::four_bar())?;
+    /// let r = sys.reduced(0.5, 10.0)?;
+    /// assert!(r.inertia > 0.002 && r.drive == 0.0);
+    /// # Ok::<(), tmm::Error>(())
+    /// ```
+    pub fn reduced(&self, phi: f64, omega: f64) -> Result<Reduced> {
+        self.one_crank("the reduced moment of inertia and moment")?;
+        let t = self.terms(&Vector2::new(phi, 0.0), &Vector2::new(omega, 0.0))?;
+        Ok(Reduced {
+            phi,
+            inertia: t.inertia[(0, 0)],
+            inertia_derivative: t.inertia_derivatives[0][(0, 0)],
+            loads: t.loads[0],
+            drive: t.drives[0],
+        })
+    }
+
+    /// [`reduced`](Self::reduced) at `n` equally spaced angles over one turn from the
+    /// reference pose, in the direction of `omega`.
+    ///
+    /// # Errors
+    /// [`Error::NonPositive`] for n = 0; [`Error::NonFinite`] or [`Error::NonPositive`] for
+    /// a non-finite or zero `omega`; as [`reduced`](Self::reduced).
+    ///
+    /// # Examples
+    /// ```
+    /// use tmm::linkage::{bundled, dynamics::LinkageSystem};
+    /// let sys = LinkageSystem::from_linkage(&bundled::watt_six_bar())?;
+    /// let turn = sys.reduced_cycle(72, 10.0)?;
+    /// assert_eq!(turn.len(), 72);
+    /// # Ok::<(), tmm::Error>(())
+    /// ```
+    pub fn reduced_cycle(&self, n: usize, omega: f64) -> Result<Vec<Reduced>> {
+        positive("number of positions", n as f64)?;
+        positive("|omega|", finite("omega", omega)?.abs())?;
+        let phi0 = self.plan().reference_input();
+        let step = omega.signum() * TAU / n as f64;
+        (0..n)
+            .map(|i| self.reduced(phi0 + step * i as f64, omega))
+            .collect()
+    }
+
+    /// Integrates one turn of the crank from `start` with `method`: the crank's angle
+    /// advances by 2π in the direction it moves (or, from rest, in the direction it starts).
+    ///
+    /// # Examples
+    /// The Watt six-bar coasting at 20 rad/s with no loads, gravity off: T is constant, so
+    /// the speed comes back to 20 rad/s after the turn.
+    /// ```
+    /// use nalgebra::Vector2;
+    /// use tmm::dynamics::{Rk4, State};
+    /// use tmm::linkage::{bundled, dynamics::{LinkageSystem, RunUpOptions}};
+    /// let mut l = bundled::watt_six_bar();
+    /// l.loads.clear();
+    /// l.gravity = [0.0, 0.0];
+    /// let sys = LinkageSystem::from_linkage(&l)?;
+    /// let start = State::new(0.0, Vector2::new(sys.plan().reference_input(), 0.0), Vector2::new(20.0, 0.0));
+    /// let (turn, r) = sys.turn(&Rk4, start, &RunUpOptions::new(1e-4))?;
+    /// assert!((r.last.qd[0] - 20.0).abs() < 1e-6 && turn.delta > 0.0);
+    /// # Ok::<(), tmm::Error>(())
+    /// ```
+    ///
+    /// # Errors
+    /// [`Error::Singular`] when the machine does not start from rest, or does not complete
+    /// the turn within `opts.max_turn_time` (it stalls or turns back); as
+    /// [`run`](crate::dynamics::run).
+    pub fn turn<M: Stepper>(
+        &self,
+        method: &M,
+        start: State,
+        opts: &RunUpOptions,
+    ) -> Result<(Turn, RunResult)> {
+        self.one_crank("turns and run-ups")?;
+        positive("max_turn_time", opts.max_turn_time)?;
+        let direction = if start.qd[0] != 0.0 {
+            start.qd[0].signum()
+        } else {
+            let a = accelerations(self, start.t, &start.q, &start.qd)?[0];
+            if a == 0.0 {
+                return Err(Error::Singular {
+                    what: "run-up",
+                    measure: "crank acceleration from rest (nothing starts the machine)",
+                    value: a,
+                });
+            }
+            a.signum()
+        };
+        let mut ro = RunOptions::until(start.t + opts.max_turn_time, opts.h);
+        ro.record_every = opts.record_every;
+        ro.reach = Some(Reach {
+            watch: Watch::Coordinate(0),
+            value: start.q[0] + direction * TAU,
+            direction: if direction > 0.0 {
+                Direction::Rising
+            } else {
+                Direction::Falling
+            },
+        });
+        let r = run(self, method, start, &ro)?;
+        if !matches!(r.outcome, Outcome::Reached { .. }) {
+            return Err(Error::Singular {
+                what: "run-up",
+                measure: "fraction of a turn completed within max_turn_time (the machine \
+                          stalls or turns back)",
+                value: direction * (r.last.q[0] - start.q[0]) / TAU,
+            });
+        }
+        let tr = &r.trajectory;
+        let speed: Vec<f64> = tr.qd()[0].iter().map(|w| direction * w).collect();
+        let period = r.last.t - start.t;
+        let omega_mean = TAU / period;
+        let omega_max = extreme(tr.t(), &speed, true);
+        let omega_min = extreme(tr.t(), &speed, false);
+        let turn = Turn {
+            t_start: start.t,
+            period,
+            omega_mean,
+            omega_max,
+            omega_min,
+            delta: 2.0 * (omega_max - omega_min) / (omega_max + omega_min),
+            direction,
+        };
+        Ok((turn, r))
+    }
+
+    /// The run-up from rest in the reference pose to the steady state (see
+    /// [`run_up_from`](Self::run_up_from)).
+    ///
+    /// # Errors
+    /// As [`run_up_from`](Self::run_up_from).
+    pub fn run_up<M: Stepper>(&self, method: &M, opts: &RunUpOptions) -> Result<RunUp> {
+        let q0 = Vector2::new(self.plan().reference_input(), 0.0);
+        self.run_up_from(method, State::at_rest(q0), opts)
+    }
+
+    /// Integrates turn after turn from `start` until a turn's mean speed changes from the
+    /// previous turn's by at most `opts.tol` (relative): the steady state.
+    ///
+    /// # Errors
+    /// [`Error::Budget`] when `opts.max_turns` turns pass without a steady state;
+    /// [`Error::NonFinite`]/[`Error::NonPositive`] for a bad tolerance; as
+    /// [`turn`](Self::turn).
+    pub fn run_up_from<M: Stepper>(
+        &self,
+        method: &M,
+        start: State,
+        opts: &RunUpOptions,
+    ) -> Result<RunUp> {
+        positive("run-up tolerance", opts.tol)?;
+        positive("max_turns", opts.max_turns as f64)?;
+        let mut out = RunUp {
+            turns: Vec::new(),
+            t: Vec::new(),
+            phi: Vec::new(),
+            omega: Vec::new(),
+            steady: RunResult {
+                trajectory: crate::dynamics::Trajectory::default(),
+                outcome: Outcome::FinalTime,
+                last: start,
+                steps: 0,
+                evaluations: 0,
+            },
+            steps: 0,
+            evaluations: 0,
+        };
+        let mut s = start;
+        for k in 0..opts.max_turns {
+            let (turn, r) = self.turn(method, s, opts)?;
+            let skip = usize::from(k > 0);
+            let tr = &r.trajectory;
+            out.t.extend(&tr.t()[skip..]);
+            out.phi.extend(&tr.q()[0][skip..]);
+            out.omega.extend(&tr.qd()[0][skip..]);
+            out.steps += r.steps;
+            out.evaluations += r.evaluations;
+            s = r.last;
+            let steady = out.turns.last().is_some_and(|p| {
+                (turn.omega_mean - p.omega_mean).abs() <= opts.tol * turn.omega_mean
+            });
+            out.turns.push(turn);
+            out.steady = r;
+            if steady {
+                return Ok(out);
+            }
+        }
+        Err(Error::Budget {
+            what: "turn",
+            limit: opts.max_turns,
+            time: s.t,
+        })
+    }
+}

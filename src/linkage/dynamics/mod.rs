@@ -1,0 +1,111 @@
+//! The dynamics of a described linkage: its equation of motion from the engine's exact
+//! transfer functions, the run-up under a motor to the steady state, the coefficient of speed
+//! fluctuation, and the flywheel for a required one.
+//!
+//! # The equation of motion
+//! With the inputs' coordinates q (one or two: crank angles or slides), every point of the
+//! linkage moves with v_P = Σ_k u_P,k(q)·q̇_k and every link turns with ω = Σ_k w_k(q)·q̇_k,
+//! where the first-order transfer functions u_P,k = ∂r_P/∂q_k and w_k = ∂φ/∂q_k are the
+//! velocities of a kinematic solve at q̇ = e_k (unit rate of input k, the others still) and
+//! q̈ = 0. The same solve's accelerations are the second-order transfer functions
+//! ∂²r_P/∂q_k², ∂²φ/∂q_k², because a = Σ_jk ∂²r/∂q_j∂q_k·q̇_j·q̇_k + Σ_k u_k·q̈_k; a solve at
+//! q̇ = (1, 1) gives the mixed one as (a₁₁ + 2a₁₂ + a₂₂ − a₁₁ − a₂₂)/2. No finite differences:
+//! the transfer functions are the closed forms of the groups' velocity and acceleration
+//! analysis. Then, with link masses m and central moments of inertia J_S,
+//!
+//! ```text
+//! T = ½ q̇ᵀ A(q) q̇,   A_ik = Σ_links (m·u_S,i·u_S,k + J_S·w_i·w_k) + J_add,i·δ_ik
+//! ∂A_ik/∂q_s = Σ_links m·(∂u_S,i/∂q_s·u_S,k + u_S,i·∂u_S,k/∂q_s) + J_S·(∂w_i/∂q_s·w_k + w_i·∂w_k/∂q_s)
+//! Q_k = Σ_loads (F·u_P,k + M·w_k) + Σ_links m·g·u_S,k + M_motor,k(q_k, q̇_k)
+//! B_ik = Σ_dampers c·r_i·r_k      (Φ = ½ c·ṙ², ṙ = Σ r_k q̇_k)
+//! ```
+//!
+//! (the principle of virtual work for Q: the power of every load is Σ_k Q_k·q̇_k), and
+//! Lagrange's equations A·q̈ + c(q, q̇) + B·q̇ = Q ([`crate::dynamics::accelerations`]) are
+//! integrated by any of the crate's [`Stepper`](crate::dynamics::Stepper)s. With one input
+//! this is the textbook's machine reduced to its crank: J_red(φ)·ε + ½·J_red′(φ)·ω² = M_red,
+//! J_red = A₁₁, M_red = Q₁ ([`LinkageSystem::reduced`]). Gravity is one of the loads (not a
+//! potential): the work of all loads W = ∫ Q·q̇ dt is the change of T.
+//!
+//! A load that depends on the motion (a resistance on the working stroke only, an indicator
+//! diagram's compression and expansion branches, a function added by
+//! [`Plan::add_load_fn`](crate::linkage::Plan::add_load_fn)) is evaluated at the state's
+//! actual rates; it must not depend on the accelerations, which the equation is solved for.
+//!
+//! # Cost
+//! [`LinkageSystem::terms`] makes one set of buffers and one kinematic solve for a linkage
+//! with one input (three for two inputs: q̇ = e₁, e₂ and (1, 1) — the three second-order
+//! transfer functions need three quadratic forms), then sums over the links and loads. The
+//! bench `linkage_dynamics` (bench/) measured it at 1.3–1.7× one kinematic position of the
+//! same linkage for the four-bar, the Watt six-bar and the compressor, and 3.2× for the
+//! five-bar robot. A [`LagrangeSystem`](crate::dynamics::LagrangeSystem) evaluation of the
+//! accelerations asks for A, ∂A/∂q and Q separately: three such builds per right-hand side.
+//!
+//! # Steady state, speed fluctuation
+//! [`LinkageSystem::run_up`] starts the machine from rest and integrates it turn by turn;
+//! the steady state is reached when the mean speed of a turn, ω_m = 2π/T_turn, differs from
+//! the previous turn's by less than a relative tolerance. The coefficient of speed
+//! fluctuation of a turn is δ = (ω_max − ω_min)/ω_m ([`Turn`]) with the textbook's
+//! ω_m = (ω_max + ω_min)/2 (the time mean 2π/T_turn may differ from it by up to δ/2,
+//! relative: by a first-order amount, which would blur a check of δ to a few per cent).
+//!
+//! # The flywheel (energy–mass method of Wittenbauer)
+//! The textbook problem: a constant driving moment M_d balances the loads over a turn,
+//! M_d = −(1/2π)∮ M_red dφ (the loads taken at the mean speed), and the work
+//! W(φ) = ∫_φ₀^φ (M_d + M_red) dφ is periodic. With a flywheel J_F on the crank the energy
+//! equation is exact:
+//!
+//! ```text
+//! ½ (J_F + J_red(φ))·ω(φ)² = E₀ + W(φ).
+//! ```
+//!
+//! Wanted: ω_max = ω_m(1 + δ/2), ω_min = ω_m(1 − δ/2), so that (ω_max − ω_min)/ω_m = δ with
+//! ω_m = (ω_max + ω_min)/2. With ψ± = ½ω²_max,min the condition ω(φ)² ≤ ω²_max for every φ,
+//! with equality somewhere, reads E₀ − ψ₊·J_F = min_φ (ψ₊·J_red − W), and ω(φ)² ≥ ω²_min
+//! reads E₀ − ψ₋·J_F = max_φ (ψ₋·J_red − W). Subtracting (in Wittenbauer's diagram of W
+//! against J_red: the two tangents of slopes ψ₊ and ψ₋ meet at (−J_F, −E₀)):
+//!
+//! ```text
+//! J_F = [ max_φ(ψ₋·J_red(φ) − W(φ)) − min_φ(ψ₊·J_red(φ) − W(φ)) ] / (ψ₊ − ψ₋),
+//! E₀  = min_φ(ψ₊·J_red − W) + ψ₊·J_F,   ω(φ₀) = √(2E₀/(J_F + J_red(φ₀))).
+//! ```
+//!
+//! The textbook's simplified formula linearises the same equation about ω_m, taking the
+//! links' own energy at the mean speed and J_F + J_red(φ) ≈ J_F + J̄ (J̄ the mean of J_red):
+//! 2δ·ω_m² = ω²_max − ω²_min ≈ 2·ΔE/(J_F + J̄), with ΔE the range over the turn of
+//! W(φ) − ½·J_red(φ)·ω_m², so
+//!
+//! ```text
+//! J_F ≈ ΔE/(δ·ω_m²) − J̄.
+//! ```
+//!
+//! Both are in [`Flywheel`] ([`LinkageSystem::flywheel`]); the simplified one errs by terms
+//! of order δ and by the variation of J_red against J_F.
+//!
+//! # Example
+//! The bundled four-bar under a motor of 50 N·m at rest falling to zero at 30 rad/s, with a
+//! flywheel of 0.05 kg·m²: from rest to its steady state.
+//! ```
+//! use tmm::dynamics::{machines::LinearMotor, Rk4};
+//! use tmm::linkage::{bundled, dynamics::{LinkageSystem, Motor, RunUpOptions}};
+//! let mut l = bundled::four_bar();
+//! l.loads.retain(|x| !matches!(x, tmm::linkage::LoadSpec::Resistance { .. }));
+//! let sys = LinkageSystem::from_linkage(&l)?
+//!     .with_motor(0, Motor::Linear(LinearMotor { a: 50.0, b: 50.0 / 30.0 }))?
+//!     .with_inertia(0, 0.05)?;
+//! let r = sys.run_up(&Rk4, &RunUpOptions::new(1e-3))?;
+//! let steady = r.turns.last().unwrap();
+//! assert!(steady.omega_mean > 25.0 && steady.omega_mean < 30.0);
+//! assert!(steady.delta > 0.0 && steady.omega_min > 0.0);
+//! # Ok::<(), tmm::Error>(())
+//! ```
+
+mod cycle;
+mod drive;
+mod flywheel;
+mod system;
+
+pub use cycle::{Reduced, RunUp, RunUpOptions, Turn};
+pub use drive::{Damper, Motor};
+pub use flywheel::Flywheel;
+pub use system::{LinkageSystem, Terms};

@@ -1,0 +1,636 @@
+//! The equation of motion of a described linkage: A(q), ∂A/∂q, Q and B from the exact
+//! transfer functions of the kinematic solve.
+
+use nalgebra::{Matrix2, Point2, Vector2};
+
+use super::drive::{Damper, DamperPlan, Motor};
+use crate::angle::perp;
+use crate::dynamics::{christoffel_terms, LagrangeSystem};
+use crate::error::{computed_all, finite, finite2, Error, Result};
+use crate::kinematics::{LinkMotion, Motion, PointMotion};
+use crate::linkage::plan::LoadPlan;
+use crate::linkage::{Analysis, Linkage, Plan};
+
+/// Everything Lagrange's equations need at one state of a [`LinkageSystem`].
+///
+/// For a linkage with one input the second coordinate is a decoupled unit mass that nothing
+/// drives (A₂₂ = 1, A₁₂ = 0, Q₂ = 0): it stays at rest, and the first row is the textbook's
+/// equation of the machine reduced to its input, J_red(φ)·ε + ½·J_red′(φ)·ω² = M_red.
+///
+/// # Examples
+/// The five-bar robot's inertia matrix is symmetric and positive-definite:
+/// ```
+/// use nalgebra::Vector2;
+/// use tmm::linkage::{bundled, dynamics::LinkageSystem};
+/// let sys = LinkageSystem::from_linkage(&bundled::five_bar_robot())?;
+/// let q = Vector2::new(2.0, 1.1);
+/// let t = sys.terms(&q, &Vector2::new(1.0, -1.0))?;
+/// let a = t.inertia;
+/// assert_eq!(a[(0, 1)], a[(1, 0)]);
+/// assert!(a[(0, 0)] > 0.0 && a.determinant() > 0.0);
+/// assert_eq!(t.forces(), t.drives + t.loads);
+/// # Ok::<(), tmm::Error>(())
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Terms {
+    /// The generalized inertia A(q) of T = ½ q̇ᵀ A q̇ (kg·m² for crank angles, kg for slides):
+    /// for one input A₁₁ is the reduced moment of inertia J_red.
+    pub inertia: Matrix2<f64>,
+    /// [∂A/∂q₁, ∂A/∂q₂].
+    pub inertia_derivatives: [Matrix2<f64>; 2],
+    /// The generalized forces of the motors on the inputs (N·m, or N for a slider).
+    pub drives: Vector2<f64>,
+    /// The generalized forces of gravity and of the description's loads (for one input, the
+    /// reduced moment of the loads M_red).
+    pub loads: Vector2<f64>,
+    /// The matrix B of Rayleigh's dissipation function Φ = ½ q̇ᵀ B q̇.
+    pub damping: Matrix2<f64>,
+}
+
+impl Terms {
+    /// All applied generalized forces: drives and loads (not the viscous −B q̇).
+    #[must_use]
+    pub fn forces(&self) -> Vector2<f64> {
+        self.drives + self.loads
+    }
+}
+
+/// A described linkage with one or two inputs as a machine the crate's integrators run: a
+/// [`LagrangeSystem`] whose inertia, inertia derivatives and generalized forces come from the
+/// linkage engine's kinematics (see the [module docs](super) for the formulas).
+///
+/// The inputs' coordinates are the generalized coordinates: q₁ the (first) input's crank
+/// angle φ (rad, as [`Plan::reference_input`]) or slide s (m), q₂ the second input's, or a
+/// decoupled coordinate at rest for a linkage with one input.
+///
+/// # Examples
+/// The bundled four-bar under a linear motor: its reduced moment of inertia and the
+/// generalized force at a state.
+/// ```
+/// use nalgebra::Vector2;
+/// use tmm::dynamics::machines::LinearMotor;
+/// use tmm::linkage::{bundled, dynamics::{LinkageSystem, Motor}};
+/// let sys = LinkageSystem::from_linkage(&bundled::four_bar())?
+///     .with_motor(0, Motor::Linear(LinearMotor { a: 40.0, b: 0.2 }))?;
+/// let t = sys.terms(&Vector2::new(1.0, 0.0), &Vector2::new(10.0, 0.0))?;
+/// assert!(t.inertia[(0, 0)] > 0.002); // more than the crank's own 0.002 kg·m²
+/// assert_eq!(t.drives[0], 38.0);
+/// assert_eq!((t.inertia[(1, 1)], t.loads[1]), (1.0, 0.0)); // the idle coordinate
+/// # Ok::<(), tmm::Error>(())
+/// ```
+#[derive(Debug, Clone, PartialEq)]
+pub struct LinkageSystem {
+    plan: Plan,
+    motors: [Motor; 2],
+    extra: [f64; 2],
+    dampers: Vec<DamperPlan>,
+}
+
+/// The exact first- and second-order transfer functions of every link at one position:
+/// kinematic solves at unit input rates and zero input accelerations, made with one set of
+/// buffers.
+struct Transfer<'p> {
+    n: usize,
+    nl: usize,
+    /// The link motions of the solves, one block of `nl` per solve: q̇ = e₁ (and, for two
+    /// inputs, e₂ and (1, 1)). The velocities of solve k are the first-order transfer
+    /// functions ∂v/∂q̇_k, its accelerations the second-order ones ∂²r/∂q_k²; those of the
+    /// solve at (1, 1) are Σ_jk ∂²r/∂q_j∂q_k, so the mixed derivative is
+    /// (a_(1,1) − a_11 − a_22)/2.
+    links: Vec<LinkMotion>,
+    /// Every link's unit vector (the same in every solve).
+    units: Vec<Vector2<f64>>,
+    /// The buffers of the solves: their positions serve the position-only look-ups.
+    an: Analysis<'p>,
+}
+
+impl<'p> Transfer<'p> {
+    fn new(plan: &'p Plan, n: usize, q: &Vector2<f64>) -> Result<Self> {
+        let mut an = Analysis::new(plan);
+        let nl = plan.link_names.len();
+        let rates: &[[f64; 2]] = if n == 1 {
+            &[[1.0, 0.0]]
+        } else {
+            &[[1.0, 0.0], [0.0, 1.0], [1.0, 1.0]]
+        };
+        let mut links = Vec::with_capacity(nl * rates.len());
+        for r in rates {
+            let m = [Motion::new(q[0], r[0], 0.0), Motion::new(q[1], r[1], 0.0)];
+            an.solve_kinematics_inputs(&m[..n])?;
+            links.extend((0..nl).map(|l| *an.link_motion(l)));
+        }
+        let units = (0..nl).map(|l| an.link_unit(l)).collect();
+        Ok(Self {
+            n,
+            nl,
+            links,
+            units,
+            an,
+        })
+    }
+
+    /// The motion of the point at `local` (along, across) of link `l` in solve `s`.
+    fn point(&self, s: usize, l: usize, local: Vector2<f64>) -> PointMotion {
+        let (m, e) = (self.link(s, l), self.units[l]);
+        let r = local.x * e + local.y * perp(e);
+        PointMotion::new(
+            m.origin.p + r,
+            m.origin.v + m.omega * perp(r),
+            m.origin.a + m.epsilon * perp(r) - m.omega * m.omega * r,
+        )
+    }
+
+    /// Link `l` in solve `s` (0, 1: unit rate of input s; 2: both).
+    fn link(&self, s: usize, l: usize) -> &LinkMotion {
+        &self.links[s * self.nl + l]
+    }
+
+    /// ∂ω_l/∂q̇_k.
+    fn omega(&self, k: usize, l: usize) -> f64 {
+        self.link(k, l).omega
+    }
+
+    /// ∂v_P/∂q̇_k of the point of link `l` at the local coordinates `local`.
+    fn vel(&self, k: usize, l: usize, local: Vector2<f64>) -> Vector2<f64> {
+        self.point(k, l, local).v
+    }
+
+    /// ∂v_P/∂q̇_k of the point of link `l` at `p`.
+    fn vel_of(&self, k: usize, l: usize, p: Point2<f64>) -> Vector2<f64> {
+        self.link(k, l).motion_of(p).v
+    }
+
+    /// The sliding link and the guide's link of prismatic joint `j`, and the guide's unit
+    /// direction now.
+    fn slide_parts(&self, j: usize) -> (usize, usize, Vector2<f64>) {
+        let jp = &self.an.plan().joints[j];
+        let g = jp.prismatic.map_or(0, |(g, _)| g);
+        (jp.links[1 - g], jp.links[g], self.an.guide_direction(j))
+    }
+
+    /// The motions of prismatic joint `j`'s point on its sliding link and on its guide's
+    /// link in solve `k`.
+    fn slide_points(&self, k: usize, j: usize) -> [PointMotion; 2] {
+        let jp = &self.an.plan().joints[j];
+        let g = jp.prismatic.map_or(0, |(g, _)| g);
+        [1 - g, g].map(|side| {
+            let local = jp.local[side];
+            self.point(k, jp.links[side], local)
+        })
+    }
+
+    /// ∂ṡ/∂q̇_k of the slide of prismatic joint `j` along the guide direction `d`: the
+    /// relative velocity of its points on the sliding link and on the guide's link.
+    fn slide_rate(&self, k: usize, j: usize, d: Vector2<f64>) -> f64 {
+        let [on, guide] = self.slide_points(k, j);
+        (on.v - guide.v).dot(&d)
+    }
+
+    /// The actual rate Σ_k (∂r/∂q_k)·q̇_k of a quantity with transfer functions `f(k)`.
+    fn rate(&self, qd: &Vector2<f64>, f: impl Fn(usize) -> f64) -> f64 {
+        (0..self.n).map(|k| f(k) * qd[k]).sum()
+    }
+}
+
+/// A resistance of magnitude `forward` while `rate` > 0 and `backward` while it is < 0,
+/// opposing the motion; zero at rest (as the kinetostatics applies it).
+fn resist(rate: f64, forward: f64, backward: f64) -> f64 {
+    if rate > 0.0 {
+        -forward
+    } else if rate < 0.0 {
+        backward
+    } else {
+        0.0
+    }
+}
+
+fn check_input(n: usize, input: usize) -> Result<()> {
+    if input < n {
+        Ok(())
+    } else {
+        Err(Error::OutOfRange {
+            name: "input index",
+            value: input as f64,
+            min: 0.0,
+            max: n as f64 - 1.0,
+        })
+    }
+}
+
+impl LinkageSystem {
+    /// The machine of a planned linkage, without motors, added inertia or dampers.
+    ///
+    /// # Errors
+    /// None today (every plan has one or two inputs); kept fallible for checks to come.
+    pub fn new(plan: Plan) -> Result<Self> {
+        Ok(Self {
+            plan,
+            motors: [Motor::None, Motor::None],
+            extra: [0.0; 2],
+            dampers: Vec::new(),
+        })
+    }
+
+    /// Plans `linkage` and makes its machine.
+    ///
+    /// # Errors
+    /// As [`Plan::new`].
+    pub fn from_linkage(linkage: &Linkage) -> Result<Self> {
+        Self::new(Plan::new(linkage)?)
+    }
+
+    /// The same machine with `motor` on input `input` (0 the first, 1 the second).
+    ///
+    /// # Errors
+    /// [`Error::OutOfRange`] for an input the linkage does not have; [`Error::NonFinite`]
+    /// for a motor with a non-finite coefficient.
+    pub fn with_motor(mut self, input: usize, motor: Motor) -> Result<Self> {
+        check_input(self.dof(), input)?;
+        motor.check()?;
+        self.motors[input] = motor;
+        Ok(self)
+    }
+
+    /// The same machine with the moment of inertia `j` added on input `input` (kg·m²; kg for
+    /// a slider): a motor's rotor and gearing reduced to the input shaft, or a flywheel.
+    ///
+    /// # Errors
+    /// [`Error::OutOfRange`] for an input the linkage does not have; [`Error::NonFinite`]
+    /// for a non-finite `j`, [`Error::OutOfRange`] when the total added inertia would be
+    /// negative.
+    pub fn with_inertia(mut self, input: usize, j: f64) -> Result<Self> {
+        check_input(self.dof(), input)?;
+        let total = self.extra[input] + finite("added moment of inertia", j)?;
+        if !(total >= 0.0 && total.is_finite()) {
+            return Err(Error::OutOfRange {
+                name: "added moment of inertia (in total)",
+                value: total,
+                min: 0.0,
+                max: f64::MAX,
+            });
+        }
+        self.extra[input] = total;
+        Ok(self)
+    }
+
+    /// The same machine with a viscous damper.
+    ///
+    /// # Errors
+    /// [`Error::Description`] for an unknown link or joint, or a coefficient that is negative
+    /// or not finite.
+    pub fn with_damper(mut self, damper: &Damper) -> Result<Self> {
+        let d = damper.resolve(&self.plan)?;
+        self.dampers.push(d);
+        Ok(self)
+    }
+
+    /// The linkage's plan.
+    #[must_use]
+    pub fn plan(&self) -> &Plan {
+        &self.plan
+    }
+
+    /// The number of degrees of freedom (inputs): 1 or 2.
+    #[must_use]
+    pub fn dof(&self) -> usize {
+        self.plan.input_count()
+    }
+
+    /// The motor on input `input` (`Motor::None` for an input the linkage does not have).
+    #[must_use]
+    pub fn motor(&self, input: usize) -> &Motor {
+        self.motors.get(input).unwrap_or(&Motor::None)
+    }
+
+    /// The inertia added on input `input` by [`with_inertia`](Self::with_inertia).
+    #[must_use]
+    pub fn added_inertia(&self, input: usize) -> f64 {
+        self.extra.get(input).copied().unwrap_or(0.0)
+    }
+
+    /// A, ∂A/∂q, the drives' and the loads' generalized forces and B at the state (q, q̇).
+    ///
+    /// One position of the kinematics at unit input rate gives every first- and second-order
+    /// transfer function of a linkage with one input (three for two inputs), plus one more
+    /// at the actual rates when the plan has loads added by [`Plan::add_load_fn`] (such a
+    /// load sees the state's positions and velocities, and the accelerations of q̈ = 0).
+    ///
+    /// # Errors
+    /// [`Error::NonFinite`] for a non-finite q or q̇; the kinematics' errors (a group that
+    /// cannot be assembled or is at a dead point) wrapped in [`Error::In`]; a load's or a
+    /// motor's error; [`Error::Overflow`] when a term overflows.
+    pub fn terms(&self, q: &Vector2<f64>, qd: &Vector2<f64>) -> Result<Terms> {
+        self.evaluate(q, qd, true)
+    }
+
+    fn evaluate(&self, q: &Vector2<f64>, qd: &Vector2<f64>, forces: bool) -> Result<Terms> {
+        finite2(["q1", "q2"], *q)?;
+        finite2(["q1_dot", "q2_dot"], *qd)?;
+        let plan = &self.plan;
+        let n = self.dof();
+        let mut tr = Transfer::new(plan, n, q)?;
+        let mut a = Matrix2::zeros();
+        let mut da = [Matrix2::zeros(); 2];
+        let mut loads = Vector2::zeros();
+        let solves = 2 * n - 1;
+        for (l, lp) in plan.links.iter().enumerate().skip(1) {
+            if lp.mass == 0.0 && lp.inertia == 0.0 {
+                continue;
+            }
+            let (m, j) = (lp.mass, lp.inertia);
+            // The centre of mass in every solve, once.
+            let mut pts = [PointMotion::fixed(Point2::origin()); 3];
+            let mut rot = [(0.0, 0.0); 3];
+            for s in 0..solves {
+                let lm = tr.link(s, l);
+                pts[s] = tr.point(s, l, lp.centre);
+                rot[s] = (lm.omega, lm.epsilon);
+            }
+            let v = [pts[0].v, pts[1].v];
+            let w = [rot[0].0, rot[1].0];
+            // ∂²r_S/∂q_i∂q_k and ∂²φ/∂q_i∂q_k.
+            let acc = |i: usize, k: usize| {
+                if i == k {
+                    pts[i].a
+                } else {
+                    0.5 * (pts[2].a - pts[0].a - pts[1].a)
+                }
+            };
+            let eps = |i: usize, k: usize| {
+                if i == k {
+                    rot[i].1
+                } else {
+                    0.5 * (rot[2].1 - rot[0].1 - rot[1].1)
+                }
+            };
+            for i in 0..n {
+                for k in i..n {
+                    a[(i, k)] += m * v[i].dot(&v[k]) + j * w[i] * w[k];
+                }
+                if forces {
+                    loads[i] += m * plan.gravity.dot(&v[i]);
+                }
+            }
+            for (s, da_s) in da.iter_mut().enumerate().take(n) {
+                for i in 0..n {
+                    for k in i..n {
+                        da_s[(i, k)] += m * (acc(i, s).dot(&v[k]) + v[i].dot(&acc(k, s)))
+                            + j * (eps(i, s) * w[k] + w[i] * eps(k, s));
+                    }
+                }
+            }
+        }
+        // Symmetric by construction, to the last bit.
+        a[(1, 0)] = a[(0, 1)];
+        for da_s in &mut da {
+            da_s[(1, 0)] = da_s[(0, 1)];
+        }
+        for i in 0..n {
+            a[(i, i)] += self.extra[i];
+        }
+        if n == 1 {
+            a[(1, 1)] = 1.0;
+        }
+        let mut drives = Vector2::zeros();
+        if forces {
+            self.add_loads(&mut tr, q, qd, &mut loads)?;
+            for i in 0..n {
+                drives[i] = self.motors[i].moment(q[i], qd[i])?;
+            }
+        }
+        let damping = self.damping_from(&tr);
+        computed_all("generalized inertia A", a.iter())?;
+        computed_all(
+            "inertia derivatives dA/dq",
+            da.iter().flat_map(|m| m.iter()),
+        )?;
+        computed_all("generalized forces Q", loads.iter().chain(drives.iter()))?;
+        computed_all("damping matrix B", damping.iter())?;
+        Ok(Terms {
+            inertia: a,
+            inertia_derivatives: da,
+            drives,
+            loads,
+            damping,
+        })
+    }
+
+    /// Adds the generalized forces of the description's loads: Q_k = Σ F·∂v_P/∂q̇_k +
+    /// M·∂ω/∂q̇_k, each load evaluated at the actual rates.
+    fn add_loads(
+        &self,
+        tr: &mut Transfer<'_>,
+        q: &Vector2<f64>,
+        qd: &Vector2<f64>,
+        loads: &mut Vector2<f64>,
+    ) -> Result<()> {
+        let plan = &self.plan;
+        let n = tr.n;
+        let mut custom = false;
+        for lp in &plan.loads {
+            match lp {
+                LoadPlan::Force { link, local, force } => {
+                    for k in 0..n {
+                        loads[k] += force.dot(&tr.vel(k, *link, *local));
+                    }
+                }
+                LoadPlan::Moment { link, moment } => {
+                    for k in 0..n {
+                        loads[k] += moment * tr.omega(k, *link);
+                    }
+                }
+                LoadPlan::Turning {
+                    link,
+                    forward,
+                    backward,
+                } => {
+                    let m = resist(tr.rate(qd, |k| tr.omega(k, *link)), *forward, *backward);
+                    for k in 0..n {
+                        loads[k] += m * tr.omega(k, *link);
+                    }
+                }
+                LoadPlan::Sliding {
+                    joint,
+                    local,
+                    forward,
+                    backward,
+                } => {
+                    let (slider, guide, d) = tr.slide_parts(*joint);
+                    let rate = tr.rate(qd, |k| tr.slide_rate(k, *joint, d));
+                    let f = resist(rate, *forward, *backward) * d;
+                    let p = tr.point(0, slider, *local).p;
+                    for k in 0..n {
+                        loads[k] += f.dot(&(tr.vel_of(k, slider, p) - tr.vel_of(k, guide, p)));
+                    }
+                }
+                LoadPlan::Indicator {
+                    joint,
+                    head,
+                    diagram,
+                    ends,
+                } => {
+                    // The piston's guide is the frame: its point on the piston moves with v.
+                    let (_, _, d) = tr.slide_parts(*joint);
+                    let mut on = [PointMotion::fixed(Point2::origin()); 2];
+                    let mut rate = 0.0;
+                    let mut s = 0.0;
+                    for k in 0..n {
+                        let [piston, guide] = tr.slide_points(k, *joint);
+                        s = (piston.p - guide.p).dot(&d);
+                        rate += (piston.v - guide.v).dot(&d) * qd[k];
+                        on[k] = piston;
+                    }
+                    let f = diagram
+                        .force(head * s, head * rate, *head * d, ends[0], ends[1])
+                        .map_err(|e| Error::In {
+                            part: format!("piston of joint {}", plan.joint_names[*joint]),
+                            source: Box::new(e),
+                        })?;
+                    for k in 0..n {
+                        loads[k] += f.dot(&on[k].v);
+                    }
+                }
+                LoadPlan::Custom { .. } => custom = true,
+            }
+        }
+        if !custom {
+            return Ok(());
+        }
+        // Loads given as functions of the state see it solved at the actual rates (the same
+        // positions; the transfer functions are kept in `tr.links`).
+        let m = [Motion::new(q[0], qd[0], 0.0), Motion::new(q[1], qd[1], 0.0)];
+        tr.an.solve_kinematics_inputs(&m[..n])?;
+        for lp in &plan.loads {
+            let LoadPlan::Custom { link, f } = lp else {
+                continue;
+            };
+            let part = |e: Error| Error::In {
+                part: plan.link_names[*link].clone(),
+                source: Box::new(e),
+            };
+            let load = (f.0)(&tr.an).map_err(part)?;
+            load.validate().map_err(part)?;
+            for k in 0..n {
+                loads[k] += load.force.dot(&tr.vel_of(k, *link, load.point))
+                    + load.moment * tr.omega(k, *link);
+            }
+        }
+        Ok(())
+    }
+
+    fn damping_from(&self, tr: &Transfer<'_>) -> Matrix2<f64> {
+        let n = tr.n;
+        let mut b = Matrix2::zeros();
+        for d in &self.dampers {
+            let (c, r): (f64, [f64; 2]) = match *d {
+                DamperPlan::Link { link, c } => (
+                    c,
+                    [0, 1].map(|k| if k < n { tr.omega(k, link) } else { 0.0 }),
+                ),
+                DamperPlan::Hinge { links, c } => (
+                    c,
+                    [0, 1].map(|k| {
+                        if k < n {
+                            tr.omega(k, links[0]) - tr.omega(k, links[1])
+                        } else {
+                            0.0
+                        }
+                    }),
+                ),
+                DamperPlan::Slide { joint, c } => {
+                    let d = tr.an.guide_direction(joint);
+                    (
+                        c,
+                        [0, 1].map(|k| {
+                            if k < n {
+                                tr.slide_rate(k, joint, d)
+                            } else {
+                                0.0
+                            }
+                        }),
+                    )
+                }
+            };
+            for i in 0..n {
+                for k in i..n {
+                    b[(i, k)] += c * r[i] * r[k];
+                }
+            }
+        }
+        b[(1, 0)] = b[(0, 1)];
+        b
+    }
+
+    /// The inverse dynamics: the generalized driving forces the inputs need for the motion
+    /// (q, q̇, q̈), A·q̈ + c(q, q̇) + B·q̇ − Q_loads (c the Christoffel terms), the motors
+    /// left out. For a linkage with one input the first component is the driving moment (or
+    /// force); the second is q̈₂ of the idle coordinate.
+    ///
+    /// # Errors
+    /// As [`terms`](Self::terms); [`Error::NonFinite`] for a non-finite q̈.
+    ///
+    /// # Examples
+    /// At a steady motion it equals the kinetostatic balancing moment of the same position:
+    /// ```
+    /// use nalgebra::Vector2;
+    /// use tmm::kinematics::Motion;
+    /// use tmm::linkage::{bundled, dynamics::LinkageSystem, Plan};
+    /// let sys = LinkageSystem::from_linkage(&bundled::watt_six_bar())?;
+    /// let m = sys.inverse_dynamics(&Vector2::new(0.7, 0.0), &Vector2::new(12.0, 0.0), &Vector2::zeros())?;
+    /// let b = sys.plan().analyse(Motion::new(0.7, 12.0, 0.0))?.balance().value;
+    /// assert!((m[0] - b).abs() < 1e-9 * b.abs());
+    /// # Ok::<(), tmm::Error>(())
+    /// ```
+    pub fn inverse_dynamics(
+        &self,
+        q: &Vector2<f64>,
+        qd: &Vector2<f64>,
+        qdd: &Vector2<f64>,
+    ) -> Result<Vector2<f64>> {
+        finite2(["q1_ddot", "q2_ddot"], *qdd)?;
+        let t = self.evaluate(q, qd, true)?;
+        let c = christoffel_terms(&t.inertia_derivatives, qd)?;
+        let m = t.inertia * qdd + c + t.damping * qd - t.loads;
+        computed_all("inverse dynamics", m.iter())?;
+        Ok(m)
+    }
+}
+
+impl LagrangeSystem for LinkageSystem {
+    fn inertia(&self, q: &Vector2<f64>) -> Result<Matrix2<f64>> {
+        Ok(self.evaluate(q, &Vector2::zeros(), false)?.inertia)
+    }
+
+    fn inertia_derivatives(&self, q: &Vector2<f64>) -> Result<[Matrix2<f64>; 2]> {
+        Ok(self
+            .evaluate(q, &Vector2::zeros(), false)?
+            .inertia_derivatives)
+    }
+
+    fn forces(&self, _t: f64, q: &Vector2<f64>, qd: &Vector2<f64>) -> Result<Vector2<f64>> {
+        Ok(self.terms(q, qd)?.forces())
+    }
+
+    fn damping(&self, q: &Vector2<f64>) -> Result<Matrix2<f64>> {
+        if self.dampers.is_empty() {
+            return Ok(Matrix2::zeros());
+        }
+        Ok(self.evaluate(q, &Vector2::zeros(), false)?.damping)
+    }
+
+    fn output_names(&self) -> Vec<&'static str> {
+        vec!["drive_1", "drive_2", "loads_1", "loads_2"]
+    }
+
+    fn outputs(
+        &self,
+        _t: f64,
+        q: &Vector2<f64>,
+        qd: &Vector2<f64>,
+        out: &mut Vec<f64>,
+    ) -> Result<()> {
+        let t = self.terms(q, qd)?;
+        out.extend([t.drives[0], t.drives[1], t.loads[0], t.loads[1]]);
+        Ok(())
+    }
+}

@@ -1,0 +1,629 @@
+//! The dynamics of a described linkage (issue 16): two independent routes through the crate
+//! agree, energy balances, the flywheel keeps the δ it was designed for, the five-bar robot
+//! built from a description is the hand-modelled one, and bad input is an error.
+
+use std::f64::consts::{PI, TAU};
+
+use nalgebra::{Matrix2, Point2, Vector2};
+use tmm::dynamics::machines::{FiveBar, LinearMotor};
+use tmm::dynamics::{run, LagrangeSystem, Rk4, RunOptions, State, Trajectory};
+use tmm::kinematics::Motion;
+use tmm::linkage::dynamics::{Damper, LinkageSystem, Motor, RunUpOptions};
+use tmm::linkage::{bundled, At, Linkage, LoadSpec, Mass, Plan};
+use tmm::mechanism::{Compressor, RockingCylinder, SixBar, SliderCrank};
+use tmm::{Error, Load};
+
+/// The bundled linkages with masses and one crank input, and the course compressor.
+fn one_input_linkages() -> Vec<(&'static str, Linkage)> {
+    vec![
+        ("four-bar", bundled::four_bar()),
+        ("geared four-bar", bundled::geared_four_bar()),
+        ("Watt six-bar", bundled::watt_six_bar()),
+        ("Stephenson six-bar", bundled::stephenson_six_bar()),
+        ("shaper", bundled::shaper()),
+        ("compressor", Compressor::course_example().linkage()),
+        ("slider-crank", SliderCrank::course_example().linkage()),
+        (
+            "geared slider-crank",
+            SliderCrank::geared_example().linkage(),
+        ),
+        (
+            "rocking cylinder",
+            RockingCylinder::course_example().linkage(),
+        ),
+        ("six-bar", SixBar::course_example().linkage()),
+    ]
+}
+
+fn five_bar_system(fb: &FiveBar) -> LinkageSystem {
+    LinkageSystem::from_linkage(&bundled::five_bar_robot())
+        .unwrap()
+        .with_motor(0, Motor::Servo(fb.drive1))
+        .unwrap()
+        .with_motor(1, Motor::Servo(fb.drive4))
+        .unwrap()
+}
+
+fn max_abs(m: &Matrix2<f64>) -> f64 {
+    m.iter().fold(0.0, |a, v| a.max(v.abs()))
+}
+
+/// A(q), ∂A/∂q and Q of the five-bar robot described as a linkage equal those of the
+/// hand-written `FiveBar` over its workspace. Both are sums of a handful of products of
+/// well-conditioned transfer functions (|sin(φ3 − φ2)| ≥ 0.2 here): rounding differences are
+/// some 10⁻¹⁵ of the largest term, so 10⁻¹² relative leaves a margin of 100 and still fails
+/// on any wrong term (a misplaced mass changes A by 10⁻²).
+#[test]
+fn five_bar_terms_equal_the_hand_model() {
+    let fb = FiveBar::default();
+    let sys = five_bar_system(&fb);
+    let (mut worst_a, mut worst_da, mut worst_q, mut cases) = (0.0f64, 0.0f64, 0.0f64, 0);
+    for i in 0..9 {
+        for k in 0..9 {
+            let q = Vector2::new(
+                (95.0 + 6.0 * f64::from(i)).to_radians(),
+                (35.0 + 6.0 * f64::from(k)).to_radians(),
+            );
+            let kin = fb.kinematics(&q).unwrap();
+            assert!(kin.sin_phi3_minus_phi2.abs() > 0.2);
+            let qd = Vector2::new(1.5 - 0.3 * f64::from(i), 0.2 * f64::from(k) - 0.7);
+            let t = sys.terms(&q, &qd).unwrap();
+            let a = fb.inertia(&q).unwrap();
+            let da = fb.inertia_derivatives(&q).unwrap();
+            let forces = fb.forces(0.0, &q, &qd).unwrap();
+            worst_a = worst_a.max(max_abs(&(t.inertia - a)) / max_abs(&a));
+            let da_scale = max_abs(&da[0]).max(max_abs(&da[1]));
+            worst_da = worst_da.max(
+                max_abs(&(t.inertia_derivatives[0] - da[0]))
+                    .max(max_abs(&(t.inertia_derivatives[1] - da[1])))
+                    / da_scale,
+            );
+            let q_scale = forces.amax().max(fb.m_on);
+            worst_q = worst_q.max((t.forces() - forces).amax() / q_scale);
+            cases += 1;
+        }
+    }
+    println!(
+        "five-bar over {cases} states: A {worst_a:.1e}, dA/dq {worst_da:.1e}, Q {worst_q:.1e}"
+    );
+    assert!(worst_a <= 1e-12, "A differs by {worst_a:e}");
+    assert!(worst_da <= 1e-12, "dA/dq differs by {worst_da:e}");
+    assert!(worst_q <= 1e-12, "Q differs by {worst_q:e}");
+}
+
+/// The couplers as rigid bodies with their own J_S and centres off the middle: the hand
+/// model's exact variant (`j_s2`, `j_s3` set) equals the description with those masses.
+#[test]
+fn five_bar_with_rigid_couplers_equals_the_hand_model() {
+    let fb = FiveBar {
+        l_as2: 0.1,
+        l_bs3: 0.08,
+        j_s2: Some(0.004),
+        j_s3: Some(0.006),
+        ..FiveBar::default()
+    };
+    let mut l = bundled::five_bar_robot();
+    let at = |n: &str| {
+        let j = l.joints.iter().find(|j| j.name == n).unwrap();
+        Vector2::new(j.at[0], j.at[1])
+    };
+    let (a, b, c) = (at("A"), at("B"), at("C"));
+    let s2 = a + 0.1 * (b - a).normalize();
+    let s3 = b + 0.08 * (c - b).normalize();
+    l.links[2].mass = Some(Mass::new(0.6, 0.004, At::Coords([s2.x, s2.y])));
+    l.links[3].mass = Some(Mass::new(0.6, 0.006, At::Coords([s3.x, s3.y])));
+    let sys = LinkageSystem::from_linkage(&l)
+        .unwrap()
+        .with_motor(0, Motor::Servo(fb.drive1))
+        .unwrap()
+        .with_motor(1, Motor::Servo(fb.drive4))
+        .unwrap();
+    let mut worst = 0.0f64;
+    for (p1, p4) in [
+        (100.0, 50.0),
+        (120.0, 60.0),
+        (140.0, 80.0),
+        (110.0, 40.0),
+        (130.0, 75.0),
+    ] {
+        let q = Vector2::new(f64::to_radians(p1), f64::to_radians(p4));
+        let t = sys.terms(&q, &Vector2::new(0.3, 1.2)).unwrap();
+        let a = fb.inertia(&q).unwrap();
+        let da = fb.inertia_derivatives(&q).unwrap();
+        worst = worst
+            .max(max_abs(&(t.inertia - a)) / max_abs(&a))
+            .max(max_abs(&(t.inertia_derivatives[0] - da[0])) / max_abs(&da[0]))
+            .max(max_abs(&(t.inertia_derivatives[1] - da[1])) / max_abs(&da[1]));
+    }
+    assert!(worst <= 1e-12, "{worst:e}");
+}
+
+/// With gravity the hand model takes it through its potential, the linkage as a load: Q of
+/// the linkage is the hand model's Q − ∇Π.
+#[test]
+fn five_bar_gravity_is_the_potential_gradient() {
+    let fb = FiveBar {
+        gravity: 9.81,
+        ..FiveBar::default()
+    };
+    let mut l = bundled::five_bar_robot();
+    l.gravity = [0.0, -9.81];
+    let sys = LinkageSystem::from_linkage(&l)
+        .unwrap()
+        .with_motor(0, Motor::Servo(fb.drive1))
+        .unwrap()
+        .with_motor(1, Motor::Servo(fb.drive4))
+        .unwrap();
+    let mut worst = 0.0f64;
+    for (p1, p4) in [(100.0, 50.0), (120.0, 60.0), (140.0, 80.0), (110.0, 40.0)] {
+        let q = Vector2::new(f64::to_radians(p1), f64::to_radians(p4));
+        let qd = Vector2::new(0.4, -0.9);
+        let hand = fb.forces(0.0, &q, &qd).unwrap() - fb.potential_gradient(&q).unwrap();
+        let t = sys.terms(&q, &qd).unwrap();
+        worst = worst.max((t.forces() - hand).amax() / hand.amax());
+    }
+    assert!(worst <= 1e-12, "gravity differs by {worst:e}");
+}
+
+/// RK4 runs of the two models from the same state with the same steps agree far better than
+/// either agrees with the exact motion: the difference of the models is below the
+/// integrator's own error, estimated by halving the step.
+#[test]
+fn five_bar_trajectories_agree_to_the_integrator_tolerance() {
+    let fb = FiveBar::default();
+    let sys = five_bar_system(&fb);
+    let start = State::at_rest(Vector2::new(120f64.to_radians(), 60f64.to_radians()));
+    let end = |s: &dyn LagrangeSystem, h: f64| {
+        let mut o = RunOptions::until(0.5, h);
+        o.record_every = 1000;
+        run(s, &Rk4, start, &o).unwrap().last
+    };
+    let hand = end(&fb, 2e-3);
+    let hand_fine = end(&fb, 1e-3);
+    let described = end(&sys, 2e-3);
+    let diff = |a: &State, b: &State| (a.q - b.q).amax().max((a.qd - b.qd).amax());
+    let models = diff(&hand, &described);
+    let integrator = diff(&hand, &hand_fine);
+    println!("five-bar at t = 0.5 s: models differ by {models:.1e}, the integrator's error {integrator:.1e}");
+    assert!(integrator > 0.0);
+    assert!(models <= 1e-3 * integrator, "{models:e} vs {integrator:e}");
+}
+
+/// The scale of a kinetostatic balance: Σ|P_i|/|q̇| (and |M_b|).
+fn balance_scale(a: &tmm::linkage::Analysis<'_>) -> f64 {
+    a.power_check().unwrap().scale
+}
+
+/// Inverse dynamics (Lagrange: J_red·ε + ½J_red′·ω² − M_red) and the kinetostatic balancing
+/// moment (inertia loads, the groups from the last one back, the input link) are two
+/// independent routes to the same driving moment. Both are sums of some 10–40 products
+/// whose rounding is 10⁻¹⁶ each, amplified by the groups' conditioning (at most some 10²
+/// away from dead points): 10⁻⁹ of the scale Σ|P_i|/|q̇| leaves a margin of 10³.
+#[test]
+fn inverse_dynamics_equals_the_balancing_moment() {
+    let mut report = Vec::new();
+    for (name, l) in one_input_linkages() {
+        let plan = Plan::new(&l).unwrap();
+        let sys = LinkageSystem::new(plan.clone()).unwrap();
+        let mut worst = 0.0f64;
+        let mut cases = 0;
+        for (omega, eps) in [(10.0, 0.0), (-7.0, 25.0), (100.0, 0.0)] {
+            for k in 0..72 {
+                let phi = plan.reference_input() + f64::from(k) * TAU / 72.0;
+                let a = plan.analyse(Motion::new(phi, omega, eps)).unwrap();
+                let m = sys
+                    .inverse_dynamics(
+                        &Vector2::new(phi, 0.0),
+                        &Vector2::new(omega, 0.0),
+                        &Vector2::new(eps, 0.0),
+                    )
+                    .unwrap();
+                let rel = (m[0] - a.balance().value).abs() / balance_scale(&a);
+                worst = worst.max(rel);
+                cases += 1;
+            }
+        }
+        report.push(format!("{name}: {worst:.1e} over {cases}"));
+        assert!(worst <= 1e-9, "{name}: {worst:e}");
+    }
+    println!(
+        "inverse dynamics vs balancing moment: {}",
+        report.join("; ")
+    );
+}
+
+/// A slider input (the slider-crank driven by its piston: the rod and crank an RRR group):
+/// the generalized force is the driving force along the guide, N, and the routes agree as
+/// for a crank, at 72 slides across the stroke away from the dead points.
+#[test]
+fn inverse_dynamics_of_a_slider_input() {
+    let mut l = SliderCrank::course_example().linkage();
+    l.input = tmm::linkage::Input::crank("piston");
+    l.groups.clear();
+    l.modes.clear();
+    // The indicator diagram needs the crank's turn for its dead centres: other loads instead.
+    l.gravity = [0.0, -9.81];
+    l.loads = vec![
+        LoadSpec::Resistance {
+            on: "crank".to_owned(),
+            forward: 20.0,
+            backward: 5.0,
+            at: None,
+        },
+        LoadSpec::Force {
+            link: "rod".to_owned(),
+            at: At::name("A"),
+            force: [30.0, -40.0],
+        },
+    ];
+    let plan = Plan::new(&l).unwrap();
+    assert!(!plan.input_is_crank());
+    let sys = LinkageSystem::new(plan.clone()).unwrap();
+    let (mut worst, mut cases) = (0.0f64, 0);
+    for k in 0..400 {
+        let s = -0.12 + 0.24 * f64::from(k) / 400.0;
+        let (v, acc) = (1.5, -4.0);
+        let Ok(a) = plan.analyse(Motion::new(s, v, acc)) else {
+            continue;
+        };
+        if a.group_determinants()[0].abs() < 0.1 {
+            continue;
+        }
+        let m = sys
+            .inverse_dynamics(
+                &Vector2::new(s, 0.0),
+                &Vector2::new(v, 0.0),
+                &Vector2::new(acc, 0.0),
+            )
+            .unwrap();
+        worst = worst.max((m[0] - a.balance().value).abs() / balance_scale(&a));
+        cases += 1;
+    }
+    println!("slider input: {worst:.1e} over {cases} positions");
+    assert!(cases >= 72, "{cases}");
+    assert!(worst <= 1e-9, "{worst:e}");
+}
+
+/// A load added as a function of the state (a spring from a fixed point to B, a viscous
+/// drag on the rocker) enters both routes the same way.
+#[test]
+fn inverse_dynamics_with_state_dependent_loads() {
+    let mut plan = Plan::new(&bundled::four_bar()).unwrap();
+    plan.add_load_fn("coupler", |a| {
+        let b = a.joint("B")?;
+        Ok(Load::force_at(
+            b.p,
+            -2000.0 * (b.p - Point2::new(0.5, 0.5)) - 30.0 * b.v,
+        ))
+    })
+    .unwrap();
+    plan.add_load_fn("rocker", |a| {
+        let w = a.link("rocker")?.rate;
+        Ok(Load::new(a.joint("O3")?.p, Vector2::zeros(), -0.8 * w))
+    })
+    .unwrap();
+    let sys = LinkageSystem::new(plan.clone()).unwrap();
+    let mut worst = 0.0f64;
+    for k in 0..72 {
+        let phi = f64::from(k) * TAU / 72.0;
+        let a = plan.analyse(Motion::new(phi, 12.0, 0.0)).unwrap();
+        let m = sys
+            .inverse_dynamics(
+                &Vector2::new(phi, 0.0),
+                &Vector2::new(12.0, 0.0),
+                &Vector2::zeros(),
+            )
+            .unwrap();
+        worst = worst.max((m[0] - a.balance().value).abs() / balance_scale(&a));
+    }
+    assert!(worst <= 1e-9, "{worst:e}");
+}
+
+/// Two inputs: the inverse dynamics of the five-bar robot gives both cranks' driving moments,
+/// which the engine's kinetostatics with two balancing moments gives too.
+#[test]
+fn five_bar_inverse_dynamics_equals_both_balancing_moments() {
+    let l = bundled::five_bar_robot();
+    let plan = Plan::new(&l).unwrap();
+    let sys = LinkageSystem::new(plan.clone()).unwrap();
+    let mut worst = 0.0f64;
+    for i in 0..8 {
+        let q = Vector2::new(
+            (100.0 + 5.0 * f64::from(i)).to_radians(),
+            (45.0 + 4.0 * f64::from(i)).to_radians(),
+        );
+        let qd = Vector2::new(2.0 - 0.5 * f64::from(i), 1.0);
+        let qdd = Vector2::new(3.0, -2.0 + f64::from(i));
+        let a = plan
+            .analyse_inputs(&[
+                Motion::new(q[0], qd[0], qdd[0]),
+                Motion::new(q[1], qd[1], qdd[1]),
+            ])
+            .unwrap();
+        assert!(a.worst_residual() < 1e-12);
+        let m = sys.inverse_dynamics(&q, &qd, &qdd).unwrap();
+        let b = Vector2::new(a.balance().value, a.second_balance().unwrap().value);
+        worst = worst.max((m - b).amax() / b.amax());
+    }
+    assert!(worst <= 1e-9, "{worst:e}");
+}
+
+/// Composite Simpson over equally spaced samples (an even number of intervals).
+fn simpson(h: f64, y: &[f64]) -> f64 {
+    assert!(y.len() % 2 == 1, "{} samples", y.len());
+    let n = y.len() - 1;
+    let mut s = y[0] + y[n];
+    for (i, v) in y.iter().enumerate().take(n).skip(1) {
+        s += if i % 2 == 1 { 4.0 } else { 2.0 } * v;
+    }
+    s * h / 3.0
+}
+
+fn energy_error(sys: &LinkageSystem, h: f64, t_end: f64) -> (f64, f64) {
+    let start = State::at_rest(Vector2::new(sys.plan().reference_input(), 0.0));
+    let r = run(sys, &Rk4, start, &RunOptions::until(t_end, h)).unwrap();
+    let tr: &Trajectory = &r.trajectory;
+    let net: Vec<f64> = tr
+        .power_applied()
+        .iter()
+        .zip(tr.power_dissipated())
+        .map(|(a, d)| a - d)
+        .collect();
+    let work = simpson(h, &net);
+    let d_t = tr.kinetic().last().unwrap() - tr.kinetic()[0];
+    let scale = simpson(
+        h,
+        &tr.power_applied()
+            .iter()
+            .map(|p| p.abs())
+            .collect::<Vec<_>>(),
+    );
+    ((work - d_t).abs() / scale, d_t)
+}
+
+/// The change of kinetic energy equals the work of the motor, gravity, the coupler force and
+/// the damper over a run from rest. RK4 and Simpson's rule are both of order 4: the balance's
+/// error must fall by about 2⁴ when the step is halved (at least 8 allowed) and be small.
+#[test]
+fn energy_balance_over_a_run() {
+    let mut l = bundled::four_bar();
+    l.loads
+        .retain(|x| !matches!(x, LoadSpec::Resistance { .. }));
+    let sys = LinkageSystem::from_linkage(&l)
+        .unwrap()
+        .with_motor(0, Motor::Linear(LinearMotor { a: 30.0, b: 1.0 }))
+        .unwrap()
+        .with_inertia(0, 0.01)
+        .unwrap()
+        .with_damper(&Damper::Link {
+            link: "rocker".to_owned(),
+            c: 0.5,
+        })
+        .unwrap()
+        .with_damper(&Damper::Joint {
+            joint: "B".to_owned(),
+            c: 0.2,
+        })
+        .unwrap();
+    let (e1, dt) = energy_error(&sys, 2e-3, 1.0);
+    let (e2, _) = energy_error(&sys, 1e-3, 1.0);
+    println!(
+        "energy balance: ΔT = {dt:.3} J, relative error {e1:.1e} (h = 2 ms), {e2:.1e} (h = 1 ms)"
+    );
+    assert!(dt > 1.0);
+    assert!(e2 <= 1e-6, "{e2:e}");
+    assert!(e2 <= e1 / 8.0 || e2 <= 1e-12, "{e1:e} -> {e2:e}");
+}
+
+/// The flywheel of the energy–mass method, added to the machine under the constant driving
+/// moment it was designed with, gives the requested δ: one turn from the designed start is
+/// integrated with 4000 RK4 steps (the integration error is some 10⁻¹⁰ of δ), and the
+/// measured δ differs from the requested one by the design's discretisation: the work by the
+/// trapezoidal rule over 3600 positions (errors of order (2π/3600)² ≈ 3·10⁻⁶ where the loads
+/// are smooth, of order 2π/3600 ≈ 2·10⁻³ of a jump where a resistance switches on), and the
+/// extremes sampled on that grid — 10⁻³ at most, well within the 2 % asked.
+#[test]
+fn flywheel_gives_the_required_delta() {
+    let cases = [
+        ("four-bar", bundled::four_bar(), 10.0),
+        ("Watt six-bar", bundled::watt_six_bar(), 15.0),
+        ("shaper", bundled::shaper(), 6.0),
+        (
+            "compressor",
+            Compressor::course_example().linkage(),
+            Compressor::seed_speed(),
+        ),
+    ];
+    let mut report = Vec::new();
+    for (name, l, omega) in cases {
+        let sys = LinkageSystem::from_linkage(&l).unwrap();
+        for delta in [1.0 / 20.0, 1.0 / 50.0] {
+            let f = sys.flywheel(delta, omega, 3600).unwrap();
+            assert!(f.moment_of_inertia > 0.0, "{name}: {f:?}");
+            let with = sys
+                .clone()
+                .with_motor(0, Motor::Constant(f.driving_moment))
+                .unwrap()
+                .with_inertia(0, f.moment_of_inertia)
+                .unwrap();
+            let start = State::new(
+                0.0,
+                Vector2::new(f.phi_start, 0.0),
+                Vector2::new(f.omega_start.unwrap(), 0.0),
+            );
+            let mut opts = RunUpOptions::new(TAU / omega.abs() / 4000.0);
+            opts.max_turn_time = 10.0 * TAU / omega.abs();
+            let (turn, r) = with.turn(&Rk4, start, &opts).unwrap();
+            let rel = (turn.delta / delta - 1.0).abs();
+            // The turn closes: the designed start speed comes back.
+            let back = (r.last.qd[0] / f.omega_start.unwrap() - 1.0).abs();
+            let mid = 0.5 * (turn.omega_max + turn.omega_min) / omega.abs() - 1.0;
+            report.push(format!(
+                "{name} δ = 1/{:.0}: J_F = {:.4} (simplified {:.4}) kg·m², δ measured {:.6} (relative {:.1e}), mid-speed {mid:.1e}, time mean {:.1e}, closes {back:.1e}",
+                1.0 / delta,
+                f.moment_of_inertia,
+                f.simplified,
+                turn.delta,
+                rel,
+                turn.omega_mean / omega.abs() - 1.0,
+            ));
+            assert!(rel <= 0.02, "{name}, δ = {delta}: measured {}", turn.delta);
+            assert!(back <= 1e-6, "{name}: the turn does not close ({back:e})");
+            assert!(
+                mid.abs() <= 1e-3 * delta,
+                "{name}: mean speed off by {mid:e}"
+            );
+        }
+    }
+    println!("{}", report.join("\n"));
+}
+
+/// From rest under an induction motor the four-bar settles: turn after turn the mean speed
+/// grows towards a steady value below the motor's no-load speed, reached within the budget.
+#[test]
+fn run_up_reaches_a_steady_state_within_its_budget() {
+    let sys = LinkageSystem::from_linkage(&bundled::watt_six_bar())
+        .unwrap()
+        .with_motor(
+            0,
+            Motor::Linear(
+                LinearMotor::from_nominal(40.0, 2.0 * PI * 25.0, 2.0 * PI * 24.0).unwrap(),
+            ),
+        )
+        .unwrap()
+        .with_inertia(0, 0.05)
+        .unwrap();
+    let mut opts = RunUpOptions::new(5e-4);
+    opts.tol = 1e-7;
+    opts.record_every = 10;
+    let r = sys.run_up(&Rk4, &opts).unwrap();
+    let n = r.turns.len();
+    let last = r.turns[n - 1];
+    println!(
+        "run-up: {n} turns, steady ω_m = {:.4} rad/s, δ = {:.4}",
+        last.omega_mean, last.delta
+    );
+    assert!(n >= 3);
+    assert!((last.omega_mean - r.turns[n - 2].omega_mean).abs() <= opts.tol * last.omega_mean);
+    assert!(last.omega_mean < 2.0 * PI * 25.0 && last.omega_mean > 2.0 * PI * 20.0);
+    assert!(r.turns[0].omega_mean < r.turns[1].omega_mean);
+    assert_eq!(r.t.len(), r.omega.len());
+    // The budget: too few turns is an error naming it, not an endless run.
+    opts.max_turns = 2;
+    let e = sys.run_up(&Rk4, &opts).unwrap_err();
+    assert!(
+        matches!(
+            e,
+            Error::Budget {
+                what: "turn",
+                limit: 2,
+                ..
+            }
+        ),
+        "{e}"
+    );
+}
+
+/// A machine that cannot turn (no motor, or one too weak for its loads) is an error, found
+/// within the turn's time limit.
+#[test]
+fn a_machine_that_does_not_turn_is_an_error() {
+    let mut l = bundled::four_bar();
+    l.gravity = [0.0, 0.0];
+    l.loads.clear();
+    let idle = LinkageSystem::from_linkage(&l).unwrap();
+    let mut opts = RunUpOptions::new(1e-3);
+    opts.max_turn_time = 1.0;
+    assert!(matches!(
+        idle.run_up(&Rk4, &opts),
+        Err(Error::Singular { .. })
+    ));
+    let weak = LinkageSystem::from_linkage(&bundled::four_bar())
+        .unwrap()
+        .with_motor(0, Motor::Constant(1.0))
+        .unwrap();
+    let e = weak.run_up(&Rk4, &opts).unwrap_err();
+    assert!(matches!(e, Error::Singular { what: "run-up", .. }), "{e}");
+}
+
+/// Bad input is a `tmm::Error`, never a panic or a NaN.
+#[test]
+fn bad_input_is_an_error() {
+    let sys = LinkageSystem::from_linkage(&bundled::four_bar()).unwrap();
+    let z = Vector2::zeros();
+    assert!(matches!(
+        sys.terms(&Vector2::new(f64::NAN, 0.0), &z),
+        Err(Error::NonFinite { .. })
+    ));
+    assert!(matches!(
+        sys.terms(&z, &Vector2::new(f64::INFINITY, 0.0)),
+        Err(Error::NonFinite { .. })
+    ));
+    assert!(sys.clone().with_motor(1, Motor::Constant(1.0)).is_err());
+    assert!(sys
+        .clone()
+        .with_motor(0, Motor::Constant(f64::NAN))
+        .is_err());
+    assert!(sys.clone().with_inertia(0, -1.0).is_err());
+    assert!(sys.clone().with_inertia(0, f64::NAN).is_err());
+    assert!(sys
+        .clone()
+        .with_damper(&Damper::Link {
+            link: "nope".into(),
+            c: 1.0
+        })
+        .is_err());
+    assert!(sys
+        .clone()
+        .with_damper(&Damper::Joint {
+            joint: "B".into(),
+            c: -1.0
+        })
+        .is_err());
+    for d in [0.0, -0.1, 2.0, f64::NAN] {
+        assert!(sys.flywheel(d, 10.0, 360).is_err());
+    }
+    assert!(sys.flywheel(0.05, 0.0, 360).is_err());
+    assert!(sys.flywheel(0.05, 10.0, 3).is_err());
+    assert!(sys.reduced_cycle(0, 10.0).is_err());
+    assert!(sys
+        .inverse_dynamics(&z, &z, &Vector2::new(f64::NAN, 0.0))
+        .is_err());
+    let mut opts = RunUpOptions::new(1e-3);
+    opts.tol = 0.0;
+    assert!(sys.run_up(&Rk4, &opts).is_err());
+    // Two inputs: the one-crank tools refuse, a pose that cannot assemble is an error.
+    let five = LinkageSystem::from_linkage(&bundled::five_bar_robot()).unwrap();
+    assert!(matches!(
+        five.reduced(1.0, 1.0),
+        Err(Error::Description { .. })
+    ));
+    assert!(five.flywheel(0.05, 10.0, 360).is_err());
+    let far = five.terms(&Vector2::new(PI, 0.0), &z);
+    assert!(far.is_err());
+    let plan = five.plan();
+    assert!(plan.kinematics(Motion::new(2.0, 1.0, 0.0)).is_err());
+    assert!(plan.analyse_inputs(&[Motion::fixed(2.0)]).is_err());
+    // A second input on a linkage of mobility 1: the mobility does not match.
+    let mut l = bundled::four_bar();
+    l.second_input = Some(tmm::linkage::Input::crank("rocker"));
+    let e = Plan::new(&l).unwrap_err().to_string();
+    assert!(e.contains("W = 1"), "{e}");
+    l.second_input = Some(tmm::linkage::Input::crank("crank"));
+    assert!(Plan::new(&l).is_err());
+}
+
+/// The description with two inputs reads and writes as JSON; one input writes no
+/// `second_input` field (the bundled files keep their form).
+#[cfg(feature = "serde")]
+#[test]
+fn a_second_input_reads_and_writes_as_json() {
+    let l = bundled::five_bar_robot();
+    let text = l.to_json().unwrap();
+    assert!(text.contains("second_input"));
+    assert_eq!(Linkage::from_json(&text).unwrap(), l);
+    assert!(!bundled::four_bar()
+        .to_json()
+        .unwrap()
+        .contains("second_input"));
+}
