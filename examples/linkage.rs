@@ -1,6 +1,9 @@
 //! The course table of any linkage described in a JSON file: positions, velocities and
 //! accelerations, the reaction in every joint, and the balancing moment beside its value by
-//! the principle of virtual power, at the 12 course positions. Written as CSV too.
+//! the principle of virtual power, at the 12 course positions. Written as CSV too, and, with
+//! the feature `draw` (on by default), the pictures: the kinematic scheme, the plan in the 12
+//! positions with the paths of the joints, an animation of the cycle, the reactions as arrows
+//! and the diagrams over the cycle, as SVG files beside the CSV.
 //!
 //! ```sh
 //! cargo run --release --example linkage -- linkages/watt-six-bar.json
@@ -85,24 +88,108 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         }
     }
     let table = Table::of(&positions);
-    println!("\n{}", header_and_rows(&table));
+    println!("\n{}", table.to_text(4));
     let dir = Path::new("target/tmm-charts/linkage");
     fs::create_dir_all(dir)?;
     let file = dir.join(format!("{}.csv", linkage.name.replace([' ', '/'], "_")));
     table.write_csv(fs::File::create(&file)?)?;
     println!("course table written to {}", file.display());
+    #[cfg(feature = "draw")]
+    pictures::write(&linkage, &plan, &inputs, dir)?;
     Ok(())
 }
 
-/// The table transposed: one line per column, the 12 positions across.
-fn header_and_rows(t: &Table) -> String {
-    let mut out = String::new();
-    for c in &t.columns {
-        out.push_str(&format!("{:<28}", c.name));
-        for v in &c.values {
-            out.push_str(&format!(" {v:>11.4}"));
+/// The pictures of the linkage (feature `draw`), each an SVG file in `dir`.
+#[cfg(feature = "draw")]
+mod pictures {
+    use std::fs;
+    use std::path::Path;
+    use tmm::draw::{self, Course, Diagram, Style};
+    use tmm::kinematics::Motion;
+    use tmm::linkage::{uniform_inputs, Linkage, Output, Plan};
+
+    pub fn write(
+        linkage: &Linkage,
+        plan: &Plan,
+        inputs: &[Motion],
+        dir: &Path,
+    ) -> Result<(), Box<dyn std::error::Error>> {
+        let stem = linkage.name.replace([' ', '/'], "_");
+        let style = Style::default();
+        let save = |what: &str, svg: &str| -> std::io::Result<()> {
+            let file = dir.join(format!("{stem}_{what}.svg"));
+            fs::write(&file, svg)?;
+            println!("{what} drawn in {}", file.display());
+            Ok(())
+        };
+        let first = inputs[0];
+        save("scheme", &draw::scheme(plan, first, &style)?.svg)?;
+        save("forces", &draw::forces(plan, first, &style)?.svg)?;
+        if !plan.input_is_crank() {
+            // A slider has no turn: the course is the table's positions.
+            let course = Course {
+                inputs: inputs.to_vec(),
+                extremes: Vec::new(),
+            };
+            save("plan", &draw::plan_view(plan, &course, &[], &style)?.svg)?;
+            save(
+                "animation",
+                &draw::animation(plan, inputs, 2.0, &style)?.svg,
+            )?;
+            save(
+                "balance",
+                &draw::diagram(plan, &course, &Diagram::Balance, &style)?.svg,
+            )?;
+            return Ok(());
         }
-        out.push('\n');
+        let speed = linkage.speed.unwrap_or(10.0);
+        let course = Course::new(plan, linkage.output.as_ref(), 12, speed)?;
+        // The paths of every joint off the frame and of every named point.
+        let paths: Vec<&str> = plan
+            .joint_names()
+            .iter()
+            .enumerate()
+            .filter(|&(j, _)| !plan.joint_links(j).contains(&0))
+            .map(|(_, n)| n.as_str())
+            .chain(plan.point_names().iter().map(String::as_str))
+            .collect();
+        save("plan", &draw::plan_view(plan, &course, &paths, &style)?.svg)?;
+        let turn = uniform_inputs(360, course.inputs[0].value, speed, 0.0);
+        save("animation", &draw::animation(plan, &turn, 4.0, &style)?.svg)?;
+        let tall = Style {
+            height: 900,
+            ..Style::default()
+        };
+        let output = linkage.output.clone().unwrap_or_else(|| {
+            Output::Angle(plan.link_names()[plan.link_names().len() - 1].clone())
+        });
+        save(
+            "kinematics",
+            &draw::diagram(plan, &course, &Diagram::Kinematics(output.clone()), &tall)?.svg,
+        )?;
+        save(
+            "transfer",
+            &draw::diagram(plan, &course, &Diagram::Transfer(output), &tall)?.svg,
+        )?;
+        save(
+            "balance",
+            &draw::diagram(plan, &course, &Diagram::Balance, &style)?.svg,
+        )?;
+        save(
+            "reactions",
+            &draw::diagram(plan, &course, &Diagram::Reactions, &style)?.svg,
+        )?;
+        // The hodograph of the crank pin's reaction: the input link's joint off the frame.
+        let input = plan.input_link();
+        if let Some(j) = (0..plan.joint_names().len())
+            .find(|&j| plan.joint_links(j).contains(&input) && !plan.joint_links(j).contains(&0))
+        {
+            let joint = plan.joint_names()[j].clone();
+            save(
+                "hodograph",
+                &draw::diagram(plan, &course, &Diagram::Hodograph(joint), &style)?.svg,
+            )?;
+        }
+        Ok(())
     }
-    out
 }

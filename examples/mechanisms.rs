@@ -235,7 +235,12 @@ fn six_bar(dir: &Path) -> Res<()> {
                 &reaction_columns(&table),
                 "N",
             ),
-            ("mb", "Six-bar: balancing moment", &["Mb [N*m]"], "N·m"),
+            (
+                "mb",
+                "Six-bar: balancing moment",
+                &["Mb [N·m, + counter-clockwise]"],
+                "N·m",
+            ),
         ],
     )
 }
@@ -296,7 +301,9 @@ fn compressor(dir: &Path) -> Res<()> {
     let cycle = analyse_all(&plan, &uniform_inputs(360, 0.0, w1, 0.0))?;
     let (vp, eq) = checks(&cycle)?;
     let table = Table::of(&cycle);
-    let mb = table.column("Mb [N*m]").ok_or("no Mb")?;
+    let mb = table
+        .column("Mb [N·m, + counter-clockwise]")
+        .ok_or("no Mb")?;
     let mean = mb.iter().sum::<f64>() / mb.len() as f64;
     println!("360 positions: virtual power agrees to {vp:.1e}, links in equilibrium to {eq:.1e}");
     println!(
@@ -333,7 +340,12 @@ fn compressor(dir: &Path) -> Res<()> {
                 &reaction_columns(&table),
                 "N",
             ),
-            ("mb", "Compressor: balancing moment", &["Mb [N*m]"], "N·m"),
+            (
+                "mb",
+                "Compressor: balancing moment",
+                &["Mb [N·m, + counter-clockwise]"],
+                "N·m",
+            ),
         ],
     )
 }
@@ -343,7 +355,9 @@ fn summary(dir: &Path, name: &str, title: &str, plan: &Plan, inputs: &[Motion]) 
     let cycle = analyse_all(plan, inputs)?;
     let (vp, eq) = checks(&cycle)?;
     let table = Table::of(&cycle);
-    let mb = table.column("Mb [N*m]").ok_or("no Mb")?;
+    let mb = table
+        .column("Mb [N·m, + counter-clockwise]")
+        .ok_or("no Mb")?;
     let peak = mb.iter().fold(0.0f64, |a, m| a.max(m.abs()));
     println!("{title}: max |Mb| = {peak:.2} N·m; virtual power agrees to {vp:.1e}, equilibrium to {eq:.1e}");
     csv(dir, name, &table)?;
@@ -354,7 +368,7 @@ fn summary(dir: &Path, name: &str, title: &str, plan: &Plan, inputs: &[Motion]) 
         &[(
             "mb",
             &format!("{title}: balancing moment"),
-            &["Mb [N*m]"],
+            &["Mb [N·m, + counter-clockwise]"],
             "N·m",
         )],
     )

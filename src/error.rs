@@ -95,6 +95,16 @@ pub enum Error {
         problem: String,
     },
 
+    /// A picture could not be drawn (feature `draw`): `what` names the picture and `problem`
+    /// says why (a bad drawing option, or the drawing back end's message).
+    #[error("drawing {what}: {problem}")]
+    Drawing {
+        /// The picture (for example `"diagram of the balancing moment"`).
+        what: String,
+        /// What went wrong.
+        problem: String,
+    },
+
     /// A computed quantity overflowed (or lost all meaning) although every input was finite:
     /// the inputs are too large (or too small) for `f64` at this point.
     #[error("{what} overflows for these inputs")]

@@ -9,15 +9,17 @@
 //! ## Module map
 //! - [`angle`]: direction angles (the seeds' UGL helpers), unit vectors, the 2-D cross product.
 //! - [`load`]: a force at a point plus a moment; d'Alembert's inertia loads.
-//! - [`kinematics`]: closed vector contours; the crank and the RRR, RRP, RPR dyad blocks;
+//! - [`kinematics`]: closed vector contours; the crank and the RRR, RRP, RPR, PRP, RPP dyad blocks;
 //!   transfer functions, cycles, extreme positions; numerical differentiation and integration.
 //! - [`dynamics`]: 2-DOF machines by Lagrange's equations; finite increments, RK4 and
 //!   Dormand–Prince; the five-bar robot, the R–P arm, the landing-gear and coaxial-propeller drives.
-//! - [`kinetostatics`]: joint reactions of the RRR, RRP and RPR dyads; the input link driven
+//! - [`kinetostatics`]: joint reactions of the RRR, RRP, RPR, PRP and RPP dyads; the input link driven
 //!   through a coupling (balancing moment) or a gear pair (balancing force).
 //! - [`kinetostatics::passive`]: the group with a parallel coupler (a passive constraint), statically
 //!   indeterminate once, solved by the force method; N, Q, M diagrams of its links.
 //! - [`linkage`]: any linkage of the 2nd class as data, planned once and analysed per position.
+//! - `draw` (feature `draw`): pictures of a linkage as SVG — the scheme, the plan of positions,
+//!   an animation, force arrows, the diagrams over the cycle.
 //! - [`mechanism`]: five ready mechanisms as linkages (four-bar, slider-crank, compressor, six-bar,
 //!   rocking cylinder), each a struct of parameters whose `linkage()` the engine plans.
 //!
@@ -48,12 +50,17 @@
 //! ## Optional features
 //! - `serde`: serialization of the crate's plain-data types (inputs, results, tables).
 //! - `rayon`: cycles of mechanism positions in parallel, bit-identical to the serial run.
+//! - `draw` (on by default): pictures of any linkage as SVG ([`draw`]): the kinematic scheme,
+//!   the plan in 12 positions, an animated cycle, reaction forces, and the diagrams.
 //!
 //! On docs.rs every item that needs a feature says so.
 
 #![cfg_attr(docsrs, feature(doc_cfg))]
 
 pub mod angle;
+#[cfg(feature = "draw")]
+#[cfg_attr(docsrs, doc(cfg(feature = "draw")))]
+pub mod draw;
 pub mod dynamics;
 pub mod error;
 pub mod kinematics;

@@ -11,13 +11,15 @@ use tmm::linkage::{bundled, At, Drive, Input, Joint, Link, Linkage, LoadSpec, Ma
 use tmm::Error;
 
 fn bundled_all() -> Vec<Linkage> {
-    vec![
-        bundled::four_bar(),
-        bundled::geared_four_bar(),
-        bundled::watt_six_bar(),
-        bundled::stephenson_six_bar(),
-        bundled::shaper(),
-    ]
+    let all = bundled::all();
+    // The list covers every kind of group the engine solves.
+    let kinds: std::collections::BTreeSet<&str> = all
+        .iter()
+        .flat_map(|l| Plan::new(l).unwrap().groups().to_vec())
+        .map(|g| g.kind.label())
+        .collect();
+    assert_eq!(kinds.len(), 5, "{kinds:?}");
+    all
 }
 
 fn cross(a: Vector2<f64>, b: Vector2<f64>) -> f64 {
@@ -392,6 +394,74 @@ fn bad_descriptions_name_the_joint_link_or_field() {
         branch: tmm::kinematics::Branch::Minus,
     });
     check(l, "mode for joint A", "inner joint");
+    // A Scotch yoke whose slot is turned along the yoke's guide: the RPP's links could slide
+    // together.
+    let mut y = bundled::scotch_yoke();
+    if let tmm::linkage::JointKind::Prismatic { direction, .. } = &mut y.joints[2].kind {
+        *direction = [-2.0, 0.0];
+    }
+    check(y, "group (block, yoke) RPP", "sin(alpha)");
+    // The slotted rocker's frame guide turned along the rocker's slot: parallel PRP guides.
+    let mut r = bundled::slotted_rocker();
+    let slot = match &r.joints[4].kind {
+        tmm::linkage::JointKind::Prismatic { direction, .. } => *direction,
+        _ => unreachable!(),
+    };
+    if let tmm::linkage::JointKind::Prismatic { direction, .. } = &mut r.joints[6].kind {
+        *direction = slot;
+    }
+    check(r, "group (block, slider) PRP", "parallel guides");
+    // Three sliding pairs in one group (the yoke's hinge A made a sliding pair).
+    let mut y = bundled::scotch_yoke();
+    y.joints[1].kind = tmm::linkage::JointKind::Prismatic {
+        guide: "crank".into(),
+        direction: [1.0, 1.0],
+    };
+    check(y, "group (block, yoke)", "PPP group");
+}
+
+#[test]
+fn prismatic_groups_match_their_closed_forms_over_a_turn() {
+    // Scotch yoke: the yoke follows the crank pin's x, x = r·cos φ; ẋ and ẍ by differentiation.
+    let plan = Plan::new(&bundled::scotch_yoke()).unwrap();
+    let (r, w, e) = (0.1, 7.0, -3.0);
+    let mut worst: f64 = 0.0;
+    for k in 0..72 {
+        let phi = TAU * (f64::from(k) + 0.25) / 72.0;
+        let a = plan.kinematics(Motion::new(phi, w, e)).unwrap();
+        let s = a.slide("Q").unwrap();
+        let (sin, cos) = phi.sin_cos();
+        let exact = [r * cos - r, -r * w * sin, -r * (w * w * cos + e * sin)];
+        for (got, want) in [s.value, s.rate, s.accel].into_iter().zip(exact) {
+            worst = worst.max((got - want).abs() / (r * (w * w + e.abs())));
+        }
+        // The block rides the slot: its height is the pin's.
+        worst = worst.max((a.joint("S").unwrap().p.y - r * sin).abs() / r);
+    }
+    assert!(worst < 1e-14, "Scotch yoke: {worst:e}");
+
+    // Slotted rocker: the slider sits where the rocker's line crosses y = y_O3 + 0.2, so
+    // x = x_O3 + 0.2·cot θ with θ the rocker's angle; ẋ = −0.2·θ̇/sin²θ.
+    let plan = Plan::new(&bundled::slotted_rocker()).unwrap();
+    let o3 = plan
+        .kinematics(Motion::fixed(0.0))
+        .unwrap()
+        .joint("O3")
+        .unwrap()
+        .p;
+    let mut worst: f64 = 0.0;
+    for k in 0..72 {
+        let phi = TAU * (f64::from(k) + 0.25) / 72.0;
+        let a = plan.kinematics(Motion::new(phi, w, e)).unwrap();
+        let b = a.joint("B").unwrap().p - o3;
+        let theta = b.y.atan2(b.x);
+        let rate = a.link("rocker").unwrap().rate;
+        let f = a.joint("F").unwrap();
+        worst = worst.max((f.p.x - (o3.x + 0.2 / theta.tan())).abs() / 0.2);
+        worst = worst.max((f.p.y - (o3.y + 0.2)).abs() / 0.2);
+        worst = worst.max((f.v.x + 0.2 * rate / theta.sin().powi(2)).abs() / (0.2 * w));
+    }
+    assert!(worst < 1e-13, "slotted rocker: {worst:e}");
 }
 
 #[test]
@@ -441,4 +511,93 @@ fn strokes_and_lock_positions() {
     }
     assert!(s.time_ratio > 1.0);
     assert_eq!(plan.lock_positions(0.3).unwrap(), None);
+    // The ram works against the cut while its slide falls (the resistance acts backward only),
+    // and that is the slower stroke: the working stroke starts at the maximum.
+    assert!(!s.working_rises);
+    let at = |phi: f64| plan.transfer(&out, phi).unwrap().value;
+    assert!(at(s.start) > at(s.end));
+    // The stroke is the range of the slide, sampled densely around the turn: the samples fall
+    // short of each true extreme by at most max|s″|·h²/8 (h the step), and never overshoot.
+    let n = 20_000;
+    let h = TAU / f64::from(n);
+    let tf: Vec<_> = (0..n)
+        .map(|k| plan.transfer(&out, h * f64::from(k)).unwrap())
+        .collect();
+    let (hi, lo) = tf.iter().fold((f64::MIN, f64::MAX), |(hi, lo), m| {
+        (hi.max(m.value), lo.min(m.value))
+    });
+    let curvature = tf.iter().map(|m| m.accel.abs()).fold(0.0, f64::max);
+    let short = s.stroke - (hi - lo);
+    assert!(
+        short >= -1e-12 && short <= 2.0 * curvature * h * h / 8.0,
+        "stroke {} vs sampled range {}",
+        s.stroke,
+        hi - lo
+    );
+    // Cutting on the other stroke (forward): the working stroke is then the faster one.
+    let mut other = bundled::shaper();
+    other.loads[0] = LoadSpec::Resistance {
+        on: "Q".into(),
+        forward: 1500.0,
+        backward: 0.0,
+        at: None,
+    };
+    let o = Plan::new(&other)
+        .unwrap()
+        .strokes(&out, tmm::kinematics::Rotation::Ccw)
+        .unwrap();
+    assert!(o.working_rises);
+    assert_eq!((o.start, o.end), (s.end, s.start));
+    assert!((o.time_ratio * s.time_ratio - 1.0).abs() < 1e-12);
+    // A crank's own angle turns fully: no strokes, and the error says so.
+    let e = plan
+        .strokes(
+            &tmm::linkage::Output::Angle("crank".into()),
+            tmm::kinematics::Rotation::Ccw,
+        )
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("no extreme positions"), "{e}");
+}
+
+#[test]
+fn transmission_angles_match_the_law_of_cosines_and_their_classical_minimum() {
+    // Four-bar: the angle γ between coupler AB and rocker O3B follows from the triangle A B O3:
+    // cos γ = (b² + c² − |A O3|²)/(2bc); μ is γ folded into [0, π/2].
+    let plan = Plan::new(&bundled::four_bar()).unwrap();
+    let (a, b, c) = (0.1f64, 0.35f64, 0.3f64);
+    let o3 = Vector2::new(0.4, 0.05);
+    let d = o3.norm();
+    let fold = |g: f64| g.min(std::f64::consts::PI - g);
+    let mut worst: f64 = 0.0;
+    for k in 0..72 {
+        let phi = TAU * (f64::from(k) + 0.5) / 72.0;
+        let an = plan.kinematics(Motion::fixed(phi)).unwrap();
+        let ao3 = (o3 - Vector2::new(a * phi.cos(), a * phi.sin())).norm();
+        let gamma = ((b * b + c * c - ao3 * ao3) / (2.0 * b * c)).acos();
+        worst = worst.max((an.transmission_angle(0).unwrap() - fold(gamma)).abs());
+    }
+    assert!(worst < 1e-13, "{worst:e}");
+    // Its minimum lies where the crank lines up with the frame: |A O3| = d ∓ a.
+    let at_line = |ao3: f64| fold(((b * b + c * c - ao3 * ao3) / (2.0 * b * c)).acos());
+    let classical = at_line(d - a).min(at_line(d + a));
+    let (mu_min, phi) = plan.min_transmission_angle(0).unwrap();
+    assert!(
+        (mu_min - classical).abs() < 1e-12,
+        "{mu_min} vs {classical}"
+    );
+    let frame_dir = o3.y.atan2(o3.x);
+    let off = (phi - frame_dir).rem_euclid(std::f64::consts::PI);
+    assert!(off.min(std::f64::consts::PI - off) < 1e-6, "at {phi}");
+    // The Scotch yoke's slot is square to its guide (μ = π/2); the slotted rocker's PRP angle
+    // is the rocker's angle to the horizontal guide.
+    let y = Plan::new(&bundled::scotch_yoke()).unwrap();
+    let ya = y.kinematics(Motion::fixed(0.7)).unwrap();
+    assert!((ya.transmission_angle(0).unwrap() - std::f64::consts::FRAC_PI_2).abs() < 1e-15);
+    let r = Plan::new(&bundled::slotted_rocker()).unwrap();
+    let ra = r.kinematics(Motion::fixed(0.7)).unwrap();
+    let theta = ra.link("rocker").unwrap().value;
+    let expect = fold(theta.rem_euclid(std::f64::consts::PI));
+    assert!((ra.transmission_angle(1).unwrap() - expect).abs() < 1e-13);
+    assert!(ra.transmission_angle(2).is_err());
 }

@@ -464,8 +464,10 @@ fn csv_holds_every_column_and_reads_back_bit_for_bit() {
         table.column("|R(crank,coupler)@A| [N]").unwrap(),
     );
     let (mb, vp) = (
-        table.column("Mb [N*m]").unwrap(),
-        table.column("Mb (virtual power) [N*m]").unwrap(),
+        table.column("Mb [N·m, + counter-clockwise]").unwrap(),
+        table
+            .column("Mb by virtual power [N·m, + counter-clockwise]")
+            .unwrap(),
     );
     for k in 0..36 {
         assert!((x[k].hypot(y[k]) - m[k]).abs() <= 1e-12 * m[k]);

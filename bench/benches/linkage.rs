@@ -95,6 +95,78 @@ impl HandFourBar {
     }
 }
 
+/// The same four-bar as a straight Cartesian closed form: no angles, no validation, nothing
+/// rebuilt from an angle, inlined — the speed of the job itself (issue 13's yardstick).
+struct CartesianFourBar {
+    a: f64,
+    l2: f64,
+    l3: f64,
+    o3: Vector2<f64>,
+    e: (f64, f64),
+}
+
+#[inline]
+fn perp2(v: Vector2<f64>) -> Vector2<f64> {
+    Vector2::new(-v.y, v.x)
+}
+
+#[inline]
+fn cross2(a: Vector2<f64>, b: Vector2<f64>) -> f64 {
+    a.x * b.y - a.y * b.x
+}
+
+impl CartesianFourBar {
+    fn new() -> Self {
+        let hand = HandFourBar::new();
+        Self {
+            a: hand.l[0],
+            l2: hand.l[1],
+            l3: hand.l[2],
+            o3: hand.o3.coords,
+            e: hand.e,
+        }
+    }
+
+    #[inline]
+    fn balance(&self, i: Motion) -> f64 {
+        let (w, eps) = (i.rate, i.accel);
+        let (sn, cs) = i.value.sin_cos();
+        let ra = Vector2::new(self.a * cs, self.a * sn);
+        let (va, aa) = (w * perp2(ra), eps * perp2(ra) - w * w * ra);
+        // B on the left of A→O3, at l2 from A and l3 from O3.
+        let d = self.o3 - ra;
+        let dd = d.norm_squared();
+        let along = (self.l2 * self.l2 - self.l3 * self.l3 + dd) / (2.0 * dd);
+        let across = (self.l2 * self.l2 / dd - along * along).sqrt();
+        let b = ra + along * d + across * perp2(d);
+        let (r2, r3) = (b - ra, b - self.o3);
+        let x = cross2(r2, r3);
+        let (w2, w3) = (-va.dot(&r3) / x, -va.dot(&r2) / x);
+        let q = -aa + w2 * w2 * r2 - w3 * w3 * r3;
+        let (e2, e3) = (q.dot(&r3) / x, q.dot(&r2) / x);
+        // Loads: inertia and weight at the rods' middles, the force at E, the resisting moment.
+        let g = Vector2::new(0.0, -9.81);
+        let (m2, m3) = (1.5, 2.0);
+        let (j2, j3) = (m2 * self.l2 * self.l2 / 12.0, m3 * self.l3 * self.l3 / 12.0);
+        let a_s2 = aa + 0.5 * (e2 * perp2(r2) - w2 * w2 * r2);
+        let a_s3 = 0.5 * (e3 * perp2(r3) - w3 * w3 * r3);
+        let (f2, f3) = (m2 * (g - a_s2), m3 * (g - a_s3));
+        let fe = Vector2::new(0.0, -50.0);
+        let re = (self.e.0 * r2 + self.e.1 * perp2(r2)) / self.l2;
+        // Moments about B of each link's loads (S2 − B = −r2/2, E − B = re − r2, S3 − B = −r3/2).
+        let m2b = -j2 * e2 + cross2(-0.5 * r2, f2) + cross2(re - r2, fe);
+        let m3b = -j3 * e3 - 40.0 * w3.signum() + cross2(-0.5 * r3, f3);
+        let f = f2 + f3 + fe;
+        // R12 (frame of link 2's moments about B) and R43 = −F − R12 (link 3's).
+        let (p, qq) = (-r2, -r3);
+        let det = cross2(p, qq);
+        let (b1, b2) = (-m2b, m3b - cross2(qq, f));
+        let r12 = Vector2::new((b1 * qq.x - p.x * b2) / det, (-p.y * b2 + qq.y * b1) / det);
+        // The crank: its weight acts at O1; Mb balances R21 = −R12 at A and −J1·ε.
+        cross2(ra, r12) + 0.002 * eps
+    }
+}
+
 fn four_bar(c: &mut Criterion) {
     let plan = Plan::new(&bundled::four_bar()).unwrap();
     let hand = HandFourBar::new();
@@ -109,11 +181,23 @@ fn four_bar(c: &mut Criterion) {
             "hand chain {y} vs engine {x}"
         );
     }
+    let cart = CartesianFourBar::new();
+    for &i in &ins {
+        a.solve(i).unwrap();
+        let (x, y) = (a.balance().value, cart.balance(i));
+        assert!(
+            (x - y).abs() <= 1e-9 * x.abs().max(1.0),
+            "Cartesian closed form {y} vs engine {x}"
+        );
+    }
     let mut g = c.benchmark_group("four_bar_whole_position");
     g.measurement_time(Duration::from_secs(3))
         .warm_up_time(Duration::from_millis(500))
         .sample_size(30);
     g.throughput(Throughput::Elements(ins.len() as u64));
+    g.bench_function("cartesian_closed_form", |b| {
+        b.iter(|| ins.iter().map(|&i| cart.balance(black_box(i))).sum::<f64>())
+    });
     g.bench_function("hand_chain", |b| {
         b.iter(|| ins.iter().map(|&i| hand.balance(black_box(i))).sum::<f64>())
     });
@@ -130,15 +214,103 @@ fn four_bar(c: &mut Criterion) {
     g.finish();
 }
 
+/// The bundled Watt six-bar chained by hand: crank, RRR (coupler ABE, rocker O3BF), RRR
+/// (link 4 EG, link 5 FG), the same masses and the resisting moment on link 5.
+struct HandWatt {
+    o1: Point2<f64>,
+    o3: Point2<f64>,
+    l: [f64; 5],
+    e: (f64, f64),
+    f: (f64, f64),
+    s2: (f64, f64),
+    s3: (f64, f64),
+}
+
+impl HandWatt {
+    fn new() -> Self {
+        let p = Point2::new;
+        let (o1, a, b, o3) = (p(0.0, 0.0), p(0.08, 0.0), p(0.3, 0.3), p(0.38, 0.0));
+        let (e, f, g) = (p(0.25, 0.45), p(0.52, 0.28), p(0.45, 0.6));
+        Self {
+            o1,
+            o3,
+            l: [
+                0.08,
+                (b - a).norm(),
+                (b - o3).norm(),
+                (g - e).norm(),
+                (g - f).norm(),
+            ],
+            e: local(a, b, e),
+            f: local(o3, b, f),
+            s2: local(a, b, p(0.21, 0.25)),
+            s3: local(o3, b, p(0.4, 0.19)),
+        }
+    }
+
+    fn balance(&self, i: Motion) -> f64 {
+        let c = crank(self.o1, self.l[0], i).unwrap();
+        let fixed = PointMotion::fixed(self.o3);
+        let g1 = rrr_dyad(c.a, fixed, self.l[1], self.l[2], Branch::Plus).unwrap();
+        let e = g1.link2.point_at(self.e.0, self.e.1);
+        let f = g1.link3.point_at(self.f.0, self.f.1);
+        let g2 = rrr_dyad(e, f, self.l[3], self.l[4], Branch::Plus).unwrap();
+        let (j4, j5) = (self.l[3].powi(2) / 12.0, self.l[4].powi(2) / 12.0);
+        let l4 = own(&g2.link2, self.l[3] / 2.0, 0.0, 1.0, j4);
+        let mut l5 = own(&g2.link3, self.l[4] / 2.0, 0.0, 1.0, j5);
+        l5.moment -= 30.0 * g2.link3.omega.signum();
+        let r2 = RrrDyad {
+            a: e.p,
+            b: g2.b.p,
+            c: f.p,
+            load2: l4,
+            load3: l5,
+        }
+        .solve()
+        .unwrap();
+        let l2 = own(&g1.link2, self.s2.0, self.s2.1, 3.0, 0.02);
+        let l2 = Load::sum_about(&[l2, Load::force_at(e.p, -r2.r12)], c.a.p);
+        let l3 = own(&g1.link3, self.s3.0, self.s3.1, 2.5, 0.015);
+        let l3 = Load::sum_about(&[l3, Load::force_at(f.p, -r2.r43)], self.o3);
+        let r1 = RrrDyad {
+            a: c.a.p,
+            b: g1.b.p,
+            c: self.o3,
+            load2: l2,
+            load3: l3,
+        }
+        .solve()
+        .unwrap();
+        let l1 = own(&c.link, 0.0, 0.0, 1.0, 0.002);
+        let l1 = Load::sum_about(&[l1, Load::force_at(c.a.p, -r1.r12)], self.o1);
+        CouplingDrive { o1: self.o1 }
+            .solve(&[l1])
+            .unwrap()
+            .balancing_moment
+    }
+}
+
 fn six_bar(c: &mut Criterion) {
     let plan = Plan::new(&bundled::watt_six_bar()).unwrap();
+    let hand = HandWatt::new();
     let ins = inputs(512);
     let mut a = Analysis::new(&plan);
+    for &i in &ins {
+        a.solve(i).unwrap();
+        let (x, y) = (a.balance().value, hand.balance(i));
+        assert!(
+            (x - y).abs() <= 1e-9 * x.abs().max(1.0),
+            "hand chain {y} vs engine {x}"
+        );
+    }
     let mut g = c.benchmark_group("watt_six_bar_whole_position");
     g.measurement_time(Duration::from_secs(3))
         .warm_up_time(Duration::from_millis(500))
         .sample_size(30);
     g.throughput(Throughput::Elements(ins.len() as u64));
+    g.bench_function("hand_chain", |b| {
+        b.iter(|| ins.iter().map(|&i| hand.balance(black_box(i))).sum::<f64>())
+    });
     g.bench_function("engine", |b| {
         b.iter(|| {
             ins.iter()
@@ -162,5 +334,33 @@ fn six_bar(c: &mut Criterion) {
     g.finish();
 }
 
-criterion_group!(benches, four_bar, six_bar);
+/// The cost per position of a streamed sweep (inputs generated on the fly, each position's
+/// balancing moment folded into a peak): flat from 10³ to 10⁶ positions, since nothing is
+/// stored or allocated per position.
+fn streamed_sweep(c: &mut Criterion) {
+    let plan = Plan::new(&bundled::watt_six_bar()).unwrap();
+    let mut g = c.benchmark_group("watt_six_bar_streamed_sweep");
+    g.sample_size(10)
+        .warm_up_time(Duration::from_millis(500))
+        .measurement_time(Duration::from_secs(3));
+    for n in [1_000u32, 10_000, 100_000, 1_000_000] {
+        g.throughput(Throughput::Elements(u64::from(n)));
+        g.bench_function(format!("positions_{n}"), |b| {
+            b.iter(|| {
+                let step = std::f64::consts::TAU / f64::from(n);
+                let inputs = (0..n).map(|k| Motion::new(f64::from(k) * step, 10.0, 0.0));
+                let mut peak = 0.0f64;
+                plan.for_each(inputs, |_, a| {
+                    if let Ok(a) = a {
+                        peak = peak.max(a.balance().value.abs());
+                    }
+                });
+                black_box(peak)
+            })
+        });
+    }
+    g.finish();
+}
+
+criterion_group!(benches, four_bar, six_bar, streamed_sweep);
 criterion_main!(benches);

@@ -206,6 +206,12 @@ pub struct Strokes {
     pub time_ratio: f64,
     /// The sense in which the crank turns.
     pub rotation: Rotation,
+    /// The output's stroke: the distance between its extreme values (a slider's stroke
+    /// length in m, or a rocker's swing in rad).
+    pub stroke: f64,
+    /// Whether the output's value grows during the working stroke (it starts at the
+    /// minimum).
+    pub working_rises: bool,
 }
 
 impl Strokes {
@@ -228,20 +234,33 @@ impl Strokes {
     /// ```
     ///
     /// # Errors
-    /// [`Error::OutOfRange`] unless there are exactly two extremes; [`Error::NonFinite`] for
-    /// an extreme's input angle that is not finite; [`Error::Singular`] when the two extremes
-    /// lie at the same input angle (to rounding), so that there is no idle stroke.
+    /// [`Error::Description`] unless there are exactly two extremes (an output that turns
+    /// fully has none; one that swings back and forth more than once per turn has more);
+    /// [`Error::NonFinite`] for an extreme's input angle or value that is not finite;
+    /// [`Error::Singular`] when the two extremes lie at the same input angle (to rounding), so
+    /// that there is no idle stroke.
     pub fn new(extremes: &[Extreme], rotation: Rotation) -> Result<Self> {
         let [e0, e1] = extremes else {
-            return Err(Error::OutOfRange {
-                name: "number of extreme positions",
-                value: extremes.len() as f64,
-                min: 2.0,
-                max: 2.0,
+            let problem = if extremes.is_empty() {
+                "the output has no extreme positions (it turns fully, or stands still): it has \
+                 no strokes"
+                    .to_owned()
+            } else {
+                format!(
+                    "the output has {} extreme positions per turn of the crank; strokes need \
+                     exactly two, a maximum and a minimum",
+                    extremes.len()
+                )
+            };
+            return Err(Error::Description {
+                item: "strokes".to_owned(),
+                problem,
             });
         };
         finite("extreme position's input angle", e0.input)?;
         finite("extreme position's input angle", e1.input)?;
+        finite("extreme value of the output", e0.output.value)?;
+        finite("extreme value of the output", e1.output.value)?;
         let sg = rotation.sign();
         // The angle the crank turns through from e0 to e1 in its own sense.
         let forward = normalize(sg * (e1.input - e0.input));
@@ -259,6 +278,14 @@ impl Strokes {
                 value: idle,
             });
         }
+        let starts_at_min = |input: f64| {
+            let first = if input == e0.input { e0 } else { e1 };
+            first.kind == ExtremeKind::Min
+        };
+        let stroke = crate::error::computed(
+            "the output's stroke",
+            (e1.output.value - e0.output.value).abs(),
+        )?;
         Ok(Self {
             start: normalize(start),
             end: normalize(end),
@@ -266,7 +293,42 @@ impl Strokes {
             idle_angle: idle,
             time_ratio: working / idle,
             rotation,
+            stroke,
+            working_rises: starts_at_min(start),
         })
+    }
+
+    /// The same strokes with the working stroke in the direction the output works in: rising
+    /// (`true`) or falling. A machine whose load resists the output in one direction only
+    /// works in that direction, even when that is the faster stroke; then the time ratio is
+    /// below 1.
+    ///
+    /// # Examples
+    /// ```
+    /// use tmm::kinematics::{Extreme, ExtremeKind, Motion, Rotation, Strokes};
+    /// let e = |deg: f64, value, kind| Extreme { input: deg.to_radians(), output: Motion::fixed(value), kind };
+    /// let s = Strokes::new(&[e(10.0, 0.0, ExtremeKind::Min), e(200.0, 0.3, ExtremeKind::Max)], Rotation::Ccw)?;
+    /// assert!(s.working_rises && s.time_ratio > 1.0);
+    /// let falling = s.working_in(false);
+    /// assert_eq!(falling.start, s.end);
+    /// assert!((falling.time_ratio - 170.0 / 190.0).abs() < 1e-12);
+    /// assert_eq!(falling.stroke, 0.3);
+    /// # Ok::<(), tmm::Error>(())
+    /// ```
+    #[must_use]
+    pub fn working_in(self, rises: bool) -> Self {
+        if rises == self.working_rises {
+            return self;
+        }
+        Self {
+            start: self.end,
+            end: self.start,
+            working_angle: self.idle_angle,
+            idle_angle: self.working_angle,
+            time_ratio: self.idle_angle / self.working_angle,
+            working_rises: rises,
+            ..self
+        }
     }
 
     /// The input angles of `n` plans, equally spaced in the crank's sense of rotation from

@@ -19,7 +19,8 @@
 //!   Coriolis terms on turning guides;
 //! - transfer functions ([`transfer_functions`], [`Motion::at_input_speed`]);
 //! - a cycle of positions ([`cycle`]), where a linkage locks ([`assembly_range`]), extreme
-//!   positions ([`extreme_positions`]), the strokes and the 12 plans ([`Strokes`]);
+//!   positions ([`extreme_positions`]), the strokes and the 12 plans ([`Strokes`]), Grashof's
+//!   classification of a four-bar ([`grashof`]);
 //! - tabulated functions: [`differentiate`] (three-point) and [`integrate_trapezoid`].
 //!
 //! Every block reports its conditioning (`det`: sin(φ3 − φ2) for RRR, cos(φ2 − φ4) for RRP):
@@ -59,6 +60,7 @@ mod contour;
 mod crank;
 mod cycle;
 mod extreme;
+mod grashof;
 mod link;
 mod motion;
 mod numeric;
@@ -79,6 +81,7 @@ pub use cycle::{
     MAX_POSITIONS,
 };
 pub use extreme::{extreme_positions, Extreme, ExtremeKind, Rotation, Strokes};
+pub use grashof::{grashof, Grashof};
 pub use link::LinkMotion;
 pub use motion::{Motion, PointMotion};
 pub use numeric::{differentiate, differentiate_periodic, integrate_trapezoid};

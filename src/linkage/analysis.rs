@@ -7,10 +7,14 @@
 
 use super::description::Drive;
 use super::plan::{Group, GroupKind, InputPlan, LoadPlan, Plan};
-use crate::angle::{cross, unit};
+use crate::angle::{cross, perp, unit};
 use crate::error::{Error, Result};
-use crate::kinematics::{rpr_dyad, rrp_dyad, rrr_dyad, Guide, LinkMotion, Motion, PointMotion};
-use crate::kinetostatics::{Conditioning, CouplingDrive, GearDrive, RprDyad, RrpDyad, RrrDyad};
+use crate::kinematics::{
+    prp_dyad, rpp_dyad, rpr_dyad, rrp_dyad, rrr_dyad, Guide, LinkMotion, Motion, PointMotion,
+};
+use crate::kinetostatics::{
+    Conditioning, CouplingDrive, GearDrive, PrpDyad, RppDyad, RprDyad, RrpDyad, RrrDyad,
+};
 use crate::Load;
 use nalgebra::{Point2, Vector2};
 
@@ -126,6 +130,9 @@ pub struct Analysis<'p> {
     plan: &'p Plan,
     input: Motion,
     links: Vec<LinkMotion>,
+    /// Each link's unit vector e(φ), computed once per position: every point of a link is
+    /// placed with it, so no trigonometry is repeated.
+    units: Vec<Vector2<f64>>,
     dets: Vec<f64>,
     applied: Vec<(usize, Load)>,
     acc: Vec<Load>,
@@ -143,8 +150,15 @@ fn within(part: &str) -> impl Fn(Error) -> Error + '_ {
     }
 }
 
-fn point(link: &LinkMotion, local: Vector2<f64>) -> PointMotion {
-    link.point_at(local.x, local.y)
+/// The motion of the point at `local` (along, across) of `link`, whose unit vector is `e`.
+#[inline]
+fn point_with(link: &LinkMotion, e: Vector2<f64>, local: Vector2<f64>) -> PointMotion {
+    let r = local.x * e + local.y * perp(e);
+    PointMotion::new(
+        link.origin.p + r,
+        link.origin.v + link.omega * perp(r),
+        link.origin.a + link.epsilon * perp(r) - link.omega * link.omega * r,
+    )
 }
 
 impl<'p> Analysis<'p> {
@@ -163,6 +177,7 @@ impl<'p> Analysis<'p> {
             plan,
             input: Motion::default(),
             links: vec![Plan::frame_motion(); n],
+            units: vec![Vector2::x(); n],
             dets: vec![0.0; plan.groups.len()],
             applied: Vec::with_capacity(n + plan.loads.len() * 2),
             acc: vec![Load::zero(Point2::origin()); n],
@@ -187,6 +202,29 @@ impl<'p> Analysis<'p> {
         }
     }
 
+    /// The motion of the point at `local` in link `k`'s frame.
+    #[inline]
+    fn at(&self, k: usize, local: Vector2<f64>) -> PointMotion {
+        point_with(&self.links[k], self.units[k], local)
+    }
+
+    /// Stores link `k`'s motion with its unit vector.
+    #[inline]
+    fn set_link(&mut self, k: usize, m: LinkMotion) {
+        self.units[k] = m.unit();
+        self.links[k] = m;
+    }
+
+    /// The guide through the point at `local` of link `k`, at `offset` to the link's frame
+    /// angle, moving with the link.
+    fn guide_on(&self, k: usize, local: Vector2<f64>, offset: f64) -> Guide {
+        let link = &self.links[k];
+        Guide {
+            point: self.at(k, local),
+            angle: Motion::new(link.angle + offset, link.omega, link.epsilon),
+        }
+    }
+
     /// The plan this position belongs to.
     #[must_use]
     pub fn plan(&self) -> &'p Plan {
@@ -203,15 +241,24 @@ impl<'p> Analysis<'p> {
         self.statics_done = false;
         input.validate(["input", "input rate", "input acceleration"])?;
         let plan = self.plan;
+        // The input's ω² and ε times the linkage's size bound its points' accelerations: past
+        // f64's range the motion overflows whatever the groups do.
+        crate::error::computed(
+            "the input's accelerations (size·(ω² + |ε|))",
+            plan.size * (input.rate * input.rate + input.accel.abs()),
+        )?;
         self.input = input;
         match plan.input {
             InputPlan::Crank { link, pivot, .. } => {
-                self.links[link] = LinkMotion {
-                    origin: PointMotion::fixed(pivot),
-                    angle: crate::angle::normalize(input.value),
-                    omega: input.rate,
-                    epsilon: input.accel,
-                };
+                self.set_link(
+                    link,
+                    LinkMotion {
+                        origin: PointMotion::fixed(pivot),
+                        angle: crate::angle::normalize(input.value),
+                        omega: input.rate,
+                        epsilon: input.accel,
+                    },
+                );
             }
             InputPlan::Slider {
                 link, at, angle, ..
@@ -219,43 +266,53 @@ impl<'p> Analysis<'p> {
                 let d = unit(angle);
                 let o = PointMotion::new(at + input.value * d, input.rate * d, input.accel * d);
                 o.validate(["slider x", "slider y", "v.x", "v.y", "a.x", "a.y"])?;
-                self.links[link] = LinkMotion {
-                    origin: o,
-                    angle,
-                    omega: 0.0,
-                    epsilon: 0.0,
-                };
+                self.set_link(
+                    link,
+                    LinkMotion {
+                        origin: o,
+                        angle,
+                        omega: 0.0,
+                        epsilon: 0.0,
+                    },
+                );
             }
         }
         for (g, group) in plan.groups.iter().enumerate() {
             let [l2, l3] = group.links;
             let [ka, kc] = group.known;
-            let a = point(&self.links[ka], group.a_local);
+            let a = self.at(ka, group.a_local);
             let (s2, s3, det) = match group.kind {
                 GroupKind::Rrr => {
-                    let c = point(&self.links[kc], group.c_local);
+                    let c = self.at(kc, group.c_local);
                     let s = rrr_dyad(a, c, group.lengths[0], group.lengths[1], group.branch)
                         .map_err(within(&group.name))?;
                     (s.link2, s.link3, s.det)
                 }
                 GroupKind::Rrp => {
-                    let k = &self.links[kc];
-                    let guide = Guide {
-                        point: point(k, group.c_local),
-                        angle: Motion::new(k.angle + group.guide_offset, k.omega, k.epsilon),
-                    };
+                    let guide = self.guide_on(kc, group.c_local, group.guide_offsets[1]);
                     let s = rrp_dyad(a, guide, group.lengths[0], group.branch)
                         .map_err(within(&group.name))?;
                     (s.link2, s.link3, s.det)
                 }
                 GroupKind::Rpr => {
-                    let c = point(&self.links[kc], group.c_local);
+                    let c = self.at(kc, group.c_local);
                     let s = rpr_dyad(a, c).map_err(within(&group.name))?;
                     (s.link2, s.link3, s.slide.value)
                 }
+                GroupKind::Prp => {
+                    let g2 = self.guide_on(ka, group.a_local, group.guide_offsets[0]);
+                    let g3 = self.guide_on(kc, group.c_local, group.guide_offsets[1]);
+                    let s = prp_dyad(g2, g3).map_err(within(&group.name))?;
+                    (s.link2, s.link3, s.det)
+                }
+                GroupKind::Rpp => {
+                    let g = self.guide_on(kc, group.c_local, group.guide_offsets[1]);
+                    let s = rpp_dyad(a, g, group.slide_angle).map_err(within(&group.name))?;
+                    (s.link2, s.link3, s.det)
+                }
             };
-            self.links[l2] = s2;
-            self.links[l3] = s3;
+            self.set_link(l2, s2);
+            self.set_link(l3, s3);
             self.dets[g] = det;
         }
         Ok(())
@@ -281,9 +338,8 @@ impl<'p> Analysis<'p> {
             if lp.mass == 0.0 && lp.inertia == 0.0 {
                 continue;
             }
-            let link = &self.links[k];
-            let s = point(link, lp.centre);
-            let inertia = Load::inertia(s.p, lp.mass, s.a, lp.inertia, link.epsilon)
+            let s = self.at(k, lp.centre);
+            let inertia = Load::inertia(s.p, lp.mass, s.a, lp.inertia, self.links[k].epsilon)
                 .map_err(within(&plan.link_names[k]))?;
             self.applied.push((
                 k,
@@ -293,7 +349,7 @@ impl<'p> Analysis<'p> {
         for lp in &plan.loads {
             match lp {
                 LoadPlan::Force { link, local, force } => {
-                    let p = point(&self.links[*link], *local).p;
+                    let p = self.at(*link, *local).p;
                     self.applied.push((*link, Load::force_at(p, *force)));
                 }
                 LoadPlan::Moment { link, moment } => {
@@ -319,7 +375,7 @@ impl<'p> Analysis<'p> {
                 } => {
                     let (slider, guide, d) = self.slide_parts(*joint);
                     let s = self.slide_index(*joint);
-                    let p = point(&self.links[slider], *local).p;
+                    let p = self.at(slider, *local).p;
                     let f = resist(s.rate, *forward, *backward) * d;
                     self.applied.push((slider, Load::force_at(p, f)));
                     if guide != 0 {
@@ -401,7 +457,7 @@ impl<'p> Analysis<'p> {
                 let r = RrpDyad {
                     a,
                     b,
-                    guide: self.links[l3].unit(),
+                    guide: self.units[l3],
                     load2,
                     load3,
                 }
@@ -419,7 +475,7 @@ impl<'p> Analysis<'p> {
                 let r = RprDyad {
                     a,
                     e: c,
-                    axis: self.links[l2].unit(),
+                    axis: self.units[l2],
                     load2,
                     load3,
                 }
@@ -429,6 +485,43 @@ impl<'p> Analysis<'p> {
                     Reaction::hinge(ka, l2, r.r12, a),
                     Reaction::new(l3, l2, r.r32, a, r.couple),
                     Reaction::hinge(kc, l3, r.r43, c),
+                    r.conditioning,
+                )
+            }
+            GroupKind::Prp => {
+                let b = self.links[l2].origin.p;
+                let r = PrpDyad {
+                    b,
+                    guide2: self.units[l2],
+                    guide3: self.units[l3],
+                    load2,
+                    load3,
+                }
+                .solve()
+                .map_err(within(name))?;
+                (
+                    Reaction::new(ka, l2, r.r12, b, r.moment12),
+                    Reaction::hinge(l2, l3, r.r23, b),
+                    Reaction::new(kc, l3, r.r43, b, r.moment43),
+                    r.conditioning,
+                )
+            }
+            GroupKind::Rpp => {
+                let b = self.links[l3].origin.p;
+                let r = RppDyad {
+                    a,
+                    b,
+                    guide: self.units[l3],
+                    slot: self.units[l2],
+                    load2,
+                    load3,
+                }
+                .solve()
+                .map_err(within(name))?;
+                (
+                    Reaction::hinge(ka, l2, r.r12, a),
+                    Reaction::new(l3, l2, r.r32, a, r.moment32),
+                    Reaction::new(kc, l3, r.r43, b, r.moment43),
                     r.conditioning,
                 )
             }
@@ -556,7 +649,7 @@ impl<'p> Analysis<'p> {
     #[must_use]
     pub fn joint_on(&self, j: usize, side: usize) -> PointMotion {
         let jp = &self.plan.joints[j];
-        point(&self.links[jp.links[side]], jp.local[side])
+        self.at(jp.links[side], jp.local[side])
     }
 
     /// The motion of joint `j` as a point of link `link` (one of its two links).
@@ -598,7 +691,7 @@ impl<'p> Analysis<'p> {
     #[must_use]
     pub fn point_motion(&self, k: usize) -> PointMotion {
         let (link, local) = self.plan.point_local(k);
-        point(&self.links[link], local)
+        self.at(link, local)
     }
 
     /// The sliding link, the guide's link and the guide's current unit direction of the
@@ -658,8 +751,42 @@ impl<'p> Analysis<'p> {
         Ok(self.slide_index(j))
     }
 
+    /// The transmission angle μ of group `g` (in attachment order) at this position, rad in
+    /// [0, π/2]: the acute angle between the force a group's driving link can pass on and the
+    /// motion of the point it drives, complemented (μ = π/2 − the pressure angle). Engineers
+    /// keep it above about 40° over the cycle; it vanishes at a dead point.
+    ///
+    /// - RRR: the angle between the lines of its two links at the inner joint (the coupler and
+    ///   the rocker);
+    /// - RRP: π/2 minus the angle between the rod and the guide (μ = 0 with the rod across the
+    ///   guide);
+    /// - PRP: the angle between the two guides; RPP: between the slide and the guide (the
+    ///   force crosses each sliding pair along its normal);
+    /// - RPR: π/2 always: the sliding pair pushes the cylinder across its axis, which is the
+    ///   direction its point there moves in.
+    ///
+    /// # Errors
+    /// [`Error::OutOfRange`] for `g` not a group's index.
+    pub fn transmission_angle(&self, g: usize) -> Result<f64> {
+        let Some(group) = self.plan.groups.get(g) else {
+            return Err(Error::OutOfRange {
+                name: "group index",
+                value: g as f64,
+                min: 0.0,
+                max: self.plan.groups.len() as f64 - 1.0,
+            });
+        };
+        let (u2, u3) = (self.units[group.links[0]], self.units[group.links[1]]);
+        let between = |a: Vector2<f64>, b: Vector2<f64>| cross(a, b).abs().atan2(a.dot(&b).abs());
+        Ok(match group.kind {
+            GroupKind::Rrr | GroupKind::Prp | GroupKind::Rpp => between(u2, u3),
+            GroupKind::Rrp => std::f64::consts::FRAC_PI_2 - between(u2, u3),
+            GroupKind::Rpr => std::f64::consts::FRAC_PI_2,
+        })
+    }
+
     /// The kinematic conditioning of every group in attachment order: sin(φ3 − φ2) for RRR,
-    /// cos(φ2 − φ4) for RRP, l_AC (m) for RPR.
+    /// cos(φ2 − φ4) for RRP, l_AC (m) for RPR, sin(φg3 − φg2) for PRP and sin α for RPP.
     #[must_use]
     pub fn group_determinants(&self) -> &[f64] {
         &self.dets

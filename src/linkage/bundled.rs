@@ -192,3 +192,91 @@ pub fn shaper() -> Linkage {
         ..Linkage::default()
     }
 }
+
+/// A Scotch yoke (sine mechanism): a crank of 0.1 m drives a block on its pin A in the
+/// vertical slot of a yoke that slides along the frame's x axis, against a resistance of
+/// 400 N both ways (a double-acting pump). One RPP group (block, yoke).
+#[must_use]
+pub fn scotch_yoke() -> Linkage {
+    let (o1, a) = ([0.0, 0.0], [0.1, 0.0]);
+    Linkage {
+        name: "Scotch yoke".to_owned(),
+        joints: vec![
+            Joint::revolute("O1", o1),
+            Joint::revolute("A", a),
+            Joint::prismatic("S", a, "yoke", [0.0, 1.0]),
+            Joint::prismatic("Q", a, "frame", [1.0, 0.0]),
+        ],
+        links: vec![
+            Link::new("frame", &["O1", "Q"]),
+            Link::new("crank", &["O1", "A"]).with_mass(Mass::new(1.0, 0.002, At::Coords(o1))),
+            Link::new("block", &["A", "S"]).with_mass(Mass::new(0.2, 0.0001, At::Coords(a))),
+            Link::new("yoke", &["S", "Q"]).with_mass(Mass::new(3.0, 0.02, At::Coords([0.25, 0.0]))),
+        ],
+        input: Input::crank("crank"),
+        loads: vec![LoadSpec::Resistance {
+            on: "Q".to_owned(),
+            forward: 400.0,
+            backward: 400.0,
+            at: Some(At::Coords([0.4, 0.0])),
+        }],
+        output: Some(Output::Slide("Q".to_owned())),
+        ..Linkage::default()
+    }
+}
+
+/// The crank-rocker of [`four_bar`] with a slot along its rocker, in which a block (hinged
+/// at F to a slider) drives the slider along a horizontal frame guide 0.2 m above the
+/// rocker's pivot: F is where the rocker's line crosses the guide (a tangent mechanism). The
+/// slider works against 300 N while it moves to −x. Groups: RRR (coupler, rocker), then PRP
+/// (block, slider); the rocker swings between about 109° and 149°, so the slot never turns
+/// parallel to the guide.
+#[must_use]
+pub fn slotted_rocker() -> Linkage {
+    let (o1, a, o3) = ([0.0, 0.0], [0.1, 0.0], [0.4, 0.05]);
+    let b = [0.25612516773077276, 0.3132489936153635];
+    let f = [0.2906929669182746, 0.25];
+    Linkage {
+        name: "slotted rocker".to_owned(),
+        joints: vec![
+            Joint::revolute("O1", o1),
+            Joint::revolute("A", a),
+            Joint::revolute("B", b),
+            Joint::revolute("O3", o3),
+            Joint::prismatic("S", f, "rocker", [b[0] - o3[0], b[1] - o3[1]]),
+            Joint::revolute("F", f),
+            Joint::prismatic("G", f, "frame", [1.0, 0.0]),
+        ],
+        links: vec![
+            Link::new("frame", &["O1", "O3", "G"]),
+            Link::new("crank", &["O1", "A"]).with_mass(Mass::new(1.0, 0.002, At::Coords(o1))),
+            Link::new("coupler", &["A", "B"]).with_mass(rod(1.5, a, b)),
+            Link::new("rocker", &["O3", "B", "S"]).with_mass(rod(2.0, o3, b)),
+            Link::new("block", &["S", "F"]).with_mass(Mass::new(0.3, 0.0002, At::Coords(f))),
+            Link::new("slider", &["F", "G"]).with_mass(Mass::new(4.0, 0.01, At::Coords(f))),
+        ],
+        input: Input::crank("crank"),
+        loads: vec![LoadSpec::Resistance {
+            on: "G".to_owned(),
+            forward: 0.0,
+            backward: 300.0,
+            at: None,
+        }],
+        output: Some(Output::Slide("G".to_owned())),
+        ..Linkage::default()
+    }
+}
+
+/// Every bundled linkage, in the order of the files under `linkages/`.
+#[must_use]
+pub fn all() -> Vec<Linkage> {
+    vec![
+        four_bar(),
+        geared_four_bar(),
+        watt_six_bar(),
+        stephenson_six_bar(),
+        shaper(),
+        scotch_yoke(),
+        slotted_rocker(),
+    ]
+}

@@ -2,7 +2,7 @@
 //! course project's plans, lock positions, and runs over many positions.
 
 use super::analysis::Analysis;
-use super::plan::Plan;
+use super::plan::{LoadPlan, Plan};
 use crate::error::{Error, Result};
 use crate::kinematics::{
     assembly_range, cycle_angles, extreme_positions, transfer_functions, Extreme, Motion, Rotation,
@@ -109,13 +109,41 @@ impl Plan {
     }
 
     /// The working and idle strokes of `output` for a crank turning in the sense `rotation`:
-    /// its two extreme positions, the crank angles of the strokes and the time ratio.
+    /// its two extreme positions, the crank angles of the strokes, the time ratio and the
+    /// stroke (or swing).
+    ///
+    /// The working direction is derived from the loads where they tell it: a resistance on the
+    /// output itself (on its link for an angle, on its joint for a slide) that is larger in
+    /// one direction makes that direction the working stroke, even if it is the faster one.
+    /// Otherwise the working stroke is the slower one (the larger crank angle).
     ///
     /// # Errors
     /// As [`Plan::extremes`]; an output without exactly two extreme positions (one that turns
     /// fully, or one with more extremes per turn).
     pub fn strokes(&self, output: &Output, rotation: Rotation) -> Result<Strokes> {
-        Strokes::new(&self.extremes(output)?, rotation)
+        let strokes = Strokes::new(&self.extremes(output)?, rotation)?;
+        let resolved = self.resolve(output)?;
+        let worked = self.loads.iter().find_map(|l| match (l, resolved) {
+            (
+                LoadPlan::Turning {
+                    link,
+                    forward,
+                    backward,
+                },
+                Resolved::Angle(k),
+            ) if *link == k && forward != backward => Some(forward > backward),
+            (
+                LoadPlan::Sliding {
+                    joint,
+                    forward,
+                    backward,
+                    ..
+                },
+                Resolved::Slide(j),
+            ) if *joint == j && forward != backward => Some(forward > backward),
+            _ => None,
+        });
+        Ok(worked.map_or(strokes, |rises| strokes.working_in(rises)))
     }
 
     /// The range of the crank angle, through `phi`, over which the linkage assembles: `None`
@@ -127,6 +155,54 @@ impl Plan {
         self.need_crank("lock positions")?;
         let mut a = Analysis::new(self);
         assembly_range(phi, |x| a.solve_kinematics(Motion::fixed(x)))
+    }
+
+    /// The smallest transmission angle of group `g` over a turn of the crank, and the crank
+    /// angle where it occurs: `(μ_min, φ1)`, rad. Found on 720 positions, then refined by
+    /// golden-section search to 1e-12 rad of φ1. See [`Analysis::transmission_angle`].
+    ///
+    /// # Errors
+    /// A slider input; `g` not a group; any position's error (a crank that cannot turn fully
+    /// has no cycle to search).
+    pub fn min_transmission_angle(&self, g: usize) -> Result<(f64, f64)> {
+        self.need_crank("transmission angles over a turn")?;
+        let mut a = Analysis::new(self);
+        let mut mu = |phi: f64| -> Result<f64> {
+            a.solve_kinematics(Motion::fixed(phi))?;
+            a.transmission_angle(g)
+        };
+        let n = 720;
+        let h = std::f64::consts::TAU / f64::from(n);
+        let (mut best, mut at) = (f64::INFINITY, 0.0);
+        for k in 0..n {
+            let phi = h * f64::from(k);
+            let m = mu(phi)?;
+            if m < best {
+                (best, at) = (m, phi);
+            }
+        }
+        // Golden-section search on [at − h, at + h], where μ has its one minimum.
+        let r = (5f64.sqrt() - 1.0) / 2.0;
+        let (mut lo, mut hi) = (at - h, at + h);
+        let (mut x1, mut x2) = (hi - r * (hi - lo), lo + r * (hi - lo));
+        let (mut f1, mut f2) = (mu(x1)?, mu(x2)?);
+        while hi - lo > 1e-12 {
+            if f1 <= f2 {
+                (hi, x2, f2) = (x2, x1, f1);
+                x1 = hi - r * (hi - lo);
+                f1 = mu(x1)?;
+            } else {
+                (lo, x1, f1) = (x1, x2, f2);
+                x2 = lo + r * (hi - lo);
+                f2 = mu(x2)?;
+            }
+        }
+        let (m, x) = if f1 <= f2 { (f1, x1) } else { (f2, x2) };
+        Ok(if m < best {
+            (m, crate::angle::normalize(x))
+        } else {
+            (best, at)
+        })
     }
 
     fn need_crank(&self, what: &str) -> Result<()> {
@@ -141,13 +217,37 @@ impl Plan {
     }
 
     /// Analyses every input in turn, reusing one set of buffers, and hands each position (or
-    /// its error) to `visit`: a sweep of any length without a table of full results.
-    pub fn for_each<F>(&self, inputs: &[Motion], mut visit: F)
+    /// its error) to `visit`: a sweep of any length without a table of full results, nothing
+    /// allocated per position. `inputs` may be a slice or any iterator of inputs (generated on
+    /// the fly, so a sweep of millions of positions needs no list of them either).
+    ///
+    /// # Examples
+    /// The largest balancing moment of the Watt six-bar over 10⁴ positions, streamed:
+    /// ```
+    /// use tmm::kinematics::Motion;
+    /// use tmm::linkage::{bundled, Plan};
+    /// let plan = Plan::new(&bundled::watt_six_bar())?;
+    /// let n = 10_000;
+    /// let inputs = (0..n).map(|k| Motion::new(k as f64 * std::f64::consts::TAU / n as f64, 10.0, 0.0));
+    /// let mut peak = 0.0f64;
+    /// plan.for_each(inputs, |_, a| {
+    ///     if let Ok(a) = a {
+    ///         peak = peak.max(a.balance().value.abs());
+    ///     }
+    /// });
+    /// assert!(peak > 0.0);
+    /// # Ok::<(), tmm::Error>(())
+    /// ```
+    pub fn for_each<I, F>(&self, inputs: I, mut visit: F)
     where
+        I: IntoIterator,
+        I::Item: std::borrow::Borrow<Motion>,
         F: FnMut(Motion, Result<&Analysis<'_>>),
     {
+        use std::borrow::Borrow;
         let mut a = Analysis::new(self);
-        for &i in inputs {
+        for i in inputs {
+            let i = *i.borrow();
             match a.solve(i) {
                 Ok(()) => visit(i, Ok(&a)),
                 Err(e) => visit(i, Err(e)),

@@ -7,7 +7,8 @@
 //!    with their coordinates in a reference pose, links as sets of joints and named points,
 //!    the input and its drive, masses and loads;
 //! 2. a **plan** ([`Plan::new`]), made once: the structure (the mobility by Chebyshev's
-//!    formula, the Assur dyads of the 2nd class in attachment order), every length and local
+//!    formula, the Assur dyads of the 2nd class in attachment order — all five kinds, RRR,
+//!    RRP, RPR, PRP and RPP), every length and local
 //!    coordinate read off the reference pose, the assembly mode of every group, the loads.
 //!    Whatever is wrong with a description is found here, and the error names the joint,
 //!    link, load or field;

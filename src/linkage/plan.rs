@@ -31,16 +31,24 @@ pub enum GroupKind {
     Rrp,
     /// A rod hinged to a known link sliding in a cylinder hinged to another (SR3).
     Rpr,
+    /// Two sliders, each on a guide of a known link, hinged to each other (the cross-slide,
+    /// the slotted-crank drive of a slider).
+    Prp,
+    /// A link hinged to a known link and sliding in a second link, which slides on a guide of
+    /// another known link (the Scotch yoke, the sine and tangent mechanisms).
+    Rpp,
 }
 
 impl GroupKind {
-    /// "RRR", "RRP" or "RPR".
+    /// "RRR", "RRP", "RPR", "PRP" or "RPP".
     #[must_use]
     pub fn label(self) -> &'static str {
         match self {
             Self::Rrr => "RRR",
             Self::Rrp => "RRP",
             Self::Rpr => "RPR",
+            Self::Prp => "PRP",
+            Self::Rpp => "RPP",
         }
     }
 }
@@ -52,7 +60,8 @@ pub struct Group {
     pub kind: GroupKind,
     /// A name for tables and errors, for example `"group (coupler, rocker) RRR"`.
     pub name: String,
-    /// Its two links (indices into [`Plan::link_names`]); the second is the slider of an RRP.
+    /// Its two links (indices into [`Plan::link_names`]); the second is the slider of an RRP,
+    /// the first is the hinged link of an RPP.
     pub links: [usize; 2],
     /// Its joints: the first link's outer joint, the inner joint, the second link's outer
     /// joint (indices into [`Plan::joint_names`]).
@@ -64,7 +73,11 @@ pub struct Group {
     pub(crate) a_local: Vector2<f64>,
     pub(crate) c_local: Vector2<f64>,
     pub(crate) lengths: [f64; 2],
-    pub(crate) guide_offset: f64,
+    /// The directions of the outer sliding pairs' guides relative to the frames of the known
+    /// links that carry them (first and second outer joint).
+    pub(crate) guide_offsets: [f64; 2],
+    /// RPP: the angle α from the guide to the slide between the group's links.
+    pub(crate) slide_angle: f64,
 }
 
 /// How the plan drives the input link.
@@ -781,6 +794,24 @@ impl Plan {
         self.joints[joint].links
     }
 
+    /// For a prismatic joint, the link that carries its guide (one of
+    /// [`joint_links`](Self::joint_links)); `None` for a revolute joint.
+    ///
+    /// # Examples
+    /// The shaper's ram slides on a guide of the frame (link 0):
+    /// ```
+    /// use tmm::linkage::{bundled, Plan};
+    /// let plan = Plan::new(&bundled::shaper())?;
+    /// assert_eq!(plan.guide_link(plan.joint_index("Q")?), Some(0));
+    /// assert_eq!(plan.guide_link(plan.joint_index("O1")?), None);
+    /// # Ok::<(), tmm::Error>(())
+    /// ```
+    #[must_use]
+    pub fn guide_link(&self, joint: usize) -> Option<usize> {
+        let j = &self.joints[joint];
+        j.prismatic.map(|(side, _)| j.links[side])
+    }
+
     /// The frame's link motion (at rest at the origin).
     pub(crate) fn frame_motion() -> LinkMotion {
         LinkMotion {
@@ -975,14 +1006,27 @@ fn plan_group(
             GroupKind::Rrp,
         ),
         [Pair::Revolute, Pair::Prismatic, Pair::Revolute] => (d.links, d.joints, GroupKind::Rpr),
+        [Pair::Prismatic, Pair::Revolute, Pair::Prismatic] => (d.links, d.joints, GroupKind::Prp),
+        [Pair::Revolute, Pair::Prismatic, Pair::Prismatic] => (d.links, d.joints, GroupKind::Rpp),
+        [Pair::Prismatic, Pair::Prismatic, Pair::Revolute] => (
+            [d.links[1], d.links[0]],
+            [d.joints[2], d.joints[1], d.joints[0]],
+            GroupKind::Rpp,
+        ),
         _ => {
             let label: String = pairs
                 .iter()
                 .map(|p| if *p == Pair::Revolute { 'R' } else { 'P' })
                 .collect();
             return Err(bad(
-                format!("group ({}, {})", link_names[d.links[0]], link_names[d.links[1]]),
-                format!("is a {label} dyad, which the engine does not solve (it solves RRR, RRP and RPR)"),
+                format!(
+                    "group ({}, {})",
+                    link_names[d.links[0]], link_names[d.links[1]]
+                ),
+                format!(
+                    "is a {label} group: three sliding pairs leave its links free to slide \
+                     together, so it is not a dyad of the 2nd class"
+                ),
             ));
         }
     };
@@ -1017,7 +1061,11 @@ fn plan_group(
         )
     };
     let mut lengths = [0.0; 2];
-    let mut guide_offset = 0.0;
+    let mut guide_offsets = [0.0; 2];
+    let mut slide_angle = 0.0;
+    // Where the known links carry the group: A and C (B for an RRP, the guides' points for
+    // a PRP and an RPP).
+    let mut anchors = [a, c];
     let branch;
     match kind {
         GroupKind::Rrr => {
@@ -1056,7 +1104,8 @@ fn plan_group(
                 origin: b,
                 angle: ga,
             };
-            guide_offset = ga - frames[known[1]].angle;
+            guide_offsets[1] = ga - frames[known[1]].angle;
+            anchors[1] = b;
             let ahead = (b - a).dot(&g);
             branch = match mode {
                 Some(m) => m,
@@ -1091,6 +1140,65 @@ fn plan_group(
             };
             branch = Branch::Plus;
         }
+        GroupKind::Prp => {
+            // Each slider's hinge B traces, on the known link carrying its guide, the line
+            // through B along the pair's direction (a sliding pair only translates, so which
+            // of its links carries the guide does not matter).
+            let (u2, u3) = (dir(joints[0]), dir(joints[2]));
+            let (u2, u3) = (u2 / u2.norm(), u3 / u3.norm());
+            if !(cross(u2, u3).abs() > crate::kinematics::SINGULAR_DETERMINANT) {
+                return Err(bad(
+                    name,
+                    format!(
+                        "has parallel guides (joints {} and {}): sin(phi_g3 - phi_g2) = {:.4e}, \
+                         its sliders could slide together along them",
+                        linkage.joints[joints[0]].name,
+                        linkage.joints[joints[2]].name,
+                        cross(u2, u3)
+                    ),
+                ));
+            }
+            for (side, u) in [(0, u2), (1, u3)] {
+                frames[links[side]] = Frame {
+                    origin: b,
+                    angle: direction(u),
+                };
+                guide_offsets[side] = direction(u) - frames[known[side]].angle;
+            }
+            anchors = [b, b];
+            branch = Branch::Plus;
+        }
+        GroupKind::Rpp => {
+            // Link 2 is hinged at A and slides in link 3 along v; link 3 slides along u on
+            // the known link. B, where the slide's line through A crosses the guide's line,
+            // is the point of link 3 that runs along the guide.
+            let (v, u) = (dir(joints[1]), dir(joints[2]));
+            let (v, u) = (v / v.norm(), u / u.norm());
+            let sin_alpha = cross(u, v);
+            if !(sin_alpha.abs() > crate::kinematics::SINGULAR_DETERMINANT) {
+                return Err(bad(
+                    name,
+                    format!(
+                        "has its slide (joint {}) parallel to its guide (joint {}): sin(alpha) = \
+                         {sin_alpha:.4e}, its two links could slide together along the guide",
+                        linkage.joints[joints[1]].name, linkage.joints[joints[2]].name,
+                    ),
+                ));
+            }
+            let bb = a + v * (cross(u, c - a) / sin_alpha);
+            frames[links[0]] = Frame {
+                origin: a,
+                angle: direction(v),
+            };
+            frames[links[1]] = Frame {
+                origin: bb,
+                angle: direction(u),
+            };
+            guide_offsets[1] = direction(u) - frames[known[1]].angle;
+            slide_angle = direction(v) - direction(u);
+            anchors[1] = bb;
+            branch = Branch::Plus;
+        }
     }
     Ok(Group {
         kind,
@@ -1099,10 +1207,11 @@ fn plan_group(
         joints,
         known,
         branch,
-        a_local: frames[known[0]].local(a),
-        c_local: frames[known[1]].local(if kind == GroupKind::Rrp { b } else { c }),
+        a_local: frames[known[0]].local(anchors[0]),
+        c_local: frames[known[1]].local(anchors[1]),
         lengths,
-        guide_offset,
+        guide_offsets,
+        slide_angle,
     })
 }
 

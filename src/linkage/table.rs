@@ -45,9 +45,11 @@ pub(crate) fn push(row: &mut Vec<(String, f64)>, name: &str, unit: &str, value: 
 
 impl Tabulate for Analysis<'_> {
     /// The course table's row: the input, every moving link's angle, ω and ε, every joint's
-    /// position, velocity and acceleration magnitudes, every prismatic joint's slide, the
-    /// reaction in every joint (R_by,on: x, y, magnitude), and, when the input moves, the
-    /// balancing value beside its virtual-power value.
+    /// position, velocity and acceleration magnitudes, every prismatic joint's slide, every
+    /// group's transmission angle, the
+    /// reaction in every joint (R_by,on: x, y, magnitude), and the balancing moment
+    /// `Mb [N·m, + counter-clockwise]` (or force `Fb [N, + along the guide]`) beside its value
+    /// by virtual power (`NaN` when the input is at rest: the virtual power then has no rate).
     fn row(&self) -> Vec<(String, f64)> {
         let plan = self.plan();
         let links = plan.link_names();
@@ -80,6 +82,10 @@ impl Tabulate for Analysis<'_> {
                 push(&mut r, &format!("a_rel({name})"), "m/s^2", s.accel);
             }
         }
+        for (g, group) in plan.groups().iter().enumerate() {
+            let mu = self.transmission_angle(g).unwrap_or(f64::NAN);
+            push(&mut r, &format!("mu({})", group.name), "rad", mu);
+        }
         if self.has_statics() {
             for (j, name) in plan.joint_names().iter().enumerate() {
                 let re = self.reaction_index(j);
@@ -89,20 +95,24 @@ impl Tabulate for Analysis<'_> {
                     push(
                         &mut r,
                         &format!("M({},{})@{name}", links[re.by], links[re.on]),
-                        "N*m",
+                        "N·m",
                         re.moment,
                     );
                 }
             }
             let b = self.balance();
+            // The sign convention rides in the header: a clockwise machine's driving moment is
+            // negative, and its reader should not have to guess why.
             let (name, unit) = if plan.input_is_crank() {
-                ("Mb", "N*m")
+                ("Mb", "N·m, + counter-clockwise")
             } else {
-                ("Fb", "N")
+                ("Fb", "N, + along the guide")
             };
             push(&mut r, name, unit, b.value);
+            // At rest the virtual power has no rate to divide by: the cell is NaN ("not
+            // available"), as `Table` documents.
             let vp = self.power_check().map_or(f64::NAN, |c| c.virtual_power);
-            push(&mut r, &format!("{name} (virtual power)"), unit, vp);
+            push(&mut r, &format!("{name} by virtual power"), unit, vp);
         }
         r
     }
@@ -167,6 +177,50 @@ impl Table {
             .iter()
             .find(|c| c.name == name)
             .map(|c| c.values.as_slice())
+    }
+
+    /// The table as text for a terminal, transposed: one line per column (its name, padded to
+    /// the longest, then its values across the positions) with `decimals` digits after the
+    /// point (at most 12). A value that
+    /// rounds to zero prints as zero, never as "-0.0000"; a non-finite one as `NaN` or `inf`.
+    ///
+    /// # Examples
+    /// ```
+    /// use tmm::linkage::{Table, Tabulate};
+    /// struct P(f64);
+    /// impl Tabulate for P {
+    ///     fn row(&self) -> Vec<(String, f64)> { vec![("x [m]".into(), self.0)] }
+    /// }
+    /// let t = Table::of(&[Ok(P(-1e-9)), Ok(P(0.25))]);
+    /// assert_eq!(t.to_text(3), format!("x [m] {:>11} {:>11}\n", "0.000", "0.250"));
+    /// ```
+    #[must_use]
+    pub fn to_text(&self, decimals: usize) -> String {
+        let decimals = decimals.min(12);
+        let width = self
+            .columns
+            .iter()
+            .map(|c| c.name.chars().count())
+            .max()
+            .unwrap_or(0);
+        let mut out = String::new();
+        for c in &self.columns {
+            out.push_str(&format!("{:<width$}", c.name));
+            for &v in &c.values {
+                let text = format!("{v:.decimals$}");
+                // "-0.000": the sign of something that rounds to zero says nothing.
+                let text = if text.starts_with('-')
+                    && text[1..].chars().all(|ch| ch == '0' || ch == '.')
+                {
+                    text[1..].to_owned()
+                } else {
+                    text
+                };
+                out.push_str(&format!(" {text:>11}"));
+            }
+            out.push('\n');
+        }
+        out
     }
 
     /// Writes the table as CSV: a header of the column names, then one line per row, numbers

@@ -65,6 +65,21 @@ impl FourBar {
         }
     }
 
+    /// Grashof's classification of this four-bar (frame |O1O3|, crank, coupler, rocker).
+    ///
+    /// # Examples
+    /// ```
+    /// use tmm::{kinematics::Grashof, mechanism::FourBar};
+    /// assert_eq!(FourBar::course_example().grashof()?, Grashof::CrankRocker);
+    /// # Ok::<(), tmm::Error>(())
+    /// ```
+    ///
+    /// # Errors
+    /// As [`grashof`](crate::kinematics::grashof): a length that is not finite and positive.
+    pub fn grashof(&self) -> Result<crate::kinematics::Grashof> {
+        crate::kinematics::grashof((self.o3 - self.o1).norm(), self.l1, self.l2, self.l3)
+    }
+
     /// The description for the engine, in a reference pose where the four-bar assembles
     /// (B as `branch` puts it). If it assembles nowhere, B is not finite and
     /// [`Plan::new`] rejects it naming the joint.

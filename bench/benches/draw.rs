@@ -1,0 +1,62 @@
+//! The pictures of `tmm::draw` against the analysis they draw, side by side in one run: a
+//! 360-position animation of the Watt six-bar (kinematics at every frame, the SVG text)
+//! beside the kinematics alone of the same 360 positions; and the animation over 36, 360 and
+//! 3600 frames, to show that its cost grows linearly with the number of frames.
+
+use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion, Throughput};
+use std::hint::black_box;
+use std::time::Duration;
+use tmm::draw::{animation, scheme, Style};
+use tmm::kinematics::Motion;
+use tmm::linkage::{bundled, uniform_inputs, Analysis, Plan};
+
+fn side_by_side(c: &mut Criterion) {
+    let plan = Plan::new(&bundled::watt_six_bar()).unwrap();
+    let inputs = uniform_inputs(360, plan.reference_input(), 10.0, 0.0);
+    let style = Style::default();
+    let mut g = c.benchmark_group("draw/watt six-bar, 360 positions");
+    g.measurement_time(Duration::from_secs(5));
+    g.bench_function("animation (SVG text)", |b| {
+        b.iter(|| animation(black_box(&plan), black_box(&inputs), 4.0, &style).unwrap())
+    });
+    g.bench_function("kinematics alone", |b| {
+        let mut a = Analysis::new(&plan);
+        b.iter(|| {
+            for &m in black_box(&inputs) {
+                a.solve_kinematics(m).unwrap();
+                black_box(a.joint_motion(0));
+            }
+        })
+    });
+    g.bench_function("full analysis (kinematics and reactions)", |b| {
+        let mut a = Analysis::new(&plan);
+        b.iter(|| {
+            for &m in black_box(&inputs) {
+                plan.analyse_into(m, &mut a).unwrap();
+                black_box(a.balance());
+            }
+        })
+    });
+    g.bench_function("one scheme", |b| {
+        b.iter(|| scheme(black_box(&plan), Motion::new(1.0, 10.0, 0.0), &style).unwrap())
+    });
+    g.finish();
+}
+
+fn frames(c: &mut Criterion) {
+    let plan = Plan::new(&bundled::watt_six_bar()).unwrap();
+    let style = Style::default();
+    let mut g = c.benchmark_group("draw/animation frames");
+    g.measurement_time(Duration::from_secs(4));
+    for n in [36usize, 360, 3600] {
+        let inputs = uniform_inputs(n, plan.reference_input(), 10.0, 0.0);
+        g.throughput(Throughput::Elements(n as u64));
+        g.bench_with_input(BenchmarkId::from_parameter(n), &inputs, |b, inputs| {
+            b.iter(|| animation(&plan, black_box(inputs), 4.0, &style).unwrap())
+        });
+    }
+    g.finish();
+}
+
+criterion_group!(benches, side_by_side, frames);
+criterion_main!(benches);

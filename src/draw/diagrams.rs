@@ -1,0 +1,667 @@
+//! The diagrams over a cycle, drawn by plotters' SVG back end.
+
+use super::frame::drawing;
+use super::plan_view::path_inputs;
+use super::{Course, Style};
+use crate::error::{Error, Result};
+use crate::kinematics::Motion;
+use crate::linkage::{Analysis, Output, Plan};
+use plotters::coord::Shift;
+use plotters::prelude::*;
+use std::f64::consts::TAU;
+
+/// A diagram over the cycle, for [`diagram`].
+///
+/// # Examples
+/// Every diagram of the Watt six-bar's output, link 5:
+/// ```
+/// use tmm::draw::{diagram, Course, Diagram, Style};
+/// use tmm::linkage::{bundled, Output, Plan};
+/// let plan = Plan::new(&bundled::watt_six_bar())?;
+/// let out = Output::Angle("link 5".into());
+/// let course = Course::new(&plan, Some(&out), 12, 10.0)?;
+/// let style = Style { samples: 72, ..Style::default() };
+/// for d in [Diagram::Kinematics(out.clone()), Diagram::Transfer(out), Diagram::Balance,
+///           Diagram::Reactions, Diagram::Hodograph("A".into())] {
+///     let chart = diagram(&plan, &course, &d, &style)?;
+///     assert!(!chart.panels.is_empty());
+/// }
+/// # Ok::<(), tmm::Error>(())
+/// ```
+#[derive(Debug, Clone, PartialEq)]
+pub enum Diagram {
+    /// The output's position, velocity and acceleration against the input (three panels), at
+    /// the speed and acceleration of the course's inputs: rad, rad/s, rad/s² for an angle; m,
+    /// m/s, m/s² for a slide or a coordinate.
+    Kinematics(Output),
+    /// The output's transfer functions against the input (three panels): its value and its
+    /// first and second derivatives with respect to the input coordinate (for a crank: rad,
+    /// rad/rad, rad/rad² for an angle; m, m/rad, m/rad² for a length).
+    Transfer(Output),
+    /// The balancing moment of a crank (N·m, counter-clockwise positive) or the driving force
+    /// of a slider (N).
+    Balance,
+    /// The magnitude of the reaction in every joint, N, one line per joint.
+    Reactions,
+    /// The hodograph of the reaction in the named joint: the tip of R (the force of the
+    /// joint's first link on its second, as [`Analysis::reaction`] gives it), R_y against
+    /// R_x, N, over the cycle.
+    Hodograph(String),
+}
+
+/// One panel of a [`Chart`]: its axes, what it plots and where on the picture.
+///
+/// # Examples
+/// The three panels of an output's motion, with their units:
+/// ```
+/// use tmm::draw::{diagram, Course, Diagram, Style};
+/// use tmm::linkage::{bundled, Output, Plan};
+/// let plan = Plan::new(&bundled::shaper())?;
+/// let out = Output::Slide("Q".into());
+/// let course = Course::new(&plan, Some(&out), 12, 10.0)?;
+/// let chart = diagram(&plan, &course, &Diagram::Kinematics(out), &Style::default())?;
+/// let units: Vec<&str> = chart.panels.iter().map(|p| p.y_label.as_str()).collect();
+/// assert_eq!(units, ["position, m", "velocity, m/s", "acceleration, m/s²"]);
+/// # Ok::<(), tmm::Error>(())
+/// ```
+#[derive(Debug, Clone, PartialEq)]
+pub struct Panel {
+    /// The panel's title.
+    pub title: String,
+    /// The abscissa's name and unit, for example `"φ1 turned counter-clockwise …, rad"`.
+    pub x_label: String,
+    /// The ordinate's name and unit, for example `"M_b, N·m"`.
+    pub y_label: String,
+    /// The range of the abscissa's axis.
+    pub x_range: [f64; 2],
+    /// The range of the ordinate's axis.
+    pub y_range: [f64; 2],
+    /// The plotting area on the picture, px: left and right edges.
+    pub x_pixels: [f64; 2],
+    /// The plotting area on the picture, px: bottom and top edges (y grows downwards).
+    pub y_pixels: [f64; 2],
+    /// The curves: a name and the points (x, y) plotted, in order (a failed position leaves a
+    /// gap and no point).
+    pub series: Vec<(String, Vec<[f64; 2]>)>,
+    /// The marked course positions: the position's number, x and y, on the first curve (on
+    /// every curve for [`Diagram::Reactions`]).
+    pub marks: Vec<(usize, [f64; 2])>,
+}
+
+impl Panel {
+    /// The pixel where the point (x, y) of the panel's axes lands.
+    ///
+    /// # Examples
+    /// ```
+    /// use tmm::draw::{diagram, Course, Diagram, Style};
+    /// use tmm::linkage::{bundled, Plan};
+    /// let plan = Plan::new(&bundled::four_bar())?;
+    /// let course = Course::new(&plan, None, 12, 10.0)?;
+    /// let chart = diagram(&plan, &course, &Diagram::Balance, &Style::default())?;
+    /// let p = &chart.panels[0];
+    /// let [left, bottom] = p.to_pixel(p.x_range[0], p.y_range[0]);
+    /// assert_eq!([left, bottom], [p.x_pixels[0], p.y_pixels[0]]);
+    /// # Ok::<(), tmm::Error>(())
+    /// ```
+    #[must_use]
+    pub fn to_pixel(&self, x: f64, y: f64) -> [f64; 2] {
+        let tx = (x - self.x_range[0]) / (self.x_range[1] - self.x_range[0]);
+        let ty = (y - self.y_range[0]) / (self.y_range[1] - self.y_range[0]);
+        [
+            self.x_pixels[0] + tx * (self.x_pixels[1] - self.x_pixels[0]),
+            self.y_pixels[0] + ty * (self.y_pixels[1] - self.y_pixels[0]),
+        ]
+    }
+}
+
+/// A drawn diagram: its SVG text and its panels.
+///
+/// # Examples
+/// ```
+/// use tmm::draw::{diagram, Course, Diagram, Style};
+/// use tmm::linkage::{bundled, Plan};
+/// let plan = Plan::new(&bundled::four_bar())?;
+/// let course = Course::new(&plan, None, 12, 10.0)?;
+/// let chart = diagram(&plan, &course, &Diagram::Reactions, &Style::default())?;
+/// assert_eq!(chart.panels[0].series.len(), plan.joint_names().len());
+/// assert!(chart.svg.contains("|R|, N"));
+/// # Ok::<(), tmm::Error>(())
+/// ```
+#[derive(Debug, Clone, PartialEq)]
+pub struct Chart {
+    /// The SVG document.
+    pub svg: String,
+    /// The panels, top to bottom.
+    pub panels: Vec<Panel>,
+}
+
+/// Draws `diagram` over the cycle of `course`: [`Style::samples`] positions over a turn of the
+/// crank from the course's first position (for a slider, over the range of the course's
+/// inputs), the course positions marked and numbered. The abscissa is the angle the crank
+/// has turned from the course's first position in its own sense of rotation (so a clockwise
+/// crank reads left to right as it turns), rad; for a slider, its coordinate, m. Every axis
+/// carries its SI unit. A position where the linkage fails leaves a gap.
+///
+/// # Errors
+/// [`Error::Drawing`](crate::Error::Drawing) for a bad style or a back-end failure;
+/// [`Error::OutOfRange`] or [`Error::NonFinite`] for a bad course; [`Error::Description`] for
+/// an output or joint that does not exist; the first position's error when no position of
+/// the cycle can be solved.
+///
+/// # Examples
+/// The shaper's balancing moment; its axis covers every value plotted:
+/// ```
+/// use tmm::draw::{diagram, Course, Diagram, Style};
+/// use tmm::linkage::{bundled, Output, Plan};
+/// let plan = Plan::new(&bundled::shaper())?;
+/// let course = Course::new(&plan, Some(&Output::Slide("Q".into())), 12, 10.0)?;
+/// let chart = diagram(&plan, &course, &Diagram::Balance, &Default::default())?;
+/// let p = &chart.panels[0];
+/// assert_eq!(p.y_label, "M_b, N·m");
+/// assert!(p.series[0].1.iter().all(|[_, y]| p.y_range[0] <= *y && *y <= p.y_range[1]));
+/// assert_eq!(p.marks.len(), 12);
+/// let bad = Diagram::Kinematics(Output::Angle("no such link".into()));
+/// assert!(diagram(&plan, &course, &bad, &Default::default()).is_err());
+/// # Ok::<(), tmm::Error>(())
+/// ```
+pub fn diagram(plan: &Plan, course: &Course, diagram: &Diagram, style: &Style) -> Result<Chart> {
+    style.check()?;
+    course.check()?;
+    check(plan, diagram)?;
+    let crank = plan.input_is_crank();
+    let first = course.inputs[0];
+    let sense = if first.rate < 0.0 { -1.0 } else { 1.0 };
+    let x_of = |q: f64| {
+        if crank {
+            (sense * (q - first.value)).rem_euclid(TAU)
+        } else {
+            q
+        }
+    };
+    let mut samples = path_inputs(plan, course, style.samples);
+    let mut xs: Vec<f64> = samples.iter().map(|m| x_of(m.value)).collect();
+    if crank {
+        // Close the turn: position 0 again at 2π.
+        samples.push(samples[0]);
+        xs.push(TAU);
+    }
+    let x_range = if crank {
+        [0.0, TAU]
+    } else {
+        let lo = xs.iter().copied().fold(f64::INFINITY, f64::min);
+        let hi = xs.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+        pad(lo, hi, 0.0)
+    };
+    let x_label = if crank {
+        format!(
+            "φ1 turned {} from position 0 (φ1 = {:.3} rad), rad",
+            if sense < 0.0 {
+                "clockwise"
+            } else {
+                "counter-clockwise"
+            },
+            first.value
+        )
+    } else {
+        "s1, m".to_owned()
+    };
+    let input_unit = if crank { "rad" } else { "m" };
+
+    // What each panel plots at one position.
+    let specs = panel_specs(plan, diagram, input_unit)?;
+    let mut a = Analysis::new(plan);
+    let eval =
+        |a: &mut Analysis<'_>, m: Motion| -> Result<Values> { specs_values(plan, diagram, a, m) };
+    let mut data: Vec<Option<Values>> = Vec::with_capacity(samples.len());
+    let mut first_error = None;
+    for &m in &samples {
+        match eval(&mut a, m) {
+            Ok(v) => data.push(Some(v)),
+            Err(e) => {
+                first_error.get_or_insert(e);
+                data.push(None);
+            }
+        }
+    }
+    if data.iter().all(Option::is_none) {
+        return Err(first_error.unwrap_or_else(|| drawing("a diagram", "no position")));
+    }
+    let marks_data: Vec<(usize, f64, Option<Values>)> = course
+        .inputs
+        .iter()
+        .enumerate()
+        .map(|(k, &m)| (k, x_of(m.value), eval(&mut a, m).ok()))
+        .collect();
+
+    let hodograph = matches!(diagram, Diagram::Hodograph(_));
+    let mut panels = Vec::with_capacity(specs.len());
+    for (p, spec) in specs.iter().enumerate() {
+        let mut series = Vec::with_capacity(spec.series.len());
+        for (s, name) in spec.series.iter().enumerate() {
+            let mut pts = Vec::with_capacity(data.len());
+            let mut prev: Option<f64> = None;
+            for (x, d) in xs.iter().zip(&data) {
+                let Some(d) = d else {
+                    prev = None;
+                    continue;
+                };
+                let mut y = d[p][s];
+                if spec.unwrap {
+                    if let Some(py) = prev {
+                        y = py + wrap(y - py);
+                    }
+                    prev = Some(y);
+                }
+                if hodograph {
+                    pts.push([d[p][0], d[p][1]]);
+                } else {
+                    pts.push([*x, y]);
+                }
+            }
+            series.push((name.clone(), pts));
+            if hodograph {
+                break;
+            }
+        }
+        let marks: Vec<(usize, [f64; 2])> = marks_data
+            .iter()
+            .filter_map(|(k, x, d)| {
+                let d = d.as_ref()?;
+                if hodograph {
+                    return Some(vec![(*k, [d[p][0], d[p][1]])]);
+                }
+                let ys = if matches!(diagram, Diagram::Reactions) {
+                    d[p].clone()
+                } else {
+                    vec![d[p][0]]
+                };
+                Some(
+                    ys.into_iter()
+                        .enumerate()
+                        .map(|(s, y)| {
+                            // On an unwrapped angle, the mark follows the curve's turn.
+                            let y = match (spec.unwrap, series.get(s)) {
+                                (true, Some((_, c))) => nearest_turn(y, *x, c),
+                                _ => y,
+                            };
+                            (*k, [*x, y])
+                        })
+                        .collect(),
+                )
+            })
+            .flatten()
+            .collect();
+        let all = series
+            .iter()
+            .flat_map(|(_, s)| s.iter())
+            .chain(marks.iter().map(|(_, m)| m));
+        let (mut lo, mut hi) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
+        for q in all {
+            for i in 0..2 {
+                lo[i] = lo[i].min(q[i]);
+                hi[i] = hi[i].max(q[i]);
+            }
+        }
+        let (xr, yr) = if hodograph {
+            (
+                pad(lo[0].min(0.0), hi[0].max(0.0), 0.05),
+                pad(lo[1].min(0.0), hi[1].max(0.0), 0.05),
+            )
+        } else {
+            (x_range, pad(lo[1], hi[1], 0.05))
+        };
+        panels.push(Panel {
+            title: spec.title.clone(),
+            x_label: if hodograph {
+                spec.x_label.clone()
+            } else {
+                x_label.clone()
+            },
+            y_label: spec.y_label.clone(),
+            x_range: xr,
+            y_range: yr,
+            x_pixels: [0.0; 2],
+            y_pixels: [0.0; 2],
+            series,
+            marks,
+        });
+    }
+    let svg = render(&mut panels, style, hodograph)?;
+    Ok(Chart { svg, panels })
+}
+
+/// The value `y` moved by whole turns to the curve `c` at `x`.
+fn nearest_turn(y: f64, x: f64, c: &[[f64; 2]]) -> f64 {
+    let near = c
+        .iter()
+        .min_by(|a, b| (a[0] - x).abs().total_cmp(&(b[0] - x).abs()))
+        .map_or(y, |p| p[1]);
+    y + TAU * ((near - y) / TAU).round()
+}
+
+/// An angle difference brought into (−π, π].
+fn wrap(d: f64) -> f64 {
+    d - TAU * (d / TAU).round()
+}
+
+/// A range around [lo, hi] with a margin of `frac` of its width (a flat one opened up).
+fn pad(lo: f64, hi: f64, frac: f64) -> [f64; 2] {
+    let w = hi - lo;
+    if w > 0.0 {
+        [lo - frac * w, hi + frac * w]
+    } else {
+        let m = (lo.abs() * 0.1).max(1e-9);
+        [lo - m, hi + m]
+    }
+}
+
+/// The values at one position: per panel, per curve.
+type Values = Vec<Vec<f64>>;
+
+/// One panel's titles and the names of its curves.
+struct Spec {
+    title: String,
+    x_label: String,
+    y_label: String,
+    series: Vec<String>,
+    unwrap: bool,
+}
+
+fn check(plan: &Plan, d: &Diagram) -> Result<()> {
+    match d {
+        Diagram::Kinematics(o) | Diagram::Transfer(o) => check_output(plan, o),
+        Diagram::Hodograph(j) => plan.joint_index(j).map(|_| ()),
+        Diagram::Balance | Diagram::Reactions => Ok(()),
+    }
+}
+
+/// Checks that an output names something of the plan.
+fn check_output(plan: &Plan, o: &Output) -> Result<()> {
+    match o {
+        Output::Angle(n) => plan.link_index(n).map(|_| ()),
+        Output::Slide(n) => {
+            if plan.is_prismatic(plan.joint_index(n)?) {
+                Ok(())
+            } else {
+                Err(Error::Description {
+                    item: format!("joint {n}"),
+                    problem: "is not prismatic: it has no slide".to_owned(),
+                })
+            }
+        }
+        Output::X(n) | Output::Y(n) => plan
+            .joint_index(n)
+            .map(|_| ())
+            .or_else(|_| plan.point_index(n).map(|_| ())),
+    }
+}
+
+fn output_name(o: &Output) -> (String, &'static str) {
+    match o {
+        Output::Angle(n) => (format!("angle of {n}"), "rad"),
+        Output::Slide(n) => (format!("slide of {n}"), "m"),
+        Output::X(n) => (format!("x of {n}"), "m"),
+        Output::Y(n) => (format!("y of {n}"), "m"),
+    }
+}
+
+fn panel_specs(plan: &Plan, d: &Diagram, input_unit: &str) -> Result<Vec<Spec>> {
+    let name = plan.name();
+    let one = |title: String, y: String, series: Vec<String>| Spec {
+        title,
+        x_label: String::new(),
+        y_label: y,
+        series,
+        unwrap: false,
+    };
+    Ok(match d {
+        Diagram::Kinematics(o) | Diagram::Transfer(o) => {
+            let (what, u) = output_name(o);
+            let unwrap = matches!(o, Output::Angle(_));
+            let transfer = matches!(d, Diagram::Transfer(_));
+            let labels: [(String, String); 3] = if transfer {
+                [
+                    (what.clone(), format!("value, {u}")),
+                    (
+                        format!("first transfer function of the {what}"),
+                        format!("d/dq1, {u}/{input_unit}"),
+                    ),
+                    (
+                        format!("second transfer function of the {what}"),
+                        format!("d²/dq1², {u}/{input_unit}²"),
+                    ),
+                ]
+            } else {
+                [
+                    (what.clone(), format!("position, {u}")),
+                    (
+                        format!("velocity of the {what}"),
+                        format!("velocity, {u}/s"),
+                    ),
+                    (
+                        format!("acceleration of the {what}"),
+                        format!("acceleration, {u}/s²"),
+                    ),
+                ]
+            };
+            labels
+                .into_iter()
+                .enumerate()
+                .map(|(i, (t, y))| Spec {
+                    title: format!("{name}: {t}"),
+                    x_label: String::new(),
+                    y_label: y,
+                    series: vec![t],
+                    unwrap: unwrap && i == 0,
+                })
+                .collect()
+        }
+        Diagram::Balance => {
+            let (t, y) = if plan.input_is_crank() {
+                ("balancing moment", "M_b, N·m")
+            } else {
+                ("driving force", "F_b, N")
+            };
+            vec![one(
+                format!("{name}: {t}"),
+                y.to_owned(),
+                vec![t.to_owned()],
+            )]
+        }
+        Diagram::Reactions => vec![one(
+            format!("{name}: reactions in the joints"),
+            "|R|, N".to_owned(),
+            plan.joint_names()
+                .iter()
+                .map(|j| format!("R in {j}"))
+                .collect(),
+        )],
+        Diagram::Hodograph(j) => {
+            let r = format!("R in {j}");
+            vec![Spec {
+                title: format!("{name}: hodograph of the reaction in {j}"),
+                x_label: format!("{r}, x component, N"),
+                y_label: format!("{r}, y component, N"),
+                series: vec![r],
+                unwrap: false,
+            }]
+        }
+    })
+}
+
+/// The values of every panel's curves at one input.
+fn specs_values(
+    plan: &Plan,
+    d: &Diagram,
+    a: &mut Analysis<'_>,
+    m: Motion,
+) -> Result<Vec<Vec<f64>>> {
+    let finite = |v: Vec<Vec<f64>>| {
+        if v.iter().flatten().all(|x| x.is_finite()) {
+            Ok(v)
+        } else {
+            Err(Error::Overflow {
+                what: "a diagram's value",
+            })
+        }
+    };
+    finite(match d {
+        Diagram::Kinematics(o) => {
+            let v = plan.output(o, m)?;
+            vec![vec![v.value], vec![v.rate], vec![v.accel]]
+        }
+        Diagram::Transfer(o) => {
+            let v = plan.transfer(o, m.value)?;
+            vec![vec![v.value], vec![v.rate], vec![v.accel]]
+        }
+        Diagram::Balance => {
+            plan.analyse_into(m, a)?;
+            vec![vec![a.balance().value]]
+        }
+        Diagram::Reactions => {
+            plan.analyse_into(m, a)?;
+            let n = plan.joint_names().len();
+            vec![(0..n).map(|j| a.reaction_index(j).force.norm()).collect()]
+        }
+        Diagram::Hodograph(j) => {
+            plan.analyse_into(m, a)?;
+            let r = a.reaction(j)?;
+            vec![vec![r.force.x, r.force.y]]
+        }
+    })
+}
+
+const COLOURS: [RGBColor; 8] = [
+    RGBColor(31, 95, 168),
+    RGBColor(192, 57, 43),
+    RGBColor(46, 139, 87),
+    RGBColor(125, 60, 152),
+    RGBColor(211, 84, 0),
+    RGBColor(19, 141, 144),
+    RGBColor(127, 90, 58),
+    RGBColor(176, 58, 122),
+];
+
+fn render(panels: &mut [Panel], style: &Style, hodograph: bool) -> Result<String> {
+    let fail = |e: &dyn std::fmt::Display| drawing("a diagram", e.to_string());
+    let mut svg = String::new();
+    {
+        let root =
+            SVGBackend::with_string(&mut svg, (style.width, style.height)).into_drawing_area();
+        root.fill(&WHITE).map_err(|e| fail(&e))?;
+        let areas = root.split_evenly((panels.len(), 1));
+        for (panel, area) in panels.iter_mut().zip(&areas) {
+            draw_panel(panel, area, hodograph).map_err(|e| fail(&e))?;
+        }
+        root.present().map_err(|e| fail(&e))?;
+    }
+    Ok(svg)
+}
+
+type DrawResult<T> = std::result::Result<T, DrawingAreaErrorKind<std::io::Error>>;
+
+fn draw_panel(
+    panel: &mut Panel,
+    area: &DrawingArea<SVGBackend<'_>, Shift>,
+    hodograph: bool,
+) -> DrawResult<()> {
+    let mut chart = ChartBuilder::on(area)
+        .caption(&panel.title, ("sans-serif", 15))
+        .margin(8)
+        .x_label_area_size(36)
+        .y_label_area_size(64)
+        .build_cartesian_2d(
+            panel.x_range[0]..panel.x_range[1],
+            panel.y_range[0]..panel.y_range[1],
+        )?;
+    chart
+        .configure_mesh()
+        .x_desc(panel.x_label.as_str())
+        .y_desc(panel.y_label.as_str())
+        .label_style(("sans-serif", 11))
+        .axis_desc_style(("sans-serif", 12))
+        .light_line_style(WHITE.mix(0.0))
+        .draw()?;
+    let (xp, yp) = chart.plotting_area().get_pixel_range();
+    panel.x_pixels = [f64::from(xp.start), f64::from(xp.end)];
+    panel.y_pixels = [f64::from(yp.end), f64::from(yp.start)];
+    let several = panel.series.len() > 1;
+    for (s, (name, pts)) in panel.series.iter().enumerate() {
+        let c = COLOURS[s % COLOURS.len()];
+        // A gap in x (a failed position) breaks the line.
+        let mut runs: Vec<Vec<(f64, f64)>> = vec![Vec::new()];
+        let step = if hodograph {
+            f64::INFINITY
+        } else {
+            let n = pts.len().max(2);
+            #[allow(clippy::cast_precision_loss)]
+            let s = 1.5 * (panel.x_range[1] - panel.x_range[0]) / (n - 1) as f64;
+            s
+        };
+        // A hodograph breaks where the reaction jumps (a load switching on): a step far
+        // longer than the typical one.
+        let jump = if hodograph {
+            let mut steps: Vec<f64> = pts
+                .windows(2)
+                .map(|w| (w[1][0] - w[0][0]).hypot(w[1][1] - w[0][1]))
+                .collect();
+            steps.sort_by(f64::total_cmp);
+            20.0 * steps.get(steps.len() / 2).copied().unwrap_or(f64::INFINITY)
+        } else {
+            f64::INFINITY
+        };
+        let mut last: Option<[f64; 2]> = None;
+        for p in pts {
+            if let Some(l) = last {
+                if p[0] - l[0] > step || (p[0] - l[0]).hypot(p[1] - l[1]) > jump {
+                    runs.push(Vec::new());
+                }
+            }
+            last = Some(*p);
+            if let Some(r) = runs.last_mut() {
+                r.push((p[0], p[1]));
+            }
+        }
+        for (i, run) in runs.into_iter().enumerate() {
+            let series = chart.draw_series(LineSeries::new(run, c.stroke_width(2)))?;
+            if several && i == 0 {
+                series.label(name.as_str()).legend(move |(x, y)| {
+                    PathElement::new(vec![(x, y), (x + 16, y)], c.stroke_width(2))
+                });
+            }
+        }
+    }
+    if hodograph {
+        chart.draw_series(std::iter::once(Cross::new(
+            (0.0, 0.0),
+            5,
+            BLACK.stroke_width(1),
+        )))?;
+    }
+    chart.draw_series(
+        panel
+            .marks
+            .iter()
+            .map(|(_, m)| Circle::new((m[0], m[1]), 3, BLACK.filled())),
+    )?;
+    let mut numbered = Vec::new();
+    for (k, m) in &panel.marks {
+        if !numbered.contains(k) {
+            numbered.push(*k);
+            chart.draw_series(std::iter::once(Text::new(
+                k.to_string(),
+                (m[0], m[1]),
+                ("sans-serif", 10).into_font().color(&BLACK),
+            )))?;
+        }
+    }
+    if several {
+        chart
+            .configure_series_labels()
+            .background_style(WHITE.mix(0.6))
+            .border_style(BLACK)
+            .label_font(("sans-serif", 11))
+            .draw()?;
+    }
+    Ok(())
+}

@@ -1,0 +1,154 @@
+//! The reactions in the joints as scaled arrows on the scheme at one position.
+
+use super::geometry::{self, Extents, Pen, Pose, Topo};
+use super::{Picture, Style};
+use crate::error::Result;
+use crate::kinematics::Motion;
+use crate::linkage::Plan;
+use svg::Node;
+
+/// The force arrows at `input`: the scheme (faded), and in every joint the reaction R_i,j —
+/// the force of link i on link j ([`Reaction`](crate::linkage::Reaction): `by` = i, `on` =
+/// j, links numbered as in [`Plan::link_names`], 0 the frame) — as an arrow from the point it
+/// acts at, all to one scale: the largest is 30 % of the linkage's size long. The balancing
+/// moment of a crank is an arc arrow about its pivot in its own sense, a balancing force an
+/// arrow to the same scale; each arrow is labelled with its magnitude (N, N·m), and a legend
+/// gives the scale. [`Picture::force_scale`] is the force per pixel of arrow, N/px.
+///
+/// # Errors
+/// As [`scheme`](super::scheme), and the kinetostatics' errors at this input.
+///
+/// # Examples
+/// The tip of the crank pin's reaction lies `|R| / force_scale` pixels from the pin:
+/// ```
+/// use tmm::draw::{forces, Style};
+/// use tmm::kinematics::Motion;
+/// use tmm::linkage::{bundled, Plan};
+/// let plan = Plan::new(&bundled::watt_six_bar())?;
+/// let input = Motion::new(1.0, 10.0, 0.0);
+/// let pic = forces(&plan, input, &Style::default())?;
+/// let r = plan.analyse(input)?.reaction("A")?;
+/// let px = r.force.norm() / pic.force_scale.unwrap();
+/// assert!(px > 1.0 && px < 800.0);
+/// assert!(pic.svg.contains("N·m"));
+/// # Ok::<(), tmm::Error>(())
+/// ```
+pub fn forces(plan: &Plan, input: Motion, style: &Style) -> Result<Picture> {
+    style.check()?;
+    let a = plan.analyse(input)?;
+    let topo = Topo::new(plan);
+    let pose = Pose::of(&a)?;
+    let mut ext = Extents::new(&topo);
+    ext.add(&topo, &pose);
+    let nj = topo.joint_links.len();
+    let reactions: Vec<_> = (0..nj).map(|j| a.reaction_index(j)).collect();
+    let balance = a.balance();
+    let fmax = reactions
+        .iter()
+        .map(|r| r.force.norm())
+        .chain(std::iter::once(balance.force.norm()))
+        .fold(0.0, f64::max);
+    crate::error::computed("the largest reaction", fmax)?;
+    // Metres of drawing per newton.
+    let longest = 0.3 * topo.size;
+    let m_per_n = if fmax > 0.0 { longest / fmax } else { 0.0 };
+    let mut cover = Vec::new();
+    pose.cover(&topo, &ext, &mut cover);
+    for r in &reactions {
+        cover.push(r.point + r.force * m_per_n);
+    }
+    cover.push(balance.point + balance.force * m_per_n);
+    let frame = geometry::fit_with_input(&topo, &pose, &mut cover, style)?;
+    let force_scale = (fmax > 0.0).then(|| fmax / (longest * frame.scale));
+
+    let title = format!("{} — reactions at input {:.4}", plan.name(), input.value);
+    let mut doc = geometry::document(style, &title);
+    doc.append(geometry::ground(&topo, &pose, &ext, &frame, style));
+    let faded = Pen {
+        opacity: 0.45,
+        ..Pen::NORMAL
+    };
+    doc.append(geometry::position(&topo, &pose, &ext, &frame, style, faded));
+    let red = "#b00020";
+    let w = (0.8 * style.line_width).max(1.5);
+    let mut labels = geometry::Labels::default();
+    for r in &reactions {
+        if r.force.norm() <= 0.0 || r.force.norm().is_nan() {
+            continue;
+        }
+        let from = frame.to_pixel(r.point);
+        let to = frame.to_pixel(r.point + r.force * m_per_n);
+        doc.append(geometry::arrow(from, to, w, red).set("class", "reaction"));
+        if style.labels {
+            let q = labels.place(to, style);
+            doc.append(geometry::text(
+                &format!("R{},{} = {} N", r.by, r.on, geometry::short(r.force.norm())),
+                q,
+                12.0,
+                red,
+            ));
+        }
+    }
+    // The balancing moment or force.
+    let blue = "#0b3d91";
+    let mut legend = vec![
+        "R i,j: the force of link i on link j".to_owned(),
+        format!(
+            "links: {}",
+            plan.link_names()
+                .iter()
+                .enumerate()
+                .map(|(k, n)| format!("{k} {n}"))
+                .collect::<Vec<_>>()
+                .join(", ")
+        ),
+    ];
+    if balance.force.norm() > 0.0 {
+        let from = frame.to_pixel(balance.point);
+        let to = frame.to_pixel(balance.point + balance.force * m_per_n);
+        doc.append(geometry::arrow(from, to, w, blue).set("class", "balance"));
+        legend.push(format!(
+            "balancing force F_b = {} N{}",
+            geometry::short(balance.force.norm()),
+            if plan.input_is_crank() {
+                format!(", its moment M_b = {} N·m", geometry::short(balance.value))
+            } else {
+                String::new()
+            }
+        ));
+    } else if let Some(j) = topo.input_joint() {
+        let q0 = frame.to_pixel(pose.joints[j][0]);
+        let sense = if balance.value < 0.0 { -1.0 } else { 1.0 };
+        let r = style.hinge_radius.max(2.0);
+        let (arc, at) =
+            geometry::arc_arrow(q0, 5.0 * r, 0.5 * std::f64::consts::PI, sense, r, blue);
+        doc.append(arc.set("class", "balance"));
+        let text = format!("M_b = {} N·m", geometry::short(balance.value));
+        if style.labels {
+            doc.append(geometry::text(
+                &text,
+                [at[0] + 8.0, at[1] - 4.0],
+                12.0,
+                blue,
+            ));
+        }
+        legend.push(format!(
+            "balancing moment {text} (counter-clockwise positive)"
+        ));
+    }
+    if let Some(s) = force_scale {
+        legend.push(format!("scale: 1 px = {} N", geometry::short(s)));
+    }
+    if style.labels {
+        for (i, line) in legend.iter().enumerate() {
+            #[allow(clippy::cast_precision_loss)]
+            let y = 16.0 + 15.0 * i as f64;
+            doc.append(geometry::text(line, [8.0, y], 12.0, "#222222"));
+        }
+    }
+    Ok(Picture {
+        svg: doc.to_string(),
+        frame,
+        force_scale,
+    })
+}

@@ -1,0 +1,78 @@
+//! The kinematic scheme of a linkage at one position.
+
+use super::geometry::{self, Extents, Labels, Pen, Pose, Topo};
+use super::{Picture, Style};
+use crate::error::Result;
+use crate::kinematics::Motion;
+use crate::linkage::Plan;
+use svg::Node;
+
+/// The kinematic scheme of `plan` at the input `input`: bars for binary links, filled
+/// polygons for ternary and larger ones (each link in its own colour), hinges as circles,
+/// sliders as blocks on their guides, the ground hatched under every fixed pivot and along
+/// every fixed guide, the names of joints and points, and the input's sense of motion (the
+/// sign of `input.rate`; counter-clockwise when it is zero). One scale on both axes.
+///
+/// # Errors
+/// [`Error::Drawing`](crate::Error::Drawing) for a bad style; the kinematics' errors at this
+/// input (non-finite, cannot be assembled).
+///
+/// # Examples
+/// The hinge B of the four-bar lands on the picture where its frame says:
+/// ```
+/// use tmm::draw::{scheme, Style};
+/// use tmm::kinematics::Motion;
+/// use tmm::linkage::{bundled, Plan};
+/// let plan = Plan::new(&bundled::four_bar())?;
+/// let input = Motion::new(0.5, 10.0, 0.0);
+/// let pic = scheme(&plan, input, &Style::default())?;
+/// let b = plan.kinematics(input)?.joint("B")?.p;
+/// let [x, y] = pic.frame.to_pixel(b);
+/// assert!(pic.svg.contains(&format!(r#"cx="{}""#, (x * 100.0).round() / 100.0)));
+/// assert!(pic.svg.contains(&format!(r#"cy="{}""#, (y * 100.0).round() / 100.0)));
+/// assert!(scheme(&plan, Motion::new(f64::NAN, 1.0, 0.0), &Style::default()).is_err());
+/// # Ok::<(), tmm::Error>(())
+/// ```
+pub fn scheme(plan: &Plan, input: Motion, style: &Style) -> Result<Picture> {
+    style.check()?;
+    let a = plan.kinematics(input)?;
+    let topo = Topo::new(plan);
+    let pose = Pose::of(&a)?;
+    let mut ext = Extents::new(&topo);
+    ext.add(&topo, &pose);
+    let mut cover = Vec::new();
+    pose.cover(&topo, &ext, &mut cover);
+    let frame = geometry::fit_with_input(&topo, &pose, &mut cover, style)?;
+    let title = format!(
+        "{} — kinematic scheme at input {:.4}",
+        plan.name(),
+        input.value
+    );
+    let mut doc = geometry::document(style, &title);
+    doc.append(geometry::ground(&topo, &pose, &ext, &frame, style));
+    doc.append(geometry::position(
+        &topo,
+        &pose,
+        &ext,
+        &frame,
+        style,
+        Pen::NORMAL,
+    ));
+    if let Some(arrow) = geometry::input_arrow(&topo, &pose, &frame, style) {
+        doc.append(arrow);
+    }
+    if style.labels {
+        doc.append(geometry::labels(
+            &topo,
+            &pose,
+            &frame,
+            style,
+            &mut Labels::default(),
+        ));
+    }
+    Ok(Picture {
+        svg: doc.to_string(),
+        frame,
+        force_scale: None,
+    })
+}

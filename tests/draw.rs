@@ -1,0 +1,673 @@
+//! The pictures of `tmm::draw`, rendered to pixels by resvg (pure Rust, no fonts: labels do
+//! not render, the drawing does) and checked as a person would check them: the picture is
+//! not blank, every hinge lands where the frame of the drawing says, the animation has one
+//! frame per position and each frame is the solved position, and the diagrams' axes cover
+//! the data.
+//!
+//! Set `TMM_DRAW_PNG=dir` to keep the rendered pictures as PNG files in `dir`.
+#![cfg(feature = "draw")]
+
+use resvg::tiny_skia::{Pixmap, Transform};
+use resvg::usvg;
+use std::f64::consts::TAU;
+use tmm::draw::{
+    animation, diagram, forces, plan_view, scheme, Course, Diagram, Picture, Style, MAX_FRAMES,
+};
+use tmm::kinematics::Motion;
+use tmm::linkage::{bundled, uniform_inputs, Linkage, Output, Plan};
+use tmm::nalgebra::Point2;
+
+fn render(svg: &str, name: &str) -> Pixmap {
+    let tree = usvg::Tree::from_str(svg, &usvg::Options::default()).expect("the SVG parses");
+    let size = tree.size().to_int_size();
+    let mut pixmap = Pixmap::new(size.width(), size.height()).expect("a picture has a size");
+    resvg::render(&tree, Transform::default(), &mut pixmap.as_mut());
+    if let Ok(dir) = std::env::var("TMM_DRAW_PNG") {
+        std::fs::create_dir_all(&dir).unwrap();
+        pixmap.save_png(format!("{dir}/{name}.png")).unwrap();
+    }
+    pixmap
+}
+
+/// The darkness of the pixel nearest to `q`, over a white page (0 white, 255 black).
+fn ink(p: &Pixmap, q: [f64; 2]) -> u8 {
+    if !(q[0] >= 0.0 && q[1] >= 0.0) {
+        return 0;
+    }
+    #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
+    let (x, y) = (q[0].floor() as u32, q[1].floor() as u32);
+    p.pixel(x, y).map_or(0, |c| {
+        // Premultiplied: over white the luminance is (r + g + b)/3 + 255 − a.
+        let lum = (u16::from(c.red()) + u16::from(c.green()) + u16::from(c.blue())) / 3;
+        #[allow(clippy::cast_possible_truncation)]
+        let ink = u16::from(c.alpha()).saturating_sub(lum) as u8;
+        ink
+    })
+}
+
+/// The fraction of pixels that are not white.
+fn inked(p: &Pixmap) -> f64 {
+    let n = p
+        .pixels()
+        .iter()
+        .filter(|c| {
+            let c = c.demultiply();
+            c.alpha() > 0 && (c.red() < 235 || c.green() < 235 || c.blue() < 235)
+        })
+        .count();
+    #[allow(clippy::cast_precision_loss)]
+    let f = n as f64 / p.pixels().len() as f64;
+    f
+}
+
+/// Every bundled linkage (all five kinds of groups among them), planned.
+fn plans() -> Vec<(String, Plan)> {
+    bundled::all()
+        .into_iter()
+        .map(|l| (l.name.clone(), Plan::new(&l).unwrap()))
+        .collect()
+}
+
+/// Every hinge of the position `input` drawn where `frame` puts it: a dark centre mark, a dark
+/// ring at the hinge radius all round, and the white fill between.
+fn assert_hinges(plan: &Plan, input: Motion, pic: &Picture, p: &Pixmap, style: &Style, what: &str) {
+    let a = plan.kinematics(input).unwrap();
+    let mut checked = 0;
+    for (j, name) in plan.joint_names().iter().enumerate() {
+        if plan.is_prismatic(j) {
+            continue;
+        }
+        let c = pic.frame.to_pixel(a.joint_motion(j).p);
+        assert!(
+            ink(p, c) > 120,
+            "{what}: centre of hinge {name} at {c:?} is not drawn"
+        );
+        let r = style.hinge_radius;
+        for k in 0..8 {
+            let t = f64::from(k) * TAU / 8.0;
+            let ring = [c[0] + r * t.cos(), c[1] + r * t.sin()];
+            let near = (-1..=1)
+                .flat_map(|dx| {
+                    (-1..=1).map(move |dy| [ring[0] + f64::from(dx), ring[1] + f64::from(dy)])
+                })
+                .map(|q| ink(p, q))
+                .max()
+                .unwrap();
+            assert!(
+                near > 100,
+                "{what}: ring of hinge {name} not drawn at {ring:?} (ink {})",
+                ink(p, ring)
+            );
+        }
+        checked += 1;
+    }
+    assert!(checked >= 2, "{what}: only {checked} hinges");
+}
+
+#[test]
+fn every_scheme_shows_its_hinges_where_its_frame_says() {
+    let style = Style::default();
+    for (name, plan) in plans() {
+        for k in 0..4 {
+            let phi = plan.reference_input() + f64::from(k) * TAU / 4.0;
+            let input = Motion::new(phi, 10.0, 0.0);
+            let Ok(_) = plan.kinematics(input) else {
+                continue;
+            };
+            let pic = scheme(&plan, input, &style).unwrap();
+            let p = render(&pic.svg, &format!("scheme {name} {k}"));
+            let f = inked(&p);
+            assert!(f > 0.005 && f < 0.5, "{name}: {f} of the picture inked");
+            assert_hinges(&plan, input, &pic, &p, &style, &name);
+            // The corners, far from the linkage, stay white.
+            assert_eq!(ink(&p, [2.0, 2.0]), 0);
+            assert_eq!(ink(&p, [797.0, 597.0]), 0);
+        }
+    }
+}
+
+#[test]
+fn a_scheme_draws_every_binary_link_as_a_bar_in_its_colour() {
+    let plan = Plan::new(&bundled::four_bar()).unwrap();
+    let input = Motion::new(1.0, 10.0, 0.0);
+    let pic = scheme(&plan, input, &Style::default()).unwrap();
+    let p = render(&pic.svg, "four-bar bars");
+    let a = plan.kinematics(input).unwrap();
+    for (from, to) in [("O1", "A"), ("A", "B"), ("B", "O3")] {
+        let m = nalgebra::center(&a.joint(from).unwrap().p, &a.joint(to).unwrap().p);
+        let q = pic.frame.to_pixel(m);
+        assert!(ink(&p, q) > 40, "bar {from}{to} not drawn at {q:?}");
+    }
+    // The frame is not a bar between the ground pivots: its middle stays white.
+    let m = nalgebra::center(&a.joint("O1").unwrap().p, &a.joint("O3").unwrap().p);
+    assert_eq!(ink(&p, pic.frame.to_pixel(m)), 0);
+}
+
+#[test]
+fn a_ternary_link_is_a_filled_polygon_and_a_slider_a_block() {
+    let plan = Plan::new(&bundled::watt_six_bar()).unwrap();
+    let input = Motion::new(0.7, 10.0, 0.0);
+    let pic = scheme(&plan, input, &Style::default()).unwrap();
+    let p = render(&pic.svg, "watt ternary");
+    let a = plan.kinematics(input).unwrap();
+    // The centroid of the coupler's triangle A B E is inside its fill.
+    let c = Point2::from(
+        (a.joint("A").unwrap().p.coords
+            + a.joint("B").unwrap().p.coords
+            + a.joint("E").unwrap().p.coords)
+            / 3.0,
+    );
+    assert!(ink(&p, pic.frame.to_pixel(c)) > 20);
+    assert!(pic.svg.contains("<polygon"));
+
+    let plan = Plan::new(&bundled::shaper()).unwrap();
+    let input = Motion::new(1.0, 10.0, 0.0);
+    let pic = scheme(&plan, input, &Style::default()).unwrap();
+    let p = render(&pic.svg, "shaper blocks");
+    let a = plan.kinematics(input).unwrap();
+    // The ram's block: drawn around Q, white inside its outline, dark along it.
+    let q = pic.frame.to_pixel(a.joint("Q").unwrap().p);
+    let d = a.guide_direction(plan.joint_index("Q").unwrap());
+    let half = 0.06 * plan.size() * pic.frame.scale;
+    let edge = [q[0] + d.x * half, q[1] - d.y * half];
+    let dark = (-2..=2).any(|i| ink(&p, [edge[0] + f64::from(i), edge[1]]) > 60);
+    assert!(dark, "the ram's block has no end at {edge:?}");
+}
+
+#[test]
+fn the_plan_draws_every_course_position_and_the_extremes_bold() {
+    let style = Style::default();
+    for (linkage, output, paths) in [
+        (
+            bundled::watt_six_bar(),
+            Output::Angle("link 5".into()),
+            vec!["E", "G"],
+        ),
+        (bundled::shaper(), Output::Slide("Q".into()), vec!["D"]),
+    ] {
+        let plan = Plan::new(&linkage).unwrap();
+        let course = Course::new(&plan, Some(&output), 12, 10.0).unwrap();
+        let pic = plan_view(&plan, &course, &paths, &style).unwrap();
+        let p = render(&pic.svg, &format!("plan {}", plan.name()));
+        assert!(inked(&p) > 0.01);
+        // The hinges of the bold extreme positions, drawn last, hide what lies under them.
+        let hidden: Vec<[f64; 2]> = course
+            .extremes
+            .iter()
+            .flat_map(|&m| {
+                let a = plan.kinematics(m).unwrap();
+                (0..plan.joint_names().len())
+                    .map(|j| pic.frame.to_pixel(a.joint_motion(j).p))
+                    .collect::<Vec<_>>()
+            })
+            .collect();
+        for (k, &m) in course.inputs.iter().enumerate() {
+            let a = plan.kinematics(m).unwrap();
+            for (j, name) in plan.joint_names().iter().enumerate() {
+                let c = pic.frame.to_pixel(a.joint_motion(j).p);
+                let r = style.hinge_radius + 1.0;
+                if hidden.iter().any(|h| (h[0] - c[0]).hypot(h[1] - c[1]) < r) {
+                    continue;
+                }
+                assert!(
+                    ink(&p, c) > 30,
+                    "position {k}: joint {name} not drawn at {c:?}"
+                );
+            }
+        }
+        // The extreme positions are bold: their links' middles are dark.
+        for &m in &course.extremes {
+            let a = plan.kinematics(m).unwrap();
+            let l = plan.link_names().len();
+            let mut dark = 0;
+            for k in 1..l {
+                let js: Vec<usize> = (0..plan.joint_names().len())
+                    .filter(|&j| plan.joint_links(j).contains(&k) && !plan.is_prismatic(j))
+                    .collect();
+                if js.len() == 2 {
+                    let mid = nalgebra::center(&a.joint_motion(js[0]).p, &a.joint_motion(js[1]).p);
+                    if ink(&p, pic.frame.to_pixel(mid)) > 150 {
+                        dark += 1;
+                    }
+                }
+            }
+            assert!(
+                dark >= 1,
+                "{}: no bold link at the extreme {m:?}",
+                plan.name()
+            );
+        }
+        // The coupler curves: most of their points are on drawn (dashed) pixels.
+        for name in &paths {
+            let inputs = uniform_inputs(72, 0.0, 1.0, 0.0);
+            let mut on = 0;
+            for &m in &inputs {
+                let c = pic
+                    .frame
+                    .to_pixel(plan.kinematics(m).unwrap().joint(name).unwrap().p);
+                if (-1..=1).any(|d| {
+                    ink(&p, [c[0] + f64::from(d), c[1]]) > 30
+                        || ink(&p, [c[0], c[1] + f64::from(d)]) > 30
+                }) {
+                    on += 1;
+                }
+            }
+            assert!(
+                on >= 45,
+                "{}: only {on} of 72 points of the path of {name} drawn",
+                plan.name()
+            );
+        }
+    }
+}
+
+/// The values of every `animate` and `animateTransform` in an SVG text.
+fn animations(svg: &str) -> Vec<(String, Vec<String>)> {
+    use svg::parser::Event;
+    let mut out = Vec::new();
+    for event in svg::read(svg).unwrap() {
+        if let Event::Tag(name, _, attributes) = event {
+            if name == "animate" || name == "animateTransform" {
+                let values = attributes["values"].to_string();
+                out.push((
+                    attributes["attributeName"].to_string(),
+                    values.split(';').map(str::to_owned).collect(),
+                ));
+                assert_eq!(attributes["calcMode"].to_string(), "discrete");
+            }
+        }
+    }
+    out
+}
+
+#[test]
+fn the_animation_has_one_frame_per_position_and_each_frame_is_solved() {
+    let style = Style::default();
+    for (linkage, n) in [(bundled::watt_six_bar(), 360), (bundled::shaper(), 7)] {
+        let plan = Plan::new(&linkage).unwrap();
+        let inputs = uniform_inputs(n, plan.reference_input(), 10.0, 0.0);
+        let pic = animation(&plan, &inputs, 3.0, &style).unwrap();
+        let anims = animations(&pic.svg);
+        // A translation and a rotation for the bodies and for the hinges of every moving
+        // link, x and y for every label.
+        let links = plan.link_names().len() - 1;
+        let labels = plan.joint_names().len() + plan.point_names().len();
+        assert_eq!(anims.len(), 4 * links + 2 * labels);
+        for (attr, values) in &anims {
+            assert_eq!(
+                values.len(),
+                n,
+                "{attr}: {} frames for {n} positions",
+                values.len()
+            );
+        }
+        // The still picture is the first position.
+        let p = render(&pic.svg, &format!("animation {}", plan.name()));
+        assert_hinges(&plan, inputs[0], &pic, &p, &style, "animation, first frame");
+        // Every frame: each hinge carried by its link's translation and rotation lands on the
+        // solved position.
+        assert_frames(&plan, &inputs, &pic);
+    }
+}
+
+/// Follows every hinge through the animation's transforms, frame by frame.
+fn assert_frames(plan: &Plan, inputs: &[Motion], pic: &Picture) {
+    use svg::parser::Event;
+    // The hinge circles in the "hinges" layer, with the translate and rotate values of the
+    // link groups around them.
+    let mut in_hinges = false;
+    let mut translate: Vec<[f64; 2]> = Vec::new();
+    let mut rotate: Vec<f64> = Vec::new();
+    // Each hinge: the translations and rotations of its link, and its centre in the link.
+    type Carried = (Vec<[f64; 2]>, Vec<f64>, [f64; 2]);
+    let mut circles: Vec<Carried> = Vec::new();
+    for event in svg::read(&pic.svg).unwrap() {
+        if let Event::Tag(name, kind, a) = event {
+            match (name, kind) {
+                ("g", svg::node::element::tag::Type::Start) => {
+                    if a.get("class").is_some_and(|c| *c == "hinges") {
+                        in_hinges = true;
+                    }
+                    if a.get("class").is_some_and(|c| *c == "labels") {
+                        in_hinges = false;
+                    }
+                }
+                ("animateTransform", _) if in_hinges => {
+                    let values = a["values"].to_string();
+                    if a["type"] == "translate" {
+                        translate = values
+                            .split(';')
+                            .map(|v| {
+                                let (x, y) = v.split_once(',').unwrap();
+                                [x.parse().unwrap(), y.parse().unwrap()]
+                            })
+                            .collect();
+                    } else {
+                        rotate = values.split(';').map(|v| v.parse().unwrap()).collect();
+                    }
+                }
+                ("circle", _) if in_hinges => {
+                    let c = [
+                        a["cx"].to_string().parse().unwrap(),
+                        a["cy"].to_string().parse().unwrap(),
+                    ];
+                    if a["fill"] == "#ffffff" {
+                        circles.push((translate.clone(), rotate.clone(), c));
+                    }
+                }
+                _ => {}
+            }
+        }
+    }
+    let hinges: Vec<usize> = (0..plan.joint_names().len())
+        .filter(|&j| !plan.is_prismatic(j))
+        .collect();
+    assert_eq!(circles.len(), hinges.len(), "one circle per hinge");
+    for (k, &m) in inputs.iter().enumerate() {
+        let a = plan.kinematics(m).unwrap();
+        let want: Vec<[f64; 2]> = hinges
+            .iter()
+            .map(|&j| pic.frame.to_pixel(a.joint_motion(j).p))
+            .collect();
+        for (t, r, c) in &circles {
+            let (s, co) = r[k].to_radians().sin_cos();
+            let q = [
+                t[k][0] + c[0] * co - c[1] * s,
+                t[k][1] + c[0] * s + c[1] * co,
+            ];
+            let best = want
+                .iter()
+                .map(|w| (w[0] - q[0]).hypot(w[1] - q[1]))
+                .fold(f64::INFINITY, f64::min);
+            assert!(
+                best < 0.2,
+                "frame {k}: a hinge drawn at {q:?} is {best} px from every solved hinge"
+            );
+        }
+    }
+}
+
+#[test]
+fn forces_are_arrows_to_scale_from_their_points() {
+    let style = Style::default();
+    for linkage in [bundled::watt_six_bar(), bundled::shaper()] {
+        let plan = Plan::new(&linkage).unwrap();
+        let input = Motion::new(1.2, 10.0, 0.0);
+        let pic = forces(&plan, input, &style).unwrap();
+        let p = render(&pic.svg, &format!("forces {}", plan.name()));
+        let scale = pic.force_scale.unwrap();
+        let a = plan.analyse(input).unwrap();
+        let mut longest: f64 = 0.0;
+        for j in 0..plan.joint_names().len() {
+            let r = a.reaction_index(j);
+            let len = r.force.norm() / scale;
+            longest = longest.max(len);
+            if len < 20.0 {
+                continue;
+            }
+            // A point two thirds along the arrow is red.
+            let from = pic.frame.to_pixel(r.point);
+            let dir = [r.force.x / r.force.norm(), -r.force.y / r.force.norm()];
+            let q = [from[0] + dir[0] * len * 0.66, from[1] + dir[1] * len * 0.66];
+            let c = p
+                .pixel(q[0].floor() as u32, q[1].floor() as u32)
+                .unwrap()
+                .demultiply();
+            assert!(
+                c.red() > 120 && c.green() < 90,
+                "{}: the arrow of the reaction in {} is not at {q:?}",
+                plan.name(),
+                plan.joint_names()[j]
+            );
+        }
+        // The largest arrow is 30 % of the linkage's size.
+        let want = 0.3 * plan.size() * pic.frame.scale;
+        assert!((longest - want).abs() < 1e-6 * want, "{longest} vs {want}");
+    }
+}
+
+#[test]
+fn diagrams_cover_their_data_with_si_units_and_mark_the_course() {
+    let style = Style::default();
+    for (linkage, output) in [
+        (bundled::watt_six_bar(), Output::Angle("link 5".into())),
+        (bundled::shaper(), Output::Slide("Q".into())),
+    ] {
+        let plan = Plan::new(&linkage).unwrap();
+        let course = Course::new(&plan, Some(&output), 12, 10.0).unwrap();
+        let kinds = [
+            Diagram::Kinematics(output.clone()),
+            Diagram::Transfer(output.clone()),
+            Diagram::Balance,
+            Diagram::Reactions,
+            Diagram::Hodograph("A".into()),
+        ];
+        for (i, d) in kinds.iter().enumerate() {
+            let chart = diagram(&plan, &course, d, &style).unwrap();
+            let p = render(&chart.svg, &format!("diagram {} {i}", plan.name()));
+            assert!(inked(&p) > 0.01, "{d:?} is blank");
+            for panel in &chart.panels {
+                for l in [&panel.x_label, &panel.y_label] {
+                    assert!(
+                        [", rad", ", m", ", N", "rad/s", "m/s", "/rad", "N·m"]
+                            .iter()
+                            .any(|u| l.contains(u)),
+                        "no unit in {l}"
+                    );
+                    assert!(!l.contains("Nm") && !l.contains("N*m") && !l.contains("N m"));
+                    assert!(chart.svg.contains(l.as_str()), "axis label {l} not written");
+                }
+                let n = panel.series.iter().map(|s| s.1.len()).sum::<usize>();
+                assert!(n >= 360, "{d:?}: {n} points");
+                for [x, y] in panel.series.iter().flat_map(|s| s.1.iter()) {
+                    assert!(
+                        panel.x_range[0] <= *x && *x <= panel.x_range[1],
+                        "{d:?}: x {x} outside {:?}",
+                        panel.x_range
+                    );
+                    assert!(
+                        panel.y_range[0] <= *y && *y <= panel.y_range[1],
+                        "{d:?}: y {y} outside {:?}",
+                        panel.y_range
+                    );
+                }
+                // The marks are drawn on the picture (black dots where the axes say).
+                assert!(panel.marks.len() >= 12);
+                for (k, m) in &panel.marks {
+                    let q = panel.to_pixel(m[0], m[1]);
+                    assert!(ink(&p, q) > 60, "{d:?}: mark {k} not drawn at {q:?}");
+                }
+            }
+            if matches!(d, Diagram::Balance) {
+                // The marks are the engine's values at the course positions.
+                let panel = &chart.panels[0];
+                for (k, m) in &panel.marks {
+                    let want = plan.analyse(course.inputs[*k]).unwrap().balance().value;
+                    assert!((m[1] - want).abs() <= 1e-9 * want.abs().max(1.0));
+                    assert!(panel.y_range[0] <= want && want <= panel.y_range[1]);
+                }
+                assert!(chart.svg.contains("N·m"));
+            }
+        }
+    }
+}
+
+#[test]
+fn a_clockwise_crank_is_plotted_along_its_own_sense() {
+    let plan = Plan::new(&bundled::watt_six_bar()).unwrap();
+    let out = Output::Angle("link 5".into());
+    for speed in [10.0, -10.0] {
+        let course = Course::new(&plan, Some(&out), 12, speed).unwrap();
+        let chart = diagram(
+            &plan,
+            &course,
+            &Diagram::Kinematics(out.clone()),
+            &Style::default(),
+        )
+        .unwrap();
+        let panel = &chart.panels[0];
+        assert!(panel.x_label.contains(if speed < 0.0 {
+            "clockwise"
+        } else {
+            "counter-clockwise"
+        }));
+        // Position k is reached after k twelfths of a turn: left to right, in the crank's sense.
+        for (k, m) in &panel.marks {
+            #[allow(clippy::cast_precision_loss)]
+            let want = TAU * *k as f64 / 12.0;
+            assert!((m[0] - want).abs() < 1e-9, "position {k} at x = {}", m[0]);
+        }
+        // The angle plotted against x is the angle at the input the crank reaches there.
+        let first = course.inputs[0].value;
+        for [x, y] in panel.series[0].1.iter().step_by(37) {
+            let phi = first + speed.signum() * x;
+            let want = plan
+                .output(&out, Motion::new(phi, speed, 0.0))
+                .unwrap()
+                .value;
+            let d = (y - want).rem_euclid(TAU);
+            assert!(d < 1e-9 || TAU - d < 1e-9, "x = {x}: {y} vs {want}");
+        }
+    }
+}
+
+#[test]
+fn bad_inputs_are_errors_not_panics() {
+    let plan = Plan::new(&bundled::watt_six_bar()).unwrap();
+    let style = Style::default();
+    let good = Motion::new(1.0, 10.0, 0.0);
+    assert!(scheme(&plan, Motion::new(f64::NAN, 1.0, 0.0), &style).is_err());
+    assert!(scheme(
+        &plan,
+        good,
+        &Style {
+            width: 0,
+            ..Style::default()
+        }
+    )
+    .is_err());
+    assert!(scheme(
+        &plan,
+        good,
+        &Style {
+            margin: 400.0,
+            ..Style::default()
+        }
+    )
+    .is_err());
+    assert!(scheme(
+        &plan,
+        good,
+        &Style {
+            hinge_radius: f64::INFINITY,
+            ..Style::default()
+        }
+    )
+    .is_err());
+    assert!(animation(&plan, &[], 1.0, &style).is_err());
+    assert!(animation(&plan, &[good], 0.0, &style).is_err());
+    assert!(animation(&plan, &[good], f64::NAN, &style).is_err());
+    let too_many = vec![good; MAX_FRAMES + 1];
+    assert!(matches!(
+        animation(&plan, &too_many, 1.0, &style),
+        Err(tmm::Error::OutOfRange { .. })
+    ));
+    assert!(animation(&plan, &[Motion::new(1.0, f64::INFINITY, 0.0)], 1.0, &style).is_err());
+    assert!(Course::new(&plan, None, 0, 10.0).is_err());
+    assert!(Course::new(&plan, None, 12, 0.0).is_err());
+    assert!(Course::new(&plan, Some(&Output::Angle("nothing".into())), 12, 10.0).is_err());
+    let course = Course::new(&plan, None, 12, 10.0).unwrap();
+    let empty = Course {
+        inputs: vec![],
+        extremes: vec![],
+    };
+    assert!(plan_view(&plan, &empty, &[], &style).is_err());
+    assert!(plan_view(&plan, &course, &["Z"], &style).is_err());
+    for d in [
+        Diagram::Kinematics(Output::Angle("nothing".into())),
+        Diagram::Transfer(Output::Slide("B".into())),
+        Diagram::Kinematics(Output::X("nowhere".into())),
+        Diagram::Hodograph("nowhere".into()),
+    ] {
+        let e = diagram(&plan, &course, &d, &style).unwrap_err();
+        assert!(matches!(e, tmm::Error::Description { .. }), "{d:?}: {e}");
+    }
+    assert!(diagram(&plan, &empty, &Diagram::Balance, &style).is_err());
+    assert!(diagram(
+        &plan,
+        &course,
+        &Diagram::Balance,
+        &Style {
+            samples: 1,
+            ..Style::default()
+        }
+    )
+    .is_err());
+    // A position that cannot be assembled is named.
+    let mut l: Linkage = bundled::four_bar();
+    l.joints[1].at = [0.2, 0.0];
+    if let Ok(plan) = Plan::new(&l) {
+        let inputs = uniform_inputs(36, 0.0, 1.0, 0.0);
+        if let Err(e) = animation(&plan, &inputs, 1.0, &style) {
+            assert!(e.to_string().contains("frame"), "{e}");
+        }
+    }
+}
+
+#[test]
+fn a_slider_input_is_drawn_and_animated() {
+    use tmm::linkage::{Input, Joint, Link};
+    // A slider driving a crank through a rod (an inverted slider-crank).
+    let l = Linkage {
+        name: "slider-driven crank".into(),
+        joints: vec![
+            Joint::revolute("O", [0.0, 0.0]),
+            Joint::revolute("A", [0.05, 0.086_602_540_378_443_87]),
+            Joint::revolute("B", [0.3, 0.0]),
+            Joint::prismatic("S", [0.3, 0.0], "frame", [1.0, 0.0]),
+        ],
+        links: vec![
+            Link::new("frame", &["O", "S"]),
+            Link::new("slider", &["S", "B"]),
+            Link::new("rod", &["B", "A"]),
+            Link::new("crank", &["O", "A"]),
+        ],
+        input: Input::crank("slider"),
+        ..Linkage::default()
+    };
+    let plan = Plan::new(&l).unwrap();
+    assert!(!plan.input_is_crank());
+    let style = Style::default();
+    let input = Motion::new(0.02, -0.5, 0.0);
+    let pic = scheme(&plan, input, &style).unwrap();
+    let p = render(&pic.svg, "slider input");
+    assert_hinges(&plan, input, &pic, &p, &style, "slider input");
+    // The slider's block sits on the hatched guide: the guide is drawn beside the block.
+    let s = plan.kinematics(input).unwrap().joint("S").unwrap().p;
+    let q = pic.frame.to_pixel(s);
+    let half = 0.06 * plan.size() * pic.frame.scale;
+    assert!(
+        ink(&p, [q[0] + half + 6.0, q[1]]) > 60,
+        "no guide beside the block"
+    );
+    let inputs: Vec<Motion> = (0..20)
+        .map(|k| Motion::new(-0.05 + 0.005 * f64::from(k), 0.5, 0.0))
+        .collect();
+    let pic = animation(&plan, &inputs, 1.0, &style).unwrap();
+    assert!(animations(&pic.svg).iter().all(|(_, v)| v.len() == 20));
+    assert_frames(&plan, &inputs, &pic);
+    let course = Course {
+        inputs: inputs.clone(),
+        extremes: vec![],
+    };
+    let chart = diagram(
+        &plan,
+        &course,
+        &Diagram::Kinematics(Output::Angle("crank".into())),
+        &style,
+    )
+    .unwrap();
+    assert_eq!(chart.panels[0].x_label, "s1, m");
+    assert!(plan_view(&plan, &course, &["A"], &style).is_ok());
+    assert!(Course::new(&plan, None, 12, 1.0).is_err());
+}

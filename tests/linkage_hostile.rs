@@ -1,0 +1,249 @@
+//! Adversarial tests of the linkage engine's public entry points: descriptions with hostile
+//! numbers or broken structure, hostile inputs at every position, hostile outputs and cycle
+//! sizes, and malformed description files. Each gives an `Error` or a finite result: never a
+//! panic, never an `Ok` holding a NaN or an infinity.
+//!
+//! Entry points: `Plan::new`, `Linkage::from_json`, `Plan::analyse`, `Plan::kinematics`,
+//! `Analysis::power_check`, `worst_residual`, every reaction, joint and point accessor,
+//! `Plan::output`, `Plan::transfer`, `Plan::extremes`, `Plan::strokes`,
+//! `Plan::lock_positions`, `uniform_inputs`, `Table::to_text`; on every bundled linkage and
+//! on every ready mechanism's description. `TMM_HOSTILE_CASES` cases per sweep (default 200).
+
+use std::panic::{catch_unwind, AssertUnwindSafe};
+use tmm::kinematics::{Motion, Rotation};
+use tmm::linkage::{
+    bundled, uniform_inputs, At, JointKind, Linkage, LoadSpec, Output, Plan, Table,
+};
+use tmm::mechanism::{Compressor, FourBar, RockingCylinder, SixBar, SliderCrank};
+
+#[path = "common/hostile_gen.rs"]
+mod hostile_gen;
+use hostile_gen::{cases, has_non_finite, Gen};
+
+fn linkages() -> Vec<Linkage> {
+    let mut all = bundled::all();
+    all.extend([
+        FourBar::course_example().linkage(),
+        SliderCrank::course_example().linkage(),
+        Compressor::course_example().linkage(),
+        SixBar::course_example().linkage(),
+        RockingCylinder::course_example().linkage(),
+    ]);
+    all
+}
+
+/// Runs `f`, failing the test on a panic, with `what` to replay it.
+fn no_panic<T>(what: &str, f: impl FnOnce() -> T) -> T {
+    catch_unwind(AssertUnwindSafe(f)).unwrap_or_else(|_| panic!("panicked: {what}"))
+}
+
+/// Everything an analysis returns must be finite once it is `Ok`.
+fn check_position(plan: &Plan, input: Motion, what: &str) {
+    let Ok(a) = plan.analyse(input) else { return };
+    let mut shown = format!("{:?}", a.balance());
+    for j in 0..plan.joint_names().len() {
+        shown += &format!("{:?}{:?}", a.reaction_index(j), a.joint_motion(j));
+    }
+    for k in 0..plan.point_names().len() {
+        shown += &format!("{:?}", a.point_motion(k));
+    }
+    for k in 0..plan.link_names().len() {
+        shown += &format!("{:?}", a.link_angle_index(k));
+    }
+    shown += &format!("{:?}{:?}", a.conditioning(), a.applied_loads());
+    assert!(!has_non_finite(&shown), "{what}: {input:?} gave {shown}");
+    if let Ok(p) = a.power_check() {
+        assert!(
+            p.chain.is_finite() && p.virtual_power.is_finite(),
+            "{what}: {p:?}"
+        );
+    }
+    assert!(a.worst_residual().is_finite(), "{what}: residual");
+}
+
+#[test]
+fn hostile_inputs_at_a_position() {
+    let mut g = Gen::new(11);
+    for l in linkages() {
+        let plan = Plan::new(&l).unwrap();
+        for _ in 0..cases() {
+            let input = g.motion();
+            let what = format!("{} at {input:?}", l.name);
+            no_panic(&what, || check_position(&plan, input, &what));
+        }
+    }
+}
+
+/// A hostile number in one place of a description.
+fn corrupt(l: &mut Linkage, g: &mut Gen) {
+    let x = g.f();
+    match g.next() % 8 {
+        0 => {
+            let j = (g.next() % l.joints.len() as u64) as usize;
+            l.joints[j].at[(g.next() % 2) as usize] = x;
+        }
+        1 => {
+            let j = (g.next() % l.joints.len() as u64) as usize;
+            if let JointKind::Prismatic { direction, .. } = &mut l.joints[j].kind {
+                direction[(g.next() % 2) as usize] = x;
+            } else {
+                l.joints[j].at[0] += x;
+            }
+        }
+        2 => {
+            let k = (g.next() % l.links.len() as u64) as usize;
+            if let Some(m) = &mut l.links[k].mass {
+                match g.next() % 3 {
+                    0 => m.m = x,
+                    1 => m.j = x,
+                    _ => m.centre = At::Coords([x, g.f()]),
+                }
+            }
+        }
+        3 => l.gravity = [x, g.f()],
+        4 => {
+            for load in &mut l.loads {
+                match load {
+                    LoadSpec::Force { force, .. } => force[0] = x,
+                    LoadSpec::Moment { moment, .. } => *moment = x,
+                    LoadSpec::Resistance { forward, .. } => *forward = x,
+                    LoadSpec::Indicator { head, .. } => *head = x,
+                }
+            }
+        }
+        5 => {
+            // A structural fault: a joint dropped from a link, or a link dropped.
+            let k = (g.next() % l.links.len() as u64) as usize;
+            if g.next().is_multiple_of(2) {
+                l.links[k].joints.pop();
+            } else {
+                l.links.remove(k);
+            }
+        }
+        6 => {
+            // Every coordinate scaled: a huge or tiny linkage.
+            for j in &mut l.joints {
+                j.at = [j.at[0] * x, j.at[1] * x];
+            }
+        }
+        _ => {
+            let j = (g.next() % l.joints.len() as u64) as usize;
+            let k = (g.next() % l.joints.len() as u64) as usize;
+            l.joints[j].name = l.joints[k].name.clone();
+        }
+    }
+}
+
+#[test]
+fn hostile_descriptions_plan_or_err_and_then_solve_or_err() {
+    let mut g = Gen::new(23);
+    for base in linkages() {
+        for case in 0..cases() {
+            let mut l = base.clone();
+            corrupt(&mut l, &mut g);
+            let what = format!("{} case {case}", base.name);
+            let Ok(plan) = no_panic(&what, || Plan::new(&l)) else {
+                continue;
+            };
+            for k in 0..4 {
+                let input = Motion::new(plan.reference_input() + 1.3 * f64::from(k), 5.0, 1.0);
+                no_panic(&what, || check_position(&plan, input, &what));
+            }
+        }
+    }
+}
+
+#[test]
+fn hostile_outputs_cycles_and_tables() {
+    let mut g = Gen::new(37);
+    for l in linkages() {
+        let plan = Plan::new(&l).unwrap();
+        let mut outputs = vec![
+            Output::Angle("no such link".into()),
+            Output::Slide("no such joint".into()),
+            Output::X("nowhere".into()),
+        ];
+        outputs.extend(plan.link_names().iter().map(|n| Output::Angle(n.clone())));
+        outputs.extend(plan.joint_names().iter().map(|n| Output::Y(n.clone())));
+        for out in &outputs {
+            let what = format!("{} {out:?}", l.name);
+            no_panic(&what, || {
+                if let Ok(e) = plan.extremes(out) {
+                    assert!(!has_non_finite(&format!("{e:?}")), "{what}: {e:?}");
+                }
+                for rotation in [Rotation::Ccw, Rotation::Cw] {
+                    if let Ok(s) = plan.strokes(out, rotation) {
+                        assert!(!has_non_finite(&format!("{s:?}")), "{what}: {s:?}");
+                    }
+                }
+            });
+            for _ in 0..cases() / 20 {
+                let (input, q) = (g.motion(), g.f());
+                no_panic(&what, || {
+                    if let Ok(m) = plan.output(out, input) {
+                        assert!(
+                            !has_non_finite(&format!("{m:?}")),
+                            "{what}: {input:?} {m:?}"
+                        );
+                    }
+                    if let Ok(m) = plan.transfer(out, q) {
+                        assert!(!has_non_finite(&format!("{m:?}")), "{what}: {q} {m:?}");
+                    }
+                    if let Ok(Some(lock)) = plan.lock_positions(q) {
+                        assert!(lock.0.is_finite() && lock.1.is_finite(), "{what}: {lock:?}");
+                    }
+                });
+            }
+        }
+        for n in [0, 1, 2, 7, usize::MAX] {
+            let (start, w) = (g.f(), g.f());
+            let inputs = no_panic("uniform_inputs", || uniform_inputs(n, start, w, 0.0));
+            assert!(inputs.len() <= n.min(1 << 24));
+            let rows: Vec<_> = inputs.iter().take(8).map(|&i| plan.analyse(i)).collect();
+            let table = Table::of(&rows);
+            let text = no_panic("to_text", || table.to_text(usize::MAX));
+            assert!(
+                text.lines().count()
+                    == if table.is_empty() {
+                        0
+                    } else {
+                        table.columns.len()
+                    }
+            );
+        }
+    }
+}
+
+#[test]
+fn malformed_files_are_errors() {
+    let text = include_str!("../linkages/watt-six-bar.json");
+    let mut g = Gen::new(41);
+    for case in 0..cases() {
+        let mut bytes = text.as_bytes().to_vec();
+        match g.next() % 3 {
+            0 => bytes.truncate((g.next() % bytes.len() as u64) as usize),
+            1 => {
+                let k = (g.next() % bytes.len() as u64) as usize;
+                bytes[k] = b"{}[],:\"0-e9 x"[(g.next() % 13) as usize];
+            }
+            _ => {
+                let k = (g.next() % bytes.len() as u64) as usize;
+                bytes.insert(k, b"{}[],:\"0-e9 x"[(g.next() % 13) as usize]);
+            }
+        }
+        let s = String::from_utf8_lossy(&bytes).into_owned();
+        let what = format!("case {case}");
+        if let Ok(l) = no_panic(&what, || Linkage::from_json(&s)) {
+            if let Ok(plan) = no_panic(&what, || Plan::new(&l)) {
+                let input = Motion::new(plan.reference_input() + 0.4, 3.0, 0.0);
+                no_panic(&what, || check_position(&plan, input, &what));
+            }
+        }
+    }
+    // Numbers JSON cannot hold finitely.
+    let huge = text.replacen("0.08", "1e999", 1);
+    assert!(
+        Linkage::from_json(&huge).is_err()
+            || Plan::new(&Linkage::from_json(&huge).unwrap()).is_err()
+    );
+}
