@@ -4,7 +4,7 @@
 use super::contour::{in_group, solve_contour, Branch, LoopVector};
 use super::link::LinkMotion;
 use super::motion::{Motion, PointMotion};
-use crate::angle::{normalize, perp, unit};
+use crate::angle::{direction, normalize, perp, unit};
 use crate::error::{computed_all, Result};
 use nalgebra::Vector2;
 use std::f64::consts::PI;
@@ -74,7 +74,57 @@ impl RprState {
 /// Non-finite input ([`Error::NonFinite`](crate::Error::NonFinite)), or
 /// [`Error::Singular`](crate::Error::Singular) with `measure = "l_AC"` when A coincides with C.
 #[doc(alias = "SR3")]
+#[inline]
 pub fn rpr_dyad(a: PointMotion, c: PointMotion) -> Result<RprState> {
+    match rpr_fast(a, c) {
+        Some(s) => Ok(s),
+        None => rpr_checked(a, c),
+    }
+}
+
+/// The RPR dyad in Cartesian form, with every check folded into one test at the end: with
+/// d = C − A = l·e, l̇ = (v_C − v_A)·e, ω = (v_C − v_A)·e⊥/l, l̈ = (a_C − a_A)·e + l·ω² and
+/// ε = ((a_C − a_A)·e⊥ − 2·l̇·ω)/l (the polar case of [`solve_contour`]). `None` wherever
+/// [`rpr_checked`] fails, which then names the cause.
+#[inline]
+fn rpr_fast(a: PointMotion, c: PointMotion) -> Option<RprState> {
+    let d = c.p - a.p;
+    let dv = c.v - a.v;
+    let da = c.a - a.a;
+    let l_sq = d.norm_squared();
+    let l = l_sq.sqrt();
+    let i_l = 1.0 / l;
+    let e = d * i_l;
+    let n = perp(e);
+    let l_rate = dv.dot(&e);
+    let omega = dv.dot(&n) * i_l;
+    let l_accel = da.dot(&e) + l * omega * omega;
+    let epsilon = (da.dot(&n) - 2.0 * l_rate * omega) * i_l;
+    let ok = super::rrr::all_finite([
+        a.p.x, a.p.y, a.v.x, a.v.y, a.a.x, a.a.y, c.p.x, c.p.y, c.v.x, c.v.y, c.a.x, c.a.y, l_sq,
+        dv.x, dv.y, da.x, da.y, i_l, l_rate, omega, l_accel, epsilon,
+    ]) & (l_sq >= f64::MIN_POSITIVE);
+    ok.then(|| RprState {
+        link2: LinkMotion {
+            origin: a,
+            angle: direction(d),
+            omega,
+            epsilon,
+        },
+        link3: LinkMotion {
+            origin: c,
+            angle: direction(-d),
+            omega,
+            epsilon,
+        },
+        slide: Motion::new(l, l_rate, l_accel),
+    })
+}
+
+/// The RPR dyad through the general contour solver, checked step by step.
+#[cold]
+#[inline(never)]
+fn rpr_checked(a: PointMotion, c: PointMotion) -> Result<RprState> {
     a.validate(["A.x", "A.y", "v_A.x", "v_A.y", "a_A.x", "a_A.y"])?;
     c.validate(["C.x", "C.y", "v_C.x", "v_C.y", "a_C.x", "a_C.y"])?;
     let (ac, vac, aac) = (a.p - c.p, a.v - c.v, a.a - c.a);

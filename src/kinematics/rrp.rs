@@ -1,10 +1,10 @@
 //! The RRP dyad (group of the 2nd class, 2nd kind; the seeds' SR2): link 2 = A B, and a
 //! slider 3 hinged to it at B that slides along a guide.
 
-use super::contour::{in_group, solve_contour, Branch, LoopVector};
+use super::contour::{in_group, solve_contour, Branch, LoopVector, SINGULAR_DETERMINANT};
 use super::link::LinkMotion;
 use super::motion::{Motion, PointMotion};
-use crate::angle::{normalize, unit};
+use crate::angle::{cross, direction, normalize, perp, unit};
 use crate::error::{computed_all, positive, Result};
 use nalgebra::{Point2, Vector2};
 use std::f64::consts::PI;
@@ -98,7 +98,89 @@ pub struct RrpState {
 /// - [`Error::Singular`](crate::Error::Singular) with `measure = "cos(phi2 - phi4)"` when
 ///   link 2 is perpendicular to the guide.
 #[doc(alias = "SR2")]
+#[inline]
 pub fn rrp_dyad(a: PointMotion, guide: Guide, l_ab: f64, branch: Branch) -> Result<RrpState> {
+    match rrp_fast(a, guide, l_ab, branch) {
+        Some(s) => Ok(s),
+        None => rrp_checked(a, guide, l_ab, branch),
+    }
+}
+
+/// The RRP dyad in Cartesian form, with every check folded into one test at the end.
+///
+/// With g the guide's unit vector and g⊥ its normal, B = A + r2 with r2 = σ·c·g + q·g⊥,
+/// q = g⊥·(G − A), c = √(l_AB² − q²) (the line–circle intersection of [`solve_contour`]).
+/// Differentiating A + r2 − G − s·g = 0 gives ω2·r2⊥ − ṡ·g = (v_G − v_A) + s·ω4·g⊥, and once
+/// more the same matrix with the centripetal, Coriolis and guide terms; its determinant is
+/// D = r2·g = l_AB·cos(φ2 − φ4). One `sin_cos` (the guide's angle) and one `atan2` (φ2).
+///
+/// `None` wherever [`rrp_checked`] fails, and near its thresholds (the tangent case and the
+/// dead point, each with a margin of 2), so that it decides there and names the cause.
+#[inline]
+fn rrp_fast(a: PointMotion, guide: Guide, l_ab: f64, branch: Branch) -> Option<RrpState> {
+    let gp = guide.point;
+    let beta = guide.angle;
+    let (sin, cos) = beta.value.sin_cos();
+    let g = Vector2::new(cos, sin);
+    let n = perp(g);
+    let d = gp.p - a.p;
+    let dv = gp.v - a.v;
+    let da = gp.a - a.a;
+    let q = n.dot(&d);
+    let c2 = (l_ab - q) * (l_ab + q);
+    let tol = 16.0 * f64::EPSILON * (l_ab * l_ab + d.norm_squared());
+    let c = c2.sqrt();
+    let r2 = (branch.sign() * c) * g + q * n;
+    let s = (r2 - d).dot(&g);
+    let big_d = r2.dot(&g);
+    let i_d = 1.0 / big_d;
+    let (w4, e4) = (beta.rate, beta.accel);
+    let rv = dv + (s * w4) * n;
+    let omega2 = cross(g, rv) * i_d;
+    let s_rate = -r2.dot(&rv) * i_d;
+    let ra = da + (omega2 * omega2) * r2 + (2.0 * s_rate * w4 + s * e4) * n - (s * w4 * w4) * g;
+    let epsilon2 = cross(g, ra) * i_d;
+    let s_accel = -r2.dot(&ra) * i_d;
+    let det = big_d / l_ab;
+    let b = PointMotion {
+        p: a.p + r2,
+        v: a.v + omega2 * perp(r2),
+        a: a.a + epsilon2 * perp(r2) - omega2 * omega2 * r2,
+    };
+    let ok = super::rrr::all_finite([
+        a.p.x, a.p.y, a.v.x, a.v.y, a.a.x, a.a.y, gp.p.x, gp.p.y, gp.v.x, gp.v.y, gp.a.x, gp.a.y,
+        beta.value, w4, e4, l_ab, d.x, d.y, dv.x, dv.y, da.x, da.y, c, s, omega2, s_rate, epsilon2,
+        s_accel, b.p.x, b.p.y, b.v.x, b.v.y, b.a.x, b.a.y, det,
+    ]) & (l_ab > 0.0)
+        & (c2 > 2.0 * tol)
+        & (det.abs() > 2.0 * SINGULAR_DETERMINANT);
+    ok.then(|| {
+        let link2 = LinkMotion {
+            origin: a,
+            angle: direction(r2),
+            omega: omega2,
+            epsilon: epsilon2,
+        };
+        let link3 = LinkMotion {
+            origin: b,
+            angle: normalize(beta.value),
+            omega: w4,
+            epsilon: e4,
+        };
+        RrpState {
+            b,
+            link2,
+            link3,
+            slide: Motion::new(s, s_rate, s_accel),
+            det,
+        }
+    })
+}
+
+/// The RRP dyad through the general contour solver, checked step by step.
+#[cold]
+#[inline(never)]
+fn rrp_checked(a: PointMotion, guide: Guide, l_ab: f64, branch: Branch) -> Result<RrpState> {
     a.validate(["A.x", "A.y", "v_A.x", "v_A.y", "a_A.x", "a_A.y"])?;
     guide
         .point

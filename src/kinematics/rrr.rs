@@ -139,10 +139,17 @@ fn rrr_fast(
     })
 }
 
-/// `true` when every value is finite: one test over all of them.
-#[inline]
+/// `true` when every value is finite, by one test of their sum: a sum with an infinity or a
+/// NaN among its terms is not finite. A sum of finite values can still overflow; then this
+/// says `false` too and the checked path runs instead: the test may send a good case there,
+/// never let a bad one through. Four partial sums, so that it is not one long chain.
+#[inline(always)]
 pub(crate) fn all_finite<const N: usize>(values: [f64; N]) -> bool {
-    values.iter().fold(true, |ok, v| ok & v.is_finite())
+    let mut acc = [0.0; 4];
+    for (i, v) in values.iter().enumerate() {
+        acc[i % 4] += v;
+    }
+    ((acc[0] + acc[1]) + (acc[2] + acc[3])).is_finite()
 }
 
 /// The RRR dyad through the general contour solver, checked step by step.

@@ -74,18 +74,15 @@ impl Conditioning {
     }
 }
 
-/// `true` when every value is finite, by one test of their sum: a sum with an infinity or a
-/// NaN among its terms is not finite. A sum of finite values can still overflow; then this
-/// says `false` too, and the solver's checked path, which names the value at fault, runs
-/// instead: the test may send a good case there, never let a bad one through. The sum runs
-/// in four partial sums, so that it is a few vector additions, not a chain.
+/// `true` when every component of eight pairs is finite, by one test of their sum: a sum with
+/// an infinity or a NaN among its terms is not finite. A sum of finite values can still
+/// overflow; then this says `false` too, and the solver's checked path, which names the value
+/// at fault, runs instead: the test may send a good case there, never let a bad one through.
+/// The sum is a tree of vector additions (three deep), not a chain.
 #[inline(always)]
-pub(crate) fn all_finite_fast<const N: usize>(values: [f64; N]) -> bool {
-    let mut acc = [0.0; 4];
-    for (i, v) in values.iter().enumerate() {
-        acc[i % 4] += v;
-    }
-    ((acc[0] + acc[1]) + (acc[2] + acc[3])).is_finite()
+pub(crate) fn finite_sum(v: [nalgebra::Vector2<f64>; 8]) -> bool {
+    let s = ((v[0] + v[1]) + (v[2] + v[3])) + ((v[4] + v[5]) + (v[6] + v[7]));
+    (s.x + s.y).is_finite()
 }
 
 /// Turns an overflow in a result into an error, so that no solver returns an infinity:

@@ -14,7 +14,7 @@
 //! The seed's 1.35 misprints γ2 for γ3 in the moment of F3 (docs/errata.md#e4); the derivation above
 //! does not use it.
 
-use super::conditioning::{all_finite_fast, ensure_finite, Conditioning};
+use super::conditioning::{ensure_finite, finite_sum, Conditioning};
 use crate::angle::{perp, unit};
 use crate::error::{all_finite, finite2, length, positive, Result};
 use crate::Load;
@@ -150,23 +150,15 @@ impl RprDyad {
         // a non-finite A or E (with a finite axis) the projection `along`, and a non-finite
         // load its moment about E or A (a product with an infinite factor is infinite or NaN,
         // and no sum makes it finite again), so r12_t or the couple, or R43 through F3.
-        let ok = all_finite_fast([
-            qa,
-            along,
-            i_along,
-            rho,
-            l_ea,
-            r12.x,
-            r12.y,
-            r32.x,
-            r32.y,
-            r43.x,
-            r43.y,
-            r12_n,
-            r12_t,
-            r32_n,
-            couple,
-            conditioning.condition,
+        let ok = finite_sum([
+            r12,
+            r32,
+            r43,
+            Vector2::new(qa, along),
+            Vector2::new(i_along, rho),
+            Vector2::new(l_ea, couple),
+            Vector2::new(r12_n, r12_t),
+            Vector2::new(r32_n, conditioning.condition),
         ]) & (qa >= f64::MIN_POSITIVE)
             & regular;
         ok.then(|| RprReactions {

@@ -11,7 +11,7 @@
 //! line of action lies at h43 = −M3(B)/R43 along the guide from B. The seed's h43 = 0 holds only
 //! when the slider's load passes through B (N3). R23 = −(R43 + F3) from the slider.
 
-use super::conditioning::{all_finite_fast, ensure_finite, Conditioning};
+use super::conditioning::{ensure_finite, finite_sum, Conditioning};
 use crate::angle::{cross, perp, unit};
 use crate::error::{all_finite, finite2, length, positive, Result};
 use crate::Load;
@@ -139,22 +139,15 @@ impl RrpDyad {
         // |guide|² non-finite, and a non-finite load makes its moment about B non-finite (a
         // product with an infinite factor is infinite or NaN, and no sum makes it finite
         // again), so r12_t or the guide's moment, or R23 through F3.
-        let ok = all_finite_fast([
-            q2,
-            qg,
-            d,
-            i_d,
-            r12.x,
-            r12.y,
-            r43.x,
-            r43.y,
-            r23.x,
-            r23.y,
-            r12_n,
-            r12_t,
-            r43_n,
-            guide_moment,
-            det,
+        let ok = finite_sum([
+            r12,
+            r43,
+            r23,
+            Vector2::new(q2, qg),
+            Vector2::new(d, i_d),
+            Vector2::new(r12_n, r12_t),
+            Vector2::new(r43_n, guide_moment),
+            Vector2::new(det, 0.0),
         ]) & (q2 >= f64::MIN_POSITIVE)
             & (qg >= f64::MIN_POSITIVE)
             & regular;

@@ -9,7 +9,7 @@
 //! determinant u2 × u3 = sin(φ3 − φ2), which vanishes when A, B, C are collinear (a dead
 //! point). Finally R23 = −(R43 + F3) from link 3.
 
-use super::conditioning::{all_finite_fast, ensure_finite, Conditioning};
+use super::conditioning::{ensure_finite, finite_sum, Conditioning};
 use crate::angle::{cross, perp, unit};
 use crate::error::{all_finite, finite2, length, positive, Result};
 use crate::Load;
@@ -138,9 +138,15 @@ impl RrrDyad {
         // non-finite, and a non-finite load makes its moment about B non-finite (a product
         // with an infinite factor is infinite or NaN, and no sum makes it finite again), so
         // r12_t or r43_t, or R23 through F3.
-        let ok = all_finite_fast([
-            q2, q3, d, i_d, r12.x, r12.y, r43.x, r43.y, r23.x, r23.y, r12_n, r12_t, r43_n, r43_t,
-            det,
+        let ok = finite_sum([
+            r12,
+            r43,
+            r23,
+            Vector2::new(q2, q3),
+            Vector2::new(d, i_d),
+            Vector2::new(r12_n, r12_t),
+            Vector2::new(r43_n, r43_t),
+            Vector2::new(det, 0.0),
         ]) & (q2 >= f64::MIN_POSITIVE)
             & (q3 >= f64::MIN_POSITIVE)
             & regular;
