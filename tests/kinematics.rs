@@ -538,7 +538,7 @@ fn bad_inputs_are_errors_never_nan() {
         rpr_dyad(a, a),
         Err(Error::Singular {
             what: "RPR dyad",
-            measure: "l_AC",
+            measure: "l_EA",
             ..
         })
     ));

@@ -1,5 +1,7 @@
 //! The RPR dyad (group of the 2nd class, 3rd kind; the seeds' SR3): a rod 2 hinged at A that
-//! slides through a rocking cylinder (or slotted block) 3 hinged at C.
+//! slides through a rocking cylinder (or slotted block) 3 hinged at E (the seeds' name for the
+//! pivot, as in the RPR's reactions, [`RprDyad`](crate::kinetostatics::RprDyad); their C is the
+//! cylinder's mouth).
 
 use super::contour::{in_group, solve_contour, Branch, LoopVector};
 use super::link::LinkMotion;
@@ -13,25 +15,25 @@ use std::f64::consts::PI;
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct RprState {
-    /// The rod 2: origin A, angle φ2 = direction of A→C (into the cylinder, the seed's φ2).
+    /// The rod 2: origin A, angle φ2 = direction of A→E (into the cylinder, the seed's φ2).
     pub link2: LinkMotion,
-    /// The cylinder 3: origin C, angle = direction of C→A (φ2 + π), so that its points
+    /// The cylinder 3: origin E, angle = direction of E→A (φ2 + π), so that its points
     /// towards A are at positive `along` distances.
     pub link3: LinkMotion,
-    /// The distance l_AC with its rate and acceleration: the rod's sliding in the cylinder
-    /// (positive rate: the rod comes out, A moves away from C).
+    /// The distance l_EA with its rate and acceleration: the rod's sliding in the cylinder
+    /// (positive rate: the rod comes out, A moves away from E).
     pub slide: Motion,
 }
 
 impl RprState {
     /// The velocity of the rod's point relative to the cylinder's coinciding point: ṡ along
-    /// C→A.
+    /// E→A.
     #[must_use]
     pub fn relative_velocity(&self) -> Vector2<f64> {
         self.slide.rate * self.link3.unit()
     }
 
-    /// The relative (sliding) acceleration s̈ along C→A.
+    /// The relative (sliding) acceleration s̈ along E→A.
     #[must_use]
     pub fn relative_acceleration(&self) -> Vector2<f64> {
         self.slide.accel * self.link3.unit()
@@ -46,23 +48,23 @@ impl RprState {
 }
 
 /// Positions, velocities and accelerations of an RPR dyad: a rod hinged at A sliding through
-/// a cylinder hinged at C, with the cylinder's axis through C (no offset).
+/// a cylinder hinged at E, with the cylinder's axis through E (no offset).
 ///
-/// The unknowns are the polar coordinates of A about C (the contour's polar case), so the
+/// The unknowns are the polar coordinates of A about E (the contour's polar case), so the
 /// solution is unique and the velocity system has determinant 1; the conditioning is the
-/// length l_AC itself (ω = v⊥/l_AC), and the dyad is singular only when A reaches C.
+/// length l_EA itself (ω = v⊥/l_EA), and the dyad is singular only when A reaches E.
 ///
 /// # Examples
-/// A crank pin at A = (0, 0.1) moving at 1 m/s along −x, the cylinder pivot at C = (0.3, 0.1):
-/// l_AC = 0.3 m, the rod points along +x (φ2 = 0), the pin slides away from C at 1 m/s and the
+/// A crank pin at A = (0, 0.1) moving at 1 m/s along −x, the cylinder pivot at E = (0.3, 0.1):
+/// l_EA = 0.3 m, the rod points along +x (φ2 = 0), the pin slides away from E at 1 m/s and the
 /// rod does not turn.
 /// ```
 /// use nalgebra::{Point2, Vector2};
 /// use approx::assert_relative_eq;
 /// use tmm::kinematics::{rpr_dyad, PointMotion};
 /// let a = PointMotion::new(Point2::new(0.0, 0.1), Vector2::new(-1.0, 0.0), Vector2::zeros());
-/// let c = PointMotion::fixed(Point2::new(0.3, 0.1));
-/// let d = rpr_dyad(a, c)?;
+/// let e = PointMotion::fixed(Point2::new(0.3, 0.1));
+/// let d = rpr_dyad(a, e)?;
 /// assert_relative_eq!(d.slide.value, 0.3, epsilon = 1e-15);
 /// assert_relative_eq!(d.slide.rate, 1.0, epsilon = 1e-15);
 /// assert_eq!(d.link2.angle, 0.0);
@@ -72,36 +74,36 @@ impl RprState {
 ///
 /// # Errors
 /// Non-finite input ([`Error::NonFinite`](crate::Error::NonFinite)), or
-/// [`Error::Singular`](crate::Error::Singular) with `measure = "l_AC"` when A coincides with C.
+/// [`Error::Singular`](crate::Error::Singular) with `measure = "l_EA"` when A coincides with E.
 #[doc(alias = "SR3")]
 #[inline]
-pub fn rpr_dyad(a: PointMotion, c: PointMotion) -> Result<RprState> {
-    match rpr_fast(a, c) {
+pub fn rpr_dyad(a: PointMotion, e: PointMotion) -> Result<RprState> {
+    match rpr_fast(a, e) {
         Some(s) => Ok(s),
-        None => rpr_checked(a, c),
+        None => rpr_checked(a, e),
     }
 }
 
 /// The RPR dyad in Cartesian form, with every check folded into one test at the end: with
-/// d = C − A = l·e, l̇ = (v_C − v_A)·e, ω = (v_C − v_A)·e⊥/l, l̈ = (a_C − a_A)·e + l·ω² and
-/// ε = ((a_C − a_A)·e⊥ − 2·l̇·ω)/l (the polar case of [`solve_contour`]). `None` wherever
+/// d = E − A = l·u, l̇ = (v_E − v_A)·u, ω = (v_E − v_A)·u⊥/l, l̈ = (a_E − a_A)·u + l·ω² and
+/// ε = ((a_E − a_A)·u⊥ − 2·l̇·ω)/l (the polar case of [`solve_contour`]). `None` wherever
 /// [`rpr_checked`] fails, which then names the cause.
 #[inline]
-fn rpr_fast(a: PointMotion, c: PointMotion) -> Option<RprState> {
-    let d = c.p - a.p;
-    let dv = c.v - a.v;
-    let da = c.a - a.a;
+fn rpr_fast(a: PointMotion, e: PointMotion) -> Option<RprState> {
+    let d = e.p - a.p;
+    let dv = e.v - a.v;
+    let da = e.a - a.a;
     let l_sq = d.norm_squared();
     let l = l_sq.sqrt();
     let i_l = 1.0 / l;
-    let e = d * i_l;
-    let n = perp(e);
-    let l_rate = dv.dot(&e);
+    let u = d * i_l;
+    let n = perp(u);
+    let l_rate = dv.dot(&u);
     let omega = dv.dot(&n) * i_l;
-    let l_accel = da.dot(&e) + l * omega * omega;
+    let l_accel = da.dot(&u) + l * omega * omega;
     let epsilon = (da.dot(&n) - 2.0 * l_rate * omega) * i_l;
     let ok = super::rrr::all_finite([
-        a.p.x, a.p.y, a.v.x, a.v.y, a.a.x, a.a.y, c.p.x, c.p.y, c.v.x, c.v.y, c.a.x, c.a.y, l_sq,
+        a.p.x, a.p.y, a.v.x, a.v.y, a.a.x, a.a.y, e.p.x, e.p.y, e.v.x, e.v.y, e.a.x, e.a.y, l_sq,
         dv.x, dv.y, da.x, da.y, i_l, l_rate, omega, l_accel, epsilon,
     ]) & (l_sq >= f64::MIN_POSITIVE);
     ok.then(|| RprState {
@@ -112,7 +114,7 @@ fn rpr_fast(a: PointMotion, c: PointMotion) -> Option<RprState> {
             epsilon,
         },
         link3: LinkMotion {
-            origin: c,
+            origin: e,
             angle: direction(-d),
             omega,
             epsilon,
@@ -124,30 +126,30 @@ fn rpr_fast(a: PointMotion, c: PointMotion) -> Option<RprState> {
 /// The RPR dyad through the general contour solver, checked step by step.
 #[cold]
 #[inline(never)]
-fn rpr_checked(a: PointMotion, c: PointMotion) -> Result<RprState> {
+fn rpr_checked(a: PointMotion, e: PointMotion) -> Result<RprState> {
     a.validate(["A.x", "A.y", "v_A.x", "v_A.y", "a_A.x", "a_A.y"])?;
-    c.validate(["C.x", "C.y", "v_C.x", "v_C.y", "a_C.x", "a_C.y"])?;
-    let (ac, vac, aac) = (a.p - c.p, a.v - c.v, a.a - c.a);
+    e.validate(["E.x", "E.y", "v_E.x", "v_E.y", "a_E.x", "a_E.y"])?;
+    let (ac, vac, aac) = (a.p - e.p, a.v - e.v, a.a - e.a);
     computed_all(
-        "RPR dyad: A - C",
+        "RPR dyad: A - E",
         ac.iter().chain(vac.iter()).chain(aac.iter()),
     )?;
-    // The loop C → A → C: (A − C) + l_AC·e(φ2) = 0, φ2 the direction of A→C.
+    // The loop E → A → E: (A − E) + l_EA·e(φ2) = 0, φ2 the direction of A→E.
     let loop_ = [
         LoopVector::Cartesian {
-            r: a.p - c.p,
-            v: a.v - c.v,
-            a: a.a - c.a,
+            r: a.p - e.p,
+            v: a.v - e.v,
+            a: a.a - e.a,
         },
         LoopVector::unknown(),
     ];
     let s = solve_contour(&loop_, Branch::Plus).map_err(|e| match e {
         crate::Error::Singular { value, .. } => crate::Error::Singular {
             what: "RPR dyad",
-            measure: "l_AC",
+            measure: "l_EA",
             value,
         },
-        other => in_group(other, "RPR dyad", "l_AC", 1.0),
+        other => in_group(other, "RPR dyad", "l_EA", 1.0),
     })?;
     let [slide, phi] = s.unknowns;
     let link2 = LinkMotion {
@@ -157,13 +159,13 @@ fn rpr_checked(a: PointMotion, c: PointMotion) -> Result<RprState> {
         epsilon: phi.accel,
     };
     let link3 = LinkMotion {
-        origin: c,
+        origin: e,
         angle: normalize(phi.value + PI),
         omega: phi.rate,
         epsilon: phi.accel,
     };
     debug_assert!(
-        (a.p + slide.value * unit(phi.value) - c.p).norm() <= 1e-9 * slide.value.max(1.0)
+        (a.p + slide.value * unit(phi.value) - e.p).norm() <= 1e-9 * slide.value.max(1.0)
     );
     computed_all(
         "RPR dyad",

@@ -892,7 +892,7 @@ impl<'p> Analysis<'p> {
     }
 
     /// The kinematic conditioning of every group in attachment order: sin(φ3 − φ2) for RRR,
-    /// cos(φ2 − φ4) for RRP, l_AC (m) for RPR, sin(φg3 − φg2) for PRP and sin α for RPP.
+    /// cos(φ2 − φ4) for RRP, l_EA (m) for RPR, sin(φg3 − φg2) for PRP and sin α for RPP.
     #[must_use]
     pub fn group_determinants(&self) -> &[f64] {
         &self.dets
