@@ -134,6 +134,9 @@ pub struct Analysis<'p> {
     /// Each link's unit vector e(φ), computed once per position: every point of a link is
     /// placed with it, so no trigonometry is repeated.
     units: Vec<Vector2<f64>>,
+    /// Per group, the constant rotations (cos, sin) of its guides' offsets (first and second
+    /// outer joint) and of an RPP's slide angle: a guide's unit vector is its link's rotated.
+    turns: Vec<[Vector2<f64>; 3]>,
     dets: Vec<f64>,
     applied: Vec<(usize, Load)>,
     acc: Vec<Load>,
@@ -175,6 +178,19 @@ fn input_motion(ip: &InputPlan, input: Motion) -> Result<LinkMotion> {
     })
 }
 
+/// The unit vector along `v` (a link's side between two of its joints, never zero once its
+/// group is solved).
+#[inline]
+fn direction_of(v: Vector2<f64>) -> Vector2<f64> {
+    v / v.norm()
+}
+
+/// `u` turned by the angle whose cosine and sine are `r`.
+#[inline]
+fn turn(u: Vector2<f64>, r: Vector2<f64>) -> Vector2<f64> {
+    Vector2::new(u.x * r.x - u.y * r.y, u.x * r.y + u.y * r.x)
+}
+
 /// The motion of the point at `local` (along, across) of `link`, whose unit vector is `e`.
 #[inline]
 fn point_with(link: &LinkMotion, e: Vector2<f64>, local: Vector2<f64>) -> PointMotion {
@@ -204,6 +220,18 @@ impl<'p> Analysis<'p> {
             second_input: None,
             links: vec![Plan::frame_motion(); n],
             units: vec![Vector2::x(); n],
+            turns: plan
+                .groups
+                .iter()
+                .map(|g| {
+                    let r = |angle: f64| Vector2::new(angle.cos(), angle.sin());
+                    [
+                        r(g.guide_offsets[0]),
+                        r(g.guide_offsets[1]),
+                        r(g.slide_angle),
+                    ]
+                })
+                .collect(),
             dets: vec![0.0; plan.groups.len()],
             applied: Vec::with_capacity(n + plan.loads.len() * 2),
             acc: vec![Load::zero(Point2::origin()); n],
@@ -244,7 +272,13 @@ impl<'p> Analysis<'p> {
     /// Stores link `k`'s motion with its unit vector.
     #[inline]
     fn set_link(&mut self, k: usize, m: LinkMotion) {
-        self.units[k] = m.unit();
+        self.put_link(k, m, m.unit());
+    }
+
+    /// Stores link `k`'s motion with its unit vector `u` = e(φ), already known.
+    #[inline]
+    fn put_link(&mut self, k: usize, m: LinkMotion, u: Vector2<f64>) {
+        self.units[k] = u;
         self.links[k] = m;
     }
 
@@ -343,38 +377,46 @@ impl<'p> Analysis<'p> {
             let [l2, l3] = group.links;
             let [ka, kc] = group.known;
             let a = self.at(ka, group.a_local);
-            let (s2, s3, det) = match group.kind {
+            // Each arm also gives the links' unit vectors from the group's geometry (or a
+            // known link's turned by a constant), never from the returned angles again.
+            let t = self.turns[g];
+            let (s2, s3, det, u2, u3) = match group.kind {
                 GroupKind::Rrr => {
                     let c = self.at(kc, group.c_local);
                     let s = rrr_dyad(a, c, group.lengths[0], group.lengths[1], group.branch)
                         .map_err(within(&group.name))?;
-                    (s.link2, s.link3, s.det)
+                    let (u2, u3) = (direction_of(s.b.p - a.p), direction_of(s.b.p - c.p));
+                    (s.link2, s.link3, s.det, u2, u3)
                 }
                 GroupKind::Rrp => {
                     let guide = self.guide_on(kc, group.c_local, group.guide_offsets[1]);
                     let s = rrp_dyad(a, guide, group.lengths[0], group.branch)
                         .map_err(within(&group.name))?;
-                    (s.link2, s.link3, s.det)
+                    let u3 = turn(self.units[kc], t[1]);
+                    (s.link2, s.link3, s.det, direction_of(s.b.p - a.p), u3)
                 }
                 GroupKind::Rpr => {
                     let c = self.at(kc, group.c_local);
                     let s = rpr_dyad(a, c).map_err(within(&group.name))?;
-                    (s.link2, s.link3, s.slide.value)
+                    let u = direction_of(c.p - a.p);
+                    (s.link2, s.link3, s.slide.value, u, -u)
                 }
                 GroupKind::Prp => {
                     let g2 = self.guide_on(ka, group.a_local, group.guide_offsets[0]);
                     let g3 = self.guide_on(kc, group.c_local, group.guide_offsets[1]);
                     let s = prp_dyad(g2, g3).map_err(within(&group.name))?;
-                    (s.link2, s.link3, s.det)
+                    let (u2, u3) = (turn(self.units[ka], t[0]), turn(self.units[kc], t[1]));
+                    (s.link2, s.link3, s.det, u2, u3)
                 }
                 GroupKind::Rpp => {
                     let g = self.guide_on(kc, group.c_local, group.guide_offsets[1]);
                     let s = rpp_dyad(a, g, group.slide_angle).map_err(within(&group.name))?;
-                    (s.link2, s.link3, s.det)
+                    let u3 = turn(self.units[kc], t[1]);
+                    (s.link2, s.link3, s.det, turn(u3, t[2]), u3)
                 }
             };
-            self.set_link(l2, s2);
-            self.set_link(l3, s3);
+            self.put_link(l2, s2, u2);
+            self.put_link(l3, s3, u3);
             self.dets[g] = det;
         }
         Ok(())
@@ -427,12 +469,19 @@ impl<'p> Analysis<'p> {
                 continue;
             }
             let s = self.at(k, lp.centre);
-            let inertia = Load::inertia(s.p, lp.mass, s.a, lp.inertia, self.links[k].epsilon)
-                .map_err(within(&plan.link_names[k]))?;
-            self.applied.push((
-                k,
-                Load::new(s.p, inertia.force + lp.mass * plan.gravity, inertia.moment),
-            ));
+            let epsilon = self.links[k].epsilon;
+            // The mass and J_S were checked by the plan and the motion by the groups: only the
+            // products can overflow, and then `Load::inertia` names what did.
+            let force = lp.mass * (plan.gravity - s.a);
+            let moment = -lp.inertia * epsilon;
+            if !(force.x + force.y + moment).is_finite() {
+                Load::inertia(s.p, lp.mass, s.a, lp.inertia, epsilon)
+                    .map_err(within(&plan.link_names[k]))?;
+                return Err(within(&plan.link_names[k])(Error::Overflow {
+                    what: "the link's weight and inertia force m·(g − a_S)",
+                }));
+            }
+            self.applied.push((k, Load::new(s.p, force, moment)));
         }
         for lp in &plan.loads {
             match lp {
