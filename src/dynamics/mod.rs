@@ -35,7 +35,7 @@ mod system;
 mod table;
 mod trajectory;
 
-pub use dopri::Dopri5;
+pub use dopri::{DenseOutput, Dopri5};
 pub use finite_increment::FiniteIncrement;
 pub use rk4::Rk4;
 pub use run::{run, Direction, Outcome, Reach, RunOptions, RunResult, Steady, Watch};
