@@ -411,7 +411,7 @@ fn sweep_runs() {
         let opts = small_budget([1.0, 1e300, g.f()][i % 3], [0.01, 1e-9, g.f()][i % 3]);
         let which = g.next() % 3;
         let started = std::time::Instant::now();
-        check("run", &(sys, s, opts, which), || match which {
+        check("run", &(sys, s, opts.clone(), which), || match which {
             0 => run(&sys, &FiniteIncrement, s, &opts),
             1 => run(&sys, &Rk4, s, &opts),
             _ => run(&sys, &Dopri5::new(1e-6)?, s, &opts),

@@ -139,6 +139,12 @@ impl DenseOutput {
         self.t1
     }
 
+    /// Moves the end time to `t1` (a run snaps a step's end onto a breakpoint or the final
+    /// time when they differ by rounding): the end state is still the step's.
+    pub(crate) fn set_end(&mut self, t1: f64) {
+        self.t1 = t1;
+    }
+
     /// The state at time `t` in [start, end], carrying `t` exactly. At the ends it is the
     /// step's own start and end state.
     ///
