@@ -123,7 +123,7 @@ pub struct DenseOutput {
     h: f64,
     y0: Vector4<f64>,
     y1: Vector4<f64>,
-    k: [Vector4<f64>; 7],
+    k: Stages,
 }
 
 impl DenseOutput {
@@ -175,6 +175,9 @@ impl DenseOutput {
         check_result(unpack(t, &y))
     }
 }
+
+/// The seven stages k₁…k₇ of a step (k₇ = f(t + h, y₁), the next step's k₁).
+type Stages = [Vector4<f64>; 7];
 
 /// Fifth- minus fourth-order weights: the local error estimate.
 const E: [f64; 7] = [
@@ -309,7 +312,7 @@ impl Dopri5 {
         y: &Vector4<f64>,
         k1: &Vector4<f64>,
         h: f64,
-    ) -> Result<(Vector4<f64>, Vector4<f64>, [Vector4<f64>; 7])> {
+    ) -> Result<(Vector4<f64>, Vector4<f64>, Stages)> {
         let (y5, k) = Self::solution(sys, t, y, k1, h)?;
         // C[6] = 1: the last stage is taken at t + h, the time the accepted state carries.
         let k7 = rhs(sys, t + C[6] * h, &y5)?;
