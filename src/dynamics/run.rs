@@ -213,8 +213,8 @@ pub struct RunResult {
     pub last: State,
     /// Accepted steps taken.
     pub steps: usize,
-    /// Evaluations of the accelerations spent by the stepper (location and recording not
-    /// counted).
+    /// Evaluations of the accelerations spent by the stepper, the location of kinks
+    /// included (the location of a [`Reach`] crossing and the recording not counted).
     pub evaluations: usize,
 }
 
@@ -330,9 +330,21 @@ fn row_budget(len: usize, opts: &RunOptions, t: f64, t_tol: f64) -> Result<()> {
 
 /// Runs `sys` from `start` with `method` until a stop condition of `opts`.
 ///
+/// No step straddles a breakpoint: the run shortens the step that would cross one of the
+/// times in [`RunOptions::breakpoints`] or [`LagrangeSystem::breakpoints`] so that it ends
+/// exactly there, and when a step carries [`LagrangeSystem::kink_argument`] across a node of
+/// [`LagrangeSystem::kinks`] it locates the node inside the step (re-stepping from its start,
+/// regula falsi, to about 10⁻¹⁴ of the argument's change over the step) and takes the step
+/// again to end there (with error control for an adaptive method). A fixed-step method then
+/// finishes the grid step it was taking, so its grid t₀ + n·h stays. The states at
+/// [`RunOptions::times`] are recorded as that field says.
+///
 /// # Errors
 /// [`Error::NonPositive`]/[`Error::NonFinite`] for a bad step, final time, steady tolerance
-/// or hold, or record interval; [`Error::OutOfRange`] for a watched index that does not exist;
+/// or hold, or record interval; [`Error::NonFinite`] for a requested time, a breakpoint or a
+/// kink node that is not finite; [`Error::OutOfRange`] for a requested time outside
+/// [t_start, t_end] or a watched index that does not exist; [`Error::NonFiniteState`] when
+/// the kink argument is not finite;
 /// [`Error::Singular`] when a step is too short to advance the time
 /// (h below the rounding of t); [`Error::NonFiniteState`] naming the time when the motion
 /// diverges (or a recorded quantity overflows); [`Error::Budget`] naming the time reached

@@ -156,10 +156,12 @@ pub trait LagrangeSystem {
         Vec::new()
     }
 
-    /// Times at which the forces are not smooth (a kink or a jump of a load tabulated in
-    /// time), s. [`run`](super::run) steps exactly onto them, as onto
-    /// [`RunOptions::breakpoints`](super::RunOptions::breakpoints); a load with a jump should
-    /// take its right-hand value at the breakpoint itself. Default: none.
+    /// Times at which the forces are not smooth (the nodes of a load tabulated in time), s.
+    /// [`run`](super::run) steps exactly onto them, as onto
+    /// [`RunOptions::breakpoints`](super::RunOptions::breakpoints), so that a kink (a change
+    /// of slope) costs no order. A jump is only softened: the stages at the breakpoint see the
+    /// one value the system gives there, which is the wrong side's for one of the two steps
+    /// that meet there. Default: none.
     ///
     /// # Examples
     /// ```
