@@ -89,7 +89,7 @@ fn weighted_error(r: &RunResult, reference: &RunResult, tol: f64, times: &[f64])
 /// after hundreds of steps: the controller bounds the error estimate of the embedded
 /// fourth-order solution, while the run carries the fifth-order one, whose local error is far
 /// smaller; the motors' speed–torque slope damps speed errors, and q errors only add up.
-/// Measured (release build): 0.34, 0.35, 0.35, 0.37, 0.46 at 1e-8…1e-12. Without the kinks
+/// Measured (release build): 0.34, 0.35, 0.35, 0.39, 0.46 at 1e-8…1e-12. Without the kinks
 /// reported (the step straddles a node, where the error estimate of a smooth method does not
 /// see the error it makes) the same runs miss by 53, 120, 289, 124, 109 times the tolerance:
 /// the test also asserts ≥ 10 there, so it shows what the breakpoints buy. The stop

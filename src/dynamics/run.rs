@@ -252,12 +252,13 @@ fn crosses(d: Direction, g0: f64, g1: f64) -> bool {
 /// Finds the state inside the step s0 → s1 at which g (f0 = g(s0), f1 = g(s1) of opposite
 /// signs) vanishes, by re-stepping from s0 with θh (regula falsi, Illinois variant): the
 /// located state is a true state of the method, not an interpolation. Also returns the
-/// number of re-steps.
+/// number of re-steps. A `guess` of θ in (0, 1) (from a continuous extension) is tried first.
 fn locate<S: LagrangeSystem + ?Sized, M: Stepper>(
     sys: &S,
     method: &M,
     (s0, f0): (&State, f64),
     (s1, f1): (&State, f64),
+    guess: Option<f64>,
     mut g: impl FnMut(&State) -> Result<f64>,
 ) -> Result<(State, usize)> {
     let h = s1.t - s0.t;
@@ -268,8 +269,10 @@ fn locate<S: LagrangeSystem + ?Sized, M: Stepper>(
     let (mut a, mut fa, mut b, mut fb) = (0.0_f64, f0, 1.0_f64, f1);
     let mut best = *s1;
     let scale = f0.abs().max(f1.abs()).max(1e-300);
+    let mut guess = guess.filter(|c| *c > 0.0 && *c < 1.0);
     for _ in 0..100 {
-        let c = ((a * fb - b * fa) / (fb - fa)).clamp(a.min(b), a.max(b));
+        let chord = ((a * fb - b * fa) / (fb - fa)).clamp(a.min(b), a.max(b));
+        let c = guess.take().unwrap_or(chord);
         if c <= 0.0 {
             break;
         }
@@ -582,11 +585,30 @@ pub fn run<S: LagrangeSystem + ?Sized, M: Stepper>(
             let sigma1 = kink_arg(&s1)?;
             if let Some(i) = first_crossed(&kinks, sigma, sigma1, on_kink) {
                 let node = kinks[i];
+                // A first guess from the continuous extension (no evaluation), by bisection.
+                let guess = match &dense {
+                    Some(d) => {
+                        let (mut lo, mut hi) = (0.0_f64, 1.0_f64);
+                        let below = sigma < node;
+                        for _ in 0..60 {
+                            let mid = 0.5 * (lo + hi);
+                            let st = d.at(s.t + mid * (s1.t - s.t))?;
+                            if (kink_arg(&st)? < node) == below {
+                                lo = mid;
+                            } else {
+                                hi = mid;
+                            }
+                        }
+                        Some(0.5 * (lo + hi))
+                    }
+                    None => None,
+                };
                 let (hit, resteps) = locate(
                     sys,
                     method,
                     (&s, sigma - node),
                     (&s1, sigma1 - node),
+                    guess,
                     |st| Ok(kink_arg(st)? - node),
                 )?;
                 evaluations += resteps * method.evaluations_per_step();
@@ -623,7 +645,7 @@ pub fn run<S: LagrangeSystem + ?Sized, M: Stepper>(
         if let Some(r) = &opts.reach {
             let g1 = watched(sys, r.watch, &s1, &mut buf)? - r.value;
             if crosses(r.direction, g_prev, g1) {
-                let (located, _) = locate(sys, method, (&s, g_prev), (&s1, g1), |st| {
+                let (located, _) = locate(sys, method, (&s, g_prev), (&s1, g1), None, |st| {
                     Ok(watched(sys, r.watch, st, &mut buf)? - r.value)
                 })?;
                 hit = Some(located);
