@@ -258,7 +258,7 @@ fn landing_gear(dir: &Path) -> Res<()> {
             failure,
             ..g.clone()
         };
-        let mut o = opts;
+        let mut o = opts.clone();
         if matches!(failure, Some(Failure::Motor6 { braked: false })) {
             // It cannot retract: stop when it is back down.
             o.reach = Some(Reach {
@@ -338,7 +338,7 @@ fn coaxial(dir: &Path) -> Res<()> {
     let long = RunOptions {
         t_end: 20.0,
         steady: None,
-        ..opts
+        ..opts.clone()
     };
     let r = run(&un, &FiniteIncrement, s0, &long)?;
     save(

@@ -13,13 +13,15 @@
 //!   `CouplingDrive::solve`, `GearDrive::solve`, `passive::PaperGroup::solve`;
 //! - load: `Load::inertia`;
 //! - dynamics: `accelerations`, `powers`, `kinetic_energy`, `christoffel_terms`,
-//!   `FiniteIncrement`/`Rk4`/`Dopri5` `step` and `advance`, `run`, `Trajectory::push`,
+//!   `FiniteIncrement`/`Rk4`/`Dopri5` `step` and `advance`, `Dopri5::advance_dense`,
+//!   `DenseOutput::at`, `run` (with requested times, breakpoints and kinks),
+//!   `Trajectory::push`,
 //!   `Table::new`, `Table::at`, `LinearMotor::from_nominal`, `LinearMotor::torque`,
 //!   `Servo::torque`, `FiveBar::kinematics`, `FiveBar::point_masses`,
 //!   `CoaxialPropellers::exact`, `CoaxialPropellers::drift_acceleration`,
 //!   `DecoupledRpArm::closed_form`, `LandingGear::phi_h`.
 //!
-//! 41 entry points. The number of generated cases per sweep is `TMM_HOSTILE_CASES`
+//! 43 entry points. The number of generated cases per sweep is `TMM_HOSTILE_CASES`
 //! (default 200; run with a larger number in release, for example
 //! `TMM_HOSTILE_CASES=100000 cargo test --release --test hostile`).
 
@@ -32,7 +34,7 @@ use nalgebra::{Matrix2, Point2, Vector2};
 use tmm::dynamics::machines::{CoaxialPropellers, FiveBar, LandingGear, LinearMotor, RpArm};
 use tmm::dynamics::{
     accelerations, christoffel_terms, kinetic_energy, powers, run, Beyond, Dopri5, FiniteIncrement,
-    LagrangeSystem, Rk4, RunOptions, State, Stepper, Table, Trajectory,
+    LagrangeSystem, Rk4, RunOptions, RunResult, State, Stepper, Table, Trajectory,
 };
 use tmm::kinematics::{
     assembly_range, contour_residual, coupler_curve, crank, cycle, cycle_angles, differentiate,
@@ -393,12 +395,92 @@ fn sweep_dynamics_core() {
         check("Dopri5::advance", &(sys, s, h, dp), || {
             dp.advance(&sys, &s, h)
         });
+        let t = g.f();
+        check(
+            "Dopri5::advance_dense, DenseOutput::at",
+            &(sys, s, h, dp, t),
+            || {
+                let (adv, dense) = dp.advance_dense(&sys, &s, h, None)?;
+                let d = dense.expect("Dormand-Prince has a continuous extension");
+                let mid = d.at(0.5 * (d.start() + d.end()))?;
+                Ok((adv, mid, d.at(t).ok()))
+            },
+        );
         let mut tr = Trajectory::for_system(&sys);
         check("Trajectory::push", &(sys, s), || tr.push(&sys, &s));
         assert!(tr.q()[0].len() == tr.len() && tr.outputs()[0].len() == tr.len());
         let _ = tr.to_csv();
         let _ = tr.last_state();
     });
+}
+
+/// A hostile system with hostile kinks: nodes and an argument from the generator.
+#[derive(Debug, Clone, Copy)]
+struct Kinked(Hostile, [f64; 2], f64);
+
+impl LagrangeSystem for Kinked {
+    fn inertia(&self, q: &Vector2<f64>) -> tmm::Result<Matrix2<f64>> {
+        self.0.inertia(q)
+    }
+    fn inertia_derivatives(&self, q: &Vector2<f64>) -> tmm::Result<[Matrix2<f64>; 2]> {
+        self.0.inertia_derivatives(q)
+    }
+    fn forces(&self, t: f64, q: &Vector2<f64>, qd: &Vector2<f64>) -> tmm::Result<Vector2<f64>> {
+        self.0.forces(t, q, qd)
+    }
+    fn damping(&self, q: &Vector2<f64>) -> tmm::Result<Matrix2<f64>> {
+        self.0.damping(q)
+    }
+    fn breakpoints(&self) -> Vec<f64> {
+        vec![self.1[1], self.2]
+    }
+    fn kinks(&self) -> Vec<f64> {
+        self.1.to_vec()
+    }
+    fn kink_argument(&self, t: f64, q: &Vector2<f64>, qd: &Vector2<f64>) -> tmm::Result<f64> {
+        Ok(q[0] * self.2 + qd[1] + t)
+    }
+}
+
+#[test]
+fn sweep_runs_with_times_breakpoints_and_kinks() {
+    // Its own generator for the times, so that the other sweeps' cases stay as they were.
+    let (mut g, mut gt) = (Gen::new(18), Gen::new(19));
+    for i in 0..cases().div_ceil(20) {
+        let sys = Kinked(hostile_system(&mut g), [gt.f(), gt.f()], gt.f());
+        let s = State::new(0.0, g.v() * 1e-3, g.v() * 1e-3);
+        let mut opts = small_budget([1.0, 1e300, g.f()][i % 3], [0.01, 1e-9, g.f()][i % 3]);
+        let n = (gt.next() % 5) as usize;
+        opts.times = (0..n).map(|_| gt.f()).collect();
+        if i % 2 == 0 {
+            // Mostly in range, so that the runs get going.
+            opts.times = opts.times.iter().map(|t| t.abs().min(1.0)).collect();
+        }
+        opts.breakpoints = (0..(gt.next() % 5)).map(|_| gt.f()).collect();
+        let which = g.next() % 3;
+        let started = std::time::Instant::now();
+        check(
+            "run (times, breakpoints, kinks)",
+            &(sys, s, opts.clone(), which),
+            || {
+                let r: RunResult = match which {
+                    0 => run(&sys, &FiniteIncrement, s, &opts),
+                    1 => run(&sys, &Rk4, s, &opts),
+                    _ => run(&sys, &Dopri5::new(1e-6)?, s, &opts),
+                }?;
+                // Every requested time up to the stop is recorded, once, in order.
+                let t = r.trajectory.t();
+                assert!(t.windows(2).all(|w| w[0] < w[1]), "{t:?}");
+                for &x in &opts.times {
+                    if x <= r.last.t {
+                        assert!(t.contains(&x), "{x} not in {t:?}");
+                    }
+                }
+                Ok(r)
+            },
+        );
+        assert!(started.elapsed().as_secs() < 5, "{sys:?} {opts:?}");
+    }
 }
 
 #[test]
@@ -411,7 +493,7 @@ fn sweep_runs() {
         let opts = small_budget([1.0, 1e300, g.f()][i % 3], [0.01, 1e-9, g.f()][i % 3]);
         let which = g.next() % 3;
         let started = std::time::Instant::now();
-        check("run", &(sys, s, opts, which), || match which {
+        check("run", &(sys, s, opts.clone(), which), || match which {
             0 => run(&sys, &FiniteIncrement, s, &opts),
             1 => run(&sys, &Rk4, s, &opts),
             _ => run(&sys, &Dopri5::new(1e-6)?, s, &opts),

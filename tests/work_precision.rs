@@ -48,8 +48,10 @@ fn order(l: &Line) -> f64 {
 }
 
 /// The orders each fixed-step line must show: finite increments ≈ 1 everywhere; RK4 ≈ 4
-/// where the right-hand side is smooth, and clearly less where it has kinks (the saturating
-/// servos' clamp, the landing gear's piecewise-linear load table).
+/// where the right-hand side is smooth or its kinks are stepped onto (the landing gear's
+/// piecewise-linear load table, whose nodes it reports as kinks: measured 4.31, its first
+/// asymptotic point still pre-asymptotic), and clearly less where a kink is not reported
+/// (the saturating servos' clamp).
 fn check_orders(lines: &[Line]) {
     for l in lines {
         if l.method == METHODS[2] {
@@ -59,6 +61,7 @@ fn check_orders(lines: &[Line]) {
         let (lo, hi) = match (l.method, l.machine) {
             ("finite increments", _) => (0.9, 1.1),
             ("RK4", m) if m == MACHINES[0] || m == MACHINES[2] => (3.7, 4.3),
+            ("RK4", m) if m == MACHINES[3] => (3.7, 4.4),
             _ => (1.5, 3.5),
         };
         assert!(

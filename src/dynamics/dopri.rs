@@ -48,6 +48,137 @@ const B: [f64; 7] = [
     11.0 / 84.0,
     0.0,
 ];
+/// The coefficients dᵢ of the continuous extension (Hairer, Nørsett & Wanner, §II.6, and
+/// their code DOPRI5's CONTD5): see [`dense_weights`].
+const D: [f64; 7] = [
+    -12715105075.0 / 11282082432.0,
+    0.0,
+    87487479700.0 / 32700410799.0,
+    -10690763975.0 / 1880347072.0,
+    701980252875.0 / 199316789632.0,
+    -1453857185.0 / 822651844.0,
+    69997945.0 / 29380423.0,
+];
+
+/// The weights bᵢ(θ) of the fourth-order continuous extension,
+/// y(t₀ + θh) = y₀ + h·Σ bᵢ(θ)·kᵢ over the seven stages (k₇ = f(t₀ + h, y₁)):
+///
+/// ```text
+/// bᵢ(θ) = θ·bᵢ + θ(1−θ)·(δᵢ₁ − bᵢ) + θ²(1−θ)·(2bᵢ − δᵢ₁ − δᵢ₇) + θ²(1−θ)²·dᵢ
+/// ```
+///
+/// The first three terms are the cubic Hermite interpolant of y₀, y₁ and the slopes k₁, k₇
+/// (written in the fifth-order weights bᵢ, whose sum with k is (y₁ − y₀)/h); the last adds
+/// the quartic term that makes the extension of order 4. The unit tests check the eight
+/// order conditions of order 4 for these weights at several θ, and that bᵢ(1) are the
+/// fifth-order weights; the integration tests observe the order on an exact solution.
+pub(crate) fn dense_weights(theta: f64) -> [f64; 7] {
+    let mut w = [0.0; 7];
+    let (t, u) = (theta, 1.0 - theta);
+    for (i, wi) in w.iter_mut().enumerate() {
+        let d1 = if i == 0 { 1.0 } else { 0.0 };
+        let d7 = if i == 6 { 1.0 } else { 0.0 };
+        *wi = t * B[i]
+            + t * u * (d1 - B[i])
+            + t * t * u * (2.0 * B[i] - d1 - d7)
+            + t * t * u * u * D[i];
+    }
+    w
+}
+
+/// The continuous extension ("dense output") of one accepted step of [`Dopri5`]: the state
+/// anywhere inside the step, of order 4, from the step's seven stages and no further
+/// evaluation. [`run`](super::run) uses it to record the requested
+/// [`times`](super::RunOptions::times) without stepping onto them.
+///
+/// # Examples
+/// One step of the spin-down ω(t) = 2·e^(−t/2) of the [`Dopri5`] example, read at its middle:
+/// ```
+/// use nalgebra::{Matrix2, Vector2};
+/// use tmm::dynamics::{Dopri5, LagrangeSystem, State, Stepper};
+/// struct Rotor;
+/// impl LagrangeSystem for Rotor {
+///     fn inertia(&self, _: &Vector2<f64>) -> tmm::Result<Matrix2<f64>> {
+///         Ok(Matrix2::new(0.5, 0.0, 0.0, 1.0))
+///     }
+///     fn forces(&self, _: f64, _: &Vector2<f64>, _: &Vector2<f64>) -> tmm::Result<Vector2<f64>> {
+///         Ok(Vector2::zeros())
+///     }
+///     fn damping(&self, _: &Vector2<f64>) -> tmm::Result<Matrix2<f64>> {
+///         Ok(Matrix2::new(0.25, 0.0, 0.0, 0.0))
+///     }
+/// }
+/// let s = State::new(0.0, Vector2::zeros(), Vector2::new(2.0, 0.0));
+/// let (adv, dense) = Dopri5::new(1e-10).unwrap().advance_dense(&Rotor, &s, 0.1, None).unwrap();
+/// let dense = dense.unwrap();
+/// assert_eq!((dense.start(), dense.end()), (0.0, adv.state.t));
+/// let mid = dense.at(0.5 * adv.state.t).unwrap();
+/// assert_eq!(mid.t, 0.5 * adv.state.t);
+/// assert!((mid.qd[0] - 2.0 * (-0.25 * adv.state.t).exp()).abs() < 1e-10);
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct DenseOutput {
+    t0: f64,
+    t1: f64,
+    h: f64,
+    y0: Vector4<f64>,
+    y1: Vector4<f64>,
+    k: Stages,
+}
+
+impl DenseOutput {
+    /// The time at the start of the step, s.
+    #[must_use]
+    pub fn start(&self) -> f64 {
+        self.t0
+    }
+
+    /// The time at the end of the step, s.
+    #[must_use]
+    pub fn end(&self) -> f64 {
+        self.t1
+    }
+
+    /// Moves the end time to `t1` (a run snaps a step's end onto a breakpoint or the final
+    /// time when they differ by rounding): the end state is still the step's.
+    pub(crate) fn set_end(&mut self, t1: f64) {
+        self.t1 = t1;
+    }
+
+    /// The state at time `t` in [start, end], carrying `t` exactly. At the ends it is the
+    /// step's own start and end state.
+    ///
+    /// # Errors
+    /// [`Error::NonFinite`] for a non-finite `t`; [`Error::OutOfRange`] for `t` outside the
+    /// step; [`Error::NonFiniteState`] when the interpolated state overflows.
+    pub fn at(&self, t: f64) -> Result<State> {
+        crate::error::finite("interpolation time", t)?;
+        if t < self.t0 || t > self.t1 {
+            return Err(Error::OutOfRange {
+                name: "interpolation time (inside the step)",
+                value: t,
+                min: self.t0,
+                max: self.t1,
+            });
+        }
+        if t == self.t0 {
+            return Ok(unpack(t, &self.y0));
+        }
+        if t == self.t1 {
+            return Ok(unpack(t, &self.y1));
+        }
+        let w = dense_weights((t - self.t0) / self.h);
+        let mut y = self.y0;
+        for (wi, ki) in w.iter().zip(&self.k) {
+            y += self.h * wi * ki;
+        }
+        check_result(unpack(t, &y))
+    }
+}
+
+/// The seven stages k₁…k₇ of a step (k₇ = f(t + h, y₁), the next step's k₁).
+type Stages = [Vector4<f64>; 7];
+
 /// Fifth- minus fourth-order weights: the local error estimate.
 const E: [f64; 7] = [
     71.0 / 57600.0,
@@ -181,7 +312,7 @@ impl Dopri5 {
         y: &Vector4<f64>,
         k1: &Vector4<f64>,
         h: f64,
-    ) -> Result<(Vector4<f64>, Vector4<f64>, Vector4<f64>)> {
+    ) -> Result<(Vector4<f64>, Vector4<f64>, Stages)> {
         let (y5, k) = Self::solution(sys, t, y, k1, h)?;
         // C[6] = 1: the last stage is taken at t + h, the time the accepted state carries.
         let k7 = rhs(sys, t + C[6] * h, &y5)?;
@@ -190,7 +321,7 @@ impl Dopri5 {
             err += h * e * ki;
         }
         err += h * E[6] * k7;
-        Ok((y5, err, k7))
+        Ok((y5, err, [k[0], k[1], k[2], k[3], k[4], k[5], k7]))
     }
 }
 
@@ -237,6 +368,29 @@ impl Stepper for Dopri5 {
         h: f64,
         start_acceleration: Option<Vector2<f64>>,
     ) -> Result<Advance> {
+        Ok(self.advance_dense(sys, s, h, start_acceleration)?.0)
+    }
+
+    fn is_adaptive(&self) -> bool {
+        true
+    }
+
+    fn has_dense_output(&self) -> bool {
+        true
+    }
+
+    /// As [`advance_from`](Stepper::advance_from), with the step's continuous extension
+    /// (no further evaluation).
+    ///
+    /// # Errors
+    /// As [`advance`](Stepper::advance).
+    fn advance_dense<S: LagrangeSystem + ?Sized>(
+        &self,
+        sys: &S,
+        s: &State,
+        h: f64,
+        start_acceleration: Option<Vector2<f64>>,
+    ) -> Result<(Advance, Option<DenseOutput>)> {
         check_step(s, h)?;
         self.check()?;
         let y = pack(s);
@@ -260,18 +414,28 @@ impl Stepper for Dopri5 {
                 .as_ref()
                 .map_or(f64::INFINITY, |(y5, err, _)| self.error_norm(&y, y5, err));
             // NaN and ∞ fail the test: such a trial is rejected.
-            if let Some((y5, _, k7)) = trial.filter(|_| norm <= 1.0) {
+            if let Some((y5, _, k)) = trial.filter(|_| norm <= 1.0) {
                 let grow = if norm == 0.0 {
                     5.0
                 } else {
                     (0.9 * norm.powf(-0.2)).clamp(0.2, 5.0)
                 };
-                return Ok(Advance {
-                    state: check_result(unpack(s.t + h, &y5))?,
+                let state = check_result(unpack(s.t + h, &y5))?;
+                let dense = DenseOutput {
+                    t0: s.t,
+                    t1: state.t,
+                    h,
+                    y0: y,
+                    y1: y5,
+                    k,
+                };
+                let adv = Advance {
+                    state,
                     h_next: h * grow,
                     evaluations,
-                    end_acceleration: Some(Vector2::new(k7[2], k7[3])),
-                });
+                    end_acceleration: Some(Vector2::new(k[6][2], k[6][3])),
+                };
+                return Ok((adv, Some(dense)));
             }
             let shrink = if norm.is_finite() {
                 (0.9 * norm.powf(-0.2)).clamp(0.2, 1.0)
@@ -286,6 +450,53 @@ impl Stepper for Dopri5 {
                     value: h,
                 });
             }
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The eight order conditions of order 4 for the continuous weights bᵢ(θ): Σ bᵢ Φᵢ(θ)
+    /// = θ^ρ/γ for every rooted tree of order ρ ≤ 4, with the stages' c and A (the seventh
+    /// stage is k₇ = f(t₀ + h, y₁): c₇ = 1 and its row of A the fifth-order weights).
+    #[test]
+    fn dense_weights_meet_the_order_4_conditions() {
+        let a = |i: usize, j: usize| if j < 6 { A[i][j] } else { 0.0 };
+        let ac: Vec<f64> = (0..7)
+            .map(|i| (0..7).map(|j| a(i, j) * C[j]).sum())
+            .collect();
+        let ac2: Vec<f64> = (0..7)
+            .map(|i| (0..7).map(|j| a(i, j) * C[j] * C[j]).sum())
+            .collect();
+        let aac: Vec<f64> = (0..7)
+            .map(|i| (0..7).map(|j| a(i, j) * ac[j]).sum())
+            .collect();
+        for theta in [0.1, 0.25, 0.5, 0.7, 0.9, 1.0] {
+            let b = dense_weights(theta);
+            let sum = |f: &dyn Fn(usize) -> f64| (0..7).map(|i| b[i] * f(i)).sum::<f64>();
+            let t = theta;
+            let conditions = [
+                (sum(&|_| 1.0), t),
+                (sum(&|i| C[i]), t * t / 2.0),
+                (sum(&|i| C[i] * C[i]), t.powi(3) / 3.0),
+                (sum(&|i| ac[i]), t.powi(3) / 6.0),
+                (sum(&|i| C[i].powi(3)), t.powi(4) / 4.0),
+                (sum(&|i| C[i] * ac[i]), t.powi(4) / 8.0),
+                (sum(&|i| ac2[i]), t.powi(4) / 12.0),
+                (sum(&|i| aac[i]), t.powi(4) / 24.0),
+            ];
+            for (k, (got, want)) in conditions.iter().enumerate() {
+                assert!(
+                    (got - want).abs() < 1e-14,
+                    "θ = {t}, condition {k}: {got} vs {want}"
+                );
+            }
+        }
+        // At θ = 1 the extension is the fifth-order solution itself.
+        for (w, b) in dense_weights(1.0).iter().zip(B) {
+            assert!((w - b).abs() < 1e-15);
         }
     }
 }

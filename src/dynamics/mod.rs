@@ -11,6 +11,11 @@
 //! - [`run`]: stops at a final time, when a watched quantity reaches a value (located inside
 //!   the step), or at a steady state, and says when a steady state can never come
 //!   ([`Outcome::Drifting`]). The motion is recorded as a [`Trajectory`] (columns, CSV).
+//!   Every step lands exactly on the breakpoints (times given in [`RunOptions::breakpoints`]
+//!   or by the system) and on the kinks of the forces in the state (located inside the step:
+//!   the landing gear's load-table nodes), so that no step straddles a kink; the state at
+//!   requested [`RunOptions::times`] comes from Dormand–Prince's continuous extension
+//!   ([`DenseOutput`]) or from fixed steps that end exactly there.
 //! - [`machines`]: the five-bar robot (§2), the R–P arm and its decoupled variant (§3), the
 //!   landing-gear drive (§4) and the coaxial-propeller drive (§5), each with realistic
 //!   default data.
@@ -35,7 +40,7 @@ mod system;
 mod table;
 mod trajectory;
 
-pub use dopri::Dopri5;
+pub use dopri::{DenseOutput, Dopri5};
 pub use finite_increment::FiniteIncrement;
 pub use rk4::Rk4;
 pub use run::{run, Direction, Outcome, Reach, RunOptions, RunResult, Steady, Watch};

@@ -62,7 +62,37 @@ pub struct Steady {
 /// How a run is done and when it stops. The final time always bounds the run, and so do
 /// three budgets (steps, evaluations, recorded rows) whose exhaustion is an
 /// [`Error::Budget`] naming the time reached: no run is endless or takes unbounded memory.
-#[derive(Debug, Clone, Copy, PartialEq)]
+///
+/// # What is recorded
+/// The trajectory holds, in increasing time and each time once: the start; every
+/// `record_every`-th step end (a fixed-step method's step cut short at a breakpoint or a kink
+/// counts once, with its rest, so its rows stay on the grid t₀ + n·h); every requested time
+/// of [`times`](Self::times) up to the stop, carrying the requested value bitwise; and the
+/// last state. Breakpoints and kinks are stepped onto but recorded only as step ends.
+///
+/// # Examples
+/// Record only the start, three requested times and the end of a run with steps of 0.3 s:
+/// ```
+/// use nalgebra::{Matrix2, Vector2};
+/// use tmm::dynamics::{run, LagrangeSystem, Rk4, RunOptions, State};
+/// struct Slider;
+/// impl LagrangeSystem for Slider {
+///     fn inertia(&self, _: &Vector2<f64>) -> tmm::Result<Matrix2<f64>> {
+///         Ok(Matrix2::identity())
+///     }
+///     fn forces(&self, _: f64, _: &Vector2<f64>, _: &Vector2<f64>) -> tmm::Result<Vector2<f64>> {
+///         Ok(Vector2::new(2.0, 0.0))
+///     }
+/// }
+/// let opts = RunOptions {
+///     record_every: usize::MAX,
+///     ..RunOptions::at_times(1.0, 0.3, vec![0.5, 0.1, 0.7])
+/// };
+/// let r = run(&Slider, &Rk4, State::at_rest(Vector2::zeros()), &opts).unwrap();
+/// assert_eq!(r.trajectory.t(), [0.0, 0.1, 0.5, 0.7, 1.0]);
+/// assert!((r.trajectory.q()[0][2] - 0.25).abs() < 1e-15); // x = t² at t = 0.5
+/// ```
+#[derive(Debug, Clone, PartialEq)]
 pub struct RunOptions {
     /// The latest time, s; the run stops there if nothing else stopped it.
     pub t_end: f64,
@@ -83,6 +113,18 @@ pub struct RunOptions {
     /// The most rows the trajectory may hold, start and end included (default
     /// [`DEFAULT_MAX_ROWS`](Self::DEFAULT_MAX_ROWS)); record fewer with `record_every`.
     pub max_rows: usize,
+    /// Times at which the state is recorded (default none), s: finite and within
+    /// [t_start, t_end] (else an error), in any order, repeats recorded once. A method with a
+    /// continuous extension ([`Dopri5`](super::Dopri5)) records them from it without changing
+    /// its steps; a fixed-step method steps exactly onto each (shortening the one step that
+    /// would cross it, then finishing that step). Each recorded row carries the requested
+    /// time bitwise. Times after a stop condition ended the run are not recorded.
+    pub times: Vec<f64>,
+    /// Times at which the right-hand side is not smooth (default none), s, besides the
+    /// system's own [`LagrangeSystem::breakpoints`]: every method steps exactly onto each, so
+    /// that no step straddles a kink or a jump. Finite (else an error), in any order; those
+    /// outside (t_start, t_end) are ignored.
+    pub breakpoints: Vec<f64>,
 }
 
 impl RunOptions {
@@ -105,6 +147,25 @@ impl RunOptions {
             max_steps: Self::DEFAULT_MAX_STEPS,
             max_evaluations: Self::DEFAULT_MAX_EVALUATIONS,
             max_rows: Self::DEFAULT_MAX_ROWS,
+            times: Vec::new(),
+            breakpoints: Vec::new(),
+        }
+    }
+
+    /// As [`until`](Self::until), recording also the state at the requested `times` (see
+    /// [`times`](Self::times)).
+    ///
+    /// # Examples
+    /// ```
+    /// use tmm::dynamics::RunOptions;
+    /// let o = RunOptions::at_times(2.0, 0.01, vec![0.5, 1.5]);
+    /// assert_eq!((o.t_end, o.times.len(), o.record_every), (2.0, 2, 1));
+    /// ```
+    #[must_use]
+    pub fn at_times(t_end: f64, h: f64, times: Vec<f64>) -> Self {
+        Self {
+            times,
+            ..Self::until(t_end, h)
         }
     }
 }
@@ -152,8 +213,8 @@ pub struct RunResult {
     pub last: State,
     /// Accepted steps taken.
     pub steps: usize,
-    /// Evaluations of the accelerations spent by the stepper (location and recording not
-    /// counted).
+    /// Evaluations of the accelerations spent by the stepper, the location of kinks
+    /// included (the location of a [`Reach`] crossing and the recording not counted).
     pub evaluations: usize,
 }
 
@@ -188,31 +249,36 @@ fn crosses(d: Direction, g0: f64, g1: f64) -> bool {
     }
 }
 
-/// Finds the state inside the step s0 → s1 at which the watched quantity equals the value,
-/// by re-stepping from s0 with θh (regula falsi, Illinois variant): the located state is a
-/// true state of the method, not an interpolation.
+/// Finds the state inside the step s0 → s1 at which g (f0 = g(s0), f1 = g(s1) of opposite
+/// signs) vanishes, by re-stepping from s0 with θh (regula falsi, Illinois variant): the
+/// located state is a true state of the method, not an interpolation. Also returns the
+/// number of re-steps. A `guess` of θ in (0, 1) (from a continuous extension) is tried first.
 fn locate<S: LagrangeSystem + ?Sized, M: Stepper>(
     sys: &S,
     method: &M,
-    r: &Reach,
     (s0, f0): (&State, f64),
     (s1, f1): (&State, f64),
-    buf: &mut Vec<f64>,
-) -> Result<State> {
+    guess: Option<f64>,
+    mut g: impl FnMut(&State) -> Result<f64>,
+) -> Result<(State, usize)> {
     let h = s1.t - s0.t;
     if f1 == 0.0 {
-        return Ok(*s1);
+        return Ok((*s1, 0));
     }
+    let mut resteps = 0;
     let (mut a, mut fa, mut b, mut fb) = (0.0_f64, f0, 1.0_f64, f1);
     let mut best = *s1;
     let scale = f0.abs().max(f1.abs()).max(1e-300);
+    let mut guess = guess.filter(|c| *c > 0.0 && *c < 1.0);
     for _ in 0..100 {
-        let c = ((a * fb - b * fa) / (fb - fa)).clamp(a.min(b), a.max(b));
+        let chord = ((a * fb - b * fa) / (fb - fa)).clamp(a.min(b), a.max(b));
+        let c = guess.take().unwrap_or(chord);
         if c <= 0.0 {
             break;
         }
         let sc = method.step(sys, s0, c * h)?;
-        let fc = watched(sys, r.watch, &sc, buf)? - r.value;
+        resteps += 1;
+        let fc = g(&sc)?;
         best = sc;
         if fc.abs() <= 1e-14 * scale || (b - a).abs() * h <= 1e-15 * s0.t.abs().max(h) {
             break;
@@ -224,14 +290,64 @@ fn locate<S: LagrangeSystem + ?Sized, M: Stepper>(
         }
         (b, fb) = (c, fc);
     }
-    Ok(best)
+    Ok((best, resteps))
+}
+
+/// Sorted finite values, each once; an error names the first non-finite one.
+fn sorted_finite(name: &'static str, v: impl IntoIterator<Item = f64>) -> Result<Vec<f64>> {
+    let mut out = Vec::new();
+    for x in v {
+        finite(name, x)?;
+        out.push(x);
+    }
+    out.sort_by(f64::total_cmp);
+    out.dedup();
+    Ok(out)
+}
+
+/// The first node crossed strictly by a step from σ0 to σ1 (in the direction of motion),
+/// other than the node `skip` the step started on.
+fn first_crossed(nodes: &[f64], s0: f64, s1: f64, skip: Option<usize>) -> Option<usize> {
+    let crossed = |i: &usize| {
+        let l = nodes[*i];
+        Some(*i) != skip && ((s0 < l && l < s1) || (s1 < l && l < s0))
+    };
+    if s1 >= s0 {
+        (0..nodes.len()).find(crossed)
+    } else {
+        (0..nodes.len()).rev().find(crossed)
+    }
+}
+
+/// An error when one more row (other than the end's) would leave no row for the end.
+fn row_budget(len: usize, opts: &RunOptions, t: f64, t_tol: f64) -> Result<()> {
+    if len + 1 >= opts.max_rows && (opts.t_end - t) > t_tol {
+        return Err(Error::Budget {
+            what: "recorded row",
+            limit: opts.max_rows,
+            time: t,
+        });
+    }
+    Ok(())
 }
 
 /// Runs `sys` from `start` with `method` until a stop condition of `opts`.
 ///
+/// No step straddles a breakpoint: the run shortens the step that would cross one of the
+/// times in [`RunOptions::breakpoints`] or [`LagrangeSystem::breakpoints`] so that it ends
+/// exactly there, and when a step carries [`LagrangeSystem::kink_argument`] across a node of
+/// [`LagrangeSystem::kinks`] it locates the node inside the step (re-stepping from its start,
+/// regula falsi, to about 10⁻¹⁴ of the argument's change over the step) and takes the step
+/// again to end there (with error control for an adaptive method). A fixed-step method then
+/// finishes the grid step it was taking, so its grid t₀ + n·h stays. The states at
+/// [`RunOptions::times`] are recorded as that field says.
+///
 /// # Errors
 /// [`Error::NonPositive`]/[`Error::NonFinite`] for a bad step, final time, steady tolerance
-/// or hold, or record interval; [`Error::OutOfRange`] for a watched index that does not exist;
+/// or hold, or record interval; [`Error::NonFinite`] for a requested time, a breakpoint or a
+/// kink node that is not finite; [`Error::OutOfRange`] for a requested time outside
+/// [t_start, t_end] or a watched index that does not exist; [`Error::NonFiniteState`] when
+/// the kink argument is not finite;
 /// [`Error::Singular`] when a step is too short to advance the time
 /// (h below the rounding of t); [`Error::NonFiniteState`] naming the time when the motion
 /// diverges (or a recorded quantity overflows); [`Error::Budget`] naming the time reached
@@ -305,6 +421,38 @@ pub fn run<S: LagrangeSystem + ?Sized, M: Stepper>(
         positive("steady hold", st.hold)?;
     }
 
+    // Requested times: the start is recorded anyway.
+    let times = sorted_finite("requested time", opts.times.iter().copied())?;
+    if let Some(&t) = times.iter().find(|&&t| !(t >= start.t && t <= opts.t_end)) {
+        return Err(Error::OutOfRange {
+            name: "requested time",
+            value: t,
+            min: start.t,
+            max: opts.t_end,
+        });
+    }
+    let times: Vec<f64> = times.into_iter().filter(|&t| t > start.t).collect();
+    let breaks: Vec<f64> = sorted_finite(
+        "breakpoint",
+        opts.breakpoints.iter().copied().chain(sys.breakpoints()),
+    )?
+    .into_iter()
+    .filter(|&t| t > start.t && t < opts.t_end)
+    .collect();
+    let kinks = sorted_finite("kink", sys.kinks())?;
+    // The times a step must end on: the breakpoints, and the requested times for a method
+    // that cannot interpolate.
+    let dense_times = method.has_dense_output();
+    let stops = if dense_times {
+        breaks
+    } else {
+        sorted_finite(
+            "requested time",
+            breaks.into_iter().chain(times.iter().copied()),
+        )?
+    };
+    let adaptive = method.is_adaptive();
+
     let mut traj = Trajectory::for_system(sys);
     traj.push(sys, &start)?;
     let mut buf = Vec::with_capacity(n_out);
@@ -322,6 +470,20 @@ pub fn run<S: LagrangeSystem + ?Sized, M: Stepper>(
     let t_tol = 1e-12 * opts.t_end.abs().max(start.t.abs());
     // q̈ at `s` when the last step gave them (Dormand–Prince's last stage), for the next one.
     let mut acc_s: Option<Vector2<f64>> = None;
+    let kink_arg = |st: &State| -> Result<f64> {
+        let v = sys.kink_argument(st.t, &st.q, &st.qd)?;
+        if v.is_finite() {
+            Ok(v)
+        } else {
+            Err(Error::NonFiniteState { time: st.t })
+        }
+    };
+    let mut sigma = if kinks.is_empty() { 0.0 } else { kink_arg(&s)? };
+    // The kink node the last step landed on (the next step starts there: no crossing).
+    let mut on_kink: Option<usize> = None;
+    // The end of the grid step a fixed-step method was taking when a stop or a kink cut it.
+    let mut grid_end: Option<f64> = None;
+    let (mut i_stop, mut i_time, mut grid_steps) = (0usize, 0usize, 0usize);
 
     let finish = |traj: &mut Trajectory,
                   last: State,
@@ -369,9 +531,20 @@ pub fn run<S: LagrangeSystem + ?Sized, M: Stepper>(
                 time: s.t,
             });
         }
-        let clamped = h >= remaining;
-        let h_try = if clamped { remaining } else { h };
-        let adv = method.advance_from(sys, &s, h_try, acc_s)?;
+        while i_stop < stops.len() && stops[i_stop] <= s.t + t_tol {
+            i_stop += 1;
+        }
+        let stop = stops.get(i_stop).map_or(opts.t_end, |&t| t.min(opts.t_end));
+        let remaining = stop - s.t;
+        let goal = grid_end.take();
+        let h_want = goal.map_or(h, |g| g - s.t);
+        let clamped = h_want >= remaining;
+        let h_try = if clamped { remaining } else { h_want };
+        // A fixed-step method cut short by a stop goes on to the end of its grid step.
+        if clamped && !adaptive && h_want - remaining > t_tol {
+            grid_end = Some(goal.unwrap_or(s.t + h));
+        }
+        let (adv, mut dense) = method.advance_dense(sys, &s, h_try, acc_s)?;
         let mut s1 = adv.state;
         // A step too short to change t (h below the rounding of t) would repeat for ever.
         if s1.t <= s.t || s1.t.is_nan() {
@@ -381,46 +554,147 @@ pub fn run<S: LagrangeSystem + ?Sized, M: Stepper>(
                 value: s1.t - s.t,
             });
         }
-        acc_s = adv.end_acceleration;
-        if (opts.t_end - s1.t).abs() <= t_tol {
-            s1.t = opts.t_end;
-            acc_s = None; // they belong to the unsnapped time
-        }
-        if !clamped {
-            h = adv.h_next;
-        }
+        let mut acc1 = adv.end_acceleration;
         steps += 1;
         evaluations += adv.evaluations;
+        // The whole step asked for was taken: it ends on the stop or the grid point.
+        let full = s1.t == s.t + h_try;
+        let target = if clamped { Some(stop) } else { goal };
+        if let Some(t) = target.filter(|_| full) {
+            if s1.t != t {
+                s1.t = t;
+                acc1 = None; // they belong to the unsnapped time
+            }
+            if clamped && stop < opts.t_end {
+                acc1 = None; // a breakpoint: the forces after it may differ
+            }
+        }
+        if (opts.t_end - s1.t).abs() <= t_tol && s1.t != opts.t_end {
+            s1.t = opts.t_end;
+            acc1 = None;
+        }
+        if let Some(d) = dense.as_mut() {
+            d.set_end(s1.t);
+        }
+        // The method's proposal, unless the run shortened the step.
+        let mut h_next = (!(target.is_some() && full)).then_some(adv.h_next);
 
+        // A node of the kinks crossed inside the step: step again, exactly onto it.
+        let mut landed = None;
+        if !kinks.is_empty() {
+            let sigma1 = kink_arg(&s1)?;
+            if let Some(i) = first_crossed(&kinks, sigma, sigma1, on_kink) {
+                let node = kinks[i];
+                // A first guess from the continuous extension (no evaluation), by bisection.
+                let guess = match &dense {
+                    Some(d) => {
+                        let (mut lo, mut hi) = (0.0_f64, 1.0_f64);
+                        let below = sigma < node;
+                        for _ in 0..60 {
+                            let mid = 0.5 * (lo + hi);
+                            let st = d.at(s.t + mid * (s1.t - s.t))?;
+                            if (kink_arg(&st)? < node) == below {
+                                lo = mid;
+                            } else {
+                                hi = mid;
+                            }
+                        }
+                        Some(0.5 * (lo + hi))
+                    }
+                    None => None,
+                };
+                let (hit, resteps) = locate(
+                    sys,
+                    method,
+                    (&s, sigma - node),
+                    (&s1, sigma1 - node),
+                    guess,
+                    |st| Ok(kink_arg(st)? - node),
+                )?;
+                evaluations += resteps * method.evaluations_per_step();
+                let hk = hit.t - s.t;
+                if hk > t_tol && hit.t < s1.t {
+                    let (adv2, dense2) = method.advance_dense(sys, &s, hk, acc_s)?;
+                    evaluations += adv2.evaluations;
+                    if !adaptive && grid_end.is_none() {
+                        grid_end = Some(s1.t);
+                    }
+                    s1 = adv2.state;
+                    dense = dense2;
+                    acc1 = adv2.end_acceleration;
+                    if s1.t == s.t + hk {
+                        landed = Some(i);
+                        h_next = None;
+                    } else {
+                        h_next = Some(adv2.h_next);
+                    }
+                } else {
+                    landed = Some(i);
+                }
+            }
+        }
+        on_kink = landed;
+        if let Some(hn) = h_next {
+            h = hn;
+        }
+        if !kinks.is_empty() {
+            sigma = kink_arg(&s1)?;
+        }
+
+        let mut hit = None;
         if let Some(r) = &opts.reach {
             let g1 = watched(sys, r.watch, &s1, &mut buf)? - r.value;
             if crosses(r.direction, g_prev, g1) {
-                let hit = locate(sys, method, r, (&s, g_prev), (&s1, g1), &mut buf)?;
-                return finish(
-                    &mut traj,
-                    hit,
-                    false,
-                    Outcome::Reached { t: hit.t },
-                    steps,
-                    evaluations,
-                );
+                let (located, _) = locate(sys, method, (&s, g_prev), (&s1, g1), None, |st| {
+                    Ok(watched(sys, r.watch, st, &mut buf)? - r.value)
+                })?;
+                hit = Some(located);
             }
             g_prev = g1;
         }
 
-        let mut recorded = false;
-        if steps % opts.record_every == 0 {
-            // One row stays free for the end.
-            if traj.len() + 1 >= opts.max_rows && (opts.t_end - s1.t) > t_tol {
-                return Err(Error::Budget {
-                    what: "recorded row",
-                    limit: opts.max_rows,
-                    time: s1.t,
-                });
+        // The requested times inside the step (up to a located stop).
+        let t_lim = hit.map_or(s1.t, |x| x.t);
+        let mut at_end = false;
+        while i_time < times.len() && times[i_time] <= t_lim {
+            let tau = times[i_time];
+            i_time += 1;
+            if tau == s1.t {
+                at_end = true;
+                continue;
             }
+            if hit.is_some_and(|x| x.t == tau) {
+                continue; // the located stop is the last row anyway
+            }
+            let st = match &dense {
+                Some(d) => d.at(tau)?,
+                // A method without an extension steps onto each requested time; should one
+                // fall inside a step all the same, one step from its start gives it.
+                None => State {
+                    t: tau,
+                    ..method.step(sys, &s, tau - s.t)?
+                },
+            };
+            row_budget(traj.len(), opts, tau, t_tol)?;
+            traj.push(sys, &st)?;
+        }
+        if let Some(located) = hit {
+            let outcome = Outcome::Reached { t: located.t };
+            return finish(&mut traj, located, false, outcome, steps, evaluations);
+        }
+
+        // Steps cut short on the grid of a fixed-step method count once, with their rest.
+        if grid_end.is_none() {
+            grid_steps += 1;
+        }
+        let mut recorded = false;
+        if at_end || (grid_end.is_none() && grid_steps % opts.record_every == 0) {
+            // One row stays free for the end.
+            row_budget(traj.len(), opts, s1.t, t_tol)?;
             traj.push(sys, &s1)?;
             recorded = true;
         }
+        acc_s = acc1;
 
         if let Some(st) = &opts.steady {
             let acc = match acc_s {

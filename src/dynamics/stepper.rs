@@ -2,6 +2,7 @@
 
 use nalgebra::{Vector2, Vector4};
 
+use super::dopri::DenseOutput;
 use super::system::{accelerations, LagrangeSystem, State};
 use crate::error::{positive, Error, Result};
 
@@ -64,7 +65,9 @@ pub struct Advance {
 /// An integrator of Lagrange's equations.
 ///
 /// Fixed-step methods implement [`step`](Self::step) only; an adaptive method also overrides
-/// [`advance`](Self::advance), which chooses the step size from a requested accuracy.
+/// [`advance`](Self::advance), which chooses the step size from a requested accuracy, and
+/// [`is_adaptive`](Self::is_adaptive); a method with a continuous extension overrides
+/// [`advance_dense`](Self::advance_dense) and [`has_dense_output`](Self::has_dense_output).
 pub trait Stepper {
     /// A short name, for tables and charts.
     fn name(&self) -> &'static str;
@@ -113,5 +116,66 @@ pub trait Stepper {
     ) -> Result<Advance> {
         let _ = start_acceleration;
         self.advance(sys, s, h)
+    }
+
+    /// `true` for a method that chooses its own step sizes (its [`Advance::h_next`] is a
+    /// proposal); `false` (the default) for a fixed-step method. [`run`](super::run) keeps a
+    /// fixed-step method on its grid t₀ + n·h: a step cut short at a breakpoint is followed by
+    /// the rest of it.
+    ///
+    /// # Examples
+    /// ```
+    /// use tmm::dynamics::{Dopri5, Rk4, Stepper};
+    /// assert!(Dopri5::new(1e-8).unwrap().is_adaptive() && !Rk4.is_adaptive());
+    /// ```
+    fn is_adaptive(&self) -> bool {
+        false
+    }
+
+    /// `true` when [`advance_dense`](Self::advance_dense) gives the step's continuous
+    /// extension; `false` (the default) otherwise. [`run`](super::run) records requested
+    /// times by the extension when there is one, and steps onto them when there is not.
+    ///
+    /// # Examples
+    /// ```
+    /// use tmm::dynamics::{Dopri5, FiniteIncrement, Stepper};
+    /// assert!(Dopri5::new(1e-8).unwrap().has_dense_output());
+    /// assert!(!FiniteIncrement.has_dense_output());
+    /// ```
+    fn has_dense_output(&self) -> bool {
+        false
+    }
+
+    /// As [`advance_from`](Self::advance_from), with the step's continuous extension when
+    /// the method has one (the default has none: `None`).
+    ///
+    /// # Examples
+    /// ```
+    /// use nalgebra::{Matrix2, Vector2};
+    /// use tmm::dynamics::{LagrangeSystem, Rk4, State, Stepper};
+    /// struct Free;
+    /// impl LagrangeSystem for Free {
+    ///     fn inertia(&self, _: &Vector2<f64>) -> tmm::Result<Matrix2<f64>> {
+    ///         Ok(Matrix2::identity())
+    ///     }
+    ///     fn forces(&self, _: f64, _: &Vector2<f64>, _: &Vector2<f64>) -> tmm::Result<Vector2<f64>> {
+    ///         Ok(Vector2::zeros())
+    ///     }
+    /// }
+    /// let s = State::new(0.0, Vector2::zeros(), Vector2::new(1.0, 0.0));
+    /// let (adv, dense) = Rk4.advance_dense(&Free, &s, 0.5, None).unwrap();
+    /// assert!(dense.is_none() && adv.state.q[0] == 0.5);
+    /// ```
+    ///
+    /// # Errors
+    /// As [`step`](Self::step).
+    fn advance_dense<S: LagrangeSystem + ?Sized>(
+        &self,
+        sys: &S,
+        s: &State,
+        h: f64,
+        start_acceleration: Option<Vector2<f64>>,
+    ) -> Result<(Advance, Option<DenseOutput>)> {
+        Ok((self.advance_from(sys, s, h, start_acceleration)?, None))
     }
 }

@@ -156,6 +156,69 @@ pub trait LagrangeSystem {
         Vec::new()
     }
 
+    /// Times at which the forces are not smooth (the nodes of a load tabulated in time), s.
+    /// [`run`](super::run) steps exactly onto them, as onto
+    /// [`RunOptions::breakpoints`](super::RunOptions::breakpoints), so that a kink (a change
+    /// of slope) costs no order. A jump is only softened: the stages at the breakpoint see the
+    /// one value the system gives there, which is the wrong side's for one of the two steps
+    /// that meet there. Default: none.
+    ///
+    /// # Examples
+    /// ```
+    /// use nalgebra::{Matrix2, Vector2};
+    /// use tmm::dynamics::LagrangeSystem;
+    /// struct Kicked;
+    /// impl LagrangeSystem for Kicked {
+    ///     fn inertia(&self, _: &Vector2<f64>) -> tmm::Result<Matrix2<f64>> {
+    ///         Ok(Matrix2::identity())
+    ///     }
+    ///     fn forces(&self, t: f64, _: &Vector2<f64>, _: &Vector2<f64>) -> tmm::Result<Vector2<f64>> {
+    ///         Ok(Vector2::new(if t < 0.5 { 0.0 } else { 1.0 }, 0.0))
+    ///     }
+    ///     fn breakpoints(&self) -> Vec<f64> {
+    ///         vec![0.5]
+    ///     }
+    /// }
+    /// assert_eq!(Kicked.breakpoints(), [0.5]);
+    /// ```
+    fn breakpoints(&self) -> Vec<f64> {
+        Vec::new()
+    }
+
+    /// The values of [`kink_argument`](Self::kink_argument) at which the forces are not
+    /// smooth: the nodes of a load tabulated against the state (the landing gear's moment
+    /// table against φ_H). [`run`](super::run) locates the state at which the argument
+    /// reaches a node inside a step and steps exactly onto it. Default: none.
+    ///
+    /// # Examples
+    /// ```
+    /// use tmm::dynamics::{machines::LandingGear, LagrangeSystem};
+    /// let g = LandingGear::default();
+    /// assert_eq!(g.kinks(), g.load.xs());
+    /// ```
+    fn kinks(&self) -> Vec<f64> {
+        Vec::new()
+    }
+
+    /// The scalar of the state whose [`kinks`](Self::kinks) are the nodes (for the landing
+    /// gear the carrier angle φ_H). Default: 0 (a machine without kinks never needs it).
+    ///
+    /// # Examples
+    /// ```
+    /// use nalgebra::Vector2;
+    /// use tmm::dynamics::{machines::LandingGear, LagrangeSystem};
+    /// let g = LandingGear::default();
+    /// let q = Vector2::new(9.0, 27.0);
+    /// assert_eq!(g.kink_argument(0.0, &q, &Vector2::zeros()).unwrap(), g.phi_h(&q).unwrap());
+    /// ```
+    ///
+    /// # Errors
+    /// When the machine cannot be evaluated at this state.
+    fn kink_argument(&self, t: f64, q: &Vector2<f64>, qd: &Vector2<f64>) -> Result<f64> {
+        let _ = (t, q, qd);
+        Ok(0.0)
+    }
+
     /// Extra outputs at a state, appended to `out` in the order of
     /// [`output_names`](Self::output_names).
     ///

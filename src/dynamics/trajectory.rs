@@ -10,7 +10,9 @@ use crate::error::{Error, Result};
 ///
 /// The columns are private and grow only through [`push`](Self::push), which appends a whole
 /// row of finite numbers or nothing: every column has [`len`](Self::len) entries, and no
-/// recorded number is NaN or infinite. Read them through the accessors.
+/// recorded number is NaN or infinite. Read them through the accessors. Which rows a
+/// [`run`](super::run) records (the start, step ends, requested times, the end) is said at
+/// [`RunOptions`](super::RunOptions#what-is-recorded).
 #[derive(Debug, Clone, PartialEq, Default)]
 pub struct Trajectory {
     coordinate_names: [&'static str; 2],

@@ -287,6 +287,16 @@ impl LagrangeSystem for LandingGear {
         Ok(self.loads(q, qd)?.4)
     }
 
+    /// The nodes of the moment table [`load`](Self::load): M_on(φ_H) has a kink at each.
+    fn kinks(&self) -> Vec<f64> {
+        self.load.xs().to_vec()
+    }
+
+    /// The carrier angle φ_H, the argument of the moment table.
+    fn kink_argument(&self, _t: f64, q: &Vector2<f64>, _qd: &Vector2<f64>) -> Result<f64> {
+        self.phi_h(q)
+    }
+
     fn output_names(&self) -> Vec<&'static str> {
         vec![
             "phi_H", "omega_1", "omega_2", "omega_H", "omega_3", "omega_5", "omega_6", "M_p1",
