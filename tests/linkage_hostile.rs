@@ -6,8 +6,12 @@
 //! Entry points: `Plan::new`, `Linkage::from_json`, `Plan::analyse`, `Plan::kinematics`,
 //! `Analysis::power_check`, `worst_residual`, every reaction, joint and point accessor,
 //! `Plan::output`, `Plan::transfer`, `Plan::extremes`, `Plan::strokes`,
-//! `Plan::lock_positions`, `uniform_inputs`, `Table::to_text`; on every bundled linkage and
-//! on every ready mechanism's description. `TMM_HOSTILE_CASES` cases per sweep (default 200).
+//! `Plan::lock_positions`, `uniform_inputs`, `Table::to_text`, `Analysis::transmission_angle`,
+//! `Plan::min_transmission_angle`, `kinematics::grashof`; `linkage::dynamics::LinkageSystem`
+//! (`from_linkage`, `with_motor`, `with_inertia`, `with_damper`, `terms`, `inverse_dynamics`,
+//! `reduced`, `flywheel`); `draw::{scheme, forces, animation, plan_view, diagram}` and
+//! `Course::new` with hostile inputs and styles; on every bundled linkage and on every ready
+//! mechanism's description. `TMM_HOSTILE_CASES` cases per sweep (default 200).
 
 use std::panic::{catch_unwind, AssertUnwindSafe};
 use tmm::kinematics::{Motion, Rotation};
@@ -214,6 +218,7 @@ fn hostile_outputs_cycles_and_tables() {
     }
 }
 
+#[cfg(feature = "serde")]
 #[test]
 fn malformed_files_are_errors() {
     let text = include_str!("../linkages/watt-six-bar.json");
@@ -246,4 +251,122 @@ fn malformed_files_are_errors() {
         Linkage::from_json(&huge).is_err()
             || Plan::new(&Linkage::from_json(&huge).unwrap()).is_err()
     );
+}
+
+// ---- the rest of the linkage API: dynamics of a linkage, pictures, Grashof ------------
+
+use nalgebra::Vector2;
+#[cfg(feature = "draw")]
+use tmm::draw::{self, Course, Diagram, Style};
+use tmm::kinematics::grashof;
+use tmm::linkage::dynamics::{Damper, LinkageSystem, Motor};
+
+#[test]
+fn hostile_dynamics_of_linkages() {
+    let mut g = Gen::new(53);
+    for l in linkages() {
+        let Ok(sys) = LinkageSystem::from_linkage(&l) else {
+            continue;
+        };
+        for case in 0..cases() / 4 {
+            let (q, qd, qdd) = (g.v(), g.v(), g.v());
+            let what = format!("{} case {case}: q {q:?} q' {qd:?} q'' {qdd:?}", l.name);
+            no_panic(&what, || {
+                if let Ok(t) = sys.terms(&q, &qd) {
+                    assert!(!has_non_finite(&format!("{t:?}")), "{what}: {t:?}");
+                }
+                if let Ok(m) = sys.inverse_dynamics(&q, &qd, &qdd) {
+                    assert!(m.iter().all(|x| x.is_finite()), "{what}: {m:?}");
+                }
+                if let Ok(r) = sys.reduced(q.x, qd.x) {
+                    assert!(!has_non_finite(&format!("{r:?}")), "{what}: {r:?}");
+                }
+            });
+            let (x, y) = (g.f(), g.f());
+            let n = (g.next() % 40) as usize;
+            no_panic(&what, || {
+                if let Ok(f) = sys.flywheel(x, y, n) {
+                    assert!(!has_non_finite(&format!("{f:?}")), "{what}: {f:?}");
+                }
+                let with = sys
+                    .clone()
+                    .with_motor(0, Motor::Constant(x))
+                    .and_then(|s| s.with_inertia(0, y))
+                    .and_then(|s| {
+                        s.with_damper(&Damper::Link {
+                            link: "crank".into(),
+                            c: x,
+                        })
+                    });
+                if let Ok(s) = with {
+                    if let Ok(t) = s.terms(&Vector2::new(0.3, 0.0), &Vector2::new(y, 0.0)) {
+                        assert!(!has_non_finite(&format!("{t:?}")), "{what}: {t:?}");
+                    }
+                }
+            });
+        }
+    }
+}
+
+#[cfg(feature = "draw")]
+#[test]
+fn hostile_pictures() {
+    let mut g = Gen::new(59);
+    for l in bundled::all() {
+        let plan = Plan::new(&l).unwrap();
+        for case in 0..cases() / 10 {
+            let input = g.motion();
+            let mut style = Style::default();
+            match g.next() % 4 {
+                0 => style.margin = g.f(),
+                1 => style.line_width = g.f(),
+                2 => style.hinge_radius = g.f(),
+                _ => style.width = (g.next() % 5000) as u32,
+            }
+            let what = format!("{} case {case}: {input:?} {style:?}", l.name);
+            no_panic(&what, || {
+                let _ = draw::scheme(&plan, input, &style);
+                let _ = draw::forces(&plan, input, &style);
+                let _ = draw::animation(&plan, &[input, g.motion()], g.f(), &style);
+                let course = Course {
+                    inputs: vec![input, g.motion()],
+                    extremes: vec![g.motion()],
+                };
+                let _ = draw::plan_view(&plan, &course, &["B", "nowhere"], &style);
+                let _ = draw::diagram(&plan, &course, &Diagram::Balance, &style);
+                let _ = Course::new(&plan, l.output.as_ref(), (g.next() % 30) as usize, g.f());
+            });
+        }
+    }
+}
+
+#[test]
+fn hostile_grashof_and_transmission_angles() {
+    let mut g = Gen::new(61);
+    for case in 0..cases() * 10 {
+        let (a, b, c, d) = (g.len(), g.len(), g.len(), g.len());
+        no_panic(&format!("grashof case {case}"), || {
+            let _ = grashof(a, b, c, d);
+        });
+    }
+    for l in linkages() {
+        let plan = Plan::new(&l).unwrap();
+        for k in [0, 1, 2, usize::MAX] {
+            let what = format!("{} group {k}", l.name);
+            no_panic(&what, || {
+                if let Ok((mu, at)) = plan.min_transmission_angle(k) {
+                    assert!(
+                        (0.0..=std::f64::consts::FRAC_PI_2).contains(&mu),
+                        "{what}: {mu}"
+                    );
+                    assert!(at.is_finite(), "{what}");
+                }
+                if let Ok(a) = plan.kinematics(Motion::fixed(plan.reference_input())) {
+                    if let Ok(mu) = a.transmission_angle(k) {
+                        assert!(mu.is_finite(), "{what}");
+                    }
+                }
+            });
+        }
+    }
 }
