@@ -478,7 +478,7 @@ fn flywheel_gives_the_required_delta() {
     println!("{}", report.join("\n"));
 }
 
-/// From rest under an induction motor the four-bar settles: turn after turn the mean speed
+/// From rest under an induction motor the Watt six-bar settles: turn after turn the mean speed
 /// grows towards a steady value below the motor's no-load speed, reached within the budget.
 #[test]
 fn run_up_reaches_a_steady_state_within_its_budget() {

@@ -39,7 +39,9 @@ pub struct RunUpOptions {
     /// The longest one turn may take, s: a machine that stalls or turns back fails with an
     /// error, not a run without end.
     pub max_turn_time: f64,
-    /// Record every n-th step of each turn (the turn's ends always).
+    /// Record every n-th step of each turn (the turn's ends always). A turn's ω_max and ω_min
+    /// (and so δ) are read off the recorded steps, refined by a parabola through the peak and
+    /// its neighbours: thinning the record coarsens them, so keep 1 where δ matters.
     pub record_every: usize,
 }
 
@@ -192,7 +194,14 @@ impl LinkageSystem {
     /// # Ok::<(), tmm::Error>(())
     /// ```
     pub fn reduced_cycle(&self, n: usize, omega: f64) -> Result<Vec<Reduced>> {
-        positive("number of positions", n as f64)?;
+        if !(1..=crate::kinematics::MAX_POSITIONS).contains(&n) {
+            return Err(Error::OutOfRange {
+                name: "number of positions",
+                value: n as f64,
+                min: 1.0,
+                max: crate::kinematics::MAX_POSITIONS as f64,
+            });
+        }
         positive("|omega|", finite("omega", omega)?.abs())?;
         let phi0 = self.plan().reference_input();
         let step = omega.signum() * TAU / n as f64;
@@ -272,13 +281,26 @@ impl LinkageSystem {
         let omega_mean = TAU / period;
         let omega_max = extreme(tr.t(), &speed, true);
         let omega_min = extreme(tr.t(), &speed, false);
+        if !(omega_min >= 0.0) {
+            // The crank turned back within a turn it completed: δ, a fluctuation about a mean
+            // speed, has no meaning there (a turn from rest starts at ω = 0, and has δ = 2).
+            return Err(Error::Singular {
+                what: "run-up",
+                measure: "the least crank speed within a turn (it turns back)",
+                value: omega_min,
+            });
+        }
+        let delta = crate::error::computed(
+            "coefficient of speed fluctuation",
+            2.0 * (omega_max - omega_min) / (omega_max + omega_min),
+        )?;
         let turn = Turn {
             t_start: start.t,
             period,
             omega_mean,
             omega_max,
             omega_min,
-            delta: 2.0 * (omega_max - omega_min) / (omega_max + omega_min),
+            delta,
             direction,
         };
         Ok((turn, r))
