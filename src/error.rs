@@ -248,6 +248,21 @@ pub(crate) fn length(name: &'static str, v: nalgebra::Vector2<f64>) -> Result<f6
     positive(name, l)
 }
 
+/// The unit vector of a direction given by any finite non-zero vector: scaled by its larger
+/// component first, so that neither a huge nor a tiny (but non-zero) vector overflows or
+/// underflows on the way. [`Error::NonFinite`] or [`Error::NonPositive`] (its length) else.
+pub(crate) fn unit_direction(
+    name: &'static str,
+    v: nalgebra::Vector2<f64>,
+) -> Result<nalgebra::Vector2<f64>> {
+    finite(name, v.x)?;
+    finite(name, v.y)?;
+    let m = v.x.abs().max(v.y.abs());
+    positive(name, m)?;
+    let w = v / m;
+    Ok(w / w.norm())
+}
+
 /// Checks that both components of a point or vector are finite.
 pub(crate) fn finite2(
     names: [&'static str; 2],

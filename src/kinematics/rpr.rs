@@ -11,6 +11,10 @@ use crate::error::{computed_all, Result};
 use nalgebra::Vector2;
 use std::f64::consts::PI;
 
+/// A and E count as one point when closer than this many units of the larger coordinate:
+/// the rounding of the points themselves (the reactions' RPR uses 8ε on its scale).
+const SAME_POINT: f64 = 16.0 * f64::EPSILON;
+
 /// The solved RPR dyad. The rod and the cylinder turn together (same ω, ε).
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
@@ -74,7 +78,8 @@ impl RprState {
 ///
 /// # Errors
 /// Non-finite input ([`Error::NonFinite`](crate::Error::NonFinite)), or
-/// [`Error::Singular`](crate::Error::Singular) with `measure = "l_EA"` when A coincides with E.
+/// [`Error::Singular`](crate::Error::Singular) with `measure = "l_EA"` when A coincides with E
+/// (closer than 16ε of their coordinates' size, where the axis's direction is rounding noise).
 #[doc(alias = "SR3")]
 #[inline]
 pub fn rpr_dyad(a: PointMotion, e: PointMotion) -> Result<RprState> {
@@ -105,7 +110,10 @@ fn rpr_fast(a: PointMotion, e: PointMotion) -> Option<RprState> {
     let ok = super::rrr::all_finite([
         a.p.x, a.p.y, a.v.x, a.v.y, a.a.x, a.a.y, e.p.x, e.p.y, e.v.x, e.v.y, e.a.x, e.a.y, l_sq,
         dv.x, dv.y, da.x, da.y, i_l, l_rate, omega, l_accel, epsilon,
-    ]) & (l_sq >= f64::MIN_POSITIVE);
+    ]) & (l_sq >= f64::MIN_POSITIVE)
+        // Twice the checked path's band of rounding (see `SAME_POINT`), so that nothing near
+        // it is decided here.
+        & (l_sq > 4.0 * SAME_POINT * SAME_POINT * a.p.coords.norm_squared().max(e.p.coords.norm_squared()));
     ok.then(|| RprState {
         link2: LinkMotion {
             origin: a,
@@ -134,6 +142,16 @@ fn rpr_checked(a: PointMotion, e: PointMotion) -> Result<RprState> {
         "RPR dyad: A - E",
         ac.iter().chain(vac.iter()).chain(aac.iter()),
     )?;
+    // A and E closer than their coordinates' rounding: the axis's direction is noise, and
+    // ω = v⊥/l_EA would be ~1e16 times too large. Singular, as the reactions say too.
+    let scale = a.p.coords.norm().max(e.p.coords.norm());
+    if ac.norm() <= SAME_POINT * scale {
+        return Err(crate::Error::Singular {
+            what: "RPR dyad",
+            measure: "l_EA",
+            value: ac.norm(),
+        });
+    }
     // The loop E → A → E: (A − E) + l_EA·e(φ2) = 0, φ2 the direction of A→E.
     let loop_ = [
         LoopVector::Cartesian {

@@ -19,7 +19,7 @@
 
 use super::conditioning::{ensure_finite, Conditioning};
 use crate::angle::{cross, perp};
-use crate::error::{finite2, positive, Result};
+use crate::error::{finite2, Result};
 use crate::Load;
 use nalgebra::{Point2, Vector2};
 
@@ -116,8 +116,8 @@ impl PrpDyad {
     #[must_use = "the reactions are the result"]
     pub fn solve(&self) -> Result<PrpReactions> {
         self.validate()?;
-        let u2 = self.guide2 / positive("|guide2|", self.guide2.norm())?;
-        let u3 = self.guide3 / positive("|guide3|", self.guide3.norm())?;
+        let u2 = crate::error::unit_direction("|guide2|", self.guide2)?;
+        let u3 = crate::error::unit_direction("|guide3|", self.guide3)?;
         let (n2, n3) = (perp(u2), perp(u3));
         let det = cross(u2, u3);
         let conditioning = Conditioning::of(WHAT, MEASURE, det, 1.0)?;

@@ -21,7 +21,7 @@
 
 use super::conditioning::{ensure_finite, Conditioning};
 use crate::angle::{cross, perp};
-use crate::error::{finite2, positive, Result};
+use crate::error::{finite2, Result};
 use crate::Load;
 use nalgebra::{Point2, Vector2};
 
@@ -123,8 +123,8 @@ impl RppDyad {
     #[must_use = "the reactions are the result"]
     pub fn solve(&self) -> Result<RppReactions> {
         self.validate()?;
-        let u = self.guide / positive("|guide|", self.guide.norm())?;
-        let v = self.slot / positive("|slot|", self.slot.norm())?;
+        let u = crate::error::unit_direction("|guide|", self.guide)?;
+        let v = crate::error::unit_direction("|slot|", self.slot)?;
         let (nu, nv) = (perp(u), perp(v));
         let det = cross(u, v);
         let conditioning = Conditioning::of(WHAT, MEASURE, det, 1.0)?;
