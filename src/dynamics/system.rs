@@ -315,6 +315,12 @@ pub(crate) fn checked_inertia(
     let det = a[(0, 0)] * a[(1, 1)] - a12 * a12;
     // Relative test: a determinant that is rounding noise of the products counts as zero.
     let scale = (a[(0, 0)] * a[(1, 1)]).abs().max(a12 * a12);
+    if a.iter().all(|x| x.is_finite()) && !scale.is_finite() {
+        // Finite entries whose products overflow: too large for f64, not indefinite.
+        return Err(crate::Error::Overflow {
+            what: "the inertia matrix's determinant",
+        });
+    }
     if !(a[(0, 0)] > 0.0 && a[(1, 1)] > 0.0 && det > 1e-14 * scale && det.is_finite()) {
         return Err(not_positive_definite(t, q, det));
     }

@@ -281,7 +281,7 @@ impl LinkageSystem {
         let omega_mean = TAU / period;
         let omega_max = extreme(tr.t(), &speed, true);
         let omega_min = extreme(tr.t(), &speed, false);
-        if !(omega_min >= 0.0) {
+        if omega_min.is_nan() || omega_min < 0.0 {
             // The crank turned back within a turn it completed: δ, a fluctuation about a mean
             // speed, has no meaning there (a turn from rest starts at ω = 0, and has δ = 2).
             return Err(Error::Singular {
