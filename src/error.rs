@@ -35,16 +35,21 @@ pub enum Error {
 
     /// An input lies outside the range in which it has a meaning (for example a pressure angle
     /// of 90° or more, or a table lookup outside the table).
-    #[error("{name} {}", outside(*.value, *.min, *.max))]
+    ///
+    /// The message writes the interval as it is checked: `[0, π/2)` for a pressure angle,
+    /// `[2, ∞)` for a table's length, "must be 2" when only one value is admissible.
+    #[error("{name} {}", outside(*.value, *.min, *.max, *.ends))]
     OutOfRange {
         /// The input's name.
         name: &'static str,
         /// The offending value.
         value: f64,
-        /// The smallest admissible value.
+        /// The lower end of the admissible interval.
         min: f64,
-        /// The largest admissible value.
+        /// The upper end of the admissible interval.
         max: f64,
+        /// Which ends belong to the interval.
+        ends: Ends,
     },
 
     /// A closed form would divide by a quantity that vanishes here: the configuration is
@@ -135,6 +140,20 @@ pub enum Error {
     },
 }
 
+/// Which ends of an [`Error::OutOfRange`] interval are admissible values themselves. An infinite
+/// end is never admissible, whatever this says.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Ends {
+    /// `[min, max]`: both ends are admissible.
+    Closed,
+    /// `[min, max)`: the upper end is not (a pressure angle below π/2).
+    OpenAbove,
+    /// `(min, max]`: the lower end is not.
+    OpenBelow,
+    /// `(min, max)`: neither end is (a coefficient of speed fluctuation in (0, 2)).
+    Open,
+}
+
 /// `x` with `digits` significant digits for a message: plain notation from 10⁻³ up to 10⁶
 /// (`0.267`, `1500`), scientific outside it (`2.67e-9`), trailing zeros dropped.
 fn sig_digits(x: f64, digits: i32) -> String {
@@ -170,18 +189,29 @@ fn sig(x: f64) -> String {
     sig_digits(x, 4)
 }
 
-/// "= value lies outside [min, max]", with as many digits as it takes to tell the value from
-/// the bound it crossed (a value just past a bound would otherwise print equal to it).
-fn outside(value: f64, min: f64, max: f64) -> String {
+/// "= value lies outside [min, max)", the interval written as it is checked, with as many
+/// digits as it takes to tell the value from the bound it crossed (a value just past a bound
+/// would otherwise print equal to it); "must be min, got value" when min = max.
+fn outside(value: f64, min: f64, max: f64, ends: Ends) -> String {
     let mut digits = 4;
     loop {
-        let (v, lo, hi) = (
-            sig_digits(value, digits),
-            sig_digits(min, digits),
-            sig_digits(max, digits),
-        );
+        let end = |x: f64| match x {
+            f64::INFINITY => "∞".to_string(),
+            f64::NEG_INFINITY => "−∞".to_string(),
+            x => sig_digits(x, digits),
+        };
+        let (v, lo, hi) = (sig_digits(value, digits), end(min), end(max));
+        if min == max && ends == Ends::Closed {
+            return format!("must be {lo}, got {v}");
+        }
         if (v != lo && v != hi) || digits >= 17 {
-            return format!("= {v} lies outside [{lo}, {hi}]");
+            let open_below = matches!(ends, Ends::OpenBelow | Ends::Open) || min.is_infinite();
+            let open_above = matches!(ends, Ends::OpenAbove | Ends::Open) || max.is_infinite();
+            let (l, r) = (
+                if open_below { '(' } else { '[' },
+                if open_above { ')' } else { ']' },
+            );
+            return format!("= {v} lies outside {l}{lo}, {hi}{r}");
         }
         digits += 1;
     }
@@ -343,11 +373,36 @@ mod tests {
             value: std::f64::consts::FRAC_PI_2 + 1e-9,
             min: 0.0,
             max: std::f64::consts::FRAC_PI_2,
+            ends: Ends::OpenAbove,
         };
         assert_eq!(
             e.to_string(),
-            "alpha_w = 1.570796328 lies outside [0, 1.570796327]"
+            "alpha_w = 1.570796328 lies outside [0, 1.570796327)"
         );
+        // The interval as it is checked: open ends, infinite ends, a single admissible value.
+        let range = |value, min, max, ends| {
+            Error::OutOfRange {
+                name: "x",
+                value,
+                min,
+                max,
+                ends,
+            }
+            .to_string()
+        };
+        assert_eq!(
+            range(2.5, 0.0, 2.0, Ends::Open),
+            "x = 2.5 lies outside (0, 2)"
+        );
+        assert_eq!(
+            range(-1.0, 0.0, 2.0, Ends::OpenBelow),
+            "x = -1 lies outside (0, 2]"
+        );
+        assert_eq!(
+            range(1.0, 2.0, f64::INFINITY, Ends::Closed),
+            "x = 1 lies outside [2, ∞)"
+        );
+        assert_eq!(range(3.0, 2.0, 2.0, Ends::Closed), "x must be 2, got 3");
         for (x, s) in [
             (0.0, "0"),
             (1500.0, "1500"),

@@ -72,7 +72,7 @@ pub mod linkage;
 pub mod load;
 pub mod mechanism;
 
-pub use error::{Error, Result};
+pub use error::{Ends, Error, Result};
 pub use load::Load;
 
 /// The linear algebra crate whose types appear in every signature of `tmm` (`Point2`,

@@ -106,6 +106,7 @@ pub(crate) fn check_count(name: &'static str, n: usize) -> Result<()> {
             value: n as f64,
             min: 1.0,
             max: MAX_FRAMES as f64,
+            ends: crate::Ends::Closed,
         });
     }
     Ok(())

@@ -159,6 +159,7 @@ impl DenseOutput {
                 value: t,
                 min: self.t0,
                 max: self.t1,
+                ends: crate::Ends::Closed,
             });
         }
         if t == self.t0 {
@@ -258,6 +259,7 @@ impl Dopri5 {
                     value: v,
                     min: 0.0,
                     max: f64::INFINITY,
+                    ends: crate::Ends::Closed,
                 });
             }
         }

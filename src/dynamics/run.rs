@@ -236,6 +236,7 @@ fn watched<S: LagrangeSystem + ?Sized>(
                 value: i as f64,
                 min: 0.0,
                 max: buf.len() as f64 - 1.0,
+                ends: crate::Ends::Closed,
             })?
         }
     })
@@ -393,7 +394,8 @@ pub fn run<S: LagrangeSystem + ?Sized, M: Stepper>(
             name: "max_rows",
             value: opts.max_rows as f64,
             min: 2.0,
-            max: usize::MAX as f64,
+            max: f64::INFINITY,
+            ends: crate::Ends::Closed,
         });
     }
     if !start.is_finite() {
@@ -412,6 +414,7 @@ pub fn run<S: LagrangeSystem + ?Sized, M: Stepper>(
                 value: i as f64,
                 min: 0.0,
                 max: n as f64 - 1.0,
+                ends: crate::Ends::Closed,
             });
         }
     }
@@ -429,6 +432,7 @@ pub fn run<S: LagrangeSystem + ?Sized, M: Stepper>(
             value: t,
             min: start.t,
             max: opts.t_end,
+            ends: crate::Ends::Closed,
         });
     }
     let times: Vec<f64> = times.into_iter().filter(|&t| t > start.t).collect();

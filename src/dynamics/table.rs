@@ -50,6 +50,7 @@ impl Table {
                 value: x.len().min(y.len()) as f64,
                 min: 2.0,
                 max: f64::INFINITY,
+                ends: crate::Ends::Closed,
             });
         }
         if let Some(w) = x.windows(2).find(|w| w[1] <= w[0]) {
@@ -58,6 +59,7 @@ impl Table {
                 value: w[1],
                 min: w[0],
                 max: f64::INFINITY,
+                ends: crate::Ends::OpenBelow,
             });
         }
         Ok(Self { x, y, beyond })
@@ -96,6 +98,7 @@ impl Table {
                     value: x,
                     min: first,
                     max: last,
+                    ends: crate::Ends::Closed,
                 }),
                 Beyond::HoldEnds if x < first => Ok(self.y[0]),
                 Beyond::HoldEnds => Ok(self.y[self.y.len() - 1]),

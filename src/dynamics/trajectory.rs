@@ -135,6 +135,7 @@ impl Trajectory {
                 value: out.len() as f64,
                 min: self.outputs.len() as f64,
                 max: self.outputs.len() as f64,
+                ends: crate::Ends::Closed,
             });
         }
         if !(potential.is_finite() && out.iter().all(|v| v.is_finite())) {

@@ -446,6 +446,7 @@ fn classify(vectors: &[LoopVector]) -> Result<([Slot; 2], ContourCase)> {
             value: n as f64,
             min: 2.0,
             max: 2.0,
+            ends: crate::Ends::Closed,
         });
     }
     let case = match slots {

@@ -17,6 +17,7 @@ pub(crate) fn check_positions(n: usize) -> Result<()> {
             value: n as f64,
             min: 1.0,
             max: MAX_POSITIONS as f64,
+            ends: crate::Ends::Closed,
         });
     }
     Ok(())

@@ -98,6 +98,7 @@ where
             value: samples as f64,
             min: 3.0,
             max: super::MAX_POSITIONS as f64,
+            ends: crate::Ends::Closed,
         });
     }
     let step = TAU / samples as f64;

@@ -21,6 +21,7 @@ fn check(y: &[f64], h: f64, min: usize) -> Result<()> {
             value: y.len() as f64,
             min: min as f64,
             max: f64::INFINITY,
+            ends: crate::Ends::Closed,
         });
     }
     for &v in y {

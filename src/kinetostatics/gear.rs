@@ -126,6 +126,7 @@ impl GearDrive {
                 value: alpha,
                 min: 0.0,
                 max: FRAC_PI_2,
+                ends: crate::Ends::OpenAbove,
             });
         }
         loads.iter().try_for_each(Load::validate)?;

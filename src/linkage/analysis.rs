@@ -929,6 +929,7 @@ impl<'p> Analysis<'p> {
                 value: g as f64,
                 min: 0.0,
                 max: self.plan.groups.len() as f64 - 1.0,
+                ends: crate::Ends::Closed,
             });
         };
         let (u2, u3) = (self.units[group.links[0]], self.units[group.links[1]]);

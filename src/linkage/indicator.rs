@@ -100,6 +100,7 @@ impl IndicatorDiagram {
                 value: x,
                 min: 0.0,
                 max: 1.0,
+                ends: crate::Ends::Closed,
             });
         }
         let x = x.clamp(0.0, 1.0);
@@ -136,6 +137,7 @@ fn interpolate(table: &[[f64; 2]], x: f64) -> Result<f64> {
         value,
         min: table.first().map_or(f64::NAN, |p| p[0]),
         max: table.last().map_or(f64::NAN, |p| p[0]),
+        ends: crate::Ends::Closed,
     };
     let k = table.partition_point(|p| p[0] <= x);
     if k == 0 {

@@ -187,6 +187,7 @@ impl SixBar {
                     value: self.working_direction,
                     min: -1.0,
                     max: 1.0,
+                    ends: crate::Ends::Closed,
                 }),
             });
         }

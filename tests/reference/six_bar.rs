@@ -188,6 +188,7 @@ impl SixBar {
                 value: self.working_direction,
                 min: -1.0,
                 max: 1.0,
+                ends: tmm::Ends::Closed,
             }));
         }
         // 1. Kinematics, in the order the groups are attached.

@@ -35,7 +35,8 @@ impl Servo {
                 name: "servo limit",
                 value: self.limit,
                 min: 0.0,
-                max: f64::MAX,
+                max: f64::INFINITY,
+                ends: crate::Ends::Closed,
             });
         }
         Ok(())
@@ -213,6 +214,7 @@ impl FiveBar {
                     value: v,
                     min: 0.0,
                     max: l,
+                    ends: crate::Ends::Closed,
                 });
             }
         }
@@ -227,11 +229,9 @@ impl FiveBar {
         self.drive1.check()?;
         self.drive4.check()?;
         if self.mode.abs() != 1.0 {
-            return Err(Error::OutOfRange {
-                name: "mode (+1 or -1)",
-                value: self.mode,
-                min: -1.0,
-                max: 1.0,
+            return Err(Error::Description {
+                item: "five-bar mode".into(),
+                problem: format!("must be +1 or −1, got {}", self.mode),
             });
         }
         Ok(())

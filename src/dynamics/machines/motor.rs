@@ -46,6 +46,7 @@ impl LinearMotor {
                 value: omega_nom,
                 min: 0.0,
                 max: omega_sync,
+                ends: crate::Ends::Open,
             });
         }
         let b = computed("motor slope b", m_nom / (omega_sync - omega_nom))?;

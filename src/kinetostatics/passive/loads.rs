@@ -118,6 +118,7 @@ impl Loads {
                     value: load.at,
                     min: 0.0,
                     max: l,
+                    ends: crate::Ends::Closed,
                 });
             }
             load.at = load.at.clamp(0.0, l);

@@ -200,6 +200,7 @@ impl LinkageSystem {
                 value: n as f64,
                 min: 1.0,
                 max: crate::kinematics::MAX_POSITIONS as f64,
+                ends: crate::Ends::Closed,
             });
         }
         positive("|omega|", finite("omega", omega)?.abs())?;

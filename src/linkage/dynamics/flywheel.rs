@@ -68,6 +68,7 @@ impl LinkageSystem {
                 value: delta,
                 min: 0.0,
                 max: 2.0,
+                ends: crate::Ends::Open,
             });
         }
         if !(8..=10_000_000).contains(&n) {
@@ -76,6 +77,7 @@ impl LinkageSystem {
                 value: n as f64,
                 min: 8.0,
                 max: 1e7,
+                ends: crate::Ends::Closed,
             });
         }
         let wm = positive("|omega_mean|", finite("omega_mean", omega_mean)?.abs())?;

@@ -213,6 +213,7 @@ fn check_input(n: usize, input: usize) -> Result<()> {
             value: input as f64,
             min: 0.0,
             max: n as f64 - 1.0,
+            ends: crate::Ends::Closed,
         })
     }
 }
@@ -266,7 +267,8 @@ impl LinkageSystem {
                 name: "added moment of inertia (in total)",
                 value: total,
                 min: 0.0,
-                max: f64::MAX,
+                max: f64::INFINITY,
+                ends: crate::Ends::Closed,
             });
         }
         self.extra[input] = total;
