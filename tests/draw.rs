@@ -387,6 +387,32 @@ fn assert_frames(plan: &Plan, inputs: &[Motion], pic: &Picture) {
     }
 }
 
+/// How far the red of an arrow runs from `from` along the unit direction `dir` (pixels),
+/// allowing gaps of a few pixels.
+fn red_run(p: &Pixmap, from: [f64; 2], dir: [f64; 2]) -> f64 {
+    let red = |t: f64| {
+        let q = [from[0] + dir[0] * t, from[1] + dir[1] * t];
+        if q[0] < 0.0 || q[1] < 0.0 {
+            return false;
+        }
+        p.pixel(q[0].floor() as u32, q[1].floor() as u32)
+            .map(|c| c.demultiply())
+            .is_some_and(|c| c.red() > 120 && c.green() < 90)
+    };
+    // The hinge's ring covers the arrow's first pixels, and links crossing it a few more.
+    let mut last: Option<f64> = None;
+    let mut t = 0.0;
+    while t < f64::from(p.width() + p.height()) {
+        if red(t) {
+            last = Some(t);
+        } else if last.is_some_and(|l| t - l > 6.0) {
+            break;
+        }
+        t += 0.25;
+    }
+    last.unwrap_or(0.0)
+}
+
 #[test]
 fn forces_are_arrows_to_scale_from_their_points() {
     let style = Style::default();
@@ -398,6 +424,7 @@ fn forces_are_arrows_to_scale_from_their_points() {
         let scale = pic.force_scale.unwrap();
         let a = plan.analyse(input).unwrap();
         let mut longest: f64 = 0.0;
+        let mut drawn = Vec::new();
         for j in 0..plan.joint_names().len() {
             let r = a.reaction_index(j);
             let len = r.force.norm() / scale;
@@ -419,7 +446,30 @@ fn forces_are_arrows_to_scale_from_their_points() {
                 plan.name(),
                 plan.joint_names()[j]
             );
+            drawn.push((r.force.norm(), red_run(&p, from, dir)));
         }
+        // To scale, measured on the pixels: the drawn length of an arrow is in the ratio of
+        // its force to the longest one's. A red run only grows where another arrow continues
+        // it, so no arrow may be shorter than that, and most (those drawn clear of others)
+        // must match it within the pixels that anti-aliasing and the heads blur.
+        drawn.sort_by(|a, b| b.0.total_cmp(&a.0));
+        let (f0, l0) = drawn[0];
+        let mut matched = 0;
+        for &(f, l) in &drawn[1..] {
+            let want = l0 * f / f0;
+            assert!(
+                l >= want - 3.0,
+                "{}: an arrow of {f} N is {l} px long, {want} px by the longest ({f0} N, {l0} px)",
+                plan.name()
+            );
+            matched += usize::from(l <= want + 3.0);
+        }
+        assert!(
+            2 * matched >= drawn.len() - 1,
+            "{}: only {matched} of {} arrows are to scale",
+            plan.name(),
+            drawn.len() - 1
+        );
         // The largest arrow is 30 % of the linkage's size.
         let want = 0.3 * plan.size() * pic.frame.scale;
         assert!((longest - want).abs() < 1e-6 * want, "{longest} vs {want}");

@@ -8,6 +8,7 @@
 //!   `solve_contour_position`, `contour_residual`, `cycle`, `cycle_angles`,
 //!   `try_cycle_angles`, `coupler_curve`, `assembly_range`, `extreme_positions`,
 //!   `Strokes::new`, `Strokes::plan_positions`, `Strokes::try_plan_positions`,
+//!   `Strokes::working_in` (on hand-built strokes too),
 //!   `transfer_functions`, `differentiate`, `differentiate_periodic`, `integrate_trapezoid`;
 //! - kinetostatics: `RrrDyad::solve`, `RrpDyad::solve`, `RprDyad::solve`,
 //!   `CouplingDrive::solve`, `GearDrive::solve`, `passive::PaperGroup::solve`;
@@ -21,7 +22,7 @@
 //!   `CoaxialPropellers::exact`, `CoaxialPropellers::drift_acceleration`,
 //!   `DecoupledRpArm::closed_form`, `LandingGear::phi_h`.
 //!
-//! 43 entry points. The number of generated cases per sweep is `TMM_HOSTILE_CASES`
+//! 44 entry points. The number of generated cases per sweep is `TMM_HOSTILE_CASES`
 //! (default 200; run with a larger number in release, for example
 //! `TMM_HOSTILE_CASES=100000 cargo test --release --test hostile`).
 
@@ -191,6 +192,22 @@ fn sweep_cycles_and_strokes() {
                 s.try_plan_positions(n)
             });
         }
+        // Hand-built strokes: every public field hostile.
+        let hand = Strokes {
+            start: g.f(),
+            end: g.f(),
+            working_angle: g.f(),
+            idle_angle: g.f(),
+            time_ratio: g.f(),
+            rotation: rot,
+            stroke: g.f(),
+            working_rises: g.next().is_multiple_of(2),
+        };
+        let rises = g.next().is_multiple_of(2);
+        check("Strokes::working_in", &hand, || hand.working_in(rises));
+        check("Strokes::try_plan_positions (hand-built)", &hand, || {
+            hand.try_plan_positions(12)
+        });
         let phi = g.f();
         let (lc, lr) = (g.len(), g.len());
         check("assembly_range", &(phi, lc, lr), || {

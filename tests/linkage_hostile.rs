@@ -11,7 +11,9 @@
 //! (`from_linkage`, `with_motor`, `with_inertia`, `with_damper`, `terms`, `inverse_dynamics`,
 //! `reduced`, `flywheel`); `draw::{scheme, forces, animation, plan_view, diagram}` and
 //! `Course::new` with hostile inputs and styles; on every bundled linkage and on every ready
-//! mechanism's description. `TMM_HOSTILE_CASES` cases per sweep (default 200).
+//! mechanism's description; and the ready mechanisms (`FourBar`, `SliderCrank`, `Compressor`,
+//! `SixBar`, `RockingCylinder`: `plan`, `strokes`, `linkage`, `grashof`) with every public
+//! field hostile. `TMM_HOSTILE_CASES` cases per sweep (default 200).
 
 use std::panic::{catch_unwind, AssertUnwindSafe};
 use tmm::kinematics::{Motion, Rotation};
@@ -369,4 +371,207 @@ fn hostile_grashof_and_transmission_angles() {
             });
         }
     }
+}
+
+/// One hostile field of a ready mechanism, then everything it offers: its plan, an analysis
+/// at hostile and ordinary crank angles, its strokes, its description (and Grashof's test for
+/// the four-bar). The structs' fields are public, so every one is set by hand here.
+fn sweep_mechanism<M: std::fmt::Debug + Clone>(
+    name: &str,
+    base: &M,
+    setters: &[fn(&mut M, f64)],
+    seed: u64,
+    run: impl Fn(&M, &str, &mut Gen),
+) {
+    let mut g = Gen::new(seed);
+    // Each case scans a cycle for the strokes: half the sweep's count keeps the default run
+    // short.
+    for case in 0..cases().div_ceil(2) {
+        let mut m = base.clone();
+        // One field most of the time, sometimes two.
+        for _ in 0..1 + usize::from(g.next().is_multiple_of(4)) {
+            let k = (g.next() % setters.len() as u64) as usize;
+            let v = if g.next().is_multiple_of(2) {
+                g.f()
+            } else {
+                g.len()
+            };
+            setters[k](&mut m, v);
+        }
+        let what = format!("{name} case {case}: {m:?}");
+        no_panic(&what, || run(&m, &what, &mut g));
+    }
+}
+
+/// What every ready mechanism offers, checked as the other sweeps check the engine.
+fn mechanism_checks(
+    plan: tmm::Result<Plan>,
+    strokes: impl Fn(Rotation) -> tmm::Result<tmm::kinematics::Strokes>,
+    what: &str,
+    g: &mut Gen,
+) {
+    for rot in [Rotation::Ccw, Rotation::Cw] {
+        if let Ok(s) = strokes(rot) {
+            assert!(!has_non_finite(&format!("{s:?}")), "{what}: {s:?}");
+        }
+    }
+    if let Ok(plan) = plan {
+        for input in [Motion::fixed(plan.reference_input()), g.motion()] {
+            check_position(&plan, input, what);
+        }
+    }
+}
+
+#[test]
+fn hostile_ready_mechanisms() {
+    fn mass<const N: usize>(m: &mut [tmm::mechanism::LinkMass; N], k: usize, v: f64) {
+        let lm = &mut m[k % N];
+        match k / N % 4 {
+            0 => lm.mass = v,
+            1 => lm.inertia = v,
+            2 => lm.along = v,
+            _ => lm.across = v,
+        }
+    }
+    fn gear(d: &mut tmm::linkage::Drive, k: usize, v: f64) {
+        let (mut r, mut a, mut p) = (0.1, 3.0, 0.35);
+        match k % 3 {
+            0 => r = v,
+            1 => a = v,
+            _ => p = v,
+        }
+        *d = tmm::linkage::Drive::Gear {
+            pitch_radius: r,
+            pitch_angle: a,
+            pressure_angle: p,
+        };
+    }
+    sweep_mechanism(
+        "FourBar",
+        &FourBar::course_example(),
+        &[
+            |m, v| m.o1.x = v,
+            |m, v| m.o3.y = v,
+            |m, v| m.l1 = v,
+            |m, v| m.l2 = v,
+            |m, v| m.l3 = v,
+            |m, v| m.gravity = v,
+            |m, v| m.resisting_moment = v,
+            |m, v| mass(&mut m.mass, v.to_bits() as usize, v),
+            |m, v| gear(&mut m.drive, v.to_bits() as usize, v),
+        ],
+        71,
+        |m, what, g| {
+            let _ = m.linkage();
+            if let Ok(gr) = m.grashof() {
+                assert!(!has_non_finite(&format!("{gr:?}")), "{what}: {gr:?}");
+            }
+            mechanism_checks(m.plan(), |r| m.strokes(r), what, g);
+        },
+    );
+    sweep_mechanism(
+        "SliderCrank",
+        &SliderCrank::course_example(),
+        &[
+            |m, v| m.o1.y = v,
+            |m, v| m.l1 = v,
+            |m, v| m.l2 = v,
+            |m, v| m.guide_point.x = v,
+            |m, v| m.guide_angle = v,
+            |m, v| m.gravity = v,
+            |m, v| mass(&mut m.mass, v.to_bits() as usize, v),
+            |m, v| {
+                if let Some(d) = &mut m.diagram {
+                    d.area = v;
+                }
+            },
+            |m, v| {
+                if let Some(d) = &mut m.diagram {
+                    if let Some(p) = d.outward.first_mut() {
+                        p[(v.to_bits() % 2) as usize] = v;
+                    }
+                }
+            },
+            |m, v| gear(&mut m.drive, v.to_bits() as usize, v),
+        ],
+        72,
+        |m, what, g| {
+            let _ = m.linkage();
+            mechanism_checks(m.plan(), |r| m.strokes(r), what, g);
+        },
+    );
+    sweep_mechanism(
+        "Compressor",
+        &Compressor::course_example(),
+        &[
+            |m, v| m.o1.x = v,
+            |m, v| m.l1 = v,
+            |m, v| m.throw_angle = v,
+            |m, v| m.l2 = v,
+            |m, v| m.l4 = v,
+            |m, v| m.guide_point.y = v,
+            |m, v| m.guide_angles[(v.to_bits() % 2) as usize] = v,
+            |m, v| m.gravity = v,
+            |m, v| mass(&mut m.mass, v.to_bits() as usize, v),
+            |m, v| {
+                if let Some(d) = &mut m.diagrams[(v.to_bits() % 2) as usize] {
+                    if let Some(p) = d.inward.last_mut() {
+                        p[(v.to_bits() / 2 % 2) as usize] = v;
+                    }
+                }
+            },
+            |m, v| gear(&mut m.drive, v.to_bits() as usize, v),
+        ],
+        73,
+        |m, what, g| {
+            let _ = m.linkage();
+            mechanism_checks(m.plan(), |r| m.strokes(r), what, g);
+        },
+    );
+    sweep_mechanism(
+        "SixBar",
+        &SixBar::course_example(),
+        &[
+            |m, v| m.o1.x = v,
+            |m, v| m.o2.y = v,
+            |m, v| m.l1 = v,
+            |m, v| m.l2 = v,
+            |m, v| m.l3 = v,
+            |m, v| m.c_along = v,
+            |m, v| m.c_across = v,
+            |m, v| m.l4 = v,
+            |m, v| m.guide_point.x = v,
+            |m, v| m.guide_angle = v,
+            |m, v| m.gravity = v,
+            |m, v| m.resistance = v,
+            |m, v| m.working_direction = v,
+            |m, v| mass(&mut m.mass, v.to_bits() as usize, v),
+            |m, v| gear(&mut m.drive, v.to_bits() as usize, v),
+        ],
+        74,
+        |m, what, g| {
+            let _ = m.linkage();
+            mechanism_checks(m.plan(), |r| m.strokes(r), what, g);
+        },
+    );
+    sweep_mechanism(
+        "RockingCylinder",
+        &RockingCylinder::course_example(),
+        &[
+            |m, v| m.o1.y = v,
+            |m, v| m.c.x = v,
+            |m, v| m.l1 = v,
+            |m, v| m.l_piston = v,
+            |m, v| m.gravity = v,
+            |m, v| m.force_in = v,
+            |m, v| m.force_out = v,
+            |m, v| mass(&mut m.mass, v.to_bits() as usize, v),
+            |m, v| gear(&mut m.drive, v.to_bits() as usize, v),
+        ],
+        75,
+        |m, what, g| {
+            let _ = m.linkage();
+            mechanism_checks(m.plan(), |r| m.strokes(r), what, g);
+        },
+    );
 }

@@ -3,7 +3,7 @@
 
 use super::motion::Motion;
 use crate::angle::normalize;
-use crate::error::{finite, Error, Result};
+use crate::error::{computed, finite, positive, Error, Result};
 use std::f64::consts::TAU;
 
 /// Whether an extreme of the output is its largest or its smallest value.
@@ -304,32 +304,42 @@ impl Strokes {
     /// works in that direction, even when that is the faster stroke; then the time ratio is
     /// below 1.
     ///
+    /// # Errors
+    /// For hand-built strokes that [`Strokes::new`] never gives: [`Error::NonFinite`] for a
+    /// non-finite field, [`Error::NonPositive`] for a stroke angle that is not positive (the
+    /// time ratio would divide by it).
+    ///
     /// # Examples
     /// ```
     /// use tmm::kinematics::{Extreme, ExtremeKind, Motion, Rotation, Strokes};
     /// let e = |deg: f64, value, kind| Extreme { input: deg.to_radians(), output: Motion::fixed(value), kind };
     /// let s = Strokes::new(&[e(10.0, 0.0, ExtremeKind::Min), e(200.0, 0.3, ExtremeKind::Max)], Rotation::Ccw)?;
     /// assert!(s.working_rises && s.time_ratio > 1.0);
-    /// let falling = s.working_in(false);
+    /// let falling = s.working_in(false)?;
     /// assert_eq!(falling.start, s.end);
     /// assert!((falling.time_ratio - 170.0 / 190.0).abs() < 1e-12);
     /// assert_eq!(falling.stroke, 0.3);
     /// # Ok::<(), tmm::Error>(())
     /// ```
-    #[must_use]
-    pub fn working_in(self, rises: bool) -> Self {
+    pub fn working_in(self, rises: bool) -> Result<Self> {
+        finite("start of the working stroke", self.start)?;
+        finite("end of the working stroke", self.end)?;
+        finite("time ratio", self.time_ratio)?;
+        finite("stroke", self.stroke)?;
+        positive("working angle", self.working_angle)?;
+        positive("idle angle", self.idle_angle)?;
         if rises == self.working_rises {
-            return self;
+            return Ok(self);
         }
-        Self {
+        Ok(Self {
             start: self.end,
             end: self.start,
             working_angle: self.idle_angle,
             idle_angle: self.working_angle,
-            time_ratio: self.idle_angle / self.working_angle,
+            time_ratio: computed("time ratio", self.idle_angle / self.working_angle)?,
             working_rises: rises,
             ..self
-        }
+        })
     }
 
     /// The input angles of `n` plans, equally spaced in the crank's sense of rotation from

@@ -419,6 +419,19 @@ impl<'p> Analysis<'p> {
             self.put_link(l3, s3, u3);
             self.dets[g] = det;
         }
+        // A named point may lie farther out on its link than any joint (beyond the bound
+        // above): its motion is computed on demand, so it is checked here, once.
+        for k in 0..plan.points.len() {
+            let m = self.point_motion(k);
+            if !(m.p.coords.iter().chain(m.v.iter()).chain(m.a.iter())).all(|x| x.is_finite()) {
+                return Err(Error::In {
+                    part: format!("point {}", plan.point_names[k]),
+                    source: Box::new(Error::Overflow {
+                        what: "its position, velocity or acceleration",
+                    }),
+                });
+            }
+        }
         Ok(())
     }
 
@@ -776,12 +789,20 @@ impl<'p> Analysis<'p> {
     }
 
     /// The motion of link `k` in the frame the engine uses for it (its origin a joint).
+    ///
+    /// # Panics
+    /// When `k` is not a link's index (below `plan.link_names().len()`),
+    /// as a slice index does; the accessors by name return an [`Error`] instead.
     #[must_use]
     pub fn link_motion(&self, k: usize) -> &LinkMotion {
         &self.links[k]
     }
 
     /// The angle of link `k` along its declared reference direction, with ω and ε.
+    ///
+    /// # Panics
+    /// When `k` is not a link's index (below `plan.link_names().len()`),
+    /// as a slice index does; the accessors by name return an [`Error`] instead.
     #[must_use]
     pub fn link_angle_index(&self, k: usize) -> Motion {
         let l = &self.links[k];
@@ -801,6 +822,10 @@ impl<'p> Analysis<'p> {
     }
 
     /// The motion of joint `j` as a point of the `side`-th of its two links.
+    ///
+    /// # Panics
+    /// When `j` is not a joint's index or `side` is not 0 or 1,
+    /// as a slice index does; the accessors by name return an [`Error`] instead.
     #[must_use]
     pub fn joint_on(&self, j: usize, side: usize) -> PointMotion {
         let jp = &self.plan.joints[j];
@@ -808,6 +833,10 @@ impl<'p> Analysis<'p> {
     }
 
     /// The motion of joint `j` as a point of link `link` (one of its two links).
+    ///
+    /// # Panics
+    /// When `j` is not a joint's index (below `plan.joint_names().len()`),
+    /// as a slice index does; the accessors by name return an [`Error`] instead.
     #[must_use]
     pub fn joint_index_on(&self, j: usize, link: usize) -> PointMotion {
         let side = usize::from(self.plan.joints[j].links[1] == link);
@@ -825,6 +854,10 @@ impl<'p> Analysis<'p> {
     }
 
     /// The motion of joint `j` (for a prismatic joint, its point on the sliding link).
+    ///
+    /// # Panics
+    /// When `j` is not a joint's index (below `plan.joint_names().len()`),
+    /// as a slice index does; the accessors by name return an [`Error`] instead.
     #[must_use]
     pub fn joint_motion(&self, j: usize) -> PointMotion {
         let side = match self.plan.joints[j].prismatic {
@@ -843,6 +876,10 @@ impl<'p> Analysis<'p> {
     }
 
     /// The motion of named point `k`.
+    ///
+    /// # Panics
+    /// When `k` is not a named point's index (below `plan.point_names().len()`),
+    /// as a slice index does; the accessors by name return an [`Error`] instead.
     #[must_use]
     pub fn point_motion(&self, k: usize) -> PointMotion {
         let (link, local) = self.plan.point_local(k);
@@ -866,6 +903,10 @@ impl<'p> Analysis<'p> {
 
     /// The current unit direction of the guide of prismatic joint `j` (zero for a revolute
     /// joint).
+    ///
+    /// # Panics
+    /// When `j` is not a joint's index (below `plan.joint_names().len()`),
+    /// as a slice index does; the accessors by name return an [`Error`] instead.
     #[must_use]
     pub fn guide_direction(&self, j: usize) -> Vector2<f64> {
         self.slide_parts(j).2
@@ -874,6 +915,10 @@ impl<'p> Analysis<'p> {
     /// The slide of prismatic joint `j`: the sliding link's displacement along the guide from
     /// the reference pose, with its velocity and acceleration relative to the guide (zero for
     /// a revolute joint).
+    ///
+    /// # Panics
+    /// When `j` is not a joint's index (below `plan.joint_names().len()`),
+    /// as a slice index does; the accessors by name return an [`Error`] instead.
     #[must_use]
     pub fn slide_index(&self, j: usize) -> Motion {
         let jp = &self.plan.joints[j];
@@ -951,6 +996,10 @@ impl<'p> Analysis<'p> {
     // ---- kinetostatic results ----------------------------------------------------------
 
     /// The reaction in joint `j` (valid after [`Analysis::solve`]).
+    ///
+    /// # Panics
+    /// When `j` is not a joint's index (below `plan.joint_names().len()`),
+    /// as a slice index does; the accessors by name return an [`Error`] instead.
     #[must_use]
     pub fn reaction_index(&self, j: usize) -> Reaction {
         self.reactions[j]

@@ -143,7 +143,7 @@ impl Plan {
             ) if *joint == j && forward != backward => Some(forward > backward),
             _ => None,
         });
-        Ok(worked.map_or(strokes, |rises| strokes.working_in(rises)))
+        worked.map_or(Ok(strokes), |rises| strokes.working_in(rises))
     }
 
     /// The range of the crank angle, through `phi`, over which the linkage assembles: `None`
