@@ -6,7 +6,7 @@ use std::f64::consts::PI;
 use nalgebra::{Matrix2, SMatrix, SVector, Vector2};
 use tmm::dynamics::machines::{CoaxialPropellers, Failure, FiveBar, LandingGear, RpArm};
 use tmm::dynamics::{
-    accelerations, run, Beyond, Direction, Dopri5, FiniteIncrement, LagrangeSystem, Outcome, Reach,
+    accelerations, run, Beyond, Direction, Dopri5, FiniteIncrement, Handover, LagrangeSystem, Outcome, Reach,
     Rk4, RunOptions, State, Steady, Stepper, Table, Trajectory, Watch,
 };
 use tmm::Error;
@@ -1111,28 +1111,37 @@ fn dormand_prince_first_same_as_last_saves_an_evaluation_and_changes_nothing() {
     let s0 = State::new(0.0, Vector2::zeros(), Vector2::new(2.0, 0.0));
     // One step: the last stage is q̈ at the end state, to the last bit.
     let a = dp.advance(&sys, &s0, 0.1).unwrap();
-    let end = a.end_acceleration.unwrap();
+    let end = a.handover.acceleration.unwrap();
     assert_eq!(
         end,
         accelerations(&sys, a.state.t, &a.state.q, &a.state.qd).unwrap()
     );
-    // Given it, the next step is the same step for one evaluation less.
-    let fresh = dp.advance(&sys, &a.state, a.h_next).unwrap();
+    // Given it, the next step is the same step for one evaluation less (both given the
+    // step-size controller's memory, the error norm of the step before).
+    let forget = |h: Handover| Handover {
+        acceleration: None,
+        ..h
+    };
+    let fresh = dp
+        .advance_from(&sys, &a.state, a.h_next, Some(forget(a.handover)))
+        .unwrap();
     let reused = dp
-        .advance_from(&sys, &a.state, a.h_next, Some(end))
+        .advance_from(&sys, &a.state, a.h_next, Some(a.handover))
         .unwrap();
     assert_eq!((fresh.state, fresh.h_next), (reused.state, reused.h_next));
     assert_eq!(fresh.evaluations, reused.evaluations + 1);
-    // A run passes it on: the same motion as stepping without reuse, and exactly one
-    // evaluation saved per step after the first.
+    // A run passes it on: the same motion as stepping without reuse (with the same
+    // controller memory), and exactly one evaluation saved per step after the first.
     let t_end = 3.0;
     let r = run(&sys, &dp, s0, &RunOptions::until(t_end, 0.1)).unwrap();
     let (mut s, mut h, mut evals, mut steps) = (s0, 0.1_f64, 0, 0);
+    let mut from = None;
     while s.t < t_end - 1e-12 {
-        let a = dp.advance(&sys, &s, h.min(t_end - s.t)).unwrap();
+        let a = dp.advance_from(&sys, &s, h.min(t_end - s.t), from).unwrap();
         if h < t_end - s.t {
             h = a.h_next;
         }
+        from = Some(forget(a.handover));
         (s, evals, steps) = (a.state, evals + a.evaluations, steps + 1);
     }
     assert_eq!(r.steps, steps);

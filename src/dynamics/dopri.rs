@@ -2,7 +2,7 @@
 
 use nalgebra::{Vector2, Vector4};
 
-use super::stepper::{check_result, check_step, pack, rhs, unpack, Advance, Stepper};
+use super::stepper::{check_result, check_step, pack, rhs, unpack, Advance, Handover, Stepper};
 use super::system::{LagrangeSystem, State};
 use crate::error::{positive, Error, Result};
 
@@ -190,16 +190,84 @@ const E: [f64; 7] = [
     -1.0 / 40.0,
 ];
 
+/// The safety factor of the step-size control: the next step aims at err = 0.9⁵ ≈ 0.59 of
+/// the tolerance rather than 1, so that most proposals are accepted.
+const SAFETY: f64 = 0.9;
+/// The proportional gain k_P of the PI controller (Hairer & Wanner's choice for DOPRI5).
+const BETA: f64 = 0.04;
+/// The exponent of the current error: integral plus proportional gain, 1/5 − 0.75·β.
+const ALPHA: f64 = 0.2 - 0.75 * BETA;
+/// The least factor h′/h (after a rejection or an accepted step alike).
+const FAC_MIN: f64 = 0.2;
+/// The greatest factor h′/h.
+const FAC_MAX: f64 = 10.0;
+/// The least error norm the controller remembers (and the one assumed before a first step):
+/// errₙ₋₁^β must stay positive.
+const ERR_FLOOR: f64 = 1e-4;
+
+/// The factor h′/h after an accepted step with error norm `err` (in [0, 1]), given the error
+/// norm of the previous accepted step (see [`Dopri5`]'s docs).
+fn accepted_factor(err: f64, previous: Option<f64>) -> f64 {
+    let previous = previous
+        .filter(|e| e.is_finite() && *e >= 0.0)
+        .map_or(ERR_FLOOR, |e| e.max(ERR_FLOOR));
+    // err = 0 (an exact step) makes err^(−α) infinite: the factor is then FAC_MAX.
+    (SAFETY * err.powf(-ALPHA) * previous.powf(BETA)).clamp(FAC_MIN, FAC_MAX)
+}
+
+/// The factor h′/h after a rejected step with error norm `err` (> 1, or NaN or ∞ for a trial
+/// that overflowed): the elementary controller, never a growth.
+fn rejected_factor(err: f64) -> f64 {
+    if err.is_finite() {
+        (SAFETY * err.powf(-0.2)).clamp(FAC_MIN, 1.0)
+    } else {
+        FAC_MIN
+    }
+}
+
 /// Dormand–Prince 5(4): an embedded Runge–Kutta pair with error control, so that a user asks
 /// for an accuracy instead of a step size.
 ///
 /// Each step is accepted when the weighted RMS norm of the local error estimate,
-/// √(mean((eᵢ / (atol + rtol·max(|yᵢ|, |ŷᵢ|)))²)) over y = (q, q̇), is at most 1; the next step is
-/// h·min(5, max(0.2, 0.9·err^(−1/5))). A rejected step is retried shorter; a step that would
-/// fall below 10⁻¹²·max(1, |t|) ends in [`Error::Singular`] (the motion is too stiff or
-/// singular for this tolerance). The solution carried on is the fifth-order one. The global
-/// error is usually of the order of the tolerance (the tests check it against exact
-/// solutions).
+/// err = √(mean((eᵢ / (atol + rtol·max(|yᵢ|, |ŷᵢ|)))²)) over y = (q, q̇), is at most 1. The
+/// solution carried on is the fifth-order one. The global error is usually of the order of the
+/// tolerance (the tests check it against exact solutions).
+///
+/// # Step-size control
+/// The estimate e is the local error of the embedded fourth-order solution, so err ≈ φ·h⁵
+/// with φ varying slowly along the motion. Asking the next step for err = 1 gives the
+/// *elementary* (integral) controller h′ = h·err^(−1/5). It has two weaknesses: it reacts
+/// to each step's error alone, so a noisy estimate makes a ragged step sequence, and where
+/// the step size is limited by stability rather than accuracy (an oscillation faster than the
+/// motion, as a servo's stiff loop) err no longer follows h⁵ and the full gain 1/5 makes the
+/// step size oscillate between accepted and rejected steps, each rejection wasting six
+/// evaluations. In logarithms, log h is the controller's output and log err the measured
+/// deviation; the elementary controller is a pure integrator with gain 1/5. Adding a
+/// proportional term on the change of log err and lowering the integral gain (Gustafsson's PI
+/// controller, as Hairer & Wanner, Solving ODEs II, §IV.2, recommend for this pair):
+///
+/// ```text
+/// log h′ = log h − k_I·log errₙ − k_P·(log errₙ − log errₙ₋₁)
+///      h′ = h · 0.9 · errₙ^(−α) · errₙ₋₁^β,   α = k_I + k_P = 0.2 − 0.75β,  β = k_P = 0.04
+/// ```
+///
+/// errₙ₋₁ is the error norm of the previous *accepted* step: when the errors grow from step to
+/// step the factor errₙ₋₁^β/errₙ^β < 1 damps the growth of h before a rejection, and
+/// when they fall it lets h grow sooner. The integral gain α − β = 0.13 < 1/5 is what keeps
+/// the loop stable at the stability limit. The factor 0.9 aims a little below err = 1 so
+/// that most proposals are accepted. The factor h′/h is limited to [0.2, 10]: a single
+/// estimate is not trusted beyond that. Further:
+/// - a rejected step is retried with h·max(0.2, 0.9·err^(−1/5)) (the elementary controller: the
+///   error of a rejected step says nothing about the step before it), and the step accepted
+///   right after a rejection proposes no longer a step than its own (the estimate just failed
+///   there, so growing at once would invite the next rejection);
+/// - the previous error is handed on from step to step by the caller ([`Handover`]); without
+///   it (a first step) errₙ₋₁ = 10⁻⁴ is assumed, which damps the first growth by
+///   10⁻⁴ᵝ ≈ 0.69: the first step size is the user's guess, and the first estimate is the least
+///   reliable. The same floor keeps an exact step (err = 0) from zeroing the next proposal.
+///
+/// A step that would fall below 10⁻¹²·max(1, |t|) ends in [`Error::Singular`] (the motion is
+/// too stiff or singular for this tolerance).
 ///
 /// # Examples
 /// The spin-down ω(t) = 2·e^(−t/2) of the [`Rk4`](super::Rk4) example, asked for 1e-9:
@@ -356,8 +424,9 @@ impl Stepper for Dopri5 {
     }
 
     /// The first stage of a step is q̈ at its start, the same as the last stage of the step
-    /// before ("first same as last"): given `start_acceleration`, an accepted step costs six
-    /// evaluations instead of seven. A rejected trial reuses it too.
+    /// before ("first same as last"): given the handed-on accelerations, an accepted step
+    /// costs six evaluations instead of seven. A rejected trial reuses them too. The handed-on
+    /// error norm is the memory of the step-size controller (see the type's docs).
     ///
     /// # Errors
     /// As [`advance`](Stepper::advance).
@@ -366,9 +435,9 @@ impl Stepper for Dopri5 {
         sys: &S,
         s: &State,
         h: f64,
-        start_acceleration: Option<Vector2<f64>>,
+        from: Option<Handover>,
     ) -> Result<Advance> {
-        Ok(self.advance_dense(sys, s, h, start_acceleration)?.0)
+        Ok(self.advance_dense(sys, s, h, from)?.0)
     }
 
     fn is_adaptive(&self) -> bool {
@@ -389,12 +458,13 @@ impl Stepper for Dopri5 {
         sys: &S,
         s: &State,
         h: f64,
-        start_acceleration: Option<Vector2<f64>>,
+        from: Option<Handover>,
     ) -> Result<(Advance, Option<DenseOutput>)> {
         check_step(s, h)?;
         self.check()?;
+        let from = from.unwrap_or_default();
         let y = pack(s);
-        let (k1, mut evaluations) = match start_acceleration {
+        let (k1, mut evaluations) = match from.acceleration {
             Some(a) if a.iter().all(|v| v.is_finite()) => (Vector4::new(y[2], y[3], a[0], a[1]), 0),
             _ => (rhs(sys, s.t, &y)?, 1),
         };
@@ -402,6 +472,7 @@ impl Stepper for Dopri5 {
         // shrinks below this is a sign of a singular or too stiff motion.
         let h_min = 1e-12 * s.t.abs().max(1.0);
         let mut h = h;
+        let mut rejected = false;
         loop {
             // A trial that overflows is a rejected step, not yet a divergence.
             let trial = match Self::trial(sys, s.t, &y, &k1, h) {
@@ -415,11 +486,10 @@ impl Stepper for Dopri5 {
                 .map_or(f64::INFINITY, |(y5, err, _)| self.error_norm(&y, y5, err));
             // NaN and ∞ fail the test: such a trial is rejected.
             if let Some((y5, _, k)) = trial.filter(|_| norm <= 1.0) {
-                let grow = if norm == 0.0 {
-                    5.0
-                } else {
-                    (0.9 * norm.powf(-0.2)).clamp(0.2, 5.0)
-                };
+                let mut grow = accepted_factor(norm, from.error_norm);
+                if rejected {
+                    grow = grow.min(1.0);
+                }
                 let state = check_result(unpack(s.t + h, &y5))?;
                 let dense = DenseOutput {
                     t0: s.t,
@@ -433,16 +503,15 @@ impl Stepper for Dopri5 {
                     state,
                     h_next: h * grow,
                     evaluations,
-                    end_acceleration: Some(Vector2::new(k[6][2], k[6][3])),
+                    handover: Handover {
+                        acceleration: Some(Vector2::new(k[6][2], k[6][3])),
+                        error_norm: Some(norm),
+                    },
                 };
                 return Ok((adv, Some(dense)));
             }
-            let shrink = if norm.is_finite() {
-                (0.9 * norm.powf(-0.2)).clamp(0.2, 1.0)
-            } else {
-                0.2
-            };
-            h *= shrink;
+            rejected = true;
+            h *= rejected_factor(norm);
             if h < h_min {
                 return Err(Error::Singular {
                     what: "adaptive step (Dormand-Prince)",
