@@ -6,8 +6,8 @@ use std::f64::consts::PI;
 use nalgebra::{Matrix2, SMatrix, SVector, Vector2};
 use tmm::dynamics::machines::{CoaxialPropellers, Failure, FiveBar, LandingGear, RpArm};
 use tmm::dynamics::{
-    accelerations, run, Beyond, Direction, Dopri5, FiniteIncrement, Handover, LagrangeSystem, Outcome, Reach,
-    Rk4, RunOptions, State, Steady, Stepper, Table, Trajectory, Watch,
+    accelerations, run, Beyond, Direction, Dopri5, FiniteIncrement, Handover, LagrangeSystem,
+    Outcome, Reach, Rk4, RunOptions, State, Steady, Stepper, Table, Trajectory, Watch,
 };
 use tmm::Error;
 
@@ -1211,7 +1211,13 @@ impl LagrangeSystem for Pulse {
 fn dormand_prince_across_an_undeclared_jump() {
     let tol = 1e-8;
     let dp = Dopri5::new(tol).unwrap();
-    let r = run(&Pulse, &dp, State::at_rest(Vector2::zeros()), &RunOptions::until(1.0, 1e-3)).unwrap();
+    let r = run(
+        &Pulse,
+        &dp,
+        State::at_rest(Vector2::zeros()),
+        &RunOptions::until(1.0, 1e-3),
+    )
+    .unwrap();
     // Every trial after the first costs six evaluations (first same as last).
     assert_eq!((r.evaluations - 1) % 6, 0);
     assert!((r.evaluations - 1) / 6 > r.steps, "rejections expected");
@@ -1222,7 +1228,11 @@ fn dormand_prince_across_an_undeclared_jump() {
     let s = State::new(0.45, Vector2::new(0.2025, 0.0), Vector2::new(0.9, 0.0));
     let a = dp.advance(&Pulse, &s, 0.1).unwrap();
     let taken = a.state.t - s.t;
-    assert!(taken < 0.1 && a.evaluations > 7, "{taken} {}", a.evaluations);
+    assert!(
+        taken < 0.1 && a.evaluations > 7,
+        "{taken} {}",
+        a.evaluations
+    );
     assert!(a.h_next <= taken, "{} after {taken}", a.h_next);
 }
 
@@ -1246,7 +1256,9 @@ impl LagrangeSystem for Root {
 #[test]
 fn dormand_prince_shortens_a_failing_step_by_the_exponent_it_shows() {
     let dp = Dopri5::new(1e-8).unwrap();
-    let a = dp.advance(&Root, &State::at_rest(Vector2::zeros()), 0.1).unwrap();
+    let a = dp
+        .advance(&Root, &State::at_rest(Vector2::zeros()), 0.1)
+        .unwrap();
     let err = a.handover.error_norm.unwrap();
     let trials = (a.evaluations - 1) / 6;
     assert!(trials <= 4, "{trials} trials");
