@@ -89,12 +89,13 @@ fn weighted_error(r: &RunResult, reference: &RunResult, tol: f64, times: &[f64])
 /// after hundreds of steps: the controller bounds the error estimate of the embedded
 /// fourth-order solution, while the run carries the fifth-order one, whose local error is far
 /// smaller; the motors' speed–torque slope damps speed errors, and q errors only add up.
-/// Measured (release build): 0.34, 0.35, 0.35, 0.39, 0.46 at 1e-8…1e-12. Without the kinks
+/// Measured: 0.54, 0.48, 0.24, 0.27, 0.27 at 1e-8…1e-12 with the PI step-size controller
+/// (0.34, 0.35, 0.35, 0.39, 0.46 with the elementary one before it). Without the kinks
 /// reported (the step straddles a node, where the error estimate of a smooth method does not
-/// see the error it makes) the same runs miss by 53, 120, 289, 124, 109 times the tolerance:
+/// see the error it makes) the same runs miss by 114, 68, 133, 61, 310 times the tolerance:
 /// the test also asserts ≥ 10 there, so it shows what the breakpoints buy. The stop
 /// (φ_H = φ_H max, located inside its step) is asserted to the tolerance in seconds:
-/// measured 0.03·tol with the kinks, 1.3–70·tol without.
+/// measured 0.007–0.02·tol with the kinks, 3.7–63·tol without.
 #[test]
 fn landing_gear_dormand_prince_meets_its_tolerance_across_the_table_kinks() {
     let g = LandingGear::default();

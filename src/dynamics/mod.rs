@@ -44,7 +44,7 @@ pub use dopri::{DenseOutput, Dopri5};
 pub use finite_increment::FiniteIncrement;
 pub use rk4::Rk4;
 pub use run::{run, Direction, Outcome, Reach, RunOptions, RunResult, Steady, Watch};
-pub use stepper::{Advance, Stepper};
+pub use stepper::{Advance, Handover, Stepper};
 pub use system::{accelerations, christoffel_terms, kinetic_energy, powers, LagrangeSystem, State};
 pub use table::{Beyond, Table};
 pub use trajectory::Trajectory;

@@ -3,7 +3,7 @@
 
 use nalgebra::Vector2;
 
-use super::stepper::Stepper;
+use super::stepper::{Handover, Stepper};
 use super::system::{accelerations, LagrangeSystem, State};
 use super::trajectory::Trajectory;
 use crate::error::{finite, positive, Error, Result};
@@ -472,8 +472,9 @@ pub fn run<S: LagrangeSystem + ?Sized, M: Stepper>(
     // The end counts as reached within rounding of the times (not of h: a step longer than
     // the whole run must still take the run to its end).
     let t_tol = 1e-12 * opts.t_end.abs().max(start.t.abs());
-    // q̈ at `s` when the last step gave them (Dormand–Prince's last stage), for the next one.
-    let mut acc_s: Option<Vector2<f64>> = None;
+    // What the last step handed on for the next one: q̈ at `s` when it gave them
+    // (Dormand–Prince's last stage) and its error norm (the step-size controller's memory).
+    let mut hand_s = Handover::default();
     let kink_arg = |st: &State| -> Result<f64> {
         let v = sys.kink_argument(st.t, &st.q, &st.qd)?;
         if v.is_finite() {
@@ -548,7 +549,7 @@ pub fn run<S: LagrangeSystem + ?Sized, M: Stepper>(
         if clamped && !adaptive && h_want - remaining > t_tol {
             grid_end = Some(goal.unwrap_or(s.t + h));
         }
-        let (adv, mut dense) = method.advance_dense(sys, &s, h_try, acc_s)?;
+        let (adv, mut dense) = method.advance_dense(sys, &s, h_try, Some(hand_s))?;
         let mut s1 = adv.state;
         // A step too short to change t (h below the rounding of t) would repeat for ever.
         if s1.t <= s.t || s1.t.is_nan() {
@@ -558,7 +559,7 @@ pub fn run<S: LagrangeSystem + ?Sized, M: Stepper>(
                 value: s1.t - s.t,
             });
         }
-        let mut acc1 = adv.end_acceleration;
+        let mut hand1 = adv.handover;
         steps += 1;
         evaluations += adv.evaluations;
         // The whole step asked for was taken: it ends on the stop or the grid point.
@@ -567,15 +568,17 @@ pub fn run<S: LagrangeSystem + ?Sized, M: Stepper>(
         if let Some(t) = target.filter(|_| full) {
             if s1.t != t {
                 s1.t = t;
-                acc1 = None; // they belong to the unsnapped time
+                hand1.acceleration = None; // they belong to the unsnapped time
             }
             if clamped && stop < opts.t_end {
-                acc1 = None; // a breakpoint: the forces after it may differ
+                // A breakpoint: the forces after it may differ, so neither the accelerations
+                // nor the error of the step before it carry over.
+                hand1 = Handover::default();
             }
         }
         if (opts.t_end - s1.t).abs() <= t_tol && s1.t != opts.t_end {
             s1.t = opts.t_end;
-            acc1 = None;
+            hand1.acceleration = None;
         }
         if let Some(d) = dense.as_mut() {
             d.set_end(s1.t);
@@ -618,14 +621,14 @@ pub fn run<S: LagrangeSystem + ?Sized, M: Stepper>(
                 evaluations += resteps * method.evaluations_per_step();
                 let hk = hit.t - s.t;
                 if hk > t_tol && hit.t < s1.t {
-                    let (adv2, dense2) = method.advance_dense(sys, &s, hk, acc_s)?;
+                    let (adv2, dense2) = method.advance_dense(sys, &s, hk, Some(hand_s))?;
                     evaluations += adv2.evaluations;
                     if !adaptive && grid_end.is_none() {
                         grid_end = Some(s1.t);
                     }
                     s1 = adv2.state;
                     dense = dense2;
-                    acc1 = adv2.end_acceleration;
+                    hand1 = adv2.handover;
                     if s1.t == s.t + hk {
                         landed = Some(i);
                         h_next = None;
@@ -698,10 +701,10 @@ pub fn run<S: LagrangeSystem + ?Sized, M: Stepper>(
             traj.push(sys, &s1)?;
             recorded = true;
         }
-        acc_s = acc1;
+        hand_s = hand1;
 
         if let Some(st) = &opts.steady {
-            let acc = match acc_s {
+            let acc = match hand_s.acceleration {
                 Some(a) => a,
                 None => accelerations(sys, s1.t, &s1.q, &s1.qd)?,
             };

@@ -47,7 +47,42 @@ pub(crate) fn check_result(s: State) -> Result<State> {
     }
 }
 
+/// What an accepted step hands on to the next step, which starts from its end state.
+///
+/// An adaptive method remembers more than the state between steps: Dormand–Prince's last
+/// stage is the next step's first ("first same as last"), and its step-size controller uses
+/// the error of the step before as well as the error of the current one (a PI controller,
+/// see [`Dopri5`](super::Dopri5)). The stepper itself holds no state (it is `Copy` and may be
+/// shared between runs), so the caller carries this from one [`Advance`] to the next call of
+/// [`Stepper::advance_from`] or [`Stepper::advance_dense`]; [`run`](super::run) does.
+///
+/// The default (both `None`) is what a first step knows: nothing.
+///
+/// # Breaking change
+/// Before the PI controller, [`Advance`] carried the accelerations alone (a field
+/// `end_acceleration`) and `advance_from`/`advance_dense` took `Option<Vector2<f64>>`: write
+/// `adv.handover.acceleration` for the former and pass `Some(adv.handover)` (or
+/// `Some(Handover { acceleration: Some(a), ..Handover::default() })`) for the latter.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct Handover {
+    /// The accelerations q̈ at the end state when the method evaluated them anyway (the last
+    /// stage of Dormand–Prince), else `None`. They save the next step its first evaluation,
+    /// so they must belong to the state the next step starts from exactly: a caller that moves
+    /// the end (snaps its time onto a breakpoint, where the forces may jump) sets them to
+    /// `None`.
+    pub acceleration: Option<Vector2<f64>>,
+    /// The error norm of the accepted step (at most 1; see [`Dopri5`](super::Dopri5)), the
+    /// memory of a PI step-size controller; `None` for a fixed-step method. A value that is
+    /// not finite and non-negative is ignored (treated as `None`).
+    pub error_norm: Option<f64>,
+}
+
 /// One accepted step of a [`Stepper`].
+///
+/// # Breaking change
+/// The field `end_acceleration: Option<Vector2<f64>>` became
+/// [`handover`](Self::handover)`.acceleration`, beside the error norm the step-size controller
+/// now carries from step to step (see [`Handover`]).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Advance {
     /// The state at the end of the step.
@@ -56,10 +91,11 @@ pub struct Advance {
     pub h_next: f64,
     /// Evaluations of the accelerations spent (rejected trial steps included).
     pub evaluations: usize,
-    /// The accelerations q̈ at [`state`](Self::state) when the method evaluated them anyway
-    /// (the last stage of Dormand–Prince: "first same as last"), else `None`. Passed to the
-    /// next [`Stepper::advance_from`], they save that step its first evaluation.
-    pub end_acceleration: Option<Vector2<f64>>,
+    /// What the step hands on to the next one: passed to the next
+    /// [`Stepper::advance_from`] as `Some(handover)`, the accelerations at
+    /// [`state`](Self::state) save that step its first evaluation and the error norm informs
+    /// its step-size control. Fixed-step methods hand on nothing (the default).
+    pub handover: Handover,
 }
 
 /// An integrator of Lagrange's equations.
@@ -96,14 +132,19 @@ pub trait Stepper {
             state: self.step(sys, s, h)?,
             h_next: h,
             evaluations: self.evaluations_per_step(),
-            end_acceleration: None,
+            handover: Handover::default(),
         })
     }
 
-    /// As [`advance`](Self::advance), given the accelerations q̈ at `s` when the caller has
-    /// them (the [`end_acceleration`](Advance::end_acceleration) of the step that ended at
-    /// `s`). A method whose first stage is q̈ at `s` uses them instead of evaluating again;
-    /// the default ignores them. They must belong to `s` exactly.
+    /// As [`advance`](Self::advance), continuing from the step that ended at `s`: `from` is
+    /// that step's [`Advance::handover`] (`None`, like `Some(Handover::default())`, for a first
+    /// step). A method whose first stage is q̈ at `s` uses the handed-on accelerations instead
+    /// of evaluating again (they must belong to `s` exactly), and an adaptive method's
+    /// step-size controller uses the handed-on error norm; the default ignores both.
+    ///
+    /// # Breaking change
+    /// `from` was `start_acceleration: Option<Vector2<f64>>`, the accelerations alone (see
+    /// [`Handover`]).
     ///
     /// # Errors
     /// As [`step`](Self::step).
@@ -112,9 +153,9 @@ pub trait Stepper {
         sys: &S,
         s: &State,
         h: f64,
-        start_acceleration: Option<Vector2<f64>>,
+        from: Option<Handover>,
     ) -> Result<Advance> {
-        let _ = start_acceleration;
+        let _ = from;
         self.advance(sys, s, h)
     }
 
@@ -149,6 +190,9 @@ pub trait Stepper {
     /// As [`advance_from`](Self::advance_from), with the step's continuous extension when
     /// the method has one (the default has none: `None`).
     ///
+    /// # Breaking change
+    /// `from` was `start_acceleration: Option<Vector2<f64>>` (see [`Handover`]).
+    ///
     /// # Examples
     /// ```
     /// use nalgebra::{Matrix2, Vector2};
@@ -174,8 +218,8 @@ pub trait Stepper {
         sys: &S,
         s: &State,
         h: f64,
-        start_acceleration: Option<Vector2<f64>>,
+        from: Option<Handover>,
     ) -> Result<(Advance, Option<DenseOutput>)> {
-        Ok((self.advance_from(sys, s, h, start_acceleration)?, None))
+        Ok((self.advance_from(sys, s, h, from)?, None))
     }
 }
