@@ -5,7 +5,7 @@ use nalgebra::{Matrix2, Point2, Vector2};
 
 use super::drive::{Damper, DamperPlan, Motor};
 use crate::angle::perp;
-use crate::dynamics::{christoffel_terms, LagrangeSystem};
+use crate::dynamics::{checked_inertia, christoffel_terms, LagrangeSystem, LagrangeTerms};
 use crate::error::{computed_all, finite, finite2, Error, Result};
 use crate::kinematics::{LinkMotion, Motion, PointMotion};
 use crate::linkage::plan::LoadPlan;
@@ -114,9 +114,14 @@ impl<'p> Transfer<'p> {
             &[[1.0, 0.0], [0.0, 1.0], [1.0, 1.0]]
         };
         let mut links = Vec::with_capacity(nl * rates.len());
-        for r in rates {
+        for (i, r) in rates.iter().enumerate() {
             let m = [Motion::new(q[0], r[0], 0.0), Motion::new(q[1], r[1], 0.0)];
-            an.solve_kinematics_inputs(&m[..n])?;
+            if i == 0 {
+                an.solve_kinematics_inputs(&m[..n])?;
+            } else {
+                // The same positions: only the (linear) rate problems again.
+                an.solve_rates_inputs(&m[..n])?;
+            }
             links.extend((0..nl).map(|l| *an.link_motion(l)));
         }
         let units = (0..nl).map(|l| an.link_unit(l)).collect();
@@ -320,10 +325,19 @@ impl LinkageSystem {
     /// cannot be assembled or is at a dead point) wrapped in [`Error::In`]; a load's or a
     /// motor's error; [`Error::Overflow`] when a term overflows.
     pub fn terms(&self, q: &Vector2<f64>, qd: &Vector2<f64>) -> Result<Terms> {
-        self.evaluate(q, qd, true)
+        self.evaluate(q, qd, true, None)
     }
 
-    fn evaluate(&self, q: &Vector2<f64>, qd: &Vector2<f64>, forces: bool) -> Result<Terms> {
+    /// The terms at (q, q̇), the forces only when `forces`. With `inertia_at` = Some(t), A is
+    /// also checked positive-definite (the error naming t) before the loads are evaluated:
+    /// the order in which [`crate::dynamics::accelerations`] reports the first failure.
+    fn evaluate(
+        &self,
+        q: &Vector2<f64>,
+        qd: &Vector2<f64>,
+        forces: bool,
+        inertia_at: Option<f64>,
+    ) -> Result<Terms> {
         finite2(["q1", "q2"], *q)?;
         finite2(["q1_dot", "q2_dot"], *qd)?;
         let plan = &self.plan;
@@ -391,6 +405,18 @@ impl LinkageSystem {
         if n == 1 {
             a[(1, 1)] = 1.0;
         }
+        computed_all("generalized inertia A", a.iter())?;
+        computed_all(
+            "inertia derivatives dA/dq",
+            da.iter().flat_map(|m| m.iter()),
+        )?;
+        // B needs positions and first-order transfer functions only (the solve at the actual
+        // rates for custom loads below keeps both).
+        let damping = self.damping_from(&tr);
+        computed_all("damping matrix B", damping.iter())?;
+        if let Some(t) = inertia_at {
+            checked_inertia(&a, t, q)?;
+        }
         let mut drives = Vector2::zeros();
         if forces {
             self.add_loads(&mut tr, q, qd, &mut loads)?;
@@ -398,14 +424,7 @@ impl LinkageSystem {
                 drives[i] = self.motors[i].moment(q[i], qd[i])?;
             }
         }
-        let damping = self.damping_from(&tr);
-        computed_all("generalized inertia A", a.iter())?;
-        computed_all(
-            "inertia derivatives dA/dq",
-            da.iter().flat_map(|m| m.iter()),
-        )?;
         computed_all("generalized forces Q", loads.iter().chain(drives.iter()))?;
-        computed_all("damping matrix B", damping.iter())?;
         Ok(Terms {
             inertia: a,
             inertia_derivatives: da,
@@ -499,7 +518,7 @@ impl LinkageSystem {
         // Loads given as functions of the state see it solved at the actual rates (the same
         // positions; the transfer functions are kept in `tr.links`).
         let m = [Motion::new(q[0], qd[0], 0.0), Motion::new(q[1], qd[1], 0.0)];
-        tr.an.solve_kinematics_inputs(&m[..n])?;
+        tr.an.solve_rates_inputs(&m[..n])?;
         for lp in &plan.loads {
             let LoadPlan::Custom { link, f } = lp else {
                 continue;
@@ -588,7 +607,7 @@ impl LinkageSystem {
         qdd: &Vector2<f64>,
     ) -> Result<Vector2<f64>> {
         finite2(["q1_ddot", "q2_ddot"], *qdd)?;
-        let t = self.evaluate(q, qd, true)?;
+        let t = self.evaluate(q, qd, true, None)?;
         let c = christoffel_terms(&t.inertia_derivatives, qd)?;
         let m = t.inertia * qdd + c + t.damping * qd - t.loads;
         computed_all("inverse dynamics", m.iter())?;
@@ -598,12 +617,12 @@ impl LinkageSystem {
 
 impl LagrangeSystem for LinkageSystem {
     fn inertia(&self, q: &Vector2<f64>) -> Result<Matrix2<f64>> {
-        Ok(self.evaluate(q, &Vector2::zeros(), false)?.inertia)
+        Ok(self.evaluate(q, &Vector2::zeros(), false, None)?.inertia)
     }
 
     fn inertia_derivatives(&self, q: &Vector2<f64>) -> Result<[Matrix2<f64>; 2]> {
         Ok(self
-            .evaluate(q, &Vector2::zeros(), false)?
+            .evaluate(q, &Vector2::zeros(), false, None)?
             .inertia_derivatives)
     }
 
@@ -611,11 +630,27 @@ impl LagrangeSystem for LinkageSystem {
         Ok(self.terms(q, qd)?.forces())
     }
 
+    /// A, ∂A/∂q, Q and B from one evaluation of the kinematics (one solve of the positions,
+    /// with the rates at the other unit vectors for two inputs), reporting the first failure
+    /// in the order of the separate methods: the kinematics, then A, ∂A/∂q and B overflowing,
+    /// A not positive-definite, then a load or a motor, Q overflowing. No potential: gravity
+    /// is one of the loads.
+    fn terms(&self, t: f64, q: &Vector2<f64>, qd: &Vector2<f64>) -> Result<LagrangeTerms> {
+        let all = self.evaluate(q, qd, true, Some(t))?;
+        Ok(LagrangeTerms {
+            inertia: all.inertia,
+            inertia_derivatives: all.inertia_derivatives,
+            forces: all.forces(),
+            potential_gradient: Vector2::zeros(),
+            damping: all.damping,
+        })
+    }
+
     fn damping(&self, q: &Vector2<f64>) -> Result<Matrix2<f64>> {
         if self.dampers.is_empty() {
             return Ok(Matrix2::zeros());
         }
-        Ok(self.evaluate(q, &Vector2::zeros(), false)?.damping)
+        Ok(self.evaluate(q, &Vector2::zeros(), false, None)?.damping)
     }
 
     fn output_names(&self) -> Vec<&'static str> {
