@@ -102,23 +102,39 @@ fn rk4_keeps_its_order_across_a_servo_saturation_when_the_switch_is_a_kink() {
         .iter()
         .map(|&n| diff(&end(&sys, t_end, n), &reference))
         .collect();
+    // Without the kink the error depends on where the switch falls inside its step, which
+    // changes from one h to the next: the local orders scatter (measured 1.6, 0.1, 5.9 over
+    // the halvings above), so the order is the least-squares slope over seven halvings (the
+    // errors stay far above the reference's, about 10⁻¹⁷).
     let hidden = Unkinked(sys);
-    let without: Vec<f64> = ns
+    let ns_hidden: Vec<u32> = (0..8).map(|k| 40 << k).collect();
+    let without: Vec<f64> = ns_hidden
         .iter()
         .map(|&n| diff(&end(&hidden, t_end, n), &reference))
         .collect();
     let orders = |e: &[f64]| -> Vec<f64> { e.windows(2).map(|w| (w[0] / w[1]).log2()).collect() };
-    let (pw, pn) = (orders(&with), orders(&without));
+    let pw = orders(&with);
+    // The slope of log₂ e against the number of halvings.
+    let m = without.len() as f64;
+    let (sx, sy) = (0..without.len()).fold((0.0, 0.0), |(sx, sy), k| {
+        (sx + k as f64, sy - without[k].log2())
+    });
+    let (sxx, sxy) = (0..without.len()).fold((0.0, 0.0), |(sxx, sxy), k| {
+        let x = k as f64;
+        (sxx + x * x, sxy - x * without[k].log2())
+    });
+    let slope = (m * sxy - sx * sy) / (m * sxx - sx * sx);
     eprintln!("errors with kinks {with:?}, orders {pw:.2?}");
-    eprintln!("errors without    {without:?}, orders {pn:.2?}");
+    eprintln!(
+        "errors without {without:?}, orders {:.2?}, least-squares {slope:.2}",
+        orders(&without)
+    );
     for p in &pw {
         assert!((3.6..4.6).contains(p), "with the kink located: order {p}");
     }
-    let mean = |p: &[f64]| p.iter().sum::<f64>() / p.len() as f64;
     assert!(
-        (1.5..2.6).contains(&mean(&pn)),
-        "without the kink: mean order {}",
-        mean(&pn)
+        (1.5..2.5).contains(&slope),
+        "without the kink: order {slope}"
     );
     // And the located kink pays: the finest run is far more accurate with it.
     assert!(with[3] * 100.0 < without[3], "{with:?} vs {without:?}");
