@@ -478,8 +478,53 @@ fn flywheel_gives_the_required_delta() {
     println!("{}", report.join("\n"));
 }
 
+/// The mean over a turn of the moment the motor gave along a recorded turn, ∮ M_d dφ / 2π
+/// (the integrand M_d(ω)·ω over time), by the trapezoidal rule over the recorded steps with
+/// one Richardson extrapolation (the rule over every second step gives the h² term), and the
+/// same from every second and every fourth step: their difference bounds the error.
+fn motor_mean_over_turn(sys: &LinkageSystem, t: &[f64], phi: &[f64], w: &[f64]) -> (f64, f64) {
+    let f: Vec<f64> = (0..t.len())
+        .map(|i| sys.motor(0).moment(phi[i], w[i]).unwrap() * w[i])
+        .collect();
+    let trap = |step: usize| {
+        let mut idx: Vec<usize> = (0..t.len()).step_by(step).collect();
+        if *idx.last().unwrap() != t.len() - 1 {
+            idx.push(t.len() - 1);
+        }
+        idx.windows(2)
+            .map(|p| 0.5 * (f[p[0]] + f[p[1]]) * (t[p[1]] - t[p[0]]))
+            .sum::<f64>()
+    };
+    let turned = (phi[phi.len() - 1] - phi[0]).abs();
+    let (t1, t2, t4) = (trap(1), trap(2), trap(4));
+    let fine = (4.0 * t1 - t2) / 3.0;
+    let coarse = (4.0 * t2 - t4) / 3.0;
+    (fine / turned, coarse / turned)
+}
+
 /// From rest under an induction motor the Watt six-bar settles: turn after turn the mean speed
 /// grows towards a steady value below the motor's no-load speed, reached within the budget.
+///
+/// The run-up stops when two turns' mean speeds agree; that the machine is then in its steady
+/// state is checked independently by the energy balance of a turn: in a periodic motion the
+/// kinetic energy comes back, so the work of the motor over the turn equals the work of the
+/// loads, ∮ M_d dφ = −∮ M_red dφ. The motor's side is read off the integrated motion (its
+/// moment at the recorded speeds), the loads' side from the reduced moment of resistance over
+/// a turn in φ ([`LinkageSystem::reduced_cycle`] at ω_m: the six-bar's resistance depends on
+/// the direction of the motion only). The tolerance is the sum of what may separate them:
+/// - the kinetic energy a turn may still gain at the run-up's tolerance: the mean speed
+///   changing by tol·ω_m changes T by about J_red·ω²·tol, bounded by max J_red·ω_max²·tol
+///   (twice that, for the turn-to-turn change not being the change within the turn), / 2π;
+/// - the error of the loads' mean over 3600 positions (the resistance switches on and off
+///   inside an interval): bounded by its difference from the mean over 1800;
+/// - the quadrature of the motor's side (extrapolated trapezoids over the recorded steps):
+///   bounded by its difference from the same over every second step (the steady turn is
+///   integrated once more from its start at a tenth of the step for this);
+/// - the integrator's error in the energy (RK4 at 5·10⁻⁵ s): 10⁻⁶ of the moment, far above
+///   what the energy test above measures at such steps.
+///
+/// A turn started 20 % too slow from the same position misses the balance by far more: the
+/// check tells a steady turn from one that is not.
 #[test]
 fn run_up_reaches_a_steady_state_within_its_budget() {
     let sys = LinkageSystem::from_linkage(&bundled::watt_six_bar())
@@ -508,6 +553,53 @@ fn run_up_reaches_a_steady_state_within_its_budget() {
     assert!(last.omega_mean < 2.0 * PI * 25.0 && last.omega_mean > 2.0 * PI * 20.0);
     assert!(r.turns[0].omega_mean < r.turns[1].omega_mean);
     assert_eq!(r.t.len(), r.omega.len());
+
+    // The energy balance of the steady turn, recorded at every step.
+    opts.record_every = 1;
+    let r = sys.run_up(&Rk4, &opts).unwrap();
+    let last = *r.turns.last().unwrap();
+    let tr = &r.steady.trajectory;
+    let (phi, w) = (&tr.q()[0], &tr.qd()[0]);
+    assert!((phi[phi.len() - 1] - phi[0] - TAU).abs() < 1e-9, "one turn");
+    // The steady turn once more from its start, at a tenth of the step, for the quadrature.
+    let steady = State::new(0.0, Vector2::new(phi[0], 0.0), Vector2::new(w[0], 0.0));
+    let fine = RunUpOptions {
+        h: opts.h / 10.0,
+        ..opts
+    };
+    let (_, rf) = sys.turn(&Rk4, steady, &fine).unwrap();
+    let tf = &rf.trajectory;
+    let (motor, motor_2h) = motor_mean_over_turn(&sys, tf.t(), &tf.q()[0], &tf.qd()[0]);
+    let loads_mean = |n: usize| {
+        let c = sys.reduced_cycle(n, last.omega_mean).unwrap();
+        c.iter().map(|x| x.loads).sum::<f64>() / n as f64
+    };
+    let (loads, loads_coarse) = (loads_mean(3600), loads_mean(1800));
+    let turn_cycle = sys.reduced_cycle(360, last.omega_mean).unwrap();
+    let j_max = turn_cycle.iter().map(|x| x.inertia).fold(0.0, f64::max);
+    let unsteady = 2.0 * j_max * last.omega_max.powi(2) * opts.tol / TAU;
+    let tol = unsteady
+        + (loads - loads_coarse).abs()
+        + (motor - motor_2h).abs()
+        + 1e-6 * loads.abs();
+    println!(
+        "steady turn: motor's mean moment {motor:.7} N·m, loads' mean {loads:.7} N·m, \
+         off by {:.2e} (tolerance {tol:.2e}: unsteady {unsteady:.1e}, loads' quadrature {:.1e}, \
+         motor's quadrature {:.1e}); the motor at ω_m alone would give {:.4} N·m",
+        motor + loads,
+        (loads - loads_coarse).abs(),
+        (motor - motor_2h).abs(),
+        sys.motor(0).moment(0.0, last.omega_mean).unwrap()
+    );
+    assert!(loads < 0.0, "the loads resist: {loads}");
+    assert!((motor + loads).abs() <= tol, "{motor} vs {loads}");
+    // The check has teeth: a turn from the same position 20 % too slow gains energy.
+    let slow = State::new(0.0, Vector2::new(phi[0], 0.0), Vector2::new(0.8 * w[0], 0.0));
+    let (_, rs) = sys.turn(&Rk4, slow, &opts).unwrap();
+    let ts = &rs.trajectory;
+    let (m_slow, _) = motor_mean_over_turn(&sys, ts.t(), &ts.q()[0], &ts.qd()[0]);
+    println!("a turn 20 % too slow: off by {:.2e}", m_slow + loads);
+    assert!((m_slow + loads).abs() > 100.0 * tol, "{m_slow} vs {loads}");
     // The budget: too few turns is an error naming it, not an endless run.
     opts.max_turns = 2;
     let e = sys.run_up(&Rk4, &opts).unwrap_err();
