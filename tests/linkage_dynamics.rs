@@ -719,3 +719,104 @@ fn a_second_input_reads_and_writes_as_json() {
         .unwrap()
         .contains("second_input"));
 }
+
+/// The largest difference between the link motions the rates-only pass gave (seen by a load
+/// added as a function of the state, which `terms` evaluates after re-solving the rates at the
+/// state's q̇ on the positions it solved once) and a full kinematic solve at the same inputs,
+/// relative to the largest velocity and acceleration of the position; stored as f64 bits.
+static WORST_RATES: std::sync::atomic::AtomicU64 = std::sync::atomic::AtomicU64::new(0);
+
+fn record_rates_difference(a: &tmm::linkage::Analysis<'_>) -> tmm::Result<()> {
+    let plan = a.plan();
+    let full = match a.second_input() {
+        None => plan.kinematics(a.input())?,
+        Some(m) => plan.kinematics_inputs(&[a.input(), m])?,
+    };
+    let n = plan.link_names().len();
+    let (mut v_scale, mut a_scale, mut w_scale, mut e_scale) = (0.0f64, 0.0f64, 0.0f64, 0.0f64);
+    for k in 0..n {
+        let m = full.link_motion(k);
+        v_scale = v_scale.max(m.origin.v.norm());
+        a_scale = a_scale.max(m.origin.a.norm());
+        w_scale = w_scale.max(m.omega.abs());
+        e_scale = e_scale.max(m.epsilon.abs());
+    }
+    let mut worst = 0.0f64;
+    for k in 0..n {
+        let (x, y) = (a.link_motion(k), full.link_motion(k));
+        // The positions are the same solve's: bitwise.
+        assert_eq!((x.origin.p, x.angle), (y.origin.p, y.angle), "link {k}");
+        worst = worst
+            .max((x.origin.v - y.origin.v).norm() / v_scale.max(1e-300))
+            .max((x.origin.a - y.origin.a).norm() / a_scale.max(1e-300))
+            .max((x.omega - y.omega).abs() / w_scale.max(1e-300))
+            .max((x.epsilon - y.epsilon).abs() / e_scale.max(1e-300));
+    }
+    WORST_RATES.fetch_max(worst.to_bits(), std::sync::atomic::Ordering::Relaxed);
+    Ok(())
+}
+
+/// Two inputs solve the positions once and only the (linear) rate problems at the other unit
+/// rates; a load added as a function of the state sees the rates re-solved at the state's q̇.
+/// For every group kind (RRR, RRP, RPR, PRP, RPP, across the bundled linkages, the course
+/// mechanisms and the five-bar robot with two inputs) those rates equal a full kinematic
+/// solve's to rounding (10⁻¹³ of the position's largest), and the positions are bitwise the
+/// same.
+#[test]
+fn the_rates_only_pass_equals_a_full_solve_for_every_group_kind() {
+    use tmm::linkage::GroupKind;
+    let mut linkages: Vec<(String, Linkage)> = bundled::all()
+        .into_iter()
+        .map(|l| (l.name.clone(), l))
+        .collect();
+    linkages.extend(
+        one_input_linkages()
+            .into_iter()
+            .map(|(n, l)| (n.to_owned(), l)),
+    );
+    linkages.push(("five-bar robot".to_owned(), bundled::five_bar_robot()));
+    let mut kinds = Vec::new();
+    let mut states = 0;
+    for (name, l) in linkages {
+        let mut plan = Plan::new(&l).unwrap();
+        kinds.extend(plan.groups().iter().map(|g| g.kind));
+        let moving = plan.link_names()[1].clone();
+        plan.add_load_fn(&moving, |a| {
+            record_rates_difference(a)?;
+            Ok(Load::new(Point2::origin(), Vector2::zeros(), 0.0))
+        })
+        .unwrap();
+        let refs = plan.reference_inputs();
+        let two = refs.len() == 2;
+        let sys = LinkageSystem::new(plan).unwrap();
+        for k in 0..24 {
+            let d = f64::from(k) * if two { 0.01 } else { TAU / 24.0 };
+            let q = Vector2::new(refs[0] + d, if two { refs[1] - 0.5 * d } else { 0.0 });
+            let qd = Vector2::new(7.0, if two { -3.0 } else { 0.0 });
+            let inputs = [Motion::new(q[0], qd[0], 0.0), Motion::new(q[1], qd[1], 0.0)];
+            let n = if two { 2 } else { 1 };
+            if sys.terms(&q, &qd).is_ok() {
+                states += 1;
+            } else {
+                // Only where the position cannot be solved at all.
+                assert!(
+                    sys.plan().kinematics_inputs(&inputs[..n]).is_err(),
+                    "{name} at {q:?}"
+                );
+            }
+        }
+    }
+    let worst = f64::from_bits(WORST_RATES.load(std::sync::atomic::Ordering::Relaxed));
+    println!("rates-only pass against full solves: {states} states, worst {worst:.1e}");
+    for kind in [
+        GroupKind::Rrr,
+        GroupKind::Rrp,
+        GroupKind::Rpr,
+        GroupKind::Prp,
+        GroupKind::Rpp,
+    ] {
+        assert!(kinds.contains(&kind), "{kind:?} not covered");
+    }
+    assert!(states >= 200, "{states}");
+    assert!(worst <= 1e-13, "{worst:e}");
+}
