@@ -820,3 +820,111 @@ fn the_rates_only_pass_equals_a_full_solve_for_every_group_kind() {
     assert!(states >= 200, "{states}");
     assert!(worst <= 1e-13, "{worst:e}");
 }
+
+/// `LagrangeSystem::terms` gives every part at once from one kinematic evaluation (the
+/// described linkages, the hand-written five-bar): the same values as the separate methods,
+/// bitwise, and the accelerations from them are those of the separate parts by Cramer's rule.
+#[test]
+fn terms_at_once_equal_the_separate_methods() {
+    let fb = FiveBar {
+        gravity: 9.81,
+        j_s2: Some(0.004),
+        ..FiveBar::default()
+    };
+    let watt = LinkageSystem::from_linkage(&bundled::watt_six_bar())
+        .unwrap()
+        .with_motor(0, Motor::Linear(LinearMotor { a: 40.0, b: 0.2 }))
+        .unwrap()
+        .with_damper(&Damper::Link {
+            link: "link 5".to_owned(),
+            c: 0.3,
+        })
+        .unwrap();
+    let robot = five_bar_system(&fb);
+    let systems: [(&str, &dyn LagrangeSystem); 3] =
+        [("five-bar (hand)", &fb), ("five-bar (described)", &robot), ("Watt six-bar", &watt)];
+    for (name, sys) in systems {
+        for k in 0..6 {
+            let x = f64::from(k);
+            let q = Vector2::new(1.9 + 0.05 * x, 1.2 - 0.04 * x);
+            let qd = Vector2::new(2.0 - x, 0.5 * x - 1.0);
+            let t = 0.1 * x;
+            let all = sys.terms(t, &q, &qd).unwrap();
+            assert_eq!(all.inertia, sys.inertia(&q).unwrap(), "{name}");
+            assert_eq!(all.inertia_derivatives, sys.inertia_derivatives(&q).unwrap(), "{name}");
+            assert_eq!(all.forces, sys.forces(t, &q, &qd).unwrap(), "{name}");
+            assert_eq!(all.damping, sys.damping(&q).unwrap(), "{name}");
+            // The potential gradient: the hand five-bar's analytic one; the linkage has none
+            // (gravity is one of its loads).
+            let g = sys.potential_gradient(&q).unwrap();
+            assert!((all.potential_gradient - g).amax() <= 1e-9 * (1.0 + g.amax()), "{name}");
+            // The accelerations solve A q̈ = Q − c − ∇Π − B q̇ with the parts.
+            let acc = tmm::dynamics::accelerations(sys, t, &q, &qd).unwrap();
+            let c = tmm::dynamics::christoffel_terms(&all.inertia_derivatives, &qd).unwrap();
+            let rhs = all.forces - c - all.potential_gradient - all.damping * qd;
+            let res = all.inertia * acc - rhs;
+            assert!(res.amax() <= 1e-12 * (1.0 + rhs.amax()), "{name}: {res:?}");
+        }
+    }
+}
+
+/// The default `terms` reports the first failure in the order `accelerations` always has:
+/// A not positive-definite before a failing derivative or force, a non-finite force before a
+/// failing potential.
+#[test]
+fn the_default_terms_reports_the_first_failure_first() {
+    struct Broken {
+        inertia: Matrix2<f64>,
+        force: f64,
+    }
+    impl LagrangeSystem for Broken {
+        fn inertia(&self, _: &Vector2<f64>) -> tmm::Result<Matrix2<f64>> {
+            Ok(self.inertia)
+        }
+        fn inertia_derivatives(&self, _: &Vector2<f64>) -> tmm::Result<[Matrix2<f64>; 2]> {
+            Err(Error::Overflow { what: "dA/dq" })
+        }
+        fn forces(&self, _: f64, _: &Vector2<f64>, _: &Vector2<f64>) -> tmm::Result<Vector2<f64>> {
+            Ok(Vector2::new(self.force, 0.0))
+        }
+        fn potential(&self, _: &Vector2<f64>) -> tmm::Result<f64> {
+            Err(Error::Overflow { what: "potential" })
+        }
+    }
+    let (q, qd) = (Vector2::zeros(), Vector2::zeros());
+    let indefinite = Broken {
+        inertia: Matrix2::new(1.0, 2.0, 2.0, 1.0),
+        force: 1.0,
+    };
+    for r in [
+        indefinite.terms(0.5, &q, &qd).map(|_| ()),
+        tmm::dynamics::accelerations(&indefinite, 0.5, &q, &qd).map(|_| ()),
+    ] {
+        assert!(matches!(r, Err(Error::NotPositiveDefinite { .. })), "{r:?}");
+    }
+    let good = Broken {
+        inertia: Matrix2::identity(),
+        force: 1.0,
+    };
+    let r = tmm::dynamics::accelerations(&good, 0.5, &q, &qd);
+    assert!(matches!(r, Err(Error::Overflow { what: "dA/dq" })), "{r:?}");
+    // Derivatives that work, a NaN force and a failing potential: the NaN is named first.
+    struct NanForce(Broken);
+    impl LagrangeSystem for NanForce {
+        fn inertia(&self, q: &Vector2<f64>) -> tmm::Result<Matrix2<f64>> {
+            self.0.inertia(q)
+        }
+        fn forces(&self, t: f64, q: &Vector2<f64>, qd: &Vector2<f64>) -> tmm::Result<Vector2<f64>> {
+            self.0.forces(t, q, qd)
+        }
+        fn potential(&self, q: &Vector2<f64>) -> tmm::Result<f64> {
+            self.0.potential(q)
+        }
+    }
+    let nan = NanForce(Broken {
+        inertia: Matrix2::identity(),
+        force: f64::NAN,
+    });
+    let r = tmm::dynamics::accelerations(&nan, 0.5, &q, &qd);
+    assert!(matches!(r, Err(Error::NonFiniteState { time }) if time == 0.5), "{r:?}");
+}
