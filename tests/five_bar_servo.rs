@@ -214,8 +214,8 @@ fn the_kink_argument_changes_sign_at_each_servos_switch() {
             qd[i] = f * s.limit / s.kd;
             let k = r.kink_argument(0.0, &q0, &qd).unwrap();
             assert!(k * sign > 0.0, "servo {i}, |demand|/limit = {f}: {k}");
-            let m = r.forces(0.0, &q0, &qd).unwrap()[i]
-                + r.m_on * r.kinematics(&q0).unwrap().phi3_q[i];
+            let m =
+                r.forces(0.0, &q0, &qd).unwrap()[i] + r.m_on * r.kinematics(&q0).unwrap().phi3_q[i];
             assert!((m.abs() - (f.min(1.0) * s.limit)).abs() < 1e-12, "{m}");
         }
     }

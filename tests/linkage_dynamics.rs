@@ -578,10 +578,8 @@ fn run_up_reaches_a_steady_state_within_its_budget() {
     let turn_cycle = sys.reduced_cycle(360, last.omega_mean).unwrap();
     let j_max = turn_cycle.iter().map(|x| x.inertia).fold(0.0, f64::max);
     let unsteady = 2.0 * j_max * last.omega_max.powi(2) * opts.tol / TAU;
-    let tol = unsteady
-        + (loads - loads_coarse).abs()
-        + (motor - motor_2h).abs()
-        + 1e-6 * loads.abs();
+    let tol =
+        unsteady + (loads - loads_coarse).abs() + (motor - motor_2h).abs() + 1e-6 * loads.abs();
     println!(
         "steady turn: motor's mean moment {motor:.7} N·m, loads' mean {loads:.7} N·m, \
          off by {:.2e} (tolerance {tol:.2e}: unsteady {unsteady:.1e}, loads' quadrature {:.1e}, \
@@ -594,7 +592,11 @@ fn run_up_reaches_a_steady_state_within_its_budget() {
     assert!(loads < 0.0, "the loads resist: {loads}");
     assert!((motor + loads).abs() <= tol, "{motor} vs {loads}");
     // The check has teeth: a turn from the same position 20 % too slow gains energy.
-    let slow = State::new(0.0, Vector2::new(phi[0], 0.0), Vector2::new(0.8 * w[0], 0.0));
+    let slow = State::new(
+        0.0,
+        Vector2::new(phi[0], 0.0),
+        Vector2::new(0.8 * w[0], 0.0),
+    );
     let (_, rs) = sys.turn(&Rk4, slow, &opts).unwrap();
     let ts = &rs.trajectory;
     let (m_slow, _) = motor_mean_over_turn(&sys, ts.t(), &ts.q()[0], &ts.qd()[0]);
@@ -841,8 +843,11 @@ fn terms_at_once_equal_the_separate_methods() {
         })
         .unwrap();
     let robot = five_bar_system(&fb);
-    let systems: [(&str, &dyn LagrangeSystem); 3] =
-        [("five-bar (hand)", &fb), ("five-bar (described)", &robot), ("Watt six-bar", &watt)];
+    let systems: [(&str, &dyn LagrangeSystem); 3] = [
+        ("five-bar (hand)", &fb),
+        ("five-bar (described)", &robot),
+        ("Watt six-bar", &watt),
+    ];
     for (name, sys) in systems {
         for k in 0..6 {
             let x = f64::from(k);
@@ -851,13 +856,20 @@ fn terms_at_once_equal_the_separate_methods() {
             let t = 0.1 * x;
             let all = sys.terms(t, &q, &qd).unwrap();
             assert_eq!(all.inertia, sys.inertia(&q).unwrap(), "{name}");
-            assert_eq!(all.inertia_derivatives, sys.inertia_derivatives(&q).unwrap(), "{name}");
+            assert_eq!(
+                all.inertia_derivatives,
+                sys.inertia_derivatives(&q).unwrap(),
+                "{name}"
+            );
             assert_eq!(all.forces, sys.forces(t, &q, &qd).unwrap(), "{name}");
             assert_eq!(all.damping, sys.damping(&q).unwrap(), "{name}");
             // The potential gradient: the hand five-bar's analytic one; the linkage has none
             // (gravity is one of its loads).
             let g = sys.potential_gradient(&q).unwrap();
-            assert!((all.potential_gradient - g).amax() <= 1e-9 * (1.0 + g.amax()), "{name}");
+            assert!(
+                (all.potential_gradient - g).amax() <= 1e-9 * (1.0 + g.amax()),
+                "{name}"
+            );
             // The accelerations solve A q̈ = Q − c − ∇Π − B q̇ with the parts.
             let acc = tmm::dynamics::accelerations(sys, t, &q, &qd).unwrap();
             let c = tmm::dynamics::christoffel_terms(&all.inertia_derivatives, &qd).unwrap();
@@ -926,5 +938,8 @@ fn the_default_terms_reports_the_first_failure_first() {
         force: f64::NAN,
     });
     let r = tmm::dynamics::accelerations(&nan, 0.5, &q, &qd);
-    assert!(matches!(r, Err(Error::NonFiniteState { time }) if time == 0.5), "{r:?}");
+    assert!(
+        matches!(r, Err(Error::NonFiniteState { time }) if time == 0.5),
+        "{r:?}"
+    );
 }

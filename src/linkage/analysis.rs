@@ -1368,10 +1368,7 @@ impl Analysis<'_> {
                     omega,
                     epsilon,
                 };
-                (
-                    link(a, self.links[l2].angle),
-                    link(e, self.links[l3].angle),
-                )
+                (link(a, self.links[l2].angle), link(e, self.links[l3].angle))
             }
             GroupKind::Prp | GroupKind::Rpp => return false,
         };

@@ -337,9 +337,12 @@ impl LinkageSystem {
     /// A, ∂A/∂q, the drives' and the loads' generalized forces and B at the state (q, q̇).
     ///
     /// One position of the kinematics at unit input rate gives every first- and second-order
-    /// transfer function of a linkage with one input (three for two inputs), plus one more
-    /// at the actual rates when the plan has loads added by [`Plan::add_load_fn`] (such a
-    /// load sees the state's positions and velocities, and the accelerations of q̈ = 0).
+    /// transfer function of a linkage with one input. Two inputs need the rates at q̇ = e₁,
+    /// e₂ and (1, 1) (three quadratic forms for the three second-order transfer functions):
+    /// the positions are solved once, and only the groups' linear velocity and acceleration
+    /// problems again for e₂ and (1, 1). Loads added by [`Plan::add_load_fn`] get the rates
+    /// once more at the actual q̇ (such a load sees the state's positions and velocities, and
+    /// the accelerations of q̈ = 0).
     ///
     /// # Errors
     /// [`Error::NonFinite`] for a non-finite q or q̇; the kinematics' errors (a group that
