@@ -179,14 +179,20 @@ fn an_overflowing_demand_saturates_on_its_dominant_side() {
 
     // Through the robot: a saturated overflowing servo drives with its limit, and the
     // accelerations are finite (the other servo at its target, at rest).
-    let mut r = FiveBar::default();
-    r.drive1 = Servo {
-        target: 120f64.to_radians(),
-        kp: 1e308,
-        kd: 1e308,
-        limit: 5.0,
+    let d = FiveBar::default();
+    let r = FiveBar {
+        drive1: Servo {
+            target: 120f64.to_radians(),
+            kp: 1e308,
+            kd: 1e308,
+            limit: 5.0,
+        },
+        drive4: Servo {
+            target: 60f64.to_radians(),
+            ..d.drive4
+        },
+        ..d
     };
-    r.drive4.target = 60f64.to_radians();
     let q = Vector2::new(120f64.to_radians() - 1e-3, 60f64.to_radians());
     let qd = Vector2::new(-1e10, 0.0);
     let q_f = r.forces(0.0, &q, &qd).unwrap();
