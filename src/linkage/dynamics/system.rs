@@ -344,6 +344,10 @@ impl LinkageSystem {
     /// once more at the actual q̇ (such a load sees the state's positions and velocities, and
     /// the accelerations of q̈ = 0).
     ///
+    /// The trait's [`LagrangeSystem::terms`] (with the time, the drives and loads summed into
+    /// Q) is the same evaluation; as this inherent method shares its name, call that one as
+    /// `LagrangeSystem::terms(&sys, t, &q, &qd)`.
+    ///
     /// # Errors
     /// [`Error::NonFinite`] for a non-finite q or q̇; the kinematics' errors (a group that
     /// cannot be assembled or is at a dead point) wrapped in [`Error::In`]; a load's or a
