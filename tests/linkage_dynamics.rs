@@ -478,8 +478,53 @@ fn flywheel_gives_the_required_delta() {
     println!("{}", report.join("\n"));
 }
 
+/// The mean over a turn of the moment the motor gave along a recorded turn, ∮ M_d dφ / 2π
+/// (the integrand M_d(ω)·ω over time), by the trapezoidal rule over the recorded steps with
+/// one Richardson extrapolation (the rule over every second step gives the h² term), and the
+/// same from every second and every fourth step: their difference bounds the error.
+fn motor_mean_over_turn(sys: &LinkageSystem, t: &[f64], phi: &[f64], w: &[f64]) -> (f64, f64) {
+    let f: Vec<f64> = (0..t.len())
+        .map(|i| sys.motor(0).moment(phi[i], w[i]).unwrap() * w[i])
+        .collect();
+    let trap = |step: usize| {
+        let mut idx: Vec<usize> = (0..t.len()).step_by(step).collect();
+        if *idx.last().unwrap() != t.len() - 1 {
+            idx.push(t.len() - 1);
+        }
+        idx.windows(2)
+            .map(|p| 0.5 * (f[p[0]] + f[p[1]]) * (t[p[1]] - t[p[0]]))
+            .sum::<f64>()
+    };
+    let turned = (phi[phi.len() - 1] - phi[0]).abs();
+    let (t1, t2, t4) = (trap(1), trap(2), trap(4));
+    let fine = (4.0 * t1 - t2) / 3.0;
+    let coarse = (4.0 * t2 - t4) / 3.0;
+    (fine / turned, coarse / turned)
+}
+
 /// From rest under an induction motor the Watt six-bar settles: turn after turn the mean speed
 /// grows towards a steady value below the motor's no-load speed, reached within the budget.
+///
+/// The run-up stops when two turns' mean speeds agree; that the machine is then in its steady
+/// state is checked independently by the energy balance of a turn: in a periodic motion the
+/// kinetic energy comes back, so the work of the motor over the turn equals the work of the
+/// loads, ∮ M_d dφ = −∮ M_red dφ. The motor's side is read off the integrated motion (its
+/// moment at the recorded speeds), the loads' side from the reduced moment of resistance over
+/// a turn in φ ([`LinkageSystem::reduced_cycle`] at ω_m: the six-bar's resistance depends on
+/// the direction of the motion only). The tolerance is the sum of what may separate them:
+/// - the kinetic energy a turn may still gain at the run-up's tolerance: the mean speed
+///   changing by tol·ω_m changes T by about J_red·ω²·tol, bounded by max J_red·ω_max²·tol
+///   (twice that, for the turn-to-turn change not being the change within the turn), / 2π;
+/// - the error of the loads' mean over 3600 positions (the resistance switches on and off
+///   inside an interval): bounded by its difference from the mean over 1800;
+/// - the quadrature of the motor's side (extrapolated trapezoids over the recorded steps):
+///   bounded by its difference from the same over every second step (the steady turn is
+///   integrated once more from its start at a tenth of the step for this);
+/// - the integrator's error in the energy (RK4 at 5·10⁻⁵ s): 10⁻⁶ of the moment, far above
+///   what the energy test above measures at such steps.
+///
+/// A turn started 20 % too slow from the same position misses the balance by far more: the
+/// check tells a steady turn from one that is not.
 #[test]
 fn run_up_reaches_a_steady_state_within_its_budget() {
     let sys = LinkageSystem::from_linkage(&bundled::watt_six_bar())
@@ -508,6 +553,55 @@ fn run_up_reaches_a_steady_state_within_its_budget() {
     assert!(last.omega_mean < 2.0 * PI * 25.0 && last.omega_mean > 2.0 * PI * 20.0);
     assert!(r.turns[0].omega_mean < r.turns[1].omega_mean);
     assert_eq!(r.t.len(), r.omega.len());
+
+    // The energy balance of the steady turn, recorded at every step.
+    opts.record_every = 1;
+    let r = sys.run_up(&Rk4, &opts).unwrap();
+    let last = *r.turns.last().unwrap();
+    let tr = &r.steady.trajectory;
+    let (phi, w) = (&tr.q()[0], &tr.qd()[0]);
+    assert!((phi[phi.len() - 1] - phi[0] - TAU).abs() < 1e-9, "one turn");
+    // The steady turn once more from its start, at a tenth of the step, for the quadrature.
+    let steady = State::new(0.0, Vector2::new(phi[0], 0.0), Vector2::new(w[0], 0.0));
+    let fine = RunUpOptions {
+        h: opts.h / 10.0,
+        ..opts
+    };
+    let (_, rf) = sys.turn(&Rk4, steady, &fine).unwrap();
+    let tf = &rf.trajectory;
+    let (motor, motor_2h) = motor_mean_over_turn(&sys, tf.t(), &tf.q()[0], &tf.qd()[0]);
+    let loads_mean = |n: usize| {
+        let c = sys.reduced_cycle(n, last.omega_mean).unwrap();
+        c.iter().map(|x| x.loads).sum::<f64>() / n as f64
+    };
+    let (loads, loads_coarse) = (loads_mean(3600), loads_mean(1800));
+    let turn_cycle = sys.reduced_cycle(360, last.omega_mean).unwrap();
+    let j_max = turn_cycle.iter().map(|x| x.inertia).fold(0.0, f64::max);
+    let unsteady = 2.0 * j_max * last.omega_max.powi(2) * opts.tol / TAU;
+    let tol =
+        unsteady + (loads - loads_coarse).abs() + (motor - motor_2h).abs() + 1e-6 * loads.abs();
+    println!(
+        "steady turn: motor's mean moment {motor:.7} N·m, loads' mean {loads:.7} N·m, \
+         off by {:.2e} (tolerance {tol:.2e}: unsteady {unsteady:.1e}, loads' quadrature {:.1e}, \
+         motor's quadrature {:.1e}); the motor at ω_m alone would give {:.4} N·m",
+        motor + loads,
+        (loads - loads_coarse).abs(),
+        (motor - motor_2h).abs(),
+        sys.motor(0).moment(0.0, last.omega_mean).unwrap()
+    );
+    assert!(loads < 0.0, "the loads resist: {loads}");
+    assert!((motor + loads).abs() <= tol, "{motor} vs {loads}");
+    // The check has teeth: a turn from the same position 20 % too slow gains energy.
+    let slow = State::new(
+        0.0,
+        Vector2::new(phi[0], 0.0),
+        Vector2::new(0.8 * w[0], 0.0),
+    );
+    let (_, rs) = sys.turn(&Rk4, slow, &opts).unwrap();
+    let ts = &rs.trajectory;
+    let (m_slow, _) = motor_mean_over_turn(&sys, ts.t(), &ts.q()[0], &ts.qd()[0]);
+    println!("a turn 20 % too slow: off by {:.2e}", m_slow + loads);
+    assert!((m_slow + loads).abs() > 100.0 * tol, "{m_slow} vs {loads}");
     // The budget: too few turns is an error naming it, not an endless run.
     opts.max_turns = 2;
     let e = sys.run_up(&Rk4, &opts).unwrap_err();
@@ -626,4 +720,226 @@ fn a_second_input_reads_and_writes_as_json() {
         .to_json()
         .unwrap()
         .contains("second_input"));
+}
+
+/// The largest difference between the link motions the rates-only pass gave (seen by a load
+/// added as a function of the state, which `terms` evaluates after re-solving the rates at the
+/// state's q̇ on the positions it solved once) and a full kinematic solve at the same inputs,
+/// relative to the largest velocity and acceleration of the position; stored as f64 bits.
+static WORST_RATES: std::sync::atomic::AtomicU64 = std::sync::atomic::AtomicU64::new(0);
+
+fn record_rates_difference(a: &tmm::linkage::Analysis<'_>) -> tmm::Result<()> {
+    let plan = a.plan();
+    let full = match a.second_input() {
+        None => plan.kinematics(a.input())?,
+        Some(m) => plan.kinematics_inputs(&[a.input(), m])?,
+    };
+    let n = plan.link_names().len();
+    let (mut v_scale, mut a_scale, mut w_scale, mut e_scale) = (0.0f64, 0.0f64, 0.0f64, 0.0f64);
+    for k in 0..n {
+        let m = full.link_motion(k);
+        v_scale = v_scale.max(m.origin.v.norm());
+        a_scale = a_scale.max(m.origin.a.norm());
+        w_scale = w_scale.max(m.omega.abs());
+        e_scale = e_scale.max(m.epsilon.abs());
+    }
+    let mut worst = 0.0f64;
+    for k in 0..n {
+        let (x, y) = (a.link_motion(k), full.link_motion(k));
+        // The positions are the same solve's: bitwise.
+        assert_eq!((x.origin.p, x.angle), (y.origin.p, y.angle), "link {k}");
+        worst = worst
+            .max((x.origin.v - y.origin.v).norm() / v_scale.max(1e-300))
+            .max((x.origin.a - y.origin.a).norm() / a_scale.max(1e-300))
+            .max((x.omega - y.omega).abs() / w_scale.max(1e-300))
+            .max((x.epsilon - y.epsilon).abs() / e_scale.max(1e-300));
+    }
+    WORST_RATES.fetch_max(worst.to_bits(), std::sync::atomic::Ordering::Relaxed);
+    Ok(())
+}
+
+/// Two inputs solve the positions once and only the (linear) rate problems at the other unit
+/// rates; a load added as a function of the state sees the rates re-solved at the state's q̇.
+/// For every group kind (RRR, RRP, RPR, PRP, RPP, across the bundled linkages, the course
+/// mechanisms and the five-bar robot with two inputs) those rates equal a full kinematic
+/// solve's to rounding (10⁻¹³ of the position's largest), and the positions are bitwise the
+/// same.
+#[test]
+fn the_rates_only_pass_equals_a_full_solve_for_every_group_kind() {
+    use tmm::linkage::GroupKind;
+    let mut linkages: Vec<(String, Linkage)> = bundled::all()
+        .into_iter()
+        .map(|l| (l.name.clone(), l))
+        .collect();
+    linkages.extend(
+        one_input_linkages()
+            .into_iter()
+            .map(|(n, l)| (n.to_owned(), l)),
+    );
+    linkages.push(("five-bar robot".to_owned(), bundled::five_bar_robot()));
+    let mut kinds = Vec::new();
+    let mut states = 0;
+    for (name, l) in linkages {
+        let mut plan = Plan::new(&l).unwrap();
+        kinds.extend(plan.groups().iter().map(|g| g.kind));
+        let moving = plan.link_names()[1].clone();
+        plan.add_load_fn(&moving, |a| {
+            record_rates_difference(a)?;
+            Ok(Load::new(Point2::origin(), Vector2::zeros(), 0.0))
+        })
+        .unwrap();
+        let refs = plan.reference_inputs();
+        let two = refs.len() == 2;
+        let sys = LinkageSystem::new(plan).unwrap();
+        for k in 0..24 {
+            let d = f64::from(k) * if two { 0.01 } else { TAU / 24.0 };
+            let q = Vector2::new(refs[0] + d, if two { refs[1] - 0.5 * d } else { 0.0 });
+            let qd = Vector2::new(7.0, if two { -3.0 } else { 0.0 });
+            let inputs = [Motion::new(q[0], qd[0], 0.0), Motion::new(q[1], qd[1], 0.0)];
+            let n = if two { 2 } else { 1 };
+            if sys.terms(&q, &qd).is_ok() {
+                states += 1;
+            } else {
+                // Only where the position cannot be solved at all.
+                assert!(
+                    sys.plan().kinematics_inputs(&inputs[..n]).is_err(),
+                    "{name} at {q:?}"
+                );
+            }
+        }
+    }
+    let worst = f64::from_bits(WORST_RATES.load(std::sync::atomic::Ordering::Relaxed));
+    println!("rates-only pass against full solves: {states} states, worst {worst:.1e}");
+    for kind in [
+        GroupKind::Rrr,
+        GroupKind::Rrp,
+        GroupKind::Rpr,
+        GroupKind::Prp,
+        GroupKind::Rpp,
+    ] {
+        assert!(kinds.contains(&kind), "{kind:?} not covered");
+    }
+    assert!(states >= 200, "{states}");
+    assert!(worst <= 1e-13, "{worst:e}");
+}
+
+/// `LagrangeSystem::terms` gives every part at once from one kinematic evaluation (the
+/// described linkages, the hand-written five-bar): the same values as the separate methods,
+/// bitwise, and the accelerations from them are those of the separate parts by Cramer's rule.
+#[test]
+fn terms_at_once_equal_the_separate_methods() {
+    let fb = FiveBar {
+        gravity: 9.81,
+        j_s2: Some(0.004),
+        ..FiveBar::default()
+    };
+    let watt = LinkageSystem::from_linkage(&bundled::watt_six_bar())
+        .unwrap()
+        .with_motor(0, Motor::Linear(LinearMotor { a: 40.0, b: 0.2 }))
+        .unwrap()
+        .with_damper(&Damper::Link {
+            link: "link 5".to_owned(),
+            c: 0.3,
+        })
+        .unwrap();
+    let robot = five_bar_system(&fb);
+    let systems: [(&str, &dyn LagrangeSystem); 3] = [
+        ("five-bar (hand)", &fb),
+        ("five-bar (described)", &robot),
+        ("Watt six-bar", &watt),
+    ];
+    for (name, sys) in systems {
+        for k in 0..6 {
+            let x = f64::from(k);
+            let q = Vector2::new(1.9 + 0.05 * x, 1.2 - 0.04 * x);
+            let qd = Vector2::new(2.0 - x, 0.5 * x - 1.0);
+            let t = 0.1 * x;
+            let all = sys.terms(t, &q, &qd).unwrap();
+            assert_eq!(all.inertia, sys.inertia(&q).unwrap(), "{name}");
+            assert_eq!(
+                all.inertia_derivatives,
+                sys.inertia_derivatives(&q).unwrap(),
+                "{name}"
+            );
+            assert_eq!(all.forces, sys.forces(t, &q, &qd).unwrap(), "{name}");
+            assert_eq!(all.damping, sys.damping(&q).unwrap(), "{name}");
+            // The potential gradient: the hand five-bar's analytic one; the linkage has none
+            // (gravity is one of its loads).
+            let g = sys.potential_gradient(&q).unwrap();
+            assert!(
+                (all.potential_gradient - g).amax() <= 1e-9 * (1.0 + g.amax()),
+                "{name}"
+            );
+            // The accelerations solve A q̈ = Q − c − ∇Π − B q̇ with the parts.
+            let acc = tmm::dynamics::accelerations(sys, t, &q, &qd).unwrap();
+            let c = tmm::dynamics::christoffel_terms(&all.inertia_derivatives, &qd).unwrap();
+            let rhs = all.forces - c - all.potential_gradient - all.damping * qd;
+            let res = all.inertia * acc - rhs;
+            assert!(res.amax() <= 1e-12 * (1.0 + rhs.amax()), "{name}: {res:?}");
+        }
+    }
+}
+
+/// The default `terms` reports the first failure in the order `accelerations` always has:
+/// A not positive-definite before a failing derivative or force, a non-finite force before a
+/// failing potential.
+#[test]
+fn the_default_terms_reports_the_first_failure_first() {
+    struct Broken {
+        inertia: Matrix2<f64>,
+        force: f64,
+    }
+    impl LagrangeSystem for Broken {
+        fn inertia(&self, _: &Vector2<f64>) -> tmm::Result<Matrix2<f64>> {
+            Ok(self.inertia)
+        }
+        fn inertia_derivatives(&self, _: &Vector2<f64>) -> tmm::Result<[Matrix2<f64>; 2]> {
+            Err(Error::Overflow { what: "dA/dq" })
+        }
+        fn forces(&self, _: f64, _: &Vector2<f64>, _: &Vector2<f64>) -> tmm::Result<Vector2<f64>> {
+            Ok(Vector2::new(self.force, 0.0))
+        }
+        fn potential(&self, _: &Vector2<f64>) -> tmm::Result<f64> {
+            Err(Error::Overflow { what: "potential" })
+        }
+    }
+    let (q, qd) = (Vector2::zeros(), Vector2::zeros());
+    let indefinite = Broken {
+        inertia: Matrix2::new(1.0, 2.0, 2.0, 1.0),
+        force: 1.0,
+    };
+    for r in [
+        indefinite.terms(0.5, &q, &qd).map(|_| ()),
+        tmm::dynamics::accelerations(&indefinite, 0.5, &q, &qd).map(|_| ()),
+    ] {
+        assert!(matches!(r, Err(Error::NotPositiveDefinite { .. })), "{r:?}");
+    }
+    let good = Broken {
+        inertia: Matrix2::identity(),
+        force: 1.0,
+    };
+    let r = tmm::dynamics::accelerations(&good, 0.5, &q, &qd);
+    assert!(matches!(r, Err(Error::Overflow { what: "dA/dq" })), "{r:?}");
+    // Derivatives that work, a NaN force and a failing potential: the NaN is named first.
+    struct NanForce(Broken);
+    impl LagrangeSystem for NanForce {
+        fn inertia(&self, q: &Vector2<f64>) -> tmm::Result<Matrix2<f64>> {
+            self.0.inertia(q)
+        }
+        fn forces(&self, t: f64, q: &Vector2<f64>, qd: &Vector2<f64>) -> tmm::Result<Vector2<f64>> {
+            self.0.forces(t, q, qd)
+        }
+        fn potential(&self, q: &Vector2<f64>) -> tmm::Result<f64> {
+            self.0.potential(q)
+        }
+    }
+    let nan = NanForce(Broken {
+        inertia: Matrix2::identity(),
+        force: f64::NAN,
+    });
+    let r = tmm::dynamics::accelerations(&nan, 0.5, &q, &qd);
+    assert!(
+        matches!(r, Err(Error::NonFiniteState { time }) if time == 0.5),
+        "{r:?}"
+    );
 }

@@ -45,6 +45,9 @@ pub use finite_increment::FiniteIncrement;
 pub use rk4::Rk4;
 pub use run::{run, Direction, Outcome, Reach, RunOptions, RunResult, Steady, Watch};
 pub use stepper::{Advance, Handover, Stepper};
-pub use system::{accelerations, christoffel_terms, kinetic_energy, powers, LagrangeSystem, State};
+pub(crate) use system::checked_inertia;
+pub use system::{
+    accelerations, christoffel_terms, kinetic_energy, powers, LagrangeSystem, LagrangeTerms, State,
+};
 pub use table::{Beyond, Table};
 pub use trajectory::Trajectory;

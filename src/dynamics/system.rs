@@ -77,10 +77,28 @@ where
     Ok(((m2 - p2) + (p1 - m1) * 8.0) * (1.0 / (12.0 * eps)))
 }
 
+/// Every term of Lagrange's equations at one state (t, q, q̇), as
+/// [`LagrangeSystem::terms`] gives them together.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct LagrangeTerms {
+    /// The inertia matrix A(q) (as [`LagrangeSystem::inertia`]).
+    pub inertia: Matrix2<f64>,
+    /// [∂A/∂q₁, ∂A/∂q₂] (as [`LagrangeSystem::inertia_derivatives`]).
+    pub inertia_derivatives: [Matrix2<f64>; 2],
+    /// The generalized forces Q(t, q, q̇) (as [`LagrangeSystem::forces`]).
+    pub forces: Vector2<f64>,
+    /// ∇Π(q) (as [`LagrangeSystem::potential_gradient`]).
+    pub potential_gradient: Vector2<f64>,
+    /// B(q) of Rayleigh's dissipation function (as [`LagrangeSystem::damping`]).
+    pub damping: Matrix2<f64>,
+}
+
 /// A machine with two degrees of freedom described by Lagrange's equations of the 2nd kind.
 ///
 /// Implement [`inertia`](Self::inertia) and [`forces`](Self::forces); everything else has a
-/// default. The accelerations follow from [`accelerations`].
+/// default. The accelerations follow from [`accelerations`]. A machine whose terms share one
+/// costly evaluation (the kinematics of a linkage) overrides [`terms`](Self::terms) as well,
+/// so that a state costs that evaluation once.
 pub trait LagrangeSystem {
     /// Names of the two generalized coordinates (used as column names).
     fn coordinate_names(&self) -> [&'static str; 2] {
@@ -148,6 +166,73 @@ pub trait LagrangeSystem {
     fn damping(&self, q: &Vector2<f64>) -> Result<Matrix2<f64>> {
         let _ = q;
         Ok(Matrix2::zeros())
+    }
+
+    /// All the terms of the equations at the state (t, q, q̇) together: what
+    /// [`accelerations`] needs, asked for once.
+    ///
+    /// The default calls [`inertia`](Self::inertia),
+    /// [`inertia_derivatives`](Self::inertia_derivatives), [`forces`](Self::forces),
+    /// [`potential_gradient`](Self::potential_gradient) and [`damping`](Self::damping) in
+    /// this order, and checks each part before the next is evaluated as [`accelerations`]
+    /// does (A symmetric positive-definite, then every other part finite), so that the first
+    /// failure is the one reported. Override it where the parts share one evaluation (a
+    /// linkage's kinematics): the override must give the same values as the separate methods
+    /// and should report its failures in the same order; [`accelerations`] checks the parts
+    /// again whatever an override returns.
+    ///
+    /// # Examples
+    /// ```
+    /// use nalgebra::{Matrix2, Vector2};
+    /// use tmm::dynamics::LagrangeSystem;
+    /// struct Spring;
+    /// impl LagrangeSystem for Spring {
+    ///     fn inertia(&self, _: &Vector2<f64>) -> tmm::Result<Matrix2<f64>> {
+    ///         Ok(Matrix2::new(2.0, 0.0, 0.0, 3.0))
+    ///     }
+    ///     fn forces(&self, _: f64, _: &Vector2<f64>, qd: &Vector2<f64>) -> tmm::Result<Vector2<f64>> {
+    ///         Ok(-qd)
+    ///     }
+    ///     fn potential(&self, q: &Vector2<f64>) -> tmm::Result<f64> {
+    ///         Ok(0.5 * 4.0 * q[0] * q[0])
+    ///     }
+    /// }
+    /// let q = Vector2::new(0.5, 0.0);
+    /// let t = Spring.terms(0.0, &q, &Vector2::new(1.0, 2.0))?;
+    /// assert_eq!(t.inertia, Spring.inertia(&q)?);
+    /// assert_eq!(t.forces, Vector2::new(-1.0, -2.0));
+    /// assert!((t.potential_gradient[0] - 2.0).abs() < 1e-10); // ∂(2 q₁²)/∂q₁ = 4 q₁
+    /// # Ok::<(), tmm::Error>(())
+    /// ```
+    ///
+    /// # Errors
+    /// The first error of the separate methods; [`Error::NotPositiveDefinite`] (with t and q)
+    /// when A(q) is not positive-definite, [`Error::Overflow`] when its determinant overflows;
+    /// [`Error::NonFiniteState`] for a part that is not finite.
+    fn terms(&self, t: f64, q: &Vector2<f64>, qd: &Vector2<f64>) -> Result<LagrangeTerms> {
+        let non_finite = || Error::NonFiniteState { time: t };
+        let inertia = self.inertia(q)?;
+        checked_inertia(&inertia, t, q)?;
+        let inertia_derivatives = self.inertia_derivatives(q)?;
+        let forces = self.forces(t, q, qd)?;
+        if !all_finite(forces.as_slice()) {
+            return Err(non_finite());
+        }
+        let potential_gradient = self.potential_gradient(q)?;
+        if !all_finite(potential_gradient.as_slice()) {
+            return Err(non_finite());
+        }
+        let damping = self.damping(q)?;
+        if !all_finite(damping.as_slice()) {
+            return Err(non_finite());
+        }
+        Ok(LagrangeTerms {
+            inertia,
+            inertia_derivatives,
+            forces,
+            potential_gradient,
+            damping,
+        })
     }
 
     /// Names of the extra outputs of [`outputs`](Self::outputs) (for example the speed of
@@ -368,25 +453,25 @@ pub fn accelerations<S: LagrangeSystem + ?Sized>(
     qd: &Vector2<f64>,
 ) -> Result<Vector2<f64>> {
     let non_finite = || Error::NonFiniteState { time: t };
-    let finite = |v: &[f64]| v.iter().fold(true, |ok, x| ok & x.is_finite());
-    if !finite(&[t, q[0], q[1], qd[0], qd[1]]) {
+    if !all_finite(&[t, q[0], q[1], qd[0], qd[1]]) {
         return Err(non_finite());
     }
-    let (a, det) = checked_inertia(&sys.inertia(q)?, t, q)?;
-    let d_a = sys.inertia_derivatives(q)?;
-    // Every part is checked, so that a NaN a system lets through is named (as a non-finite
-    // state at t), not hidden in q̈; each check comes before the next part is evaluated, so
-    // that the first failure is the one reported.
-    let forces = sys.forces(t, q, qd)?;
-    if !finite(forces.as_slice()) {
-        return Err(non_finite());
-    }
-    let gradient = sys.potential_gradient(q)?;
-    if !finite(gradient.as_slice()) {
-        return Err(non_finite());
-    }
-    let damping = sys.damping(q)?;
-    if !finite(damping.as_slice()) {
+    // One call for every part (a linkage evaluates its kinematics once). The default
+    // `terms` checks each part before it evaluates the next, so that the first failure is
+    // the one reported; the same checks run again here, in the same order, for an override:
+    // a NaN a system lets through is named (as a non-finite state at t), not hidden in q̈.
+    let LagrangeTerms {
+        inertia,
+        inertia_derivatives: d_a,
+        forces,
+        potential_gradient: gradient,
+        damping,
+    } = sys.terms(t, q, qd)?;
+    let (a, det) = checked_inertia(&inertia, t, q)?;
+    if !(all_finite(forces.as_slice())
+        & all_finite(gradient.as_slice())
+        & all_finite(damping.as_slice()))
+    {
         return Err(non_finite());
     }
     let c = christoffel_fast(&d_a, qd).ok_or_else(non_finite)?;
@@ -396,11 +481,17 @@ pub fn accelerations<S: LagrangeSystem + ?Sized>(
         (rhs[0] * a[(1, 1)] - rhs[1] * a[(0, 1)]) / det,
         (rhs[1] * a[(0, 0)] - rhs[0] * a[(0, 1)]) / det,
     );
-    if finite(acc.as_slice()) {
+    if all_finite(acc.as_slice()) {
         Ok(acc)
     } else {
         Err(non_finite())
     }
+}
+
+/// `true` when every value is finite (one pass, no early exit).
+#[inline(always)]
+fn all_finite(v: &[f64]) -> bool {
+    v.iter().fold(true, |ok, x| ok & x.is_finite())
 }
 
 /// Checks that q and q̇ are finite, naming the component that is not.
@@ -426,6 +517,10 @@ pub fn kinetic_energy<S: LagrangeSystem + ?Sized>(
 /// The power balance at a state: the power Q·q̇ of the applied loads and the power
 /// q̇ᵀ B q̇ = 2Φ lost to viscous friction, W. Along a motion,
 /// d(T + Π)/dt = applied − dissipated.
+///
+/// It asks for Q and B only, not for [`LagrangeSystem::terms`]: the default `terms` would
+/// also build A and its numerical derivatives (nine evaluations of A) and refuse an A that is
+/// not positive-definite, neither of which a power needs.
 ///
 /// # Errors
 /// [`Error::NonFiniteState`] naming t for a non-finite t, q or q̇, or a power that

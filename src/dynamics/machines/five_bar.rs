@@ -3,7 +3,7 @@
 use nalgebra::{Matrix2, Point2, Vector2};
 
 use crate::angle::{cross, perp, unit};
-use crate::dynamics::system::LagrangeSystem;
+use crate::dynamics::system::{checked_inertia, LagrangeSystem, LagrangeTerms};
 use crate::error::{finite, finite2, positive, Error, Result};
 
 /// A position servo on a crank: M = clamp(k_p·(target − φ) − k_d·φ̇, ±limit).
@@ -44,17 +44,67 @@ impl Servo {
 
     /// The driving moment at angle `phi` and speed `omega`, N·m.
     ///
+    /// A demand k_p·e − k_d·ω that overflows saturates at the limit on the side of its
+    /// dominant term, as the physical controller's would: the terms are compared scaled down
+    /// by 2⁻¹¹⁰⁰ (every one that overflows is then at least 10⁻²³, and a product of two finite
+    /// factors at most 10²⁸⁶), so k_p·e = 10⁴⁰⁰ against k_d·ω = 10³¹⁰ drives forwards at
+    /// +limit. Never 0 by accident (∞ − ∞).
+    ///
     /// # Errors
-    /// As [`check`](Self::check); [`Error::NonFinite`] for a non-finite `phi` or `omega`. A
-    /// demand that overflows saturates at the limit (it is clamped, as any other).
+    /// As [`check`](Self::check); [`Error::NonFinite`] for a non-finite `phi` or `omega`;
+    /// [`Error::Overflow`] when both terms overflow, push opposite ways and are equal even
+    /// scaled (no direction to take).
+    ///
+    /// # Examples
+    /// ```
+    /// use tmm::dynamics::machines::Servo;
+    /// let s = Servo { target: 0.0, kp: 1e300, kd: 1e300, limit: 5.0 };
+    /// assert_eq!(s.torque(-1e300, 1.0).unwrap(), 5.0); // k_p·e overflows, k_d·ω = 10³⁰⁰
+    /// assert_eq!(s.torque(-1.0, 1e300).unwrap(), -5.0); // k_d·ω overflows
+    /// assert!(s.torque(-1e300, 1e300).is_err()); // both overflow, equal and opposite
+    /// ```
     pub fn torque(&self, phi: f64, omega: f64) -> Result<f64> {
         self.check()?;
         finite("phi", phi)?;
         finite("omega", omega)?;
+        Ok(self.demand(phi, omega)?.clamp(-self.limit, self.limit))
+    }
+
+    /// The unclamped demand k_p·(target − φ) − k_d·ω for checked data: finite, or ±∞ when it
+    /// overflows (on the side of its dominant term), never NaN.
+    fn demand(&self, phi: f64, omega: f64) -> Result<f64> {
         let demand = self.kp * (self.target - phi) - self.kd * omega;
-        // ∞ − ∞ is the only way to NaN here; the two terms then push opposite ways at once.
-        let demand = if demand.is_nan() { 0.0 } else { demand };
-        Ok(demand.clamp(-self.limit, self.limit))
+        if demand.is_finite() {
+            return Ok(demand);
+        }
+        // Scaled so that nothing overflows: e/2 (target − φ may overflow), then
+        // k_p·2⁻⁵⁵⁰ · (e/2)·2⁻⁵⁴⁹ and k_d·2⁻⁵⁵⁰ · ω·2⁻⁵⁵⁰; a term small enough to underflow
+        // here is negligible against one that overflowed unscaled.
+        let s = 2f64.powi(-550);
+        let half_e = 0.5 * self.target - 0.5 * phi;
+        let p = (self.kp * s) * (half_e * (2.0 * s));
+        let d = (self.kd * s) * (omega * s);
+        if p > d {
+            Ok(f64::INFINITY)
+        } else if p < d {
+            Ok(f64::NEG_INFINITY)
+        } else {
+            Err(Error::Overflow {
+                what: "servo demand (k_p·e and k_d·ω overflow, equal and opposite)",
+            })
+        }
+    }
+
+    /// Where the servo switches between following its demand and saturating: 1 − |demand| /
+    /// limit, positive while it follows, negative while saturated, kept within [−1, 1]
+    /// (a demand that overflows is −1). `None` for a servo with limit 0, which never switches
+    /// (it always gives 0).
+    fn margin(&self, phi: f64, omega: f64) -> Result<Option<f64>> {
+        if self.limit == 0.0 {
+            return Ok(None);
+        }
+        let d = self.demand(phi, omega)?;
+        Ok(Some((1.0 - d.abs() / self.limit).clamp(-1.0, 1.0)))
     }
 }
 
@@ -373,6 +423,47 @@ impl FiveBar {
         })
     }
 
+    /// ∂A/∂q from the analogs of `k` (see [`LagrangeSystem::inertia_derivatives`]).
+    fn derivatives_from(&self, k: &FiveBarKinematics) -> [Matrix2<f64>; 2] {
+        let [_, m_b, _] = self.masses();
+        let [dj2, dj3] = self.delta_j();
+        let mut d = [Matrix2::zeros(); 2];
+        for (n, dn) in d.iter_mut().enumerate() {
+            for i in 0..2 {
+                for j in 0..2 {
+                    dn[(i, j)] = m_b * (k.b_qq[i][n].dot(&k.b_q[j]) + k.b_q[i].dot(&k.b_qq[j][n]))
+                        + dj2 * (k.phi2_qq[i][n] * k.phi2_q[j] + k.phi2_q[i] * k.phi2_qq[j][n])
+                        + dj3 * (k.phi3_qq[i][n] * k.phi3_q[j] + k.phi3_q[i] * k.phi3_qq[j][n]);
+                }
+            }
+        }
+        d
+    }
+
+    /// Q at (q, q̇) with the analogs of `k`: the servos and the tool moment.
+    fn forces_from(
+        &self,
+        k: &FiveBarKinematics,
+        q: &Vector2<f64>,
+        qd: &Vector2<f64>,
+    ) -> Result<Vector2<f64>> {
+        Ok(Vector2::new(
+            self.drive1.torque(q[0], qd[0])? - self.m_on * k.phi3_q[0],
+            self.drive4.torque(q[1], qd[1])? - self.m_on * k.phi3_q[1],
+        ))
+    }
+
+    /// ∇Π at q with the analogs of `k`.
+    fn gradient_from(&self, k: &FiveBarKinematics, q: &Vector2<f64>) -> Vector2<f64> {
+        let [m_a2, m_b, m_c3] = self.masses();
+        let (e1, e4) = (unit(q[0]), unit(q[1]));
+        self.gravity
+            * Vector2::new(
+                m_a2 * self.l_oa * e1.x + m_b * k.b_q[0].y,
+                m_c3 * self.l_dc * e4.x + m_b * k.b_q[1].y,
+            )
+    }
+
     fn inertia_from(&self, k: &FiveBarKinematics) -> Matrix2<f64> {
         let [m_a2, m_b, m_c3] = self.masses();
         let [dj2, dj3] = self.delta_j();
@@ -407,28 +498,27 @@ impl LagrangeSystem for FiveBar {
     /// ∂A_ij/∂q_k = m_B (B,ik·B,j + B,i·B,jk) + ΔJ (φ,ik φ,j + φ,i φ,jk) from the
     /// second-order analogs.
     fn inertia_derivatives(&self, q: &Vector2<f64>) -> Result<[Matrix2<f64>; 2]> {
+        Ok(self.derivatives_from(&self.kinematics(q)?))
+    }
+
+    /// Every term from one [`kinematics`](FiveBar::kinematics) (the separate methods solve
+    /// it once each), the failures in the order of the separate methods: the kinematics, A
+    /// not positive-definite, a servo's error.
+    fn terms(&self, t: f64, q: &Vector2<f64>, qd: &Vector2<f64>) -> Result<LagrangeTerms> {
         let k = self.kinematics(q)?;
-        let [_, m_b, _] = self.masses();
-        let [dj2, dj3] = self.delta_j();
-        let mut d = [Matrix2::zeros(); 2];
-        for (n, dn) in d.iter_mut().enumerate() {
-            for i in 0..2 {
-                for j in 0..2 {
-                    dn[(i, j)] = m_b * (k.b_qq[i][n].dot(&k.b_q[j]) + k.b_q[i].dot(&k.b_qq[j][n]))
-                        + dj2 * (k.phi2_qq[i][n] * k.phi2_q[j] + k.phi2_q[i] * k.phi2_qq[j][n])
-                        + dj3 * (k.phi3_qq[i][n] * k.phi3_q[j] + k.phi3_q[i] * k.phi3_qq[j][n]);
-                }
-            }
-        }
-        Ok(d)
+        let inertia = self.inertia_from(&k);
+        checked_inertia(&inertia, t, q)?;
+        Ok(LagrangeTerms {
+            inertia,
+            inertia_derivatives: self.derivatives_from(&k),
+            forces: self.forces_from(&k, q, qd)?,
+            potential_gradient: self.gradient_from(&k, q),
+            damping: Matrix2::zeros(),
+        })
     }
 
     fn forces(&self, _t: f64, q: &Vector2<f64>, qd: &Vector2<f64>) -> Result<Vector2<f64>> {
-        let k = self.kinematics(q)?;
-        Ok(Vector2::new(
-            self.drive1.torque(q[0], qd[0])? - self.m_on * k.phi3_q[0],
-            self.drive4.torque(q[1], qd[1])? - self.m_on * k.phi3_q[1],
-        ))
+        self.forces_from(&self.kinematics(q)?, q, qd)
     }
 
     fn potential(&self, q: &Vector2<f64>) -> Result<f64> {
@@ -438,14 +528,33 @@ impl LagrangeSystem for FiveBar {
     }
 
     fn potential_gradient(&self, q: &Vector2<f64>) -> Result<Vector2<f64>> {
-        let k = self.kinematics(q)?;
-        let [m_a2, m_b, m_c3] = self.masses();
-        let (e1, e4) = (unit(q[0]), unit(q[1]));
-        Ok(self.gravity
-            * Vector2::new(
-                m_a2 * self.l_oa * e1.x + m_b * k.b_q[0].y,
-                m_c3 * self.l_dc * e4.x + m_b * k.b_q[1].y,
-            ))
+        Ok(self.gradient_from(&self.kinematics(q)?, q))
+    }
+
+    /// The servos' saturation switches: the node 0 of the product of their margins (see
+    /// [`kink_argument`](Self::kink_argument)).
+    fn kinks(&self) -> Vec<f64> {
+        vec![0.0]
+    }
+
+    /// The product of the two servos' margins m = 1 − |k_p·e − k_d·ω|/limit, each clamped
+    /// to [−1, 1]: m > 0 while a servo follows its demand, m < 0 while it saturates, so the
+    /// product changes sign exactly when one servo switches. The clamp at ±limit is a kink
+    /// of Q, and [`run`](crate::dynamics::run) steps onto it, so that a fixed-step method
+    /// keeps its order. A servo with limit 0 (never switching) counts as 1. Two switches
+    /// inside one step cancel in the product and are not located (the step then straddles
+    /// both, as without kinks).
+    ///
+    /// # Errors
+    /// As [`Servo::torque`].
+    fn kink_argument(&self, _t: f64, q: &Vector2<f64>, qd: &Vector2<f64>) -> Result<f64> {
+        self.drive1.check()?;
+        self.drive4.check()?;
+        finite2(["phi1", "phi4"], *q)?;
+        finite2(["phi1_dot", "phi4_dot"], *qd)?;
+        let m1 = self.drive1.margin(q[0], qd[0])?.unwrap_or(1.0);
+        let m4 = self.drive4.margin(q[1], qd[1])?.unwrap_or(1.0);
+        Ok(m1 * m4)
     }
 
     fn output_names(&self) -> Vec<&'static str> {

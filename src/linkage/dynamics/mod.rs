@@ -34,12 +34,17 @@
 //!
 //! # Cost
 //! [`LinkageSystem::terms`] makes one set of buffers and one kinematic solve for a linkage
-//! with one input (three for two inputs: q̇ = e₁, e₂ and (1, 1) — the three second-order
-//! transfer functions need three quadratic forms), then sums over the links and loads. The
-//! bench `linkage_dynamics` (bench/) measured it at 1.3–1.7× one kinematic position of the
-//! same linkage for the four-bar, the Watt six-bar and the compressor, and 3.2× for the
-//! five-bar robot. A [`LagrangeSystem`](crate::dynamics::LagrangeSystem) evaluation of the
-//! accelerations asks for A, ∂A/∂q and Q separately: three such builds per right-hand side.
+//! with one input. Two inputs need the rates at q̇ = e₁, e₂ and (1, 1) (the three
+//! second-order transfer functions need three quadratic forms): the positions are solved
+//! once, and for e₂ and (1, 1) only the groups' velocity and acceleration problems, which are
+//! linear with the matrix of the position already solved (a few dot products per group, no
+//! square root or `atan2`). Then it sums over the links and loads. The bench
+//! `linkage_dynamics` (bench/) prints the ratio to one kinematic position of the same linkage
+//! measured side by side: 1.44× for the four-bar, 1.35× for the Watt six-bar, 1.60× for the
+//! compressor and 1.80× for the five-bar robot (3.2× when each rate vector re-solved the
+//! positions). A [`LagrangeSystem`](crate::dynamics::LagrangeSystem) evaluation of the
+//! accelerations asks for every part at once ([`LagrangeSystem::terms`](
+//! crate::dynamics::LagrangeSystem::terms)): one such build per right-hand side.
 //!
 //! # Steady state, speed fluctuation
 //! [`LinkageSystem::run_up`] starts the machine from rest and integrates it turn by turn;

@@ -5,7 +5,7 @@ use nalgebra::{Matrix2, Point2, Vector2};
 
 use super::drive::{Damper, DamperPlan, Motor};
 use crate::angle::perp;
-use crate::dynamics::{christoffel_terms, LagrangeSystem};
+use crate::dynamics::{checked_inertia, christoffel_terms, LagrangeSystem, LagrangeTerms};
 use crate::error::{computed_all, finite, finite2, Error, Result};
 use crate::kinematics::{LinkMotion, Motion, PointMotion};
 use crate::linkage::plan::LoadPlan;
@@ -86,52 +86,69 @@ pub struct LinkageSystem {
     dampers: Vec<DamperPlan>,
 }
 
+/// The rates of one link in one solve: its origin's velocity and acceleration, ω and ε (the
+/// positions are the same in every solve and stay in the buffers).
+#[derive(Clone, Copy)]
+struct Rates {
+    v: Vector2<f64>,
+    a: Vector2<f64>,
+    omega: f64,
+    epsilon: f64,
+}
+
 /// The exact first- and second-order transfer functions of every link at one position:
 /// kinematic solves at unit input rates and zero input accelerations, made with one set of
-/// buffers.
+/// buffers; the positions are solved once, the rates at the other unit vectors again.
 struct Transfer<'p> {
     n: usize,
     nl: usize,
-    /// The link motions of the solves, one block of `nl` per solve: q̇ = e₁ (and, for two
+    /// The link rates of the solves, one block of `nl` per solve: q̇ = e₁ (and, for two
     /// inputs, e₂ and (1, 1)). The velocities of solve k are the first-order transfer
     /// functions ∂v/∂q̇_k, its accelerations the second-order ones ∂²r/∂q_k²; those of the
     /// solve at (1, 1) are Σ_jk ∂²r/∂q_j∂q_k, so the mixed derivative is
     /// (a_(1,1) − a_11 − a_22)/2.
-    links: Vec<LinkMotion>,
-    /// Every link's unit vector (the same in every solve).
-    units: Vec<Vector2<f64>>,
-    /// The buffers of the solves: their positions serve the position-only look-ups.
+    rates: Vec<Rates>,
+    /// The buffers of the solves: their positions (the same in every solve, with every
+    /// link's unit vector) serve the position-only look-ups.
     an: Analysis<'p>,
 }
 
 impl<'p> Transfer<'p> {
+    #[inline]
     fn new(plan: &'p Plan, n: usize, q: &Vector2<f64>) -> Result<Self> {
         let mut an = Analysis::new(plan);
         let nl = plan.link_names.len();
-        let rates: &[[f64; 2]] = if n == 1 {
+        let unit_rates: &[[f64; 2]] = if n == 1 {
             &[[1.0, 0.0]]
         } else {
             &[[1.0, 0.0], [0.0, 1.0], [1.0, 1.0]]
         };
-        let mut links = Vec::with_capacity(nl * rates.len());
-        for r in rates {
+        let mut rates = Vec::with_capacity(nl * unit_rates.len());
+        for (i, r) in unit_rates.iter().enumerate() {
             let m = [Motion::new(q[0], r[0], 0.0), Motion::new(q[1], r[1], 0.0)];
-            an.solve_kinematics_inputs(&m[..n])?;
-            links.extend((0..nl).map(|l| *an.link_motion(l)));
+            if i == 0 {
+                an.solve_kinematics_inputs(&m[..n])?;
+            } else {
+                // The same positions: only the (linear) rate problems again.
+                an.solve_rates_inputs(&m[..n])?;
+            }
+            rates.extend((0..nl).map(|l| {
+                let m = an.link_motion(l);
+                Rates {
+                    v: m.origin.v,
+                    a: m.origin.a,
+                    omega: m.omega,
+                    epsilon: m.epsilon,
+                }
+            }));
         }
-        let units = (0..nl).map(|l| an.link_unit(l)).collect();
-        Ok(Self {
-            n,
-            nl,
-            links,
-            units,
-            an,
-        })
+        Ok(Self { n, nl, rates, an })
     }
 
     /// The motion of the point at `local` (along, across) of link `l` in solve `s`.
+    #[inline]
     fn point(&self, s: usize, l: usize, local: Vector2<f64>) -> PointMotion {
-        let (m, e) = (self.link(s, l), self.units[l]);
+        let (m, e) = (self.link(s, l), self.an.link_unit(l));
         let r = local.x * e + local.y * perp(e);
         PointMotion::new(
             m.origin.p + r,
@@ -141,11 +158,20 @@ impl<'p> Transfer<'p> {
     }
 
     /// Link `l` in solve `s` (0, 1: unit rate of input s; 2: both).
-    fn link(&self, s: usize, l: usize) -> &LinkMotion {
-        &self.links[s * self.nl + l]
+    #[inline]
+    fn link(&self, s: usize, l: usize) -> LinkMotion {
+        let r = &self.rates[s * self.nl + l];
+        let m = self.an.link_motion(l);
+        LinkMotion {
+            origin: PointMotion::new(m.origin.p, r.v, r.a),
+            angle: m.angle,
+            omega: r.omega,
+            epsilon: r.epsilon,
+        }
     }
 
     /// ∂ω_l/∂q̇_k.
+    #[inline]
     fn omega(&self, k: usize, l: usize) -> f64 {
         self.link(k, l).omega
     }
@@ -313,19 +339,35 @@ impl LinkageSystem {
     /// A, ∂A/∂q, the drives' and the loads' generalized forces and B at the state (q, q̇).
     ///
     /// One position of the kinematics at unit input rate gives every first- and second-order
-    /// transfer function of a linkage with one input (three for two inputs), plus one more
-    /// at the actual rates when the plan has loads added by [`Plan::add_load_fn`] (such a
-    /// load sees the state's positions and velocities, and the accelerations of q̈ = 0).
+    /// transfer function of a linkage with one input. Two inputs need the rates at q̇ = e₁,
+    /// e₂ and (1, 1) (three quadratic forms for the three second-order transfer functions):
+    /// the positions are solved once, and only the groups' linear velocity and acceleration
+    /// problems again for e₂ and (1, 1). Loads added by [`Plan::add_load_fn`] get the rates
+    /// once more at the actual q̇ (such a load sees the state's positions and velocities, and
+    /// the accelerations of q̈ = 0).
+    ///
+    /// The trait's [`LagrangeSystem::terms`] (with the time, the drives and loads summed into
+    /// Q) is the same evaluation; as this inherent method shares its name, call that one as
+    /// `LagrangeSystem::terms(&sys, t, &q, &qd)`.
     ///
     /// # Errors
     /// [`Error::NonFinite`] for a non-finite q or q̇; the kinematics' errors (a group that
     /// cannot be assembled or is at a dead point) wrapped in [`Error::In`]; a load's or a
     /// motor's error; [`Error::Overflow`] when a term overflows.
     pub fn terms(&self, q: &Vector2<f64>, qd: &Vector2<f64>) -> Result<Terms> {
-        self.evaluate(q, qd, true)
+        self.evaluate(q, qd, true, None)
     }
 
-    fn evaluate(&self, q: &Vector2<f64>, qd: &Vector2<f64>, forces: bool) -> Result<Terms> {
+    /// The terms at (q, q̇), the forces only when `forces`. With `inertia_at` = Some(t), A is
+    /// also checked positive-definite (the error naming t) before the loads are evaluated:
+    /// the order in which [`crate::dynamics::accelerations`] reports the first failure.
+    fn evaluate(
+        &self,
+        q: &Vector2<f64>,
+        qd: &Vector2<f64>,
+        forces: bool,
+        inertia_at: Option<f64>,
+    ) -> Result<Terms> {
         finite2(["q1", "q2"], *q)?;
         finite2(["q1_dot", "q2_dot"], *qd)?;
         let plan = &self.plan;
@@ -334,52 +376,42 @@ impl LinkageSystem {
         let mut a = Matrix2::zeros();
         let mut da = [Matrix2::zeros(); 2];
         let mut loads = Vector2::zeros();
-        let solves = 2 * n - 1;
         for (l, lp) in plan.links.iter().enumerate().skip(1) {
             if lp.mass == 0.0 && lp.inertia == 0.0 {
                 continue;
             }
             let (m, j) = (lp.mass, lp.inertia);
-            // The centre of mass in every solve, once.
-            let mut pts = [PointMotion::fixed(Point2::origin()); 3];
-            let mut rot = [(0.0, 0.0); 3];
-            for s in 0..solves {
-                let lm = tr.link(s, l);
-                pts[s] = tr.point(s, l, lp.centre);
-                rot[s] = (lm.omega, lm.epsilon);
-            }
-            let v = [pts[0].v, pts[1].v];
-            let w = [rot[0].0, rot[1].0];
-            // ∂²r_S/∂q_i∂q_k and ∂²φ/∂q_i∂q_k.
-            let acc = |i: usize, k: usize| {
-                if i == k {
-                    pts[i].a
-                } else {
-                    0.5 * (pts[2].a - pts[0].a - pts[1].a)
-                }
-            };
-            let eps = |i: usize, k: usize| {
-                if i == k {
-                    rot[i].1
-                } else {
-                    0.5 * (rot[2].1 - rot[0].1 - rot[1].1)
-                }
-            };
-            for i in 0..n {
-                for k in i..n {
-                    a[(i, k)] += m * v[i].dot(&v[k]) + j * w[i] * w[k];
-                }
+            // The centre of mass's first- and second-order transfer functions u_i = ∂r_S/∂q_i,
+            // u_ik = ∂²r_S/∂q_i∂q_k, and the link's w_i, w_ik.
+            let p0 = tr.point(0, l, lp.centre);
+            let (u0, w0) = (p0.v, tr.omega(0, l));
+            let (u00, w00) = (p0.a, tr.rates[l].epsilon);
+            if n == 1 {
+                a[(0, 0)] += m * u0.dot(&u0) + j * w0 * w0;
+                da[0][(0, 0)] += 2.0 * (m * u00.dot(&u0) + j * w00 * w0);
                 if forces {
-                    loads[i] += m * plan.gravity.dot(&v[i]);
+                    loads[0] += m * plan.gravity.dot(&u0);
                 }
+                continue;
             }
-            for (s, da_s) in da.iter_mut().enumerate().take(n) {
-                for i in 0..n {
-                    for k in i..n {
-                        da_s[(i, k)] += m * (acc(i, s).dot(&v[k]) + v[i].dot(&acc(k, s)))
-                            + j * (eps(i, s) * w[k] + w[i] * eps(k, s));
-                    }
-                }
+            let (p1, p2) = (tr.point(1, l, lp.centre), tr.point(2, l, lp.centre));
+            let (u1, w1) = (p1.v, tr.omega(1, l));
+            let (u11, w11) = (p1.a, tr.rates[tr.nl + l].epsilon);
+            let u01 = 0.5 * (p2.a - u00 - u11);
+            let w01 = 0.5 * (tr.rates[2 * tr.nl + l].epsilon - w00 - w11);
+            a[(0, 0)] += m * u0.dot(&u0) + j * w0 * w0;
+            a[(0, 1)] += m * u0.dot(&u1) + j * w0 * w1;
+            a[(1, 1)] += m * u1.dot(&u1) + j * w1 * w1;
+            // ∂A_ik/∂q_s = m (u_is·u_k + u_i·u_ks) + J (w_is w_k + w_i w_ks).
+            da[0][(0, 0)] += 2.0 * (m * u00.dot(&u0) + j * w00 * w0);
+            da[0][(0, 1)] += m * (u00.dot(&u1) + u0.dot(&u01)) + j * (w00 * w1 + w0 * w01);
+            da[0][(1, 1)] += 2.0 * (m * u01.dot(&u1) + j * w01 * w1);
+            da[1][(0, 0)] += 2.0 * (m * u01.dot(&u0) + j * w01 * w0);
+            da[1][(0, 1)] += m * (u01.dot(&u1) + u0.dot(&u11)) + j * (w01 * w1 + w0 * w11);
+            da[1][(1, 1)] += 2.0 * (m * u11.dot(&u1) + j * w11 * w1);
+            if forces {
+                loads[0] += m * plan.gravity.dot(&u0);
+                loads[1] += m * plan.gravity.dot(&u1);
             }
         }
         // Symmetric by construction, to the last bit.
@@ -393,6 +425,18 @@ impl LinkageSystem {
         if n == 1 {
             a[(1, 1)] = 1.0;
         }
+        computed_all("generalized inertia A", a.iter())?;
+        computed_all(
+            "inertia derivatives dA/dq",
+            da.iter().flat_map(|m| m.iter()),
+        )?;
+        // B needs positions and first-order transfer functions only (the solve at the actual
+        // rates for custom loads below keeps both).
+        let damping = self.damping_from(&tr);
+        computed_all("damping matrix B", damping.iter())?;
+        if let Some(t) = inertia_at {
+            checked_inertia(&a, t, q)?;
+        }
         let mut drives = Vector2::zeros();
         if forces {
             self.add_loads(&mut tr, q, qd, &mut loads)?;
@@ -400,14 +444,7 @@ impl LinkageSystem {
                 drives[i] = self.motors[i].moment(q[i], qd[i])?;
             }
         }
-        let damping = self.damping_from(&tr);
-        computed_all("generalized inertia A", a.iter())?;
-        computed_all(
-            "inertia derivatives dA/dq",
-            da.iter().flat_map(|m| m.iter()),
-        )?;
         computed_all("generalized forces Q", loads.iter().chain(drives.iter()))?;
-        computed_all("damping matrix B", damping.iter())?;
         Ok(Terms {
             inertia: a,
             inertia_derivatives: da,
@@ -501,7 +538,7 @@ impl LinkageSystem {
         // Loads given as functions of the state see it solved at the actual rates (the same
         // positions; the transfer functions are kept in `tr.links`).
         let m = [Motion::new(q[0], qd[0], 0.0), Motion::new(q[1], qd[1], 0.0)];
-        tr.an.solve_kinematics_inputs(&m[..n])?;
+        tr.an.solve_rates_inputs(&m[..n])?;
         for lp in &plan.loads {
             let LoadPlan::Custom { link, f } = lp else {
                 continue;
@@ -590,7 +627,7 @@ impl LinkageSystem {
         qdd: &Vector2<f64>,
     ) -> Result<Vector2<f64>> {
         finite2(["q1_ddot", "q2_ddot"], *qdd)?;
-        let t = self.evaluate(q, qd, true)?;
+        let t = self.evaluate(q, qd, true, None)?;
         let c = christoffel_terms(&t.inertia_derivatives, qd)?;
         let m = t.inertia * qdd + c + t.damping * qd - t.loads;
         computed_all("inverse dynamics", m.iter())?;
@@ -600,12 +637,12 @@ impl LinkageSystem {
 
 impl LagrangeSystem for LinkageSystem {
     fn inertia(&self, q: &Vector2<f64>) -> Result<Matrix2<f64>> {
-        Ok(self.evaluate(q, &Vector2::zeros(), false)?.inertia)
+        Ok(self.evaluate(q, &Vector2::zeros(), false, None)?.inertia)
     }
 
     fn inertia_derivatives(&self, q: &Vector2<f64>) -> Result<[Matrix2<f64>; 2]> {
         Ok(self
-            .evaluate(q, &Vector2::zeros(), false)?
+            .evaluate(q, &Vector2::zeros(), false, None)?
             .inertia_derivatives)
     }
 
@@ -613,11 +650,27 @@ impl LagrangeSystem for LinkageSystem {
         Ok(self.terms(q, qd)?.forces())
     }
 
+    /// A, ∂A/∂q, Q and B from one evaluation of the kinematics (one solve of the positions,
+    /// with the rates at the other unit vectors for two inputs), reporting the first failure
+    /// in the order of the separate methods: the kinematics, then A, ∂A/∂q and B overflowing,
+    /// A not positive-definite, then a load or a motor, Q overflowing. No potential: gravity
+    /// is one of the loads.
+    fn terms(&self, t: f64, q: &Vector2<f64>, qd: &Vector2<f64>) -> Result<LagrangeTerms> {
+        let all = self.evaluate(q, qd, true, Some(t))?;
+        Ok(LagrangeTerms {
+            inertia: all.inertia,
+            inertia_derivatives: all.inertia_derivatives,
+            forces: all.forces(),
+            potential_gradient: Vector2::zeros(),
+            damping: all.damping,
+        })
+    }
+
     fn damping(&self, q: &Vector2<f64>) -> Result<Matrix2<f64>> {
         if self.dampers.is_empty() {
             return Ok(Matrix2::zeros());
         }
-        Ok(self.evaluate(q, &Vector2::zeros(), false)?.damping)
+        Ok(self.evaluate(q, &Vector2::zeros(), false, None)?.damping)
     }
 
     fn output_names(&self) -> Vec<&'static str> {
