@@ -125,6 +125,11 @@ pub struct RunOptions {
     /// that no step straddles a kink or a jump. Finite (else an error), in any order; those
     /// outside (t_start, t_end) are ignored.
     pub breakpoints: Vec<f64>,
+    /// Whether to locate the nodes of the system's [`LagrangeSystem::kinks`] (default
+    /// `true`). Turned off, the run steps across them as a solver that knows nothing of them
+    /// would: for side-by-side comparisons with such a solver, or when the kinks are too mild
+    /// to matter. Breakpoints are stepped onto either way.
+    pub locate_kinks: bool,
 }
 
 impl RunOptions {
@@ -149,6 +154,7 @@ impl RunOptions {
             max_rows: Self::DEFAULT_MAX_ROWS,
             times: Vec::new(),
             breakpoints: Vec::new(),
+            locate_kinks: true,
         }
     }
 
@@ -443,7 +449,11 @@ pub fn run<S: LagrangeSystem + ?Sized, M: Stepper>(
     .into_iter()
     .filter(|&t| t > start.t && t < opts.t_end)
     .collect();
-    let kinks = sorted_finite("kink", sys.kinks())?;
+    let kinks = if opts.locate_kinks {
+        sorted_finite("kink", sys.kinks())?
+    } else {
+        Vec::new()
+    };
     // The times a step must end on: the breakpoints, and the requested times for a method
     // that cannot interpolate.
     let dense_times = method.has_dense_output();
