@@ -332,6 +332,49 @@ fn time_breakpoints_are_stepped_onto() {
     assert!((r.last.q[0] - exact).abs() > 1e-5, "{}", r.last.q[0]);
 }
 
+/// A force that jumps at t = 0.5 (2 N before, −1 N from then on, written `if t < 0.5`) on a
+/// unit mass at rest: x is a quadratic on each side, x(1) = 0.25 + 1·0.5 − 0.125 = 0.625,
+/// ẋ(1) = 0.5. Every method steps onto the breakpoint and integrates up to it with the force
+/// from before the jump, so each is exact to rounding; evaluated at the jump's new value in
+/// the step's last stage, RK4 would miss ẋ by h·3/6.
+struct Jump;
+
+impl LagrangeSystem for Jump {
+    fn inertia(&self, _: &Vector2<f64>) -> tmm::Result<Matrix2<f64>> {
+        Ok(Matrix2::identity())
+    }
+    fn forces(&self, t: f64, _: &Vector2<f64>, _: &Vector2<f64>) -> tmm::Result<Vector2<f64>> {
+        Ok(Vector2::new(if t < 0.5 { 2.0 } else { -1.0 }, 0.0))
+    }
+    fn breakpoints(&self) -> Vec<f64> {
+        vec![0.5]
+    }
+}
+
+#[test]
+fn a_force_that_jumps_at_a_breakpoint_is_integrated_exactly() {
+    let s0 = State::at_rest(Vector2::zeros());
+    for h in [0.1, 0.3, 0.07] {
+        let opts = RunOptions::until(1.0, h);
+        let rk4 = run(&Jump, &Rk4, s0, &opts).unwrap().last;
+        let dp = run(&Jump, &Dopri5::new(1e-10).unwrap(), s0, &opts).unwrap();
+        for (name, last) in [("RK4", rk4), ("Dormand–Prince", dp.last)] {
+            assert!(
+                (last.q[0] - 0.625).abs() < 1e-14 && (last.qd[0] - 0.5).abs() < 1e-14,
+                "{name}, h = {h}: x = {}, v = {}",
+                last.q[0],
+                last.qd[0]
+            );
+        }
+        // No rejected steps around the jump: Dormand–Prince's error estimate sees no jump.
+        assert!(
+            dp.evaluations <= 6 * dp.steps + 2,
+            "{} evaluations",
+            dp.evaluations
+        );
+    }
+}
+
 /// A system whose kinks are not finite, or whose argument is not.
 struct BadKinks {
     nodes: Vec<f64>,

@@ -1,10 +1,10 @@
 //! Running a machine until a stop condition: a final time, a watched quantity reaching a
 //! value (located inside the step), or a steady state.
 
-use nalgebra::Vector2;
+use nalgebra::{Matrix2, Vector2};
 
 use super::stepper::{Handover, Stepper};
-use super::system::{accelerations, LagrangeSystem, State};
+use super::system::{accelerations, LagrangeSystem, LagrangeTerms, State};
 use super::trajectory::Trajectory;
 use crate::error::{finite, positive, Error, Result};
 
@@ -559,7 +559,15 @@ pub fn run<S: LagrangeSystem + ?Sized, M: Stepper>(
         if clamped && !adaptive && h_want - remaining > t_tol {
             grid_end = Some(goal.unwrap_or(s.t + h));
         }
-        let (adv, mut dense) = method.advance_dense(sys, &s, h_try, Some(hand_s))?;
+        // A step that ends on a stop integrates up to it from the left: a force that jumps
+        // there (written `if t < t_b`) is evaluated at its value before the jump in the
+        // step's last stages, and at its new value from the next step on.
+        let (adv, mut dense) = if clamped {
+            let left = LeftOf { sys, at: stop };
+            method.advance_dense(&left, &s, h_try, Some(hand_s))?
+        } else {
+            method.advance_dense(sys, &s, h_try, Some(hand_s))?
+        };
         let mut s1 = adv.state;
         // A step too short to change t (h below the rounding of t) would repeat for ever.
         if s1.t <= s.t || s1.t.is_nan() {
@@ -748,5 +756,71 @@ pub fn run<S: LagrangeSystem + ?Sized, M: Stepper>(
             }
         }
         s = s1;
+    }
+}
+
+/// A system seen from the left of the time `at`: its forces at `at` or later are those at the
+/// last time before it (`at.next_down()`), so that a step ending on a breakpoint integrates
+/// the force it had before a jump there. Everything else is the system's own.
+struct LeftOf<'a, S: ?Sized> {
+    sys: &'a S,
+    at: f64,
+}
+
+impl<S: LagrangeSystem + ?Sized> LeftOf<'_, S> {
+    fn time(&self, t: f64) -> f64 {
+        if t >= self.at {
+            self.at.next_down()
+        } else {
+            t
+        }
+    }
+}
+
+impl<S: LagrangeSystem + ?Sized> LagrangeSystem for LeftOf<'_, S> {
+    fn coordinate_names(&self) -> [&'static str; 2] {
+        self.sys.coordinate_names()
+    }
+    fn inertia(&self, q: &Vector2<f64>) -> Result<Matrix2<f64>> {
+        self.sys.inertia(q)
+    }
+    fn inertia_derivatives(&self, q: &Vector2<f64>) -> Result<[Matrix2<f64>; 2]> {
+        self.sys.inertia_derivatives(q)
+    }
+    fn forces(&self, t: f64, q: &Vector2<f64>, qd: &Vector2<f64>) -> Result<Vector2<f64>> {
+        self.sys.forces(self.time(t), q, qd)
+    }
+    fn potential(&self, q: &Vector2<f64>) -> Result<f64> {
+        self.sys.potential(q)
+    }
+    fn potential_gradient(&self, q: &Vector2<f64>) -> Result<Vector2<f64>> {
+        self.sys.potential_gradient(q)
+    }
+    fn damping(&self, q: &Vector2<f64>) -> Result<Matrix2<f64>> {
+        self.sys.damping(q)
+    }
+    fn terms(&self, t: f64, q: &Vector2<f64>, qd: &Vector2<f64>) -> Result<LagrangeTerms> {
+        self.sys.terms(self.time(t), q, qd)
+    }
+    fn output_names(&self) -> Vec<&'static str> {
+        self.sys.output_names()
+    }
+    fn breakpoints(&self) -> Vec<f64> {
+        self.sys.breakpoints()
+    }
+    fn kinks(&self) -> Vec<f64> {
+        self.sys.kinks()
+    }
+    fn kink_argument(&self, t: f64, q: &Vector2<f64>, qd: &Vector2<f64>) -> Result<f64> {
+        self.sys.kink_argument(t, q, qd)
+    }
+    fn outputs(
+        &self,
+        t: f64,
+        q: &Vector2<f64>,
+        qd: &Vector2<f64>,
+        out: &mut Vec<f64>,
+    ) -> Result<()> {
+        self.sys.outputs(t, q, qd, out)
     }
 }
