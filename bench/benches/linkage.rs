@@ -300,7 +300,6 @@ fn four_bar(c: &mut Criterion) {
             .sum::<f64>()
     };
     let mut engine = Analysis::new(&plan);
-    let mut engine_b = Analysis::new(&plan);
     let mut tmm = || {
         ins.iter()
             .map(|&i| {
@@ -314,25 +313,6 @@ fn four_bar(c: &mut Criterion) {
         ins.len() as u32,
         &mut tmm,
         by_hand,
-    );
-    // The comparison issue 13 first made, for the record: both sides consume M_b alone, so
-    // the compiler drops whatever of the yardstick M_b does not need (its angles).
-    yardstick::print_ratio(
-        "four-bar, balancing moment consumed alone",
-        ins.len() as u32,
-        || {
-            ins.iter()
-                .map(|&i| {
-                    engine_b.solve(black_box(i)).unwrap();
-                    engine_b.balance().value
-                })
-                .sum::<f64>()
-        },
-        || {
-            ins.iter()
-                .map(|&i| cart.position(black_box(i)).balance)
-                .sum::<f64>()
-        },
     );
     let mut g = c.benchmark_group("four_bar_whole_position");
     g.measurement_time(Duration::from_secs(3))
