@@ -1,8 +1,11 @@
-//! The linkage engine against the same job chained by hand from the crate's blocks, side by
-//! side in one run: the bundled four-bar (crank + RRR) and Stephenson six-bar (crank + RRR +
-//! RRR), each per position: kinematics, inertia loads and weights, external loads, both
-//! reverse passes and the balancing moment. The hand chains are checked against the engine
-//! before timing.
+//! The linkage engine against the same job written by hand, side by side in one run: the
+//! bundled four-bar (crank + RRR) and Watt six-bar (crank + RRR + RRR), each per position:
+//! kinematics, inertia loads and weights, external loads, the reverse pass and the balancing
+//! moment. Two yardsticks each: the job chained from the crate's own blocks, and the job as a
+//! straight Cartesian closed form (issue 13's yardstick) that returns everything the engine
+//! returns (every link's angle, ω and ε, every joint's reaction, M_b). Both are checked
+//! against the engine before timing, and the bench prints the ratio engine/Cartesian
+//! (`yardstick | …` lines), measured in alternating rounds.
 
 use criterion::{criterion_group, criterion_main, Criterion, Throughput};
 use nalgebra::{Point2, Vector2};
@@ -12,6 +15,9 @@ use tmm::kinematics::{crank, rrr_dyad, Branch, LinkMotion, Motion, PointMotion};
 use tmm::kinetostatics::{CouplingDrive, RrrDyad};
 use tmm::linkage::{bundled, Analysis, Plan};
 use tmm::Load;
+
+#[path = "common/yardstick.rs"]
+mod yardstick;
 
 fn inputs(n: usize) -> Vec<Motion> {
     (0..n)
@@ -95,8 +101,12 @@ impl HandFourBar {
     }
 }
 
-/// The same four-bar as a straight Cartesian closed form: no angles, no validation, nothing
-/// rebuilt from an angle, inlined — the speed of the job itself (issue 13's yardstick).
+/// The same four-bar as a straight Cartesian closed form: no validation, nothing rebuilt
+/// from an angle, inlined — the speed of the job itself (issue 13's yardstick). It does the
+/// engine's whole job per position, not only the balancing moment: every moving link's angle
+/// (one `atan2` per dyad link, in [0, 2π) as the engine returns them; the crank's is the
+/// input reduced to one turn), angular velocity and acceleration; the reaction in every joint
+/// (O1, A, B, O3); and the balancing moment.
 struct CartesianFourBar {
     a: f64,
     l2: f64,
@@ -115,6 +125,81 @@ fn cross2(a: Vector2<f64>, b: Vector2<f64>) -> f64 {
     a.x * b.y - a.y * b.x
 }
 
+/// A direction angle in [0, 2π), as the engine returns link angles.
+#[inline]
+fn angle_of(v: Vector2<f64>) -> f64 {
+    let a = v.y.atan2(v.x);
+    if a < 0.0 {
+        a + std::f64::consts::TAU
+    } else {
+        a
+    }
+}
+
+/// Everything the engine gives per position of a linkage with `L` moving links and `J`
+/// joints: each moving link's angle, ω and ε (links 1..), each joint's reaction as the force
+/// of its lower-numbered link on the higher-numbered one, and the balancing moment.
+#[derive(Debug, Clone, Copy)]
+struct Whole<const L: usize, const J: usize> {
+    angle: [f64; L],
+    omega: [f64; L],
+    epsilon: [f64; L],
+    reaction: [Vector2<f64>; J],
+    balance: f64,
+}
+
+impl<const L: usize, const J: usize> Whole<L, J> {
+    /// The same quantities read from the engine after a solve.
+    fn of(a: &Analysis<'_>) -> Self {
+        let link = |k: usize| *a.link_motion(k + 1);
+        Self {
+            angle: std::array::from_fn(|k| link(k).angle),
+            omega: std::array::from_fn(|k| link(k).omega),
+            epsilon: std::array::from_fn(|k| link(k).epsilon),
+            // The force of the lower-numbered link on the higher-numbered one, whichever way
+            // the engine records it.
+            reaction: std::array::from_fn(|j| {
+                let r = a.reaction_index(j);
+                if r.by < r.on {
+                    r.force
+                } else {
+                    -r.force
+                }
+            }),
+            balance: a.balance().value,
+        }
+    }
+
+    /// Every quantity folded into one number, so that the timed loops consume all of them.
+    #[inline]
+    fn fold(&self) -> f64 {
+        let r = self.reaction.iter().fold(Vector2::zeros(), |s, v| s + v);
+        let mut s = self.balance + r.x + r.y;
+        for k in 0..L {
+            s += self.angle[k] + self.omega[k] + self.epsilon[k];
+        }
+        s
+    }
+
+    /// Whether `self` (a yardstick) agrees with `engine` to `tol`, relative to each kind of
+    /// quantity's scale (angles to 2π).
+    fn agrees(&self, engine: &Self, tol: f64) -> bool {
+        let near = |x: f64, y: f64, scale: f64| (x - y).abs() <= tol * scale.max(1.0);
+        let w = self.omega.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+        let e = self.epsilon.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+        let f = self.reaction.iter().fold(0.0f64, |m, v| m.max(v.norm()));
+        (0..L).all(|k| {
+            // An angle near 0 may come out near 2π on the other side: compare on the circle.
+            let d = (self.angle[k] - engine.angle[k]).abs();
+            let d = d.min(std::f64::consts::TAU - d);
+            d <= tol * std::f64::consts::TAU
+                && near(self.omega[k], engine.omega[k], w)
+                && near(self.epsilon[k], engine.epsilon[k], e)
+        }) && (0..J).all(|j| (self.reaction[j] - engine.reaction[j]).norm() <= tol * f.max(1.0))
+            && near(self.balance, engine.balance, self.balance.abs())
+    }
+}
+
 impl CartesianFourBar {
     fn new() -> Self {
         let hand = HandFourBar::new();
@@ -127,8 +212,11 @@ impl CartesianFourBar {
         }
     }
 
+    /// The reactions are recorded as the engine records them: at O1 the frame's force on the
+    /// crank, at A the crank's on the coupler, at B the coupler's on the rocker, at O3 the
+    /// frame's on the rocker.
     #[inline]
-    fn balance(&self, i: Motion) -> f64 {
+    fn position(&self, i: Motion) -> Whole<3, 4> {
         let (w, eps) = (i.rate, i.accel);
         let (sn, cs) = i.value.sin_cos();
         let ra = Vector2::new(self.a * cs, self.a * sn);
@@ -146,7 +234,7 @@ impl CartesianFourBar {
         let (e2, e3) = (q.dot(&r3) / x, q.dot(&r2) / x);
         // Loads: inertia and weight at the rods' middles, the force at E, the resisting moment.
         let g = Vector2::new(0.0, -9.81);
-        let (m2, m3) = (1.5, 2.0);
+        let (m1, m2, m3) = (1.0, 1.5, 2.0);
         let (j2, j3) = (m2 * self.l2 * self.l2 / 12.0, m3 * self.l3 * self.l3 / 12.0);
         let a_s2 = aa + 0.5 * (e2 * perp2(r2) - w2 * w2 * r2);
         let a_s3 = 0.5 * (e3 * perp2(r3) - w3 * w3 * r3);
@@ -162,8 +250,23 @@ impl CartesianFourBar {
         let det = cross2(p, qq);
         let (b1, b2) = (-m2b, m3b - cross2(qq, f));
         let r12 = Vector2::new((b1 * qq.x - p.x * b2) / det, (-p.y * b2 + qq.y * b1) / det);
-        // The crank: its weight acts at O1; Mb balances R21 = −R12 at A and −J1·ε.
-        cross2(ra, r12) + 0.002 * eps
+        // Link 2's force balance gives R23 = R12 + F2 + F_E, link 3's R43 = −(R23 + F3); the
+        // crank (its weight at O1, no inertia force) R01 = R12 − m1·g, and M_b balances R21 at
+        // A and −J1·ε.
+        let r23 = r12 + f2 + fe;
+        let r43 = -(r23 + f3);
+        let r01 = r12 - m1 * g;
+        Whole {
+            angle: [
+                i.value.rem_euclid(std::f64::consts::TAU),
+                angle_of(r2),
+                angle_of(r3),
+            ],
+            omega: [w, w2, w3],
+            epsilon: [eps, e2, e3],
+            reaction: [r01, r12, r23, r43],
+            balance: cross2(ra, r12) + 0.002 * eps,
+        }
     }
 }
 
@@ -184,33 +287,43 @@ fn four_bar(c: &mut Criterion) {
     let cart = CartesianFourBar::new();
     for &i in &ins {
         a.solve(i).unwrap();
-        let (x, y) = (a.balance().value, cart.balance(i));
+        let y = cart.position(i);
         assert!(
-            (x - y).abs() <= 1e-9 * x.abs().max(1.0),
-            "Cartesian closed form {y} vs engine {x}"
+            y.agrees(&Whole::of(&a), 1e-9),
+            "Cartesian closed form {y:?} vs engine {:?}",
+            Whole::<3, 4>::of(&a)
         );
     }
+    let by_hand = || {
+        ins.iter()
+            .map(|&i| cart.position(black_box(i)).fold())
+            .sum::<f64>()
+    };
+    let mut engine = Analysis::new(&plan);
+    let mut tmm = || {
+        ins.iter()
+            .map(|&i| {
+                engine.solve(black_box(i)).unwrap();
+                Whole::<3, 4>::of(&engine).fold()
+            })
+            .sum::<f64>()
+    };
+    yardstick::print_ratio(
+        "four-bar whole position",
+        ins.len() as u32,
+        &mut tmm,
+        by_hand,
+    );
     let mut g = c.benchmark_group("four_bar_whole_position");
     g.measurement_time(Duration::from_secs(3))
         .warm_up_time(Duration::from_millis(500))
         .sample_size(30);
     g.throughput(Throughput::Elements(ins.len() as u64));
-    g.bench_function("cartesian_closed_form", |b| {
-        b.iter(|| ins.iter().map(|&i| cart.balance(black_box(i))).sum::<f64>())
-    });
+    g.bench_function("cartesian_closed_form", |b| b.iter(by_hand));
     g.bench_function("hand_chain", |b| {
         b.iter(|| ins.iter().map(|&i| hand.balance(black_box(i))).sum::<f64>())
     });
-    g.bench_function("engine", |b| {
-        b.iter(|| {
-            ins.iter()
-                .map(|&i| {
-                    a.solve(black_box(i)).unwrap();
-                    a.balance().value
-                })
-                .sum::<f64>()
-        })
-    });
+    g.bench_function("engine", |b| b.iter(&mut tmm));
     g.finish();
 }
 
@@ -290,6 +403,173 @@ impl HandWatt {
     }
 }
 
+/// A point fixed in a link, in the frame of the link's side `r` (the vector between two of
+/// its joints, as it moves): p − origin = α·r + β·r⊥, with α, β found once from the pose.
+#[derive(Debug, Clone, Copy)]
+struct Fixed(f64, f64);
+
+impl Fixed {
+    fn new(origin: Point2<f64>, toward: Point2<f64>, p: Point2<f64>) -> Self {
+        let (r, d) = (toward - origin, p - origin);
+        let q = r.norm_squared();
+        Self(d.dot(&r) / q, cross2(r, d) / q)
+    }
+
+    /// The point's position relative to the origin, for the side `r`.
+    #[inline]
+    fn at(self, r: Vector2<f64>) -> Vector2<f64> {
+        self.0 * r + self.1 * perp2(r)
+    }
+}
+
+/// An RRR dyad's position, velocities and accelerations by hand: B on the left of A→C at
+/// `l2` from A and `l3` from C; `(p, v, a)` of A and of C given. Returns B − A, B − C, ω2,
+/// ω3, ε2, ε3.
+#[inline]
+#[allow(clippy::type_complexity)]
+fn rrr_by_hand(
+    a: (Vector2<f64>, Vector2<f64>, Vector2<f64>),
+    c: (Vector2<f64>, Vector2<f64>, Vector2<f64>),
+    l2: f64,
+    l3: f64,
+) -> (Vector2<f64>, Vector2<f64>, f64, f64, f64, f64) {
+    let d = c.0 - a.0;
+    let dd = d.norm_squared();
+    let along = (l2 * l2 - l3 * l3 + dd) / (2.0 * dd);
+    let across = (l2 * l2 / dd - along * along).sqrt();
+    let r2 = along * d + across * perp2(d);
+    let r3 = r2 - d;
+    // ω2·r2⊥ − ω3·r3⊥ = v_C − v_A, and likewise for ε with the centripetal terms.
+    let x = cross2(r2, r3);
+    let dv = c.1 - a.1;
+    let (w2, w3) = (dv.dot(&r3) / x, dv.dot(&r2) / x);
+    let q = c.2 - a.2 + w2 * w2 * r2 - w3 * w3 * r3;
+    (r2, r3, w2, w3, q.dot(&r3) / x, q.dot(&r2) / x)
+}
+
+/// An RRR dyad's reactions by hand from each link's resultant force and its moment about B:
+/// R12 from both links' moments about B (R43 = −F − R12), then R23 = R12 + F2. `p` = A − B,
+/// `q` = C − B. Returns R12, R23, R43.
+#[inline]
+fn rrr_reactions(
+    p: Vector2<f64>,
+    q: Vector2<f64>,
+    (f2, m2b): (Vector2<f64>, f64),
+    (f3, m3b): (Vector2<f64>, f64),
+) -> (Vector2<f64>, Vector2<f64>, Vector2<f64>) {
+    let det = cross2(p, q);
+    let (b1, b2) = (-m2b, m3b - cross2(q, f2 + f3));
+    let r12 = Vector2::new((b1 * q.x - p.x * b2) / det, (-p.y * b2 + q.y * b1) / det);
+    let r23 = r12 + f2;
+    (r12, r23, -(r23 + f3))
+}
+
+/// The Watt six-bar as a straight Cartesian closed form doing the engine's whole job per
+/// position, as [`CartesianFourBar`]: the crank; the RRR dyad coupler ABE + rocker O3BF; the
+/// points E and F carried by them (fixed coordinates in their links' side vectors, so no
+/// angle and no unit vector is needed); the RRR dyad EG + FG; inertia loads and weights;
+/// the reactions of the last dyad, then of the first with the last's reactions reversed on
+/// it, then the crank's; every angle by one `atan2`.
+struct CartesianWatt {
+    l: [f64; 5],
+    o3: Vector2<f64>,
+    /// E, S2 in the coupler (side A→B); F, S3 in the rocker (side O3→B).
+    e: Fixed,
+    s2: Fixed,
+    f: Fixed,
+    s3: Fixed,
+}
+
+impl CartesianWatt {
+    fn new() -> Self {
+        let p = Point2::new;
+        let (a, b, o3) = (p(0.08, 0.0), p(0.3, 0.3), p(0.38, 0.0));
+        let (e, f, g) = (p(0.25, 0.45), p(0.52, 0.28), p(0.45, 0.6));
+        Self {
+            l: [
+                0.08,
+                (b - a).norm(),
+                (b - o3).norm(),
+                (g - e).norm(),
+                (g - f).norm(),
+            ],
+            o3: o3.coords,
+            e: Fixed::new(a, b, e),
+            s2: Fixed::new(a, b, p(0.21, 0.25)),
+            f: Fixed::new(o3, b, f),
+            s3: Fixed::new(o3, b, p(0.4, 0.19)),
+        }
+    }
+
+    /// Joints in the engine's order: O1, A, B, O3, E, F, G.
+    #[inline]
+    fn position(&self, i: Motion) -> Whole<5, 7> {
+        let l = &self.l;
+        let g = Vector2::new(0.0, -9.81);
+        let (w1, e1) = (i.rate, i.accel);
+        let (sn, cs) = i.value.sin_cos();
+        let ra = Vector2::new(l[0] * cs, l[0] * sn);
+        let (va, aa) = (w1 * perp2(ra), e1 * perp2(ra) - w1 * w1 * ra);
+        let zero = Vector2::zeros();
+        let (r2, r3, w2, w3, e2, e3) = rrr_by_hand((ra, va, aa), (self.o3, zero, zero), l[1], l[2]);
+        let b = ra + r2;
+        // A point at `r` from a link's origin moving with (v, a) turning at (ω, ε).
+        let carried = |r: Vector2<f64>, v: Vector2<f64>, a: Vector2<f64>, w: f64, e: f64| {
+            (v + w * perp2(r), a + e * perp2(r) - w * w * r)
+        };
+        let (re, rf) = (self.e.at(r2), self.f.at(r3));
+        let (ve, ae) = carried(re, va, aa, w2, e2);
+        let (vf, af) = carried(rf, zero, zero, w3, e3);
+        let (pe, pf) = (ra + re, self.o3 + rf);
+        let (r4, r5, w4, w5, e4, e5) = rrr_by_hand((pe, ve, ae), (pf, vf, af), l[3], l[4]);
+
+        // Inertia loads and weights: m·(g − a_S) at S and −J·ε. Links 4 and 5 are rods of
+        // 1 kg (S at their middles, J = m·l²/12); a 30 N·m moment resists link 5's turning.
+        let (rs2, rs3) = (self.s2.at(r2), self.s3.at(r3));
+        let f2 = 3.0 * (g - carried(rs2, va, aa, w2, e2).1);
+        let f3 = 2.5 * (g - carried(rs3, zero, zero, w3, e3).1);
+        let f4 = g - carried(0.5 * r4, ve, ae, w4, e4).1;
+        let f5 = g - carried(0.5 * r5, vf, af, w5, e5).1;
+        let (j4, j5) = (l[3] * l[3] / 12.0, l[4] * l[4] / 12.0);
+        let resist = if w5 > 0.0 {
+            -30.0
+        } else if w5 < 0.0 {
+            30.0
+        } else {
+            0.0
+        };
+        // The last dyad (A = E, B = G, C = F): moments about G, S4 − G = −r4/2.
+        let (r24, r45, r35) = rrr_reactions(
+            -r4,
+            -r5,
+            (f4, -j4 * e4 + cross2(-0.5 * r4, f4)),
+            (f5, -j5 * e5 + resist + cross2(-0.5 * r5, f5)),
+        );
+        // The first dyad carries R42 = −R24 at E and R53 = −R35 at F: moments about B.
+        let (de, df) = (pe - b, pf - b);
+        let f2e = f2 - r24;
+        let f3f = f3 - r35;
+        let m2b = -0.02 * e2 + cross2(rs2 - r2, f2) - cross2(de, r24);
+        let m3b = -0.015 * e3 + cross2(rs3 - r3, f3) - cross2(df, r35);
+        let (r12, r23, r43) = rrr_reactions(-r2, -r3, (f2e, m2b), (f3f, m3b));
+        // The crank: its weight at O1, no inertia force; M_b balances R21 at A and −J1·ε.
+        let r01 = r12 - 1.0 * g;
+        Whole {
+            angle: [
+                i.value.rem_euclid(std::f64::consts::TAU),
+                angle_of(r2),
+                angle_of(r3),
+                angle_of(r4),
+                angle_of(r5),
+            ],
+            omega: [w1, w2, w3, w4, w5],
+            epsilon: [e1, e2, e3, e4, e5],
+            reaction: [r01, r12, r23, r43, r24, r35, r45],
+            balance: cross2(ra, r12) + 0.002 * e1,
+        }
+    }
+}
+
 fn six_bar(c: &mut Criterion) {
     let plan = Plan::new(&bundled::watt_six_bar()).unwrap();
     let hand = HandWatt::new();
@@ -303,24 +583,46 @@ fn six_bar(c: &mut Criterion) {
             "hand chain {y} vs engine {x}"
         );
     }
+    let cart = CartesianWatt::new();
+    for &i in &ins {
+        a.solve(i).unwrap();
+        let y = cart.position(i);
+        assert!(
+            y.agrees(&Whole::of(&a), 1e-12),
+            "Cartesian closed form {y:?} vs engine {:?}",
+            Whole::<5, 7>::of(&a)
+        );
+    }
+    let by_hand = || {
+        ins.iter()
+            .map(|&i| cart.position(black_box(i)).fold())
+            .sum::<f64>()
+    };
+    let mut engine = Analysis::new(&plan);
+    let mut tmm = || {
+        ins.iter()
+            .map(|&i| {
+                engine.solve(black_box(i)).unwrap();
+                Whole::<5, 7>::of(&engine).fold()
+            })
+            .sum::<f64>()
+    };
+    yardstick::print_ratio(
+        "Watt six-bar whole position",
+        ins.len() as u32,
+        &mut tmm,
+        by_hand,
+    );
     let mut g = c.benchmark_group("watt_six_bar_whole_position");
     g.measurement_time(Duration::from_secs(3))
         .warm_up_time(Duration::from_millis(500))
         .sample_size(30);
     g.throughput(Throughput::Elements(ins.len() as u64));
+    g.bench_function("cartesian_closed_form", |b| b.iter(by_hand));
     g.bench_function("hand_chain", |b| {
         b.iter(|| ins.iter().map(|&i| hand.balance(black_box(i))).sum::<f64>())
     });
-    g.bench_function("engine", |b| {
-        b.iter(|| {
-            ins.iter()
-                .map(|&i| {
-                    a.solve(black_box(i)).unwrap();
-                    a.balance().value
-                })
-                .sum::<f64>()
-        })
-    });
+    g.bench_function("engine", |b| b.iter(&mut tmm));
     g.bench_function("engine_kinematics_only", |b| {
         b.iter(|| {
             ins.iter()

@@ -95,6 +95,16 @@ pub struct RprReactions {
     pub conditioning: Conditioning,
 }
 
+/// The larger of two numbers that are not NaN (either when one is: see its use).
+#[inline(always)]
+fn wider(a: f64, b: f64) -> f64 {
+    if a > b {
+        a
+    } else {
+        b
+    }
+}
+
 impl RprDyad {
     /// Solves the dyad for its joint reactions.
     ///
@@ -120,10 +130,25 @@ impl RprDyad {
     fn fast(&self) -> Option<RprReactions> {
         let (u, n) = (self.axis, perp(self.axis));
         let qa = u.norm_squared();
-        let i_qa = 1.0 / qa;
         let ea = self.a - self.e;
         let (along, across) = (ea.dot(&u), ea.dot(&n));
-        let i_along = 1.0 / along;
+        // ρ², the largest squared distance from E, by plain comparisons: a NaN among them
+        // comes from a non-finite point, which the test at the end rejects anyway (through a
+        // moment or `along`), so `f64::max`'s care for NaN would only cost instructions.
+        let rho_sq = wider(
+            wider(
+                (self.load2.point - self.e).norm_squared(),
+                (self.load3.point - self.e).norm_squared(),
+            ),
+            ea.norm_squared(),
+        );
+        // 1/|axis|² and 1/along as one pair of divisions, |axis| and ρ as one pair of square
+        // roots (one vector instruction each), both straight from the inputs so that neither
+        // waits for the other; 1/|axis| is then one product.
+        let inv = Vector2::repeat(1.0).component_div(&Vector2::new(qa, along));
+        let (i_qa, i_along) = (inv.x, inv.y);
+        let roots = Vector2::new(qa, rho_sq).map(f64::sqrt);
+        let (la, rho) = (roots.x, roots.y);
         let f2 = self.load2.force;
         let m_e = self.load2.moment_about(self.e) + self.load3.moment_about(self.e);
         let p = -f2.dot(&u) * i_qa;
@@ -134,16 +159,7 @@ impl RprDyad {
         let r43 = r32 - self.load3.force;
         let couple = 0.0 - self.load2.moment_about(self.a);
 
-        let rho_sq = (self.load2.point - self.e)
-            .norm_squared()
-            .max((self.load3.point - self.e).norm_squared())
-            .max(ea.norm_squared());
-        // 1/|axis| and ρ as one pair of square roots (one vector instruction), with no
-        // further division.
-        let roots = Vector2::new(i_qa, rho_sq).map(f64::sqrt);
-        let (i_la, rho) = (roots.x, roots.y);
-        let la = qa * i_la;
-        let l_ea = -along * i_la;
+        let l_ea = -along * (la * i_qa);
         let (conditioning, regular) = Conditioning::fast(l_ea, la * i_along, rho);
         let (r12_n, r12_t, r32_n) = (p * la, q * la, k * la);
         // The inputs need no test of their own: a non-finite axis makes |axis|² non-finite,

@@ -113,25 +113,32 @@ impl RrpDyad {
     #[inline(always)]
     fn fast(&self) -> Option<RrpReactions> {
         let ab = self.b - self.a;
-        let nu = perp(self.guide);
-        let q = Vector2::new(ab.norm_squared(), self.guide.norm_squared());
+        let g = self.guide;
+        let nu = perp(g);
+        let q = Vector2::new(ab.norm_squared(), g.norm_squared());
         let (q2, qg) = (q.x, q.y);
-        // 1/|AB|² and 1/|guide|² as one pair of divisions, then their square roots as one
-        // pair (one vector instruction each).
+        // 1/|AB|² and 1/|guide|² as one pair of divisions, |AB| and |guide| as one pair of
+        // square roots (one vector instruction each), both straight from the inputs so that
+        // neither waits for the other: the inverse lengths are then one product each.
         let i_q = Vector2::repeat(1.0).component_div(&q);
-        let t2 = self.load2.moment_about(self.b) * i_q.x;
-        let w = perp(ab) * t2 + self.load2.force + self.load3.force;
-        let d = cross(ab, nu);
+        let l = q.map(f64::sqrt);
+        let m2 = self.load2.moment_about(self.b);
+        let f = self.load2.force + self.load3.force;
+        // d = AB × ν = AB·g, likewise from the inputs alone.
+        let d = ab.dot(&g);
         let i_d = 1.0 / d;
-        let n2 = -cross(w, nu) * i_d;
-        let k = -cross(ab, w) * i_d;
+        let t2 = m2 * i_q.x;
+        // With w = t2·AB⊥ + F: w × ν = t2·(AB × g) + F·g, and AB × w = t2·|AB|² + AB × F,
+        // whose first term is M2(B) itself, so that R43 waits for no division but 1/d.
+        let n2 = -(t2 * cross(ab, g) + f.dot(&g)) * i_d;
+        let k = -(m2 + cross(ab, f)) * i_d;
         let r12 = ab * n2 + perp(ab) * t2;
         let r43 = nu * k;
         let r23 = -(r43 + self.load3.force);
         let guide_moment = 0.0 - self.load3.moment_about(self.b);
 
-        let i_l = i_q.map(f64::sqrt);
-        let (l2, lg) = (q2 * i_l.x, qg * i_l.y);
+        let i_l = l.component_mul(&i_q);
+        let (l2, lg) = (l.x, l.y);
         let det = d * (i_l.x * i_l.y);
         let (conditioning, regular) = Conditioning::fast(det, i_d * (l2 * lg), 1.0);
         let (r12_n, r12_t, r43_n) = (n2 * l2, t2 * l2, k * lg);

@@ -263,6 +263,17 @@ impl<'p> Analysis<'p> {
         point_with(&self.links[k], self.units[k], local)
     }
 
+    /// The position alone of joint `j` as a point of link `link` (one of its two links): what
+    /// [`joint_index_on`](Self::joint_index_on) gives as `p`, to the bit, without the
+    /// velocity and acceleration the reactions do not need.
+    #[inline]
+    fn joint_position_on(&self, j: usize, link: usize) -> Point2<f64> {
+        let jp = &self.plan.joints[j];
+        let local = jp.local[usize::from(jp.links[1] == link)];
+        let e = self.units[link];
+        self.links[link].origin.p + (local.x * e + local.y * perp(e))
+    }
+
     /// The unit vector along link `k`'s frame angle (kept with its motion).
     #[inline]
     pub(crate) fn link_unit(&self, k: usize) -> Vector2<f64> {
@@ -584,7 +595,7 @@ impl<'p> Analysis<'p> {
         let name = &group.name;
         let (ra, rb, rc, cond) = match group.kind {
             GroupKind::Rrr => {
-                let b = self.joint_index_on(jb, l2).p;
+                let b = self.joint_position_on(jb, l2);
                 let c = self.links[l3].origin.p;
                 let r = RrrDyad {
                     a,
