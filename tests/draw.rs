@@ -266,15 +266,15 @@ fn animations(svg: &str) -> Vec<(String, Vec<String>)> {
     use svg::parser::Event;
     let mut out = Vec::new();
     for event in svg::read(svg).unwrap() {
-        if let Event::Tag(name, _, attributes) = event {
-            if name == "animate" || name == "animateTransform" {
-                let values = attributes["values"].to_string();
-                out.push((
-                    attributes["attributeName"].to_string(),
-                    values.split(';').map(str::to_owned).collect(),
-                ));
-                assert_eq!(attributes["calcMode"].to_string(), "discrete");
-            }
+        if let Event::Tag(name, _, attributes) = event
+            && (name == "animate" || name == "animateTransform")
+        {
+            let values = attributes["values"].to_string();
+            out.push((
+                attributes["attributeName"].to_string(),
+                values.split(';').map(str::to_owned).collect(),
+            ));
+            assert_eq!(attributes["calcMode"].to_string(), "discrete");
         }
     }
     out

@@ -240,11 +240,11 @@ fn malformed_files_are_errors() {
         }
         let s = String::from_utf8_lossy(&bytes).into_owned();
         let what = format!("case {case}");
-        if let Ok(l) = no_panic(&what, || Linkage::from_json(&s)) {
-            if let Ok(plan) = no_panic(&what, || Plan::new(&l)) {
-                let input = Motion::new(plan.reference_input() + 0.4, 3.0, 0.0);
-                no_panic(&what, || check_position(&plan, input, &what));
-            }
+        if let Ok(l) = no_panic(&what, || Linkage::from_json(&s))
+            && let Ok(plan) = no_panic(&what, || Plan::new(&l))
+        {
+            let input = Motion::new(plan.reference_input() + 0.4, 3.0, 0.0);
+            no_panic(&what, || check_position(&plan, input, &what));
         }
     }
     // Numbers JSON cannot hold finitely.
@@ -300,10 +300,10 @@ fn hostile_dynamics_of_linkages() {
                             c: x,
                         })
                     });
-                if let Ok(s) = with {
-                    if let Ok(t) = s.terms(&Vector2::new(0.3, 0.0), &Vector2::new(y, 0.0)) {
-                        assert!(!has_non_finite(&format!("{t:?}")), "{what}: {t:?}");
-                    }
+                if let Ok(s) = with
+                    && let Ok(t) = s.terms(&Vector2::new(0.3, 0.0), &Vector2::new(y, 0.0))
+                {
+                    assert!(!has_non_finite(&format!("{t:?}")), "{what}: {t:?}");
                 }
             });
         }
@@ -363,10 +363,10 @@ fn hostile_grashof_and_transmission_angles() {
                     );
                     assert!(at.is_finite(), "{what}");
                 }
-                if let Ok(a) = plan.kinematics(Motion::fixed(plan.reference_input())) {
-                    if let Ok(mu) = a.transmission_angle(k) {
-                        assert!(mu.is_finite(), "{what}");
-                    }
+                if let Ok(a) = plan.kinematics(Motion::fixed(plan.reference_input()))
+                    && let Ok(mu) = a.transmission_angle(k)
+                {
+                    assert!(mu.is_finite(), "{what}");
                 }
             });
         }
@@ -486,10 +486,10 @@ fn hostile_ready_mechanisms() {
                 }
             },
             |m, v| {
-                if let Some(d) = &mut m.diagram {
-                    if let Some(p) = d.outward.first_mut() {
-                        p[(v.to_bits() % 2) as usize] = v;
-                    }
+                if let Some(d) = &mut m.diagram
+                    && let Some(p) = d.outward.first_mut()
+                {
+                    p[(v.to_bits() % 2) as usize] = v;
                 }
             },
             |m, v| gear(&mut m.drive, v.to_bits() as usize, v),
@@ -514,10 +514,10 @@ fn hostile_ready_mechanisms() {
             |m, v| m.gravity = v,
             |m, v| mass(&mut m.mass, v.to_bits() as usize, v),
             |m, v| {
-                if let Some(d) = &mut m.diagrams[(v.to_bits() % 2) as usize] {
-                    if let Some(p) = d.inward.last_mut() {
-                        p[(v.to_bits() / 2 % 2) as usize] = v;
-                    }
+                if let Some(d) = &mut m.diagrams[(v.to_bits() % 2) as usize]
+                    && let Some(p) = d.inward.last_mut()
+                {
+                    p[(v.to_bits() / 2 % 2) as usize] = v;
                 }
             },
             |m, v| gear(&mut m.drive, v.to_bits() as usize, v),

@@ -612,10 +612,10 @@ fn draw_panel(
         };
         let mut last: Option<[f64; 2]> = None;
         for p in pts {
-            if let Some(l) = last {
-                if p[0] - l[0] > step || (p[0] - l[0]).hypot(p[1] - l[1]) > jump {
-                    runs.push(Vec::new());
-                }
+            if let Some(l) = last
+                && (p[0] - l[0] > step || (p[0] - l[0]).hypot(p[1] - l[1]) > jump)
+            {
+                runs.push(Vec::new());
             }
             last = Some(*p);
             if let Some(r) = runs.last_mut() {

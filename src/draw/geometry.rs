@@ -386,10 +386,10 @@ pub(crate) fn link_body(
     }
     // Guides carried by this link.
     for &j in &topo.link_joints[k] {
-        if topo.guide[j] == Some(k) {
-            if let Some((a, b)) = pose.guide_ends(topo, ext, j) {
-                bar(&mut g, map(a), map(b), lw);
-            }
+        if topo.guide[j] == Some(k)
+            && let Some((a, b)) = pose.guide_ends(topo, ext, j)
+        {
+            bar(&mut g, map(a), map(b), lw);
         }
     }
     // Blocks of the sliding pairs this link slides in.

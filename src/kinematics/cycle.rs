@@ -197,11 +197,11 @@ where
     let mut upper = None;
     for k in 1..=STEPS {
         let x = phi + k as f64 * step;
-        if !ok(x) {
-            if let Some(b) = lock_at(&mut ok, x, 1.0) {
-                upper = Some(b);
-                break;
-            }
+        if !ok(x)
+            && let Some(b) = lock_at(&mut ok, x, 1.0)
+        {
+            upper = Some(b);
+            break;
         }
     }
     let Some(upper) = upper else {
@@ -210,11 +210,11 @@ where
     let mut lower = upper - TAU;
     for k in 1..=STEPS {
         let x = phi - k as f64 * step;
-        if !ok(x) {
-            if let Some(b) = lock_at(&mut ok, x, -1.0) {
-                lower = b;
-                break;
-            }
+        if !ok(x)
+            && let Some(b) = lock_at(&mut ok, x, -1.0)
+        {
+            lower = b;
+            break;
         }
     }
     Ok(Some((lower, upper)))

@@ -1036,16 +1036,16 @@ fn reference_direction(
 ) -> Result<Option<f64>> {
     let link = &linkage.links[order[li]];
     let pos = |n: &str| -> Result<Point2<f64>> {
-        if let Some(&j) = names.joints.get(n) {
-            if link.joints.iter().any(|x| x == n) {
-                let a = linkage.joints[j].at;
-                return Ok(Point2::new(a[0], a[1]));
-            }
+        if let Some(&j) = names.joints.get(n)
+            && link.joints.iter().any(|x| x == n)
+        {
+            let a = linkage.joints[j].at;
+            return Ok(Point2::new(a[0], a[1]));
         }
-        if let Some(&(k, p)) = names.points.get(n) {
-            if k == order[li] {
-                return Ok(p);
-            }
+        if let Some(&(k, p)) = names.points.get(n)
+            && k == order[li]
+        {
+            return Ok(p);
         }
         Err(bad(
             item,

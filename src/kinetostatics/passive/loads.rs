@@ -193,10 +193,11 @@ pub(crate) fn distributed_resultant(
     }
     let g = &frame.g;
     let mut pieces = [(s0, s1), (0.0, 0.0)];
-    if let Some(bend) = frame.bends(link) {
-        if s0 < bend && bend < s1 {
-            pieces = [(s0, bend), (bend, s1)];
-        }
+    if let Some(bend) = frame.bends(link)
+        && s0 < bend
+        && bend < s1
+    {
+        pieces = [(s0, bend), (bend, s1)];
     }
     let mut f = Vector2::zeros();
     let mut m = 0.0;
