@@ -943,3 +943,70 @@ fn the_default_terms_reports_the_first_failure_first() {
         "{r:?}"
     );
 }
+
+/// A described linkage driven by servos reports their clamps as kinks, as the hand-written
+/// five-bar does (the same argument at every state), so RK4 keeps its fourth order across a
+/// saturation; stepping across the switch instead costs two orders of accuracy. The robot
+/// of the five-bar's own servo test: crank 1 saturated at the start, switching once at
+/// about 0.05 s; crank 4's servo never saturates.
+#[test]
+fn servo_clamps_of_a_described_linkage_are_kinks() {
+    let mut fb = FiveBar::default();
+    fb.drive4.limit = 1e3;
+    let sys = five_bar_system(&fb);
+    assert_eq!(sys.kinks(), vec![0.0]);
+    for (a, b, w1, w4) in [
+        (120.0, 60.0, 0.0, 0.0),
+        (110.0, 70.0, 3.0, -2.0),
+        (125.0, 50.0, -9.0, 1.0),
+    ] {
+        let q = Vector2::new(f64::to_radians(a), f64::to_radians(b));
+        let qd = Vector2::new(w1, w4);
+        assert_eq!(
+            sys.kink_argument(0.0, &q, &qd).unwrap(),
+            fb.kink_argument(0.0, &q, &qd).unwrap()
+        );
+    }
+    let s0 = State::at_rest(Vector2::new(120f64.to_radians(), 60f64.to_radians()));
+    let t_end = 0.12;
+    let end = |n: u32, locate: bool| {
+        let mut opts = RunOptions::until(t_end, t_end / f64::from(n));
+        opts.record_every = usize::MAX;
+        opts.locate_kinks = locate;
+        run(&sys, &Rk4, s0, &opts).unwrap().last
+    };
+    let reference = end(64 * 160, true);
+    let diff = |s: State| (s.q - reference.q).amax().max((s.qd - reference.qd).amax());
+    let with: Vec<f64> = [40, 80, 160].iter().map(|&n| diff(end(n, true))).collect();
+    for w in with.windows(2) {
+        let order = (w[0] / w[1]).log2();
+        assert!((3.6..4.6).contains(&order), "order {order}: {with:?}");
+    }
+    let without = diff(end(160, false));
+    assert!(with[2] * 100.0 < without, "{with:?} vs {without}");
+}
+
+/// A tabulated motor's characteristic M(q̇) has a kink at each node of its table: the run
+/// is told them, with q̇ of its input as the argument.
+#[test]
+fn a_tabulated_motor_reports_its_nodes_as_kinks() {
+    let table = tmm::dynamics::Table::new(
+        vec![0.0, 50.0, 100.0, 150.0],
+        vec![80.0, 70.0, 40.0, 0.0],
+        tmm::dynamics::Beyond::HoldEnds,
+    )
+    .unwrap();
+    let sys = LinkageSystem::from_linkage(&bundled::four_bar())
+        .unwrap()
+        .with_motor(0, Motor::Tabulated(table))
+        .unwrap();
+    assert_eq!(sys.kinks(), vec![0.0, 50.0, 100.0, 150.0]);
+    let (q, qd) = (Vector2::new(1.0, 0.0), Vector2::new(73.5, 0.0));
+    assert_eq!(sys.kink_argument(0.0, &q, &qd).unwrap(), 73.5);
+    // A smooth motor has none.
+    let linear = LinkageSystem::from_linkage(&bundled::four_bar())
+        .unwrap()
+        .with_motor(0, Motor::Linear(LinearMotor { a: 40.0, b: 0.2 }))
+        .unwrap();
+    assert!(linear.kinks().is_empty());
+}

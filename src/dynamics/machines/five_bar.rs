@@ -99,7 +99,7 @@ impl Servo {
     /// limit, positive while it follows, negative while saturated, kept within [−1, 1]
     /// (a demand that overflows is −1). `None` for a servo with limit 0, which never switches
     /// (it always gives 0).
-    fn margin(&self, phi: f64, omega: f64) -> Result<Option<f64>> {
+    pub(crate) fn margin(&self, phi: f64, omega: f64) -> Result<Option<f64>> {
         if self.limit == 0.0 {
             return Ok(None);
         }

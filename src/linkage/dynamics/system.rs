@@ -635,6 +635,32 @@ impl LinkageSystem {
     }
 }
 
+/// Which motor's switches [`LinkageSystem`] reports as kinks.
+enum KinkSource {
+    None,
+    /// The product of the servos' margins.
+    Servos,
+    /// The table of the tabulated motor at this input.
+    Table(usize),
+}
+
+impl LinkageSystem {
+    fn kink_source(&self) -> KinkSource {
+        let motors = &self.motors[..self.dof()];
+        if motors.iter().any(|m| matches!(m, Motor::Servo(_))) {
+            return KinkSource::Servos;
+        }
+        let mut tables = motors
+            .iter()
+            .enumerate()
+            .filter(|(_, m)| matches!(m, Motor::Tabulated(_)));
+        match (tables.next(), tables.next()) {
+            (Some((i, _)), None) => KinkSource::Table(i),
+            _ => KinkSource::None,
+        }
+    }
+}
+
 impl LagrangeSystem for LinkageSystem {
     fn inertia(&self, q: &Vector2<f64>) -> Result<Matrix2<f64>> {
         Ok(self.evaluate(q, &Vector2::zeros(), false, None)?.inertia)
@@ -671,6 +697,46 @@ impl LagrangeSystem for LinkageSystem {
             return Ok(Matrix2::zeros());
         }
         Ok(self.evaluate(q, &Vector2::zeros(), false, None)?.damping)
+    }
+
+    /// The switches of the motors' characteristics, which are kinks of Q: with a servo at
+    /// an input, the node 0 of the product of the servos' margins (each servo's clamp at
+    /// ±limit, as [`FiveBar`](crate::dynamics::machines::FiveBar)'s); otherwise, with one
+    /// tabulated motor, the nodes of its table in q̇. None for smooth motors. A tabulated
+    /// motor beside a servo has its nodes stepped across, not located.
+    fn kinks(&self) -> Vec<f64> {
+        match self.kink_source() {
+            KinkSource::Servos => vec![0.0],
+            KinkSource::Table(i) => match &self.motors[i] {
+                Motor::Tabulated(t) => t.xs().to_vec(),
+                _ => Vec::new(),
+            },
+            KinkSource::None => Vec::new(),
+        }
+    }
+
+    /// The argument whose crossing of a node of [`kinks`](Self::kinks) is a switch: the
+    /// product of the servos' margins 1 − |demand|/limit (each clamped to [−1, 1], positive
+    /// while the servo follows its demand), or the rate q̇ of the tabulated motor's input.
+    ///
+    /// # Errors
+    /// A non-finite state; a servo's error.
+    fn kink_argument(&self, _t: f64, q: &Vector2<f64>, qd: &Vector2<f64>) -> Result<f64> {
+        finite2(["q1", "q2"], *q)?;
+        finite2(["q1_dot", "q2_dot"], *qd)?;
+        match self.kink_source() {
+            KinkSource::Servos => {
+                let mut product = 1.0;
+                for i in 0..self.dof() {
+                    if let Motor::Servo(s) = &self.motors[i] {
+                        product *= s.margin(q[i], qd[i])?.unwrap_or(1.0);
+                    }
+                }
+                Ok(product)
+            }
+            KinkSource::Table(i) => Ok(qd[i]),
+            KinkSource::None => Ok(0.0),
+        }
     }
 
     fn output_names(&self) -> Vec<&'static str> {
