@@ -619,3 +619,21 @@ fn transmission_angles_match_the_law_of_cosines_and_their_classical_minimum() {
     assert!((ra.transmission_angle(1).unwrap() - expect).abs() < 1e-13);
     assert!(ra.transmission_angle(2).is_err());
 }
+
+/// A bad gear drive is named by the input it belongs to.
+#[test]
+fn a_bad_gear_drive_names_its_input() {
+    let gear = tmm::linkage::Drive::Gear {
+        pitch_radius: -0.1,
+        pitch_angle: 0.0,
+        pressure_angle: 0.35,
+    };
+    let mut l = tmm::linkage::bundled::five_bar_robot();
+    l.second_input.as_mut().unwrap().drive = gear;
+    let e = tmm::linkage::Plan::new(&l).unwrap_err().to_string();
+    assert!(e.contains("second_input.drive") && e.contains("pitch_radius"), "{e}");
+    let mut l = tmm::linkage::bundled::five_bar_robot();
+    l.input.drive = gear;
+    let e = tmm::linkage::Plan::new(&l).unwrap_err().to_string();
+    assert!(e.contains("field input.drive") && e.contains("pitch_radius"), "{e}");
+}

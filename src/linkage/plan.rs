@@ -428,7 +428,7 @@ impl Plan {
             link_names.len()
         ];
         let mut planned = Vec::with_capacity(inputs.len());
-        for (&(input, input_joint), &(spec, _)) in inputs.iter().zip(&specs) {
+        for (k, (&(input, input_joint), &(spec, _))) in inputs.iter().zip(&specs).enumerate() {
             planned.push(match edges[input_joint].pair {
                 Pair::Revolute => {
                     let pivot = at(input_joint);
@@ -441,7 +441,10 @@ impl Plan {
                         origin: pivot,
                         angle: reference,
                     };
-                    check_drive(&spec.drive)?;
+                    check_drive(
+                        &spec.drive,
+                        ["field input.drive", "field second_input.drive"][k],
+                    )?;
                     (
                         InputPlan::Crank {
                             link: input,
@@ -914,14 +917,14 @@ impl Plan {
     }
 }
 
-fn check_drive(drive: &Drive) -> Result<()> {
+/// Checks a gear drive's data; `item` names the input's field.
+fn check_drive(drive: &Drive, item: &str) -> Result<()> {
     if let Drive::Gear {
         pitch_radius,
         pitch_angle,
         pressure_angle,
     } = *drive
     {
-        let item = "field input.drive";
         if !(finite_num(item, "pitch_radius", pitch_radius)? > 0.0) {
             return Err(bad(
                 item,
