@@ -631,9 +631,15 @@ fn a_bad_gear_drive_names_its_input() {
     let mut l = tmm::linkage::bundled::five_bar_robot();
     l.second_input.as_mut().unwrap().drive = gear;
     let e = tmm::linkage::Plan::new(&l).unwrap_err().to_string();
-    assert!(e.contains("second_input.drive") && e.contains("pitch_radius"), "{e}");
+    assert!(
+        e.contains("second_input.drive") && e.contains("pitch_radius"),
+        "{e}"
+    );
     let mut l = tmm::linkage::bundled::five_bar_robot();
     l.input.drive = gear;
     let e = tmm::linkage::Plan::new(&l).unwrap_err().to_string();
-    assert!(e.contains("field input.drive") && e.contains("pitch_radius"), "{e}");
+    assert!(
+        e.contains("field input.drive") && e.contains("pitch_radius"),
+        "{e}"
+    );
 }

@@ -408,7 +408,8 @@ fn assert_reactions_close(s: &Solution, fem: &FemResult, tol: f64) {
     ] {
         assert!(
             (a - b).norm() <= tol * scale,
-            "{name}: force method {a:?}, frame model {b:?}, scale {scale}"
+            "{name}: force method {a:?}, frame model {b:?}, scale {scale}, δ11 ratio {:e}",
+            s.delta11_ratio
         );
     }
 }
@@ -432,6 +433,12 @@ proptest! {
     #[test]
     fn inextensible_model_agrees_with_a_frame_model(c in case()) {
         let s = solve(&c.g, &c.loads, &Stiffness { ei: c.ei, ea: None }).unwrap();
+        // Near δ11 = 0 (X1 barely deforms the released structure) the compatibility equation
+        // divides by a vanishing flexibility: X1 and the hinge forces grow like 1/ratio, and
+        // the frame model's saddle-point LU loses digits in proportion (a random group at
+        // ratio 1.7e-12, just above the solver's singular threshold, differed by 2.2e-7 of
+        // its forces). The comparison needs a reference with digits to spare.
+        prop_assume!(s.delta11_ratio > 1e-9);
         let released = fem(&c.g, &c.loads, c.ei, None, AtC::Released { x: s.x1 });
         let t2 = (c.g.d - c.g.c).normalize();
         // Displacement scale: what C would do without X1 (= Δ1F), or a load-based one.
@@ -440,9 +447,9 @@ proptest! {
         let u_scale = free.u_c.dot(&t2).abs()
             .max(c.loads.scale(&c.g) * c.g.size().powi(3) / ei_min);
         let gap = released.u_c.dot(&t2);
-        prop_assert!(gap.abs() < 1e-9 * u_scale, "C moves along CD by {gap:e} (scale {u_scale:e})");
+        prop_assert!(gap.abs() <= 1e-9 * u_scale, "C moves along CD by {gap:e} (scale {u_scale:e})");
         // Δ1F is that free displacement.
-        prop_assert!((free.u_c.dot(&t2) - s.delta1f.total()).abs() < 1e-9 * u_scale);
+        prop_assert!((free.u_c.dot(&t2) - s.delta1f.total()).abs() <= 1e-9 * u_scale);
         let full = fem(&c.g, &c.loads, c.ei, None, AtC::Hinge);
         assert_reactions_close(&s, &full, 1e-10);
     }
@@ -459,7 +466,7 @@ proptest! {
         let u_scale = free.u_c.dot(&t2).abs()
             .max(c.loads.scale(&c.g) * c.g.size().powi(3) / ei_min);
         let gap = released.u_c.dot(&t2);
-        prop_assert!(gap.abs() < 1e-9 * u_scale, "C moves along CD by {gap:e} (scale {u_scale:e})");
+        prop_assert!(gap.abs() <= 1e-9 * u_scale, "C moves along CD by {gap:e} (scale {u_scale:e})");
         let full = fem(&c.g, &c.loads, c.ei, Some(ea), AtC::Hinge);
         // The frame model's matrix mixes EA/l with 12·EI/l³ up to 10⁵ apart: its own
         // round-off (not the force method's, whose gap is checked above) sets this tolerance.
