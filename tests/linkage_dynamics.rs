@@ -67,7 +67,7 @@ fn five_bar_terms_equal_the_hand_model() {
             let kin = fb.kinematics(&q).unwrap();
             assert!(kin.sin_phi3_minus_phi2.abs() > 0.2);
             let qd = Vector2::new(1.5 - 0.3 * f64::from(i), 0.2 * f64::from(k) - 0.7);
-            let t = sys.terms(&q, &qd).unwrap();
+            let t = sys.split_terms(&q, &qd).unwrap();
             let a = fb.inertia(&q).unwrap();
             let da = fb.inertia_derivatives(&q).unwrap();
             let forces = fb.forces(0.0, &q, &qd).unwrap();
@@ -127,7 +127,7 @@ fn five_bar_with_rigid_couplers_equals_the_hand_model() {
         (130.0, 75.0),
     ] {
         let q = Vector2::new(f64::to_radians(p1), f64::to_radians(p4));
-        let t = sys.terms(&q, &Vector2::new(0.3, 1.2)).unwrap();
+        let t = sys.split_terms(&q, &Vector2::new(0.3, 1.2)).unwrap();
         let a = fb.inertia(&q).unwrap();
         let da = fb.inertia_derivatives(&q).unwrap();
         worst = worst
@@ -159,7 +159,7 @@ fn five_bar_gravity_is_the_potential_gradient() {
         let q = Vector2::new(f64::to_radians(p1), f64::to_radians(p4));
         let qd = Vector2::new(0.4, -0.9);
         let hand = fb.forces(0.0, &q, &qd).unwrap() - fb.potential_gradient(&q).unwrap();
-        let t = sys.terms(&q, &qd).unwrap();
+        let t = sys.split_terms(&q, &qd).unwrap();
         worst = worst.max((t.forces() - hand).amax() / hand.amax());
     }
     assert!(worst <= 1e-12, "gravity differs by {worst:e}");
@@ -646,11 +646,11 @@ fn bad_input_is_an_error() {
     let sys = LinkageSystem::from_linkage(&bundled::four_bar()).unwrap();
     let z = Vector2::zeros();
     assert!(matches!(
-        sys.terms(&Vector2::new(f64::NAN, 0.0), &z),
+        sys.split_terms(&Vector2::new(f64::NAN, 0.0), &z),
         Err(Error::NonFinite { .. })
     ));
     assert!(matches!(
-        sys.terms(&z, &Vector2::new(f64::INFINITY, 0.0)),
+        sys.split_terms(&z, &Vector2::new(f64::INFINITY, 0.0)),
         Err(Error::NonFinite { .. })
     ));
     assert!(sys.clone().with_motor(1, Motor::Constant(1.0)).is_err());
@@ -693,7 +693,7 @@ fn bad_input_is_an_error() {
         Err(Error::Description { .. })
     ));
     assert!(five.flywheel(0.05, 10.0, 360).is_err());
-    let far = five.terms(&Vector2::new(PI, 0.0), &z);
+    let far = five.split_terms(&Vector2::new(PI, 0.0), &z);
     assert!(far.is_err());
     let plan = five.plan();
     assert!(plan.kinematics(Motion::new(2.0, 1.0, 0.0)).is_err());
@@ -797,7 +797,7 @@ fn the_rates_only_pass_equals_a_full_solve_for_every_group_kind() {
             let qd = Vector2::new(7.0, if two { -3.0 } else { 0.0 });
             let inputs = [Motion::new(q[0], qd[0], 0.0), Motion::new(q[1], qd[1], 0.0)];
             let n = if two { 2 } else { 1 };
-            if sys.terms(&q, &qd).is_ok() {
+            if sys.split_terms(&q, &qd).is_ok() {
                 states += 1;
             } else {
                 // Only where the position cannot be solved at all.

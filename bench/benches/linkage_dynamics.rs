@@ -108,7 +108,7 @@ fn one_input(c: &mut Criterion) {
                 j = (j + 1) % states.len();
                 let (phi, w) = states[j];
                 black_box(
-                    sys.terms(black_box(&Vector2::new(phi, 0.0)), &Vector2::new(w, 0.0))
+                    sys.split_terms(black_box(&Vector2::new(phi, 0.0)), &Vector2::new(w, 0.0))
                         .unwrap(),
                 );
             },
@@ -134,7 +134,7 @@ fn one_input(c: &mut Criterion) {
                 k = (k + 1) % states.len();
                 let (phi, w) = states[k];
                 black_box(
-                    sys.terms(black_box(&Vector2::new(phi, 0.0)), &Vector2::new(w, 0.0))
+                    sys.split_terms(black_box(&Vector2::new(phi, 0.0)), &Vector2::new(w, 0.0))
                         .unwrap(),
                 );
             });
@@ -167,7 +167,7 @@ fn two_inputs(c: &mut Criterion) {
         || {
             j = (j + 1) % states.len();
             black_box(
-                sys.terms(black_box(&states[j]), &Vector2::new(1.0, -1.0))
+                sys.split_terms(black_box(&states[j]), &Vector2::new(1.0, -1.0))
                     .unwrap(),
             );
         },
@@ -193,7 +193,7 @@ fn two_inputs(c: &mut Criterion) {
             b.iter(|| {
                 k = (k + 1) % states.len();
                 black_box(
-                    sys.terms(black_box(&states[k]), &Vector2::new(1.0, -1.0))
+                    sys.split_terms(black_box(&states[k]), &Vector2::new(1.0, -1.0))
                         .unwrap(),
                 );
             });

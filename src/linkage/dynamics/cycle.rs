@@ -168,7 +168,7 @@ impl LinkageSystem {
     /// ```
     pub fn reduced(&self, phi: f64, omega: f64) -> Result<Reduced> {
         self.one_crank("the reduced moment of inertia and moment")?;
-        let t = self.terms(&Vector2::new(phi, 0.0), &Vector2::new(omega, 0.0))?;
+        let t = self.split_terms(&Vector2::new(phi, 0.0), &Vector2::new(omega, 0.0))?;
         Ok(Reduced {
             phi,
             inertia: t.inertia[(0, 0)],

@@ -83,7 +83,7 @@ impl Motor {
 /// use tmm::linkage::{bundled, dynamics::{Damper, LinkageSystem}};
 /// let sys = LinkageSystem::from_linkage(&bundled::four_bar())?
 ///     .with_damper(&Damper::Link { link: "crank".into(), c: 2.0 })?;
-/// let b = sys.terms(&Vector2::new(0.3, 0.0), &Vector2::zeros())?.damping;
+/// let b = sys.split_terms(&Vector2::new(0.3, 0.0), &Vector2::zeros())?.damping;
 /// assert!((b[(0, 0)] - 2.0).abs() < 1e-15);
 /// # Ok::<(), tmm::Error>(())
 /// ```

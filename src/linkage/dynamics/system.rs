@@ -24,7 +24,7 @@ use crate::linkage::{Analysis, Linkage, Plan};
 /// use tmm::linkage::{bundled, dynamics::LinkageSystem};
 /// let sys = LinkageSystem::from_linkage(&bundled::five_bar_robot())?;
 /// let q = Vector2::new(2.0, 1.1);
-/// let t = sys.terms(&q, &Vector2::new(1.0, -1.0))?;
+/// let t = sys.split_terms(&q, &Vector2::new(1.0, -1.0))?;
 /// let a = t.inertia;
 /// assert_eq!(a[(0, 1)], a[(1, 0)]);
 /// assert!(a[(0, 0)] > 0.0 && a.determinant() > 0.0);
@@ -72,7 +72,7 @@ impl Terms {
 /// use tmm::linkage::{bundled, dynamics::{LinkageSystem, Motor}};
 /// let sys = LinkageSystem::from_linkage(&bundled::four_bar())?
 ///     .with_motor(0, Motor::Linear(LinearMotor { a: 40.0, b: 0.2 }))?;
-/// let t = sys.terms(&Vector2::new(1.0, 0.0), &Vector2::new(10.0, 0.0))?;
+/// let t = sys.split_terms(&Vector2::new(1.0, 0.0), &Vector2::new(10.0, 0.0))?;
 /// assert!(t.inertia[(0, 0)] > 0.002); // more than the crank's own 0.002 kg·m²
 /// assert_eq!(t.drives[0], 38.0);
 /// assert_eq!((t.inertia[(1, 1)], t.loads[1]), (1.0, 0.0)); // the idle coordinate
@@ -347,14 +347,13 @@ impl LinkageSystem {
     /// the accelerations of q̈ = 0).
     ///
     /// The trait's [`LagrangeSystem::terms`] (with the time, the drives and loads summed into
-    /// Q) is the same evaluation; as this inherent method shares its name, call that one as
-    /// `LagrangeSystem::terms(&sys, t, &q, &qd)`.
+    /// Q) is the same evaluation.
     ///
     /// # Errors
     /// [`Error::NonFinite`] for a non-finite q or q̇; the kinematics' errors (a group that
     /// cannot be assembled or is at a dead point) wrapped in [`Error::In`]; a load's or a
     /// motor's error; [`Error::Overflow`] when a term overflows.
-    pub fn terms(&self, q: &Vector2<f64>, qd: &Vector2<f64>) -> Result<Terms> {
+    pub fn split_terms(&self, q: &Vector2<f64>, qd: &Vector2<f64>) -> Result<Terms> {
         self.evaluate(q, qd, true, None)
     }
 
@@ -673,7 +672,7 @@ impl LagrangeSystem for LinkageSystem {
     }
 
     fn forces(&self, _t: f64, q: &Vector2<f64>, qd: &Vector2<f64>) -> Result<Vector2<f64>> {
-        Ok(self.terms(q, qd)?.forces())
+        Ok(self.split_terms(q, qd)?.forces())
     }
 
     /// A, ∂A/∂q, Q and B from one evaluation of the kinematics (one solve of the positions,
@@ -750,7 +749,7 @@ impl LagrangeSystem for LinkageSystem {
         qd: &Vector2<f64>,
         out: &mut Vec<f64>,
     ) -> Result<()> {
-        let t = self.terms(q, qd)?;
+        let t = self.split_terms(q, qd)?;
         out.extend([t.drives[0], t.drives[1], t.loads[0], t.loads[1]]);
         Ok(())
     }
