@@ -407,12 +407,11 @@ pub fn run<S: LagrangeSystem + ?Sized, M: Stepper>(
     if !start.is_finite() {
         return Err(Error::NonFiniteState { time: start.t });
     }
-    let n_out = sys.output_names().len();
     if let Some(r) = &opts.reach {
         finite("reach value", r.value)?;
         let (i, n) = match r.watch {
             Watch::Coordinate(i) | Watch::Speed(i) => (i, 2),
-            Watch::Output(i) => (i, n_out),
+            Watch::Output(i) => (i, sys.output_names().len()),
         };
         if i >= n {
             return Err(Error::OutOfRange {
@@ -469,7 +468,9 @@ pub fn run<S: LagrangeSystem + ?Sized, M: Stepper>(
 
     let mut traj = Trajectory::for_system(sys);
     traj.push(sys, &start)?;
-    let mut buf = Vec::with_capacity(n_out);
+    // The outputs of a watched state (grown on the first use: a run that watches no output
+    // allocates nothing for it).
+    let mut buf = Vec::new();
     let mut s = start;
     let mut h = opts.h;
     let (mut steps, mut evaluations) = (0usize, 0usize);
@@ -498,7 +499,9 @@ pub fn run<S: LagrangeSystem + ?Sized, M: Stepper>(
     let mut on_kink: Option<usize> = None;
     // The end of the grid step a fixed-step method was taking when a stop or a kink cut it.
     let mut grid_end: Option<f64> = None;
-    let (mut i_stop, mut i_time, mut grid_steps) = (0usize, 0usize, 0usize);
+    // Grid steps left until the next recorded one (a countdown rather than a division per
+    // step: every `record_every`-th grid step is recorded).
+    let (mut i_stop, mut i_time, mut until_record) = (0usize, 0usize, opts.record_every);
 
     let finish = |traj: &mut Trajectory,
                   last: State,
@@ -562,11 +565,19 @@ pub fn run<S: LagrangeSystem + ?Sized, M: Stepper>(
         // A step that ends on a stop integrates up to it from the left: a force that jumps
         // there (written `if t < t_b`) is evaluated at its value before the jump in the
         // step's last stages, and at its new value from the next step on.
-        let (adv, mut dense) = if clamped {
-            let left = LeftOf { sys, at: stop };
-            method.advance_dense(&left, &s, h_try, Some(hand_s))?
-        } else {
-            method.advance_dense(sys, &s, h_try, Some(hand_s))?
+        // The continuous extension is built only when something will read it: a requested
+        // time still ahead, or a kink to locate (its first guess).
+        let want_dense = i_time < times.len() || !kinks.is_empty();
+        let (adv, mut dense) = match (clamped, want_dense) {
+            (true, true) => {
+                method.advance_dense(&LeftOf { sys, at: stop }, &s, h_try, Some(hand_s))?
+            }
+            (true, false) => (
+                method.advance_from(&LeftOf { sys, at: stop }, &s, h_try, Some(hand_s))?,
+                None,
+            ),
+            (false, true) => method.advance_dense(sys, &s, h_try, Some(hand_s))?,
+            (false, false) => (method.advance_from(sys, &s, h_try, Some(hand_s))?, None),
         };
         let mut s1 = adv.state;
         // A step too short to change t (h below the rounding of t) would repeat for ever.
@@ -709,11 +720,16 @@ pub fn run<S: LagrangeSystem + ?Sized, M: Stepper>(
         }
 
         // Steps cut short on the grid of a fixed-step method count once, with their rest.
+        let mut on_grid_record = false;
         if grid_end.is_none() {
-            grid_steps += 1;
+            until_record -= 1;
+            if until_record == 0 {
+                until_record = opts.record_every;
+                on_grid_record = true;
+            }
         }
         let mut recorded = false;
-        if at_end || (grid_end.is_none() && grid_steps % opts.record_every == 0) {
+        if at_end || on_grid_record {
             // One row stays free for the end.
             row_budget(traj.len(), opts, s1.t, t_tol)?;
             traj.push(sys, &s1)?;
