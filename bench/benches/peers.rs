@@ -152,6 +152,34 @@ fn side_by_side<S: LagrangeSystem>(
     );
     dopri_sweep(machine, sys, s0, t_end, &exact);
 
+    if std::env::var("TMM_PEERS_BARE").is_ok() {
+        let bare = |sys: &S| {
+            let mut st = s0;
+            let n = (t_end / h).round() as usize;
+            for _ in 0..n {
+                st = tmm::dynamics::Stepper::step(&Rk4, sys, &st, h).expect("steps");
+            }
+            st
+        };
+        yardstick::print_ratio(
+            &format!("{machine}, RK4 run (bare step loop as the yardstick)"),
+            1,
+            || tmm_rk4(black_box(sys), black_box(s0), t_end, h),
+            || bare(black_box(sys)),
+        );
+        yardstick::print_ratio(
+            &format!("{machine}, RK4 run of one step (one bare step as the yardstick)"),
+            1,
+            || tmm_rk4(black_box(sys), black_box(s0), h, h),
+            || tmm::dynamics::Stepper::step(&Rk4, black_box(sys), &black_box(s0), h),
+        );
+        yardstick::print_ratio(
+            &format!("{machine}, RK4 bare step loop (ode_solvers as the yardstick)"),
+            1,
+            || bare(black_box(sys)),
+            || peer_rk4(black_box(sys), black_box(s0), t_end, h),
+        );
+    }
     yardstick::print_ratio(
         &format!("{machine}, RK4 (ode_solvers as the yardstick)"),
         1,

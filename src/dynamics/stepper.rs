@@ -134,6 +134,7 @@ pub trait Stepper {
     ///
     /// # Errors
     /// As [`step`](Self::step).
+    #[inline(always)]
     fn advance<S: LagrangeSystem + ?Sized>(&self, sys: &S, s: &State, h: f64) -> Result<Advance> {
         Ok(Advance {
             state: self.step(sys, s, h)?,
@@ -155,6 +156,7 @@ pub trait Stepper {
     ///
     /// # Errors
     /// As [`step`](Self::step).
+    #[inline(always)]
     fn advance_from<S: LagrangeSystem + ?Sized>(
         &self,
         sys: &S,
