@@ -466,11 +466,10 @@ pub fn run<S: LagrangeSystem + ?Sized, M: Stepper>(
     };
     let adaptive = method.is_adaptive();
 
-    let mut traj = Trajectory::for_system(sys);
-    traj.push(sys, &start)?;
-    // The outputs of a watched state (grown on the first use: a run that watches no output
-    // allocates nothing for it).
+    // The outputs of a watched state and of every recorded row, one buffer for the run.
     let mut buf = Vec::new();
+    let mut traj = Trajectory::for_system(sys);
+    traj.push_with(sys, &start, &mut buf)?;
     let mut s = start;
     let mut h = opts.h;
     let (mut steps, mut evaluations) = (0usize, 0usize);
@@ -504,6 +503,7 @@ pub fn run<S: LagrangeSystem + ?Sized, M: Stepper>(
     let (mut i_stop, mut i_time, mut until_record) = (0usize, 0usize, opts.record_every);
 
     let finish = |traj: &mut Trajectory,
+                  buf: &mut Vec<f64>,
                   last: State,
                   recorded: bool,
                   outcome: Outcome,
@@ -512,7 +512,7 @@ pub fn run<S: LagrangeSystem + ?Sized, M: Stepper>(
      -> Result<RunResult> {
         if !recorded {
             // The end may take the row kept free for it.
-            traj.push(sys, &last)?;
+            traj.push_with(sys, &last, buf)?;
         }
         Ok(RunResult {
             trajectory: std::mem::take(traj),
@@ -533,7 +533,15 @@ pub fn run<S: LagrangeSystem + ?Sized, M: Stepper>(
                 None => Outcome::FinalTime,
             };
             let recorded = traj.t().last() == Some(&s.t);
-            return finish(&mut traj, s, recorded, outcome, steps, evaluations);
+            return finish(
+                &mut traj,
+                &mut buf,
+                s,
+                recorded,
+                outcome,
+                steps,
+                evaluations,
+            );
         }
         if steps >= opts.max_steps {
             return Err(Error::Budget {
@@ -712,11 +720,19 @@ pub fn run<S: LagrangeSystem + ?Sized, M: Stepper>(
                 },
             };
             row_budget(traj.len(), opts, tau, t_tol)?;
-            traj.push(sys, &st)?;
+            traj.push_with(sys, &st, &mut buf)?;
         }
         if let Some(located) = hit {
             let outcome = Outcome::Reached { t: located.t };
-            return finish(&mut traj, located, false, outcome, steps, evaluations);
+            return finish(
+                &mut traj,
+                &mut buf,
+                located,
+                false,
+                outcome,
+                steps,
+                evaluations,
+            );
         }
 
         // Steps cut short on the grid of a fixed-step method count once, with their rest.
@@ -732,7 +748,7 @@ pub fn run<S: LagrangeSystem + ?Sized, M: Stepper>(
         if at_end || on_grid_record {
             // One row stays free for the end.
             row_budget(traj.len(), opts, s1.t, t_tol)?;
-            traj.push(sys, &s1)?;
+            traj.push_with(sys, &s1, &mut buf)?;
             recorded = true;
         }
         hand_s = hand1;
@@ -748,6 +764,7 @@ pub fn run<S: LagrangeSystem + ?Sized, M: Stepper>(
                 if s1.t - since >= st.hold {
                     return finish(
                         &mut traj,
+                        &mut buf,
                         s1,
                         recorded,
                         Outcome::Steady { t: s1.t },
@@ -764,7 +781,15 @@ pub fn run<S: LagrangeSystem + ?Sized, M: Stepper>(
                                 t: s1.t,
                                 acceleration: acc,
                             };
-                            return finish(&mut traj, s1, recorded, outcome, steps, evaluations);
+                            return finish(
+                                &mut traj,
+                                &mut buf,
+                                s1,
+                                recorded,
+                                outcome,
+                                steps,
+                                evaluations,
+                            );
                         }
                     }
                     _ => drift_ref = Some((s1.t, acc)),
