@@ -208,6 +208,7 @@ const ERR_FLOOR: f64 = 1e-4;
 
 /// The factor h′/h after an accepted step with error norm `err` (in [0, 1]), given the error
 /// norm of the previous accepted step when there is one (see [`Dopri5`]'s docs).
+#[inline]
 fn accepted_factor(err: f64, previous: Option<f64>) -> f64 {
     let factor = match previous.filter(|e| e.is_finite() && *e >= 0.0) {
         Some(e) => SAFETY * err.powf(-ALPHA) * e.max(ERR_FLOOR).powf(BETA),
@@ -222,6 +223,7 @@ fn accepted_factor(err: f64, previous: Option<f64>) -> f64 {
 /// The factor h′/h after a rejected trial with error norm `err` (> 1, or NaN or ∞ for a trial
 /// that overflowed), never a growth, given the step size and error norm of the trial rejected
 /// just before it from the same start, if any (see [`Dopri5`]'s docs).
+#[inline]
 fn rejected_factor(h: f64, err: f64, before: Option<(f64, f64)>) -> f64 {
     if !err.is_finite() {
         return FAC_MIN;
@@ -348,6 +350,7 @@ impl Dopri5 {
     }
 
     /// Both tolerances finite and non-negative, at least one positive.
+    #[inline]
     fn check(&self) -> Result<()> {
         for (name, v) in [("rtol", self.rtol), ("atol", self.atol)] {
             if !(v.is_finite() && v >= 0.0) {
@@ -368,6 +371,7 @@ impl Dopri5 {
     /// docs). A component whose scale is zero (atol = 0 and yᵢ = ŷᵢ = 0) counts only if its
     /// error is not zero: 0/0 would otherwise reject every step of a machine with a
     /// coordinate at rest.
+    #[inline]
     fn error_norm(&self, y: &Vector4<f64>, y5: &Vector4<f64>, err: &Vector4<f64>) -> f64 {
         let mut sum = 0.0;
         for i in 0..4 {
