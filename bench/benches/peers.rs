@@ -8,6 +8,11 @@
 //! also across tolerances 10⁻⁵…10⁻¹² (its step-size controller decides the work, and one
 //! tolerance alone can be lucky or unlucky for either). ode_solvers stores every step it takes
 //! (it has no "final state only" mode); tmm's run is told to record nothing on the way.
+//!
+//! With `TMM_PEERS_BARE=1` the RK4 runs are also timed against a bare loop of `Rk4::step`
+//! calls (and a run of one step against one step): what `run` costs beyond the stepping, a
+//! fixed part per call (recording the start and the end, checking the options) and a part per
+//! step.
 
 use std::hint::black_box;
 use std::time::Duration;
