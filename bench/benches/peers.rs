@@ -8,6 +8,11 @@
 //! also across tolerances 10⁻⁵…10⁻¹² (its step-size controller decides the work, and one
 //! tolerance alone can be lucky or unlucky for either). ode_solvers stores every step it takes
 //! (it has no "final state only" mode); tmm's run is told to record nothing on the way.
+//!
+//! With `TMM_PEERS_BARE=1` the RK4 runs are also timed against a bare loop of `Rk4::step`
+//! calls (and a run of one step against one step): what `run` costs beyond the stepping, a
+//! fixed part per call (recording the start and the end, checking the options) and a part per
+//! step.
 
 use std::hint::black_box;
 use std::time::Duration;
@@ -152,6 +157,34 @@ fn side_by_side<S: LagrangeSystem>(
     );
     dopri_sweep(machine, sys, s0, t_end, &exact);
 
+    if std::env::var("TMM_PEERS_BARE").is_ok() {
+        let bare = |sys: &S| {
+            let mut st = s0;
+            let n = (t_end / h).round() as usize;
+            for _ in 0..n {
+                st = tmm::dynamics::Stepper::step(&Rk4, sys, &st, h).expect("steps");
+            }
+            st
+        };
+        yardstick::print_ratio(
+            &format!("{machine}, RK4 run (bare step loop as the yardstick)"),
+            1,
+            || tmm_rk4(black_box(sys), black_box(s0), t_end, h),
+            || bare(black_box(sys)),
+        );
+        yardstick::print_ratio(
+            &format!("{machine}, RK4 run of one step (one bare step as the yardstick)"),
+            1,
+            || tmm_rk4(black_box(sys), black_box(s0), h, h),
+            || tmm::dynamics::Stepper::step(&Rk4, black_box(sys), &black_box(s0), h),
+        );
+        yardstick::print_ratio(
+            &format!("{machine}, RK4 bare step loop (ode_solvers as the yardstick)"),
+            1,
+            || bare(black_box(sys)),
+            || peer_rk4(black_box(sys), black_box(s0), t_end, h),
+        );
+    }
     yardstick::print_ratio(
         &format!("{machine}, RK4 (ode_solvers as the yardstick)"),
         1,

@@ -208,6 +208,7 @@ const ERR_FLOOR: f64 = 1e-4;
 
 /// The factor h′/h after an accepted step with error norm `err` (in [0, 1]), given the error
 /// norm of the previous accepted step when there is one (see [`Dopri5`]'s docs).
+#[inline]
 fn accepted_factor(err: f64, previous: Option<f64>) -> f64 {
     let factor = match previous.filter(|e| e.is_finite() && *e >= 0.0) {
         Some(e) => SAFETY * err.powf(-ALPHA) * e.max(ERR_FLOOR).powf(BETA),
@@ -222,6 +223,7 @@ fn accepted_factor(err: f64, previous: Option<f64>) -> f64 {
 /// The factor h′/h after a rejected trial with error norm `err` (> 1, or NaN or ∞ for a trial
 /// that overflowed), never a growth, given the step size and error norm of the trial rejected
 /// just before it from the same start, if any (see [`Dopri5`]'s docs).
+#[inline]
 fn rejected_factor(h: f64, err: f64, before: Option<(f64, f64)>) -> f64 {
     if !err.is_finite() {
         return FAC_MIN;
@@ -348,6 +350,7 @@ impl Dopri5 {
     }
 
     /// Both tolerances finite and non-negative, at least one positive.
+    #[inline]
     fn check(&self) -> Result<()> {
         for (name, v) in [("rtol", self.rtol), ("atol", self.atol)] {
             if !(v.is_finite() && v >= 0.0) {
@@ -368,6 +371,7 @@ impl Dopri5 {
     /// docs). A component whose scale is zero (atol = 0 and yᵢ = ŷᵢ = 0) counts only if its
     /// error is not zero: 0/0 would otherwise reject every step of a machine with a
     /// coordinate at rest.
+    #[inline]
     fn error_norm(&self, y: &Vector4<f64>, y5: &Vector4<f64>, err: &Vector4<f64>) -> f64 {
         let mut sum = 0.0;
         for i in 0..4 {
@@ -380,47 +384,123 @@ impl Dopri5 {
     }
 
     /// The fifth-order solution of one step of exactly `h` from (t, y), whose first stage
-    /// k1 = f(t, y) is given, and the stages k1…k6 (5 evaluations).
+    /// k1 = f(t, y) is `k[0]`, and the stages k2…k6 written into `k` (5 evaluations). The
+    /// stages are written in place, not returned: a step moves no arrays of stages around.
+    #[inline]
     fn solution<S: LagrangeSystem + ?Sized>(
         sys: &S,
         t: f64,
         y: &Vector4<f64>,
-        k1: &Vector4<f64>,
         h: f64,
-    ) -> Result<(Vector4<f64>, [Vector4<f64>; 6])> {
-        let mut k = [*k1; 6];
+        k: &mut Stages,
+    ) -> Result<Vector4<f64>> {
         for i in 1..6 {
             let mut yi = *y;
             for (j, kj) in k.iter().enumerate().take(i) {
-                yi += h * A[i][j] * kj;
+                yi += (h * A[i][j]) * kj;
             }
             k[i] = rhs(sys, t + C[i] * h, &yi)?;
         }
         let mut y5 = *y;
-        for (b, ki) in B.iter().zip(&k) {
-            y5 += h * b * ki;
+        for (b, ki) in B.iter().zip(&k[..6]) {
+            y5 += (h * b) * ki;
         }
-        Ok((y5, k))
+        Ok(y5)
     }
 
-    /// One step of exactly `h` (k1 given): the fifth-order solution, the error estimate and
-    /// the last stage k7 = f(t + h, y5), the next step's k1 (6 evaluations).
+    /// One step of exactly `h` (k1 given in `k[0]`): the fifth-order solution and the error
+    /// estimate, with the stages k2…k7 written into `k` (k7 = f(t + h, y5), the next step's
+    /// k1; 6 evaluations).
+    #[inline]
     fn trial<S: LagrangeSystem + ?Sized>(
         sys: &S,
         t: f64,
         y: &Vector4<f64>,
-        k1: &Vector4<f64>,
         h: f64,
-    ) -> Result<(Vector4<f64>, Vector4<f64>, Stages)> {
-        let (y5, k) = Self::solution(sys, t, y, k1, h)?;
+        k: &mut Stages,
+    ) -> Result<(Vector4<f64>, Vector4<f64>)> {
+        let y5 = Self::solution(sys, t, y, h, k)?;
         // C[6] = 1: the last stage is taken at t + h, the time the accepted state carries.
-        let k7 = rhs(sys, t + C[6] * h, &y5)?;
+        k[6] = rhs(sys, t + C[6] * h, &y5)?;
         let mut err = Vector4::zeros();
-        for (e, ki) in E.iter().zip(&k) {
-            err += h * e * ki;
+        for (e, ki) in E.iter().zip(k.iter()) {
+            err += (h * e) * ki;
         }
-        err += h * E[6] * k7;
-        Ok((y5, err, [k[0], k[1], k[2], k[3], k[4], k[5], k7]))
+        Ok((y5, err))
+    }
+
+    /// One accepted step (see [`Stepper::advance_from`]), its stages left in `k` for a
+    /// continuous extension: the one body behind `advance_from` (which builds no extension,
+    /// so that a run with no requested times pays nothing for one) and `advance_dense`.
+    #[inline]
+    fn accepted<S: LagrangeSystem + ?Sized>(
+        &self,
+        sys: &S,
+        s: &State,
+        h: f64,
+        from: Option<Handover>,
+        k: &mut Stages,
+    ) -> Result<(Advance, Vector4<f64>, Vector4<f64>, f64)> {
+        check_step(s, h)?;
+        self.check()?;
+        let from = from.unwrap_or_default();
+        let y = pack(s);
+        let mut evaluations = match from.acceleration {
+            Some(a) if a[0].is_finite() && a[1].is_finite() => {
+                k[0] = Vector4::new(y[2], y[3], a[0], a[1]);
+                0
+            }
+            _ => {
+                k[0] = rhs(sys, s.t, &y)?;
+                1
+            }
+        };
+        // The step the caller asks for is tried as it is; only a step the error control
+        // shrinks below this is a sign of a singular or too stiff motion.
+        let h_min = 1e-12 * s.t.abs().max(1.0);
+        let mut h = h;
+        let mut rejected = None;
+        loop {
+            // A trial that overflows is a rejected step, not yet a divergence.
+            let norm = match Self::trial(sys, s.t, &y, h, k) {
+                Ok((y5, err)) => {
+                    let norm = self.error_norm(&y, &y5, &err);
+                    // NaN and ∞ fail the test: such a trial is rejected.
+                    if norm <= 1.0 {
+                        evaluations += 6;
+                        let mut grow = accepted_factor(norm, from.error_norm);
+                        if rejected.is_some() {
+                            grow = grow.min(1.0);
+                        }
+                        let state = check_result(unpack(s.t + h, &y5))?;
+                        let adv = Advance {
+                            state,
+                            h_next: h * grow,
+                            evaluations,
+                            handover: Handover {
+                                acceleration: Some(Vector2::new(k[6][2], k[6][3])),
+                                error_norm: Some(norm),
+                            },
+                        };
+                        return Ok((adv, y, y5, h));
+                    }
+                    norm
+                }
+                Err(Error::NonFiniteState { .. }) => f64::INFINITY,
+                Err(e) => return Err(e),
+            };
+            evaluations += 6;
+            let factor = rejected_factor(h, norm, rejected);
+            rejected = Some((h, norm));
+            h *= factor;
+            if h < h_min {
+                return Err(Error::Singular {
+                    what: "adaptive step (Dormand-Prince)",
+                    measure: "step size h",
+                    value: h,
+                });
+            }
+        }
     }
 }
 
@@ -442,7 +522,8 @@ impl Stepper for Dopri5 {
     fn step<S: LagrangeSystem + ?Sized>(&self, sys: &S, s: &State, h: f64) -> Result<State> {
         check_step(s, h)?;
         let y = pack(s);
-        let (y5, _) = Self::solution(sys, s.t, &y, &rhs(sys, s.t, &y)?, h)?;
+        let mut k = [rhs(sys, s.t, &y)?; 7];
+        let y5 = Self::solution(sys, s.t, &y, h, &mut k)?;
         check_result(unpack(s.t + h, &y5))
     }
 
@@ -468,7 +549,8 @@ impl Stepper for Dopri5 {
         h: f64,
         from: Option<Handover>,
     ) -> Result<Advance> {
-        Ok(self.advance_dense(sys, s, h, from)?.0)
+        let mut k = [Vector4::zeros(); 7];
+        Ok(self.accepted(sys, s, h, from, &mut k)?.0)
     }
 
     fn is_adaptive(&self) -> bool {
@@ -491,67 +573,17 @@ impl Stepper for Dopri5 {
         h: f64,
         from: Option<Handover>,
     ) -> Result<(Advance, Option<DenseOutput>)> {
-        check_step(s, h)?;
-        self.check()?;
-        let from = from.unwrap_or_default();
-        let y = pack(s);
-        let (k1, mut evaluations) = match from.acceleration {
-            Some(a) if a.iter().all(|v| v.is_finite()) => (Vector4::new(y[2], y[3], a[0], a[1]), 0),
-            _ => (rhs(sys, s.t, &y)?, 1),
+        let mut k = [Vector4::zeros(); 7];
+        let (adv, y0, y1, h) = self.accepted(sys, s, h, from, &mut k)?;
+        let dense = DenseOutput {
+            t0: s.t,
+            t1: adv.state.t,
+            h,
+            y0,
+            y1,
+            k,
         };
-        // The step the caller asks for is tried as it is; only a step the error control
-        // shrinks below this is a sign of a singular or too stiff motion.
-        let h_min = 1e-12 * s.t.abs().max(1.0);
-        let mut h = h;
-        let mut rejected = None;
-        loop {
-            // A trial that overflows is a rejected step, not yet a divergence.
-            let trial = match Self::trial(sys, s.t, &y, &k1, h) {
-                Ok(v) => Some(v),
-                Err(Error::NonFiniteState { .. }) => None,
-                Err(e) => return Err(e),
-            };
-            evaluations += 6;
-            let norm = trial
-                .as_ref()
-                .map_or(f64::INFINITY, |(y5, err, _)| self.error_norm(&y, y5, err));
-            // NaN and ∞ fail the test: such a trial is rejected.
-            if let Some((y5, _, k)) = trial.filter(|_| norm <= 1.0) {
-                let mut grow = accepted_factor(norm, from.error_norm);
-                if rejected.is_some() {
-                    grow = grow.min(1.0);
-                }
-                let state = check_result(unpack(s.t + h, &y5))?;
-                let dense = DenseOutput {
-                    t0: s.t,
-                    t1: state.t,
-                    h,
-                    y0: y,
-                    y1: y5,
-                    k,
-                };
-                let adv = Advance {
-                    state,
-                    h_next: h * grow,
-                    evaluations,
-                    handover: Handover {
-                        acceleration: Some(Vector2::new(k[6][2], k[6][3])),
-                        error_norm: Some(norm),
-                    },
-                };
-                return Ok((adv, Some(dense)));
-            }
-            let factor = rejected_factor(h, norm, rejected);
-            rejected = Some((h, norm));
-            h *= factor;
-            if h < h_min {
-                return Err(Error::Singular {
-                    what: "adaptive step (Dormand-Prince)",
-                    measure: "step size h",
-                    value: h,
-                });
-            }
-        }
+        Ok((adv, Some(dense)))
     }
 }
 

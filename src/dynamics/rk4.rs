@@ -1,8 +1,8 @@
 //! The classic fourth-order Runge–Kutta method.
 
-use super::stepper::{check_result, check_step, Stepper};
+use super::stepper::{check_result, Stepper};
 use super::system::{accelerations, LagrangeSystem, State};
-use crate::error::Result;
+use crate::error::{positive, Result};
 
 /// Classic RK4 on the first-order form y = (q, q̇), ẏ = (q̇, q̈).
 ///
@@ -53,7 +53,9 @@ impl Stepper for Rk4 {
 
     #[inline]
     fn step<S: LagrangeSystem + ?Sized>(&self, sys: &S, s: &State, h: f64) -> Result<State> {
-        check_step(s, h)?;
+        // The start state needs no check of its own: the first evaluation refuses a
+        // non-finite one with the same error (a non-finite state at s.t).
+        positive("step size h", h)?;
         // The stages on (q, q̇) directly: y = (q, q̇), k = (q̇, q̈), the same sums as on the
         // packed y, with nothing packed and unpacked.
         let (t, q, v) = (s.t, s.q, s.qd);

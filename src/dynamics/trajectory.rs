@@ -116,6 +116,18 @@ impl Trajectory {
     /// output names (or other names than the trajectory was made for). Nothing is appended
     /// then (the columns stay of equal length).
     pub fn push<S: LagrangeSystem + ?Sized>(&mut self, sys: &S, s: &State) -> Result<()> {
+        self.push_with(sys, s, &mut Vec::new())
+    }
+
+    /// As [`push`](Self::push), gathering the outputs in the caller's buffer `out` (cleared
+    /// first): a run records all its rows through one buffer instead of allocating one per
+    /// row.
+    pub(crate) fn push_with<S: LagrangeSystem + ?Sized>(
+        &mut self,
+        sys: &S,
+        s: &State,
+        out: &mut Vec<f64>,
+    ) -> Result<()> {
         if self.t.is_empty() && self.output_names.is_empty() && self.outputs.is_empty() {
             // A default (empty) trajectory takes the system's columns on its first row.
             *self = Self::for_system(sys);
@@ -127,8 +139,9 @@ impl Trajectory {
             e => e,
         })?;
         let potential = sys.potential(&s.q)?;
-        let mut out = Vec::with_capacity(self.outputs.len());
-        sys.outputs(s.t, &s.q, &s.qd, &mut out)?;
+        out.clear();
+        out.reserve(self.outputs.len());
+        sys.outputs(s.t, &s.q, &s.qd, out)?;
         if out.len() != self.outputs.len() {
             return Err(Error::OutOfRange {
                 name: "number of outputs given by the system (must match its output names)",
@@ -151,7 +164,7 @@ impl Trajectory {
         self.potential.push(potential);
         self.power_applied.push(pa);
         self.power_dissipated.push(pd);
-        for (col, v) in self.outputs.iter_mut().zip(out) {
+        for (col, &v) in self.outputs.iter_mut().zip(out.iter()) {
             col.push(v);
         }
         Ok(())

@@ -4,7 +4,7 @@ use nalgebra::{Matrix2, Vector2};
 
 use super::{gear_inertia, GearLink, LinearMotor};
 use crate::dynamics::stepper::check_result;
-use crate::dynamics::system::{checked_inertia, LagrangeSystem, State};
+use crate::dynamics::system::{checked_inertia, LagrangeSystem, LagrangeTerms, State};
 use crate::error::{computed, computed_all, finite, positive, Result};
 
 /// One motor drives two counter-rotating propellers through a differential: sun z1 (the
@@ -170,6 +170,17 @@ impl CoaxialPropellers {
         finite("(M_on)4", self.m_on4)?;
         finite("(M_on)H", self.m_onh)?;
         Ok(())
+    }
+
+    /// The generalized forces at the speeds `qd`, the data already validated by
+    /// [`check`](Self::check).
+    #[inline]
+    fn forces_checked(&self, qd: &Vector2<f64>) -> Result<Vector2<f64>> {
+        let u = self.input_ratios();
+        let mp1 = self.motor.torque(u.dot(qd))?;
+        let q = mp1 * u + Vector2::new(self.m_on4, self.m_onh);
+        computed_all("generalized forces", q.iter())?;
+        Ok(q)
     }
 
     fn links(&self) -> [GearLink; 5] {
@@ -339,11 +350,28 @@ impl LagrangeSystem for CoaxialPropellers {
 
     fn forces(&self, _t: f64, _q: &Vector2<f64>, qd: &Vector2<f64>) -> Result<Vector2<f64>> {
         self.check()?;
-        let u = self.input_ratios();
-        let mp1 = self.motor.torque(u.dot(qd))?;
-        let q = mp1 * u + Vector2::new(self.m_on4, self.m_onh);
-        computed_all("generalized forces", q.iter())?;
-        Ok(q)
+        self.forces_checked(qd)
+    }
+
+    /// No potential energy: its gradient is zero (the default would difference Π = 0 eight
+    /// times per evaluation to find so).
+    fn potential_gradient(&self, _q: &Vector2<f64>) -> Result<Vector2<f64>> {
+        Ok(Vector2::zeros())
+    }
+
+    /// Every term of one evaluation with the data validated once (the default would validate
+    /// them for the inertia and again for the forces), in the default's order: the inertia
+    /// matrix and its determinant, then the forces.
+    fn terms(&self, t: f64, q: &Vector2<f64>, qd: &Vector2<f64>) -> Result<LagrangeTerms> {
+        let inertia = self.inertia_matrix()?;
+        checked_inertia(&inertia, t, q)?;
+        Ok(LagrangeTerms {
+            inertia,
+            inertia_derivatives: [Matrix2::zeros(); 2],
+            forces: self.forces_checked(qd)?,
+            potential_gradient: Vector2::zeros(),
+            damping: Matrix2::zeros(),
+        })
     }
 
     fn output_names(&self) -> Vec<&'static str> {
