@@ -155,7 +155,7 @@ impl LinkageSystem {
     ///
     /// # Errors
     /// [`Error::Description`] for a machine with two inputs or a slider input; as
-    /// [`terms`](Self::terms).
+    /// [`split_terms`](Self::split_terms).
     ///
     /// # Examples
     /// The four-bar's crank alone has 0.002 kg·m²; the coupler and rocker add more:

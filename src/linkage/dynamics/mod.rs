@@ -33,7 +33,7 @@
 //! actual rates; it must not depend on the accelerations, which the equation is solved for.
 //!
 //! # Cost
-//! [`LinkageSystem::terms`] makes one set of buffers and one kinematic solve for a linkage
+//! [`LinkageSystem::split_terms`] makes one set of buffers and one kinematic solve for a linkage
 //! with one input. Two inputs need the rates at q̇ = e₁, e₂ and (1, 1) (the three
 //! second-order transfer functions need three quadratic forms): the positions are solved
 //! once, and for e₂ and (1, 1) only the groups' velocity and acceleration problems, which are

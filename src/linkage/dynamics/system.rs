@@ -605,7 +605,7 @@ impl LinkageSystem {
     /// force); the second is q̈₂ of the idle coordinate.
     ///
     /// # Errors
-    /// As [`terms`](Self::terms); [`Error::NonFinite`] for a non-finite q̈.
+    /// As [`split_terms`](Self::split_terms); [`Error::NonFinite`] for a non-finite q̈.
     ///
     /// # Examples
     /// At a steady motion it equals the kinetostatic balancing moment of the same position:
