@@ -541,29 +541,10 @@ pub fn run<S: LagrangeSystem + ?Sized, M: Stepper>(
             if remaining <= t_tol || h >= remaining {
                 break;
             }
-            if steps >= opts.max_steps {
-                return Err(Error::Budget {
-                    what: "step",
-                    limit: opts.max_steps,
-                    time: s.t,
-                });
-            }
-            if evaluations >= opts.max_evaluations {
-                return Err(Error::Budget {
-                    what: "evaluation",
-                    limit: opts.max_evaluations,
-                    time: s.t,
-                });
-            }
+            budgets(opts, steps, evaluations, s.t)?;
             let adv = method.advance_from(sys, &s, h, Some(hand_s))?;
             let mut s1 = adv.state;
-            if s1.t <= s.t || s1.t.is_nan() {
-                return Err(Error::Singular {
-                    what: "run",
-                    measure: "time advanced by a step (h below the rounding of t)",
-                    value: s1.t - s.t,
-                });
-            }
+            advanced(s.t, s1.t)?;
             let mut hand1 = adv.handover;
             steps += 1;
             evaluations += adv.evaluations;
@@ -601,20 +582,7 @@ pub fn run<S: LagrangeSystem + ?Sized, M: Stepper>(
                 evaluations,
             );
         }
-        if steps >= opts.max_steps {
-            return Err(Error::Budget {
-                what: "step",
-                limit: opts.max_steps,
-                time: s.t,
-            });
-        }
-        if evaluations >= opts.max_evaluations {
-            return Err(Error::Budget {
-                what: "evaluation",
-                limit: opts.max_evaluations,
-                time: s.t,
-            });
-        }
+        budgets(opts, steps, evaluations, s.t)?;
         while i_stop < stops.len() && stops[i_stop] <= s.t + t_tol {
             i_stop += 1;
         }
@@ -646,14 +614,7 @@ pub fn run<S: LagrangeSystem + ?Sized, M: Stepper>(
             (false, false) => (method.advance_from(sys, &s, h_try, Some(hand_s))?, None),
         };
         let mut s1 = adv.state;
-        // A step too short to change t (h below the rounding of t) would repeat for ever.
-        if s1.t <= s.t || s1.t.is_nan() {
-            return Err(Error::Singular {
-                what: "run",
-                measure: "time advanced by a step (h below the rounding of t)",
-                value: s1.t - s.t,
-            });
-        }
+        advanced(s.t, s1.t)?;
         let mut hand1 = adv.handover;
         steps += 1;
         evaluations += adv.evaluations;
@@ -856,6 +817,39 @@ pub fn run<S: LagrangeSystem + ?Sized, M: Stepper>(
         }
         s = s1;
     }
+}
+
+/// The step and evaluation budgets, checked before a step from time `t`.
+#[inline]
+fn budgets(opts: &RunOptions, steps: usize, evaluations: usize, t: f64) -> Result<()> {
+    if steps >= opts.max_steps {
+        return Err(Error::Budget {
+            what: "step",
+            limit: opts.max_steps,
+            time: t,
+        });
+    }
+    if evaluations >= opts.max_evaluations {
+        return Err(Error::Budget {
+            what: "evaluation",
+            limit: opts.max_evaluations,
+            time: t,
+        });
+    }
+    Ok(())
+}
+
+/// A step too short to change t (h below the rounding of t) would repeat for ever.
+#[inline]
+fn advanced(t0: f64, t1: f64) -> Result<()> {
+    if t1 <= t0 || t1.is_nan() {
+        return Err(Error::Singular {
+            what: "run",
+            measure: "time advanced by a step (h below the rounding of t)",
+            value: t1 - t0,
+        });
+    }
+    Ok(())
 }
 
 /// A system seen from the left of the time `at`: its forces at `at` or later are those at the

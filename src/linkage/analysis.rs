@@ -385,50 +385,7 @@ impl<'p> Analysis<'p> {
             self.second_input = Some(m);
         }
         for (g, group) in plan.groups.iter().enumerate() {
-            let [l2, l3] = group.links;
-            let [ka, kc] = group.known;
-            let a = self.at(ka, group.a_local);
-            // Each arm also gives the links' unit vectors from the group's geometry (or a
-            // known link's turned by a constant), never from the returned angles again.
-            let t = self.turns[g];
-            let (s2, s3, det, u2, u3) = match group.kind {
-                GroupKind::Rrr => {
-                    let c = self.at(kc, group.c_local);
-                    let s = rrr_dyad(a, c, group.lengths[0], group.lengths[1], group.branch)
-                        .map_err(within(&group.name))?;
-                    let (u2, u3) = (direction_of(s.b.p - a.p), direction_of(s.b.p - c.p));
-                    (s.link2, s.link3, s.det, u2, u3)
-                }
-                GroupKind::Rrp => {
-                    let guide = self.guide_on(kc, group.c_local, group.guide_offsets[1]);
-                    let s = rrp_dyad(a, guide, group.lengths[0], group.branch)
-                        .map_err(within(&group.name))?;
-                    let u3 = turn(self.units[kc], t[1]);
-                    (s.link2, s.link3, s.det, direction_of(s.b.p - a.p), u3)
-                }
-                GroupKind::Rpr => {
-                    let c = self.at(kc, group.c_local);
-                    let s = rpr_dyad(a, c).map_err(within(&group.name))?;
-                    let u = direction_of(c.p - a.p);
-                    (s.link2, s.link3, s.slide.value, u, -u)
-                }
-                GroupKind::Prp => {
-                    let g2 = self.guide_on(ka, group.a_local, group.guide_offsets[0]);
-                    let g3 = self.guide_on(kc, group.c_local, group.guide_offsets[1]);
-                    let s = prp_dyad(g2, g3).map_err(within(&group.name))?;
-                    let (u2, u3) = (turn(self.units[ka], t[0]), turn(self.units[kc], t[1]));
-                    (s.link2, s.link3, s.det, u2, u3)
-                }
-                GroupKind::Rpp => {
-                    let g = self.guide_on(kc, group.c_local, group.guide_offsets[1]);
-                    let s = rpp_dyad(a, g, group.slide_angle).map_err(within(&group.name))?;
-                    let u3 = turn(self.units[kc], t[1]);
-                    (s.link2, s.link3, s.det, turn(u3, t[2]), u3)
-                }
-            };
-            self.put_link(l2, s2, u2);
-            self.put_link(l3, s3, u3);
-            self.dets[g] = det;
+            self.solve_group_kinematics(g, group)?;
         }
         // A named point may lie farther out on its link than any joint (beyond the bound
         // above): its motion is computed on demand, so it is checked here, once.
@@ -1455,10 +1412,13 @@ impl Analysis<'_> {
     /// Group `g` solved in full by its closed form (as in
     /// [`solve_kinematics_inputs`](Self::solve_kinematics_inputs)), the known links' motions
     /// already stored.
+    #[inline]
     fn solve_group_kinematics(&mut self, g: usize, group: &Group) -> Result<()> {
         let [l2, l3] = group.links;
         let [ka, kc] = group.known;
         let a = self.at(ka, group.a_local);
+        // Each arm also gives the links' unit vectors from the group's geometry (or a known
+        // link's turned by a constant), never from the returned angles again.
         let t = self.turns[g];
         let (s2, s3, det, u2, u3) = match group.kind {
             GroupKind::Rrr => {
