@@ -1,7 +1,7 @@
 //! The classic fourth-order Runge–Kutta method.
 
 use super::stepper::{check_result, Stepper};
-use super::system::{accelerations, LagrangeSystem, State};
+use super::system::{accelerations_inline as accelerations, LagrangeSystem, State};
 use crate::error::{positive, Result};
 
 /// Classic RK4 on the first-order form y = (q, q̇), ẏ = (q̇, q̈).

@@ -3,7 +3,7 @@
 use nalgebra::{Vector2, Vector4};
 
 use super::dopri::DenseOutput;
-use super::system::{accelerations, LagrangeSystem, State};
+use super::system::{accelerations_inline, LagrangeSystem, State};
 use crate::error::{positive, Error, Result};
 
 /// The state as one first-order vector y = (q₁, q₂, q̇₁, q̇₂).
@@ -29,7 +29,7 @@ pub(crate) fn rhs<S: LagrangeSystem + ?Sized>(
 ) -> Result<Vector4<f64>> {
     let q = Vector2::new(y[0], y[1]);
     let qd = Vector2::new(y[2], y[3]);
-    let a = accelerations(sys, t, &q, &qd)?;
+    let a = accelerations_inline(sys, t, &q, &qd)?;
     Ok(Vector4::new(qd[0], qd[1], a[0], a[1]))
 }
 

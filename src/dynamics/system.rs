@@ -389,7 +389,7 @@ fn christoffel_fast(d_a: &[Matrix2<f64>; 2], qd: &Vector2<f64>) -> Option<Vector
 
 /// Checks that A is symmetric positive-definite (A₁₁ > 0 and det A > 0) and returns its
 /// symmetric part and determinant; the error says where (time and coordinates).
-#[inline]
+#[inline(always)]
 pub(crate) fn checked_inertia(
     a: &Matrix2<f64>,
     t: f64,
@@ -452,6 +452,30 @@ pub fn accelerations<S: LagrangeSystem + ?Sized>(
     q: &Vector2<f64>,
     qd: &Vector2<f64>,
 ) -> Result<Vector2<f64>> {
+    accelerations_inline(sys, t, q, qd)
+}
+
+/// [`accelerations`], always inlined: the crate's integrators call it four to seven times
+/// a step, and each call kept out of line returns its `Result` through memory (a per cent
+/// or two of a step on the five-bar).
+#[inline(always)]
+pub(crate) fn accelerations_inline<S: LagrangeSystem + ?Sized>(
+    sys: &S,
+    t: f64,
+    q: &Vector2<f64>,
+    qd: &Vector2<f64>,
+) -> Result<Vector2<f64>> {
+    Ok(accelerations_and_terms(sys, t, q, qd)?.0)
+}
+
+/// q̈ with the Lagrange terms they came from (checked as [`accelerations`] checks them).
+#[inline(always)]
+fn accelerations_and_terms<S: LagrangeSystem + ?Sized>(
+    sys: &S,
+    t: f64,
+    q: &Vector2<f64>,
+    qd: &Vector2<f64>,
+) -> Result<(Vector2<f64>, LagrangeTerms)> {
     let non_finite = || Error::NonFiniteState { time: t };
     if !all_finite(&[t, q[0], q[1], qd[0], qd[1]]) {
         return Err(non_finite());
@@ -460,31 +484,59 @@ pub fn accelerations<S: LagrangeSystem + ?Sized>(
     // `terms` checks each part before it evaluates the next, so that the first failure is
     // the one reported; the same checks run again here, in the same order, for an override:
     // a NaN a system lets through is named (as a non-finite state at t), not hidden in q̈.
-    let LagrangeTerms {
-        inertia,
-        inertia_derivatives: d_a,
-        forces,
-        potential_gradient: gradient,
-        damping,
-    } = sys.terms(t, q, qd)?;
-    let (a, det) = checked_inertia(&inertia, t, q)?;
-    if !(all_finite(forces.as_slice())
-        & all_finite(gradient.as_slice())
-        & all_finite(damping.as_slice()))
+    let terms = sys.terms(t, q, qd)?;
+    let (a, det) = checked_inertia(&terms.inertia, t, q)?;
+    if !(all_finite(terms.forces.as_slice())
+        & all_finite(terms.potential_gradient.as_slice())
+        & all_finite(terms.damping.as_slice()))
     {
         return Err(non_finite());
     }
-    let c = christoffel_fast(&d_a, qd).ok_or_else(non_finite)?;
-    let rhs = forces - c - gradient - damping * qd;
+    let c = christoffel_fast(&terms.inertia_derivatives, qd).ok_or_else(non_finite)?;
+    let rhs = terms.forces - c - terms.potential_gradient - terms.damping * qd;
     // Cramer's rule on the 2×2 system: the determinant is I11·I44 − I14² of the seed.
     let acc = Vector2::new(
         (rhs[0] * a[(1, 1)] - rhs[1] * a[(0, 1)]) / det,
         (rhs[1] * a[(0, 0)] - rhs[0] * a[(0, 1)]) / det,
     );
     if all_finite(acc.as_slice()) {
-        Ok(acc)
+        Ok((acc, terms))
     } else {
         Err(non_finite())
+    }
+}
+
+/// What a recorded row needs of the Lagrange terms at a state.
+pub(crate) struct RowTerms {
+    /// q̈, as [`accelerations`].
+    pub acceleration: Vector2<f64>,
+    /// T = ½ q̇ᵀ A q̇, as [`kinetic_energy`].
+    pub kinetic: f64,
+    /// Q·q̇ and q̇ᵀ B q̇, as [`powers`].
+    pub applied: f64,
+    pub dissipated: f64,
+}
+
+/// q̈, the kinetic energy and the powers of a state from one evaluation of the terms (a
+/// linkage evaluates its kinematics once for all four, not three times).
+///
+/// # Errors
+/// As [`accelerations`]; [`Error::NonFiniteState`] for an energy or a power that overflows.
+pub(crate) fn row_terms<S: LagrangeSystem + ?Sized>(sys: &S, s: &State) -> Result<RowTerms> {
+    let (acceleration, terms) = accelerations_and_terms(sys, s.t, &s.q, &s.qd)?;
+    let qd = &s.qd;
+    let kinetic = 0.5 * qd.dot(&(terms.inertia * qd));
+    let applied = terms.forces.dot(qd);
+    let dissipated = qd.dot(&(terms.damping * qd));
+    if all_finite(&[kinetic, applied, dissipated]) {
+        Ok(RowTerms {
+            acceleration,
+            kinetic,
+            applied,
+            dissipated,
+        })
+    } else {
+        Err(Error::NonFiniteState { time: s.t })
     }
 }
 

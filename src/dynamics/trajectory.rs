@@ -2,7 +2,7 @@
 
 use std::fmt::Write as _;
 
-use super::system::{accelerations, kinetic_energy, powers, LagrangeSystem, State};
+use super::system::{row_terms, LagrangeSystem, RowTerms, State};
 use crate::error::{Error, Result};
 
 /// A motion recorded as columns: time, q, q̇, q̈, the energies and powers, and the
@@ -13,32 +13,99 @@ use crate::error::{Error, Result};
 /// recorded number is NaN or infinite. Read them through the accessors. Which rows a
 /// [`run`](super::run) records (the start, step ends, requested times, the end) is said at
 /// [`RunOptions`](super::RunOptions#what-is-recorded).
-#[derive(Debug, Clone, PartialEq, Default)]
+///
+/// All columns live in one block (column after column, each with room for the same number of
+/// rows), so that a run recording its start and end only allocates once, not once per column.
+///
+/// # Breaking change
+/// [`q`](Self::q), [`qd`](Self::qd) and [`qdd`](Self::qdd) return `[&[f64]; 2]` (were
+/// `&[Vec<f64>; 2]`) and [`outputs`](Self::outputs) returns `Vec<&[f64]>` (was
+/// `&[Vec<f64>]`): indexing, `iter()` and `len()` read as before.
+#[derive(Debug, Clone, Default)]
 pub struct Trajectory {
     coordinate_names: [&'static str; 2],
-    t: Vec<f64>,
-    q: [Vec<f64>; 2],
-    qd: [Vec<f64>; 2],
-    qdd: [Vec<f64>; 2],
-    kinetic: Vec<f64>,
-    potential: Vec<f64>,
-    power_applied: Vec<f64>,
-    power_dissipated: Vec<f64>,
     output_names: Vec<&'static str>,
-    outputs: Vec<Vec<f64>>,
+    /// Rows recorded.
+    len: usize,
+    /// Rows each column has room for.
+    cap: usize,
+    /// The columns in the order of [`Column`], then the outputs; column c holds
+    /// `data[c·cap .. c·cap + len]`.
+    data: Vec<f64>,
+}
+
+/// The fixed columns, in their order in the block (and in the CSV).
+#[derive(Clone, Copy)]
+enum Column {
+    T,
+    Q1,
+    Q2,
+    Qd1,
+    Qd2,
+    Qdd1,
+    Qdd2,
+    Kinetic,
+    Potential,
+    PowerApplied,
+    PowerDissipated,
+}
+
+/// The number of fixed columns (before the outputs).
+const FIXED: usize = 11;
+
+/// The rows a trajectory makes room for at its first row: a run that records its start and
+/// end only then allocates once.
+const FIRST_ROWS: usize = 4;
+
+impl PartialEq for Trajectory {
+    /// Equal names and equal recorded columns (whatever room each has left).
+    fn eq(&self, other: &Self) -> bool {
+        self.coordinate_names == other.coordinate_names
+            && self.output_names == other.output_names
+            && self.len == other.len
+            && (0..self.columns()).all(|c| self.column(c) == other.column(c))
+    }
 }
 
 impl Trajectory {
     /// An empty trajectory with the column names of `sys`.
     #[must_use]
     pub fn for_system<S: LagrangeSystem + ?Sized>(sys: &S) -> Self {
-        let output_names = sys.output_names();
         Self {
             coordinate_names: sys.coordinate_names(),
-            outputs: vec![Vec::new(); output_names.len()],
-            output_names,
+            output_names: sys.output_names(),
             ..Self::default()
         }
+    }
+
+    /// The number of columns: the fixed ones and the outputs.
+    fn columns(&self) -> usize {
+        FIXED + self.output_names.len()
+    }
+
+    /// Column `c` (a [`Column`] or `FIXED + k` for output k) as recorded.
+    fn column(&self, c: usize) -> &[f64] {
+        let from = c * self.cap;
+        &self.data[from..from + self.len]
+    }
+
+    fn fixed(&self, c: Column) -> &[f64] {
+        self.column(c as usize)
+    }
+
+    /// Room for one more row in every column: the block doubles, each column moved to its
+    /// new place (amortised O(1) a row, as a `Vec`'s push).
+    fn reserve_row(&mut self) {
+        if self.len < self.cap {
+            return;
+        }
+        let cap = (2 * self.cap).max(FIRST_ROWS);
+        let mut data = vec![0.0; cap * self.columns()];
+        for c in 0..self.columns() {
+            data[c * cap..c * cap + self.len].copy_from_slice(self.column(c));
+        }
+        self.data = data;
+        self.cap = cap;
     }
 
     /// Names of the two generalized coordinates.
@@ -50,49 +117,49 @@ impl Trajectory {
     /// Time, s.
     #[must_use]
     pub fn t(&self) -> &[f64] {
-        &self.t
+        self.fixed(Column::T)
     }
 
     /// Generalized coordinates, one column each.
     #[must_use]
-    pub fn q(&self) -> &[Vec<f64>; 2] {
-        &self.q
+    pub fn q(&self) -> [&[f64]; 2] {
+        [self.fixed(Column::Q1), self.fixed(Column::Q2)]
     }
 
     /// Generalized speeds, one column each.
     #[must_use]
-    pub fn qd(&self) -> &[Vec<f64>; 2] {
-        &self.qd
+    pub fn qd(&self) -> [&[f64]; 2] {
+        [self.fixed(Column::Qd1), self.fixed(Column::Qd2)]
     }
 
     /// Generalized accelerations, one column each.
     #[must_use]
-    pub fn qdd(&self) -> &[Vec<f64>; 2] {
-        &self.qdd
+    pub fn qdd(&self) -> [&[f64]; 2] {
+        [self.fixed(Column::Qdd1), self.fixed(Column::Qdd2)]
     }
 
     /// Kinetic energy T, J.
     #[must_use]
     pub fn kinetic(&self) -> &[f64] {
-        &self.kinetic
+        self.fixed(Column::Kinetic)
     }
 
     /// Potential energy Π, J.
     #[must_use]
     pub fn potential(&self) -> &[f64] {
-        &self.potential
+        self.fixed(Column::Potential)
     }
 
     /// Power of the applied loads Q·q̇, W.
     #[must_use]
     pub fn power_applied(&self) -> &[f64] {
-        &self.power_applied
+        self.fixed(Column::PowerApplied)
     }
 
     /// Power lost to viscous friction q̇ᵀBq̇ = 2Φ, W.
     #[must_use]
     pub fn power_dissipated(&self) -> &[f64] {
-        &self.power_dissipated
+        self.fixed(Column::PowerDissipated)
     }
 
     /// Names of the machine's extra outputs.
@@ -103,8 +170,8 @@ impl Trajectory {
 
     /// The extra outputs, one column per name.
     #[must_use]
-    pub fn outputs(&self) -> &[Vec<f64>] {
-        &self.outputs
+    pub fn outputs(&self) -> Vec<&[f64]> {
+        (FIXED..self.columns()).map(|c| self.column(c)).collect()
     }
 
     /// Appends a state with everything derived from it.
@@ -128,97 +195,79 @@ impl Trajectory {
         s: &State,
         out: &mut Vec<f64>,
     ) -> Result<()> {
-        if self.t.is_empty() && self.output_names.is_empty() && self.outputs.is_empty() {
+        if self.len == 0 && self.output_names.is_empty() && self.cap == 0 {
             // A default (empty) trajectory takes the system's columns on its first row.
             *self = Self::for_system(sys);
         }
-        let a = accelerations(sys, s.t, &s.q, &s.qd)?;
-        let (pa, pd) = powers(sys, s.t, &s.q, &s.qd)?;
-        let kinetic = kinetic_energy(sys, &s.q, &s.qd).map_err(|e| match e {
-            Error::NonFinite { .. } => Error::NonFiniteState { time: s.t },
-            e => e,
-        })?;
+        // q̈, T and the powers from one evaluation of the Lagrange terms.
+        let RowTerms {
+            acceleration: a,
+            kinetic,
+            applied: pa,
+            dissipated: pd,
+        } = row_terms(sys, s)?;
         let potential = sys.potential(&s.q)?;
         out.clear();
-        out.reserve(self.outputs.len());
+        let outputs = self.output_names.len();
+        out.reserve(outputs);
         sys.outputs(s.t, &s.q, &s.qd, out)?;
-        if out.len() != self.outputs.len() {
+        if out.len() != outputs {
             return Err(Error::OutOfRange {
                 name: "number of outputs given by the system (must match its output names)",
                 value: out.len() as f64,
-                min: self.outputs.len() as f64,
-                max: self.outputs.len() as f64,
+                min: outputs as f64,
+                max: outputs as f64,
                 ends: crate::Ends::Closed,
             });
         }
         if !(potential.is_finite() && out.iter().all(|v| v.is_finite())) {
             return Err(Error::NonFiniteState { time: s.t });
         }
-        self.t.push(s.t);
-        for i in 0..2 {
-            self.q[i].push(s.q[i]);
-            self.qd[i].push(s.qd[i]);
-            self.qdd[i].push(a[i]);
+        self.reserve_row();
+        let row = [
+            s.t, s.q[0], s.q[1], s.qd[0], s.qd[1], a[0], a[1], kinetic, potential, pa, pd,
+        ];
+        let (cap, n) = (self.cap, self.len);
+        for (c, &v) in row.iter().chain(out.iter()).enumerate() {
+            self.data[c * cap + n] = v;
         }
-        self.kinetic.push(kinetic);
-        self.potential.push(potential);
-        self.power_applied.push(pa);
-        self.power_dissipated.push(pd);
-        for (col, &v) in self.outputs.iter_mut().zip(out.iter()) {
-            col.push(v);
-        }
+        self.len += 1;
         Ok(())
     }
 
     /// Keeps the first `n` rows (all of them when there are fewer), in every column.
     pub fn truncate(&mut self, n: usize) {
-        self.t.truncate(n);
-        for c in self
-            .q
-            .iter_mut()
-            .chain(self.qd.iter_mut())
-            .chain(self.qdd.iter_mut())
-            .chain(self.outputs.iter_mut())
-        {
-            c.truncate(n);
-        }
-        for c in [
-            &mut self.kinetic,
-            &mut self.potential,
-            &mut self.power_applied,
-            &mut self.power_dissipated,
-        ] {
-            c.truncate(n);
-        }
+        self.len = self.len.min(n);
     }
 
     /// Number of rows.
     #[must_use]
     pub fn len(&self) -> usize {
-        self.t.len()
+        self.len
     }
 
     /// `true` when nothing is recorded.
     #[must_use]
     pub fn is_empty(&self) -> bool {
-        self.t.is_empty()
+        self.len == 0
     }
 
     /// The column of the output `name`, if the machine has it.
     #[must_use]
     pub fn output(&self, name: &str) -> Option<&[f64]> {
         let i = self.output_names.iter().position(|n| *n == name)?;
-        Some(&self.outputs[i])
+        Some(self.column(FIXED + i))
     }
 
     /// The last recorded state.
     #[must_use]
     pub fn last_state(&self) -> Option<State> {
-        let n = self.len().checked_sub(1)?;
+        let n = self.len.checked_sub(1)?;
+        let at = |c: Column| self.fixed(c)[n];
         Some(State::new(
-            self.t[n],
-            nalgebra::Vector2::new(self.q[0][n], self.q[1][n]),
-            nalgebra::Vector2::new(self.qd[0][n], self.qd[1][n]),
+            at(Column::T),
+            nalgebra::Vector2::new(at(Column::Q1), at(Column::Q2)),
+            nalgebra::Vector2::new(at(Column::Qd1), at(Column::Qd2)),
         ))
     }
 
@@ -244,22 +293,10 @@ impl Trajectory {
     pub fn to_csv(&self) -> String {
         let mut s = self.header().join(",");
         s.push('\n');
-        for r in 0..self.len() {
-            let mut row = vec![
-                self.t[r],
-                self.q[0][r],
-                self.q[1][r],
-                self.qd[0][r],
-                self.qd[1][r],
-                self.qdd[0][r],
-                self.qdd[1][r],
-                self.kinetic[r],
-                self.potential[r],
-                self.power_applied[r],
-                self.power_dissipated[r],
-            ];
-            row.extend(self.outputs.iter().map(|c| c[r]));
-            for (i, v) in row.iter().enumerate() {
+        let columns: Vec<&[f64]> = (0..self.columns()).map(|c| self.column(c)).collect();
+        for r in 0..self.len {
+            let row = columns.iter().map(|c| c[r]);
+            for (i, v) in row.enumerate() {
                 if i > 0 {
                     s.push(',');
                 }
@@ -268,5 +305,82 @@ impl Trajectory {
             s.push('\n');
         }
         s
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use nalgebra::Vector2;
+
+    use super::*;
+    use crate::dynamics::machines::{CoaxialPropellers, FiveBar};
+    use crate::dynamics::{accelerations, kinetic_energy, powers};
+
+    /// Rows pushed one by one (through three doublings of the block) hold what the separate
+    /// public functions give at each state, bit for bit: q̈, T, the powers, Π, the outputs.
+    fn rows_match_the_separate_functions<S: LagrangeSystem>(sys: &S, base: Vector2<f64>) {
+        let states: Vec<State> = (0..19)
+            .map(|i| {
+                let x = f64::from(i);
+                State::new(
+                    0.01 * x,
+                    base + Vector2::new(0.03 * x, -0.02 * x),
+                    Vector2::new(0.5 - 0.1 * x, 0.2 * x),
+                )
+            })
+            .collect();
+        let mut tr = Trajectory::for_system(sys);
+        for (n, s) in states.iter().enumerate() {
+            tr.push(sys, s).unwrap();
+            assert_eq!(tr.len(), n + 1);
+            // Every earlier row survives the block's moves.
+            for (r, s) in states[..=n].iter().enumerate() {
+                let a = accelerations(sys, s.t, &s.q, &s.qd).unwrap();
+                let (pa, pd) = powers(sys, s.t, &s.q, &s.qd).unwrap();
+                let mut out = Vec::new();
+                sys.outputs(s.t, &s.q, &s.qd, &mut out).unwrap();
+                assert_eq!(tr.t()[r], s.t);
+                assert_eq!([tr.q()[0][r], tr.q()[1][r]], [s.q[0], s.q[1]]);
+                assert_eq!([tr.qd()[0][r], tr.qd()[1][r]], [s.qd[0], s.qd[1]]);
+                assert_eq!([tr.qdd()[0][r], tr.qdd()[1][r]], [a[0], a[1]]);
+                let t = kinetic_energy(sys, &s.q, &s.qd).unwrap();
+                assert!((tr.kinetic()[r] - t).abs() <= 1e-15 * t.abs());
+                assert_eq!(tr.potential()[r], sys.potential(&s.q).unwrap());
+                assert_eq!([tr.power_applied()[r], tr.power_dissipated()[r]], [pa, pd]);
+                let cols = tr.outputs();
+                assert_eq!(cols.len(), out.len());
+                for (c, v) in cols.iter().zip(&out) {
+                    assert_eq!(c[r], *v);
+                }
+            }
+        }
+        assert_eq!(tr.last_state(), states.last().copied());
+        // Truncated and grown again: equal to one recorded straight, whatever the room left.
+        let mut cut = tr.clone();
+        cut.truncate(5);
+        assert_eq!(cut.len(), 5);
+        assert_ne!(cut, tr);
+        for s in &states[5..] {
+            cut.push(sys, s).unwrap();
+        }
+        assert_eq!(cut, tr);
+        let mut short = Trajectory::for_system(sys);
+        for s in &states[..5] {
+            short.push(sys, s).unwrap();
+        }
+        tr.truncate(5);
+        assert_eq!(short, tr);
+        assert_eq!(short.to_csv(), tr.to_csv());
+    }
+
+    #[test]
+    fn rows_of_the_coaxial_drive() {
+        rows_match_the_separate_functions(&CoaxialPropellers::default(), Vector2::zeros());
+    }
+
+    #[test]
+    fn rows_of_the_five_bar() {
+        let q0 = Vector2::new(120f64.to_radians(), 60f64.to_radians());
+        rows_match_the_separate_functions(&FiveBar::default(), q0);
     }
 }
