@@ -29,6 +29,13 @@ fn end(sys: &FiveBar, t_end: f64, n: u32, locate: bool) -> State {
     run(sys, &Rk4, start(), &opts).unwrap().last
 }
 
+/// The two servos' margins, the five-bar's kink arguments.
+fn margins(r: &FiveBar, q: &Vector2<f64>, qd: &Vector2<f64>) -> tmm::Result<[f64; 2]> {
+    let mut m = [0.0; 2];
+    r.kink_arguments(0.0, q, qd, &mut m)?;
+    Ok(m)
+}
+
 /// The difference of two states in q and q̇ (rad, rad/s), the larger of the two.
 fn diff(a: &State, b: &State) -> f64 {
     (a.q - b.q).amax().max((a.qd - b.qd).amax())
@@ -74,7 +81,7 @@ fn rk4_keeps_its_order_across_a_servo_saturation_when_the_switch_is_a_kink() {
     // The servo saturated at the start (M = −limit), following afterwards.
     let s0 = start();
     assert_eq!(sys.drive1.torque(s0.q[0], s0.qd[0]).unwrap(), -5.0);
-    assert!(sys.kink_argument(0.0, &s0.q, &s0.qd).unwrap() < 0.0);
+    assert!(margins(&sys, &s0.q, &s0.qd).unwrap()[0] < 0.0);
 
     let ns = [40u32, 80, 160, 320];
     let reference = end(&sys, t_end, 64 * ns[ns.len() - 1], true);
@@ -179,38 +186,46 @@ fn an_overflowing_demand_saturates_on_its_dominant_side() {
     assert_eq!(q_f[0], 5.0 - r.m_on * k.phi3_q[0]);
     let acc = accelerations(&r, 0.0, &q, &qd).unwrap();
     assert!(acc.iter().all(|a| a.is_finite()));
-    // Its kink argument is the saturated side's −1 times the other servo's margin (1 at its
-    // target and at rest).
-    assert_eq!(r.kink_argument(0.0, &q, &qd).unwrap(), -1.0);
+    // Its kink arguments: the saturated servo's margin −1, the other's 1 (at its target and
+    // at rest).
+    assert_eq!(margins(&r, &q, &qd).unwrap(), [-1.0, 1.0]);
 }
 
-/// The kink argument changes sign exactly where a servo's clamp switches: just inside and
-/// just outside the limit, for each servo alone.
+/// Each servo's kink argument (its margin) changes sign exactly where its clamp switches:
+/// just inside and just outside the limit, for each servo alone.
 #[test]
 fn the_kink_argument_changes_sign_at_each_servos_switch() {
     let r = FiveBar::default();
+    assert_eq!(r.kinks(), vec![vec![0.0], vec![0.0]]);
     let q0 = Vector2::new(r.drive1.target, r.drive4.target);
     // At the targets, at rest: both follow (margins 1).
-    assert_eq!(r.kink_argument(0.0, &q0, &Vector2::zeros()).unwrap(), 1.0);
+    assert_eq!(margins(&r, &q0, &Vector2::zeros()).unwrap(), [1.0, 1.0]);
     for (i, s) in [(0, r.drive1), (1, r.drive4)] {
         // |k_d·ω| = limit·(1 ± 10⁻⁶): just following, just saturated.
         for (f, sign) in [(1.0 - 1e-6, 1.0), (1.0 + 1e-6, -1.0)] {
             let mut qd = Vector2::zeros();
             qd[i] = f * s.limit / s.kd;
-            let k = r.kink_argument(0.0, &q0, &qd).unwrap();
-            assert!(k * sign > 0.0, "servo {i}, |demand|/limit = {f}: {k}");
+            let k = margins(&r, &q0, &qd).unwrap();
+            assert!(k[i] * sign > 0.0, "servo {i}, |demand|/limit = {f}: {k:?}");
+            assert_eq!(k[1 - i], 1.0, "the other servo at its target, at rest");
             let m =
                 r.forces(0.0, &q0, &qd).unwrap()[i] + r.m_on * r.kinematics(&q0).unwrap().phi3_q[i];
             assert!((m.abs() - (f.min(1.0) * s.limit)).abs() < 1e-12, "{m}");
         }
     }
-    // A servo with limit 0 never switches: it counts as 1, the other one decides.
+    // A servo with limit 0 never switches: its argument has no node (and is 1), the other
+    // one's is located on its own.
     let mut z = r;
     z.drive1.limit = 0.0;
+    assert_eq!(z.kinks(), vec![vec![], vec![0.0]]);
     let qd = Vector2::new(3.0, 2.0 * r.drive4.limit / r.drive4.kd);
-    assert!(z.kink_argument(0.0, &q0, &qd).unwrap() < 0.0);
-    // Bad states are errors, not NaN.
-    assert!(r
-        .kink_argument(0.0, &Vector2::new(f64::NAN, 0.0), &Vector2::zeros())
-        .is_err());
+    let m = margins(&z, &q0, &qd).unwrap();
+    assert!(m[0] == 1.0 && m[1] < 0.0, "{m:?}");
+    // Bad states are errors, not NaN; so is room for another number of arguments.
+    assert!(margins(&r, &Vector2::new(f64::NAN, 0.0), &Vector2::zeros()).is_err());
+    for n in [0, 1, 3] {
+        let mut out = vec![0.0; n];
+        let e = r.kink_arguments(0.0, &q0, &Vector2::zeros(), &mut out);
+        assert!(matches!(e, Err(Error::OutOfRange { .. })), "{n}: {e:?}");
+    }
 }

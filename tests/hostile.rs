@@ -451,11 +451,19 @@ impl LagrangeSystem for Kinked {
     fn breakpoints(&self) -> Vec<f64> {
         vec![self.1[1], self.2]
     }
-    fn kinks(&self) -> Vec<f64> {
-        self.1.to_vec()
+    fn kinks(&self) -> Vec<Vec<f64>> {
+        vec![self.1.to_vec(), vec![self.2, self.1[0]]]
     }
-    fn kink_argument(&self, t: f64, q: &Vector2<f64>, qd: &Vector2<f64>) -> tmm::Result<f64> {
-        Ok(q[0] * self.2 + qd[1] + t)
+    fn kink_arguments(
+        &self,
+        t: f64,
+        q: &Vector2<f64>,
+        qd: &Vector2<f64>,
+        out: &mut [f64],
+    ) -> tmm::Result<()> {
+        out[0] = q[0] * self.2 + qd[1] + t;
+        out[1] = qd[0] * self.1[1] - q[1];
+        Ok(())
     }
 }
 

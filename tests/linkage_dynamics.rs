@@ -954,7 +954,7 @@ fn servo_clamps_of_a_described_linkage_are_kinks() {
     let mut fb = FiveBar::default();
     fb.drive4.limit = 1e3;
     let sys = five_bar_system(&fb);
-    assert_eq!(sys.kinks(), vec![0.0]);
+    assert_eq!(sys.kinks(), vec![vec![0.0], vec![0.0]]);
     for (a, b, w1, w4) in [
         (120.0, 60.0, 0.0, 0.0),
         (110.0, 70.0, 3.0, -2.0),
@@ -962,10 +962,10 @@ fn servo_clamps_of_a_described_linkage_are_kinks() {
     ] {
         let q = Vector2::new(f64::to_radians(a), f64::to_radians(b));
         let qd = Vector2::new(w1, w4);
-        assert_eq!(
-            sys.kink_argument(0.0, &q, &qd).unwrap(),
-            fb.kink_argument(0.0, &q, &qd).unwrap()
-        );
+        let (mut a, mut b) = ([0.0; 2], [0.0; 2]);
+        sys.kink_arguments(0.0, &q, &qd, &mut a).unwrap();
+        fb.kink_arguments(0.0, &q, &qd, &mut b).unwrap();
+        assert_eq!(a, b);
     }
     let s0 = State::at_rest(Vector2::new(120f64.to_radians(), 60f64.to_radians()));
     let t_end = 0.12;
@@ -1000,9 +1000,11 @@ fn a_tabulated_motor_reports_its_nodes_as_kinks() {
         .unwrap()
         .with_motor(0, Motor::Tabulated(table))
         .unwrap();
-    assert_eq!(sys.kinks(), vec![0.0, 50.0, 100.0, 150.0]);
+    assert_eq!(sys.kinks(), vec![vec![0.0, 50.0, 100.0, 150.0]]);
     let (q, qd) = (Vector2::new(1.0, 0.0), Vector2::new(73.5, 0.0));
-    assert_eq!(sys.kink_argument(0.0, &q, &qd).unwrap(), 73.5);
+    let mut rate = [0.0];
+    sys.kink_arguments(0.0, &q, &qd, &mut rate).unwrap();
+    assert_eq!(rate, [73.5]);
     // A smooth motor has none.
     let linear = LinkageSystem::from_linkage(&bundled::four_bar())
         .unwrap()

@@ -12,8 +12,9 @@
 //!   the step), or at a steady state, and says when a steady state can never come
 //!   ([`Outcome::Drifting`]). The motion is recorded as a [`Trajectory`] (columns, CSV).
 //!   Every step lands exactly on the breakpoints (times given in [`RunOptions::breakpoints`]
-//!   or by the system) and on the kinks of the forces in the state (located inside the step:
-//!   the landing gear's load-table nodes), so that no step straddles a kink; the state at
+//!   or by the system) and on the kinks of the forces in the state (located inside the step,
+//!   the earliest first where several arguments cross their nodes in one step: the landing
+//!   gear's load-table nodes, each servo's clamp), so that no step straddles a kink; the state at
 //!   requested [`RunOptions::times`] comes from Dormand–Prince's continuous extension
 //!   ([`DenseOutput`]) or from fixed steps that end exactly there.
 //! - [`machines`]: the five-bar robot (§2), the R–P arm and its decoupled variant (§3), the
@@ -45,9 +46,9 @@ pub use finite_increment::FiniteIncrement;
 pub use rk4::Rk4;
 pub use run::{run, Direction, Outcome, Reach, RunOptions, RunResult, Steady, Watch};
 pub use stepper::{Advance, Handover, Stepper};
-pub(crate) use system::checked_inertia;
 pub use system::{
     accelerations, christoffel_terms, kinetic_energy, powers, LagrangeSystem, LagrangeTerms, State,
 };
+pub(crate) use system::{checked_inertia, kink_slots};
 pub use table::{Beyond, Table};
 pub use trajectory::Trajectory;

@@ -126,9 +126,11 @@ pub struct RunOptions {
     /// outside (t_start, t_end) are ignored.
     pub breakpoints: Vec<f64>,
     /// Whether to locate the nodes of the system's [`LagrangeSystem::kinks`] (default
-    /// `true`). Turned off, the run steps across them as a solver that knows nothing of them
-    /// would: for side-by-side comparisons with such a solver, or when the kinks are too mild
-    /// to matter. Breakpoints are stepped onto either way.
+    /// `true`): every argument's, the earliest crossing in a step first. Turned off, the run
+    /// neither asks for the kinks nor evaluates their arguments, and steps across them as a
+    /// solver that knows nothing of them would: for side-by-side comparisons with such a
+    /// solver, or when the kinks are too mild to matter. Breakpoints are stepped onto either
+    /// way.
     pub locate_kinks: bool,
 }
 
@@ -342,19 +344,22 @@ fn row_budget(len: usize, opts: &RunOptions, t: f64, t_tol: f64) -> Result<()> {
 ///
 /// No step straddles a breakpoint: the run shortens the step that would cross one of the
 /// times in [`RunOptions::breakpoints`] or [`LagrangeSystem::breakpoints`] so that it ends
-/// exactly there, and when a step carries [`LagrangeSystem::kink_argument`] across a node of
-/// [`LagrangeSystem::kinks`] it locates the node inside the step (re-stepping from its start,
-/// regula falsi, to about 10⁻¹⁴ of the argument's change over the step) and takes the step
-/// again to end there (with error control for an adaptive method). A fixed-step method then
-/// finishes the grid step it was taking, so its grid t₀ + n·h stays. The states at
-/// [`RunOptions::times`] are recorded as that field says.
+/// exactly there. When a step carries one or more of the
+/// [`LagrangeSystem::kink_arguments`] across a node of its own (argument k's nodes are
+/// [`LagrangeSystem::kinks`]`()[k]`), the run finds the earliest of these crossings (from the
+/// continuous extension by bisection when the method has one, else by locating each),
+/// locates it inside the step (re-stepping from its start, regula falsi, to about 10⁻¹⁴ of
+/// the argument's change over the step) and takes the step again to end there (with error
+/// control for an adaptive method); the next step, starting on that node, finds the next
+/// crossing. A fixed-step method then finishes the grid step it was taking, so its grid
+/// t₀ + n·h stays. The states at [`RunOptions::times`] are recorded as that field says.
 ///
 /// # Errors
 /// [`Error::NonPositive`]/[`Error::NonFinite`] for a bad step, final time, steady tolerance
 /// or hold, or record interval; [`Error::NonFinite`] for a requested time, a breakpoint or a
 /// kink node that is not finite; [`Error::OutOfRange`] for a requested time outside
 /// [t_start, t_end] or a watched index that does not exist; [`Error::NonFiniteState`] when
-/// the kink argument is not finite;
+/// a kink argument is not finite (or is left unset by the system);
 /// [`Error::Singular`] when a step is too short to advance the time
 /// (h below the rounding of t); [`Error::NonFiniteState`] naming the time when the motion
 /// diverges (or a recorded quantity overflows); [`Error::Budget`] naming the time reached
@@ -448,11 +453,16 @@ pub fn run<S: LagrangeSystem + ?Sized, M: Stepper>(
     .into_iter()
     .filter(|&t| t > start.t && t < opts.t_end)
     .collect();
-    let kinks = if opts.locate_kinks {
-        sorted_finite("kink", sys.kinks())?
+    // The nodes of each kink argument (none at all when they are not located).
+    let kinks: Vec<Vec<f64>> = if opts.locate_kinks {
+        sys.kinks()
+            .into_iter()
+            .map(|nodes| sorted_finite("kink", nodes))
+            .collect::<Result<_>>()?
     } else {
         Vec::new()
     };
+    let any_kinks = kinks.iter().any(|nodes| !nodes.is_empty());
     // The times a step must end on: the breakpoints, and the requested times for a method
     // that cannot interpolate.
     let dense_times = method.has_dense_output();
@@ -485,17 +495,30 @@ pub fn run<S: LagrangeSystem + ?Sized, M: Stepper>(
     // What the last step handed on for the next one: q̈ at `s` when it gave them
     // (Dormand–Prince's last stage) and its error norm (the step-size controller's memory).
     let mut hand_s = Handover::default();
-    let kink_arg = |st: &State| -> Result<f64> {
-        let v = sys.kink_argument(st.t, &st.q, &st.qd)?;
-        if v.is_finite() {
-            Ok(v)
+    // Every kink argument at a state, into `out` (one entry per argument, each set to NaN
+    // first so that one the system leaves unset is caught as not finite).
+    let kink_args = |st: &State, out: &mut [f64]| -> Result<()> {
+        out.fill(f64::NAN);
+        sys.kink_arguments(st.t, &st.q, &st.qd, out)?;
+        if out.iter().all(|v| v.is_finite()) {
+            Ok(())
         } else {
             Err(Error::NonFiniteState { time: st.t })
         }
     };
-    let mut sigma = if kinks.is_empty() { 0.0 } else { kink_arg(&s)? };
-    // The kink node the last step landed on (the next step starts there: no crossing).
-    let mut on_kink: Option<usize> = None;
+    // The arguments at the start of the step (σ), at its end (σ₁), and at a trial state.
+    let (mut sigma, mut sigma1, mut probe) = (
+        vec![0.0; kinks.len()],
+        vec![0.0; kinks.len()],
+        vec![0.0; kinks.len()],
+    );
+    if any_kinks {
+        kink_args(&s, &mut sigma)?;
+    }
+    // The crossings (argument, node) found in a step.
+    let mut crossed: Vec<(usize, usize)> = Vec::new();
+    // The (argument, node) the last step landed on (the next step starts there: no crossing).
+    let mut on_kink: Option<(usize, usize)> = None;
     // The end of the grid step a fixed-step method was taking when a stop or a kink cut it.
     let mut grid_end: Option<f64> = None;
     // Grid steps left until the next recorded one (a countdown rather than a division per
@@ -530,7 +553,7 @@ pub fn run<S: LagrangeSystem + ?Sized, M: Stepper>(
     // step that reaches the end, and every step of any other run, is the full loop's.
     let plain = stops.is_empty()
         && times.is_empty()
-        && kinks.is_empty()
+        && !any_kinks
         && opts.reach.is_none()
         && opts.steady.is_none();
 
@@ -601,7 +624,7 @@ pub fn run<S: LagrangeSystem + ?Sized, M: Stepper>(
         // step's last stages, and at its new value from the next step on.
         // The continuous extension is built only when something will read it: a requested
         // time still ahead, or a kink to locate (its first guess).
-        let want_dense = i_time < times.len() || !kinks.is_empty();
+        let want_dense = i_time < times.len() || any_kinks;
         let (adv, mut dense) = match (clamped, want_dense) {
             (true, true) => {
                 method.advance_dense(&LeftOf { sys, at: stop }, &s, h_try, Some(hand_s))?
@@ -642,38 +665,83 @@ pub fn run<S: LagrangeSystem + ?Sized, M: Stepper>(
         // The method's proposal, unless the run shortened the step.
         let mut h_next = (!(target.is_some() && full)).then_some(adv.h_next);
 
-        // A node of the kinks crossed inside the step: step again, exactly onto it.
+        // Nodes of the kink arguments crossed inside the step: step again, exactly onto the
+        // earliest crossing (the next step finds the next one).
         let mut landed = None;
-        if !kinks.is_empty() {
-            let sigma1 = kink_arg(&s1)?;
-            if let Some(i) = first_crossed(&kinks, sigma, sigma1, on_kink) {
-                let node = kinks[i];
-                // A first guess from the continuous extension (no evaluation), by bisection.
-                let guess = match &dense {
+        if any_kinks {
+            kink_args(&s1, &mut sigma1)?;
+            crossed.clear();
+            for (k, nodes) in kinks.iter().enumerate() {
+                let skip = on_kink.filter(|&(j, _)| j == k).map(|(_, i)| i);
+                if let Some(i) = first_crossed(nodes, sigma[k], sigma1[k], skip) {
+                    crossed.push((k, i));
+                }
+            }
+            let mut restepped = false;
+            if !crossed.is_empty() {
+                // Whether argument k has passed node i at a state whose arguments are `v`.
+                let passed = |v: &[f64], (k, i): (usize, usize)| {
+                    let node = kinks[k][i];
+                    (v[k] < node) != (sigma[k] < node)
+                };
+                let ((k, i), hit, resteps) = match &dense {
+                    // The earliest crossing from the continuous extension (no evaluation), by
+                    // bisection on "some argument has passed its node", then located from
+                    // there as a first guess.
                     Some(d) => {
                         let (mut lo, mut hi) = (0.0_f64, 1.0_f64);
-                        let below = sigma < node;
+                        let mut first = crossed[0];
                         for _ in 0..60 {
                             let mid = 0.5 * (lo + hi);
-                            let st = d.at(s.t + mid * (s1.t - s.t))?;
-                            if (kink_arg(&st)? < node) == below {
-                                lo = mid;
-                            } else {
-                                hi = mid;
+                            kink_args(&d.at(s.t + mid * (s1.t - s.t))?, &mut probe)?;
+                            match crossed.iter().find(|&&c| passed(&probe, c)) {
+                                Some(&c) => {
+                                    first = c;
+                                    hi = mid;
+                                }
+                                None => lo = mid,
                             }
                         }
-                        Some(0.5 * (lo + hi))
+                        let node = kinks[first.0][first.1];
+                        let (hit, resteps) = locate(
+                            sys,
+                            method,
+                            (&s, sigma[first.0] - node),
+                            (&s1, sigma1[first.0] - node),
+                            Some(0.5 * (lo + hi)),
+                            |st| {
+                                kink_args(st, &mut probe)?;
+                                Ok(probe[first.0] - node)
+                            },
+                        )?;
+                        (first, hit, resteps)
                     }
-                    None => None,
+                    // No extension: each crossing located by re-stepping, the earliest kept.
+                    None => {
+                        let mut best: Option<((usize, usize), State)> = None;
+                        let mut resteps = 0;
+                        for &(k, i) in &crossed {
+                            let node = kinks[k][i];
+                            let (hit, n) = locate(
+                                sys,
+                                method,
+                                (&s, sigma[k] - node),
+                                (&s1, sigma1[k] - node),
+                                None,
+                                |st| {
+                                    kink_args(st, &mut probe)?;
+                                    Ok(probe[k] - node)
+                                },
+                            )?;
+                            resteps += n;
+                            if best.is_none_or(|(_, b)| hit.t < b.t) {
+                                best = Some(((k, i), hit));
+                            }
+                        }
+                        let (c, hit) = best.expect("a crossing was found");
+                        (c, hit, resteps)
+                    }
                 };
-                let (hit, resteps) = locate(
-                    sys,
-                    method,
-                    (&s, sigma - node),
-                    (&s1, sigma1 - node),
-                    guess,
-                    |st| Ok(kink_arg(st)? - node),
-                )?;
                 evaluations += resteps * method.evaluations_per_step();
                 let hk = hit.t - s.t;
                 if hk > t_tol && hit.t < s1.t {
@@ -685,23 +753,26 @@ pub fn run<S: LagrangeSystem + ?Sized, M: Stepper>(
                     s1 = adv2.state;
                     dense = dense2;
                     hand1 = adv2.handover;
+                    restepped = true;
                     if s1.t == s.t + hk {
-                        landed = Some(i);
+                        landed = Some((k, i));
                         h_next = None;
                     } else {
                         h_next = Some(adv2.h_next);
                     }
                 } else {
-                    landed = Some(i);
+                    landed = Some((k, i));
                 }
+            }
+            if restepped {
+                kink_args(&s1, &mut sigma)?;
+            } else {
+                std::mem::swap(&mut sigma, &mut sigma1);
             }
         }
         on_kink = landed;
         if let Some(hn) = h_next {
             h = hn;
-        }
-        if !kinks.is_empty() {
-            sigma = kink_arg(&s1)?;
         }
 
         let mut hit = None;
@@ -901,11 +972,17 @@ impl<S: LagrangeSystem + ?Sized> LagrangeSystem for LeftOf<'_, S> {
     fn breakpoints(&self) -> Vec<f64> {
         self.sys.breakpoints()
     }
-    fn kinks(&self) -> Vec<f64> {
+    fn kinks(&self) -> Vec<Vec<f64>> {
         self.sys.kinks()
     }
-    fn kink_argument(&self, t: f64, q: &Vector2<f64>, qd: &Vector2<f64>) -> Result<f64> {
-        self.sys.kink_argument(t, q, qd)
+    fn kink_arguments(
+        &self,
+        t: f64,
+        q: &Vector2<f64>,
+        qd: &Vector2<f64>,
+        out: &mut [f64],
+    ) -> Result<()> {
+        self.sys.kink_arguments(t, q, qd, out)
     }
     fn outputs(
         &self,

@@ -270,23 +270,76 @@ pub trait LagrangeSystem {
         Vec::new()
     }
 
-    /// The values of [`kink_argument`](Self::kink_argument) at which the forces are not
-    /// smooth: the nodes of a load tabulated against the state (the landing gear's moment
-    /// table against φ_H). [`run`](super::run) locates the state at which the argument
-    /// reaches a node inside a step and steps exactly onto it. Default: none.
+    /// The nodes of the system's kink arguments: `kinks()[k]` are the values of argument k
+    /// (see [`kink_arguments`](Self::kink_arguments)) at which the forces are not smooth,
+    /// for example the nodes of a load tabulated against the state (the landing gear's moment
+    /// table against φ_H) or the 0 of a servo's margin (its clamp at ±limit). Each argument
+    /// has its own nodes (in any order, repeats allowed; an argument with none is never
+    /// watched), so that switches of several loads are located each in its own right, however
+    /// close in time. [`run`](super::run) finds, after each step, every argument that crossed
+    /// one of its nodes, locates the earliest crossing inside the step and steps exactly onto
+    /// it; the next step finds the next one. Default: none.
+    ///
+    /// # Breaking change
+    /// This was one list of nodes of one scalar `kink_argument(t, q, q̇)`; a system with one
+    /// argument now returns `vec![nodes]` and fills `out[0]`.
     ///
     /// # Examples
+    /// Two clamped springs, each with a kink where its force saturates (|q_k| = 1): two
+    /// arguments, q₁ and q₂, each with the nodes ±1.
     /// ```
-    /// use tmm::dynamics::{machines::LandingGear, LagrangeSystem};
-    /// let g = LandingGear::default();
-    /// assert_eq!(g.kinks(), g.load.xs());
+    /// use nalgebra::{Matrix2, Vector2};
+    /// use tmm::dynamics::{run, Dopri5, LagrangeSystem, Rk4, RunOptions, State};
+    /// struct Clamped;
+    /// impl LagrangeSystem for Clamped {
+    ///     fn inertia(&self, _: &Vector2<f64>) -> tmm::Result<Matrix2<f64>> {
+    ///         Ok(Matrix2::identity())
+    ///     }
+    ///     fn forces(&self, _: f64, q: &Vector2<f64>, _: &Vector2<f64>) -> tmm::Result<Vector2<f64>> {
+    ///         Ok(-q.map(|x| x.clamp(-1.0, 1.0)))
+    ///     }
+    ///     fn kinks(&self) -> Vec<Vec<f64>> {
+    ///         vec![vec![-1.0, 1.0], vec![-1.0, 1.0]]
+    ///     }
+    ///     fn kink_arguments(
+    ///         &self,
+    ///         _: f64,
+    ///         q: &Vector2<f64>,
+    ///         _: &Vector2<f64>,
+    ///         out: &mut [f64],
+    ///     ) -> tmm::Result<()> {
+    ///         out.copy_from_slice(q.as_slice()); // out.len() == self.kinks().len() == 2
+    ///         Ok(())
+    ///     }
+    /// }
+    /// // Both coordinates pass q = 1 going inwards, 1 ms apart: each switch is stepped onto.
+    /// let start = State::new(0.0, Vector2::new(1.5, 1.501), Vector2::new(-1.0, -1.0));
+    /// let mut opts = RunOptions::until(1.0, 0.1);
+    /// let r = run(&Clamped, &Rk4, start, &opts)?;
+    /// assert_eq!(r.steps, 12); // the grid's ten steps, the step 0.4 → 0.5 cut at each switch
+    /// // An adaptive method records every step end: one lies exactly on each switch.
+    /// let dp = run(&Clamped, &Dopri5::new(1e-8)?, start, &opts)?;
+    /// let lands = |k: usize| dp.trajectory.q()[k].iter().any(|&q| (q - 1.0).abs() < 1e-12);
+    /// assert!(lands(0) && lands(1));
+    /// opts.locate_kinks = false; // stepped across: the grid t = 0.1·n only
+    /// assert_eq!(run(&Clamped, &Rk4, start, &opts)?.steps, 10);
+    /// # Ok::<(), tmm::Error>(())
     /// ```
-    fn kinks(&self) -> Vec<f64> {
+    fn kinks(&self) -> Vec<Vec<f64>> {
         Vec::new()
     }
 
-    /// The scalar of the state whose [`kinks`](Self::kinks) are the nodes (for the landing
-    /// gear the carrier angle φ_H). Default: 0 (a machine without kinks never needs it).
+    /// The kink arguments at a state: `out[k]` becomes argument k, whose nodes are
+    /// [`kinks()[k]`](Self::kinks) (for the landing gear the one argument φ_H; for the
+    /// five-bar each servo's margin). [`run`](super::run) passes exactly
+    /// `kinks().len()` entries, each set to NaN before the call, and refuses a result that is
+    /// not finite ([`Error::NonFiniteState`]): an argument the system leaves unset is an error,
+    /// not a guess. All arguments are asked for at once, so that a system whose arguments
+    /// share an evaluation (a linkage's kinematics) pays it once. Default: sets nothing (a
+    /// machine without kinks is never asked).
+    ///
+    /// The systems of this crate refuse an `out` whose length is not the number of their
+    /// arguments with [`Error::OutOfRange`], never a panic; a system of one's own should too.
     ///
     /// # Examples
     /// ```
@@ -294,14 +347,24 @@ pub trait LagrangeSystem {
     /// use tmm::dynamics::{machines::LandingGear, LagrangeSystem};
     /// let g = LandingGear::default();
     /// let q = Vector2::new(9.0, 27.0);
-    /// assert_eq!(g.kink_argument(0.0, &q, &Vector2::zeros()).unwrap(), g.phi_h(&q).unwrap());
+    /// let mut phi_h = [0.0];
+    /// g.kink_arguments(0.0, &q, &Vector2::zeros(), &mut phi_h)?;
+    /// assert_eq!(phi_h[0], g.phi_h(&q)?);
+    /// assert!(g.kink_arguments(0.0, &q, &Vector2::zeros(), &mut [0.0; 2]).is_err());
+    /// # Ok::<(), tmm::Error>(())
     /// ```
     ///
     /// # Errors
-    /// When the machine cannot be evaluated at this state.
-    fn kink_argument(&self, t: f64, q: &Vector2<f64>, qd: &Vector2<f64>) -> Result<f64> {
-        let _ = (t, q, qd);
-        Ok(0.0)
+    /// When the machine cannot be evaluated at this state, or `out` has the wrong length.
+    fn kink_arguments(
+        &self,
+        t: f64,
+        q: &Vector2<f64>,
+        qd: &Vector2<f64>,
+        out: &mut [f64],
+    ) -> Result<()> {
+        let _ = (t, q, qd, out);
+        Ok(())
     }
 
     /// Extra outputs at a state, appended to `out` in the order of
@@ -318,6 +381,22 @@ pub trait LagrangeSystem {
     ) -> Result<()> {
         let _ = (t, q, qd, out);
         Ok(())
+    }
+}
+
+/// Checks that `out` has room for exactly the `n` kink arguments of a system (see
+/// [`LagrangeSystem::kink_arguments`]): an error naming both counts otherwise.
+pub(crate) fn kink_slots(out: &[f64], n: usize) -> Result<()> {
+    if out.len() == n {
+        Ok(())
+    } else {
+        Err(Error::OutOfRange {
+            name: "kink arguments asked for (the system's count)",
+            value: out.len() as f64,
+            min: n as f64,
+            max: n as f64,
+            ends: crate::Ends::Closed,
+        })
     }
 }
 

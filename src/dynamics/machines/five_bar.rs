@@ -3,7 +3,7 @@
 use nalgebra::{Matrix2, Point2, Vector2};
 
 use crate::angle::{cross, perp, unit};
-use crate::dynamics::system::{checked_inertia, LagrangeSystem, LagrangeTerms};
+use crate::dynamics::system::{checked_inertia, kink_slots, LagrangeSystem, LagrangeTerms};
 use crate::error::{finite, finite2, positive, Error, Result};
 
 /// A position servo on a crank: M = clamp(k_p·(target − φ) − k_d·φ̇, ±limit).
@@ -603,30 +603,47 @@ impl LagrangeSystem for FiveBar {
         Ok(self.gradient_from(&self.kinematics(q)?, q))
     }
 
-    /// The servos' saturation switches: the node 0 of the product of their margins (see
-    /// [`kink_argument`](Self::kink_argument)).
-    fn kinks(&self) -> Vec<f64> {
-        vec![0.0]
+    /// The servos' saturation switches: two arguments, crank 1's servo's margin and crank
+    /// 4's (see [`kink_arguments`](Self::kink_arguments)), each with the node 0; a servo with
+    /// limit 0 never switches and its argument has no node.
+    fn kinks(&self) -> Vec<Vec<f64>> {
+        [self.drive1, self.drive4]
+            .iter()
+            .map(|s| {
+                if s.limit == 0.0 {
+                    Vec::new()
+                } else {
+                    vec![0.0]
+                }
+            })
+            .collect()
     }
 
-    /// The product of the two servos' margins m = 1 − |k_p·e − k_d·ω|/limit, each clamped
-    /// to [−1, 1]: m > 0 while a servo follows its demand, m < 0 while it saturates, so the
-    /// product changes sign exactly when one servo switches. The clamp at ±limit is a kink
-    /// of Q, and [`run`](crate::dynamics::run) steps onto it, so that a fixed-step method
-    /// keeps its order. A servo with limit 0 (never switching) counts as 1. Two switches
-    /// inside one step cancel in the product and are not located (the step then straddles
-    /// both, as without kinks).
+    /// Each servo's margin m = 1 − |k_p·e − k_d·ω|/limit, clamped to [−1, 1] (`out[0]` crank
+    /// 1's, `out[1]` crank 4's): m > 0 while the servo follows its demand, m < 0 while it
+    /// saturates, so m changes sign exactly when the servo switches. The clamp at ±limit is a
+    /// kink of Q, and [`run`](crate::dynamics::run) steps onto it, so that a fixed-step method
+    /// keeps its order; two switches in one step (the default robot's servos switch about a
+    /// millisecond apart) are located one after the other. A servo with limit 0 (never
+    /// switching) gives 1.
     ///
     /// # Errors
-    /// As [`Servo::torque`].
-    fn kink_argument(&self, _t: f64, q: &Vector2<f64>, qd: &Vector2<f64>) -> Result<f64> {
+    /// As [`Servo::torque`]; [`Error::OutOfRange`] when `out` has not two entries.
+    fn kink_arguments(
+        &self,
+        _t: f64,
+        q: &Vector2<f64>,
+        qd: &Vector2<f64>,
+        out: &mut [f64],
+    ) -> Result<()> {
+        kink_slots(out, 2)?;
         self.drive1.check()?;
         self.drive4.check()?;
         finite2(["phi1", "phi4"], *q)?;
         finite2(["phi1_dot", "phi4_dot"], *qd)?;
-        let m1 = self.drive1.margin(q[0], qd[0])?.unwrap_or(1.0);
-        let m4 = self.drive4.margin(q[1], qd[1])?.unwrap_or(1.0);
-        Ok(m1 * m4)
+        out[0] = self.drive1.margin(q[0], qd[0])?.unwrap_or(1.0);
+        out[1] = self.drive4.margin(q[1], qd[1])?.unwrap_or(1.0);
+        Ok(())
     }
 
     fn output_names(&self) -> Vec<&'static str> {

@@ -3,7 +3,7 @@
 use nalgebra::{Matrix2, Vector2};
 
 use super::{gear_inertia, GearLink, LinearMotor};
-use crate::dynamics::system::LagrangeSystem;
+use crate::dynamics::system::{kink_slots, LagrangeSystem};
 use crate::dynamics::table::{Beyond, Table};
 use crate::error::{computed, computed_all, finite, finite2, positive, Result};
 
@@ -287,14 +287,23 @@ impl LagrangeSystem for LandingGear {
         Ok(self.loads(q, qd)?.4)
     }
 
-    /// The nodes of the moment table [`load`](Self::load): M_on(φ_H) has a kink at each.
-    fn kinks(&self) -> Vec<f64> {
-        self.load.xs().to_vec()
+    /// One kink argument, φ_H (see [`kink_arguments`](Self::kink_arguments)), with the
+    /// nodes of the moment table [`load`](Self::load): M_on(φ_H) has a kink at each.
+    fn kinks(&self) -> Vec<Vec<f64>> {
+        vec![self.load.xs().to_vec()]
     }
 
-    /// The carrier angle φ_H, the argument of the moment table.
-    fn kink_argument(&self, _t: f64, q: &Vector2<f64>, _qd: &Vector2<f64>) -> Result<f64> {
-        self.phi_h(q)
+    /// The carrier angle φ_H, the argument of the moment table: `out` has one entry.
+    fn kink_arguments(
+        &self,
+        _t: f64,
+        q: &Vector2<f64>,
+        _qd: &Vector2<f64>,
+        out: &mut [f64],
+    ) -> Result<()> {
+        kink_slots(out, 1)?;
+        out[0] = self.phi_h(q)?;
+        Ok(())
     }
 
     fn output_names(&self) -> Vec<&'static str> {

@@ -5,7 +5,9 @@ use nalgebra::{Matrix2, Point2, Vector2};
 
 use super::drive::{Damper, DamperPlan, Motor};
 use crate::angle::perp;
-use crate::dynamics::{checked_inertia, christoffel_terms, LagrangeSystem, LagrangeTerms};
+use crate::dynamics::{
+    checked_inertia, christoffel_terms, kink_slots, LagrangeSystem, LagrangeTerms,
+};
 use crate::error::{computed_all, finite, finite2, Error, Result};
 use crate::kinematics::{LinkMotion, Motion, PointMotion};
 use crate::linkage::plan::LoadPlan;
@@ -634,29 +636,14 @@ impl LinkageSystem {
     }
 }
 
-/// Which motor's switches [`LinkageSystem`] reports as kinks.
-enum KinkSource {
-    None,
-    /// The product of the servos' margins.
-    Servos,
-    /// The table of the tabulated motor at this input.
-    Table(usize),
-}
-
 impl LinkageSystem {
-    fn kink_source(&self) -> KinkSource {
-        let motors = &self.motors[..self.dof()];
-        if motors.iter().any(|m| matches!(m, Motor::Servo(_))) {
-            return KinkSource::Servos;
-        }
-        let mut tables = motors
+    /// The inputs whose motors have switches, in input order: each servo (its clamp) and
+    /// each tabulated motor (its table's nodes). One kink argument each.
+    fn kinked_motors(&self) -> impl Iterator<Item = (usize, &Motor)> {
+        self.motors[..self.dof()]
             .iter()
             .enumerate()
-            .filter(|(_, m)| matches!(m, Motor::Tabulated(_)));
-        match (tables.next(), tables.next()) {
-            (Some((i, _)), None) => KinkSource::Table(i),
-            _ => KinkSource::None,
-        }
+            .filter(|(_, m)| matches!(m, Motor::Servo(_) | Motor::Tabulated(_)))
     }
 }
 
@@ -698,44 +685,47 @@ impl LagrangeSystem for LinkageSystem {
         Ok(self.evaluate(q, &Vector2::zeros(), false, None)?.damping)
     }
 
-    /// The switches of the motors' characteristics, which are kinks of Q: with a servo at
-    /// an input, the node 0 of the product of the servos' margins (each servo's clamp at
-    /// ±limit, as [`FiveBar`](crate::dynamics::machines::FiveBar)'s); otherwise, with one
-    /// tabulated motor, the nodes of its table in q̇. None for smooth motors. A tabulated
-    /// motor beside a servo has its nodes stepped across, not located.
-    fn kinks(&self) -> Vec<f64> {
-        match self.kink_source() {
-            KinkSource::Servos => vec![0.0],
-            KinkSource::Table(i) => match &self.motors[i] {
+    /// The switches of the motors' characteristics, which are kinks of Q: one argument for
+    /// each input driven by a servo (its margin, node 0: the clamp at ±limit, as
+    /// [`FiveBar`](crate::dynamics::machines::FiveBar)'s; no node for a servo with limit 0,
+    /// which never switches) or by a tabulated motor (its rate q̇, the nodes of its table), in
+    /// input order. None for smooth motors. Each is located on its own, so a tabulated motor
+    /// beside a servo, or two servos switching in one step, all have their switches stepped
+    /// onto.
+    fn kinks(&self) -> Vec<Vec<f64>> {
+        self.kinked_motors()
+            .map(|(_, m)| match m {
+                Motor::Servo(s) if s.limit != 0.0 => vec![0.0],
                 Motor::Tabulated(t) => t.xs().to_vec(),
                 _ => Vec::new(),
-            },
-            KinkSource::None => Vec::new(),
-        }
+            })
+            .collect()
     }
 
-    /// The argument whose crossing of a node of [`kinks`](Self::kinks) is a switch: the
-    /// product of the servos' margins 1 − |demand|/limit (each clamped to [−1, 1], positive
-    /// while the servo follows its demand), or the rate q̇ of the tabulated motor's input.
+    /// The arguments of [`kinks`](Self::kinks), one per servo or tabulated motor in input
+    /// order: a servo's margin 1 − |demand|/limit (clamped to [−1, 1], positive while the
+    /// servo follows its demand; 1 for limit 0), a tabulated motor's input rate q̇.
     ///
     /// # Errors
-    /// A non-finite state; a servo's error.
-    fn kink_argument(&self, _t: f64, q: &Vector2<f64>, qd: &Vector2<f64>) -> Result<f64> {
+    /// A non-finite state; a servo's error; [`Error::OutOfRange`] when `out` has not one
+    /// entry per argument.
+    fn kink_arguments(
+        &self,
+        _t: f64,
+        q: &Vector2<f64>,
+        qd: &Vector2<f64>,
+        out: &mut [f64],
+    ) -> Result<()> {
+        kink_slots(out, self.kinked_motors().count())?;
         finite2(["q1", "q2"], *q)?;
         finite2(["q1_dot", "q2_dot"], *qd)?;
-        match self.kink_source() {
-            KinkSource::Servos => {
-                let mut product = 1.0;
-                for i in 0..self.dof() {
-                    if let Motor::Servo(s) = &self.motors[i] {
-                        product *= s.margin(q[i], qd[i])?.unwrap_or(1.0);
-                    }
-                }
-                Ok(product)
-            }
-            KinkSource::Table(i) => Ok(qd[i]),
-            KinkSource::None => Ok(0.0),
+        for (o, (i, m)) in out.iter_mut().zip(self.kinked_motors()) {
+            *o = match m {
+                Motor::Servo(s) => s.margin(q[i], qd[i])?.unwrap_or(1.0),
+                _ => qd[i],
+            };
         }
+        Ok(())
     }
 
     fn output_names(&self) -> Vec<&'static str> {
