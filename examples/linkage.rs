@@ -181,9 +181,10 @@ mod pictures {
         )?;
         // The hodograph of the crank pin's reaction: the input link's joint off the frame.
         let input = plan.input_link();
-        if let Some(j) = (0..plan.joint_names().len())
-            .find(|&j| plan.joint_links(j).is_ok_and(|l| l.contains(&input) && !l.contains(&0)))
-        {
+        if let Some(j) = (0..plan.joint_names().len()).find(|&j| {
+            plan.joint_links(j)
+                .is_ok_and(|l| l.contains(&input) && !l.contains(&0))
+        }) {
             let joint = plan.joint_names()[j].clone();
             save(
                 "hodograph",

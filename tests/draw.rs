@@ -222,10 +222,15 @@ fn the_plan_draws_every_course_position_and_the_extremes_bold() {
             let mut dark = 0;
             for k in 1..l {
                 let js: Vec<usize> = (0..plan.joint_names().len())
-                    .filter(|&j| plan.joint_links(j).unwrap().contains(&k) && !plan.is_prismatic(j).unwrap())
+                    .filter(|&j| {
+                        plan.joint_links(j).unwrap().contains(&k) && !plan.is_prismatic(j).unwrap()
+                    })
                     .collect();
                 if js.len() == 2 {
-                    let mid = nalgebra::center(&a.joint_motion(js[0]).unwrap().p, &a.joint_motion(js[1]).unwrap().p);
+                    let mid = nalgebra::center(
+                        &a.joint_motion(js[0]).unwrap().p,
+                        &a.joint_motion(js[1]).unwrap().p,
+                    );
                     if ink(&p, pic.frame.to_pixel(mid)) > 150 {
                         dark += 1;
                     }

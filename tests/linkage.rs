@@ -89,10 +89,12 @@ fn lu_difference(plan: &Plan, a: &tmm::linkage::Analysis<'_>) -> f64 {
             a.guide_direction(
                 (0..nj)
                     .find(|&j| {
-                        plan.joint_links(j).contains(&input) && plan.joint_links(j).contains(&0)
+                        plan.joint_links(j).unwrap().contains(&input)
+                            && plan.joint_links(j).unwrap().contains(&0)
                     })
                     .unwrap(),
-            ).unwrap()
+            )
+            .unwrap()
         };
         m[(r, col)] = d.x;
         m[(r + 1, col)] = d.y;

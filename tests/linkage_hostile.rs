@@ -53,7 +53,11 @@ fn check_position(plan: &Plan, input: Motion, what: &str) {
     let Ok(a) = plan.analyse(input) else { return };
     let mut shown = format!("{:?}", a.balance());
     for j in 0..plan.joint_names().len() {
-        shown += &format!("{:?}{:?}", a.reaction_index(j).unwrap(), a.joint_motion(j).unwrap());
+        shown += &format!(
+            "{:?}{:?}",
+            a.reaction_index(j).unwrap(),
+            a.joint_motion(j).unwrap()
+        );
     }
     for k in 0..plan.point_names().len() {
         shown += &format!("{:?}", a.point_motion(k).unwrap());
@@ -661,7 +665,11 @@ fn index_accessors_check_their_indices() {
             let by_name = a.link(name).unwrap();
             assert_eq!(a.link_angle_index(k).unwrap(), by_name, "{what}");
             let m = a.link_motion(k).unwrap();
-            assert_eq!((m.omega, m.epsilon), (by_name.rate, by_name.accel), "{what}");
+            assert_eq!(
+                (m.omega, m.epsilon),
+                (by_name.rate, by_name.accel),
+                "{what}"
+            );
             let r = a.residual(k).unwrap();
             if k > 0 {
                 assert!(r < 1e-9, "{what}: residual {r:e}");
@@ -674,7 +682,11 @@ fn index_accessors_check_their_indices() {
             let what = format!("{}: joint {name}", l.name);
             let by_name = a.joint(name).unwrap();
             assert_eq!(a.joint_motion(j).unwrap(), by_name, "{what}");
-            assert_eq!(a.reaction_index(j).unwrap(), a.reaction(name).unwrap(), "{what}");
+            assert_eq!(
+                a.reaction_index(j).unwrap(),
+                a.reaction(name).unwrap(),
+                "{what}"
+            );
             let prismatic = plan.is_prismatic(j).unwrap();
             assert_eq!(prismatic, a.slide(name).is_ok(), "{what}");
             assert_eq!(plan.guide_link(j).unwrap().is_some(), prismatic, "{what}");
@@ -711,7 +723,10 @@ fn index_accessors_check_their_indices() {
                     Err(Error::Description { item, problem }) => {
                         assert_eq!(item, format!("joint {name}"), "{what}");
                         let link = &plan.link_names()[k];
-                        assert!(problem.contains(&format!("link {link}")), "{what}: {problem}");
+                        assert!(
+                            problem.contains(&format!("link {link}")),
+                            "{what}: {problem}"
+                        );
                     }
                     other => panic!("{what}: link {k}: {other:?}"),
                 }
@@ -747,13 +762,23 @@ fn index_accessors_check_their_indices() {
         }
         for g in 0..ng {
             let mu = a.transmission_angle(g).unwrap();
-            assert!((0.0..=std::f64::consts::FRAC_PI_2).contains(&mu), "{}: {mu}", l.name);
+            assert!(
+                (0.0..=std::f64::consts::FRAC_PI_2).contains(&mu),
+                "{}: {mu}",
+                l.name
+            );
         }
         // Out of range: an error naming the index, for every accessor.
         for i in [0, 1, usize::MAX] {
             let what = |f: &str, k: usize| format!("{}: {f}({k})", l.name);
             let k = nl.saturating_add(i);
-            assert_index_error(a.link_motion(k), "link index", k, nl, &what("link_motion", k));
+            assert_index_error(
+                a.link_motion(k),
+                "link index",
+                k,
+                nl,
+                &what("link_motion", k),
+            );
             let w = what("link_angle_index", k);
             assert_index_error(a.link_angle_index(k), "link index", k, nl, &w);
             assert_index_error(a.residual(k), "link index", k, nl, &what("residual", k));
@@ -771,8 +796,20 @@ fn index_accessors_check_their_indices() {
             joint_index(plan.joint_links(k).map(|_| ()), "joint_links");
             joint_index(plan.guide_link(k).map(|_| ()), "guide_link");
             let k = np.saturating_add(i);
-            assert_index_error(a.point_motion(k), "point index", k, np, &what("point_motion", k));
-            assert_index_error(plan.point_local(k), "point index", k, np, &what("point_local", k));
+            assert_index_error(
+                a.point_motion(k),
+                "point index",
+                k,
+                np,
+                &what("point_motion", k),
+            );
+            assert_index_error(
+                plan.point_local(k),
+                "point index",
+                k,
+                np,
+                &what("point_local", k),
+            );
             let k = ng.saturating_add(i);
             let w = what("transmission_angle", k);
             assert_index_error(a.transmission_angle(k), "group index", k, ng, &w);
@@ -780,5 +817,8 @@ fn index_accessors_check_their_indices() {
             assert_index_error(plan.min_transmission_angle(k), "group index", k, ng, &w);
         }
     }
-    assert!(without_points > 0, "no linkage without named points was tried");
+    assert!(
+        without_points > 0,
+        "no linkage without named points was tried"
+    );
 }
