@@ -205,7 +205,7 @@ pub struct Plan {
 /// Checks index `i` (called `name`, for example `"joint index"`) against a collection of `len`
 /// `things`: `Ok(i)` below `len`, else [`Error::OutOfRange`] over `[0, len − 1]`, or
 /// [`Error::Description`] when there are no `things` at all (no interval to name).
-pub(crate) fn index_in(name: &'static str, things: &str, i: usize, len: usize) -> Result<usize> {
+fn index_in(name: &'static str, things: &str, i: usize, len: usize) -> Result<usize> {
     if i < len {
         Ok(i)
     } else if len == 0 {
