@@ -149,7 +149,7 @@ mod pictures {
             .joint_names()
             .iter()
             .enumerate()
-            .filter(|&(j, _)| !plan.joint_links(j).contains(&0))
+            .filter(|&(j, _)| plan.joint_links(j).is_ok_and(|l| !l.contains(&0)))
             .map(|(_, n)| n.as_str())
             .chain(plan.point_names().iter().map(String::as_str))
             .collect();
@@ -181,9 +181,10 @@ mod pictures {
         )?;
         // The hodograph of the crank pin's reaction: the input link's joint off the frame.
         let input = plan.input_link();
-        if let Some(j) = (0..plan.joint_names().len())
-            .find(|&j| plan.joint_links(j).contains(&input) && !plan.joint_links(j).contains(&0))
-        {
+        if let Some(j) = (0..plan.joint_names().len()).find(|&j| {
+            plan.joint_links(j)
+                .is_ok_and(|l| l.contains(&input) && !l.contains(&0))
+        }) {
             let joint = plan.joint_names()[j].clone();
             save(
                 "hodograph",

@@ -109,15 +109,15 @@ fn csv(dir: &Path, name: &str, table: &Table) -> Res<PathBuf> {
 }
 
 /// The label of the reaction in joint `j`: R(by,on)@joint.
-fn reaction_label(plan: &Plan, a: &Analysis<'_>, j: usize) -> String {
-    let r = a.reaction_index(j);
+fn reaction_label(plan: &Plan, a: &Analysis<'_>, j: usize) -> tmm::Result<String> {
+    let r = a.reaction_index(j)?;
     let links = plan.link_names();
-    format!(
+    Ok(format!(
         "R({},{})@{}",
         links[r.by],
         links[r.on],
         plan.joint_names()[j]
-    )
+    ))
 }
 
 /// Prints the magnitude of the reaction in every joint at each plan, with M_b by the chain
@@ -128,7 +128,7 @@ fn print_reactions(plan: &Plan, plans: &[tmm::Result<Analysis<'_>>]) -> Res<()> 
     println!("reactions |R(by,on)@joint|, N:");
     print!("{:>3}", "pos");
     for j in 0..joints {
-        print!(" {:>22}", reaction_label(plan, first, j));
+        print!(" {:>22}", reaction_label(plan, first, j)?);
     }
     println!(" {:>9} {:>9} {:>8}", "Mb N·m", "Mb(VP)", "rel.err");
     for (k, p) in plans.iter().enumerate() {
@@ -136,7 +136,7 @@ fn print_reactions(plan: &Plan, plans: &[tmm::Result<Analysis<'_>>]) -> Res<()> 
         let c = p.power_check()?;
         print!("{k:>3}");
         for j in 0..joints {
-            print!(" {:>22.1}", p.reaction_index(j).force.norm());
+            print!(" {:>22.1}", p.reaction_index(j)?.force.norm());
         }
         println!(
             " {:>9.3} {:>9.3} {:>8.1e}",

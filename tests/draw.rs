@@ -74,10 +74,10 @@ fn assert_hinges(plan: &Plan, input: Motion, pic: &Picture, p: &Pixmap, style: &
     let a = plan.kinematics(input).unwrap();
     let mut checked = 0;
     for (j, name) in plan.joint_names().iter().enumerate() {
-        if plan.is_prismatic(j) {
+        if plan.is_prismatic(j).unwrap() {
             continue;
         }
-        let c = pic.frame.to_pixel(a.joint_motion(j).p);
+        let c = pic.frame.to_pixel(a.joint_motion(j).unwrap().p);
         assert!(
             ink(p, c) > 120,
             "{what}: centre of hinge {name} at {c:?} is not drawn"
@@ -167,7 +167,7 @@ fn a_ternary_link_is_a_filled_polygon_and_a_slider_a_block() {
     let a = plan.kinematics(input).unwrap();
     // The ram's block: drawn around Q, white inside its outline, dark along it.
     let q = pic.frame.to_pixel(a.joint("Q").unwrap().p);
-    let d = a.guide_direction(plan.joint_index("Q").unwrap());
+    let d = a.guide_direction(plan.joint_index("Q").unwrap()).unwrap();
     let half = 0.06 * plan.size() * pic.frame.scale;
     let edge = [q[0] + d.x * half, q[1] - d.y * half];
     let dark = (-2..=2).any(|i| ink(&p, [edge[0] + f64::from(i), edge[1]]) > 60);
@@ -197,14 +197,14 @@ fn the_plan_draws_every_course_position_and_the_extremes_bold() {
             .flat_map(|&m| {
                 let a = plan.kinematics(m).unwrap();
                 (0..plan.joint_names().len())
-                    .map(|j| pic.frame.to_pixel(a.joint_motion(j).p))
+                    .map(|j| pic.frame.to_pixel(a.joint_motion(j).unwrap().p))
                     .collect::<Vec<_>>()
             })
             .collect();
         for (k, &m) in course.inputs.iter().enumerate() {
             let a = plan.kinematics(m).unwrap();
             for (j, name) in plan.joint_names().iter().enumerate() {
-                let c = pic.frame.to_pixel(a.joint_motion(j).p);
+                let c = pic.frame.to_pixel(a.joint_motion(j).unwrap().p);
                 let r = style.hinge_radius + 1.0;
                 if hidden.iter().any(|h| (h[0] - c[0]).hypot(h[1] - c[1]) < r) {
                     continue;
@@ -222,10 +222,15 @@ fn the_plan_draws_every_course_position_and_the_extremes_bold() {
             let mut dark = 0;
             for k in 1..l {
                 let js: Vec<usize> = (0..plan.joint_names().len())
-                    .filter(|&j| plan.joint_links(j).contains(&k) && !plan.is_prismatic(j))
+                    .filter(|&j| {
+                        plan.joint_links(j).unwrap().contains(&k) && !plan.is_prismatic(j).unwrap()
+                    })
                     .collect();
                 if js.len() == 2 {
-                    let mid = nalgebra::center(&a.joint_motion(js[0]).p, &a.joint_motion(js[1]).p);
+                    let mid = nalgebra::center(
+                        &a.joint_motion(js[0]).unwrap().p,
+                        &a.joint_motion(js[1]).unwrap().p,
+                    );
                     if ink(&p, pic.frame.to_pixel(mid)) > 150 {
                         dark += 1;
                     }
@@ -360,14 +365,14 @@ fn assert_frames(plan: &Plan, inputs: &[Motion], pic: &Picture) {
         }
     }
     let hinges: Vec<usize> = (0..plan.joint_names().len())
-        .filter(|&j| !plan.is_prismatic(j))
+        .filter(|&j| !plan.is_prismatic(j).unwrap())
         .collect();
     assert_eq!(circles.len(), hinges.len(), "one circle per hinge");
     for (k, &m) in inputs.iter().enumerate() {
         let a = plan.kinematics(m).unwrap();
         let want: Vec<[f64; 2]> = hinges
             .iter()
-            .map(|&j| pic.frame.to_pixel(a.joint_motion(j).p))
+            .map(|&j| pic.frame.to_pixel(a.joint_motion(j).unwrap().p))
             .collect();
         for (t, r, c) in &circles {
             let (s, co) = r[k].to_radians().sin_cos();
@@ -426,7 +431,7 @@ fn forces_are_arrows_to_scale_from_their_points() {
         let mut longest: f64 = 0.0;
         let mut drawn = Vec::new();
         for j in 0..plan.joint_names().len() {
-            let r = a.reaction_index(j);
+            let r = a.reaction_index(j).unwrap();
             let len = r.force.norm() / scale;
             longest = longest.max(len);
             if len < 20.0 {

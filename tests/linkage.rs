@@ -38,7 +38,7 @@ fn lu_difference(plan: &Plan, a: &tmm::linkage::Analysis<'_>) -> f64 {
     let mut m = DMatrix::<f64>::zeros(n_eq, n_eq);
     let mut rhs = DVector::<f64>::zeros(n_eq);
     let row = |k: usize| 3 * (k - 1);
-    let pole = |k: usize| a.link_motion(k).origin.p;
+    let pole = |k: usize| a.link_motion(k).unwrap().origin.p;
     // Applied loads go to the right-hand side.
     for &(k, l) in a.applied_loads() {
         let r = row(k);
@@ -49,8 +49,8 @@ fn lu_difference(plan: &Plan, a: &tmm::linkage::Analysis<'_>) -> f64 {
     let mut col = 0;
     let mut cols = Vec::new();
     for j in 0..nj {
-        let [p, q] = plan.joint_links(j);
-        let at = a.joint_on(j, 1).p;
+        let [p, q] = plan.joint_links(j).unwrap();
+        let at = a.joint_on(j, 1).unwrap().p;
         // A unit unknown: force f and couple c on q (and −f, −c on p).
         let mut put = |col: usize, f: Vector2<f64>, c: f64| {
             for (k, s) in [(q, 1.0), (p, -1.0)] {
@@ -63,8 +63,8 @@ fn lu_difference(plan: &Plan, a: &tmm::linkage::Analysis<'_>) -> f64 {
                 m[(r + 2, col)] += s * (c + cross(at - pole(k), f));
             }
         };
-        if plan.is_prismatic(j) {
-            let d = a.guide_direction(j);
+        if plan.is_prismatic(j).unwrap() {
+            let d = a.guide_direction(j).unwrap();
             put(col, Vector2::new(-d.y, d.x), 0.0);
             put(col + 1, Vector2::zeros(), 1.0);
         } else {
@@ -89,10 +89,12 @@ fn lu_difference(plan: &Plan, a: &tmm::linkage::Analysis<'_>) -> f64 {
             a.guide_direction(
                 (0..nj)
                     .find(|&j| {
-                        plan.joint_links(j).contains(&input) && plan.joint_links(j).contains(&0)
+                        plan.joint_links(j).unwrap().contains(&input)
+                            && plan.joint_links(j).unwrap().contains(&0)
                     })
                     .unwrap(),
             )
+            .unwrap()
         };
         m[(r, col)] = d.x;
         m[(r + 1, col)] = d.y;
@@ -104,12 +106,12 @@ fn lu_difference(plan: &Plan, a: &tmm::linkage::Analysis<'_>) -> f64 {
     let mut scale: f64 = 0.0;
     let mut worst: f64 = 0.0;
     for j in 0..nj {
-        let [_, q] = plan.joint_links(j);
-        let re = a.reaction_index(j);
+        let [_, q] = plan.joint_links(j).unwrap();
+        let re = a.reaction_index(j).unwrap();
         let load = re.load_on(q);
-        let at = a.joint_on(j, 1).p;
-        let (f, c) = if plan.is_prismatic(j) {
-            let d = a.guide_direction(j);
+        let at = a.joint_on(j, 1).unwrap().p;
+        let (f, c) = if plan.is_prismatic(j).unwrap() {
+            let d = a.guide_direction(j).unwrap();
             (x[cols[j]] * Vector2::new(-d.y, d.x), x[cols[j] + 1])
         } else {
             (Vector2::new(x[cols[j]], x[cols[j] + 1]), 0.0)
@@ -188,9 +190,9 @@ fn velocities_and_accelerations_match_finite_differences_of_positions() {
             let pos = |x: f64| plan.kinematics(Motion::fixed(x)).unwrap();
             for j in 0..plan.joint_names().len() {
                 for (c, get) in [(0, 0usize), (1, 1)] {
-                    let f = |x: f64| pos(x).joint_motion(j).p[get];
+                    let f = |x: f64| pos(x).joint_motion(j).unwrap().p[get];
                     let (d1, d2) = fd8(&f, phi, h);
-                    let m = a.joint_motion(j);
+                    let m = a.joint_motion(j).unwrap();
                     let (v, acc) = (m.v[c], m.a[c]);
                     let scale = plan.size() * (w * w + e.abs());
                     worst = worst.max((v - d1 * w).abs() / scale);
@@ -199,22 +201,22 @@ fn velocities_and_accelerations_match_finite_differences_of_positions() {
             }
             // The slide of every sliding pair, also on a turning guide (the shaper's lever), where
             // its acceleration carries the s·ω² term of the guide's rotation.
-            for j in (0..plan.joint_names().len()).filter(|&j| plan.is_prismatic(j)) {
-                let f = |x: f64| pos(x).slide_index(j).value;
+            for j in (0..plan.joint_names().len()).filter(|&j| plan.is_prismatic(j).unwrap()) {
+                let f = |x: f64| pos(x).slide_index(j).unwrap().value;
                 let (d1, d2) = fd8(&f, phi, h);
-                let m = a.slide_index(j);
+                let m = a.slide_index(j).unwrap();
                 let scale = plan.size() * (w * w + e.abs());
                 worst = worst.max((m.rate - d1 * w).abs() / scale);
                 worst = worst.max((m.accel - (d2 * w * w + d1 * e)).abs() / scale);
             }
             for li in 1..plan.link_names().len() {
-                let base = a.link_angle_index(li).value;
+                let base = a.link_angle_index(li).unwrap().value;
                 let f = |x: f64| {
-                    let v = pos(x).link_angle_index(li).value - base;
+                    let v = pos(x).link_angle_index(li).unwrap().value - base;
                     v - TAU * (v / TAU).round()
                 };
                 let (d1, d2) = fd8(&f, phi, h);
-                let m = a.link_angle_index(li);
+                let m = a.link_angle_index(li).unwrap();
                 worst = worst.max((m.rate - d1 * w).abs() / (w * w + e.abs()));
                 worst = worst.max((m.accel - (d2 * w * w + d1 * e)).abs() / (w * w + e.abs()));
             }

@@ -737,7 +737,7 @@ fn record_rates_difference(a: &tmm::linkage::Analysis<'_>) -> tmm::Result<()> {
     let n = plan.link_names().len();
     let (mut v_scale, mut a_scale, mut w_scale, mut e_scale) = (0.0f64, 0.0f64, 0.0f64, 0.0f64);
     for k in 0..n {
-        let m = full.link_motion(k);
+        let m = full.link_motion(k)?;
         v_scale = v_scale.max(m.origin.v.norm());
         a_scale = a_scale.max(m.origin.a.norm());
         w_scale = w_scale.max(m.omega.abs());
@@ -745,7 +745,7 @@ fn record_rates_difference(a: &tmm::linkage::Analysis<'_>) -> tmm::Result<()> {
     }
     let mut worst = 0.0f64;
     for k in 0..n {
-        let (x, y) = (a.link_motion(k), full.link_motion(k));
+        let (x, y) = (a.link_motion(k)?, full.link_motion(k)?);
         // The positions are the same solve's: bitwise.
         assert_eq!((x.origin.p, x.angle), (y.origin.p, y.angle), "link {k}");
         worst = worst

@@ -4,7 +4,11 @@
 //! panic, never an `Ok` holding a NaN or an infinity.
 //!
 //! Entry points: `Plan::new`, `Linkage::from_json`, `Plan::analyse`, `Plan::kinematics`,
-//! `Analysis::power_check`, `worst_residual`, every reaction, joint and point accessor,
+//! `Analysis::power_check`, `worst_residual`, every reaction, joint and point accessor (by
+//! name, and by index with indices out of range: `link_motion`, `link_angle_index`,
+//! `joint_on`, `joint_index_on`, `joint_motion`, `point_motion`, `guide_direction`,
+//! `slide_index`, `reaction_index`, `free_body`, `residual`; `Plan::point_local`,
+//! `is_prismatic`, `joint_links`, `guide_link`),
 //! `Plan::output`, `Plan::transfer`, `Plan::extremes`, `Plan::strokes`,
 //! `Plan::lock_positions`, `uniform_inputs`, `Table::to_text`, `Analysis::transmission_angle`,
 //! `Plan::min_transmission_angle`, `kinematics::grashof`; `linkage::dynamics::LinkageSystem`
@@ -21,6 +25,7 @@ use tmm::linkage::{
     bundled, uniform_inputs, At, JointKind, Linkage, LoadSpec, Output, Plan, Table,
 };
 use tmm::mechanism::{Compressor, FourBar, RockingCylinder, SixBar, SliderCrank};
+use tmm::{Ends, Error};
 
 #[path = "common/hostile_gen.rs"]
 mod hostile_gen;
@@ -48,13 +53,17 @@ fn check_position(plan: &Plan, input: Motion, what: &str) {
     let Ok(a) = plan.analyse(input) else { return };
     let mut shown = format!("{:?}", a.balance());
     for j in 0..plan.joint_names().len() {
-        shown += &format!("{:?}{:?}", a.reaction_index(j), a.joint_motion(j));
+        shown += &format!(
+            "{:?}{:?}",
+            a.reaction_index(j).unwrap(),
+            a.joint_motion(j).unwrap()
+        );
     }
     for k in 0..plan.point_names().len() {
-        shown += &format!("{:?}", a.point_motion(k));
+        shown += &format!("{:?}", a.point_motion(k).unwrap());
     }
     for k in 0..plan.link_names().len() {
-        shown += &format!("{:?}", a.link_angle_index(k));
+        shown += &format!("{:?}", a.link_angle_index(k).unwrap());
     }
     shown += &format!("{:?}{:?}", a.conditioning(), a.applied_loads());
     assert!(!has_non_finite(&shown), "{what}: {input:?} gave {shown}");
@@ -573,5 +582,243 @@ fn hostile_ready_mechanisms() {
             let _ = m.linkage();
             mechanism_checks(m.plan(), |r| m.strokes(r), what, g);
         },
+    );
+}
+
+/// Asserts that `r` is the error of an index out of range: [`Error::OutOfRange`] called `name`
+/// over `[0, len − 1]` holding `value`, or, for an empty collection (`len` 0), an
+/// [`Error::Description`] naming the index and saying there are none.
+#[track_caller]
+fn assert_index_error<T: std::fmt::Debug>(
+    r: tmm::Result<T>,
+    name: &str,
+    value: usize,
+    len: usize,
+    what: &str,
+) {
+    match r {
+        Err(Error::OutOfRange {
+            name: n,
+            value: v,
+            min,
+            max,
+            ends: Ends::Closed,
+        }) if len > 0 => {
+            assert_eq!(n, name, "{what}");
+            assert_eq!(v, value as f64, "{what}");
+            assert_eq!((min, max), (0.0, (len - 1) as f64), "{what}");
+            let shown = r_display(n, v, min, max);
+            assert!(shown.starts_with(name), "{what}: {shown}");
+        }
+        Err(Error::Description { item, problem }) if len == 0 => {
+            assert_eq!(item, format!("{name} {value}"), "{what}");
+            assert!(problem.contains("has no "), "{what}: {problem}");
+        }
+        other => panic!("{what}: expected an error for {name} {value} of {len}, got {other:?}"),
+    }
+}
+
+/// The message of an index out of range, as the caller sees it.
+fn r_display(name: &'static str, value: f64, min: f64, max: f64) -> String {
+    Error::OutOfRange {
+        name,
+        value,
+        min,
+        max,
+        ends: Ends::Closed,
+    }
+    .to_string()
+}
+
+/// Every accessor by index of `Analysis` and `Plan`: each index in range gives `Ok` with what
+/// the accessor by name (or the description) gives, and the indices len, len + 1 and
+/// `usize::MAX` give an error naming the index and its range, never a panic.
+#[test]
+fn index_accessors_check_their_indices() {
+    let mut without_points = 0;
+    for l in linkages() {
+        let plan = Plan::new(&l).unwrap();
+        let motions: Vec<Motion> = plan
+            .reference_inputs()
+            .iter()
+            .map(|&q| Motion::new(q, 1.5, -0.5))
+            .collect();
+        let a = plan.analyse_inputs(&motions).unwrap();
+        let (nl, nj, np, ng) = (
+            plan.link_names().len(),
+            plan.joint_names().len(),
+            plan.point_names().len(),
+            plan.groups().len(),
+        );
+        if np == 0 {
+            without_points += 1;
+        }
+        let desc_link = |k: usize| {
+            l.links
+                .iter()
+                .find(|d| d.name == plan.link_names()[k])
+                .unwrap_or_else(|| panic!("{}: link {k} not described", l.name))
+        };
+        // In range: the same as by name.
+        for (k, name) in plan.link_names().iter().enumerate() {
+            let what = format!("{}: link {name}", l.name);
+            let by_name = a.link(name).unwrap();
+            assert_eq!(a.link_angle_index(k).unwrap(), by_name, "{what}");
+            let m = a.link_motion(k).unwrap();
+            assert_eq!(
+                (m.omega, m.epsilon),
+                (by_name.rate, by_name.accel),
+                "{what}"
+            );
+            let r = a.residual(k).unwrap();
+            if k > 0 {
+                assert!(r < 1e-9, "{what}: residual {r:e}");
+            }
+            let body = a.free_body(k).unwrap();
+            let joints = desc_link(k).joints.len();
+            assert!(body.len() >= joints, "{what}: {} loads", body.len());
+        }
+        for (j, name) in plan.joint_names().iter().enumerate() {
+            let what = format!("{}: joint {name}", l.name);
+            let by_name = a.joint(name).unwrap();
+            assert_eq!(a.joint_motion(j).unwrap(), by_name, "{what}");
+            assert_eq!(
+                a.reaction_index(j).unwrap(),
+                a.reaction(name).unwrap(),
+                "{what}"
+            );
+            let prismatic = plan.is_prismatic(j).unwrap();
+            assert_eq!(prismatic, a.slide(name).is_ok(), "{what}");
+            assert_eq!(plan.guide_link(j).unwrap().is_some(), prismatic, "{what}");
+            let d = a.guide_direction(j).unwrap();
+            let s = a.slide_index(j).unwrap();
+            if prismatic {
+                assert!((d.norm() - 1.0).abs() < 1e-12, "{what}: {d:?}");
+                assert_eq!(s, a.slide(name).unwrap(), "{what}");
+            } else {
+                assert_eq!(d.norm(), 0.0, "{what}");
+                assert_eq!(s, Motion::default(), "{what}");
+            }
+            let links = plan.joint_links(j).unwrap();
+            for (side, &k) in links.iter().enumerate() {
+                assert!(
+                    desc_link(k).joints.contains(name),
+                    "{what}: side {side} is link {}, which does not list it",
+                    plan.link_names()[k]
+                );
+                let on = a.joint_on(j, side).unwrap();
+                assert_eq!(a.joint_index_on(j, k).unwrap(), on, "{what}");
+                // The joint's motion is its point on the sliding link (on the first link of a
+                // hinge), to the bit; a hinge's two points coincide.
+                let guide = plan.guide_link(j).unwrap();
+                if guide.map_or(side == 0, |g| g != k) {
+                    assert_eq!(on, by_name, "{what}: side {side}");
+                }
+                let gap = (on.p - by_name.p).norm();
+                assert!(prismatic || gap <= 1e-9 * plan.size(), "{what}: {gap:e}");
+            }
+            // A link in range that the joint does not join: named by both names.
+            for k in (0..nl).filter(|k| !links.contains(k)) {
+                match a.joint_index_on(j, k) {
+                    Err(Error::Description { item, problem }) => {
+                        assert_eq!(item, format!("joint {name}"), "{what}");
+                        let link = &plan.link_names()[k];
+                        assert!(
+                            problem.contains(&format!("link {link}")),
+                            "{what}: {problem}"
+                        );
+                    }
+                    other => panic!("{what}: link {k}: {other:?}"),
+                }
+            }
+            for side in [2, 3, usize::MAX] {
+                match a.joint_on(j, side) {
+                    Err(Error::OutOfRange {
+                        name: "side",
+                        value,
+                        min: 0.0,
+                        max: 1.0,
+                        ends: Ends::Closed,
+                    }) => assert_eq!(value, side as f64, "{what}"),
+                    other => panic!("{what}: side {side}: {other:?}"),
+                }
+            }
+            for k in [nl, nl + 1, usize::MAX] {
+                assert_index_error(a.joint_index_on(j, k), "link index", k, nl, &what);
+            }
+        }
+        for (k, name) in plan.point_names().iter().enumerate() {
+            let what = format!("{}: point {name}", l.name);
+            assert_eq!(a.point_motion(k).unwrap(), a.point(name).unwrap(), "{what}");
+            let (link, local) = plan.point_local(k).unwrap();
+            assert!(
+                desc_link(link).points.iter().any(|p| &p.name == name),
+                "{what}: on link {}",
+                plan.link_names()[link]
+            );
+            let p = a.link_motion(link).unwrap().point_at(local.x, local.y).p;
+            let gap = (p - a.point(name).unwrap().p).norm();
+            assert!(gap <= 1e-9 * plan.size(), "{what}: {gap:e}");
+        }
+        for g in 0..ng {
+            let mu = a.transmission_angle(g).unwrap();
+            assert!(
+                (0.0..=std::f64::consts::FRAC_PI_2).contains(&mu),
+                "{}: {mu}",
+                l.name
+            );
+        }
+        // Out of range: an error naming the index, for every accessor.
+        for i in [0, 1, usize::MAX] {
+            let what = |f: &str, k: usize| format!("{}: {f}({k})", l.name);
+            let k = nl.saturating_add(i);
+            assert_index_error(
+                a.link_motion(k),
+                "link index",
+                k,
+                nl,
+                &what("link_motion", k),
+            );
+            let w = what("link_angle_index", k);
+            assert_index_error(a.link_angle_index(k), "link index", k, nl, &w);
+            assert_index_error(a.residual(k), "link index", k, nl, &what("residual", k));
+            assert_index_error(a.free_body(k), "link index", k, nl, &what("free_body", k));
+            let k = nj.saturating_add(i);
+            let joint_index = |r, f: &str| assert_index_error(r, "joint index", k, nj, &what(f, k));
+            joint_index(a.joint_motion(k).map(|_| ()), "joint_motion");
+            joint_index(a.joint_on(k, 0).map(|_| ()), "joint_on");
+            joint_index(a.joint_on(k, 1).map(|_| ()), "joint_on");
+            joint_index(a.joint_index_on(k, 0).map(|_| ()), "joint_index_on");
+            joint_index(a.guide_direction(k).map(|_| ()), "guide_direction");
+            joint_index(a.slide_index(k).map(|_| ()), "slide_index");
+            joint_index(a.reaction_index(k).map(|_| ()), "reaction_index");
+            joint_index(plan.is_prismatic(k).map(|_| ()), "is_prismatic");
+            joint_index(plan.joint_links(k).map(|_| ()), "joint_links");
+            joint_index(plan.guide_link(k).map(|_| ()), "guide_link");
+            let k = np.saturating_add(i);
+            assert_index_error(
+                a.point_motion(k),
+                "point index",
+                k,
+                np,
+                &what("point_motion", k),
+            );
+            assert_index_error(
+                plan.point_local(k),
+                "point index",
+                k,
+                np,
+                &what("point_local", k),
+            );
+            let k = ng.saturating_add(i);
+            let w = what("transmission_angle", k);
+            assert_index_error(a.transmission_angle(k), "group index", k, ng, &w);
+            let w = what("min_transmission_angle", k);
+            assert_index_error(plan.min_transmission_angle(k), "group index", k, ng, &w);
+        }
+    }
+    assert!(
+        without_points > 0,
+        "no linkage without named points was tried"
     );
 }

@@ -36,7 +36,7 @@ fn check_cycle(name: &str, positions: &[Result<Analysis<'_>>]) -> (f64, f64) {
         );
         // The drive's power, F_b·v_P for a gear, is M_b·ω1.
         let plan = p.plan();
-        let crank = p.link_motion(plan.input_link());
+        let crank = p.link_motion(plan.input_link()).unwrap();
         let b = p.balance();
         let w1 = p.input().rate;
         let power = if b.force.norm() > 0.0 {
@@ -46,7 +46,7 @@ fn check_cycle(name: &str, positions: &[Result<Analysis<'_>>]) -> (f64, f64) {
         };
         assert!((power - check.chain * w1).abs() <= 1e-12 * check.scale * w1.abs());
         for k in 1..plan.link_names().len() {
-            let r = p.residual(k);
+            let r = p.residual(k).unwrap();
             assert!(
                 r <= 1e-12,
                 "{name}: position {k}: {} off equilibrium by {r:e}",

@@ -24,7 +24,7 @@ fn side_by_side(c: &mut Criterion) {
         b.iter(|| {
             for &m in black_box(&inputs) {
                 a.solve_kinematics(m).unwrap();
-                black_box(a.joint_motion(0));
+                black_box(a.joint_motion(0).unwrap());
             }
         })
     });

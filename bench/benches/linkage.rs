@@ -151,7 +151,7 @@ struct Whole<const L: usize, const J: usize> {
 impl<const L: usize, const J: usize> Whole<L, J> {
     /// The same quantities read from the engine after a solve.
     fn of(a: &Analysis<'_>) -> Self {
-        let link = |k: usize| *a.link_motion(k + 1);
+        let link = |k: usize| *a.link_motion(k + 1).unwrap();
         Self {
             angle: std::array::from_fn(|k| link(k).angle),
             omega: std::array::from_fn(|k| link(k).omega),
@@ -159,7 +159,7 @@ impl<const L: usize, const J: usize> Whole<L, J> {
             // The force of the lower-numbered link on the higher-numbered one, whichever way
             // the engine records it.
             reaction: std::array::from_fn(|j| {
-                let r = a.reaction_index(j);
+                let r = a.reaction_index(j).unwrap();
                 if r.by < r.on {
                     r.force
                 } else {
@@ -628,7 +628,7 @@ fn six_bar(c: &mut Criterion) {
             ins.iter()
                 .map(|&i| {
                     a.solve_kinematics(black_box(i)).unwrap();
-                    a.link_motion(5).omega
+                    a.link_motion(5).unwrap().omega
                 })
                 .sum::<f64>()
         })

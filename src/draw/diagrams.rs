@@ -380,7 +380,7 @@ fn check_output(plan: &Plan, o: &Output) -> Result<()> {
     match o {
         Output::Angle(n) => plan.link_index(n).map(|_| ()),
         Output::Slide(n) => {
-            if plan.is_prismatic(plan.joint_index(n)?) {
+            if plan.is_prismatic_at(plan.joint_index(n)?) {
                 Ok(())
             } else {
                 Err(Error::Description {
@@ -521,7 +521,7 @@ fn specs_values(
         Diagram::Reactions => {
             plan.analyse_into(m, a)?;
             let n = plan.joint_names().len();
-            vec![(0..n).map(|j| a.reaction_index(j).force.norm()).collect()]
+            vec![(0..n).map(|j| a.reaction_at(j).force.norm()).collect()]
         }
         Diagram::Hodograph(j) => {
             plan.analyse_into(m, a)?;

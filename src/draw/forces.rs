@@ -41,7 +41,7 @@ pub fn forces(plan: &Plan, input: Motion, style: &Style) -> Result<Picture> {
     let mut ext = Extents::new(&topo);
     ext.add(&topo, &pose);
     let nj = topo.joint_links.len();
-    let reactions: Vec<_> = (0..nj).map(|j| a.reaction_index(j)).collect();
+    let reactions: Vec<_> = (0..nj).map(|j| a.reaction_at(j)).collect();
     let balance = a.balance();
     let fmax = reactions
         .iter()

@@ -81,7 +81,7 @@ impl Topo {
     pub(crate) fn new(plan: &Plan) -> Self {
         let nj = plan.joint_names().len();
         let nl = plan.link_names().len();
-        let joint_links: Vec<[usize; 2]> = (0..nj).map(|j| plan.joint_links(j)).collect();
+        let joint_links: Vec<[usize; 2]> = (0..nj).map(|j| plan.joint_links_at(j)).collect();
         let mut link_joints = vec![Vec::new(); nl];
         for (j, l) in joint_links.iter().enumerate() {
             for &k in l {
@@ -89,13 +89,13 @@ impl Topo {
             }
         }
         Self {
-            guide: (0..nj).map(|j| plan.guide_link(j)).collect(),
+            guide: (0..nj).map(|j| plan.guide_link_at(j)).collect(),
             joint_links,
             link_joints,
             joint_names: plan.joint_names().to_vec(),
             point_names: plan.point_names().to_vec(),
             point_link: (0..plan.point_names().len())
-                .map(|i| plan.point_local(i).0)
+                .map(|i| plan.point_local_at(i).0)
                 .collect(),
             input: plan.input_link(),
             crank: plan.input_is_crank(),
@@ -168,17 +168,17 @@ impl Pose {
         let nj = plan.joint_names().len();
         let pose = Self {
             joints: (0..nj)
-                .map(|j| [a.joint_on(j, 0).p, a.joint_on(j, 1).p])
+                .map(|j| [a.joint_on_at(j, 0).p, a.joint_on_at(j, 1).p])
                 .collect(),
-            guides: (0..nj).map(|j| a.guide_direction(j)).collect(),
+            guides: (0..nj).map(|j| a.guide_direction_at(j)).collect(),
             links: (0..plan.link_names().len())
                 .map(|k| {
-                    let m = a.link_motion(k);
+                    let m = a.link_motion_at(k);
                     (m.origin.p, m.angle)
                 })
                 .collect(),
             points: (0..plan.point_names().len())
-                .map(|i| a.point_motion(i).p)
+                .map(|i| a.point_motion_at(i).p)
                 .collect(),
             input: a.input(),
         };

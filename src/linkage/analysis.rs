@@ -264,7 +264,7 @@ impl<'p> Analysis<'p> {
     }
 
     /// The position alone of joint `j` as a point of link `link` (one of its two links): what
-    /// [`joint_index_on`](Self::joint_index_on) gives as `p`, to the bit, without the
+    /// [`joint_on_link`](Self::joint_on_link) gives as `p`, to the bit, without the
     /// velocity and acceleration the reactions do not need.
     #[inline]
     fn joint_position_on(&self, j: usize, link: usize) -> Point2<f64> {
@@ -390,7 +390,7 @@ impl<'p> Analysis<'p> {
         // A named point may lie farther out on its link than any joint (beyond the bound
         // above): its motion is computed on demand, so it is checked here, once.
         for k in 0..plan.points.len() {
-            let m = self.point_motion(k);
+            let m = self.point_motion_at(k);
             if !(m.p.coords.iter().chain(m.v.iter()).chain(m.a.iter())).all(|x| x.is_finite()) {
                 return Err(Error::In {
                     part: format!("point {}", plan.point_names[k]),
@@ -492,7 +492,7 @@ impl<'p> Analysis<'p> {
                     backward,
                 } => {
                     let (slider, guide, d) = self.slide_parts(*joint);
-                    let s = self.slide_index(*joint);
+                    let s = self.slide_at(*joint);
                     let p = self.at(slider, *local).p;
                     let f = resist(s.rate, *forward, *backward) * d;
                     self.applied.push((slider, Load::force_at(p, f)));
@@ -507,8 +507,8 @@ impl<'p> Analysis<'p> {
                     ends,
                 } => {
                     let (slider, _, d) = self.slide_parts(*joint);
-                    let s = self.slide_index(*joint);
-                    let p = self.joint_index_on(*joint, slider).p;
+                    let s = self.slide_at(*joint);
+                    let p = self.joint_on_link(*joint, slider).p;
                     let f = diagram
                         .force(head * s.value, head * s.rate, *head * d, ends[0], ends[1])
                         .map_err(within(&format!(
@@ -758,21 +758,29 @@ impl<'p> Analysis<'p> {
 
     /// The motion of link `k` in the frame the engine uses for it (its origin a joint).
     ///
-    /// # Panics
-    /// When `k` is not a link's index (below `plan.link_names().len()`),
-    /// as a slice index does; the accessors by name return an [`Error`] instead.
-    #[must_use]
-    pub fn link_motion(&self, k: usize) -> &LinkMotion {
+    /// # Errors
+    /// [`Error::OutOfRange`] (`"link index"`) for `k` not below `plan.link_names().len()`.
+    pub fn link_motion(&self, k: usize) -> Result<&LinkMotion> {
+        Ok(self.link_motion_at(self.plan.check_link(k)?))
+    }
+
+    /// As [`link_motion`](Self::link_motion), for an index known to be a link's.
+    #[inline]
+    pub(crate) fn link_motion_at(&self, k: usize) -> &LinkMotion {
         &self.links[k]
     }
 
     /// The angle of link `k` along its declared reference direction, with ω and ε.
     ///
-    /// # Panics
-    /// When `k` is not a link's index (below `plan.link_names().len()`),
-    /// as a slice index does; the accessors by name return an [`Error`] instead.
-    #[must_use]
-    pub fn link_angle_index(&self, k: usize) -> Motion {
+    /// # Errors
+    /// [`Error::OutOfRange`] (`"link index"`) for `k` not below `plan.link_names().len()`.
+    pub fn link_angle_index(&self, k: usize) -> Result<Motion> {
+        Ok(self.link_angle_at(self.plan.check_link(k)?))
+    }
+
+    /// As [`link_angle_index`](Self::link_angle_index), for an index known to be a link's.
+    #[inline]
+    pub(crate) fn link_angle_at(&self, k: usize) -> Motion {
         let l = &self.links[k];
         Motion::new(
             crate::angle::normalize(l.angle + self.plan.links[k].angle_offset),
@@ -786,29 +794,65 @@ impl<'p> Analysis<'p> {
     /// # Errors
     /// An unknown name.
     pub fn link(&self, name: &str) -> Result<Motion> {
-        Ok(self.link_angle_index(self.plan.link_index(name)?))
+        Ok(self.link_angle_at(self.plan.link_index(name)?))
     }
 
-    /// The motion of joint `j` as a point of the `side`-th of its two links.
+    /// The motion of joint `j` as a point of the `side`-th of its two links
+    /// ([`Plan::joint_links`]).
     ///
-    /// # Panics
-    /// When `j` is not a joint's index or `side` is not 0 or 1,
-    /// as a slice index does; the accessors by name return an [`Error`] instead.
-    #[must_use]
-    pub fn joint_on(&self, j: usize, side: usize) -> PointMotion {
+    /// # Errors
+    /// [`Error::OutOfRange`] (`"joint index"`) for `j` not below `plan.joint_names().len()`;
+    /// [`Error::OutOfRange`] (`"side"`) for `side` not 0 or 1.
+    pub fn joint_on(&self, j: usize, side: usize) -> Result<PointMotion> {
+        let j = self.plan.check_joint(j)?;
+        if side > 1 {
+            return Err(Error::OutOfRange {
+                name: "side",
+                value: side as f64,
+                min: 0.0,
+                max: 1.0,
+                ends: crate::Ends::Closed,
+            });
+        }
+        Ok(self.joint_on_at(j, side))
+    }
+
+    /// As [`joint_on`](Self::joint_on), for a joint's index and a side 0 or 1.
+    #[inline]
+    pub(crate) fn joint_on_at(&self, j: usize, side: usize) -> PointMotion {
         let jp = &self.plan.joints[j];
         self.at(jp.links[side], jp.local[side])
     }
 
     /// The motion of joint `j` as a point of link `link` (one of its two links).
     ///
-    /// # Panics
-    /// When `j` is not a joint's index (below `plan.joint_names().len()`),
-    /// as a slice index does; the accessors by name return an [`Error`] instead.
-    #[must_use]
-    pub fn joint_index_on(&self, j: usize, link: usize) -> PointMotion {
+    /// # Errors
+    /// [`Error::OutOfRange`] (`"joint index"`, `"link index"`) for `j` not below
+    /// `plan.joint_names().len()` or `link` not below `plan.link_names().len()`;
+    /// [`Error::Description`] naming both when the joint does not join link `link`.
+    pub fn joint_index_on(&self, j: usize, link: usize) -> Result<PointMotion> {
+        let j = self.plan.check_joint(j)?;
+        let link = self.plan.check_link(link)?;
+        let links = self.plan.joints[j].links;
+        if !links.contains(&link) {
+            return Err(Error::Description {
+                item: format!("joint {}", self.plan.joint_names[j]),
+                problem: format!(
+                    "does not join link {} (it joins {} and {})",
+                    self.plan.link_names[link],
+                    self.plan.link_names[links[0]],
+                    self.plan.link_names[links[1]]
+                ),
+            });
+        }
+        Ok(self.joint_on_link(j, link))
+    }
+
+    /// As [`joint_index_on`](Self::joint_index_on), for a joint's index and one of its links.
+    #[inline]
+    pub(crate) fn joint_on_link(&self, j: usize, link: usize) -> PointMotion {
         let side = usize::from(self.plan.joints[j].links[1] == link);
-        self.joint_on(j, side)
+        self.joint_on_at(j, side)
     }
 
     /// The motion of the joint called `name` (for a prismatic joint, its point on the sliding
@@ -818,21 +862,25 @@ impl<'p> Analysis<'p> {
     /// An unknown name.
     pub fn joint(&self, name: &str) -> Result<PointMotion> {
         let j = self.plan.joint_index(name)?;
-        Ok(self.joint_motion(j))
+        Ok(self.joint_motion_at(j))
     }
 
     /// The motion of joint `j` (for a prismatic joint, its point on the sliding link).
     ///
-    /// # Panics
-    /// When `j` is not a joint's index (below `plan.joint_names().len()`),
-    /// as a slice index does; the accessors by name return an [`Error`] instead.
-    #[must_use]
-    pub fn joint_motion(&self, j: usize) -> PointMotion {
+    /// # Errors
+    /// [`Error::OutOfRange`] (`"joint index"`) for `j` not below `plan.joint_names().len()`.
+    pub fn joint_motion(&self, j: usize) -> Result<PointMotion> {
+        Ok(self.joint_motion_at(self.plan.check_joint(j)?))
+    }
+
+    /// As [`joint_motion`](Self::joint_motion), for an index known to be a joint's.
+    #[inline]
+    pub(crate) fn joint_motion_at(&self, j: usize) -> PointMotion {
         let side = match self.plan.joints[j].prismatic {
             Some((guide, _)) => 1 - guide,
             None => 0,
         };
-        self.joint_on(j, side)
+        self.joint_on_at(j, side)
     }
 
     /// The motion of the named point `name`.
@@ -840,17 +888,22 @@ impl<'p> Analysis<'p> {
     /// # Errors
     /// An unknown name.
     pub fn point(&self, name: &str) -> Result<PointMotion> {
-        Ok(self.point_motion(self.plan.point_index(name)?))
+        Ok(self.point_motion_at(self.plan.point_index(name)?))
     }
 
     /// The motion of named point `k`.
     ///
-    /// # Panics
-    /// When `k` is not a named point's index (below `plan.point_names().len()`),
-    /// as a slice index does; the accessors by name return an [`Error`] instead.
-    #[must_use]
-    pub fn point_motion(&self, k: usize) -> PointMotion {
-        let (link, local) = self.plan.point_local(k);
+    /// # Errors
+    /// [`Error::OutOfRange`] (`"point index"`) for `k` not below `plan.point_names().len()`;
+    /// [`Error::Description`] for a linkage without named points.
+    pub fn point_motion(&self, k: usize) -> Result<PointMotion> {
+        Ok(self.point_motion_at(self.plan.check_point(k)?))
+    }
+
+    /// As [`point_motion`](Self::point_motion), for an index known to be a named point's.
+    #[inline]
+    pub(crate) fn point_motion_at(&self, k: usize) -> PointMotion {
+        let (link, local) = self.plan.point_local_at(k);
         self.at(link, local)
     }
 
@@ -872,11 +925,15 @@ impl<'p> Analysis<'p> {
     /// The current unit direction of the guide of prismatic joint `j` (zero for a revolute
     /// joint).
     ///
-    /// # Panics
-    /// When `j` is not a joint's index (below `plan.joint_names().len()`),
-    /// as a slice index does; the accessors by name return an [`Error`] instead.
-    #[must_use]
-    pub fn guide_direction(&self, j: usize) -> Vector2<f64> {
+    /// # Errors
+    /// [`Error::OutOfRange`] (`"joint index"`) for `j` not below `plan.joint_names().len()`.
+    pub fn guide_direction(&self, j: usize) -> Result<Vector2<f64>> {
+        Ok(self.guide_direction_at(self.plan.check_joint(j)?))
+    }
+
+    /// As [`guide_direction`](Self::guide_direction), for an index known to be a joint's.
+    #[inline]
+    pub(crate) fn guide_direction_at(&self, j: usize) -> Vector2<f64> {
         self.slide_parts(j).2
     }
 
@@ -884,18 +941,21 @@ impl<'p> Analysis<'p> {
     /// the reference pose, with its velocity and acceleration relative to the guide (zero for
     /// a revolute joint).
     ///
-    /// # Panics
-    /// When `j` is not a joint's index (below `plan.joint_names().len()`),
-    /// as a slice index does; the accessors by name return an [`Error`] instead.
-    #[must_use]
-    pub fn slide_index(&self, j: usize) -> Motion {
+    /// # Errors
+    /// [`Error::OutOfRange`] (`"joint index"`) for `j` not below `plan.joint_names().len()`.
+    pub fn slide_index(&self, j: usize) -> Result<Motion> {
+        Ok(self.slide_at(self.plan.check_joint(j)?))
+    }
+
+    /// As [`slide_index`](Self::slide_index), for an index known to be a joint's.
+    pub(crate) fn slide_at(&self, j: usize) -> Motion {
         let jp = &self.plan.joints[j];
         let Some((g, _)) = jp.prismatic else {
             return Motion::default();
         };
         let (_, guide, d) = self.slide_parts(j);
-        let on_slider = self.joint_on(j, 1 - g);
-        let on_guide = self.joint_on(j, g);
+        let on_slider = self.joint_on_at(j, 1 - g);
+        let on_guide = self.joint_on_at(j, g);
         let w = self.links[guide].omega;
         // r = s·d with d turning at ω: v_r = ṡ·d + s·ω·d⊥, a_r = (s̈ − s·ω²)·d + (…)·d⊥.
         let s = (on_slider.p - on_guide.p).dot(&d);
@@ -910,13 +970,13 @@ impl<'p> Analysis<'p> {
     /// An unknown name, or a revolute joint.
     pub fn slide(&self, name: &str) -> Result<Motion> {
         let j = self.plan.joint_index(name)?;
-        if !self.plan.is_prismatic(j) {
+        if !self.plan.is_prismatic_at(j) {
             return Err(Error::Description {
                 item: format!("joint {name}"),
                 problem: "is not prismatic: it has no slide".to_owned(),
             });
         }
-        Ok(self.slide_index(j))
+        Ok(self.slide_at(j))
     }
 
     /// The transmission angle μ of group `g` (in attachment order) at this position, rad in
@@ -934,17 +994,10 @@ impl<'p> Analysis<'p> {
     ///   direction its point there moves in.
     ///
     /// # Errors
-    /// [`Error::OutOfRange`] for `g` not a group's index.
+    /// [`Error::OutOfRange`] (`"group index"`) for `g` not below `plan.groups().len()`;
+    /// [`Error::Description`] for a linkage without groups.
     pub fn transmission_angle(&self, g: usize) -> Result<f64> {
-        let Some(group) = self.plan.groups.get(g) else {
-            return Err(Error::OutOfRange {
-                name: "group index",
-                value: g as f64,
-                min: 0.0,
-                max: self.plan.groups.len() as f64 - 1.0,
-                ends: crate::Ends::Closed,
-            });
-        };
+        let group = &self.plan.groups[self.plan.check_group(g)?];
         let (u2, u3) = (self.units[group.links[0]], self.units[group.links[1]]);
         let between = |a: Vector2<f64>, b: Vector2<f64>| cross(a, b).abs().atan2(a.dot(&b).abs());
         Ok(match group.kind {
@@ -965,11 +1018,15 @@ impl<'p> Analysis<'p> {
 
     /// The reaction in joint `j` (valid after [`Analysis::solve`]).
     ///
-    /// # Panics
-    /// When `j` is not a joint's index (below `plan.joint_names().len()`),
-    /// as a slice index does; the accessors by name return an [`Error`] instead.
-    #[must_use]
-    pub fn reaction_index(&self, j: usize) -> Reaction {
+    /// # Errors
+    /// [`Error::OutOfRange`] (`"joint index"`) for `j` not below `plan.joint_names().len()`.
+    pub fn reaction_index(&self, j: usize) -> Result<Reaction> {
+        Ok(self.reaction_at(self.plan.check_joint(j)?))
+    }
+
+    /// As [`reaction_index`](Self::reaction_index), for an index known to be a joint's.
+    #[inline]
+    pub(crate) fn reaction_at(&self, j: usize) -> Reaction {
         self.reactions[j]
     }
 
@@ -1023,8 +1080,15 @@ impl<'p> Analysis<'p> {
 
     /// Every load on link `k` as a free body: applied loads, reactions of its joints, and
     /// the drive on the input link.
-    #[must_use]
-    pub fn free_body(&self, k: usize) -> Vec<Load> {
+    ///
+    /// # Errors
+    /// [`Error::OutOfRange`] (`"link index"`) for `k` not below `plan.link_names().len()`.
+    pub fn free_body(&self, k: usize) -> Result<Vec<Load>> {
+        Ok(self.free_body_at(self.plan.check_link(k)?))
+    }
+
+    /// As [`free_body`](Self::free_body), for an index known to be a link's.
+    fn free_body_at(&self, k: usize) -> Vec<Load> {
         let mut all: Vec<Load> = self
             .applied
             .iter()
@@ -1047,9 +1111,16 @@ impl<'p> Analysis<'p> {
 
     /// How far link `k` is from equilibrium: the larger of |ΣF|/F_scale and |ΣM|/M_scale,
     /// with the scales the largest force and the largest moment (or force × arm).
-    #[must_use]
-    pub fn residual(&self, k: usize) -> f64 {
-        let all = self.free_body(k);
+    ///
+    /// # Errors
+    /// [`Error::OutOfRange`] (`"link index"`) for `k` not below `plan.link_names().len()`.
+    pub fn residual(&self, k: usize) -> Result<f64> {
+        Ok(self.residual_at(self.plan.check_link(k)?))
+    }
+
+    /// As [`residual`](Self::residual), for an index known to be a link's.
+    fn residual_at(&self, k: usize) -> f64 {
+        let all = self.free_body_at(k);
         let pole = self.links[k].origin.p;
         let sum = Load::sum_about(&all, pole);
         let fs = all.iter().map(|l| l.force.norm()).fold(0.0, f64::max);
@@ -1066,7 +1137,7 @@ impl<'p> Analysis<'p> {
     #[must_use]
     pub fn worst_residual(&self) -> f64 {
         (1..self.links.len())
-            .map(|k| self.residual(k))
+            .map(|k| self.residual_at(k))
             .fold(0.0, f64::max)
     }
 

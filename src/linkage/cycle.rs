@@ -39,7 +39,7 @@ impl Plan {
             Output::Angle(n) => Resolved::Angle(self.link_index(n)?),
             Output::Slide(n) => {
                 let j = self.joint_index(n)?;
-                if !self.is_prismatic(j) {
+                if !self.is_prismatic_at(j) {
                     return Err(Error::Description {
                         item: format!("joint {n}"),
                         problem: "is not prismatic: it has no slide".to_owned(),
@@ -162,9 +162,12 @@ impl Plan {
     /// golden-section search to 1e-12 rad of φ1. See [`Analysis::transmission_angle`].
     ///
     /// # Errors
-    /// A slider input; `g` not a group; any position's error (a crank that cannot turn fully
+    /// [`Error::OutOfRange`] (`"group index"`) for `g` not below `groups().len()`
+    /// ([`Error::Description`] for a linkage without groups); a slider input; any position's
+    /// error (a crank that cannot turn fully
     /// has no cycle to search).
     pub fn min_transmission_angle(&self, g: usize) -> Result<(f64, f64)> {
+        self.check_group(g)?;
         self.need_crank("transmission angles over a turn")?;
         let mut a = Analysis::new(self);
         let mut mu = |phi: f64| -> Result<f64> {
@@ -258,10 +261,10 @@ impl Plan {
 
 fn read(a: &Analysis<'_>, r: Resolved) -> Motion {
     match r {
-        Resolved::Angle(k) => a.link_angle_index(k),
-        Resolved::Slide(j) => a.slide_index(j),
-        Resolved::Joint(j, y) => coord(a.joint_motion(j), y),
-        Resolved::Point(p, y) => coord(a.point_motion(p), y),
+        Resolved::Angle(k) => a.link_angle_at(k),
+        Resolved::Slide(j) => a.slide_at(j),
+        Resolved::Joint(j, y) => coord(a.joint_motion_at(j), y),
+        Resolved::Point(p, y) => coord(a.point_motion_at(p), y),
     }
 }
 

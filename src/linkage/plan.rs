@@ -202,6 +202,28 @@ pub struct Plan {
     pub(crate) size: f64,
 }
 
+/// Checks index `i` (called `name`, for example `"joint index"`) against a collection of `len`
+/// `things`: `Ok(i)` below `len`, else [`Error::OutOfRange`] over `[0, len − 1]`, or
+/// [`Error::Description`] when there are no `things` at all (no interval to name).
+fn index_in(name: &'static str, things: &str, i: usize, len: usize) -> Result<usize> {
+    if i < len {
+        Ok(i)
+    } else if len == 0 {
+        Err(bad(
+            format!("{name} {i}"),
+            format!("the linkage has no {things}"),
+        ))
+    } else {
+        Err(Error::OutOfRange {
+            name,
+            value: i as f64,
+            min: 0.0,
+            max: (len - 1) as f64,
+            ends: crate::Ends::Closed,
+        })
+    }
+}
+
 fn bad(item: impl Into<String>, problem: impl Into<String>) -> Error {
     Error::Description {
         item: item.into(),
@@ -614,7 +636,7 @@ impl Plan {
         for (j, joint) in linkage.joints.iter().enumerate() {
             let given = Point2::new(joint.at[0], joint.at[1]);
             for side in 0..2 {
-                let p = a.joint_on(j, side).p;
+                let p = a.joint_on_at(j, side).p;
                 let gap = (p - given).norm();
                 if !(gap <= tol) {
                     return Err(bad(
@@ -644,7 +666,7 @@ impl Plan {
                     crate::kinematics::transfer_functions(
                         |m| {
                             a.solve_kinematics(m)?;
-                            let s = a.slide_index(joint);
+                            let s = a.slide_at(joint);
                             Ok(Motion::new(head * s.value, head * s.rate, head * s.accel))
                         },
                         phi,
@@ -870,38 +892,93 @@ impl Plan {
             })
     }
 
-    /// The link a named point belongs to and its local coordinates, for [`LinkMotion::point_at`].
-    #[must_use]
-    pub fn point_local(&self, point: usize) -> (usize, Vector2<f64>) {
+    /// Checks a link's index: `Ok(k)` for an index below `link_names().len()`.
+    pub(crate) fn check_link(&self, k: usize) -> Result<usize> {
+        index_in("link index", "links", k, self.link_names.len())
+    }
+
+    /// Checks a joint's index: `Ok(j)` for an index below `joint_names().len()`.
+    pub(crate) fn check_joint(&self, j: usize) -> Result<usize> {
+        index_in("joint index", "joints", j, self.joint_names.len())
+    }
+
+    /// Checks a named point's index: `Ok(k)` for an index below `point_names().len()`.
+    pub(crate) fn check_point(&self, k: usize) -> Result<usize> {
+        index_in("point index", "named points", k, self.point_names.len())
+    }
+
+    /// Checks a group's index: `Ok(g)` for an index below `groups().len()`.
+    pub(crate) fn check_group(&self, g: usize) -> Result<usize> {
+        index_in("group index", "groups", g, self.groups.len())
+    }
+
+    /// The link named point `point` belongs to and its local coordinates, for
+    /// [`LinkMotion::point_at`].
+    ///
+    /// # Errors
+    /// [`Error::OutOfRange`] (`"point index"`) for `point` not below `point_names().len()`;
+    /// [`Error::Description`] for a linkage without named points.
+    pub fn point_local(&self, point: usize) -> Result<(usize, Vector2<f64>)> {
+        Ok(self.point_local_at(self.check_point(point)?))
+    }
+
+    /// As [`point_local`](Self::point_local), for an index known to be a named point's.
+    #[inline]
+    pub(crate) fn point_local_at(&self, point: usize) -> (usize, Vector2<f64>) {
         (self.points[point].link, self.points[point].local)
     }
 
     /// Whether joint `joint` is prismatic.
-    #[must_use]
-    pub fn is_prismatic(&self, joint: usize) -> bool {
+    ///
+    /// # Errors
+    /// [`Error::OutOfRange`] (`"joint index"`) for `joint` not below `joint_names().len()`.
+    pub fn is_prismatic(&self, joint: usize) -> Result<bool> {
+        Ok(self.is_prismatic_at(self.check_joint(joint)?))
+    }
+
+    /// As [`is_prismatic`](Self::is_prismatic), for an index known to be a joint's.
+    #[inline]
+    pub(crate) fn is_prismatic_at(&self, joint: usize) -> bool {
         self.joints[joint].prismatic.is_some()
     }
 
     /// The two links a joint joins.
-    #[must_use]
-    pub fn joint_links(&self, joint: usize) -> [usize; 2] {
+    ///
+    /// # Errors
+    /// [`Error::OutOfRange`] (`"joint index"`) for `joint` not below `joint_names().len()`.
+    pub fn joint_links(&self, joint: usize) -> Result<[usize; 2]> {
+        Ok(self.joint_links_at(self.check_joint(joint)?))
+    }
+
+    /// As [`joint_links`](Self::joint_links), for an index known to be a joint's.
+    #[inline]
+    pub(crate) fn joint_links_at(&self, joint: usize) -> [usize; 2] {
         self.joints[joint].links
     }
 
     /// For a prismatic joint, the link that carries its guide (one of
     /// [`joint_links`](Self::joint_links)); `None` for a revolute joint.
     ///
+    /// # Errors
+    /// [`Error::OutOfRange`] (`"joint index"`) for `joint` not below `joint_names().len()`.
+    ///
     /// # Examples
     /// The shaper's ram slides on a guide of the frame (link 0):
     /// ```
     /// use tmm::linkage::{bundled, Plan};
     /// let plan = Plan::new(&bundled::shaper())?;
-    /// assert_eq!(plan.guide_link(plan.joint_index("Q")?), Some(0));
-    /// assert_eq!(plan.guide_link(plan.joint_index("O1")?), None);
+    /// assert_eq!(plan.guide_link(plan.joint_index("Q")?)?, Some(0));
+    /// assert_eq!(plan.guide_link(plan.joint_index("O1")?)?, None);
+    /// assert!(plan.guide_link(plan.joint_names().len()).is_err());
     /// # Ok::<(), tmm::Error>(())
     /// ```
-    #[must_use]
-    pub fn guide_link(&self, joint: usize) -> Option<usize> {
+    pub fn guide_link(&self, joint: usize) -> Result<Option<usize>> {
+        Ok(self.guide_link_at(self.check_joint(joint)?))
+    }
+
+    /// As [`guide_link`](Self::guide_link), for an index known to be a joint's.
+    #[inline]
+    pub(crate) fn guide_link_at(&self, joint: usize) -> Option<usize> {
         let j = &self.joints[joint];
         j.prismatic.map(|(side, _)| j.links[side])
     }

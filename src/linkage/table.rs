@@ -64,19 +64,19 @@ impl Tabulate for Analysis<'_> {
         push(&mut r, &format!("{q}'"), rate, i.rate);
         push(&mut r, &format!("{q}''"), accel, i.accel);
         for (k, name) in links.iter().enumerate().skip(1) {
-            let m = self.link_angle_index(k);
+            let m = self.link_angle_at(k);
             push(&mut r, &format!("phi({name})"), "rad", m.value);
             push(&mut r, &format!("omega({name})"), "rad/s", m.rate);
             push(&mut r, &format!("eps({name})"), "rad/s^2", m.accel);
         }
         for (j, name) in plan.joint_names().iter().enumerate() {
-            let p = self.joint_motion(j);
+            let p = self.joint_motion_at(j);
             push(&mut r, &format!("x({name})"), "m", p.p.x);
             push(&mut r, &format!("y({name})"), "m", p.p.y);
             push(&mut r, &format!("|v({name})|"), "m/s", p.v.norm());
             push(&mut r, &format!("|a({name})|"), "m/s^2", p.a.norm());
-            if plan.is_prismatic(j) {
-                let s = self.slide_index(j);
+            if plan.is_prismatic_at(j) {
+                let s = self.slide_at(j);
                 push(&mut r, &format!("s({name})"), "m", s.value);
                 push(&mut r, &format!("v_rel({name})"), "m/s", s.rate);
                 push(&mut r, &format!("a_rel({name})"), "m/s^2", s.accel);
@@ -88,10 +88,10 @@ impl Tabulate for Analysis<'_> {
         }
         if self.has_statics() {
             for (j, name) in plan.joint_names().iter().enumerate() {
-                let re = self.reaction_index(j);
+                let re = self.reaction_at(j);
                 let label = format!("R({},{})@{name}", links[re.by], links[re.on]);
                 push_vector(&mut r, &label, "N", re.force);
-                if plan.is_prismatic(j) {
+                if plan.is_prismatic_at(j) {
                     push(
                         &mut r,
                         &format!("M({},{})@{name}", links[re.by], links[re.on]),

@@ -133,11 +133,11 @@ impl Damper {
             },
             Self::Joint { joint, .. } => {
                 let j = plan.joint_index(joint)?;
-                if plan.is_prismatic(j) {
+                if plan.is_prismatic_at(j) {
                     DamperPlan::Slide { joint: j, c }
                 } else {
                     DamperPlan::Hinge {
-                        links: plan.joint_links(j),
+                        links: plan.joint_links_at(j),
                         c,
                     }
                 }

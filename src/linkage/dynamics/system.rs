@@ -135,7 +135,7 @@ impl<'p> Transfer<'p> {
                 an.solve_rates_inputs(&m[..n])?;
             }
             rates.extend((0..nl).map(|l| {
-                let m = an.link_motion(l);
+                let m = an.link_motion_at(l);
                 Rates {
                     v: m.origin.v,
                     a: m.origin.a,
@@ -163,7 +163,7 @@ impl<'p> Transfer<'p> {
     #[inline]
     fn link(&self, s: usize, l: usize) -> LinkMotion {
         let r = &self.rates[s * self.nl + l];
-        let m = self.an.link_motion(l);
+        let m = self.an.link_motion_at(l);
         LinkMotion {
             origin: PointMotion::new(m.origin.p, r.v, r.a),
             angle: m.angle,
@@ -193,7 +193,7 @@ impl<'p> Transfer<'p> {
     fn slide_parts(&self, j: usize) -> (usize, usize, Vector2<f64>) {
         let jp = &self.an.plan().joints[j];
         let g = jp.prismatic.map_or(0, |(g, _)| g);
-        (jp.links[1 - g], jp.links[g], self.an.guide_direction(j))
+        (jp.links[1 - g], jp.links[g], self.an.guide_direction_at(j))
     }
 
     /// The motions of prismatic joint `j`'s point on its sliding link and on its guide's
@@ -578,7 +578,7 @@ impl LinkageSystem {
                     }),
                 ),
                 DamperPlan::Slide { joint, c } => {
-                    let d = tr.an.guide_direction(joint);
+                    let d = tr.an.guide_direction_at(joint);
                     (
                         c,
                         [0, 1].map(|k| {
