@@ -83,21 +83,21 @@ fn series<'a>(
     let mut top = vec![
         Series {
             label: a.into(),
-            y: &tr.q()[0],
+            y: tr.q()[0],
         },
         Series {
             label: b.into(),
-            y: &tr.q()[1],
+            y: tr.q()[1],
         },
     ];
     let mut bottom = vec![
         Series {
             label: format!("{a}_dot"),
-            y: &tr.qd()[0],
+            y: tr.qd()[0],
         },
         Series {
             label: format!("{b}_dot"),
-            y: &tr.qd()[1],
+            y: tr.qd()[1],
         },
     ];
     for n in extra_pos {

@@ -108,7 +108,7 @@ fn lu_difference(plan: &Plan, a: &tmm::linkage::Analysis<'_>) -> f64 {
     for j in 0..nj {
         let [_, q] = plan.joint_links(j).unwrap();
         let re = a.reaction_index(j).unwrap();
-        let load = re.load_on(q);
+        let load = re.load_on(q).unwrap();
         let at = a.joint_on(j, 1).unwrap().p;
         let (f, c) = if plan.is_prismatic(j).unwrap() {
             let d = a.guide_direction(j).unwrap();

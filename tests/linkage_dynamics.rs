@@ -484,7 +484,7 @@ fn flywheel_gives_the_required_delta() {
 /// same from every second and every fourth step: their difference bounds the error.
 fn motor_mean_over_turn(sys: &LinkageSystem, t: &[f64], phi: &[f64], w: &[f64]) -> (f64, f64) {
     let f: Vec<f64> = (0..t.len())
-        .map(|i| sys.motor(0).moment(phi[i], w[i]).unwrap() * w[i])
+        .map(|i| sys.motor(0).unwrap().moment(phi[i], w[i]).unwrap() * w[i])
         .collect();
     let trap = |step: usize| {
         let mut idx: Vec<usize> = (0..t.len()).step_by(step).collect();
@@ -569,7 +569,7 @@ fn run_up_reaches_a_steady_state_within_its_budget() {
     };
     let (_, rf) = sys.turn(&Rk4, steady, &fine).unwrap();
     let tf = &rf.trajectory;
-    let (motor, motor_2h) = motor_mean_over_turn(&sys, tf.t(), &tf.q()[0], &tf.qd()[0]);
+    let (motor, motor_2h) = motor_mean_over_turn(&sys, tf.t(), tf.q()[0], tf.qd()[0]);
     let loads_mean = |n: usize| {
         let c = sys.reduced_cycle(n, last.omega_mean).unwrap();
         c.iter().map(|x| x.loads).sum::<f64>() / n as f64
@@ -587,7 +587,7 @@ fn run_up_reaches_a_steady_state_within_its_budget() {
         motor + loads,
         (loads - loads_coarse).abs(),
         (motor - motor_2h).abs(),
-        sys.motor(0).moment(0.0, last.omega_mean).unwrap()
+        sys.motor(0).unwrap().moment(0.0, last.omega_mean).unwrap()
     );
     assert!(loads < 0.0, "the loads resist: {loads}");
     assert!((motor + loads).abs() <= tol, "{motor} vs {loads}");
@@ -599,7 +599,7 @@ fn run_up_reaches_a_steady_state_within_its_budget() {
     );
     let (_, rs) = sys.turn(&Rk4, slow, &opts).unwrap();
     let ts = &rs.trajectory;
-    let (m_slow, _) = motor_mean_over_turn(&sys, ts.t(), &ts.q()[0], &ts.qd()[0]);
+    let (m_slow, _) = motor_mean_over_turn(&sys, ts.t(), ts.q()[0], ts.qd()[0]);
     println!("a turn 20 % too slow: off by {:.2e}", m_slow + loads);
     assert!((m_slow + loads).abs() > 100.0 * tol, "{m_slow} vs {loads}");
     // The budget: too few turns is an error naming it, not an endless run.
@@ -1011,4 +1011,29 @@ fn a_tabulated_motor_reports_its_nodes_as_kinks() {
         .with_motor(0, Motor::Linear(LinearMotor { a: 40.0, b: 0.2 }))
         .unwrap();
     assert!(linear.kinks().is_empty());
+}
+
+/// A motor and an added inertia are read back on the inputs the linkage has, and asking
+/// for an input it does not have is an error naming the index (not a silent `Motor::None`).
+#[test]
+fn motors_and_added_inertia_by_input_index() {
+    let fb = FiveBar::default();
+    let sys = five_bar_system(&fb).with_inertia(1, 0.25).unwrap();
+    assert_eq!(sys.dof(), 2);
+    assert!(matches!(sys.motor(0), Ok(Motor::Servo(s)) if *s == fb.drive1));
+    assert!(matches!(sys.motor(1), Ok(Motor::Servo(s)) if *s == fb.drive4));
+    assert_eq!(sys.added_inertia(0).unwrap(), 0.0);
+    assert_eq!(sys.added_inertia(1).unwrap(), 0.25);
+    let one = LinkageSystem::from_linkage(&bundled::four_bar()).unwrap();
+    assert_eq!(one.dof(), 1);
+    for (s, n) in [(&sys, 2usize), (&one, 1)] {
+        for i in [n, n + 1, usize::MAX] {
+            for e in [s.motor(i).err(), s.added_inertia(i).err()] {
+                assert!(
+                    matches!(e, Some(Error::OutOfRange { name: "input index", max, .. }) if max == n as f64 - 1.0),
+                    "{e:?}"
+                );
+            }
+        }
+    }
 }

@@ -687,6 +687,20 @@ fn index_accessors_check_their_indices() {
                 a.reaction(name).unwrap(),
                 "{what}"
             );
+            // The reaction as a load: equal and opposite on its two links, refused on any
+            // other link.
+            let re = a.reaction_index(j).unwrap();
+            let [p, q] = plan.joint_links(j).unwrap();
+            let (on_p, on_q) = (re.load_on(p).unwrap(), re.load_on(q).unwrap());
+            assert_eq!(on_p.force, -on_q.force, "{what}");
+            assert_eq!(on_p.moment, -on_q.moment, "{what}");
+            assert!([p, q].contains(&re.on) && [p, q].contains(&re.by), "{what}");
+            for k in (0..plan.link_names().len() + 2).filter(|k| ![p, q].contains(k)) {
+                assert!(
+                    matches!(re.load_on(k), Err(Error::Description { .. })),
+                    "{what}: link {k}"
+                );
+            }
             let prismatic = plan.is_prismatic(j).unwrap();
             assert_eq!(prismatic, a.slide(name).is_ok(), "{what}");
             assert_eq!(plan.guide_link(j).unwrap().is_some(), prismatic, "{what}");

@@ -63,8 +63,26 @@ impl Reaction {
 
     /// The load on link `link`: the reaction itself if `link == on`, its opposite if
     /// `link == by`.
-    #[must_use]
-    pub fn load_on(&self, link: usize) -> Load {
+    ///
+    /// # Errors
+    /// [`Error::Description`] when `link` is neither of the two links the reaction joins
+    /// (no load of this joint acts on it).
+    pub fn load_on(&self, link: usize) -> Result<Load> {
+        if link == self.on || link == self.by {
+            Ok(self.load_on_side(link))
+        } else {
+            Err(Error::Description {
+                item: format!("link index {link}"),
+                problem: format!(
+                    "is not joined by this reaction (it acts between links {} and {})",
+                    self.by, self.on
+                ),
+            })
+        }
+    }
+
+    /// [`load_on`](Self::load_on) for a link known to be `on` or `by`.
+    fn load_on_side(&self, link: usize) -> Load {
         if link == self.on {
             self.load()
         } else {
@@ -644,8 +662,8 @@ impl<'p> Analysis<'p> {
                 )
             }
         };
-        add(&mut self.acc[ka], &ra.load_on(ka));
-        add(&mut self.acc[kc], &rc.load_on(kc));
+        add(&mut self.acc[ka], &ra.load_on_side(ka));
+        add(&mut self.acc[kc], &rc.load_on_side(kc));
         self.reactions[ja] = ra;
         self.reactions[jb] = rb;
         self.reactions[jc] = rc;
@@ -1097,7 +1115,7 @@ impl<'p> Analysis<'p> {
             .collect();
         for (j, jp) in self.plan.joints.iter().enumerate() {
             if jp.links.contains(&k) {
-                all.push(self.reactions[j].load_on(k));
+                all.push(self.reactions[j].load_on_side(k));
             }
         }
         if k == self.plan.input_link() {

@@ -326,16 +326,22 @@ impl LinkageSystem {
         self.plan.input_count()
     }
 
-    /// The motor on input `input` (`Motor::None` for an input the linkage does not have).
-    #[must_use]
-    pub fn motor(&self, input: usize) -> &Motor {
-        self.motors.get(input).unwrap_or(&Motor::None)
+    /// The motor on input `input`.
+    ///
+    /// # Errors
+    /// [`Error::OutOfRange`] for an input the linkage does not have.
+    pub fn motor(&self, input: usize) -> Result<&Motor> {
+        check_input(self.dof(), input)?;
+        Ok(&self.motors[input])
     }
 
     /// The inertia added on input `input` by [`with_inertia`](Self::with_inertia).
-    #[must_use]
-    pub fn added_inertia(&self, input: usize) -> f64 {
-        self.extra.get(input).copied().unwrap_or(0.0)
+    ///
+    /// # Errors
+    /// [`Error::OutOfRange`] for an input the linkage does not have.
+    pub fn added_inertia(&self, input: usize) -> Result<f64> {
+        check_input(self.dof(), input)?;
+        Ok(self.extra[input])
     }
 
     /// A, ∂A/∂q, the drives' and the loads' generalized forces and B at the state (q, q̇).
