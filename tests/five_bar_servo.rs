@@ -29,7 +29,7 @@ fn end(sys: &FiveBar, t_end: f64, n: u32, locate: bool) -> State {
     run(sys, &Rk4, start(), &opts).unwrap().last
 }
 
-/// The two servos' margins, the five-bar's kink arguments.
+/// The two servos' demands over their limits, the five-bar's kink arguments.
 fn margins(r: &FiveBar, q: &Vector2<f64>, qd: &Vector2<f64>) -> tmm::Result<[f64; 2]> {
     let mut m = [0.0; 2];
     r.kink_arguments(0.0, q, qd, &mut m)?;
@@ -186,41 +186,49 @@ fn an_overflowing_demand_saturates_on_its_dominant_side() {
     assert_eq!(q_f[0], 5.0 - r.m_on * k.phi3_q[0]);
     let acc = accelerations(&r, 0.0, &q, &qd).unwrap();
     assert!(acc.iter().all(|a| a.is_finite()));
-    // Its kink arguments: the saturated servo's margin −1, the other's 1 (at its target and
-    // at rest).
-    assert_eq!(margins(&r, &q, &qd).unwrap(), [-1.0, 1.0]);
+    // Its kink arguments: the saturated servo's demand at the clamp's cap 2 (the demand
+    // k_d·ω = 1e10·k_d drives it forwards), the other's 0 (at its target and at rest).
+    assert_eq!(margins(&r, &q, &qd).unwrap(), [2.0, 0.0]);
 }
 
-/// Each servo's kink argument (its margin) changes sign exactly where its clamp switches:
-/// just inside and just outside the limit, for each servo alone.
+/// Each servo's kink argument (its demand over its limit) passes a node (±1) exactly where
+/// its clamp switches: just inside and just outside the limit on either side, for each
+/// servo alone.
 #[test]
 fn the_kink_argument_changes_sign_at_each_servos_switch() {
     let r = FiveBar::default();
-    assert_eq!(r.kinks(), vec![vec![0.0], vec![0.0]]);
+    assert_eq!(r.kinks(), vec![vec![-1.0, 1.0], vec![-1.0, 1.0]]);
     let q0 = Vector2::new(r.drive1.target, r.drive4.target);
-    // At the targets, at rest: both follow (margins 1).
-    assert_eq!(margins(&r, &q0, &Vector2::zeros()).unwrap(), [1.0, 1.0]);
+    // At the targets, at rest: no demand, both follow.
+    assert_eq!(margins(&r, &q0, &Vector2::zeros()).unwrap(), [0.0, 0.0]);
     for (i, s) in [(0, r.drive1), (1, r.drive4)] {
-        // |k_d·ω| = limit·(1 ± 10⁻⁶): just following, just saturated.
-        for (f, sign) in [(1.0 - 1e-6, 1.0), (1.0 + 1e-6, -1.0)] {
+        // k_d·ω = ±limit·(1 ± 10⁻⁶): just following, just saturated, either way.
+        for f in [1.0 - 1e-6, 1.0 + 1e-6, -1.0 + 1e-6, -1.0 - 1e-6] {
             let mut qd = Vector2::zeros();
             qd[i] = f * s.limit / s.kd;
             let k = margins(&r, &q0, &qd).unwrap();
-            assert!(k[i] * sign > 0.0, "servo {i}, |demand|/limit = {f}: {k:?}");
-            assert_eq!(k[1 - i], 1.0, "the other servo at its target, at rest");
+            // The demand −k_d·ω over the limit is −f.
+            assert!((k[i] + f).abs() < 1e-12, "servo {i}, f = {f}: {k:?}");
+            assert_eq!(k[1 - i], 0.0, "the other servo at its target, at rest");
             let m =
                 r.forces(0.0, &q0, &qd).unwrap()[i] + r.m_on * r.kinematics(&q0).unwrap().phi3_q[i];
-            assert!((m.abs() - (f.min(1.0) * s.limit)).abs() < 1e-12, "{m}");
+            assert!(
+                (m.abs() - (f.abs().min(1.0) * s.limit)).abs() < 1e-12,
+                "{m}"
+            );
         }
     }
-    // A servo with limit 0 never switches: its argument has no node (and is 1), the other
+    // Far past the limit the argument stays at ±2 (a demand that overflows too).
+    let fast = Vector2::new(1e300, -1e300);
+    assert_eq!(margins(&r, &q0, &fast).unwrap(), [-2.0, 2.0]);
+    // A servo with limit 0 never switches: its argument has no node (and is 0), the other
     // one's is located on its own.
     let mut z = r;
     z.drive1.limit = 0.0;
-    assert_eq!(z.kinks(), vec![vec![], vec![0.0]]);
+    assert_eq!(z.kinks(), vec![vec![], vec![-1.0, 1.0]]);
     let qd = Vector2::new(3.0, 2.0 * r.drive4.limit / r.drive4.kd);
     let m = margins(&z, &q0, &qd).unwrap();
-    assert!(m[0] == 1.0 && m[1] < 0.0, "{m:?}");
+    assert!(m[0] == 0.0 && m[1] == -2.0, "{m:?}");
     // Bad states are errors, not NaN; so is room for another number of arguments.
     assert!(margins(&r, &Vector2::new(f64::NAN, 0.0), &Vector2::zeros()).is_err());
     for n in [0, 1, 3] {

@@ -90,7 +90,7 @@ fn two_servo_switches_in_one_step_are_located_one_after_the_other() {
     let on = landings(&sys, &dp);
     assert_eq!(
         on.iter().map(|&(_, k, x)| (k, x)).collect::<Vec<_>>(),
-        [(0, 0.0), (1, 0.0)],
+        [(0, -1.0), (1, 1.0)],
         "{on:?}"
     );
     let (t1, t4) = (on[0].0, on[1].0);
@@ -111,11 +111,13 @@ fn two_servo_switches_in_one_step_are_located_one_after_the_other() {
         let i = j as usize;
         assert!(across.trajectory.t()[i] < t1 && t4 < across.trajectory.t()[i + 1]);
         let (a, b) = (arguments(&sys, &across, i), arguments(&sys, &across, i + 1));
+        // Both saturated at the start of the step (|demand| > limit), both following at its end.
         assert!(
-            a[0] < 0.0 && a[1] < 0.0 && b[0] > 0.0 && b[1] > 0.0,
+            a[0].abs() > 1.0 && a[1].abs() > 1.0 && b[0].abs() < 1.0 && b[1].abs() < 1.0,
             "{a:?} {b:?}"
         );
-        assert!(a[0] * a[1] > 0.0 && b[0] * b[1] > 0.0);
+        let product = |v: &[f64]| (1.0 - v[0].abs()) * (1.0 - v[1].abs());
+        assert!(product(&a) > 0.0 && product(&b) > 0.0);
     }
 
     let reference = rk4(&sys, start(), t_end, 64 * ns[ns.len() - 1], true).last;
@@ -228,8 +230,8 @@ fn servo_and_table() -> LinkageSystem {
         .unwrap()
 }
 
-/// A servo beside a tabulated motor: two arguments (the servo's margin, node 0; the rate ω₄,
-/// the table's nodes), and every switch of either is stepped onto: crank 4 passes ω₄ = 0.5
+/// A servo beside a tabulated motor: two arguments (the servo's demand over its limit,
+/// nodes ±1; the rate ω₄, the table's nodes), and every switch of either is stepped onto: crank 4 passes ω₄ = 0.5
 /// and 1.5 rad/s, crank 1's servo leaves saturation in between. RK4 keeps its order 4
 /// (measured 3.99, 3.99, 4.00) and its finest run (h = 0.94 ms) is some 500 times more
 /// accurate than stepping across (measured 490; 2200 at half that step).
@@ -238,7 +240,10 @@ fn a_servo_beside_a_tabulated_motor_has_both_kinds_of_switch_located() {
     let sys = servo_and_table();
     assert_eq!(
         sys.kinks(),
-        [vec![0.0], vec![-6.0, -3.0, -1.5, -0.5, 0.5, 1.5, 3.0, 6.0]]
+        [
+            vec![-1.0, 1.0],
+            vec![-6.0, -3.0, -1.5, -0.5, 0.5, 1.5, 3.0, 6.0]
+        ]
     );
     let t_end = 0.3;
     let dp = run(
@@ -252,7 +257,7 @@ fn a_servo_beside_a_tabulated_motor_has_both_kinds_of_switch_located() {
     eprintln!("landed on {on:?}");
     assert_eq!(
         on.iter().map(|&(_, k, x)| (k, x)).collect::<Vec<_>>(),
-        [(1, 0.5), (0, 0.0), (1, 1.5)],
+        [(1, 0.5), (0, -1.0), (1, 1.5)],
         "{on:?}"
     );
     // Every crossing of the fine run's arguments is one of these: none stepped across.
@@ -464,4 +469,83 @@ fn several_arguments_earliest_first_and_hostile_ones_refused() {
     let mut two = [0.0; 2];
     linkage.kink_arguments(0.0, &q, &qd, &mut two).unwrap();
     assert_eq!(two[1], 0.2);
+}
+
+/// A unit mass under F = 1 + Σ max(0, t − n): x(t) = t²/2 + Σ max(0, t − n)³/6, a cubic on
+/// each piece, which RK4 integrates exactly when every kink is a step end. The kink argument
+/// is t itself, with the nodes listed per argument.
+struct Ramps {
+    real: Vec<f64>,
+    nodes: Vec<Vec<f64>>,
+}
+
+impl Ramps {
+    fn x(&self, t: f64) -> f64 {
+        0.5 * t * t
+            + self
+                .real
+                .iter()
+                .map(|&n| (t - n).max(0.0).powi(3) / 6.0)
+                .sum::<f64>()
+    }
+}
+
+impl LagrangeSystem for Ramps {
+    fn inertia(&self, _: &Vector2<f64>) -> tmm::Result<Matrix2<f64>> {
+        Ok(Matrix2::identity())
+    }
+    fn forces(&self, t: f64, _: &Vector2<f64>, _: &Vector2<f64>) -> tmm::Result<Vector2<f64>> {
+        let f = 1.0 + self.real.iter().map(|&n| (t - n).max(0.0)).sum::<f64>();
+        Ok(Vector2::new(f, 0.0))
+    }
+    fn kinks(&self) -> Vec<Vec<f64>> {
+        self.nodes.clone()
+    }
+    fn kink_arguments(
+        &self,
+        t: f64,
+        _: &Vector2<f64>,
+        _: &Vector2<f64>,
+        out: &mut [f64],
+    ) -> tmm::Result<()> {
+        out.fill(t);
+        Ok(())
+    }
+}
+
+/// A crossing located within rounding of a step's start (a second argument switching
+/// 5e-13 s after the first, or a node 5e-13 s after the start) does not hide the kinks later
+/// in the same step: RK4 in one step of the whole run lands on every one of them and is
+/// exact to rounding (it was 2.5e-3 and 1.1e-2 off when such a crossing ended the search).
+#[test]
+fn a_crossing_at_the_start_of_a_step_does_not_hide_later_ones() {
+    let s0 = State::at_rest(Vector2::zeros());
+    let opts = RunOptions::until(1.0, 1.0);
+    for (real, nodes, steps) in [
+        (vec![0.3, 0.6], vec![vec![0.3], vec![0.6]], 3),
+        (vec![0.3, 0.6], vec![vec![0.3], vec![0.3 + 5e-13, 0.6]], 3),
+        (vec![0.6], vec![vec![5e-13, 0.6]], 2),
+        (vec![0.3, 0.6], vec![vec![0.6], vec![0.3]], 3),
+        (
+            vec![0.2, 0.5, 0.7],
+            vec![vec![0.7], vec![0.5], vec![0.2]],
+            4,
+        ),
+    ] {
+        let sys = Ramps {
+            real,
+            nodes: nodes.clone(),
+        };
+        for method in ["RK4", "DP"] {
+            let r = match method {
+                "RK4" => run(&sys, &Rk4, s0, &opts).unwrap(),
+                _ => run(&sys, &Dopri5::new(1e-10).unwrap(), s0, &opts).unwrap(),
+            };
+            let err = (r.last.q[0] - sys.x(1.0)).abs();
+            assert!(err < 1e-13, "{method} {nodes:?}: error {err:e}");
+            if method == "RK4" {
+                assert_eq!(r.steps, steps, "{nodes:?}");
+            }
+        }
+    }
 }

@@ -954,7 +954,7 @@ fn servo_clamps_of_a_described_linkage_are_kinks() {
     let mut fb = FiveBar::default();
     fb.drive4.limit = 1e3;
     let sys = five_bar_system(&fb);
-    assert_eq!(sys.kinks(), vec![vec![0.0], vec![0.0]]);
+    assert_eq!(sys.kinks(), vec![vec![-1.0, 1.0], vec![-1.0, 1.0]]);
     for (a, b, w1, w4) in [
         (120.0, 60.0, 0.0, 0.0),
         (110.0, 70.0, 3.0, -2.0),

@@ -836,3 +836,21 @@ fn index_accessors_check_their_indices() {
         "no linkage without named points was tried"
     );
 }
+
+/// `Plan::analyse_into` solves for the plan it is called on, or refuses: buffers made for
+/// another plan (even an equal copy) are an error, not an analysis of the other linkage.
+#[test]
+fn analysis_buffers_of_another_plan_are_refused() {
+    let four = Plan::new(&bundled::four_bar()).unwrap();
+    let six = Plan::new(&bundled::watt_six_bar()).unwrap();
+    let input = Motion::new(four.reference_input(), 10.0, 0.0);
+    let mut a = tmm::linkage::Analysis::new(&six);
+    let e = four.analyse_into(input, &mut a);
+    assert!(matches!(e, Err(Error::Description { .. })), "{e:?}");
+    let copy = four.clone();
+    let mut b = tmm::linkage::Analysis::new(&copy);
+    assert!(four.analyse_into(input, &mut b).is_err());
+    copy.analyse_into(input, &mut b).unwrap();
+    let direct = four.analyse(input).unwrap();
+    assert_eq!(b.balance(), direct.balance());
+}

@@ -314,12 +314,19 @@ fn sorted_finite(name: &'static str, v: impl IntoIterator<Item = f64>) -> Result
     Ok(out)
 }
 
-/// The first node crossed strictly by a step from σ0 to σ1 (in the direction of motion),
-/// other than the node `skip` the step started on.
-fn first_crossed(nodes: &[f64], s0: f64, s1: f64, skip: Option<usize>) -> Option<usize> {
+/// The first node of argument `k` crossed strictly by a step from σ0 to σ1 (in the direction
+/// of motion), other than the (argument, node) pairs in `skip` (those the step starts on or
+/// was cut short onto).
+fn first_crossed(
+    nodes: &[f64],
+    s0: f64,
+    s1: f64,
+    k: usize,
+    skip: &[(usize, usize)],
+) -> Option<usize> {
     let crossed = |i: &usize| {
         let l = nodes[*i];
-        Some(*i) != skip && ((s0 < l && l < s1) || (s1 < l && l < s0))
+        !skip.contains(&(k, *i)) && ((s0 < l && l < s1) || (s1 < l && l < s0))
     };
     if s1 >= s0 {
         (0..nodes.len()).find(crossed)
@@ -518,7 +525,7 @@ pub fn run<S: LagrangeSystem + ?Sized, M: Stepper>(
     // The crossings (argument, node) found in a step.
     let mut crossed: Vec<(usize, usize)> = Vec::new();
     // The (argument, node) the last step landed on (the next step starts there: no crossing).
-    let mut on_kink: Option<(usize, usize)> = None;
+    let mut on_kink: Vec<(usize, usize)> = Vec::new();
     // The end of the grid step a fixed-step method was taking when a stop or a kink cut it.
     let mut grid_end: Option<f64> = None;
     // Grid steps left until the next recorded one (a countdown rather than a division per
@@ -667,18 +674,24 @@ pub fn run<S: LagrangeSystem + ?Sized, M: Stepper>(
 
         // Nodes of the kink arguments crossed inside the step: step again, exactly onto the
         // earliest crossing (the next step finds the next one).
-        let mut landed = None;
         if any_kinks {
-            kink_args(&s1, &mut sigma1)?;
-            crossed.clear();
-            for (k, nodes) in kinks.iter().enumerate() {
-                let skip = on_kink.filter(|&(j, _)| j == k).map(|(_, i)| i);
-                if let Some(i) = first_crossed(nodes, sigma[k], sigma1[k], skip) {
-                    crossed.push((k, i));
+            // The (argument, node) pairs a crossing must not be taken for: those the step
+            // starts on (found so, or located within rounding of its start) and those it has
+            // already been cut short onto. Each pass of the loop either ends it or adds one
+            // pair, so it ends after at most as many passes as there are nodes.
+            let mut skip = std::mem::take(&mut on_kink);
+            let mut landed = None;
+            loop {
+                kink_args(&s1, &mut sigma1)?;
+                crossed.clear();
+                for (k, nodes) in kinks.iter().enumerate() {
+                    if let Some(i) = first_crossed(nodes, sigma[k], sigma1[k], k, &skip) {
+                        crossed.push((k, i));
+                    }
                 }
-            }
-            let mut restepped = false;
-            if !crossed.is_empty() {
+                if crossed.is_empty() {
+                    break;
+                }
                 // Whether argument k has passed node i at a state whose arguments are `v`.
                 let passed = |v: &[f64], (k, i): (usize, usize)| {
                     let node = kinks[k][i];
@@ -718,7 +731,7 @@ pub fn run<S: LagrangeSystem + ?Sized, M: Stepper>(
                     }
                     // No extension: each crossing located by re-stepping, the earliest kept.
                     None => {
-                        let mut best: Option<((usize, usize), State)> = None;
+                        let mut earliest: Option<((usize, usize), State)> = None;
                         let mut resteps = 0;
                         for &(k, i) in &crossed {
                             let node = kinks[k][i];
@@ -734,43 +747,50 @@ pub fn run<S: LagrangeSystem + ?Sized, M: Stepper>(
                                 },
                             )?;
                             resteps += n;
-                            if best.is_none_or(|(_, b)| hit.t < b.t) {
-                                best = Some(((k, i), hit));
+                            if earliest.is_none_or(|(_, e)| hit.t < e.t) {
+                                earliest = Some(((k, i), hit));
                             }
                         }
-                        let (c, hit) = best.expect("a crossing was found");
-                        (c, hit, resteps)
+                        match earliest {
+                            Some((c, hit)) => (c, hit, resteps),
+                            None => break, // not reached: `crossed` is not empty
+                        }
                     }
                 };
                 evaluations += resteps * method.evaluations_per_step();
+                skip.push((k, i));
                 let hk = hit.t - s.t;
-                if hk > t_tol && hit.t < s1.t {
-                    let (adv2, dense2) = method.advance_dense(sys, &s, hk, Some(hand_s))?;
-                    evaluations += adv2.evaluations;
-                    if !adaptive && grid_end.is_none() {
-                        grid_end = Some(s1.t);
-                    }
-                    s1 = adv2.state;
-                    dense = dense2;
-                    hand1 = adv2.handover;
-                    restepped = true;
-                    if s1.t == s.t + hk {
-                        landed = Some((k, i));
-                        h_next = None;
-                    } else {
-                        h_next = Some(adv2.h_next);
-                    }
-                } else {
+                if hk <= t_tol {
+                    // Within rounding of the start: the step starts on this node; look again
+                    // for the crossings after it.
+                    continue;
+                }
+                if hit.t >= s1.t {
                     landed = Some((k, i));
+                    break;
+                }
+                // Cut the step short onto the crossing, then check that no other crossing
+                // (missed by the extension's first guess) lies before it.
+                let (adv2, dense2) = method.advance_dense(sys, &s, hk, Some(hand_s))?;
+                evaluations += adv2.evaluations;
+                if !adaptive && grid_end.is_none() {
+                    grid_end = Some(s1.t);
+                }
+                s1 = adv2.state;
+                dense = dense2;
+                hand1 = adv2.handover;
+                if s1.t == s.t + hk {
+                    landed = Some((k, i));
+                    h_next = None;
+                } else {
+                    landed = None;
+                    h_next = Some(adv2.h_next);
                 }
             }
-            if restepped {
-                kink_args(&s1, &mut sigma)?;
-            } else {
-                std::mem::swap(&mut sigma, &mut sigma1);
-            }
+            // σ at the step's end is where the next step starts.
+            std::mem::swap(&mut sigma, &mut sigma1);
+            on_kink = landed.into_iter().collect();
         }
-        on_kink = landed;
         if let Some(hn) = h_next {
             h = hn;
         }

@@ -273,7 +273,7 @@ pub trait LagrangeSystem {
     /// The nodes of the system's kink arguments: `kinks()[k]` are the values of argument k
     /// (see [`kink_arguments`](Self::kink_arguments)) at which the forces are not smooth,
     /// for example the nodes of a load tabulated against the state (the landing gear's moment
-    /// table against φ_H) or the 0 of a servo's margin (its clamp at ±limit). Each argument
+    /// table against φ_H) or ±1 of a servo's demand over its limit (its clamps). Each argument
     /// has its own nodes (in any order, repeats allowed; an argument with none is never
     /// watched), so that switches of several loads are located each in its own right, however
     /// close in time. [`run`](super::run) finds, after each step, every argument that crossed
@@ -308,7 +308,17 @@ pub trait LagrangeSystem {
     ///         _: &Vector2<f64>,
     ///         out: &mut [f64],
     ///     ) -> tmm::Result<()> {
-    ///         out.copy_from_slice(q.as_slice()); // out.len() == self.kinks().len() == 2
+    ///         // One entry per argument: refuse room for another number, never panic.
+    ///         let [a, b] = out else {
+    ///             return Err(tmm::Error::OutOfRange {
+    ///                 name: "number of kink arguments",
+    ///                 value: out.len() as f64,
+    ///                 min: 2.0,
+    ///                 max: 2.0,
+    ///                 ends: tmm::Ends::Closed,
+    ///             });
+    ///         };
+    ///         (*a, *b) = (q[0], q[1]);
     ///         Ok(())
     ///     }
     /// }
@@ -331,7 +341,7 @@ pub trait LagrangeSystem {
 
     /// The kink arguments at a state: `out[k]` becomes argument k, whose nodes are
     /// [`kinks()[k]`](Self::kinks) (for the landing gear the one argument φ_H; for the
-    /// five-bar each servo's margin). [`run`](super::run) passes exactly
+    /// five-bar each servo's demand over its limit). [`run`](super::run) passes exactly
     /// `kinks().len()` entries, each set to NaN before the call, and refuses a result that is
     /// not finite ([`Error::NonFiniteState`]): an argument the system leaves unset is an error,
     /// not a guess. All arguments are asked for at once, so that a system whose arguments
@@ -591,8 +601,9 @@ pub(crate) struct RowTerms {
     pub acceleration: Vector2<f64>,
     /// T = ½ q̇ᵀ A q̇, as [`kinetic_energy`].
     pub kinetic: f64,
-    /// Q·q̇ and q̇ᵀ B q̇, as [`powers`].
+    /// Q·q̇, as [`powers`].
     pub applied: f64,
+    /// q̇ᵀ B q̇, as [`powers`].
     pub dissipated: f64,
 }
 

@@ -108,6 +108,11 @@ impl Trajectory {
         self.cap = cap;
     }
 
+    /// A [`Default`] trajectory, made for no system yet.
+    fn is_blank(&self) -> bool {
+        self.cap == 0 && self.coordinate_names == [""; 2] && self.output_names.is_empty()
+    }
+
     /// Names of the two generalized coordinates.
     #[must_use]
     pub fn coordinate_names(&self) -> [&'static str; 2] {
@@ -168,10 +173,18 @@ impl Trajectory {
         &self.output_names
     }
 
-    /// The extra outputs, one column per name.
+    /// The extra outputs, one column per name (see [`output_at`](Self::output_at) for one
+    /// column without collecting them all).
     #[must_use]
     pub fn outputs(&self) -> Vec<&[f64]> {
         (FIXED..self.columns()).map(|c| self.column(c)).collect()
+    }
+
+    /// The column of output `k` (in the order of [`output_names`](Self::output_names)),
+    /// `None` when the machine has fewer outputs.
+    #[must_use]
+    pub fn output_at(&self, k: usize) -> Option<&[f64]> {
+        (k < self.output_names.len()).then(|| self.column(FIXED + k))
     }
 
     /// Appends a state with everything derived from it.
@@ -180,9 +193,26 @@ impl Trajectory {
     /// Any error of the system at this state; [`Error::NonFiniteState`] naming the time when
     /// a derived quantity (an energy, a power, an output) is not finite;
     /// [`Error::OutOfRange`] when the system gives a number of outputs other than its
-    /// output names (or other names than the trajectory was made for). Nothing is appended
-    /// then (the columns stay of equal length).
+    /// output names; [`Error::Description`] when its coordinate or output names are not those
+    /// the trajectory was made for (a [`Default`] trajectory takes them on its first row).
+    /// Nothing is appended then (the columns stay of equal length).
     pub fn push<S: LagrangeSystem + ?Sized>(&mut self, sys: &S, s: &State) -> Result<()> {
+        if !self.is_blank()
+            && (sys.coordinate_names() != self.coordinate_names
+                || sys.output_names() != self.output_names)
+        {
+            return Err(Error::Description {
+                item: "trajectory".to_owned(),
+                problem: format!(
+                    "was made for coordinates {:?} and outputs {:?}, not for a system with {:?} \
+                     and {:?}",
+                    self.coordinate_names,
+                    self.output_names,
+                    sys.coordinate_names(),
+                    sys.output_names()
+                ),
+            });
+        }
         self.push_with(sys, s, &mut Vec::new())
     }
 
@@ -195,7 +225,7 @@ impl Trajectory {
         s: &State,
         out: &mut Vec<f64>,
     ) -> Result<()> {
-        if self.len == 0 && self.output_names.is_empty() && self.cap == 0 {
+        if self.is_blank() {
             // A default (empty) trajectory takes the system's columns on its first row.
             *self = Self::for_system(sys);
         }
@@ -371,6 +401,34 @@ mod tests {
         tr.truncate(5);
         assert_eq!(short, tr);
         assert_eq!(short.to_csv(), tr.to_csv());
+    }
+
+    /// A trajectory takes rows of the system it was made for only; a default one takes the
+    /// first system's names. `output_at` reads the same columns as `outputs`.
+    #[test]
+    fn rows_of_another_system_are_refused() {
+        let (coax, five) = (CoaxialPropellers::default(), FiveBar::default());
+        let q0 = Vector2::new(120f64.to_radians(), 60f64.to_radians());
+        let (s_coax, s_five) = (State::at_rest(Vector2::zeros()), State::at_rest(q0));
+        let mut tr = Trajectory::default();
+        tr.push(&coax, &s_coax).unwrap();
+        assert_eq!(tr.coordinate_names(), coax.coordinate_names());
+        let before = tr.clone();
+        let e = tr.push(&five, &s_five);
+        assert!(matches!(e, Err(Error::Description { .. })), "{e:?}");
+        assert_eq!(tr, before);
+        tr.truncate(0);
+        assert!(tr.push(&five, &s_five).is_err());
+        tr.push(&coax, &s_coax).unwrap();
+        let cols = tr.outputs();
+        assert!(!cols.is_empty());
+        for (k, c) in cols.iter().enumerate() {
+            assert_eq!(tr.output_at(k), Some(*c));
+        }
+        assert_eq!(tr.output_at(cols.len()), None);
+        let mut fresh = Trajectory::for_system(&five);
+        assert!(fresh.push(&coax, &s_coax).is_err());
+        fresh.push(&five, &s_five).unwrap();
     }
 
     #[test]

@@ -1261,11 +1261,20 @@ impl Plan {
         Ok(a)
     }
 
-    /// Analyses one position into existing buffers: no allocation.
+    /// Analyses one position into existing buffers: no allocation. The buffers must have
+    /// been made for this plan ([`Analysis::new`] with it, or a previous analysis of it).
     ///
     /// # Errors
-    /// As [`Analysis::solve`].
+    /// [`Error::Description`] for buffers made for another plan (they would be solved for
+    /// theirs, not this one); as [`Analysis::solve`].
     pub fn analyse_into(&self, input: Motion, into: &mut Analysis<'_>) -> Result<()> {
+        if !std::ptr::eq(into.plan, self) {
+            return Err(Error::Description {
+                item: "analysis buffers".to_owned(),
+                problem: "were made for another plan: make them with Analysis::new(plan)"
+                    .to_owned(),
+            });
+        }
         into.solve(input)
     }
 

@@ -115,16 +115,18 @@ impl Servo {
         }
     }
 
-    /// Where the servo switches between following its demand and saturating: 1 − |demand| /
-    /// limit, positive while it follows, negative while saturated, kept within [−1, 1]
-    /// (a demand that overflows is −1). `None` for a servo with limit 0, which never switches
-    /// (it always gives 0).
-    pub(crate) fn margin(&self, phi: f64, omega: f64) -> Result<Option<f64>> {
+    /// Where the servo switches between following its demand and saturating: the demand as
+    /// a fraction of the limit, kept within [−2, 2] (a demand that overflows is ±2). The
+    /// servo follows while it lies inside (−1, 1) and saturates outside, so its clamps are
+    /// the nodes −1 and +1: a swing from one clamp through following to the other crosses
+    /// both (a margin 1 − |demand|/limit would show no change of sign over it). `None` for a
+    /// servo with limit 0, which never switches (it always gives 0).
+    pub(crate) fn switch_argument(&self, phi: f64, omega: f64) -> Result<Option<f64>> {
         if self.limit == 0.0 {
             return Ok(None);
         }
         let d = self.demand(phi, omega)?;
-        Ok(Some((1.0 - d.abs() / self.limit).clamp(-1.0, 1.0)))
+        Ok(Some((d / self.limit).clamp(-2.0, 2.0)))
     }
 }
 
@@ -603,9 +605,10 @@ impl LagrangeSystem for FiveBar {
         Ok(self.gradient_from(&self.kinematics(q)?, q))
     }
 
-    /// The servos' saturation switches: two arguments, crank 1's servo's margin and crank
-    /// 4's (see [`kink_arguments`](Self::kink_arguments)), each with the node 0; a servo with
-    /// limit 0 never switches and its argument has no node.
+    /// The servos' saturation switches: two arguments, crank 1's servo's demand over its
+    /// limit and crank 4's (see [`kink_arguments`](Self::kink_arguments)), each with the
+    /// nodes ±1 (its clamps); a servo with limit 0 never switches and its argument has no
+    /// node.
     fn kinks(&self) -> Vec<Vec<f64>> {
         [self.drive1, self.drive4]
             .iter()
@@ -613,19 +616,19 @@ impl LagrangeSystem for FiveBar {
                 if s.limit == 0.0 {
                     Vec::new()
                 } else {
-                    vec![0.0]
+                    vec![-1.0, 1.0]
                 }
             })
             .collect()
     }
 
-    /// Each servo's margin m = 1 − |k_p·e − k_d·ω|/limit, clamped to [−1, 1] (`out[0]` crank
-    /// 1's, `out[1]` crank 4's): m > 0 while the servo follows its demand, m < 0 while it
-    /// saturates, so m changes sign exactly when the servo switches. The clamp at ±limit is a
-    /// kink of Q, and [`run`](crate::dynamics::run) steps onto it, so that a fixed-step method
-    /// keeps its order; two switches in one step (the default robot's servos switch about a
-    /// millisecond apart) are located one after the other. A servo with limit 0 (never
-    /// switching) gives 1.
+    /// Each servo's demand as a fraction of its limit, (k_p·e − k_d·ω)/limit kept within
+    /// [−2, 2] (`out[0]` crank 1's, `out[1]` crank 4's): the servo follows its demand inside
+    /// (−1, 1) and saturates outside, so its clamps are the nodes ±1. The clamp is a kink of
+    /// Q, and [`run`](crate::dynamics::run) steps onto it, so that a fixed-step method keeps
+    /// its order; two switches in one step (the default robot's servos switch about a
+    /// millisecond apart, and one servo may swing from one clamp to the other) are located
+    /// one after the other. A servo with limit 0 (never switching) gives 0 and has no node.
     ///
     /// # Errors
     /// As [`Servo::torque`]; [`Error::OutOfRange`] when `out` has not two entries.
@@ -641,8 +644,8 @@ impl LagrangeSystem for FiveBar {
         self.drive4.check()?;
         finite2(["phi1", "phi4"], *q)?;
         finite2(["phi1_dot", "phi4_dot"], *qd)?;
-        out[0] = self.drive1.margin(q[0], qd[0])?.unwrap_or(1.0);
-        out[1] = self.drive4.margin(q[1], qd[1])?.unwrap_or(1.0);
+        out[0] = self.drive1.switch_argument(q[0], qd[0])?.unwrap_or(0.0);
+        out[1] = self.drive4.switch_argument(q[1], qd[1])?.unwrap_or(0.0);
         Ok(())
     }
 

@@ -692,7 +692,7 @@ impl LagrangeSystem for LinkageSystem {
     }
 
     /// The switches of the motors' characteristics, which are kinks of Q: one argument for
-    /// each input driven by a servo (its margin, node 0: the clamp at ±limit, as
+    /// each input driven by a servo (its demand over its limit, nodes ±1: the clamps, as
     /// [`FiveBar`](crate::dynamics::machines::FiveBar)'s; no node for a servo with limit 0,
     /// which never switches) or by a tabulated motor (its rate q̇, the nodes of its table), in
     /// input order. None for smooth motors. Each is located on its own, so a tabulated motor
@@ -701,7 +701,7 @@ impl LagrangeSystem for LinkageSystem {
     fn kinks(&self) -> Vec<Vec<f64>> {
         self.kinked_motors()
             .map(|(_, m)| match m {
-                Motor::Servo(s) if s.limit != 0.0 => vec![0.0],
+                Motor::Servo(s) if s.limit != 0.0 => vec![-1.0, 1.0],
                 Motor::Tabulated(t) => t.xs().to_vec(),
                 _ => Vec::new(),
             })
@@ -709,8 +709,8 @@ impl LagrangeSystem for LinkageSystem {
     }
 
     /// The arguments of [`kinks`](Self::kinks), one per servo or tabulated motor in input
-    /// order: a servo's margin 1 − |demand|/limit (clamped to [−1, 1], positive while the
-    /// servo follows its demand; 1 for limit 0), a tabulated motor's input rate q̇.
+    /// order: a servo's demand over its limit (kept within [−2, 2], inside (−1, 1) while the
+    /// servo follows its demand; 0 for limit 0), a tabulated motor's input rate q̇.
     ///
     /// # Errors
     /// A non-finite state; a servo's error; [`Error::OutOfRange`] when `out` has not one
@@ -727,7 +727,7 @@ impl LagrangeSystem for LinkageSystem {
         finite2(["q1_dot", "q2_dot"], *qd)?;
         for (o, (i, m)) in out.iter_mut().zip(self.kinked_motors()) {
             *o = match m {
-                Motor::Servo(s) => s.margin(q[i], qd[i])?.unwrap_or(1.0),
+                Motor::Servo(s) => s.switch_argument(q[i], qd[i])?.unwrap_or(0.0),
                 _ => qd[i],
             };
         }
