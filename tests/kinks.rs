@@ -477,6 +477,10 @@ fn several_arguments_earliest_first_and_hostile_ones_refused() {
 struct Ramps {
     real: Vec<f64>,
     nodes: Vec<Vec<f64>>,
+    /// The kink argument is x instead of t (nodes then in metres).
+    on_position: bool,
+    /// Evaluations of the forces so far (one per evaluation of the accelerations).
+    calls: std::cell::Cell<usize>,
 }
 
 impl Ramps {
@@ -495,6 +499,7 @@ impl LagrangeSystem for Ramps {
         Ok(Matrix2::identity())
     }
     fn forces(&self, t: f64, _: &Vector2<f64>, _: &Vector2<f64>) -> tmm::Result<Vector2<f64>> {
+        self.calls.set(self.calls.get() + 1);
         let f = 1.0 + self.real.iter().map(|&n| (t - n).max(0.0)).sum::<f64>();
         Ok(Vector2::new(f, 0.0))
     }
@@ -504,11 +509,11 @@ impl LagrangeSystem for Ramps {
     fn kink_arguments(
         &self,
         t: f64,
-        _: &Vector2<f64>,
+        q: &Vector2<f64>,
         _: &Vector2<f64>,
         out: &mut [f64],
     ) -> tmm::Result<()> {
-        out.fill(t);
+        out.fill(if self.on_position { q[0] } else { t });
         Ok(())
     }
 }
@@ -535,6 +540,8 @@ fn a_crossing_at_the_start_of_a_step_does_not_hide_later_ones() {
         let sys = Ramps {
             real,
             nodes: nodes.clone(),
+            on_position: false,
+            calls: Default::default(),
         };
         for method in ["RK4", "DP"] {
             let r = match method {
@@ -548,4 +555,59 @@ fn a_crossing_at_the_start_of_a_step_does_not_hide_later_ones() {
             }
         }
     }
+}
+
+/// The evaluation budget holds while kinks (and a watched value) are located inside a step:
+/// for every budget from 1 to 300 evaluations (the run needs 236), a run either ends within it (past it by at
+/// most the one RK4 step under way when it was checked) or stops with a budget error; none
+/// overshoots it by the re-steps of a location (which used to go unchecked).
+#[test]
+fn locating_stays_within_the_evaluation_budget() {
+    // The kinks located on x (a cubic in t: regula falsi needs several re-steps each), three
+    // in the first step of RK4.
+    let mut sys = Ramps {
+        real: vec![0.2, 0.5, 0.7],
+        nodes: Vec::new(),
+        on_position: true,
+        calls: Default::default(),
+    };
+    sys.nodes = sys.real.iter().rev().map(|&t| vec![sys.x(t)]).collect();
+    let s0 = State::at_rest(Vector2::zeros());
+    let (mut ok, mut refused) = (0, 0);
+    for max in 1..=300 {
+        for reach in [false, true] {
+            let mut opts = RunOptions::until(1.0, 1.0);
+            opts.max_evaluations = max;
+            if reach {
+                opts.reach = Some(tmm::dynamics::Reach {
+                    watch: tmm::dynamics::Watch::Coordinate(0),
+                    value: 0.3,
+                    direction: tmm::dynamics::Direction::Rising,
+                });
+                opts.t_end = 2.0;
+            }
+            sys.calls.set(0);
+            let result = run(&sys, &Rk4, s0, &opts);
+            // What was spent, counted by the system itself (the recorded rows' two
+            // evaluations aside).
+            let spent = sys.calls.get().saturating_sub(2);
+            assert!(spent < max + 4, "{max}: {spent} evaluations spent");
+            match result {
+                Ok(r) => {
+                    assert!(
+                        r.evaluations < max + 4,
+                        "{max}: {} evaluations",
+                        r.evaluations
+                    );
+                    ok += 1;
+                }
+                Err(Error::Budget { what, limit, .. }) => {
+                    assert_eq!((what, limit), ("evaluation", max));
+                    refused += 1;
+                }
+                Err(e) => panic!("{max}: {e}"),
+            }
+        }
+    }
+    assert!(ok > 50 && refused > 50, "{ok} ended, {refused} refused");
 }

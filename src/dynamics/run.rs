@@ -108,7 +108,10 @@ pub struct RunOptions {
     /// [`DEFAULT_MAX_STEPS`](Self::DEFAULT_MAX_STEPS)).
     pub max_steps: usize,
     /// The most evaluations of the accelerations the stepper may spend, rejected trial steps
-    /// included (default [`DEFAULT_MAX_EVALUATIONS`](Self::DEFAULT_MAX_EVALUATIONS)).
+    /// included (default [`DEFAULT_MAX_EVALUATIONS`](Self::DEFAULT_MAX_EVALUATIONS)). It is
+    /// checked before every step and before every re-step that locates a kink or a watched
+    /// value inside a step, so a run ends past it by at most the step under way (for RK4
+    /// fewer than four evaluations; for Dormand–Prince that step's rejected trials too).
     pub max_evaluations: usize,
     /// The most rows the trajectory may hold, start and end included (default
     /// [`DEFAULT_MAX_ROWS`](Self::DEFAULT_MAX_ROWS)); record fewer with `record_every`.
@@ -258,6 +261,25 @@ fn crosses(d: Direction, g0: f64, g1: f64) -> bool {
     }
 }
 
+/// The evaluations a run may still spend (`left` of its budget `limit`): locating a state
+/// inside a step stops at the budget as stepping does, rather than overshooting it by up to a
+/// hundred re-steps per located state.
+#[derive(Clone, Copy)]
+struct Allowance {
+    left: usize,
+    limit: usize,
+}
+
+impl Allowance {
+    /// What is left of `opts`' evaluation budget after `spent`.
+    fn after(opts: &RunOptions, spent: usize) -> Self {
+        Self {
+            left: opts.max_evaluations.saturating_sub(spent),
+            limit: opts.max_evaluations,
+        }
+    }
+}
+
 /// Finds the state inside the step s0 → s1 at which g (f0 = g(s0), f1 = g(s1) of opposite
 /// signs) vanishes, by re-stepping from s0 with θh (regula falsi, Illinois variant): the
 /// located state is a true state of the method, not an interpolation. Also returns the
@@ -268,6 +290,7 @@ fn locate<S: LagrangeSystem + ?Sized, M: Stepper>(
     (s0, f0): (&State, f64),
     (s1, f1): (&State, f64),
     guess: Option<f64>,
+    allowance: Allowance,
     mut g: impl FnMut(&State) -> Result<f64>,
 ) -> Result<(State, usize)> {
     let h = s1.t - s0.t;
@@ -284,6 +307,13 @@ fn locate<S: LagrangeSystem + ?Sized, M: Stepper>(
         let c = guess.take().unwrap_or(chord);
         if c <= 0.0 {
             break;
+        }
+        if (resteps + 1) * method.evaluations_per_step() > allowance.left {
+            return Err(Error::Budget {
+                what: "evaluation",
+                limit: allowance.limit,
+                time: s0.t,
+            });
         }
         let sc = method.step(sys, s0, c * h)?;
         resteps += 1;
@@ -722,6 +752,7 @@ pub fn run<S: LagrangeSystem + ?Sized, M: Stepper>(
                             (&s, sigma[first.0] - node),
                             (&s1, sigma1[first.0] - node),
                             Some(0.5 * (lo + hi)),
+                            Allowance::after(opts, evaluations),
                             |st| {
                                 kink_args(st, &mut probe)?;
                                 Ok(probe[first.0] - node)
@@ -741,6 +772,10 @@ pub fn run<S: LagrangeSystem + ?Sized, M: Stepper>(
                                 (&s, sigma[k] - node),
                                 (&s1, sigma1[k] - node),
                                 None,
+                                Allowance::after(
+                                    opts,
+                                    evaluations + resteps * method.evaluations_per_step(),
+                                ),
                                 |st| {
                                     kink_args(st, &mut probe)?;
                                     Ok(probe[k] - node)
@@ -771,6 +806,13 @@ pub fn run<S: LagrangeSystem + ?Sized, M: Stepper>(
                 }
                 // Cut the step short onto the crossing, then check that no other crossing
                 // (missed by the extension's first guess) lies before it.
+                if Allowance::after(opts, evaluations).left < method.evaluations_per_step() {
+                    return Err(Error::Budget {
+                        what: "evaluation",
+                        limit: opts.max_evaluations,
+                        time: s.t,
+                    });
+                }
                 let (adv2, dense2) = method.advance_dense(sys, &s, hk, Some(hand_s))?;
                 evaluations += adv2.evaluations;
                 if !adaptive && grid_end.is_none() {
@@ -799,9 +841,16 @@ pub fn run<S: LagrangeSystem + ?Sized, M: Stepper>(
         if let Some(r) = &opts.reach {
             let g1 = watched(sys, r.watch, &s1, &mut buf)? - r.value;
             if crosses(r.direction, g_prev, g1) {
-                let (located, _) = locate(sys, method, (&s, g_prev), (&s1, g1), None, |st| {
-                    Ok(watched(sys, r.watch, st, &mut buf)? - r.value)
-                })?;
+                let (located, resteps) = locate(
+                    sys,
+                    method,
+                    (&s, g_prev),
+                    (&s1, g1),
+                    None,
+                    Allowance::after(opts, evaluations),
+                    |st| Ok(watched(sys, r.watch, st, &mut buf)? - r.value),
+                )?;
+                evaluations += resteps * method.evaluations_per_step();
                 hit = Some(located);
             }
             g_prev = g1;
