@@ -48,6 +48,13 @@ fn landings<S: LagrangeSystem>(sys: &S, r: &RunResult) -> Vec<(f64, usize, f64)>
     out
 }
 
+/// Dormand–Prince at tolerance 1e-10 from the five-bar's start to `t_end`, every step
+/// recorded.
+fn dopri_1e10<S: LagrangeSystem>(sys: &S, t_end: f64) -> RunResult {
+    let dp = Dopri5::new(1e-10).unwrap();
+    run(sys, &dp, start(), &RunOptions::until(t_end, 1e-3)).unwrap()
+}
+
 /// RK4 with `n` equal steps to `t_end`, recording only the end.
 fn rk4<S: LagrangeSystem>(sys: &S, s0: State, t_end: f64, n: u32, locate: bool) -> RunResult {
     let mut opts = RunOptions::until(t_end, t_end / f64::from(n));
@@ -80,14 +87,7 @@ fn two_servo_switches_in_one_step_are_located_one_after_the_other() {
     let sys = FiveBar::default();
     let t_end = 0.12;
     // The switches, from the steps of a run that lands on them: each servo once.
-    let dp = run(
-        &sys,
-        &Dopri5::new(1e-10).unwrap(),
-        start(),
-        &RunOptions::until(t_end, 1e-3),
-    )
-    .unwrap();
-    let on = landings(&sys, &dp);
+    let on = landings(&sys, &dopri_1e10(&sys, t_end));
     assert_eq!(
         on.iter().map(|&(_, k, x)| (k, x)).collect::<Vec<_>>(),
         [(0, -1.0), (1, 1.0)],
@@ -246,14 +246,7 @@ fn a_servo_beside_a_tabulated_motor_has_both_kinds_of_switch_located() {
         ]
     );
     let t_end = 0.3;
-    let dp = run(
-        &sys,
-        &Dopri5::new(1e-10).unwrap(),
-        start(),
-        &RunOptions::until(t_end, 1e-3),
-    )
-    .unwrap();
-    let on = landings(&sys, &dp);
+    let on = landings(&sys, &dopri_1e10(&sys, t_end));
     eprintln!("landed on {on:?}");
     assert_eq!(
         on.iter().map(|&(_, k, x)| (k, x)).collect::<Vec<_>>(),

@@ -297,7 +297,7 @@ fn locate<S: LagrangeSystem + ?Sized, M: Stepper>(
     if f1 == 0.0 {
         return Ok((*s1, 0));
     }
-    let mut resteps = 0;
+    let mut resteps: usize = 0;
     let (mut a, mut fa, mut b, mut fb) = (0.0_f64, f0, 1.0_f64, f1);
     let mut best = *s1;
     let scale = f0.abs().max(f1.abs()).max(1e-300);
@@ -308,7 +308,7 @@ fn locate<S: LagrangeSystem + ?Sized, M: Stepper>(
         if c <= 0.0 {
             break;
         }
-        if (resteps + 1) * method.evaluations_per_step() > allowance.left {
+        if (resteps + 1).saturating_mul(method.evaluations_per_step()) > allowance.left {
             return Err(Error::Budget {
                 what: "evaluation",
                 limit: allowance.limit,
@@ -607,7 +607,7 @@ pub fn run<S: LagrangeSystem + ?Sized, M: Stepper>(
             advanced(s.t, s1.t)?;
             let mut hand1 = adv.handover;
             steps += 1;
-            evaluations += adv.evaluations;
+            evaluations = evaluations.saturating_add(adv.evaluations);
             if (opts.t_end - s1.t).abs() <= t_tol && s1.t != opts.t_end {
                 s1.t = opts.t_end;
                 hand1.acceleration = None;
@@ -677,7 +677,7 @@ pub fn run<S: LagrangeSystem + ?Sized, M: Stepper>(
         advanced(s.t, s1.t)?;
         let mut hand1 = adv.handover;
         steps += 1;
-        evaluations += adv.evaluations;
+        evaluations = evaluations.saturating_add(adv.evaluations);
         // The whole step asked for was taken: it ends on the stop or the grid point.
         let full = s1.t == s.t + h_try;
         let target = if clamped { Some(stop) } else { goal };
@@ -763,7 +763,7 @@ pub fn run<S: LagrangeSystem + ?Sized, M: Stepper>(
                     // No extension: each crossing located by re-stepping, the earliest kept.
                     None => {
                         let mut earliest: Option<((usize, usize), State)> = None;
-                        let mut resteps = 0;
+                        let mut resteps: usize = 0;
                         for &(k, i) in &crossed {
                             let node = kinks[k][i];
                             let (hit, n) = locate(
@@ -774,7 +774,9 @@ pub fn run<S: LagrangeSystem + ?Sized, M: Stepper>(
                                 None,
                                 Allowance::after(
                                     opts,
-                                    evaluations + resteps * method.evaluations_per_step(),
+                                    evaluations.saturating_add(
+                                        resteps.saturating_mul(method.evaluations_per_step()),
+                                    ),
                                 ),
                                 |st| {
                                     kink_args(st, &mut probe)?;
@@ -792,7 +794,8 @@ pub fn run<S: LagrangeSystem + ?Sized, M: Stepper>(
                         }
                     }
                 };
-                evaluations += resteps * method.evaluations_per_step();
+                evaluations = evaluations
+                    .saturating_add(resteps.saturating_mul(method.evaluations_per_step()));
                 skip.push((k, i));
                 let hk = hit.t - s.t;
                 if hk <= t_tol {
@@ -814,7 +817,7 @@ pub fn run<S: LagrangeSystem + ?Sized, M: Stepper>(
                     });
                 }
                 let (adv2, dense2) = method.advance_dense(sys, &s, hk, Some(hand_s))?;
-                evaluations += adv2.evaluations;
+                evaluations = evaluations.saturating_add(adv2.evaluations);
                 if !adaptive && grid_end.is_none() {
                     grid_end = Some(s1.t);
                 }
@@ -850,7 +853,8 @@ pub fn run<S: LagrangeSystem + ?Sized, M: Stepper>(
                     Allowance::after(opts, evaluations),
                     |st| Ok(watched(sys, r.watch, st, &mut buf)? - r.value),
                 )?;
-                evaluations += resteps * method.evaluations_per_step();
+                evaluations = evaluations
+                    .saturating_add(resteps.saturating_mul(method.evaluations_per_step()));
                 hit = Some(located);
             }
             g_prev = g1;

@@ -115,6 +115,16 @@ impl Servo {
         }
     }
 
+    /// The nodes of [`switch_argument`](Self::switch_argument): its clamps ±1, none for a
+    /// servo with limit 0.
+    pub(crate) fn switch_nodes(&self) -> Vec<f64> {
+        if self.limit == 0.0 {
+            Vec::new()
+        } else {
+            vec![-1.0, 1.0]
+        }
+    }
+
     /// Where the servo switches between following its demand and saturating: the demand as
     /// a fraction of the limit, kept within [−2, 2] (a demand that overflows is ±2). The
     /// servo follows while it lies inside (−1, 1) and saturates outside, so its clamps are
@@ -612,13 +622,7 @@ impl LagrangeSystem for FiveBar {
     fn kinks(&self) -> Vec<Vec<f64>> {
         [self.drive1, self.drive4]
             .iter()
-            .map(|s| {
-                if s.limit == 0.0 {
-                    Vec::new()
-                } else {
-                    vec![-1.0, 1.0]
-                }
-            })
+            .map(Servo::switch_nodes)
             .collect()
     }
 

@@ -701,7 +701,7 @@ impl LagrangeSystem for LinkageSystem {
     fn kinks(&self) -> Vec<Vec<f64>> {
         self.kinked_motors()
             .map(|(_, m)| match m {
-                Motor::Servo(s) if s.limit != 0.0 => vec![-1.0, 1.0],
+                Motor::Servo(s) => s.switch_nodes(),
                 Motor::Tabulated(t) => t.xs().to_vec(),
                 _ => Vec::new(),
             })
