@@ -1150,6 +1150,87 @@ fn dormand_prince_first_same_as_last_saves_an_evaluation_and_changes_nothing() {
     assert!((r.last.qd[0] - 2.0 * (-0.5 * t_end).exp()).abs() < 1e-8);
 }
 
+/// A pendulum-like pair with a configuration-dependent inertia and a time-dependent drive
+/// that counts how often its forces are evaluated (once per evaluation of the terms).
+struct Counted {
+    calls: std::cell::Cell<usize>,
+}
+impl LagrangeSystem for Counted {
+    fn inertia(&self, q: &Vector2<f64>) -> tmm::Result<Matrix2<f64>> {
+        let c = 0.3 * (q[0] - q[1]).cos();
+        Ok(Matrix2::new(1.0, c, c, 0.8))
+    }
+    fn forces(&self, t: f64, q: &Vector2<f64>, qd: &Vector2<f64>) -> tmm::Result<Vector2<f64>> {
+        self.calls.set(self.calls.get() + 1);
+        Ok(Vector2::new(
+            (3.0 * t).sin() - 2.0 * q[0].sin() - 0.1 * qd[0],
+            -q[1].sin(),
+        ))
+    }
+}
+
+/// A recorded row's q̈ are the first stage of the step that starts there: RK4 and finite
+/// increments take them over, so that a run recording every step costs the method's own
+/// evaluations and no more. The motion is the bare steps' to the last bit, the reported
+/// counts are the method's evaluations per step, and the terms are evaluated once per
+/// reported evaluation plus once for the end row (recording every step used to add one
+/// evaluation per step).
+#[test]
+fn recorded_rows_hand_their_accelerations_to_the_next_step() {
+    let s0 = State::new(0.0, Vector2::new(0.4, -0.2), Vector2::new(0.0, 1.0));
+    // Binary fractions: the run's last step, clamped onto the end, is a whole step too.
+    let (t_end, h) = (2.5, 0.0625);
+    let n = 40;
+    fn check<M: Stepper>(m: &M, s0: State, t_end: f64, h: f64, n: usize) {
+        let sys = Counted {
+            calls: std::cell::Cell::new(0),
+        };
+        let mut bare = s0;
+        for _ in 0..n {
+            bare = m.step(&sys, &bare, h).unwrap();
+        }
+        let lean = RunOptions::until(t_end, h);
+        let sparse = RunOptions {
+            record_every: 7,
+            ..RunOptions::until(t_end, h)
+        };
+        // A steady state that is never reached takes the run's full loop.
+        let full = RunOptions {
+            steady: Some(Steady {
+                tol: 1e-300,
+                hold: 1e9,
+            }),
+            ..RunOptions::until(t_end, h)
+        };
+        for (what, opts) in [("lean", lean), ("sparse", sparse), ("full", full)] {
+            sys.calls.set(0);
+            let r = run(&sys, m, s0, &opts).unwrap();
+            let name = format!("{} {what}", m.name());
+            assert_eq!(r.steps, n, "{name}");
+            assert_eq!((r.last.q, r.last.qd), (bare.q, bare.qd), "{name}");
+            assert_eq!(r.evaluations, n * m.evaluations_per_step(), "{name}");
+            // Rows not handed on (between recorded steps and at the end) cost their own.
+            let rows = r.trajectory.len();
+            let handed = if what == "sparse" { rows - 1 } else { n };
+            assert_eq!(
+                sys.calls.get(),
+                r.evaluations + rows - handed,
+                "{name}: {rows} rows"
+            );
+            // The trajectory's q̈ are the system's at every row.
+            let tr = &r.trajectory;
+            let ([q0, q1], [v0, v1], [a0, a1]) = (tr.q(), tr.qd(), tr.qdd());
+            for k in 0..rows {
+                let (q, v) = (Vector2::new(q0[k], q1[k]), Vector2::new(v0[k], v1[k]));
+                let a = accelerations(&sys, tr.t()[k], &q, &v).unwrap();
+                assert_eq!((a0[k], a1[k]), (a[0], a[1]), "{name} row {k}");
+            }
+        }
+    }
+    check(&Rk4, s0, t_end, h, n);
+    check(&FiniteIncrement, s0, t_end, h, n);
+}
+
 /// The step-size controller is the PI controller its docs derive: after an accepted step with
 /// error norm err, the next step is h·0.9·err^(−α)·errₙ₋₁^β (α = 0.17, β = 0.04) given the
 /// error norm errₙ₋₁ of the step before, and h·0.9·err^(−1/5) without it.

@@ -553,6 +553,10 @@ impl Stepper for Dopri5 {
         Ok(self.accepted(sys, s, h, from, &mut k)?.0)
     }
 
+    fn uses_start_acceleration(&self) -> bool {
+        true
+    }
+
     fn is_adaptive(&self) -> bool {
         true
     }

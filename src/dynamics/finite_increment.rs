@@ -1,6 +1,8 @@
 //! The seeds' method of finite increments (seed 003, eqs. 87–104 and 127–144).
 
-use super::stepper::{check_result, check_step, Stepper};
+use nalgebra::Vector2;
+
+use super::stepper::{check_result, check_step, Advance, Handover, Stepper};
 use super::system::{accelerations, LagrangeSystem, State};
 use crate::error::Result;
 
@@ -59,7 +61,40 @@ impl Stepper for FiniteIncrement {
     fn step<S: LagrangeSystem + ?Sized>(&self, sys: &S, s: &State, h: f64) -> Result<State> {
         check_step(s, h)?;
         let a = accelerations(sys, s.t, &s.q, &s.qd)?;
-        let dv = a * h;
-        check_result(State::new(s.t + h, s.q + (s.qd + 0.5 * dv) * h, s.qd + dv))
+        increment(s, h, a)
     }
+
+    /// As [`step`](Self::step), with the handed-on accelerations at `s` when there are
+    /// finite ones (then no evaluation at all).
+    fn advance_from<S: LagrangeSystem + ?Sized>(
+        &self,
+        sys: &S,
+        s: &State,
+        h: f64,
+        from: Option<Handover>,
+    ) -> Result<Advance> {
+        let (state, evaluations) = match from.and_then(|f| f.acceleration) {
+            Some(a) if a[0].is_finite() && a[1].is_finite() => {
+                check_step(s, h)?;
+                (increment(s, h, a)?, 0)
+            }
+            _ => (self.step(sys, s, h)?, 1),
+        };
+        Ok(Advance {
+            state,
+            h_next: h,
+            evaluations,
+            handover: Handover::default(),
+        })
+    }
+
+    fn uses_start_acceleration(&self) -> bool {
+        true
+    }
+}
+
+/// The increments of one step of `h` from `s` under the accelerations `a` at `s`.
+fn increment(s: &State, h: f64, a: Vector2<f64>) -> Result<State> {
+    let dv = a * h;
+    check_result(State::new(s.t + h, s.q + (s.qd + 0.5 * dv) * h, s.qd + dv))
 }

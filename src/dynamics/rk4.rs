@@ -1,6 +1,8 @@
 //! The classic fourth-order Runge–Kutta method.
 
-use super::stepper::{check_result, Stepper};
+use nalgebra::Vector2;
+
+use super::stepper::{check_result, check_step, Advance, Handover, Stepper};
 use super::system::{accelerations_inline as accelerations, LagrangeSystem, State};
 use crate::error::{positive, Result};
 
@@ -56,20 +58,59 @@ impl Stepper for Rk4 {
         // The start state needs no check of its own: the first evaluation refuses a
         // non-finite one with the same error (a non-finite state at s.t).
         positive("step size h", h)?;
-        // The stages on (q, q̇) directly: y = (q, q̇), k = (q̇, q̈), the same sums as on the
-        // packed y, with nothing packed and unpacked.
-        let (t, q, v) = (s.t, s.q, s.qd);
-        let half = 0.5 * h;
-        let a1 = accelerations(sys, t, &q, &v)?;
-        let (q2, v2) = (q + half * v, v + half * a1);
-        let a2 = accelerations(sys, t + half, &q2, &v2)?;
-        let (q3, v3) = (q + half * v2, v + half * a2);
-        let a3 = accelerations(sys, t + half, &q3, &v3)?;
-        let (q4, v4) = (q + h * v3, v + h * a3);
-        let a4 = accelerations(sys, t + h, &q4, &v4)?;
-        let sixth = h / 6.0;
-        let q1 = q + sixth * (v + 2.0 * v2 + 2.0 * v3 + v4);
-        let v1 = v + sixth * (a1 + 2.0 * a2 + 2.0 * a3 + a4);
-        check_result(State::new(t + h, q1, v1))
+        let a1 = accelerations(sys, s.t, &s.q, &s.qd)?;
+        stages(sys, s, h, a1)
     }
+
+    /// As [`step`](Self::step), its first stage taken from the handed-on accelerations at
+    /// `s` when there are finite ones (three evaluations instead of four).
+    #[inline]
+    fn advance_from<S: LagrangeSystem + ?Sized>(
+        &self,
+        sys: &S,
+        s: &State,
+        h: f64,
+        from: Option<Handover>,
+    ) -> Result<Advance> {
+        let (state, evaluations) = match from.and_then(|f| f.acceleration) {
+            Some(a1) if a1[0].is_finite() && a1[1].is_finite() => {
+                check_step(s, h)?;
+                (stages(sys, s, h, a1)?, 3)
+            }
+            _ => (self.step(sys, s, h)?, 4),
+        };
+        Ok(Advance {
+            state,
+            h_next: h,
+            evaluations,
+            handover: Handover::default(),
+        })
+    }
+
+    fn uses_start_acceleration(&self) -> bool {
+        true
+    }
+}
+
+/// The step from `s` given q̈ at `s` (`a1`): the stages on (q, q̇) directly, y = (q, q̇),
+/// k = (q̇, q̈), the same sums as on the packed y with nothing packed and unpacked.
+#[inline(always)]
+fn stages<S: LagrangeSystem + ?Sized>(
+    sys: &S,
+    s: &State,
+    h: f64,
+    a1: Vector2<f64>,
+) -> Result<State> {
+    let (t, q, v) = (s.t, s.q, s.qd);
+    let half = 0.5 * h;
+    let (q2, v2) = (q + half * v, v + half * a1);
+    let a2 = accelerations(sys, t + half, &q2, &v2)?;
+    let (q3, v3) = (q + half * v2, v + half * a2);
+    let a3 = accelerations(sys, t + half, &q3, &v3)?;
+    let (q4, v4) = (q + h * v3, v + h * a3);
+    let a4 = accelerations(sys, t + h, &q4, &v4)?;
+    let sixth = h / 6.0;
+    let q1 = q + sixth * (v + 2.0 * v2 + 2.0 * v3 + v4);
+    let v1 = v + sixth * (a1 + 2.0 * a2 + 2.0 * a3 + a4);
+    check_result(State::new(t + h, q1, v1))
 }

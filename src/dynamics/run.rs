@@ -516,7 +516,7 @@ pub fn run<S: LagrangeSystem + ?Sized, M: Stepper>(
     // The outputs of a watched state and of every recorded row, one buffer for the run.
     let mut buf = Vec::new();
     let mut traj = Trajectory::for_system(sys);
-    traj.push_with(sys, &start, &mut buf)?;
+    let a_start = traj.push_with(sys, &start, &mut buf)?;
     let mut s = start;
     let mut h = opts.h;
     let (mut steps, mut evaluations) = (0usize, 0usize);
@@ -532,6 +532,15 @@ pub fn run<S: LagrangeSystem + ?Sized, M: Stepper>(
     // What the last step handed on for the next one: q̈ at `s` when it gave them
     // (Dormand–Prince's last stage) and its error norm (the step-size controller's memory).
     let mut hand_s = Handover::default();
+    // A recorded row's q̈ are those a method's first stage would evaluate at the same state:
+    // to a method that takes them, the row hands them on when the step before did not.
+    // `row_handed` says that the next step's q̈ at its start came from a row, an evaluation
+    // the run counts when that step is taken (so that counts do not depend on recording).
+    let takes_rows = method.uses_start_acceleration();
+    let mut row_handed = takes_rows;
+    if takes_rows {
+        hand_s.acceleration = Some(a_start);
+    }
     // Every kink argument at a state, into `out` (one entry per argument, each set to NaN
     // first so that one the system leaves unset is caught as not finite).
     let kink_args = |st: &State, out: &mut [f64]| -> Result<()> {
@@ -607,7 +616,8 @@ pub fn run<S: LagrangeSystem + ?Sized, M: Stepper>(
             advanced(s.t, s1.t)?;
             let mut hand1 = adv.handover;
             steps += 1;
-            evaluations = evaluations.saturating_add(adv.evaluations);
+            evaluations = evaluations.saturating_add(adv.evaluations + usize::from(row_handed));
+            row_handed = false;
             if (opts.t_end - s1.t).abs() <= t_tol && s1.t != opts.t_end {
                 s1.t = opts.t_end;
                 hand1.acceleration = None;
@@ -617,7 +627,11 @@ pub fn run<S: LagrangeSystem + ?Sized, M: Stepper>(
             if until_record == 0 {
                 until_record = opts.record_every;
                 row_budget(traj.len(), opts, s1.t, t_tol)?;
-                traj.push_with(sys, &s1, &mut buf)?;
+                let a = traj.push_with(sys, &s1, &mut buf)?;
+                if takes_rows && hand1.acceleration.is_none() {
+                    hand1.acceleration = Some(a);
+                    row_handed = true;
+                }
             }
             hand_s = hand1;
             s = s1;
@@ -627,7 +641,10 @@ pub fn run<S: LagrangeSystem + ?Sized, M: Stepper>(
         if remaining <= t_tol {
             let outcome = match &opts.steady {
                 Some(_) => Outcome::NotSteady {
-                    acceleration: accelerations(sys, s.t, &s.q, &s.qd)?,
+                    acceleration: match hand_s.acceleration {
+                        Some(a) => a,
+                        None => accelerations(sys, s.t, &s.q, &s.qd)?,
+                    },
                 },
                 None => Outcome::FinalTime,
             };
@@ -677,7 +694,8 @@ pub fn run<S: LagrangeSystem + ?Sized, M: Stepper>(
         advanced(s.t, s1.t)?;
         let mut hand1 = adv.handover;
         steps += 1;
-        evaluations = evaluations.saturating_add(adv.evaluations);
+        evaluations = evaluations.saturating_add(adv.evaluations + usize::from(row_handed));
+        row_handed = false;
         // The whole step asked for was taken: it ends on the stop or the grid point.
         let full = s1.t == s.t + h_try;
         let target = if clamped { Some(stop) } else { goal };
@@ -911,7 +929,11 @@ pub fn run<S: LagrangeSystem + ?Sized, M: Stepper>(
         if at_end || on_grid_record {
             // One row stays free for the end.
             row_budget(traj.len(), opts, s1.t, t_tol)?;
-            traj.push_with(sys, &s1, &mut buf)?;
+            let a = traj.push_with(sys, &s1, &mut buf)?;
+            if takes_rows && hand1.acceleration.is_none() {
+                hand1.acceleration = Some(a);
+                row_handed = true;
+            }
             recorded = true;
         }
         hand_s = hand1;

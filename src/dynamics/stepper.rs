@@ -168,6 +168,22 @@ pub trait Stepper {
         self.advance(sys, s, h)
     }
 
+    /// `true` for a method whose first stage is q̈ at the start state and that takes it from
+    /// [`Handover::acceleration`] in [`advance_from`](Self::advance_from) (RK4, finite
+    /// increments, Dormand–Prince); `false` (the default) otherwise. [`run`](super::run)
+    /// evaluates q̈ at every recorded state for the trajectory anyway: to such a method it
+    /// hands them on when the step before did not, saving the next step an evaluation (the
+    /// run still counts it, once, among the evaluations the method used).
+    ///
+    /// # Examples
+    /// ```
+    /// use tmm::dynamics::{Rk4, Stepper};
+    /// assert!(Rk4.uses_start_acceleration());
+    /// ```
+    fn uses_start_acceleration(&self) -> bool {
+        false
+    }
+
     /// `true` for a method that chooses its own step sizes (its [`Advance::h_next`] is a
     /// proposal); `false` (the default) for a fixed-step method. [`run`](super::run) keeps a
     /// fixed-step method on its grid t₀ + n·h: a step cut short at a breakpoint is followed by

@@ -2,6 +2,8 @@
 
 use std::fmt::Write as _;
 
+use nalgebra::Vector2;
+
 use super::system::{row_terms, LagrangeSystem, RowTerms, State};
 use crate::error::{Error, Result};
 
@@ -213,18 +215,18 @@ impl Trajectory {
                 ),
             });
         }
-        self.push_with(sys, s, &mut Vec::new())
+        self.push_with(sys, s, &mut Vec::new()).map(|_| ())
     }
 
     /// As [`push`](Self::push), gathering the outputs in the caller's buffer `out` (cleared
     /// first): a run records all its rows through one buffer instead of allocating one per
-    /// row.
+    /// row. Returns the row's q̈ (a run hands them on to the step that starts there).
     pub(crate) fn push_with<S: LagrangeSystem + ?Sized>(
         &mut self,
         sys: &S,
         s: &State,
         out: &mut Vec<f64>,
-    ) -> Result<()> {
+    ) -> Result<Vector2<f64>> {
         if self.is_blank() {
             // A default (empty) trajectory takes the system's columns on its first row.
             *self = Self::for_system(sys);
@@ -262,7 +264,7 @@ impl Trajectory {
             self.data[c * cap + n] = v;
         }
         self.len += 1;
-        Ok(())
+        Ok(a)
     }
 
     /// Keeps the first `n` rows (all of them when there are fewer), in every column.
