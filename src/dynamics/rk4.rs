@@ -64,7 +64,7 @@ impl Stepper for Rk4 {
 
     /// As [`step`](Self::step), its first stage taken from the handed-on accelerations at
     /// `s` when there are finite ones (three evaluations instead of four).
-    #[inline]
+    #[inline(always)]
     fn advance_from<S: LagrangeSystem + ?Sized>(
         &self,
         sys: &S,
@@ -72,17 +72,23 @@ impl Stepper for Rk4 {
         h: f64,
         from: Option<Handover>,
     ) -> Result<Advance> {
-        let (state, evaluations) = match from.and_then(|f| f.acceleration) {
-            Some(a1) if a1[0].is_finite() && a1[1].is_finite() => {
+        let given = from
+            .and_then(|f| f.acceleration)
+            .filter(|a| a[0].is_finite() && a[1].is_finite());
+        let a1 = match given {
+            Some(a) => {
                 check_step(s, h)?;
-                (stages(sys, s, h, a1)?, 3)
+                a
             }
-            _ => (self.step(sys, s, h)?, 4),
+            None => {
+                positive("step size h", h)?;
+                accelerations(sys, s.t, &s.q, &s.qd)?
+            }
         };
         Ok(Advance {
-            state,
+            state: stages(sys, s, h, a1)?,
             h_next: h,
-            evaluations,
+            evaluations: 4 - usize::from(given.is_some()),
             handover: Handover::default(),
         })
     }

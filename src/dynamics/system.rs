@@ -209,6 +209,7 @@ pub trait LagrangeSystem {
     /// The first error of the separate methods; [`Error::NotPositiveDefinite`] (with t and q)
     /// when A(q) is not positive-definite, [`Error::Overflow`] when its determinant overflows;
     /// [`Error::NonFiniteState`] for a part that is not finite.
+    #[inline]
     fn terms(&self, t: f64, q: &Vector2<f64>, qd: &Vector2<f64>) -> Result<LagrangeTerms> {
         let non_finite = || Error::NonFiniteState { time: t };
         let inertia = self.inertia(q)?;
@@ -554,7 +555,12 @@ pub(crate) fn accelerations_inline<S: LagrangeSystem + ?Sized>(
     q: &Vector2<f64>,
     qd: &Vector2<f64>,
 ) -> Result<Vector2<f64>> {
-    Ok(accelerations_and_terms(sys, t, q, qd)?.0)
+    // The terms stay where `terms` wrote them: only q̈ leave (moving the terms into a
+    // returned pair, to drop them at once, cost some ten instructions an evaluation).
+    if !all_finite(&[t, q[0], q[1], qd[0], qd[1]]) {
+        return Err(Error::NonFiniteState { time: t });
+    }
+    accelerations_of(&sys.terms(t, q, qd)?, t, q, qd)
 }
 
 /// q̈ with the Lagrange terms they came from (checked as [`accelerations`] checks them).
@@ -565,15 +571,26 @@ fn accelerations_and_terms<S: LagrangeSystem + ?Sized>(
     q: &Vector2<f64>,
     qd: &Vector2<f64>,
 ) -> Result<(Vector2<f64>, LagrangeTerms)> {
-    let non_finite = || Error::NonFiniteState { time: t };
     if !all_finite(&[t, q[0], q[1], qd[0], qd[1]]) {
-        return Err(non_finite());
+        return Err(Error::NonFiniteState { time: t });
     }
+    let terms = sys.terms(t, q, qd)?;
+    Ok((accelerations_of(&terms, t, q, qd)?, terms))
+}
+
+/// q̈ from the Lagrange terms at (t, q, q̇), the terms checked first.
+#[inline(always)]
+fn accelerations_of(
+    terms: &LagrangeTerms,
+    t: f64,
+    q: &Vector2<f64>,
+    qd: &Vector2<f64>,
+) -> Result<Vector2<f64>> {
+    let non_finite = || Error::NonFiniteState { time: t };
     // One call for every part (a linkage evaluates its kinematics once). The default
     // `terms` checks each part before it evaluates the next, so that the first failure is
     // the one reported; the same checks run again here, in the same order, for an override:
     // a NaN a system lets through is named (as a non-finite state at t), not hidden in q̈.
-    let terms = sys.terms(t, q, qd)?;
     let (a, det) = checked_inertia(&terms.inertia, t, q)?;
     if !(all_finite(terms.forces.as_slice())
         & all_finite(terms.potential_gradient.as_slice())
@@ -589,7 +606,7 @@ fn accelerations_and_terms<S: LagrangeSystem + ?Sized>(
         (rhs[1] * a[(0, 0)] - rhs[0] * a[(0, 1)]) / det,
     );
     if all_finite(acc.as_slice()) {
-        Ok((acc, terms))
+        Ok(acc)
     } else {
         Err(non_finite())
     }
