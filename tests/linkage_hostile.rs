@@ -22,7 +22,7 @@
 use std::panic::{catch_unwind, AssertUnwindSafe};
 use tmm::kinematics::{Motion, Rotation};
 use tmm::linkage::{
-    bundled, uniform_inputs, At, JointKind, Linkage, LoadSpec, Output, Plan, Table,
+    bundled, try_course_inputs, try_uniform_inputs, uniform_inputs, At, JointKind, Linkage, LoadSpec, Output, Plan, Table,
 };
 use tmm::mechanism::{Compressor, FourBar, RockingCylinder, SixBar, SliderCrank};
 use tmm::{Ends, Error};
@@ -853,4 +853,63 @@ fn analysis_buffers_of_another_plan_are_refused() {
     copy.analyse_into(input, &mut b).unwrap();
     let direct = four.analyse(input).unwrap();
     assert_eq!(b.balance(), direct.balance());
+}
+
+/// Inputs of a cycle: `try_uniform_inputs` refuses what has no positions and names it; what
+/// it gives is what `uniform_inputs` gives, n positions a step of 2π/n apart in the sense of
+/// ω1, each at the asked speed and acceleration.
+#[test]
+fn cycle_inputs_refuse_what_has_no_positions() {
+    use std::f64::consts::TAU;
+    let bad = [f64::NAN, f64::INFINITY, f64::NEG_INFINITY];
+    for x in bad {
+        for (args, name) in [
+            ((x, 1.0, 0.0), "start angle"),
+            ((0.0, x, 0.0), "input speed omega1"),
+            ((0.0, 1.0, x), "input acceleration epsilon1"),
+        ] {
+            match try_uniform_inputs(12, args.0, args.1, args.2) {
+                Err(Error::NonFinite { name: n, .. }) => assert_eq!(n, name),
+                other => panic!("{args:?}: {other:?}"),
+            }
+            assert!(uniform_inputs(12, args.0, args.1, args.2).is_empty());
+        }
+    }
+    for n in [0, (1 << 24) + 1, usize::MAX] {
+        assert!(matches!(
+            try_uniform_inputs(n, 0.0, 1.0, 0.0),
+            Err(Error::OutOfRange { .. })
+        ));
+    }
+    for (n, start, w) in [(1, 0.3, 2.0), (7, -1.0, -3.0), (12, 100.0, 1e300), (5, 0.0, 0.0)] {
+        let m = try_uniform_inputs(n, start, w, 0.5).unwrap();
+        assert_eq!(m, uniform_inputs(n, start, w, 0.5));
+        assert_eq!(m.len(), n);
+        let sense = if w < 0.0 { -1.0 } else { 1.0 };
+        for (k, p) in m.iter().enumerate() {
+            assert!((p.rate, p.accel) == (w, 0.5));
+            // Angle k is start + k·(±2π/n), modulo a turn.
+            let d = (p.value - start - sense * k as f64 * TAU / n as f64).rem_euclid(TAU);
+            assert!(d.min(TAU - d) < 1e-12, "n = {n}, k = {k}: {}", p.value);
+        }
+    }
+    // The course inputs, by the strokes of the shaper's ram, turning clockwise: 12 plans from
+    // the start of the working stroke, the speed's sign that of the rotation.
+    let plan = Plan::new(&bundled::shaper()).unwrap();
+    let strokes = plan
+        .strokes(&Output::Slide("Q".into()), Rotation::Cw)
+        .unwrap();
+    let c = try_course_inputs(&strokes, 12, 10.0).unwrap();
+    assert_eq!(c.len(), 12);
+    assert!(c.iter().all(|m| m.rate == -10.0 && m.accel == 0.0));
+    let d = (c[0].value - strokes.start).rem_euclid(TAU);
+    assert!(d.min(TAU - d) < 1e-12);
+    assert!(matches!(
+        try_course_inputs(&strokes, 12, f64::NAN),
+        Err(Error::NonFinite { .. })
+    ));
+    assert!(matches!(
+        try_course_inputs(&strokes, 0, 1.0),
+        Err(Error::OutOfRange { .. })
+    ));
 }

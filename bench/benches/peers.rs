@@ -1,6 +1,7 @@
 //! tmm's steppers beside a well-kept ODE crate, ode_solvers (its `Rk4` and `Dopri5`), on the
-//! same right-hand side: `tmm::dynamics::accelerations` of the coaxial-propeller drive and of
-//! the five-bar robot, packed as y = (q1, q2, q̇1, q̇2). The two integrate the same problem at
+//! same right-hand side: `tmm::dynamics::accelerations` of the coaxial-propeller drive, of
+//! the five-bar robot and of a cheap linear two-mass oscillator (where the integrators' own
+//! work is a large part of the time), packed as y = (q1, q2, q̇1, q̇2). The two integrate the same problem at
 //! the same step size (RK4) or the same tolerance (rtol = atol, Dormand–Prince), in one
 //! group per machine, so the ratio is measured side by side. Before timing, each pair's
 //! evaluation counts and final-time errors (against a reference run at a tolerance of 10⁻¹⁴)
@@ -18,7 +19,7 @@ use std::hint::black_box;
 use std::time::Duration;
 
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion};
-use nalgebra::Vector2;
+use nalgebra::{Matrix2, Vector2};
 use ode_solvers::dop_shared::OutputType;
 use tmm::dynamics::machines::{CoaxialPropellers, FiveBar};
 use tmm::dynamics::{accelerations, run, Dopri5, LagrangeSystem, Rk4, RunOptions, State};
@@ -37,6 +38,29 @@ impl<S: LagrangeSystem> ode_solvers::System<f64, Y> for Peer<'_, S> {
         // A failure (none on these runs) becomes a NaN, which ends the comparison visibly.
         let a = accelerations(self.0, t, &q, &qd).unwrap_or(Vector2::repeat(f64::NAN));
         *dy = Y::new(qd[0], qd[1], a[0], a[1]);
+    }
+}
+
+/// Two masses (2 and 1.5 kg, coupled through a mass term of 0.3) on springs and dampers under
+/// constant forces: A q̈ + B q̇ + K q = f with everything constant, the cheapest right-hand
+/// side a machine has.
+struct Oscillator;
+
+impl LagrangeSystem for Oscillator {
+    fn inertia(&self, _: &Vector2<f64>) -> tmm::Result<Matrix2<f64>> {
+        Ok(Matrix2::new(2.0, 0.3, 0.3, 1.5))
+    }
+    fn inertia_derivatives(&self, _: &Vector2<f64>) -> tmm::Result<[Matrix2<f64>; 2]> {
+        Ok([Matrix2::zeros(); 2])
+    }
+    fn forces(&self, _: f64, _: &Vector2<f64>, _: &Vector2<f64>) -> tmm::Result<Vector2<f64>> {
+        Ok(Vector2::new(1.0, -0.5))
+    }
+    fn potential_gradient(&self, q: &Vector2<f64>) -> tmm::Result<Vector2<f64>> {
+        Ok(Matrix2::new(3.0, 0.5, 0.5, 2.0) * q)
+    }
+    fn damping(&self, _: &Vector2<f64>) -> tmm::Result<Matrix2<f64>> {
+        Ok(Matrix2::new(0.4, 0.1, 0.1, 0.2))
     }
 }
 
@@ -219,6 +243,15 @@ fn side_by_side<S: LagrangeSystem>(
 }
 
 fn peers(c: &mut Criterion) {
+    side_by_side(
+        c,
+        "linear oscillator 10 s",
+        &Oscillator,
+        State::at_rest(Vector2::zeros()),
+        10.0,
+        1e-2,
+        1e-8,
+    );
     side_by_side(
         c,
         "coaxial propellers 1 s",

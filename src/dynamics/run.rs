@@ -225,7 +225,10 @@ pub struct RunResult {
     /// Accepted steps taken.
     pub steps: usize,
     /// Evaluations of the accelerations spent by the stepper, the location of kinks
-    /// included (the location of a [`Reach`] crossing and the recording not counted).
+    /// included (the location of a [`Reach`] crossing and the recording not counted). A
+    /// recorded row's q̈ that a step takes over as its first stage (see
+    /// [`Stepper::uses_start_acceleration`]) counts once, as the step's: recording changes
+    /// the work a run does, not this count.
     pub evaluations: usize,
 }
 

@@ -3,10 +3,10 @@
 
 use super::analysis::Analysis;
 use super::plan::{LoadPlan, Plan};
-use crate::error::{Error, Result};
+use crate::error::{finite, Error, Result};
 use crate::kinematics::{
-    assembly_range, cycle_angles, extreme_positions, transfer_functions, Extreme, Motion, Rotation,
-    Strokes,
+    assembly_range, extreme_positions, transfer_functions, try_cycle_angles, Extreme, Motion,
+    Rotation, Strokes,
 };
 
 /// An output coordinate of a linkage, for its extreme positions and strokes.
@@ -279,9 +279,35 @@ fn coord(p: crate::kinematics::PointMotion, y: bool) -> Motion {
 /// The inputs of `n` equally spaced positions over one turn from `start`, at the constant
 /// speed ω1 = `omega1` and acceleration ε1 = `epsilon1`. A negative ω1 turns clockwise: the
 /// angles then decrease from `start`, in the order the crank reaches them.
+///
+/// Input that has no positions gives none: an empty vector for `n = 0`, `n` above
+/// [`MAX_POSITIONS`](crate::kinematics::MAX_POSITIONS) or a non-finite number;
+/// [`try_uniform_inputs`] says why.
 #[must_use]
 pub fn uniform_inputs(n: usize, start: f64, omega1: f64, epsilon1: f64) -> Vec<Motion> {
-    let angles = cycle_angles(n, start);
+    try_uniform_inputs(n, start, omega1, epsilon1).unwrap_or_default()
+}
+
+/// As [`uniform_inputs`], with an error for input that has no positions.
+///
+/// # Errors
+/// [`Error::NonFinite`] naming a non-finite `start`, `omega1` or `epsilon1`;
+/// [`Error::OutOfRange`] for `n = 0` or `n` above
+/// [`MAX_POSITIONS`](crate::kinematics::MAX_POSITIONS).
+///
+/// # Examples
+/// ```
+/// use tmm::linkage::try_uniform_inputs;
+/// let inputs = try_uniform_inputs(4, 0.0, -2.0, 0.0).unwrap();
+/// let angles: Vec<f64> = inputs.iter().map(|m| m.value.to_degrees().round()).collect();
+/// assert_eq!(angles, [0.0, 270.0, 180.0, 90.0]); // clockwise, in the crank's order
+/// assert!(try_uniform_inputs(0, 0.0, 1.0, 0.0).is_err());
+/// assert!(try_uniform_inputs(12, 0.0, f64::NAN, 0.0).is_err());
+/// ```
+pub fn try_uniform_inputs(n: usize, start: f64, omega1: f64, epsilon1: f64) -> Result<Vec<Motion>> {
+    finite("input speed omega1", omega1)?;
+    finite("input acceleration epsilon1", epsilon1)?;
+    let angles = try_cycle_angles(n, start)?;
     let mut a = Vec::with_capacity(angles.len());
     if omega1 < 0.0 {
         a.extend(angles.first().copied());
@@ -289,25 +315,38 @@ pub fn uniform_inputs(n: usize, start: f64, omega1: f64, epsilon1: f64) -> Vec<M
     } else {
         a.extend(angles);
     }
-    a.into_iter()
+    Ok(a.into_iter()
         .map(|phi| Motion::new(phi, omega1, epsilon1))
-        .collect()
+        .collect())
 }
 
 /// The inputs of the `n` plans of a course project (12 in the seeds): equally spaced from the
 /// beginning of the working stroke in the crank's sense of rotation, at the speed |ω1| =
 /// `omega1` (its sign follows the rotation).
+///
+/// Input that has no plans gives none (an empty vector); [`try_course_inputs`] says why.
 #[must_use]
 pub fn course_inputs(strokes: &Strokes, n: usize, omega1: f64) -> Vec<Motion> {
+    try_course_inputs(strokes, n, omega1).unwrap_or_default()
+}
+
+/// As [`course_inputs`], with an error for input that has no plans.
+///
+/// # Errors
+/// [`Error::NonFinite`] for a non-finite `omega1` or start of the working stroke;
+/// [`Error::OutOfRange`] for `n = 0` or `n` above
+/// [`MAX_POSITIONS`](crate::kinematics::MAX_POSITIONS).
+pub fn try_course_inputs(strokes: &Strokes, n: usize, omega1: f64) -> Result<Vec<Motion>> {
+    finite("input speed omega1", omega1)?;
     let w = match strokes.rotation {
         Rotation::Ccw => omega1.abs(),
         Rotation::Cw => -omega1.abs(),
     };
-    strokes
-        .plan_positions(n)
+    Ok(strokes
+        .try_plan_positions(n)?
         .into_iter()
         .map(|phi| Motion::new(phi, w, 0.0))
-        .collect()
+        .collect())
 }
 
 /// Runs an analysis at every input, position by position. A position that fails (for example

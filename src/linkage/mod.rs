@@ -53,7 +53,9 @@ mod table;
 pub use analysis::{Analysis, Balance, PowerCheck, Reaction};
 #[cfg(feature = "rayon")]
 pub use cycle::run_cycle_parallel;
-pub use cycle::{course_inputs, run_cycle, uniform_inputs, Output};
+pub use cycle::{
+    course_inputs, run_cycle, try_course_inputs, try_uniform_inputs, uniform_inputs, Output,
+};
 pub use description::{
     At, Drive, Input, Joint, JointKind, Link, Linkage, LoadSpec, Mass, Mode, NamedPoint,
 };
