@@ -4,6 +4,10 @@
 //! damping and stiffness, a constant drive) written by hand as a bare Cramer solve of
 //! A q̈ = Q − K q − B q̇, checked against `accelerations` before timing, over the same batch of
 //! seeded states; the bench prints the ratio tmm/yardstick (a `yardstick | …` line).
+//!
+//! A run that records every step against the same job by hand: a loop of bare steps that
+//! pushes each state onto a `Trajectory` (q̈, energies, powers and outputs per row). The run
+//! hands each row's q̈ on to the next step as its first stage; the loop evaluates them twice.
 
 use std::hint::black_box;
 use std::time::Duration;
@@ -11,7 +15,10 @@ use std::time::Duration;
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion};
 use nalgebra::{Matrix2, Vector2};
 use tmm::dynamics::machines::{CoaxialPropellers, FiveBar, LandingGear, RpArm};
-use tmm::dynamics::{accelerations, Dopri5, FiniteIncrement, LagrangeSystem, Rk4, State, Stepper};
+use tmm::dynamics::{
+    accelerations, run, Dopri5, FiniteIncrement, LagrangeSystem, Rk4, RunOptions, State, Stepper,
+    Trajectory,
+};
 
 #[path = "common/yardstick.rs"]
 mod yardstick;
@@ -202,5 +209,65 @@ fn run_length(c: &mut Criterion) {
     g.finish();
 }
 
-criterion_group!(benches, lagrange_yardstick, steps, run_length);
+/// A run recording every step against bare steps pushed onto a trajectory by hand (checked
+/// equal, row by row, before timing): RK4 and finite increments on the five-bar, 0.1 s.
+fn recorded_run(c: &mut Criterion) {
+    let fb = FiveBar::default();
+    let s0 = State::at_rest(Vector2::new(120f64.to_radians(), 60f64.to_radians()));
+    let (h, n) = (1e-3, 100usize);
+    fn by_hand<M: Stepper>(m: &M, sys: &FiveBar, s0: State, h: f64, n: usize) -> Trajectory {
+        let mut tr = Trajectory::for_system(sys);
+        let mut s = s0;
+        tr.push(sys, &s).expect("inside the workspace");
+        for k in 1..=n {
+            s = m.step(sys, &s, h).expect("inside the workspace");
+            if k == n {
+                s.t = n as f64 * h; // the run ends exactly on t_end
+            }
+            tr.push(sys, &s).expect("inside the workspace");
+        }
+        tr
+    }
+    fn by_run<M: Stepper>(m: &M, sys: &FiveBar, s0: State, h: f64, n: usize) -> Trajectory {
+        let opts = RunOptions {
+            locate_kinks: false,
+            ..RunOptions::until(n as f64 * h, h)
+        };
+        run(sys, m, s0, &opts).expect("runs").trajectory
+    }
+    fn compare<M: Stepper>(m: &M, sys: &FiveBar, s0: State, h: f64, n: usize) {
+        let (a, b) = (by_run(m, sys, s0, h, n), by_hand(m, sys, s0, h, n));
+        assert_eq!(a.len(), b.len());
+        let worst = a
+            .q()
+            .iter()
+            .chain(a.qd().iter())
+            .chain(a.qdd().iter())
+            .zip(b.q().iter().chain(b.qd().iter()).chain(b.qdd().iter()))
+            .flat_map(|(x, y)| x.iter().zip(y.iter()).map(|(u, v)| (u - v).abs()))
+            .fold(0.0, f64::max);
+        assert!(worst < 1e-12, "{}: the run and the loop differ by {worst}", m.name());
+        yardstick::print_ratio(
+            &format!(
+                "five-bar {} run recording every step (bare steps + Trajectory::push as the \
+                 yardstick)",
+                m.name()
+            ),
+            1,
+            || by_run(m, black_box(sys), black_box(s0), h, n),
+            || by_hand(m, black_box(sys), black_box(s0), h, n),
+        );
+    }
+    compare(&Rk4, &fb, s0, h, n);
+    compare(&FiniteIncrement, &fb, s0, h, n);
+    let mut g = c.benchmark_group("five-bar run recording every step, 0.1 s");
+    g.measurement_time(Duration::from_secs(1))
+        .warm_up_time(Duration::from_millis(300))
+        .sample_size(10);
+    g.bench_function("RK4 run", |b| b.iter(|| by_run(&Rk4, &fb, s0, h, n)));
+    g.bench_function("RK4 by hand", |b| b.iter(|| by_hand(&Rk4, &fb, s0, h, n)));
+    g.finish();
+}
+
+criterion_group!(benches, lagrange_yardstick, steps, run_length, recorded_run);
 criterion_main!(benches);
