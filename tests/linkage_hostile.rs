@@ -22,7 +22,8 @@
 use std::panic::{catch_unwind, AssertUnwindSafe};
 use tmm::kinematics::{Motion, Rotation};
 use tmm::linkage::{
-    bundled, try_course_inputs, try_uniform_inputs, uniform_inputs, At, JointKind, Linkage, LoadSpec, Output, Plan, Table,
+    bundled, try_course_inputs, try_uniform_inputs, uniform_inputs, At, JointKind, Linkage,
+    LoadSpec, Output, Plan, Table,
 };
 use tmm::mechanism::{Compressor, FourBar, RockingCylinder, SixBar, SliderCrank};
 use tmm::{Ends, Error};
@@ -881,7 +882,12 @@ fn cycle_inputs_refuse_what_has_no_positions() {
             Err(Error::OutOfRange { .. })
         ));
     }
-    for (n, start, w) in [(1, 0.3, 2.0), (7, -1.0, -3.0), (12, 100.0, 1e300), (5, 0.0, 0.0)] {
+    for (n, start, w) in [
+        (1, 0.3, 2.0),
+        (7, -1.0, -3.0),
+        (12, 100.0, 1e300),
+        (5, 0.0, 0.0),
+    ] {
         let m = try_uniform_inputs(n, start, w, 0.5).unwrap();
         assert_eq!(m, uniform_inputs(n, start, w, 0.5));
         assert_eq!(m.len(), n);

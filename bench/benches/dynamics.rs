@@ -246,7 +246,11 @@ fn recorded_run(c: &mut Criterion) {
             .zip(b.q().iter().chain(b.qd().iter()).chain(b.qdd().iter()))
             .flat_map(|(x, y)| x.iter().zip(y.iter()).map(|(u, v)| (u - v).abs()))
             .fold(0.0, f64::max);
-        assert!(worst < 1e-12, "{}: the run and the loop differ by {worst}", m.name());
+        assert!(
+            worst < 1e-12,
+            "{}: the run and the loop differ by {worst}",
+            m.name()
+        );
         yardstick::print_ratio(
             &format!(
                 "five-bar {} run recording every step (bare steps + Trajectory::push as the \
