@@ -1231,6 +1231,69 @@ fn recorded_rows_hand_their_accelerations_to_the_next_step() {
     check(&FiniteIncrement, s0, t_end, h, n);
 }
 
+/// A stepper of the user's that reports absurd evaluation counts and takes the rows' q̈:
+/// the run's count saturates and its budget ends the run (it must not overflow, in the lean
+/// loop or the full one).
+#[test]
+fn a_stepper_reporting_huge_counts_meets_the_budget() {
+    struct Boastful;
+    impl Stepper for Boastful {
+        fn name(&self) -> &'static str {
+            "boastful"
+        }
+        fn order(&self) -> u32 {
+            4
+        }
+        fn evaluations_per_step(&self) -> usize {
+            usize::MAX
+        }
+        fn step<S: LagrangeSystem + ?Sized>(
+            &self,
+            sys: &S,
+            s: &State,
+            h: f64,
+        ) -> tmm::Result<State> {
+            Rk4.step(sys, s, h)
+        }
+        fn advance_from<S: LagrangeSystem + ?Sized>(
+            &self,
+            sys: &S,
+            s: &State,
+            h: f64,
+            _: Option<Handover>,
+        ) -> tmm::Result<tmm::dynamics::Advance> {
+            Ok(tmm::dynamics::Advance {
+                state: Rk4.step(sys, s, h)?,
+                h_next: h,
+                evaluations: usize::MAX,
+                handover: Handover::default(),
+            })
+        }
+        fn uses_start_acceleration(&self) -> bool {
+            true
+        }
+    }
+    let sys = SpinDown { short: false };
+    let s0 = State::new(0.0, Vector2::zeros(), Vector2::new(2.0, 0.0));
+    let lean = RunOptions::until(1.0, 0.1);
+    let full = RunOptions {
+        steady: Some(Steady {
+            tol: 1e-300,
+            hold: 1e9,
+        }),
+        ..RunOptions::until(1.0, 0.1)
+    };
+    for opts in [lean, full] {
+        match run(&sys, &Boastful, s0, &opts) {
+            Err(Error::Budget { what, time, .. }) => {
+                assert_eq!(what, "evaluation");
+                assert!((time - 0.1).abs() < 1e-15, "{time}");
+            }
+            other => panic!("{other:?}"),
+        }
+    }
+}
+
 /// The step-size controller is the PI controller its docs derive: after an accepted step with
 /// error norm err, the next step is h·0.9·err^(−α)·errₙ₋₁^β (α = 0.17, β = 0.04) given the
 /// error norm errₙ₋₁ of the step before, and h·0.9·err^(−1/5) without it.

@@ -686,7 +686,9 @@ pub fn run<S: LagrangeSystem + ?Sized, M: Stepper>(
         advanced(s.t, s1.t)?;
         let mut hand1 = adv.handover;
         steps += 1;
-        evaluations = evaluations.saturating_add(adv.evaluations + usize::from(row_handed));
+        evaluations = evaluations
+            .saturating_add(adv.evaluations)
+            .saturating_add(usize::from(row_handed));
         row_handed = false;
         // The whole step asked for was taken: it ends on the stop or the grid point.
         let full = s1.t == s.t + h_try;
@@ -1031,7 +1033,9 @@ fn lean_steps<S: LagrangeSystem + ?Sized, M: Stepper>(
         advanced(s.t, s1.t)?;
         let mut hand1 = adv.handover;
         steps += 1;
-        evaluations = evaluations.saturating_add(adv.evaluations + usize::from(row_handed));
+        evaluations = evaluations
+            .saturating_add(adv.evaluations)
+            .saturating_add(usize::from(row_handed));
         row_handed = false;
         if (opts.t_end - s1.t).abs() <= t_tol && s1.t != opts.t_end {
             s1.t = opts.t_end;
