@@ -178,9 +178,11 @@ fn weighted_error(r: &RunResult, reference: &RunResult, tol: f64, times: &[f64])
 
 /// Dormand–Prince across the two servo switches 0.29 ms apart meets its tolerance: at every
 /// step end the weighted global error (1 = the tolerance) against a reference at 10⁻¹⁴ is
-/// measured 0.71, 0.77, 0.73 at 10⁻⁸, 10⁻¹⁰, 10⁻¹²; stepping across the switches it is 34,
-/// 30, 15 (the error estimate of a smooth method does not see a kink inside its step). The
-/// bound asserted is the tolerance itself.
+/// measured 0.71, 0.77, 0.70 at 10⁻⁸, 10⁻¹⁰, 10⁻¹²; stepping across the switches it is 34,
+/// 34, 9.6 (the error estimate of a smooth method does not see a kink inside its step). The
+/// bound asserted is the tolerance itself; stepping across must miss it at least fivefold.
+/// (How far it misses depends on where the steps happen to fall around the switches: a
+/// step-size controller that differs in the last bits of its factors gave 34, 30, 15.)
 ///
 /// At step ends, not at requested times: the continuous extension (order 4) errs by up to 6
 /// tolerances inside the long steps before the switches, with the kinks located or not (the
@@ -208,7 +210,7 @@ fn dormand_prince_meets_its_tolerance_across_two_close_servo_switches() {
             );
         }
         assert!(errors[0] <= 1.0, "tol {tol:e}: {errors:?}");
-        assert!(errors[1] >= 10.0, "tol {tol:e}: {errors:?}");
+        assert!(errors[1] >= 5.0, "tol {tol:e}: {errors:?}");
     }
 }
 
