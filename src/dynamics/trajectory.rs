@@ -23,7 +23,7 @@ use crate::error::{Error, Result};
 /// [`q`](Self::q), [`qd`](Self::qd) and [`qdd`](Self::qdd) return `[&[f64]; 2]` (were
 /// `&[Vec<f64>; 2]`) and [`outputs`](Self::outputs) returns `Vec<&[f64]>` (was
 /// `&[Vec<f64>]`): indexing, `iter()` and `len()` read as before.
-#[derive(Debug, Clone, Default)]
+#[derive(Clone, Default)]
 pub struct Trajectory {
     coordinate_names: [&'static str; 2],
     output_names: Vec<&'static str>,
@@ -58,6 +58,23 @@ const FIXED: usize = 11;
 /// The rows a trajectory makes room for at its first row: a run that records its start and
 /// end only then allocates once.
 const FIRST_ROWS: usize = 4;
+
+impl std::fmt::Debug for Trajectory {
+    /// The names and every recorded column under its CSV header (not the block's room for
+    /// rows not yet recorded, nor rows truncated away).
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let header = self.header();
+        let columns: Vec<(&str, &[f64])> = header
+            .iter()
+            .map(String::as_str)
+            .zip((0..self.columns()).map(|c| self.column(c)))
+            .collect();
+        f.debug_struct("Trajectory")
+            .field("len", &self.len)
+            .field("columns", &columns)
+            .finish()
+    }
+}
 
 impl PartialEq for Trajectory {
     /// Equal names and equal recorded columns (whatever room each has left).
@@ -347,6 +364,30 @@ mod tests {
     use super::*;
     use crate::dynamics::machines::{CoaxialPropellers, FiveBar};
     use crate::dynamics::{accelerations, kinetic_energy, powers};
+
+    /// Debug shows the recorded rows under their names, never the block's spare room or
+    /// rows truncated away.
+    #[test]
+    fn debug_shows_the_recorded_columns_only() {
+        let sys = FiveBar::default();
+        let mut tr = Trajectory::for_system(&sys);
+        for i in 0..3 {
+            let x = 0.1 * f64::from(i) + 0.123_456_789;
+            let s = State::new(x, Vector2::new(2.0, 1.0), Vector2::new(x, 0.0));
+            tr.push(&sys, &s).unwrap();
+        }
+        tr.truncate(2);
+        let text = format!("{tr:?}");
+        assert!(text.contains("len: 2") && text.contains("\"t\", [0.123456789, 0.223456789"));
+        assert!(!text.contains("0.323456789"), "{text}");
+        for name in tr.header() {
+            assert!(text.contains(&format!("\"{name}\"")), "{name}: {text}");
+        }
+        assert_eq!(
+            format!("{:?}", Trajectory::default()).matches("[]").count(),
+            Trajectory::default().header().len()
+        );
+    }
 
     /// Rows pushed one by one (through three doublings of the block) hold what the separate
     /// public functions give at each state, bit for bit: q̈, T, the powers, Π, the outputs.
