@@ -2,7 +2,9 @@
 
 use nalgebra::{Vector2, Vector4};
 
-use super::stepper::{check_result, check_step, pack, rhs, unpack, Advance, Handover, Stepper};
+use super::stepper::{
+    check_result, check_step, handed_acceleration, pack, rhs, unpack, Advance, Handover, Stepper,
+};
 use super::system::{LagrangeSystem, State};
 use crate::error::{positive, Error, Result};
 
@@ -446,10 +448,11 @@ impl Dopri5 {
     ) -> Result<(Advance, Vector4<f64>, Vector4<f64>, f64)> {
         check_step(s, h)?;
         self.check()?;
+        let given = handed_acceleration(from);
         let from = from.unwrap_or_default();
         let y = pack(s);
-        let mut evaluations = match from.acceleration {
-            Some(a) if a[0].is_finite() && a[1].is_finite() => {
+        let mut evaluations = match given {
+            Some(a) => {
                 k[0] = Vector4::new(y[2], y[3], a[0], a[1]);
                 0
             }

@@ -2,7 +2,9 @@
 
 use nalgebra::Vector2;
 
-use super::stepper::{check_result, check_step, Advance, Handover, Stepper};
+use super::stepper::{
+    check_result, check_step, fixed_step, handed_acceleration, Advance, Handover, Stepper,
+};
 use super::system::{accelerations, LagrangeSystem, State};
 use crate::error::Result;
 
@@ -73,19 +75,17 @@ impl Stepper for FiniteIncrement {
         h: f64,
         from: Option<Handover>,
     ) -> Result<Advance> {
-        let (state, evaluations) = match from.and_then(|f| f.acceleration) {
-            Some(a) if a[0].is_finite() && a[1].is_finite() => {
-                check_step(s, h)?;
-                (increment(s, h, a)?, 0)
-            }
-            _ => (self.step(sys, s, h)?, 1),
+        let given = handed_acceleration(from);
+        check_step(s, h)?;
+        let a = match given {
+            Some(a) => a,
+            None => accelerations(sys, s.t, &s.q, &s.qd)?,
         };
-        Ok(Advance {
-            state,
-            h_next: h,
-            evaluations,
-            handover: Handover::default(),
-        })
+        Ok(fixed_step(
+            increment(s, h, a)?,
+            h,
+            usize::from(given.is_none()),
+        ))
     }
 
     fn uses_start_acceleration(&self) -> bool {

@@ -2,7 +2,9 @@
 
 use nalgebra::Vector2;
 
-use super::stepper::{check_result, check_step, Advance, Handover, Stepper};
+use super::stepper::{
+    check_result, check_step, fixed_step, handed_acceleration, Advance, Handover, Stepper,
+};
 use super::system::{accelerations_inline as accelerations, LagrangeSystem, State};
 use crate::error::{positive, Result};
 
@@ -72,9 +74,7 @@ impl Stepper for Rk4 {
         h: f64,
         from: Option<Handover>,
     ) -> Result<Advance> {
-        let given = from
-            .and_then(|f| f.acceleration)
-            .filter(|a| a[0].is_finite() && a[1].is_finite());
+        let given = handed_acceleration(from);
         let a1 = match given {
             Some(a) => {
                 check_step(s, h)?;
@@ -85,12 +85,8 @@ impl Stepper for Rk4 {
                 accelerations(sys, s.t, &s.q, &s.qd)?
             }
         };
-        Ok(Advance {
-            state: stages(sys, s, h, a1)?,
-            h_next: h,
-            evaluations: 4 - usize::from(given.is_some()),
-            handover: Handover::default(),
-        })
+        let evaluations = 4 - usize::from(given.is_some());
+        Ok(fixed_step(stages(sys, s, h, a1)?, h, evaluations))
     }
 
     fn uses_start_acceleration(&self) -> bool {

@@ -3,7 +3,7 @@
 
 use nalgebra::{Matrix2, Vector2};
 
-use super::stepper::{Handover, Stepper};
+use super::stepper::{Advance, Handover, Stepper};
 use super::system::{accelerations, LagrangeSystem, LagrangeTerms, State};
 use super::trajectory::Trajectory;
 use crate::error::{finite, positive, Error, Result};
@@ -682,14 +682,7 @@ pub fn run<S: LagrangeSystem + ?Sized, M: Stepper>(
             (false, true) => method.advance_dense(sys, &s, h_try, Some(hand_s))?,
             (false, false) => (method.advance_from(sys, &s, h_try, Some(hand_s))?, None),
         };
-        let mut s1 = adv.state;
-        advanced(s.t, s1.t)?;
-        let mut hand1 = adv.handover;
-        steps += 1;
-        evaluations = evaluations
-            .saturating_add(adv.evaluations)
-            .saturating_add(usize::from(row_handed));
-        row_handed = false;
+        let (mut s1, mut hand1) = accept(&s, &adv, &mut steps, &mut evaluations, &mut row_handed)?;
         // The whole step asked for was taken: it ends on the stop or the grid point.
         let full = s1.t == s.t + h_try;
         let target = if clamped { Some(stop) } else { goal };
@@ -704,10 +697,7 @@ pub fn run<S: LagrangeSystem + ?Sized, M: Stepper>(
                 hand1 = Handover::default();
             }
         }
-        if (opts.t_end - s1.t).abs() <= t_tol && s1.t != opts.t_end {
-            s1.t = opts.t_end;
-            hand1.acceleration = None;
-        }
+        snap_to_end(opts, t_tol, &mut s1, &mut hand1);
         if let Some(d) = dense.as_mut() {
             d.set_end(s1.t);
         }
@@ -922,12 +912,9 @@ pub fn run<S: LagrangeSystem + ?Sized, M: Stepper>(
         let mut recorded = false;
         if at_end || on_grid_record {
             // One row stays free for the end.
-            row_budget(traj.len(), opts, s1.t, t_tol)?;
-            let a = traj.push_with(sys, &s1, &mut buf)?;
-            if takes_rows && hand1.acceleration.is_none() {
-                hand1.acceleration = Some(a);
-                row_handed = true;
-            }
+            row_handed = record_end(
+                sys, opts, t_tol, takes_rows, &s1, &mut hand1, &mut traj, &mut buf,
+            )?;
             recorded = true;
         }
         hand_s = hand1;
@@ -1029,28 +1016,13 @@ fn lean_steps<S: LagrangeSystem + ?Sized, M: Stepper>(
         }
         budgets(opts, steps, evaluations, s.t)?;
         let adv = method.advance_from(sys, &s, h, Some(hand))?;
-        let mut s1 = adv.state;
-        advanced(s.t, s1.t)?;
-        let mut hand1 = adv.handover;
-        steps += 1;
-        evaluations = evaluations
-            .saturating_add(adv.evaluations)
-            .saturating_add(usize::from(row_handed));
-        row_handed = false;
-        if (opts.t_end - s1.t).abs() <= t_tol && s1.t != opts.t_end {
-            s1.t = opts.t_end;
-            hand1.acceleration = None;
-        }
+        let (mut s1, mut hand1) = accept(&s, &adv, &mut steps, &mut evaluations, &mut row_handed)?;
+        snap_to_end(opts, t_tol, &mut s1, &mut hand1);
         h = adv.h_next;
         until_record -= 1;
         if until_record == 0 {
             until_record = opts.record_every;
-            row_budget(traj.len(), opts, s1.t, t_tol)?;
-            let a = traj.push_with(sys, &s1, buf)?;
-            if takes_rows && hand1.acceleration.is_none() {
-                hand1.acceleration = Some(a);
-                row_handed = true;
-            }
+            row_handed = record_end(sys, opts, t_tol, takes_rows, &s1, &mut hand1, traj, buf)?;
         }
         hand = hand1;
         s = s1;
@@ -1065,6 +1037,58 @@ fn lean_steps<S: LagrangeSystem + ?Sized, M: Stepper>(
         row_handed,
     };
     Ok(())
+}
+
+/// Takes an accepted step from `s`: checks that it advanced, counts it and its evaluations
+/// (with the one a recorded row handed to it, if any), and returns its end and handover.
+#[inline(always)]
+fn accept(
+    s: &State,
+    adv: &Advance,
+    steps: &mut usize,
+    evaluations: &mut usize,
+    row_handed: &mut bool,
+) -> Result<(State, Handover)> {
+    advanced(s.t, adv.state.t)?;
+    *steps += 1;
+    *evaluations = evaluations
+        .saturating_add(adv.evaluations)
+        .saturating_add(usize::from(std::mem::take(row_handed)));
+    Ok((adv.state, adv.handover))
+}
+
+/// A step end within rounding of the final time is put on it exactly; q̈ handed on belong to
+/// the unsnapped time and are dropped.
+#[inline(always)]
+fn snap_to_end(opts: &RunOptions, t_tol: f64, s1: &mut State, hand1: &mut Handover) {
+    if (opts.t_end - s1.t).abs() <= t_tol && s1.t != opts.t_end {
+        s1.t = opts.t_end;
+        hand1.acceleration = None;
+    }
+}
+
+/// Records the step end `s1` as a row (one row stays free for the run's end) and, to a
+/// method that takes them, hands the row's q̈ on to the step that starts there when the step
+/// before handed none. Returns whether it did (the run then counts that evaluation with the
+/// next step).
+#[allow(clippy::too_many_arguments)]
+fn record_end<S: LagrangeSystem + ?Sized>(
+    sys: &S,
+    opts: &RunOptions,
+    t_tol: f64,
+    takes_rows: bool,
+    s1: &State,
+    hand1: &mut Handover,
+    traj: &mut Trajectory,
+    buf: &mut Vec<f64>,
+) -> Result<bool> {
+    row_budget(traj.len(), opts, s1.t, t_tol)?;
+    let a = traj.push_with(sys, s1, buf)?;
+    if takes_rows && hand1.acceleration.is_none() {
+        hand1.acceleration = Some(a);
+        return Ok(true);
+    }
+    Ok(false)
 }
 
 /// The step and evaluation budgets, checked before a step from time `t`.

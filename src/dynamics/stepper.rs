@@ -33,6 +33,27 @@ pub(crate) fn rhs<S: LagrangeSystem + ?Sized>(
     Ok(Vector4::new(qd[0], qd[1], a[0], a[1]))
 }
 
+/// The handed-on accelerations at a step's start when there are finite ones: a method whose
+/// first stage is q̈ there takes them instead of evaluating (a non-finite pair counts as
+/// none handed on).
+#[inline(always)]
+pub(crate) fn handed_acceleration(from: Option<Handover>) -> Option<Vector2<f64>> {
+    from.and_then(|f| f.acceleration)
+        .filter(|a| a[0].is_finite() && a[1].is_finite())
+}
+
+/// A fixed-step method's accepted step: exactly `h`, the same `h` proposed next, nothing
+/// handed on.
+#[inline(always)]
+pub(crate) fn fixed_step(state: State, h: f64, evaluations: usize) -> Advance {
+    Advance {
+        state,
+        h_next: h,
+        evaluations,
+        handover: Handover::default(),
+    }
+}
+
 /// Checks the step size (finite, positive) and the start state (finite).
 #[inline]
 pub(crate) fn check_step(s: &State, h: f64) -> Result<()> {
@@ -136,12 +157,11 @@ pub trait Stepper {
     /// As [`step`](Self::step).
     #[inline(always)]
     fn advance<S: LagrangeSystem + ?Sized>(&self, sys: &S, s: &State, h: f64) -> Result<Advance> {
-        Ok(Advance {
-            state: self.step(sys, s, h)?,
-            h_next: h,
-            evaluations: self.evaluations_per_step(),
-            handover: Handover::default(),
-        })
+        Ok(fixed_step(
+            self.step(sys, s, h)?,
+            h,
+            self.evaluations_per_step(),
+        ))
     }
 
     /// As [`advance`](Self::advance), continuing from the step that ended at `s`: `from` is
