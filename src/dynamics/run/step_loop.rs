@@ -167,7 +167,6 @@ impl<'a, S: LagrangeSystem + ?Sized, M: Stepper> Runner<'a, S, M> {
 
     /// Takes the next step as the schedule shapes it, counted, its end (into `end`) put
     /// exactly on the stop or the grid point it was asked to reach.
-    #[inline(always)]
     fn take_step(&mut self, end: &mut StepEnd<M::Dense>) -> Result<()> {
         let (sys, method, opts) = (self.sys, self.method, self.opts);
         let t_tol = self.sched.t_tol;

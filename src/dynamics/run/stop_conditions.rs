@@ -115,6 +115,7 @@ impl SteadyWatch {
     /// The outcome when the state `s1` ends the run ([`Outcome::Steady`] or
     /// [`Outcome::Drifting`]), else `None`; `hand` gives q̈ at `s1` when the step evaluated
     /// them.
+    #[inline]
     pub(super) fn check<S: LagrangeSystem + ?Sized>(
         &mut self,
         sys: &S,
