@@ -3,7 +3,8 @@
 use nalgebra::{Vector2, Vector4};
 
 use super::stepper::{
-    check_result, check_step, handed_acceleration, pack, rhs, unpack, Advance, Handover, Stepper,
+    check_result, check_step, handed_acceleration, pack, rhs, unpack, Advance, ContinuousExtension,
+    Handover, Stepper,
 };
 use super::system::{LagrangeSystem, State};
 use crate::error::{positive, Error, Result};
@@ -141,12 +142,6 @@ impl DenseOutput {
         self.t1
     }
 
-    /// Moves the end time to `t1` (a run snaps a step's end onto a breakpoint or the final
-    /// time when they differ by rounding): the end state is still the step's.
-    pub(crate) fn set_end(&mut self, t1: f64) {
-        self.t1 = t1;
-    }
-
     /// The state at time `t` in [start, end], carrying `t` exactly. At the ends it is the
     /// step's own start and end state.
     ///
@@ -176,6 +171,21 @@ impl DenseOutput {
             y += self.h * wi * ki;
         }
         check_result(unpack(t, &y))
+    }
+}
+
+impl ContinuousExtension for DenseOutput {
+    fn start(&self) -> f64 {
+        DenseOutput::start(self)
+    }
+    fn end(&self) -> f64 {
+        DenseOutput::end(self)
+    }
+    fn at(&self, t: f64) -> Result<State> {
+        DenseOutput::at(self, t)
+    }
+    fn set_end(&mut self, t1: f64) {
+        self.t1 = t1;
     }
 }
 
@@ -511,6 +521,8 @@ impl Dopri5 {
 }
 
 impl Stepper for Dopri5 {
+    type Dense = DenseOutput;
+
     fn name(&self) -> &'static str {
         "Dormand-Prince 5(4)"
     }
@@ -583,7 +595,7 @@ impl Stepper for Dopri5 {
         s: &State,
         h: f64,
         from: Option<Handover>,
-    ) -> Result<(Advance, Option<DenseOutput>)> {
+    ) -> Result<(Advance, Option<Self::Dense>)> {
         let mut k = [Vector4::zeros(); 7];
         let (adv, y0, y1, h) = self.accepted(sys, s, h, from, &mut k)?;
         let dense = DenseOutput {

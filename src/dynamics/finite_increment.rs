@@ -3,7 +3,8 @@
 use nalgebra::Vector2;
 
 use super::stepper::{
-    check_result, check_step, fixed_step, handed_acceleration, Advance, Handover, Stepper,
+    check_result, check_step, fixed_step, handed_acceleration, Advance, Handover, NoExtension,
+    Stepper,
 };
 use super::system::{accelerations, LagrangeSystem, State};
 use crate::error::Result;
@@ -48,6 +49,8 @@ use crate::error::Result;
 pub struct FiniteIncrement;
 
 impl Stepper for FiniteIncrement {
+    type Dense = NoExtension;
+
     fn name(&self) -> &'static str {
         "finite increments"
     }

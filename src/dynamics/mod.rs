@@ -45,7 +45,7 @@ pub use dopri::{DenseOutput, Dopri5};
 pub use finite_increment::FiniteIncrement;
 pub use rk4::Rk4;
 pub use run::{run, Direction, Outcome, Reach, RunOptions, RunResult, Steady, Watch};
-pub use stepper::{Advance, Handover, Stepper};
+pub use stepper::{Advance, ContinuousExtension, Handover, NoExtension, Stepper};
 pub use system::{
     accelerations, christoffel_terms, kinetic_energy, powers, LagrangeSystem, LagrangeTerms, State,
 };

@@ -3,7 +3,8 @@
 use nalgebra::Vector2;
 
 use super::stepper::{
-    check_result, check_step, fixed_step, handed_acceleration, Advance, Handover, Stepper,
+    check_result, check_step, fixed_step, handed_acceleration, Advance, Handover, NoExtension,
+    Stepper,
 };
 use super::system::{accelerations_inline as accelerations, LagrangeSystem, State};
 use crate::error::{positive, Result};
@@ -43,6 +44,8 @@ use crate::error::{positive, Result};
 pub struct Rk4;
 
 impl Stepper for Rk4 {
+    type Dense = NoExtension;
+
     fn name(&self) -> &'static str {
         "RK4"
     }

@@ -2,7 +2,6 @@
 
 use nalgebra::{Vector2, Vector4};
 
-use super::dopri::DenseOutput;
 use super::system::{accelerations_inline, LagrangeSystem, State};
 use crate::error::{positive, Error, Result};
 
@@ -126,13 +125,94 @@ pub struct Advance {
     pub handover: Handover,
 }
 
+/// The continuous extension ("dense output") of one accepted step: the state anywhere in the
+/// step without stepping there. A method that has one names it as its [`Stepper::Dense`] and
+/// returns it from [`Stepper::advance_dense`]; [`run`](super::run) reads it to record the
+/// requested [`times`](super::RunOptions::times) and to find where a kink's argument crosses
+/// its node, knowing of no method in particular.
+///
+/// # Breaking change
+/// [`Stepper::advance_dense`] returned `Option<DenseOutput>` (Dormand–Prince's extension, the
+/// one concrete type) for every method; it returns `Option<Self::Dense>`, and an implementor of
+/// [`Stepper`] names its extension (`type Dense = NoExtension;` for a method without one).
+///
+/// # Examples
+/// ```
+/// use nalgebra::{Matrix2, Vector2};
+/// use tmm::dynamics::{ContinuousExtension, Dopri5, LagrangeSystem, State, Stepper};
+/// struct Coasting;
+/// impl LagrangeSystem for Coasting {
+///     fn inertia(&self, _: &Vector2<f64>) -> tmm::Result<Matrix2<f64>> {
+///         Ok(Matrix2::identity())
+///     }
+///     fn forces(&self, _: f64, _: &Vector2<f64>, _: &Vector2<f64>) -> tmm::Result<Vector2<f64>> {
+///         Ok(Vector2::zeros())
+///     }
+/// }
+/// /// The state halfway through a step, from any method's extension.
+/// fn halfway<E: ContinuousExtension>(e: &E) -> tmm::Result<State> {
+///     e.at(0.5 * (e.start() + e.end()))
+/// }
+/// let s = State::new(0.0, Vector2::zeros(), Vector2::new(3.0, 0.0));
+/// let (adv, dense) = Dopri5::new(1e-9).unwrap().advance_dense(&Coasting, &s, 0.5, None).unwrap();
+/// let mid = halfway(&dense.unwrap()).unwrap();
+/// assert!((mid.q[0] - 1.5 * adv.state.t).abs() < 1e-12);
+/// ```
+pub trait ContinuousExtension {
+    /// The time at the start of the step, s.
+    fn start(&self) -> f64;
+
+    /// The time at the end of the step, s.
+    fn end(&self) -> f64;
+
+    /// The state at time `t` in [[`start`](Self::start), [`end`](Self::end)], carrying `t`
+    /// exactly.
+    ///
+    /// # Errors
+    /// [`Error::NonFinite`] for a non-finite `t`; [`Error::OutOfRange`] for `t` outside the
+    /// step; [`Error::NonFiniteState`] when the interpolated state overflows.
+    fn at(&self, t: f64) -> Result<State>;
+
+    /// Moves the end time to `t1`, the end state staying the step's: [`run`](super::run)
+    /// snaps a step's end onto a breakpoint or the final time when they differ by rounding,
+    /// and reads the extension up to the snapped end (a time past the step's own end by that
+    /// rounding is given by the same polynomial).
+    fn set_end(&mut self, t1: f64);
+}
+
+/// The continuous extension of a method that has none ([`Rk4`](super::Rk4),
+/// [`FiniteIncrement`](super::FiniteIncrement)): a type with no values, so that such a
+/// method's [`Stepper::advance_dense`] can only return `None`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum NoExtension {}
+
+impl ContinuousExtension for NoExtension {
+    fn start(&self) -> f64 {
+        match *self {}
+    }
+    fn end(&self) -> f64 {
+        match *self {}
+    }
+    fn at(&self, _: f64) -> Result<State> {
+        match *self {}
+    }
+    fn set_end(&mut self, _: f64) {
+        match *self {}
+    }
+}
+
 /// An integrator of Lagrange's equations.
 ///
 /// Fixed-step methods implement [`step`](Self::step) only; an adaptive method also overrides
 /// [`advance`](Self::advance), which chooses the step size from a requested accuracy, and
 /// [`is_adaptive`](Self::is_adaptive); a method with a continuous extension overrides
-/// [`advance_dense`](Self::advance_dense) and [`has_dense_output`](Self::has_dense_output).
+/// [`advance_dense`](Self::advance_dense) and [`has_dense_output`](Self::has_dense_output),
+/// and names its extension as [`Dense`](Self::Dense).
 pub trait Stepper {
+    /// The step's continuous extension that [`advance_dense`](Self::advance_dense) returns:
+    /// [`NoExtension`] for a method without one (then `advance_dense` gives `None`).
+    type Dense: ContinuousExtension;
+
     /// A short name, for tables and charts.
     fn name(&self) -> &'static str;
 
@@ -264,7 +344,7 @@ pub trait Stepper {
         s: &State,
         h: f64,
         from: Option<Handover>,
-    ) -> Result<(Advance, Option<DenseOutput>)> {
+    ) -> Result<(Advance, Option<Self::Dense>)> {
         Ok((self.advance_from(sys, s, h, from)?, None))
     }
 }

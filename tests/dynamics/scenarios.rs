@@ -1238,6 +1238,7 @@ fn recorded_rows_hand_their_accelerations_to_the_next_step() {
 fn a_stepper_reporting_huge_counts_meets_the_budget() {
     struct Boastful;
     impl Stepper for Boastful {
+        type Dense = tmm::dynamics::NoExtension;
         fn name(&self) -> &'static str {
             "boastful"
         }

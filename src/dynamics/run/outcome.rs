@@ -1,0 +1,86 @@
+//! What a run ends with: why it stopped, the recorded motion, the last state, its counts.
+
+use nalgebra::Vector2;
+
+#[cfg(doc)]
+use super::{run, Reach};
+use crate::dynamics::system::{LagrangeSystem, State};
+use crate::dynamics::trajectory::Trajectory;
+#[cfg(doc)]
+use crate::dynamics::Stepper;
+use crate::error::Result;
+
+/// Why a run stopped.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Outcome {
+    /// The final time was reached (no other stop condition was asked for, or the watched
+    /// value was never reached).
+    FinalTime,
+    /// The watched quantity reached its value at time `t` (located inside the step).
+    Reached {
+        /// The time of the crossing, s.
+        t: f64,
+    },
+    /// The steady state held from `t − hold` to `t`.
+    Steady {
+        /// The time at which the steady state was confirmed, s.
+        t: f64,
+    },
+    /// A steady state was asked for but can never be met: the accelerations settled to a
+    /// non-zero constant, so the speeds change linearly for ever (for example the coaxial
+    /// propellers with resisting moments not in the gear ratio, docs/errata.md#d41).
+    Drifting {
+        /// The time of the verdict, s.
+        t: f64,
+        /// The settled accelerations.
+        acceleration: Vector2<f64>,
+    },
+    /// A steady state was asked for and the final time came first.
+    NotSteady {
+        /// The accelerations at the final time.
+        acceleration: Vector2<f64>,
+    },
+}
+
+/// The result of [`run`].
+#[derive(Debug, Clone, PartialEq)]
+pub struct RunResult {
+    /// The recorded motion.
+    pub trajectory: Trajectory,
+    /// Why it stopped.
+    pub outcome: Outcome,
+    /// The last state (the located crossing for [`Outcome::Reached`]).
+    pub last: State,
+    /// Accepted steps taken.
+    pub steps: usize,
+    /// Evaluations of the accelerations spent by the stepper, the location of kinks
+    /// included (the location of a [`Reach`] crossing and the recording not counted). A
+    /// recorded row's q̈ that a step takes over as its first stage (see
+    /// [`Stepper::uses_start_acceleration`]) counts once, as the step's: recording changes
+    /// the work a run does, not this count.
+    pub evaluations: usize,
+}
+
+impl RunResult {
+    /// The result of a run that ends at `last` for `outcome`: `last` becomes the trajectory's
+    /// last row unless it is `recorded` already (it may take the row kept free for it).
+    pub(super) fn finish<S: LagrangeSystem + ?Sized>(
+        sys: &S,
+        traj: &mut Trajectory,
+        buf: &mut Vec<f64>,
+        (last, recorded): (State, bool),
+        outcome: Outcome,
+        (steps, evaluations): (usize, usize),
+    ) -> Result<Self> {
+        if !recorded {
+            traj.push_with(sys, &last, buf)?;
+        }
+        Ok(Self {
+            trajectory: std::mem::take(traj),
+            outcome,
+            last,
+            steps,
+            evaluations,
+        })
+    }
+}

@@ -1,0 +1,291 @@
+//! The step loop of a run: each step planned by the schedule, taken, landed on the earliest
+//! kink inside it, checked against the stop conditions, and recorded.
+
+use super::lean::lean_steps;
+use super::left_of::LeftOf;
+use super::options::RunOptions;
+use super::outcome::{Outcome, RunResult};
+use super::progress::{accept, budgets, record_end, snap_to_end, Progress, StepEnd};
+use super::schedule::Schedule;
+use super::stop_conditions::{ReachWatch, SteadyWatch};
+use crate::dynamics::stepper::{ContinuousExtension, Handover, Stepper};
+use crate::dynamics::system::{accelerations, LagrangeSystem, State};
+use crate::dynamics::trajectory::Trajectory;
+use crate::error::Result;
+
+/// A run under way: what it was given, its schedule and stop conditions, what it carries
+/// from step to step, and what it has recorded.
+pub(super) struct Runner<'a, S: ?Sized, M> {
+    sys: &'a S,
+    method: &'a M,
+    opts: &'a RunOptions,
+    sched: Schedule,
+    reach: Option<ReachWatch>,
+    steady: Option<SteadyWatch>,
+    progress: Progress,
+    /// A recorded row's q̈ are those a method's first stage would evaluate at the same state:
+    /// to a method that takes them, the row hands them on when the step before did not.
+    takes_rows: bool,
+    traj: Trajectory,
+    /// The outputs of a watched state and of every recorded row, one buffer for the run.
+    buf: Vec<f64>,
+}
+
+impl<'a, S: LagrangeSystem + ?Sized, M: Stepper> Runner<'a, S, M> {
+    /// A run of `sys` with `method` from `start` (checked) on the schedule `sched`: the start
+    /// recorded, the watched quantity and the kink arguments evaluated there.
+    pub(super) fn start(
+        sys: &'a S,
+        method: &'a M,
+        opts: &'a RunOptions,
+        start: State,
+        mut sched: Schedule,
+    ) -> Result<Self> {
+        let mut buf = Vec::new();
+        let mut traj = Trajectory::for_system(sys);
+        let a_start = traj.push_with(sys, &start, &mut buf)?;
+        let reach = match opts.reach {
+            Some(r) => Some(ReachWatch::start(sys, r, &start, &mut buf)?),
+            None => None,
+        };
+        let takes_rows = method.uses_start_acceleration();
+        let mut hand = Handover::default();
+        if takes_rows {
+            hand.acceleration = Some(a_start);
+        }
+        if sched.kinks.any() {
+            sched.kinks.start(sys, &start)?;
+        }
+        Ok(Self {
+            sys,
+            method,
+            opts,
+            sched,
+            reach,
+            steady: opts.steady.map(SteadyWatch::new),
+            progress: Progress {
+                s: start,
+                h: opts.h,
+                hand,
+                steps: 0,
+                evaluations: 0,
+                until_record: opts.record_every,
+                row_handed: takes_rows,
+            },
+            takes_rows,
+            traj,
+            buf,
+        })
+    }
+
+    /// Steps until a stop condition, and the result.
+    pub(super) fn finish(mut self) -> Result<RunResult> {
+        let (sys, method, opts) = (self.sys, self.method, self.opts);
+        let t_tol = self.sched.t_tol;
+        // The end of the step under way, one place for the run (the continuous extension it
+        // holds is some hundreds of bytes: written there, not moved from step to step).
+        let mut end = StepEnd {
+            s1: self.progress.s,
+            dense: None,
+            hand: Handover::default(),
+            h_next: None,
+        };
+        loop {
+            // A run with nothing to stop at or watch on the way takes its interior steps in
+            // `lean_steps`; the step that reaches the end, and every step of any other run,
+            // is this loop's.
+            if self.sched.plain && self.sched.grid_end.is_none() {
+                let p = &mut self.progress;
+                lean_steps(
+                    sys,
+                    method,
+                    opts,
+                    t_tol,
+                    self.takes_rows,
+                    p,
+                    &mut self.traj,
+                    &mut self.buf,
+                )?;
+            }
+            if opts.t_end - self.progress.s.t <= t_tol {
+                return self.at_final_time();
+            }
+            let p = &self.progress;
+            budgets(opts, p.steps, p.evaluations, p.s.t)?;
+            self.take_step(&mut end)?;
+            if self.sched.kinks.any() {
+                let p = &mut self.progress;
+                self.sched.kinks.land(
+                    sys,
+                    method,
+                    opts,
+                    (&p.s, p.hand),
+                    &mut end,
+                    (self.sched.adaptive, t_tol),
+                    &mut self.sched.grid_end,
+                    &mut p.evaluations,
+                )?;
+            }
+            if let Some(hn) = end.h_next {
+                self.progress.h = hn;
+            }
+            if let Some(result) = self.look_at(&end)? {
+                return Ok(result);
+            }
+        }
+    }
+
+    /// The result at the final time: [`Outcome::NotSteady`] when a steady state was asked
+    /// for, else [`Outcome::FinalTime`].
+    fn at_final_time(&mut self) -> Result<RunResult> {
+        let s = self.progress.s;
+        let outcome = match &self.opts.steady {
+            Some(_) => Outcome::NotSteady {
+                acceleration: match self.progress.hand.acceleration {
+                    Some(a) => a,
+                    None => accelerations(self.sys, s.t, &s.q, &s.qd)?,
+                },
+            },
+            None => Outcome::FinalTime,
+        };
+        let recorded = self.traj.t().last() == Some(&s.t);
+        self.result(s, recorded, outcome)
+    }
+
+    /// The run's result, ending at `last`.
+    fn result(&mut self, last: State, recorded: bool, outcome: Outcome) -> Result<RunResult> {
+        let p = &self.progress;
+        RunResult::finish(
+            self.sys,
+            &mut self.traj,
+            &mut self.buf,
+            (last, recorded),
+            outcome,
+            (p.steps, p.evaluations),
+        )
+    }
+
+    /// Takes the next step as the schedule shapes it, counted, its end (into `end`) put
+    /// exactly on the stop or the grid point it was asked to reach.
+    fn take_step(&mut self, end: &mut StepEnd<M::Dense>) -> Result<()> {
+        let (sys, method, opts) = (self.sys, self.method, self.opts);
+        let t_tol = self.sched.t_tol;
+        let p = &mut self.progress;
+        let plan = self.sched.next_step(p.s.t, p.h, opts.t_end);
+        let (s, hand_s, h_try, stop) = (p.s, p.hand, plan.h_try, plan.stop);
+        // A step that ends on a stop integrates up to it from the left: a force that jumps
+        // there (written `if t < t_b`) is evaluated at its value before the jump in the
+        // step's last stages, and at its new value from the next step on.
+        // The continuous extension is built only when something will read it.
+        let adv;
+        (adv, end.dense) = match (plan.clamped, self.sched.wants_extension()) {
+            (true, true) => {
+                method.advance_dense(&LeftOf { sys, at: stop }, &s, h_try, Some(hand_s))?
+            }
+            (true, false) => (
+                method.advance_from(&LeftOf { sys, at: stop }, &s, h_try, Some(hand_s))?,
+                None,
+            ),
+            (false, true) => method.advance_dense(sys, &s, h_try, Some(hand_s))?,
+            (false, false) => (method.advance_from(sys, &s, h_try, Some(hand_s))?, None),
+        };
+        let (mut s1, mut hand1) = accept(
+            &s,
+            &adv,
+            &mut p.steps,
+            &mut p.evaluations,
+            &mut p.row_handed,
+        )?;
+        // The whole step asked for was taken: it ends on the stop or the grid point.
+        let full = s1.t == s.t + h_try;
+        let target = if plan.clamped { Some(stop) } else { plan.goal };
+        if let Some(t) = target.filter(|_| full) {
+            if s1.t != t {
+                s1.t = t;
+                hand1.acceleration = None; // they belong to the unsnapped time
+            }
+            if plan.clamped && stop < opts.t_end {
+                // A breakpoint: the forces after it may differ, so neither the accelerations
+                // nor the error of the step before it carry over.
+                hand1 = Handover::default();
+            }
+        }
+        snap_to_end(opts, t_tol, &mut s1, &mut hand1);
+        if let Some(d) = end.dense.as_mut() {
+            d.set_end(s1.t);
+        }
+        end.s1 = s1;
+        end.hand = hand1;
+        // The method's proposal, unless the run shortened the step.
+        end.h_next = (!(target.is_some() && full)).then_some(adv.h_next);
+        Ok(())
+    }
+
+    /// Looks at the end of a step: a watched value reached inside it, the requested times it
+    /// passed, its row, a steady state. Returns the result when the run ends there; else the
+    /// next step starts from the step's end.
+    fn look_at(&mut self, end: &StepEnd<M::Dense>) -> Result<Option<RunResult>> {
+        let (sys, method, opts) = (self.sys, self.method, self.opts);
+        let (s1, dense, mut hand1) = (end.s1, end.dense.as_ref(), end.hand);
+        let s = self.progress.s;
+        let hit = match self.reach.as_mut() {
+            Some(r) => r.check(
+                sys,
+                method,
+                opts,
+                (&s, &s1),
+                &mut self.buf,
+                &mut self.progress.evaluations,
+            )?,
+            None => None,
+        };
+        let at_end = self.sched.record_times(
+            sys,
+            method,
+            opts,
+            (&s, &s1),
+            hit,
+            dense,
+            &mut self.traj,
+            &mut self.buf,
+        )?;
+        if let Some(located) = hit {
+            return self
+                .result(located, false, Outcome::Reached { t: located.t })
+                .map(Some);
+        }
+        // Steps cut short on the grid of a fixed-step method count once, with their rest.
+        let p = &mut self.progress;
+        let mut on_grid_record = false;
+        if self.sched.grid_end.is_none() {
+            p.until_record -= 1;
+            if p.until_record == 0 {
+                p.until_record = opts.record_every;
+                on_grid_record = true;
+            }
+        }
+        let mut recorded = false;
+        if at_end || on_grid_record {
+            // One row stays free for the end.
+            p.row_handed = record_end(
+                sys,
+                opts,
+                self.sched.t_tol,
+                self.takes_rows,
+                &s1,
+                &mut hand1,
+                &mut self.traj,
+                &mut self.buf,
+            )?;
+            recorded = true;
+        }
+        p.hand = hand1;
+        if let Some(st) = self.steady.as_mut()
+            && let Some(outcome) = st.check(sys, &s1, hand1)?
+        {
+            return self.result(s1, recorded, outcome).map(Some);
+        }
+        self.progress.s = s1;
+        Ok(None)
+    }
+}
