@@ -40,26 +40,25 @@
 //! # Ok::<(), tmm::Error>(())
 //! ```
 
-mod analysis;
+mod build;
 pub mod bundled;
 mod cycle;
 mod description;
 pub mod dynamics;
 mod indicator;
 mod plan;
+pub(crate) mod solve;
 mod structure;
 mod table;
 
-pub use analysis::{Analysis, Balance, PowerCheck, Reaction};
 #[cfg(feature = "rayon")]
 pub use cycle::run_cycle_parallel;
-pub use cycle::{
-    course_inputs, run_cycle, try_course_inputs, try_uniform_inputs, uniform_inputs, Output,
-};
+pub use cycle::{course_inputs, run_cycle, try_course_inputs, try_uniform_inputs, uniform_inputs};
 pub use description::{
-    At, Drive, Input, Joint, JointKind, Link, Linkage, LoadSpec, Mass, Mode, NamedPoint,
+    At, Drive, Input, Joint, JointKind, Link, Linkage, LoadSpec, Mass, Mode, NamedPoint, Output,
 };
 pub use indicator::IndicatorDiagram;
-pub use plan::{Group, GroupKind, Plan};
+pub use plan::{Group, GroupKind, Plan, Pose};
+pub use solve::{Analysis, Balance, PowerCheck, Reaction};
 pub use structure::chebyshev;
 pub use table::{Column, Table, Tabulate};
