@@ -113,14 +113,15 @@ impl Pose {
     pub(crate) fn of(a: &Analysis<'_>) -> Result<Self> {
         let plan = a.plan();
         let nj = plan.joint_names().len();
+        let solved = a.pose();
         let pose = Self {
             joints: (0..nj)
-                .map(|j| [a.joint_on_at(j, 0).p, a.joint_on_at(j, 1).p])
+                .map(|j| [solved.joint_on_at(j, 0).p, solved.joint_on_at(j, 1).p])
                 .collect(),
-            guides: (0..nj).map(|j| a.guide_direction_at(j)).collect(),
+            guides: (0..nj).map(|j| solved.guide_direction_at(j)).collect(),
             links: (0..plan.link_names().len())
                 .map(|k| {
-                    let m = a.link_motion_at(k);
+                    let m = solved.links[k];
                     (m.origin.p, m.angle)
                 })
                 .collect(),

@@ -2,8 +2,8 @@
 //! and the tests check. The same linkages are bundled as JSON files under `linkages/` (feature
 //! `serde`; a test checks that each file reads back as the linkage built here).
 
-use super::cycle::Output;
 use super::description::{At, Drive, Input, Joint, Link, Linkage, LoadSpec, Mass};
+use super::Output;
 
 fn rod(m: f64, a: [f64; 2], b: [f64; 2]) -> Mass {
     Mass::rod(m, a, b)

@@ -1,28 +1,14 @@
 //! A planned linkage over its cycle: outputs, extreme positions and strokes, the inputs of a
 //! course project's plans, lock positions, and runs over many positions.
 
-use super::analysis::Analysis;
+use super::description::Output;
 use super::plan::{LoadPlan, Plan};
+use super::solve::Analysis;
 use crate::error::{finite, Error, Result};
 use crate::kinematics::{
     assembly_range, extreme_positions, transfer_functions, try_cycle_angles, Extreme, Motion,
     Rotation, Strokes,
 };
-
-/// An output coordinate of a linkage, for its extreme positions and strokes.
-#[derive(Debug, Clone, PartialEq)]
-#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
-#[cfg_attr(feature = "serde", serde(rename_all = "snake_case"))]
-pub enum Output {
-    /// A link's angle along its reference direction, rad.
-    Angle(String),
-    /// A prismatic joint's slide, m.
-    Slide(String),
-    /// A joint's or named point's x coordinate, m.
-    X(String),
-    /// A joint's or named point's y coordinate, m.
-    Y(String),
-}
 
 /// An output resolved to indices.
 #[derive(Debug, Clone, Copy)]

@@ -3,9 +3,23 @@
 //! or, with the `serde` feature, in a JSON file); [`Plan::new`](super::Plan::new) checks it and
 //! turns it into the solve plan.
 
-use super::cycle::Output;
 use super::indicator::IndicatorDiagram;
 use crate::kinematics::Branch;
+
+/// An output coordinate of a linkage, for its extreme positions and strokes.
+#[derive(Debug, Clone, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "serde", serde(rename_all = "snake_case"))]
+pub enum Output {
+    /// A link's angle along its reference direction, rad.
+    Angle(String),
+    /// A prismatic joint's slide, m.
+    Slide(String),
+    /// A joint's or named point's x coordinate, m.
+    X(String),
+    /// A joint's or named point's y coordinate, m.
+    Y(String),
+}
 
 /// A planar linkage of the 2nd class, described by its reference pose.
 ///

@@ -40,7 +40,7 @@
 //! # Ok::<(), tmm::Error>(())
 //! ```
 
-mod analysis;
+mod build;
 pub mod bundled;
 mod course;
 mod cycle;
@@ -48,20 +48,19 @@ mod description;
 pub mod dynamics;
 mod indicator;
 mod plan;
+pub(crate) mod solve;
 mod structure;
 mod table;
 
-pub use analysis::{Analysis, Balance, PowerCheck, Reaction};
 pub use course::Course;
 #[cfg(feature = "rayon")]
 pub use cycle::run_cycle_parallel;
-pub use cycle::{
-    course_inputs, run_cycle, try_course_inputs, try_uniform_inputs, uniform_inputs, Output,
-};
+pub use cycle::{course_inputs, run_cycle, try_course_inputs, try_uniform_inputs, uniform_inputs};
 pub use description::{
-    At, Drive, Input, Joint, JointKind, Link, Linkage, LoadSpec, Mass, Mode, NamedPoint,
+    At, Drive, Input, Joint, JointKind, Link, Linkage, LoadSpec, Mass, Mode, NamedPoint, Output,
 };
 pub use indicator::IndicatorDiagram;
-pub use plan::{Group, GroupKind, Plan};
+pub use plan::{Group, GroupKind, Plan, Pose};
+pub use solve::{Analysis, Balance, PowerCheck, Reaction};
 pub use structure::chebyshev;
 pub use table::{Column, Table, Tabulate};

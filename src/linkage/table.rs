@@ -1,6 +1,6 @@
 //! Results over a cycle as named columns, written as CSV.
 
-use super::analysis::Analysis;
+use super::solve::Analysis;
 use crate::error::Result;
 use nalgebra::Vector2;
 use std::io;

@@ -728,8 +728,7 @@ fn a_second_input_reads_and_writes_as_json() {
 /// relative to the largest velocity and acceleration of the position; stored as f64 bits.
 static WORST_RATES: std::sync::atomic::AtomicU64 = std::sync::atomic::AtomicU64::new(0);
 
-fn record_rates_difference(a: &tmm::linkage::Analysis<'_>) -> tmm::Result<()> {
-    let plan = a.plan();
+fn record_rates_difference(plan: &Plan, a: &tmm::linkage::Pose<'_>) -> tmm::Result<()> {
     let full = match a.second_input() {
         None => plan.kinematics(a.input())?,
         Some(m) => plan.kinematics_inputs(&[a.input(), m])?,
@@ -783,8 +782,9 @@ fn the_rates_only_pass_equals_a_full_solve_for_every_group_kind() {
         let mut plan = Plan::new(&l).unwrap();
         kinds.extend(plan.groups().iter().map(|g| g.kind));
         let moving = plan.link_names()[1].clone();
-        plan.add_load_fn(&moving, |a| {
-            record_rates_difference(a)?;
+        let kinematic = plan.clone();
+        plan.add_load_fn(&moving, move |a| {
+            record_rates_difference(&kinematic, a)?;
             Ok(Load::new(Point2::origin(), Vector2::zeros(), 0.0))
         })
         .unwrap();

@@ -4,14 +4,14 @@
 use nalgebra::{Matrix2, Point2, Vector2};
 
 use super::drive::{Damper, DamperPlan, Motor};
-use crate::angle::perp;
 use crate::dynamics::{
     checked_inertia, christoffel_terms, kink_slots, LagrangeSystem, LagrangeTerms,
 };
 use crate::error::{computed_all, finite, finite2, Error, Result};
 use crate::kinematics::{LinkMotion, Motion, PointMotion};
-use crate::linkage::plan::LoadPlan;
-use crate::linkage::{Analysis, Linkage, Plan};
+use crate::linkage::plan::{point_with, Chain, LoadPlan};
+use crate::linkage::solve::state::KinState;
+use crate::linkage::{Linkage, Plan};
 
 /// Everything Lagrange's equations need at one state of a [`LinkageSystem`].
 ///
@@ -110,16 +110,19 @@ struct Transfer<'p> {
     /// solve at (1, 1) are Σ_jk ∂²r/∂q_j∂q_k, so the mixed derivative is
     /// (a_(1,1) − a_11 − a_22)/2.
     rates: Vec<Rates>,
+    /// The chain solved.
+    chain: &'p Chain,
     /// The buffers of the solves: their positions (the same in every solve, with every
     /// link's unit vector) serve the position-only look-ups.
-    an: Analysis<'p>,
+    kin: KinState,
 }
 
 impl<'p> Transfer<'p> {
     #[inline]
     fn new(plan: &'p Plan, n: usize, q: &Vector2<f64>) -> Result<Self> {
-        let mut an = Analysis::new(plan);
-        let nl = plan.link_names.len();
+        let chain = &plan.chain;
+        let mut kin = KinState::new(chain);
+        let nl = chain.link_names.len();
         let unit_rates: &[[f64; 2]] = if n == 1 {
             &[[1.0, 0.0]]
         } else {
@@ -129,13 +132,13 @@ impl<'p> Transfer<'p> {
         for (i, r) in unit_rates.iter().enumerate() {
             let m = [Motion::new(q[0], r[0], 0.0), Motion::new(q[1], r[1], 0.0)];
             if i == 0 {
-                an.solve_kinematics_inputs(&m[..n])?;
+                kin.solve(chain, &m[..n])?;
             } else {
                 // The same positions: only the (linear) rate problems again.
-                an.solve_rates_inputs(&m[..n])?;
+                kin.solve_rates(chain, &m[..n])?;
             }
             rates.extend((0..nl).map(|l| {
-                let m = an.link_motion_at(l);
+                let m = &kin.links[l];
                 Rates {
                     v: m.origin.v,
                     a: m.origin.a,
@@ -144,26 +147,26 @@ impl<'p> Transfer<'p> {
                 }
             }));
         }
-        Ok(Self { n, nl, rates, an })
+        Ok(Self {
+            n,
+            nl,
+            rates,
+            chain,
+            kin,
+        })
     }
 
     /// The motion of the point at `local` (along, across) of link `l` in solve `s`.
     #[inline]
     fn point(&self, s: usize, l: usize, local: Vector2<f64>) -> PointMotion {
-        let (m, e) = (self.link(s, l), self.an.link_unit(l));
-        let r = local.x * e + local.y * perp(e);
-        PointMotion::new(
-            m.origin.p + r,
-            m.origin.v + m.omega * perp(r),
-            m.origin.a + m.epsilon * perp(r) - m.omega * m.omega * r,
-        )
+        point_with(&self.link(s, l), self.kin.units[l], local)
     }
 
     /// Link `l` in solve `s` (0, 1: unit rate of input s; 2: both).
     #[inline]
     fn link(&self, s: usize, l: usize) -> LinkMotion {
         let r = &self.rates[s * self.nl + l];
-        let m = self.an.link_motion_at(l);
+        let m = &self.kin.links[l];
         LinkMotion {
             origin: PointMotion::new(m.origin.p, r.v, r.a),
             angle: m.angle,
@@ -191,15 +194,13 @@ impl<'p> Transfer<'p> {
     /// The sliding link and the guide's link of prismatic joint `j`, and the guide's unit
     /// direction now.
     fn slide_parts(&self, j: usize) -> (usize, usize, Vector2<f64>) {
-        let jp = &self.an.plan().joints[j];
-        let g = jp.prismatic.map_or(0, |(g, _)| g);
-        (jp.links[1 - g], jp.links[g], self.an.guide_direction_at(j))
+        self.kin.pose(self.chain).slide_parts(j)
     }
 
     /// The motions of prismatic joint `j`'s point on its sliding link and on its guide's
     /// link in solve `k`.
     fn slide_points(&self, k: usize, j: usize) -> [PointMotion; 2] {
-        let jp = &self.an.plan().joints[j];
+        let jp = &self.chain.joints[j];
         let g = jp.prismatic.map_or(0, |(g, _)| g);
         [1 - g, g].map(|side| {
             let local = jp.local[side];
@@ -383,7 +384,7 @@ impl LinkageSystem {
         let mut a = Matrix2::zeros();
         let mut da = [Matrix2::zeros(); 2];
         let mut loads = Vector2::zeros();
-        for (l, lp) in plan.links.iter().enumerate().skip(1) {
+        for (l, lp) in plan.chain.links.iter().enumerate().skip(1) {
             if lp.mass == 0.0 && lp.inertia == 0.0 {
                 continue;
             }
@@ -529,7 +530,7 @@ impl LinkageSystem {
                     let f = diagram
                         .force(head * s, head * rate, *head * d, ends[0], ends[1])
                         .map_err(|e| Error::In {
-                            part: format!("piston of joint {}", plan.joint_names[*joint]),
+                            part: format!("piston of joint {}", plan.chain.joint_names[*joint]),
                             source: Box::new(e),
                         })?;
                     for k in 0..n {
@@ -545,16 +546,16 @@ impl LinkageSystem {
         // Loads given as functions of the state see it solved at the actual rates (the same
         // positions; the transfer functions are kept in `tr.links`).
         let m = [Motion::new(q[0], qd[0], 0.0), Motion::new(q[1], qd[1], 0.0)];
-        tr.an.solve_rates_inputs(&m[..n])?;
+        tr.kin.solve_rates(&plan.chain, &m[..n])?;
         for lp in &plan.loads {
             let LoadPlan::Custom { link, f } = lp else {
                 continue;
             };
             let part = |e: Error| Error::In {
-                part: plan.link_names[*link].clone(),
+                part: plan.chain.link_names[*link].clone(),
                 source: Box::new(e),
             };
-            let load = (f.0)(&tr.an).map_err(part)?;
+            let load = (f.0)(&tr.kin.pose(&plan.chain)).map_err(part)?;
             load.validate().map_err(part)?;
             for k in 0..n {
                 loads[k] += load.force.dot(&tr.vel_of(k, *link, load.point))
@@ -584,7 +585,7 @@ impl LinkageSystem {
                     }),
                 ),
                 DamperPlan::Slide { joint, c } => {
-                    let d = tr.an.guide_direction_at(joint);
+                    let d = tr.kin.pose(tr.chain).guide_direction_at(joint);
                     (
                         c,
                         [0, 1].map(|k| {

@@ -1,0 +1,157 @@
+#![allow(clippy::neg_cmp_op_on_partial_ord)] // `!(x > 0.0)` rejects NaN too, on purpose.
+//! From a description to a plan, one way: names, then the structure (the joints as edges, the
+//! inputs, the Assur decomposition), the links' frames and the groups in attachment order,
+//! the local coordinates of joints, points and masses — the kinematic chain, whose reference
+//! pose is then solved and checked to close — and last the loads, complete with whatever the
+//! solved chain tells them (an indicator diagram's dead centres). The plan is made once,
+//! whole; nothing is patched afterwards.
+
+mod chain;
+mod groups;
+mod loads;
+mod reference;
+
+use chain::{
+    edges, input_links, input_specs, joint_at, plan_inputs, plan_joints, plan_links, plan_points,
+    reference_size, Links,
+};
+use reference::{finite_pair, index_names, Frame};
+
+use super::description::Linkage;
+use super::plan::{bad, Chain, Plan};
+use super::solve::state::KinState;
+use super::structure::{chebyshev, decompose, Dyad};
+use crate::error::Result;
+use nalgebra::Point2;
+
+impl Plan {
+    /// Checks a description and plans its solve: the structure (mobility, the dyads in
+    /// attachment order), every length and local coordinate from the reference pose, the
+    /// assembly mode of every group, and the loads.
+    ///
+    /// # Errors
+    /// [`Error::Description`](crate::Error::Description) naming the joint, link, load or
+    /// field at fault: unknown or repeated names, a joint not joining exactly two links, a
+    /// link with fewer than two joints, a guide without a direction, non-finite numbers,
+    /// negative masses, a linkage outside the 2nd class or of the wrong mobility, a pose that
+    /// does not close, a group at a dead point in the reference pose without a given mode.
+    pub fn new(linkage: &Linkage) -> Result<Self> {
+        let names = index_names(linkage)?;
+        let links = Links::new(linkage, &names)?;
+        let edges = edges(linkage, &names, &links)?;
+        let specs = input_specs(linkage);
+        let inputs = input_links(&specs, &names, &links, &edges)?;
+        let explicit: Vec<[usize; 2]> = linkage
+            .groups
+            .iter()
+            .map(|[a, b]| {
+                Ok([
+                    links.index[names.link(a, "field groups")?],
+                    links.index[names.link(b, "field groups")?],
+                ])
+            })
+            .collect::<Result<_>>()?;
+        let input_links: Vec<usize> = inputs.iter().map(|&(l, _)| l).collect();
+        let dyads = decompose(&edges, &links.names, &input_links, &explicit)?;
+
+        // Frames in the reference pose: the inputs', then each group's in attachment order.
+        let origin = Frame {
+            origin: Point2::origin(),
+            angle: 0.0,
+        };
+        let mut frames = vec![origin; links.names.len()];
+        let mut planned = plan_inputs(
+            linkage,
+            &specs,
+            &inputs,
+            &edges,
+            (&names, &links),
+            &mut frames,
+        )?;
+        let second_input = planned.get(1).cloned();
+        let (input, reference_input) = planned.swap_remove(0);
+        check_modes(linkage, &dyads)?;
+        let groups = dyads
+            .iter()
+            .map(|d| groups::plan_group(d, &edges, &links.names, linkage, &mut frames))
+            .collect::<Result<Vec<_>>>()?;
+
+        let joints = plan_joints(linkage, &edges, (&names, &links), &frames);
+        let (point_names, points) = plan_points(linkage, &links, &frames)?;
+        let size = reference_size(linkage)?;
+        let link_plans = plan_links(linkage, &edges, (&names, &links), &frames)?;
+        let gravity = finite_pair("field gravity", "gravity", linkage.gravity)?;
+        let chain = Chain {
+            mobility: chebyshev(links.names.len() - 1, edges.len()),
+            link_names: links.names.clone(),
+            joint_names: linkage.joints.iter().map(|j| j.name.clone()).collect(),
+            point_names,
+            links: link_plans,
+            joints,
+            points,
+            input,
+            second_input,
+            groups,
+            reference_input,
+            size,
+        };
+        let checked = linkage
+            .loads
+            .iter()
+            .enumerate()
+            .map(|(i, spec)| loads::plan_load(spec, i, &names, &links.index, &frames, &chain))
+            .collect::<Result<Vec<_>>>()?;
+        check_closure(&chain, linkage)?;
+        let loads = checked
+            .into_iter()
+            .map(|c| c.complete(&chain))
+            .collect::<Result<_>>()?;
+        Ok(Self {
+            name: linkage.name.clone(),
+            chain,
+            loads,
+            gravity,
+        })
+    }
+}
+
+/// A mode must name some group's inner joint; a mode that matches none is a typo.
+fn check_modes(linkage: &Linkage, dyads: &[Dyad]) -> Result<()> {
+    for m in &linkage.modes {
+        let inner = |d: &Dyad| linkage.joints[d.joints[1]].name == m.joint;
+        if !dyads.iter().any(inner) {
+            return Err(bad(
+                format!("mode for joint {}", m.joint),
+                "names no group's inner joint (the joint between a group's two links)",
+            ));
+        }
+    }
+    Ok(())
+}
+
+/// Solves the reference pose of `chain` and compares every joint with its given position.
+fn check_closure(chain: &Chain, linkage: &Linkage) -> Result<()> {
+    let mut state = KinState::new(chain);
+    state
+        .solve(chain, &chain.reference_motions())
+        .map_err(|e| bad("reference pose", format!("does not assemble: {e}")))?;
+    let pose = state.pose(chain);
+    let tol = 1e-9 * chain.size.max(f64::MIN_POSITIVE);
+    for (j, joint) in linkage.joints.iter().enumerate() {
+        let given = joint_at(linkage, j);
+        for side in 0..2 {
+            let gap = (pose.joint_on_at(j, side).p - given).norm();
+            if !(gap <= tol) {
+                return Err(bad(
+                    format!("joint {}", joint.name),
+                    format!(
+                        "the reference pose does not close: the joint as carried by link {} \
+                         lies {gap:.3e} m from its given position",
+                        chain.link_names[chain.joints[j].links[side]]
+                    ),
+                ));
+            }
+        }
+    }
+    Ok(())
+}

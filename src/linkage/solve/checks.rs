@@ -1,0 +1,151 @@
+//! The two independent checks of one analysed position: every link's equilibrium as a free
+//! body, and the balancing value by the principle of virtual power.
+
+use super::analysis::Analysis;
+use crate::error::{Error, Result};
+use crate::Load;
+
+/// The balancing value found two ways at one position.
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+pub struct PowerCheck {
+    /// From the group-by-group chain.
+    pub chain: f64,
+    /// From the principle of virtual power: −Σ P_i / q̇ over every applied load.
+    pub virtual_power: f64,
+    /// The scale of the comparison: the largest of |chain| and Σ|P_i|/|q̇|.
+    pub scale: f64,
+}
+
+impl PowerCheck {
+    /// |chain − virtual power| / scale.
+    #[must_use]
+    pub fn relative_error(&self) -> f64 {
+        let d = (self.chain - self.virtual_power).abs();
+        if self.scale > 0.0 {
+            d / self.scale
+        } else {
+            d
+        }
+    }
+}
+
+impl Analysis<'_> {
+    /// Every load on link `k` as a free body: applied loads, reactions of its joints, and
+    /// the drive on the input link.
+    ///
+    /// # Errors
+    /// [`Error::OutOfRange`] (`"link index"`) for `k` not below `plan.link_names().len()`.
+    pub fn free_body(&self, k: usize) -> Result<Vec<Load>> {
+        Ok(self.free_body_at(self.plan.check_link(k)?))
+    }
+
+    /// As [`free_body`](Self::free_body), for an index known to be a link's.
+    fn free_body_at(&self, k: usize) -> Vec<Load> {
+        let mut all: Vec<Load> = self
+            .applied
+            .iter()
+            .filter(|(l, _)| *l == k)
+            .map(|(_, l)| *l)
+            .collect();
+        for (j, jp) in self.plan.chain.joints.iter().enumerate() {
+            if jp.links.contains(&k) {
+                all.push(self.reactions[j].load_on_side(k));
+            }
+        }
+        if k == self.plan.input_link() {
+            all.push(self.drive_load());
+        }
+        if Some(k) == self.plan.second_input_link() {
+            all.extend(self.second_drive_load());
+        }
+        all
+    }
+
+    /// How far link `k` is from equilibrium: the larger of |ΣF|/F_scale and |ΣM|/M_scale,
+    /// with the scales the largest force and the largest moment (or force × arm).
+    ///
+    /// # Errors
+    /// [`Error::OutOfRange`] (`"link index"`) for `k` not below `plan.link_names().len()`.
+    pub fn residual(&self, k: usize) -> Result<f64> {
+        Ok(self.residual_at(self.plan.check_link(k)?))
+    }
+
+    /// As [`residual`](Self::residual), for an index known to be a link's.
+    fn residual_at(&self, k: usize) -> f64 {
+        let all = self.free_body_at(k);
+        let pole = self.kin.links[k].origin.p;
+        let sum = Load::sum_about(&all, pole);
+        let fs = all.iter().map(|l| l.force.norm()).fold(0.0, f64::max);
+        let arm = all
+            .iter()
+            .map(|l| (l.point - pole).norm())
+            .fold(0.0, f64::max);
+        let ms = all.iter().map(|l| l.moment.abs()).fold(fs * arm, f64::max);
+        let rel = |r: f64, s: f64| if s > 0.0 { r / s } else { r };
+        rel(sum.force.norm(), fs).max(rel(sum.moment.abs(), ms))
+    }
+
+    /// The worst [`Analysis::residual`] over the moving links.
+    #[must_use]
+    pub fn worst_residual(&self) -> f64 {
+        (1..self.kin.links.len())
+            .map(|k| self.residual_at(k))
+            .fold(0.0, f64::max)
+    }
+
+    /// The power of every applied load, W: Σ F·v + M·ω.
+    fn powers(&self) -> (f64, f64) {
+        self.applied.iter().fold((0.0, 0.0), |(s, a), (k, l)| {
+            let link = &self.kin.links[*k];
+            let p = l.force.dot(&link.motion_of(l.point).v) + l.moment * link.omega;
+            (s + p, a + p.abs())
+        })
+    }
+
+    /// The balancing value by the chain and by the principle of virtual power. For a linkage
+    /// with two inputs the comparison is of powers, W: the drives' Σ B_k·q̇_k against
+    /// −Σ P_i of every applied load.
+    ///
+    /// # Errors
+    /// [`Error::Singular`] when the input does not move (q̇ = 0).
+    pub fn power_check(&self) -> Result<PowerCheck> {
+        if let (Some(m), Some(b)) = (self.kin.second_input, self.second_balance) {
+            // Two inputs: the drives' power against the loads' power, W.
+            let (sum, abs) = self.powers();
+            let chain = self.balance.value * self.kin.input.rate + b.value * m.rate;
+            if !(chain.is_finite() && sum.is_finite()) {
+                return Err(Error::NonFinite {
+                    name: "virtual power",
+                    value: sum,
+                });
+            }
+            return Ok(PowerCheck {
+                chain,
+                virtual_power: -sum,
+                scale: abs.max(chain.abs()),
+            });
+        }
+        let q = self.kin.input.rate;
+        if q == 0.0 || !q.is_finite() {
+            return Err(Error::Singular {
+                what: "virtual power balance",
+                measure: "input rate",
+                value: q,
+            });
+        }
+        let (sum, abs) = self.powers();
+        let (vp, scale) = (-sum / q, abs / q.abs());
+        if !(vp.is_finite() && scale.is_finite()) {
+            return Err(Error::NonFinite {
+                name: "virtual power",
+                value: vp,
+            });
+        }
+        Ok(PowerCheck {
+            chain: self.balance.value,
+            virtual_power: vp,
+            scale: scale.max(self.balance.value.abs()),
+        })
+    }
+}

@@ -1,0 +1,108 @@
+//! The buffers of one position's kinematics, allocated once per plan and refilled at every
+//! position: each link's motion with its unit vector, the groups' constant turns and their
+//! kinematic determinants.
+
+use crate::error::Error;
+use crate::kinematics::{Guide, LinkMotion, Motion, PointMotion};
+use crate::linkage::plan::{point_with, Chain, Pose};
+use nalgebra::{Point2, Vector2};
+
+/// The kinematic state of one position of a [`Chain`].
+#[derive(Debug, Clone)]
+pub(crate) struct KinState {
+    pub input: Motion,
+    pub second_input: Option<Motion>,
+    pub links: Vec<LinkMotion>,
+    /// Each link's unit vector e(φ), computed once per position: every point of a link is
+    /// placed with it, so no trigonometry is repeated.
+    pub units: Vec<Vector2<f64>>,
+    /// Per group, the constant rotations (cos, sin) of its guides' offsets (first and second
+    /// outer joint) and of an RPP's slide angle: a guide's unit vector is its link's rotated.
+    pub turns: Vec<[Vector2<f64>; 3]>,
+    pub dets: Vec<f64>,
+}
+
+/// The frame's link motion (at rest at the origin).
+pub(crate) fn frame_motion() -> LinkMotion {
+    LinkMotion {
+        origin: PointMotion::fixed(Point2::origin()),
+        angle: 0.0,
+        omega: 0.0,
+        epsilon: 0.0,
+    }
+}
+
+/// Wraps an error of one part so that it names the part.
+pub(crate) fn within(part: &str) -> impl Fn(Error) -> Error + '_ {
+    move |e| Error::In {
+        part: part.to_owned(),
+        source: Box::new(e),
+    }
+}
+
+impl KinState {
+    /// Buffers for the positions of `chain` (allocated once).
+    pub fn new(chain: &Chain) -> Self {
+        let n = chain.link_names.len();
+        Self {
+            input: Motion::default(),
+            second_input: None,
+            links: vec![frame_motion(); n],
+            units: vec![Vector2::x(); n],
+            turns: chain
+                .groups
+                .iter()
+                .map(|g| {
+                    let r = |angle: f64| Vector2::new(angle.cos(), angle.sin());
+                    [
+                        r(g.guide_offsets[0]),
+                        r(g.guide_offsets[1]),
+                        r(g.slide_angle),
+                    ]
+                })
+                .collect(),
+            dets: vec![0.0; chain.groups.len()],
+        }
+    }
+
+    /// The read-only view of this position.
+    #[inline]
+    pub fn pose<'a>(&'a self, chain: &'a Chain) -> Pose<'a> {
+        Pose {
+            chain,
+            links: &self.links,
+            units: &self.units,
+            input: self.input,
+            second_input: self.second_input,
+        }
+    }
+
+    /// The motion of the point at `local` in link `k`'s frame.
+    #[inline]
+    pub fn at(&self, k: usize, local: Vector2<f64>) -> PointMotion {
+        point_with(&self.links[k], self.units[k], local)
+    }
+
+    /// Stores link `k`'s motion with its unit vector.
+    #[inline]
+    pub fn set_link(&mut self, k: usize, m: LinkMotion) {
+        self.put_link(k, m, m.unit());
+    }
+
+    /// Stores link `k`'s motion with its unit vector `u` = e(φ), already known.
+    #[inline]
+    pub fn put_link(&mut self, k: usize, m: LinkMotion, u: Vector2<f64>) {
+        self.units[k] = u;
+        self.links[k] = m;
+    }
+
+    /// The guide through the point at `local` of link `k`, at `offset` to the link's frame
+    /// angle, moving with the link.
+    pub fn guide_on(&self, k: usize, local: Vector2<f64>, offset: f64) -> Guide {
+        let link = &self.links[k];
+        Guide {
+            point: self.at(k, local),
+            angle: Motion::new(link.angle + offset, link.omega, link.epsilon),
+        }
+    }
+}
