@@ -12,12 +12,14 @@ use resvg::usvg;
 use std::f64::consts::TAU;
 use tmm::draw::{
     animation, diagram, forces, plan_view, scheme, Diagram, Picture, Style, MAX_FRAMES,
+    MAX_PLAN_POSITIONS,
 };
 use tmm::kinematics::Motion;
 use tmm::linkage::{bundled, uniform_inputs, Course, Linkage, Output, Plan};
 use tmm::nalgebra::Point2;
 
 fn render(svg: &str, name: &str) -> Pixmap {
+    assert_finite_svg(svg, name);
     let tree = usvg::Tree::from_str(svg, &usvg::Options::default()).expect("the SVG parses");
     let size = tree.size().to_int_size();
     let mut pixmap = Pixmap::new(size.width(), size.height()).expect("a picture has a size");
@@ -27,6 +29,46 @@ fn render(svg: &str, name: &str) -> Pixmap {
         pixmap.save_png(format!("{dir}/{name}.png")).unwrap();
     }
     pixmap
+}
+
+/// Every number in every attribute of `svg` (the names in `class` aside) parses as a finite
+/// `f64`, and no attribute holds a word `inf`, `infinity` or `NaN`: an SVG reader would take
+/// a non-finite coordinate for an error, or draw nothing.
+fn assert_finite_svg(svg: &str, name: &str) {
+    let mut rest = svg;
+    let mut numbers = 0;
+    while let Some(lt) = rest.find('<') {
+        let end = rest[lt..].find('>').map_or(rest.len(), |e| lt + e);
+        let tag = &rest[lt..end];
+        for (i, part) in tag.split('"').enumerate() {
+            // Odd parts are attribute values; the part before names the attribute.
+            if i % 2 == 0
+                || tag
+                    .split('"')
+                    .nth(i - 1)
+                    .is_some_and(|n| n.trim_end().ends_with("class="))
+            {
+                continue;
+            }
+            let tokens = part.split(|c: char| !(c.is_ascii_alphanumeric() || "+-.".contains(c)));
+            for t in tokens.filter(|t| !t.is_empty()) {
+                let lower = t.to_ascii_lowercase();
+                let word = lower.trim_start_matches(['+', '-']);
+                assert!(
+                    !matches!(word, "inf" | "infinity" | "nan"),
+                    "{name}: a non-finite number {t:?} in {tag:.200}"
+                );
+                if t.starts_with(|c: char| c.is_ascii_digit() || c == '-' || c == '.')
+                    && let Ok(x) = t.parse::<f64>()
+                {
+                    assert!(x.is_finite(), "{name}: {t:?} in {tag:.200}");
+                    numbers += 1;
+                }
+            }
+        }
+        rest = &rest[end..];
+    }
+    assert!(numbers > 0, "{name}: no numbers in the SVG");
 }
 
 /// The darkness of the pixel nearest to `q`, over a white page (0 white, 255 black).
@@ -725,4 +767,316 @@ fn a_slider_input_is_drawn_and_animated() {
     assert_eq!(chart.panels[0].x_label, "s1, m");
     assert!(plan_view(&plan, &course, &["A"], &style).is_ok());
     assert!(Course::new(&plan, None, 12, 1.0).is_err());
+}
+
+/// A generator of hostile numbers and choices, seeded (a linear congruential generator).
+struct Hostile(u64);
+
+impl Hostile {
+    fn next(&mut self) -> u64 {
+        self.0 = self
+            .0
+            .wrapping_mul(6_364_136_223_846_793_005)
+            .wrapping_add(1_442_695_040_888_963_407);
+        self.0 >> 33
+    }
+
+    fn pick<T: Copy>(&mut self, from: &[T]) -> T {
+        #[allow(clippy::cast_possible_truncation)]
+        let i = self.next() as usize % from.len();
+        from[i]
+    }
+
+    /// A hostile f64: non-finite, signed zeros, subnormals, tiny, ordinary and huge values.
+    fn f(&mut self) -> f64 {
+        let v = self.pick(&[
+            f64::NAN,
+            f64::INFINITY,
+            0.0,
+            5e-324,
+            1e-310,
+            1e-154,
+            1e-16,
+            0.3,
+            1.0,
+            2.5,
+            5.0,
+            40.0,
+            60.0,
+            61.0,
+            1e3,
+            1e16,
+            1e154,
+            1e300,
+            f64::MAX,
+        ]);
+        if self.next().is_multiple_of(3) {
+            -v
+        } else {
+            v
+        }
+    }
+
+    fn style(&mut self) -> Style {
+        let size = [0, 1, 15, 16, 17, 100, 300, 800, 10_000, 10_001, u32::MAX];
+        let ordinary = !self.next().is_multiple_of(4);
+        let mut style = Style {
+            width: self.pick(&size),
+            height: self.pick(&size),
+            margin: self.f(),
+            line_width: self.f(),
+            hinge_radius: self.f(),
+            labels: self.next().is_multiple_of(2),
+            samples: self.pick(&[0, 1, 2, 3, 7, 40, MAX_FRAMES + 1]),
+        };
+        // Three styles in four hostile in one field only, so that pictures get drawn too.
+        if ordinary {
+            let keep = style.clone();
+            style = Style {
+                samples: 24,
+                ..Style::default()
+            };
+            match self.next() % 5 {
+                0 => style.margin = keep.margin,
+                1 => style.line_width = keep.line_width,
+                2 => style.hinge_radius = keep.hinge_radius,
+                3 => (style.width, style.height) = (keep.width, keep.height),
+                _ => {}
+            }
+        }
+        style
+    }
+}
+
+/// The four-bar scaled by `k` and moved by `shift` m: tiny, huge and far-off linkages.
+fn four_bar_scaled(k: f64, shift: f64) -> Linkage {
+    let mut l = bundled::four_bar();
+    l.name = format!("four-bar ×{k:e} +{shift:e}");
+    for j in &mut l.joints {
+        j.at = [k * j.at[0] + shift, k * j.at[1] + shift];
+    }
+    for link in &mut l.links {
+        for p in &mut link.points {
+            p.at = [k * p.at[0] + shift, k * p.at[1] + shift];
+        }
+        link.mass = None;
+    }
+    l.loads.clear();
+    l
+}
+
+#[test]
+fn hostile_styles_and_inputs_give_errors_or_finite_pictures() {
+    let mut plans: Vec<Plan> = plans().into_iter().map(|(_, p)| p).collect();
+    for (k, shift) in [
+        (1e-150, 0.0),
+        (1e150, 0.0),
+        (1.0, 1e15),
+        (1e-3, 1e9),
+        (1e-300, 1e-300),
+    ] {
+        if let Ok(p) = Plan::new(&four_bar_scaled(k, shift)) {
+            plans.push(p);
+        }
+    }
+    let mut g = Hostile(27);
+    let (mut drawn, mut refused) = (0, 0);
+    let mut tally = |name: &str, r: Result<String, tmm::Error>| match r {
+        Ok(svg) => {
+            assert_finite_svg(&svg, name);
+            drawn += 1;
+        }
+        Err(e) => {
+            assert!(!e.to_string().is_empty());
+            refused += 1;
+        }
+    };
+    for round in 0..480 {
+        let plan = &plans[round % plans.len()];
+        let style = g.style();
+        let q0 = plan.reference_input();
+        let motion = |g: &mut Hostile| {
+            if !g.next().is_multiple_of(4) {
+                Motion::new(q0 + 0.01 * f64::from(g.pick(&[0, 1, 5, 50])), g.f(), g.f())
+            } else {
+                Motion::new(g.f(), g.f(), g.f())
+            }
+        };
+        let name = format!("round {round} {}", plan.name());
+        let m = motion(&mut g);
+        tally(&name, scheme(plan, m, &style).map(|p| p.svg));
+        tally(&name, forces(plan, m, &style).map(|p| p.svg));
+        let n = g.pick(&[1, 2, 12]);
+        let inputs: Vec<Motion> = (0..n).map(|_| motion(&mut g)).collect();
+        let seconds = g.f();
+        tally(
+            &name,
+            animation(plan, &inputs, seconds, &style).map(|p| p.svg),
+        );
+        let course = match Course::new(plan, None, g.pick(&[0, 1, 5, 12]), g.f()) {
+            Ok(c) => c,
+            Err(_) => Course {
+                inputs,
+                extremes: vec![motion(&mut g)],
+            },
+        };
+        let paths: Vec<&str> = plan.joint_names().iter().map(String::as_str).collect();
+        tally(
+            &name,
+            plan_view(plan, &course, &paths[..2], &style).map(|p| p.svg),
+        );
+        let d = g.pick(&[0, 1, 2]);
+        let d = [
+            Diagram::Balance,
+            Diagram::Reactions,
+            Diagram::Hodograph(paths[1].to_owned()),
+        ][d]
+            .clone();
+        tally(&name, diagram(plan, &course, &d, &style).map(|c| c.svg));
+    }
+    eprintln!("{drawn} drawn, {refused} refused");
+    // Both outcomes happen: the loop reaches the drawing, not only the checks.
+    assert!(
+        drawn > 100 && refused > 100,
+        "{drawn} drawn, {refused} refused"
+    );
+}
+
+#[test]
+fn a_frame_is_finite_or_an_error() {
+    use tmm::draw::Frame;
+    // The case of issue 27: an upside-down box, a picture 10³⁰⁸ px high.
+    let r = Frame::fit(
+        Point2::new(5e-324, 1e16),
+        Point2::new(1e-310, 1e12),
+        1e-16,
+        1e308,
+        1e-154,
+    );
+    assert!(r.is_err(), "{r:?}");
+    let mut g = Hostile(5);
+    for _ in 0..5000 {
+        let (lo, hi) = (Point2::new(g.f(), g.f()), Point2::new(g.f(), g.f()));
+        let (w, h, m) = (g.f(), g.f(), g.f());
+        if let Ok(f) = Frame::fit(lo, hi, w, h, m) {
+            assert!(f.scale.is_finite() && f.scale > 0.0, "{f:?}");
+            assert!(f.origin.iter().all(|o| o.is_finite()), "{f:?}");
+            // The box's corners land inside the picture, its centre in the middle.
+            for p in [lo, hi] {
+                let q = f.to_pixel(p);
+                assert!(q.iter().all(|x| x.is_finite()), "{f:?} {p:?}");
+                assert!(
+                    q[0] >= -1e-6 * w && q[0] <= w * (1.0 + 1e-9),
+                    "{f:?} {p:?} {q:?}"
+                );
+                assert!(
+                    q[1] >= -1e-6 * h && q[1] <= h * (1.0 + 1e-9),
+                    "{f:?} {p:?} {q:?}"
+                );
+            }
+        }
+    }
+}
+
+#[test]
+fn a_long_course_is_thinned_in_the_plan_and_on_the_diagrams() {
+    let plan = Plan::new(&bundled::watt_six_bar()).unwrap();
+    let course = Course::new(&plan, None, MAX_FRAMES, 10.0).unwrap();
+    let style = Style::default();
+    let pic = plan_view(&plan, &course, &["E"], &style).unwrap();
+    assert_finite_svg(&pic.svg, "plan of 20 000");
+    let drawn = MAX_FRAMES.div_ceil(MAX_FRAMES.div_ceil(MAX_PLAN_POSITIONS));
+    assert!(drawn <= MAX_PLAN_POSITIONS);
+    assert!(
+        pic.svg
+            .contains(&format!("plan in {drawn} of {MAX_FRAMES} positions")),
+        "{}",
+        &pic.svg[..300]
+    );
+    // The numbers of the drawn positions are their places in the course: 0, 56, 112, …
+    let step = MAX_FRAMES.div_ceil(MAX_PLAN_POSITIONS);
+    for k in [0, step, 2 * step, (drawn - 1) * step] {
+        assert!(
+            pic.svg.contains(&format!(">\n{k}\n</text>")),
+            "no label {k}"
+        );
+    }
+    assert!(!pic.svg.contains(&format!(">\n{}\n</text>", step + 1)));
+    let chart = diagram(&plan, &course, &Diagram::Balance, &style).unwrap();
+    assert_eq!(chart.panels[0].marks.len(), drawn);
+    assert_eq!(chart.panels[0].marks[1].0, step);
+}
+
+#[test]
+fn style_errors_name_the_field() {
+    let plan = Plan::new(&bundled::four_bar()).unwrap();
+    let m = Motion::new(0.5, 10.0, 0.0);
+    for (style, field) in [
+        (
+            Style {
+                hinge_radius: 1e300,
+                ..Style::default()
+            },
+            "style.hinge_radius",
+        ),
+        (
+            Style {
+                hinge_radius: f64::NAN,
+                ..Style::default()
+            },
+            "style.hinge_radius",
+        ),
+        (
+            Style {
+                line_width: f64::MAX,
+                ..Style::default()
+            },
+            "style.line_width",
+        ),
+        (
+            Style {
+                line_width: 0.0,
+                ..Style::default()
+            },
+            "style.line_width",
+        ),
+        (
+            Style {
+                margin: -1.0,
+                ..Style::default()
+            },
+            "style.margin",
+        ),
+        (
+            Style {
+                width: 10_001,
+                ..Style::default()
+            },
+            "style.width",
+        ),
+        (
+            Style {
+                samples: 1,
+                ..Style::default()
+            },
+            "style.samples",
+        ),
+    ] {
+        let e = scheme(&plan, m, &style).unwrap_err();
+        assert!(
+            matches!(&e, tmm::Error::OutOfRange { name, .. } | tmm::Error::NonFinite { name, .. } if *name == field),
+            "{field}: {e}"
+        );
+        assert!(e.to_string().contains(field), "{e}");
+    }
+    // The largest admitted stroke still draws, inside the picture.
+    let big = Style {
+        hinge_radius: 60.0,
+        line_width: 60.0,
+        ..Style::default()
+    };
+    let pic = scheme(&plan, m, &big).unwrap();
+    render(&pic.svg, "largest strokes");
+    let pic = forces(&plan, m, &big).unwrap();
+    render(&pic.svg, "largest strokes, forces");
 }

@@ -19,10 +19,14 @@ use svg::Node;
 /// frame is a solved position, never an interpolation). A picture that does not animate shows
 /// the first position, drawn with the returned [`Frame`](super::Frame).
 ///
+/// Its text and time grow with the number of frames times the links and labels, each frame
+/// a few numbers per link and label; at most [`MAX_FRAMES`](super::MAX_FRAMES) frames.
+///
 /// # Errors
-/// [`Error::Drawing`](crate::Error::Drawing) for a bad style or a non-positive duration;
-/// [`Error::OutOfRange`] for no inputs or more than [`MAX_FRAMES`](super::MAX_FRAMES);
-/// [`Error::NonFinite`] for a non-finite input; [`Error::In`] naming the position that cannot
+/// [`Error::OutOfRange`] or [`Error::NonFinite`] naming the field of a bad style
+/// ([`Style::check`]); [`Error::NonFinite`] or [`Error::OutOfRange`] for a duration outside
+/// [10⁻³, 10⁶] s; [`Error::OutOfRange`] for no inputs or more than
+/// [`MAX_FRAMES`](super::MAX_FRAMES); [`Error::NonFinite`] for a non-finite input; [`Error::In`] naming the position that cannot
 /// be solved.
 ///
 /// # Examples
@@ -40,11 +44,15 @@ use svg::Node;
 pub fn animation(plan: &Plan, inputs: &[Motion], seconds: f64, style: &Style) -> Result<Picture> {
     style.check()?;
     super::limits::check_inputs(inputs)?;
-    if !(seconds.is_finite() && seconds > 0.0) {
-        return Err(super::frame::drawing(
-            "an animation",
-            format!("the duration must be finite and > 0 s, got {seconds}"),
-        ));
+    crate::error::finite("seconds", seconds)?;
+    if !(1e-3..=1e6).contains(&seconds) {
+        return Err(Error::OutOfRange {
+            name: "seconds",
+            value: seconds,
+            min: 1e-3,
+            max: 1e6,
+            ends: crate::Ends::Closed,
+        });
     }
     let topo = Topo::new(plan);
     let mut a = Analysis::new(plan);
@@ -175,7 +183,7 @@ pub fn animation(plan: &Plan, inputs: &[Motion], seconds: f64, style: &Style) ->
         doc.append(labels);
     }
     Ok(Picture {
-        svg: doc.to_string(),
+        svg: primitives::finish(&doc)?,
         frame,
         force_scale: None,
     })

@@ -1,7 +1,7 @@
 //! The diagrams over a cycle, drawn by plotters' SVG back end.
 
 use super::frame::drawing;
-use super::plan_view::path_inputs;
+use super::plan_view::{path_inputs, thin, MAX_PLAN_POSITIONS};
 use super::Style;
 use crate::error::{Error, Result};
 use crate::kinematics::Motion;
@@ -142,8 +142,13 @@ pub struct Chart {
 /// crank reads left to right as it turns), rad; for a slider, its coordinate, m. Every axis
 /// carries its SI unit. A position where the linkage fails leaves a gap.
 ///
+/// The time is bounded by the picture: [`Style::samples`] analyses for the curves, at most
+/// [`MAX_PLAN_POSITIONS`] marked course positions (a longer course is thinned as
+/// [`plan_view`](super::plan_view) thins it), and one pass over the course to check it.
+///
 /// # Errors
-/// [`Error::Drawing`](crate::Error::Drawing) for a bad style or a back-end failure;
+/// [`Error::OutOfRange`] or [`Error::NonFinite`] naming the field of a bad style
+/// ([`Style::check`]); [`Error::Drawing`](crate::Error::Drawing) for a back-end failure;
 /// [`Error::OutOfRange`] or [`Error::NonFinite`] for a bad course; [`Error::Description`] for
 /// an output or joint that does not exist; the first position's error when no position of
 /// the cycle can be solved.
@@ -166,7 +171,7 @@ pub struct Chart {
 /// ```
 pub fn diagram(plan: &Plan, course: &Course, diagram: &Diagram, style: &Style) -> Result<Chart> {
     style.check()?;
-    super::limits::check_course(course)?;
+    course.check()?;
     check(plan, diagram)?;
     let crank = plan.input_is_crank();
     let first = course.inputs[0];
@@ -226,12 +231,13 @@ pub fn diagram(plan: &Plan, course: &Course, diagram: &Diagram, style: &Style) -
     if data.iter().all(Option::is_none) {
         return Err(first_error.unwrap_or_else(|| drawing("a diagram", "no position")));
     }
-    let marks_data: Vec<(usize, f64, Option<Values>)> = course
-        .inputs
-        .iter()
-        .enumerate()
-        .map(|(k, &m)| (k, x_of(m.value), eval(&mut a, m).ok()))
-        .collect();
+    let marks_data: Vec<(usize, f64, Option<Values>)> =
+        thin(course.inputs.len(), MAX_PLAN_POSITIONS)
+            .map(|k| {
+                let m = course.inputs[k];
+                (k, x_of(m.value), eval(&mut a, m).ok())
+            })
+            .collect();
 
     let hodograph = matches!(diagram, Diagram::Hodograph(_));
     let curves = Curves {
@@ -249,6 +255,7 @@ pub fn diagram(plan: &Plan, course: &Course, diagram: &Diagram, style: &Style) -
         .map(|(p, spec)| curves.panel(p, spec))
         .collect();
     let svg = render(&mut panels, style, hodograph)?;
+    super::primitives::finite_numbers(&svg)?;
     Ok(Chart { svg, panels })
 }
 

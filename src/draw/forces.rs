@@ -54,12 +54,21 @@ pub fn forces(plan: &Plan, input: Motion, style: &Style) -> Result<Picture> {
     // Metres of drawing per newton.
     let longest = 0.3 * topo.size;
     let m_per_n = if fmax > 0.0 { longest / fmax } else { 0.0 };
+    // The arrow of a force, m: to scale, or, for forces too small for a finite scale
+    // (subnormal newtons), as a fraction of the largest.
+    let reach = |f: nalgebra::Vector2<f64>| {
+        if m_per_n.is_finite() {
+            f * m_per_n
+        } else {
+            f / fmax * longest
+        }
+    };
     let mut cover = Vec::new();
     pose.cover(&topo, &ext, &mut cover);
     for r in &reactions {
-        cover.push(r.point + r.force * m_per_n);
+        cover.push(r.point + reach(r.force));
     }
-    cover.push(balance.point + balance.force * m_per_n);
+    cover.push(balance.point + reach(balance.force));
     let frame = scene::fit_with_input(&topo, &pose, &mut cover, style)?;
     let force_scale = (fmax > 0.0).then(|| fmax / (longest * frame.scale));
 
@@ -79,7 +88,7 @@ pub fn forces(plan: &Plan, input: Motion, style: &Style) -> Result<Picture> {
             continue;
         }
         let from = frame.to_pixel(r.point);
-        let to = frame.to_pixel(r.point + r.force * m_per_n);
+        let to = frame.to_pixel(r.point + reach(r.force));
         doc.append(primitives::arrow(from, to, w, red).set("class", "reaction"));
         if style.labels {
             let q = labels.place(to, style);
@@ -112,7 +121,7 @@ pub fn forces(plan: &Plan, input: Motion, style: &Style) -> Result<Picture> {
     ];
     if balance.force.norm() > 0.0 {
         let from = frame.to_pixel(balance.point);
-        let to = frame.to_pixel(balance.point + balance.force * m_per_n);
+        let to = frame.to_pixel(balance.point + reach(balance.force));
         doc.append(primitives::arrow(from, to, w, blue).set("class", "balance"));
         legend.push(format!(
             "balancing force F_b = {} N{}",
@@ -157,7 +166,7 @@ pub fn forces(plan: &Plan, input: Motion, style: &Style) -> Result<Picture> {
         }
     }
     Ok(Picture {
-        svg: doc.to_string(),
+        svg: primitives::finish(&doc)?,
         frame,
         force_scale,
     })

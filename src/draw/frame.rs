@@ -35,9 +35,18 @@ impl Frame {
     /// The largest scale that shows the box from `lo` to `hi` (m) in a picture of `width` ×
     /// `height` px with `margin` px on every side, the box centred.
     ///
+    /// The frame it returns is finite, and so is the pixel of every point of the box: a box
+    /// that would need a scale or an origin beyond f64's range, or an origin so far off (more
+    /// than [`Frame::MAX_ORIGIN`] px) that pixel numbers would lose their hundredths, is an
+    /// error rather than a frame.
+    ///
     /// # Errors
-    /// [`Error::NonFinite`] for a non-finite corner; [`Error::Drawing`] for a picture with no
-    /// room inside its margins, or a box of no extent (a single point).
+    /// [`Error::NonFinite`] for a non-finite corner, size or margin; [`Error::OutOfRange`]
+    /// for a width or height outside (0, [`Frame::MAX_SIZE`]] px or a negative margin;
+    /// [`Error::Drawing`] for a corner `lo` above or right of `hi`, a picture with no room
+    /// inside its margins, a box of no extent (a single point) or of an extent beyond f64's
+    /// range, or a frame whose scale or origin would not be finite or would lie farther off
+    /// than [`Frame::MAX_ORIGIN`].
     ///
     /// # Examples
     /// A box twice as wide as high in a square picture: the width decides the scale.
@@ -47,6 +56,12 @@ impl Frame {
     /// let f = Frame::fit(Point2::new(-1.0, 0.0), Point2::new(1.0, 1.0), 100.0, 100.0, 0.0)?;
     /// assert_eq!(f.scale, 50.0);
     /// assert!(Frame::fit(Point2::origin(), Point2::origin(), 100.0, 100.0, 0.0).is_err());
+    /// // A box upside down, an infinite picture, a box a subnormal wide at 10¹⁶ m: errors.
+    /// let (lo, hi) = (Point2::new(5e-324, 1e16), Point2::new(1e-310, 1e12));
+    /// assert!(Frame::fit(lo, hi, 1e-16, 1e308, 1e-154).is_err());
+    /// assert!(Frame::fit(Point2::origin(), Point2::new(1.0, 1.0), f64::INFINITY, 1.0, 0.0).is_err());
+    /// let (lo, hi) = (Point2::new(1e16, 1e16), Point2::new(1e16 + 2.0, 1e16 + 2.0));
+    /// assert!(Frame::fit(lo, hi, 800.0, 600.0, 40.0).is_err());
     /// # Ok::<(), tmm::Error>(())
     /// ```
     pub fn fit(
@@ -58,8 +73,36 @@ impl Frame {
     ) -> Result<Self> {
         crate::error::finite2(["lo.x", "lo.y"], lo.coords)?;
         crate::error::finite2(["hi.x", "hi.y"], hi.coords)?;
+        for (name, v) in [("width", width), ("height", height)] {
+            crate::error::finite(name, v)?;
+            if !(v > 0.0 && v <= Self::MAX_SIZE) {
+                return Err(Error::OutOfRange {
+                    name,
+                    value: v,
+                    min: 0.0,
+                    max: Self::MAX_SIZE,
+                    ends: crate::Ends::OpenBelow,
+                });
+            }
+        }
+        crate::error::finite("margin", margin)?;
+        if margin < 0.0 {
+            return Err(Error::OutOfRange {
+                name: "margin",
+                value: margin,
+                min: 0.0,
+                max: f64::INFINITY,
+                ends: crate::Ends::Closed,
+            });
+        }
+        if lo.x > hi.x || lo.y > hi.y {
+            return Err(drawing(
+                "a frame",
+                format!("the box's corner lo {lo:?} lies above or right of hi {hi:?}"),
+            ));
+        }
         let room = [width - 2.0 * margin, height - 2.0 * margin];
-        if !(room[0] > 0.0 && room[1] > 0.0 && margin >= 0.0) {
+        if !(room[0] > 0.0 && room[1] > 0.0) {
             return Err(drawing(
                 "a frame",
                 format!(
@@ -68,6 +111,12 @@ impl Frame {
             ));
         }
         let span = hi - lo;
+        if !(span.x.is_finite() && span.y.is_finite()) {
+            return Err(drawing(
+                "a frame",
+                format!("the box from {lo:?} to {hi:?} is wider than f64's range"),
+            ));
+        }
         let sx = if span.x > 0.0 {
             room[0] / span.x
         } else {
@@ -86,13 +135,32 @@ impl Frame {
             ));
         }
         let c = nalgebra::center(&lo, &hi);
+        let origin = [0.5 * width - scale * c.x, 0.5 * height + scale * c.y];
+        if !origin.iter().all(|o| o.abs() <= Self::MAX_ORIGIN) {
+            return Err(drawing(
+                "a frame",
+                format!(
+                    "the box from {lo:?} to {hi:?} at {scale:e} px/m puts the plane's origin at \
+                     {origin:?} px, beyond ±{:e} px",
+                    Self::MAX_ORIGIN
+                ),
+            ));
+        }
         Ok(Self {
             scale,
-            origin: [0.5 * width - scale * c.x, 0.5 * height + scale * c.y],
+            origin,
             width,
             height,
         })
     }
+
+    /// The largest width or height of a picture [`Frame::fit`] accepts, px: 10⁶.
+    pub const MAX_SIZE: f64 = 1e6;
+
+    /// The farthest the plane's origin may land from the picture's corner, px: 10¹². Beyond
+    /// it a pixel number (origin + scale·x) would keep less than a hundredth of a pixel of its
+    /// point's place.
+    pub const MAX_ORIGIN: f64 = 1e12;
 
     /// The pixel of the point `p` of the plane.
     ///

@@ -3,7 +3,6 @@
 use super::MAX_FRAMES;
 use crate::error::{Error, Result};
 use crate::kinematics::Motion;
-use crate::linkage::Course;
 
 /// 1 ≤ n ≤ [`MAX_FRAMES`].
 pub(crate) fn check_count(name: &'static str, n: usize) -> Result<()> {
@@ -31,11 +30,4 @@ pub(crate) fn check_inputs(inputs: &[Motion]) -> Result<()> {
         ])?;
     }
     Ok(())
-}
-
-/// A course one picture can draw: checked as [`Course::check`] does, with at most
-/// [`MAX_FRAMES`] positions.
-pub(crate) fn check_course(course: &Course) -> Result<()> {
-    check_count("number of positions", course.inputs.len())?;
-    course.check()
 }

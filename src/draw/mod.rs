@@ -23,6 +23,16 @@
 //! the input is plotted along its own sense of rotation: the abscissa is the angle the crank
 //! has turned from the first course position, whichever way it turns.
 //!
+//! Bounds: every style value is checked ([`Style::check`]: finite, positive where it must be,
+//! a line width and hinge radius at most a tenth of the picture's smaller side), every frame
+//! is finite ([`Frame::fit`]), and no picture writes a non-finite number (a last pass over
+//! its text makes sure, [`Error::Overflow`](crate::Error::Overflow) if one slipped through).
+//! The time of a picture is bounded by what it shows: [`scheme`] and [`forces`] by the
+//! linkage's joints and links; [`plan_view`] by at most [`MAX_PLAN_POSITIONS`] drawn
+//! positions (a longer course is thinned) and [`Style::samples`] path positions; [`diagram`]
+//! by [`Style::samples`] analyses and at most [`MAX_PLAN_POSITIONS`] marks; [`animation`] by
+//! at most [`MAX_FRAMES`] frames. Only the check of a course's inputs passes over all of them.
+//!
 //! The pictures use the `svg` crate for the schemes and plotters' SVG back end for the
 //! diagrams; no markup is written by hand.
 //!
@@ -57,7 +67,7 @@ pub use animation::animation;
 pub use diagrams::{diagram, Chart, Diagram, Panel};
 pub use forces::forces;
 pub use frame::Frame;
-pub use plan_view::plan_view;
+pub use plan_view::{plan_view, MAX_PLAN_POSITIONS};
 pub use scheme::scheme;
 pub use style::Style;
 

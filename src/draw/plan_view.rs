@@ -19,11 +19,18 @@ use svg::Node;
 /// over a whole turn of the crank in [`Style::samples`] positions (broken where the linkage
 /// cannot be assembled).
 ///
+/// A course of more than [`MAX_PLAN_POSITIONS`] positions is thinned: every k-th position is
+/// drawn (k = ⌈n / [`MAX_PLAN_POSITIONS`]⌉, position 0 among them), each still numbered by
+/// its place in the course; so are more extreme positions than that. The time is bounded by
+/// the picture: at most [`MAX_PLAN_POSITIONS`] positions solved and drawn, twice that with
+/// the extremes, [`Style::samples`] solves for the paths, and one pass over the course to
+/// check it.
+///
 /// # Errors
-/// [`Error::Drawing`](crate::Error::Drawing) for a bad style; [`Error::OutOfRange`] for no
-/// positions or more than [`MAX_FRAMES`](super::MAX_FRAMES); [`Error::Description`] for a
-/// name in `paths` that is neither a joint nor a point; [`Error::In`] naming the course
-/// position that cannot be solved.
+/// [`Error::OutOfRange`] or [`Error::NonFinite`] naming the field of a bad style
+/// ([`Style::check`]); the errors of [`Course::check`] (no positions, a non-finite input);
+/// [`Error::Description`] for a name in `paths` that is neither a joint nor a point;
+/// [`Error::In`] naming the course position that cannot be solved.
 ///
 /// # Examples
 /// ```
@@ -38,7 +45,7 @@ use svg::Node;
 /// ```
 pub fn plan_view(plan: &Plan, course: &Course, paths: &[&str], style: &Style) -> Result<Picture> {
     style.check()?;
-    super::limits::check_course(course)?;
+    course.check()?;
     let topo = Topo::new(plan);
     let tracers: Vec<Tracer> = paths
         .iter()
@@ -52,17 +59,13 @@ pub fn plan_view(plan: &Plan, course: &Course, paths: &[&str], style: &Style) ->
         })?;
         Pose::of(&a)
     };
-    let poses: Vec<Pose> = course
-        .inputs
-        .iter()
-        .enumerate()
-        .map(|(k, &m)| solve(m, "course position", k))
+    let drawn = thin(course.inputs.len(), MAX_PLAN_POSITIONS);
+    let poses: Vec<Pose> = drawn
+        .clone()
+        .map(|k| solve(course.inputs[k], "course position", k))
         .collect::<Result<_>>()?;
-    let bold: Vec<Pose> = course
-        .extremes
-        .iter()
-        .enumerate()
-        .map(|(k, &m)| solve(m, "extreme position", k))
+    let bold: Vec<Pose> = thin(course.extremes.len(), MAX_PLAN_POSITIONS)
+        .map(|k| solve(course.extremes[k], "extreme position", k))
         .collect::<Result<_>>()?;
     // The paths over a turn (a slider's input over the course's range).
     let samples = path_inputs(plan, course, style.samples);
@@ -88,11 +91,26 @@ pub fn plan_view(plan: &Plan, course: &Course, paths: &[&str], style: &Style) ->
         p.cover(&topo, &ext, &mut cover);
     }
     cover.extend(curves.iter().flatten().flatten().copied());
-    let frame = scene::fit_with_input(&topo, &poses[0], &mut cover, style)?;
+    let Some(first) = poses.first() else {
+        return Err(Error::Drawing {
+            what: "a plan".to_owned(),
+            problem: "the course has no position".to_owned(),
+        });
+    };
+    let frame = scene::fit_with_input(&topo, first, &mut cover, style)?;
 
-    let title = format!("{} — plan in {} positions", plan.name(), poses.len());
+    let title = if poses.len() < course.inputs.len() {
+        format!(
+            "{} — plan in {} of {} positions",
+            plan.name(),
+            poses.len(),
+            course.inputs.len()
+        )
+    } else {
+        format!("{} — plan in {} positions", plan.name(), poses.len())
+    };
     let mut doc = primitives::document(style, &title);
-    doc.append(parts::ground(&topo, &poses[0], &ext, &frame, style));
+    doc.append(parts::ground(&topo, first, &ext, &frame, style));
     for (c, name) in curves.iter().zip(paths) {
         let mut d = Data::new();
         let mut pen_down = false;
@@ -143,26 +161,48 @@ pub fn plan_view(plan: &Plan, course: &Course, paths: &[&str], style: &Style) ->
     for p in &bold {
         doc.append(parts::position(&topo, p, &ext, &frame, style, heavy));
     }
-    if let Some(arrow) = parts::input_arrow(&topo, &poses[0], &frame, style) {
+    if let Some(arrow) = parts::input_arrow(&topo, first, &frame, style) {
         doc.append(arrow);
     }
     if style.labels {
         let mut placed = Labels::default();
         // The numbers of the positions at the input link's outer joint.
         if let Some(outer) = outer_joint(&topo) {
-            for (k, p) in poses.iter().enumerate() {
+            for (k, p) in drawn.zip(&poses) {
                 let q = placed.place(frame.to_pixel(p.on(&topo, outer, topo.input)), style);
                 doc.append(primitives::text(&k.to_string(), q, 12.0, "#333333"));
             }
         }
-        let first = if bold.is_empty() { &poses[0] } else { &bold[0] };
+        let first = if bold.is_empty() { first } else { &bold[0] };
         doc.append(parts::labels(&topo, first, &frame, style, &mut placed));
     }
     Ok(Picture {
-        svg: doc.to_string(),
+        svg: primitives::finish(&doc)?,
         frame,
         force_scale: None,
     })
+}
+
+/// The most course positions one plan draws (and one diagram marks): a longer course is
+/// thinned to every k-th position.
+///
+/// # Examples
+/// A course of 20 000 positions is drawn as 358 of them, every 56th:
+/// ```
+/// use tmm::draw::{plan_view, Style, MAX_PLAN_POSITIONS};
+/// use tmm::linkage::{bundled, Course, Plan};
+/// let plan = Plan::new(&bundled::four_bar())?;
+/// let course = Course::new(&plan, None, 20_000, 10.0)?;
+/// let pic = plan_view(&plan, &course, &[], &Style { labels: false, ..Style::default() })?;
+/// assert!(pic.svg.contains("plan in 358 of 20000 positions"));
+/// assert!(358 <= MAX_PLAN_POSITIONS);
+/// # Ok::<(), tmm::Error>(())
+/// ```
+pub const MAX_PLAN_POSITIONS: usize = 360;
+
+/// The indices of at most `max` of `n` items: every ⌈n / max⌉-th, from 0.
+pub(crate) fn thin(n: usize, max: usize) -> std::iter::StepBy<std::ops::Range<usize>> {
+    (0..n).step_by(n.div_ceil(max.max(1)).max(1))
 }
 
 /// The input link's joint farthest from the frame (a crank's pin, a slider's hinge).

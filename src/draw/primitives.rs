@@ -3,6 +3,7 @@
 //! its placing, and the document itself. Everything here works in pixels.
 
 use super::style::Style;
+use crate::error::{Error, Result};
 use svg::node::element::path::Data;
 use svg::node::element::{Circle, Group, Line, Path, Polygon, Text};
 use svg::Node;
@@ -62,7 +63,8 @@ pub(crate) fn dot(q: [f64; 2], r: f64, fill: &str) -> Circle {
         .set("fill", fill)
 }
 
-/// A base line from `a` to `b` (px) with short hatches on its lower (right-hand) side.
+/// A base line from `a` to `b` (px) with short hatches on its lower (right-hand) side, at
+/// most [`MAX_HATCHES`] of them (a base line inside a picture of 10 000 px has fewer).
 pub(crate) fn hatch(g: &mut Group, a: [f64; 2], b: [f64; 2], r: f64) {
     let (dx, dy) = (b[0] - a[0], b[1] - a[1]);
     let len = dx.hypot(dy);
@@ -77,8 +79,11 @@ pub(crate) fn hatch(g: &mut Group, a: [f64; 2], b: [f64; 2], r: f64) {
         .line_to((r2(b[0]), r2(b[1])));
     let step = (1.4 * r).max(4.0);
     let h = 1.6 * r;
-    let mut s = step * 0.5;
-    while s < len {
+    for i in 0..MAX_HATCHES {
+        let s = step * (0.5 + f64::from(i));
+        if s >= len {
+            break;
+        }
         let p = [a[0] + t[0] * s, a[1] + t[1] * s];
         let q = [
             p[0] + h * (n[0] - t[0]) * 0.7,
@@ -87,10 +92,12 @@ pub(crate) fn hatch(g: &mut Group, a: [f64; 2], b: [f64; 2], r: f64) {
         d = d
             .move_to((r2(p[0]), r2(p[1])))
             .line_to((r2(q[0]), r2(q[1])));
-        s += step;
     }
     g.append(Path::new().set("d", d).set("fill", "none"));
 }
+
+/// The most hatches one base line carries.
+const MAX_HATCHES: u32 = 4096;
 
 /// An arrow from `a` to `b` (px): a line and a filled head.
 pub(crate) fn arrow(a: [f64; 2], b: [f64; 2], width: f64, c: &str) -> Group {
@@ -249,9 +256,61 @@ pub(crate) fn document(style: &Style, title: &str) -> svg::Document {
         )
 }
 
+/// The text of a finished picture, checked: no attribute of it holds a non-finite number.
+///
+/// The pictures' inputs are checked so that every number they write is finite; this is the
+/// last guard, a pass over the text linear in its length.
+pub(crate) fn finish(doc: &svg::Document) -> Result<String> {
+    let text = doc.to_string();
+    finite_numbers(&text)?;
+    Ok(text)
+}
+
+/// Every attribute value of the SVG text `svg` (except the names in `class`) free of `inf`,
+/// `infinity` and `NaN` words: the way Rust writes a non-finite `f64`.
+pub(crate) fn finite_numbers(svg: &str) -> Result<()> {
+    let bad = |v: &str| {
+        v.split(|c: char| !c.is_ascii_alphabetic()).any(|w| {
+            w.eq_ignore_ascii_case("inf")
+                || w.eq_ignore_ascii_case("infinity")
+                || w.eq_ignore_ascii_case("nan")
+        })
+    };
+    let mut rest = svg;
+    while let Some(lt) = rest.find('<') {
+        let end = rest[lt..].find('>').map_or(rest.len(), |e| lt + e);
+        let mut tag = &rest[lt..end];
+        while let Some(eq) = tag.find("=\"") {
+            let name = tag[..eq].rsplit(char::is_whitespace).next().unwrap_or("");
+            let from = eq + 2;
+            let to = tag[from..].find('"').map_or(tag.len(), |e| from + e);
+            if name != "class" && bad(&tag[from..to]) {
+                return Err(Error::Overflow {
+                    what: "a number written into the picture",
+                });
+            }
+            tag = &tag[(to + 1).min(tag.len())..];
+        }
+        rest = &rest[end..];
+    }
+    Ok(())
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_non_finite_attribute_is_found_and_text_is_not() {
+        assert!(finite_numbers(r#"<svg><path d="M-inf,inf"/></svg>"#).is_err());
+        assert!(finite_numbers(r#"<line stroke-width="inf" x1="1"/>"#).is_err());
+        assert!(finite_numbers(r#"<circle cx="NaN"/>"#).is_err());
+        assert!(finite_numbers(
+            r#"<g class="link inf"><title>inf NaN</title><text x="1.5">inf</text></g>"#
+        )
+        .is_ok());
+        assert!(finite_numbers(r#"<animate repeatCount="indefinite" values="1;2"/>"#).is_ok());
+    }
 
     #[test]
     fn labels_move_off_each_other() {

@@ -16,7 +16,8 @@ use svg::Node;
 /// sign of `input.rate`; counter-clockwise when it is zero). One scale on both axes.
 ///
 /// # Errors
-/// [`Error::Drawing`](crate::Error::Drawing) for a bad style; the kinematics' errors at this
+/// [`Error::OutOfRange`](crate::Error::OutOfRange) or [`Error::NonFinite`](crate::Error::NonFinite)
+/// naming the field of a bad style ([`Style::check`]); the kinematics' errors at this
 /// input (non-finite, cannot be assembled).
 ///
 /// # Examples
@@ -73,7 +74,7 @@ pub fn scheme(plan: &Plan, input: Motion, style: &Style) -> Result<Picture> {
         ));
     }
     Ok(Picture {
-        svg: doc.to_string(),
+        svg: primitives::finish(&doc)?,
         frame,
         force_scale: None,
     })
