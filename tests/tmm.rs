@@ -8,6 +8,7 @@
 //! (`<file stem>.proptest-regressions`): the root is deliberately not named `main.rs`, which
 //! would move them into a `proptest-regressions/` tree at the top of the repository.
 
+mod architecture;
 mod common;
 mod docs_links;
 mod draw;
