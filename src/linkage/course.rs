@@ -1,7 +1,8 @@
 //! The positions of a course project's plans: the inputs of a cycle in the order the input
 //! reaches them, and the inputs of the output's extreme positions.
 
-use super::cycle::{course_inputs, uniform_inputs, Output};
+use super::cycle::{course_inputs, uniform_inputs};
+use super::description::Output;
 use super::plan::Plan;
 use crate::error::{Error, Result};
 use crate::kinematics::{Motion, Rotation, MAX_POSITIONS};
