@@ -1,0 +1,409 @@
+//! The program's output as text, CSV and JSON, from its own plain data ([`crate::model`]).
+
+use std::fmt::Write as _;
+
+use crate::model::{DynamicsReport, InputKind, Range, StrokeInfo, Structure, TableData};
+
+/// An angle in rad as degrees, one decimal.
+fn deg(rad: f64) -> String {
+    format!("{:.1}°", rad.to_degrees())
+}
+
+/// A direction in rad as degrees in [0, 360), one decimal.
+fn direction(rad: f64) -> String {
+    let d = rad.to_degrees().rem_euclid(360.0);
+    let text = format!("{d:.1}");
+    if text == "360.0" {
+        "0.0°".to_owned()
+    } else {
+        format!("{text}°")
+    }
+}
+
+/// A number for a person: four decimals in the usual range, scientific notation outside it,
+/// a dash where the value is not available, never "-0.0000".
+pub fn number(v: f64) -> String {
+    if !v.is_finite() {
+        return "—".to_owned();
+    }
+    let a = v.abs();
+    // Below 1e-10 is rounding (an ω of -2e-16 rad/s): four decimals show it as zero.
+    let text = if a >= 1e6 || (1e-10..1e-3).contains(&a) {
+        format!("{v:.4e}")
+    } else {
+        format!("{v:.4}")
+    };
+    if text.starts_with('-') && text[1..].chars().all(|c| c == '0' || c == '.') {
+        text[1..].to_owned()
+    } else {
+        text
+    }
+}
+
+/// `tmm check`: the structure as text.
+pub fn structure(s: &Structure) -> String {
+    let mut o = String::new();
+    let _ = writeln!(o, "{}", s.name);
+    let _ = writeln!(o, "mobility W = {} (Chebyshev)", s.mobility);
+    for (k, i) in s.inputs.iter().enumerate() {
+        let which = if s.inputs.len() > 1 {
+            format!("input {}", k + 1)
+        } else {
+            "input".to_owned()
+        };
+        let (kind, reference) = match i.kind {
+            InputKind::Crank => (
+                "crank",
+                format!("φ = {} in the reference pose", direction(i.reference)),
+            ),
+            InputKind::Slider => ("slider", "s = 0 m in the reference pose".to_owned()),
+        };
+        let _ = writeln!(
+            o,
+            "{which}: {kind} \"{}\", driven {}; {reference}",
+            i.link, i.drive
+        );
+    }
+    let _ = writeln!(o, "groups in attachment order:");
+    if s.groups.is_empty() {
+        let _ = writeln!(o, "  (none)");
+    }
+    for (k, g) in s.groups.iter().enumerate() {
+        let _ = writeln!(
+            o,
+            "  {}. {}  links {} and {}, joints {}–{}–{}",
+            k + 1,
+            g.kind,
+            g.links[0],
+            g.links[1],
+            g.joints[0],
+            g.joints[1],
+            g.joints[2]
+        );
+    }
+    let range = match &s.range {
+        Range::FullTurn => "the crank turns fully".to_owned(),
+        Range::Rocking(a, b) => format!(
+            "the crank rocks between the lock angles {} and {} (a swing of {})",
+            direction(*a),
+            direction(*b),
+            deg(b - a)
+        ),
+        Range::Unknown(why) => format!("not determined: {why}"),
+    };
+    let _ = writeln!(o, "range: {range}");
+    if let Some(g) = &s.grashof {
+        let _ = writeln!(o, "Grashof: {g}");
+    }
+    if !s.transmission.is_empty() {
+        let _ = writeln!(o, "smallest transmission angle over a turn:");
+        for (name, t) in &s.transmission {
+            match t {
+                Ok((mu, at)) => {
+                    let _ = writeln!(
+                        o,
+                        "  {name}: γ_min = {} at φ = {}",
+                        deg(*mu),
+                        direction(*at)
+                    );
+                }
+                Err(e) => {
+                    let _ = writeln!(o, "  {name}: not available ({e})");
+                }
+            }
+        }
+    }
+    match &s.strokes {
+        Some(Ok(StrokeInfo {
+            output,
+            start,
+            working_angle,
+            time_ratio,
+            stroke,
+            stroke_unit,
+        })) => {
+            let stroke = if *stroke_unit == "rad" {
+                format!("swing {}", deg(*stroke))
+            } else {
+                format!("stroke {} m", number(*stroke))
+            };
+            let _ = writeln!(
+                o,
+                "output {output}: {stroke}; working stroke from φ = {} over {}, time ratio {:.4}",
+                direction(*start),
+                deg(*working_angle),
+                time_ratio
+            );
+        }
+        Some(Err(e)) => {
+            let _ = writeln!(o, "output: no strokes ({e})");
+        }
+        None => {}
+    }
+    o
+}
+
+/// The column's title: `name [unit]`.
+fn title(name: &str, unit: &str) -> String {
+    if unit.is_empty() {
+        name.to_owned()
+    } else {
+        format!("{name} [{unit}]")
+    }
+}
+
+/// `tmm analyse --format table`: one line per quantity, one column per position.
+pub fn table_text(t: &TableData) -> String {
+    let titles: Vec<String> = t.columns.iter().map(|c| title(&c.name, &c.unit)).collect();
+    let width = titles.iter().map(|s| s.chars().count()).max().unwrap_or(0);
+    let rows = t.columns.first().map_or(0, |c| c.values.len());
+    let mut o = String::new();
+    let _ = writeln!(o, "{} — {} positions", t.name, rows);
+    let _ = write!(o, "{:<width$}", "position");
+    for k in 1..=rows {
+        let _ = write!(o, " {k:>11}");
+    }
+    o.push('\n');
+    for (c, title) in t.columns.iter().zip(&titles) {
+        let pad = width - title.chars().count();
+        let _ = write!(o, "{title}{}", " ".repeat(pad));
+        for &v in &c.values {
+            let _ = write!(o, " {:>11}", number(v));
+        }
+        o.push('\n');
+    }
+    o
+}
+
+/// A CSV cell: quoted when it holds a comma, a quote or a line break.
+fn cell(s: &str) -> String {
+    if s.contains([',', '"', '\n']) {
+        format!("\"{}\"", s.replace('"', "\"\""))
+    } else {
+        s.to_owned()
+    }
+}
+
+/// `tmm analyse --format csv`: a header of `name [unit]`, then one line per position, numbers
+/// in their shortest round-trip form; an empty cell where a value is not available.
+pub fn table_csv(t: &TableData) -> String {
+    let mut o = String::new();
+    let header: Vec<String> = t
+        .columns
+        .iter()
+        .map(|c| cell(&title(&c.name, &c.unit)))
+        .collect();
+    let _ = writeln!(o, "{}", header.join(","));
+    let rows = t.columns.first().map_or(0, |c| c.values.len());
+    for k in 0..rows {
+        let line: Vec<String> = t
+            .columns
+            .iter()
+            .map(|c| {
+                let v = c.values[k];
+                if v.is_finite() {
+                    v.to_string()
+                } else {
+                    String::new()
+                }
+            })
+            .collect();
+        let _ = writeln!(o, "{}", line.join(","));
+    }
+    o
+}
+
+/// A JSON string literal.
+pub fn json_string(s: &str) -> String {
+    let mut o = String::with_capacity(s.len() + 2);
+    o.push('"');
+    for c in s.chars() {
+        match c {
+            '"' => o.push_str("\\\""),
+            '\\' => o.push_str("\\\\"),
+            '\n' => o.push_str("\\n"),
+            '\r' => o.push_str("\\r"),
+            '\t' => o.push_str("\\t"),
+            c if (c as u32) < 0x20 => {
+                let _ = write!(o, "\\u{:04x}", c as u32);
+            }
+            c => o.push(c),
+        }
+    }
+    o.push('"');
+    o
+}
+
+/// A JSON number (`null` where not available).
+fn json_number(v: f64) -> String {
+    if v.is_finite() {
+        format!("{v:?}")
+    } else {
+        "null".to_owned()
+    }
+}
+
+/// `tmm analyse --format json`: `{"name", "rows", "columns": [{"name", "unit", "values"}],
+/// "failed": [{"input", "error"}]}`, `null` where a value is not available.
+pub fn table_json(t: &TableData) -> String {
+    let rows = t.columns.first().map_or(0, |c| c.values.len());
+    let mut o = String::new();
+    let _ = writeln!(o, "{{");
+    let _ = writeln!(o, "  \"name\": {},", json_string(&t.name));
+    let _ = writeln!(o, "  \"rows\": {rows},");
+    let _ = writeln!(o, "  \"columns\": [");
+    for (k, c) in t.columns.iter().enumerate() {
+        let values: Vec<String> = c.values.iter().map(|&v| json_number(v)).collect();
+        let _ = writeln!(
+            o,
+            "    {{\"name\": {}, \"unit\": {}, \"values\": [{}]}}{}",
+            json_string(&c.name),
+            json_string(&c.unit),
+            values.join(", "),
+            if k + 1 < t.columns.len() { "," } else { "" }
+        );
+    }
+    let _ = writeln!(o, "  ],");
+    let failed: Vec<String> = t
+        .failures
+        .iter()
+        .map(|(input, e)| {
+            format!(
+                "{{\"input\": {}, \"error\": {}}}",
+                json_number(*input),
+                json_string(e)
+            )
+        })
+        .collect();
+    let _ = writeln!(o, "  \"failed\": [{}]", failed.join(", "));
+    let _ = writeln!(o, "}}");
+    o
+}
+
+/// A failed position's input for a person.
+pub fn input_text(kind: InputKind, value: f64) -> String {
+    match kind {
+        InputKind::Crank => format!("φ = {}", direction(value)),
+        InputKind::Slider => format!("s = {} m", number(value)),
+    }
+}
+
+/// `tmm dynamics`: the reduced quantities, the run-up and the flywheels as text.
+pub fn dynamics(d: &DynamicsReport) -> String {
+    let mut o = String::new();
+    let sense = if d.speed < 0.0 {
+        "clockwise"
+    } else {
+        "counter-clockwise"
+    };
+    let _ = writeln!(
+        o,
+        "{} — the machine reduced to its crank at ω = {} rad/s ({sense}, {:.1} rpm)",
+        d.name,
+        number(d.speed.abs()),
+        d.speed.abs() * 30.0 / std::f64::consts::PI
+    );
+    if d.rotor != 0.0 {
+        let _ = writeln!(o, "rotor on the crank: {} kg·m²", number(d.rotor));
+    }
+    let n = d.reduced.len().max(1);
+    let mean = d.reduced.iter().map(|r| r.loads).sum::<f64>() / n as f64;
+    let j_mean = d.reduced.iter().map(|r| r.inertia).sum::<f64>() / n as f64;
+    let _ = writeln!(
+        o,
+        "mean reduced moment of the loads {} N·m, mean J_red {} kg·m² ({} positions)",
+        number(mean),
+        number(j_mean),
+        d.reduced.len()
+    );
+    let _ = writeln!(
+        o,
+        "{:>10} {:>14} {:>14} {:>14}",
+        "turned", "J_red", "dJ_red/dφ", "M_red"
+    );
+    let _ = writeln!(
+        o,
+        "{:>10} {:>14} {:>14} {:>14}",
+        "deg", "kg·m²", "kg·m²", "N·m"
+    );
+    let step = (d.reduced.len() / 12).max(1);
+    for r in d.reduced.iter().step_by(step) {
+        let _ = writeln!(
+            o,
+            "{:>10.1} {:>14} {:>14} {:>14}",
+            r.turned.to_degrees(),
+            number(r.inertia),
+            number(r.inertia_derivative),
+            number(r.loads)
+        );
+    }
+    if let Some(r) = &d.run_up {
+        let chosen = if r.default_motor {
+            " (chosen by tmm: 4 % slip at the speed asked for, 10 % above the loads' mean; \
+             --motor a,b to give your own)"
+        } else {
+            ""
+        };
+        let _ = writeln!(
+            o,
+            "\nrun-up from rest under the motor M = {} − {}·|ω| N·m{chosen}",
+            number(r.motor.0),
+            number(r.motor.1)
+        );
+        let _ = writeln!(
+            o,
+            "RK4, h = {} s: steady after {} turns ({} steps, {} evaluations)",
+            number(r.step),
+            r.turns.len(),
+            r.steps,
+            r.evaluations
+        );
+        let _ = writeln!(
+            o,
+            "{:>5} {:>11} {:>11} {:>11} {:>11} {:>11} {:>9}",
+            "turn", "t0, s", "T, s", "ω_m, rad/s", "ω_max", "ω_min", "δ"
+        );
+        for (k, t) in r.turns.iter().enumerate() {
+            if k < 5 || k + 3 >= r.turns.len() {
+                let _ = writeln!(
+                    o,
+                    "{:>5} {:>11} {:>11} {:>11} {:>11} {:>11} {:>9.5}",
+                    k + 1,
+                    number(t.t_start),
+                    number(t.period),
+                    number(t.omega_mean),
+                    number(t.omega_max),
+                    number(t.omega_min),
+                    t.delta
+                );
+            } else if k == 5 {
+                let _ = writeln!(o, "{:>5}", "…");
+            }
+        }
+    }
+    if !d.flywheels.is_empty() {
+        let _ = writeln!(
+            o,
+            "\nflywheel on the crank at ω_m = {} rad/s under a constant driving moment \
+             (energy–mass method of Wittenbauer, and the simplified formula):",
+            number(d.speed.abs())
+        );
+        let _ = writeln!(
+            o,
+            "{:>10} {:>14} {:>14} {:>12} {:>12}",
+            "δ", "J_F, kg·m²", "simplified", "ΔE, J", "M_d, N·m"
+        );
+        for f in &d.flywheels {
+            let _ = writeln!(
+                o,
+                "{:>10} {:>14} {:>14} {:>12} {:>12}",
+                number(f.delta),
+                number(f.inertia),
+                number(f.simplified),
+                number(f.energy_range),
+                number(f.driving_moment)
+            );
+        }
+    }
+    o
+}
