@@ -1,0 +1,464 @@
+//! The built `tmm` program run on every bundled description for each subcommand, and on
+//! broken files. Outputs are parsed back: CSV cells counted and read as finite numbers, JSON
+//! read back, SVG checked for a well-formed tree of tags without `NaN` or `inf`.
+//!
+//! Known failures, each a clear one-line error with exit code 1 (never a panic):
+//! - `five-bar-robot.json` has two inputs (mobility 2): there is no single course to tabulate,
+//!   draw or reduce to one crank, and the library's pictures take one input motion, so
+//!   `analyse`, `draw` (every picture) and `dynamics` refuse it. `check` works.
+
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+/// The exit code, standard output and standard error of one run.
+struct Run {
+    code: i32,
+    stdout: String,
+    stderr: String,
+}
+
+fn tmm(args: &[&str]) -> Run {
+    let out = Command::new(env!("CARGO_BIN_EXE_tmm"))
+        .args(args)
+        .current_dir(root())
+        .output()
+        .expect("the tmm binary runs");
+    Run {
+        code: out.status.code().expect("tmm exits (no signal)"),
+        stdout: String::from_utf8(out.stdout).expect("stdout is UTF-8"),
+        stderr: String::from_utf8(out.stderr).expect("stderr is UTF-8"),
+    }
+}
+
+/// The repository's root (the CLI's parent).
+fn root() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .parent()
+        .expect("cli/ has a parent")
+        .to_owned()
+}
+
+/// Every bundled description, as a path relative to the root.
+fn bundled() -> Vec<String> {
+    let mut files: Vec<String> = std::fs::read_dir(root().join("linkages"))
+        .expect("linkages/ exists")
+        .map(|e| e.expect("a directory entry").file_name())
+        .map(|n| n.to_string_lossy().into_owned())
+        .filter(|n| n.ends_with(".json"))
+        .map(|n| format!("linkages/{n}"))
+        .collect();
+    files.sort();
+    assert!(files.len() >= 10, "the bundled descriptions: {files:?}");
+    files
+}
+
+/// Files that cannot run a single course (see the module docs).
+fn two_inputs(file: &str) -> bool {
+    file.ends_with("five-bar-robot.json")
+}
+
+/// A failure as the program must report it: exit code 1, exactly one line on stderr naming
+/// the file, nothing that looks like a panic or a `Debug` dump.
+fn assert_one_line_failure(r: &Run, file: &str) {
+    assert_eq!(r.code, 1, "exit code for {file}; stderr: {}", r.stderr);
+    assert_eq!(
+        r.stderr.lines().count(),
+        1,
+        "one line on stderr for {file}: {:?}",
+        r.stderr
+    );
+    assert!(r.stderr.starts_with("tmm: "), "{}", r.stderr);
+    assert!(r.stderr.contains(file), "names {file}: {}", r.stderr);
+    for debug in ["panicked", "Description {", "Error {", "Some(", "\\n"] {
+        assert!(!r.stderr.contains(debug), "no {debug:?} in {}", r.stderr);
+    }
+}
+
+fn assert_success(r: &Run, what: &str) {
+    assert_eq!(r.code, 0, "{what} exits 0; stderr: {}", r.stderr);
+}
+
+/// Parses CSV text (no quoted cells with commas in the numbers): the header's cells and the
+/// rows of numbers, every cell a finite number; checks each row has the header's count.
+fn parse_csv(text: &str, what: &str) -> (Vec<String>, Vec<Vec<f64>>) {
+    let mut lines = text.lines();
+    let header = split_csv_line(lines.next().expect("a header"));
+    let rows: Vec<Vec<f64>> = lines
+        .map(|line| {
+            let cells = split_csv_line(line);
+            assert_eq!(
+                cells.len(),
+                header.len(),
+                "{what}: a row has as many cells as the header"
+            );
+            cells
+                .iter()
+                .zip(&header)
+                .map(|(c, h)| {
+                    let v: f64 = c
+                        .parse()
+                        .unwrap_or_else(|_| panic!("{what}: cell {c:?} of {h} is a number"));
+                    assert!(v.is_finite(), "{what}: {h} = {v} is finite");
+                    v
+                })
+                .collect()
+        })
+        .collect();
+    (header, rows)
+}
+
+/// One CSV line's cells, honouring quotes.
+fn split_csv_line(line: &str) -> Vec<String> {
+    let mut cells = vec![String::new()];
+    let mut quoted = false;
+    let mut chars = line.chars().peekable();
+    while let Some(c) = chars.next() {
+        match c {
+            '"' if quoted && chars.peek() == Some(&'"') => {
+                chars.next();
+                cells.last_mut().unwrap().push('"');
+            }
+            '"' => quoted = !quoted,
+            ',' if !quoted => cells.push(String::new()),
+            c => cells.last_mut().unwrap().push(c),
+        }
+    }
+    cells
+}
+
+/// An SVG document: starts with `<svg`, ends with `</svg>`, every tag closed in order, no
+/// `NaN` or `inf` anywhere.
+fn assert_svg(svg: &str, what: &str) {
+    assert!(svg.starts_with("<svg"), "{what} starts with <svg");
+    assert!(
+        svg.trim_end().ends_with("</svg>"),
+        "{what} ends with </svg>"
+    );
+    for bad in ["NaN", "inf"] {
+        assert!(!svg.contains(bad), "{what} contains {bad}");
+    }
+    let mut open: Vec<&str> = Vec::new();
+    let mut rest = svg;
+    while let Some(k) = rest.find('<') {
+        let end = rest[k..]
+            .find('>')
+            .unwrap_or_else(|| panic!("{what}: a tag is closed"));
+        let tag = &rest[k + 1..k + end];
+        rest = &rest[k + end + 1..];
+        if tag.starts_with('?') || tag.starts_with('!') || tag.ends_with('/') {
+            continue;
+        }
+        let name = tag
+            .trim_start_matches('/')
+            .split(|c: char| c.is_whitespace())
+            .next()
+            .unwrap_or("");
+        if tag.starts_with('/') {
+            assert_eq!(open.pop(), Some(name), "{what}: </{name}> closes its tag");
+        } else {
+            open.push(name);
+        }
+    }
+    assert!(open.is_empty(), "{what}: tags left open: {open:?}");
+}
+
+#[test]
+fn check_every_bundled_file() {
+    for file in bundled() {
+        let r = tmm(&["check", &file]);
+        assert_success(&r, &format!("check {file}"));
+        assert!(r.stdout.contains("mobility W = "), "{file}: {}", r.stdout);
+        assert!(r.stdout.contains("groups in attachment order"), "{file}");
+        assert!(r.stdout.contains("range: "), "{file}");
+        assert!(!r.stdout.contains("NaN"), "{file}: {}", r.stdout);
+    }
+}
+
+#[test]
+fn check_names_the_range_grashof_and_transmission_angle() {
+    let r = tmm(&["check", "linkages/four-bar.json"]);
+    assert_success(&r, "check four-bar");
+    assert!(r.stdout.contains("the crank turns fully"), "{}", r.stdout);
+    assert!(r.stdout.contains("Grashof: crank-rocker"), "{}", r.stdout);
+    assert!(r.stdout.contains("γ_min = "), "{}", r.stdout);
+    assert!(r.stdout.contains("time ratio"), "{}", r.stdout);
+}
+
+#[test]
+fn analyse_every_bundled_file_as_csv() {
+    for file in bundled() {
+        let r = tmm(&["analyse", &file, "--format", "csv"]);
+        if two_inputs(&file) {
+            assert_one_line_failure(&r, &file);
+            assert!(r.stderr.contains("one input"), "{}", r.stderr);
+            continue;
+        }
+        assert_success(&r, &format!("analyse {file}"));
+        let (header, rows) = parse_csv(&r.stdout, &file);
+        assert_eq!(rows.len(), 12, "{file}: the 12 course positions");
+        assert!(
+            header.iter().all(|h| h.ends_with(']') && h.contains(" [")),
+            "{file}: every column has its unit: {header:?}"
+        );
+        assert!(
+            header.iter().any(|h| h.starts_with("Mb ")),
+            "{file}: {header:?}"
+        );
+    }
+}
+
+#[test]
+fn analyse_every_bundled_file_as_json_and_table() {
+    for file in bundled().into_iter().filter(|f| !two_inputs(f)) {
+        let r = tmm(&["analyse", &file, "--positions", "8", "--format", "json"]);
+        assert_success(&r, &format!("analyse --format json {file}"));
+        let v: serde_json::Value = serde_json::from_str(&r.stdout)
+            .unwrap_or_else(|e| panic!("{file}: JSON reads back: {e}"));
+        assert_eq!(v["rows"], 8, "{file}");
+        let columns = v["columns"].as_array().expect("columns");
+        assert!(columns.len() > 10, "{file}");
+        for c in columns {
+            assert!(
+                !c["unit"].as_str().expect("a unit").is_empty(),
+                "{file}: {c}"
+            );
+            let values = c["values"].as_array().expect("values");
+            assert_eq!(values.len(), 8, "{file}: {}", c["name"]);
+            assert!(values.iter().all(serde_json::Value::is_f64), "{file}: {c}");
+        }
+        let t = tmm(&["analyse", &file, "--at", "10", "-20", "370"]);
+        assert_success(&t, &format!("analyse --at {file}"));
+        // A title line, the positions' line, then one line per column.
+        assert_eq!(t.stdout.lines().count(), columns.len() + 2, "{file}");
+        assert!(!t.stdout.contains("NaN"), "{file}");
+    }
+}
+
+#[test]
+fn analyse_writes_the_csv_file_it_prints() {
+    let out = std::env::temp_dir().join(format!("tmm-cli-test-{}.csv", std::process::id()));
+    let out_s = out.to_string_lossy().into_owned();
+    let r = tmm(&[
+        "analyse", "shaper", "--speed", "-6", "--format", "csv", "--csv", &out_s,
+    ]);
+    assert_success(&r, "analyse --csv");
+    let written = std::fs::read_to_string(&out).expect("the CSV file is written");
+    std::fs::remove_file(&out).ok();
+    assert_eq!(written, r.stdout);
+    let (header, rows) = parse_csv(&written, "shaper at -6 rad/s");
+    let speed = header
+        .iter()
+        .position(|h| h == "phi_in' [rad/s]")
+        .expect("ω column");
+    assert!(rows.iter().all(|row| row[speed] == -6.0));
+}
+
+#[test]
+fn draw_every_picture_of_every_bundled_file() {
+    let pictures: &[&[&str]] = &[
+        &[],
+        &["--scheme", "30"],
+        &["--plan"],
+        &["--animate"],
+        &["--forces", "45"],
+        &["--diagrams"],
+        &["--diagram", "kinematics"],
+        &["--diagram", "transfer"],
+        &["--diagram", "reactions"],
+        &["--diagram", "hodograph"],
+    ];
+    for file in bundled() {
+        for picture in pictures {
+            let mut args = vec!["draw", file.as_str()];
+            args.extend_from_slice(picture);
+            let what = args.join(" ");
+            let r = tmm(&args);
+            if two_inputs(&file) {
+                assert_one_line_failure(&r, &file);
+                continue;
+            }
+            assert_success(&r, &what);
+            assert_svg(&r.stdout, &what);
+        }
+    }
+}
+
+#[test]
+fn draw_writes_the_file_named_by_o() {
+    let out = std::env::temp_dir().join(format!("tmm-cli-test-{}.svg", std::process::id()));
+    let out_s = out.to_string_lossy().into_owned();
+    let r = tmm(&["draw", "linkages/watt-six-bar.json", "--plan", "-o", &out_s]);
+    assert_success(&r, "draw -o");
+    assert!(r.stdout.is_empty());
+    let svg = std::fs::read_to_string(&out).expect("the SVG file is written");
+    std::fs::remove_file(&out).ok();
+    assert_svg(&svg, "watt plan");
+}
+
+#[test]
+fn dynamics_of_every_bundled_file() {
+    for file in bundled() {
+        let r = tmm(&["dynamics", &file, "--flywheel", "0.05", "--positions", "72"]);
+        if two_inputs(&file) {
+            assert_one_line_failure(&r, &file);
+            continue;
+        }
+        assert_success(&r, &format!("dynamics {file}"));
+        assert!(r.stdout.contains("J_red"), "{file}");
+        assert!(r.stdout.contains("J_F, kg·m²"), "{file}");
+        for bad in ["NaN", "inf", " — \n", "  —"] {
+            assert!(!r.stdout.contains(bad), "{file}: {bad} in {}", r.stdout);
+        }
+    }
+}
+
+#[test]
+fn dynamics_runs_a_machine_up_to_its_steady_state() {
+    for file in ["linkages/four-bar.json", "linkages/watt-six-bar.json"] {
+        let r = tmm(&["dynamics", file, "--run-up", "--positions", "72"]);
+        assert_success(&r, &format!("dynamics --run-up {file}"));
+        assert!(r.stdout.contains("steady after"), "{file}: {}", r.stdout);
+        assert!(!r.stdout.contains("NaN"), "{file}");
+    }
+    let r = tmm(&[
+        "dynamics", "four-bar", "--run-up", "--motor", "300,25", "--rotor", "0.05",
+    ]);
+    assert_success(&r, "dynamics --motor");
+    assert!(
+        r.stdout.contains("M = 300.0000 − 25.0000·|ω|"),
+        "{}",
+        r.stdout
+    );
+}
+
+#[test]
+fn bundled_lists_every_file_in_linkages() {
+    let r = tmm(&["bundled"]);
+    assert_success(&r, "bundled");
+    for file in bundled() {
+        let stem = file
+            .trim_start_matches("linkages/")
+            .trim_end_matches(".json");
+        assert!(
+            r.stdout.lines().any(|l| l.starts_with(&format!("{stem} "))),
+            "{stem} is built into the program (cli/src/bundled.rs): {}",
+            r.stdout
+        );
+        let text = tmm(&["bundled", stem]);
+        assert_success(&text, stem);
+        let on_disk = std::fs::read_to_string(root().join(&file)).expect("readable");
+        assert_eq!(text.stdout, on_disk, "{stem} is the file in linkages/");
+    }
+    assert!(!r.stdout.contains("does not load"), "{}", r.stdout);
+}
+
+/// A broken description in a temporary file.
+struct Broken(PathBuf);
+
+impl Broken {
+    fn new(name: &str, text: &str) -> Self {
+        let path =
+            std::env::temp_dir().join(format!("tmm-cli-test-{}-{name}.json", std::process::id()));
+        std::fs::write(&path, text).expect("a temporary file");
+        Self(path)
+    }
+
+    fn path(&self) -> String {
+        self.0.to_string_lossy().into_owned()
+    }
+}
+
+impl Drop for Broken {
+    fn drop(&mut self) {
+        std::fs::remove_file(&self.0).ok();
+    }
+}
+
+const SUBCOMMANDS: [&str; 4] = ["check", "analyse", "draw", "dynamics"];
+
+#[test]
+fn a_missing_file_is_one_line_and_exit_1() {
+    for sub in SUBCOMMANDS {
+        let r = tmm(&[sub, "no/such/linkage.json"]);
+        assert_one_line_failure(&r, "no/such/linkage.json");
+        assert!(r.stderr.contains("cannot read"), "{}", r.stderr);
+        assert!(r.stderr.contains("tmm bundled"), "the fix: {}", r.stderr);
+    }
+}
+
+#[test]
+fn malformed_json_is_one_line_naming_line_and_column() {
+    let four_bar = std::fs::read_to_string(root().join("linkages/four-bar.json")).unwrap();
+    let cut = Broken::new("cut", &four_bar[..four_bar.len() / 2]);
+    for sub in SUBCOMMANDS {
+        let r = tmm(&[sub, &cut.path()]);
+        assert_one_line_failure(&r, &cut.path());
+        assert!(r.stderr.contains("line"), "{}", r.stderr);
+        assert!(r.stderr.contains("column"), "{}", r.stderr);
+        assert!(
+            r.stderr.contains("docs/linkage-format.md"),
+            "the fix: {}",
+            r.stderr
+        );
+    }
+}
+
+#[test]
+fn a_misspelt_field_is_named() {
+    let four_bar = std::fs::read_to_string(root().join("linkages/four-bar.json")).unwrap();
+    let file = Broken::new(
+        "field",
+        &four_bar.replace("\"input\": {\"link\"", "\"input\": {\"lnk\""),
+    );
+    let r = tmm(&["check", &file.path()]);
+    assert_one_line_failure(&r, &file.path());
+    assert!(r.stderr.contains("lnk"), "names the field: {}", r.stderr);
+}
+
+#[test]
+fn a_joint_that_does_not_exist_is_named() {
+    let four_bar = std::fs::read_to_string(root().join("linkages/four-bar.json")).unwrap();
+    let text = four_bar.replace(
+        "{\"name\": \"coupler\", \"joints\": [\"A\", \"B\"]",
+        "{\"name\": \"coupler\", \"joints\": [\"A\", \"Bx\"]",
+    );
+    assert_ne!(text, four_bar, "the test's edit applies");
+    let file = Broken::new("joint", &text);
+    for sub in SUBCOMMANDS {
+        let r = tmm(&[sub, &file.path()]);
+        assert_one_line_failure(&r, &file.path());
+        assert!(r.stderr.contains("Bx"), "names the joint: {}", r.stderr);
+    }
+}
+
+#[test]
+fn usage_errors_exit_2() {
+    for args in [
+        &["analyse"][..],
+        &["analyse", "shaper", "--format", "xml"],
+        &["analyse", "shaper", "--positions", "3", "--at", "10"],
+        &["draw", "shaper", "--plan", "--animate"],
+        &["frobnicate"],
+    ] {
+        let r = tmm(args);
+        assert_eq!(r.code, 2, "{args:?}: {}", r.stderr);
+        assert!(!r.stderr.is_empty());
+    }
+}
+
+#[test]
+fn help_has_examples() {
+    let r = tmm(&["--help"]);
+    assert_success(&r, "--help");
+    assert!(r.stdout.contains("Examples:"), "{}", r.stdout);
+    for sub in SUBCOMMANDS.iter().chain(&["bundled"]) {
+        let r = tmm(&[sub, "--help"]);
+        assert_success(&r, sub);
+        assert!(r.stdout.contains("Examples:"), "{sub}: {}", r.stdout);
+        assert!(
+            r.stdout.contains(&format!("tmm {sub}")),
+            "{sub}: {}",
+            r.stdout
+        );
+    }
+}
