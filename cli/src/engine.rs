@@ -240,7 +240,12 @@ impl Machine {
     }
 
     /// The inputs of the positions asked for.
-    fn inputs(&self, positions: &Positions, speed: f64) -> Result<Vec<Motion>, Failure> {
+    fn inputs(
+        &self,
+        positions: &Positions,
+        speed: f64,
+        notes: &mut Vec<String>,
+    ) -> Result<Vec<Motion>, Failure> {
         self.one_input("a table of positions")?;
         let plan = &self.plan;
         let crank = plan.input_is_crank();
@@ -270,12 +275,16 @@ impl Machine {
                 .collect()),
             Positions::Uniform(n) => spread(*n),
             Positions::Course(n) => match (&self.linkage.output, crank, self.range()) {
-                (Some(out), true, Range::FullTurn) => {
-                    let s = plan
-                        .strokes(out, rotation(speed))
-                        .map_err(|e| failure(&e))?;
-                    Ok(course_inputs(&s, *n, speed))
-                }
+                (Some(out), true, Range::FullTurn) => match plan.strokes(out, rotation(speed)) {
+                    Ok(s) => Ok(course_inputs(&s, *n, speed)),
+                    Err(e) => {
+                        notes.push(format!(
+                            "the output has no strokes ({e}): the positions start at the \
+                             reference pose"
+                        ));
+                        spread(*n)
+                    }
+                },
                 _ => spread(*n),
             },
         }
@@ -286,7 +295,8 @@ impl Machine {
     /// # Errors
     /// Two inputs; no position could be analysed (the first position's error).
     pub fn table(&self, positions: &Positions, speed: f64) -> Result<TableData, Failure> {
-        let inputs = self.inputs(positions, speed)?;
+        let mut notes = Vec::new();
+        let inputs = self.inputs(positions, speed, &mut notes)?;
         let results: Vec<_> = inputs.iter().map(|&i| self.plan.analyse(i)).collect();
         let mut failures = Vec::new();
         for (i, r) in inputs.iter().zip(&results) {
@@ -318,6 +328,7 @@ impl Machine {
             columns,
             failures,
             input: self.input_kind(),
+            notes,
         })
     }
 
@@ -335,11 +346,13 @@ impl Machine {
     fn course(&self, speed: f64) -> Result<Course, Failure> {
         let plan = &self.plan;
         if plan.input_is_crank() && matches!(self.range(), Range::FullTurn) {
+            // An output without strokes (one that turns fully) still has a turn to draw.
             return Course::new(plan, self.linkage.output.as_ref(), 12, speed)
+                .or_else(|e| Course::new(plan, None, 12, speed).map_err(|_| e))
                 .map_err(|e| failure(&e));
         }
         Ok(Course {
-            inputs: self.inputs(&Positions::Uniform(12), speed)?,
+            inputs: self.inputs(&Positions::Uniform(12), speed, &mut Vec::new())?,
             extremes: Vec::new(),
         })
     }
@@ -390,7 +403,8 @@ impl Machine {
                     }
                     _ => {
                         // Rocking (or sliding) there and back.
-                        let mut go = self.inputs(&Positions::Uniform(90), speed)?;
+                        let mut go =
+                            self.inputs(&Positions::Uniform(90), speed, &mut Vec::new())?;
                         let back: Vec<Motion> = go.iter().rev().copied().collect();
                         go.extend(back);
                         go

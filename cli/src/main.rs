@@ -64,7 +64,7 @@ Examples:
 Examples:
   tmm analyse linkages/shaper.json                  12 positions from the working stroke
   tmm analyse linkages/four-bar.json --positions 36 every 10° from the reference pose
-  tmm analyse linkages/four-bar.json --at 0 90 180 --speed -5
+  tmm analyse linkages/four-bar.json --at 0 90 180 --speed -5 --degrees
   tmm analyse linkages/shaper.json --format json
   tmm analyse linkages/shaper.json --csv shaper.csv
 
@@ -93,6 +93,9 @@ null in JSON."
         /// Also write the table as CSV to this file.
         #[arg(long, value_name = "OUT")]
         csv: Option<PathBuf>,
+        /// Angles (φ, transmission angles) in degrees; rates stay in rad/s and rad/s².
+        #[arg(long)]
+        degrees: bool,
         /// The format on standard output.
         #[arg(long, value_enum, default_value_t = Format::Table)]
         format: Format,
@@ -324,6 +327,7 @@ fn run(command: Command) -> Result<(), Fail> {
             at,
             speed,
             csv,
+            degrees,
             format,
         } => {
             let m = load(&file)?;
@@ -341,7 +345,13 @@ fn run(command: Command) -> Result<(), Fail> {
                 ));
             }
             let speed = speed.unwrap_or_else(|| m.default_speed());
-            let table = m.table(&which, speed).map_err(|f| Fail::on(&file, f))?;
+            let mut table = m.table(&which, speed).map_err(|f| Fail::on(&file, f))?;
+            if degrees {
+                table = table.in_degrees();
+            }
+            for note in &table.notes {
+                eprintln!("tmm: note: {file}: {note}");
+            }
             for (input, e) in &table.failures {
                 eprintln!(
                     "tmm: warning: {file}: position at {} left out: {e}",

@@ -154,6 +154,24 @@ pub struct TableData {
     pub failures: Vec<(f64, String)>,
     /// Crank or slider (for printing the failed positions' coordinates).
     pub input: InputKind,
+    /// What a reader should know about the positions chosen (a fallback taken).
+    pub notes: Vec<String>,
+}
+
+impl TableData {
+    /// The table with every angle (unit `rad`) in degrees (unit `deg`); rates stay in rad/s.
+    #[must_use]
+    pub fn in_degrees(mut self) -> Self {
+        for c in &mut self.columns {
+            if c.unit == "rad" {
+                c.unit = "deg".to_owned();
+                for v in &mut c.values {
+                    *v = v.to_degrees();
+                }
+            }
+        }
+        self
+    }
 }
 
 /// A diagram over the cycle.

@@ -244,7 +244,7 @@ fn json_number(v: f64) -> String {
 }
 
 /// `tmm analyse --format json`: `{"name", "rows", "columns": [{"name", "unit", "values"}],
-/// "failed": [{"input", "error"}]}`, `null` where a value is not available.
+/// "failed": [{"input", "error"}], "notes"}`, `null` where a value is not available.
 pub fn table_json(t: &TableData) -> String {
     let rows = t.columns.first().map_or(0, |c| c.values.len());
     let mut o = String::new();
@@ -275,7 +275,9 @@ pub fn table_json(t: &TableData) -> String {
             )
         })
         .collect();
-    let _ = writeln!(o, "  \"failed\": [{}]", failed.join(", "));
+    let _ = writeln!(o, "  \"failed\": [{}],", failed.join(", "));
+    let notes: Vec<String> = t.notes.iter().map(|n| json_string(n)).collect();
+    let _ = writeln!(o, "  \"notes\": [{}]", notes.join(", "));
     let _ = writeln!(o, "}}");
     o
 }

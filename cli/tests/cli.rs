@@ -215,6 +215,7 @@ fn analyse_every_bundled_file_as_json_and_table() {
         let v: serde_json::Value = serde_json::from_str(&r.stdout)
             .unwrap_or_else(|e| panic!("{file}: JSON reads back: {e}"));
         assert_eq!(v["rows"], 8, "{file}");
+        assert_eq!(v["failed"].as_array().map(Vec::len), Some(0), "{file}");
         let columns = v["columns"].as_array().expect("columns");
         assert!(columns.len() > 10, "{file}");
         for c in columns {
@@ -251,6 +252,32 @@ fn analyse_writes_the_csv_file_it_prints() {
         .position(|h| h == "phi_in' [rad/s]")
         .expect("ω column");
     assert!(rows.iter().all(|row| row[speed] == -6.0));
+}
+
+#[test]
+fn analyse_gives_angles_in_degrees_when_asked() {
+    let r = tmm(&[
+        "analyse",
+        "four-bar",
+        "--at",
+        "30",
+        "-45",
+        "--degrees",
+        "--format",
+        "csv",
+    ]);
+    assert_success(&r, "analyse --degrees");
+    let (header, rows) = parse_csv(&r.stdout, "four-bar in degrees");
+    let phi = header
+        .iter()
+        .position(|h| h == "phi_in [deg]")
+        .expect("φ in deg");
+    assert!((rows[0][phi] - 30.0).abs() < 1e-12 && (rows[1][phi] + 45.0).abs() < 1e-12);
+    assert!(header.iter().all(|h| !h.ends_with("[rad]")), "{header:?}");
+    assert!(
+        header.iter().any(|h| h.ends_with("[rad/s]")),
+        "rates stay in rad/s"
+    );
 }
 
 #[test]
