@@ -459,6 +459,14 @@ impl Machine {
                  linkage is driven by a slider",
             ));
         }
+        if let Range::Rocking(lo, hi) = self.range() {
+            return Err(Failure::new(format!(
+                "the crank rocks between {:.1}° and {:.1}°, and the dynamics of a machine \
+                 reduced to its crank need a crank that turns fully",
+                lo.to_degrees(),
+                hi.to_degrees()
+            )));
+        }
         let speed = request.speed;
         if !(speed.is_finite() && speed != 0.0) {
             return Err(Failure::new(format!(

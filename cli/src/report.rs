@@ -85,8 +85,8 @@ pub fn structure(s: &Structure) -> String {
         Range::FullTurn => "the crank turns fully".to_owned(),
         Range::Rocking(a, b) => format!(
             "the crank rocks between the lock angles {} and {} (a swing of {})",
-            direction(*a),
-            direction(*b),
+            deg(*a),
+            deg(*b),
             deg(b - a)
         ),
         Range::Unknown(why) => format!("not determined: {why}"),

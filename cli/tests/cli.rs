@@ -403,6 +403,53 @@ impl Drop for Broken {
 
 const SUBCOMMANDS: [&str; 4] = ["check", "analyse", "draw", "dynamics"];
 
+/// The bundled four-bar with a crank too long to turn: it rocks between two lock angles
+/// (s + l > p + q, a triple rocker).
+fn rocking_four_bar() -> Broken {
+    let four_bar = std::fs::read_to_string(root().join("linkages/four-bar.json")).unwrap();
+    let text = four_bar
+        .replace("\"at\": [0.1, 0.0]", "\"at\": [0.0, 0.3]")
+        .replace(
+            "\"at\": [0.25612516773077276, 0.3132489936153635]",
+            "\"at\": [0.3, 0.35]",
+        );
+    assert_ne!(text, four_bar, "the test's edit applies");
+    Broken::new("rocking", &text)
+}
+
+#[test]
+fn a_rocking_crank_is_tabulated_and_drawn_inside_its_lock_angles() {
+    let file = rocking_four_bar();
+    let r = tmm(&["check", &file.path()]);
+    assert_success(&r, "check rocking");
+    assert!(
+        r.stdout.contains("the crank rocks between the lock angles"),
+        "{}",
+        r.stdout
+    );
+    assert!(r.stdout.contains("Grashof: triple rocker"), "{}", r.stdout);
+    let r = tmm(&["analyse", &file.path(), "--format", "csv"]);
+    assert_success(&r, "analyse rocking");
+    let (_, rows) = parse_csv(&r.stdout, "rocking four-bar");
+    assert_eq!(rows.len(), 12);
+    for picture in [
+        &[][..],
+        &["--plan"],
+        &["--animate"],
+        &["--diagram", "kinematics"],
+    ] {
+        let mut args = vec!["draw", file.0.to_str().unwrap()];
+        args.extend_from_slice(picture);
+        let r = tmm(&args);
+        assert_success(&r, &args.join(" "));
+        assert_svg(&r.stdout, &args.join(" "));
+    }
+    // A machine reduced to its crank needs a turn: one sentence says so.
+    let r = tmm(&["dynamics", &file.path()]);
+    assert_one_line_failure(&r, &file.path());
+    assert!(r.stderr.contains("turns fully"), "{}", r.stderr);
+}
+
 #[test]
 fn a_missing_file_is_one_line_and_exit_1() {
     for sub in SUBCOMMANDS {
