@@ -33,6 +33,7 @@ fn failure(e: &tmm::Error) -> Failure {
 pub struct Machine {
     linkage: Linkage,
     plan: Plan,
+    range: std::cell::OnceCell<Range>,
 }
 
 /// Reads a description from JSON text and makes its plan.
@@ -42,7 +43,11 @@ pub struct Machine {
 pub fn load(text: &str) -> Result<Machine, Failure> {
     let linkage = Linkage::from_json(text).map_err(|e| failure(&e))?;
     let plan = Plan::new(&linkage).map_err(|e| failure(&e))?;
-    Ok(Machine { linkage, plan })
+    Ok(Machine {
+        linkage,
+        plan,
+        range: std::cell::OnceCell::new(),
+    })
 }
 
 impl Machine {
@@ -105,7 +110,7 @@ impl Machine {
         let mut inputs = vec![InputInfo {
             link: links[plan.input_link()].clone(),
             kind: self.input_kind(),
-            drive: drive_text(&self.linkage.input.drive),
+            drive: drive_text(&self.linkage.input.drive, plan.input_is_crank()),
             reference: refs[0],
         }];
         if let (Some(k), Some(second)) = (plan.second_input_link(), &self.linkage.second_input) {
@@ -116,7 +121,7 @@ impl Machine {
                 } else {
                     InputKind::Slider
                 },
-                drive: drive_text(&second.drive),
+                drive: drive_text(&second.drive, second_is_crank(&self.linkage, &second.link)),
                 reference: refs.get(1).copied().unwrap_or(0.0),
             });
         }
@@ -142,6 +147,7 @@ impl Machine {
                 } else {
                     Err(match &range {
                         Range::Rocking(..) => "the crank does not turn fully".to_owned(),
+                        Range::Travel(..) => "the input is a slider".to_owned(),
                         Range::Unknown(why) => why.clone(),
                         Range::FullTurn => unreachable!("handled above"),
                     })
@@ -180,20 +186,60 @@ impl Machine {
         }
     }
 
-    /// Whether the crank turns fully, or between which angles it rocks.
+    /// Whether the crank turns fully, or between which angles it rocks; the slider's travel.
     fn range(&self) -> Range {
+        self.range.get_or_init(|| self.find_range()).clone()
+    }
+
+    fn find_range(&self) -> Range {
         let plan = &self.plan;
-        if !plan.input_is_crank() {
-            return Range::Unknown("the input is a slider".to_owned());
-        }
         if plan.input_count() > 1 {
             return Range::Unknown("two inputs: the range of each depends on the other".to_owned());
+        }
+        if !plan.input_is_crank() {
+            return self.slider_travel();
         }
         match plan.lock_positions(plan.reference_input()) {
             Ok(None) => Range::FullTurn,
             Ok(Some((a, b))) => Range::Rocking(a.min(b), a.max(b)),
             Err(e) => Range::Unknown(e.to_string()),
         }
+    }
+
+    /// The travel of a slider input from its reference pose: the nearest slides, either way,
+    /// where the linkage stops assembling (or meets a dead point), found by stepping out by
+    /// 1/200 of the linkage's size and bisecting; at most 4 sizes either way. (The library
+    /// finds lock positions of cranks only.)
+    fn slider_travel(&self) -> Range {
+        let plan = &self.plan;
+        let solves = |s: f64| plan.kinematics(Motion::fixed(s)).is_ok();
+        let reference = plan.reference_input();
+        if !solves(reference) {
+            return Range::Unknown("the reference pose does not solve".to_owned());
+        }
+        let size = plan.size();
+        let step = size / 200.0;
+        let edge = |sense: f64| {
+            let mut good = reference;
+            for k in 1..=800 {
+                let s = reference + sense * step * f64::from(k);
+                if !solves(s) {
+                    let (mut a, mut b) = (good, s);
+                    for _ in 0..60 {
+                        let m = 0.5 * (a + b);
+                        if solves(m) {
+                            a = m;
+                        } else {
+                            b = m;
+                        }
+                    }
+                    return a;
+                }
+                good = s;
+            }
+            good
+        };
+        Range::Travel(edge(-1.0), edge(1.0))
     }
 
     /// Grashof's class of a four-bar: one RRR group hinged to the crank and the frame.
@@ -251,19 +297,18 @@ impl Machine {
         let crank = plan.input_is_crank();
         let reference = plan.reference_input();
         let spread = |n: usize| -> Result<Vec<Motion>, Failure> {
-            if !crank {
-                // A slider has no turn: steps of 10 mm from the reference pose.
-                return Ok((0..n)
-                    .map(|k| Motion::new(reference + speed.signum() * 0.01 * k as f64, speed, 0.0))
-                    .collect());
-            }
             match self.range() {
-                Range::Rocking(lo, hi) => {
-                    // Inside the lock angles, where the groups are at dead points.
+                Range::Rocking(lo, hi) | Range::Travel(lo, hi) => {
+                    // Inside the ends, where the groups are at dead points, in the order a
+                    // motion at `speed` meets them.
                     let h = (hi - lo) / n as f64;
-                    Ok((0..n)
+                    let mut at: Vec<Motion> = (0..n)
                         .map(|k| Motion::new(lo + h * (k as f64 + 0.5), speed, 0.0))
-                        .collect())
+                        .collect();
+                    if speed < 0.0 {
+                        at.reverse();
+                    }
+                    Ok(at)
                 }
                 _ => Ok(uniform_inputs(n, reference, speed, 0.0)),
             }
@@ -578,7 +623,10 @@ fn rotation(speed: f64) -> Rotation {
     }
 }
 
-fn drive_text(drive: &Drive) -> String {
+fn drive_text(drive: &Drive, crank: bool) -> String {
+    if !crank {
+        return "by a force along its guide".to_owned();
+    }
     match drive {
         Drive::Coupling => "through a coupling (balancing moment)".to_owned(),
         Drive::Gear {

@@ -75,7 +75,9 @@ pub enum Range {
     FullTurn,
     /// The crank rocks between two lock angles, rad (the smaller first).
     Rocking(f64, f64),
-    /// Not determined, and why (a slider input, two inputs, an error).
+    /// A slider input travels between two slides, m (the smaller first).
+    Travel(f64, f64),
+    /// Not determined, and why (two inputs, an error).
     Unknown(String),
 }
 

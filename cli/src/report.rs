@@ -89,6 +89,12 @@ pub fn structure(s: &Structure) -> String {
             deg(*b),
             deg(b - a)
         ),
+        Range::Travel(a, b) => format!(
+            "the slider travels from s = {} m to {} m (a stroke of {} m)",
+            number(*a),
+            number(*b),
+            number(b - a)
+        ),
         Range::Unknown(why) => format!("not determined: {why}"),
     };
     let _ = writeln!(o, "range: {range}");

@@ -450,6 +450,69 @@ fn a_rocking_crank_is_tabulated_and_drawn_inside_its_lock_angles() {
     assert!(r.stderr.contains("turns fully"), "{}", r.stderr);
 }
 
+/// A slider-crank driven by its piston (a slider input), the crank loaded by a couple.
+const PISTON_DRIVEN: &str = r#"{
+  "name": "piston-driven slider-crank",
+  "joints": [
+    {"name": "O1", "at": [0.0, 0.0]},
+    {"name": "A", "at": [0.03, 0.04]},
+    {"name": "B", "at": [0.22, 0.0]},
+    {"name": "P", "at": [0.22, 0.0], "kind": {"prismatic": {"guide": "frame", "direction": [1.0, 0.0]}}}
+  ],
+  "links": [
+    {"name": "frame", "joints": ["O1", "P"]},
+    {"name": "piston", "joints": ["B", "P"], "mass": {"m": 0.8, "j": 0.0, "centre": "B"}},
+    {"name": "rod", "joints": ["A", "B"], "mass": {"m": 1.2, "j": 0.004, "centre": [0.125, 0.02]}},
+    {"name": "crank", "joints": ["O1", "A"], "mass": {"m": 2.5, "j": 0.004, "centre": [0.0, 0.0]}}
+  ],
+  "input": {"link": "piston"},
+  "loads": [{"moment": {"link": "crank", "moment": -5.0}}],
+  "speed": 0.5
+}"#;
+
+#[test]
+fn a_slider_input_travels_between_its_dead_points() {
+    let file = Broken::new("slider", PISTON_DRIVEN);
+    let r = tmm(&["check", &file.path()]);
+    assert_success(&r, "check slider");
+    // The crank's radius is 0.05 m: the piston's stroke is 0.1 m.
+    assert!(r.stdout.contains("(a stroke of 0.1000 m)"), "{}", r.stdout);
+    let r = tmm(&[
+        "analyse",
+        &file.path(),
+        "--speed",
+        "-0.5",
+        "--format",
+        "csv",
+    ]);
+    assert_success(&r, "analyse slider");
+    assert!(r.stderr.is_empty(), "no position left out: {}", r.stderr);
+    let (header, rows) = parse_csv(&r.stdout, "piston-driven");
+    assert_eq!(rows.len(), 12);
+    assert_eq!(header[0], "s_in [m]");
+    assert!(
+        rows.windows(2).all(|w| w[1][0] < w[0][0]),
+        "a negative speed slides back"
+    );
+    assert!(header.iter().any(|h| h.starts_with("Fb ")), "{header:?}");
+    for picture in [
+        &[][..],
+        &["--plan"],
+        &["--animate"],
+        &["--forces"],
+        &["--diagram", "transfer"],
+    ] {
+        let mut args = vec!["draw", file.0.to_str().unwrap()];
+        args.extend_from_slice(picture);
+        let r = tmm(&args);
+        assert_success(&r, &args.join(" "));
+        assert_svg(&r.stdout, &args.join(" "));
+    }
+    let r = tmm(&["dynamics", &file.path()]);
+    assert_one_line_failure(&r, &file.path());
+    assert!(r.stderr.contains("slider"), "{}", r.stderr);
+}
+
 #[test]
 fn a_missing_file_is_one_line_and_exit_1() {
     for sub in SUBCOMMANDS {
