@@ -341,12 +341,22 @@ impl Machine {
     /// Two inputs; no position could be analysed (the first position's error).
     pub fn table(&self, positions: &Positions, speed: f64) -> Result<TableData, Failure> {
         let mut notes = Vec::new();
-        let inputs = self.inputs(positions, speed, &mut notes)?;
-        let results: Vec<_> = inputs.iter().map(|&i| self.plan.analyse(i)).collect();
+        let inputs: Vec<Vec<Motion>> = if self.plan.input_count() > 1 {
+            self.input_pairs(positions, speed)?
+        } else {
+            self.inputs(positions, speed, &mut notes)?
+                .into_iter()
+                .map(|i| vec![i])
+                .collect()
+        };
+        if inputs.is_empty() {
+            return Err(Failure::new("no positions were asked for"));
+        }
+        let results: Vec<_> = inputs.iter().map(|i| self.plan.analyse_inputs(i)).collect();
         let mut failures = Vec::new();
         for (i, r) in inputs.iter().zip(&results) {
             if let Err(e) = r {
-                failures.push((i.value, e.to_string()));
+                failures.push((i[0].value, e.to_string()));
             }
         }
         if failures.len() == results.len() {
@@ -355,7 +365,39 @@ impl Machine {
                 "no position could be analysed: {first}"
             )));
         }
-        let table = Table::of(&results);
+        let mut table = Table::of(&results);
+        if self.plan.input_count() > 1 {
+            // The library's row holds the first input's coordinate and balancing moment; the
+            // second input's are added here.
+            let ok: Vec<_> = results.iter().flatten().collect();
+            let second = |f: &dyn Fn(&tmm::linkage::Analysis<'_>) -> f64| -> Vec<f64> {
+                ok.iter().map(|a| f(a)).collect()
+            };
+            let (q, unit, balance) = if self.second_is_crank() {
+                ("phi_in2", "rad", "Mb2 [N·m, + counter-clockwise]")
+            } else {
+                ("s_in2", "m", "Fb2 [N, + along the guide]")
+            };
+            table.columns.insert(
+                1,
+                tmm::linkage::Column {
+                    name: format!("{q} [{unit}]"),
+                    values: second(&|a| a.second_input().map_or(f64::NAN, |m| m.value)),
+                },
+            );
+            // With two inputs the library's virtual-power cell is the drives' power, W
+            // (Mb·ω1 + Mb2·ω2), though its row names it as Mb in N·m: named here for what
+            // it holds.
+            for c in &mut table.columns {
+                if c.name.starts_with("Mb by virtual power") {
+                    c.name = "drive power by virtual power [W]".to_owned();
+                }
+            }
+            table.columns.push(tmm::linkage::Column {
+                name: balance.to_owned(),
+                values: second(&|a| a.second_balance().map_or(f64::NAN, |b| b.value)),
+            });
+        }
         let columns = table
             .columns
             .into_iter()
@@ -375,6 +417,41 @@ impl Machine {
             input: self.input_kind(),
             notes,
         })
+    }
+
+    fn second_is_crank(&self) -> bool {
+        self.linkage
+            .second_input
+            .as_ref()
+            .is_none_or(|s| second_is_crank(&self.linkage, &s.link))
+    }
+
+    /// The positions of a linkage with two inputs: `--at` values taken in pairs.
+    fn input_pairs(&self, positions: &Positions, speed: f64) -> Result<Vec<Vec<Motion>>, Failure> {
+        let Positions::At(values) = positions else {
+            return Err(Failure::new(format!(
+                "a linkage with two inputs (mobility {}) has no single course",
+                self.plan.mobility()
+            ))
+            .hint("give its positions as pairs of input coordinates, --at φ1 φ2 [φ1 φ2 …]"));
+        };
+        if values.len() % 2 != 0 {
+            return Err(Failure::new(format!(
+                "a linkage with two inputs needs --at values in pairs (φ1 φ2), got {}",
+                values.len()
+            )));
+        }
+        let convert = |v: f64, crank: bool| if crank { v.to_radians() } else { v };
+        let (first, second) = (self.plan.input_is_crank(), self.second_is_crank());
+        Ok(values
+            .chunks(2)
+            .map(|p| {
+                vec![
+                    Motion::new(convert(p[0], first), speed, 0.0),
+                    Motion::new(convert(p[1], second), speed, 0.0),
+                ]
+            })
+            .collect())
     }
 
     /// The input at `at` (degrees for a crank, m for a slider), or the reference pose.

@@ -67,6 +67,7 @@ Examples:
   tmm analyse linkages/four-bar.json --at 0 90 180 --speed -5 --degrees
   tmm analyse linkages/shaper.json --format json
   tmm analyse linkages/shaper.json --csv shaper.csv
+  tmm analyse linkages/five-bar-robot.json --at 120 60 110 70   two inputs: pairs φ1 φ2
 
 Rows of the text table are quantities, columns positions. A position where the linkage cannot
 be solved (a dead point, a pose that does not assemble) is left out with a warning on stderr.
@@ -84,7 +85,8 @@ null in JSON."
         /// stroke (the default).
         #[arg(long)]
         course: bool,
-        /// The positions at these input angles, degrees (metres for a slider input).
+        /// The positions at these input angles, degrees (metres for a slider input); for a
+        /// linkage with two inputs, pairs φ1 φ2.
         #[arg(long, value_name = "φ", num_args = 1.., allow_negative_numbers = true)]
         at: Vec<f64>,
         /// The input speed ω, rad/s (negative: clockwise); the file's `speed` by default.

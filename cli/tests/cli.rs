@@ -3,9 +3,10 @@
 //! read back, SVG checked for a well-formed tree of tags without `NaN` or `inf`.
 //!
 //! Known failures, each a clear one-line error with exit code 1 (never a panic):
-//! - `five-bar-robot.json` has two inputs (mobility 2): there is no single course to tabulate,
-//!   draw or reduce to one crank, and the library's pictures take one input motion, so
-//!   `analyse`, `draw` (every picture) and `dynamics` refuse it. `check` works.
+//! - `five-bar-robot.json` has two inputs (mobility 2): it has no single course, so `analyse`
+//!   without `--at` pairs, `draw` (every picture: the library's pictures take one input
+//!   motion) and `dynamics` (reduced to one crank) refuse it. `check` works, and so does
+//!   `analyse --at φ1 φ2 …`.
 
 use std::path::{Path, PathBuf};
 use std::process::Command;
@@ -190,7 +191,8 @@ fn analyse_every_bundled_file_as_csv() {
         let r = tmm(&["analyse", &file, "--format", "csv"]);
         if two_inputs(&file) {
             assert_one_line_failure(&r, &file);
-            assert!(r.stderr.contains("one input"), "{}", r.stderr);
+            assert!(r.stderr.contains("two inputs"), "{}", r.stderr);
+            assert!(r.stderr.contains("--at φ1 φ2"), "the fix: {}", r.stderr);
             continue;
         }
         assert_success(&r, &format!("analyse {file}"));
@@ -278,6 +280,43 @@ fn analyse_gives_angles_in_degrees_when_asked() {
         header.iter().any(|h| h.ends_with("[rad/s]")),
         "rates stay in rad/s"
     );
+}
+
+#[test]
+fn a_linkage_with_two_inputs_is_analysed_at_pairs_of_inputs() {
+    let r = tmm(&[
+        "analyse",
+        "five-bar-robot",
+        "--at",
+        "120",
+        "60",
+        "110",
+        "70",
+        "--format",
+        "csv",
+    ]);
+    assert_success(&r, "analyse five-bar --at pairs");
+    let (header, rows) = parse_csv(&r.stdout, "five-bar at pairs");
+    assert_eq!(rows.len(), 2);
+    let col = |name: &str| header.iter().position(|h| h == name).expect(name);
+    let (q1, q2) = (col("phi_in [rad]"), col("phi_in2 [rad]"));
+    assert!((rows[1][q1].to_degrees() - 110.0).abs() < 1e-9);
+    assert!((rows[1][q2].to_degrees() - 70.0).abs() < 1e-9);
+    // Both inputs turn at the file's 10 rad/s: the drives' power is (Mb + Mb2)·ω.
+    let (mb, mb2) = (
+        col("Mb [N·m, + counter-clockwise]"),
+        col("Mb2 [N·m, + counter-clockwise]"),
+    );
+    let power = col("drive power by virtual power [W]");
+    for row in &rows {
+        let chain = (row[mb] + row[mb2]) * 10.0;
+        assert!(
+            (chain - row[power]).abs() < 1e-9 * row[power].abs().max(1.0),
+            "{row:?}"
+        );
+    }
+    let odd = tmm(&["analyse", "five-bar-robot", "--at", "120", "60", "110"]);
+    assert_one_line_failure(&odd, "five-bar-robot");
 }
 
 #[test]
