@@ -296,9 +296,18 @@ impl Machine {
         let plan = &self.plan;
         let crank = plan.input_is_crank();
         let reference = plan.reference_input();
-        let spread = |n: usize| -> Result<Vec<Motion>, Failure> {
-            match self.range() {
+        let range = self.range();
+        let spread = |n: usize, notes: &mut Vec<String>| -> Vec<Motion> {
+            match range {
                 Range::Rocking(lo, hi) | Range::Travel(lo, hi) => {
+                    notes.push(format!(
+                        "{n} positions equally spaced inside the {}",
+                        if crank {
+                            "lock angles"
+                        } else {
+                            "slider's travel"
+                        }
+                    ));
                     // Inside the ends, where the groups are at dead points, in the order a
                     // motion at `speed` meets them.
                     let h = (hi - lo) / n as f64;
@@ -308,9 +317,14 @@ impl Machine {
                     if speed < 0.0 {
                         at.reverse();
                     }
-                    Ok(at)
+                    at
                 }
-                _ => Ok(uniform_inputs(n, reference, speed, 0.0)),
+                _ => {
+                    notes.push(format!(
+                        "{n} positions equally spaced over a turn from the reference pose"
+                    ));
+                    uniform_inputs(n, reference, speed, 0.0)
+                }
             }
         };
         match positions {
@@ -318,19 +332,26 @@ impl Machine {
                 .iter()
                 .map(|&v| Motion::new(if crank { v.to_radians() } else { v }, speed, 0.0))
                 .collect()),
-            Positions::Uniform(n) => spread(*n),
-            Positions::Course(n) => match (&self.linkage.output, crank, self.range()) {
+            Positions::Uniform(n) => Ok(spread(*n, notes)),
+            Positions::Course(n) => match (&self.linkage.output, crank, &range) {
                 (Some(out), true, Range::FullTurn) => match plan.strokes(out, rotation(speed)) {
-                    Ok(s) => Ok(course_inputs(&s, *n, speed)),
-                    Err(e) => {
+                    Ok(s) => {
                         notes.push(format!(
-                            "the output has no strokes ({e}): the positions start at the \
-                             reference pose"
+                            "{n} course positions from the start of the working stroke of the \
+                             {} at φ = {:.1}° (over {:.1}°, time ratio {:.4})",
+                            output_text(out),
+                            s.start.to_degrees(),
+                            s.working_angle.to_degrees(),
+                            s.time_ratio
                         ));
-                        spread(*n)
+                        Ok(course_inputs(&s, *n, speed))
+                    }
+                    Err(e) => {
+                        notes.push(format!("the output has no strokes ({e})"));
+                        Ok(spread(*n, notes))
                     }
                 },
-                _ => spread(*n),
+                _ => Ok(spread(*n, notes)),
             },
         }
     }
@@ -416,6 +437,7 @@ impl Machine {
             failures,
             input: self.input_kind(),
             notes,
+            speed,
         })
     }
 

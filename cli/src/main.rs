@@ -351,9 +351,6 @@ fn run(command: Command) -> Result<(), Fail> {
             if degrees {
                 table = table.in_degrees();
             }
-            for note in &table.notes {
-                eprintln!("tmm: note: {file}: {note}");
-            }
             for (input, e) in &table.failures {
                 eprintln!(
                     "tmm: warning: {file}: position at {} left out: {e}",

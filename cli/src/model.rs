@@ -156,8 +156,10 @@ pub struct TableData {
     pub failures: Vec<(f64, String)>,
     /// Crank or slider (for printing the failed positions' coordinates).
     pub input: InputKind,
-    /// What a reader should know about the positions chosen (a fallback taken).
+    /// Which positions were chosen, and why (a fallback taken), for a reader.
     pub notes: Vec<String>,
+    /// The input speed, rad/s (m/s for a slider).
+    pub speed: f64,
 }
 
 impl TableData {

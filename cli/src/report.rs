@@ -164,7 +164,20 @@ pub fn table_text(t: &TableData) -> String {
     let width = titles.iter().map(|s| s.chars().count()).max().unwrap_or(0);
     let rows = t.columns.first().map_or(0, |c| c.values.len());
     let mut o = String::new();
-    let _ = writeln!(o, "{} — {} positions", t.name, rows);
+    let (unit, rate) = match t.input {
+        InputKind::Crank => ("rad/s", "ω"),
+        InputKind::Slider => ("m/s", "v"),
+    };
+    let _ = writeln!(
+        o,
+        "{}: {} positions at {rate} = {} {unit}",
+        t.name,
+        rows,
+        number(t.speed)
+    );
+    for note in &t.notes {
+        let _ = writeln!(o, "{note}");
+    }
     let _ = write!(o, "{:<width$}", "position");
     for k in 1..=rows {
         let _ = write!(o, " {k:>11}");

@@ -234,6 +234,11 @@ fn analyse_every_bundled_file_as_json_and_table() {
         // A title line, the positions' line, then one line per column.
         assert_eq!(t.stdout.lines().count(), columns.len() + 2, "{file}");
         assert!(!t.stdout.contains("NaN"), "{file}");
+        assert!(
+            !t.stdout.lines().skip(2).any(|l| l.contains(" —")),
+            "{file}: every value available: {}",
+            t.stdout
+        );
     }
 }
 
