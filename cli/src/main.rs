@@ -62,8 +62,8 @@ Examples:
         group(ArgGroup::new("which").args(["positions", "course", "at"])),
         after_help = "\
 Examples:
-  tmm analyse linkages/shaper.json                  12 positions from the working stroke
-  tmm analyse linkages/four-bar.json --positions 36 every 10° from the reference pose
+  tmm analyse linkages/shaper.json                   12 positions from the working stroke
+  tmm analyse linkages/four-bar.json --positions 36  every 10° from the reference pose
   tmm analyse linkages/four-bar.json --at 0 90 180 --speed -5 --degrees
   tmm analyse linkages/shaper.json --format json
   tmm analyse linkages/shaper.json --csv shaper.csv
@@ -120,7 +120,8 @@ Examples:
     Draw {
         /// The description file (JSON), or the name of a bundled one.
         file: String,
-        /// The kinematic scheme at the input angle φ, degrees (the reference pose without one).
+        /// The kinematic scheme at the input angle φ, degrees (metres for a slider input; the
+        /// reference pose without one).
         #[arg(long, value_name = "φ", num_args = 0..=1, allow_negative_numbers = true)]
         scheme: Option<Option<f64>>,
         /// The plan: the 12 course positions overlaid, the extreme positions bold, the paths of
@@ -130,7 +131,8 @@ Examples:
         /// An animation of the cycle (SMIL; plays in a browser).
         #[arg(long)]
         animate: bool,
-        /// The reaction in every joint as an arrow, at the input angle φ, degrees.
+        /// The reaction in every joint as an arrow, at the input angle φ, degrees (metres for a
+        /// slider input; the reference pose without one).
         #[arg(long, value_name = "φ", num_args = 0..=1, allow_negative_numbers = true)]
         forces: Option<Option<f64>>,
         /// A diagram over the cycle (balance without a KIND).
@@ -154,7 +156,8 @@ Examples:
   tmm dynamics linkages/four-bar.json --run-up --motor 60,2 --rotor 0.05
 
 Without --motor the run-up uses an induction motor chosen from the machine: 4 % slip at the
-speed asked for, and a nominal moment 10 % above the loads' mean.")]
+speed asked for, and a nominal moment 10 % above the loads' mean (or a tenth of their peak,
+for a machine whose loads average out). The step keeps RK4 well inside its stability limit.")]
     Dynamics {
         /// The description file (JSON), or the name of a bundled one.
         file: String,

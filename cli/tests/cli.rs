@@ -19,9 +19,14 @@ struct Run {
 }
 
 fn tmm(args: &[&str]) -> Run {
+    tmm_in(&root(), args)
+}
+
+/// Runs `tmm` in the directory `dir`.
+fn tmm_in(dir: &Path, args: &[&str]) -> Run {
     let out = Command::new(env!("CARGO_BIN_EXE_tmm"))
         .args(args)
-        .current_dir(root())
+        .current_dir(dir)
         .output()
         .expect("the tmm binary runs");
     Run {
@@ -642,4 +647,34 @@ fn help_has_examples() {
             r.stdout
         );
     }
+}
+
+#[test]
+fn every_example_in_the_help_runs() {
+    // In a directory of its own, where `linkages/…` does not exist: the bundled descriptions
+    // stand in, and the pictures and tables written land there.
+    let dir = std::env::temp_dir().join(format!("tmm-cli-test-{}-examples", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let mut examples = Vec::new();
+    for sub in ["", "check", "analyse", "draw", "dynamics", "bundled"] {
+        let args: Vec<&str> = [sub, "--help"]
+            .into_iter()
+            .filter(|a| !a.is_empty())
+            .collect();
+        let help = tmm(&args).stdout;
+        for line in help.lines().filter_map(|l| l.strip_prefix("  tmm ")) {
+            // The command ends at a run of spaces (its comment) or a redirection.
+            let command = line.split("  ").next().unwrap();
+            let command = command.split(" > ").next().unwrap();
+            examples.push(command.to_owned());
+        }
+    }
+    assert!(examples.len() >= 20, "{examples:?}");
+    for example in &examples {
+        let args: Vec<&str> = example.split_whitespace().collect();
+        let r = tmm_in(&dir, &args);
+        assert_eq!(r.code, 0, "tmm {example}: {}", r.stderr);
+    }
+    assert!(dir.join("watt.svg").exists() && dir.join("shaper.csv").exists());
+    std::fs::remove_dir_all(&dir).ok();
 }
