@@ -17,10 +17,14 @@ use crate::model::{
     Structure, TableData, TurnRow,
 };
 
-/// The library's error as a person reads it: its `Display` text, with the fix where the kind
-/// of error tells it.
+/// The library's error as a person reads it: its `Display` text.
 fn failure(e: &tmm::Error) -> Failure {
-    let f = Failure::new(e.to_string());
+    Failure::new(e.to_string())
+}
+
+/// An error of the description itself, with where to read the format.
+fn description_failure(e: &tmm::Error) -> Failure {
+    let f = failure(e);
     match e {
         tmm::Error::Description { .. } => {
             f.hint("the file format is described in docs/linkage-format.md")
@@ -41,8 +45,8 @@ pub struct Machine {
 /// # Errors
 /// The library's message for a malformed description.
 pub fn load(text: &str) -> Result<Machine, Failure> {
-    let linkage = Linkage::from_json(text).map_err(|e| failure(&e))?;
-    let plan = Plan::new(&linkage).map_err(|e| failure(&e))?;
+    let linkage = Linkage::from_json(text).map_err(|e| description_failure(&e))?;
+    let plan = Plan::new(&linkage).map_err(|e| description_failure(&e))?;
     Ok(Machine {
         linkage,
         plan,

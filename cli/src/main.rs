@@ -79,8 +79,8 @@ null in JSON."
         file: String,
         /// N positions equally spaced over the crank's turn (or its rocking range) from the
         /// reference pose.
-        #[arg(long, value_name = "N")]
-        positions: Option<usize>,
+        #[arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(1..=100_000))]
+        positions: Option<u32>,
         /// The 12 positions of a course project, from the start of the output's working
         /// stroke (the default).
         #[arg(long)]
@@ -154,6 +154,7 @@ Examples:
   tmm dynamics linkages/watt-six-bar.json
   tmm dynamics linkages/mechanism-compressor.json --flywheel 0.05 0.02
   tmm dynamics linkages/four-bar.json --run-up --motor 60,2 --rotor 0.05
+  tmm dynamics linkages/shaper.json --csv reduced.csv
 
 Without --motor the run-up uses an induction motor chosen from the machine: 4 % slip at the
 speed asked for, and a nominal moment 10 % above the loads' mean (or a tenth of their peak,
@@ -178,8 +179,12 @@ for a machine whose loads average out). The step keeps RK4 well inside its stabi
         #[arg(long, value_name = "J", default_value_t = 0.0)]
         rotor: f64,
         /// Positions over a turn for the reduced quantities.
-        #[arg(long, value_name = "N", default_value_t = 360)]
-        positions: usize,
+        #[arg(long, value_name = "N", default_value_t = 360,
+              value_parser = clap::value_parser!(u32).range(1..=100_000))]
+        positions: u32,
+        /// Also write the reduced quantities over the turn as CSV to this file.
+        #[arg(long, value_name = "OUT")]
+        csv: Option<PathBuf>,
     },
 
     /// The descriptions built into tmm; with a NAME, print that description's JSON.
@@ -337,18 +342,10 @@ fn run(command: Command) -> Result<(), Fail> {
         } => {
             let m = load(&file)?;
             let which = match positions {
-                Some(n) => Positions::Uniform(n),
+                Some(n) => Positions::Uniform(n as usize),
                 None if !at.is_empty() => Positions::At(at),
                 None => Positions::Course(12),
             };
-            if let Positions::Uniform(n) = which
-                && !(1..=100_000).contains(&n)
-            {
-                return Err(Fail::on(
-                    &file,
-                    Failure::new(format!("--positions must lie in [1, 100000], got {n}")),
-                ));
-            }
             let speed = speed.unwrap_or_else(|| m.default_speed());
             let mut table = m.table(&which, speed).map_err(|f| Fail::on(&file, f))?;
             if degrees {
@@ -412,6 +409,7 @@ fn run(command: Command) -> Result<(), Fail> {
             motor,
             rotor,
             positions,
+            csv,
         } => {
             let m = load(&file)?;
             let request = DynamicsRequest {
@@ -420,11 +418,14 @@ fn run(command: Command) -> Result<(), Fail> {
                 motor,
                 rotor,
                 flywheel,
-                positions,
+                positions: positions as usize,
             };
             let d = m
                 .dynamics(&request, &mut progress)
                 .map_err(|f| Fail::on(&file, f))?;
+            if let Some(path) = &csv {
+                write_file(path, &report::reduced_csv(&d))?;
+            }
             print(&report::dynamics(&d));
         }
         Command::Bundled { name } => match name {

@@ -428,3 +428,16 @@ pub fn dynamics(d: &DynamicsReport) -> String {
     }
     o
 }
+
+/// `tmm dynamics --csv`: the reduced quantities over the turn, one line per position.
+pub fn reduced_csv(d: &DynamicsReport) -> String {
+    let mut o = String::from("turned [rad],J_red [kg·m^2],dJ_red/dphi [kg·m^2],M_red [N·m]\n");
+    for r in &d.reduced {
+        let _ = writeln!(
+            o,
+            "{},{},{},{}",
+            r.turned, r.inertia, r.inertia_derivative, r.loads
+        );
+    }
+    o
+}

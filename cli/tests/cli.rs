@@ -408,6 +408,27 @@ fn dynamics_runs_a_machine_up_to_its_steady_state() {
 }
 
 #[test]
+fn dynamics_writes_the_reduced_quantities_as_csv() {
+    let out = std::env::temp_dir().join(format!("tmm-cli-test-{}-reduced.csv", std::process::id()));
+    let out_s = out.to_string_lossy().into_owned();
+    let r = tmm(&[
+        "dynamics",
+        "watt-six-bar",
+        "--positions",
+        "36",
+        "--csv",
+        &out_s,
+    ]);
+    assert_success(&r, "dynamics --csv");
+    let text = std::fs::read_to_string(&out).expect("the CSV file is written");
+    std::fs::remove_file(&out).ok();
+    let (header, rows) = parse_csv(&text, "reduced");
+    assert_eq!(header.len(), 4);
+    assert_eq!(rows.len(), 36);
+    assert!(rows.iter().all(|r| r[1] > 0.0), "J_red > 0");
+}
+
+#[test]
 fn bundled_lists_every_file_in_linkages() {
     let r = tmm(&["bundled"]);
     assert_success(&r, "bundled");
@@ -623,6 +644,8 @@ fn usage_errors_exit_2() {
         &["analyse"][..],
         &["analyse", "shaper", "--format", "xml"],
         &["analyse", "shaper", "--positions", "3", "--at", "10"],
+        &["analyse", "shaper", "--positions", "0"],
+        &["dynamics", "shaper", "--motor", "60"],
         &["draw", "shaper", "--plan", "--animate"],
         &["frobnicate"],
     ] {
