@@ -226,11 +226,11 @@ enum DiagramArg {
 fn parse_pair(s: &str) -> Result<(f64, f64), String> {
     let (a, b) = s
         .split_once(',')
-        .ok_or_else(|| format!("expected two numbers a,b, got {s:?}"))?;
+        .ok_or_else(|| format!("expected two numbers a,b, got \"{s}\""))?;
     let num = |t: &str| {
         t.trim()
             .parse::<f64>()
-            .map_err(|e| format!("{t:?} is not a number: {e}"))
+            .map_err(|e| format!("\"{t}\" is not a number: {e}"))
     };
     Ok((num(a)?, num(b)?))
 }
@@ -434,8 +434,10 @@ fn run(command: Command) -> Result<(), Fail> {
                 None => {
                     return Err(Fail {
                         file: None,
-                        failure: Failure::new(format!("no bundled description is called {name:?}"))
-                            .hint("`tmm bundled` lists them"),
+                        failure: Failure::new(format!(
+                            "no bundled description is called \"{name}\""
+                        ))
+                        .hint("`tmm bundled` lists them"),
                     });
                 }
             },

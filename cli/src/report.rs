@@ -256,7 +256,8 @@ pub fn json_string(s: &str) -> String {
 /// A JSON number (`null` where not available).
 fn json_number(v: f64) -> String {
     if v.is_finite() {
-        format!("{v:?}")
+        // The shortest text that reads back as the same f64, as JSON writes numbers.
+        format!("{v}")
     } else {
         "null".to_owned()
     }
