@@ -66,6 +66,7 @@ Examples:
   tmm analyse linkages/four-bar.json --positions 36  every 10° from the reference pose
   tmm analyse linkages/four-bar.json --at 0 90 180 --speed -5 --degrees
   tmm analyse linkages/shaper.json --format json
+  tmm analyse linkages/shaper.json --only Mb omega --degrees
   tmm analyse linkages/shaper.json --csv shaper.csv
   tmm analyse linkages/five-bar-robot.json --at 120 60 110 70   two inputs: pairs φ1 φ2
 
@@ -95,6 +96,10 @@ null in JSON."
         /// Also write the table as CSV to this file.
         #[arg(long, value_name = "OUT")]
         csv: Option<PathBuf>,
+        /// Only the columns whose names contain one of these texts (and the input's), for
+        /// example `--only Mb omega`.
+        #[arg(long, value_name = "TEXT", num_args = 1..)]
+        only: Vec<String>,
         /// Angles (φ, transmission angles) in degrees; rates stay in rad/s and rad/s².
         #[arg(long)]
         degrees: bool,
@@ -337,6 +342,7 @@ fn run(command: Command) -> Result<(), Fail> {
             at,
             speed,
             csv,
+            only,
             degrees,
             format,
         } => {
@@ -350,6 +356,9 @@ fn run(command: Command) -> Result<(), Fail> {
             let mut table = m.table(&which, speed).map_err(|f| Fail::on(&file, f))?;
             if degrees {
                 table = table.in_degrees();
+            }
+            if !only.is_empty() {
+                table = table.only(&only);
             }
             for (input, e) in &table.failures {
                 eprintln!(

@@ -163,6 +163,18 @@ pub struct TableData {
 }
 
 impl TableData {
+    /// The table with the first column (the input) and the columns whose names contain one
+    /// of `texts`.
+    #[must_use]
+    pub fn only(mut self, texts: &[String]) -> Self {
+        let mut k = 0;
+        self.columns.retain(|c| {
+            k += 1;
+            k == 1 || texts.iter().any(|t| c.name.contains(t.as_str()))
+        });
+        self
+    }
+
     /// The table with every angle (unit `rad`) in degrees (unit `deg`); rates stay in rad/s.
     #[must_use]
     pub fn in_degrees(mut self) -> Self {

@@ -335,6 +335,24 @@ fn a_linkage_with_two_inputs_is_analysed_at_pairs_of_inputs() {
 }
 
 #[test]
+fn analyse_keeps_only_the_columns_asked_for() {
+    let r = tmm(&[
+        "analyse", "shaper", "--only", "Mb", "R(crank", "--format", "csv",
+    ]);
+    assert_success(&r, "analyse --only");
+    let (header, rows) = parse_csv(&r.stdout, "shaper, some columns");
+    assert_eq!(header[0], "phi_in [rad]");
+    assert!(header.len() > 3, "{header:?}");
+    assert!(
+        header[1..]
+            .iter()
+            .all(|h| h.contains("Mb") || h.contains("R(crank")),
+        "{header:?}"
+    );
+    assert_eq!(rows.len(), 12);
+}
+
+#[test]
 fn draw_every_picture_of_every_bundled_file() {
     let pictures: &[&[&str]] = &[
         &[],
