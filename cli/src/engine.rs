@@ -493,6 +493,12 @@ impl Machine {
     /// The course of the pictures over the cycle.
     fn course(&self, speed: f64) -> Result<Course, Failure> {
         let plan = &self.plan;
+        if speed == 0.0 || !speed.is_finite() {
+            return Err(Failure::new(format!(
+                "a picture over the cycle needs an input that moves, and the speed is {speed}"
+            ))
+            .hint("give --speed, not zero"));
+        }
         if plan.input_is_crank() && matches!(self.range(), Range::FullTurn) {
             // An output without strokes (one that turns fully) still has a turn to draw.
             return Course::new(plan, self.linkage.output.as_ref(), 12, speed)

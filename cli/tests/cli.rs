@@ -724,3 +724,84 @@ fn every_example_in_the_help_runs() {
     assert!(dir.join("watt.svg").exists() && dir.join("shaper.csv").exists());
     std::fs::remove_dir_all(&dir).ok();
 }
+
+/// Mutations of a description that a person could make by mistake: a joint moved onto
+/// another (a zero length), a negative mass, a link or a joint removed, the input renamed,
+/// a coordinate far away, the frame's name changed.
+fn mutations(text: &str) -> Vec<(String, String)> {
+    let base: serde_json::Value = serde_json::from_str(text).unwrap();
+    let mut out = Vec::new();
+    let mut push = |what: String, v: serde_json::Value| out.push((what, v.to_string()));
+    let joints = base["joints"].as_array().unwrap().len();
+    let links = base["links"].as_array().unwrap().len();
+    for j in 1..joints {
+        let mut v = base.clone();
+        v["joints"][j]["at"] = v["joints"][j - 1]["at"].clone();
+        push(format!("joint {j} onto joint {}", j - 1), v);
+        let mut v = base.clone();
+        v["joints"][j]["at"][0] = serde_json::json!(1e9);
+        push(format!("joint {j} far away"), v);
+    }
+    for k in 0..links {
+        let mut v = base.clone();
+        v["links"].as_array_mut().unwrap().remove(k);
+        push(format!("link {k} removed"), v);
+        if base["links"][k].get("mass").is_some() {
+            let mut v = base.clone();
+            v["links"][k]["mass"]["m"] = serde_json::json!(-1.0);
+            push(format!("link {k} of negative mass"), v);
+        }
+    }
+    let mut v = base.clone();
+    v["joints"].as_array_mut().unwrap().remove(joints - 1);
+    push("last joint removed".to_owned(), v);
+    let mut v = base.clone();
+    v["input"]["link"] = serde_json::json!("nothing");
+    push("input renamed".to_owned(), v);
+    let mut v = base.clone();
+    v["frame"] = serde_json::json!("ground");
+    push("frame renamed".to_owned(), v);
+    let mut v = base;
+    v["speed"] = serde_json::json!(0.0);
+    push("speed zero".to_owned(), v);
+    out
+}
+
+#[test]
+fn mistakes_in_a_description_never_panic() {
+    let mut runs = 0;
+    for file in [
+        "four-bar",
+        "shaper",
+        "scotch-yoke",
+        "slotted-rocker",
+        "watt-six-bar",
+    ] {
+        let text = std::fs::read_to_string(root().join(format!("linkages/{file}.json"))).unwrap();
+        for (k, (what, mutated)) in mutations(&text).into_iter().enumerate() {
+            let broken = Broken::new(&format!("{file}-{k}"), &mutated);
+            for args in [
+                &["check"][..],
+                &["analyse", "--format", "csv"],
+                &["draw", "--plan"],
+                &["dynamics", "--positions", "36"],
+            ] {
+                let mut all = vec![args[0], broken.0.to_str().unwrap()];
+                all.extend_from_slice(&args[1..]);
+                let r = tmm(&all);
+                let context = format!("{file} with {what}: tmm {}", all.join(" "));
+                runs += 1;
+                match r.code {
+                    0 => {
+                        for bad in ["NaN", "inf"] {
+                            assert!(!r.stdout.contains(bad), "{context}: {bad} in the output");
+                        }
+                    }
+                    1 => assert_one_line_failure(&r, &broken.path()),
+                    code => panic!("{context}: exit code {code}: {}", r.stderr),
+                }
+            }
+        }
+    }
+    assert!(runs > 200, "{runs} runs");
+}
