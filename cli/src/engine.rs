@@ -94,12 +94,11 @@ impl Machine {
     fn one_input(&self, what: &str) -> Result<(), Failure> {
         if self.plan.input_count() > 1 {
             return Err(Failure::new(format!(
-                "{what} needs a linkage with one input, and this one has {} (mobility {}): \
-                 tmm has no single course for it",
+                "{what} needs a linkage with one input, and this one has {} (mobility {})",
                 self.plan.input_count(),
                 self.plan.mobility()
             ))
-            .hint("`tmm check` shows its structure"));
+            .hint("`tmm check` shows its structure, `tmm analyse --at φ1 φ2 …` its positions"));
         }
         Ok(())
     }
@@ -606,7 +605,7 @@ impl Machine {
         request: &DynamicsRequest,
         progress: &mut dyn FnMut(&str),
     ) -> Result<DynamicsReport, Failure> {
-        self.one_input("the dynamics of the machine reduced to its crank")?;
+        self.one_input("a machine reduced to its crank")?;
         if !self.plan.input_is_crank() {
             return Err(Failure::new(
                 "the dynamics of a machine reduced to its crank need a crank input, and this \
