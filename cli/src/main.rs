@@ -257,7 +257,9 @@ impl Fail {
 
 fn main() -> ExitCode {
     let cli = Cli::parse();
-    match run(cli.command) {
+    let result = run(cli.command);
+    clear_progress();
+    match result {
         Ok(()) => ExitCode::SUCCESS,
         Err(f) => {
             let mut line = String::from("tmm: ");
@@ -321,11 +323,19 @@ fn write_file(path: &Path, text: &str) -> Result<(), Fail> {
     })
 }
 
-/// Progress of a long run, on a terminal only.
+/// Progress of a long run, on a terminal only, on one line that the next overwrites.
 fn progress(what: &str) {
     let err = std::io::stderr();
     if err.is_terminal() {
-        let _ = writeln!(err.lock(), "tmm: {what}…");
+        let _ = write!(err.lock(), "\r\x1b[Ktmm: {what}…");
+    }
+}
+
+/// Clears the progress line, so that an error is the one line on stderr.
+fn clear_progress() {
+    let err = std::io::stderr();
+    if err.is_terminal() {
+        let _ = write!(err.lock(), "\r\x1b[K");
     }
 }
 
@@ -429,9 +439,9 @@ fn run(command: Command) -> Result<(), Fail> {
                 flywheel,
                 positions: positions as usize,
             };
-            let d = m
-                .dynamics(&request, &mut progress)
-                .map_err(|f| Fail::on(&file, f))?;
+            let d = m.dynamics(&request, &mut progress);
+            clear_progress();
+            let d = d.map_err(|f| Fail::on(&file, f))?;
             if let Some(path) = &csv {
                 write_file(path, &report::reduced_csv(&d))?;
             }
