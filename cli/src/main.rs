@@ -49,10 +49,13 @@ enum Command {
     #[command(after_help = "\
 Examples:
   tmm check linkages/four-bar.json
-  tmm check linkages/shaper.json")]
+  tmm check linkages/shaper.json --format json")]
     Check {
         /// The description file (JSON), or the name of a bundled one.
         file: String,
+        /// The format on standard output.
+        #[arg(long, value_enum, default_value_t = Report::Text)]
+        format: Report,
     },
 
     /// The course table: positions, velocities and accelerations of every link and joint,
@@ -160,6 +163,7 @@ Examples:
   tmm dynamics linkages/mechanism-compressor.json --flywheel 0.05 0.02
   tmm dynamics linkages/four-bar.json --run-up --motor 60,2 --rotor 0.05
   tmm dynamics linkages/shaper.json --csv reduced.csv
+  tmm dynamics linkages/watt-six-bar.json --flywheel 0.05 --format json
 
 Without --motor the run-up uses an induction motor chosen from the machine: 4 % slip at the
 speed asked for, and a nominal moment 10 % above the loads' mean (or a tenth of their peak,
@@ -187,6 +191,9 @@ for a machine whose loads average out). The step keeps RK4 well inside its stabi
         #[arg(long, value_name = "N", default_value_t = 360,
               value_parser = clap::value_parser!(u32).range(1..=100_000))]
         positions: u32,
+        /// The format on standard output.
+        #[arg(long, value_enum, default_value_t = Report::Text)]
+        format: Report,
         /// Also write the reduced quantities over the turn as CSV to this file.
         #[arg(long, value_name = "OUT")]
         csv: Option<PathBuf>,
@@ -210,6 +217,14 @@ enum Format {
     /// Comma-separated values, one line per position.
     Csv,
     /// JSON: columns with names, units and values.
+    Json,
+}
+
+#[derive(Clone, Copy, ValueEnum)]
+enum Report {
+    /// Text for a person.
+    Text,
+    /// JSON for a program.
     Json,
 }
 
@@ -341,9 +356,13 @@ fn clear_progress() {
 
 fn run(command: Command) -> Result<(), Fail> {
     match command {
-        Command::Check { file } => {
+        Command::Check { file, format } => {
             let m = load(&file)?;
-            print(&report::structure(&m.structure()));
+            let s = m.structure();
+            print(&match format {
+                Report::Text => report::structure(&s),
+                Report::Json => report::structure_json(&s),
+            });
         }
         Command::Analyse {
             file,
@@ -428,6 +447,7 @@ fn run(command: Command) -> Result<(), Fail> {
             motor,
             rotor,
             positions,
+            format,
             csv,
         } => {
             let m = load(&file)?;
@@ -445,7 +465,10 @@ fn run(command: Command) -> Result<(), Fail> {
             if let Some(path) = &csv {
                 write_file(path, &report::reduced_csv(&d))?;
             }
-            print(&report::dynamics(&d));
+            print(&match format {
+                Report::Text => report::dynamics(&d),
+                Report::Json => report::dynamics_json(&d),
+            });
         }
         Command::Bundled { name } => match name {
             Some(name) => match bundled::find(&name) {

@@ -442,3 +442,155 @@ pub fn reduced_csv(d: &DynamicsReport) -> String {
     }
     o
 }
+
+/// A JSON object from (key, JSON text) pairs.
+fn object(fields: &[(&str, String)]) -> String {
+    let inner: Vec<String> = fields
+        .iter()
+        .map(|(k, v)| format!("{}: {v}", json_string(k)))
+        .collect();
+    format!("{{{}}}", inner.join(", "))
+}
+
+/// A JSON array of JSON texts.
+fn array(items: impl IntoIterator<Item = String>) -> String {
+    format!("[{}]", items.into_iter().collect::<Vec<_>>().join(", "))
+}
+
+/// `tmm check --format json`: the structure, angles in rad, lengths in m.
+pub fn structure_json(s: &Structure) -> String {
+    let inputs = array(s.inputs.iter().map(|i| {
+        object(&[
+            ("link", json_string(&i.link)),
+            (
+                "kind",
+                json_string(match i.kind {
+                    InputKind::Crank => "crank",
+                    InputKind::Slider => "slider",
+                }),
+            ),
+            ("drive", json_string(&i.drive)),
+            ("reference", json_number(i.reference)),
+        ])
+    }));
+    let groups = array(s.groups.iter().map(|g| {
+        object(&[
+            ("kind", json_string(&g.kind)),
+            ("name", json_string(&g.name)),
+            ("links", array(g.links.iter().map(|l| json_string(l)))),
+            ("joints", array(g.joints.iter().map(|j| json_string(j)))),
+        ])
+    }));
+    let range = match &s.range {
+        Range::FullTurn => object(&[("kind", json_string("full turn"))]),
+        Range::Rocking(a, b) => object(&[
+            ("kind", json_string("rocking")),
+            ("from", json_number(*a)),
+            ("to", json_number(*b)),
+        ]),
+        Range::Travel(a, b) => object(&[
+            ("kind", json_string("travel")),
+            ("from", json_number(*a)),
+            ("to", json_number(*b)),
+        ]),
+        Range::Unknown(why) => {
+            object(&[("kind", json_string("unknown")), ("why", json_string(why))])
+        }
+    };
+    let transmission = array(s.transmission.iter().map(|(name, t)| match t {
+        Ok((mu, at)) => object(&[
+            ("group", json_string(name)),
+            ("min", json_number(*mu)),
+            ("at", json_number(*at)),
+        ]),
+        Err(e) => object(&[("group", json_string(name)), ("error", json_string(e))]),
+    }));
+    let strokes = match &s.strokes {
+        None => "null".to_owned(),
+        Some(Ok(st)) => object(&[
+            ("output", json_string(&st.output)),
+            ("start", json_number(st.start)),
+            ("working_angle", json_number(st.working_angle)),
+            ("time_ratio", json_number(st.time_ratio)),
+            ("stroke", json_number(st.stroke)),
+            ("stroke_unit", json_string(st.stroke_unit)),
+        ]),
+        Some(Err(e)) => object(&[("error", json_string(e))]),
+    };
+    let mut o = object(&[
+        ("name", json_string(&s.name)),
+        ("mobility", s.mobility.to_string()),
+        ("inputs", inputs),
+        ("groups", groups),
+        ("range", range),
+        (
+            "grashof",
+            s.grashof.as_deref().map_or("null".to_owned(), json_string),
+        ),
+        ("transmission", transmission),
+        ("strokes", strokes),
+    ]);
+    o.push('\n');
+    o
+}
+
+/// `tmm dynamics --format json`: the reduced quantities as columns, the run-up's turns and
+/// the flywheels, SI units.
+pub fn dynamics_json(d: &DynamicsReport) -> String {
+    let column = |f: &dyn Fn(&crate::model::ReducedRow) -> f64| {
+        array(d.reduced.iter().map(|r| json_number(f(r))))
+    };
+    let reduced = object(&[
+        ("turned", column(&|r| r.turned)),
+        ("J_red", column(&|r| r.inertia)),
+        ("dJ_red_dphi", column(&|r| r.inertia_derivative)),
+        ("M_red", column(&|r| r.loads)),
+    ]);
+    let run_up = d.run_up.as_ref().map_or("null".to_owned(), |r| {
+        object(&[
+            (
+                "motor",
+                object(&[
+                    ("a", json_number(r.motor.0)),
+                    ("b", json_number(r.motor.1)),
+                    ("chosen_by_tmm", r.default_motor.to_string()),
+                ]),
+            ),
+            ("step", json_number(r.step)),
+            ("steps", r.steps.to_string()),
+            ("evaluations", r.evaluations.to_string()),
+            (
+                "turns",
+                array(r.turns.iter().map(|t| {
+                    object(&[
+                        ("t_start", json_number(t.t_start)),
+                        ("period", json_number(t.period)),
+                        ("omega_mean", json_number(t.omega_mean)),
+                        ("omega_max", json_number(t.omega_max)),
+                        ("omega_min", json_number(t.omega_min)),
+                        ("delta", json_number(t.delta)),
+                    ])
+                })),
+            ),
+        ])
+    });
+    let flywheels = array(d.flywheels.iter().map(|f| {
+        object(&[
+            ("delta", json_number(f.delta)),
+            ("moment_of_inertia", json_number(f.inertia)),
+            ("simplified", json_number(f.simplified)),
+            ("energy_range", json_number(f.energy_range)),
+            ("driving_moment", json_number(f.driving_moment)),
+        ])
+    }));
+    let mut o = object(&[
+        ("name", json_string(&d.name)),
+        ("speed", json_number(d.speed)),
+        ("rotor", json_number(d.rotor)),
+        ("reduced", reduced),
+        ("run_up", run_up),
+        ("flywheels", flywheels),
+    ]);
+    o.push('\n');
+    o
+}

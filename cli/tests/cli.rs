@@ -181,6 +181,37 @@ fn check_every_bundled_file() {
 }
 
 #[test]
+fn check_and_dynamics_as_json_read_back() {
+    for file in bundled() {
+        let r = tmm(&["check", &file, "--format", "json"]);
+        assert_success(&r, &format!("check --format json {file}"));
+        let v: serde_json::Value = serde_json::from_str(&r.stdout)
+            .unwrap_or_else(|e| panic!("{file}: JSON reads back: {e}"));
+        assert!(v["mobility"].as_i64().is_some_and(|m| m >= 1), "{file}");
+        assert!(!v["groups"].as_array().unwrap().is_empty(), "{file}");
+    }
+    let r = tmm(&["check", "four-bar", "--format", "json"]);
+    let v: serde_json::Value = serde_json::from_str(&r.stdout).unwrap();
+    assert_eq!(v["range"]["kind"], "full turn");
+    let mu = v["transmission"][0]["min"].as_f64().unwrap().to_degrees();
+    assert!(mu > 54.0 && mu < 56.0, "γ_min of the four-bar, {mu}°");
+    let r = tmm(&[
+        "dynamics",
+        "four-bar",
+        "--run-up",
+        "--flywheel",
+        "0.05",
+        "--format",
+        "json",
+    ]);
+    assert_success(&r, "dynamics --format json");
+    let v: serde_json::Value = serde_json::from_str(&r.stdout).unwrap();
+    assert_eq!(v["reduced"]["J_red"].as_array().unwrap().len(), 360);
+    assert!(v["run_up"]["turns"].as_array().unwrap().len() >= 2);
+    assert!(v["flywheels"][0]["moment_of_inertia"].as_f64().unwrap() > 0.0);
+}
+
+#[test]
 fn check_names_the_range_grashof_and_transmission_angle() {
     let r = tmm(&["check", "linkages/four-bar.json"]);
     assert_success(&r, "check four-bar");
