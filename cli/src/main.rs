@@ -294,6 +294,16 @@ fn main() -> ExitCode {
     }
 }
 
+/// An I/O error in words, without the operating system's error number.
+fn io_text(e: &std::io::Error) -> String {
+    match e.kind() {
+        std::io::ErrorKind::NotFound => "no such file or directory".to_owned(),
+        std::io::ErrorKind::PermissionDenied => "permission denied".to_owned(),
+        std::io::ErrorKind::IsADirectory => "it is a directory".to_owned(),
+        _ => e.to_string(),
+    }
+}
+
 /// The description's text: the file, or a bundled description of that name.
 fn read(file: &str) -> Result<String, Fail> {
     match std::fs::read_to_string(file) {
@@ -302,14 +312,14 @@ fn read(file: &str) -> Result<String, Fail> {
             bundled::find(file).map(str::to_owned).ok_or_else(|| {
                 Fail::on(
                     file,
-                    Failure::new(format!("cannot read the file: {e}"))
+                    Failure::new(format!("cannot read the file: {}", io_text(&e)))
                         .hint("`tmm bundled` lists the descriptions built into tmm"),
                 )
             })
         }
         Err(e) => Err(Fail::on(
             file,
-            Failure::new(format!("cannot read the file: {e}")),
+            Failure::new(format!("cannot read the file: {}", io_text(&e))),
         )),
     }
 }
@@ -334,7 +344,7 @@ fn print(text: &str) {
 fn write_file(path: &Path, text: &str) -> Result<(), Fail> {
     std::fs::write(path, text).map_err(|e| Fail {
         file: Some(path.display().to_string()),
-        failure: Failure::new(format!("cannot write the file: {e}")),
+        failure: Failure::new(format!("cannot write the file: {}", io_text(&e))),
     })
 }
 
