@@ -1,0 +1,783 @@
+//! The one place where the program calls the library: a description file in, the program's
+//! plain data ([`crate::model`]) out. Every entry point of `tmm` the program uses is named
+//! here, so that a change of the library's API is adapted in this file alone.
+
+use std::f64::consts::TAU;
+
+use tmm::draw::{self, Course, Diagram, Style};
+use tmm::dynamics::machines::LinearMotor;
+use tmm::dynamics::Rk4;
+use tmm::kinematics::{grashof, Grashof, Motion, Rotation};
+use tmm::linkage::dynamics::{LinkageSystem, Motor, RunUpOptions};
+use tmm::linkage::{course_inputs, uniform_inputs, Drive, Linkage, Output, Plan, Table};
+
+use crate::model::{
+    Column, DiagramKind, DynamicsReport, DynamicsRequest, Failure, FlywheelRow, GroupInfo,
+    InputInfo, InputKind, PictureKind, Positions, Range, ReducedRow, RunUpReport, StrokeInfo,
+    Structure, TableData, TurnRow,
+};
+
+/// The library's error as a person reads it: its `Display` text.
+fn failure(e: &tmm::Error) -> Failure {
+    Failure::new(e.to_string())
+}
+
+/// An error of the description itself, with where to read the format.
+fn description_failure(e: &tmm::Error) -> Failure {
+    let f = failure(e);
+    match e {
+        tmm::Error::Description { .. } => {
+            f.hint("the file format is described in docs/linkage-format.md")
+        }
+        _ => f,
+    }
+}
+
+/// A planned linkage, ready for every subcommand.
+pub struct Machine {
+    linkage: Linkage,
+    plan: Plan,
+    range: std::cell::OnceCell<Range>,
+}
+
+/// Reads a description from JSON text and makes its plan.
+///
+/// # Errors
+/// The library's message for a malformed description.
+pub fn load(text: &str) -> Result<Machine, Failure> {
+    let linkage = Linkage::from_json(text).map_err(|e| description_failure(&e))?;
+    let plan = Plan::new(&linkage).map_err(|e| description_failure(&e))?;
+    Ok(Machine {
+        linkage,
+        plan,
+        range: std::cell::OnceCell::new(),
+    })
+}
+
+impl Machine {
+    /// The linkage's name.
+    pub fn name(&self) -> &str {
+        self.plan.name()
+    }
+
+    /// The name and a few words on the structure (mobility and groups), cheap to compute.
+    pub fn structure_brief(&self) -> (String, String) {
+        let kinds: Vec<&str> = self.plan.groups().iter().map(|g| g.kind.label()).collect();
+        (
+            self.name().to_owned(),
+            format!(
+                "mobility {}, groups {}",
+                self.plan.mobility(),
+                if kinds.is_empty() {
+                    "none".to_owned()
+                } else {
+                    kinds.join(", ")
+                }
+            ),
+        )
+    }
+
+    /// The input speed of the file (10 rad/s when it gives none).
+    pub fn default_speed(&self) -> f64 {
+        self.linkage.speed.unwrap_or(10.0)
+    }
+
+    fn input_kind(&self) -> InputKind {
+        if self.plan.input_is_crank() {
+            InputKind::Crank
+        } else {
+            InputKind::Slider
+        }
+    }
+
+    /// Fails for a linkage with two inputs, which has no single course.
+    fn one_input(&self, what: &str) -> Result<(), Failure> {
+        if self.plan.input_count() > 1 {
+            return Err(Failure::new(format!(
+                "{what} needs a linkage with one input, and this one has {} (mobility {})",
+                self.plan.input_count(),
+                self.plan.mobility()
+            ))
+            .hint("`tmm check` shows its structure, `tmm analyse --at φ1 φ2 …` its positions"));
+        }
+        Ok(())
+    }
+
+    /// The structure: mobility, groups, the input's range, Grashof's class, transmission
+    /// angles and strokes.
+    pub fn structure(&self) -> Structure {
+        let plan = &self.plan;
+        let links = plan.link_names();
+        let joints = plan.joint_names();
+        let refs = plan.reference_inputs();
+        let mut inputs = vec![InputInfo {
+            link: links[plan.input_link()].clone(),
+            kind: self.input_kind(),
+            drive: drive_text(&self.linkage.input.drive, plan.input_is_crank()),
+            reference: refs[0],
+        }];
+        if let (Some(k), Some(second)) = (plan.second_input_link(), &self.linkage.second_input) {
+            inputs.push(InputInfo {
+                link: links[k].clone(),
+                kind: if second_is_crank(&self.linkage, &second.link) {
+                    InputKind::Crank
+                } else {
+                    InputKind::Slider
+                },
+                drive: drive_text(&second.drive, second_is_crank(&self.linkage, &second.link)),
+                reference: refs.get(1).copied().unwrap_or(0.0),
+            });
+        }
+        let groups = plan
+            .groups()
+            .iter()
+            .map(|g| GroupInfo {
+                kind: g.kind.label().to_owned(),
+                links: g.links.map(|k| links[k].clone()),
+                joints: g.joints.map(|j| joints[j].clone()),
+                name: g.name.clone(),
+            })
+            .collect();
+        let range = self.range();
+        let full = matches!(range, Range::FullTurn);
+        let transmission = plan
+            .groups()
+            .iter()
+            .enumerate()
+            .map(|(g, group)| {
+                let value = if full {
+                    plan.min_transmission_angle(g).map_err(|e| e.to_string())
+                } else {
+                    Err(match &range {
+                        Range::Rocking(..) => "the crank does not turn fully".to_owned(),
+                        Range::Travel(..) => "the input is a slider".to_owned(),
+                        Range::Unknown(why) => why.clone(),
+                        Range::FullTurn => unreachable!("handled above"),
+                    })
+                };
+                (group.name.clone(), value)
+            })
+            .collect();
+        let strokes = self.linkage.output.as_ref().map(|out| {
+            if !full {
+                return Err("strokes need a crank that turns fully".to_owned());
+            }
+            plan.strokes(out, rotation(self.default_speed()))
+                .map(|s| StrokeInfo {
+                    output: output_text(out),
+                    start: s.start,
+                    working_angle: s.working_angle,
+                    time_ratio: s.time_ratio,
+                    stroke: s.stroke,
+                    stroke_unit: if matches!(out, Output::Angle(_)) {
+                        "rad"
+                    } else {
+                        "m"
+                    },
+                })
+                .map_err(|e| e.to_string())
+        });
+        Structure {
+            name: self.name().to_owned(),
+            mobility: plan.mobility(),
+            inputs,
+            groups,
+            range,
+            grashof: self.grashof(),
+            transmission,
+            strokes,
+        }
+    }
+
+    /// Whether the crank turns fully, or between which angles it rocks; the slider's travel.
+    fn range(&self) -> Range {
+        self.range.get_or_init(|| self.find_range()).clone()
+    }
+
+    fn find_range(&self) -> Range {
+        let plan = &self.plan;
+        if plan.input_count() > 1 {
+            return Range::Unknown("two inputs: the range of each depends on the other".to_owned());
+        }
+        if !plan.input_is_crank() {
+            return self.slider_travel();
+        }
+        match plan.lock_positions(plan.reference_input()) {
+            Ok(None) => Range::FullTurn,
+            Ok(Some((a, b))) => Range::Rocking(a.min(b), a.max(b)),
+            Err(e) => Range::Unknown(e.to_string()),
+        }
+    }
+
+    /// The travel of a slider input from its reference pose: the nearest slides, either way,
+    /// where the linkage stops assembling (or meets a dead point), found by stepping out by
+    /// 1/200 of the linkage's size and bisecting; at most 4 sizes either way. (The library
+    /// finds lock positions of cranks only.)
+    fn slider_travel(&self) -> Range {
+        let plan = &self.plan;
+        let solves = |s: f64| plan.kinematics(Motion::fixed(s)).is_ok();
+        let reference = plan.reference_input();
+        if !solves(reference) {
+            return Range::Unknown("the reference pose does not solve".to_owned());
+        }
+        let size = plan.size();
+        let step = size / 200.0;
+        let edge = |sense: f64| {
+            let mut good = reference;
+            for k in 1..=800 {
+                let s = reference + sense * step * f64::from(k);
+                if !solves(s) {
+                    let (mut a, mut b) = (good, s);
+                    for _ in 0..60 {
+                        let m = 0.5 * (a + b);
+                        if solves(m) {
+                            a = m;
+                        } else {
+                            b = m;
+                        }
+                    }
+                    return a;
+                }
+                good = s;
+            }
+            good
+        };
+        Range::Travel(edge(-1.0), edge(1.0))
+    }
+
+    /// Grashof's class of a four-bar: one RRR group hinged to the crank and the frame.
+    fn grashof(&self) -> Option<String> {
+        let plan = &self.plan;
+        let [g] = plan.groups() else { return None };
+        if g.kind.label() != "RRR" || !plan.input_is_crank() || plan.input_count() != 1 {
+            return None;
+        }
+        let input = plan.input_link();
+        let (a, c) = match g.known {
+            [k, 0] if k == input => (g.joints[0], g.joints[2]),
+            [0, k] if k == input => (g.joints[2], g.joints[0]),
+            _ => return None,
+        };
+        let b = g.joints[1];
+        let pivot = (0..plan.joint_names().len()).find(|&j| {
+            plan.joint_links(j)
+                .is_ok_and(|l| l.contains(&input) && l.contains(&0))
+        })?;
+        let pose = plan
+            .kinematics(Motion::fixed(plan.reference_input()))
+            .ok()?;
+        let p = |j: usize| pose.joint_motion(j).ok().map(|m| m.p);
+        let (o, a, b, c) = (p(pivot)?, p(a)?, p(b)?, p(c)?);
+        let class = grashof(
+            (c - o).norm(),
+            (a - o).norm(),
+            (b - a).norm(),
+            (c - b).norm(),
+        )
+        .ok()?;
+        Some(
+            match class {
+                Grashof::CrankRocker => "crank-rocker (s + l < p + q, the crank the shortest)",
+                Grashof::RockerCrank => "rocker-crank (s + l < p + q, the output the shortest)",
+                Grashof::DoubleCrank => "double crank (s + l < p + q, the frame the shortest)",
+                Grashof::DoubleRocker => "double rocker (s + l < p + q, the coupler the shortest)",
+                Grashof::ChangePoint => "change point (s + l = p + q: it folds flat)",
+                Grashof::TripleRocker => "triple rocker (s + l > p + q: no link turns fully)",
+            }
+            .to_owned(),
+        )
+    }
+
+    /// The inputs of the positions asked for.
+    fn inputs(
+        &self,
+        positions: &Positions,
+        speed: f64,
+        notes: &mut Vec<String>,
+    ) -> Result<Vec<Motion>, Failure> {
+        self.one_input("a table of positions")?;
+        let plan = &self.plan;
+        let crank = plan.input_is_crank();
+        let reference = plan.reference_input();
+        let range = self.range();
+        let spread = |n: usize, notes: &mut Vec<String>| -> Vec<Motion> {
+            match range {
+                Range::Rocking(lo, hi) | Range::Travel(lo, hi) => {
+                    notes.push(format!(
+                        "{n} positions equally spaced inside the {}",
+                        if crank {
+                            "lock angles"
+                        } else {
+                            "slider's travel"
+                        }
+                    ));
+                    // Inside the ends, where the groups are at dead points, in the order a
+                    // motion at `speed` meets them.
+                    let h = (hi - lo) / n as f64;
+                    let mut at: Vec<Motion> = (0..n)
+                        .map(|k| Motion::new(lo + h * (k as f64 + 0.5), speed, 0.0))
+                        .collect();
+                    if speed < 0.0 {
+                        at.reverse();
+                    }
+                    at
+                }
+                _ => {
+                    notes.push(format!(
+                        "{n} positions equally spaced over a turn from the reference pose"
+                    ));
+                    uniform_inputs(n, reference, speed, 0.0)
+                }
+            }
+        };
+        match positions {
+            Positions::At(values) => Ok(values
+                .iter()
+                .map(|&v| Motion::new(if crank { v.to_radians() } else { v }, speed, 0.0))
+                .collect()),
+            Positions::Uniform(n) => Ok(spread(*n, notes)),
+            Positions::Course(n) => match (&self.linkage.output, crank, &range) {
+                (Some(out), true, Range::FullTurn) => match plan.strokes(out, rotation(speed)) {
+                    Ok(s) => {
+                        notes.push(format!(
+                            "{n} course positions from the start of the working stroke of the \
+                             {} at φ = {:.1}° (over {:.1}°, time ratio {:.4})",
+                            output_text(out),
+                            s.start.to_degrees(),
+                            s.working_angle.to_degrees(),
+                            s.time_ratio
+                        ));
+                        Ok(course_inputs(&s, *n, speed))
+                    }
+                    Err(e) => {
+                        notes.push(format!("the output has no strokes ({e})"));
+                        Ok(spread(*n, notes))
+                    }
+                },
+                _ => Ok(spread(*n, notes)),
+            },
+        }
+    }
+
+    /// The table of the positions asked for, at the crank speed `speed`.
+    ///
+    /// # Errors
+    /// Two inputs; no position could be analysed (the first position's error).
+    pub fn table(&self, positions: &Positions, speed: f64) -> Result<TableData, Failure> {
+        let mut notes = Vec::new();
+        let inputs: Vec<Vec<Motion>> = if self.plan.input_count() > 1 {
+            self.input_pairs(positions, speed)?
+        } else {
+            self.inputs(positions, speed, &mut notes)?
+                .into_iter()
+                .map(|i| vec![i])
+                .collect()
+        };
+        if inputs.is_empty() {
+            return Err(Failure::new("no positions were asked for"));
+        }
+        let results: Vec<_> = inputs.iter().map(|i| self.plan.analyse_inputs(i)).collect();
+        let mut failures = Vec::new();
+        for (i, r) in inputs.iter().zip(&results) {
+            if let Err(e) = r {
+                failures.push((i[0].value, e.to_string()));
+            }
+        }
+        if failures.len() == results.len() {
+            let (_, first) = failures.swap_remove(0);
+            return Err(Failure::new(format!(
+                "no position could be analysed: {first}"
+            )));
+        }
+        let mut table = Table::of(&results);
+        if self.plan.input_count() > 1 {
+            // The library's row holds the first input's coordinate and balancing moment; the
+            // second input's are added here.
+            let ok: Vec<_> = results.iter().flatten().collect();
+            let second = |f: &dyn Fn(&tmm::linkage::Analysis<'_>) -> f64| -> Vec<f64> {
+                ok.iter().map(|a| f(a)).collect()
+            };
+            let (q, unit, balance) = if self.second_is_crank() {
+                ("phi_in2", "rad", "Mb2 [N·m, + counter-clockwise]")
+            } else {
+                ("s_in2", "m", "Fb2 [N, + along the guide]")
+            };
+            table.columns.insert(
+                1,
+                tmm::linkage::Column {
+                    name: format!("{q} [{unit}]"),
+                    values: second(&|a| a.second_input().map_or(f64::NAN, |m| m.value)),
+                },
+            );
+            // With two inputs the library's virtual-power cell is the drives' power, W
+            // (Mb·ω1 + Mb2·ω2), though its row names it as Mb in N·m: named here for what
+            // it holds.
+            for c in &mut table.columns {
+                if c.name.starts_with("Mb by virtual power") {
+                    c.name = "drive power by virtual power [W]".to_owned();
+                }
+            }
+            table.columns.push(tmm::linkage::Column {
+                name: balance.to_owned(),
+                values: second(&|a| a.second_balance().map_or(f64::NAN, |b| b.value)),
+            });
+        }
+        let columns = table
+            .columns
+            .into_iter()
+            .map(|c| {
+                let (name, unit) = split_unit(&c.name);
+                Column {
+                    name,
+                    unit,
+                    values: c.values,
+                }
+            })
+            .collect();
+        Ok(TableData {
+            name: self.name().to_owned(),
+            columns,
+            failures,
+            input: self.input_kind(),
+            notes,
+            speed,
+        })
+    }
+
+    fn second_is_crank(&self) -> bool {
+        self.linkage
+            .second_input
+            .as_ref()
+            .is_none_or(|s| second_is_crank(&self.linkage, &s.link))
+    }
+
+    /// The positions of a linkage with two inputs: `--at` values taken in pairs.
+    fn input_pairs(&self, positions: &Positions, speed: f64) -> Result<Vec<Vec<Motion>>, Failure> {
+        let Positions::At(values) = positions else {
+            return Err(Failure::new(format!(
+                "a linkage with two inputs (mobility {}) has no single course",
+                self.plan.mobility()
+            ))
+            .hint("give its positions as pairs of input coordinates, --at φ1 φ2 [φ1 φ2 …]"));
+        };
+        if values.len() % 2 != 0 {
+            return Err(Failure::new(format!(
+                "a linkage with two inputs needs --at values in pairs (φ1 φ2), got {}",
+                values.len()
+            )));
+        }
+        let convert = |v: f64, crank: bool| if crank { v.to_radians() } else { v };
+        let (first, second) = (self.plan.input_is_crank(), self.second_is_crank());
+        Ok(values
+            .chunks(2)
+            .map(|p| {
+                vec![
+                    Motion::new(convert(p[0], first), speed, 0.0),
+                    Motion::new(convert(p[1], second), speed, 0.0),
+                ]
+            })
+            .collect())
+    }
+
+    /// The input at `at` (degrees for a crank, m for a slider), or the reference pose.
+    fn input_at(&self, at: Option<f64>, speed: f64) -> Motion {
+        let value = match at {
+            Some(v) if self.plan.input_is_crank() => v.to_radians(),
+            Some(v) => v,
+            None => self.plan.reference_input(),
+        };
+        Motion::new(value, speed, 0.0)
+    }
+
+    /// The course of the pictures over the cycle.
+    fn course(&self, speed: f64) -> Result<Course, Failure> {
+        let plan = &self.plan;
+        if speed == 0.0 || !speed.is_finite() {
+            return Err(Failure::new(format!(
+                "a picture over the cycle needs an input that moves, and the speed is {speed}"
+            ))
+            .hint("give --speed, not zero"));
+        }
+        if plan.input_is_crank() && matches!(self.range(), Range::FullTurn) {
+            // An output without strokes (one that turns fully) still has a turn to draw.
+            return Course::new(plan, self.linkage.output.as_ref(), 12, speed)
+                .or_else(|e| Course::new(plan, None, 12, speed).map_err(|_| e))
+                .map_err(|e| failure(&e));
+        }
+        Ok(Course {
+            inputs: self.inputs(&Positions::Uniform(12), speed, &mut Vec::new())?,
+            extremes: Vec::new(),
+        })
+    }
+
+    /// The output of the diagrams: the described one, or the last link's angle.
+    fn output(&self) -> Output {
+        self.linkage.output.clone().unwrap_or_else(|| {
+            let names = self.plan.link_names();
+            Output::Angle(names[names.len() - 1].clone())
+        })
+    }
+
+    /// A picture as SVG text.
+    ///
+    /// # Errors
+    /// The library's error for the picture.
+    pub fn draw(&self, picture: &PictureKind, speed: f64) -> Result<String, Failure> {
+        let plan = &self.plan;
+        let style = Style::default();
+        let svg = match picture {
+            PictureKind::Scheme(at) => {
+                self.one_input("a picture of the scheme")?;
+                draw::scheme(plan, self.input_at(*at, speed), &style).map(|p| p.svg)
+            }
+            PictureKind::Forces(at) => {
+                self.one_input("a picture of the forces")?;
+                draw::forces(plan, self.input_at(*at, speed), &style).map(|p| p.svg)
+            }
+            PictureKind::Plan => {
+                self.one_input("a plan of positions")?;
+                let course = self.course(speed)?;
+                let paths: Vec<&str> = plan
+                    .joint_names()
+                    .iter()
+                    .enumerate()
+                    .filter(|&(j, _)| plan.joint_links(j).is_ok_and(|l| !l.contains(&0)))
+                    .map(|(_, n)| n.as_str())
+                    .chain(plan.point_names().iter().map(String::as_str))
+                    .collect();
+                draw::plan_view(plan, &course, &paths, &style).map(|p| p.svg)
+            }
+            PictureKind::Animation => {
+                self.one_input("an animation of the cycle")?;
+                let frames = match (plan.input_is_crank(), self.range()) {
+                    (true, Range::FullTurn) => {
+                        let start = self.course(speed)?.inputs[0].value;
+                        uniform_inputs(360, start, speed, 0.0)
+                    }
+                    _ => {
+                        // Rocking (or sliding) there and back.
+                        let mut go =
+                            self.inputs(&Positions::Uniform(90), speed, &mut Vec::new())?;
+                        let back: Vec<Motion> = go.iter().rev().copied().collect();
+                        go.extend(back);
+                        go
+                    }
+                };
+                draw::animation(plan, &frames, 4.0, &style).map(|p| p.svg)
+            }
+            PictureKind::Diagram(kind) => {
+                self.one_input("a diagram over the cycle")?;
+                let course = self.course(speed)?;
+                let tall = Style {
+                    height: 900,
+                    ..Style::default()
+                };
+                let (diagram, style) = match kind {
+                    DiagramKind::Kinematics => (Diagram::Kinematics(self.output()), &tall),
+                    DiagramKind::Transfer => (Diagram::Transfer(self.output()), &tall),
+                    DiagramKind::Balance => (Diagram::Balance, &style),
+                    DiagramKind::Reactions => (Diagram::Reactions, &style),
+                    DiagramKind::Hodograph => {
+                        let input = plan.input_link();
+                        let pin = (0..plan.joint_names().len())
+                            .find(|&j| {
+                                plan.joint_links(j)
+                                    .is_ok_and(|l| l.contains(&input) && !l.contains(&0))
+                            })
+                            .ok_or_else(|| {
+                                Failure::new("the input link has no joint off the frame")
+                            })?;
+                        (Diagram::Hodograph(plan.joint_names()[pin].clone()), &style)
+                    }
+                };
+                draw::diagram(plan, &course, &diagram, style).map(|c| c.svg)
+            }
+        };
+        svg.map_err(|e| failure(&e))
+    }
+
+    /// The machine's dynamics: reduced quantities, run-up and flywheels.
+    ///
+    /// # Errors
+    /// Two inputs or a slider; the library's errors.
+    pub fn dynamics(
+        &self,
+        request: &DynamicsRequest,
+        progress: &mut dyn FnMut(&str),
+    ) -> Result<DynamicsReport, Failure> {
+        self.one_input("a machine reduced to its crank")?;
+        if !self.plan.input_is_crank() {
+            return Err(Failure::new(
+                "the dynamics of a machine reduced to its crank need a crank input, and this \
+                 linkage is driven by a slider",
+            ));
+        }
+        if let Range::Rocking(lo, hi) = self.range() {
+            return Err(Failure::new(format!(
+                "the crank rocks between {:.1}° and {:.1}°, and the dynamics of a machine \
+                 reduced to its crank need a crank that turns fully",
+                lo.to_degrees(),
+                hi.to_degrees()
+            )));
+        }
+        let speed = request.speed;
+        if !(speed.is_finite() && speed != 0.0) {
+            return Err(Failure::new(format!(
+                "the speed must be finite and not zero, got {speed}"
+            ))
+            .hint("give --speed, rad/s, negative for clockwise"));
+        }
+        let f = |e: tmm::Error| failure(&e);
+        let mut bare = LinkageSystem::new(self.plan.clone()).map_err(f)?;
+        if request.rotor != 0.0 {
+            bare = bare.with_inertia(0, request.rotor).map_err(f)?;
+        }
+        progress("reduced moment of inertia and moment over a turn");
+        let reduced = bare.reduced_cycle(request.positions, speed).map_err(f)?;
+        let phi0 = reduced.first().map_or(0.0, |r| r.phi);
+        let rows: Vec<ReducedRow> = reduced
+            .iter()
+            .map(|r| ReducedRow {
+                turned: (r.phi - phi0).abs(),
+                inertia: r.inertia,
+                inertia_derivative: r.inertia_derivative,
+                loads: r.loads,
+            })
+            .collect();
+        let mut flywheels = Vec::new();
+        for &delta in &request.flywheel {
+            progress(&format!("flywheel for δ = {delta}"));
+            let fw = bare.flywheel(delta, speed, 3600).map_err(f)?;
+            flywheels.push(FlywheelRow {
+                delta,
+                inertia: fw.moment_of_inertia,
+                simplified: fw.simplified,
+                energy_range: fw.energy_range,
+                driving_moment: fw.driving_moment,
+            });
+        }
+        let run_up = if request.run_up {
+            let (a, b, default_motor) = match request.motor {
+                Some((a, b)) => (a, b, false),
+                None => {
+                    let mean = rows.iter().map(|r| r.loads).sum::<f64>() / rows.len() as f64;
+                    let peak = rows.iter().map(|r| r.loads.abs()).fold(0.0, f64::max);
+                    // An induction motor of 4 % slip at the speed asked for, whose nominal
+                    // moment covers the loads' mean with 10 % to spare (or a tenth of their
+                    // peak, for a machine whose loads average out).
+                    let nominal = (1.1 * mean.abs()).max(0.1 * peak);
+                    if nominal.is_nan() || nominal <= 0.0 {
+                        return Err(
+                            Failure::new("the machine has no loads to size a motor from")
+                                .hint("give the motor with --motor a,b (M = a − b·|ω|, N·m)"),
+                        );
+                    }
+                    let m = LinearMotor::from_nominal(nominal, speed.abs() / 0.96, speed.abs())
+                        .map_err(f)?;
+                    (m.a, m.b, true)
+                }
+            };
+            let sense = speed.signum();
+            let machine = bare
+                .clone()
+                .with_motor(0, Motor::Linear(LinearMotor { a: sense * a, b }))
+                .map_err(f)?;
+            // 2000 steps a turn, and RK4 well inside its stability limit (hλ ≈ −2.785) for
+            // the motor's damping b/J_red.
+            let j_min = rows.iter().map(|r| r.inertia).fold(f64::INFINITY, f64::min);
+            let h = (TAU / speed.abs() / 2000.0).min(0.5 * j_min / b.abs().max(f64::MIN_POSITIVE));
+            let mut opts = RunUpOptions::new(h);
+            opts.record_every = 1;
+            progress("run-up from rest (RK4)");
+            let r = machine.run_up(&Rk4, &opts).map_err(f)?;
+            Some(RunUpReport {
+                motor: (a, b),
+                default_motor,
+                step: h,
+                turns: r
+                    .turns
+                    .iter()
+                    .map(|t| TurnRow {
+                        t_start: t.t_start,
+                        period: t.period,
+                        omega_mean: t.omega_mean,
+                        omega_max: t.omega_max,
+                        omega_min: t.omega_min,
+                        delta: t.delta,
+                    })
+                    .collect(),
+                steps: r.steps,
+                evaluations: r.evaluations,
+            })
+        } else {
+            None
+        };
+        Ok(DynamicsReport {
+            name: self.name().to_owned(),
+            speed,
+            rotor: request.rotor,
+            reduced: rows,
+            run_up,
+            flywheels,
+        })
+    }
+}
+
+fn rotation(speed: f64) -> Rotation {
+    if speed < 0.0 {
+        Rotation::Cw
+    } else {
+        Rotation::Ccw
+    }
+}
+
+fn drive_text(drive: &Drive, crank: bool) -> String {
+    if !crank {
+        return "by a force along its guide".to_owned();
+    }
+    match drive {
+        Drive::Coupling => "through a coupling (balancing moment)".to_owned(),
+        Drive::Gear {
+            pitch_radius,
+            pressure_angle,
+            ..
+        } => format!(
+            "through a gear pair (pitch radius {pitch_radius} m, pressure angle {:.1}°)",
+            pressure_angle.to_degrees()
+        ),
+    }
+}
+
+/// Whether the second input link is hinged to the frame (a crank) rather than sliding on it.
+fn second_is_crank(linkage: &Linkage, link: &str) -> bool {
+    let frame = linkage.links.iter().find(|l| l.name == linkage.frame);
+    let input = linkage.links.iter().find(|l| l.name == link);
+    let (Some(frame), Some(input)) = (frame, input) else {
+        return true;
+    };
+    input
+        .joints
+        .iter()
+        .filter(|j| frame.joints.contains(j))
+        .filter_map(|j| linkage.joints.iter().find(|x| &x.name == j))
+        .all(|j| matches!(j.kind, tmm::linkage::JointKind::Revolute))
+}
+
+fn output_text(out: &Output) -> String {
+    match out {
+        Output::Angle(n) => format!("angle of {n}"),
+        Output::Slide(n) => format!("slide of {n}"),
+        Output::X(n) => format!("x of {n}"),
+        Output::Y(n) => format!("y of {n}"),
+    }
+}
+
+/// "R12_x [N]" → ("R12_x", "N").
+fn split_unit(name: &str) -> (String, String) {
+    match name.rfind(" [") {
+        Some(k) if name.ends_with(']') => {
+            (name[..k].to_owned(), name[k + 2..name.len() - 1].to_owned())
+        }
+        _ => (name.to_owned(), String::new()),
+    }
+}

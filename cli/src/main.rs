@@ -1,0 +1,520 @@
+//! `tmm`: the theory of machines and mechanisms at the command line. A planar linkage
+//! described as a JSON file (the format: docs/linkage-format.md) is checked, analysed over
+//! its course, drawn as SVG and run as a machine.
+//!
+//! The program is three layers: the arguments and the output (this file and `report.rs`),
+//! the program's own plain data (`model.rs`), and the one adapter to the library
+//! (`engine.rs`), which alone names the library's types.
+
+mod bundled;
+mod engine;
+mod model;
+mod report;
+
+use std::io::{IsTerminal as _, Write as _};
+use std::path::{Path, PathBuf};
+use std::process::ExitCode;
+
+use clap::{ArgGroup, Parser, Subcommand, ValueEnum};
+
+use model::{DiagramKind, DynamicsRequest, Failure, PictureKind, Positions};
+
+const EXAMPLES: &str = "\
+Examples:
+  tmm check linkages/four-bar.json               structure, range, Grashof, transmission angle
+  tmm analyse linkages/shaper.json               the 12 course positions, every unit named
+  tmm analyse shaper --at 0 45 90 --speed 6      a bundled file by its name, at three angles
+  tmm analyse shaper --format csv > shaper.csv   the table for a spreadsheet
+  tmm draw linkages/watt-six-bar.json --animate -o watt.svg
+  tmm dynamics linkages/mechanism-compressor.json --run-up --flywheel 0.05
+  tmm bundled                                    the descriptions built into tmm
+
+A FILE that does not exist is looked up among the bundled descriptions (`tmm bundled`).
+Units are SI (m, kg, s, N, N·m, rad) except where an option says degrees.";
+
+/// The theory of machines and mechanisms at the command line: check, analyse, draw and run a
+/// planar linkage described as a JSON file (format: docs/linkage-format.md).
+#[derive(Parser)]
+#[command(name = "tmm", version, after_help = EXAMPLES)]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Subcommand)]
+enum Command {
+    /// The structure: mobility, Assur groups in attachment order, the crank's range (full turn,
+    /// or rocking between lock angles), Grashof's class of a four-bar, the smallest
+    /// transmission angle of each group, the output's strokes.
+    #[command(after_help = "\
+Examples:
+  tmm check linkages/four-bar.json
+  tmm check linkages/shaper.json --format json")]
+    Check {
+        /// The description file (JSON), or the name of a bundled one.
+        file: String,
+        /// The format on standard output.
+        #[arg(long, value_enum, default_value_t = Report::Text)]
+        format: Report,
+    },
+
+    /// The course table: positions, velocities and accelerations of every link and joint,
+    /// the reaction in every joint and the balancing moment beside its value by virtual power,
+    /// every column with its unit.
+    #[command(
+        group(ArgGroup::new("which").args(["positions", "course", "at"])),
+        after_help = "\
+Examples:
+  tmm analyse linkages/shaper.json                   12 positions from the working stroke
+  tmm analyse linkages/four-bar.json --positions 36  every 10° from the reference pose
+  tmm analyse linkages/four-bar.json --at 0 90 180 --speed -5 --degrees
+  tmm analyse linkages/shaper.json --format json
+  tmm analyse linkages/shaper.json --only Mb omega --degrees
+  tmm analyse linkages/shaper.json --csv shaper.csv
+  tmm analyse linkages/five-bar-robot.json --at 120 60 110 70   two inputs: pairs φ1 φ2
+
+Rows of the text table are quantities, columns positions. A position where the linkage cannot
+be solved (a dead point, a pose that does not assemble) is left out with a warning on stderr.
+A value that is not available (the virtual power at rest) is a dash, an empty CSV cell, or
+null in JSON."
+    )]
+    Analyse {
+        /// The description file (JSON), or the name of a bundled one.
+        file: String,
+        /// N positions equally spaced over the crank's turn (or its rocking range) from the
+        /// reference pose.
+        #[arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(1..=100_000))]
+        positions: Option<u32>,
+        /// The 12 positions of a course project, from the start of the output's working
+        /// stroke (the default).
+        #[arg(long)]
+        course: bool,
+        /// The positions at these input angles, degrees (metres for a slider input); for a
+        /// linkage with two inputs, pairs φ1 φ2.
+        #[arg(long, value_name = "φ", num_args = 1.., allow_negative_numbers = true)]
+        at: Vec<f64>,
+        /// The input speed ω, rad/s (negative: clockwise); the file's `speed` by default.
+        #[arg(long, value_name = "ω", allow_negative_numbers = true)]
+        speed: Option<f64>,
+        /// Also write the table as CSV to this file.
+        #[arg(long, value_name = "OUT")]
+        csv: Option<PathBuf>,
+        /// Only the columns whose names contain one of these texts (and the input's), for
+        /// example `--only Mb omega`.
+        #[arg(long, value_name = "TEXT", num_args = 1..)]
+        only: Vec<String>,
+        /// Angles (φ, transmission angles) in degrees; rates stay in rad/s and rad/s².
+        #[arg(long)]
+        degrees: bool,
+        /// The format on standard output.
+        #[arg(long, value_enum, default_value_t = Format::Table)]
+        format: Format,
+    },
+
+    /// A picture as SVG: the kinematic scheme at a position (the default), the plan in the 12
+    /// course positions with the paths of the joints, an animation of the cycle, the reactions
+    /// as arrows, or a diagram over the cycle.
+    #[command(
+        group(ArgGroup::new("picture").args(["scheme", "plan", "animate", "forces", "diagram"])),
+        after_help = "\
+Examples:
+  tmm draw linkages/shaper.json -o shaper.svg                 the scheme in the reference pose
+  tmm draw linkages/shaper.json --scheme 60 -o shaper-60.svg  the scheme at φ = 60°
+  tmm draw linkages/watt-six-bar.json --plan -o plan.svg
+  tmm draw linkages/watt-six-bar.json --animate -o watt.svg   open it in a browser
+  tmm draw linkages/four-bar.json --forces 30 -o forces.svg
+  tmm draw linkages/shaper.json --diagram kinematics -o ram.svg"
+    )]
+    Draw {
+        /// The description file (JSON), or the name of a bundled one.
+        file: String,
+        /// The kinematic scheme at the input angle φ, degrees (metres for a slider input; the
+        /// reference pose without one).
+        #[arg(long, value_name = "φ", num_args = 0..=1, allow_negative_numbers = true)]
+        scheme: Option<Option<f64>>,
+        /// The plan: the 12 course positions overlaid, the extreme positions bold, the paths of
+        /// the joints and named points.
+        #[arg(long)]
+        plan: bool,
+        /// An animation of the cycle (SMIL; plays in a browser).
+        #[arg(long)]
+        animate: bool,
+        /// The reaction in every joint as an arrow, at the input angle φ, degrees (metres for a
+        /// slider input; the reference pose without one).
+        #[arg(long, value_name = "φ", num_args = 0..=1, allow_negative_numbers = true)]
+        forces: Option<Option<f64>>,
+        /// A diagram over the cycle (balance without a KIND).
+        #[arg(long, visible_alias = "diagrams", value_enum, value_name = "KIND", num_args = 0..=1, default_missing_value = "balance")]
+        diagram: Option<DiagramArg>,
+        /// The input speed ω, rad/s (negative: clockwise); the file's `speed` by default.
+        #[arg(long, value_name = "ω", allow_negative_numbers = true)]
+        speed: Option<f64>,
+        /// The SVG file to write (standard output without one).
+        #[arg(short, long, value_name = "OUT.svg")]
+        output: Option<PathBuf>,
+    },
+
+    /// The linkage as a machine reduced to its crank: the reduced moment of inertia and moment
+    /// over a turn, the run-up from rest under a motor to the steady state, and the flywheel
+    /// for a coefficient of speed fluctuation δ.
+    #[command(after_help = "\
+Examples:
+  tmm dynamics linkages/watt-six-bar.json
+  tmm dynamics linkages/mechanism-compressor.json --flywheel 0.05 0.02
+  tmm dynamics linkages/four-bar.json --run-up --motor 60,2 --rotor 0.05
+  tmm dynamics linkages/shaper.json --csv reduced.csv
+  tmm dynamics linkages/watt-six-bar.json --flywheel 0.05 --format json
+
+Without --motor the run-up uses an induction motor chosen from the machine: 4 % slip at the
+speed asked for, and a nominal moment 10 % above the loads' mean (or a tenth of their peak,
+for a machine whose loads average out). The step keeps RK4 well inside its stability limit.")]
+    Dynamics {
+        /// The description file (JSON), or the name of a bundled one.
+        file: String,
+        /// Run the machine up from rest to its steady state (RK4).
+        #[arg(long)]
+        run_up: bool,
+        /// Design the flywheel for these coefficients of speed fluctuation δ (0 < δ < 2).
+        #[arg(long, value_name = "δ", num_args = 1..)]
+        flywheel: Vec<f64>,
+        /// The crank speed ω, rad/s (negative: clockwise); the file's `speed` by default.
+        #[arg(long, value_name = "ω", allow_negative_numbers = true)]
+        speed: Option<f64>,
+        /// The motor of the run-up, M = a − b·|ω| in the sense of rotation: a in N·m, b in
+        /// N·m·s/rad.
+        #[arg(long, value_name = "a,b", value_parser = parse_pair)]
+        motor: Option<(f64, f64)>,
+        /// A rotor or flywheel on the crank, kg·m².
+        #[arg(long, value_name = "J", default_value_t = 0.0)]
+        rotor: f64,
+        /// Positions over a turn for the reduced quantities.
+        #[arg(long, value_name = "N", default_value_t = 360,
+              value_parser = clap::value_parser!(u32).range(1..=100_000))]
+        positions: u32,
+        /// The format on standard output.
+        #[arg(long, value_enum, default_value_t = Report::Text)]
+        format: Report,
+        /// Also write the reduced quantities over the turn as CSV to this file.
+        #[arg(long, value_name = "OUT")]
+        csv: Option<PathBuf>,
+    },
+
+    /// The descriptions built into tmm; with a NAME, print that description's JSON.
+    #[command(after_help = "\
+Examples:
+  tmm bundled
+  tmm bundled shaper > my-shaper.json")]
+    Bundled {
+        /// A bundled description's name.
+        name: Option<String>,
+    },
+}
+
+#[derive(Clone, Copy, ValueEnum)]
+enum Format {
+    /// Aligned text, one line per quantity.
+    Table,
+    /// Comma-separated values, one line per position.
+    Csv,
+    /// JSON: columns with names, units and values.
+    Json,
+}
+
+#[derive(Clone, Copy, ValueEnum)]
+enum Report {
+    /// Text for a person.
+    Text,
+    /// JSON for a program.
+    Json,
+}
+
+#[derive(Clone, Copy, ValueEnum)]
+enum DiagramArg {
+    /// The output's position, velocity and acceleration.
+    Kinematics,
+    /// The output's transfer functions.
+    Transfer,
+    /// The balancing moment (or force).
+    Balance,
+    /// The magnitude of every joint's reaction.
+    Reactions,
+    /// The hodograph of the crank pin's reaction.
+    Hodograph,
+}
+
+/// "60,2" → (60, 2).
+fn parse_pair(s: &str) -> Result<(f64, f64), String> {
+    let (a, b) = s
+        .split_once(',')
+        .ok_or_else(|| format!("expected two numbers a,b, got \"{s}\""))?;
+    let num = |t: &str| {
+        t.trim()
+            .parse::<f64>()
+            .map_err(|e| format!("\"{t}\" is not a number: {e}"))
+    };
+    Ok((num(a)?, num(b)?))
+}
+
+/// A failure of the program on one file: printed as one line.
+struct Fail {
+    file: Option<String>,
+    failure: Failure,
+}
+
+impl Fail {
+    fn on(file: &str, failure: Failure) -> Self {
+        Self {
+            file: Some(file.to_owned()),
+            failure,
+        }
+    }
+}
+
+fn main() -> ExitCode {
+    let cli = Cli::parse();
+    let result = run(cli.command);
+    clear_progress();
+    match result {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(f) => {
+            let mut line = String::from("tmm: ");
+            if let Some(file) = &f.file {
+                line.push_str(file);
+                line.push_str(": ");
+            }
+            line.push_str(&f.failure.message);
+            if let Some(hint) = &f.failure.hint {
+                line.push_str(" (");
+                line.push_str(hint);
+                line.push(')');
+            }
+            eprintln!("{line}");
+            ExitCode::FAILURE
+        }
+    }
+}
+
+/// An I/O error in words, without the operating system's error number.
+fn io_text(e: &std::io::Error) -> String {
+    match e.kind() {
+        std::io::ErrorKind::NotFound => "no such file or directory".to_owned(),
+        std::io::ErrorKind::PermissionDenied => "permission denied".to_owned(),
+        std::io::ErrorKind::IsADirectory => "it is a directory".to_owned(),
+        _ => e.to_string(),
+    }
+}
+
+/// The description's text: the file, or a bundled description of that name.
+fn read(file: &str) -> Result<String, Fail> {
+    match std::fs::read_to_string(file) {
+        Ok(text) => Ok(text),
+        Err(e) if !Path::new(file).exists() => {
+            bundled::find(file).map(str::to_owned).ok_or_else(|| {
+                Fail::on(
+                    file,
+                    Failure::new(format!("cannot read the file: {}", io_text(&e)))
+                        .hint("`tmm bundled` lists the descriptions built into tmm"),
+                )
+            })
+        }
+        Err(e) => Err(Fail::on(
+            file,
+            Failure::new(format!("cannot read the file: {}", io_text(&e))),
+        )),
+    }
+}
+
+fn load(file: &str) -> Result<engine::Machine, Fail> {
+    let text = read(file)?;
+    engine::load(&text).map_err(|f| Fail::on(file, f))
+}
+
+/// Writes to standard output; a closed pipe (`tmm … | head`) ends the program quietly.
+fn print(text: &str) {
+    let mut out = std::io::stdout().lock();
+    if out
+        .write_all(text.as_bytes())
+        .and_then(|()| out.flush())
+        .is_err()
+    {
+        std::process::exit(0);
+    }
+}
+
+fn write_file(path: &Path, text: &str) -> Result<(), Fail> {
+    std::fs::write(path, text).map_err(|e| Fail {
+        file: Some(path.display().to_string()),
+        failure: Failure::new(format!("cannot write the file: {}", io_text(&e))),
+    })
+}
+
+/// Progress of a long run, on a terminal only, on one line that the next overwrites.
+fn progress(what: &str) {
+    let err = std::io::stderr();
+    if err.is_terminal() {
+        let _ = write!(err.lock(), "\r\x1b[Ktmm: {what}…");
+    }
+}
+
+/// Clears the progress line, so that an error is the one line on stderr.
+fn clear_progress() {
+    let err = std::io::stderr();
+    if err.is_terminal() {
+        let _ = write!(err.lock(), "\r\x1b[K");
+    }
+}
+
+fn run(command: Command) -> Result<(), Fail> {
+    match command {
+        Command::Check { file, format } => {
+            let m = load(&file)?;
+            let s = m.structure();
+            print(&match format {
+                Report::Text => report::structure(&s),
+                Report::Json => report::structure_json(&s),
+            });
+        }
+        Command::Analyse {
+            file,
+            positions,
+            course: _,
+            at,
+            speed,
+            csv,
+            only,
+            degrees,
+            format,
+        } => {
+            let m = load(&file)?;
+            let which = match positions {
+                Some(n) => Positions::Uniform(n as usize),
+                None if !at.is_empty() => Positions::At(at),
+                None => Positions::Course(12),
+            };
+            let speed = speed.unwrap_or_else(|| m.default_speed());
+            let mut table = m.table(&which, speed).map_err(|f| Fail::on(&file, f))?;
+            if degrees {
+                table = table.in_degrees();
+            }
+            if !only.is_empty() {
+                table = table.only(&only);
+            }
+            for (input, e) in &table.failures {
+                eprintln!(
+                    "tmm: warning: {file}: position at {} left out: {e}",
+                    report::input_text(table.input, *input)
+                );
+            }
+            if let Some(path) = &csv {
+                write_file(path, &report::table_csv(&table))?;
+            }
+            print(&match format {
+                Format::Table => report::table_text(&table),
+                Format::Csv => report::table_csv(&table),
+                Format::Json => report::table_json(&table),
+            });
+        }
+        Command::Draw {
+            file,
+            scheme,
+            plan,
+            animate,
+            forces,
+            diagram,
+            speed,
+            output,
+        } => {
+            let m = load(&file)?;
+            let picture = if plan {
+                PictureKind::Plan
+            } else if animate {
+                PictureKind::Animation
+            } else if let Some(at) = forces {
+                PictureKind::Forces(at)
+            } else if let Some(d) = diagram {
+                PictureKind::Diagram(match d {
+                    DiagramArg::Kinematics => DiagramKind::Kinematics,
+                    DiagramArg::Transfer => DiagramKind::Transfer,
+                    DiagramArg::Balance => DiagramKind::Balance,
+                    DiagramArg::Reactions => DiagramKind::Reactions,
+                    DiagramArg::Hodograph => DiagramKind::Hodograph,
+                })
+            } else {
+                PictureKind::Scheme(scheme.flatten())
+            };
+            let speed = speed.unwrap_or_else(|| m.default_speed());
+            let svg = m.draw(&picture, speed).map_err(|f| Fail::on(&file, f))?;
+            match output {
+                Some(path) => write_file(&path, &svg)?,
+                None => print(&svg),
+            }
+        }
+        Command::Dynamics {
+            file,
+            run_up,
+            flywheel,
+            speed,
+            motor,
+            rotor,
+            positions,
+            format,
+            csv,
+        } => {
+            let m = load(&file)?;
+            let request = DynamicsRequest {
+                speed: speed.unwrap_or_else(|| m.default_speed()),
+                run_up,
+                motor,
+                rotor,
+                flywheel,
+                positions: positions as usize,
+            };
+            let d = m.dynamics(&request, &mut progress);
+            clear_progress();
+            let d = d.map_err(|f| Fail::on(&file, f))?;
+            if let Some(path) = &csv {
+                write_file(path, &report::reduced_csv(&d))?;
+            }
+            print(&match format {
+                Report::Text => report::dynamics(&d),
+                Report::Json => report::dynamics_json(&d),
+            });
+        }
+        Command::Bundled { name } => match name {
+            Some(name) => match bundled::find(&name) {
+                Some(text) => print(text),
+                None => {
+                    return Err(Fail {
+                        file: None,
+                        failure: Failure::new(format!(
+                            "no bundled description is called \"{name}\""
+                        ))
+                        .hint("`tmm bundled` lists them"),
+                    });
+                }
+            },
+            None => {
+                let mut o = String::new();
+                for (name, text) in bundled::FILES {
+                    let what = match engine::load(text) {
+                        Ok(m) => summary(&m),
+                        Err(f) => format!("(does not load: {})", f.message),
+                    };
+                    o.push_str(&format!("{name:<28} {what}\n"));
+                }
+                o.push_str(
+                    "\nUse a name in place of FILE (`tmm check shaper`), or save one to edit: \
+                     `tmm bundled shaper > my.json`.\n",
+                );
+                print(&o);
+            }
+        },
+    }
+    Ok(())
+}
+
+/// One line about a planned linkage: its name and groups.
+fn summary(m: &engine::Machine) -> String {
+    let s = m.structure_brief();
+    format!("{} — {}", s.0, s.1)
+}

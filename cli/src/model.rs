@@ -1,0 +1,318 @@
+//! The program's own plain data: what the engine adapter ([`crate::engine`]) hands to the
+//! formatting ([`crate::report`]). Nothing here names a type of the library, so a change of the
+//! library's spelling stays inside `engine.rs`.
+
+/// A failure a person reads: one sentence, with the fix where one is known.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Failure {
+    /// What went wrong (the library's `Display` text, or the program's own sentence).
+    pub message: String,
+    /// How to fix it, when known.
+    pub hint: Option<String>,
+}
+
+impl Failure {
+    /// A failure without a hint.
+    pub fn new(message: impl Into<String>) -> Self {
+        Self {
+            message: one_line(&message.into()),
+            hint: None,
+        }
+    }
+
+    /// The same failure with a hint.
+    #[must_use]
+    pub fn hint(mut self, hint: impl Into<String>) -> Self {
+        self.hint = Some(one_line(&hint.into()));
+        self
+    }
+}
+
+/// A text on one line: line breaks and runs of spaces become one space.
+fn one_line(s: &str) -> String {
+    s.split_whitespace().collect::<Vec<_>>().join(" ")
+}
+
+/// The input of a linkage: a crank (angle) or a slider (length).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum InputKind {
+    /// A crank, coordinate in rad.
+    Crank,
+    /// A slider, coordinate in m.
+    Slider,
+}
+
+/// One input link.
+#[derive(Debug, Clone, PartialEq)]
+pub struct InputInfo {
+    /// The input link's name.
+    pub link: String,
+    /// Crank or slider.
+    pub kind: InputKind,
+    /// How it is driven, in words ("coupling", "gear pair, pitch radius 0.15 m", …).
+    pub drive: String,
+    /// Its coordinate in the reference pose (rad or m).
+    pub reference: f64,
+}
+
+/// One Assur group in attachment order.
+#[derive(Debug, Clone, PartialEq)]
+pub struct GroupInfo {
+    /// "RRR", "RRP", …
+    pub kind: String,
+    /// Its two links.
+    pub links: [String; 2],
+    /// Its joints: outer, inner, outer.
+    pub joints: [String; 3],
+    /// The library's name of the group (used in column names).
+    pub name: String,
+}
+
+/// The range of a crank.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Range {
+    /// The crank turns fully.
+    FullTurn,
+    /// The crank rocks between two lock angles, rad (the smaller first).
+    Rocking(f64, f64),
+    /// A slider input travels between two slides, m (the smaller first).
+    Travel(f64, f64),
+    /// Not determined, and why (two inputs, an error).
+    Unknown(String),
+}
+
+/// The working and idle strokes of the output.
+#[derive(Debug, Clone, PartialEq)]
+pub struct StrokeInfo {
+    /// The output, in words ("angle of rocker", "slide of Q").
+    pub output: String,
+    /// The crank angle where the working stroke begins, rad.
+    pub start: f64,
+    /// The working-stroke angle, rad.
+    pub working_angle: f64,
+    /// The time ratio working/idle.
+    pub time_ratio: f64,
+    /// The stroke (m) or swing (rad) and its unit.
+    pub stroke: f64,
+    /// "m" or "rad".
+    pub stroke_unit: &'static str,
+}
+
+/// The smallest transmission angle of a group and the crank angle where it occurs, rad.
+pub type Extreme = (f64, f64);
+
+/// The structure of a linkage: what `tmm check` reports.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Structure {
+    /// The linkage's name.
+    pub name: String,
+    /// Mobility by Chebyshev's formula.
+    pub mobility: i64,
+    /// The input links (one, or two).
+    pub inputs: Vec<InputInfo>,
+    /// The groups in attachment order.
+    pub groups: Vec<GroupInfo>,
+    /// The range of the (first) crank.
+    pub range: Range,
+    /// Grashof's class, where the linkage is a four-bar.
+    pub grashof: Option<String>,
+    /// The smallest transmission angle of each group and the crank angle there (rad), or why
+    /// it is not available.
+    pub transmission: Vec<(String, Result<Extreme, String>)>,
+    /// The strokes of the described output, or why there are none; `None` without an output.
+    pub strokes: Option<Result<StrokeInfo, String>>,
+}
+
+/// Which positions to tabulate.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Positions {
+    /// The course project's positions: `n` from the start of the working stroke.
+    Course(usize),
+    /// `n` equally spaced positions over the input's range from the reference pose.
+    Uniform(usize),
+    /// The given input coordinates (degrees for a crank, m for a slider).
+    At(Vec<f64>),
+}
+
+/// A column of a table: name, unit and values.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Column {
+    /// Its name without the unit, for example `phi(crank)`.
+    pub name: String,
+    /// Its unit, for example `rad`; empty when the library gave none.
+    pub unit: String,
+    /// One value per row; NaN where not available.
+    pub values: Vec<f64>,
+}
+
+/// The course table: columns of equal length, and the positions that failed.
+#[derive(Debug, Clone, PartialEq)]
+pub struct TableData {
+    /// The linkage's name.
+    pub name: String,
+    /// The columns.
+    pub columns: Vec<Column>,
+    /// The input coordinate of each failed position (rad or m) and why it failed.
+    pub failures: Vec<(f64, String)>,
+    /// Crank or slider (for printing the failed positions' coordinates).
+    pub input: InputKind,
+    /// Which positions were chosen, and why (a fallback taken), for a reader.
+    pub notes: Vec<String>,
+    /// The input speed, rad/s (m/s for a slider).
+    pub speed: f64,
+}
+
+impl TableData {
+    /// The table with the first column (the input) and the columns whose names contain one
+    /// of `texts`.
+    #[must_use]
+    pub fn only(mut self, texts: &[String]) -> Self {
+        let mut k = 0;
+        self.columns.retain(|c| {
+            k += 1;
+            k == 1 || texts.iter().any(|t| c.name.contains(t.as_str()))
+        });
+        self
+    }
+
+    /// The table with every angle (unit `rad`) in degrees (unit `deg`); rates stay in rad/s.
+    #[must_use]
+    pub fn in_degrees(mut self) -> Self {
+        for c in &mut self.columns {
+            if c.unit == "rad" {
+                c.unit = "deg".to_owned();
+                for v in &mut c.values {
+                    *v = v.to_degrees();
+                }
+            }
+        }
+        self
+    }
+}
+
+/// A diagram over the cycle.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum DiagramKind {
+    /// The output's position, velocity, acceleration.
+    Kinematics,
+    /// The output's transfer functions.
+    Transfer,
+    /// The balancing moment or force.
+    Balance,
+    /// Every joint's reaction magnitude.
+    Reactions,
+    /// The hodograph of the crank pin's reaction.
+    Hodograph,
+}
+
+/// Which picture to draw.
+#[derive(Debug, Clone, PartialEq)]
+pub enum PictureKind {
+    /// The kinematic scheme at an input (degrees or m; the reference pose when absent).
+    Scheme(Option<f64>),
+    /// The plan in the course positions with the joints' paths.
+    Plan,
+    /// An animation of the cycle.
+    Animation,
+    /// The reactions as arrows at an input.
+    Forces(Option<f64>),
+    /// A diagram over the cycle.
+    Diagram(DiagramKind),
+}
+
+/// What `tmm dynamics` is asked for.
+#[derive(Debug, Clone, PartialEq)]
+pub struct DynamicsRequest {
+    /// The crank speed, rad/s (its sign the sense of rotation).
+    pub speed: f64,
+    /// Run the machine up from rest under a motor.
+    pub run_up: bool,
+    /// A linear motor M = a − b·|ω| in the sense of rotation, N·m and N·m·s/rad; `None` for
+    /// the default motor.
+    pub motor: Option<(f64, f64)>,
+    /// A rotor or flywheel added to the crank, kg·m².
+    pub rotor: f64,
+    /// The coefficients of speed fluctuation to design flywheels for.
+    pub flywheel: Vec<f64>,
+    /// Positions over a turn for the reduced quantities.
+    pub positions: usize,
+}
+
+/// The machine reduced to its crank at one angle.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ReducedRow {
+    /// The angle turned from the reference pose in the sense of rotation, rad.
+    pub turned: f64,
+    /// J_red, kg·m².
+    pub inertia: f64,
+    /// dJ_red/dφ, kg·m².
+    pub inertia_derivative: f64,
+    /// M_red of the loads, N·m.
+    pub loads: f64,
+}
+
+/// One turn of a run-up.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct TurnRow {
+    /// Its start, s.
+    pub t_start: f64,
+    /// Its duration, s.
+    pub period: f64,
+    /// Mean, max and min speed, rad/s (magnitudes).
+    pub omega_mean: f64,
+    /// Max speed, rad/s.
+    pub omega_max: f64,
+    /// Min speed, rad/s.
+    pub omega_min: f64,
+    /// Coefficient of speed fluctuation.
+    pub delta: f64,
+}
+
+/// The run-up from rest.
+#[derive(Debug, Clone, PartialEq)]
+pub struct RunUpReport {
+    /// The motor: a and b of M = a − b·|ω|.
+    pub motor: (f64, f64),
+    /// Whether the motor was chosen by the program.
+    pub default_motor: bool,
+    /// The step, s.
+    pub step: f64,
+    /// The turns.
+    pub turns: Vec<TurnRow>,
+    /// Steps and right-hand-side evaluations.
+    pub steps: usize,
+    /// Evaluations.
+    pub evaluations: usize,
+}
+
+/// A flywheel for a coefficient of speed fluctuation.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct FlywheelRow {
+    /// δ.
+    pub delta: f64,
+    /// J_F by the energy–mass method, kg·m².
+    pub inertia: f64,
+    /// J_F by the simplified formula, kg·m².
+    pub simplified: f64,
+    /// ΔE, J.
+    pub energy_range: f64,
+    /// The constant driving moment, N·m.
+    pub driving_moment: f64,
+}
+
+/// What `tmm dynamics` reports.
+#[derive(Debug, Clone, PartialEq)]
+pub struct DynamicsReport {
+    /// The linkage's name.
+    pub name: String,
+    /// The speed, rad/s.
+    pub speed: f64,
+    /// The rotor added to the crank, kg·m².
+    pub rotor: f64,
+    /// The reduced quantities over a turn.
+    pub reduced: Vec<ReducedRow>,
+    /// The run-up, when asked for.
+    pub run_up: Option<RunUpReport>,
+    /// The flywheels, when asked for.
+    pub flywheels: Vec<FlywheelRow>,
+}

@@ -1,0 +1,838 @@
+//! The built `tmm` program run on every bundled description for each subcommand, and on
+//! broken files. Outputs are parsed back: CSV cells counted and read as finite numbers, JSON
+//! read back, SVG checked for a well-formed tree of tags without `NaN` or `inf`.
+//!
+//! Known failures, each a clear one-line error with exit code 1 (never a panic):
+//! - `five-bar-robot.json` has two inputs (mobility 2): it has no single course, so `analyse`
+//!   without `--at` pairs, `draw` (every picture: the library's pictures take one input
+//!   motion) and `dynamics` (reduced to one crank) refuse it. `check` works, and so does
+//!   `analyse --at φ1 φ2 …`.
+
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+/// The exit code, standard output and standard error of one run.
+struct Run {
+    code: i32,
+    stdout: String,
+    stderr: String,
+}
+
+fn tmm(args: &[&str]) -> Run {
+    tmm_in(&root(), args)
+}
+
+/// Runs `tmm` in the directory `dir`.
+fn tmm_in(dir: &Path, args: &[&str]) -> Run {
+    let out = Command::new(env!("CARGO_BIN_EXE_tmm"))
+        .args(args)
+        .current_dir(dir)
+        .output()
+        .expect("the tmm binary runs");
+    Run {
+        code: out.status.code().expect("tmm exits (no signal)"),
+        stdout: String::from_utf8(out.stdout).expect("stdout is UTF-8"),
+        stderr: String::from_utf8(out.stderr).expect("stderr is UTF-8"),
+    }
+}
+
+/// The repository's root (the CLI's parent).
+fn root() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .parent()
+        .expect("cli/ has a parent")
+        .to_owned()
+}
+
+/// Every bundled description, as a path relative to the root.
+fn bundled() -> Vec<String> {
+    let mut files: Vec<String> = std::fs::read_dir(root().join("linkages"))
+        .expect("linkages/ exists")
+        .map(|e| e.expect("a directory entry").file_name())
+        .map(|n| n.to_string_lossy().into_owned())
+        .filter(|n| n.ends_with(".json"))
+        .map(|n| format!("linkages/{n}"))
+        .collect();
+    files.sort();
+    assert!(files.len() >= 10, "the bundled descriptions: {files:?}");
+    files
+}
+
+/// Files that cannot run a single course (see the module docs).
+fn two_inputs(file: &str) -> bool {
+    file.ends_with("five-bar-robot.json")
+}
+
+/// A failure as the program must report it: exit code 1, exactly one line on stderr naming
+/// the file, nothing that looks like a panic or a `Debug` dump.
+fn assert_one_line_failure(r: &Run, file: &str) {
+    assert_eq!(r.code, 1, "exit code for {file}; stderr: {}", r.stderr);
+    assert_eq!(
+        r.stderr.lines().count(),
+        1,
+        "one line on stderr for {file}: {:?}",
+        r.stderr
+    );
+    assert!(r.stderr.starts_with("tmm: "), "{}", r.stderr);
+    assert!(r.stderr.contains(file), "names {file}: {}", r.stderr);
+    for debug in ["panicked", "Description {", "Error {", "Some(", "\\n"] {
+        assert!(!r.stderr.contains(debug), "no {debug:?} in {}", r.stderr);
+    }
+}
+
+fn assert_success(r: &Run, what: &str) {
+    assert_eq!(r.code, 0, "{what} exits 0; stderr: {}", r.stderr);
+}
+
+/// Parses CSV text (no quoted cells with commas in the numbers): the header's cells and the
+/// rows of numbers, every cell a finite number; checks each row has the header's count.
+fn parse_csv(text: &str, what: &str) -> (Vec<String>, Vec<Vec<f64>>) {
+    let mut lines = text.lines();
+    let header = split_csv_line(lines.next().expect("a header"));
+    let rows: Vec<Vec<f64>> = lines
+        .map(|line| {
+            let cells = split_csv_line(line);
+            assert_eq!(
+                cells.len(),
+                header.len(),
+                "{what}: a row has as many cells as the header"
+            );
+            cells
+                .iter()
+                .zip(&header)
+                .map(|(c, h)| {
+                    let v: f64 = c
+                        .parse()
+                        .unwrap_or_else(|_| panic!("{what}: cell {c:?} of {h} is a number"));
+                    assert!(v.is_finite(), "{what}: {h} = {v} is finite");
+                    v
+                })
+                .collect()
+        })
+        .collect();
+    (header, rows)
+}
+
+/// One CSV line's cells, honouring quotes.
+fn split_csv_line(line: &str) -> Vec<String> {
+    let mut cells = vec![String::new()];
+    let mut quoted = false;
+    let mut chars = line.chars().peekable();
+    while let Some(c) = chars.next() {
+        match c {
+            '"' if quoted && chars.peek() == Some(&'"') => {
+                chars.next();
+                cells.last_mut().unwrap().push('"');
+            }
+            '"' => quoted = !quoted,
+            ',' if !quoted => cells.push(String::new()),
+            c => cells.last_mut().unwrap().push(c),
+        }
+    }
+    cells
+}
+
+/// An SVG document: starts with `<svg`, ends with `</svg>`, every tag closed in order, no
+/// `NaN` or `inf` anywhere.
+fn assert_svg(svg: &str, what: &str) {
+    assert!(svg.starts_with("<svg"), "{what} starts with <svg");
+    assert!(
+        svg.trim_end().ends_with("</svg>"),
+        "{what} ends with </svg>"
+    );
+    for bad in ["NaN", "inf"] {
+        assert!(!svg.contains(bad), "{what} contains {bad}");
+    }
+    let mut open: Vec<&str> = Vec::new();
+    let mut rest = svg;
+    while let Some(k) = rest.find('<') {
+        let end = rest[k..]
+            .find('>')
+            .unwrap_or_else(|| panic!("{what}: a tag is closed"));
+        let tag = &rest[k + 1..k + end];
+        rest = &rest[k + end + 1..];
+        if tag.starts_with('?') || tag.starts_with('!') || tag.ends_with('/') {
+            continue;
+        }
+        let name = tag
+            .trim_start_matches('/')
+            .split(|c: char| c.is_whitespace())
+            .next()
+            .unwrap_or("");
+        if tag.starts_with('/') {
+            assert_eq!(open.pop(), Some(name), "{what}: </{name}> closes its tag");
+        } else {
+            open.push(name);
+        }
+    }
+    assert!(open.is_empty(), "{what}: tags left open: {open:?}");
+}
+
+#[test]
+fn check_every_bundled_file() {
+    for file in bundled() {
+        let r = tmm(&["check", &file]);
+        assert_success(&r, &format!("check {file}"));
+        assert!(r.stdout.contains("mobility W = "), "{file}: {}", r.stdout);
+        assert!(r.stdout.contains("groups in attachment order"), "{file}");
+        assert!(r.stdout.contains("range: "), "{file}");
+        assert!(!r.stdout.contains("NaN"), "{file}: {}", r.stdout);
+    }
+}
+
+#[test]
+fn check_and_dynamics_as_json_read_back() {
+    for file in bundled() {
+        let r = tmm(&["check", &file, "--format", "json"]);
+        assert_success(&r, &format!("check --format json {file}"));
+        let v: serde_json::Value = serde_json::from_str(&r.stdout)
+            .unwrap_or_else(|e| panic!("{file}: JSON reads back: {e}"));
+        assert!(v["mobility"].as_i64().is_some_and(|m| m >= 1), "{file}");
+        assert!(!v["groups"].as_array().unwrap().is_empty(), "{file}");
+    }
+    let r = tmm(&["check", "four-bar", "--format", "json"]);
+    let v: serde_json::Value = serde_json::from_str(&r.stdout).unwrap();
+    assert_eq!(v["range"]["kind"], "full turn");
+    let mu = v["transmission"][0]["min"].as_f64().unwrap().to_degrees();
+    assert!(mu > 54.0 && mu < 56.0, "γ_min of the four-bar, {mu}°");
+    let r = tmm(&[
+        "dynamics",
+        "four-bar",
+        "--run-up",
+        "--flywheel",
+        "0.05",
+        "--format",
+        "json",
+    ]);
+    assert_success(&r, "dynamics --format json");
+    let v: serde_json::Value = serde_json::from_str(&r.stdout).unwrap();
+    assert_eq!(v["reduced"]["J_red"].as_array().unwrap().len(), 360);
+    assert!(v["run_up"]["turns"].as_array().unwrap().len() >= 2);
+    assert!(v["flywheels"][0]["moment_of_inertia"].as_f64().unwrap() > 0.0);
+}
+
+#[test]
+fn check_names_the_range_grashof_and_transmission_angle() {
+    let r = tmm(&["check", "linkages/four-bar.json"]);
+    assert_success(&r, "check four-bar");
+    assert!(r.stdout.contains("the crank turns fully"), "{}", r.stdout);
+    assert!(r.stdout.contains("Grashof: crank-rocker"), "{}", r.stdout);
+    assert!(r.stdout.contains("γ_min = "), "{}", r.stdout);
+    assert!(r.stdout.contains("time ratio"), "{}", r.stdout);
+}
+
+#[test]
+fn analyse_every_bundled_file_as_csv() {
+    for file in bundled() {
+        let r = tmm(&["analyse", &file, "--format", "csv"]);
+        if two_inputs(&file) {
+            assert_one_line_failure(&r, &file);
+            assert!(r.stderr.contains("two inputs"), "{}", r.stderr);
+            assert!(r.stderr.contains("--at φ1 φ2"), "the fix: {}", r.stderr);
+            continue;
+        }
+        assert_success(&r, &format!("analyse {file}"));
+        let (header, rows) = parse_csv(&r.stdout, &file);
+        assert_eq!(rows.len(), 12, "{file}: the 12 course positions");
+        assert!(
+            header.iter().all(|h| h.ends_with(']') && h.contains(" [")),
+            "{file}: every column has its unit: {header:?}"
+        );
+        assert!(
+            header.iter().any(|h| h.starts_with("Mb ")),
+            "{file}: {header:?}"
+        );
+    }
+}
+
+#[test]
+fn analyse_every_bundled_file_as_json_and_table() {
+    for file in bundled().into_iter().filter(|f| !two_inputs(f)) {
+        let r = tmm(&["analyse", &file, "--positions", "8", "--format", "json"]);
+        assert_success(&r, &format!("analyse --format json {file}"));
+        let v: serde_json::Value = serde_json::from_str(&r.stdout)
+            .unwrap_or_else(|e| panic!("{file}: JSON reads back: {e}"));
+        assert_eq!(v["rows"], 8, "{file}");
+        assert_eq!(v["failed"].as_array().map(Vec::len), Some(0), "{file}");
+        let columns = v["columns"].as_array().expect("columns");
+        assert!(columns.len() > 10, "{file}");
+        for c in columns {
+            assert!(
+                !c["unit"].as_str().expect("a unit").is_empty(),
+                "{file}: {c}"
+            );
+            let values = c["values"].as_array().expect("values");
+            assert_eq!(values.len(), 8, "{file}: {}", c["name"]);
+            assert!(
+                values
+                    .iter()
+                    .all(|v| v.as_f64().is_some_and(f64::is_finite)),
+                "{file}: {c}"
+            );
+        }
+        let t = tmm(&["analyse", &file, "--at", "10", "-20", "370"]);
+        assert_success(&t, &format!("analyse --at {file}"));
+        // A title line, the positions' line, then one line per column.
+        assert_eq!(t.stdout.lines().count(), columns.len() + 2, "{file}");
+        assert!(!t.stdout.contains("NaN"), "{file}");
+        assert!(
+            !t.stdout.lines().skip(2).any(|l| l.contains(" —")),
+            "{file}: every value available: {}",
+            t.stdout
+        );
+    }
+}
+
+#[test]
+fn analyse_writes_the_csv_file_it_prints() {
+    let out = std::env::temp_dir().join(format!("tmm-cli-test-{}.csv", std::process::id()));
+    let out_s = out.to_string_lossy().into_owned();
+    let r = tmm(&[
+        "analyse", "shaper", "--speed", "-6", "--format", "csv", "--csv", &out_s,
+    ]);
+    assert_success(&r, "analyse --csv");
+    let written = std::fs::read_to_string(&out).expect("the CSV file is written");
+    std::fs::remove_file(&out).ok();
+    assert_eq!(written, r.stdout);
+    let (header, rows) = parse_csv(&written, "shaper at -6 rad/s");
+    let speed = header
+        .iter()
+        .position(|h| h == "phi_in' [rad/s]")
+        .expect("ω column");
+    assert!(rows.iter().all(|row| row[speed] == -6.0));
+}
+
+#[test]
+fn analyse_gives_angles_in_degrees_when_asked() {
+    let r = tmm(&[
+        "analyse",
+        "four-bar",
+        "--at",
+        "30",
+        "-45",
+        "--degrees",
+        "--format",
+        "csv",
+    ]);
+    assert_success(&r, "analyse --degrees");
+    let (header, rows) = parse_csv(&r.stdout, "four-bar in degrees");
+    let phi = header
+        .iter()
+        .position(|h| h == "phi_in [deg]")
+        .expect("φ in deg");
+    assert!((rows[0][phi] - 30.0).abs() < 1e-12 && (rows[1][phi] + 45.0).abs() < 1e-12);
+    assert!(header.iter().all(|h| !h.ends_with("[rad]")), "{header:?}");
+    assert!(
+        header.iter().any(|h| h.ends_with("[rad/s]")),
+        "rates stay in rad/s"
+    );
+}
+
+#[test]
+fn a_linkage_with_two_inputs_is_analysed_at_pairs_of_inputs() {
+    let r = tmm(&[
+        "analyse",
+        "five-bar-robot",
+        "--at",
+        "120",
+        "60",
+        "110",
+        "70",
+        "--format",
+        "csv",
+    ]);
+    assert_success(&r, "analyse five-bar --at pairs");
+    let (header, rows) = parse_csv(&r.stdout, "five-bar at pairs");
+    assert_eq!(rows.len(), 2);
+    let col = |name: &str| header.iter().position(|h| h == name).expect(name);
+    let (q1, q2) = (col("phi_in [rad]"), col("phi_in2 [rad]"));
+    assert!((rows[1][q1].to_degrees() - 110.0).abs() < 1e-9);
+    assert!((rows[1][q2].to_degrees() - 70.0).abs() < 1e-9);
+    // Both inputs turn at the file's 10 rad/s: the drives' power is (Mb + Mb2)·ω.
+    let (mb, mb2) = (
+        col("Mb [N·m, + counter-clockwise]"),
+        col("Mb2 [N·m, + counter-clockwise]"),
+    );
+    let power = col("drive power by virtual power [W]");
+    for row in &rows {
+        let chain = (row[mb] + row[mb2]) * 10.0;
+        assert!(
+            (chain - row[power]).abs() < 1e-9 * row[power].abs().max(1.0),
+            "{row:?}"
+        );
+    }
+    let odd = tmm(&["analyse", "five-bar-robot", "--at", "120", "60", "110"]);
+    assert_one_line_failure(&odd, "five-bar-robot");
+}
+
+#[test]
+fn analyse_keeps_only_the_columns_asked_for() {
+    let r = tmm(&[
+        "analyse", "shaper", "--only", "Mb", "R(crank", "--format", "csv",
+    ]);
+    assert_success(&r, "analyse --only");
+    let (header, rows) = parse_csv(&r.stdout, "shaper, some columns");
+    assert_eq!(header[0], "phi_in [rad]");
+    assert!(header.len() > 3, "{header:?}");
+    assert!(
+        header[1..]
+            .iter()
+            .all(|h| h.contains("Mb") || h.contains("R(crank")),
+        "{header:?}"
+    );
+    assert_eq!(rows.len(), 12);
+}
+
+#[test]
+fn draw_every_picture_of_every_bundled_file() {
+    let pictures: &[&[&str]] = &[
+        &[],
+        &["--scheme", "30"],
+        &["--plan"],
+        &["--animate"],
+        &["--forces", "45"],
+        &["--diagrams"],
+        &["--diagram", "kinematics"],
+        &["--diagram", "transfer"],
+        &["--diagram", "reactions"],
+        &["--diagram", "hodograph"],
+    ];
+    for file in bundled() {
+        for picture in pictures {
+            let mut args = vec!["draw", file.as_str()];
+            args.extend_from_slice(picture);
+            let what = args.join(" ");
+            let r = tmm(&args);
+            if two_inputs(&file) {
+                assert_one_line_failure(&r, &file);
+                continue;
+            }
+            assert_success(&r, &what);
+            assert_svg(&r.stdout, &what);
+        }
+    }
+}
+
+#[test]
+fn draw_writes_the_file_named_by_o() {
+    let out = std::env::temp_dir().join(format!("tmm-cli-test-{}.svg", std::process::id()));
+    let out_s = out.to_string_lossy().into_owned();
+    let r = tmm(&["draw", "linkages/watt-six-bar.json", "--plan", "-o", &out_s]);
+    assert_success(&r, "draw -o");
+    assert!(r.stdout.is_empty());
+    let svg = std::fs::read_to_string(&out).expect("the SVG file is written");
+    std::fs::remove_file(&out).ok();
+    assert_svg(&svg, "watt plan");
+}
+
+#[test]
+fn dynamics_of_every_bundled_file() {
+    for file in bundled() {
+        let r = tmm(&["dynamics", &file, "--flywheel", "0.05", "--positions", "72"]);
+        if two_inputs(&file) {
+            assert_one_line_failure(&r, &file);
+            continue;
+        }
+        assert_success(&r, &format!("dynamics {file}"));
+        assert!(r.stdout.contains("J_red"), "{file}");
+        assert!(r.stdout.contains("J_F, kg·m²"), "{file}");
+        for bad in ["NaN", "inf", " — \n", "  —"] {
+            assert!(!r.stdout.contains(bad), "{file}: {bad} in {}", r.stdout);
+        }
+    }
+}
+
+#[test]
+fn dynamics_runs_a_machine_up_to_its_steady_state() {
+    for file in ["linkages/four-bar.json", "linkages/watt-six-bar.json"] {
+        let r = tmm(&["dynamics", file, "--run-up", "--positions", "72"]);
+        assert_success(&r, &format!("dynamics --run-up {file}"));
+        assert!(r.stdout.contains("steady after"), "{file}: {}", r.stdout);
+        assert!(!r.stdout.contains("NaN"), "{file}");
+    }
+    let r = tmm(&[
+        "dynamics", "four-bar", "--run-up", "--motor", "300,25", "--rotor", "0.05",
+    ]);
+    assert_success(&r, "dynamics --motor");
+    assert!(
+        r.stdout.contains("M = 300.0000 − 25.0000·|ω|"),
+        "{}",
+        r.stdout
+    );
+}
+
+#[test]
+fn dynamics_writes_the_reduced_quantities_as_csv() {
+    let out = std::env::temp_dir().join(format!("tmm-cli-test-{}-reduced.csv", std::process::id()));
+    let out_s = out.to_string_lossy().into_owned();
+    let r = tmm(&[
+        "dynamics",
+        "watt-six-bar",
+        "--positions",
+        "36",
+        "--csv",
+        &out_s,
+    ]);
+    assert_success(&r, "dynamics --csv");
+    let text = std::fs::read_to_string(&out).expect("the CSV file is written");
+    std::fs::remove_file(&out).ok();
+    let (header, rows) = parse_csv(&text, "reduced");
+    assert_eq!(header.len(), 4);
+    assert_eq!(rows.len(), 36);
+    assert!(rows.iter().all(|r| r[1] > 0.0), "J_red > 0");
+}
+
+#[test]
+fn bundled_lists_every_file_in_linkages() {
+    let r = tmm(&["bundled"]);
+    assert_success(&r, "bundled");
+    for file in bundled() {
+        let stem = file
+            .trim_start_matches("linkages/")
+            .trim_end_matches(".json");
+        assert!(
+            r.stdout.lines().any(|l| l.starts_with(&format!("{stem} "))),
+            "{stem} is built into the program (cli/src/bundled.rs): {}",
+            r.stdout
+        );
+        let text = tmm(&["bundled", stem]);
+        assert_success(&text, stem);
+        let on_disk = std::fs::read_to_string(root().join(&file)).expect("readable");
+        assert_eq!(text.stdout, on_disk, "{stem} is the file in linkages/");
+    }
+    assert!(!r.stdout.contains("does not load"), "{}", r.stdout);
+}
+
+/// A broken description in a temporary file.
+struct Broken(PathBuf);
+
+impl Broken {
+    fn new(name: &str, text: &str) -> Self {
+        let path =
+            std::env::temp_dir().join(format!("tmm-cli-test-{}-{name}.json", std::process::id()));
+        std::fs::write(&path, text).expect("a temporary file");
+        Self(path)
+    }
+
+    fn path(&self) -> String {
+        self.0.to_string_lossy().into_owned()
+    }
+}
+
+impl Drop for Broken {
+    fn drop(&mut self) {
+        std::fs::remove_file(&self.0).ok();
+    }
+}
+
+const SUBCOMMANDS: [&str; 4] = ["check", "analyse", "draw", "dynamics"];
+
+/// The bundled four-bar with a crank too long to turn: it rocks between two lock angles
+/// (s + l > p + q, a triple rocker).
+fn rocking_four_bar() -> Broken {
+    let four_bar = std::fs::read_to_string(root().join("linkages/four-bar.json")).unwrap();
+    let text = four_bar
+        .replace("\"at\": [0.1, 0.0]", "\"at\": [0.0, 0.3]")
+        .replace(
+            "\"at\": [0.25612516773077276, 0.3132489936153635]",
+            "\"at\": [0.3, 0.35]",
+        );
+    assert_ne!(text, four_bar, "the test's edit applies");
+    Broken::new("rocking", &text)
+}
+
+#[test]
+fn a_rocking_crank_is_tabulated_and_drawn_inside_its_lock_angles() {
+    let file = rocking_four_bar();
+    let r = tmm(&["check", &file.path()]);
+    assert_success(&r, "check rocking");
+    assert!(
+        r.stdout.contains("the crank rocks between the lock angles"),
+        "{}",
+        r.stdout
+    );
+    assert!(r.stdout.contains("Grashof: triple rocker"), "{}", r.stdout);
+    let r = tmm(&["analyse", &file.path(), "--format", "csv"]);
+    assert_success(&r, "analyse rocking");
+    let (_, rows) = parse_csv(&r.stdout, "rocking four-bar");
+    assert_eq!(rows.len(), 12);
+    for picture in [
+        &[][..],
+        &["--plan"],
+        &["--animate"],
+        &["--diagram", "kinematics"],
+    ] {
+        let mut args = vec!["draw", file.0.to_str().unwrap()];
+        args.extend_from_slice(picture);
+        let r = tmm(&args);
+        assert_success(&r, &args.join(" "));
+        assert_svg(&r.stdout, &args.join(" "));
+    }
+    // A machine reduced to its crank needs a turn: one sentence says so.
+    let r = tmm(&["dynamics", &file.path()]);
+    assert_one_line_failure(&r, &file.path());
+    assert!(r.stderr.contains("turns fully"), "{}", r.stderr);
+}
+
+/// A slider-crank driven by its piston (a slider input), the crank loaded by a couple.
+const PISTON_DRIVEN: &str = r#"{
+  "name": "piston-driven slider-crank",
+  "joints": [
+    {"name": "O1", "at": [0.0, 0.0]},
+    {"name": "A", "at": [0.03, 0.04]},
+    {"name": "B", "at": [0.22, 0.0]},
+    {"name": "P", "at": [0.22, 0.0], "kind": {"prismatic": {"guide": "frame", "direction": [1.0, 0.0]}}}
+  ],
+  "links": [
+    {"name": "frame", "joints": ["O1", "P"]},
+    {"name": "piston", "joints": ["B", "P"], "mass": {"m": 0.8, "j": 0.0, "centre": "B"}},
+    {"name": "rod", "joints": ["A", "B"], "mass": {"m": 1.2, "j": 0.004, "centre": [0.125, 0.02]}},
+    {"name": "crank", "joints": ["O1", "A"], "mass": {"m": 2.5, "j": 0.004, "centre": [0.0, 0.0]}}
+  ],
+  "input": {"link": "piston"},
+  "loads": [{"moment": {"link": "crank", "moment": -5.0}}],
+  "speed": 0.5
+}"#;
+
+#[test]
+fn a_slider_input_travels_between_its_dead_points() {
+    let file = Broken::new("slider", PISTON_DRIVEN);
+    let r = tmm(&["check", &file.path()]);
+    assert_success(&r, "check slider");
+    // The crank's radius is 0.05 m: the piston's stroke is 0.1 m.
+    assert!(r.stdout.contains("(a stroke of 0.1000 m)"), "{}", r.stdout);
+    let r = tmm(&[
+        "analyse",
+        &file.path(),
+        "--speed",
+        "-0.5",
+        "--format",
+        "csv",
+    ]);
+    assert_success(&r, "analyse slider");
+    assert!(r.stderr.is_empty(), "no position left out: {}", r.stderr);
+    let (header, rows) = parse_csv(&r.stdout, "piston-driven");
+    assert_eq!(rows.len(), 12);
+    assert_eq!(header[0], "s_in [m]");
+    assert!(
+        rows.windows(2).all(|w| w[1][0] < w[0][0]),
+        "a negative speed slides back"
+    );
+    assert!(header.iter().any(|h| h.starts_with("Fb ")), "{header:?}");
+    for picture in [
+        &[][..],
+        &["--plan"],
+        &["--animate"],
+        &["--forces"],
+        &["--diagram", "transfer"],
+    ] {
+        let mut args = vec!["draw", file.0.to_str().unwrap()];
+        args.extend_from_slice(picture);
+        let r = tmm(&args);
+        assert_success(&r, &args.join(" "));
+        assert_svg(&r.stdout, &args.join(" "));
+    }
+    let r = tmm(&["dynamics", &file.path()]);
+    assert_one_line_failure(&r, &file.path());
+    assert!(r.stderr.contains("slider"), "{}", r.stderr);
+}
+
+#[test]
+fn a_missing_file_is_one_line_and_exit_1() {
+    for sub in SUBCOMMANDS {
+        let r = tmm(&[sub, "no/such/linkage.json"]);
+        assert_one_line_failure(&r, "no/such/linkage.json");
+        assert!(r.stderr.contains("cannot read"), "{}", r.stderr);
+        assert!(r.stderr.contains("tmm bundled"), "the fix: {}", r.stderr);
+    }
+}
+
+#[test]
+fn malformed_json_is_one_line_naming_line_and_column() {
+    let four_bar = std::fs::read_to_string(root().join("linkages/four-bar.json")).unwrap();
+    let cut = Broken::new("cut", &four_bar[..four_bar.len() / 2]);
+    for sub in SUBCOMMANDS {
+        let r = tmm(&[sub, &cut.path()]);
+        assert_one_line_failure(&r, &cut.path());
+        assert!(r.stderr.contains("line"), "{}", r.stderr);
+        assert!(r.stderr.contains("column"), "{}", r.stderr);
+        assert!(
+            r.stderr.contains("docs/linkage-format.md"),
+            "the fix: {}",
+            r.stderr
+        );
+    }
+}
+
+#[test]
+fn a_misspelt_field_is_named() {
+    let four_bar = std::fs::read_to_string(root().join("linkages/four-bar.json")).unwrap();
+    let file = Broken::new(
+        "field",
+        &four_bar.replace("\"input\": {\"link\"", "\"input\": {\"lnk\""),
+    );
+    let r = tmm(&["check", &file.path()]);
+    assert_one_line_failure(&r, &file.path());
+    assert!(r.stderr.contains("lnk"), "names the field: {}", r.stderr);
+}
+
+#[test]
+fn a_joint_that_does_not_exist_is_named() {
+    let four_bar = std::fs::read_to_string(root().join("linkages/four-bar.json")).unwrap();
+    let text = four_bar.replace(
+        "{\"name\": \"coupler\", \"joints\": [\"A\", \"B\"]",
+        "{\"name\": \"coupler\", \"joints\": [\"A\", \"Bx\"]",
+    );
+    assert_ne!(text, four_bar, "the test's edit applies");
+    let file = Broken::new("joint", &text);
+    for sub in SUBCOMMANDS {
+        let r = tmm(&[sub, &file.path()]);
+        assert_one_line_failure(&r, &file.path());
+        assert!(r.stderr.contains("Bx"), "names the joint: {}", r.stderr);
+    }
+}
+
+#[test]
+fn usage_errors_exit_2() {
+    for args in [
+        &["analyse"][..],
+        &["analyse", "shaper", "--format", "xml"],
+        &["analyse", "shaper", "--positions", "3", "--at", "10"],
+        &["analyse", "shaper", "--positions", "0"],
+        &["dynamics", "shaper", "--motor", "60"],
+        &["draw", "shaper", "--plan", "--animate"],
+        &["frobnicate"],
+    ] {
+        let r = tmm(args);
+        assert_eq!(r.code, 2, "{args:?}: {}", r.stderr);
+        assert!(!r.stderr.is_empty());
+    }
+}
+
+#[test]
+fn help_has_examples() {
+    let r = tmm(&["--help"]);
+    assert_success(&r, "--help");
+    assert!(r.stdout.contains("Examples:"), "{}", r.stdout);
+    for sub in SUBCOMMANDS.iter().chain(&["bundled"]) {
+        let r = tmm(&[sub, "--help"]);
+        assert_success(&r, sub);
+        assert!(r.stdout.contains("Examples:"), "{sub}: {}", r.stdout);
+        assert!(
+            r.stdout.contains(&format!("tmm {sub}")),
+            "{sub}: {}",
+            r.stdout
+        );
+    }
+}
+
+#[test]
+fn every_example_in_the_help_runs() {
+    // In a directory of its own, where `linkages/…` does not exist: the bundled descriptions
+    // stand in, and the pictures and tables written land there.
+    let dir = std::env::temp_dir().join(format!("tmm-cli-test-{}-examples", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let mut examples = Vec::new();
+    for sub in ["", "check", "analyse", "draw", "dynamics", "bundled"] {
+        let args: Vec<&str> = [sub, "--help"]
+            .into_iter()
+            .filter(|a| !a.is_empty())
+            .collect();
+        let help = tmm(&args).stdout;
+        for line in help.lines().filter_map(|l| l.strip_prefix("  tmm ")) {
+            // The command ends at a run of spaces (its comment) or a redirection.
+            let command = line.split("  ").next().unwrap();
+            let command = command.split(" > ").next().unwrap();
+            examples.push(command.to_owned());
+        }
+    }
+    assert!(examples.len() >= 20, "{examples:?}");
+    for example in &examples {
+        let args: Vec<&str> = example.split_whitespace().collect();
+        let r = tmm_in(&dir, &args);
+        assert_eq!(r.code, 0, "tmm {example}: {}", r.stderr);
+    }
+    assert!(dir.join("watt.svg").exists() && dir.join("shaper.csv").exists());
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+/// Mutations of a description that a person could make by mistake: a joint moved onto
+/// another (a zero length), a negative mass, a link or a joint removed, the input renamed,
+/// a coordinate far away, the frame's name changed.
+fn mutations(text: &str) -> Vec<(String, String)> {
+    let base: serde_json::Value = serde_json::from_str(text).unwrap();
+    let mut out = Vec::new();
+    let mut push = |what: String, v: serde_json::Value| out.push((what, v.to_string()));
+    let joints = base["joints"].as_array().unwrap().len();
+    let links = base["links"].as_array().unwrap().len();
+    for j in 1..joints {
+        let mut v = base.clone();
+        v["joints"][j]["at"] = v["joints"][j - 1]["at"].clone();
+        push(format!("joint {j} onto joint {}", j - 1), v);
+        let mut v = base.clone();
+        v["joints"][j]["at"][0] = serde_json::json!(1e9);
+        push(format!("joint {j} far away"), v);
+    }
+    for k in 0..links {
+        let mut v = base.clone();
+        v["links"].as_array_mut().unwrap().remove(k);
+        push(format!("link {k} removed"), v);
+        if base["links"][k].get("mass").is_some() {
+            let mut v = base.clone();
+            v["links"][k]["mass"]["m"] = serde_json::json!(-1.0);
+            push(format!("link {k} of negative mass"), v);
+        }
+    }
+    let mut v = base.clone();
+    v["joints"].as_array_mut().unwrap().remove(joints - 1);
+    push("last joint removed".to_owned(), v);
+    let mut v = base.clone();
+    v["input"]["link"] = serde_json::json!("nothing");
+    push("input renamed".to_owned(), v);
+    let mut v = base.clone();
+    v["frame"] = serde_json::json!("ground");
+    push("frame renamed".to_owned(), v);
+    let mut v = base;
+    v["speed"] = serde_json::json!(0.0);
+    push("speed zero".to_owned(), v);
+    out
+}
+
+#[test]
+fn mistakes_in_a_description_never_panic() {
+    let mut runs = 0;
+    for file in [
+        "four-bar",
+        "shaper",
+        "scotch-yoke",
+        "slotted-rocker",
+        "watt-six-bar",
+    ] {
+        let text = std::fs::read_to_string(root().join(format!("linkages/{file}.json"))).unwrap();
+        for (k, (what, mutated)) in mutations(&text).into_iter().enumerate() {
+            let broken = Broken::new(&format!("{file}-{k}"), &mutated);
+            for args in [
+                &["check"][..],
+                &["analyse", "--format", "csv"],
+                &["draw", "--plan"],
+                &["dynamics", "--positions", "36"],
+            ] {
+                let mut all = vec![args[0], broken.0.to_str().unwrap()];
+                all.extend_from_slice(&args[1..]);
+                let r = tmm(&all);
+                let context = format!("{file} with {what}: tmm {}", all.join(" "));
+                runs += 1;
+                match r.code {
+                    0 => {
+                        for bad in ["NaN", "inf"] {
+                            assert!(!r.stdout.contains(bad), "{context}: {bad} in the output");
+                        }
+                    }
+                    1 => assert_one_line_failure(&r, &broken.path()),
+                    code => panic!("{context}: exit code {code}: {}", r.stderr),
+                }
+            }
+        }
+    }
+    assert!(runs > 200, "{runs} runs");
+}
