@@ -643,3 +643,194 @@ mod freudenstein {
         ));
     }
 }
+
+mod burmester {
+    use super::*;
+    use proptest::prelude::*;
+    use tmm::kinematics::Motion;
+    use tmm::synthesis::{
+        burmester, centre_point, centre_point_two, circle_point, four_bar_from_dyads, Dyad, Pose,
+    };
+
+    /// The largest miss of the engine's coupler against the poses: |P − P_j| relative to the
+    /// linkage's size, and the angle's.
+    fn miss(s: &Synthesis, poses: &[Pose], crank: &Dyad) -> f64 {
+        let plan = Plan::new(&s.linkage).unwrap();
+        let size = s
+            .linkage
+            .joints
+            .iter()
+            .map(|j| j.at[0].hypot(j.at[1]))
+            .fold(0.0, f64::max);
+        poses
+            .iter()
+            .zip(crank.angles(poses))
+            .map(|(pose, phi)| {
+                let k = plan.kinematics(Motion::fixed(phi)).unwrap();
+                let p = k.point("P").unwrap().p;
+                let dp = (p.x - pose.at[0]).hypot(p.y - pose.at[1]) / size;
+                let turn = k.link("coupler").unwrap().value - pose.angle;
+                dp.max(turn.sin().abs())
+            })
+            .fold(0.0, f64::max)
+    }
+
+    fn pose() -> impl Strategy<Value = Pose> {
+        (-0.3..0.3f64, -0.3..0.3f64, -1.0..1.0f64).prop_map(|(x, y, a)| Pose::new([x, y], a))
+    }
+
+    fn point() -> impl Strategy<Value = [f64; 2]> {
+        (-0.5..0.5f64, -0.5..0.5f64).prop_map(|(x, y)| [x, y])
+    }
+
+    proptest! {
+        /// The circle point of a dyad's centre point is the dyad's circle point.
+        #[test]
+        fn circle_point_inverts_centre_point(p in [pose(), pose(), pose()], z in point()) {
+            let Ok(dyad) = centre_point(&p, z) else { return Ok(()) };
+            let back = circle_point(&p, dyad.centre);
+            prop_assume!(back.is_ok());
+            let back = back.unwrap();
+            let scale = 1.0 + dyad.length() + dyad.centre[0].hypot(dyad.centre[1]);
+            prop_assume!(scale < 1e3);
+            prop_assert!((back.circle[0] - z[0]).hypot(back.circle[1] - z[1]) < 1e-9 * scale);
+        }
+    }
+
+    #[test]
+    fn three_pose_four_bars_meet_their_poses_through_the_engine() {
+        // A seeded generator of three poses and two circle points; the cases without a branch
+        // or an order defect are analysed by the engine.
+        let mut x: u64 = 0x2545_F491_4F6C_DD1D;
+        let mut next = || {
+            x ^= x << 13;
+            x ^= x >> 7;
+            x ^= x << 17;
+            (x >> 11) as f64 / (1u64 << 53) as f64
+        };
+        let loose = Options::default().with_min_transmission_angle(0.0);
+        let (mut worst, mut cases, mut defects): (f64, usize, usize) = (0.0, 0, 0);
+        for _ in 0..400 {
+            let mut r = |lo: f64, hi: f64| lo + (hi - lo) * next();
+            let poses = [
+                Pose::new([0.0, 0.0], 0.0),
+                Pose::new([r(0.02, 0.15), r(-0.05, 0.1)], r(-0.6, 0.6)),
+                Pose::new([r(0.1, 0.3), r(-0.05, 0.15)], r(-1.0, 1.0)),
+            ];
+            let za = [r(-0.2, 0.0), r(-0.2, 0.0)];
+            let zb = [r(0.05, 0.3), r(-0.2, 0.0)];
+            match burmester(&poses, za, zb, &loose) {
+                Ok(s) => {
+                    let crank = centre_point(&poses, za).unwrap();
+                    let e = miss(&s, &poses, &crank);
+                    assert!(e < 1e-10, "{poses:?} {za:?} {zb:?}: {e:e}");
+                    worst = worst.max(e);
+                    cases += 1;
+                }
+                Err(Error::NoMechanism { .. } | Error::Singular { .. }) => defects += 1,
+                Err(e) => panic!("{e}"),
+            }
+        }
+        assert!(cases >= 100, "{cases} ({defects} defects)");
+        eprintln!("Burmester three poses: {cases} four-bars, worst miss {worst:.2e} ({defects} with a defect)");
+    }
+
+    #[test]
+    fn the_inverted_construction_gives_the_same_four_bar() {
+        let poses = [
+            Pose::new([0.0, 0.0], 0.0),
+            Pose::new([0.1, 0.05], 0.3),
+            Pose::new([0.2, 0.05], 0.7),
+        ];
+        let loose = Options::default().with_min_transmission_angle(0.0);
+        // Centre points chosen, circle points found.
+        let crank = circle_point(&poses, [-0.1, -0.2]).unwrap();
+        let rocker = circle_point(&poses, [0.3, -0.2]).unwrap();
+        let s = four_bar_from_dyads(&poses, &crank, &rocker, &loose).unwrap();
+        assert!(miss(&s, &poses, &crank) < 1e-10);
+        let (gamma, _) = Plan::new(&s.linkage)
+            .unwrap()
+            .min_transmission_angle(0)
+            .map_or((s.report.min_transmission_angle, 0.0), |g| g);
+        if s.report.grashof.unwrap().input_turns_fully() {
+            assert!(rel(gamma, s.report.min_transmission_angle) < 1e-10);
+        }
+    }
+
+    #[test]
+    fn two_poses_put_the_centre_points_on_the_bisectors() {
+        let poses = [Pose::new([0.0, 0.0], 0.0), Pose::new([0.15, 0.05], 0.5)];
+        let loose = Options::default().with_min_transmission_angle(0.0);
+        let mut cases = 0;
+        for along in [-0.3, -0.1, 0.1, 0.3] {
+            let crank = centre_point_two(&poses, [-0.05, -0.1], along).unwrap();
+            let rocker = centre_point_two(&poses, [0.12, -0.08], -along).unwrap();
+            if let Ok(s) = four_bar_from_dyads(&poses, &crank, &rocker, &loose) {
+                assert!(miss(&s, &poses, &crank) < 1e-10);
+                cases += 1;
+            }
+        }
+        assert!(cases >= 1);
+    }
+
+    #[test]
+    fn bad_poses_are_named() {
+        let p = Pose::new([0.1, 0.2], 0.3);
+        let coincide = centre_point(&[p, p, Pose::new([0.3, 0.0], 0.0)], [0.0, 0.0]);
+        assert!(
+            matches!(&coincide, Err(Error::NoMechanism { problem, .. }) if problem.contains("poses 1 and 2")),
+            "{coincide:?}"
+        );
+        let nan = centre_point(
+            &[
+                p,
+                Pose::new([f64::NAN, 0.0], 0.0),
+                Pose::new([0.3, 0.0], 0.0),
+            ],
+            [0.0, 0.0],
+        );
+        assert!(matches!(nan, Err(Error::NonFinite { name: "pose x", .. })));
+        // Pure translations along x: every point moves along a line, the centre at infinity.
+        let line = [
+            Pose::new([0.0, 0.0], 0.0),
+            Pose::new([0.1, 0.0], 0.0),
+            Pose::new([0.3, 0.0], 0.0),
+        ];
+        assert!(matches!(
+            centre_point(&line, [0.0, 0.1]),
+            Err(Error::Singular { .. })
+        ));
+        let loose = Options::default();
+        let one = four_bar_from_dyads(
+            &[p],
+            &Dyad {
+                centre: [0.0, 0.0],
+                circle: [0.1, 0.0],
+            },
+            &Dyad {
+                centre: [0.4, 0.0],
+                circle: [0.3, 0.3],
+            },
+            &loose,
+        );
+        assert!(matches!(one, Err(Error::OutOfRange { name: "poses", .. })));
+        // A dyad that does not fit the poses.
+        let poses = [Pose::new([0.0, 0.0], 0.0), Pose::new([0.1, 0.05], 0.3)];
+        let wrong = four_bar_from_dyads(
+            &poses,
+            &Dyad {
+                centre: [0.0, -0.3],
+                circle: [0.0, -0.1],
+            },
+            &Dyad {
+                centre: [0.4, -0.3],
+                circle: [0.3, -0.1],
+            },
+            &loose,
+        );
+        assert!(
+            matches!(&wrong, Err(Error::NoMechanism { problem, .. }) if problem.contains("does not fit")),
+            "{wrong:?}"
+        );
+    }
+}

@@ -53,7 +53,6 @@ fn acos(x: f64) -> f64 {
     x.clamp(-1.0, 1.0).acos()
 }
 
-#[allow(dead_code)] // the world-frame helpers serve Burmester (next)
 impl FourBar {
     /// A four-bar in Freudenstein's frame.
     pub fn local(d: f64, a: f64, b: f64, c: f64, sigma: f64) -> Self {

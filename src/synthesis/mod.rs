@@ -16,7 +16,7 @@
 //!   linear image of y = f(x) while the crank angle is a linear image of x; three precision
 //!   points at Chebyshev spacing (exact) or least squares over N points; the structural error
 //!   over the whole range by the engine ([`FunctionGenerator::structural_error`]).
-//! - **Motion generation** (Burmester, next): dyads that carry a coupler through two
+//! - **Motion generation** (Burmester, [`burmester`], [`four_bar_from_dyads`]): dyads that carry a coupler through two
 //!   or three finitely separated poses, and the four-bar of two such dyads.
 //!
 //! Each answer is a [`Synthesis`]: the description and a [`Report`] of what the mechanism
@@ -37,12 +37,16 @@
 //! value), [`Error::OutOfRange`] with the feasible interval, or
 //! [`Error::NoMechanism`] saying why.
 
+mod burmester;
 mod check;
 mod four_bar;
 mod freudenstein;
 mod quick_return;
 mod search;
 
+pub use burmester::{
+    burmester, centre_point, centre_point_two, circle_point, four_bar_from_dyads, Dyad, Pose,
+};
 pub use freudenstein::{
     crank_rocker_through, freudenstein_coefficients, function_generator, FunctionGenerator,
     FunctionRequirement, Spacing, StructuralError,
