@@ -129,6 +129,32 @@ pub enum Error {
         time: f64,
     },
 
+    /// A synthesis requirement that no mechanism of the kind meets: `parameter` names it,
+    /// `required` is the value asked for and `reachable` the nearest value that can be met
+    /// (the best minimum transmission angle, the largest feasible time ratio, ...), so the
+    /// message says by how much the requirement misses.
+    #[error("{parameter} = {} cannot be met: the nearest reachable is {} (misses by {})",
+        sig(*.required), sig(*.reachable), sig((*.required - *.reachable).abs()))]
+    Infeasible {
+        /// The requirement (for example `"minimum transmission angle (rad)"`).
+        parameter: &'static str,
+        /// The value asked for.
+        required: f64,
+        /// The nearest value that can be met.
+        reachable: f64,
+    },
+
+    /// A synthesis method found no mechanism of its kind for the requirement: `method` names
+    /// the method and its data, `problem` says what came out instead (a negative length, a
+    /// branch defect, a crank that cannot turn fully), with the values involved.
+    #[error("{method}: {problem}")]
+    NoMechanism {
+        /// The method (for example `"crank-rocker through three positions"`).
+        method: &'static str,
+        /// What is wrong with its answer.
+        problem: String,
+    },
+
     /// An error inside one named part of a larger analysis (for example one group of a
     /// mechanism at one position).
     #[error("{part}: {source}")]

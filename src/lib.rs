@@ -23,6 +23,8 @@
 //! - [`linkage`]: any linkage of the 2nd class as data (one input, or two for mobility 2),
 //!   planned once and analysed per position; [`linkage::dynamics`]: its equation of motion
 //!   from the exact transfer functions, run-up under a motor, speed fluctuation, flywheel.
+//! - [`synthesis`]: requirement → description: quick-return mechanisms by the time ratio and the
+//!   stroke, Freudenstein's function generation, Burmester's motion generation.
 //! - [`mechanism`]: five ready mechanisms as linkages (four-bar, slider-crank, compressor, six-bar,
 //!   rocking cylinder), each a struct of parameters whose `linkage()` the engine plans.
 //!
@@ -71,6 +73,7 @@ pub mod kinetostatics;
 pub mod linkage;
 pub mod load;
 pub mod mechanism;
+pub mod synthesis;
 
 pub use error::{Ends, Error, Result};
 pub use load::Load;

@@ -1,0 +1,281 @@
+//! The four-bar's geometry in closed form, shared by the synthesis methods: positions, the
+//! rocker's extreme positions, the time ratio, the swing and the smallest transmission angle.
+//!
+//! Local frame (Freudenstein's): O1 at the origin, O3 at (d, 0); the crank angle φ of O1→A, the
+//! rocker angle ψ of O3→B. The world frame places O1 at `o1` and turns the local x axis to the
+//! direction `delta`. The assembly mode σ = +1 puts B to the left of the line A→O3 (the
+//! engine's `Plus` for the group (coupler, rocker)).
+
+use super::{acute, time_ratio_of, Report};
+use crate::angle::{cross, direction, normalize, perp, unit};
+use crate::error::{Error, Result};
+use crate::kinematics::{grashof, Grashof};
+use crate::linkage::{Input, Joint, Link, Linkage, NamedPoint, Output};
+use nalgebra::Vector2;
+use std::f64::consts::PI;
+
+type V = Vector2<f64>;
+
+/// A four-bar: its placement, lengths and assembly mode.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct FourBar {
+    /// O1 in the world, m.
+    pub o1: V,
+    /// The direction of O1→O3 in the world, rad.
+    pub delta: f64,
+    /// Frame O1O3, crank O1A, coupler AB, rocker O3B, m.
+    pub d: f64,
+    pub a: f64,
+    pub b: f64,
+    pub c: f64,
+    /// +1: B left of A→O3; −1: right.
+    pub sigma: f64,
+}
+
+/// The rocker's two extreme positions of a crank-rocker, local angles.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct Extremes {
+    /// The crank angle where crank and coupler are stretched out (B farthest from O1).
+    pub phi_ext: f64,
+    /// The crank angle where they fold over each other.
+    pub phi_fold: f64,
+    /// The rocker angles there.
+    pub psi_ext: f64,
+    pub psi_fold: f64,
+    /// θ, the angle at O1 between the two positions of B.
+    pub theta: f64,
+    /// The swing, rad.
+    pub swing: f64,
+}
+
+/// acos clamped to [−1, 1] (rounding may carry a cosine just past ±1 at a flat position).
+fn acos(x: f64) -> f64 {
+    x.clamp(-1.0, 1.0).acos()
+}
+
+impl FourBar {
+    /// A four-bar in Freudenstein's frame.
+    pub fn local(d: f64, a: f64, b: f64, c: f64, sigma: f64) -> Self {
+        Self {
+            o1: V::zeros(),
+            delta: 0.0,
+            d,
+            a,
+            b,
+            c,
+            sigma,
+        }
+    }
+
+    fn world(&self, p: V) -> V {
+        let (s, c) = self.delta.sin_cos();
+        self.o1 + V::new(c * p.x - s * p.y, s * p.x + c * p.y)
+    }
+
+    /// Grashof's class.
+    pub fn grashof(&self) -> Result<Grashof> {
+        grashof(self.d, self.a, self.b, self.c)
+    }
+
+    /// A and B (local) at the local crank angle `phi`, `None` where it does not assemble.
+    pub fn local_pose(&self, phi: f64) -> Option<(V, V)> {
+        let a = self.a * unit(phi);
+        let v = V::new(self.d, 0.0) - a;
+        let e = v.norm();
+        if e == 0.0 {
+            return None;
+        }
+        let along = (self.b * self.b - self.c * self.c + e * e) / (2.0 * e);
+        let h2 = self.b * self.b - along * along;
+        if h2 < -1e-12 * self.b * self.b {
+            return None;
+        }
+        let u = v / e;
+        Some((a, a + along * u + self.sigma * h2.max(0.0).sqrt() * perp(u)))
+    }
+
+    /// The transmission angle (acute, between coupler and rocker) where |AO3| = e.
+    fn mu(&self, e: f64) -> f64 {
+        acute(acos(
+            (self.b * self.b + self.c * self.c - e * e) / (2.0 * self.b * self.c),
+        ))
+    }
+
+    /// The transmission angle at the local crank angle `phi`.
+    pub fn transmission(&self, phi: f64) -> f64 {
+        let e2 = self.a * self.a + self.d * self.d - 2.0 * self.a * self.d * phi.cos();
+        self.mu(e2.max(0.0).sqrt())
+    }
+
+    /// γ_min over a full turn and the local crank angle where it occurs: |AO3| runs from
+    /// |d − a| (φ = 0) to d + a (φ = π) and back, the angle at B is monotonic in |AO3|, and the
+    /// acute angle of it is concave, so its minimum is at φ = 0 or φ = π.
+    pub fn gamma_full(&self) -> (f64, f64) {
+        let (g0, gpi) = (self.mu((self.d - self.a).abs()), self.mu(self.d + self.a));
+        if g0 <= gpi {
+            (g0, 0.0)
+        } else {
+            (gpi, PI)
+        }
+    }
+
+    /// γ_min over the local crank angles from `start` through `span` (> 0, < 2π): at the
+    /// ends, or at φ = 0 or π inside (the same argument as [`FourBar::gamma_full`]).
+    pub fn gamma_over(&self, start: f64, span: f64) -> (f64, f64) {
+        let mut best = (self.transmission(start), start);
+        let mut consider = |phi: f64| {
+            let g = self.transmission(phi);
+            if g < best.0 {
+                best = (g, phi);
+            }
+        };
+        consider(start + span);
+        for special in [0.0, PI] {
+            let off = normalize(special - start);
+            if off <= span {
+                consider(start + off);
+            }
+        }
+        (best.0, normalize(best.1))
+    }
+
+    /// The rocker's extreme positions of a crank that turns fully (where crank and coupler
+    /// are collinear): B at a + b and at b − a from O1, on the mode's side of the frame line
+    /// (σ = +1: above it, since then cross(O3 − A, B − A) = d·B_y with A on the line O1B).
+    pub fn extremes(&self) -> Extremes {
+        let (d, c, s) = (self.d, self.c, self.sigma);
+        let at = |r: f64| {
+            let alpha = acos((r * r + d * d - c * c) / (2.0 * r * d));
+            let beta = acos((c * c + d * d - r * r) / (2.0 * c * d));
+            (alpha, beta)
+        };
+        let (ae, be) = at(self.a + self.b);
+        let (af, bf) = at(self.b - self.a);
+        Extremes {
+            phi_ext: normalize(s * ae),
+            phi_fold: normalize(s * af + PI),
+            psi_ext: normalize(PI - s * be),
+            psi_fold: normalize(PI - s * bf),
+            theta: (af - ae).abs(),
+            swing: (be - bf).abs(),
+        }
+    }
+
+    /// The closed-form report: K and the swing for a crank-rocker, γ_min over a full turn for
+    /// a crank that turns fully, over `range` (local start, span) otherwise.
+    pub fn report(&self, kind: &'static str, range: Option<(f64, f64)>) -> Result<Report> {
+        let class = self.grashof()?;
+        let (k, swing) = if class == Grashof::CrankRocker {
+            let e = self.extremes();
+            (Some(time_ratio_of(e.theta)), Some(e.swing))
+        } else {
+            (None, None)
+        };
+        let (gamma, at) = match range {
+            _ if class.input_turns_fully() => self.gamma_full(),
+            Some((start, span)) => self.gamma_over(start, span),
+            None => {
+                return Err(Error::NoMechanism {
+                    method: kind,
+                    problem: format!("the crank does not turn fully (Grashof class {class:?})"),
+                })
+            }
+        };
+        Ok(Report {
+            kind,
+            time_ratio: k,
+            stroke: swing,
+            min_transmission_angle: gamma,
+            min_transmission_at: normalize(at + self.delta),
+            grashof: Some(class),
+            dimensions: vec![
+                ("frame O1O3".to_owned(), self.d),
+                ("crank O1A".to_owned(), self.a),
+                ("coupler AB".to_owned(), self.b),
+                ("rocker O3B".to_owned(), self.c),
+            ],
+        })
+    }
+
+    /// The description, posed at the local crank angle `phi`: joints `O1`, `A`, `B`, `O3`,
+    /// links `frame`, `crank`, `coupler` (with `points`, and its angle measured along
+    /// `reference` if given), `rocker`; the output the rocker's angle.
+    pub fn linkage(
+        &self,
+        name: &str,
+        phi: f64,
+        points: Vec<NamedPoint>,
+        reference: Option<[String; 2]>,
+    ) -> Result<Linkage> {
+        let (a, b) = self.local_pose(phi).ok_or_else(|| Error::NoMechanism {
+            method: "four-bar",
+            problem: format!("it does not assemble at the reference crank angle {phi} rad"),
+        })?;
+        let xy = |p: V| {
+            let w = self.world(p);
+            [w.x, w.y]
+        };
+        let mut coupler = Link::new("coupler", &["A", "B"]);
+        coupler.points = points;
+        coupler.reference = reference;
+        Ok(Linkage {
+            name: name.to_owned(),
+            joints: vec![
+                Joint::revolute("O1", xy(V::zeros())),
+                Joint::revolute("A", xy(a)),
+                Joint::revolute("B", xy(b)),
+                Joint::revolute("O3", xy(V::new(self.d, 0.0))),
+            ],
+            links: vec![
+                Link::new("frame", &["O1", "O3"]),
+                Link::new("crank", &["O1", "A"]),
+                coupler,
+                Link::new("rocker", &["O3", "B"]),
+            ],
+            input: Input::crank("crank"),
+            output: Some(Output::Angle("rocker".to_owned())),
+            ..Linkage::default()
+        })
+    }
+
+    /// The assembly mode of the configuration with the hinges A and B (local): the sign of
+    /// cross(O3 − A, B − A), zero for a flat configuration.
+    pub fn mode_of(d: f64, a: V, b: V) -> f64 {
+        let s = cross(V::new(d, 0.0) - a, b - a);
+        if s > 0.0 {
+            1.0
+        } else if s < 0.0 {
+            -1.0
+        } else {
+            0.0
+        }
+    }
+
+    /// The world direction of a local angle.
+    pub fn world_angle(&self, local: f64) -> f64 {
+        normalize(local + self.delta)
+    }
+
+    /// The local position of a world point.
+    pub fn local_of(&self, p: V) -> V {
+        let q = p - self.o1;
+        let (s, c) = self.delta.sin_cos();
+        V::new(c * q.x + s * q.y, -s * q.x + c * q.y)
+    }
+
+    /// The four-bar with the pivots `o1`, `o3` (world), the hinges `a`, `b` in one pose.
+    pub fn from_points(o1: V, a: V, b: V, o3: V) -> Self {
+        let f = o3 - o1;
+        let mut fb = Self {
+            o1,
+            delta: direction(f),
+            d: f.norm(),
+            a: (a - o1).norm(),
+            b: (b - a).norm(),
+            c: (b - o3).norm(),
+            sigma: 1.0,
+        };
+        fb.sigma = Self::mode_of(fb.d, fb.local_of(a), fb.local_of(b));
+        fb
+    }
+}

@@ -1,0 +1,224 @@
+//! Kinematic synthesis: from a requirement to a [`Linkage`] description that the engine
+//! ([`Plan::new`](crate::linkage::Plan::new)) analyses.
+//!
+//! Every method is exact (a closed form, or a linear system solved once) except where a free
+//! parameter is chosen to maximise the smallest transmission angle: there a bounded 1-D search
+//! (a dense scan, then golden section on the best sample's neighbours) picks it, and the
+//! result is still exact for the requirement itself.
+//!
+//! - **By the time ratio and the stroke** ([`crank_rocker`], [`slider_crank`], [`shaper`]):
+//!   the quick-return mechanisms from K = t_work/t_idle (the crank angle between the output's
+//!   extreme positions is θ = π(K − 1)/(K + 1) away from a half turn) and the output's stroke
+//!   or swing.
+//! - **Through given positions** ([`crank_rocker_through`]): Freudenstein's equation at two
+//!   or three pairs of crank and rocker angles.
+//! - **Function generation** ([`function_generator`]): a four-bar whose rocker angle is a
+//!   linear image of y = f(x) while the crank angle is a linear image of x; three precision
+//!   points at Chebyshev spacing (exact) or least squares over N points; the structural error
+//!   over the whole range by the engine ([`FunctionGenerator::structural_error`]).
+//! - **Motion generation** (Burmester, [`burmester`], [`four_bar_from_dyads`]): dyads that carry a coupler through two
+//!   or three finitely separated poses, and the four-bar of two such dyads.
+//!
+//! Each answer is a [`Synthesis`]: the description and a [`Report`] of what the mechanism
+//! achieves (the time ratio, the stroke or swing, the smallest transmission angle over the
+//! motion and where it occurs, Grashof's class), computed in closed form from the dimensions
+//! found — the tests analyse every description with the engine and compare.
+//!
+//! Conventions: SI units (m, rad); angles counter-clockwise from +x. A four-bar is built in
+//! Freudenstein's frame unless its pivots are part of the requirement: the crank's pivot O1 at
+//! the origin, the rocker's pivot O3 at (d, 0); the crank angle φ is the direction of O1→A, the
+//! rocker angle ψ that of O3→B. Joint names: `O1`, `A`, `B`, `O3` (four-bar); `O1`, `A`, `B`,
+//! `P` (slider-crank, `P` the slider's prismatic joint); links `frame`, `crank`, `coupler`,
+//! `rocker` / `rod`, `slider`.
+//!
+//! Bad requirements (non-finite numbers, K ≤ 1, a swing outside (0, π), too few points,
+//! coinciding poses) are errors naming the parameter; a requirement that no mechanism of the
+//! kind meets is [`Error::Infeasible`] (with the nearest reachable
+//! value), [`Error::OutOfRange`] with the feasible interval, or
+//! [`Error::NoMechanism`] saying why.
+
+mod burmester;
+mod check;
+mod four_bar;
+mod freudenstein;
+mod quick_return;
+mod search;
+
+pub use burmester::{
+    burmester, centre_point, centre_point_two, circle_point, four_bar_from_dyads, Dyad, Pose,
+};
+pub use freudenstein::{
+    crank_rocker_through, freudenstein_coefficients, function_generator, FunctionGenerator,
+    FunctionRequirement, Spacing, StructuralError,
+};
+pub use quick_return::{
+    crank_rocker, shaper, slider_crank, CrankRockerRequirement, FrameChoice, OffsetChoice,
+    ShaperRequirement, SliderCrankRequirement,
+};
+
+use crate::error::{Error, Result};
+use crate::kinematics::Grashof;
+use crate::linkage::Linkage;
+use std::fmt;
+
+/// Options common to the synthesis methods.
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[non_exhaustive]
+pub struct Options {
+    /// \[γ\], the smallest transmission angle the mechanism must keep over its motion, rad, in
+    /// [0, π/2]. Default 40° (0.698 rad), the usual engineering limit.
+    pub min_transmission_angle: f64,
+}
+
+impl Default for Options {
+    fn default() -> Self {
+        Self {
+            min_transmission_angle: 40f64.to_radians(),
+        }
+    }
+}
+
+impl Options {
+    /// The options with \[γ\] = `angle`, rad (0 switches the requirement off).
+    #[must_use]
+    pub fn with_min_transmission_angle(mut self, angle: f64) -> Self {
+        self.min_transmission_angle = angle;
+        self
+    }
+
+    pub(crate) fn check(&self) -> Result<f64> {
+        let g = crate::error::finite("min_transmission_angle", self.min_transmission_angle)?;
+        if !(0.0..=std::f64::consts::FRAC_PI_2).contains(&g) {
+            return Err(Error::OutOfRange {
+                name: "min_transmission_angle",
+                value: g,
+                min: 0.0,
+                max: std::f64::consts::FRAC_PI_2,
+                ends: crate::Ends::Closed,
+            });
+        }
+        Ok(g)
+    }
+}
+
+/// A synthesised mechanism: its description for the engine and what it achieves.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Synthesis {
+    /// The description, in a reference pose where it assembles in the designed mode.
+    pub linkage: Linkage,
+    /// What the mechanism achieves.
+    pub report: Report,
+}
+
+/// What a synthesised mechanism achieves, computed in closed form from its dimensions.
+#[derive(Debug, Clone, PartialEq)]
+#[non_exhaustive]
+pub struct Report {
+    /// The kind of mechanism (for example `"crank-rocker"`).
+    pub kind: &'static str,
+    /// K, the time ratio of the output's strokes (the larger crank angle between the output's
+    /// extreme positions over the smaller, ≥ 1), when the crank turns fully and the output
+    /// has two extreme positions per turn.
+    pub time_ratio: Option<f64>,
+    /// The output's stroke (m, a slider) or swing (rad, a rocker) between its extreme
+    /// positions, with `time_ratio`.
+    pub stroke: Option<f64>,
+    /// γ_min, the smallest transmission angle over the motion (a full turn of a crank that
+    /// turns fully; the input's range otherwise), rad in [0, π/2].
+    pub min_transmission_angle: f64,
+    /// The input angle φ where γ_min occurs, rad in [0, 2π).
+    pub min_transmission_at: f64,
+    /// Grashof's class of a four-bar (`None` for other mechanisms).
+    pub grashof: Option<Grashof>,
+    /// The mechanism's dimensions by name (for example `("crank O1A", 0.1)`), m or rad as
+    /// the name says.
+    pub dimensions: Vec<(String, f64)>,
+}
+
+impl Report {
+    /// The dimension whose name starts with `name` (for example `"crank"`).
+    #[must_use]
+    pub fn dimension(&self, name: &str) -> Option<f64> {
+        self.dimensions
+            .iter()
+            .find(|(n, _)| n.starts_with(name))
+            .map(|&(_, v)| v)
+    }
+}
+
+impl fmt::Display for Report {
+    /// The report as lines for a person: dimensions in mm, angles in degrees.
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        writeln!(f, "{}", self.kind)?;
+        for (name, value) in &self.dimensions {
+            if name.ends_with("(rad)") {
+                writeln!(f, "  {name:<28} {:>10.4}°", value.to_degrees())?;
+            } else {
+                writeln!(f, "  {name:<28} {:>10.4} mm", value * 1e3)?;
+            }
+        }
+        if let Some(k) = self.time_ratio {
+            writeln!(f, "  time ratio K                 {k:>10.6}")?;
+        }
+        if let Some(s) = self.stroke {
+            if self.kind.contains("slider") || self.kind.contains("shaper") {
+                writeln!(f, "  stroke                       {:>10.4} mm", s * 1e3)?;
+            } else {
+                writeln!(
+                    f,
+                    "  swing                        {:>10.4}°",
+                    s.to_degrees()
+                )?;
+            }
+        }
+        writeln!(
+            f,
+            "  min transmission angle       {:>10.4}° at φ = {:.3}°",
+            self.min_transmission_angle.to_degrees(),
+            self.min_transmission_at.to_degrees()
+        )?;
+        if let Some(g) = self.grashof {
+            writeln!(f, "  Grashof class                {g:?}")?;
+        }
+        Ok(())
+    }
+}
+
+/// π(K − 1)/(K + 1): the crank angle θ by which the two strokes of a quick-return mechanism
+/// differ from a half turn each (they take π + θ and π − θ), for a time ratio K > 1.
+pub(crate) fn crank_excess(k: f64) -> Result<f64> {
+    let k = crate::error::finite("K", k)?;
+    if k <= 1.0 {
+        return Err(Error::OutOfRange {
+            name: "K",
+            value: k,
+            min: 1.0,
+            max: f64::INFINITY,
+            ends: crate::Ends::Open,
+        });
+    }
+    Ok(std::f64::consts::PI * (k - 1.0) / (k + 1.0))
+}
+
+/// K = (π + θ)/(π − θ), the inverse of [`crank_excess`].
+pub(crate) fn time_ratio_of(theta: f64) -> f64 {
+    (std::f64::consts::PI + theta) / (std::f64::consts::PI - theta)
+}
+
+/// The acute angle of `x` (rad in [0, π]) with a line: min(x, π − x).
+pub(crate) fn acute(x: f64) -> f64 {
+    x.min(std::f64::consts::PI - x)
+}
+
+/// Checks that γ_min meets \[γ\]: [`Error::Infeasible`] otherwise.
+pub(crate) fn require_transmission(achieved: f64, required: f64) -> Result<()> {
+    if achieved < required {
+        Err(Error::Infeasible {
+            parameter: "minimum transmission angle (rad)",
+            required,
+            reachable: achieved,
+        })
+    } else {
+        Ok(())
+    }
+}

@@ -1,0 +1,537 @@
+#![allow(clippy::neg_cmp_op_on_partial_ord)] // `!(x > 0.0)` rejects NaN too, on purpose.
+//! Quick-return mechanisms by the time ratio K and the output's stroke: the crank-rocker, the
+//! offset slider-crank and the shaper (crank, slotted lever, ram).
+
+use super::four_bar::FourBar;
+use super::search::maximise;
+use super::{check, crank_excess, require_transmission, time_ratio_of, Options, Report, Synthesis};
+use crate::angle::{cross, normalize};
+use crate::error::{finite, positive, Ends, Error, Result};
+use crate::kinematics::Grashof;
+use crate::linkage::{Input, Joint, Link, Linkage, Output};
+use nalgebra::Vector2;
+use std::f64::consts::{FRAC_PI_2, PI, TAU};
+
+type V = Vector2<f64>;
+
+/// Where the crank's pivot of a [`crank_rocker`] goes on its locus circle.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum FrameChoice {
+    /// At this distance from the rocker's pivot (the frame O1O3), m.
+    Length(f64),
+    /// Where the smallest transmission angle over a turn is largest.
+    BestTransmission,
+}
+
+/// What a [`crank_rocker`] must do.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct CrankRockerRequirement {
+    /// l_O3B, the rocker, m (> 0).
+    pub rocker: f64,
+    /// ψ, the rocker's swing between its extreme positions, rad in (0, π).
+    pub swing: f64,
+    /// K, the time ratio of the rocker's strokes (> 1).
+    pub time_ratio: f64,
+    /// The choice of the crank's pivot.
+    pub frame: FrameChoice,
+}
+
+/// The locus of the crank's pivot: with O3 at the origin and the rocker's extreme positions
+/// B1 = c(sin ψ/2, cos ψ/2), B2 = c(−sin ψ/2, cos ψ/2), O1 sees the chord B1B2 under the angle
+/// θ, so it lies on one of the two circles through B1 and B2 whose inscribed angle on the
+/// arc on one side of the chord is θ: radius R = |B1B2|/(2 sin θ), centre on the chord's
+/// perpendicular bisector at h = (|B1B2|/2)·cot θ towards that side (`side` = ±1 along +y).
+struct Locus {
+    b1: V,
+    b2: V,
+    c: f64,
+    centre: [V; 2],
+    radius: f64,
+    mid_y: f64,
+}
+
+impl Locus {
+    fn new(c: f64, swing: f64, theta: f64) -> Self {
+        let (s, co) = (0.5 * swing).sin_cos();
+        let half = c * s;
+        let h = half / theta.tan();
+        let mid_y = c * co;
+        Self {
+            b1: V::new(half, mid_y),
+            b2: V::new(-half, mid_y),
+            c,
+            centre: [V::new(0.0, mid_y + h), V::new(0.0, mid_y - h)],
+            radius: half / theta.sin(),
+            mid_y,
+        }
+    }
+
+    /// The point at the polar angle `t` on circle `k` (0: the arc above the chord, 1: below),
+    /// if it lies on that circle's arc of inscribed angle θ.
+    fn point(&self, k: usize, t: f64) -> Option<V> {
+        let p = self.centre[k] + self.radius * V::new(t.cos(), t.sin());
+        let side = if k == 0 { 1.0 } else { -1.0 };
+        (side * (p.y - self.mid_y) > 0.0).then_some(p)
+    }
+
+    /// The crank-rocker with its crank's pivot at `p` (O3 at the origin), if there is one:
+    /// B1 and B2 are its extreme positions when crank and coupler are collinear there, one
+    /// stretched (|O1B| = a + b) and one folded (b − a), on the same side of the frame line
+    /// (one assembly mode), and the crank turns fully.
+    fn design(&self, p: V) -> Option<FourBar> {
+        let (d, d1, d2) = (p.norm(), (p - self.b1).norm(), (p - self.b2).norm());
+        let a = 0.5 * (d1 - d2).abs();
+        let b = 0.5 * (d1 + d2);
+        if !(a > 1e-9 * b && d > 1e-9 * self.c) {
+            return None;
+        }
+        let (s1, s2) = (cross(-p, self.b1 - p), cross(-p, self.b2 - p));
+        if !(s1 * s2 > 0.0) {
+            return None;
+        }
+        let fb = FourBar::local(d, a, b, self.c, s1.signum());
+        (fb.grashof().ok()? == Grashof::CrankRocker).then_some(fb)
+    }
+
+    fn candidate(&self, k: usize, t: f64) -> Option<FourBar> {
+        self.design(self.point(k, t)?)
+    }
+
+    /// The best design over both circles by γ_min (scan of `n` points, golden section).
+    fn best(&self, n: usize) -> Option<FourBar> {
+        (0..2)
+            .filter_map(|k| {
+                maximise(
+                    |t| self.candidate(k, t).map(|f| f.gamma_full().0),
+                    0.0,
+                    TAU,
+                    n,
+                )
+                .and_then(|(t, _)| self.candidate(k, t))
+            })
+            .max_by(|x, y| x.gamma_full().0.total_cmp(&y.gamma_full().0))
+    }
+
+    fn any(&self, n: usize) -> bool {
+        (0..2).any(|k| (0..n).any(|i| self.candidate(k, TAU * i as f64 / n as f64).is_some()))
+    }
+
+    /// The designs whose frame is `d0`: where the circle of radius d0 about O3 crosses the
+    /// two locus circles.
+    fn with_frame(&self, d0: f64) -> Vec<FourBar> {
+        let mut out = Vec::new();
+        for (k, centre) in self.centre.iter().enumerate() {
+            let dist = centre.norm();
+            if dist == 0.0 {
+                continue;
+            }
+            let along = (d0 * d0 - self.radius * self.radius + dist * dist) / (2.0 * dist);
+            let h2 = d0 * d0 - along * along;
+            if h2 < 0.0 {
+                continue;
+            }
+            let u = centre / dist;
+            for s in [1.0, -1.0] {
+                let p = along * u + s * h2.sqrt() * V::new(-u.y, u.x);
+                let t = (p - centre).y.atan2((p - centre).x);
+                if self.point(k, t).is_some()
+                    && let Some(f) = self.design(p)
+                {
+                    out.push(f);
+                }
+            }
+        }
+        out
+    }
+}
+
+/// The largest θ (< `theta`) for which `feasible` holds, by bisection (feasible below it).
+fn largest_feasible(theta: f64, feasible: impl Fn(f64) -> bool) -> f64 {
+    let (mut lo, mut hi) = (0.0, theta);
+    for _ in 0..50 {
+        let mid = 0.5 * (lo + hi);
+        if feasible(mid) {
+            lo = mid;
+        } else {
+            hi = mid;
+        }
+    }
+    lo
+}
+
+const SCAN: usize = 2048;
+
+/// A crank-rocker four-bar whose rocker swings through `swing` with the time ratio K, the
+/// crank's pivot on its locus circle at a given frame length or where the smallest
+/// transmission angle is largest.
+///
+/// Derivation: at the rocker's extreme positions B1 and B2 the crank and the coupler are
+/// collinear, stretched (|O1B1| = b + a) and folded (|O1B2| = b − a); the crank turns
+/// π + θ from one to the other and π − θ back, so K = (π + θ)/(π − θ), θ = π(K − 1)/(K + 1),
+/// and θ is the angle B1O1B2. O1 is therefore on a circle through B1 and B2 (inscribed angle
+/// θ), and then a = (|O1B1| − |O1B2|)/2, b = (|O1B1| + |O1B2|)/2, d = |O1O3|. Not every point
+/// of the arc gives a crank-rocker: B1 and B2 must lie on one side of the frame line (one
+/// assembly mode) and the crank must be the shortest link (Grashof). γ_min over a turn is at
+/// φ = 0 or π (the crank along the frame line), in closed form.
+///
+/// The description is in Freudenstein's frame (O1 at the origin, O3 at (d, 0)), posed at the
+/// stretched extreme position; output: the rocker's angle.
+///
+/// # Examples
+/// A rocker of 0.3 m swinging 45° with K = 1.25, the frame chosen for the best transmission:
+/// ```
+/// use tmm::synthesis::{crank_rocker, CrankRockerRequirement, FrameChoice, Options};
+/// use tmm::kinematics::Rotation;
+/// use tmm::linkage::{Output, Plan};
+/// let need = CrankRockerRequirement {
+///     rocker: 0.3,
+///     swing: 45f64.to_radians(),
+///     time_ratio: 1.25,
+///     frame: FrameChoice::BestTransmission,
+/// };
+/// let s = crank_rocker(&need, &Options::default())?;
+/// assert!(s.report.min_transmission_angle > 40f64.to_radians());
+/// // The engine finds the same K and swing.
+/// let strokes = Plan::new(&s.linkage)?.strokes(&Output::Angle("rocker".into()), Rotation::Ccw)?;
+/// assert!((strokes.time_ratio - 1.25).abs() < 1e-9);
+/// assert!((strokes.stroke - 45f64.to_radians()).abs() < 1e-9);
+/// # Ok::<(), tmm::Error>(())
+/// ```
+///
+/// # Errors
+/// [`Error::NonFinite`] / [`Error::NonPositive`] for a bad rocker length or frame length;
+/// [`Error::OutOfRange`] for a swing outside (0, π), for K ≤ 1, and for K above the largest
+/// time ratio any crank-rocker of this swing reaches (the interval names it);
+/// [`Error::Infeasible`] for a frame length on which no crank-rocker's pivot lies (with the
+/// nearest that works) and for γ_min below \[γ\] (with the best reachable).
+pub fn crank_rocker(need: &CrankRockerRequirement, options: &Options) -> Result<Synthesis> {
+    let c = positive("rocker", need.rocker)?;
+    let swing = finite("swing", need.swing)?;
+    if !(swing > 0.0 && swing < PI) {
+        return Err(Error::OutOfRange {
+            name: "swing",
+            value: swing,
+            min: 0.0,
+            max: PI,
+            ends: Ends::Open,
+        });
+    }
+    let theta = crank_excess(need.time_ratio)?;
+    let required = options.check()?;
+    if let FrameChoice::Length(d) = need.frame {
+        positive("frame length", d)?;
+    }
+    let locus = Locus::new(c, swing, theta);
+    let Some(best) = locus.best(SCAN) else {
+        let bound = largest_feasible(theta, |t| Locus::new(c, swing, t).any(SCAN));
+        return Err(Error::OutOfRange {
+            name: "K",
+            value: need.time_ratio,
+            min: 1.0,
+            max: time_ratio_of(bound),
+            ends: Ends::Open,
+        });
+    };
+    let design = match need.frame {
+        FrameChoice::BestTransmission => best,
+        FrameChoice::Length(d0) => {
+            let found = locus.with_frame(d0);
+            let Some(f) = found
+                .into_iter()
+                .max_by(|x, y| x.gamma_full().0.total_cmp(&y.gamma_full().0))
+            else {
+                let nearest = (0..2)
+                    .flat_map(|k| {
+                        (0..4 * SCAN).map(move |i| (k, TAU * i as f64 / (4 * SCAN) as f64))
+                    })
+                    .filter_map(|(k, t)| locus.candidate(k, t))
+                    .map(|f| f.d)
+                    .min_by(|x, y| (x - d0).abs().total_cmp(&(y - d0).abs()))
+                    .unwrap_or(best.d);
+                return Err(Error::Infeasible {
+                    parameter: "frame length O1O3 (m)",
+                    required: d0,
+                    reachable: nearest,
+                });
+            };
+            f
+        }
+    };
+    let report = design.report("crank-rocker", None)?;
+    require_transmission(report.min_transmission_angle, required)?;
+    let linkage = design.linkage(
+        "synthesised crank-rocker",
+        design.extremes().phi_ext,
+        Vec::new(),
+        None,
+    )?;
+    check::accepted(&linkage)?;
+    Ok(Synthesis { linkage, report })
+}
+
+/// Where the guide of a [`slider_crank`] goes.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum OffsetChoice {
+    /// At this distance e above the crank's pivot, m (> 0: a central slider-crank has K = 1).
+    Given(f64),
+    /// At the offset where the smallest transmission angle over a turn is largest.
+    BestTransmission,
+}
+
+/// What a [`slider_crank`] must do.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SliderCrankRequirement {
+    /// H, the slider's stroke, m (> 0).
+    pub stroke: f64,
+    /// K, the time ratio of the strokes, in (1, 3) (above, θ ≥ π/2, which no slider-crank
+    /// reaches).
+    pub time_ratio: f64,
+    /// The guide's offset.
+    pub offset: OffsetChoice,
+}
+
+/// The offset slider-crank for (H, θ, e): the dead centres B1 = (x2 + H, e) (stretched) and
+/// B2 = (x2, e) (folded), with the angle B1O1B2 = θ. From tan θ = e·H/(x1·x2 + e²):
+/// x2² + H·x2 − (e·H·cot θ − e²) = 0, so x2 = 2q/(H + √(H² + 4q)) with q = e·H·cot θ − e²,
+/// and q > 0 (x2 > 0: both dead centres ahead of the crank, one assembly mode) needs
+/// e < H·cot θ. Then a = (|O1B1| − |O1B2|)/2, b = (|O1B1| + |O1B2|)/2. Returns (a, b, x1).
+fn slider_design(h: f64, theta: f64, e: f64) -> Option<(f64, f64, f64)> {
+    let q = e * h / theta.tan() - e * e;
+    if !(q > 0.0) {
+        return None;
+    }
+    let x2 = 2.0 * q / (h + (h * h + 4.0 * q).sqrt());
+    let x1 = x2 + h;
+    let (r1, r2) = (x1.hypot(e), x2.hypot(e));
+    Some((0.5 * (r1 - r2), 0.5 * (r1 + r2), x1))
+}
+
+/// γ_min of an offset slider-crank (guide at y = e > 0): the rod leans most, sin β =
+/// (a + e)/b, with A lowest (φ = 3π/2); γ = π/2 − β.
+fn slider_gamma(a: f64, b: f64, e: f64) -> f64 {
+    ((a + e) / b).clamp(-1.0, 1.0).acos()
+}
+
+/// An offset slider-crank with the stroke H and the time ratio K, at a given offset or at
+/// the offset where the smallest transmission angle is largest.
+///
+/// The crank's pivot O1 is at the origin, the guide the line y = e along +x, the slider to the
+/// right of the crank (see the derivation at the dead centres in the source: x2 solves a
+/// quadratic, and K < 3 because θ = ∠B1O1B2 < π/2 for dead centres on a line that misses O1).
+/// γ_min = arccos((a + e)/b), with the crank pointing down (φ = 3π/2). The description is
+/// posed at the outer dead centre; joints `O1`, `A`, `B`, `P` (prismatic, the slider on the
+/// frame's guide); links `frame`, `crank`, `rod`, `slider`; output the slide of `P`.
+///
+/// # Examples
+/// A stroke of 0.2 m with K = 1.2, the offset chosen for the best transmission (γ_min ≈ 47°;
+/// with K = 1.4 the best is about 33°, below the default 40°, and the answer is an error):
+/// ```
+/// use tmm::synthesis::{slider_crank, OffsetChoice, Options, SliderCrankRequirement};
+/// use tmm::kinematics::Rotation;
+/// use tmm::linkage::{Output, Plan};
+/// let need = SliderCrankRequirement { stroke: 0.2, time_ratio: 1.2, offset: OffsetChoice::BestTransmission };
+/// let s = slider_crank(&need, &Options::default())?;
+/// let strokes = Plan::new(&s.linkage)?.strokes(&Output::Slide("P".into()), Rotation::Ccw)?;
+/// assert!((strokes.stroke - 0.2).abs() < 1e-10);
+/// assert!((strokes.time_ratio - 1.2).abs() < 1e-9);
+/// assert!((s.report.min_transmission_angle.to_degrees() - 47.2).abs() < 0.1);
+/// let harder = SliderCrankRequirement { time_ratio: 1.4, ..need };
+/// assert!(slider_crank(&harder, &Options::default()).is_err());
+/// # Ok::<(), tmm::Error>(())
+/// ```
+///
+/// # Errors
+/// [`Error::NonFinite`] / [`Error::NonPositive`] for the stroke or the offset;
+/// [`Error::OutOfRange`] for K outside (1, 3), or above the largest K of the given offset
+/// (θ < arctan(H/e)); [`Error::Infeasible`] for γ_min below \[γ\].
+pub fn slider_crank(need: &SliderCrankRequirement, options: &Options) -> Result<Synthesis> {
+    let h = positive("stroke", need.stroke)?;
+    let theta = crank_excess(need.time_ratio)?;
+    let required = options.check()?;
+    let out_of_range = |max: f64| Error::OutOfRange {
+        name: "K",
+        value: need.time_ratio,
+        min: 1.0,
+        max,
+        ends: Ends::Open,
+    };
+    if theta >= FRAC_PI_2 {
+        return Err(out_of_range(3.0));
+    }
+    let e = match need.offset {
+        OffsetChoice::Given(e) => {
+            let e = positive("offset", e)?;
+            if slider_design(h, theta, e).is_none() {
+                return Err(out_of_range(time_ratio_of((h / e).atan())));
+            }
+            e
+        }
+        OffsetChoice::BestTransmission => {
+            let top = h / theta.tan();
+            let f = |e: f64| slider_design(h, theta, e).map(|(a, b, _)| slider_gamma(a, b, e));
+            maximise(f, 1e-9 * top, top * (1.0 - 1e-9), SCAN)
+                .map(|(e, _)| e)
+                .ok_or(Error::Overflow {
+                    what: "the offset's search",
+                })?
+        }
+    };
+    let (a, b, x1) = slider_design(h, theta, e).ok_or(Error::Overflow {
+        what: "the slider-crank's dimensions",
+    })?;
+    // The report from the dimensions alone: the dead centres at |O1B| = b ± a on y = e.
+    let far = ((a + b).powi(2) - e * e).sqrt();
+    let near = ((b - a).powi(2) - e * e).sqrt();
+    let achieved_theta = (e / near).atan() - (e / far).atan();
+    let gamma = slider_gamma(a, b, e);
+    let report = Report {
+        kind: "offset slider-crank",
+        time_ratio: Some(time_ratio_of(achieved_theta)),
+        stroke: Some(far - near),
+        min_transmission_angle: gamma,
+        min_transmission_at: 1.5 * PI,
+        grashof: None,
+        dimensions: vec![
+            ("crank O1A".to_owned(), a),
+            ("rod AB".to_owned(), b),
+            ("offset e".to_owned(), e),
+        ],
+    };
+    crate::error::computed("the slider-crank's dimensions", a + b + far + near)?;
+    require_transmission(gamma, required)?;
+    let r1 = x1.hypot(e);
+    let pin = [a * x1 / r1, a * e / r1];
+    let linkage = Linkage {
+        name: "synthesised offset slider-crank".to_owned(),
+        joints: vec![
+            Joint::revolute("O1", [0.0, 0.0]),
+            Joint::revolute("A", pin),
+            Joint::revolute("B", [x1, e]),
+            Joint::prismatic("P", [x1, e], "frame", [1.0, 0.0]),
+        ],
+        links: vec![
+            Link::new("frame", &["O1", "P"]),
+            Link::new("crank", &["O1", "A"]),
+            Link::new("rod", &["A", "B"]),
+            Link::new("slider", &["B", "P"]),
+        ],
+        input: Input::crank("crank"),
+        groups: vec![["rod".to_owned(), "slider".to_owned()]],
+        output: Some(Output::Slide("P".to_owned())),
+        ..Linkage::default()
+    };
+    check::accepted(&linkage)?;
+    Ok(Synthesis { linkage, report })
+}
+
+/// What a [`shaper`] must do.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ShaperRequirement {
+    /// H, the ram's stroke, m (> 0).
+    pub stroke: f64,
+    /// K, the time ratio of the ram's strokes (> 1).
+    pub time_ratio: f64,
+    /// The distance O1O3 between the crank's pivot and the lever's pivot below it, m (> 0).
+    pub centre_distance: f64,
+}
+
+/// A shaper (quick-return mechanism with a slotted lever): the crank O1A's block slides in
+/// the slotted lever pivoted at O3 below O1 (an RPR group), and a block hinged to the ram
+/// slides in the same slot higher up, the ram on a horizontal guide (a PRP group).
+///
+/// Derivation: the lever's extreme positions are tangent to the crank circle, so the lever's
+/// swing ψ satisfies sin(ψ/2) = r/d (d = O1O3, r the crank), and there the crank is
+/// perpendicular to the lever: it turns π + ψ one way and π − ψ the other, so ψ = θ =
+/// π(K − 1)/(K + 1) and r = d·sin(θ/2). The ram's pin on the lever's line at the height h
+/// above O3 moves as x = −h·tan β (β the lever's tilt from the vertical), monotonic in β, so
+/// the ram's extremes are the lever's and H = 2h·tan(θ/2): h = H/(2 tan(θ/2)). The RPR group
+/// transmits at π/2; the PRP group at π/2 − |β|, least at the extremes: γ_min = π/2 − θ/2
+/// (at φ = 2π − θ/2, where the working stroke begins for a crank turning counter-clockwise,
+/// the ram moving to −x).
+///
+/// Description: O1 at the origin, O3 at (0, −d), the guide the line y = h − d; joints `O1`,
+/// `A`, `P` (the crank's block in the slot), `O3`, `S` (the ram's block in the slot), `F`
+/// (the ram's pin), `G` (the ram on its guide); links `frame`, `crank`, `block`, `lever` (with
+/// its tip `D`), `ram block`, `ram`; output the slide of `G`. Posed with the crank straight up.
+///
+/// # Examples
+/// A ram stroke of 0.3 m with K = 1.6, the lever's pivot 0.25 m below the crank's:
+/// ```
+/// use tmm::synthesis::{shaper, Options, ShaperRequirement};
+/// use tmm::kinematics::Rotation;
+/// use tmm::linkage::{Output, Plan};
+/// let s = shaper(&ShaperRequirement { stroke: 0.3, time_ratio: 1.6, centre_distance: 0.25 }, &Options::default())?;
+/// let strokes = Plan::new(&s.linkage)?.strokes(&Output::Slide("G".into()), Rotation::Ccw)?;
+/// assert!((strokes.stroke - 0.3).abs() < 1e-10);
+/// assert!((strokes.time_ratio - 1.6).abs() < 1e-9);
+/// # Ok::<(), tmm::Error>(())
+/// ```
+///
+/// # Errors
+/// [`Error::NonFinite`] / [`Error::NonPositive`] for the stroke or the centre distance;
+/// [`Error::OutOfRange`] for K ≤ 1; [`Error::Infeasible`] for γ_min = π/2 − θ/2 below \[γ\], and
+/// for a centre distance so large that the crank's circle reaches the ram's block (h ≤ d + r).
+pub fn shaper(need: &ShaperRequirement, options: &Options) -> Result<Synthesis> {
+    let stroke = positive("stroke", need.stroke)?;
+    let d = positive("centre_distance", need.centre_distance)?;
+    let theta = crank_excess(need.time_ratio)?;
+    let required = options.check()?;
+    let (s, co) = (0.5 * theta).sin_cos();
+    let r = d * s;
+    let h = 0.5 * stroke * co / s;
+    require_transmission(FRAC_PI_2 - 0.5 * theta, required)?;
+    if !(h > d + r) {
+        return Err(Error::Infeasible {
+            parameter: "centre distance O1O3 (m)",
+            required: d,
+            reachable: h / (1.0 + s),
+        });
+    }
+    let lever = h / co;
+    crate::error::computed("the shaper's dimensions", lever + h + r)?;
+    // The report from the dimensions alone.
+    let psi = 2.0 * (r / d).asin();
+    let report = Report {
+        kind: "shaper",
+        time_ratio: Some(time_ratio_of(psi)),
+        stroke: Some(2.0 * h * (0.5 * psi).tan()),
+        min_transmission_angle: FRAC_PI_2 - 0.5 * psi,
+        min_transmission_at: normalize(-0.5 * psi),
+        grashof: None,
+        dimensions: vec![
+            ("crank O1A".to_owned(), r),
+            ("centre distance O1O3".to_owned(), d),
+            ("guide height above O3".to_owned(), h),
+            ("lever O3D".to_owned(), lever),
+            ("lever swing (rad)".to_owned(), psi),
+        ],
+    };
+    let (o1, a, o3) = ([0.0, 0.0], [0.0, r], [0.0, -d]);
+    let f = [0.0, h - d];
+    let up = [0.0, 1.0];
+    let linkage = Linkage {
+        name: "synthesised shaper".to_owned(),
+        joints: vec![
+            Joint::revolute("O1", o1),
+            Joint::revolute("A", a),
+            Joint::prismatic("P", a, "lever", up),
+            Joint::revolute("O3", o3),
+            Joint::prismatic("S", f, "lever", up),
+            Joint::revolute("F", f),
+            Joint::prismatic("G", f, "frame", [1.0, 0.0]),
+        ],
+        links: vec![
+            Link::new("frame", &["O1", "O3", "G"]),
+            Link::new("crank", &["O1", "A"]),
+            Link::new("block", &["A", "P"]),
+            Link::new("lever", &["O3", "P", "S"]).with_point("D", [0.0, lever - d]),
+            Link::new("ram block", &["S", "F"]),
+            Link::new("ram", &["F", "G"]),
+        ],
+        input: Input::crank("crank"),
+        output: Some(Output::Slide("G".to_owned())),
+        ..Linkage::default()
+    };
+    check::accepted(&linkage)?;
+    Ok(Synthesis { linkage, report })
+}
