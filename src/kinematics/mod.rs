@@ -70,6 +70,7 @@ mod rpr;
 mod rrp;
 mod rrr;
 mod transfer;
+mod triad;
 
 pub use contour::{
     contour_residual, solve_contour, solve_contour_position, Branch, ContourCase, ContourSolution,
@@ -91,3 +92,7 @@ pub use rpr::{rpr_dyad, RprState};
 pub use rrp::{rrp_dyad, Guide, RrpState};
 pub use rrr::{rrr_dyad, RrrState};
 pub use transfer::transfer_functions;
+pub use triad::{
+    triad, triad_modes, triad_rates, triad_tracked, TriadDims, TriadModes, TriadPose, TriadState,
+    MAX_TRIAD_MODES, SINGULAR_TRIAD,
+};

@@ -23,6 +23,7 @@
 //! | RPP | [`RppDyad`] | the slide parallel to the guide: sin α = 0 (a constant of the design) |
 //! | gear input (SRWL1) | [`GearDrive`] | zero arm of the tooth force: r_w·cos α_w = 0 |
 //! | coupling input (SRWL2) | [`CouplingDrive`] | never |
+//! | triad (3rd class) | [`Triad`] | the three binary links' lines concurrent or parallel: det K = 0 |
 //!
 //! The group with a parallel coupler (seed 002), a passive constraint that makes it statically
 //! indeterminate once, is solved by the force method in [`passive`].
@@ -36,6 +37,7 @@ mod rpp;
 mod rpr;
 mod rrp;
 mod rrr;
+mod triad;
 
 pub use conditioning::Conditioning;
 pub use coupling::{CouplingBalance, CouplingDrive, CouplingSeed};
@@ -45,3 +47,4 @@ pub use rpp::{RppDyad, RppReactions};
 pub use rpr::{RprDyad, RprReactions, RprSeed};
 pub use rrp::{RrpDyad, RrpReactions, RrpSeed};
 pub use rrr::{RrrDyad, RrrReactions, RrrSeed};
+pub use triad::{Triad, TriadReactions};

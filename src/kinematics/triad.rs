@@ -1,0 +1,1099 @@
+//! The triad: the Assur group of the 3rd class with revolute joints (a ternary link T with the
+//! joints B1, B2, B3, held by three binary links A1 B1, A2 B2, A3 B3 to known joints A1, A2, A3).
+//!
+//! # Positions: one equation in one angle, every root bracketed
+//! With the ternary link's angle θ (the direction of B1 → B2) fixed, each binary link puts B1
+//! on a circle: B1 ∈ circle(c_i(θ), l_i) with c_i = A_i − R(θ)·β_i (β_i the joint B_i in the
+//! ternary link's frame, β_1 = 0). Subtracting the first circle's equation from the other two
+//! leaves two linear equations in B1 (the radical axes), so B1 = A1 + i·W(θ)/D(θ) (complex
+//! notation) with D = (c_2 − c_1) × (c_3 − c_1), and the first circle gives the eliminated
+//! equation
+//!
+//! F(θ) = |W(θ)|² − l_1²·D(θ)² = 0,
+//!
+//! a real trigonometric polynomial of degree 3 (W is a Laurent polynomial in z = e^{iθ} of
+//! degrees −1…2, D of degree 1): at most 6 real roots, the 6 assembly modes of the triad
+//! (the sextic of the 3-RPR forward problem). F is one smooth single-valued function on the
+//! circle — no branches, no folds — so its roots can be bracketed with certainty:
+//!
+//! - its Fourier coefficients F_0…F_3 are formed exactly from the dimensions (a few dozen
+//!   complex products), which bounds |F″| ≤ M₂ = 2·Σ k²·|F_k| everywhere;
+//! - the circle is cut into 32 cells and every cell is either *excluded* (F has one sign at
+//!   both ends and min |F| > M₂·h²/8, so F cannot reach zero inside), or *monotone*
+//!   (|F′(mid)| > M₂·h/2: at most one root, found by Brent's method if the ends' signs differ),
+//!   or halved; a cell that keeps neither property down to a width of 2⁻²⁴ rad holds a
+//!   near-tangency, where |F| is minimised (its extremum from F′ and F″) and the cell then
+//!   holds two roots (bracketed on either side of the extremum), one double root (two modes
+//!   merged: the extremum touches zero within rounding), or none;
+//! - each root's pose is recovered from the linear equations and polished by one Newton step
+//!   of the three closures on (B1, θ), whose matrix is the velocity system below.
+//!
+//! Inside a cell the angle is parametrised by the half-angle tangent t about the cell's
+//! centre, z = z_c·(1 + i·t)²/(1 + t²), so that no trigonometric function is evaluated in the
+//! scan or in Brent's iterations.
+//!
+//! # Rates: the velocity system
+//! With B1 as the ternary link's reference point, r_i = B_i − B1 and u_i the unit vector along
+//! A_i → B_i, projecting each closure's time derivative on u_i removes the binary link's own
+//! ω_i and leaves three equations in (v_B1, ω_T):
+//!
+//! u_i · v_B1 + (r_i × u_i)·ω_T = u_i · v_Ai,
+//!
+//! a 3×3 system K whose rows are the Plücker coordinates of the binary links' lines. Its
+//! determinant vanishes when the three lines meet at one point (or are parallel): the triad's
+//! dead point. The accelerations solve the same K with the centripetal terms
+//! u_i·a_Ai − l_i·ω_i² + ω_T²·(r_i · u_i); then ω_i and ε_i follow from the components across
+//! each binary link. The reported `det` is det K divided by the ternary link's size L_T (the
+//! root-mean-square distance of its joints from their centroid), a dimensionless measure that
+//! is independent of the reference point.
+//!
+//! # Tracking a mode along a cycle
+//! [`TriadModes::nearest`] picks the mode nearest a reference pose, by the distance
+//! D² = Σ|B_i − B_i′|². [`triad_tracked`] is the fast path: Newton's method on F from the
+//! previous pose's angle, accepted only when a certificate proves that the root it reached is
+//! the mode the full bracket would pick (see its documentation for the rule).
+
+use super::link::LinkMotion;
+use super::motion::PointMotion;
+use crate::angle::{cross, direction, perp};
+use crate::error::{finite, finite2, positive, Error, Result};
+use nalgebra::{Complex, Matrix3, Point2, Vector2, Vector3};
+
+type C = Complex<f64>;
+
+const GROUP: &str = "triad";
+/// The name of the triad's conditioning measure in [`Error::Singular`].
+const MEASURE: &str = "det(velocity system)/L_T";
+/// The most assembly modes a triad can have: the degree of the eliminated equation's sextic.
+pub const MAX_TRIAD_MODES: usize = 6;
+/// Below this |det K|/L_T the triad's velocity system is treated as singular (as the dyads'
+/// [`SINGULAR_DETERMINANT`](super::SINGULAR_DETERMINANT)).
+pub const SINGULAR_TRIAD: f64 = 1e-12;
+/// Cells of the first scan of the circle.
+const CELLS: usize = 32;
+/// The width (rad) below which a cell that is neither excluded nor monotone is taken to hold a
+/// near-tangency of F with zero.
+const TANGENT_WIDTH: f64 = 1.0 / (1u64 << 24) as f64;
+
+/// The dimensions of a triad: the lengths of the three binary links and the ternary link's
+/// triangle.
+///
+/// The ternary link's own frame has its origin at B1 and its x axis along B1 → B2, so B2 lies
+/// at (`l_b1b2`, 0) and B3 at (`b3_along`, `b3_across`) (as in
+/// [`LinkMotion::point_at`]). The three joints may lie on one line (a straight ternary link).
+///
+/// # Examples
+/// An equilateral ternary link of side 0.2 m on legs of 0.3, 0.35 and 0.4 m:
+/// ```
+/// use tmm::kinematics::TriadDims;
+/// let dims = TriadDims::new([0.3, 0.35, 0.4], 0.2, 0.1, 0.2 * 0.75f64.sqrt());
+/// assert_eq!(dims.l[1], 0.35);
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+pub struct TriadDims {
+    /// l_A1B1, l_A2B2, l_A3B3: the binary links' lengths, m.
+    pub l: [f64; 3],
+    /// l_B1B2, the side B1 B2 of the ternary link, m.
+    pub l_b1b2: f64,
+    /// B3's coordinate along B1 → B2, m.
+    pub b3_along: f64,
+    /// B3's coordinate across B1 → B2 (to the left of it), m.
+    pub b3_across: f64,
+}
+
+impl TriadDims {
+    /// The dimensions from the binary links' lengths and the ternary link's frame coordinates.
+    #[must_use]
+    pub fn new(l: [f64; 3], l_b1b2: f64, b3_along: f64, b3_across: f64) -> Self {
+        Self {
+            l,
+            l_b1b2,
+            b3_along,
+            b3_across,
+        }
+    }
+
+    /// The joints B1, B2, B3 in the ternary link's frame (B1 at the origin).
+    #[must_use]
+    pub fn local_joints(&self) -> [Vector2<f64>; 3] {
+        [
+            Vector2::zeros(),
+            Vector2::new(self.l_b1b2, 0.0),
+            Vector2::new(self.b3_along, self.b3_across),
+        ]
+    }
+
+    /// L_T, the ternary link's size: the root-mean-square distance of its joints from their
+    /// centroid, m (the scale of the triad's conditioning measure).
+    #[must_use]
+    pub fn ternary_size(&self) -> f64 {
+        (self.ternary_moment() / 3.0).sqrt()
+    }
+
+    /// Σ|β_i − β̄|², the polar moment of the joints about their centroid, m².
+    fn ternary_moment(&self) -> f64 {
+        let b = self.local_joints();
+        let g = (b[0] + b[1] + b[2]) / 3.0;
+        b.iter().map(|v| (v - g).norm_squared()).sum()
+    }
+
+    fn validate(&self) -> Result<()> {
+        positive("l_A1B1", self.l[0])?;
+        positive("l_A2B2", self.l[1])?;
+        positive("l_A3B3", self.l[2])?;
+        positive("l_B1B2", self.l_b1b2)?;
+        finite("B3 along", self.b3_along)?;
+        finite("B3 across", self.b3_across)?;
+        Ok(())
+    }
+}
+
+/// One assembly mode of a triad: where its joints are.
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+pub struct TriadPose {
+    /// The ternary link's joints B1, B2, B3.
+    pub b: [Point2<f64>; 3],
+    /// θ, the ternary link's angle: the direction of B1 → B2, in [0, 2π).
+    pub theta: f64,
+    /// φ_i, the direction of A_i → B_i of each binary link, in [0, 2π).
+    pub phi: [f64; 3],
+    /// det K / L_T, the conditioning of the velocity system (see the module docs): zero when
+    /// the lines of the three binary links meet at one point, and near zero where two modes
+    /// merge.
+    pub det: f64,
+}
+
+impl TriadPose {
+    /// D² = Σ|B_i − B_i′|², the squared distance between two poses of a triad, m².
+    #[must_use]
+    pub fn distance_squared(&self, other: &TriadPose) -> f64 {
+        (0..3)
+            .map(|i| (self.b[i] - other.b[i]).norm_squared())
+            .sum()
+    }
+}
+
+/// All assembly modes of a triad at one position, in the order of θ (at most
+/// [`MAX_TRIAD_MODES`]); no heap.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct TriadModes {
+    count: usize,
+    poses: [TriadPose; MAX_TRIAD_MODES],
+}
+
+impl TriadModes {
+    /// The modes, ordered by the ternary link's angle θ.
+    #[must_use]
+    pub fn as_slice(&self) -> &[TriadPose] {
+        &self.poses[..self.count]
+    }
+
+    /// The number of modes (1 to 6).
+    #[must_use]
+    pub fn len(&self) -> usize {
+        self.count
+    }
+
+    /// Never true for a value returned by [`triad_modes`] (a triad without modes is an error).
+    #[must_use]
+    pub fn is_empty(&self) -> bool {
+        self.count == 0
+    }
+
+    /// The mode nearest `reference` by D² = Σ|B_i − B_i′|² (the continuity rule along a
+    /// cycle: pass the previous position's pose).
+    ///
+    /// # Panics
+    /// Never for a value returned by [`triad_modes`], which holds at least one mode.
+    #[must_use]
+    pub fn nearest(&self, reference: &TriadPose) -> &TriadPose {
+        self.as_slice()
+            .iter()
+            .min_by(|p, q| {
+                p.distance_squared(reference)
+                    .total_cmp(&q.distance_squared(reference))
+            })
+            .expect("a triad's modes are never empty")
+    }
+}
+
+/// The solved triad with velocities and accelerations.
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+pub struct TriadState {
+    /// The joints B1, B2, B3 with their velocities and accelerations.
+    pub b: [PointMotion; 3],
+    /// The ternary link: origin B1, angle θ (direction of B1 → B2), ω_T, ε_T.
+    pub ternary: LinkMotion,
+    /// The binary links: origin A_i, angle φ_i (direction of A_i → B_i), ω_i, ε_i.
+    pub binary: [LinkMotion; 3],
+    /// det K / L_T, as in [`TriadPose::det`].
+    pub det: f64,
+}
+
+impl TriadState {
+    /// The pose of this state (to track the mode at the next position).
+    #[must_use]
+    pub fn pose(&self) -> TriadPose {
+        TriadPose {
+            b: [self.b[0].p, self.b[1].p, self.b[2].p],
+            theta: self.ternary.angle,
+            phi: [
+                self.binary[0].angle,
+                self.binary[1].angle,
+                self.binary[2].angle,
+            ],
+            det: self.det,
+        }
+    }
+}
+
+/// Every assembly mode of a triad with its outer joints at `a`.
+///
+/// The eliminated equation F(θ) = 0 in the ternary link's angle is scanned over the whole
+/// circle with a certificate per cell (module docs), so no mode is missed and none is found
+/// twice; each mode closes its three binary links to rounding.
+///
+/// # Examples
+/// A triad built from a pose: the ternary link B1 = (0, 0), B2 = (1, 0), B3 = (0.5, 0.8) m on
+/// legs of 1 m pointing straight down from B1, up and right from B2 and straight up from B3.
+/// The generating pose is one of the modes, and every mode closes all three legs.
+/// ```
+/// use nalgebra::Point2;
+/// use approx::assert_relative_eq;
+/// use tmm::kinematics::{triad_modes, TriadDims};
+/// let dims = TriadDims::new([1.0, 1.0, 1.0], 1.0, 0.5, 0.8);
+/// let a = [Point2::new(0.0, -1.0), Point2::new(1.6, 0.8), Point2::new(0.5, 1.8)];
+/// let modes = triad_modes(a, &dims)?;
+/// assert!(modes.len() >= 1 && modes.len() <= 6);
+/// assert!(modes.as_slice().iter().any(|m| (m.b[0] - Point2::origin()).norm() < 1e-12));
+/// for m in modes.as_slice() {
+///     for i in 0..3 {
+///         assert_relative_eq!((m.b[i] - a[i]).norm(), 1.0, epsilon = 1e-12);
+///     }
+/// }
+/// # Ok::<(), tmm::Error>(())
+/// ```
+///
+/// # Errors
+/// - [`Error::NonFinite`] / [`Error::NonPositive`] for bad input;
+/// - [`Error::NotAssemblable`] with `group = "triad"` when F has no root (`gap`: by how much
+///   the radical centre of the three circles misses them, at the best orientation scanned);
+/// - [`Error::Singular`] with `measure = "eliminated equation F(theta)"` when F vanishes
+///   identically: the group moves (a triad with a mobility, such as equal legs between similar
+///   triangles), and its modes form a continuum.
+pub fn triad_modes(a: [Point2<f64>; 3], dims: &TriadDims) -> Result<TriadModes> {
+    validate_points(a)?;
+    dims.validate()?;
+    let e = Eliminated::new(a, dims);
+    if !e.scale.is_finite() || !e.f.iter().all(|c| c.re.is_finite() && c.im.is_finite()) {
+        return Err(Error::Overflow {
+            what: "triad: eliminated equation",
+        });
+    }
+    if e.s <= 1024.0 * f64::EPSILON * e.scale {
+        return Err(Error::Singular {
+            what: GROUP,
+            measure: "eliminated equation F(theta)",
+            value: e.s / e.scale,
+        });
+    }
+    let mut roots = Roots::default();
+    e.bracket_all(&mut roots);
+    let mut modes = TriadModes {
+        count: 0,
+        poses: [TriadPose {
+            b: [Point2::origin(); 3],
+            theta: 0.0,
+            phi: [0.0; 3],
+            det: 0.0,
+        }; MAX_TRIAD_MODES],
+    };
+    let tol = 1e-9 * e.length;
+    for r in 0..roots.n {
+        for pose in e
+            .poses(roots.z[r], roots.multiple[r], dims)
+            .into_iter()
+            .flatten()
+        {
+            let seen = modes.poses[..modes.count]
+                .iter()
+                .any(|m| m.distance_squared(&pose) <= tol * tol);
+            if !seen && modes.count < MAX_TRIAD_MODES {
+                modes.poses[modes.count] = pose;
+                modes.count += 1;
+            }
+        }
+    }
+    if modes.count == 0 {
+        return Err(Error::NotAssemblable {
+            group: GROUP,
+            gap: e.gap(),
+        });
+    }
+    modes.poses[..modes.count].sort_by(|p, q| p.theta.total_cmp(&q.theta));
+    Ok(modes)
+}
+
+/// The fast path of tracking: the mode reached by Newton's method on F(θ) from `previous`'s
+/// angle, or `None` when it cannot be certified to be the mode that
+/// [`triad_modes`]`(a, dims)?.`[`nearest`](TriadModes::nearest)`(previous)` returns.
+///
+/// The rule. Newton's iterate θ* (a root of F to rounding) is accepted when
+/// 1. no other root of F lies within ρ of θ*, where ρ is the larger of 2|F′(θ*)|/M₂ and the
+///    positive root of |F′(θ*)| = |F″(θ*)|·ρ/2 + M₃·ρ²/6 (M₂ = 2·Σ k²·|F_k| ≥ |F″| and
+///    M₃ = 2·Σ k³·|F_k| ≥ |F‴| everywhere, so by Taylor's theorem |F(θ)| ≥ |F′(θ*)|·d −
+///    M₂·d²/2 > 0, or ≥ |F′(θ*)|·d − |F″(θ*)|·d²/2 − M₃·d³/6 > 0, for 0 < d = |θ − θ*| < ρ;
+///    ρ is shrunk by 0.1 % and by 4|F(θ*)|/|F′(θ*)| for rounding), hence every other
+///    mode's angle is at least δ = ρ − |θ* − θ_prev| from the previous angle; and
+/// 2. the new pose is nearer the previous one than any other mode can be: a mode turned by Δθ
+///    from the previous pose is at least D² ≥ 4·I·sin²(Δθ/2) from it (I = Σ|β_i − β̄|², the
+///    polar moment of the ternary link's joints about their centroid), so the rule asks
+///    D*² < 4·I·sin²(min(δ, π)/2).
+///
+/// Both hold for small steps along a cycle away from a merger of modes; near one the bracket
+/// decides. `None` also for invalid input (the full path names the error).
+#[must_use]
+pub fn triad_tracked(
+    a: [Point2<f64>; 3],
+    dims: &TriadDims,
+    previous: &TriadPose,
+) -> Option<TriadPose> {
+    if !(valid_points(a) && dims.validate().is_ok()) {
+        return None;
+    }
+    let e = Eliminated::new(a, dims);
+    let d = previous.b[1] - previous.b[0];
+    let z0 = C::new(d.x, d.y) / d.norm();
+    if !(z0.re.is_finite() && z0.im.is_finite() && e.m2 > 0.0 && e.m2.is_finite()) {
+        return None;
+    }
+    let mut t = 0.0;
+    let mut z = z0;
+    let (mut f, mut g) = e.eval(z);
+    let mut converged = false;
+    for _ in 0..12 {
+        let dgdt = g * 2.0 / (1.0 + t * t);
+        let dt = -f / dgdt;
+        if !dt.is_finite() || dt.abs() > 1.0 {
+            return None;
+        }
+        t += dt;
+        z = along(z0, t);
+        (f, g) = e.eval(z);
+        if dt.abs() <= 1e-13 * (1.0 + t.abs()) || f.abs() <= e.tol {
+            converged = f.abs() <= 64.0 * e.tol;
+            if converged {
+                break;
+            }
+        }
+    }
+    if !converged {
+        return None;
+    }
+    // The exclusion radius: where |F′(θ*)|·d − |F″(θ*)|·d²/2 − M₃·d³/6 > |F(θ*)| (M₃ bounds
+    // |F‴|), or the cruder 2|F′(θ*)|/M₂, whichever is larger.
+    let (b, m3) = (0.5 * e.second(z).abs(), e.m3 / 6.0);
+    let local = 2.0 * g.abs() / (b + (b * b + 4.0 * m3 * g.abs()).sqrt());
+    let rho = 0.999 * local.max(2.0 * g.abs() / e.m2) - 4.0 * f.abs() / g.abs();
+    // |θ* − θ_prev| = 2·|atan t| ≤ 2|t|.
+    let delta = (rho - 2.0 * t.abs()).min(std::f64::consts::PI);
+    if delta <= 0.0 {
+        return None;
+    }
+    let (wz, d) = e.w_d(z);
+    let p = C::new(0.0, 1.0) * wz / d;
+    let pose = e.polish(Vector2::new(p.re, p.im), z, dims)?;
+    let turned = (pose.b[1] - pose.b[0]) / dims.l_b1b2 - Vector2::new(z.re, z.im);
+    if turned.norm() > 1e-6 {
+        return None;
+    }
+    let x = 0.5 * delta;
+    // sin x ≥ x − x³/6 for x ≥ 0 (positive up to √6 > π/2).
+    let s = x - x * x * x / 6.0;
+    let bound = 4.0 * dims.ternary_moment() * s * s;
+    (pose.distance_squared(previous) < 0.99 * bound).then_some(pose)
+}
+
+/// Positions, velocities and accelerations of a triad, in the mode nearest `previous`.
+///
+/// Tries the fast path [`triad_tracked`] first and falls back to [`triad_modes`] with
+/// [`TriadModes::nearest`]; then solves the velocity and acceleration systems
+/// ([`triad_rates`]).
+///
+/// # Examples
+/// The triad of [`triad_modes`]' example, its outer joints at rest but A1 moving up at
+/// 0.1 m/s: B1 follows (the leg A1 B1 is along the motion, so at this instant the group moves
+/// as it would if A1 B1 were rigid with the frame moving).
+/// ```
+/// use nalgebra::{Point2, Vector2};
+/// use approx::assert_relative_eq;
+/// use tmm::kinematics::{triad, triad_modes, PointMotion, TriadDims};
+/// let dims = TriadDims::new([1.0, 1.0, 1.0], 1.0, 0.5, 0.8);
+/// let p = [Point2::new(0.0, -1.0), Point2::new(1.6, 0.8), Point2::new(0.5, 1.8)];
+/// let modes = triad_modes(p, &dims)?;
+/// let start = modes.as_slice().iter().find(|m| m.b[0].coords.norm() < 1e-9).unwrap();
+/// let a = [
+///     PointMotion::new(p[0], Vector2::new(0.0, 0.1), Vector2::zeros()),
+///     PointMotion::fixed(p[1]),
+///     PointMotion::fixed(p[2]),
+/// ];
+/// let s = triad(a, &dims, start)?;
+/// // Closure of every leg, and the velocity of B_i along its leg equals A_i's.
+/// for i in 0..3 {
+///     let u = (s.b[i].p - a[i].p) / 1.0;
+///     assert_relative_eq!(u.norm(), 1.0, epsilon = 1e-12);
+///     assert_relative_eq!(s.b[i].v.dot(&u), a[i].v.dot(&u), epsilon = 1e-12);
+/// }
+/// # Ok::<(), tmm::Error>(())
+/// ```
+///
+/// # Errors
+/// As [`triad_modes`] and [`triad_rates`].
+pub fn triad(a: [PointMotion; 3], dims: &TriadDims, previous: &TriadPose) -> Result<TriadState> {
+    let p = [a[0].p, a[1].p, a[2].p];
+    let pose = match triad_tracked(p, dims, previous) {
+        Some(pose) => pose,
+        None => *triad_modes(p, dims)?.nearest(previous),
+    };
+    triad_rates(a, dims, &pose)
+}
+
+/// Velocities and accelerations of a triad in a given mode (`pose`, one of
+/// [`triad_modes`]' at the positions of `a`), from the velocity system K (module docs).
+///
+/// # Errors
+/// - [`Error::NonFinite`] for bad input;
+/// - [`Error::Singular`] with `measure = "det(velocity system)/L_T"` when |det K|/L_T ≤
+///   [`SINGULAR_TRIAD`]: the lines of the three binary links meet at one point (a dead point
+///   of the group, or two modes merging);
+/// - [`Error::Overflow`] when a rate overflows.
+pub fn triad_rates(a: [PointMotion; 3], dims: &TriadDims, pose: &TriadPose) -> Result<TriadState> {
+    for m in &a {
+        m.validate(["A.x", "A.y", "v_A.x", "v_A.y", "a_A.x", "a_A.y"])?;
+    }
+    for b in &pose.b {
+        finite2(["B.x", "B.y"], b.coords)?;
+    }
+    dims.validate()?;
+    let b = pose.b;
+    let r = [Vector2::zeros(), b[1] - b[0], b[2] - b[0]];
+    let leg = [b[0] - a[0].p, b[1] - a[1].p, b[2] - a[2].p];
+    let len = [leg[0].norm(), leg[1].norm(), leg[2].norm()];
+    let u = [leg[0] / len[0], leg[1] / len[1], leg[2] / len[2]];
+    let k = velocity_matrix(u, r);
+    let det = k.determinant() / dims.ternary_size();
+    if det.is_nan() || det.abs() <= SINGULAR_TRIAD {
+        return Err(Error::Singular {
+            what: GROUP,
+            measure: MEASURE,
+            value: det,
+        });
+    }
+    let k_inv = k.try_inverse().ok_or(Error::Singular {
+        what: GROUP,
+        measure: MEASURE,
+        value: det,
+    })?;
+    let vel = k_inv * Vector3::from_fn(|i, _| u[i].dot(&a[i].v));
+    let (v1, omega_t) = (Vector2::new(vel.x, vel.y), vel.z);
+    let vb = [v1, v1 + omega_t * perp(r[1]), v1 + omega_t * perp(r[2])];
+    let omega = [0, 1, 2].map(|i| perp(u[i]).dot(&(vb[i] - a[i].v)) / len[i]);
+    let acc = k_inv
+        * Vector3::from_fn(|i, _| {
+            u[i].dot(&a[i].a) - len[i] * omega[i] * omega[i] + omega_t * omega_t * r[i].dot(&u[i])
+        });
+    let (a1, eps_t) = (Vector2::new(acc.x, acc.y), acc.z);
+    let ternary = LinkMotion {
+        origin: PointMotion::new(b[0], v1, a1),
+        angle: direction(r[1]),
+        omega: omega_t,
+        epsilon: eps_t,
+    };
+    let bm = [0, 1, 2].map(|i| ternary.motion_of(b[i]));
+    let eps = [0, 1, 2].map(|i| perp(u[i]).dot(&(bm[i].a - a[i].a)) / len[i]);
+    let binary = [0, 1, 2].map(|i| LinkMotion {
+        origin: a[i],
+        angle: direction(leg[i]),
+        omega: omega[i],
+        epsilon: eps[i],
+    });
+    let out = TriadState {
+        b: bm,
+        ternary,
+        binary,
+        det,
+    };
+    let finite = bm
+        .iter()
+        .all(|m| m.v.iter().chain(m.a.iter()).all(|x| x.is_finite()))
+        && omega.iter().chain(eps.iter()).all(|x| x.is_finite())
+        && omega_t.is_finite()
+        && eps_t.is_finite();
+    if finite {
+        Ok(out)
+    } else {
+        Err(Error::Overflow {
+            what: "triad: rates",
+        })
+    }
+}
+
+/// The velocity system K of a triad: row i is (u_i, r_i × u_i).
+fn velocity_matrix(u: [Vector2<f64>; 3], r: [Vector2<f64>; 3]) -> Matrix3<f64> {
+    Matrix3::from_fn(|i, j| match j {
+        0 => u[i].x,
+        1 => u[i].y,
+        _ => cross(r[i], u[i]),
+    })
+}
+
+fn validate_points(a: [Point2<f64>; 3]) -> Result<()> {
+    finite2(["A1.x", "A1.y"], a[0].coords)?;
+    finite2(["A2.x", "A2.y"], a[1].coords)?;
+    finite2(["A3.x", "A3.y"], a[2].coords)?;
+    Ok(())
+}
+
+fn valid_points(a: [Point2<f64>; 3]) -> bool {
+    a.iter().all(|p| p.x.is_finite() && p.y.is_finite())
+}
+
+/// z turned by the angle 2·atan(t): z·(1 + i·t)²/(1 + t²), without a trigonometric function.
+#[inline]
+fn along(z: C, t: f64) -> C {
+    let w = C::new(1.0 - t * t, 2.0 * t) / (1.0 + t * t);
+    z * w
+}
+
+/// The roots of F found by the scan, as unit complex numbers z = e^{iθ}, in the order of θ.
+/// Roots closer than [`CLUSTER`] merge into one marked `multiple`: a near-tangency of F, where
+/// rounding can make F cross zero several times.
+#[derive(Default)]
+struct Roots {
+    n: usize,
+    z: [C; 12],
+    multiple: [bool; 12],
+}
+
+/// Roots of F closer than this (rad) are one cluster.
+const CLUSTER: f64 = 1e-6;
+
+impl Roots {
+    fn push(&mut self, z: C) {
+        let near = |w: C| (z - w).norm() < CLUSTER;
+        if self.n > 0 && near(self.z[self.n - 1]) {
+            self.multiple[self.n - 1] = true;
+        } else if self.n > 0 && near(self.z[0]) {
+            self.multiple[0] = true;
+        } else if self.n < self.z.len() {
+            self.z[self.n] = z;
+            self.n += 1;
+        }
+    }
+}
+
+/// The eliminated equation of one triad at one position, origin at A1.
+struct Eliminated {
+    /// A_1 (the origin of the complex plane below).
+    a1: Point2<f64>,
+    /// A_i − A_1 and β_i as complex numbers.
+    a: [C; 3],
+    beta: [C; 3],
+    l: [f64; 3],
+    /// W's Laurent coefficients of z^-1, z^0, z^1, z^2.
+    w: [C; 4],
+    /// D = e0 + 2·Re(e1·z).
+    e0: f64,
+    e1: C,
+    /// F's Fourier coefficients: F = f[0] + 2·Re(Σ_{k=1..3} f[k]·z^k), f[0] real.
+    f: [C; 4],
+    /// M₂ = 2·Σ k²|F_k|, a bound of |F″|.
+    m2: f64,
+    /// M₃ = 2·Σ k³|F_k|, a bound of |F‴|.
+    m3: f64,
+    /// Σ|F_k| with F_0 once and the others twice: a bound of |F|.
+    s: f64,
+    /// The size of the terms that make F (for the rounding tolerance).
+    scale: f64,
+    /// The rounding level of an evaluation of F.
+    tol: f64,
+    /// A length of the triad (for closure tolerances).
+    length: f64,
+}
+
+impl Eliminated {
+    fn new(a: [Point2<f64>; 3], dims: &TriadDims) -> Self {
+        let rel = |p: Point2<f64>| C::new(p.x - a[0].x, p.y - a[0].y);
+        let av = [C::new(0.0, 0.0), rel(a[1]), rel(a[2])];
+        let beta = [
+            C::new(0.0, 0.0),
+            C::new(dims.l_b1b2, 0.0),
+            C::new(dims.b3_along, dims.b3_across),
+        ];
+        let l = dims.l;
+        let l1s = l[0] * l[0];
+        // s_k = σ_k − Re(γ_k·z), c_k = a_k − β_k·z (k = 1, 2: the joints 2 and 3).
+        let sigma = |k: usize| 0.5 * (l1s + av[k].norm_sqr() + beta[k].norm_sqr() - l[k] * l[k]);
+        let gamma = |k: usize| av[k].conj() * beta[k];
+        // Laurent coefficients (z^-1, z^0, z^1, z^2) of s_k·c_m.
+        let sc = |k: usize, m: usize| {
+            let (s, g) = (sigma(k), gamma(k));
+            [
+                -0.5 * g.conj() * av[m],
+                s * av[m] + 0.5 * g.conj() * beta[m],
+                -s * beta[m] - 0.5 * g * av[m],
+                0.5 * g * beta[m],
+            ]
+        };
+        let (p, q) = (sc(2, 1), sc(1, 2));
+        let w = [p[0] - q[0], p[1] - q[1], p[2] - q[2], p[3] - q[3]];
+        let e0 = (av[1].conj() * av[2] + beta[1].conj() * beta[2]).im;
+        let mu = beta[1] * av[2].conj() - av[1].conj() * beta[2];
+        let e1 = C::new(0.0, -0.5) * mu;
+        // |W|²_k = Σ_j w_j·conj(w_{j−k}); (D²)_k from e_{−1} = conj(e1), e_0, e_1.
+        let ww = |k: usize| -> C {
+            (k..4)
+                .map(|j| w[j] * w[j - k].conj())
+                .fold(C::new(0.0, 0.0), |s, x| s + x)
+        };
+        let dd = [
+            C::new(e0 * e0 + 2.0 * e1.norm_sqr(), 0.0),
+            2.0 * e0 * e1,
+            e1 * e1,
+            C::new(0.0, 0.0),
+        ];
+        let f = [0, 1, 2, 3].map(|k| ww(k) - l1s * dd[k]);
+        let f = [C::new(f[0].re, 0.0), f[1], f[2], f[3]];
+        let m2 = 2.0 * (f[1].norm() + 4.0 * f[2].norm() + 9.0 * f[3].norm());
+        let m3 = 2.0 * (f[1].norm() + 8.0 * f[2].norm() + 27.0 * f[3].norm());
+        let s = f[0].re.abs() + 2.0 * (f[1].norm() + f[2].norm() + f[3].norm());
+        let wsum: f64 = w.iter().map(|c| c.norm()).sum();
+        let esum = e0.abs() + 2.0 * e1.norm();
+        let scale = wsum * wsum + l1s * esum * esum;
+        let length = av
+            .iter()
+            .chain(beta.iter())
+            .map(|c| c.norm())
+            .chain(l)
+            .fold(0.0, f64::max);
+        Self {
+            a1: a[0],
+            a: av,
+            beta,
+            l,
+            w,
+            e0,
+            e1,
+            f,
+            m2,
+            m3,
+            s,
+            scale,
+            tol: 64.0 * f64::EPSILON * scale,
+            length,
+        }
+    }
+
+    /// F and F′ = dF/dθ at z = e^{iθ}.
+    #[inline]
+    fn eval(&self, z: C) -> (f64, f64) {
+        let f = &self.f;
+        let z2 = z * z;
+        let z3 = z2 * z;
+        let (p1, p2, p3) = (f[1] * z, f[2] * z2, f[3] * z3);
+        let p = p1 + p2 + p3;
+        let dp = p1 + 2.0 * p2 + 3.0 * p3;
+        (f[0].re + 2.0 * p.re, -2.0 * dp.im)
+    }
+
+    /// F″ at z.
+    fn second(&self, z: C) -> f64 {
+        let f = &self.f;
+        let z2 = z * z;
+        let p = f[1] * z + 4.0 * f[2] * z2 + 9.0 * f[3] * z2 * z;
+        -2.0 * p.re
+    }
+
+    /// Brackets every root of F on the circle (module docs) into `roots`.
+    fn bracket_all(&self, roots: &mut Roots) {
+        let h0 = std::f64::consts::TAU / CELLS as f64;
+        let step = C::new(h0.cos(), h0.sin());
+        let mut grid = [C::new(1.0, 0.0); CELLS + 1];
+        for j in 1..CELLS {
+            grid[j] = grid[j - 1] * step;
+        }
+        let mut values = [0.0; CELLS + 1];
+        for j in 0..CELLS {
+            values[j] = self.eval(grid[j]).0;
+        }
+        values[CELLS] = values[0];
+        // Cells to examine: (z_a, F_a, z_b, F_b, width).
+        // Depth-first: at most CELLS + 24 cells wait (each halving adds one).
+        let mut stack = [(C::new(0.0, 0.0), 0.0, C::new(0.0, 0.0), 0.0, 0.0); CELLS + 32];
+        let mut top = 0;
+        for j in (0..CELLS).rev() {
+            stack[top] = (grid[j], values[j], grid[j + 1], values[j + 1], h0);
+            top += 1;
+        }
+        while top > 0 {
+            top -= 1;
+            let (za, fa, zb, fb, h) = stack[top];
+            let same = (fa < 0.0) == (fb < 0.0);
+            if same && fa.abs().min(fb.abs()) > self.m2 * h * h / 8.0 + self.tol {
+                continue;
+            }
+            let zm = unit(za + zb);
+            let (fm, gm) = self.eval(zm);
+            if gm.abs() > self.m2 * h / 2.0 + self.tol {
+                if !same {
+                    roots.push(self.brent_cell(za, fa, zb, fb));
+                }
+                continue;
+            }
+            if h <= TANGENT_WIDTH {
+                self.tangent(za, fa, zb, fb, zm, gm, h, roots);
+                continue;
+            }
+            stack[top] = (zm, fm, zb, fb, 0.5 * h);
+            stack[top + 1] = (za, fa, zm, fm, 0.5 * h);
+            top += 2;
+        }
+    }
+
+    /// A tiny cell that is neither excluded nor certified monotone: a near-tangency of F with
+    /// zero. The extremum of F (one Newton step on F′ from the middle) decides.
+    #[allow(clippy::too_many_arguments)]
+    fn tangent(&self, za: C, fa: f64, zb: C, fb: f64, zm: C, gm: f64, h: f64, roots: &mut Roots) {
+        if (fa < 0.0) != (fb < 0.0) {
+            roots.push(self.brent_cell(za, fa, zb, fb));
+            return;
+        }
+        let hm = self.second(zm);
+        let u = if hm != 0.0 {
+            (-gm / hm).clamp(-0.5 * h, 0.5 * h)
+        } else {
+            0.0
+        };
+        let te = 0.5 * u;
+        let ze = along(zm, te);
+        let fe = self.eval(ze).0;
+        let tau = half_tangent(zm, zb);
+        if (fe < 0.0) != (fa < 0.0) {
+            let g = |t: f64| self.eval(along(zm, t)).0;
+            roots.push(along(zm, brent(&g, -tau, te, fa, fe, tau)));
+            roots.push(along(zm, brent(&g, te, tau, fe, fb, tau)));
+        } else if fe.abs() <= self.tol {
+            roots.push(ze);
+        }
+    }
+
+    /// The root of F in a cell whose ends have opposite signs, by Brent's method on the
+    /// half-angle tangent about the cell's centre.
+    fn brent_cell(&self, za: C, fa: f64, zb: C, fb: f64) -> C {
+        let zc = unit(za + zb);
+        let tau = half_tangent(zc, zb);
+        let g = |t: f64| self.eval(along(zc, t)).0;
+        along(zc, brent(&g, -tau, tau, fa, fb, tau))
+    }
+
+    /// W(z) and D(z).
+    fn w_d(&self, z: C) -> (C, f64) {
+        let w = &self.w;
+        let wz = w[0] * z.conj() + w[1] + z * (w[2] + z * w[3]);
+        (wz, self.e0 + 2.0 * (self.e1 * z).re)
+    }
+
+    /// The poses at a root z of F: B1 from the radical axes, then Newton's method on the
+    /// three closures in (B1, θ), whose matrix is the velocity system K. Where the radical
+    /// axes are nearly parallel (D ≈ 0, the three circles nearly coaxal) or the root is
+    /// `multiple`, two modes can share (nearly) one θ with different B1: then both
+    /// intersections of two of the circles are polished, and every candidate that closes is
+    /// returned.
+    fn poses(&self, z: C, multiple: bool, dims: &TriadDims) -> [Option<TriadPose>; 2] {
+        let (wz, d) = self.w_d(z);
+        let dscale = self.e0.abs() + 2.0 * self.e1.norm();
+        if d.abs() > 1e-3 * dscale && !multiple {
+            let p = C::new(0.0, 1.0) * wz / d;
+            [self.polish(Vector2::new(p.re, p.im), z, dims), None]
+        } else {
+            match self.two_circles(z) {
+                Some([p, q]) => [self.polish(p, z, dims), self.polish(q, z, dims)],
+                None => [None, None],
+            }
+        }
+    }
+
+    /// The pose from B1 − A1 = `p` at z, polished by Newton's method on the closures (kept
+    /// while it reduces the closure error); `None` when it does not close to 1e-9 of the
+    /// size.
+    fn polish(&self, p: Vector2<f64>, z: C, dims: &TriadDims) -> Option<TriadPose> {
+        let mut b1 = self.a1 + p;
+        let mut z = z;
+        let mut err = self.closure(b1, z);
+        for _ in 0..8 {
+            if err <= 1e-15 * self.length {
+                break;
+            }
+            let (u, r, h) = self.legs(b1, z);
+            let Some(k_inv) = velocity_matrix(u, r).try_inverse() else {
+                break;
+            };
+            let step = k_inv * (-h);
+            let b1n = b1 + Vector2::new(step.x, step.y);
+            let zn = unit(z * C::new(1.0, step.z));
+            let errn = self.closure(b1n, zn);
+            if errn < err {
+                (b1, z, err) = (b1n, zn, errn);
+            } else {
+                break;
+            }
+        }
+        if err.is_nan() || err > 1e-9 * self.length {
+            return None;
+        }
+        let (u, r, _) = self.legs(b1, z);
+        let det = velocity_matrix(u, r).determinant() / dims.ternary_size();
+        let b = self.joints(b1, z);
+        let a = self.outer();
+        Some(TriadPose {
+            b,
+            theta: direction(Vector2::new(z.re, z.im)),
+            phi: [0, 1, 2].map(|i| direction(b[i] - a[i])),
+            det,
+        })
+    }
+
+    /// The two intersections (B1 − A1) of the first circle with the other one whose centre
+    /// is farther from A1 (the tangent point twice when they touch).
+    fn two_circles(&self, z: C) -> Option<[Vector2<f64>; 2]> {
+        let c = [1, 2].map(|k| self.a[k] - self.beta[k] * z);
+        let k = if c[0].norm() >= c[1].norm() { 0 } else { 1 };
+        let (ck, lk) = (c[k], self.l[k + 1]);
+        let dist = ck.norm();
+        if dist == 0.0 {
+            return None;
+        }
+        let e = ck / dist;
+        let l0 = self.l[0];
+        let x = 0.5 * (dist + (l0 - lk) * (l0 + lk) / dist);
+        let h = (l0 * l0 - x * x).max(0.0).sqrt();
+        Some([C::new(x, h), C::new(x, -h)].map(|w| {
+            let p = e * w;
+            Vector2::new(p.re, p.im)
+        }))
+    }
+
+    fn outer(&self) -> [Point2<f64>; 3] {
+        [0, 1, 2].map(|i| self.a1 + Vector2::new(self.a[i].re, self.a[i].im))
+    }
+
+    fn joints(&self, b1: Point2<f64>, z: C) -> [Point2<f64>; 3] {
+        [0, 1, 2].map(|i| {
+            let r = self.beta[i] * z;
+            b1 + Vector2::new(r.re, r.im)
+        })
+    }
+
+    /// The unit vectors of the legs, the arms r_i = B_i − B1, and the closure errors
+    /// |B_i − A_i| − l_i.
+    fn legs(&self, b1: Point2<f64>, z: C) -> ([Vector2<f64>; 3], [Vector2<f64>; 3], Vector3<f64>) {
+        let b = self.joints(b1, z);
+        let a = self.outer();
+        let leg = [0, 1, 2].map(|i| b[i] - a[i]);
+        let n = leg.map(|v| v.norm());
+        (
+            [0, 1, 2].map(|i| leg[i] / n[i]),
+            [0, 1, 2].map(|i| b[i] - b1),
+            Vector3::new(n[0] - self.l[0], n[1] - self.l[1], n[2] - self.l[2]),
+        )
+    }
+
+    /// The largest closure error of a pose, m.
+    fn closure(&self, b1: Point2<f64>, z: C) -> f64 {
+        let b = self.joints(b1, z);
+        let a = self.outer();
+        (0..3)
+            .map(|i| ((b[i] - a[i]).norm() - self.l[i]).abs())
+            .fold(0.0, f64::max)
+    }
+
+    /// By how much the radical centre of the three circles misses them (the largest of the
+    /// three misses), at the best of 1024 orientations: the `gap` of
+    /// [`Error::NotAssemblable`].
+    #[cold]
+    fn gap(&self) -> f64 {
+        let n = 1024;
+        let dscale = self.e0.abs() + 2.0 * self.e1.norm();
+        let mut best = f64::INFINITY;
+        for j in 0..n {
+            let th = std::f64::consts::TAU * j as f64 / n as f64;
+            let z = C::new(th.cos(), th.sin());
+            let (wz, d) = self.w_d(z);
+            if d.abs() <= 1e-9 * dscale {
+                continue;
+            }
+            let p = C::new(0.0, 1.0) * wz / d;
+            let miss = (0..3)
+                .map(|i| ((p - (self.a[i] - self.beta[i] * z)).norm() - self.l[i]).abs())
+                .fold(0.0, f64::max);
+            best = best.min(miss);
+        }
+        best
+    }
+}
+
+/// The unit complex number along z.
+#[inline]
+fn unit(z: C) -> C {
+    z / z.norm()
+}
+
+/// tan(α/2) for the angle α from zc to zb (less than π).
+#[inline]
+fn half_tangent(zc: C, zb: C) -> f64 {
+    let r = zc.conj() * zb;
+    r.im / (1.0 + r.re)
+}
+
+/// Brent's method (zeroin) for a root of g in [a, b] with g(a) = fa, g(b) = fb of opposite
+/// signs (or one of them zero), to the resolution of f64 on an interval of half-width `half`.
+fn brent(g: &impl Fn(f64) -> f64, a: f64, b: f64, fa: f64, fb: f64, half: f64) -> f64 {
+    let (mut a, mut b, mut fa, mut fb) = (a, b, fa, fb);
+    if fa == 0.0 {
+        return a;
+    }
+    if fb == 0.0 {
+        return b;
+    }
+    let xtol = 2.0 * f64::EPSILON * half;
+    let (mut c, mut fc) = (a, fa);
+    let mut d = b - a;
+    let mut e = d;
+    for _ in 0..200 {
+        if (fb > 0.0) == (fc > 0.0) {
+            c = a;
+            fc = fa;
+            d = b - a;
+            e = d;
+        }
+        if fc.abs() < fb.abs() {
+            a = b;
+            b = c;
+            c = a;
+            fa = fb;
+            fb = fc;
+            fc = fa;
+        }
+        let tol1 = 2.0 * f64::EPSILON * b.abs() + 0.5 * xtol;
+        let xm = 0.5 * (c - b);
+        if xm.abs() <= tol1 || fb == 0.0 {
+            return b;
+        }
+        if e.abs() >= tol1 && fa.abs() > fb.abs() {
+            let s = fb / fa;
+            let (mut p, mut q);
+            if a == c {
+                p = 2.0 * xm * s;
+                q = 1.0 - s;
+            } else {
+                let qq = fa / fc;
+                let r = fb / fc;
+                p = s * (2.0 * xm * qq * (qq - r) - (b - a) * (r - 1.0));
+                q = (qq - 1.0) * (r - 1.0) * (s - 1.0);
+            }
+            if p > 0.0 {
+                q = -q;
+            } else {
+                p = -p;
+            }
+            if 2.0 * p < (3.0 * xm * q - (tol1 * q).abs()).min((e * q).abs()) {
+                e = d;
+                d = p / q;
+            } else {
+                d = xm;
+                e = d;
+            }
+        } else {
+            d = xm;
+            e = d;
+        }
+        a = b;
+        fa = fb;
+        b += if d.abs() > tol1 { d } else { tol1.copysign(xm) };
+        fb = g(b);
+    }
+    b
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use approx::assert_relative_eq;
+
+    fn example() -> (TriadDims, [Point2<f64>; 3]) {
+        (
+            TriadDims::new([1.0, 1.0, 1.0], 1.0, 0.5, 0.8),
+            [
+                Point2::new(0.0, -1.0),
+                Point2::new(1.6, 0.8),
+                Point2::new(0.5, 1.8),
+            ],
+        )
+    }
+
+    /// F from its coefficients equals |W|² − l1²·D² evaluated geometrically.
+    #[test]
+    fn triad_coefficients_match_the_geometry() {
+        let (dims, a) = example();
+        let e = Eliminated::new(a, &dims);
+        for j in 0..37 {
+            let th = 0.17 * j as f64;
+            let z = C::new(th.cos(), th.sin());
+            // Geometric: c_k = a_k − β_k z, s_k = (l1² + |c_k|² − l_k²)/2, W = s_3 c_2 − s_2 c_3.
+            let c = [0, 1, 2].map(|k| e.a[k] - e.beta[k] * z);
+            let s = [0, 1, 2].map(|k| 0.5 * (e.l[0].powi(2) + c[k].norm_sqr() - e.l[k].powi(2)));
+            let w = s[2] * c[1] - s[1] * c[2];
+            let d = (c[1].conj() * c[2]).im;
+            let f = w.norm_sqr() - e.l[0].powi(2) * d * d;
+            let (wz, dz) = e.w_d(z);
+            assert!((wz - w).norm() < 1e-12);
+            assert_relative_eq!(dz, d, epsilon = 1e-12);
+            assert_relative_eq!(e.eval(z).0, f, epsilon = 1e-11);
+            // F′ against a central difference.
+            let hh = 1e-6;
+            let fp = e.eval(C::new((th + hh).cos(), (th + hh).sin())).0;
+            let fm = e.eval(C::new((th - hh).cos(), (th - hh).sin())).0;
+            assert_relative_eq!(e.eval(z).1, (fp - fm) / (2.0 * hh), epsilon = 1e-6);
+        }
+    }
+
+    #[test]
+    fn triad_generating_pose_is_a_mode() {
+        let (dims, a) = example();
+        let modes = triad_modes(a, &dims).unwrap();
+        assert!(modes
+            .as_slice()
+            .iter()
+            .any(|m| m.b[0].coords.norm() < 1e-12));
+        let reference = modes.as_slice()[0];
+        assert_eq!(*modes.nearest(&reference), reference);
+        let tracked = triad_tracked(a, &dims, &reference).unwrap();
+        assert!(tracked.distance_squared(&reference) < 1e-24);
+    }
+
+    #[test]
+    fn triad_far_apart_is_not_assemblable() {
+        let (dims, mut a) = example();
+        a[2] = Point2::new(10.0, 10.0);
+        match triad_modes(a, &dims) {
+            Err(Error::NotAssemblable { group, gap }) => {
+                assert_eq!(group, "triad");
+                assert!(gap > 1.0, "{gap}");
+            }
+            other => panic!("{other:?}"),
+        }
+    }
+}

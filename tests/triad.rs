@@ -1,0 +1,605 @@
+//! Triads (the Assur group of the 3rd class, revolute joints), over 10⁴ seeded random groups:
+//! every assembly mode found (the count against two independent counts: a dense scan of the
+//! same eliminated equation written out here, and a dense scan of a different elimination,
+//! by the first binary link's angle along the branches of its four-bar), every mode closed
+//! to 1e-12 of the size, non-assemblable groups named, rates against eighth-order finite
+//! differences, the fast path of tracking against the full bracket, and the reactions
+//! against one LU solve of the group's full Newton–Euler system.
+
+use nalgebra::{DMatrix, DVector, Point2, Vector2};
+use std::f64::consts::{PI, TAU};
+use tmm::angle::{cross, perp, unit};
+use tmm::kinematics::{
+    triad, triad_modes, triad_rates, triad_tracked, PointMotion, TriadDims, TriadPose,
+};
+use tmm::kinetostatics::Triad;
+use tmm::{Error, Load};
+
+/// A seeded generator (SplitMix64), so that every run tests the same groups.
+struct Rng(u64);
+
+impl Rng {
+    fn next(&mut self) -> f64 {
+        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
+        let mut z = self.0;
+        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+        z ^= z >> 31;
+        (z >> 11) as f64 / (1u64 << 53) as f64
+    }
+    fn range(&mut self, lo: f64, hi: f64) -> f64 {
+        lo + (hi - lo) * self.next()
+    }
+    fn vector(&mut self, r: f64) -> Vector2<f64> {
+        Vector2::new(self.range(-r, r), self.range(-r, r))
+    }
+}
+
+const CASES: usize = 10_000;
+
+fn random_dims(rng: &mut Rng) -> TriadDims {
+    TriadDims::new(
+        [
+            rng.range(0.3, 2.0),
+            rng.range(0.3, 2.0),
+            rng.range(0.3, 2.0),
+        ],
+        rng.range(0.3, 1.5),
+        rng.range(-0.5, 1.5),
+        rng.range(-1.2, 1.2),
+    )
+}
+
+/// A triad built from a random pose, so that at least that mode exists: the outer joints and
+/// the generating joints B.
+fn from_pose(rng: &mut Rng, dims: &TriadDims) -> ([Point2<f64>; 3], [Point2<f64>; 3]) {
+    let b1 = Point2::from(rng.vector(1.0));
+    let theta = rng.range(0.0, TAU);
+    let b = dims.local_joints().map(|beta| b1 + rotate(beta, theta));
+    let a = [0, 1, 2].map(|i| b[i] - dims.l[i] * unit(rng.range(0.0, TAU)));
+    (a, b)
+}
+
+fn rotate(v: Vector2<f64>, theta: f64) -> Vector2<f64> {
+    let (s, c) = theta.sin_cos();
+    Vector2::new(c * v.x - s * v.y, s * v.x + c * v.y)
+}
+
+/// The triad's size: its largest dimension or distance between outer joints.
+fn size(a: &[Point2<f64>; 3], dims: &TriadDims) -> f64 {
+    let mut s = dims.l.iter().copied().fold(dims.l_b1b2, f64::max);
+    s = s.max(dims.local_joints()[2].norm());
+    for i in 0..3 {
+        for j in 0..i {
+            s = s.max((a[i] - a[j]).norm());
+        }
+    }
+    s
+}
+
+/// The count of roots of the eliminated equation F(θ) = |W|² − l1²·D² by sign changes on a
+/// grid of n angles, written out here from the geometry (not from the crate's coefficients).
+fn count_by_theta(a: &[Point2<f64>; 3], dims: &TriadDims, n: usize) -> usize {
+    let beta = dims.local_joints();
+    let l = dims.l;
+    let f = |theta: f64| {
+        let c = [0, 1, 2].map(|k| (a[k] - a[0]) - rotate(beta[k], theta));
+        let s = [0, 1, 2].map(|k| 0.5 * (l[0] * l[0] + c[k].norm_squared() - l[k] * l[k]));
+        // B1 − A1 solves P·c_k = s_k (k = 2, 3): D·P = s_3·J c_2 − s_2·J c_3.
+        let d = cross(c[1], c[2]);
+        let v = s[2] * perp(c[1]) - s[1] * perp(c[2]);
+        v.norm_squared() - l[0] * l[0] * d * d
+    };
+    let values: Vec<f64> = (0..n).map(|j| f(TAU * j as f64 / n as f64)).collect();
+    (0..n)
+        .filter(|&j| (values[j] < 0.0) != (values[(j + 1) % n] < 0.0))
+        .count()
+}
+
+/// The count of modes by a different elimination: the first binary link's angle φ1 on a grid
+/// of n angles, B2 on either branch σ = ± of the dyad B1 B2 A2, and g = |B3 − A3| − l3. Roots
+/// are the sign changes along each branch, plus one where the branches meet at the end of a
+/// run of assemblable angles with opposite signs (the loop of the four-bar's configuration
+/// curve goes round from one branch to the other there).
+fn count_by_leg_angle(a: &[Point2<f64>; 3], dims: &TriadDims, n: usize) -> usize {
+    let [l1, l2, l3] = dims.l;
+    let d12 = dims.l_b1b2;
+    let g = |phi: f64, sigma: f64| -> Option<f64> {
+        let b1 = a[0] + l1 * unit(phi);
+        let d = a[1] - b1;
+        let dist = d.norm();
+        let x = (dist * dist + d12 * d12 - l2 * l2) / (2.0 * dist);
+        let h2 = d12 * d12 - x * x;
+        if h2.is_nan() || h2 < 0.0 {
+            return None;
+        }
+        let e = d / dist;
+        let b2 = b1 + x * e + sigma * h2.sqrt() * perp(e);
+        let ex = (b2 - b1) / d12;
+        let b3 = b1 + dims.b3_along * ex + dims.b3_across * perp(ex);
+        Some((b3 - a[2]).norm() - l3)
+    };
+    let phis: Vec<f64> = (0..n).map(|j| TAU * j as f64 / n as f64).collect();
+    let plus: Vec<Option<f64>> = phis.iter().map(|&p| g(p, 1.0)).collect();
+    let minus: Vec<Option<f64>> = phis.iter().map(|&p| g(p, -1.0)).collect();
+    let neg = |x: f64| x < 0.0;
+    let mut count = 0;
+    for j in 0..n {
+        let k = (j + 1) % n;
+        for branch in [&plus, &minus] {
+            if let (Some(x), Some(y)) = (branch[j], branch[k]) {
+                count += usize::from(neg(x) != neg(y));
+            }
+        }
+        match (plus[j], plus[k], minus[j], minus[k]) {
+            (Some(p), None, Some(m), _) => count += usize::from(neg(p) != neg(m)),
+            (None, Some(p), _, Some(m)) => count += usize::from(neg(p) != neg(m)),
+            _ => {}
+        }
+    }
+    count
+}
+
+/// The largest closure error of a mode: the legs' lengths and the ternary link's shape.
+fn closure(pose: &TriadPose, a: &[Point2<f64>; 3], dims: &TriadDims) -> f64 {
+    let mut err = (0..3)
+        .map(|i| ((pose.b[i] - a[i]).norm() - dims.l[i]).abs())
+        .fold(0.0, f64::max);
+    let beta = dims.local_joints();
+    let e = (pose.b[1] - pose.b[0]) / (pose.b[1] - pose.b[0]).norm();
+    let b3 = pose.b[0] + beta[2].x * e + beta[2].y * perp(e);
+    err = err.max(((pose.b[1] - pose.b[0]).norm() - dims.l_b1b2).abs());
+    err.max((pose.b[2] - b3).norm())
+}
+
+/// Counts against the two independent counts; on a disagreement the independent scans are
+/// repeated 16 times finer (a pair of roots closer than the grid hides from a sign scan).
+fn check_count(a: &[Point2<f64>; 3], dims: &TriadDims, found: usize, case: usize) {
+    let coarse = 1 << 14;
+    let mut n = coarse;
+    loop {
+        let by_theta = count_by_theta(a, dims, n);
+        let by_leg = count_by_leg_angle(a, dims, n);
+        if by_theta == found && by_leg == found {
+            return;
+        }
+        assert!(
+            n == coarse,
+            "case {case}: {found} modes found, {by_theta} by a scan of F(theta), \
+             {by_leg} by the leg angle, at {n} points; a = {a:?}, dims = {dims:?}"
+        );
+        n *= 16;
+    }
+}
+
+#[test]
+fn triad_modes_match_independent_counts_and_close() {
+    let mut rng = Rng(0x7121_AD28);
+    let mut histogram = [0usize; 7];
+    let (mut worst_closure, mut worst_generating): (f64, f64) = (0.0, 0.0);
+    let mut not_assemblable = 0;
+    let mut free_cases = 0;
+    for case in 0..CASES {
+        let dims = random_dims(&mut rng);
+        // Built from a pose: at least one mode.
+        let (a, b) = from_pose(&mut rng, &dims);
+        let s = size(&a, &dims);
+        let modes = triad_modes(a, &dims).unwrap_or_else(|e| panic!("case {case}: {e}"));
+        histogram[modes.len()] += 1;
+        for m in modes.as_slice() {
+            let c = closure(m, &a, &dims) / s;
+            assert!(c <= 1e-12, "case {case}: closure {c:e}");
+            worst_closure = worst_closure.max(c);
+        }
+        // The generating pose is a mode (to √ε at a merger of modes, where it is ill-posed).
+        let generating = TriadPose {
+            b,
+            theta: 0.0,
+            phi: [0.0; 3],
+            det: 0.0,
+        };
+        let near = modes.nearest(&generating);
+        let dist = near.distance_squared(&generating).sqrt() / s;
+        let tol = if near.det.abs() > 1e-3 { 1e-10 } else { 1e-6 };
+        assert!(
+            dist <= tol,
+            "case {case}: generating pose missed by {dist:e}"
+        );
+        worst_generating = worst_generating.max(dist * near.det.abs().min(1.0));
+        check_count(&a, &dims, modes.len(), case);
+
+        // A group of random outer joints: assemblable or not, the counts agree.
+        let dims = random_dims(&mut rng);
+        let a = [rng.vector(2.0), rng.vector(2.0), rng.vector(2.0)].map(Point2::from);
+        free_cases += 1;
+        match triad_modes(a, &dims) {
+            Ok(modes) => {
+                let s = size(&a, &dims);
+                for m in modes.as_slice() {
+                    let c = closure(m, &a, &dims) / s;
+                    assert!(c <= 1e-12, "free case {case}: closure {c:e}");
+                    worst_closure = worst_closure.max(c);
+                }
+                check_count(&a, &dims, modes.len(), case);
+            }
+            Err(Error::NotAssemblable { group, gap }) => {
+                assert_eq!(group, "triad");
+                assert!(gap > 0.0);
+                not_assemblable += 1;
+                check_count(&a, &dims, 0, case);
+            }
+            Err(e) => panic!("free case {case}: {e}"),
+        }
+
+        // Out of reach: A3 beyond l1 + |B1B3| + l3 from A1.
+        let (mut a, _) = from_pose(&mut rng, &dims);
+        let reach = dims.l[0] + dims.local_joints()[2].norm() + dims.l[2];
+        a[2] = a[0] + reach * rng.range(1.0001, 2.0) * unit(rng.range(0.0, TAU));
+        assert!(matches!(
+            triad_modes(a, &dims),
+            Err(Error::NotAssemblable { group: "triad", .. })
+        ));
+    }
+    println!(
+        "triad modes: {CASES} groups from poses, modes 1..6: {:?}; {free_cases} free groups, \
+         {not_assemblable} not assemblable; largest closure {worst_closure:.2e} of the size; \
+         generating pose recovered to {worst_generating:.2e} (times |det|)",
+        &histogram[1..]
+    );
+}
+
+/// The motion of the outer joints along known paths: A(t) = A + V·t + W·t²/2.
+fn at(a: &[PointMotion; 3], t: f64) -> [PointMotion; 3] {
+    a.map(|m| PointMotion::new(m.p + m.v * t + 0.5 * m.a * t * t, m.v + m.a * t, m.a))
+}
+
+const D1: [f64; 9] = [
+    1.0 / 280.0,
+    -4.0 / 105.0,
+    1.0 / 5.0,
+    -4.0 / 5.0,
+    0.0,
+    4.0 / 5.0,
+    -1.0 / 5.0,
+    4.0 / 105.0,
+    -1.0 / 280.0,
+];
+
+/// The eighth-order central difference of samples at t = −4h…4h.
+fn fd(samples: &[f64; 9], h: f64) -> f64 {
+    samples.iter().zip(D1).map(|(s, c)| s * c).sum::<f64>() / h
+}
+
+fn fd2(samples: &[Vector2<f64>; 9], h: f64) -> Vector2<f64> {
+    Vector2::new(fd(&samples.map(|v| v.x), h), fd(&samples.map(|v| v.y), h))
+}
+
+/// An angle unwrapped to lie within π of `reference`.
+fn near_angle(angle: f64, reference: f64) -> f64 {
+    reference + (angle - reference + PI).rem_euclid(TAU) - PI
+}
+
+#[test]
+fn triad_rates_match_finite_differences_and_tracking_matches_the_bracket() {
+    let mut rng = Rng(0x5EED_0028);
+    let (mut worst_v, mut worst_a): (f64, f64) = (0.0, 0.0);
+    let (mut checked, mut tracked, mut tried) = (0, 0, 0);
+    for case in 0..CASES {
+        let dims = random_dims(&mut rng);
+        let (p, _) = from_pose(&mut rng, &dims);
+        let s = size(&p, &dims);
+        let modes = triad_modes(p, &dims).unwrap();
+        let a = p.map(|q| PointMotion::new(q, rng.vector(1.0), rng.vector(1.0)));
+        for base in modes.as_slice() {
+            if base.det.abs() < 0.05 {
+                continue;
+            }
+            let s0 = triad_rates(a, &dims, base).unwrap();
+            let omega_scale = 1.0 + s0.ternary.omega.abs();
+            let h = 2e-4
+                / omega_scale.max(
+                    s0.binary
+                        .iter()
+                        .map(|l| 1.0 + l.omega.abs())
+                        .fold(0.0, f64::max),
+                );
+            let states: Vec<_> = (-4..=4)
+                .map(|k| {
+                    let ak = at(&a, k as f64 * h);
+                    let pk = ak.map(|m| m.p);
+                    // The fast path, when it answers, is the bracket's nearest mode.
+                    let full = *triad_modes(pk, &dims).unwrap().nearest(base);
+                    tried += 1;
+                    if let Some(fast) = triad_tracked(pk, &dims, base) {
+                        tracked += 1;
+                        assert!(
+                            fast.distance_squared(&full).sqrt() <= 1e-12 * s,
+                            "case {case}: the fast path jumped modes: fast {fast:?} (D {}), full {full:?} (D {}), modes {:?}, base {base:?}, k {k}, dims {dims:?}, pk {pk:?}",
+                            fast.distance_squared(base).sqrt(), full.distance_squared(base).sqrt(), triad_modes(pk, &dims).unwrap().as_slice()
+                        );
+                    }
+                    triad(ak, &dims, base).unwrap()
+                })
+                .collect();
+            let st: [_; 9] = std::array::from_fn(|k| states[k]);
+            // Velocities against differences of positions.
+            let mut ev: f64 = 0.0;
+            let mut vscale: f64 = 1.0;
+            for i in 0..3 {
+                let v_fd = fd2(&st.map(|x| x.b[i].p.coords), h);
+                ev = ev.max((v_fd - s0.b[i].v).norm());
+                vscale = vscale.max(s0.b[i].v.norm());
+                let phi = fd(
+                    &st.map(|x| near_angle(x.binary[i].angle, s0.binary[i].angle)),
+                    h,
+                );
+                ev = ev.max((phi - s0.binary[i].omega).abs() * s);
+                vscale = vscale.max(s0.binary[i].omega.abs() * s);
+            }
+            let th = fd(
+                &st.map(|x| near_angle(x.ternary.angle, s0.ternary.angle)),
+                h,
+            );
+            ev = ev.max((th - s0.ternary.omega).abs() * s);
+            vscale = vscale.max(s0.ternary.omega.abs() * s);
+            // Accelerations against differences of the solver's velocities.
+            let mut ea: f64 = 0.0;
+            let mut ascale: f64 = 1.0;
+            for i in 0..3 {
+                let a_fd = fd2(&st.map(|x| x.b[i].v), h);
+                ea = ea.max((a_fd - s0.b[i].a).norm());
+                ascale = ascale.max(s0.b[i].a.norm());
+                let eps = fd(&st.map(|x| x.binary[i].omega), h);
+                ea = ea.max((eps - s0.binary[i].epsilon).abs() * s);
+                ascale = ascale.max(s0.binary[i].epsilon.abs() * s);
+            }
+            let eps_t = fd(&st.map(|x| x.ternary.omega), h);
+            ea = ea.max((eps_t - s0.ternary.epsilon).abs() * s);
+            ascale = ascale.max(s0.ternary.epsilon.abs() * s);
+            let (rv, ra) = (ev / vscale, ea / ascale);
+            assert!(rv <= 1e-8, "case {case}: velocities off by {rv:e}");
+            assert!(ra <= 1e-8, "case {case}: accelerations off by {ra:e}");
+            worst_v = worst_v.max(rv);
+            worst_a = worst_a.max(ra);
+            checked += 1;
+        }
+    }
+    println!(
+        "triad rates: {checked} modes with |det| >= 0.05; largest relative error of the \
+         velocities {worst_v:.2e}, of the accelerations {worst_a:.2e}; the fast path answered \
+         {tracked} of {tried} positions, always the bracket's nearest mode"
+    );
+}
+
+/// A whole cycle: A1 on a crank circle in 720 steps, each position tracked from the last.
+#[test]
+fn triad_tracking_along_a_cycle_keeps_the_mode() {
+    let mut rng = Rng(0xC1C1_E028);
+    let (mut steps, mut fast) = (0, 0);
+    for _ in 0..200 {
+        let dims = random_dims(&mut rng);
+        let (p, b) = from_pose(&mut rng, &dims);
+        let s = size(&p, &dims);
+        let modes = triad_modes(p, &dims).unwrap();
+        let generating = TriadPose {
+            b,
+            theta: 0.0,
+            phi: [0.0; 3],
+            det: 0.0,
+        };
+        let mut prev = *modes.nearest(&generating);
+        if prev.det.abs() < 0.05 {
+            continue;
+        }
+        let mut count = modes.len();
+        let r = 0.05 * s;
+        let centre = p[0] - Vector2::new(r, 0.0);
+        for k in 1..=720 {
+            let phi = TAU * k as f64 / 720.0;
+            let mut pk = p;
+            pk[0] = centre + r * unit(phi);
+            let Ok(all) = triad_modes(pk, &dims) else {
+                break;
+            };
+            if all.len() < count {
+                break; // modes merged: perhaps the tracked one (the linkage locks)
+            }
+            count = all.len();
+            let full = *all.nearest(&prev);
+            if full.det.abs() < 0.01 {
+                break; // near a merger the continuation is not unique
+            }
+            let next = match triad_tracked(pk, &dims, &prev) {
+                Some(t) => {
+                    fast += 1;
+                    assert!(t.distance_squared(&full).sqrt() <= 1e-12 * s);
+                    t
+                }
+                None => full,
+            };
+            // Continuity: the step moves the joints by about the crank's step.
+            assert!(next.distance_squared(&prev).sqrt() <= 0.5 * s);
+            prev = next;
+            steps += 1;
+        }
+    }
+    println!("triad tracking: {steps} steps along cycles, {fast} by the fast path");
+}
+
+/// The group's full Newton–Euler system, 12×12, solved by LU: unknowns R_A1..3, R_B1..3;
+/// rows: each binary link's force and moment about the origin, then the ternary link's.
+fn general_solve(t: &Triad) -> [Vector2<f64>; 6] {
+    let mut m = DMatrix::<f64>::zeros(12, 12);
+    let mut rhs = DVector::<f64>::zeros(12);
+    let col_a = |i: usize| 2 * i;
+    let col_b = |i: usize| 6 + 2 * i;
+    for i in 0..3 {
+        let row = 3 * i;
+        // R_Ai − R_Bi + F_i = 0
+        m[(row, col_a(i))] = 1.0;
+        m[(row + 1, col_a(i) + 1)] = 1.0;
+        m[(row, col_b(i))] = -1.0;
+        m[(row + 1, col_b(i) + 1)] = -1.0;
+        rhs[row] = -t.loads[i].force.x;
+        rhs[row + 1] = -t.loads[i].force.y;
+        // A_i × R_Ai − B_i × R_Bi + M_i(O) = 0
+        m[(row + 2, col_a(i))] = -t.a[i].y;
+        m[(row + 2, col_a(i) + 1)] = t.a[i].x;
+        m[(row + 2, col_b(i))] = t.b[i].y;
+        m[(row + 2, col_b(i) + 1)] = -t.b[i].x;
+        rhs[row + 2] = -t.loads[i].moment_about(Point2::origin());
+        // Ternary: Σ R_Bi + F_T = 0, Σ B_i × R_Bi + M_T(O) = 0
+        m[(9, col_b(i))] = 1.0;
+        m[(10, col_b(i) + 1)] = 1.0;
+        m[(11, col_b(i))] = -t.b[i].y;
+        m[(11, col_b(i) + 1)] = t.b[i].x;
+    }
+    rhs[9] = -t.load_ternary.force.x;
+    rhs[10] = -t.load_ternary.force.y;
+    rhs[11] = -t.load_ternary.moment_about(Point2::origin());
+    let x = m.lu().solve(&rhs).expect("regular group");
+    std::array::from_fn(|k| Vector2::new(x[2 * k], x[2 * k + 1]))
+}
+
+#[test]
+fn triad_reactions_match_the_general_solve_and_balance_every_link() {
+    let mut rng = Rng(0xF0CE_0028);
+    let (mut worst_lu, mut worst_eq): (f64, f64) = (0.0, 0.0);
+    let mut cond: f64 = 0.0;
+    let mut checked = 0;
+    for case in 0..CASES {
+        let dims = random_dims(&mut rng);
+        let (a, b) = from_pose(&mut rng, &dims);
+        let s = size(&a, &dims);
+        let load = |rng: &mut Rng, p: Point2<f64>| {
+            Load::new(
+                p + rng.vector(0.5),
+                rng.vector(100.0),
+                rng.range(-20.0, 20.0),
+            )
+        };
+        let t = Triad {
+            a,
+            b,
+            loads: [0, 1, 2].map(|i| load(&mut rng, a[i] + 0.5 * (b[i] - a[i]))),
+            load_ternary: load(&mut rng, b[0]),
+        };
+        let r = match t.solve() {
+            Ok(r) => r,
+            Err(Error::Singular { .. }) => continue,
+            Err(e) => panic!("case {case}: {e}"),
+        };
+        if r.conditioning.measure.abs() < 0.05 {
+            continue;
+        }
+        let x = general_solve(&t);
+        let mut scale: f64 = t
+            .load_ternary
+            .force
+            .norm()
+            .max(t.load_ternary.moment.abs() / s);
+        for i in 0..3 {
+            scale = scale
+                .max(t.loads[i].force.norm())
+                .max(t.loads[i].moment.abs() / s)
+                .max(r.r_a[i].norm())
+                .max(r.r_b[i].norm());
+        }
+        let mut lu: f64 = 0.0;
+        for i in 0..3 {
+            lu = lu
+                .max((x[i] - r.r_a[i]).norm())
+                .max((x[3 + i] - r.r_b[i]).norm());
+        }
+        // Every link's equilibrium, moments about the link's own joint.
+        let mut eq: f64 = 0.0;
+        for i in 0..3 {
+            let f = r.r_a[i] - r.r_b[i] + t.loads[i].force;
+            let m = cross(a[i] - b[i], r.r_a[i]) + t.loads[i].moment_about(b[i]);
+            eq = eq.max(f.norm()).max(m.abs() / s);
+        }
+        let f = r.r_b[0] + r.r_b[1] + r.r_b[2] + t.load_ternary.force;
+        let m = (0..3).map(|i| cross(b[i] - b[0], r.r_b[i])).sum::<f64>()
+            + t.load_ternary.moment_about(b[0]);
+        eq = eq.max(f.norm()).max(m.abs() / s);
+        let (lu, eq) = (lu / scale, eq / scale);
+        assert!(
+            lu <= 1e-11,
+            "case {case}: reactions off the LU solve by {lu:e}"
+        );
+        assert!(eq <= 1e-12, "case {case}: equilibrium residual {eq:e}");
+        worst_lu = worst_lu.max(lu);
+        worst_eq = worst_eq.max(eq);
+        cond = cond.max(r.conditioning.condition);
+        checked += 1;
+    }
+    println!(
+        "triad reactions: {checked} groups with |det| >= 0.05 (condition up to {cond:.1}); \
+         largest difference from the LU solve {worst_lu:.2e}, largest equilibrium residual \
+         {worst_eq:.2e} of the load scale"
+    );
+}
+
+#[test]
+fn triad_names_bad_input_and_singular_groups() {
+    let dims = TriadDims::new([1.0, 1.0, 1.0], 1.0, 0.5, 0.8);
+    let a = [
+        Point2::new(0.0, -1.0),
+        Point2::new(1.6, 0.8),
+        Point2::new(0.5, 1.8),
+    ];
+    let mut bad = dims;
+    bad.l[1] = 0.0;
+    assert!(matches!(
+        triad_modes(a, &bad),
+        Err(Error::NonPositive { name: "l_A2B2", .. })
+    ));
+    let mut nan = a;
+    nan[2].x = f64::NAN;
+    assert!(matches!(
+        triad_modes(nan, &dims),
+        Err(Error::NonFinite { .. })
+    ));
+    // A triad that moves: its three legs meet at one outer joint O, each as long as its
+    // joint is far from one point C of the ternary link, which can then turn about O = C.
+    let moving = TriadDims::new([0.0; 3], 1.0, 0.3, 0.7);
+    let c = Vector2::new(0.4, 0.3);
+    let l = moving.local_joints().map(|beta| (beta - c).norm());
+    let moving = TriadDims { l, ..moving };
+    assert!(matches!(
+        triad_modes([Point2::origin(); 3], &moving),
+        Err(Error::Singular { what: "triad", .. })
+    ));
+    // A dead point: the three legs' lines meet at one point (all radial from the origin).
+    let b = [
+        Point2::new(1.0, 0.0),
+        Point2::new(-0.5, 0.75f64.sqrt()),
+        Point2::new(-0.5, -(0.75f64.sqrt())),
+    ];
+    let a = b.map(|p| Point2::from(p.coords * 2.0));
+    let side = (b[1] - b[0]).norm();
+    let e = (b[1] - b[0]) / side;
+    let d = b[2] - b[0];
+    let dims = TriadDims::new([1.0, 1.0, 1.0], side, d.dot(&e), cross(e, d));
+    let pose = TriadPose {
+        b,
+        theta: 0.0,
+        phi: [0.0; 3],
+        det: 0.0,
+    };
+    let fixed = a.map(PointMotion::fixed);
+    assert!(matches!(
+        triad_rates(fixed, &dims, &pose),
+        Err(Error::Singular { what: "triad", .. })
+    ));
+    let t = Triad {
+        a,
+        b,
+        loads: a.map(Load::zero),
+        load_ternary: Load::force_at(b[0], Vector2::new(0.0, -1.0)),
+    };
+    assert!(matches!(
+        t.solve(),
+        Err(Error::Singular { what: "triad", .. })
+    ));
+}
