@@ -51,8 +51,8 @@
 //! to 0 where the friction loads grow without bound: no finite load moves the group in the
 //! given direction (the slider pushed at a pressure angle α with tan α ≥ 1/f). Where the
 //! continuation cannot reach full friction with det(I − J) > 0, the solve is an
-//! [`Error::In`](crate::Error::In) naming the joint whose own feedback J_kk is largest,
-//! around an [`Error::Singular`](crate::Error::Singular) with the measure `det(I - J)`.
+//! [`Error::In`] naming the joint whose own feedback J_kk is largest,
+//! around an [`Error::Singular`] with the measure `det(I - J)`.
 //!
 //! With every coefficient zero (or every relative rate zero) the results are the frictionless
 //! blocks' own, bit for bit.
