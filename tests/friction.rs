@@ -805,3 +805,658 @@ fn rpp_against_an_independent_nonlinear_solve() {
         t.report("RPP", f);
     }
 }
+
+// ----- The power balance of a crank with each dyad -----
+
+/// The power of a load on a link whose point velocities are `v(point)` and whose angular
+/// velocity is `omega`.
+fn power(load: &Load, v: impl Fn(Point2<f64>) -> Vector2<f64>, omega: f64) -> f64 {
+    load.force.dot(&v(load.point)) + load.moment * omega
+}
+
+/// x·p + y·q = w for (x, y), by Cramer.
+fn solve2(p: Vector2<f64>, q: Vector2<f64>, w: Vector2<f64>) -> (f64, f64) {
+    let det = cross(p, q);
+    (cross(w, q) / det, cross(p, w) / det)
+}
+
+/// The crank: O1, the pin's friction, ω1, and its own load.
+struct Crank {
+    o1: Point2<f64>,
+    pin: Hinge,
+    omega1: f64,
+    load1: Load,
+}
+
+impl Crank {
+    /// A crank ending at A, of random length, direction, speed and load.
+    fn random(rng: &mut Rng, a: Point2<f64>, f: f64) -> Self {
+        let o1 = a - unit(rng.range(0.0, std::f64::consts::TAU)) * rng.range(0.1, 0.4);
+        Self {
+            o1,
+            pin: rng.hinge(f),
+            omega1: rng.rate(),
+            load1: Load::new(
+                o1 + Vector2::new(rng.range(-0.1, 0.1), rng.range(-0.1, 0.1)),
+                Vector2::new(rng.range(-500.0, 500.0), rng.range(-500.0, 500.0)),
+                rng.range(-50.0, 50.0),
+            ),
+        }
+    }
+    fn v(&self, p: Point2<f64>) -> Vector2<f64> {
+        perp(p - self.o1) * self.omega1
+    }
+    /// The power balance P_drive + P_loads − Σ P_lost, relative to the powers' size.
+    fn imbalance(&self, on_link1: Load, p_other_loads: f64, p_lost_dyad: f64) -> f64 {
+        let crank = CrankFriction {
+            o1: self.o1,
+            pin: self.pin,
+            omega1: self.omega1,
+        }
+        .solve(&[self.load1, on_link1])
+        .unwrap();
+        let p_loads = power(&self.load1, |p| self.v(p), self.omega1) + p_other_loads;
+        let lost = crank.pin.power_lost + p_lost_dyad;
+        let e = Efficiency::new(crank.power_drive, lost).unwrap();
+        assert!((e.useful + p_loads).abs() <= 1e-12 * (e.drive.abs() + p_loads.abs() + lost));
+        (crank.power_drive + p_loads - lost) / (crank.power_drive.abs() + p_loads.abs() + lost)
+    }
+}
+
+#[derive(Default)]
+struct Balance {
+    cases: usize,
+    locked: usize,
+    worst: f64,
+    lost_share: f64,
+}
+
+impl Balance {
+    fn add(&mut self, imbalance: f64) {
+        self.cases += 1;
+        self.worst = self.worst.max(imbalance.abs());
+    }
+    fn report(&self, what: &str, f: f64) {
+        println!(
+            "power balance, crank + {what}, f = {f}: {} positions ({} self-locking), largest \
+             |P_drive + P_loads - sum P_lost| / (|P_drive| + |P_loads| + sum P_lost) = {:.2e}",
+            self.cases, self.locked, self.worst
+        );
+        assert!(self.worst <= 1e-12, "{what}");
+        assert!(self.lost_share > 0.0);
+    }
+}
+
+#[test]
+fn crank_and_dyad_balance_power_with_the_losses() {
+    let mut rng = Rng(0x5EED_0010);
+    for f in FS {
+        // RRR: the four-bar, C on the frame.
+        let mut b = Balance::default();
+        for _ in 0..CASES {
+            let mut p = random_rrr(&mut rng, f);
+            let d = p.dyad;
+            let crank = Crank::random(&mut rng, d.a, f);
+            let va = crank.v(d.a);
+            let (w2, w3) = solve2(perp(d.b - d.a), -perp(d.b - d.c), -va);
+            p.rates = RrrRates {
+                omega1: crank.omega1,
+                omega2: w2,
+                omega3: w3,
+                omega4: 0.0,
+            };
+            let Ok(r) = p.solve() else {
+                b.locked += 1;
+                continue;
+            };
+            let pl = power(&d.load2, |q| va + perp(q - d.a) * w2, w2)
+                + power(&d.load3, |q| perp(q - d.c) * w3, w3);
+            b.lost_share += r.power_lost();
+            b.add(crank.imbalance(r.on_link1, pl, r.power_lost()));
+        }
+        b.report("RRR", f);
+
+        // RRP: the slider-crank, the guide on the frame.
+        let mut b = Balance::default();
+        for _ in 0..CASES {
+            let mut p = random_rrp(&mut rng, f);
+            let d = p.dyad;
+            let g = d.guide.normalize();
+            let crank = Crank::random(&mut rng, d.a, f);
+            let va = crank.v(d.a);
+            let (w2, s) = solve2(perp(d.b - d.a), -g, -va);
+            p.rates = RrpRates {
+                omega1: crank.omega1,
+                omega2: w2,
+                omega4: 0.0,
+                slide: s,
+            };
+            let Ok(r) = p.solve() else {
+                b.locked += 1;
+                continue;
+            };
+            let pl =
+                power(&d.load2, |q| va + perp(q - d.a) * w2, w2) + power(&d.load3, |_| g * s, 0.0);
+            b.lost_share += r.power_lost();
+            b.add(crank.imbalance(r.on_link1, pl, r.power_lost()));
+        }
+        b.report("RRP", f);
+
+        // RPR: the rocking cylinder, E on the frame.
+        let mut b = Balance::default();
+        for _ in 0..CASES {
+            let mut p = random_rpr(&mut rng, f);
+            let d = p.dyad;
+            let u = d.axis.normalize();
+            let crank = Crank::random(&mut rng, d.a, f);
+            let va = crank.v(d.a);
+            let (w, s) = solve2(perp(d.a - d.e), u, va);
+            p.rates = RprRates {
+                omega1: crank.omega1,
+                omega: w,
+                omega4: 0.0,
+                slide: s,
+            };
+            let Ok(r) = p.solve() else {
+                b.locked += 1;
+                continue;
+            };
+            let pl = power(&d.load2, |q| va + perp(q - d.a) * w, w)
+                + power(&d.load3, |q| perp(q - d.e) * w, w);
+            b.lost_share += r.power_lost();
+            b.add(crank.imbalance(r.on_link1, pl, r.power_lost()));
+        }
+        b.report("RPR", f);
+
+        // PRP: the crank carries guide 2; guide 3 on the frame.
+        let mut b = Balance::default();
+        for _ in 0..CASES {
+            let mut p = random_prp(&mut rng, f);
+            let d = p.dyad;
+            let (g2, g3) = (d.guide2.normalize(), d.guide3.normalize());
+            let crank = Crank::random(&mut rng, d.b, f);
+            let (s2, s3) = solve2(g2, -g3, -crank.v(d.b));
+            p.rates = PrpRates {
+                omega1: crank.omega1,
+                omega4: 0.0,
+                slide2: s2,
+                slide3: s3,
+            };
+            let Ok(r) = p.solve() else {
+                b.locked += 1;
+                continue;
+            };
+            let vb = g3 * s3;
+            let pl = power(
+                &d.load2,
+                |q| vb + perp(q - d.b) * crank.omega1,
+                crank.omega1,
+            ) + power(&d.load3, |_| vb, 0.0);
+            b.lost_share += r.power_lost();
+            b.add(crank.imbalance(r.on_link1, pl, r.power_lost()));
+        }
+        b.report("PRP", f);
+
+        // RPP: the Scotch yoke, the guide on the frame.
+        let mut b = Balance::default();
+        for _ in 0..CASES {
+            let mut p = random_rpp(&mut rng, f);
+            let d = p.dyad;
+            let (u, v) = (d.guide.normalize(), d.slot.normalize());
+            let crank = Crank::random(&mut rng, d.a, f);
+            let va = crank.v(d.a);
+            let (s, q) = solve2(u, v, va);
+            p.rates = RppRates {
+                omega1: crank.omega1,
+                omega4: 0.0,
+                slot: q,
+                slide: s,
+            };
+            let Ok(r) = p.solve() else {
+                b.locked += 1;
+                continue;
+            };
+            let pl = power(&d.load2, |_| va, 0.0) + power(&d.load3, |_| u * s, 0.0);
+            b.lost_share += r.power_lost();
+            b.add(crank.imbalance(r.on_link1, pl, r.power_lost()));
+        }
+        b.report("RPP", f);
+    }
+}
+
+// ----- Textbook cases -----
+
+/// A slider of weight G on a guide inclined at θ, pushed up the guide by a rod (frictionless
+/// hinges: a two-force member) whose force makes the pressure angle α with the slider's
+/// velocity and presses it into the guide. With ĝ up the guide and ν̂ = ĝ⊥ out of it, the
+/// rod's force is P·(cos α·ĝ − sin α·ν̂); the guide pushes N·ν̂ and rubs f·N down the guide:
+///   along ĝ: P·cos α − G·sin θ − f·N = 0,  along ν̂: N − P·sin α − G·cos θ = 0,
+/// so P = G·(sin θ + f·cos θ)/(cos α − f·sin α): finite only while tan α < 1/f, that is
+/// α < 90° − φ with φ = atan f. Beyond it no push moves the slider: self-locking.
+#[test]
+fn inclined_guide_self_locks_beyond_ninety_degrees_less_the_friction_angle() {
+    let (theta, g_weight) = (30f64.to_radians(), 100.0);
+    let g = unit(theta);
+    let nu = perp(g);
+    let b = Point2::origin();
+    let mut worst = 0.0_f64;
+    let mut locked = 0;
+    for f in FS {
+        let phi = f.atan();
+        for i in 0..180 {
+            let alpha = (f64::from(i) * 0.5).to_radians();
+            let e = g * alpha.cos() - nu * alpha.sin();
+            let p = RrpFriction {
+                dyad: RrpDyad {
+                    a: b - e * 0.5,
+                    b,
+                    guide: g,
+                    load2: Load::zero(b),
+                    load3: Load::force_at(b, Vector2::new(0.0, -g_weight)),
+                },
+                joints: RrpJoints {
+                    guide: Slide::new(f).unwrap(),
+                    ..RrpJoints::default()
+                },
+                rates: RrpRates {
+                    slide: 1.0,
+                    ..RrpRates::default()
+                },
+            };
+            let margin = alpha - (std::f64::consts::FRAC_PI_2 - phi);
+            if margin < -1e-3 {
+                let r = p.solve().unwrap();
+                let push =
+                    g_weight * (theta.sin() + f * theta.cos()) / (alpha.cos() - f * alpha.sin());
+                let n = push * alpha.sin() + g_weight * theta.cos();
+                worst = worst
+                    .max((r.r23 - e * push).amax() / push)
+                    .max((r.contact43.normal - n).abs() / push)
+                    .max((r.guide.load + f * n).abs() / push);
+            } else if margin > 1e-3 {
+                let err = p.solve().unwrap_err();
+                assert!(
+                    matches!(&err, Error::In { part, .. } if part == "the guide (links 4 and 3) self-locks"),
+                    "{err}"
+                );
+                locked += 1;
+            }
+        }
+    }
+    println!(
+        "inclined guide: push and guide force against P = G(sin θ + f cos θ)/(cos α − f sin α) \
+         to {worst:.2e} relative; {locked} angles beyond 90° − φ self-lock"
+    );
+    assert!(worst <= 1e-12);
+}
+
+/// The crank-slider (crank r, rod l, a centric guide) with friction on the guide (f) and in
+/// the crank's frame pin (ρ0), the rod's hinges frictionless, so the rod is a two-force
+/// member along ê = (B − A)/l. The slider, moving at v, meets a resistance Q against its
+/// motion; the rod must drive it: |P|·|ê_x| = Q + f·|N| with |N| = |P|·|ê_y|, so
+/// |P| = Q/(|ê_x| − f·|ê_y|). The frame's reaction on the crank is as large as the rod's
+/// force, so the pin loses ρ0·|P|·|ω1|, and
+///   η = Q·|v| / (Q·|v| + f·|N|·|v| + ρ0·|P|·|ω1|) = |v|·(|ê_x| − f·|ê_y|) / (|v|·|ê_x| + ρ0·|ω1|);
+/// without pin friction, η = 1 − f·|tan β| with β the rod's angle to the guide.
+#[test]
+fn crank_slider_efficiency_against_its_closed_form() {
+    let (r, l, omega, q) = (0.1, 0.35, 10.0, 1000.0);
+    let mut worst = 0.0_f64;
+    let mut etas = Vec::new();
+    for f in FS {
+        for rho0 in [0.0, 0.02 * f] {
+            let mut cycle = Vec::new();
+            for i in 0..72 {
+                let phi = f64::from(i) * 5f64.to_radians();
+                if phi.sin().abs() < 0.05 {
+                    continue; // the dead points: the slider stands still
+                }
+                let a = Point2::new(r * phi.cos(), r * phi.sin());
+                let sin_beta = -r * phi.sin() / l;
+                let cos_beta = (1.0 - sin_beta * sin_beta).sqrt();
+                let b = Point2::new(a.x + l * cos_beta, 0.0);
+                let v = -r * omega * phi.sin() * (1.0 + r * phi.cos() / (l * cos_beta));
+                let omega2 = -r * omega * phi.cos() / (l * cos_beta);
+                let dyad = RrpDyad {
+                    a,
+                    b,
+                    guide: Vector2::new(1.0, 0.0),
+                    load2: Load::zero(b),
+                    load3: Load::force_at(b, Vector2::new(-q * v.signum(), 0.0)),
+                };
+                let rr = RrpFriction {
+                    dyad,
+                    joints: RrpJoints {
+                        guide: Slide::new(f).unwrap(),
+                        ..RrpJoints::default()
+                    },
+                    rates: RrpRates {
+                        omega1: omega,
+                        omega2,
+                        omega4: 0.0,
+                        slide: v,
+                    },
+                }
+                .solve()
+                .unwrap();
+                let crank = CrankFriction {
+                    o1: Point2::origin(),
+                    pin: Hinge::circle(rho0).unwrap(),
+                    omega1: omega,
+                }
+                .solve(&[rr.on_link1])
+                .unwrap();
+                let e = Efficiency::new(crank.power_drive, crank.pin.power_lost + rr.power_lost())
+                    .unwrap();
+                let (ex, ey) = ((b.x - a.x) / l, (b.y - a.y) / l);
+                let closed =
+                    v.abs() * (ex.abs() - f * ey.abs()) / (v.abs() * ex.abs() + rho0 * omega.abs());
+                worst = worst.max((e.eta.unwrap() - closed).abs());
+                if rho0 == 0.0 {
+                    worst = worst.max((e.eta.unwrap() - (1.0 - f * (ey / ex).abs())).abs());
+                }
+                cycle.push(e);
+            }
+            etas.push((f, rho0, Efficiency::cycle(&cycle).unwrap()));
+        }
+    }
+    println!("crank-slider: instantaneous η against the closed form to {worst:.2e}; cycle η (f, ρ0, η): {etas:.4?}");
+    assert!(worst <= 1e-12);
+}
+
+/// A drawer (a cocked slider of length L) pushed along its guide by a rod through its middle
+/// B, against a resistance Q acting at the height e across the guide: the resistance's
+/// moment about B, e·Q, must be taken by the two end contacts, ±e·Q/L, so that the friction
+/// is f·2eQ/L, and the push P = Q·(1 + 2·f·e/L). With the resistance's line within the
+/// slider (here: on B, e = 0) the contacts share no couple and P = Q.
+#[test]
+fn cocked_drawer_against_its_closed_form() {
+    let (q, len, l_rod) = (200.0, 0.3, 0.5);
+    let b = Point2::new(0.2, 0.1);
+    for f in FS {
+        for e in [0.0, 0.05, 0.2, 0.6] {
+            let p = RrpFriction {
+                dyad: RrpDyad {
+                    a: b - Vector2::new(l_rod, 0.0),
+                    b,
+                    guide: Vector2::new(1.0, 0.0),
+                    load2: Load::zero(b),
+                    load3: Load::force_at(b + Vector2::new(0.0, e), Vector2::new(-q, 0.0)),
+                },
+                joints: RrpJoints {
+                    guide: Slide::cocked(f, len).unwrap(),
+                    ..RrpJoints::default()
+                },
+                rates: RrpRates {
+                    slide: 0.5,
+                    ..RrpRates::default()
+                },
+            };
+            let r = p.solve().unwrap();
+            let push = q * (1.0 + 2.0 * f * e / len);
+            assert!(
+                (r.r23.x - push).abs() <= 1e-12 * q,
+                "f {f} e {e}: {} vs {push}",
+                r.r23.x
+            );
+            let [n1, n2] = r.contact43.ends.unwrap();
+            assert!((n1 - e * q / len).abs() <= 1e-12 * q && (n2 + e * q / len).abs() <= 1e-12 * q);
+            // The same drawer with a slider that takes any couple: no extra friction.
+            let free = RrpFriction {
+                joints: RrpJoints {
+                    guide: Slide::new(f).unwrap(),
+                    ..RrpJoints::default()
+                },
+                ..p
+            }
+            .solve()
+            .unwrap();
+            assert!((free.r23.x - q).abs() <= 1e-12 * q);
+        }
+    }
+}
+
+// ----- Without friction: the frictionless blocks, bit for bit -----
+
+#[test]
+fn without_friction_the_results_are_the_frictionless_blocks_bit_for_bit() {
+    let mut rng = Rng(0x5EED_0020);
+    let same = |a: Vector2<f64>, b: Vector2<f64>| {
+        a.x.to_bits() == b.x.to_bits() && a.y.to_bits() == b.y.to_bits()
+    };
+    for i in 0..200 {
+        // Every coefficient zero (rates non-zero), or every coefficient 0.3 with rates zero.
+        let (f, still) = if i % 2 == 0 {
+            (0.0, false)
+        } else {
+            (0.3, true)
+        };
+        let mut p = random_rrr(&mut rng, f);
+        if still {
+            p.rates = RrrRates {
+                omega1: 3.0,
+                omega2: 3.0,
+                omega3: 3.0,
+                omega4: 3.0,
+            };
+        }
+        let (r, o) = (p.solve().unwrap(), p.dyad.solve().unwrap());
+        assert!(same(r.r12, o.r12) && same(r.r23, o.r23) && same(r.r43, o.r43));
+        assert_eq!(r.power_lost(), 0.0);
+        assert_eq!(r.convergence.iterations, 0);
+
+        let mut p = random_rrp(&mut rng, f);
+        if still {
+            p.rates = RrpRates {
+                omega1: -1.0,
+                omega2: -1.0,
+                omega4: -1.0,
+                slide: 0.0,
+            };
+        }
+        let (r, o) = (p.solve().unwrap(), p.dyad.solve().unwrap());
+        assert!(same(r.r12, o.r12) && same(r.r23, o.r23) && same(r.r43, o.r43));
+        assert_eq!(r.contact43.normal.to_bits(), o.r43_n.to_bits());
+        assert_eq!(r.contact43.moment.to_bits(), o.guide_moment.to_bits());
+
+        let mut p = random_rpr(&mut rng, f);
+        if still {
+            p.rates = RprRates {
+                omega1: 2.0,
+                omega: 2.0,
+                omega4: 2.0,
+                slide: 0.0,
+            };
+        }
+        let (r, o) = (p.solve().unwrap(), p.dyad.solve().unwrap());
+        assert!(same(r.r12, o.r12) && same(r.r32, o.r32) && same(r.r43, o.r43));
+
+        let mut p = random_prp(&mut rng, f);
+        if still {
+            p.rates = PrpRates {
+                omega1: 1.0,
+                omega4: 1.0,
+                slide2: 0.0,
+                slide3: 0.0,
+            };
+        }
+        let (r, o) = (p.solve().unwrap(), p.dyad.solve().unwrap());
+        assert!(same(r.r12, o.r12) && same(r.r23, o.r23) && same(r.r43, o.r43));
+
+        let mut p = random_rpp(&mut rng, f);
+        if still {
+            p.rates = RppRates {
+                omega1: 0.0,
+                omega4: 0.0,
+                slot: 0.0,
+                slide: 0.0,
+            };
+        }
+        let (r, o) = (p.solve().unwrap(), p.dyad.solve().unwrap());
+        assert!(same(r.r12, o.r12) && same(r.r32, o.r32) && same(r.r43, o.r43));
+    }
+    // The input link: no pin friction, the frictionless balancing moment.
+    let loads = [Load::new(
+        Point2::new(0.1, 0.2),
+        Vector2::new(30.0, -40.0),
+        1.5,
+    )];
+    let c = CrankFriction {
+        o1: Point2::new(0.01, 0.02),
+        pin: Hinge::FRICTIONLESS,
+        omega1: 7.0,
+    }
+    .solve(&loads)
+    .unwrap();
+    let o = tmm::kinetostatics::CouplingDrive {
+        o1: Point2::new(0.01, 0.02),
+    }
+    .solve(&loads)
+    .unwrap();
+    assert_eq!(c.balancing_moment.to_bits(), o.balancing_moment.to_bits());
+    assert!(same(c.r01, o.r01));
+}
+
+// ----- At rest, and at a reversal -----
+
+/// A joint whose relative rate is exactly zero carries no friction; any other rate enters
+/// by its sign alone (the impending motion), and the power lost scales with its size.
+#[test]
+fn a_joint_at_rest_carries_no_friction_and_only_the_rates_sign_enters() {
+    let mut rng = Rng(0x5EED_0030);
+    let p = random_rrr(&mut rng, 0.3);
+    let at_rest = RrrFriction {
+        rates: RrrRates {
+            omega2: p.rates.omega1,
+            ..p.rates
+        },
+        ..p
+    };
+    let r = at_rest.solve().unwrap();
+    assert_eq!(r.a.load, 0.0);
+    assert_eq!(r.a.power_lost, 0.0);
+    assert!(r.b.load != 0.0 && r.c.load != 0.0);
+    // Reversing B's relative rotation turns its couple; scaling every rate changes no force.
+    let scaled = RrrFriction {
+        rates: RrrRates {
+            omega1: p.rates.omega1 * 1e-6,
+            omega2: p.rates.omega2 * 1e-6,
+            omega3: p.rates.omega3 * 1e-6,
+            omega4: p.rates.omega4 * 1e-6,
+        },
+        ..p
+    };
+    let (r, s) = (p.solve().unwrap(), scaled.solve().unwrap());
+    assert_eq!(r.r12, s.r12);
+    assert_eq!(r.b.load, s.b.load);
+    assert!((s.power_lost() - r.power_lost() * 1e-6).abs() <= 1e-15 * r.power_lost());
+}
+
+// ----- Bad input: named -----
+
+#[test]
+fn bad_friction_data_is_an_error_naming_the_joint_and_field() {
+    let mut rng = Rng(0x5EED_0040);
+    let p = random_rrr(&mut rng, 0.1);
+    let bad = RrrFriction {
+        joints: RrrJoints {
+            b: Hinge { rho: -0.01 },
+            ..p.joints
+        },
+        ..p
+    };
+    assert!(matches!(
+        bad.solve(),
+        Err(Error::OutOfRange { name: "rho_B", .. })
+    ));
+    let bad = RrrFriction {
+        rates: RrrRates {
+            omega2: f64::NAN,
+            ..p.rates
+        },
+        ..p
+    };
+    assert!(matches!(
+        bad.solve(),
+        Err(Error::NonFinite { name: "omega2", .. })
+    ));
+    let p = random_rrp(&mut rng, 0.1);
+    let bad = RrpFriction {
+        joints: RrpJoints {
+            guide: Slide {
+                f: f64::INFINITY,
+                ..Slide::default()
+            },
+            ..p.joints
+        },
+        ..p
+    };
+    assert!(matches!(
+        bad.solve(),
+        Err(Error::NonFinite {
+            name: "f_guide",
+            ..
+        })
+    ));
+    let bad = RrpFriction {
+        joints: RrpJoints {
+            guide: Slide {
+                f: 0.1,
+                length: Some(0.0),
+                centre: 0.0,
+            },
+            ..p.joints
+        },
+        ..p
+    };
+    assert!(matches!(
+        bad.solve(),
+        Err(Error::NonPositive {
+            name: "L_guide",
+            ..
+        })
+    ));
+    let p = random_rpp(&mut rng, 0.1);
+    let bad = RppFriction {
+        joints: RppJoints {
+            slot: Slide {
+                f: -0.2,
+                ..Slide::default()
+            },
+            ..p.joints
+        },
+        ..p
+    };
+    assert!(matches!(
+        bad.solve(),
+        Err(Error::OutOfRange { name: "f_slot", .. })
+    ));
+    assert!(matches!(
+        Hinge::pin(-0.01, 0.1),
+        Err(Error::OutOfRange {
+            name: "pin radius",
+            ..
+        })
+    ));
+    assert!(matches!(
+        Hinge::pin(0.01, f64::NAN),
+        Err(Error::NonFinite { name: "f", .. })
+    ));
+    assert!(matches!(
+        Slide::cocked(0.1, -1.0),
+        Err(Error::NonPositive { name: "length", .. })
+    ));
+    let c = CrankFriction {
+        o1: Point2::origin(),
+        pin: Hinge { rho: -1.0 },
+        omega1: 1.0,
+    };
+    assert!(matches!(
+        c.solve(&[]),
+        Err(Error::OutOfRange { name: "rho_O1", .. })
+    ));
+    assert!(matches!(
+        Efficiency::new(1.0, -1.0),
+        Err(Error::OutOfRange { name: "P_lost", .. })
+    ));
+}
