@@ -30,6 +30,7 @@
 
 mod conditioning;
 mod coupling;
+pub mod friction;
 mod gear;
 pub mod passive;
 mod prp;

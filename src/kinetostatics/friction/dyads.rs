@@ -1,0 +1,1090 @@
+//! The five dyads with Coulomb friction in their joints.
+//!
+//! Each solver takes the frictionless dyad as it is (its geometry and loads), the friction
+//! data of its three joints and the links' rates, solves the frictionless closed form, its
+//! response to each joint's friction load (the closed forms are linear in the loads), and the
+//! friction equations on the three joint pressures (see the [module](super)).
+
+use super::solver::{Pressure, Problem, Solved};
+use super::{sign, Convergence, Hinge, Iteration, JointFriction, Slide, SlideContact};
+use crate::angle::perp;
+use crate::error::{all_finite, unit_direction, Result};
+use crate::kinetostatics::{
+    Conditioning, PrpDyad, PrpReactions, RppDyad, RppReactions, RprDyad, RprReactions, RrpDyad,
+    RrpReactions, RrrDyad, RrrReactions,
+};
+use crate::Load;
+use nalgebra::{Point2, Vector2};
+
+/// The numbers shared by every dyad's friction solve.
+struct Setup {
+    v0: [f64; 6],
+    laws: [Pressure; 3],
+    /// ρ or f times the sign of the joint's relative rate.
+    c: [f64; 3],
+    rate: [f64; 3],
+}
+
+/// The solution, or `None` without friction.
+struct Outcome {
+    v: [f64; 6],
+    joints: [JointFriction; 3],
+    convergence: Convergence,
+}
+
+impl Setup {
+    fn frictionless(&self) -> bool {
+        self.c.iter().all(|&c| c == 0.0)
+    }
+
+    /// The pressures and friction of the frictionless solution.
+    fn none(&self) -> Outcome {
+        let v = self.v0;
+        Outcome {
+            v,
+            joints: [0, 1, 2].map(|k| {
+                JointFriction::none(self.laws[k].of(v[2 * k], v[2 * k + 1]), self.rate[k])
+            }),
+            convergence: Convergence::NONE,
+        }
+    }
+
+    /// Solves the friction equations with `unit[k]` the reactions' response to joint k's
+    /// friction load of one unit on its second link (and minus one on its first).
+    fn solve(
+        &self,
+        unit: [[f64; 6]; 3],
+        scale: f64,
+        options: &Iteration,
+        what: &'static str,
+        joints: [&'static str; 3],
+    ) -> Result<Outcome> {
+        let d = [0, 1, 2].map(|k| unit[k].map(|x| -self.c[k] * x));
+        let problem = Problem {
+            v0: self.v0,
+            d,
+            laws: self.laws,
+            active: self.c.map(|c| c != 0.0),
+            scale,
+        };
+        let Solved { m, v, convergence } = problem.solve(options, what, joints)?;
+        Ok(Outcome {
+            v,
+            joints: [0, 1, 2].map(|k| {
+                if problem.active[k] {
+                    JointFriction::new(self.c[k], m[k], self.rate[k])
+                } else {
+                    JointFriction::none(self.laws[k].of(v[2 * k], v[2 * k + 1]), self.rate[k])
+                }
+            }),
+            convergence,
+        })
+    }
+}
+
+fn vec(v: &[f64; 6], k: usize) -> Vector2<f64> {
+    Vector2::new(v[2 * k], v[2 * k + 1])
+}
+
+fn sub(a: [f64; 6], b: [f64; 6]) -> [f64; 6] {
+    [0, 1, 2, 3, 4, 5].map(|i| a[i] - b[i])
+}
+
+/// The largest force component among the frictionless reactions' force numbers and the
+/// loads: the load scale of the tolerance.
+fn scale(forces: &[f64], loads: [&Load; 2]) -> f64 {
+    forces
+        .iter()
+        .chain(loads.iter().flat_map(|l| l.force.iter()))
+        .fold(0.0_f64, |s, x| s.max(x.abs()))
+}
+
+fn couple(at: Point2<f64>) -> Load {
+    Load::new(at, Vector2::zeros(), 1.0)
+}
+
+// ----- RRR -----
+
+/// The friction data of an RRR dyad's hinges.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+pub struct RrrJoints {
+    /// A, the hinge of links 1 and 2.
+    pub a: Hinge,
+    /// B, the hinge of links 2 and 3.
+    pub b: Hinge,
+    /// C, the hinge of links 3 and 4.
+    pub c: Hinge,
+}
+
+/// The angular velocities of the links an RRR dyad joins, rad/s, counter-clockwise positive.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+pub struct RrrRates {
+    /// ω1, of link 1 (A's other link).
+    pub omega1: f64,
+    /// ω2, of link 2.
+    pub omega2: f64,
+    /// ω3, of link 3.
+    pub omega3: f64,
+    /// ω4, of link 4 (C's other link; 0 for the frame).
+    pub omega4: f64,
+}
+
+/// An RRR dyad with friction in its hinges.
+///
+/// # Examples
+/// The symmetric dyad of [`RrrDyad`]'s example (100 N down at B) opening up: link 2 turns
+/// counter-clockwise, link 3 clockwise, about fixed pins. Each hinge with a friction circle
+/// of 5 mm: the frictionless reactions, 70.7 N each, grow a little, and the powers lost are
+/// ρ·|R|·|ω_rel|.
+/// ```
+/// use nalgebra::{Point2, Vector2};
+/// use approx::assert_relative_eq;
+/// use tmm::{kinetostatics::RrrDyad, Load};
+/// use tmm::kinetostatics::friction::{Hinge, RrrFriction, RrrJoints, RrrRates};
+/// let b = Point2::new(1.0, 1.0);
+/// let dyad = RrrDyad {
+///     a: Point2::new(0.0, 0.0), b, c: Point2::new(2.0, 0.0),
+///     load2: Load::zero(b),
+///     load3: Load::force_at(b, Vector2::new(0.0, -100.0)),
+/// };
+/// let pin = Hinge::circle(0.005)?;
+/// let r = RrrFriction {
+///     dyad,
+///     joints: RrrJoints { a: pin, b: pin, c: pin },
+///     rates: RrrRates { omega1: 0.0, omega2: 1.0, omega3: -1.0, omega4: 0.0 },
+/// }
+/// .solve()?;
+/// // Every friction couple opposes its relative rotation and costs ρ·|R|·|ω_rel|.
+/// assert!(r.a.load < 0.0 && r.b.load > 0.0 && r.c.load > 0.0);
+/// assert_relative_eq!(r.b.power_lost, 0.005 * r.r23.norm() * 2.0, epsilon = 1e-12);
+/// assert!(r.convergence.iterations <= 4);
+/// // Link 2's moments about B: R12 at A and the couples at A and B balance.
+/// let ab = b - dyad.a;
+/// assert_relative_eq!(ab.x * r.r12.y - ab.y * r.r12.x, r.a.load - r.b.load, epsilon = 1e-12);
+/// # Ok::<(), tmm::Error>(())
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+pub struct RrrFriction {
+    /// The dyad: its hinges and its loads (external plus inertia).
+    pub dyad: RrrDyad,
+    /// The friction data of its hinges.
+    pub joints: RrrJoints,
+    /// The links' angular velocities.
+    pub rates: RrrRates,
+}
+
+/// The reactions of an RRR dyad with friction.
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+pub struct RrrFrictionReactions {
+    /// R12, the force of link 1 on link 2 at A, N.
+    pub r12: Vector2<f64>,
+    /// R23, the force of link 2 on link 3 at B, N.
+    pub r23: Vector2<f64>,
+    /// R43, the force of link 4 on link 3 at C, N.
+    pub r43: Vector2<f64>,
+    /// A's friction: the couple of link 1 on link 2, rate ω2 − ω1.
+    pub a: JointFriction,
+    /// B's friction: the couple of link 2 on link 3, rate ω3 − ω2.
+    pub b: JointFriction,
+    /// C's friction: the couple of link 4 on link 3, rate ω3 − ω4.
+    pub c: JointFriction,
+    /// The dyad's load on link 1 at A: −R12 and A's friction couple on link 1.
+    pub on_link1: Load,
+    /// The dyad's load on link 4 at C: −R43 and C's friction couple on link 4.
+    pub on_link4: Load,
+    /// The frictionless closed form's conditioning.
+    pub conditioning: Conditioning,
+    /// The friction iteration.
+    pub convergence: Convergence,
+}
+
+impl RrrFrictionReactions {
+    /// The power lost in the dyad's three hinges, W.
+    #[must_use]
+    pub fn power_lost(&self) -> f64 {
+        self.a.power_lost + self.b.power_lost + self.c.power_lost
+    }
+}
+
+fn rrr_values(r: &RrrReactions) -> [f64; 6] {
+    [r.r12.x, r.r12.y, r.r23.x, r.r23.y, r.r43.x, r.r43.y]
+}
+
+impl RrrFriction {
+    /// Solves the dyad with friction, with the default [`Iteration`].
+    ///
+    /// # Errors
+    /// As [`RrrFriction::solve_with`].
+    pub fn solve(&self) -> Result<RrrFrictionReactions> {
+        self.solve_with(&Iteration::default())
+    }
+
+    /// Solves the dyad with friction.
+    ///
+    /// # Errors
+    /// - as [`RrrDyad::solve`] (bad numbers, dead points);
+    /// - [`Error::NonFinite`](crate::Error::NonFinite) or
+    ///   [`Error::OutOfRange`](crate::Error::OutOfRange) naming `rho_A`, `rho_B`, `rho_C`, or
+    ///   a non-finite rate (`omega1` … `omega4`);
+    /// - [`Error::In`](crate::Error::In) naming the joint that self-locks (see the
+    ///   [module](super)), or the iteration whose budget was used up.
+    pub fn solve_with(&self, options: &Iteration) -> Result<RrrFrictionReactions> {
+        let d = &self.dyad;
+        let base = d.solve()?;
+        let rho = [
+            self.joints.a.checked("rho_A")?,
+            self.joints.b.checked("rho_B")?,
+            self.joints.c.checked("rho_C")?,
+        ];
+        let w = &self.rates;
+        all_finite(&[
+            ("omega1", w.omega1),
+            ("omega2", w.omega2),
+            ("omega3", w.omega3),
+            ("omega4", w.omega4),
+        ])?;
+        let rate = [
+            w.omega2 - w.omega1,
+            w.omega3 - w.omega2,
+            w.omega3 - w.omega4,
+        ];
+        let setup = Setup {
+            v0: rrr_values(&base),
+            laws: [Pressure::Hinge; 3],
+            c: [0, 1, 2].map(|k| rho[k] * sign(rate[k])),
+            rate,
+        };
+        let out = if setup.frictionless() {
+            setup.none()
+        } else {
+            let zero = Load::zero(d.b);
+            let e2 = rrr_values(
+                &RrrDyad {
+                    load2: couple(d.b),
+                    load3: zero,
+                    ..*d
+                }
+                .solve()?,
+            );
+            let e3 = rrr_values(
+                &RrrDyad {
+                    load2: zero,
+                    load3: couple(d.b),
+                    ..*d
+                }
+                .solve()?,
+            );
+            setup.solve(
+                [e2, sub(e3, e2), e3],
+                scale(&setup.v0, [&d.load2, &d.load3]),
+                options,
+                "RRR dyad with friction",
+                [
+                    "joint A (links 1 and 2)",
+                    "joint B (links 2 and 3)",
+                    "joint C (links 3 and 4)",
+                ],
+            )?
+        };
+        let frictionless = setup.frictionless();
+        let (r12, r23, r43) = if frictionless {
+            (base.r12, base.r23, base.r43)
+        } else {
+            (vec(&out.v, 0), vec(&out.v, 1), vec(&out.v, 2))
+        };
+        let [a, b, c] = out.joints;
+        Ok(RrrFrictionReactions {
+            r12,
+            r23,
+            r43,
+            a,
+            b,
+            c,
+            on_link1: Load::new(d.a, -r12, -a.load),
+            on_link4: Load::new(d.c, -r43, -c.load),
+            conditioning: base.conditioning,
+            convergence: out.convergence,
+        })
+    }
+}
+
+// ----- RRP -----
+
+/// The friction data of an RRP dyad's joints.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+pub struct RrpJoints {
+    /// A, the hinge of links 1 and 2.
+    pub a: Hinge,
+    /// B, the hinge of link 2 and the slider 3.
+    pub b: Hinge,
+    /// The slider 3 on link 4's guide; its reference point is B.
+    pub guide: Slide,
+}
+
+/// The rates of an RRP dyad's links.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+pub struct RrpRates {
+    /// ω1, of link 1, rad/s.
+    pub omega1: f64,
+    /// ω2, of link 2, rad/s.
+    pub omega2: f64,
+    /// ω4, of link 4, whose guide the slider follows (so the slider's too), rad/s.
+    pub omega4: f64,
+    /// The slider's velocity relative to link 4, along the guide's direction, m/s.
+    pub slide: f64,
+}
+
+/// An RRP dyad with friction in its hinges and on its guide.
+///
+/// # Examples
+/// The slider-crank of [`RrpDyad`]'s example (the gas pushes the piston with 1000 N towards
+/// −x through B) on its power stroke, the piston moving towards −x, and f = 0.1 on the guide
+/// only. The friction opposes the piston's motion, so it pushes the piston towards +x and
+/// relieves the rod: with the rod force P along A→B, (0.3, −0.1)/|AB|, the slider's balance
+/// along x, 0.3·P/|AB| + f·N = 1000 N, and across, N = 0.1·P/|AB|, give N = 1000/(3 + f) =
+/// 322.6 N (frictionless 333.3 N) and the friction f·N = 32.26 N along +x.
+/// ```
+/// use nalgebra::{Point2, Vector2};
+/// use approx::assert_relative_eq;
+/// use tmm::{kinetostatics::RrpDyad, Load};
+/// use tmm::kinetostatics::friction::{Hinge, RrpFriction, RrpJoints, RrpRates, Slide};
+/// let b = Point2::new(0.4, 0.0);
+/// let dyad = RrpDyad {
+///     a: Point2::new(0.1, 0.1), b, guide: Vector2::new(1.0, 0.0),
+///     load2: Load::zero(b),
+///     load3: Load::force_at(b, Vector2::new(-1000.0, 0.0)),
+/// };
+/// let r = RrpFriction {
+///     dyad,
+///     joints: RrpJoints { a: Hinge::FRICTIONLESS, b: Hinge::FRICTIONLESS, guide: Slide::new(0.1)? },
+///     rates: RrpRates { omega1: 0.0, omega2: 0.0, omega4: 0.0, slide: -2.0 },
+/// }
+/// .solve()?;
+/// assert_relative_eq!(r.contact43.normal, 1000.0 / 3.1, epsilon = 1e-9);
+/// assert_relative_eq!(r.guide.load, 100.0 / 3.1, epsilon = 1e-9); // along +x: against the motion
+/// assert_relative_eq!(r.guide.power_lost, 2.0 * 100.0 / 3.1, epsilon = 1e-9);
+/// assert_relative_eq!(r.r43, Vector2::new(100.0 / 3.1, 1000.0 / 3.1), epsilon = 1e-9);
+/// # Ok::<(), tmm::Error>(())
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+pub struct RrpFriction {
+    /// The dyad: its joints, guide and loads.
+    pub dyad: RrpDyad,
+    /// The friction data of its joints.
+    pub joints: RrpJoints,
+    /// The links' rates.
+    pub rates: RrpRates,
+}
+
+/// The reactions of an RRP dyad with friction.
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+pub struct RrpFrictionReactions {
+    /// R12, the force of link 1 on link 2 at A, N.
+    pub r12: Vector2<f64>,
+    /// R23, the force of link 2 on the slider at B, N.
+    pub r23: Vector2<f64>,
+    /// R43, the whole force of the guide on the slider (normal plus friction), N.
+    pub r43: Vector2<f64>,
+    /// A's friction: the couple of link 1 on link 2, rate ω2 − ω1.
+    pub a: JointFriction,
+    /// B's friction: the couple of link 2 on the slider, rate ω4 − ω2.
+    pub b: JointFriction,
+    /// The guide's friction: the force of link 4 on the slider along the guide's direction,
+    /// rate the slider's velocity relative to link 4.
+    pub guide: JointFriction,
+    /// The guide's normal reaction (moment about B).
+    pub contact43: SlideContact,
+    /// The dyad's load on link 1 at A: −R12 and A's friction couple on link 1.
+    pub on_link1: Load,
+    /// The dyad's load on link 4, reduced to B: −R43 and the normal force's moment, reversed.
+    pub on_link4: Load,
+    /// The frictionless closed form's conditioning.
+    pub conditioning: Conditioning,
+    /// The friction iteration.
+    pub convergence: Convergence,
+}
+
+impl RrpFrictionReactions {
+    /// The power lost in the dyad's three joints, W.
+    #[must_use]
+    pub fn power_lost(&self) -> f64 {
+        self.a.power_lost + self.b.power_lost + self.guide.power_lost
+    }
+}
+
+fn rrp_values(r: &RrpReactions) -> [f64; 6] {
+    [r.r12.x, r.r12.y, r.r23.x, r.r23.y, r.r43_n, r.guide_moment]
+}
+
+impl RrpFriction {
+    /// Solves the dyad with friction, with the default [`Iteration`].
+    ///
+    /// # Errors
+    /// As [`RrpFriction::solve_with`].
+    pub fn solve(&self) -> Result<RrpFrictionReactions> {
+        self.solve_with(&Iteration::default())
+    }
+
+    /// Solves the dyad with friction.
+    ///
+    /// # Errors
+    /// - as [`RrpDyad::solve`];
+    /// - [`Error::NonFinite`](crate::Error::NonFinite),
+    ///   [`Error::OutOfRange`](crate::Error::OutOfRange) or
+    ///   [`Error::NonPositive`](crate::Error::NonPositive) naming `rho_A`, `rho_B`,
+    ///   `f_guide`, `L_guide`, `centre_guide` or a rate;
+    /// - [`Error::In`](crate::Error::In) naming the joint that self-locks, or the iteration
+    ///   whose budget was used up.
+    pub fn solve_with(&self, options: &Iteration) -> Result<RrpFrictionReactions> {
+        let d = &self.dyad;
+        let base = d.solve()?;
+        let rho_a = self.joints.a.checked("rho_A")?;
+        let rho_b = self.joints.b.checked("rho_B")?;
+        let (f, law) = self
+            .joints
+            .guide
+            .checked(["f_guide", "L_guide", "centre_guide"])?;
+        let w = &self.rates;
+        all_finite(&[
+            ("omega1", w.omega1),
+            ("omega2", w.omega2),
+            ("omega4", w.omega4),
+            ("slide", w.slide),
+        ])?;
+        let rate = [w.omega2 - w.omega1, w.omega4 - w.omega2, w.slide];
+        let coefficient = [rho_a, rho_b, f];
+        let setup = Setup {
+            v0: rrp_values(&base),
+            laws: [Pressure::Hinge, Pressure::Hinge, law],
+            c: [0, 1, 2].map(|k| coefficient[k] * sign(rate[k])),
+            rate,
+        };
+        let g = unit_direction("|guide|", d.guide)?;
+        let out = if setup.frictionless() {
+            setup.none()
+        } else {
+            let zero = Load::zero(d.b);
+            let e2 = rrp_values(
+                &RrpDyad {
+                    load2: couple(d.b),
+                    load3: zero,
+                    ..*d
+                }
+                .solve()?,
+            );
+            let e3 = rrp_values(
+                &RrpDyad {
+                    load2: zero,
+                    load3: couple(d.b),
+                    ..*d
+                }
+                .solve()?,
+            );
+            let slide = RrpDyad {
+                load2: zero,
+                load3: Load::force_at(d.b, g),
+                ..*d
+            };
+            let v = &setup.v0;
+            setup.solve(
+                [e2, sub(e3, e2), rrp_values(&slide.solve()?)],
+                scale(&[v[0], v[1], v[2], v[3], v[4]], [&d.load2, &d.load3]),
+                options,
+                "RRP dyad with friction",
+                [
+                    "joint A (links 1 and 2)",
+                    "joint B (links 2 and 3)",
+                    "the guide (links 4 and 3)",
+                ],
+            )?
+        };
+        let [a, b, guide] = out.joints;
+        let contact43 = SlideContact::new(out.v[4], out.v[5], law);
+        let (r12, r23, r43) = if setup.frictionless() {
+            (base.r12, base.r23, base.r43)
+        } else {
+            (
+                vec(&out.v, 0),
+                vec(&out.v, 1),
+                perp(g) * contact43.normal + g * guide.load,
+            )
+        };
+        Ok(RrpFrictionReactions {
+            r12,
+            r23,
+            r43,
+            a,
+            b,
+            guide,
+            contact43,
+            on_link1: Load::new(d.a, -r12, -a.load),
+            on_link4: Load::new(d.b, -r43, -contact43.moment),
+            conditioning: base.conditioning,
+            convergence: out.convergence,
+        })
+    }
+}
+
+// ----- RPR -----
+
+/// The friction data of an RPR dyad's joints.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+pub struct RprJoints {
+    /// A, the hinge of link 1 and the rod 2.
+    pub a: Hinge,
+    /// The rod sliding in the cylinder 3; its reference point is A (the bearing's middle at
+    /// `centre` along the axis from A, for instance halfway between the piston and the
+    /// cylinder's mouth).
+    pub slide: Slide,
+    /// E, the hinge of the cylinder and link 4.
+    pub e: Hinge,
+}
+
+/// The rates of an RPR dyad's links.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+pub struct RprRates {
+    /// ω1, of link 1, rad/s.
+    pub omega1: f64,
+    /// ω, of the rod and the cylinder (they turn together), rad/s.
+    pub omega: f64,
+    /// ω4, of link 4, rad/s.
+    pub omega4: f64,
+    /// The rod's velocity relative to the cylinder, along the axis direction, m/s.
+    pub slide: f64,
+}
+
+/// An RPR dyad with friction in its hinges and its sliding pair.
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+pub struct RprFriction {
+    /// The dyad: its hinges, axis and loads.
+    pub dyad: RprDyad,
+    /// The friction data of its joints.
+    pub joints: RprJoints,
+    /// The links' rates.
+    pub rates: RprRates,
+}
+
+/// The reactions of an RPR dyad with friction.
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+pub struct RprFrictionReactions {
+    /// R12, the force of link 1 on the rod at A, N.
+    pub r12: Vector2<f64>,
+    /// R32, the whole force of the cylinder on the rod (normal plus friction), N.
+    pub r32: Vector2<f64>,
+    /// R43, the force of link 4 on the cylinder at E, N.
+    pub r43: Vector2<f64>,
+    /// A's friction: the couple of link 1 on the rod, rate ω − ω1.
+    pub a: JointFriction,
+    /// The sliding pair's friction: the force of the cylinder on the rod along the axis,
+    /// rate the rod's velocity relative to the cylinder.
+    pub slide: JointFriction,
+    /// E's friction: the couple of link 4 on the cylinder, rate ω − ω4.
+    pub e: JointFriction,
+    /// The sliding pair's normal reaction on the rod (moment about A).
+    pub contact32: SlideContact,
+    /// The dyad's load on link 1 at A: −R12 and A's friction couple on link 1.
+    pub on_link1: Load,
+    /// The dyad's load on link 4 at E: −R43 and E's friction couple on link 4.
+    pub on_link4: Load,
+    /// The frictionless closed form's conditioning.
+    pub conditioning: Conditioning,
+    /// The friction iteration.
+    pub convergence: Convergence,
+}
+
+impl RprFrictionReactions {
+    /// The power lost in the dyad's three joints, W.
+    #[must_use]
+    pub fn power_lost(&self) -> f64 {
+        self.a.power_lost + self.slide.power_lost + self.e.power_lost
+    }
+}
+
+fn rpr_values(r: &RprReactions) -> [f64; 6] {
+    [r.r12.x, r.r12.y, r.r32_n, r.couple, r.r43.x, r.r43.y]
+}
+
+impl RprFriction {
+    /// Solves the dyad with friction, with the default [`Iteration`].
+    ///
+    /// # Errors
+    /// As [`RprFriction::solve_with`].
+    pub fn solve(&self) -> Result<RprFrictionReactions> {
+        self.solve_with(&Iteration::default())
+    }
+
+    /// Solves the dyad with friction.
+    ///
+    /// # Errors
+    /// - as [`RprDyad::solve`];
+    /// - [`Error::NonFinite`](crate::Error::NonFinite),
+    ///   [`Error::OutOfRange`](crate::Error::OutOfRange) or
+    ///   [`Error::NonPositive`](crate::Error::NonPositive) naming `rho_A`, `f_slide`,
+    ///   `L_slide`, `centre_slide`, `rho_E` or a rate;
+    /// - [`Error::In`](crate::Error::In) naming the joint that self-locks, or the iteration
+    ///   whose budget was used up.
+    pub fn solve_with(&self, options: &Iteration) -> Result<RprFrictionReactions> {
+        let d = &self.dyad;
+        let base = d.solve()?;
+        let rho_a = self.joints.a.checked("rho_A")?;
+        let (f, law) = self
+            .joints
+            .slide
+            .checked(["f_slide", "L_slide", "centre_slide"])?;
+        let rho_e = self.joints.e.checked("rho_E")?;
+        let w = &self.rates;
+        all_finite(&[
+            ("omega1", w.omega1),
+            ("omega", w.omega),
+            ("omega4", w.omega4),
+            ("slide", w.slide),
+        ])?;
+        let rate = [w.omega - w.omega1, w.slide, w.omega - w.omega4];
+        let coefficient = [rho_a, f, rho_e];
+        let setup = Setup {
+            v0: rpr_values(&base),
+            laws: [Pressure::Hinge, law, Pressure::Hinge],
+            c: [0, 1, 2].map(|k| coefficient[k] * sign(rate[k])),
+            rate,
+        };
+        let u = unit_direction("|axis|", d.axis)?;
+        let out = if setup.frictionless() {
+            setup.none()
+        } else {
+            let zero = Load::zero(d.a);
+            let e2 = rpr_values(
+                &RprDyad {
+                    load2: couple(d.a),
+                    load3: zero,
+                    ..*d
+                }
+                .solve()?,
+            );
+            let e3 = rpr_values(
+                &RprDyad {
+                    load2: zero,
+                    load3: couple(d.a),
+                    ..*d
+                }
+                .solve()?,
+            );
+            let slide = RprDyad {
+                load2: Load::force_at(d.a, u),
+                load3: Load::force_at(d.a, -u),
+                ..*d
+            };
+            let v = &setup.v0;
+            setup.solve(
+                [e2, rpr_values(&slide.solve()?), e3],
+                scale(&[v[0], v[1], v[2], v[4], v[5]], [&d.load2, &d.load3]),
+                options,
+                "RPR dyad with friction",
+                [
+                    "joint A (links 1 and 2)",
+                    "the slide (links 3 and 2)",
+                    "joint E (links 4 and 3)",
+                ],
+            )?
+        };
+        let [a, slide, e] = out.joints;
+        let contact32 = SlideContact::new(out.v[2], out.v[3], law);
+        let (r12, r32, r43) = if setup.frictionless() {
+            (base.r12, base.r32, base.r43)
+        } else {
+            (
+                vec(&out.v, 0),
+                perp(u) * contact32.normal + u * slide.load,
+                vec(&out.v, 2),
+            )
+        };
+        Ok(RprFrictionReactions {
+            r12,
+            r32,
+            r43,
+            a,
+            slide,
+            e,
+            contact32,
+            on_link1: Load::new(d.a, -r12, -a.load),
+            on_link4: Load::new(d.e, -r43, -e.load),
+            conditioning: base.conditioning,
+            convergence: out.convergence,
+        })
+    }
+}
+
+// ----- PRP -----
+
+/// The friction data of a PRP dyad's joints.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+pub struct PrpJoints {
+    /// The slider 2 on link 1's guide; its reference point is B.
+    pub guide2: Slide,
+    /// B, the hinge of the two sliders.
+    pub b: Hinge,
+    /// The slider 3 on link 4's guide; its reference point is B.
+    pub guide3: Slide,
+}
+
+/// The rates of a PRP dyad's links.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+pub struct PrpRates {
+    /// ω1, of link 1 (so of the slider 2), rad/s.
+    pub omega1: f64,
+    /// ω4, of link 4 (so of the slider 3), rad/s.
+    pub omega4: f64,
+    /// The slider 2's velocity relative to link 1, along guide 2's direction, m/s.
+    pub slide2: f64,
+    /// The slider 3's velocity relative to link 4, along guide 3's direction, m/s.
+    pub slide3: f64,
+}
+
+/// A PRP dyad with friction on its guides and in its hinge.
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+pub struct PrpFriction {
+    /// The dyad: its hinge, guides and loads.
+    pub dyad: PrpDyad,
+    /// The friction data of its joints.
+    pub joints: PrpJoints,
+    /// The links' rates.
+    pub rates: PrpRates,
+}
+
+/// The reactions of a PRP dyad with friction.
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+pub struct PrpFrictionReactions {
+    /// R12, the whole force of link 1's guide on the slider 2 (normal plus friction), N.
+    pub r12: Vector2<f64>,
+    /// R23, the force of the slider 2 on the slider 3 at B, N.
+    pub r23: Vector2<f64>,
+    /// R43, the whole force of link 4's guide on the slider 3, N.
+    pub r43: Vector2<f64>,
+    /// Guide 2's friction: the force of link 1 on the slider 2 along guide 2's direction.
+    pub guide2: JointFriction,
+    /// B's friction: the couple of the slider 2 on the slider 3, rate ω4 − ω1.
+    pub b: JointFriction,
+    /// Guide 3's friction: the force of link 4 on the slider 3 along guide 3's direction.
+    pub guide3: JointFriction,
+    /// Guide 2's normal reaction (moment about B).
+    pub contact12: SlideContact,
+    /// Guide 3's normal reaction (moment about B).
+    pub contact43: SlideContact,
+    /// The dyad's load on link 1, reduced to B.
+    pub on_link1: Load,
+    /// The dyad's load on link 4, reduced to B.
+    pub on_link4: Load,
+    /// The frictionless closed form's conditioning.
+    pub conditioning: Conditioning,
+    /// The friction iteration.
+    pub convergence: Convergence,
+}
+
+impl PrpFrictionReactions {
+    /// The power lost in the dyad's three joints, W.
+    #[must_use]
+    pub fn power_lost(&self) -> f64 {
+        self.guide2.power_lost + self.b.power_lost + self.guide3.power_lost
+    }
+}
+
+fn prp_values(r: &PrpReactions) -> [f64; 6] {
+    [r.r12_n, r.moment12, r.r23.x, r.r23.y, r.r43_n, r.moment43]
+}
+
+impl PrpFriction {
+    /// Solves the dyad with friction, with the default [`Iteration`].
+    ///
+    /// # Errors
+    /// As [`PrpFriction::solve_with`].
+    pub fn solve(&self) -> Result<PrpFrictionReactions> {
+        self.solve_with(&Iteration::default())
+    }
+
+    /// Solves the dyad with friction.
+    ///
+    /// # Errors
+    /// - as [`PrpDyad::solve`];
+    /// - a bad friction number or rate, named (`f_guide2`, `L_guide2`, `centre_guide2`,
+    ///   `rho_B`, `f_guide3`, …);
+    /// - [`Error::In`](crate::Error::In) naming the joint that self-locks, or the iteration
+    ///   whose budget was used up.
+    pub fn solve_with(&self, options: &Iteration) -> Result<PrpFrictionReactions> {
+        let d = &self.dyad;
+        let base = d.solve()?;
+        let (f2, law2) = self
+            .joints
+            .guide2
+            .checked(["f_guide2", "L_guide2", "centre_guide2"])?;
+        let rho_b = self.joints.b.checked("rho_B")?;
+        let (f3, law3) = self
+            .joints
+            .guide3
+            .checked(["f_guide3", "L_guide3", "centre_guide3"])?;
+        let w = &self.rates;
+        all_finite(&[
+            ("omega1", w.omega1),
+            ("omega4", w.omega4),
+            ("slide2", w.slide2),
+            ("slide3", w.slide3),
+        ])?;
+        let rate = [w.slide2, w.omega4 - w.omega1, w.slide3];
+        let coefficient = [f2, rho_b, f3];
+        let setup = Setup {
+            v0: prp_values(&base),
+            laws: [law2, Pressure::Hinge, law3],
+            c: [0, 1, 2].map(|k| coefficient[k] * sign(rate[k])),
+            rate,
+        };
+        let g2 = unit_direction("|guide2|", d.guide2)?;
+        let g3 = unit_direction("|guide3|", d.guide3)?;
+        let out = if setup.frictionless() {
+            setup.none()
+        } else {
+            let zero = Load::zero(d.b);
+            let solve = |load2, load3| {
+                PrpDyad { load2, load3, ..*d }
+                    .solve()
+                    .map(|r| prp_values(&r))
+            };
+            let e2 = solve(couple(d.b), zero)?;
+            let e3 = solve(zero, couple(d.b))?;
+            let s2 = solve(Load::force_at(d.b, g2), zero)?;
+            let s3 = solve(zero, Load::force_at(d.b, g3))?;
+            let v = &setup.v0;
+            setup.solve(
+                [s2, sub(e3, e2), s3],
+                scale(&[v[0], v[2], v[3], v[4]], [&d.load2, &d.load3]),
+                options,
+                "PRP dyad with friction",
+                [
+                    "guide 2 (links 1 and 2)",
+                    "joint B (links 2 and 3)",
+                    "guide 3 (links 4 and 3)",
+                ],
+            )?
+        };
+        let [guide2, b, guide3] = out.joints;
+        let contact12 = SlideContact::new(out.v[0], out.v[1], law2);
+        let contact43 = SlideContact::new(out.v[4], out.v[5], law3);
+        let (r12, r23, r43) = if setup.frictionless() {
+            (base.r12, base.r23, base.r43)
+        } else {
+            (
+                perp(g2) * contact12.normal + g2 * guide2.load,
+                vec(&out.v, 1),
+                perp(g3) * contact43.normal + g3 * guide3.load,
+            )
+        };
+        Ok(PrpFrictionReactions {
+            r12,
+            r23,
+            r43,
+            guide2,
+            b,
+            guide3,
+            contact12,
+            contact43,
+            on_link1: Load::new(d.b, -r12, -contact12.moment),
+            on_link4: Load::new(d.b, -r43, -contact43.moment),
+            conditioning: base.conditioning,
+            convergence: out.convergence,
+        })
+    }
+}
+
+// ----- RPP -----
+
+/// The friction data of an RPP dyad's joints.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+pub struct RppJoints {
+    /// A, the hinge of links 1 and 2.
+    pub a: Hinge,
+    /// Link 2 sliding in link 3's slot; its reference point is A.
+    pub slot: Slide,
+    /// Link 3 on link 4's guide; its reference point is B.
+    pub guide: Slide,
+}
+
+/// The rates of an RPP dyad's links.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+pub struct RppRates {
+    /// ω1, of link 1, rad/s.
+    pub omega1: f64,
+    /// ω4, of link 4 (so of links 2 and 3, which only slide on it), rad/s.
+    pub omega4: f64,
+    /// Link 2's velocity relative to link 3, along the slot's direction, m/s.
+    pub slot: f64,
+    /// Link 3's velocity relative to link 4, along the guide's direction, m/s.
+    pub slide: f64,
+}
+
+/// An RPP dyad with friction in its hinge, its slot and on its guide.
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+pub struct RppFriction {
+    /// The dyad: its hinge, directions and loads.
+    pub dyad: RppDyad,
+    /// The friction data of its joints.
+    pub joints: RppJoints,
+    /// The links' rates.
+    pub rates: RppRates,
+}
+
+/// The reactions of an RPP dyad with friction.
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+pub struct RppFrictionReactions {
+    /// R12, the force of link 1 on link 2 at A, N.
+    pub r12: Vector2<f64>,
+    /// R32, the whole force of link 3 on link 2 in the slot (normal plus friction), N.
+    pub r32: Vector2<f64>,
+    /// R43, the whole force of link 4's guide on link 3, N.
+    pub r43: Vector2<f64>,
+    /// A's friction: the couple of link 1 on link 2, rate ω4 − ω1.
+    pub a: JointFriction,
+    /// The slot's friction: the force of link 3 on link 2 along the slot's direction.
+    pub slot: JointFriction,
+    /// The guide's friction: the force of link 4 on link 3 along the guide's direction.
+    pub guide: JointFriction,
+    /// The slot's normal reaction on link 2 (moment about A).
+    pub contact32: SlideContact,
+    /// The guide's normal reaction on link 3 (moment about B).
+    pub contact43: SlideContact,
+    /// The dyad's load on link 1 at A: −R12 and A's friction couple on link 1.
+    pub on_link1: Load,
+    /// The dyad's load on link 4, reduced to B.
+    pub on_link4: Load,
+    /// The frictionless closed form's conditioning.
+    pub conditioning: Conditioning,
+    /// The friction iteration.
+    pub convergence: Convergence,
+}
+
+impl RppFrictionReactions {
+    /// The power lost in the dyad's three joints, W.
+    #[must_use]
+    pub fn power_lost(&self) -> f64 {
+        self.a.power_lost + self.slot.power_lost + self.guide.power_lost
+    }
+}
+
+fn rpp_values(r: &RppReactions) -> [f64; 6] {
+    [r.r12.x, r.r12.y, r.r32_n, r.moment32, r.r43_n, r.moment43]
+}
+
+impl RppFriction {
+    /// Solves the dyad with friction, with the default [`Iteration`].
+    ///
+    /// # Errors
+    /// As [`RppFriction::solve_with`].
+    pub fn solve(&self) -> Result<RppFrictionReactions> {
+        self.solve_with(&Iteration::default())
+    }
+
+    /// Solves the dyad with friction.
+    ///
+    /// # Errors
+    /// - as [`RppDyad::solve`];
+    /// - a bad friction number or rate, named (`rho_A`, `f_slot`, `L_slot`, `centre_slot`,
+    ///   `f_guide`, …);
+    /// - [`Error::In`](crate::Error::In) naming the joint that self-locks, or the iteration
+    ///   whose budget was used up.
+    pub fn solve_with(&self, options: &Iteration) -> Result<RppFrictionReactions> {
+        let d = &self.dyad;
+        let base = d.solve()?;
+        let rho_a = self.joints.a.checked("rho_A")?;
+        let (fs, law_s) = self
+            .joints
+            .slot
+            .checked(["f_slot", "L_slot", "centre_slot"])?;
+        let (fg, law_g) = self
+            .joints
+            .guide
+            .checked(["f_guide", "L_guide", "centre_guide"])?;
+        let w = &self.rates;
+        all_finite(&[
+            ("omega1", w.omega1),
+            ("omega4", w.omega4),
+            ("slot", w.slot),
+            ("slide", w.slide),
+        ])?;
+        let rate = [w.omega4 - w.omega1, w.slot, w.slide];
+        let coefficient = [rho_a, fs, fg];
+        let setup = Setup {
+            v0: rpp_values(&base),
+            laws: [Pressure::Hinge, law_s, law_g],
+            c: [0, 1, 2].map(|k| coefficient[k] * sign(rate[k])),
+            rate,
+        };
+        let u = unit_direction("|guide|", d.guide)?;
+        let v_dir = unit_direction("|slot|", d.slot)?;
+        let out = if setup.frictionless() {
+            setup.none()
+        } else {
+            let solve = |load2, load3| {
+                RppDyad { load2, load3, ..*d }
+                    .solve()
+                    .map(|r| rpp_values(&r))
+            };
+            let e2 = solve(couple(d.a), Load::zero(d.a))?;
+            let slot = solve(Load::force_at(d.a, v_dir), Load::force_at(d.a, -v_dir))?;
+            let guide = solve(Load::zero(d.a), Load::force_at(d.b, u))?;
+            let v = &setup.v0;
+            setup.solve(
+                [e2, slot, guide],
+                scale(&[v[0], v[1], v[2], v[4]], [&d.load2, &d.load3]),
+                options,
+                "RPP dyad with friction",
+                [
+                    "joint A (links 1 and 2)",
+                    "the slot (links 3 and 2)",
+                    "the guide (links 4 and 3)",
+                ],
+            )?
+        };
+        let [a, slot, guide] = out.joints;
+        let contact32 = SlideContact::new(out.v[2], out.v[3], law_s);
+        let contact43 = SlideContact::new(out.v[4], out.v[5], law_g);
+        let (r12, r32, r43) = if setup.frictionless() {
+            (base.r12, base.r32, base.r43)
+        } else {
+            (
+                vec(&out.v, 0),
+                perp(v_dir) * contact32.normal + v_dir * slot.load,
+                perp(u) * contact43.normal + u * guide.load,
+            )
+        };
+        Ok(RppFrictionReactions {
+            r12,
+            r32,
+            r43,
+            a,
+            slot,
+            guide,
+            contact32,
+            contact43,
+            on_link1: Load::new(d.a, -r12, -a.load),
+            on_link4: Load::new(d.b, -r43, -contact43.moment),
+            conditioning: base.conditioning,
+            convergence: out.convergence,
+        })
+    }
+}
