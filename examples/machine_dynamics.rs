@@ -22,7 +22,7 @@ use plotters::prelude::*;
 use tmm::dynamics::machines::LinearMotor;
 use tmm::dynamics::{Rk4, State};
 use tmm::linkage::dynamics::{LinkageSystem, Motor, RunUpOptions, Turn};
-use tmm::mechanism::Compressor;
+use tmm::mechanism::{Compressor, Mechanism};
 
 type Res<T> = std::result::Result<T, Box<dyn Error>>;
 
@@ -101,7 +101,7 @@ fn main() -> Res<()> {
 
     let compressor = Compressor::course_example();
     let omega_seed = Compressor::seed_speed(); // −960 rpm: clockwise
-    let bare = LinkageSystem::from_linkage(&compressor.linkage())?;
+    let bare = LinkageSystem::from_linkage(&compressor.linkage()?)?;
 
     // 1. The machine reduced to its crank over a turn at the seed's speed.
     let reduced = bare.reduced_cycle(360, omega_seed)?;

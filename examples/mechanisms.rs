@@ -21,7 +21,7 @@ use std::io::BufWriter;
 use std::path::{Path, PathBuf};
 use tmm::kinematics::{Motion, Rotation};
 use tmm::linkage::{course_inputs, run_cycle, uniform_inputs, Analysis, Plan, Table};
-use tmm::mechanism::{Compressor, FourBar, RockingCylinder, SixBar, SliderCrank};
+use tmm::mechanism::{Compressor, FourBar, Mechanism, RockingCylinder, SixBar, SliderCrank};
 
 type Res<T> = std::result::Result<T, Box<dyn StdError>>;
 

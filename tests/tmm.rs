@@ -11,6 +11,7 @@
 mod architecture;
 mod common;
 mod docs_links;
+#[cfg(feature = "serde")] // it draws the bundled linkages
 mod draw;
 mod dynamics;
 mod errata;

@@ -19,7 +19,7 @@ use tmm::dynamics::machines::LinearMotor;
 use tmm::kinematics::Motion;
 use tmm::linkage::dynamics::{LinkageSystem, Motor};
 use tmm::linkage::{bundled, Linkage, Plan};
-use tmm::mechanism::Compressor;
+use tmm::mechanism::{Compressor, Mechanism};
 
 /// A small linear congruential generator: the same states in every run.
 struct Lcg(u64);
@@ -79,7 +79,10 @@ fn one_input(c: &mut Criterion) {
     let cases: [(&str, Linkage); 3] = [
         ("four-bar", bundled::four_bar()),
         ("Watt six-bar", bundled::watt_six_bar()),
-        ("compressor", Compressor::course_example().linkage()),
+        (
+            "compressor",
+            Compressor::course_example().linkage().unwrap(),
+        ),
     ];
     let mut g = c.benchmark_group("linkage_dynamics");
     g.measurement_time(Duration::from_secs(3));

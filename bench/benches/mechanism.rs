@@ -8,7 +8,7 @@ use std::hint::black_box;
 use std::time::Duration;
 use tmm::kinematics::Motion;
 use tmm::linkage::{run_cycle, uniform_inputs, Analysis};
-use tmm::mechanism::SixBar;
+use tmm::mechanism::{Mechanism, SixBar};
 
 /// Input angles from a fixed-seed linear congruential generator (reproducible, no deps).
 fn seeded_inputs(n: usize) -> Vec<Motion> {

@@ -16,7 +16,7 @@
 //!   the number of positions per cycle, beside the exact transfer functions.
 //!
 //! The error axes are reproducible run to run (the same seeded cases, the same arithmetic);
-//! the times vary with the machine. `tests/work_precision.rs` asserts the observed orders
+//! the times vary with the machine. `tests/work_precision/mod.rs` asserts the observed orders
 //! from the same functions and from the committed CSV files.
 
 use std::error::Error;

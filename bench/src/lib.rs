@@ -13,4 +13,4 @@
 //! ```
 //!
 //! The computations behind the charts live in the root's `tests/work_precision/`, where
-//! `tests/work_precision.rs` checks them without any of these dependencies.
+//! `tests/work_precision/mod.rs` checks them without any of these dependencies.

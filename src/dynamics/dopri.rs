@@ -298,7 +298,7 @@ fn rejected_factor(h: f64, err: f64, before: Option<(f64, f64)>) -> f64 {
 ///   exponent that holds, k = ln(err₁/err₂)/ln(h₁/h₂) (kept in [1, 5]), and the next trial
 ///   is h₂·max(0.2, 0.9·err₂^(−1/k)), where the fixed 1/5 creeps towards the kink one
 ///   rejection of six evaluations at a time (a force √t from t = 0, err ∝ h^2.5: four trials
-///   for a first step of 0.1 s against six, `tests/dynamics.rs`); a shorter trial that is no
+///   for a first step of 0.1 s against six, `tests/dynamics/scenarios.rs`); a shorter trial that is no
 ///   more accurate gets the least factor, 0.2. The step accepted right after a rejection proposes no
 ///   longer a step than its own (the estimate just failed near there, so growing at once would
 ///   invite the next rejection);

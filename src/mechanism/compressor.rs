@@ -2,11 +2,12 @@
 //! pistons through two RRP groups.
 
 use super::link::{reference_pose, xy, LinkMass};
+use super::Mechanism;
 use crate::angle::{direction, unit};
 use crate::error::Result;
-use crate::kinematics::{crank, rrp_dyad, Branch, Guide, Motion, Rotation, Strokes};
+use crate::kinematics::{crank, rrp_dyad, Branch, Guide, Motion};
 use crate::linkage::{
-    Drive, IndicatorDiagram, Input, Joint, Link, Linkage, LoadSpec, Mode, Output, Plan,
+    Drive, IndicatorDiagram, Input, Joint, Link, Linkage, LoadSpec, Mode, Output,
 };
 use nalgebra::Point2;
 use std::f64::consts::{FRAC_PI_2, PI, TAU};
@@ -128,12 +129,13 @@ impl Compressor {
     pub fn seed_speed() -> f64 {
         -960.0 * TAU / 60.0
     }
+}
 
+impl Mechanism for Compressor {
     /// The description for the engine, in a reference pose where both groups assemble (B
-    /// and D as `branches` put them; not finite if it assembles nowhere, which [`Plan::new`]
-    /// rejects naming the joint).
-    #[must_use]
-    pub fn linkage(&self) -> Linkage {
+    /// and D as `branches` put them; not finite if it assembles nowhere, which
+    /// [`Plan::new`](crate::linkage::Plan::new) rejects naming the joint).
+    fn linkage(&self) -> Result<Linkage> {
         let guides = self.guide_angles.map(|a| Guide::fixed(self.guide_point, a));
         let (st, ct) = self.throw_angle.sin_cos();
         let pose = reference_pose(|phi| {
@@ -158,7 +160,7 @@ impl Compressor {
             }
         }
         let m = &self.mass;
-        Linkage {
+        Ok(Linkage {
             name: "two-cylinder compressor".to_owned(),
             joints: vec![
                 Joint::revolute("O1", xy(self.o1)),
@@ -198,23 +200,11 @@ impl Compressor {
                 },
             ],
             ..Linkage::default()
-        }
+        })
     }
 
-    /// The plan of [`Compressor::linkage`].
-    ///
-    /// # Errors
-    /// As [`Plan::new`].
-    pub fn plan(&self) -> Result<Plan> {
-        Plan::new(&self.linkage())
-    }
-
-    /// The strokes of piston 1 for a crank turning in the sense `rotation`.
-    ///
-    /// # Errors
-    /// As [`Compressor::plan`] and [`Plan::strokes`].
-    pub fn strokes(&self, rotation: Rotation) -> Result<Strokes> {
-        self.plan()?
-            .strokes(&Output::Slide("P1".to_owned()), rotation)
+    /// The slide of piston 1.
+    fn output(&self) -> Output {
+        Output::Slide("P1".to_owned())
     }
 }

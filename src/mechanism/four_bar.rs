@@ -2,9 +2,10 @@
 //! RRR group).
 
 use super::link::{reference_pose, xy, LinkMass};
+use super::Mechanism;
 use crate::error::Result;
-use crate::kinematics::{crank, rrr_dyad, Branch, Motion, PointMotion, Rotation, Strokes};
-use crate::linkage::{Drive, Input, Joint, Link, Linkage, LoadSpec, Mode, Output, Plan};
+use crate::kinematics::{crank, rrr_dyad, Branch, Motion, PointMotion};
+use crate::linkage::{Drive, Input, Joint, Link, Linkage, LoadSpec, Mode, Output};
 use nalgebra::Point2;
 
 /// A four-bar: the crank O1A, the RRR group of the coupler AB and the rocker O3B.
@@ -79,12 +80,13 @@ impl FourBar {
     pub fn grashof(&self) -> Result<crate::kinematics::Grashof> {
         crate::kinematics::grashof((self.o3 - self.o1).norm(), self.l1, self.l2, self.l3)
     }
+}
 
+impl Mechanism for FourBar {
     /// The description for the engine, in a reference pose where the four-bar assembles
     /// (B as `branch` puts it). If it assembles nowhere, B is not finite and
-    /// [`Plan::new`] rejects it naming the joint.
-    #[must_use]
-    pub fn linkage(&self) -> Linkage {
+    /// [`Plan::new`](crate::linkage::Plan::new) rejects it naming the joint.
+    fn linkage(&self) -> Result<Linkage> {
         let pose = reference_pose(|phi| {
             let c = crank(self.o1, self.l1, Motion::new(phi, 0.0, 0.0))?;
             let g = rrr_dyad(
@@ -102,7 +104,7 @@ impl FourBar {
         });
         let (o1, o3) = (self.o1, self.o3);
         let dir = |p: Point2<f64>, q: Point2<f64>| crate::angle::direction(q - p);
-        Linkage {
+        Ok(Linkage {
             name: "four-bar".to_owned(),
             joints: vec![
                 Joint::revolute("O1", xy(o1)),
@@ -133,37 +135,11 @@ impl FourBar {
                 branch: self.branch,
             }],
             ..Linkage::default()
-        }
+        })
     }
 
-    /// The plan of [`FourBar::linkage`].
-    ///
-    /// # Errors
-    /// As [`Plan::new`].
-    ///
-    /// # Examples
-    /// A parallelogram four-bar (crank = rocker, coupler = frame) has a dead point where all
-    /// links are collinear, at φ1 = 0: the position fails naming the group.
-    /// ```
-    /// use nalgebra::Point2;
-    /// use tmm::{kinematics::Motion, mechanism::FourBar, Error};
-    /// let m = FourBar { o3: Point2::new(0.3, 0.0), l1: 0.1, l2: 0.3, l3: 0.1, ..FourBar::course_example() };
-    /// let plan = m.plan()?;
-    /// let e = plan.analyse(Motion::new(0.0, 10.0, 0.0)).unwrap_err();
-    /// assert!(matches!(e, Error::In { ref part, .. } if part == "group (coupler, rocker) RRR"));
-    /// assert!(plan.analyse(Motion::new(1.0, 10.0, 0.0)).is_ok());
-    /// # Ok::<(), tmm::Error>(())
-    /// ```
-    pub fn plan(&self) -> Result<Plan> {
-        Plan::new(&self.linkage())
-    }
-
-    /// The strokes of the rocker (its angle) for a crank turning in the sense `rotation`.
-    ///
-    /// # Errors
-    /// As [`FourBar::plan`] and [`Plan::strokes`].
-    pub fn strokes(&self, rotation: Rotation) -> Result<Strokes> {
-        self.plan()?
-            .strokes(&Output::Angle("rocker".to_owned()), rotation)
+    /// The rocker's angle.
+    fn output(&self) -> Output {
+        Output::Angle("rocker".to_owned())
     }
 }

@@ -1,7 +1,8 @@
 //! Five ready mechanisms of course projects, each a plain struct of SI parameters that
 //! becomes a [`Linkage`](crate::linkage::Linkage) for the [linkage engine](crate::linkage).
 //!
-//! Every ready mechanism has a constructor of realistic data (`course_example()`), and:
+//! Every ready mechanism has a constructor of realistic data (`course_example()`), and
+//! implements [`Mechanism`] (bring it into scope: `use tmm::mechanism::Mechanism`):
 //! - `linkage()`: its description — the joints in a reference pose computed from the
 //!   parameters (at a crank angle where it assembles in the assembly modes its `branch`
 //!   fields give, which the description also states in `modes`), named links with their
@@ -31,7 +32,7 @@
 //! The course-project six-bar at 30° of its crank, and the two ways to its balancing moment:
 //! ```
 //! use tmm::kinematics::Motion;
-//! use tmm::mechanism::SixBar;
+//! use tmm::mechanism::{Mechanism, SixBar};
 //! let plan = SixBar::course_example().plan()?;
 //! let p = plan.analyse(Motion::new(30f64.to_radians(), 10.0, 0.0))?;
 //! let check = p.power_check()?;
@@ -44,6 +45,7 @@
 mod compressor;
 mod four_bar;
 mod link;
+mod ready;
 mod rocking_cylinder;
 mod six_bar;
 mod slider_crank;
@@ -51,6 +53,7 @@ mod slider_crank;
 pub use compressor::Compressor;
 pub use four_bar::FourBar;
 pub use link::LinkMass;
+pub use ready::Mechanism;
 pub use rocking_cylinder::RockingCylinder;
 pub use six_bar::SixBar;
 pub use slider_crank::SliderCrank;

@@ -3,10 +3,11 @@
 //! oscillating-cylinder pump, or a crank and slotted lever.
 
 use super::link::{reference_pose, xy, LinkMass};
+use super::Mechanism;
 use crate::angle::direction;
 use crate::error::Result;
-use crate::kinematics::{crank, rpr_dyad, Motion, PointMotion, Rotation, Strokes};
-use crate::linkage::{At, Drive, Input, Joint, Link, Linkage, LoadSpec, Output, Plan};
+use crate::kinematics::{crank, rpr_dyad, Motion, PointMotion};
+use crate::linkage::{At, Drive, Input, Joint, Link, Linkage, LoadSpec, Output};
 use nalgebra::Point2;
 
 /// A crank and an RPR group: the crank O1A, the rod hinged at A sliding along the axis of the
@@ -70,11 +71,12 @@ impl RockingCylinder {
             drive: Drive::Coupling,
         }
     }
+}
 
+impl Mechanism for RockingCylinder {
     /// The description for the engine, in a reference pose where A is off C (not finite if
-    /// there is none, which [`Plan::new`] rejects naming the joint).
-    #[must_use]
-    pub fn linkage(&self) -> Linkage {
+    /// there is none, which [`Plan::new`](crate::linkage::Plan::new) rejects naming the joint).
+    fn linkage(&self) -> Result<Linkage> {
         let size = self.l1 + (self.c - self.o1).norm();
         let pose = reference_pose(|phi| {
             let k = crank(self.o1, self.l1, Motion::new(phi, 0.0, 0.0))?;
@@ -85,7 +87,7 @@ impl RockingCylinder {
         let c = self.c;
         let (to_c, out) = (c - a, a - c);
         let p = a + self.l_piston * to_c / to_c.norm();
-        Linkage {
+        Ok(Linkage {
             name: "rocking cylinder".to_owned(),
             joints: vec![
                 Joint::revolute("O1", xy(self.o1)),
@@ -115,24 +117,11 @@ impl RockingCylinder {
             }],
             groups: vec![["rod".to_owned(), "cylinder".to_owned()]],
             ..Linkage::default()
-        }
+        })
     }
 
-    /// The plan of [`RockingCylinder::linkage`].
-    ///
-    /// # Errors
-    /// As [`Plan::new`].
-    pub fn plan(&self) -> Result<Plan> {
-        Plan::new(&self.linkage())
-    }
-
-    /// The strokes of the cylinder's swing (its angle) for a crank turning in the sense
-    /// `rotation`.
-    ///
-    /// # Errors
-    /// As [`RockingCylinder::plan`] and [`Plan::strokes`].
-    pub fn strokes(&self, rotation: Rotation) -> Result<Strokes> {
-        self.plan()?
-            .strokes(&Output::Angle("cylinder".to_owned()), rotation)
+    /// The cylinder's swing (its angle).
+    fn output(&self) -> Output {
+        Output::Angle("cylinder".to_owned())
     }
 }

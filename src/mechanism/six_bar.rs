@@ -3,12 +3,11 @@
 //! slider along a fixed guide through the rod CD.
 
 use super::link::{reference_pose, xy, LinkMass};
+use super::Mechanism;
 use crate::angle::{direction, unit};
 use crate::error::{Error, Result};
-use crate::kinematics::{
-    crank, rrp_dyad, rrr_dyad, Branch, Guide, Motion, PointMotion, Rotation, Strokes,
-};
-use crate::linkage::{Drive, Input, Joint, Link, Linkage, LoadSpec, Mode, Output, Plan};
+use crate::kinematics::{crank, rrp_dyad, rrr_dyad, Branch, Guide, Motion, PointMotion};
+use crate::linkage::{Drive, Input, Joint, Link, Linkage, LoadSpec, Mode, Output};
 use nalgebra::Point2;
 
 /// A crank–rocker–slider six-bar: the crank O1A, the RRR group of the coupler AB and the
@@ -98,13 +97,30 @@ impl SixBar {
             drive: Drive::Coupling,
         }
     }
+}
 
+impl Mechanism for SixBar {
     /// The description for the engine, in a reference pose where both groups assemble (B
     /// and D as the branches put them; not finite if it assembles nowhere, which
-    /// [`Plan::new`] rejects naming the joint). The working-stroke resistance is a
-    /// [`LoadSpec::Resistance`] on `Q`, zero in the direction opposite `working_direction`.
-    #[must_use]
-    pub fn linkage(&self) -> Linkage {
+    /// [`Plan::new`](crate::linkage::Plan::new) rejects naming the joint). The working-stroke
+    /// resistance is a [`LoadSpec::Resistance`] on `Q`, zero in the direction opposite
+    /// `working_direction`.
+    ///
+    /// # Errors
+    /// [`Error::In`] naming `"slider"` for a `working_direction` that is zero or not finite.
+    fn linkage(&self) -> Result<Linkage> {
+        if !(self.working_direction.is_finite() && self.working_direction != 0.0) {
+            return Err(Error::In {
+                part: "slider".to_owned(),
+                source: Box::new(Error::OutOfRange {
+                    name: "working direction",
+                    value: self.working_direction,
+                    min: -1.0,
+                    max: 1.0,
+                    ends: crate::Ends::Closed,
+                }),
+            });
+        }
         let guide = Guide::fixed(self.guide_point, self.guide_angle);
         let pose = reference_pose(|phi| {
             let c = crank(self.o1, self.l1, Motion::new(phi, 0.0, 0.0))?;
@@ -124,7 +140,7 @@ impl SixBar {
             (0.0, self.resistance)
         };
         let m = &self.mass;
-        Linkage {
+        Ok(Linkage {
             name: "six-bar".to_owned(),
             joints: vec![
                 Joint::revolute("O1", xy(self.o1)),
@@ -170,37 +186,11 @@ impl SixBar {
                 },
             ],
             ..Linkage::default()
-        }
+        })
     }
 
-    /// The plan of [`SixBar::linkage`].
-    ///
-    /// # Errors
-    /// [`Error::In`] naming `"slider"` for a `working_direction` that is zero or not
-    /// finite; otherwise as [`Plan::new`].
-    pub fn plan(&self) -> Result<Plan> {
-        if !(self.working_direction.is_finite() && self.working_direction != 0.0) {
-            return Err(Error::In {
-                part: "slider".to_owned(),
-                source: Box::new(Error::OutOfRange {
-                    name: "working direction",
-                    value: self.working_direction,
-                    min: -1.0,
-                    max: 1.0,
-                    ends: crate::Ends::Closed,
-                }),
-            });
-        }
-        Plan::new(&self.linkage())
-    }
-
-    /// The strokes of the slider for a crank turning in the sense `rotation` (its extreme
-    /// positions found on the first transfer function, the working stroke the longer one).
-    ///
-    /// # Errors
-    /// As [`SixBar::plan`] and [`Plan::strokes`].
-    pub fn strokes(&self, rotation: Rotation) -> Result<Strokes> {
-        self.plan()?
-            .strokes(&Output::Slide("Q".to_owned()), rotation)
+    /// The slider's slide.
+    fn output(&self) -> Output {
+        Output::Slide("Q".to_owned())
     }
 }

@@ -2,11 +2,12 @@
 //! rod AB (one RRP group), with the gas force of an indicator diagram.
 
 use super::link::{reference_pose, xy, LinkMass};
+use super::Mechanism;
 use crate::angle::{direction, unit};
 use crate::error::Result;
-use crate::kinematics::{crank, rrp_dyad, Branch, Guide, Motion, Rotation, Strokes};
+use crate::kinematics::{crank, rrp_dyad, Branch, Guide, Motion};
 use crate::linkage::{
-    Drive, IndicatorDiagram, Input, Joint, Link, Linkage, LoadSpec, Mode, Output, Plan,
+    Drive, IndicatorDiagram, Input, Joint, Link, Linkage, LoadSpec, Mode, Output,
 };
 use nalgebra::Point2;
 use std::f64::consts::PI;
@@ -87,12 +88,13 @@ impl SliderCrank {
             ..Self::course_example()
         }
     }
+}
 
+impl Mechanism for SliderCrank {
     /// The description for the engine, in a reference pose where the slider-crank assembles
-    /// (B as `branch` puts it; not finite if it assembles nowhere, which [`Plan::new`]
-    /// rejects naming the joint).
-    #[must_use]
-    pub fn linkage(&self) -> Linkage {
+    /// (B as `branch` puts it; not finite if it assembles nowhere, which
+    /// [`Plan::new`](crate::linkage::Plan::new) rejects naming the joint).
+    fn linkage(&self) -> Result<Linkage> {
         let guide = Guide::fixed(self.guide_point, self.guide_angle);
         let pose = reference_pose(|phi| {
             let c = crank(self.o1, self.l1, Motion::new(phi, 0.0, 0.0))?;
@@ -110,7 +112,7 @@ impl SliderCrank {
                 head: self.branch.sign(),
             });
         }
-        Linkage {
+        Ok(Linkage {
             name: "slider-crank".to_owned(),
             joints: vec![
                 Joint::revolute("O1", xy(self.o1)),
@@ -137,24 +139,11 @@ impl SliderCrank {
                 branch: self.branch,
             }],
             ..Linkage::default()
-        }
+        })
     }
 
-    /// The plan of [`SliderCrank::linkage`].
-    ///
-    /// # Errors
-    /// As [`Plan::new`] (for example a piston whose crank cannot turn fully, so that its
-    /// dead centres cannot be found).
-    pub fn plan(&self) -> Result<Plan> {
-        Plan::new(&self.linkage())
-    }
-
-    /// The strokes of the piston for a crank turning in the sense `rotation`.
-    ///
-    /// # Errors
-    /// As [`SliderCrank::plan`] and [`Plan::strokes`].
-    pub fn strokes(&self, rotation: Rotation) -> Result<Strokes> {
-        self.plan()?
-            .strokes(&Output::Slide("P".to_owned()), rotation)
+    /// The piston's slide.
+    fn output(&self) -> Output {
+        Output::Slide("P".to_owned())
     }
 }

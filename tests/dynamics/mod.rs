@@ -3,6 +3,7 @@
 
 mod breakpoints;
 mod five_bar_servo;
+#[cfg(feature = "serde")] // it reads a bundled linkage
 mod kinks;
 mod scenarios;
 mod stability;

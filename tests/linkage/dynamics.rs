@@ -10,7 +10,7 @@ use tmm::dynamics::{run, LagrangeSystem, Rk4, RunOptions, State, Trajectory};
 use tmm::kinematics::Motion;
 use tmm::linkage::dynamics::{Damper, LinkageSystem, Motor, RunUpOptions};
 use tmm::linkage::{bundled, At, Linkage, LoadSpec, Mass, Plan};
-use tmm::mechanism::{Compressor, RockingCylinder, SixBar, SliderCrank};
+use tmm::mechanism::{Compressor, Mechanism, RockingCylinder, SixBar, SliderCrank};
 use tmm::{Error, Load};
 
 /// The bundled linkages with masses and one crank input, and the course compressor.
@@ -21,17 +21,23 @@ fn one_input_linkages() -> Vec<(&'static str, Linkage)> {
         ("Watt six-bar", bundled::watt_six_bar()),
         ("Stephenson six-bar", bundled::stephenson_six_bar()),
         ("shaper", bundled::shaper()),
-        ("compressor", Compressor::course_example().linkage()),
-        ("slider-crank", SliderCrank::course_example().linkage()),
+        (
+            "compressor",
+            Compressor::course_example().linkage().unwrap(),
+        ),
+        (
+            "slider-crank",
+            SliderCrank::course_example().linkage().unwrap(),
+        ),
         (
             "geared slider-crank",
-            SliderCrank::geared_example().linkage(),
+            SliderCrank::geared_example().linkage().unwrap(),
         ),
         (
             "rocking cylinder",
-            RockingCylinder::course_example().linkage(),
+            RockingCylinder::course_example().linkage().unwrap(),
         ),
-        ("six-bar", SixBar::course_example().linkage()),
+        ("six-bar", SixBar::course_example().linkage().unwrap()),
     ]
 }
 
@@ -237,7 +243,7 @@ fn inverse_dynamics_equals_the_balancing_moment() {
 /// for a crank, at 72 slides across the stroke away from the dead points.
 #[test]
 fn inverse_dynamics_of_a_slider_input() {
-    let mut l = SliderCrank::course_example().linkage();
+    let mut l = SliderCrank::course_example().linkage().unwrap();
     l.input = tmm::linkage::Input::crank("piston");
     l.groups.clear();
     l.modes.clear();
@@ -430,7 +436,7 @@ fn flywheel_gives_the_required_delta() {
         ("shaper", bundled::shaper(), 6.0),
         (
             "compressor",
-            Compressor::course_example().linkage(),
+            Compressor::course_example().linkage().unwrap(),
             Compressor::seed_speed(),
         ),
     ];

@@ -1,12 +1,13 @@
-//! The bundled description files read back as the linkages built in Rust (the engine's
-//! `bundled` linkages and the ready mechanisms' course examples), and every one of them plans
-//! and balances by virtual power over a turn.
+//! The bundled description files: every `bundled` function reads the file of its name and
+//! plans, the ready mechanisms' course examples read back as the linkages they build, and every
+//! file plans and balances by virtual power over a turn.
 #![cfg(feature = "serde")]
 
+use std::collections::BTreeSet;
 use std::f64::consts::TAU;
 use tmm::kinematics::Motion;
 use tmm::linkage::{bundled, Linkage, Plan};
-use tmm::mechanism::{Compressor, FourBar, RockingCylinder, SixBar, SliderCrank};
+use tmm::mechanism::{Compressor, FourBar, Mechanism, RockingCylinder, SixBar, SliderCrank};
 
 macro_rules! file {
     ($name:literal, $built:expr) => {
@@ -29,27 +30,30 @@ fn files() -> Vec<(&'static str, &'static str, Linkage)> {
         file!("slotted-rocker.json", bundled::slotted_rocker()),
         file!(
             "mechanism-four-bar.json",
-            FourBar::course_example().linkage()
+            FourBar::course_example().linkage().unwrap()
         ),
         file!(
             "mechanism-slider-crank.json",
-            SliderCrank::course_example().linkage()
+            SliderCrank::course_example().linkage().unwrap()
         ),
         file!(
             "mechanism-compressor.json",
-            Compressor::course_example().linkage()
+            Compressor::course_example().linkage().unwrap()
         ),
-        file!("mechanism-six-bar.json", SixBar::course_example().linkage()),
+        file!(
+            "mechanism-six-bar.json",
+            SixBar::course_example().linkage().unwrap()
+        ),
         file!(
             "mechanism-rocking-cylinder.json",
-            RockingCylinder::course_example().linkage()
+            RockingCylinder::course_example().linkage().unwrap()
         ),
         file!("five-bar-robot.json", bundled::five_bar_robot()),
     ]
 }
 
 #[test]
-fn every_file_reads_back_as_its_linkage_built_in_rust() {
+fn every_file_reads_back_as_its_bundled_function_or_ready_mechanism() {
     let files = files();
     // Every file under linkages/ is in the list.
     let on_disk = std::fs::read_dir(concat!(env!("CARGO_MANIFEST_DIR"), "/linkages"))
@@ -65,6 +69,14 @@ fn every_file_reads_back_as_its_linkage_built_in_rust() {
     assert_eq!(on_disk, files.len());
     for (name, text, built) in files {
         let read = Linkage::from_json(text).unwrap_or_else(|e| panic!("{name}: {e}"));
+        if !name.starts_with("mechanism-") {
+            // A `bundled` function is its file, exactly.
+            assert!(
+                read == built,
+                "{name} is not the file its bundled function reads"
+            );
+            continue;
+        }
         // The ready mechanisms compute their reference poses: their numbers may move in the
         // last bits when the blocks' arithmetic is reordered, so numbers agree to 1e-13.
         let as_value = |l: &Linkage| serde_json::from_str(&l.to_json().unwrap()).unwrap();
@@ -100,6 +112,33 @@ fn same(a: &serde_json::Value, b: &serde_json::Value, at: String) -> Result<(), 
         _ if a == b => Ok(()),
         _ => Err(format!("{at}: {a} vs {b}")),
     }
+}
+
+#[test]
+fn every_bundled_function_reads_and_plans() {
+    let mut names = BTreeSet::new();
+    for (linkage, inputs) in bundled::all()
+        .into_iter()
+        .map(|l| (l, 1))
+        .chain([(bundled::five_bar_robot(), 2)])
+    {
+        let plan = Plan::new(&linkage).unwrap_or_else(|e| panic!("{}: {e}", linkage.name));
+        assert_eq!(plan.input_count(), inputs, "{}", linkage.name);
+        assert_eq!(
+            usize::try_from(plan.mobility()).ok(),
+            Some(inputs),
+            "{}",
+            linkage.name
+        );
+        assert!(!plan.groups().is_empty(), "{}", linkage.name);
+        assert!(names.insert(linkage.name.clone()), "{} twice", linkage.name);
+    }
+    // Every bundled file of one input is in `all`, and `all` holds nothing else.
+    let single = files()
+        .iter()
+        .filter(|(name, _, _)| !name.starts_with("mechanism-") && *name != "five-bar-robot.json")
+        .count();
+    assert_eq!(bundled::all().len(), single);
 }
 
 #[test]

@@ -25,7 +25,7 @@ use tmm::linkage::{
     bundled, try_course_inputs, try_uniform_inputs, uniform_inputs, At, JointKind, Linkage,
     LoadSpec, Output, Plan, Table,
 };
-use tmm::mechanism::{Compressor, FourBar, RockingCylinder, SixBar, SliderCrank};
+use tmm::mechanism::{Compressor, FourBar, Mechanism, RockingCylinder, SixBar, SliderCrank};
 use tmm::{Ends, Error};
 
 use crate::common::hostile_gen;
@@ -34,11 +34,11 @@ use hostile_gen::{cases, has_non_finite, Gen};
 fn linkages() -> Vec<Linkage> {
     let mut all = bundled::all();
     all.extend([
-        FourBar::course_example().linkage(),
-        SliderCrank::course_example().linkage(),
-        Compressor::course_example().linkage(),
-        SixBar::course_example().linkage(),
-        RockingCylinder::course_example().linkage(),
+        FourBar::course_example().linkage().unwrap(),
+        SliderCrank::course_example().linkage().unwrap(),
+        Compressor::course_example().linkage().unwrap(),
+        SixBar::course_example().linkage().unwrap(),
+        RockingCylinder::course_example().linkage().unwrap(),
     ]);
     all
 }

@@ -7,7 +7,7 @@ use super::hand;
 use nalgebra::Vector2;
 use tmm::kinematics::{LinkMotion, Motion, PointMotion};
 use tmm::linkage::{Analysis, Drive};
-use tmm::mechanism::{Compressor, FourBar, RockingCylinder, SixBar, SliderCrank};
+use tmm::mechanism::{Compressor, FourBar, Mechanism, RockingCylinder, SixBar, SliderCrank};
 
 const TOL: f64 = 1e-13;
 

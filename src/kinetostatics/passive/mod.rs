@@ -26,7 +26,7 @@
 //!   figure every kinetostatic solver of the crate reports, with [`Solution::arm_ratio`] and
 //!   [`Solution::delta11_ratio`]).
 //!
-//! Checked against an independent direct-stiffness frame model (tests/passive.rs): over 5000
+//! Checked against an independent direct-stiffness frame model (tests/kinetostatics/passive.rs): over 5000
 //! random groups the hinge forces agree to 3e-11 of the largest force (inextensible links, where
 //! the δ11 ratio is above 1e-9: closer to its singular threshold neither model keeps the digits) and
 //! 6e-11 (with EA), the released hinge's gap is at round-off, and every link is in equilibrium
