@@ -332,7 +332,7 @@ pub(crate) fn fit_with_input(
     fit(cover, style)
 }
 
-#[cfg(test)]
+#[cfg(all(test, feature = "serde"))]
 mod tests {
     use super::*;
     use crate::linkage::bundled;
