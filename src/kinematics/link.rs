@@ -58,7 +58,42 @@ impl LinkMotion {
     /// ```
     #[must_use]
     pub fn motion_of(&self, p: Point2<f64>) -> PointMotion {
-        let r = p - self.origin.p;
+        self.moving_at(p, p - self.origin.p)
+    }
+
+    /// The motion of the point at `local` = (along, across) in the link's frame whose unit
+    /// vector is `e` (the link's direction, or any direction fixed to the link): the point at
+    /// r = along·e + across·e⊥ from the origin. The engine keeps `e` with the link's motion, so
+    /// a point is placed without trigonometry.
+    ///
+    /// # Examples
+    /// The crank of [`motion_of`](Self::motion_of)'s example, its midpoint given in the
+    /// crank's frame: the same motion.
+    /// ```
+    /// use nalgebra::{Point2, Vector2};
+    /// use tmm::kinematics::{LinkMotion, PointMotion};
+    /// let crank = LinkMotion {
+    ///     origin: PointMotion::fixed(Point2::origin()),
+    ///     angle: std::f64::consts::FRAC_PI_2,
+    ///     omega: 10.0,
+    ///     epsilon: 0.0,
+    /// };
+    /// let m = crank.point_in_frame(Vector2::y(), Vector2::new(0.05, 0.0));
+    /// assert_eq!(m, crank.motion_of(Point2::new(0.0, 0.05)));
+    /// ```
+    #[must_use]
+    #[inline]
+    pub fn point_in_frame(&self, e: Vector2<f64>, local: Vector2<f64>) -> PointMotion {
+        let r = frame_offset(e, local);
+        self.moving_at(self.origin.p + r, r)
+    }
+
+    /// The motion of the link's point at the offset `r` from its origin, which lies at `p`
+    /// (= origin + r, as the caller computed it): Euler's formulas v = v_O + ω × r and
+    /// a = a_O + ε × r − ω²·r, written once for every point of a moving link.
+    #[must_use]
+    #[inline]
+    pub(crate) fn moving_at(&self, p: Point2<f64>, r: Vector2<f64>) -> PointMotion {
         PointMotion::new(
             p,
             self.origin.v + self.omega * perp(r),
@@ -75,4 +110,13 @@ impl LinkMotion {
         let e = self.unit();
         self.motion_of(self.origin.p + along * e + across * perp(e))
     }
+}
+
+/// The offset r = along·e + across·e⊥ of the point at `local` = (along, across) in a frame
+/// whose unit vector is `e`: where [`LinkMotion::point_in_frame`] puts a point, for a caller
+/// that needs only its position.
+#[must_use]
+#[inline]
+pub(crate) fn frame_offset(e: Vector2<f64>, local: Vector2<f64>) -> Vector2<f64> {
+    local.x * e + local.y * perp(e)
 }

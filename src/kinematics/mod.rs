@@ -83,13 +83,17 @@ pub use cycle::{
 };
 pub use extreme::{extreme_positions, Extreme, ExtremeKind, Rotation, Strokes};
 pub use grashof::{grashof, Grashof};
+pub(crate) use link::frame_offset;
 pub use link::LinkMotion;
 pub use motion::{Motion, PointMotion};
 pub use numeric::{differentiate, differentiate_periodic, integrate_trapezoid};
 pub use prp::{prp_dyad, PrpState};
 pub use rpp::{rpp_dyad, RppState};
+pub(crate) use rpr::rpr_rates;
 pub use rpr::{rpr_dyad, RprState};
+pub(crate) use rrp::rrp_rates;
 pub use rrp::{rrp_dyad, Guide, RrpState};
+pub(crate) use rrr::rrr_rates;
 pub use rrr::{rrr_dyad, RrrState};
 pub use transfer::transfer_functions;
 pub use triad::{

@@ -102,11 +102,7 @@ fn rpr_fast(a: PointMotion, e: PointMotion) -> Option<RprState> {
     let l = l_sq.sqrt();
     let i_l = 1.0 / l;
     let u = d * i_l;
-    let n = perp(u);
-    let l_rate = dv.dot(&u);
-    let omega = dv.dot(&n) * i_l;
-    let l_accel = da.dot(&u) + l * omega * omega;
-    let epsilon = (da.dot(&n) - 2.0 * l_rate * omega) * i_l;
+    let [l_rate, omega, l_accel, epsilon] = rpr_rates(u, l, i_l, dv, da);
     let ok = super::rrr::all_finite([
         a.p.x, a.p.y, a.v.x, a.v.y, a.a.x, a.a.y, e.p.x, e.p.y, e.v.x, e.v.y, e.a.x, e.a.y, l_sq,
         dv.x, dv.y, da.x, da.y, i_l, l_rate, omega, l_accel, epsilon,
@@ -129,6 +125,26 @@ fn rpr_fast(a: PointMotion, e: PointMotion) -> Option<RprState> {
         },
         slide: Motion::new(l, l_rate, l_accel),
     })
+}
+
+/// The rates of an RPR dyad at a known position, [l̇, ω, l̈, ε]: on the axis's unit vector
+/// `u` from A to E, its length `l` and `i_l` = 1/l, with `dv` = v_E − v_A and
+/// `da` = a_E − a_A: l̇ = dv·u, ω = dv·u⊥/l, l̈ = da·u + l·ω², ε = (da·u⊥ − 2·l̇·ω)/l. The
+/// closed form and the engine's rates-only pass (positions kept, new input rates) share it.
+#[inline(always)]
+pub(crate) fn rpr_rates(
+    u: Vector2<f64>,
+    l: f64,
+    i_l: f64,
+    dv: Vector2<f64>,
+    da: Vector2<f64>,
+) -> [f64; 4] {
+    let n = perp(u);
+    let l_rate = dv.dot(&u);
+    let omega = dv.dot(&n) * i_l;
+    let l_accel = da.dot(&u) + l * omega * omega;
+    let epsilon = (da.dot(&n) - 2.0 * l_rate * omega) * i_l;
+    [l_rate, omega, l_accel, epsilon]
 }
 
 /// The RPR dyad through the general contour solver, checked step by step.

@@ -135,18 +135,17 @@ fn rrp_fast(a: PointMotion, guide: Guide, l_ab: f64, branch: Branch) -> Option<R
     let big_d = r2.dot(&g);
     let i_d = 1.0 / big_d;
     let (w4, e4) = (beta.rate, beta.accel);
-    let rv = dv + (s * w4) * n;
-    let omega2 = cross(g, rv) * i_d;
-    let s_rate = -r2.dot(&rv) * i_d;
-    let ra = da + (omega2 * omega2) * r2 + (2.0 * s_rate * w4 + s * e4) * n - (s * w4 * w4) * g;
-    let epsilon2 = cross(g, ra) * i_d;
-    let s_accel = -r2.dot(&ra) * i_d;
+    let [omega2, s_rate, epsilon2, s_accel] = rrp_rates(g, r2, s, i_d, (dv, da), (w4, e4));
     let det = big_d / l_ab;
-    let b = PointMotion {
-        p: a.p + r2,
-        v: a.v + omega2 * perp(r2),
-        a: a.a + epsilon2 * perp(r2) - omega2 * omega2 * r2,
+    // Link 2's motion (its angle, one `atan2`, is taken only once the position is good) and
+    // B as its point.
+    let rod = LinkMotion {
+        origin: a,
+        angle: 0.0,
+        omega: omega2,
+        epsilon: epsilon2,
     };
+    let b = rod.moving_at(a.p + r2, r2);
     let ok = super::rrr::all_finite([
         a.p.x, a.p.y, a.v.x, a.v.y, a.a.x, a.a.y, gp.p.x, gp.p.y, gp.v.x, gp.v.y, gp.a.x, gp.a.y,
         beta.value, w4, e4, l_ab, d.x, d.y, dv.x, dv.y, da.x, da.y, c, s, omega2, s_rate, epsilon2,
@@ -156,10 +155,8 @@ fn rrp_fast(a: PointMotion, guide: Guide, l_ab: f64, branch: Branch) -> Option<R
         & (det.abs() > 2.0 * SINGULAR_DETERMINANT);
     ok.then(|| {
         let link2 = LinkMotion {
-            origin: a,
             angle: direction(r2),
-            omega: omega2,
-            epsilon: epsilon2,
+            ..rod
         };
         let link3 = LinkMotion {
             origin: b,
@@ -175,6 +172,30 @@ fn rrp_fast(a: PointMotion, guide: Guide, l_ab: f64, branch: Branch) -> Option<R
             det,
         }
     })
+}
+
+/// The rates of an RRP dyad at a known position, [ω2, ṡ, ε2, s̈]: on the guide's unit
+/// vector `g` (turning at ω4, ε4 = `guide_rates`), the rod r2 = B − A, the slide `s` of B
+/// from the guide's point G and `i_d` = 1/(r2·g), with (`dv`, `da`) = G's velocity and
+/// acceleration less A's, differentiating A + r2 − G − s·g = 0 once and twice. The closed
+/// form and the engine's rates-only pass (positions kept, new input rates) share it.
+#[inline(always)]
+pub(crate) fn rrp_rates(
+    g: Vector2<f64>,
+    r2: Vector2<f64>,
+    s: f64,
+    i_d: f64,
+    (dv, da): (Vector2<f64>, Vector2<f64>),
+    (w4, e4): (f64, f64),
+) -> [f64; 4] {
+    let n = perp(g);
+    let rv = dv + (s * w4) * n;
+    let omega2 = cross(g, rv) * i_d;
+    let s_rate = -r2.dot(&rv) * i_d;
+    let ra = da + (omega2 * omega2) * r2 + (2.0 * s_rate * w4 + s * e4) * n - (s * w4 * w4) * g;
+    let epsilon2 = cross(g, ra) * i_d;
+    let s_accel = -r2.dot(&ra) * i_d;
+    [omega2, s_rate, epsilon2, s_accel]
 }
 
 /// The RRP dyad through the general contour solver, checked step by step.

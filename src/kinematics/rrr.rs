@@ -6,6 +6,7 @@ use super::link::LinkMotion;
 use super::motion::PointMotion;
 use crate::angle::{cross, direction, normalize, perp, unit};
 use crate::error::{computed_all, positive, Result};
+use nalgebra::Vector2;
 use std::f64::consts::PI;
 
 /// The solved RRR dyad.
@@ -102,16 +103,16 @@ fn rrr_fast(
     let big_d = cross(r2, r3);
     let det = big_d / (l_ab * l_cb);
     let i_d = 1.0 / big_d;
-    let omega2 = dv.dot(&r3) * i_d;
-    let omega3 = dv.dot(&r2) * i_d;
-    let rhs = da + omega2 * omega2 * r2 - omega3 * omega3 * r3;
-    let epsilon2 = rhs.dot(&r3) * i_d;
-    let epsilon3 = rhs.dot(&r2) * i_d;
-    let b = PointMotion {
-        p: a.p + r2,
-        v: a.v + omega2 * perp(r2),
-        a: a.a + epsilon2 * perp(r2) - omega2 * omega2 * r2,
+    let [omega2, omega3, epsilon2, epsilon3] = rrr_rates(r2, r3, i_d, dv, da);
+    // Link 2's motion (its angle, one `atan2`, is taken only once the position is good) and
+    // B as its point.
+    let rod = LinkMotion {
+        origin: a,
+        angle: 0.0,
+        omega: omega2,
+        epsilon: epsilon2,
     };
+    let b = rod.moving_at(a.p + r2, r2);
     let ok = all_finite([
         a.p.x, a.p.y, a.v.x, a.v.y, a.a.x, a.a.y, c.p.x, c.p.y, c.v.x, c.v.y, c.a.x, c.a.y, l_ab,
         l_cb, l_sq, dv.x, dv.y, da.x, da.y, h, omega2, omega3, epsilon2, epsilon3, b.p.x, b.p.y,
@@ -124,10 +125,8 @@ fn rrr_fast(
     ok.then(|| RrrState {
         b,
         link2: LinkMotion {
-            origin: a,
             angle: direction(r2),
-            omega: omega2,
-            epsilon: epsilon2,
+            ..rod
         },
         link3: LinkMotion {
             origin: c,
@@ -137,6 +136,27 @@ fn rrr_fast(
         },
         det,
     })
+}
+
+/// The rates of an RRR dyad at a known position, [ω2, ω3, ε2, ε3]: the velocity and
+/// acceleration systems on the link vectors r2 = B − A and r3 = B − C, with
+/// `i_d` = 1/(r2 × r3), `dv` = v_C − v_A and `da` = a_C − a_A:
+/// ω2 = dv·r3/D, ω3 = dv·r2/D, and ε2, ε3 likewise on da + ω2²·r2 − ω3²·r3. The closed form
+/// and the engine's rates-only pass (positions kept, new input rates) share it.
+#[inline(always)]
+pub(crate) fn rrr_rates(
+    r2: Vector2<f64>,
+    r3: Vector2<f64>,
+    i_d: f64,
+    dv: Vector2<f64>,
+    da: Vector2<f64>,
+) -> [f64; 4] {
+    let omega2 = dv.dot(&r3) * i_d;
+    let omega3 = dv.dot(&r2) * i_d;
+    let rhs = da + omega2 * omega2 * r2 - omega3 * omega3 * r3;
+    let epsilon2 = rhs.dot(&r3) * i_d;
+    let epsilon3 = rhs.dot(&r2) * i_d;
+    [omega2, omega3, epsilon2, epsilon3]
 }
 
 /// `true` when every value is finite, by one test of their sum: a sum with an infinity or a

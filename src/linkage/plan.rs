@@ -10,8 +10,8 @@
 
 use super::description::Drive;
 use super::indicator::IndicatorDiagram;
-use crate::angle::perp;
 use crate::error::{Error, Result};
+use crate::kinematics::frame_offset;
 use crate::kinematics::{Branch, LinkMotion, Motion, PointMotion};
 use crate::Load;
 use nalgebra::{Point2, Vector2};
@@ -587,17 +587,6 @@ impl Plan {
     }
 }
 
-/// The motion of the point at `local` (along, across) of `link`, whose unit vector is `e`.
-#[inline]
-pub(crate) fn point_with(link: &LinkMotion, e: Vector2<f64>, local: Vector2<f64>) -> PointMotion {
-    let r = local.x * e + local.y * perp(e);
-    PointMotion::new(
-        link.origin.p + r,
-        link.origin.v + link.omega * perp(r),
-        link.origin.a + link.epsilon * perp(r) - link.omega * link.omega * r,
-    )
-}
-
 /// One solved position, read-only: the motions of the links, joints, named points and
 /// slides. It is what a load added by [`Plan::add_load_fn`] sees, and what every result of a
 /// solve reads its kinematics from.
@@ -615,7 +604,7 @@ impl Pose<'_> {
     /// The motion of the point at `local` in link `k`'s frame.
     #[inline]
     pub(crate) fn at(&self, k: usize, local: Vector2<f64>) -> PointMotion {
-        point_with(&self.links[k], self.units[k], local)
+        self.links[k].point_in_frame(self.units[k], local)
     }
 
     /// The position alone of joint `j` as a point of link `link` (one of its two links): what
@@ -625,8 +614,7 @@ impl Pose<'_> {
     pub(crate) fn joint_position_on(&self, j: usize, link: usize) -> Point2<f64> {
         let jp = &self.chain.joints[j];
         let local = jp.local[usize::from(jp.links[1] == link)];
-        let e = self.units[link];
-        self.links[link].origin.p + (local.x * e + local.y * perp(e))
+        self.links[link].origin.p + frame_offset(self.units[link], local)
     }
 
     /// The input φ1, ω1, ε1 (or s, ṡ, s̈).

@@ -9,9 +9,11 @@ use crate::dynamics::{
 };
 use crate::error::{computed_all, finite, finite2, Error, Result};
 use crate::kinematics::{LinkMotion, Motion, PointMotion};
-use crate::linkage::plan::{point_with, Chain, LoadPlan};
+use crate::linkage::plan::{Chain, Pose};
+use crate::linkage::solve::loads::{apply, LoadSite};
 use crate::linkage::solve::state::KinState;
 use crate::linkage::{Linkage, Plan};
+use crate::Load;
 
 /// Everything Lagrange's equations need at one state of a [`LinkageSystem`].
 ///
@@ -159,7 +161,7 @@ impl<'p> Transfer<'p> {
     /// The motion of the point at `local` (along, across) of link `l` in solve `s`.
     #[inline]
     fn point(&self, s: usize, l: usize, local: Vector2<f64>) -> PointMotion {
-        point_with(&self.link(s, l), self.kin.units[l], local)
+        self.link(s, l).point_in_frame(self.kin.units[l], local)
     }
 
     /// Link `l` in solve `s` (0, 1: unit rate of input s; 2: both).
@@ -221,15 +223,80 @@ impl<'p> Transfer<'p> {
     }
 }
 
-/// A resistance of magnitude `forward` while `rate` > 0 and `backward` while it is < 0,
-/// opposing the motion; zero at rest (as the kinetostatics applies it).
-fn resist(rate: f64, forward: f64, backward: f64) -> f64 {
-    if rate > 0.0 {
-        -forward
-    } else if rate < 0.0 {
-        backward
-    } else {
-        0.0
+/// The dynamics' site of the load interpreter: each load's generalized forces
+/// Q_k = F·∂v_P/∂q̇_k + M·∂ω/∂q̇_k, its direction-dependent magnitudes read at the actual
+/// rates Σ_k (∂r/∂q_k)·q̇_k.
+struct Project<'a, 'p> {
+    tr: &'a mut Transfer<'p>,
+    q: &'a Vector2<f64>,
+    qd: &'a Vector2<f64>,
+    loads: &'a mut Vector2<f64>,
+    /// Whether the rates at the actual q̇ are solved (once, for the first user's load).
+    rates_solved: bool,
+}
+
+impl LoadSite for Project<'_, '_> {
+    fn position(&self, link: usize, local: Vector2<f64>) -> Point2<f64> {
+        self.tr.point(0, link, local).p
+    }
+
+    fn omega(&self, link: usize) -> f64 {
+        self.tr.rate(self.qd, |k| self.tr.omega(k, link))
+    }
+
+    fn slide_parts(&self, joint: usize) -> (usize, usize, Vector2<f64>) {
+        self.tr.slide_parts(joint)
+    }
+
+    fn slide(&self, joint: usize, d: Vector2<f64>) -> (f64, f64) {
+        // The positions are the same in every solve: the slide from the first.
+        let [on, guide] = self.tr.slide_points(0, joint);
+        let s = (on.p - guide.p).dot(&d);
+        (
+            s,
+            self.tr.rate(self.qd, |k| self.tr.slide_rate(k, joint, d)),
+        )
+    }
+
+    /// The position solved at the actual rates: the same positions, the transfer functions
+    /// kept in `tr.rates` (a user's load sees the state's positions and velocities, and the
+    /// accelerations of q̈ = 0).
+    fn pose(&mut self) -> Result<Pose<'_>> {
+        let tr = &mut *self.tr;
+        if !self.rates_solved {
+            let (q, qd) = (self.q, self.qd);
+            let m = [Motion::new(q[0], qd[0], 0.0), Motion::new(q[1], qd[1], 0.0)];
+            tr.kin.solve_rates(tr.chain, &m[..tr.n])?;
+            self.rates_solved = true;
+        }
+        Ok(tr.kin.pose(tr.chain))
+    }
+
+    fn force_at_local(&mut self, link: usize, local: Vector2<f64>, force: Vector2<f64>) {
+        for k in 0..self.tr.n {
+            self.loads[k] += force.dot(&self.tr.vel(k, link, local));
+        }
+    }
+
+    fn couple(&mut self, link: usize, moment: f64) {
+        for k in 0..self.tr.n {
+            self.loads[k] += moment * self.tr.omega(k, link);
+        }
+    }
+
+    fn force_between(&mut self, on: usize, against: usize, p: Point2<f64>, force: Vector2<f64>) {
+        let tr = &*self.tr;
+        for k in 0..tr.n {
+            self.loads[k] += force.dot(&(tr.vel_of(k, on, p) - tr.vel_of(k, against, p)));
+        }
+    }
+
+    fn load(&mut self, link: usize, load: Load) {
+        let tr = &*self.tr;
+        for k in 0..tr.n {
+            self.loads[k] +=
+                load.force.dot(&tr.vel_of(k, link, load.point)) + load.moment * tr.omega(k, link);
+        }
     }
 }
 
@@ -447,7 +514,14 @@ impl LinkageSystem {
         }
         let mut drives = Vector2::zeros();
         if forces {
-            self.add_loads(&mut tr, q, qd, &mut loads)?;
+            let mut site = Project {
+                tr: &mut tr,
+                q,
+                qd,
+                loads: &mut loads,
+                rates_solved: false,
+            };
+            apply(plan, &mut site)?;
             for i in 0..n {
                 drives[i] = self.motors[i].moment(q[i], qd[i])?;
             }
@@ -460,109 +534,6 @@ impl LinkageSystem {
             loads,
             damping,
         })
-    }
-
-    /// Adds the generalized forces of the description's loads: Q_k = Σ F·∂v_P/∂q̇_k +
-    /// M·∂ω/∂q̇_k, each load evaluated at the actual rates.
-    fn add_loads(
-        &self,
-        tr: &mut Transfer<'_>,
-        q: &Vector2<f64>,
-        qd: &Vector2<f64>,
-        loads: &mut Vector2<f64>,
-    ) -> Result<()> {
-        let plan = &self.plan;
-        let n = tr.n;
-        let mut custom = false;
-        for lp in &plan.loads {
-            match lp {
-                LoadPlan::Force { link, local, force } => {
-                    for k in 0..n {
-                        loads[k] += force.dot(&tr.vel(k, *link, *local));
-                    }
-                }
-                LoadPlan::Moment { link, moment } => {
-                    for k in 0..n {
-                        loads[k] += moment * tr.omega(k, *link);
-                    }
-                }
-                LoadPlan::Turning {
-                    link,
-                    forward,
-                    backward,
-                } => {
-                    let m = resist(tr.rate(qd, |k| tr.omega(k, *link)), *forward, *backward);
-                    for k in 0..n {
-                        loads[k] += m * tr.omega(k, *link);
-                    }
-                }
-                LoadPlan::Sliding {
-                    joint,
-                    local,
-                    forward,
-                    backward,
-                } => {
-                    let (slider, guide, d) = tr.slide_parts(*joint);
-                    let rate = tr.rate(qd, |k| tr.slide_rate(k, *joint, d));
-                    let f = resist(rate, *forward, *backward) * d;
-                    let p = tr.point(0, slider, *local).p;
-                    for k in 0..n {
-                        loads[k] += f.dot(&(tr.vel_of(k, slider, p) - tr.vel_of(k, guide, p)));
-                    }
-                }
-                LoadPlan::Indicator {
-                    joint,
-                    head,
-                    diagram,
-                    ends,
-                } => {
-                    // The piston's guide is the frame: its point on the piston moves with v.
-                    let (_, _, d) = tr.slide_parts(*joint);
-                    let mut on = [PointMotion::fixed(Point2::origin()); 2];
-                    let mut rate = 0.0;
-                    let mut s = 0.0;
-                    for k in 0..n {
-                        let [piston, guide] = tr.slide_points(k, *joint);
-                        s = (piston.p - guide.p).dot(&d);
-                        rate += (piston.v - guide.v).dot(&d) * qd[k];
-                        on[k] = piston;
-                    }
-                    let f = diagram
-                        .force(head * s, head * rate, *head * d, ends[0], ends[1])
-                        .map_err(|e| Error::In {
-                            part: format!("piston of joint {}", plan.chain.joint_names[*joint]),
-                            source: Box::new(e),
-                        })?;
-                    for k in 0..n {
-                        loads[k] += f.dot(&on[k].v);
-                    }
-                }
-                LoadPlan::Custom { .. } => custom = true,
-            }
-        }
-        if !custom {
-            return Ok(());
-        }
-        // Loads given as functions of the state see it solved at the actual rates (the same
-        // positions; the transfer functions are kept in `tr.links`).
-        let m = [Motion::new(q[0], qd[0], 0.0), Motion::new(q[1], qd[1], 0.0)];
-        tr.kin.solve_rates(&plan.chain, &m[..n])?;
-        for lp in &plan.loads {
-            let LoadPlan::Custom { link, f } = lp else {
-                continue;
-            };
-            let part = |e: Error| Error::In {
-                part: plan.chain.link_names[*link].clone(),
-                source: Box::new(e),
-            };
-            let load = (f.0)(&tr.kin.pose(&plan.chain)).map_err(part)?;
-            load.validate().map_err(part)?;
-            for k in 0..n {
-                loads[k] += load.force.dot(&tr.vel_of(k, *link, load.point))
-                    + load.moment * tr.omega(k, *link);
-            }
-        }
-        Ok(())
     }
 
     fn damping_from(&self, tr: &Transfer<'_>) -> Matrix2<f64> {

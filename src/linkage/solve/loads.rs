@@ -1,12 +1,168 @@
 //! The loads of one position: every link's weight and inertia load, and the description's
-//! loads evaluated at the solved kinematics.
+//! loads read by one interpreter, [`apply`], for both the kinetostatics (which collects them
+//! as loads on links) and the dynamics (which projects them on the transfer functions).
 
 use super::analysis::Analysis;
-use super::state::within;
+use super::state::{within, KinState};
 use crate::error::{Error, Result};
-use crate::linkage::plan::LoadPlan;
+use crate::linkage::plan::{Chain, LoadPlan, Plan, Pose};
 use crate::Load;
-use nalgebra::Vector2;
+use nalgebra::{Point2, Vector2};
+
+/// What the load interpreter reads of a position, and where it puts each load.
+///
+/// The kinetostatics reads one solved position and collects the loads on the links; the
+/// dynamics reads the transfer functions at a state and adds each load's generalized force.
+/// Each reading is the one a load kind needs, so both see a description's load the same way.
+pub(crate) trait LoadSite {
+    /// The position of the point at `local` of link `link`.
+    fn position(&self, link: usize, local: Vector2<f64>) -> Point2<f64>;
+    /// The angular velocity of link `link`.
+    fn omega(&self, link: usize) -> f64;
+    /// The sliding link, the guide's link and the guide's unit direction now of the prismatic
+    /// joint `joint`.
+    fn slide_parts(&self, joint: usize) -> (usize, usize, Vector2<f64>);
+    /// The slide of prismatic joint `joint` along the guide direction `d`, and its rate.
+    fn slide(&self, joint: usize, d: Vector2<f64>) -> (f64, f64);
+    /// The position as a user's load function sees it.
+    fn pose(&mut self) -> Result<Pose<'_>>;
+    /// A force at the point `local` of link `link`.
+    fn force_at_local(&mut self, link: usize, local: Vector2<f64>, force: Vector2<f64>);
+    /// A couple on link `link`.
+    fn couple(&mut self, link: usize, moment: f64);
+    /// A force on link `on` at `p` and its opposite on link `against` at the same place (a
+    /// sliding pair's force between the slider and its guide).
+    fn force_between(&mut self, on: usize, against: usize, p: Point2<f64>, force: Vector2<f64>);
+    /// A load on link `link` (a user's, checked finite).
+    fn load(&mut self, link: usize, load: Load);
+}
+
+/// A resistance of magnitude `forward` while `rate` > 0 and `backward` while it is < 0,
+/// opposing the motion; zero at rest.
+fn resist(rate: f64, forward: f64, backward: f64) -> f64 {
+    if rate > 0.0 {
+        -forward
+    } else if rate < 0.0 {
+        backward
+    } else {
+        0.0
+    }
+}
+
+/// Reads every load of `plan` (the description's, then the users' functions, in the plan's
+/// order) at `site` and puts it there.
+///
+/// # Errors
+/// An indicator diagram read outside its stroke ([`Error::In`] naming the piston's joint); a
+/// user's load function's error or a non-finite load ([`Error::In`] naming its link).
+pub(crate) fn apply(plan: &Plan, site: &mut impl LoadSite) -> Result<()> {
+    let names = &plan.chain;
+    for lp in &plan.loads {
+        match lp {
+            LoadPlan::Force { link, local, force } => site.force_at_local(*link, *local, *force),
+            LoadPlan::Moment { link, moment } => site.couple(*link, *moment),
+            LoadPlan::Turning {
+                link,
+                forward,
+                backward,
+            } => {
+                let m = resist(site.omega(*link), *forward, *backward);
+                site.couple(*link, m);
+            }
+            LoadPlan::Sliding {
+                joint,
+                local,
+                forward,
+                backward,
+            } => {
+                let (slider, guide, d) = site.slide_parts(*joint);
+                let (_, rate) = site.slide(*joint, d);
+                let f = resist(rate, *forward, *backward) * d;
+                let p = site.position(slider, *local);
+                site.force_between(slider, guide, p, f);
+            }
+            LoadPlan::Indicator {
+                joint,
+                head,
+                diagram,
+                ends,
+            } => {
+                // The piston's guide is the frame: the force acts on the piston alone.
+                let (slider, _, d) = site.slide_parts(*joint);
+                let (s, rate) = site.slide(*joint, d);
+                let f = diagram
+                    .force(head * s, head * rate, *head * d, ends[0], ends[1])
+                    .map_err(within(&format!(
+                        "piston of joint {}",
+                        names.joint_names[*joint]
+                    )))?;
+                let jp = &names.joints[*joint];
+                let local = jp.local[usize::from(jp.links[1] == slider)];
+                site.force_at_local(slider, local, f);
+            }
+            LoadPlan::Custom { link, f } => {
+                let part = within(&names.link_names[*link]);
+                let l = (f.0)(&site.pose()?).map_err(&part)?;
+                l.validate().map_err(&part)?;
+                site.load(*link, l);
+            }
+        }
+    }
+    Ok(())
+}
+
+/// The kinetostatics' site: one solved position, the loads collected on the links.
+struct Collect<'a> {
+    chain: &'a Chain,
+    kin: &'a KinState,
+    applied: &'a mut Vec<(usize, Load)>,
+}
+
+impl LoadSite for Collect<'_> {
+    fn position(&self, link: usize, local: Vector2<f64>) -> Point2<f64> {
+        self.kin.at(link, local).p
+    }
+
+    fn omega(&self, link: usize) -> f64 {
+        self.kin.links[link].omega
+    }
+
+    fn slide_parts(&self, joint: usize) -> (usize, usize, Vector2<f64>) {
+        self.kin.pose(self.chain).slide_parts(joint)
+    }
+
+    fn slide(&self, joint: usize, _d: Vector2<f64>) -> (f64, f64) {
+        let s = self.kin.pose(self.chain).slide_at(joint);
+        (s.value, s.rate)
+    }
+
+    fn pose(&mut self) -> Result<Pose<'_>> {
+        Ok(self.kin.pose(self.chain))
+    }
+
+    fn force_at_local(&mut self, link: usize, local: Vector2<f64>, force: Vector2<f64>) {
+        let p = self.position(link, local);
+        self.applied.push((link, Load::force_at(p, force)));
+    }
+
+    fn couple(&mut self, link: usize, moment: f64) {
+        let p = self.kin.links[link].origin.p;
+        self.applied
+            .push((link, Load::new(p, Vector2::zeros(), moment)));
+    }
+
+    fn force_between(&mut self, on: usize, against: usize, p: Point2<f64>, force: Vector2<f64>) {
+        self.applied.push((on, Load::force_at(p, force)));
+        // The frame's share holds nothing up: it is left out of the free bodies.
+        if against != 0 {
+            self.applied.push((against, Load::force_at(p, -force)));
+        }
+    }
+
+    fn load(&mut self, link: usize, load: Load) {
+        self.applied.push((link, load));
+    }
+}
 
 impl Analysis<'_> {
     pub(super) fn apply_loads(&mut self) -> Result<()> {
@@ -31,79 +187,13 @@ impl Analysis<'_> {
             }
             self.applied.push((k, Load::new(s.p, force, moment)));
         }
-        for lp in &plan.loads {
-            match lp {
-                LoadPlan::Force { link, local, force } => {
-                    let p = self.kin.at(*link, *local).p;
-                    self.applied.push((*link, Load::force_at(p, *force)));
-                }
-                LoadPlan::Moment { link, moment } => {
-                    let p = self.kin.links[*link].origin.p;
-                    self.applied
-                        .push((*link, Load::new(p, Vector2::zeros(), *moment)));
-                }
-                LoadPlan::Turning {
-                    link,
-                    forward,
-                    backward,
-                } => {
-                    let l = &self.kin.links[*link];
-                    let m = resist(l.omega, *forward, *backward);
-                    self.applied
-                        .push((*link, Load::new(l.origin.p, Vector2::zeros(), m)));
-                }
-                LoadPlan::Sliding {
-                    joint,
-                    local,
-                    forward,
-                    backward,
-                } => {
-                    let (slider, guide, d) = self.pose().slide_parts(*joint);
-                    let s = self.slide_at(*joint);
-                    let p = self.kin.at(slider, *local).p;
-                    let f = resist(s.rate, *forward, *backward) * d;
-                    self.applied.push((slider, Load::force_at(p, f)));
-                    if guide != 0 {
-                        self.applied.push((guide, Load::force_at(p, -f)));
-                    }
-                }
-                LoadPlan::Indicator {
-                    joint,
-                    head,
-                    diagram,
-                    ends,
-                } => {
-                    let (slider, _, d) = self.pose().slide_parts(*joint);
-                    let s = self.slide_at(*joint);
-                    let p = self.pose().joint_on_link(*joint, slider).p;
-                    let f = diagram
-                        .force(head * s.value, head * s.rate, *head * d, ends[0], ends[1])
-                        .map_err(within(&format!(
-                            "piston of joint {}",
-                            plan.chain.joint_names[*joint]
-                        )))?;
-                    self.applied.push((slider, Load::force_at(p, f)));
-                }
-                LoadPlan::Custom { link, f } => {
-                    let l = (f.0)(&self.pose()).map_err(within(&plan.chain.link_names[*link]))?;
-                    l.validate()
-                        .map_err(within(&plan.chain.link_names[*link]))?;
-                    self.applied.push((*link, l));
-                }
-            }
-        }
-        Ok(())
-    }
-}
-
-/// A resistance of magnitude `forward` while `rate` > 0 and `backward` while it is < 0,
-/// opposing the motion; zero at rest.
-fn resist(rate: f64, forward: f64, backward: f64) -> f64 {
-    if rate > 0.0 {
-        -forward
-    } else if rate < 0.0 {
-        backward
-    } else {
-        0.0
+        apply(
+            plan,
+            &mut Collect {
+                chain: &plan.chain,
+                kin: &self.kin,
+                applied: &mut self.applied,
+            },
+        )
     }
 }

@@ -5,7 +5,7 @@
 
 pub(crate) mod analysis;
 mod checks;
-mod loads;
+pub(crate) mod loads;
 pub(crate) mod position;
 mod rates;
 pub(crate) mod state;

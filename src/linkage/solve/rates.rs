@@ -8,9 +8,9 @@
 //! cost a fraction of a full solve.
 
 use super::state::KinState;
-use crate::angle::{cross, perp};
+use crate::angle::cross;
 use crate::error::Result;
-use crate::kinematics::{LinkMotion, Motion, PointMotion};
+use crate::kinematics::{rpr_rates, rrp_rates, rrr_rates, LinkMotion, Motion, PointMotion};
 use crate::linkage::plan::{Chain, Group, GroupKind, InputPlan};
 
 impl KinState {
@@ -84,87 +84,52 @@ impl KinState {
         let [ka, kc] = group.known;
         let (u2, u3) = (self.units[l2], self.units[l3]);
         let a = self.at(ka, group.a_local);
+        let link = |origin: PointMotion, angle: f64, omega: f64, epsilon: f64| LinkMotion {
+            origin,
+            angle,
+            omega,
+            epsilon,
+        };
+        let (angle2, angle3) = (self.links[l2].angle, self.links[l3].angle);
+        // Each kind's rates by its block's own kernel, on the stored position.
         let (m2, m3) = match group.kind {
             GroupKind::Rrr => {
-                // As `rrr_fast`, on r2 = B − A and r3 = B − C of the stored position.
+                // r2 = B − A and r3 = B − C of the stored position.
                 let c = self.at(kc, group.c_local);
                 let (r2, r3) = (group.lengths[0] * u2, group.lengths[1] * u3);
-                let (dv, da) = (c.v - a.v, c.a - a.a);
                 let i_d = 1.0 / cross(r2, r3);
-                let omega2 = dv.dot(&r3) * i_d;
-                let omega3 = dv.dot(&r2) * i_d;
-                let rhs = da + omega2 * omega2 * r2 - omega3 * omega3 * r3;
-                let epsilon2 = rhs.dot(&r3) * i_d;
-                let epsilon3 = rhs.dot(&r2) * i_d;
+                let [omega2, omega3, epsilon2, epsilon3] =
+                    rrr_rates(r2, r3, i_d, c.v - a.v, c.a - a.a);
                 (
-                    LinkMotion {
-                        origin: a,
-                        angle: self.links[l2].angle,
-                        omega: omega2,
-                        epsilon: epsilon2,
-                    },
-                    LinkMotion {
-                        origin: c,
-                        angle: self.links[l3].angle,
-                        omega: omega3,
-                        epsilon: epsilon3,
-                    },
+                    link(a, angle2, omega2, epsilon2),
+                    link(c, angle3, omega3, epsilon3),
                 )
             }
             GroupKind::Rrp => {
-                // As `rrp_fast`: the guide (of link `kc`, along the slider's direction u3)
-                // through G, B = A + r2 on it at s = (B − G)·u3.
+                // The guide (of link `kc`, along the slider's direction u3) through G,
+                // B = A + r2 on it at s = (B − G)·u3.
                 let gp = self.at(kc, group.c_local);
                 let guide = &self.links[kc];
                 let (w4, e4) = (guide.omega, guide.epsilon);
-                let (g, n) = (u3, perp(u3));
                 let r2 = group.lengths[0] * u2;
                 let (d, dv, da) = (gp.p - a.p, gp.v - a.v, gp.a - a.a);
-                let s = (r2 - d).dot(&g);
-                let i_d = 1.0 / r2.dot(&g);
-                let rv = dv + (s * w4) * n;
-                let omega2 = cross(g, rv) * i_d;
-                let s_rate = -r2.dot(&rv) * i_d;
-                let ra = da + (omega2 * omega2) * r2 + (2.0 * s_rate * w4 + s * e4) * n
-                    - (s * w4 * w4) * g;
-                let epsilon2 = cross(g, ra) * i_d;
-                let b = PointMotion::new(
-                    self.links[l3].origin.p,
-                    a.v + omega2 * perp(r2),
-                    a.a + epsilon2 * perp(r2) - omega2 * omega2 * r2,
-                );
-                (
-                    LinkMotion {
-                        origin: a,
-                        angle: self.links[l2].angle,
-                        omega: omega2,
-                        epsilon: epsilon2,
-                    },
-                    LinkMotion {
-                        origin: b,
-                        angle: self.links[l3].angle,
-                        omega: w4,
-                        epsilon: e4,
-                    },
-                )
+                let s = (r2 - d).dot(&u3);
+                let i_d = 1.0 / r2.dot(&u3);
+                let [omega2, _, epsilon2, _] = rrp_rates(u3, r2, s, i_d, (dv, da), (w4, e4));
+                let rod = link(a, angle2, omega2, epsilon2);
+                // B as the rod's point, at the slider's stored position.
+                let b = rod.moving_at(self.links[l3].origin.p, r2);
+                (rod, link(b, angle3, w4, e4))
             }
             GroupKind::Rpr => {
-                // As `rpr_fast`: the axis A→E of length l = the stored measure.
+                // The axis A→E of length l = the stored measure.
                 let e = self.at(kc, group.c_local);
-                let (u, l) = (u2, self.dets[g]);
-                let n = perp(u);
-                let (dv, da) = (e.v - a.v, e.a - a.a);
-                let i_l = 1.0 / l;
-                let l_rate = dv.dot(&u);
-                let omega = dv.dot(&n) * i_l;
-                let epsilon = (da.dot(&n) - 2.0 * l_rate * omega) * i_l;
-                let link = |origin: PointMotion, angle: f64| LinkMotion {
-                    origin,
-                    angle,
-                    omega,
-                    epsilon,
-                };
-                (link(a, self.links[l2].angle), link(e, self.links[l3].angle))
+                let l = self.dets[g];
+                let [_, omega, _, epsilon] = rpr_rates(u2, l, 1.0 / l, e.v - a.v, e.a - a.a);
+                (
+                    link(a, angle2, omega, epsilon),
+                    link(e, angle3, omega, epsilon),
+                )
             }
             GroupKind::Prp | GroupKind::Rpp => return false,
         };

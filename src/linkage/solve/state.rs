@@ -4,7 +4,7 @@
 
 use crate::error::Error;
 use crate::kinematics::{Guide, LinkMotion, Motion, PointMotion};
-use crate::linkage::plan::{point_with, Chain, Pose};
+use crate::linkage::plan::{Chain, Pose};
 use nalgebra::{Point2, Vector2};
 
 /// The kinematic state of one position of a [`Chain`].
@@ -80,7 +80,7 @@ impl KinState {
     /// The motion of the point at `local` in link `k`'s frame.
     #[inline]
     pub fn at(&self, k: usize, local: Vector2<f64>) -> PointMotion {
-        point_with(&self.links[k], self.units[k], local)
+        self.links[k].point_in_frame(self.units[k], local)
     }
 
     /// Stores link `k`'s motion with its unit vector.
