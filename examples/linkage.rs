@@ -127,10 +127,7 @@ mod pictures {
         save("forces", &draw::forces(plan, first, &style)?.svg)?;
         if !plan.input_is_crank() {
             // A slider has no turn: the course is the table's positions.
-            let course = Course {
-                inputs: inputs.to_vec(),
-                extremes: Vec::new(),
-            };
+            let course = Course::given(inputs.to_vec());
             save("plan", &draw::plan_view(plan, &course, &[], &style)?.svg)?;
             save(
                 "animation",

@@ -645,3 +645,110 @@ fn a_bad_gear_drive_names_its_input() {
         "{e}"
     );
 }
+
+/// A four-bar whose input cannot turn fully (a triple rocker: input 0.6, coupler 0.5, rocker
+/// 0.7 on a frame of 1.0 m; s + l = 1.6 > p + q = 1.2, Grashof fails), in the pose with the
+/// input at 90°.
+fn rocker_input_four_bar() -> Linkage {
+    let (o1, a, o3): ([f64; 2], [f64; 2], [f64; 2]) = ([0.0, 0.0], [0.0, 0.6], [1.0, 0.0]);
+    // B 0.5 from A and 0.7 from O3, below the line A→O3.
+    let (ab, bo) = (0.5_f64, 0.7_f64);
+    let d = ((o3[0] - a[0]).powi(2) + (o3[1] - a[1]).powi(2)).sqrt();
+    let x = (ab * ab - bo * bo + d * d) / (2.0 * d);
+    let h = (ab * ab - x * x).sqrt();
+    let u = [(o3[0] - a[0]) / d, (o3[1] - a[1]) / d];
+    let b = [a[0] + x * u[0] + h * u[1], a[1] + x * u[1] - h * u[0]];
+    Linkage {
+        name: "rocker-input four-bar".to_owned(),
+        joints: vec![
+            Joint::revolute("O1", o1),
+            Joint::revolute("A", a),
+            Joint::revolute("B", b),
+            Joint::revolute("O3", o3),
+        ],
+        links: vec![
+            Link::new("frame", &["O1", "O3"]),
+            Link::new("input", &["O1", "A"]).with_mass(Mass::rod(0.5, o1, a)),
+            Link::new("coupler", &["A", "B"]).with_mass(Mass::rod(0.4, a, b)),
+            Link::new("rocker", &["O3", "B"]).with_mass(Mass::rod(0.6, o3, b)),
+        ],
+        input: Input::crank("input"),
+        loads: vec![LoadSpec::Resistance {
+            on: "rocker".to_owned(),
+            forward: 5.0,
+            backward: 5.0,
+            at: None,
+        }],
+        ..Linkage::default()
+    }
+}
+
+#[test]
+fn a_rocking_input_sweeps_exactly_between_its_lock_angles() {
+    use tmm::linkage::{Course, Output, Sweep};
+    let plan = Plan::new(&rocker_input_four_bar()).unwrap();
+    // The locks, by hand: A, B and O3 in line, |A − O3| = 0.5 + 0.7, so
+    // 0.6² + 1 − 2·0.6·cos φ = 1.2²: φ = ±acos(−0.08/1.2).
+    let lock = (-0.08_f64 / 1.2).acos();
+    for (speed, from, to) in [(10.0, -lock, lock), (-4.0, lock, -lock)] {
+        for n in [1, 2, 3, 12, 13, 360] {
+            let course =
+                Course::new(&plan, Some(&Output::Angle("rocker".into())), n, speed).unwrap();
+            let Sweep::Rocking { from: f, to: t } = course.sweep else {
+                panic!("not rocking: {:?}", course.sweep);
+            };
+            assert!(
+                (f - from).abs() < 1e-12 && (t - to).abs() < 1e-12,
+                "{f} {t}"
+            );
+            assert_eq!(course.inputs.len(), n);
+            // It starts at a lock, reaches the other (n ≥ 2) and comes back, every position
+            // inside the range and assembled.
+            assert_eq!(course.inputs[0].value, f);
+            if n >= 2 {
+                assert_eq!(course.inputs[n / 2].value, t);
+            }
+            let (lo, hi) = (f.min(t), f.max(t));
+            for (k, m) in course.inputs.iter().enumerate() {
+                assert!(lo <= m.value && m.value <= hi, "{k}: {m:?}");
+                let a = plan.analyse(*m).unwrap();
+                assert!(a.worst_residual() < 1e-9, "{k}: {}", a.worst_residual());
+                // The input moves towards `to` on the way out, back towards `from` after.
+                let out = k < n / 2 + 1;
+                let expect = if k == 0 || k == n / 2 {
+                    0.0
+                } else if out {
+                    (t - f).signum() * speed.abs()
+                } else {
+                    -(t - f).signum() * speed.abs()
+                };
+                assert_eq!(m.rate, expect, "{k} of {n}");
+            }
+            assert_eq!(
+                course.extremes,
+                [Motion::fixed(f), Motion::fixed(t)],
+                "the ends are the extremes"
+            );
+        }
+    }
+    // Past a lock (10⁻⁹ rad beyond the hand-made angle) the linkage does not close.
+    for q in [lock, -lock] {
+        let beyond = q + q.signum() * 1e-9;
+        assert!(plan.kinematics(Motion::fixed(beyond)).is_err());
+    }
+    // A user's range inside the locks; one past them is refused, naming its end.
+    let c = Course::rocking(&plan, 0.0, 1.0, 8, 2.0).unwrap();
+    assert_eq!(c.sweep, Sweep::Rocking { from: 0.0, to: 1.0 });
+    assert_eq!(c.inputs[4].value, 1.0);
+    let e = Course::rocking(&plan, 0.0, 2.0, 8, 2.0).unwrap_err();
+    assert!(e.to_string().contains("end of the rocking range"), "{e}");
+    assert!(Course::rocking(&plan, 0.0, 0.0, 8, 2.0).is_err());
+    assert!(Course::rocking(&plan, 0.0, f64::NAN, 8, 2.0).is_err());
+    assert!(Course::rocking(&plan, 3.0, 0.0, 8, 2.0).is_err()); // 3 rad does not assemble
+                                                                // A crank that turns fully keeps its turn.
+    let crank = Plan::new(&bundled::four_bar()).unwrap();
+    assert_eq!(
+        Course::new(&crank, None, 12, 1.0).unwrap().sweep,
+        Sweep::Turn
+    );
+}

@@ -52,7 +52,7 @@ mod structure;
 mod table;
 
 pub use analysis::{Analysis, Balance, PowerCheck, Reaction};
-pub use course::Course;
+pub use course::{Course, Sweep};
 #[cfg(feature = "rayon")]
 pub use cycle::run_cycle_parallel;
 pub use cycle::{
