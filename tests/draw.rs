@@ -1124,7 +1124,10 @@ fn a_rocking_input_is_drawn_over_its_sweep() {
     // rocker's angle comes back to its start, and every course position is marked on it.
     for d in [Diagram::Kinematics(out.clone()), Diagram::Balance] {
         let chart = diagram(&plan, &course, &d, &style).unwrap();
-        render(&chart.svg, "rocking diagram");
+        render(
+            &chart.svg,
+            &format!("rocking diagram {}", chart.panels.len()),
+        );
         let p = &chart.panels[0];
         assert!((p.x_range[1] - 2.0 * (to - from).abs()).abs() < 1e-12);
         assert_eq!(p.marks.len(), 12);

@@ -724,11 +724,27 @@ fn a_rocking_input_sweeps_exactly_between_its_lock_angles() {
                 };
                 assert_eq!(m.rate, expect, "{k} of {n}");
             }
-            assert_eq!(
-                course.extremes,
-                [Motion::fixed(f), Motion::fixed(t)],
-                "the ends are the extremes"
-            );
+            // The extremes: the two locks, and between them where the rocker stands still;
+            // the rocker's angle over the whole sweep lies between its values there.
+            let e = &course.extremes;
+            assert_eq!(e.len(), 3, "{e:?}"); // one turning point of the rocker on the way
+            assert_eq!((e[0], e[2]), (Motion::fixed(f), Motion::fixed(t)));
+            let rocker = Output::Angle("rocker".into());
+            let psi = |q: f64| plan.transfer(&rocker, q).unwrap();
+            for m in &e[1..e.len() - 1] {
+                assert!(psi(m.value).rate.abs() < 1e-9, "{m:?}: {:?}", psi(m.value));
+            }
+            let at: Vec<f64> = e.iter().map(|m| psi(m.value).value).collect();
+            let (lo_psi, hi_psi) = at
+                .iter()
+                .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &x| {
+                    (a.min(x), b.max(x))
+                });
+            for k in 0..=1000 {
+                let q = lo + (hi - lo) * f64::from(k) / 1000.0;
+                let v = psi(q).value;
+                assert!(lo_psi - 1e-12 <= v && v <= hi_psi + 1e-12, "{q}: {v}");
+            }
         }
     }
     // Past a lock (10⁻⁹ rad beyond the hand-made angle) the linkage does not close.
@@ -751,4 +767,78 @@ fn a_rocking_input_sweeps_exactly_between_its_lock_angles() {
         Course::new(&crank, None, 12, 1.0).unwrap().sweep,
         Sweep::Turn
     );
+}
+
+/// A Peaucellier–Lipkin inversor: the crank O1A (0.45 m) turns about O1 = (0.45, 0), so A's
+/// circle passes through the pivot O of the two long links (1.0 m); the rhombus A–C–P–D has
+/// sides of 0.4 m. OA·OP = 1.0² − 0.4² = 0.84 m², so P runs on the line x = 0.84/0.9 m. The
+/// crank cannot turn fully: the linkage locks where |OA| = 1.0 − 0.4, at φ = ±2·acos(2/3).
+/// Joints of three links are two coincident joints (the engine's joints join two links).
+fn peaucellier_lipkin() -> Linkage {
+    let r = 0.45_f64;
+    let (long, side) = (1.0_f64, 0.4_f64);
+    let phi = 1.0_f64;
+    let a = [r + r * phi.cos(), r * phi.sin()];
+    // C and D: where the circle about O of the long links meets the circle about A.
+    let d = a[0].hypot(a[1]);
+    let x = (long * long - side * side + d * d) / (2.0 * d);
+    let h = (long * long - x * x).sqrt();
+    let u = [a[0] / d, a[1] / d];
+    let c = [x * u[0] - h * u[1], x * u[1] + h * u[0]];
+    let dd = [x * u[0] + h * u[1], x * u[1] - h * u[0]];
+    let p = [c[0] + dd[0] - a[0], c[1] + dd[1] - a[1]];
+    Linkage {
+        name: "Peaucellier–Lipkin inversor".to_owned(),
+        joints: vec![
+            Joint::revolute("O", [0.0, 0.0]),
+            Joint::revolute("O'", [0.0, 0.0]),
+            Joint::revolute("O1", [r, 0.0]),
+            Joint::revolute("A", a),
+            Joint::revolute("A'", a),
+            Joint::revolute("C", c),
+            Joint::revolute("C'", c),
+            Joint::revolute("D", dd),
+            Joint::revolute("D'", dd),
+            Joint::revolute("P", p),
+        ],
+        links: vec![
+            Link::new("frame", &["O", "O'", "O1"]),
+            Link::new("crank", &["O1", "A", "A'"]),
+            Link::new("long 1", &["O", "C"]),
+            Link::new("long 2", &["O'", "D"]),
+            Link::new("side AC", &["A", "C", "C'"]),
+            Link::new("side AD", &["A'", "D", "D'"]),
+            Link::new("side CP", &["C'", "P"]),
+            Link::new("side DP", &["D'", "P"]),
+        ],
+        input: Input::crank("crank"),
+        ..Linkage::default()
+    }
+}
+
+#[test]
+fn the_peaucellier_lipkin_crank_rocks_between_its_locks_and_draws_a_straight_line() {
+    use tmm::linkage::{Course, Sweep};
+    let plan = Plan::new(&peaucellier_lipkin()).unwrap();
+    let lock = 2.0 * (2.0_f64 / 3.0).acos();
+    let course = Course::new(&plan, None, 36, 5.0).unwrap();
+    let Sweep::Rocking { from, to } = course.sweep else {
+        panic!("{:?}", course.sweep)
+    };
+    assert!(
+        (from + lock).abs() < 1e-12 && (to - lock).abs() < 1e-12,
+        "{from} {to}"
+    );
+    for m in &course.inputs {
+        let a = plan.kinematics(*m).unwrap();
+        let p = a.joint("P").unwrap();
+        // On the line x = 0.84/0.9 (to 1e-9 m at the locks, where the groups are singular).
+        assert!((p.p.x - 0.84 / 0.9).abs() < 1e-9, "{m:?}: {}", p.p.x);
+        // And its velocity along it.
+        assert!(
+            p.v.x.abs() <= 1e-6 * p.v.norm().max(1.0),
+            "{m:?}: {:?}",
+            p.v
+        );
+    }
 }

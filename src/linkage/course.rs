@@ -28,7 +28,8 @@ pub struct Course {
     /// crank; s, ṡ, s̈ for a slider).
     pub inputs: Vec<Motion>,
     /// The inputs of the extreme positions of the output (empty when there is none); for a
-    /// rocking input, the two ends of its sweep, where every link reverses.
+    /// rocking input, the two ends of its sweep, where every link reverses, with the positions
+    /// between where the output stands still.
     pub extremes: Vec<Motion>,
     /// How the input moves over the course: a full turn, rocking over a range, or positions
     /// given by hand.
@@ -71,8 +72,11 @@ impl Course {
     /// An input that cannot turn fully (a rocker input: the linkage locks at two angles,
     /// [`Plan::lock_positions`]) rocks between its lock angles instead, as the mechanism runs:
     /// the course is [`Course::rocking`] from the lower lock to the upper one and back (from the
-    /// upper for a negative `speed`), [`Sweep::Rocking`] says so and holds the lock angles, and
-    /// the extremes are the two locks (an `output` is checked, not searched).
+    /// upper for a negative `speed`), and [`Sweep::Rocking`] says so and holds the lock angles.
+    /// Its extremes are the two locks, where every link reverses, and, with an `output`, the
+    /// inputs between them where the output stands still (its first transfer function changes
+    /// sign; found on 360 positions, each refined by bisection), in the order the input
+    /// reaches them on the way out.
     ///
     /// # Errors
     /// [`Error::OutOfRange`] for `n` outside [1, [`MAX_POSITIONS`]]; [`Error::NonFinite`] for
@@ -109,11 +113,17 @@ impl Course {
             });
         }
         if let Some((lo, hi)) = plan.lock_positions(plan.reference_input())? {
+            let (from, to) = if speed < 0.0 { (hi, lo) } else { (lo, hi) };
+            let mut course = Self::rocking_between(from, to, n, speed.abs());
             if let Some(output) = output {
                 plan.output(output, Motion::fixed(plan.reference_input()))?;
+                let w = if to > from { speed.abs() } else { -speed.abs() };
+                let still = stationary(plan, output, from, to);
+                course
+                    .extremes
+                    .splice(1..1, still.into_iter().map(|q| Motion::new(q, w, 0.0)));
             }
-            let (from, to) = if speed < 0.0 { (hi, lo) } else { (lo, hi) };
-            return Ok(Self::rocking_between(from, to, n, speed.abs()));
+            return Ok(course);
         }
         let Some(output) = output else {
             return Ok(Self {
@@ -276,6 +286,43 @@ impl Course {
         check_finite(&self.inputs)?;
         check_finite(&self.extremes)
     }
+}
+
+/// The inputs strictly between `from` and `to` where `output` stands still: where its first
+/// transfer function changes sign between two of 360 positions (the middles of equal steps,
+/// the locks at the ends left out), bisected to the last bits; in order from `from`.
+/// Positions that cannot be solved are passed over.
+fn stationary(plan: &Plan, output: &Output, from: f64, to: f64) -> Vec<f64> {
+    const SAMPLES: u32 = 360;
+    let slope = |q: f64| plan.transfer(output, q).ok().map(|m| m.rate);
+    let mut found = Vec::new();
+    let mut prev: Option<(f64, f64)> = None;
+    for i in 0..SAMPLES {
+        let q = from + (to - from) * (f64::from(i) + 0.5) / f64::from(SAMPLES);
+        let Some(r) = slope(q) else {
+            prev = None;
+            continue;
+        };
+        if let Some((q0, r0)) = prev
+            && (r0 > 0.0) != (r > 0.0)
+        {
+            let (mut a, mut b, up) = (q0, q, r0 > 0.0);
+            loop {
+                let m = 0.5 * (a + b);
+                if m == a || m == b {
+                    break;
+                }
+                match slope(m) {
+                    Some(rm) if (rm > 0.0) == up => a = m,
+                    Some(_) => b = m,
+                    None => break,
+                }
+            }
+            found.push(0.5 * (a + b));
+        }
+        prev = Some((q, r));
+    }
+    found
 }
 
 /// 1 ≤ n ≤ MAX_POSITIONS.
