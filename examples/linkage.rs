@@ -14,7 +14,7 @@ use std::f64::consts::TAU;
 use std::fs;
 use std::path::Path;
 use tmm::kinematics::{Motion, Rotation};
-use tmm::linkage::{course_inputs, Linkage, Plan, Table};
+use tmm::linkage::{course_inputs, Course, Linkage, Plan, Sweep, Table};
 
 const BUNDLED: &str = include_str!("../linkages/shaper.json");
 
@@ -44,7 +44,23 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     } else {
         Rotation::Ccw
     };
+    // A crank that cannot turn fully rocks between the angles where the linkage locks.
+    let rocks = plan.input_is_crank()
+        && plan
+            .lock_positions(plan.reference_input())
+            .is_ok_and(|l| l.is_some());
     let inputs = match (&linkage.output, plan.input_is_crank()) {
+        _ if rocks => {
+            let course = Course::new(&plan, linkage.output.as_ref(), 12, speed)?;
+            if let Sweep::Rocking { from, to } = course.sweep {
+                println!(
+                    "the input cannot turn fully: it rocks from φ1 = {:.2}° to {:.2}° and back",
+                    from.to_degrees(),
+                    to.to_degrees()
+                );
+            }
+            course.inputs
+        }
         (Some(out), true) => {
             let s = plan.strokes(out, rotation)?;
             println!(
@@ -73,6 +89,13 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let positions: Vec<_> = inputs.iter().map(|&i| plan.analyse(i)).collect();
     for (k, p) in positions.iter().enumerate() {
         match p {
+            // A rocking input at rest where it reverses has no virtual power to compare.
+            Ok(a) if a.input().rate == 0.0 => println!(
+                "position {k:2}: input {:8.4}  balance {:12.4} (input at rest: no virtual power)  worst link residual {:.1e}",
+                a.input().value,
+                a.balance().value,
+                a.worst_residual()
+            ),
             Ok(a) => {
                 let c = a.power_check()?;
                 println!(
@@ -106,7 +129,7 @@ mod pictures {
     use std::path::Path;
     use tmm::draw::{self, Diagram, Style};
     use tmm::kinematics::Motion;
-    use tmm::linkage::{uniform_inputs, Course, Linkage, Output, Plan};
+    use tmm::linkage::{uniform_inputs, Course, Linkage, Output, Plan, Sweep};
 
     pub fn write(
         linkage: &Linkage,
@@ -127,10 +150,7 @@ mod pictures {
         save("forces", &draw::forces(plan, first, &style)?.svg)?;
         if !plan.input_is_crank() {
             // A slider has no turn: the course is the table's positions.
-            let course = Course {
-                inputs: inputs.to_vec(),
-                extremes: Vec::new(),
-            };
+            let course = Course::given(inputs.to_vec());
             save("plan", &draw::plan_view(plan, &course, &[], &style)?.svg)?;
             save(
                 "animation",
@@ -154,7 +174,10 @@ mod pictures {
             .chain(plan.point_names().iter().map(String::as_str))
             .collect();
         save("plan", &draw::plan_view(plan, &course, &paths, &style)?.svg)?;
-        let turn = uniform_inputs(360, course.inputs[0].value, speed, 0.0);
+        let turn = match course.sweep {
+            Sweep::Rocking { .. } => Course::new(plan, None, 360, speed)?.inputs,
+            _ => uniform_inputs(360, course.inputs[0].value, speed, 0.0),
+        };
         save("animation", &draw::animation(plan, &turn, 4.0, &style)?.svg)?;
         let tall = Style {
             height: 900,

@@ -674,10 +674,7 @@ fn bad_inputs_are_errors_not_panics() {
     assert!(Course::new(&plan, None, 12, 0.0).is_err());
     assert!(Course::new(&plan, Some(&Output::Angle("nothing".into())), 12, 10.0).is_err());
     let course = Course::new(&plan, None, 12, 10.0).unwrap();
-    let empty = Course {
-        inputs: vec![],
-        extremes: vec![],
-    };
+    let empty = Course::given(vec![]);
     assert!(plan_view(&plan, &empty, &[], &style).is_err());
     assert!(plan_view(&plan, &course, &["Z"], &style).is_err());
     for d in [
@@ -753,10 +750,7 @@ fn a_slider_input_is_drawn_and_animated() {
     let pic = animation(&plan, &inputs, 1.0, &style).unwrap();
     assert!(animations(&pic.svg).iter().all(|(_, v)| v.len() == 20));
     assert_frames(&plan, &inputs, &pic);
-    let course = Course {
-        inputs: inputs.clone(),
-        extremes: vec![],
-    };
+    let course = Course::given(inputs.clone());
     let chart = diagram(
         &plan,
         &course,
@@ -916,8 +910,8 @@ fn hostile_styles_and_inputs_give_errors_or_finite_pictures() {
         let course = match Course::new(plan, None, g.pick(&[0, 1, 5, 12]), g.f()) {
             Ok(c) => c,
             Err(_) => Course {
-                inputs,
                 extremes: vec![motion(&mut g)],
+                ..Course::given(inputs)
             },
         };
         let paths: Vec<&str> = plan.joint_names().iter().map(String::as_str).collect();
@@ -1079,4 +1073,81 @@ fn style_errors_name_the_field() {
     render(&pic.svg, "largest strokes");
     let pic = forces(&plan, m, &big).unwrap();
     render(&pic.svg, "largest strokes, forces");
+}
+
+#[test]
+fn a_rocking_input_is_drawn_over_its_sweep() {
+    use tmm::linkage::{Input, Joint, Link, Sweep};
+    // A four-bar whose input rocks (input 0.6, coupler 0.5, rocker 0.7, frame 1.0 m).
+    let b = [0.340_082_014_076_741_3, 0.233_470_023_461_235_5];
+    let l = Linkage {
+        name: "rocker input".into(),
+        joints: vec![
+            Joint::revolute("O1", [0.0, 0.0]),
+            Joint::revolute("A", [0.0, 0.6]),
+            Joint::revolute("B", b),
+            Joint::revolute("O3", [1.0, 0.0]),
+        ],
+        links: vec![
+            Link::new("frame", &["O1", "O3"]),
+            Link::new("input", &["O1", "A"]),
+            Link::new("coupler", &["A", "B"]),
+            Link::new("rocker", &["O3", "B"]),
+        ],
+        input: Input::crank("input"),
+        ..Linkage::default()
+    };
+    let plan = Plan::new(&l).unwrap();
+    let out = Output::Angle("rocker".into());
+    let course = Course::new(&plan, Some(&out), 12, 10.0).unwrap();
+    let Sweep::Rocking { from, to } = course.sweep else {
+        panic!("{:?}", course.sweep)
+    };
+    let style = Style::default();
+    // The scheme at each lock, the plan of the whole sweep, the animation of the course.
+    for m in &course.extremes {
+        let pic = scheme(&plan, *m, &style).unwrap();
+        let p = render(&pic.svg, "rocking scheme");
+        assert_hinges(&plan, *m, &pic, &p, &style, "rocking scheme");
+    }
+    let pic = plan_view(&plan, &course, &["B"], &style).unwrap();
+    let p = render(&pic.svg, "rocking plan");
+    for &m in &course.inputs {
+        let a = plan.kinematics(m).unwrap();
+        let q = pic.frame.to_pixel(a.joint("A").unwrap().p);
+        assert!(ink(&p, q) > 30, "A at {m:?} not drawn at {q:?}");
+    }
+    let pic = animation(&plan, &course.inputs, 2.0, &style).unwrap();
+    render(&pic.svg, "rocking animation");
+    assert_frames(&plan, &course.inputs, &pic);
+    // The diagrams run over the sweep out and back: the abscissa spans twice the range, the
+    // rocker's angle comes back to its start, and every course position is marked on it.
+    for d in [Diagram::Kinematics(out.clone()), Diagram::Balance] {
+        let chart = diagram(&plan, &course, &d, &style).unwrap();
+        render(
+            &chart.svg,
+            &format!("rocking diagram {}", chart.panels.len()),
+        );
+        let p = &chart.panels[0];
+        assert!((p.x_range[1] - 2.0 * (to - from).abs()).abs() < 1e-12);
+        assert_eq!(p.marks.len(), 12);
+        assert_eq!(p.marks[6].1[0], (to - from).abs()); // the turning point, half way
+        let pts = &p.series[0].1;
+        assert_eq!(pts.len(), style.samples, "no position failed");
+        if matches!(d, Diagram::Kinematics(_)) {
+            let (y0, y1) = (pts[0][1], pts[pts.len() - 1][1]);
+            assert!((y0 - y1).abs() < 1e-2, "{y0} {y1}");
+            // Every mark between the ends lies on the curve of the rocker's angle (at the
+            // locks the curve is vertical: dψ/dφ grows without bound).
+            let x = pts.iter().map(|q| q[0]).collect::<Vec<_>>();
+            for (k, m) in p.marks.iter().filter(|(k, _)| *k != 0 && *k != 6) {
+                let i = x.partition_point(|&v| v < m[0]).min(x.len() - 1);
+                assert!(
+                    (pts[i][1] - m[1]).abs() < 0.05,
+                    "mark {k}: {m:?} vs {:?}",
+                    pts[i]
+                );
+            }
+        }
+    }
 }

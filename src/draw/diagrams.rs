@@ -5,7 +5,7 @@ use super::plan_view::{path_inputs, thin, MAX_PLAN_POSITIONS};
 use super::Style;
 use crate::error::{Error, Result};
 use crate::kinematics::Motion;
-use crate::linkage::{Analysis, Course, Output, Plan};
+use crate::linkage::{Analysis, Course, Output, Plan, Sweep};
 use plotters::coord::Shift;
 use plotters::prelude::*;
 use std::f64::consts::TAU;
@@ -139,8 +139,12 @@ pub struct Chart {
 /// crank from the course's first position (for a slider, over the range of the course's
 /// inputs), the course positions marked and numbered. The abscissa is the angle the crank
 /// has turned from the course's first position in its own sense of rotation (so a clockwise
-/// crank reads left to right as it turns), rad; for a slider, its coordinate, m. Every axis
-/// carries its SI unit. A position where the linkage fails leaves a gap.
+/// crank reads left to right as it turns), rad; for an input rocking between two angles
+/// ([`Sweep::Rocking`]), the angle it has swept from the course's first position, out to the
+/// other end and back, rad (the two ends, where it reverses, are not sampled: the velocities
+/// there grow without bound at a lock; the course's marks show them); for a slider, its
+/// coordinate, m. Every axis carries its SI unit. A position where the linkage fails leaves a
+/// gap.
 ///
 /// The time is bounded by the picture: [`Style::samples`] analyses for the curves, at most
 /// [`MAX_PLAN_POSITIONS`] marked course positions (a longer course is thinned as
@@ -173,44 +177,14 @@ pub fn diagram(plan: &Plan, course: &Course, diagram: &Diagram, style: &Style) -
     style.check()?;
     course.check()?;
     check(plan, diagram)?;
-    let crank = plan.input_is_crank();
-    let first = course.inputs[0];
-    let sense = if first.rate < 0.0 { -1.0 } else { 1.0 };
-    let x_of = |q: f64| {
-        if crank {
-            (sense * (q - first.value)).rem_euclid(TAU)
-        } else {
-            q
-        }
-    };
-    let mut samples = path_inputs(plan, course, style.samples);
-    let mut xs: Vec<f64> = samples.iter().map(|m| x_of(m.value)).collect();
-    if crank {
-        // Close the turn: position 0 again at 2π.
-        samples.push(samples[0]);
-        xs.push(TAU);
-    }
-    let x_range = if crank {
-        [0.0, TAU]
-    } else {
-        let lo = xs.iter().copied().fold(f64::INFINITY, f64::min);
-        let hi = xs.iter().copied().fold(f64::NEG_INFINITY, f64::max);
-        pad(lo, hi, 0.0)
-    };
-    let x_label = if crank {
-        format!(
-            "φ1 turned {} from position 0 (φ1 = {:.3} rad), rad",
-            if sense < 0.0 {
-                "clockwise"
-            } else {
-                "counter-clockwise"
-            },
-            first.value
-        )
-    } else {
-        "s1, m".to_owned()
-    };
-    let input_unit = if crank { "rad" } else { "m" };
+    let Abscissa {
+        axis,
+        samples,
+        xs,
+        range: x_range,
+        label: x_label,
+        unit: input_unit,
+    } = Abscissa::new(plan, course, style.samples);
 
     // What each panel plots at one position.
     let specs = panel_specs(plan, diagram, input_unit)?;
@@ -235,7 +209,7 @@ pub fn diagram(plan: &Plan, course: &Course, diagram: &Diagram, style: &Style) -
         thin(course.inputs.len(), MAX_PLAN_POSITIONS)
             .map(|k| {
                 let m = course.inputs[k];
-                (k, x_of(m.value), eval(&mut a, m).ok())
+                (k, axis.x(m), eval(&mut a, m).ok())
             })
             .collect();
 
@@ -257,6 +231,125 @@ pub fn diagram(plan: &Plan, course: &Course, diagram: &Diagram, style: &Style) -
     let svg = render(&mut panels, style, hodograph)?;
     super::primitives::finite_numbers(&svg)?;
     Ok(Chart { svg, panels })
+}
+
+/// The abscissa of a diagram: what the input has done since the course's first position.
+#[derive(Debug, Clone, Copy)]
+enum Axis {
+    /// A crank turning: the angle turned from `start` in the sense `sense` (±1), in [0, 2π).
+    Turn { start: f64, sense: f64 },
+    /// A rocking input: the angle swept from `from` to `to` and back, in [0, 2|to − from|].
+    Rocking { from: f64, to: f64 },
+    /// A slider: its coordinate.
+    Slide,
+}
+
+impl Axis {
+    /// The abscissa of the input `m`.
+    fn x(self, m: Motion) -> f64 {
+        match self {
+            Self::Turn { start, sense } => (sense * (m.value - start)).rem_euclid(TAU),
+            Self::Rocking { from, to } => {
+                let out = (m.value - from).abs();
+                if m.rate * (to - from) < 0.0 {
+                    2.0 * (to - from).abs() - out
+                } else {
+                    out
+                }
+            }
+            Self::Slide => m.value,
+        }
+    }
+}
+
+/// The inputs sampled along a diagram's abscissa, and the axis's range and label.
+struct Abscissa {
+    axis: Axis,
+    samples: Vec<Motion>,
+    xs: Vec<f64>,
+    range: [f64; 2],
+    label: String,
+    unit: &'static str,
+}
+
+impl Abscissa {
+    /// `n` samples (one more to close a turn): over a turn of a crank from the course's
+    /// first position in its sense; over a rocking input's sweep out and back (the two ends,
+    /// where it reverses, left out: the samples sit in the middles of n equal steps); over
+    /// the range of a slider's course.
+    fn new(plan: &Plan, course: &Course, n: usize) -> Self {
+        let first = course.inputs[0];
+        if let Sweep::Rocking { from, to } = course.sweep {
+            let w = course
+                .inputs
+                .iter()
+                .map(|m| m.rate.abs())
+                .fold(0.0, f64::max);
+            let w = if w > 0.0 { w } else { 1.0 };
+            let (span, sense) = ((to - from).abs(), (to - from).signum());
+            #[allow(clippy::cast_precision_loss)]
+            let samples: Vec<Motion> = (0..n)
+                .map(|i| {
+                    let s = (i as f64 + 0.5) * 2.0 * span / n as f64;
+                    if s <= span {
+                        Motion::new(from + sense * s, sense * w, 0.0)
+                    } else {
+                        Motion::new(to - sense * (s - span), -sense * w, 0.0)
+                    }
+                })
+                .collect();
+            let axis = Axis::Rocking { from, to };
+            return Self {
+                xs: samples.iter().map(|&m| axis.x(m)).collect(),
+                samples,
+                axis,
+                range: [0.0, 2.0 * span],
+                label: format!(
+                    "φ1 swept from {from:.3} rad to {to:.3} rad and back (rocking), rad"
+                ),
+                unit: "rad",
+            };
+        }
+        let mut samples = path_inputs(plan, course, n);
+        if plan.input_is_crank() {
+            let sense = if first.rate < 0.0 { -1.0 } else { 1.0 };
+            let axis = Axis::Turn {
+                start: first.value,
+                sense,
+            };
+            let mut xs: Vec<f64> = samples.iter().map(|&m| axis.x(m)).collect();
+            // Close the turn: position 0 again at 2π.
+            samples.push(samples[0]);
+            xs.push(TAU);
+            return Self {
+                axis,
+                samples,
+                xs,
+                range: [0.0, TAU],
+                label: format!(
+                    "φ1 turned {} from position 0 (φ1 = {:.3} rad), rad",
+                    if sense < 0.0 {
+                        "clockwise"
+                    } else {
+                        "counter-clockwise"
+                    },
+                    first.value
+                ),
+                unit: "rad",
+            };
+        }
+        let xs: Vec<f64> = samples.iter().map(|&m| Axis::Slide.x(m)).collect();
+        let lo = xs.iter().copied().fold(f64::INFINITY, f64::min);
+        let hi = xs.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+        Self {
+            axis: Axis::Slide,
+            samples,
+            xs,
+            range: pad(lo, hi, 0.0),
+            label: "s1, m".to_owned(),
+            unit: "m",
+        }
+    }
 }
 
 /// The sampled values of a diagram, for drawing its panels.

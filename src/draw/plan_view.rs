@@ -7,7 +7,7 @@ use super::scene::{self, Extents, Pose, Topo, Tracer};
 use super::{Picture, Style};
 use crate::error::{Error, Result};
 use crate::kinematics::Motion;
-use crate::linkage::{uniform_inputs, Analysis, Course, Plan};
+use crate::linkage::{uniform_inputs, Analysis, Course, Plan, Sweep};
 use nalgebra::Point2;
 use svg::node::element::path::Data;
 use svg::node::element::Path;
@@ -17,7 +17,8 @@ use svg::Node;
 /// colours and numbered from 0 at the input link's outer joint, the extreme positions bold
 /// and black, and the paths (coupler curves) of the joints or named points in `paths`, each
 /// over a whole turn of the crank in [`Style::samples`] positions (broken where the linkage
-/// cannot be assembled).
+/// cannot be assembled) — over its sweep, from one lock to the other, for a rocking input
+/// ([`Sweep::Rocking`](crate::linkage::Sweep::Rocking)).
 ///
 /// A course of more than [`MAX_PLAN_POSITIONS`] positions is thinned: every k-th position is
 /// drawn (k = ⌈n / [`MAX_PLAN_POSITIONS`]⌉, position 0 among them), each still numbered by
@@ -213,10 +214,25 @@ fn outer_joint(topo: &Topo) -> Option<usize> {
         .find(|&j| !topo.joint_links[j].contains(&0))
 }
 
-/// `n` inputs over a turn from the course's first position in its sense of rotation, or, for
-/// a slider, over the range of the course's inputs.
+/// `n` inputs over a turn from the course's first position in its sense of rotation; for a
+/// rocking input, over its sweep from one end to the other (both ends included); for a
+/// slider, over the range of the course's inputs.
 pub(crate) fn path_inputs(plan: &Plan, course: &Course, n: usize) -> Vec<Motion> {
     let first = course.inputs[0];
+    if let Sweep::Rocking { from, to } = course.sweep {
+        // The way out; the way back retraces it.
+        #[allow(clippy::cast_precision_loss)]
+        return (0..n)
+            .map(|i| {
+                let t = i as f64 / (n - 1).max(1) as f64;
+                Motion::fixed(if i + 1 == n {
+                    to
+                } else {
+                    from + t * (to - from)
+                })
+            })
+            .collect();
+    }
     if plan.input_is_crank() {
         let w = if first.rate == 0.0 { 1.0 } else { first.rate };
         uniform_inputs(n, first.value, w, 0.0)

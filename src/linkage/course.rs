@@ -1,5 +1,6 @@
 //! The positions of a course project's plans: the inputs of a cycle in the order the input
-//! reaches them, and the inputs of the output's extreme positions.
+//! reaches them, the inputs of the output's extreme positions, and how the input moves — a
+//! full turn, or rocking between the angles where the linkage locks.
 
 use super::cycle::{course_inputs, uniform_inputs};
 use super::description::Output;
@@ -27,8 +28,40 @@ pub struct Course {
     /// The inputs of the positions, in the order the input reaches them (φ1, ω1, ε1 for a
     /// crank; s, ṡ, s̈ for a slider).
     pub inputs: Vec<Motion>,
-    /// The inputs of the extreme positions of the output (empty when there is none).
+    /// The inputs of the extreme positions of the output (empty when there is none); for a
+    /// rocking input, the two ends of its sweep, where every link reverses, with the positions
+    /// between where the output stands still.
     pub extremes: Vec<Motion>,
+    /// How the input moves over the course: a full turn, rocking over a range, or positions
+    /// given by hand.
+    pub sweep: Sweep,
+}
+
+/// How the input moves over a [`Course`].
+///
+/// # Examples
+/// The bundled four-bar's crank turns fully:
+/// ```
+/// use tmm::linkage::{bundled, Course, Plan, Sweep};
+/// let plan = Plan::new(&bundled::four_bar())?;
+/// assert_eq!(Course::new(&plan, None, 12, 10.0)?.sweep, Sweep::Turn);
+/// # Ok::<(), tmm::Error>(())
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Sweep {
+    /// The crank turns fully: the course's positions cover one turn.
+    Turn,
+    /// The input rocks: from the angle `from` to the angle `to` and back, rad. For an input
+    /// that cannot turn fully these are the angles where the linkage locks
+    /// ([`Plan::lock_positions`]); the input stops and reverses there.
+    Rocking {
+        /// The angle where the course starts, and the input reverses to come back, rad.
+        from: f64,
+        /// The angle where the input reverses on the way out, rad.
+        to: f64,
+    },
+    /// The positions were given by hand (a slider's positions, or any list of inputs).
+    Given,
 }
 
 impl Course {
@@ -36,6 +69,15 @@ impl Course {
     /// (negative: clockwise). With an `output`, they start at the beginning of its working
     /// stroke and its two extreme positions are kept; without, they start at the reference
     /// pose.
+    ///
+    /// An input that cannot turn fully (a rocker input: the linkage locks at two angles,
+    /// [`Plan::lock_positions`]) rocks between its lock angles instead, as the mechanism runs:
+    /// the course is [`Course::rocking`] from the lower lock to the upper one and back (from the
+    /// upper for a negative `speed`), and [`Sweep::Rocking`] says so and holds the lock angles.
+    /// Its extremes are the two locks, where every link reverses, and, with an `output`, the
+    /// inputs between them where the output stands still (its first transfer function changes
+    /// sign; found on 360 positions, each refined by bisection), in the order the input
+    /// reaches them on the way out.
     ///
     /// # Errors
     /// [`Error::OutOfRange`] for `n` outside [1, [`MAX_POSITIONS`]]; [`Error::NonFinite`] for
@@ -71,10 +113,24 @@ impl Course {
                     .to_owned(),
             });
         }
+        if let Some((lo, hi)) = plan.lock_positions(plan.reference_input())? {
+            let (from, to) = if speed < 0.0 { (hi, lo) } else { (lo, hi) };
+            let mut course = Self::rocking_between(from, to, n, speed.abs());
+            if let Some(output) = output {
+                plan.output(output, Motion::fixed(plan.reference_input()))?;
+                let w = if to > from { speed.abs() } else { -speed.abs() };
+                let still = stationary(plan, output, from, to);
+                course
+                    .extremes
+                    .splice(1..1, still.into_iter().map(|q| Motion::new(q, w, 0.0)));
+            }
+            return Ok(course);
+        }
         let Some(output) = output else {
             return Ok(Self {
                 inputs: uniform_inputs(n, plan.reference_input(), speed, 0.0),
                 extremes: Vec::new(),
+                sweep: Sweep::Turn,
             });
         };
         let rotation = if speed < 0.0 {
@@ -89,7 +145,127 @@ impl Course {
                 Motion::new(strokes.start, speed, 0.0),
                 Motion::new(strokes.end, speed, 0.0),
             ],
+            sweep: Sweep::Turn,
         })
+    }
+
+    /// `n` positions of an input rocking from the angle `from` to `to` and back at |`speed`|
+    /// rad/s: ⌊n/2⌋ + 1 equally spaced from `from` to `to` (both ends exactly), then the
+    /// remaining ones equally spaced on the way back, ends left out. At the two ends the input
+    /// reverses: their rate is zero (a rocking drive stops there), elsewhere ±|`speed|`; the
+    /// accelerations are zero. The extremes are the two ends.
+    ///
+    /// A range the input cannot sweep is refused: it must lie within the lock positions
+    /// through `from`, when the input cannot turn fully.
+    ///
+    /// # Errors
+    /// [`Error::OutOfRange`] for `n` outside [1, [`MAX_POSITIONS`]]; [`Error::NonFinite`]
+    /// for a non-finite `from`, `to` or `speed`, [`Error::NonPositive`] for a zero speed or an
+    /// empty range (`from` = `to`); [`Error::Description`] for a slider input; the linkage's
+    /// error at `from`; [`Error::OutOfRange`] (`"end of the rocking range"`) for a `to`
+    /// beyond the lock positions.
+    ///
+    /// # Examples
+    /// The bundled four-bar's crank rocking over a quarter turn, 8 positions:
+    /// ```
+    /// use tmm::linkage::{bundled, Course, Plan, Sweep};
+    /// let plan = Plan::new(&bundled::four_bar())?;
+    /// let course = Course::rocking(&plan, 0.0, 1.5, 8, 10.0)?;
+    /// let q: Vec<f64> = course.inputs.iter().map(|m| m.value).collect();
+    /// assert_eq!(q[0], 0.0);
+    /// assert_eq!(q[4], 1.5); // the turning point
+    /// assert!(q[5] < 1.5 && q[7] > 0.0);
+    /// assert_eq!((course.inputs[0].rate, course.inputs[1].rate, course.inputs[5].rate), (0.0, 10.0, -10.0));
+    /// assert_eq!(course.sweep, Sweep::Rocking { from: 0.0, to: 1.5 });
+    /// # Ok::<(), tmm::Error>(())
+    /// ```
+    pub fn rocking(plan: &Plan, from: f64, to: f64, n: usize, speed: f64) -> Result<Self> {
+        check_count(n)?;
+        crate::error::all_finite(&[("from", from), ("to", to), ("speed", speed)])?;
+        if speed == 0.0 {
+            return Err(Error::NonPositive {
+                name: "|speed| of a course",
+                value: speed,
+            });
+        }
+        if from == to {
+            return Err(Error::NonPositive {
+                name: "|to − from| of a rocking course",
+                value: 0.0,
+            });
+        }
+        if !plan.input_is_crank() {
+            return Err(Error::Description {
+                item: "field input".to_owned(),
+                problem: "a rocking course needs a crank (a rotating input); give a slider's \
+                          positions as a Course by hand"
+                    .to_owned(),
+            });
+        }
+        if let Some((lo, hi)) = plan.lock_positions(from)?
+            && !(lo..=hi).contains(&to)
+        {
+            return Err(Error::OutOfRange {
+                name: "end of the rocking range",
+                value: to,
+                min: lo,
+                max: hi,
+                ends: crate::Ends::Closed,
+            });
+        }
+        Ok(Self::rocking_between(from, to, n, speed.abs()))
+    }
+
+    /// The positions of [`Course::rocking`], the inputs checked.
+    fn rocking_between(from: f64, to: f64, n: usize, speed: f64) -> Self {
+        let w = if to > from { speed } else { -speed };
+        let out = n / 2 + 1;
+        let back = n.saturating_sub(out);
+        let mut inputs = Vec::with_capacity(n);
+        #[allow(clippy::cast_precision_loss)]
+        for k in 0..out.min(n) {
+            let m = if k == 0 {
+                Motion::fixed(from)
+            } else if k + 1 == out {
+                Motion::fixed(to)
+            } else {
+                Motion::new(from + (to - from) * k as f64 / (out - 1) as f64, w, 0.0)
+            };
+            inputs.push(m);
+        }
+        #[allow(clippy::cast_precision_loss)]
+        for k in 1..=back {
+            inputs.push(Motion::new(
+                to + (from - to) * k as f64 / (back + 1) as f64,
+                -w,
+                0.0,
+            ));
+        }
+        Self {
+            inputs,
+            extremes: vec![Motion::fixed(from), Motion::fixed(to)],
+            sweep: Sweep::Rocking { from, to },
+        }
+    }
+
+    /// A course of positions given by hand ([`Sweep::Given`]), without extremes: a slider's
+    /// positions, or any inputs.
+    ///
+    /// # Examples
+    /// ```
+    /// use tmm::kinematics::Motion;
+    /// use tmm::linkage::{Course, Sweep};
+    /// let course = Course::given(vec![Motion::new(0.01, 0.5, 0.0), Motion::new(0.02, 0.5, 0.0)]);
+    /// assert_eq!(course.sweep, Sweep::Given);
+    /// assert!(course.extremes.is_empty());
+    /// ```
+    #[must_use]
+    pub fn given(inputs: Vec<Motion>) -> Self {
+        Self {
+            inputs,
+            extremes: Vec::new(),
+            sweep: Sweep::Given,
+        }
     }
 
     /// Checks the course: at least one position, at most [`MAX_POSITIONS`], every input and
@@ -103,7 +279,7 @@ impl Course {
     /// ```
     /// use tmm::kinematics::Motion;
     /// use tmm::linkage::Course;
-    /// let course = Course { inputs: vec![Motion::new(f64::NAN, 1.0, 0.0)], extremes: vec![] };
+    /// let course = Course::given(vec![Motion::new(f64::NAN, 1.0, 0.0)]);
     /// assert!(course.check().is_err());
     /// ```
     pub fn check(&self) -> Result<()> {
@@ -111,6 +287,43 @@ impl Course {
         check_finite(&self.inputs)?;
         check_finite(&self.extremes)
     }
+}
+
+/// The inputs strictly between `from` and `to` where `output` stands still: where its first
+/// transfer function changes sign between two of 360 positions (the middles of equal steps,
+/// the locks at the ends left out), bisected to the last bits; in order from `from`.
+/// Positions that cannot be solved are passed over.
+fn stationary(plan: &Plan, output: &Output, from: f64, to: f64) -> Vec<f64> {
+    const SAMPLES: u32 = 360;
+    let slope = |q: f64| plan.transfer(output, q).ok().map(|m| m.rate);
+    let mut found = Vec::new();
+    let mut prev: Option<(f64, f64)> = None;
+    for i in 0..SAMPLES {
+        let q = from + (to - from) * (f64::from(i) + 0.5) / f64::from(SAMPLES);
+        let Some(r) = slope(q) else {
+            prev = None;
+            continue;
+        };
+        if let Some((q0, r0)) = prev
+            && (r0 > 0.0) != (r > 0.0)
+        {
+            let (mut a, mut b, up) = (q0, q, r0 > 0.0);
+            loop {
+                let m = 0.5 * (a + b);
+                if m == a || m == b {
+                    break;
+                }
+                match slope(m) {
+                    Some(rm) if (rm > 0.0) == up => a = m,
+                    Some(_) => b = m,
+                    None => break,
+                }
+            }
+            found.push(0.5 * (a + b));
+        }
+        prev = Some((q, r));
+    }
+    found
 }
 
 /// 1 ≤ n ≤ MAX_POSITIONS.

@@ -52,7 +52,7 @@ pub(crate) mod solve;
 mod structure;
 mod table;
 
-pub use course::Course;
+pub use course::{Course, Sweep};
 #[cfg(feature = "rayon")]
 pub use cycle::run_cycle_parallel;
 pub use cycle::{course_inputs, run_cycle, try_course_inputs, try_uniform_inputs, uniform_inputs};

@@ -645,3 +645,200 @@ fn a_bad_gear_drive_names_its_input() {
         "{e}"
     );
 }
+
+/// A four-bar whose input cannot turn fully (a triple rocker: input 0.6, coupler 0.5, rocker
+/// 0.7 on a frame of 1.0 m; s + l = 1.6 > p + q = 1.2, Grashof fails), in the pose with the
+/// input at 90°.
+fn rocker_input_four_bar() -> Linkage {
+    let (o1, a, o3): ([f64; 2], [f64; 2], [f64; 2]) = ([0.0, 0.0], [0.0, 0.6], [1.0, 0.0]);
+    // B 0.5 from A and 0.7 from O3, below the line A→O3.
+    let (ab, bo) = (0.5_f64, 0.7_f64);
+    let d = ((o3[0] - a[0]).powi(2) + (o3[1] - a[1]).powi(2)).sqrt();
+    let x = (ab * ab - bo * bo + d * d) / (2.0 * d);
+    let h = (ab * ab - x * x).sqrt();
+    let u = [(o3[0] - a[0]) / d, (o3[1] - a[1]) / d];
+    let b = [a[0] + x * u[0] + h * u[1], a[1] + x * u[1] - h * u[0]];
+    Linkage {
+        name: "rocker-input four-bar".to_owned(),
+        joints: vec![
+            Joint::revolute("O1", o1),
+            Joint::revolute("A", a),
+            Joint::revolute("B", b),
+            Joint::revolute("O3", o3),
+        ],
+        links: vec![
+            Link::new("frame", &["O1", "O3"]),
+            Link::new("input", &["O1", "A"]).with_mass(Mass::rod(0.5, o1, a)),
+            Link::new("coupler", &["A", "B"]).with_mass(Mass::rod(0.4, a, b)),
+            Link::new("rocker", &["O3", "B"]).with_mass(Mass::rod(0.6, o3, b)),
+        ],
+        input: Input::crank("input"),
+        loads: vec![LoadSpec::Resistance {
+            on: "rocker".to_owned(),
+            forward: 5.0,
+            backward: 5.0,
+            at: None,
+        }],
+        ..Linkage::default()
+    }
+}
+
+#[test]
+fn a_rocking_input_sweeps_exactly_between_its_lock_angles() {
+    use tmm::linkage::{Course, Output, Sweep};
+    let plan = Plan::new(&rocker_input_four_bar()).unwrap();
+    // The locks, by hand: A, B and O3 in line, |A − O3| = 0.5 + 0.7, so
+    // 0.6² + 1 − 2·0.6·cos φ = 1.2²: φ = ±acos(−0.08/1.2).
+    let lock = (-0.08_f64 / 1.2).acos();
+    for (speed, from, to) in [(10.0, -lock, lock), (-4.0, lock, -lock)] {
+        for n in [1, 2, 3, 12, 13, 360] {
+            let course =
+                Course::new(&plan, Some(&Output::Angle("rocker".into())), n, speed).unwrap();
+            let Sweep::Rocking { from: f, to: t } = course.sweep else {
+                panic!("not rocking: {:?}", course.sweep);
+            };
+            assert!(
+                (f - from).abs() < 1e-12 && (t - to).abs() < 1e-12,
+                "{f} {t}"
+            );
+            assert_eq!(course.inputs.len(), n);
+            // It starts at a lock, reaches the other (n ≥ 2) and comes back, every position
+            // inside the range and assembled.
+            assert_eq!(course.inputs[0].value, f);
+            if n >= 2 {
+                assert_eq!(course.inputs[n / 2].value, t);
+            }
+            let (lo, hi) = (f.min(t), f.max(t));
+            for (k, m) in course.inputs.iter().enumerate() {
+                assert!(lo <= m.value && m.value <= hi, "{k}: {m:?}");
+                let a = plan.analyse(*m).unwrap();
+                assert!(a.worst_residual() < 1e-9, "{k}: {}", a.worst_residual());
+                // The input moves towards `to` on the way out, back towards `from` after.
+                let out = k < n / 2 + 1;
+                let expect = if k == 0 || k == n / 2 {
+                    0.0
+                } else if out {
+                    (t - f).signum() * speed.abs()
+                } else {
+                    -(t - f).signum() * speed.abs()
+                };
+                assert_eq!(m.rate, expect, "{k} of {n}");
+            }
+            // The extremes: the two locks, and between them where the rocker stands still;
+            // the rocker's angle over the whole sweep lies between its values there.
+            let e = &course.extremes;
+            assert_eq!(e.len(), 3, "{e:?}"); // one turning point of the rocker on the way
+            assert_eq!((e[0], e[2]), (Motion::fixed(f), Motion::fixed(t)));
+            let rocker = Output::Angle("rocker".into());
+            let psi = |q: f64| plan.transfer(&rocker, q).unwrap();
+            for m in &e[1..e.len() - 1] {
+                assert!(psi(m.value).rate.abs() < 1e-9, "{m:?}: {:?}", psi(m.value));
+            }
+            let at: Vec<f64> = e.iter().map(|m| psi(m.value).value).collect();
+            let (lo_psi, hi_psi) = at
+                .iter()
+                .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &x| {
+                    (a.min(x), b.max(x))
+                });
+            for k in 0..=1000 {
+                let q = lo + (hi - lo) * f64::from(k) / 1000.0;
+                let v = psi(q).value;
+                assert!(lo_psi - 1e-12 <= v && v <= hi_psi + 1e-12, "{q}: {v}");
+            }
+        }
+    }
+    // Past a lock (10⁻⁹ rad beyond the hand-made angle) the linkage does not close.
+    for q in [lock, -lock] {
+        let beyond = q + q.signum() * 1e-9;
+        assert!(plan.kinematics(Motion::fixed(beyond)).is_err());
+    }
+    // A user's range inside the locks; one past them is refused, naming its end.
+    let c = Course::rocking(&plan, 0.0, 1.0, 8, 2.0).unwrap();
+    assert_eq!(c.sweep, Sweep::Rocking { from: 0.0, to: 1.0 });
+    assert_eq!(c.inputs[4].value, 1.0);
+    let e = Course::rocking(&plan, 0.0, 2.0, 8, 2.0).unwrap_err();
+    assert!(e.to_string().contains("end of the rocking range"), "{e}");
+    assert!(Course::rocking(&plan, 0.0, 0.0, 8, 2.0).is_err());
+    assert!(Course::rocking(&plan, 0.0, f64::NAN, 8, 2.0).is_err());
+    assert!(Course::rocking(&plan, 3.0, 0.0, 8, 2.0).is_err()); // 3 rad does not assemble
+                                                                // A crank that turns fully keeps its turn.
+    let crank = Plan::new(&bundled::four_bar()).unwrap();
+    assert_eq!(
+        Course::new(&crank, None, 12, 1.0).unwrap().sweep,
+        Sweep::Turn
+    );
+}
+
+/// A Peaucellier–Lipkin inversor: the crank O1A (0.45 m) turns about O1 = (0.45, 0), so A's
+/// circle passes through the pivot O of the two long links (1.0 m); the rhombus A–C–P–D has
+/// sides of 0.4 m. OA·OP = 1.0² − 0.4² = 0.84 m², so P runs on the line x = 0.84/0.9 m. The
+/// crank cannot turn fully: the linkage locks where |OA| = 1.0 − 0.4, at φ = ±2·acos(2/3).
+/// Joints of three links are two coincident joints (the engine's joints join two links).
+fn peaucellier_lipkin() -> Linkage {
+    let r = 0.45_f64;
+    let (long, side) = (1.0_f64, 0.4_f64);
+    let phi = 1.0_f64;
+    let a = [r + r * phi.cos(), r * phi.sin()];
+    // C and D: where the circle about O of the long links meets the circle about A.
+    let d = a[0].hypot(a[1]);
+    let x = (long * long - side * side + d * d) / (2.0 * d);
+    let h = (long * long - x * x).sqrt();
+    let u = [a[0] / d, a[1] / d];
+    let c = [x * u[0] - h * u[1], x * u[1] + h * u[0]];
+    let dd = [x * u[0] + h * u[1], x * u[1] - h * u[0]];
+    let p = [c[0] + dd[0] - a[0], c[1] + dd[1] - a[1]];
+    Linkage {
+        name: "Peaucellier–Lipkin inversor".to_owned(),
+        joints: vec![
+            Joint::revolute("O", [0.0, 0.0]),
+            Joint::revolute("O'", [0.0, 0.0]),
+            Joint::revolute("O1", [r, 0.0]),
+            Joint::revolute("A", a),
+            Joint::revolute("A'", a),
+            Joint::revolute("C", c),
+            Joint::revolute("C'", c),
+            Joint::revolute("D", dd),
+            Joint::revolute("D'", dd),
+            Joint::revolute("P", p),
+        ],
+        links: vec![
+            Link::new("frame", &["O", "O'", "O1"]),
+            Link::new("crank", &["O1", "A", "A'"]),
+            Link::new("long 1", &["O", "C"]),
+            Link::new("long 2", &["O'", "D"]),
+            Link::new("side AC", &["A", "C", "C'"]),
+            Link::new("side AD", &["A'", "D", "D'"]),
+            Link::new("side CP", &["C'", "P"]),
+            Link::new("side DP", &["D'", "P"]),
+        ],
+        input: Input::crank("crank"),
+        ..Linkage::default()
+    }
+}
+
+#[test]
+fn the_peaucellier_lipkin_crank_rocks_between_its_locks_and_draws_a_straight_line() {
+    use tmm::linkage::{Course, Sweep};
+    let plan = Plan::new(&peaucellier_lipkin()).unwrap();
+    let lock = 2.0 * (2.0_f64 / 3.0).acos();
+    let course = Course::new(&plan, None, 36, 5.0).unwrap();
+    let Sweep::Rocking { from, to } = course.sweep else {
+        panic!("{:?}", course.sweep)
+    };
+    assert!(
+        (from + lock).abs() < 1e-12 && (to - lock).abs() < 1e-12,
+        "{from} {to}"
+    );
+    for m in &course.inputs {
+        let a = plan.kinematics(*m).unwrap();
+        let p = a.joint("P").unwrap();
+        // On the line x = 0.84/0.9 (to 1e-9 m at the locks, where the groups are singular).
+        assert!((p.p.x - 0.84 / 0.9).abs() < 1e-9, "{m:?}: {}", p.p.x);
+        // And its velocity along it.
+        assert!(
+            p.v.x.abs() <= 1e-6 * p.v.norm().max(1.0),
+            "{m:?}: {:?}",
+            p.v
+        );
+    }
+}

@@ -339,9 +339,10 @@ fn hostile_pictures() {
                 let _ = draw::scheme(&plan, input, &style);
                 let _ = draw::forces(&plan, input, &style);
                 let _ = draw::animation(&plan, &[input, g.motion()], g.f(), &style);
+                let inputs = vec![input, g.motion()];
                 let course = Course {
-                    inputs: vec![input, g.motion()],
                     extremes: vec![g.motion()],
+                    ..Course::given(inputs)
                 };
                 let _ = draw::plan_view(&plan, &course, &["B", "nowhere"], &style);
                 let _ = draw::diagram(&plan, &course, &Diagram::Balance, &style);
