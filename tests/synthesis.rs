@@ -649,7 +649,8 @@ mod burmester {
     use proptest::prelude::*;
     use tmm::kinematics::Motion;
     use tmm::synthesis::{
-        burmester, centre_point, centre_point_two, circle_point, four_bar_from_dyads, Dyad, Pose,
+        burmester, centre_point, centre_point_curve, centre_point_two, circle_point,
+        four_bar_from_dyads, Dyad, Pose,
     };
 
     /// The largest miss of the engine's coupler against the poses: |P − P_j| relative to the
@@ -832,5 +833,48 @@ mod burmester {
             matches!(&wrong, Err(Error::NoMechanism { problem, .. }) if problem.contains("does not fit")),
             "{wrong:?}"
         );
+    }
+
+    #[test]
+    fn four_poses_from_the_centre_point_curve() {
+        let poses = [
+            Pose::new([0.0, 0.0], 0.0),
+            Pose::new([0.1, 0.05], 0.3),
+            Pose::new([0.2, 0.05], 0.7),
+            Pose::new([0.28, 0.0], 1.0),
+        ];
+        let dyads = centre_point_curve(&poses, 120).unwrap();
+        assert!(dyads.len() >= 40, "{}", dyads.len());
+        // Every sampled dyad fits the four poses; the curve's centre points are also the
+        // three-pose construction's for their circle points.
+        for d in &dyads {
+            assert!(d.misfit(&poses) < 1e-9 * (1.0 + d.length()), "{d:?}");
+            let three = [poses[0], poses[1], poses[2]];
+            if let Ok(c) = centre_point(&three, d.circle) {
+                let scale = 1.0 + d.length();
+                assert!(
+                    (c.centre[0] - d.centre[0]).hypot(c.centre[1] - d.centre[1]) < 1e-7 * scale
+                );
+            }
+        }
+        // Pairs of dyads of moderate size make four-bars through the four poses.
+        let small: Vec<&Dyad> = dyads
+            .iter()
+            .filter(|d| d.length() < 1.0 && d.centre[0].hypot(d.centre[1]) < 1.5)
+            .collect();
+        let loose = Options::default().with_min_transmission_angle(0.0);
+        let (mut worst, mut cases): (f64, usize) = (0.0, 0);
+        for (i, crank) in small.iter().enumerate() {
+            for rocker in small.iter().skip(i + 1).step_by(3) {
+                if let Ok(s) = four_bar_from_dyads(&poses, crank, rocker, &loose) {
+                    let e = miss(&s, &poses, crank);
+                    assert!(e < 1e-10, "{crank:?} {rocker:?}: {e:e}");
+                    worst = worst.max(e);
+                    cases += 1;
+                }
+            }
+        }
+        assert!(cases >= 5, "{cases} of {} small dyads", small.len());
+        eprintln!("Burmester four poses: {} dyads on the curve, {cases} four-bars, worst miss {worst:.2e}", dyads.len());
     }
 }

@@ -45,7 +45,8 @@ mod quick_return;
 mod search;
 
 pub use burmester::{
-    burmester, centre_point, centre_point_two, circle_point, four_bar_from_dyads, Dyad, Pose,
+    burmester, centre_point, centre_point_curve, centre_point_two, circle_point,
+    four_bar_from_dyads, Dyad, Pose,
 };
 pub use freudenstein::{
     crank_rocker_through, freudenstein_coefficients, function_generator, FunctionGenerator,

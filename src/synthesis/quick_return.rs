@@ -222,40 +222,41 @@ pub fn crank_rocker(need: &CrankRockerRequirement, options: &Options) -> Result<
         positive("frame length", d)?;
     }
     let locus = Locus::new(c, swing, theta);
-    let Some(best) = locus.best(SCAN) else {
-        let bound = largest_feasible(theta, |t| Locus::new(c, swing, t).any(SCAN));
-        return Err(Error::OutOfRange {
-            name: "K",
-            value: need.time_ratio,
-            min: 1.0,
-            max: time_ratio_of(bound),
-            ends: Ends::Open,
-        });
+    // A given frame: where its circle about O3 crosses the locus, the best of those.
+    let given = match need.frame {
+        FrameChoice::Length(d0) => locus
+            .with_frame(d0)
+            .into_iter()
+            .max_by(|x, y| x.gamma_full().0.total_cmp(&y.gamma_full().0)),
+        FrameChoice::BestTransmission => None,
     };
-    let design = match need.frame {
-        FrameChoice::BestTransmission => best,
-        FrameChoice::Length(d0) => {
-            let found = locus.with_frame(d0);
-            let Some(f) = found
-                .into_iter()
-                .max_by(|x, y| x.gamma_full().0.total_cmp(&y.gamma_full().0))
-            else {
-                let nearest = (0..2)
-                    .flat_map(|k| {
-                        (0..4 * SCAN).map(move |i| (k, TAU * i as f64 / (4 * SCAN) as f64))
-                    })
-                    .filter_map(|(k, t)| locus.candidate(k, t))
-                    .map(|f| f.d)
-                    .min_by(|x, y| (x - d0).abs().total_cmp(&(y - d0).abs()))
-                    .unwrap_or(best.d);
-                return Err(Error::Infeasible {
-                    parameter: "frame length O1O3 (m)",
-                    required: d0,
-                    reachable: nearest,
-                });
-            };
-            f
+    let design = if let Some(f) = given {
+        f
+    } else {
+        let Some(best) = locus.best(SCAN) else {
+            let bound = largest_feasible(theta, |t| Locus::new(c, swing, t).any(SCAN));
+            return Err(Error::OutOfRange {
+                name: "K",
+                value: need.time_ratio,
+                min: 1.0,
+                max: time_ratio_of(bound),
+                ends: Ends::Open,
+            });
+        };
+        if let FrameChoice::Length(d0) = need.frame {
+            let nearest = (0..2)
+                .flat_map(|k| (0..4 * SCAN).map(move |i| (k, TAU * i as f64 / (4 * SCAN) as f64)))
+                .filter_map(|(k, t)| locus.candidate(k, t))
+                .map(|f| f.d)
+                .min_by(|x, y| (x - d0).abs().total_cmp(&(y - d0).abs()))
+                .unwrap_or(best.d);
+            return Err(Error::Infeasible {
+                parameter: "frame length O1O3 (m)",
+                required: d0,
+                reachable: nearest,
+            });
         }
+        best
     };
     let report = design.report("crank-rocker", None)?;
     require_transmission(report.min_transmission_angle, required)?;
