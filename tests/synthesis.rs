@@ -40,12 +40,21 @@ fn measured(s: &Synthesis, output: &Output) -> (f64, f64, f64) {
 fn round_trip(s: &Synthesis, output: &Output, k: f64, stroke: f64) -> f64 {
     let (mk, ms, mg) = measured(s, output);
     let r = &s.report;
+    // The engine's transmission angle where the report says γ_min occurs is γ_min.
+    let plan = Plan::new(&s.linkage).unwrap();
+    let there = plan
+        .kinematics(tmm::kinematics::Motion::fixed(r.min_transmission_at))
+        .unwrap();
+    let at = (0..plan.groups().len())
+        .map(|g| there.transmission_angle(g).unwrap())
+        .fold(f64::INFINITY, f64::min);
     let errors = [
         rel(mk, k),
         rel(ms, stroke),
         rel(r.time_ratio.unwrap(), k),
         rel(r.stroke.unwrap(), stroke),
         rel(mg, r.min_transmission_angle),
+        rel(at, r.min_transmission_angle),
     ];
     errors.into_iter().fold(0.0, f64::max)
 }
@@ -271,11 +280,17 @@ fn bad_requirements_name_the_parameter() {
     // γ_min unreachable: the error says the best reachable and by how much it misses.
     let strict = Options::default().with_min_transmission_angle(80f64.to_radians());
     match crank_rocker(&base, &strict) {
-        Err(Error::Infeasible {
-            required,
-            reachable,
-            ..
-        }) => {
+        Err(
+            e @ Error::Infeasible {
+                required,
+                reachable,
+                ..
+            },
+        ) => {
+            let text = e.to_string();
+            let head = "minimum transmission angle (rad) = 1.396 cannot be met";
+            assert!(text.starts_with(head), "{text}");
+            assert!(text.contains("misses by 0."), "{text}");
             let best = crank_rocker(&base, &o)
                 .unwrap()
                 .report
@@ -649,7 +664,8 @@ mod burmester {
     use proptest::prelude::*;
     use tmm::kinematics::Motion;
     use tmm::synthesis::{
-        burmester, centre_point, centre_point_two, circle_point, four_bar_from_dyads, Dyad, Pose,
+        burmester, centre_point, centre_point_curve, centre_point_two, circle_point,
+        four_bar_from_dyads, Dyad, Pose,
     };
 
     /// The largest miss of the engine's coupler against the poses: |P − P_j| relative to the
@@ -832,5 +848,151 @@ mod burmester {
             matches!(&wrong, Err(Error::NoMechanism { problem, .. }) if problem.contains("does not fit")),
             "{wrong:?}"
         );
+    }
+
+    #[test]
+    fn four_poses_from_the_centre_point_curve() {
+        let poses = [
+            Pose::new([0.0, 0.0], 0.0),
+            Pose::new([0.1, 0.05], 0.3),
+            Pose::new([0.2, 0.05], 0.7),
+            Pose::new([0.28, 0.0], 1.0),
+        ];
+        let dyads = centre_point_curve(&poses, 120).unwrap();
+        assert!(dyads.len() >= 40, "{}", dyads.len());
+        // Every sampled dyad fits the four poses; the curve's centre points are also the
+        // three-pose construction's for their circle points.
+        for d in &dyads {
+            assert!(d.misfit(&poses) < 1e-9 * (1.0 + d.length()), "{d:?}");
+            let three = [poses[0], poses[1], poses[2]];
+            if let Ok(c) = centre_point(&three, d.circle) {
+                let scale = 1.0 + d.length();
+                assert!(
+                    (c.centre[0] - d.centre[0]).hypot(c.centre[1] - d.centre[1]) < 1e-7 * scale
+                );
+            }
+        }
+        // Pairs of dyads of moderate size make four-bars through the four poses.
+        let small: Vec<&Dyad> = dyads
+            .iter()
+            .filter(|d| d.length() < 1.0 && d.centre[0].hypot(d.centre[1]) < 1.5)
+            .collect();
+        let loose = Options::default().with_min_transmission_angle(0.0);
+        let (mut worst, mut cases): (f64, usize) = (0.0, 0);
+        for (i, crank) in small.iter().enumerate() {
+            for rocker in small.iter().skip(i + 1).step_by(3) {
+                if let Ok(s) = four_bar_from_dyads(&poses, crank, rocker, &loose) {
+                    let e = miss(&s, &poses, crank);
+                    assert!(e < 1e-10, "{crank:?} {rocker:?}: {e:e}");
+                    worst = worst.max(e);
+                    cases += 1;
+                }
+            }
+        }
+        assert!(cases >= 5, "{cases} of {} small dyads", small.len());
+        eprintln!("Burmester four poses: {} dyads on the curve, {cases} four-bars, worst miss {worst:.2e}", dyads.len());
+    }
+}
+
+/// Hostile requirements: any numbers (huge, tiny, zero, negative, NaN, infinite) give an
+/// answer whose every number is finite, or an error — never a panic.
+mod hostile {
+    use super::*;
+    use proptest::prelude::*;
+    use tmm::synthesis::{
+        burmester, centre_point_curve, crank_rocker_through, function_generator,
+        FunctionRequirement, Pose, Spacing,
+    };
+
+    fn wild() -> impl Strategy<Value = f64> {
+        prop_oneof![
+            -1e300..1e300f64,
+            Just(f64::NAN),
+            Just(f64::INFINITY),
+            Just(f64::NEG_INFINITY),
+            Just(0.0),
+            1e-300..1e-290f64,
+            -10.0..10.0f64,
+            0.0..4.0f64,
+            1.0..3.0f64,
+        ]
+    }
+
+    fn finite_answer(r: &tmm::Result<Synthesis>) -> bool {
+        match r {
+            Err(e) => !e.to_string().is_empty(),
+            Ok(s) => {
+                let rep = &s.report;
+                s.linkage
+                    .joints
+                    .iter()
+                    .all(|j| j.at.iter().all(|x| x.is_finite()))
+                    && rep.time_ratio.is_none_or(f64::is_finite)
+                    && rep.stroke.is_none_or(f64::is_finite)
+                    && (0.0..=std::f64::consts::FRAC_PI_2).contains(&rep.min_transmission_angle)
+                    && rep.min_transmission_at.is_finite()
+                    && rep
+                        .dimensions
+                        .iter()
+                        .all(|(_, x)| x.is_finite() && *x > 0.0)
+                    && Plan::new(&s.linkage).is_ok()
+            }
+        }
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(96))]
+
+        #[test]
+        fn quick_return(x in [wild(), wild(), wild(), wild()], given in any::<bool>(), g in wild()) {
+            let o = Options::default().with_min_transmission_angle(g.clamp(0.0, 1.0));
+            let frame = if given { FrameChoice::Length(x[3]) } else { FrameChoice::BestTransmission };
+            let r = crank_rocker(&CrankRockerRequirement { rocker: x[0], swing: x[1], time_ratio: x[2], frame }, &o);
+            prop_assert!(finite_answer(&r), "{:?}", r);
+            let offset = if given { OffsetChoice::Given(x[3]) } else { OffsetChoice::BestTransmission };
+            let r = slider_crank(&SliderCrankRequirement { stroke: x[0], time_ratio: x[2], offset }, &o);
+            prop_assert!(finite_answer(&r), "{:?}", r);
+            let r = shaper(&ShaperRequirement { stroke: x[0], time_ratio: x[2], centre_distance: x[3] }, &o);
+            prop_assert!(finite_answer(&r), "{:?}", r);
+        }
+
+        #[test]
+        fn freudenstein(x in proptest::collection::vec(wild(), 11), n in 0usize..8) {
+            let o = Options::default().with_min_transmission_angle(0.0);
+            let pairs = [(x[0], x[1]), (x[2], x[3]), (x[4], x[5])];
+            let r = crank_rocker_through(x[6], &pairs[..n.clamp(0, 3)], &o);
+            prop_assert!(finite_answer(&r), "{:?}", r);
+            let need = FunctionRequirement {
+                x_range: [x[0], x[1]],
+                crank_range: [x[2], x[3]],
+                rocker_range: [x[4], x[5]],
+                frame: x[6],
+                spacing: if n < 4 { Spacing::Chebyshev } else { Spacing::LeastSquares(n) },
+            };
+            let r = function_generator(|t| t.sin() + x[7] * t, &need, &o);
+            if let Ok(g) = &r {
+                let curve = g.structural_error(|t| t.sin() + x[7] * t, 17);
+                if let Ok(c) = curve {
+                    prop_assert!(c.iter().all(|p| p.error.is_finite() && p.generated.is_finite()));
+                }
+            }
+            prop_assert!(finite_answer(&r.map(|g| g.synthesis)));
+        }
+
+        #[test]
+        fn motion(x in proptest::collection::vec(wild(), 16)) {
+            let o = Options::default().with_min_transmission_angle(0.0);
+            let poses = [
+                Pose::new([x[0], x[1]], x[2]),
+                Pose::new([x[3], x[4]], x[5]),
+                Pose::new([x[6], x[7]], x[8]),
+            ];
+            let r = burmester(&poses, [x[9], x[10]], [x[11], x[12]], &o);
+            prop_assert!(finite_answer(&r), "{:?}", r);
+            let four = [poses[0], poses[1], poses[2], Pose::new([x[13], x[14]], x[15])];
+            if let Ok(dyads) = centre_point_curve(&four, 16) {
+                prop_assert!(dyads.iter().all(|d| d.centre.iter().chain(&d.circle).all(|v| v.is_finite())));
+            }
+        }
     }
 }

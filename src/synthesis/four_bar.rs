@@ -67,6 +67,20 @@ impl FourBar {
         }
     }
 
+    /// The same four-bar (in Freudenstein's frame) with every length times `k`.
+    pub fn scaled(&self, k: f64) -> Result<Self> {
+        let mut out = *self;
+        for (name, x) in [
+            ("the frame", &mut out.d),
+            ("the crank", &mut out.a),
+            ("the coupler", &mut out.b),
+            ("the rocker", &mut out.c),
+        ] {
+            *x = crate::error::positive(name, crate::error::computed(name, *x * k)?)?;
+        }
+        Ok(out)
+    }
+
     fn world(&self, p: V) -> V {
         let (s, c) = self.delta.sin_cos();
         self.o1 + V::new(c * p.x - s * p.y, s * p.x + c * p.y)

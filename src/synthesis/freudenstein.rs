@@ -14,7 +14,7 @@
 
 use super::four_bar::FourBar;
 use super::search::maximise;
-use super::{check, require_transmission, Options, Synthesis};
+use super::{check, require_transmission, Options, Synthesis, MAX_POINTS};
 use crate::angle::normalize;
 use crate::error::{finite, positive, Ends, Error, Result};
 use crate::kinematics::Grashof;
@@ -283,16 +283,19 @@ pub fn crank_rocker_through(
 
 /// Where the precision points of a [`function_generator`] lie.
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub enum Spacing {
     /// Three precision points at Chebyshev spacing, met exactly.
     Chebyshev,
-    /// Least squares over N points at Chebyshev spacing (N ≥ 3; N = 3 is [`Spacing::Chebyshev`]).
+    /// Least squares over N points at Chebyshev spacing (3 ≤ N ≤ [`MAX_POINTS`]; N = 3 is
+    /// [`Spacing::Chebyshev`]).
     LeastSquares(usize),
 }
 
 /// What a [`function_generator`] must do: the crank angle is a linear image of x, the rocker
 /// angle one of y = f(x).
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct FunctionRequirement {
     /// [x0, x1], the range of x (x0 ≠ x1).
     pub x_range: [f64; 2],
@@ -309,6 +312,7 @@ pub struct FunctionRequirement {
 /// A synthesised function generator: the four-bar, the linear maps between (x, y) and
 /// (φ, ψ), Freudenstein's coefficients and the precision points.
 #[derive(Debug, Clone, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize))]
 pub struct FunctionGenerator {
     /// The four-bar and its report (γ_min over the crank's range).
     pub synthesis: Synthesis,
@@ -324,6 +328,7 @@ pub struct FunctionGenerator {
 
 /// One point of the structural error curve.
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct StructuralError {
     /// x.
     pub x: f64,
@@ -358,19 +363,19 @@ impl FunctionGenerator {
     /// rocker angle at φ(x), mapped back to y, against f(x).
     ///
     /// # Errors
-    /// [`Error::OutOfRange`] for n < 2; the engine's error at a position where the four-bar
+    /// [`Error::OutOfRange`] for n outside [2, [`MAX_POINTS`]]; the engine's error at a position where the four-bar
     /// does not assemble; [`Error::NonFinite`] where f is not finite.
     pub fn structural_error<F: Fn(f64) -> f64>(
         &self,
         f: F,
         n: usize,
     ) -> Result<Vec<StructuralError>> {
-        if n < 2 {
+        if !(2..=MAX_POINTS).contains(&n) {
             return Err(Error::OutOfRange {
                 name: "n",
                 value: n as f64,
                 min: 2.0,
-                max: f64::INFINITY,
+                max: MAX_POINTS as f64,
                 ends: Ends::Closed,
             });
         }
@@ -441,7 +446,7 @@ impl FunctionGenerator {
 /// # Errors
 /// [`Error::NonFinite`] for a non-finite number in the requirement or f;
 /// [`Error::NonPositive`] for the frame; [`Error::OutOfRange`] (`"N"`) for fewer than three
-/// least-squares points; [`Error::NoMechanism`] for x0 = x1, f(x0) = f(x1), a zero crank or
+/// least-squares points or more than [`MAX_POINTS`]; [`Error::NoMechanism`] for x0 = x1, f(x0) = f(x1), a zero crank or
 /// rocker range, a negative length, a branch defect, or a four-bar that does not assemble
 /// over the range; [`Error::Singular`] for a degenerate system; [`Error::Infeasible`] for
 /// γ_min below \[γ\].
@@ -464,14 +469,14 @@ pub fn function_generator<F: Fn(f64) -> f64>(
     let d = positive("frame", need.frame)?;
     let n = match need.spacing {
         Spacing::Chebyshev => 3,
-        Spacing::LeastSquares(n) if n < 3 => {
+        Spacing::LeastSquares(n) if !(3..=MAX_POINTS).contains(&n) => {
             return Err(Error::OutOfRange {
                 name: "N",
                 value: n as f64,
                 min: 3.0,
-                max: f64::INFINITY,
+                max: MAX_POINTS as f64,
                 ends: Ends::Closed,
-            })
+            });
         }
         Spacing::LeastSquares(n) => n,
     };

@@ -45,7 +45,8 @@ mod quick_return;
 mod search;
 
 pub use burmester::{
-    burmester, centre_point, centre_point_two, circle_point, four_bar_from_dyads, Dyad, Pose,
+    burmester, centre_point, centre_point_curve, centre_point_two, circle_point,
+    four_bar_from_dyads, Dyad, Pose,
 };
 pub use freudenstein::{
     crank_rocker_through, freudenstein_coefficients, function_generator, FunctionGenerator,
@@ -61,8 +62,13 @@ use crate::kinematics::Grashof;
 use crate::linkage::Linkage;
 use std::fmt;
 
+/// The most points a least-squares fit, a structural error curve or a sampled centre-point
+/// curve takes (10⁶): more would only allocate without changing the answer.
+pub const MAX_POINTS: usize = 1_000_000;
+
 /// Options common to the synthesis methods.
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 #[non_exhaustive]
 pub struct Options {
     /// \[γ\], the smallest transmission angle the mechanism must keep over its motion, rad, in
@@ -103,6 +109,7 @@ impl Options {
 
 /// A synthesised mechanism: its description for the engine and what it achieves.
 #[derive(Debug, Clone, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize))]
 pub struct Synthesis {
     /// The description, in a reference pose where it assembles in the designed mode.
     pub linkage: Linkage,
@@ -112,6 +119,7 @@ pub struct Synthesis {
 
 /// What a synthesised mechanism achieves, computed in closed form from its dimensions.
 #[derive(Debug, Clone, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize))]
 #[non_exhaustive]
 pub struct Report {
     /// The kind of mechanism (for example `"crank-rocker"`).

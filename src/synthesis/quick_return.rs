@@ -16,6 +16,7 @@ type V = Vector2<f64>;
 
 /// Where the crank's pivot of a [`crank_rocker`] goes on its locus circle.
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub enum FrameChoice {
     /// At this distance from the rocker's pivot (the frame O1O3), m.
     Length(f64),
@@ -25,6 +26,7 @@ pub enum FrameChoice {
 
 /// What a [`crank_rocker`] must do.
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct CrankRockerRequirement {
     /// l_O3B, the rocker, m (> 0).
     pub rocker: f64,
@@ -221,42 +223,45 @@ pub fn crank_rocker(need: &CrankRockerRequirement, options: &Options) -> Result<
     if let FrameChoice::Length(d) = need.frame {
         positive("frame length", d)?;
     }
-    let locus = Locus::new(c, swing, theta);
-    let Some(best) = locus.best(SCAN) else {
-        let bound = largest_feasible(theta, |t| Locus::new(c, swing, t).any(SCAN));
-        return Err(Error::OutOfRange {
-            name: "K",
-            value: need.time_ratio,
-            min: 1.0,
-            max: time_ratio_of(bound),
-            ends: Ends::Open,
-        });
+    // The problem is similar in scale: solved for a rocker of 1, scaled by c at the end.
+    let locus = Locus::new(1.0, swing, theta);
+    // A given frame: where its circle about O3 crosses the locus, the best of those.
+    let given = match need.frame {
+        FrameChoice::Length(d0) => locus
+            .with_frame(d0 / c)
+            .into_iter()
+            .max_by(|x, y| x.gamma_full().0.total_cmp(&y.gamma_full().0)),
+        FrameChoice::BestTransmission => None,
     };
-    let design = match need.frame {
-        FrameChoice::BestTransmission => best,
-        FrameChoice::Length(d0) => {
-            let found = locus.with_frame(d0);
-            let Some(f) = found
-                .into_iter()
-                .max_by(|x, y| x.gamma_full().0.total_cmp(&y.gamma_full().0))
-            else {
-                let nearest = (0..2)
-                    .flat_map(|k| {
-                        (0..4 * SCAN).map(move |i| (k, TAU * i as f64 / (4 * SCAN) as f64))
-                    })
-                    .filter_map(|(k, t)| locus.candidate(k, t))
-                    .map(|f| f.d)
-                    .min_by(|x, y| (x - d0).abs().total_cmp(&(y - d0).abs()))
-                    .unwrap_or(best.d);
-                return Err(Error::Infeasible {
-                    parameter: "frame length O1O3 (m)",
-                    required: d0,
-                    reachable: nearest,
-                });
-            };
-            f
+    let design = if let Some(f) = given {
+        f
+    } else {
+        let Some(best) = locus.best(SCAN) else {
+            let bound = largest_feasible(theta, |t| Locus::new(1.0, swing, t).any(SCAN));
+            return Err(Error::OutOfRange {
+                name: "K",
+                value: need.time_ratio,
+                min: 1.0,
+                max: time_ratio_of(bound),
+                ends: Ends::Open,
+            });
+        };
+        if let FrameChoice::Length(d0) = need.frame {
+            let nearest = (0..2)
+                .flat_map(|k| (0..4 * SCAN).map(move |i| (k, TAU * i as f64 / (4 * SCAN) as f64)))
+                .filter_map(|(k, t)| locus.candidate(k, t))
+                .map(|f| f.d)
+                .min_by(|x, y| (x - d0 / c).abs().total_cmp(&(y - d0 / c).abs()))
+                .unwrap_or(best.d);
+            return Err(Error::Infeasible {
+                parameter: "frame length O1O3 (m)",
+                required: d0,
+                reachable: nearest * c,
+            });
         }
+        best
     };
+    let design = design.scaled(c)?;
     let report = design.report("crank-rocker", None)?;
     require_transmission(report.min_transmission_angle, required)?;
     let linkage = design.linkage(
@@ -271,6 +276,7 @@ pub fn crank_rocker(need: &CrankRockerRequirement, options: &Options) -> Result<
 
 /// Where the guide of a [`slider_crank`] goes.
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub enum OffsetChoice {
     /// At this distance e above the crank's pivot, m (> 0: a central slider-crank has K = 1).
     Given(f64),
@@ -280,6 +286,7 @@ pub enum OffsetChoice {
 
 /// What a [`slider_crank`] must do.
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct SliderCrankRequirement {
     /// H, the slider's stroke, m (> 0).
     pub stroke: f64,
@@ -358,17 +365,18 @@ pub fn slider_crank(need: &SliderCrankRequirement, options: &Options) -> Result<
     if theta >= FRAC_PI_2 {
         return Err(out_of_range(3.0));
     }
+    // Similar in scale: solved for H = 1 (the offset e/H), scaled by H at the end.
     let e = match need.offset {
         OffsetChoice::Given(e) => {
-            let e = positive("offset", e)?;
-            if slider_design(h, theta, e).is_none() {
-                return Err(out_of_range(time_ratio_of((h / e).atan())));
+            let e = positive("offset", e)? / h;
+            if slider_design(1.0, theta, e).is_none() {
+                return Err(out_of_range(time_ratio_of(e.recip().atan())));
             }
             e
         }
         OffsetChoice::BestTransmission => {
-            let top = h / theta.tan();
-            let f = |e: f64| slider_design(h, theta, e).map(|(a, b, _)| slider_gamma(a, b, e));
+            let top = 1.0 / theta.tan();
+            let f = |e: f64| slider_design(1.0, theta, e).map(|(a, b, _)| slider_gamma(a, b, e));
             maximise(f, 1e-9 * top, top * (1.0 - 1e-9), SCAN)
                 .map(|(e, _)| e)
                 .ok_or(Error::Overflow {
@@ -376,9 +384,16 @@ pub fn slider_crank(need: &SliderCrankRequirement, options: &Options) -> Result<
                 })?
         }
     };
-    let (a, b, x1) = slider_design(h, theta, e).ok_or(Error::Overflow {
+    let (a, b, x1) = slider_design(1.0, theta, e).ok_or(Error::Overflow {
         what: "the slider-crank's dimensions",
     })?;
+    let (a, b, x1, e) = (a * h, b * h, x1 * h, e * h);
+    for x in [a, b, x1, e] {
+        positive(
+            "a dimension of the slider-crank",
+            crate::error::computed("a dimension of the slider-crank", x)?,
+        )?;
+    }
     // The report from the dimensions alone: the dead centres at |O1B| = b ± a on y = e.
     let far = ((a + b).powi(2) - e * e).sqrt();
     let near = ((b - a).powi(2) - e * e).sqrt();
@@ -426,6 +441,7 @@ pub fn slider_crank(need: &SliderCrankRequirement, options: &Options) -> Result<
 
 /// What a [`shaper`] must do.
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct ShaperRequirement {
     /// H, the ram's stroke, m (> 0).
     pub stroke: f64,

@@ -1,0 +1,119 @@
+//! Benches of kinematic synthesis: the closed forms against the searches that choose a free
+//! parameter for the best transmission (a crank-rocker on its locus circle, a slider-crank's
+//! offset), and Freudenstein's function generation over N least-squares points (3 to 3000,
+//! throughput per point, so a linear cost shows as a flat rate), each from requirement to an
+//! accepted description (the engine plans every answer); and the centre-point curve of four
+//! poses over N samples.
+
+use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion, Throughput};
+use std::f64::consts::{FRAC_PI_2, FRAC_PI_6};
+use std::hint::black_box;
+use std::time::Duration;
+use tmm::synthesis::{
+    burmester, centre_point_curve, crank_rocker, function_generator, shaper, slider_crank,
+    CrankRockerRequirement, FrameChoice, FunctionRequirement, OffsetChoice, Options, Pose,
+    ShaperRequirement, SliderCrankRequirement, Spacing,
+};
+
+fn quick_return(c: &mut Criterion) {
+    let loose = Options::default().with_min_transmission_angle(0.0);
+    let mut g = c.benchmark_group("synthesis_by_k");
+    g.measurement_time(Duration::from_secs(2))
+        .warm_up_time(Duration::from_millis(500))
+        .sample_size(20);
+    let need = CrankRockerRequirement {
+        rocker: 0.3,
+        swing: 0.8,
+        time_ratio: 1.25,
+        frame: FrameChoice::BestTransmission,
+    };
+    g.bench_function("crank_rocker_best_frame", |b| {
+        b.iter(|| black_box(crank_rocker(black_box(&need), &loose).unwrap()));
+    });
+    let d = crank_rocker(&need, &loose)
+        .unwrap()
+        .report
+        .dimension("frame")
+        .unwrap();
+    let given = CrankRockerRequirement {
+        frame: FrameChoice::Length(1.02 * d),
+        ..need
+    };
+    g.bench_function("crank_rocker_given_frame", |b| {
+        b.iter(|| black_box(crank_rocker(black_box(&given), &loose).unwrap()));
+    });
+    for (name, offset) in [
+        ("slider_crank_best_offset", OffsetChoice::BestTransmission),
+        ("slider_crank_given_offset", OffsetChoice::Given(0.05)),
+    ] {
+        let need = SliderCrankRequirement {
+            stroke: 0.2,
+            time_ratio: 1.3,
+            offset,
+        };
+        g.bench_function(name, |b| {
+            b.iter(|| black_box(slider_crank(black_box(&need), &loose).unwrap()));
+        });
+    }
+    let need = ShaperRequirement {
+        stroke: 0.3,
+        time_ratio: 1.6,
+        centre_distance: 0.25,
+    };
+    g.bench_function("shaper", |b| {
+        b.iter(|| black_box(shaper(black_box(&need), &loose).unwrap()));
+    });
+    let poses = [
+        Pose::new([0.0, 0.0], 0.0),
+        Pose::new([0.1, 0.05], 0.3),
+        Pose::new([0.2, 0.05], 0.7),
+    ];
+    g.bench_function("burmester_three_poses", |b| {
+        b.iter(|| {
+            black_box(burmester(black_box(&poses), [-0.05, -0.1], [0.1, -0.08], &loose).unwrap())
+        });
+    });
+    g.finish();
+}
+
+fn function_generation(c: &mut Criterion) {
+    let loose = Options::default().with_min_transmission_angle(0.0);
+    let mut g = c.benchmark_group("function_generator_least_squares");
+    g.measurement_time(Duration::from_secs(2))
+        .warm_up_time(Duration::from_millis(500))
+        .sample_size(20);
+    for n in [3usize, 30, 300, 3000] {
+        let need = FunctionRequirement {
+            x_range: [1.0, 2.0],
+            crank_range: [-FRAC_PI_6, FRAC_PI_6],
+            rocker_range: [0.0, FRAC_PI_2],
+            frame: 0.1,
+            spacing: Spacing::LeastSquares(n),
+        };
+        g.throughput(Throughput::Elements(n as u64));
+        g.bench_with_input(BenchmarkId::from_parameter(n), &need, |b, need| {
+            b.iter(|| black_box(function_generator(f64::log10, black_box(need), &loose).unwrap()));
+        });
+    }
+    g.finish();
+    let poses = [
+        Pose::new([0.0, 0.0], 0.0),
+        Pose::new([0.1, 0.05], 0.3),
+        Pose::new([0.2, 0.05], 0.7),
+        Pose::new([0.28, 0.0], 1.0),
+    ];
+    let mut g = c.benchmark_group("centre_point_curve");
+    g.measurement_time(Duration::from_secs(2))
+        .warm_up_time(Duration::from_millis(500))
+        .sample_size(20);
+    for n in [36usize, 360, 3600] {
+        g.throughput(Throughput::Elements(n as u64));
+        g.bench_with_input(BenchmarkId::from_parameter(n), &n, |b, &n| {
+            b.iter(|| black_box(centre_point_curve(black_box(&poses), n).unwrap()));
+        });
+    }
+    g.finish();
+}
+
+criterion_group!(benches, quick_return, function_generation);
+criterion_main!(benches);

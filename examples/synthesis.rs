@@ -1,0 +1,245 @@
+//! Kinematic synthesis on built-in requirements: each kind of `tmm::synthesis` produces a
+//! linkage description, whose report is printed and which the engine then analyses (its time
+//! ratio, stroke and smallest transmission angle printed beside the report's). The
+//! descriptions are written as JSON files to `target/tmm-charts/synthesis/`, ready for
+//! `cargo run --example linkage -- FILE`.
+//!
+//! ```sh
+//! cargo run --release --example synthesis
+//! ```
+
+use std::f64::consts::PI;
+use std::fs;
+use std::path::Path;
+use tmm::kinematics::{Motion, Rotation};
+use tmm::linkage::{Output, Plan};
+use tmm::synthesis::{
+    burmester, centre_point, centre_point_curve, crank_rocker, crank_rocker_through,
+    four_bar_from_dyads, function_generator, shaper, slider_crank, CrankRockerRequirement,
+    FrameChoice, FunctionRequirement, OffsetChoice, Options, Pose, ShaperRequirement,
+    SliderCrankRequirement, Spacing, Synthesis,
+};
+
+fn deg(x: f64) -> f64 {
+    x.to_radians()
+}
+
+/// Prints the report, the engine's figures for `output`, and writes the description to
+/// `dir/stem.json`.
+fn show(s: &Synthesis, output: &Output, dir: &Path, stem: &str) -> tmm::Result<()> {
+    print!("{}", s.report);
+    let plan = Plan::new(&s.linkage)?;
+    if plan.input_is_crank() && s.report.time_ratio.is_some() {
+        let st = plan.strokes(output, Rotation::Ccw)?;
+        println!(
+            "  engine: K = {:.10}, stroke/swing = {:.10} (m or rad)",
+            st.time_ratio, st.stroke
+        );
+    }
+    let file = dir.join(format!("{stem}.json"));
+    if let Err(e) = s
+        .linkage
+        .to_json()
+        .map(|json| fs::write(&file, json).map_err(|e| e.to_string()))
+    {
+        println!("  (not written: {e})");
+    } else {
+        println!("  description: {}", file.display());
+    }
+    println!();
+    Ok(())
+}
+
+fn run() -> tmm::Result<()> {
+    let dir = Path::new("target/tmm-charts/synthesis");
+    if let Err(e) = fs::create_dir_all(dir) {
+        println!("cannot create {}: {e}", dir.display());
+    }
+    let options = Options::default();
+    let rocker = Output::Angle("rocker".to_owned());
+
+    println!("== crank-rocker by K and the swing: rocker 300 mm, swing 45°, K = 1.25 ==");
+    let need = CrankRockerRequirement {
+        rocker: 0.3,
+        swing: deg(45.0),
+        time_ratio: 1.25,
+        frame: FrameChoice::BestTransmission,
+    };
+    let best = crank_rocker(&need, &options)?;
+    show(&best, &rocker, dir, "crank-rocker")?;
+    let longer = CrankRockerRequirement {
+        frame: FrameChoice::Length(1.2 * best.report.dimension("frame").unwrap_or(0.5)),
+        ..need
+    };
+    println!("== the same with a frame 20 % longer than the best one's ==");
+    match crank_rocker(&longer, &options) {
+        Ok(s) => show(&s, &rocker, dir, "crank-rocker-longer-frame")?,
+        Err(e) => println!("  {e}\n"),
+    }
+
+    println!("== offset slider-crank: stroke 200 mm, K = 1.2, offset for the best transmission ==");
+    let sc = slider_crank(
+        &SliderCrankRequirement {
+            stroke: 0.2,
+            time_ratio: 1.2,
+            offset: OffsetChoice::BestTransmission,
+        },
+        &options,
+    )?;
+    show(&sc, &Output::Slide("P".to_owned()), dir, "slider-crank")?;
+
+    println!("== shaper: ram stroke 300 mm, K = 1.6, O1O3 = 250 mm ==");
+    let sh = shaper(
+        &ShaperRequirement {
+            stroke: 0.3,
+            time_ratio: 1.6,
+            centre_distance: 0.25,
+        },
+        &options,
+    )?;
+    show(&sh, &Output::Slide("G".to_owned()), dir, "shaper")?;
+
+    println!("== crank-rocker through three positions (frame 400 mm) ==");
+    let pairs = [
+        (deg(40.0), deg(101.4)),
+        (deg(100.0), deg(112.8)),
+        (deg(160.0), deg(131.8)),
+    ];
+    let loose = options.with_min_transmission_angle(0.0);
+    let through = crank_rocker_through(0.4, &pairs, &loose)?;
+    show(&through, &rocker, dir, "crank-rocker-through-positions")?;
+
+    println!("== function generator: y = log10 x on [1, 2], crank −30°..30°, rocker 0°..90° ==");
+    let need = FunctionRequirement {
+        x_range: [1.0, 2.0],
+        crank_range: [deg(-30.0), deg(30.0)],
+        rocker_range: [deg(0.0), deg(90.0)],
+        frame: 0.1,
+        spacing: Spacing::Chebyshev,
+    };
+    for spacing in [Spacing::Chebyshev, Spacing::LeastSquares(21)] {
+        let g = function_generator(
+            f64::log10,
+            &FunctionRequirement { spacing, ..need },
+            &options,
+        )?;
+        println!("-- {spacing:?}: precision x = {:.4?}", g.precision_x);
+        let curve = g.structural_error(f64::log10, 401)?;
+        let worst = curve
+            .iter()
+            .max_by(|a, b| a.error.abs().total_cmp(&b.error.abs()))
+            .map_or((0.0, 0.0), |p| (p.x, p.error));
+        println!(
+            "  structural error (by the engine): largest {:.3e} at x = {:.3} ({:.2} % of the range of y)",
+            worst.1,
+            worst.0,
+            100.0 * worst.1.abs() / 2f64.log10()
+        );
+        let stem = format!("function-generator-{}", g.precision_x.len());
+        show(&g.synthesis, &rocker, dir, &stem)?;
+    }
+
+    println!("== Burmester: three poses of the coupler point P and its line ==");
+    let poses = [
+        Pose::new([0.0, 0.0], 0.0),
+        Pose::new([0.1, 0.05], 0.3),
+        Pose::new([0.2, 0.05], 0.7),
+    ];
+    let (za, zb) = ([-0.05, -0.1], [0.1, -0.08]);
+    let s = burmester(&poses, za, zb, &loose)?;
+    let crank = centre_point(&poses, za)?;
+    let plan = Plan::new(&s.linkage)?;
+    for (pose, phi) in poses.iter().zip(crank.angles(&poses)) {
+        let k = plan.kinematics(Motion::fixed(phi))?;
+        let p = k.point("P")?.p;
+        println!(
+            "  φ = {:8.3}°: P = ({:.6}, {:.6}) m (wanted ({:.6}, {:.6})), angle {:.6}° (wanted {:.6}°)",
+            phi.to_degrees(),
+            p.x,
+            p.y,
+            pose.at[0],
+            pose.at[1],
+            k.link("coupler")?.value.to_degrees(),
+            pose.angle.to_degrees()
+        );
+    }
+    show(
+        &s,
+        &Output::Angle("coupler".to_owned()),
+        dir,
+        "burmester-three-poses",
+    )?;
+
+    println!("== Burmester: four poses, dyads from the centre-point curve ==");
+    let four = [poses[0], poses[1], poses[2], Pose::new([0.28, 0.0], 1.0)];
+    let curve = centre_point_curve(&four, 360)?;
+    println!("  {} dyads sampled on the centre-point curve", curve.len());
+    // The first pair of small dyads that makes a four-bar without a defect and with γ_min ≥ 30°.
+    let small: Vec<_> = curve.iter().filter(|d| d.length() < 0.5).collect();
+    let strict = options.with_min_transmission_angle(deg(30.0));
+    let found = small.iter().enumerate().find_map(|(i, crank)| {
+        small[i + 1..]
+            .iter()
+            .find_map(|rocker| four_bar_from_dyads(&four, crank, rocker, &strict).ok())
+            .map(|s| (s, **crank))
+    });
+    match found {
+        Some((s, crank)) => {
+            let plan = Plan::new(&s.linkage)?;
+            let mut worst = 0.0f64;
+            for (pose, phi) in four.iter().zip(crank.angles(&four)) {
+                let p = plan.kinematics(Motion::fixed(phi))?.point("P")?.p;
+                worst = worst.max((p.x - pose.at[0]).hypot(p.y - pose.at[1]));
+            }
+            println!("  the engine misses the four poses' points by at most {worst:.2e} m");
+            show(
+                &s,
+                &Output::Angle("coupler".to_owned()),
+                dir,
+                "burmester-four-poses",
+            )?;
+        }
+        None => println!("  no pair of small dyads without a defect and with γ_min ≥ 30°\n"),
+    }
+
+    println!("== requirements no mechanism meets ==");
+    let hard = CrankRockerRequirement {
+        time_ratio: 2.5,
+        swing: deg(100.0),
+        ..need_of(&best)
+    };
+    for r in [
+        crank_rocker(&hard, &options),
+        crank_rocker(
+            &CrankRockerRequirement {
+                time_ratio: 30.0,
+                ..hard
+            },
+            &loose,
+        ),
+        crank_rocker(&CrankRockerRequirement { swing: PI, ..hard }, &options),
+    ] {
+        match r {
+            Ok(s) => print!("{}", s.report),
+            Err(e) => println!("  {e}"),
+        }
+    }
+    Ok(())
+}
+
+/// The requirement of the first crank-rocker, for variations.
+fn need_of(s: &Synthesis) -> CrankRockerRequirement {
+    CrankRockerRequirement {
+        rocker: s.report.dimension("rocker").unwrap_or(0.3),
+        swing: s.report.stroke.unwrap_or(1.0),
+        time_ratio: s.report.time_ratio.unwrap_or(1.2),
+        frame: FrameChoice::BestTransmission,
+    }
+}
+
+fn main() {
+    if let Err(e) = run() {
+        eprintln!("error: {e}");
+        std::process::exit(1);
+    }
+}
