@@ -94,7 +94,9 @@ fn triad_inputs() -> (TriadDims, Vec<([PointMotion; 3], TriadPose)>) {
     panic!("no crank radius assembles all round");
 }
 
-/// The fastest of 30 alternating rounds of each, per position, and their ratio.
+/// The fastest of 300 alternating rounds of each, per position, and their ratio. Each round
+/// lasts about 0.3 ms for either function (calibrated), so that a round of the slower one is
+/// no likelier to be interrupted on a loaded machine than a round of the faster one.
 fn print_ratio(name: &str, mut triad: impl FnMut() -> f64, mut rrr: impl FnMut() -> f64) {
     let round = |f: &mut dyn FnMut() -> f64, reps: u32| {
         let start = Instant::now();
@@ -103,10 +105,15 @@ fn print_ratio(name: &str, mut triad: impl FnMut() -> f64, mut rrr: impl FnMut()
         }
         start.elapsed() / reps
     };
+    let reps = |f: &mut dyn FnMut() -> f64| {
+        let probe = (0..5).map(|_| round(f, 1)).min().unwrap_or(Duration::MAX);
+        (3e-4 / probe.as_secs_f64().max(1e-9)).clamp(1.0, 1e6) as u32
+    };
+    let (rt, rr) = (reps(&mut triad), reps(&mut rrr));
     let (mut bt, mut br) = (Duration::MAX, Duration::MAX);
-    for _ in 0..30 {
-        bt = bt.min(round(&mut triad, 20));
-        br = br.min(round(&mut rrr, 20));
+    for _ in 0..300 {
+        bt = bt.min(round(&mut triad, rt));
+        br = br.min(round(&mut rrr, rr));
     }
     let per = |d: Duration| d.as_secs_f64() * 1e9 / N as f64;
     let (t, r) = (per(bt), per(br));

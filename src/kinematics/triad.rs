@@ -391,49 +391,36 @@ fn track(a: [Point2<f64>; 3], dims: &TriadDims, previous: &TriadPose) -> Option<
     let e = Eliminated::new(a, dims);
     let d = previous.b[1] - previous.b[0];
     let z0 = C::new(d.x, d.y) / d.norm();
-    // Newton's method on F in the half-angle tangent t about the previous direction:
-    // dF/dt = F′(θ)·2/(1 + t²). It stops after a step below 1e-9 (quadratic convergence
-    // leaves an error of the order of its square); (f, g) stay those of the last evaluation.
+    // Newton's method in the half-angle tangent t about the previous direction, on
+    // P(t) = (1 + t²)³·F(θ(t)), a polynomial of degree 6 with the same roots (no division but
+    // the step's). It stops after a step below 1e-9 (quadratic convergence leaves an error of
+    // the order of its square).
     let (mut t, mut dt) = (0.0, f64::INFINITY);
-    let mut z = z0;
-    let (mut f, mut g) = e.eval(z);
+    let (mut p, mut dp) = (f64::NAN, f64::NAN);
     for _ in 0..12 {
-        dt = -f * (1.0 + t * t) / (2.0 * g);
+        (p, dp) = e.tangent_poly(z0, t);
+        dt = -p / dp;
         if dt.is_nan() || dt.abs() > 1.0 {
             return None;
         }
         t += dt;
-        z = along(z0, t);
         if dt.abs() <= 1e-9 {
             break;
         }
-        (f, g) = e.eval(z);
     }
     if dt.is_nan() || dt.abs() > 1e-9 || e.m2.is_nan() || e.m2 <= 0.0 {
         return None;
     }
-    // 1. The exclusion radius about the last evaluation θ_l (the root is within 4|F|/|F′| of
-    //    it): where |F′|·d − |F″|·d²/2 − M₃·d³/6 > |F| (M₃ bounds |F‴|), or the cruder
-    //    2|F′|/M₂, whichever is larger; shrunk by 0.1 % for rounding.
-    let zl = along(z0, t - dt);
-    let (b2, m3) = (0.5 * e.second(zl).abs(), e.m3 / 6.0);
-    let ga = g.abs();
-    let local = 2.0 * ga / (b2 + (b2 * b2 + 4.0 * m3 * ga).sqrt());
-    let rho = 0.999 * local.max(2.0 * ga / e.m2) - 4.0 * f.abs() / ga;
-    // |θ_l − θ_prev| = 2·|atan(t − dt)| ≤ 2(|t| + |dt|).
-    let delta = (rho - 2.0 * (t.abs() + dt.abs())).min(std::f64::consts::PI);
-    if delta.is_nan() || delta <= 0.0 {
-        return None;
-    }
+    let z = along(z0, t);
     let (wz, dz) = e.w_d(z);
     if dz.is_nan() || dz.abs() <= 1e-3 * e.dscale {
         return None;
     }
-    let p = C::new(0.0, 1.0) * wz / dz;
-    let b1 = e.a1 + Vector2::new(p.re, p.im);
+    let pc = C::new(0.0, 1.0) * wz / dz;
+    let b1 = e.a1 + Vector2::new(pc.re, pc.im);
     let b = e.joints(b1, z);
     let leg = [b[0] - a[0], b[1] - a[1], b[2] - a[2]];
-    let len = leg.map(|v| v.norm());
+    let len = [leg[0].norm(), leg[1].norm(), leg[2].norm()];
     // One Newton step of the three closures on (B1, θ) with the velocity system K: the root
     // of F carries the rounding of F's coefficients, the closures that of the geometry.
     let u = [0, 1, 2].map(|i| leg[i] / len[i]);
@@ -444,22 +431,44 @@ fn track(a: [Point2<f64>; 3], dims: &TriadDims, previous: &TriadPose) -> Option<
     let z = z * C::new(1.0, step.z);
     let b = e.joints(b1 + Vector2::new(step.x, step.y), z);
     let leg = [b[0] - a[0], b[1] - a[1], b[2] - a[2]];
-    let len = leg.map(|v| v.norm());
+    let len = [leg[0].norm(), leg[1].norm(), leg[2].norm()];
     let err = (len[0] - l[0])
         .abs()
         .max((len[1] - l[1]).abs())
         .max((len[2] - l[2]).abs());
-    let closes = err <= 1e-13 * (l[0] + l[1] + l[2]) && step.z.abs() <= 1e-6;
+    let closes = err <= 1e-13 * (l[0] + l[1] + l[2]) && step.z.abs() <= 1e-8;
     if !closes {
         return None;
     }
-    // 2. Nearer the previous pose than any other mode can be.
-    let x = 0.5 * delta;
-    // sin x ≥ x − x³/6 for x ≥ 0 (positive up to √6 > π/2).
-    let s = x - x * x * x / 6.0;
-    let bound = 4.0 * dims.ternary_moment() * s * s;
-    let moved: f64 = (0..3).map(|i| (b[i] - previous.b[i]).norm_squared()).sum();
-    (moved < 0.99 * bound).then_some(Tracked { z, b, leg, len })
+    // 2. Nearer the previous pose than any other mode can be: a mode turned by Δθ is at
+    //    least 4·I·sin²(Δθ/2) away.
+    let moved = (b[0] - previous.b[0]).norm_squared()
+        + (b[1] - previous.b[1]).norm_squared()
+        + (b[2] - previous.b[2]).norm_squared();
+    let moment = dims.ternary_moment();
+    // 1. No other root of F within ρ of the last evaluation θ_l = θ(t_l) (the root is within
+    //    4|F|/|F′| of it): F and F′ there from P and P′ (P = s³F, P′ = 3s²s′F + 2s²F′ with
+    //    s = 1 + t_l²), so every other mode's angle is at least δ = ρ − |θ_l − θ_prev| from the
+    //    previous one, |θ_l − θ_prev| = 2·|atan t_l| ≤ 2|t_l|.
+    let tl = t - dt;
+    let sl = 1.0 + tl * tl;
+    let f = p / (sl * sl * sl);
+    let g = (dp - 6.0 * sl * sl * tl * f) / (2.0 * sl * sl);
+    let ga = g.abs();
+    let accept = |rho: f64| {
+        let delta = (0.999 * rho - 4.0 * f.abs() / ga - 2.0 * tl.abs()).min(std::f64::consts::PI);
+        let x = 0.5 * delta;
+        // sin x ≥ x − x³/6 for x ≥ 0 (positive up to √6 > π/2).
+        let s = x - x * x * x / 6.0;
+        delta > 0.0 && moved < 0.99 * 4.0 * moment * s * s
+    };
+    // ρ = 2|F′|/M₂ first; then, if that is too short, the root of
+    // |F′| = |F″(θ_l)|·ρ/2 + M₃·ρ²/6 (Taylor with M₃ ≥ |F‴|), often much longer.
+    let certified = accept(2.0 * ga / e.m2) || {
+        let (b2, m3) = (0.5 * e.second(along(z0, tl)).abs(), e.m3 / 6.0);
+        accept(2.0 * ga / (b2 + (b2 * b2 + 4.0 * m3 * ga).sqrt()))
+    };
+    certified.then_some(Tracked { z, b, leg, len })
 }
 
 /// The inverse of a 3×3 matrix by its adjugate, and the determinant.
@@ -799,18 +808,23 @@ impl Eliminated {
         let mu = beta[1] * av[2].conj() - av[1].conj() * beta[2];
         let e1 = C::new(0.0, -0.5) * mu;
         // |W|²_k = Σ_j w_j·conj(w_{j−k}); (D²)_k from e_{−1} = conj(e1), e_0, e_1.
-        let ww = |k: usize| -> C {
-            (k..4)
-                .map(|j| w[j] * w[j - k].conj())
-                .fold(C::new(0.0, 0.0), |s, x| s + x)
-        };
+        let wc = [w[0].conj(), w[1].conj(), w[2].conj(), w[3].conj()];
+        let ww = [
+            C::new(
+                w[0].norm_sqr() + w[1].norm_sqr() + w[2].norm_sqr() + w[3].norm_sqr(),
+                0.0,
+            ),
+            w[1] * wc[0] + w[2] * wc[1] + w[3] * wc[2],
+            w[2] * wc[0] + w[3] * wc[1],
+            w[3] * wc[0],
+        ];
         let dd = [
             C::new(e0 * e0 + 2.0 * e1.norm_sqr(), 0.0),
             2.0 * e0 * e1,
             e1 * e1,
             C::new(0.0, 0.0),
         ];
-        let f = [0, 1, 2, 3].map(|k| ww(k) - l1s * dd[k]);
+        let f = [0, 1, 2, 3].map(|k| ww[k] - l1s * dd[k]);
         let f = [C::new(f[0].re, 0.0), f[1], f[2], f[3]];
         // Bounds need no square root: |c| ≤ |Re c| + |Im c|.
         let n1 = |c: C| c.re.abs() + c.im.abs();
@@ -859,6 +873,26 @@ impl Eliminated {
         let p = p1 + p2 + p3;
         let dp = p1 + 2.0 * p2 + 3.0 * p3;
         (f[0].re + 2.0 * p.re, -2.0 * dp.im)
+    }
+
+    /// P(t) = (1 + t²)³·F(θ) and dP/dt at z = z0·(1 + i·t)²/(1 + t²).
+    #[inline]
+    fn tangent_poly(&self, z0: C, t: f64) -> (f64, f64) {
+        let f = &self.f;
+        let (s, ds) = (1.0 + t * t, 2.0 * t);
+        let q = C::new(1.0, t);
+        let zeta = z0 * q * q;
+        let dzeta = C::new(0.0, 2.0) * z0 * q;
+        let (s2, zeta2) = (s * s, zeta * zeta);
+        let p =
+            f[0].re * s2 * s + 2.0 * (f[1] * zeta * s2 + f[2] * zeta2 * s + f[3] * zeta2 * zeta).re;
+        let dp = 3.0 * f[0].re * s2 * ds
+            + 2.0
+                * (f[1] * (dzeta * s2 + 2.0 * zeta * s * ds)
+                    + f[2] * (2.0 * zeta * dzeta * s + zeta2 * ds)
+                    + 3.0 * f[3] * zeta2 * dzeta)
+                    .re;
+        (p, dp)
     }
 
     /// F″ at z.
@@ -1043,10 +1077,11 @@ impl Eliminated {
     }
 
     fn joints(&self, b1: Point2<f64>, z: C) -> [Point2<f64>; 3] {
-        [0, 1, 2].map(|i| {
+        let r = |i: usize| {
             let r = self.beta[i] * z;
             b1 + Vector2::new(r.re, r.im)
-        })
+        };
+        [b1, r(1), r(2)]
     }
 
     /// The unit vectors of the legs, the arms r_i = B_i − B1, and the closure errors
