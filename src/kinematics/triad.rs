@@ -133,9 +133,9 @@ impl TriadDims {
 
     /// Σ|β_i − β̄|², the polar moment of the joints about their centroid, m².
     fn ternary_moment(&self) -> f64 {
-        let b = self.local_joints();
-        let g = (b[0] + b[1] + b[2]) / 3.0;
-        b.iter().map(|v| (v - g).norm_squared()).sum()
+        // Σ|β_i|² − |Σβ_i|²/3, with β_1 = 0.
+        let (x, y) = (self.l_b1b2 + self.b3_along, self.b3_across);
+        self.l_b1b2 * self.l_b1b2 + self.b3_along * self.b3_along + y * y - (x * x + y * y) / 3.0
     }
 
     fn validate(&self) -> Result<()> {
@@ -311,7 +311,7 @@ pub fn triad_modes(a: [Point2<f64>; 3], dims: &TriadDims) -> Result<TriadModes> 
             det: 0.0,
         }; MAX_TRIAD_MODES],
     };
-    let tol = 1e-9 * e.length;
+    let tol = 1e-9 * e.length();
     for r in 0..roots.n {
         for pose in e
             .poses(roots.z[r], roots.multiple[r], dims)
@@ -364,57 +364,178 @@ pub fn triad_tracked(
     if !(valid_points(a) && dims.validate().is_ok()) {
         return None;
     }
+    let t = track(a, dims, previous)?;
+    let r = [Vector2::zeros(), t.b[1] - t.b[0], t.b[2] - t.b[0]];
+    let u = [0, 1, 2].map(|i| t.leg[i] / t.len[i]);
+    let det = velocity_matrix(u, r).determinant() / dims.ternary_size();
+    Some(TriadPose {
+        b: t.b,
+        theta: direction(Vector2::new(t.z.re, t.z.im)),
+        phi: t.leg.map(direction),
+        det,
+    })
+}
+
+/// A mode reached by the fast path: the ternary link's direction z, the joints, the legs
+/// B_i − A_i and their lengths.
+struct Tracked {
+    z: C,
+    b: [Point2<f64>; 3],
+    leg: [Vector2<f64>; 3],
+    len: [f64; 3],
+}
+
+/// The fast path (see [`triad_tracked`] for the rule), on valid input.
+#[inline]
+fn track(a: [Point2<f64>; 3], dims: &TriadDims, previous: &TriadPose) -> Option<Tracked> {
     let e = Eliminated::new(a, dims);
     let d = previous.b[1] - previous.b[0];
     let z0 = C::new(d.x, d.y) / d.norm();
-    if !(z0.re.is_finite() && z0.im.is_finite() && e.m2 > 0.0 && e.m2.is_finite()) {
-        return None;
-    }
-    let mut t = 0.0;
-    let mut z = z0;
-    let (mut f, mut g) = e.eval(z);
-    let mut converged = false;
+    // Newton's method in the half-angle tangent t about the previous direction, on
+    // P(t) = (1 + t²)³·F(θ(t)), a polynomial of degree 6 with the same roots (no division but
+    // the step's). It stops after a step below 1e-9 (quadratic convergence leaves an error of
+    // the order of its square).
+    let (mut t, mut dt) = (0.0, f64::INFINITY);
+    let (mut p, mut dp) = (f64::NAN, f64::NAN);
     for _ in 0..12 {
-        let dgdt = g * 2.0 / (1.0 + t * t);
-        let dt = -f / dgdt;
-        if !dt.is_finite() || dt.abs() > 1.0 {
+        (p, dp) = e.tangent_poly(z0, t);
+        dt = -p / dp;
+        if dt.is_nan() || dt.abs() > 1.0 {
             return None;
         }
         t += dt;
-        z = along(z0, t);
-        (f, g) = e.eval(z);
-        if dt.abs() <= 1e-13 * (1.0 + t.abs()) || f.abs() <= e.tol {
-            converged = f.abs() <= 64.0 * e.tol;
-            if converged {
-                break;
-            }
+        if dt.abs() <= 1e-9 {
+            break;
         }
     }
-    if !converged {
+    if dt.is_nan() || dt.abs() > 1e-9 || e.m2.is_nan() || e.m2 <= 0.0 {
         return None;
     }
-    // The exclusion radius: where |F′(θ*)|·d − |F″(θ*)|·d²/2 − M₃·d³/6 > |F(θ*)| (M₃ bounds
-    // |F‴|), or the cruder 2|F′(θ*)|/M₂, whichever is larger.
-    let (b, m3) = (0.5 * e.second(z).abs(), e.m3 / 6.0);
-    let local = 2.0 * g.abs() / (b + (b * b + 4.0 * m3 * g.abs()).sqrt());
-    let rho = 0.999 * local.max(2.0 * g.abs() / e.m2) - 4.0 * f.abs() / g.abs();
-    // |θ* − θ_prev| = 2·|atan t| ≤ 2|t|.
-    let delta = (rho - 2.0 * t.abs()).min(std::f64::consts::PI);
-    if delta <= 0.0 {
+    let z = along(z0, t);
+    let (wz, dz) = e.w_d(z);
+    if dz.is_nan() || dz.abs() <= 1e-3 * e.dscale {
         return None;
     }
-    let (wz, d) = e.w_d(z);
-    let p = C::new(0.0, 1.0) * wz / d;
-    let pose = e.polish(Vector2::new(p.re, p.im), z, dims)?;
-    let turned = (pose.b[1] - pose.b[0]) / dims.l_b1b2 - Vector2::new(z.re, z.im);
-    if turned.norm() > 1e-6 {
+    let pc = C::new(0.0, 1.0) * wz / dz;
+    let b1 = e.a1 + Vector2::new(pc.re, pc.im);
+    let b = e.joints(b1, z);
+    let leg = [b[0] - a[0], b[1] - a[1], b[2] - a[2]];
+    let len = [leg[0].norm(), leg[1].norm(), leg[2].norm()];
+    // One Newton step of the three closures on (B1, θ) with the velocity system K: the root
+    // of F carries the rounding of F's coefficients, the closures that of the geometry.
+    let u = [0, 1, 2].map(|i| leg[i] / len[i]);
+    let r = [Vector2::zeros(), b[1] - b[0], b[2] - b[0]];
+    let (k_inv, _) = inverse3(&velocity_matrix(u, r));
+    let l = dims.l;
+    let step = k_inv * Vector3::new(l[0] - len[0], l[1] - len[1], l[2] - len[2]);
+    let z = z * C::new(1.0, step.z);
+    let b = e.joints(b1 + Vector2::new(step.x, step.y), z);
+    let leg = [b[0] - a[0], b[1] - a[1], b[2] - a[2]];
+    let len = [leg[0].norm(), leg[1].norm(), leg[2].norm()];
+    let err = (len[0] - l[0])
+        .abs()
+        .max((len[1] - l[1]).abs())
+        .max((len[2] - l[2]).abs());
+    let closes = err <= 1e-13 * (l[0] + l[1] + l[2]) && step.z.abs() <= 1e-8;
+    if !closes {
         return None;
     }
-    let x = 0.5 * delta;
-    // sin x ≥ x − x³/6 for x ≥ 0 (positive up to √6 > π/2).
-    let s = x - x * x * x / 6.0;
-    let bound = 4.0 * dims.ternary_moment() * s * s;
-    (pose.distance_squared(previous) < 0.99 * bound).then_some(pose)
+    // 2. Nearer the previous pose than any other mode can be: a mode turned by Δθ is at
+    //    least 4·I·sin²(Δθ/2) away.
+    let moved = (b[0] - previous.b[0]).norm_squared()
+        + (b[1] - previous.b[1]).norm_squared()
+        + (b[2] - previous.b[2]).norm_squared();
+    let moment = dims.ternary_moment();
+    // 1. No other root of F within ρ of the last evaluation θ_l = θ(t_l) (the root is within
+    //    4|F|/|F′| of it): F and F′ there from P and P′ (P = s³F, P′ = 3s²s′F + 2s²F′ with
+    //    s = 1 + t_l²), so every other mode's angle is at least δ = ρ − |θ_l − θ_prev| from the
+    //    previous one, |θ_l − θ_prev| = 2·|atan t_l| ≤ 2|t_l|.
+    let tl = t - dt;
+    let sl = 1.0 + tl * tl;
+    let f = p / (sl * sl * sl);
+    let g = (dp - 6.0 * sl * sl * tl * f) / (2.0 * sl * sl);
+    let ga = g.abs();
+    let accept = |rho: f64| {
+        let delta = (0.999 * rho - 4.0 * f.abs() / ga - 2.0 * tl.abs()).min(std::f64::consts::PI);
+        let x = 0.5 * delta;
+        // sin x ≥ x − x³/6 for x ≥ 0 (positive up to √6 > π/2).
+        let s = x - x * x * x / 6.0;
+        delta > 0.0 && moved < 0.99 * 4.0 * moment * s * s
+    };
+    // ρ = 2|F′|/M₂ first; then, if that is too short, the root of
+    // |F′| = |F″(θ_l)|·ρ/2 + M₃·ρ²/6 (Taylor with M₃ ≥ |F‴|), often much longer.
+    let certified = accept(2.0 * ga / e.m2) || {
+        let (b2, m3) = (0.5 * e.second(along(z0, tl)).abs(), e.m3 / 6.0);
+        accept(2.0 * ga / (b2 + (b2 * b2 + 4.0 * m3 * ga).sqrt()))
+    };
+    certified.then_some(Tracked { z, b, leg, len })
+}
+
+/// The inverse of a 3×3 matrix by its adjugate, and the determinant.
+#[inline]
+fn inverse3(k: &Matrix3<f64>) -> (Matrix3<f64>, f64) {
+    let c00 = k[(1, 1)] * k[(2, 2)] - k[(1, 2)] * k[(2, 1)];
+    let c01 = k[(1, 2)] * k[(2, 0)] - k[(1, 0)] * k[(2, 2)];
+    let c02 = k[(1, 0)] * k[(2, 1)] - k[(1, 1)] * k[(2, 0)];
+    let det = k[(0, 0)] * c00 + k[(0, 1)] * c01 + k[(0, 2)] * c02;
+    let adj = Matrix3::new(
+        c00,
+        k[(0, 2)] * k[(2, 1)] - k[(0, 1)] * k[(2, 2)],
+        k[(0, 1)] * k[(1, 2)] - k[(0, 2)] * k[(1, 1)],
+        c01,
+        k[(0, 0)] * k[(2, 2)] - k[(0, 2)] * k[(2, 0)],
+        k[(0, 2)] * k[(1, 0)] - k[(0, 0)] * k[(1, 2)],
+        c02,
+        k[(0, 1)] * k[(2, 0)] - k[(0, 0)] * k[(2, 1)],
+        k[(0, 0)] * k[(1, 1)] - k[(0, 1)] * k[(1, 0)],
+    );
+    (adj * (1.0 / det), det)
+}
+
+/// The velocities and accelerations of a tracked mode, with every check folded into one
+/// test at the end (`None` wherever [`triad_rates`] could fail, and near its threshold).
+#[inline]
+fn rates_fast(a: &[PointMotion; 3], dims: &TriadDims, t: &Tracked) -> Option<TriadState> {
+    let b = t.b;
+    let r = [Vector2::zeros(), b[1] - b[0], b[2] - b[0]];
+    let i_len = t.len.map(|l| 1.0 / l);
+    let u = [0, 1, 2].map(|i| t.leg[i] * i_len[i]);
+    let (k_inv, det_k) = inverse3(&velocity_matrix(u, r));
+    let det = det_k / dims.ternary_size();
+    let vel = k_inv * Vector3::new(u[0].dot(&a[0].v), u[1].dot(&a[1].v), u[2].dot(&a[2].v));
+    let (v1, omega_t) = (Vector2::new(vel.x, vel.y), vel.z);
+    let vb = [v1, v1 + omega_t * perp(r[1]), v1 + omega_t * perp(r[2])];
+    let omega = [0, 1, 2].map(|i| perp(u[i]).dot(&(vb[i] - a[i].v)) * i_len[i]);
+    let w2 = omega_t * omega_t;
+    let acc = k_inv
+        * Vector3::from_fn(|i, _| {
+            u[i].dot(&a[i].a) - t.len[i] * omega[i] * omega[i] + w2 * r[i].dot(&u[i])
+        });
+    let (a1, eps_t) = (Vector2::new(acc.x, acc.y), acc.z);
+    let ab = [0, 1, 2].map(|i| a1 + eps_t * perp(r[i]) - w2 * r[i]);
+    let eps = [0, 1, 2].map(|i| perp(u[i]).dot(&(ab[i] - a[i].a)) * i_len[i]);
+    let ok = super::rrr::all_finite([
+        a[0].v.x, a[0].v.y, a[1].v.x, a[1].v.y, a[2].v.x, a[2].v.y, a[0].a.x, a[0].a.y, a[1].a.x,
+        a[1].a.y, a[2].a.x, a[2].a.y, vel.x, vel.y, vel.z, acc.x, acc.y, acc.z, omega[0], omega[1],
+        omega[2], eps[0], eps[1], eps[2], det,
+    ]) & (det.abs() > 2.0 * SINGULAR_TRIAD);
+    let ternary = LinkMotion {
+        origin: PointMotion::new(b[0], v1, a1),
+        angle: direction(Vector2::new(t.z.re, t.z.im)),
+        omega: omega_t,
+        epsilon: eps_t,
+    };
+    ok.then(|| TriadState {
+        b: [0, 1, 2].map(|i| PointMotion::new(b[i], vb[i], ab[i])),
+        ternary,
+        binary: [0, 1, 2].map(|i| LinkMotion {
+            origin: a[i],
+            angle: direction(t.leg[i]),
+            omega: omega[i],
+            epsilon: eps[i],
+        }),
+        det,
+    })
 }
 
 /// Positions, velocities and accelerations of a triad, in the mode nearest `previous`.
@@ -453,6 +574,39 @@ pub fn triad_tracked(
 /// # Errors
 /// As [`triad_modes`] and [`triad_rates`].
 pub fn triad(a: [PointMotion; 3], dims: &TriadDims, previous: &TriadPose) -> Result<TriadState> {
+    let p = [a[0].p, a[1].p, a[2].p];
+    let valid = super::rrr::all_finite([
+        p[0].x,
+        p[0].y,
+        p[1].x,
+        p[1].y,
+        p[2].x,
+        p[2].y,
+        dims.b3_along,
+        dims.b3_across,
+    ]) & (dims.l[0] > 0.0)
+        & (dims.l[1] > 0.0)
+        & (dims.l[2] > 0.0)
+        & (dims.l_b1b2 > 0.0)
+        & super::rrr::all_finite([dims.l[0], dims.l[1], dims.l[2], dims.l_b1b2]);
+    if let Some(s) = valid
+        .then(|| track(p, dims, previous))
+        .flatten()
+        .and_then(|t| rates_fast(&a, dims, &t))
+    {
+        return Ok(s);
+    }
+    triad_checked(a, dims, previous)
+}
+
+/// [`triad`] step by step, naming what fails.
+#[cold]
+#[inline(never)]
+fn triad_checked(
+    a: [PointMotion; 3],
+    dims: &TriadDims,
+    previous: &TriadPose,
+) -> Result<TriadState> {
     let p = [a[0].p, a[1].p, a[2].p];
     let pose = match triad_tracked(p, dims, previous) {
         Some(pose) => pose,
@@ -610,6 +764,8 @@ struct Eliminated {
     e1: C,
     /// F's Fourier coefficients: F = f[0] + 2·Re(Σ_{k=1..3} f[k]·z^k), f[0] real.
     f: [C; 4],
+    /// |e0| + 2|e1|, the size of D.
+    dscale: f64,
     /// M₂ = 2·Σ k²|F_k|, a bound of |F″|.
     m2: f64,
     /// M₃ = 2·Σ k³|F_k|, a bound of |F‴|.
@@ -620,8 +776,6 @@ struct Eliminated {
     scale: f64,
     /// The rounding level of an evaluation of F.
     tol: f64,
-    /// A length of the triad (for closure tolerances).
-    length: f64,
 }
 
 impl Eliminated {
@@ -654,31 +808,33 @@ impl Eliminated {
         let mu = beta[1] * av[2].conj() - av[1].conj() * beta[2];
         let e1 = C::new(0.0, -0.5) * mu;
         // |W|²_k = Σ_j w_j·conj(w_{j−k}); (D²)_k from e_{−1} = conj(e1), e_0, e_1.
-        let ww = |k: usize| -> C {
-            (k..4)
-                .map(|j| w[j] * w[j - k].conj())
-                .fold(C::new(0.0, 0.0), |s, x| s + x)
-        };
+        let wc = [w[0].conj(), w[1].conj(), w[2].conj(), w[3].conj()];
+        let ww = [
+            C::new(
+                w[0].norm_sqr() + w[1].norm_sqr() + w[2].norm_sqr() + w[3].norm_sqr(),
+                0.0,
+            ),
+            w[1] * wc[0] + w[2] * wc[1] + w[3] * wc[2],
+            w[2] * wc[0] + w[3] * wc[1],
+            w[3] * wc[0],
+        ];
         let dd = [
             C::new(e0 * e0 + 2.0 * e1.norm_sqr(), 0.0),
             2.0 * e0 * e1,
             e1 * e1,
             C::new(0.0, 0.0),
         ];
-        let f = [0, 1, 2, 3].map(|k| ww(k) - l1s * dd[k]);
+        let f = [0, 1, 2, 3].map(|k| ww[k] - l1s * dd[k]);
         let f = [C::new(f[0].re, 0.0), f[1], f[2], f[3]];
-        let m2 = 2.0 * (f[1].norm() + 4.0 * f[2].norm() + 9.0 * f[3].norm());
-        let m3 = 2.0 * (f[1].norm() + 8.0 * f[2].norm() + 27.0 * f[3].norm());
-        let s = f[0].re.abs() + 2.0 * (f[1].norm() + f[2].norm() + f[3].norm());
-        let wsum: f64 = w.iter().map(|c| c.norm()).sum();
-        let esum = e0.abs() + 2.0 * e1.norm();
-        let scale = wsum * wsum + l1s * esum * esum;
-        let length = av
-            .iter()
-            .chain(beta.iter())
-            .map(|c| c.norm())
-            .chain(l)
-            .fold(0.0, f64::max);
+        // Bounds need no square root: |c| ≤ |Re c| + |Im c|.
+        let n1 = |c: C| c.re.abs() + c.im.abs();
+        let (g1, g2, g3) = (n1(f[1]), n1(f[2]), n1(f[3]));
+        let m2 = 2.0 * (g1 + 4.0 * g2 + 9.0 * g3);
+        let m3 = 2.0 * (g1 + 8.0 * g2 + 27.0 * g3);
+        let s = f[0].re.abs() + 2.0 * (g1 + g2 + g3);
+        let wsum = n1(w[0]) + n1(w[1]) + n1(w[2]) + n1(w[3]);
+        let dscale = e0.abs() + 2.0 * n1(e1);
+        let scale = wsum * wsum + l1s * dscale * dscale;
         Self {
             a1: a[0],
             a: av,
@@ -688,13 +844,23 @@ impl Eliminated {
             e0,
             e1,
             f,
+            dscale,
             m2,
             m3,
             s,
             scale,
             tol: 64.0 * f64::EPSILON * scale,
-            length,
         }
+    }
+
+    /// The triad's largest dimension (for closure tolerances), m.
+    fn length(&self) -> f64 {
+        self.a
+            .iter()
+            .chain(self.beta.iter())
+            .map(|c| c.norm())
+            .chain(self.l)
+            .fold(0.0, f64::max)
     }
 
     /// F and F′ = dF/dθ at z = e^{iθ}.
@@ -707,6 +873,26 @@ impl Eliminated {
         let p = p1 + p2 + p3;
         let dp = p1 + 2.0 * p2 + 3.0 * p3;
         (f[0].re + 2.0 * p.re, -2.0 * dp.im)
+    }
+
+    /// P(t) = (1 + t²)³·F(θ) and dP/dt at z = z0·(1 + i·t)²/(1 + t²).
+    #[inline]
+    fn tangent_poly(&self, z0: C, t: f64) -> (f64, f64) {
+        let f = &self.f;
+        let (s, ds) = (1.0 + t * t, 2.0 * t);
+        let q = C::new(1.0, t);
+        let zeta = z0 * q * q;
+        let dzeta = C::new(0.0, 2.0) * z0 * q;
+        let (s2, zeta2) = (s * s, zeta * zeta);
+        let p =
+            f[0].re * s2 * s + 2.0 * (f[1] * zeta * s2 + f[2] * zeta2 * s + f[3] * zeta2 * zeta).re;
+        let dp = 3.0 * f[0].re * s2 * ds
+            + 2.0
+                * (f[1] * (dzeta * s2 + 2.0 * zeta * s * ds)
+                    + f[2] * (2.0 * zeta * dzeta * s + zeta2 * ds)
+                    + 3.0 * f[3] * zeta2 * dzeta)
+                    .re;
+        (p, dp)
     }
 
     /// F″ at z.
@@ -814,8 +1000,7 @@ impl Eliminated {
     /// returned.
     fn poses(&self, z: C, multiple: bool, dims: &TriadDims) -> [Option<TriadPose>; 2] {
         let (wz, d) = self.w_d(z);
-        let dscale = self.e0.abs() + 2.0 * self.e1.norm();
-        if d.abs() > 1e-3 * dscale && !multiple {
+        if d.abs() > 1e-3 * self.dscale && !multiple {
             let p = C::new(0.0, 1.0) * wz / d;
             [self.polish(Vector2::new(p.re, p.im), z, dims), None]
         } else {
@@ -832,9 +1017,10 @@ impl Eliminated {
     fn polish(&self, p: Vector2<f64>, z: C, dims: &TriadDims) -> Option<TriadPose> {
         let mut b1 = self.a1 + p;
         let mut z = z;
+        let length = self.length();
         let mut err = self.closure(b1, z);
         for _ in 0..8 {
-            if err <= 1e-15 * self.length {
+            if err <= 1e-15 * length {
                 break;
             }
             let (u, r, h) = self.legs(b1, z);
@@ -851,7 +1037,7 @@ impl Eliminated {
                 break;
             }
         }
-        if err.is_nan() || err > 1e-9 * self.length {
+        if err.is_nan() || err > 1e-9 * length {
             return None;
         }
         let (u, r, _) = self.legs(b1, z);
@@ -891,10 +1077,11 @@ impl Eliminated {
     }
 
     fn joints(&self, b1: Point2<f64>, z: C) -> [Point2<f64>; 3] {
-        [0, 1, 2].map(|i| {
+        let r = |i: usize| {
             let r = self.beta[i] * z;
             b1 + Vector2::new(r.re, r.im)
-        })
+        };
+        [b1, r(1), r(2)]
     }
 
     /// The unit vectors of the legs, the arms r_i = B_i − B1, and the closure errors
@@ -926,7 +1113,7 @@ impl Eliminated {
     #[cold]
     fn gap(&self) -> f64 {
         let n = 1024;
-        let dscale = self.e0.abs() + 2.0 * self.e1.norm();
+        let dscale = self.dscale;
         let mut best = f64::INFINITY;
         for j in 0..n {
             let th = std::f64::consts::TAU * j as f64 / n as f64;
