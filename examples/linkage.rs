@@ -104,9 +104,9 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
 mod pictures {
     use std::fs;
     use std::path::Path;
-    use tmm::draw::{self, Course, Diagram, Style};
+    use tmm::draw::{self, Diagram, Style};
     use tmm::kinematics::Motion;
-    use tmm::linkage::{uniform_inputs, Linkage, Output, Plan};
+    use tmm::linkage::{uniform_inputs, Course, Linkage, Output, Plan};
 
     pub fn write(
         linkage: &Linkage,

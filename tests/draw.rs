@@ -11,10 +11,10 @@ use resvg::tiny_skia::{Pixmap, Transform};
 use resvg::usvg;
 use std::f64::consts::TAU;
 use tmm::draw::{
-    animation, diagram, forces, plan_view, scheme, Course, Diagram, Picture, Style, MAX_FRAMES,
+    animation, diagram, forces, plan_view, scheme, Diagram, Picture, Style, MAX_FRAMES,
 };
 use tmm::kinematics::Motion;
-use tmm::linkage::{bundled, uniform_inputs, Linkage, Output, Plan};
+use tmm::linkage::{bundled, uniform_inputs, Course, Linkage, Output, Plan};
 use tmm::nalgebra::Point2;
 
 fn render(svg: &str, name: &str) -> Pixmap {

@@ -51,8 +51,7 @@ use tmm::{Error, Load};
 // Generators and checks
 // ---------------------------------------------------------------------------------------
 
-#[path = "common/hostile_gen.rs"]
-mod hostile_gen;
+use crate::common::hostile_gen;
 use hostile_gen::{cases, has_non_finite, Gen};
 
 /// Runs one case: no panic, and an `Ok` holds only finite numbers. Returns the result.

@@ -1,6 +1,8 @@
 //! An animated SVG of a linkage over its cycle (SMIL animation, no script).
 
-use super::geometry::{self, r2, Extents, Labels, Pen, Pose, Topo};
+use super::parts::{self, Pen};
+use super::primitives::{self, r2, Labels};
+use super::scene::{self, Extents, Pose, Topo};
 use super::{Picture, Style};
 use crate::error::{Error, Result};
 use crate::kinematics::Motion;
@@ -37,7 +39,7 @@ use svg::Node;
 /// ```
 pub fn animation(plan: &Plan, inputs: &[Motion], seconds: f64, style: &Style) -> Result<Picture> {
     style.check()?;
-    super::course::check_inputs(inputs)?;
+    super::limits::check_inputs(inputs)?;
     if !(seconds.is_finite() && seconds > 0.0) {
         return Err(super::frame::drawing(
             "an animation",
@@ -62,7 +64,7 @@ pub fn animation(plan: &Plan, inputs: &[Motion], seconds: f64, style: &Style) ->
     for p in &poses {
         p.cover(&topo, &ext, &mut cover);
     }
-    let frame = geometry::fit_with_input(&topo, &poses[0], &mut cover, style)?;
+    let frame = scene::fit_with_input(&topo, &poses[0], &mut cover, style)?;
     let first = &poses[0];
     let dur = format!("{seconds}s");
     let animate = |kind: &str, values: String| {
@@ -76,8 +78,8 @@ pub fn animation(plan: &Plan, inputs: &[Motion], seconds: f64, style: &Style) ->
     };
 
     let title = format!("{} — {} frames over {seconds} s", plan.name(), poses.len());
-    let mut doc = geometry::document(style, &title);
-    doc.append(geometry::ground(&topo, first, &ext, &frame, style));
+    let mut doc = primitives::document(style, &title);
+    doc.append(parts::ground(&topo, first, &ext, &frame, style));
     // Each moving link in its own frame at the first position, then carried by a translation
     // and a rotation per frame; the bodies first, the hinges above every body.
     let mut bodies = Group::new().set("class", "links");
@@ -115,7 +117,7 @@ pub fn animation(plan: &Plan, inputs: &[Motion], seconds: f64, style: &Style) ->
                         .add(inner),
                 )
         };
-        bodies.append(carry(geometry::link_body(
+        bodies.append(carry(parts::link_body(
             &topo,
             first,
             &ext,
@@ -125,11 +127,11 @@ pub fn animation(plan: &Plan, inputs: &[Motion], seconds: f64, style: &Style) ->
             Pen::NORMAL,
             &local,
         )));
-        hinges.append(carry(geometry::link_hinges(&topo, first, k, style, &local)));
+        hinges.append(carry(parts::link_hinges(&topo, first, k, style, &local)));
     }
     doc.append(bodies);
     doc.append(hinges);
-    if let Some(arrow) = geometry::input_arrow(&topo, first, &frame, style) {
+    if let Some(arrow) = parts::input_arrow(&topo, first, &frame, style) {
         doc.append(arrow);
     }
     if style.labels {
@@ -165,7 +167,7 @@ pub fn animation(plan: &Plan, inputs: &[Motion], seconds: f64, style: &Style) ->
                     .set("repeatCount", "indefinite")
             };
             labels.append(
-                geometry::text(name, l0, 13.0, "#111111")
+                primitives::text(name, l0, 13.0, "#111111")
                     .add(anim("x", xs))
                     .add(anim("y", ys)),
             );

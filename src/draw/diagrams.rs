@@ -2,10 +2,10 @@
 
 use super::frame::drawing;
 use super::plan_view::path_inputs;
-use super::{Course, Style};
+use super::Style;
 use crate::error::{Error, Result};
 use crate::kinematics::Motion;
-use crate::linkage::{Analysis, Output, Plan};
+use crate::linkage::{Analysis, Course, Output, Plan};
 use plotters::coord::Shift;
 use plotters::prelude::*;
 use std::f64::consts::TAU;
@@ -166,7 +166,7 @@ pub struct Chart {
 /// ```
 pub fn diagram(plan: &Plan, course: &Course, diagram: &Diagram, style: &Style) -> Result<Chart> {
     style.check()?;
-    course.check()?;
+    super::limits::check_course(course)?;
     check(plan, diagram)?;
     let crank = plan.input_is_crank();
     let first = course.inputs[0];
@@ -234,13 +234,48 @@ pub fn diagram(plan: &Plan, course: &Course, diagram: &Diagram, style: &Style) -
         .collect();
 
     let hodograph = matches!(diagram, Diagram::Hodograph(_));
-    let mut panels = Vec::with_capacity(specs.len());
-    for (p, spec) in specs.iter().enumerate() {
+    let curves = Curves {
+        xs: &xs,
+        data: &data,
+        marks: &marks_data,
+        x_range,
+        x_label: &x_label,
+        hodograph,
+        reactions: matches!(diagram, Diagram::Reactions),
+    };
+    let mut panels: Vec<Panel> = specs
+        .iter()
+        .enumerate()
+        .map(|(p, spec)| curves.panel(p, spec))
+        .collect();
+    let svg = render(&mut panels, style, hodograph)?;
+    Ok(Chart { svg, panels })
+}
+
+/// The sampled values of a diagram, for drawing its panels.
+struct Curves<'a> {
+    /// The abscissa of every sample.
+    xs: &'a [f64],
+    /// Every sample's values (per panel, per curve), `None` where the position failed.
+    data: &'a [Option<Values>],
+    /// The course positions: number, abscissa and values.
+    marks: &'a [(usize, f64, Option<Values>)],
+    x_range: [f64; 2],
+    x_label: &'a str,
+    hodograph: bool,
+    reactions: bool,
+}
+
+impl Curves<'_> {
+    /// Panel `p` of `spec`: its curves, its marks and the ranges that cover them.
+    fn panel(&self, p: usize, spec: &Spec) -> Panel {
+        let (xs, data, marks_data, x_range, hodograph) =
+            (self.xs, self.data, self.marks, self.x_range, self.hodograph);
         let mut series = Vec::with_capacity(spec.series.len());
         for (s, name) in spec.series.iter().enumerate() {
             let mut pts = Vec::with_capacity(data.len());
             let mut prev: Option<f64> = None;
-            for (x, d) in xs.iter().zip(&data) {
+            for (x, d) in xs.iter().zip(data) {
                 let Some(d) = d else {
                     prev = None;
                     continue;
@@ -270,7 +305,7 @@ pub fn diagram(plan: &Plan, course: &Course, diagram: &Diagram, style: &Style) -
                 if hodograph {
                     return Some(vec![(*k, [d[p][0], d[p][1]])]);
                 }
-                let ys = if matches!(diagram, Diagram::Reactions) {
+                let ys = if self.reactions {
                     d[p].clone()
                 } else {
                     vec![d[p][0]]
@@ -310,12 +345,12 @@ pub fn diagram(plan: &Plan, course: &Course, diagram: &Diagram, style: &Style) -
         } else {
             (x_range, pad(lo[1], hi[1], 0.05))
         };
-        panels.push(Panel {
+        Panel {
             title: spec.title.clone(),
             x_label: if hodograph {
                 spec.x_label.clone()
             } else {
-                x_label.clone()
+                self.x_label.to_owned()
             },
             y_label: spec.y_label.clone(),
             x_range: xr,
@@ -324,10 +359,8 @@ pub fn diagram(plan: &Plan, course: &Course, diagram: &Diagram, style: &Style) -
             y_pixels: [0.0; 2],
             series,
             marks,
-        });
+        }
     }
-    let svg = render(&mut panels, style, hodograph)?;
-    Ok(Chart { svg, panels })
 }
 
 /// The value `y` moved by whole turns to the curve `c` at `x`.

@@ -1,6 +1,8 @@
 //! The reactions in the joints as scaled arrows on the scheme at one position.
 
-use super::geometry::{self, Extents, Pen, Pose, Topo};
+use super::parts::{self, Pen};
+use super::primitives;
+use super::scene::{self, Extents, Pose, Topo};
 use super::{Picture, Style};
 use crate::error::Result;
 use crate::kinematics::Motion;
@@ -58,31 +60,36 @@ pub fn forces(plan: &Plan, input: Motion, style: &Style) -> Result<Picture> {
         cover.push(r.point + r.force * m_per_n);
     }
     cover.push(balance.point + balance.force * m_per_n);
-    let frame = geometry::fit_with_input(&topo, &pose, &mut cover, style)?;
+    let frame = scene::fit_with_input(&topo, &pose, &mut cover, style)?;
     let force_scale = (fmax > 0.0).then(|| fmax / (longest * frame.scale));
 
     let title = format!("{} — reactions at input {:.4}", plan.name(), input.value);
-    let mut doc = geometry::document(style, &title);
-    doc.append(geometry::ground(&topo, &pose, &ext, &frame, style));
+    let mut doc = primitives::document(style, &title);
+    doc.append(parts::ground(&topo, &pose, &ext, &frame, style));
     let faded = Pen {
         opacity: 0.45,
         ..Pen::NORMAL
     };
-    doc.append(geometry::position(&topo, &pose, &ext, &frame, style, faded));
+    doc.append(parts::position(&topo, &pose, &ext, &frame, style, faded));
     let red = "#b00020";
     let w = (0.8 * style.line_width).max(1.5);
-    let mut labels = geometry::Labels::default();
+    let mut labels = primitives::Labels::default();
     for r in &reactions {
         if r.force.norm() <= 0.0 || r.force.norm().is_nan() {
             continue;
         }
         let from = frame.to_pixel(r.point);
         let to = frame.to_pixel(r.point + r.force * m_per_n);
-        doc.append(geometry::arrow(from, to, w, red).set("class", "reaction"));
+        doc.append(primitives::arrow(from, to, w, red).set("class", "reaction"));
         if style.labels {
             let q = labels.place(to, style);
-            doc.append(geometry::text(
-                &format!("R{},{} = {} N", r.by, r.on, geometry::short(r.force.norm())),
+            doc.append(primitives::text(
+                &format!(
+                    "R{},{} = {} N",
+                    r.by,
+                    r.on,
+                    primitives::short(r.force.norm())
+                ),
                 q,
                 12.0,
                 red,
@@ -106,12 +113,15 @@ pub fn forces(plan: &Plan, input: Motion, style: &Style) -> Result<Picture> {
     if balance.force.norm() > 0.0 {
         let from = frame.to_pixel(balance.point);
         let to = frame.to_pixel(balance.point + balance.force * m_per_n);
-        doc.append(geometry::arrow(from, to, w, blue).set("class", "balance"));
+        doc.append(primitives::arrow(from, to, w, blue).set("class", "balance"));
         legend.push(format!(
             "balancing force F_b = {} N{}",
-            geometry::short(balance.force.norm()),
+            primitives::short(balance.force.norm()),
             if plan.input_is_crank() {
-                format!(", its moment M_b = {} N·m", geometry::short(balance.value))
+                format!(
+                    ", its moment M_b = {} N·m",
+                    primitives::short(balance.value)
+                )
             } else {
                 String::new()
             }
@@ -121,11 +131,11 @@ pub fn forces(plan: &Plan, input: Motion, style: &Style) -> Result<Picture> {
         let sense = if balance.value < 0.0 { -1.0 } else { 1.0 };
         let r = style.hinge_radius.max(2.0);
         let (arc, at) =
-            geometry::arc_arrow(q0, 5.0 * r, 0.5 * std::f64::consts::PI, sense, r, blue);
+            primitives::arc_arrow(q0, 5.0 * r, 0.5 * std::f64::consts::PI, sense, r, blue);
         doc.append(arc.set("class", "balance"));
-        let text = format!("M_b = {} N·m", geometry::short(balance.value));
+        let text = format!("M_b = {} N·m", primitives::short(balance.value));
         if style.labels {
-            doc.append(geometry::text(
+            doc.append(primitives::text(
                 &text,
                 [at[0] + 8.0, at[1] - 4.0],
                 12.0,
@@ -137,13 +147,13 @@ pub fn forces(plan: &Plan, input: Motion, style: &Style) -> Result<Picture> {
         ));
     }
     if let Some(s) = force_scale {
-        legend.push(format!("scale: 1 px = {} N", geometry::short(s)));
+        legend.push(format!("scale: 1 px = {} N", primitives::short(s)));
     }
     if style.labels {
         for (i, line) in legend.iter().enumerate() {
             #[allow(clippy::cast_precision_loss)]
             let y = 16.0 + 15.0 * i as f64;
-            doc.append(geometry::text(line, [8.0, y], 12.0, "#222222"));
+            doc.append(primitives::text(line, [8.0, y], 12.0, "#222222"));
         }
     }
     Ok(Picture {

@@ -42,23 +42,28 @@
 //! ```
 
 mod animation;
-mod course;
 mod diagrams;
 mod forces;
 mod frame;
-mod geometry;
+mod limits;
+mod parts;
 mod plan_view;
+mod primitives;
+mod scene;
 mod scheme;
 mod style;
 
 pub use animation::animation;
-pub use course::Course;
 pub use diagrams::{diagram, Chart, Diagram, Panel};
 pub use forces::forces;
 pub use frame::Frame;
 pub use plan_view::plan_view;
 pub use scheme::scheme;
 pub use style::Style;
+
+/// The course of positions the plan and the diagrams draw; it lives in [`crate::linkage`]
+/// (formerly `tmm::draw::Course`) and is re-exported here beside the pictures that take it.
+pub use crate::linkage::Course;
 
 /// The most positions one picture draws (frames of an animation, positions of a plan,
 /// samples of a curve or a diagram): beyond it the SVG text would grow past what a browser

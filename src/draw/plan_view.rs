@@ -1,11 +1,13 @@
 //! The plan of the mechanism: its course positions overlaid, the extreme positions bold, and
 //! the paths of named points.
 
-use super::geometry::{self, r2, Extents, Labels, Pen, Pose, Topo, Tracer};
-use super::{Course, Picture, Style};
+use super::parts::{self, Pen};
+use super::primitives::{self, r2, Labels};
+use super::scene::{self, Extents, Pose, Topo, Tracer};
+use super::{Picture, Style};
 use crate::error::{Error, Result};
 use crate::kinematics::Motion;
-use crate::linkage::{uniform_inputs, Analysis, Plan};
+use crate::linkage::{uniform_inputs, Analysis, Course, Plan};
 use nalgebra::Point2;
 use svg::node::element::path::Data;
 use svg::node::element::Path;
@@ -36,7 +38,7 @@ use svg::Node;
 /// ```
 pub fn plan_view(plan: &Plan, course: &Course, paths: &[&str], style: &Style) -> Result<Picture> {
     style.check()?;
-    course.check()?;
+    super::limits::check_course(course)?;
     let topo = Topo::new(plan);
     let tracers: Vec<Tracer> = paths
         .iter()
@@ -86,11 +88,11 @@ pub fn plan_view(plan: &Plan, course: &Course, paths: &[&str], style: &Style) ->
         p.cover(&topo, &ext, &mut cover);
     }
     cover.extend(curves.iter().flatten().flatten().copied());
-    let frame = geometry::fit_with_input(&topo, &poses[0], &mut cover, style)?;
+    let frame = scene::fit_with_input(&topo, &poses[0], &mut cover, style)?;
 
     let title = format!("{} — plan in {} positions", plan.name(), poses.len());
-    let mut doc = geometry::document(style, &title);
-    doc.append(geometry::ground(&topo, &poses[0], &ext, &frame, style));
+    let mut doc = primitives::document(style, &title);
+    doc.append(parts::ground(&topo, &poses[0], &ext, &frame, style));
     for (c, name) in curves.iter().zip(paths) {
         let mut d = Data::new();
         let mut pen_down = false;
@@ -128,7 +130,7 @@ pub fn plan_view(plan: &Plan, course: &Course, paths: &[&str], style: &Style) ->
         block_fill: false,
     };
     for p in &poses {
-        doc.append(geometry::position(&topo, p, &ext, &frame, style, light));
+        doc.append(parts::position(&topo, p, &ext, &frame, style, light));
     }
     let heavy = Pen {
         colour: Some("#000000"),
@@ -139,9 +141,9 @@ pub fn plan_view(plan: &Plan, course: &Course, paths: &[&str], style: &Style) ->
         block_fill: false,
     };
     for p in &bold {
-        doc.append(geometry::position(&topo, p, &ext, &frame, style, heavy));
+        doc.append(parts::position(&topo, p, &ext, &frame, style, heavy));
     }
-    if let Some(arrow) = geometry::input_arrow(&topo, &poses[0], &frame, style) {
+    if let Some(arrow) = parts::input_arrow(&topo, &poses[0], &frame, style) {
         doc.append(arrow);
     }
     if style.labels {
@@ -150,11 +152,11 @@ pub fn plan_view(plan: &Plan, course: &Course, paths: &[&str], style: &Style) ->
         if let Some(outer) = outer_joint(&topo) {
             for (k, p) in poses.iter().enumerate() {
                 let q = placed.place(frame.to_pixel(p.on(&topo, outer, topo.input)), style);
-                doc.append(geometry::text(&k.to_string(), q, 12.0, "#333333"));
+                doc.append(primitives::text(&k.to_string(), q, 12.0, "#333333"));
             }
         }
         let first = if bold.is_empty() { &poses[0] } else { &bold[0] };
-        doc.append(geometry::labels(&topo, first, &frame, style, &mut placed));
+        doc.append(parts::labels(&topo, first, &frame, style, &mut placed));
     }
     Ok(Picture {
         svg: doc.to_string(),

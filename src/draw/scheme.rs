@@ -1,6 +1,8 @@
 //! The kinematic scheme of a linkage at one position.
 
-use super::geometry::{self, Extents, Labels, Pen, Pose, Topo};
+use super::parts::{self, Pen};
+use super::primitives::{self, Labels};
+use super::scene::{self, Extents, Pose, Topo};
 use super::{Picture, Style};
 use crate::error::Result;
 use crate::kinematics::Motion;
@@ -42,15 +44,15 @@ pub fn scheme(plan: &Plan, input: Motion, style: &Style) -> Result<Picture> {
     ext.add(&topo, &pose);
     let mut cover = Vec::new();
     pose.cover(&topo, &ext, &mut cover);
-    let frame = geometry::fit_with_input(&topo, &pose, &mut cover, style)?;
+    let frame = scene::fit_with_input(&topo, &pose, &mut cover, style)?;
     let title = format!(
         "{} — kinematic scheme at input {:.4}",
         plan.name(),
         input.value
     );
-    let mut doc = geometry::document(style, &title);
-    doc.append(geometry::ground(&topo, &pose, &ext, &frame, style));
-    doc.append(geometry::position(
+    let mut doc = primitives::document(style, &title);
+    doc.append(parts::ground(&topo, &pose, &ext, &frame, style));
+    doc.append(parts::position(
         &topo,
         &pose,
         &ext,
@@ -58,11 +60,11 @@ pub fn scheme(plan: &Plan, input: Motion, style: &Style) -> Result<Picture> {
         style,
         Pen::NORMAL,
     ));
-    if let Some(arrow) = geometry::input_arrow(&topo, &pose, &frame, style) {
+    if let Some(arrow) = parts::input_arrow(&topo, &pose, &frame, style) {
         doc.append(arrow);
     }
     if style.labels {
-        doc.append(geometry::labels(
+        doc.append(parts::labels(
             &topo,
             &pose,
             &frame,

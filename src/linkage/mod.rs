@@ -42,6 +42,7 @@
 
 mod analysis;
 pub mod bundled;
+mod course;
 mod cycle;
 mod description;
 pub mod dynamics;
@@ -51,6 +52,7 @@ mod structure;
 mod table;
 
 pub use analysis::{Analysis, Balance, PowerCheck, Reaction};
+pub use course::Course;
 #[cfg(feature = "rayon")]
 pub use cycle::run_cycle_parallel;
 pub use cycle::{

@@ -1,7 +1,8 @@
 //! Kinetostatics against an independent general solve, equilibrium residuals, the principle of
 //! virtual power, the seeds' own (corrected) scalar formulas, and behaviour at singularities.
 
-mod general_solve;
+pub(crate) mod general_solve;
+mod passive;
 mod prismatic;
 mod seed_formulas;
 mod strategies;

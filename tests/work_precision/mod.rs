@@ -3,23 +3,15 @@
 //! `bench/examples/work_precision.rs`) and from the CSV files committed beside the charts in
 //! `docs/charts/`.
 
-#[path = "work_precision/dd.rs"]
 mod dd;
-#[path = "work_precision/dynamics_data.rs"]
 #[allow(dead_code)] // the CSV writers serve the example
 mod dynamics_data;
-#[path = "work_precision/fit.rs"]
 mod fit;
-#[path = "kinetostatics/general_solve.rs"]
-#[allow(dead_code)]
-mod general_solve;
-#[path = "work_precision/kinematics_data.rs"]
+use crate::kinetostatics::general_solve;
 #[allow(dead_code)] // the CSV writers serve the example
 mod kinematics_data;
-#[path = "work_precision/kinetostatics_data.rs"]
 #[allow(dead_code)] // the CSV writers serve the example
 mod kinetostatics_data;
-#[path = "work_precision/rng.rs"]
 mod rng;
 
 use dynamics_data::{asymptotic, Line, MACHINES, METHODS};

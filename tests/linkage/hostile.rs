@@ -28,8 +28,7 @@ use tmm::linkage::{
 use tmm::mechanism::{Compressor, FourBar, RockingCylinder, SixBar, SliderCrank};
 use tmm::{Ends, Error};
 
-#[path = "common/hostile_gen.rs"]
-mod hostile_gen;
+use crate::common::hostile_gen;
 use hostile_gen::{cases, has_non_finite, Gen};
 
 fn linkages() -> Vec<Linkage> {
@@ -233,7 +232,7 @@ fn hostile_outputs_cycles_and_tables() {
 #[cfg(feature = "serde")]
 #[test]
 fn malformed_files_are_errors() {
-    let text = include_str!("../linkages/watt-six-bar.json");
+    let text = include_str!("../../linkages/watt-six-bar.json");
     let mut g = Gen::new(41);
     for case in 0..cases() {
         let mut bytes = text.as_bytes().to_vec();

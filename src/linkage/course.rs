@@ -1,20 +1,19 @@
-//! The positions of a course project's plan: the inputs to draw and the extreme positions.
+//! The positions of a course project's plans: the inputs of a cycle in the order the input
+//! reaches them, and the inputs of the output's extreme positions.
 
-use super::frame::drawing;
-use super::MAX_FRAMES;
+use super::cycle::{course_inputs, uniform_inputs, Output};
+use super::plan::Plan;
 use crate::error::{Error, Result};
-use crate::kinematics::{Motion, Rotation};
-use crate::linkage::{course_inputs, uniform_inputs, Output, Plan};
+use crate::kinematics::{Motion, Rotation, MAX_POSITIONS};
 
-/// The positions of a plan of the mechanism: the inputs drawn (12 in a course project), in
-/// the order the input reaches them, and the inputs of the output's extreme positions (drawn
-/// bold). The diagrams ([`diagram`](super::diagram)) mark the same positions.
+/// The positions of a cycle: the inputs of the plans (12 in a course project), in the order
+/// the input reaches them, and the inputs of the output's extreme positions. The pictures of
+/// `tmm::draw` draw a course (its extreme positions bold) and mark it on the diagrams.
 ///
 /// # Examples
 /// The Watt six-bar's 12 positions from the start of link 5's working stroke:
 /// ```
-/// use tmm::draw::Course;
-/// use tmm::linkage::{bundled, Output, Plan};
+/// use tmm::linkage::{bundled, Course, Output, Plan};
 /// let plan = Plan::new(&bundled::watt_six_bar())?;
 /// let course = Course::new(&plan, Some(&Output::Angle("link 5".into())), 12, 10.0)?;
 /// assert_eq!(course.inputs.len(), 12);
@@ -38,16 +37,15 @@ impl Course {
     /// pose.
     ///
     /// # Errors
-    /// [`Error::OutOfRange`] for `n` outside [1, [`MAX_FRAMES`]]; [`Error::NonFinite`] or
-    /// [`Error::Drawing`] for a non-finite or zero speed; [`Error::Description`] for a slider
-    /// input (give its positions as a `Course` by hand) or an unknown output; the errors of
-    /// [`Plan::strokes`].
+    /// [`Error::OutOfRange`] for `n` outside [1, [`MAX_POSITIONS`]]; [`Error::NonFinite`] for
+    /// a non-finite speed, [`Error::NonPositive`] for a zero one; [`Error::Description`] for a
+    /// slider input (give its positions as a `Course` by hand) or an unknown output; the
+    /// errors of [`Plan::strokes`].
     ///
     /// # Examples
     /// A clockwise crank reaches its positions with decreasing angles:
     /// ```
-    /// use tmm::draw::Course;
-    /// use tmm::linkage::{bundled, Plan};
+    /// use tmm::linkage::{bundled, Course, Plan};
     /// let plan = Plan::new(&bundled::four_bar())?;
     /// let course = Course::new(&plan, None, 4, -10.0)?;
     /// assert_eq!(course.inputs[0].value, plan.reference_input());
@@ -56,10 +54,13 @@ impl Course {
     /// # Ok::<(), tmm::Error>(())
     /// ```
     pub fn new(plan: &Plan, output: Option<&Output>, n: usize, speed: f64) -> Result<Self> {
-        check_count("number of positions", n)?;
+        check_count(n)?;
         crate::error::finite("speed", speed)?;
         if speed == 0.0 {
-            return Err(drawing("a course", "the speed must not be zero"));
+            return Err(Error::NonPositive {
+                name: "|speed| of a course (its sign is the sense of rotation)",
+                value: speed,
+            });
         }
         if !plan.input_is_crank() {
             return Err(Error::Description {
@@ -90,35 +91,44 @@ impl Course {
         })
     }
 
-    /// Checks the inputs: at least one, at most [`MAX_FRAMES`], all finite.
-    pub(crate) fn check(&self) -> Result<()> {
-        check_inputs(&self.inputs)?;
+    /// Checks the course: at least one position, at most [`MAX_POSITIONS`], every input and
+    /// extreme finite.
+    ///
+    /// # Errors
+    /// [`Error::OutOfRange`] for no positions or too many; [`Error::NonFinite`] naming the
+    /// first non-finite input, rate or acceleration.
+    ///
+    /// # Examples
+    /// ```
+    /// use tmm::kinematics::Motion;
+    /// use tmm::linkage::Course;
+    /// let course = Course { inputs: vec![Motion::new(f64::NAN, 1.0, 0.0)], extremes: vec![] };
+    /// assert!(course.check().is_err());
+    /// ```
+    pub fn check(&self) -> Result<()> {
+        check_count(self.inputs.len())?;
+        check_finite(&self.inputs)?;
         check_finite(&self.extremes)
     }
 }
 
-/// 1 ≤ n ≤ MAX_FRAMES.
-pub(crate) fn check_count(name: &'static str, n: usize) -> Result<()> {
-    if n == 0 || n > MAX_FRAMES {
+/// 1 ≤ n ≤ MAX_POSITIONS.
+fn check_count(n: usize) -> Result<()> {
+    if n == 0 || n > MAX_POSITIONS {
         #[allow(clippy::cast_precision_loss)]
         return Err(Error::OutOfRange {
-            name,
+            name: "number of positions",
             value: n as f64,
             min: 1.0,
-            max: MAX_FRAMES as f64,
+            max: MAX_POSITIONS as f64,
             ends: crate::Ends::Closed,
         });
     }
     Ok(())
 }
 
-/// A bounded, non-empty list of finite inputs.
-pub(crate) fn check_inputs(inputs: &[Motion]) -> Result<()> {
-    check_count("number of positions", inputs.len())?;
-    check_finite(inputs)
-}
-
-fn check_finite(inputs: &[Motion]) -> Result<()> {
+/// Every input, rate and acceleration finite.
+pub(crate) fn check_finite(inputs: &[Motion]) -> Result<()> {
     for m in inputs {
         crate::error::all_finite(&[
             ("input", m.value),

@@ -10,7 +10,11 @@ use tmm::mechanism::{Compressor, FourBar, RockingCylinder, SixBar, SliderCrank};
 
 macro_rules! file {
     ($name:literal, $built:expr) => {
-        ($name, include_str!(concat!("../linkages/", $name)), $built)
+        (
+            $name,
+            include_str!(concat!("../../linkages/", $name)),
+            $built,
+        )
     };
 }
 
@@ -127,6 +131,6 @@ fn every_file_balances_by_virtual_power_over_a_turn() {
 
 #[test]
 fn the_watt_file_is_at_most_40_lines() {
-    let text = include_str!("../linkages/watt-six-bar.json");
+    let text = include_str!("../../linkages/watt-six-bar.json");
     assert!(text.lines().count() <= 40, "{} lines", text.lines().count());
 }

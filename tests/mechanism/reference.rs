@@ -1,12 +1,10 @@
 //! The ready mechanisms built through the linkage engine agree with the hand-written chains
-//! they replaced (kept in `tests/reference/`, from commit e98753d) at 360 positions with
+//! they replaced (kept in `tests/mechanism/hand/`, from commit e98753d) at 360 positions with
 //! ω1 ≠ 0 and ε1 ≠ 0: every link's angle, ω and ε, every joint's position, velocity and
 //! acceleration, every reaction and the balancing moment, to 1e-13 relative.
 
-mod reference;
-
+use super::hand;
 use nalgebra::Vector2;
-use reference as hand;
 use tmm::kinematics::{LinkMotion, Motion, PointMotion};
 use tmm::linkage::{Analysis, Drive};
 use tmm::mechanism::{Compressor, FourBar, RockingCylinder, SixBar, SliderCrank};

@@ -3,8 +3,7 @@
 //! relative; the accelerations against differences of the solver's velocities, which were
 //! checked against the positions), loop closure, transfer functions, and the two assembly modes.
 
-#[path = "common/kinematics_strategies.rs"]
-mod strategies;
+use super::strategies;
 
 use nalgebra::{Point2, Vector2};
 use proptest::prelude::*;

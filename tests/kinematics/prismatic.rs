@@ -3,8 +3,7 @@
 //! that translate and turn), loop closure, the composition of accelerations with the Coriolis
 //! term on turning guides, a Scotch yoke's closed form around a cycle, and the errors.
 
-#[path = "common/kinematics_strategies.rs"]
-mod strategies;
+use super::strategies;
 
 use nalgebra::{Point2, Vector2};
 use proptest::prelude::*;

@@ -1,0 +1,3 @@
+//! Helpers shared by the subjects: the generator of hostile inputs.
+
+pub mod hostile_gen;
