@@ -504,10 +504,11 @@ impl Machine {
                 .or_else(|e| Course::new(plan, None, 12, speed).map_err(|_| e))
                 .map_err(|e| failure(&e));
         }
-        Ok(Course {
-            inputs: self.inputs(&Positions::Uniform(12), speed, &mut Vec::new())?,
-            extremes: Vec::new(),
-        })
+        Ok(Course::given(self.inputs(
+            &Positions::Uniform(12),
+            speed,
+            &mut Vec::new(),
+        )?))
     }
 
     /// The output of the diagrams: the described one, or the last link's angle.
