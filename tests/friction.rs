@@ -912,7 +912,7 @@ fn crank_and_dyad_balance_power_with_the_losses() {
             let pl = power(&d.load2, |q| va + perp(q - d.a) * w2, w2)
                 + power(&d.load3, |q| perp(q - d.c) * w3, w3);
             b.lost_share += r.power_lost();
-            b.add(crank.imbalance(r.on_link1, pl, r.power_lost()));
+            b.add(crank.imbalance(r.on_link1(&d), pl, r.power_lost()));
         }
         b.report("RRR", f);
 
@@ -938,7 +938,7 @@ fn crank_and_dyad_balance_power_with_the_losses() {
             let pl =
                 power(&d.load2, |q| va + perp(q - d.a) * w2, w2) + power(&d.load3, |_| g * s, 0.0);
             b.lost_share += r.power_lost();
-            b.add(crank.imbalance(r.on_link1, pl, r.power_lost()));
+            b.add(crank.imbalance(r.on_link1(&d), pl, r.power_lost()));
         }
         b.report("RRP", f);
 
@@ -964,7 +964,7 @@ fn crank_and_dyad_balance_power_with_the_losses() {
             let pl = power(&d.load2, |q| va + perp(q - d.a) * w, w)
                 + power(&d.load3, |q| perp(q - d.e) * w, w);
             b.lost_share += r.power_lost();
-            b.add(crank.imbalance(r.on_link1, pl, r.power_lost()));
+            b.add(crank.imbalance(r.on_link1(&d), pl, r.power_lost()));
         }
         b.report("RPR", f);
 
@@ -993,7 +993,7 @@ fn crank_and_dyad_balance_power_with_the_losses() {
                 crank.omega1,
             ) + power(&d.load3, |_| vb, 0.0);
             b.lost_share += r.power_lost();
-            b.add(crank.imbalance(r.on_link1, pl, r.power_lost()));
+            b.add(crank.imbalance(r.on_link1(&d), pl, r.power_lost()));
         }
         b.report("PRP", f);
 
@@ -1018,7 +1018,7 @@ fn crank_and_dyad_balance_power_with_the_losses() {
             };
             let pl = power(&d.load2, |_| va, 0.0) + power(&d.load3, |_| u * s, 0.0);
             b.lost_share += r.power_lost();
-            b.add(crank.imbalance(r.on_link1, pl, r.power_lost()));
+            b.add(crank.imbalance(r.on_link1(&d), pl, r.power_lost()));
         }
         b.report("RPP", f);
     }
@@ -1144,7 +1144,7 @@ fn crank_slider_efficiency_against_its_closed_form() {
                     pin: Hinge::circle(rho0).unwrap(),
                     omega1: omega,
                 }
-                .solve(&[rr.on_link1])
+                .solve(&[rr.on_link1(&dyad)])
                 .unwrap();
                 let e = Efficiency::new(crank.power_drive, crank.pin.power_lost + rr.power_lost())
                     .unwrap();

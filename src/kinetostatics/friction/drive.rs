@@ -58,7 +58,7 @@ pub struct CrankBalance {
 
 impl CrankFriction {
     /// The balancing moment for the loads on link 1: its own resultant load and the loads of
-    /// the groups attached to it (the dyads' `on_link1`, friction couples included).
+    /// the groups attached to it (the dyads' `on_link1(&dyad)`, friction couples included).
     ///
     /// # Errors
     /// [`Error::NonFinite`](crate::Error::NonFinite) naming `O1.x`, `O1.y`, `omega1` or a

@@ -5,10 +5,10 @@
 //! response to each joint's friction load (the closed forms are linear in the loads), and the
 //! friction equations on the three joint pressures (see the [module](super)).
 
-use super::solver::{Pressure, Problem, Solved};
+use super::solver::{three_hinges, wider, Pressure, Problem, Solved, DIRECT_STEPS};
 use super::{sign, Convergence, Hinge, Iteration, JointFriction, Slide, SlideContact};
-use crate::angle::perp;
-use crate::error::{all_finite, unit_direction, Result};
+use crate::angle::{cross, perp};
+use crate::error::{unit_direction, Result};
 use crate::kinetostatics::{
     Conditioning, PrpDyad, PrpReactions, RppDyad, RppReactions, RprDyad, RprReactions, RrpDyad,
     RrpReactions, RrrDyad, RrrReactions,
@@ -42,15 +42,14 @@ impl Setup {
         let v = self.v0;
         Outcome {
             v,
-            joints: [0, 1, 2].map(|k| {
-                JointFriction::none(self.laws[k].of(v[2 * k], v[2 * k + 1]), self.rate[k])
-            }),
+            joints: [0, 1, 2].map(|k| JointFriction::none(self.laws[k].of(v[2 * k], v[2 * k + 1]))),
             convergence: Convergence::NONE,
         }
     }
 
     /// Solves the friction equations with `unit[k]` the reactions' response to joint k's
     /// friction load of one unit on its second link (and minus one on its first).
+    #[inline(always)]
     fn solve(
         &self,
         unit: [[f64; 6]; 3],
@@ -74,7 +73,7 @@ impl Setup {
                 if problem.active[k] {
                     JointFriction::new(self.c[k], m[k], self.rate[k])
                 } else {
-                    JointFriction::none(self.laws[k].of(v[2 * k], v[2 * k + 1]), self.rate[k])
+                    JointFriction::none(self.laws[k].of(v[2 * k], v[2 * k + 1]))
                 }
             }),
             convergence,
@@ -82,6 +81,27 @@ impl Setup {
     }
 }
 
+/// Checks that every named rate is finite; the error names the first that is not.
+#[inline(always)]
+fn all_finite(named: &[(&'static str, f64); 4]) -> Result<()> {
+    if named.iter().fold(0.0, |s, (_, v)| s + v).is_finite() {
+        Ok(())
+    } else {
+        crate::error::all_finite(named)
+    }
+}
+
+/// A load, built in place.
+#[inline(always)]
+fn load(point: Point2<f64>, force: Vector2<f64>, moment: f64) -> Load {
+    Load {
+        point,
+        force,
+        moment,
+    }
+}
+
+#[inline(always)]
 fn vec(v: &[f64; 6], k: usize) -> Vector2<f64> {
     Vector2::new(v[2 * k], v[2 * k + 1])
 }
@@ -95,8 +115,18 @@ fn sub(a: [f64; 6], b: [f64; 6]) -> [f64; 6] {
 fn scale(forces: &[f64], loads: [&Load; 2]) -> f64 {
     forces
         .iter()
-        .chain(loads.iter().flat_map(|l| l.force.iter()))
-        .fold(0.0_f64, |s, x| s.max(x.abs()))
+        .fold(max_abs(&[loads[0].force, loads[1].force]), |s, x| {
+            wider(s, x.abs())
+        })
+}
+
+/// The largest component of some vectors, in magnitude.
+#[inline(always)]
+fn max_abs(v: &[Vector2<f64>; 2]) -> f64 {
+    wider(
+        wider(v[0].x.abs(), v[0].y.abs()),
+        wider(v[1].x.abs(), v[1].y.abs()),
+    )
 }
 
 fn couple(at: Point2<f64>) -> Load {
@@ -192,10 +222,6 @@ pub struct RrrFrictionReactions {
     pub b: JointFriction,
     /// C's friction: the couple of link 4 on link 3, rate ω3 − ω4.
     pub c: JointFriction,
-    /// The dyad's load on link 1 at A: −R12 and A's friction couple on link 1.
-    pub on_link1: Load,
-    /// The dyad's load on link 4 at C: −R43 and C's friction couple on link 4.
-    pub on_link4: Load,
     /// The frictionless closed form's conditioning.
     pub conditioning: Conditioning,
     /// The friction iteration.
@@ -203,6 +229,18 @@ pub struct RrrFrictionReactions {
 }
 
 impl RrrFrictionReactions {
+    /// The dyad's load on link 1 at A: −R12 and A's friction couple on link 1, reversed.
+    #[must_use]
+    pub fn on_link1(&self, dyad: &RrrDyad) -> Load {
+        load(dyad.a, -self.r12, -self.a.load)
+    }
+
+    /// The dyad's load on link 4 at C: −R43 and C's friction couple on link 4, reversed.
+    #[must_use]
+    pub fn on_link4(&self, dyad: &RrrDyad) -> Load {
+        load(dyad.c, -self.r43, -self.c.load)
+    }
+
     /// The power lost in the dyad's three hinges, W.
     #[must_use]
     pub fn power_lost(&self) -> f64 {
@@ -212,6 +250,38 @@ impl RrrFrictionReactions {
 
 fn rrr_values(r: &RrrReactions) -> [f64; 6] {
     [r.r12.x, r.r12.y, r.r23.x, r.r23.y, r.r43.x, r.r43.y]
+}
+
+/// The columns of D for an RRR dyad: the reactions' response to each hinge's friction
+/// couple per newton of pressure, −c_k times the response to a unit couple on the joint's
+/// second link (minus the first's). The responses in closed form (the closed form of
+/// [`RrrDyad`] with those loads, its terms that vanish dropped): with AB, CB, d = AB × CB and
+/// AB·CB, a couple M2 = 1 on link 2 gives t2 = 1/|AB|², n2 = t2·(AB·CB)/d, n3 = −1/d; a
+/// couple M3 = 1 on link 3 gives t3 = 1/|CB|², n2 = 1/d, n3 = −t3·(AB·CB)/d; then
+/// R12 = n2·AB + t2·AB⊥, R43 = n3·CB + t3·CB⊥, R23 = −R43. A's couple acts on link 2, B's
+/// on link 3 (and reversed on link 2), C's on link 3.
+#[inline(always)]
+fn rrr_friction_columns(d: &RrrDyad, c: [f64; 3]) -> [[f64; 6]; 3] {
+    let (ab, cb) = (d.b - d.a, d.b - d.c);
+    let (dot, i_d) = (ab.dot(&cb), 1.0 / cross(ab, cb));
+    let inv =
+        Vector2::repeat(1.0).component_div(&Vector2::new(ab.norm_squared(), cb.norm_squared()));
+    let (t2, t3) = (inv.x, inv.y);
+    // The couple on link 2: R12 = p2, R43 = q2.
+    let p2 = ab * (t2 * dot * i_d) + perp(ab) * t2;
+    let q2 = cb * -i_d;
+    // The couple on link 3: R12 = p3, R43 = q3.
+    let p3 = ab * i_d;
+    let q3 = cb * (-t3 * dot * i_d) + perp(cb) * t3;
+    let column = |k: f64, p: Vector2<f64>, q: Vector2<f64>| {
+        let (p, q) = (p * -k, q * -k);
+        [p.x, p.y, -q.x, -q.y, q.x, q.y]
+    };
+    [
+        column(c[0], p2, q2),
+        column(c[1], p3 - p2, q3 - q2),
+        column(c[2], p3, q3),
+    ]
 }
 
 impl RrrFriction {
@@ -235,52 +305,84 @@ impl RrrFriction {
     pub fn solve_with(&self, options: &Iteration) -> Result<RrrFrictionReactions> {
         let d = &self.dyad;
         let base = d.solve()?;
-        let rho = [
-            self.joints.a.checked("rho_A")?,
-            self.joints.b.checked("rho_B")?,
-            self.joints.c.checked("rho_C")?,
-        ];
         let w = &self.rates;
-        all_finite(&[
-            ("omega1", w.omega1),
-            ("omega2", w.omega2),
-            ("omega3", w.omega3),
-            ("omega4", w.omega4),
-        ])?;
+        let rho = [self.joints.a.rho, self.joints.b.rho, self.joints.c.rho];
+        // One test for the good case; the named checks only when it fails.
+        let rates_finite = (w.omega1 + w.omega2 + w.omega3 + w.omega4).is_finite();
+        let rho_ok = rho[0] >= 0.0 && rho[1] >= 0.0 && rho[2] >= 0.0;
+        if !(rho_ok && (rho[0] + rho[1] + rho[2]).is_finite() && rates_finite) {
+            self.joints.a.checked("rho_A")?;
+            self.joints.b.checked("rho_B")?;
+            self.joints.c.checked("rho_C")?;
+            crate::error::all_finite(&[
+                ("omega1", w.omega1),
+                ("omega2", w.omega2),
+                ("omega3", w.omega3),
+                ("omega4", w.omega4),
+            ])?;
+        }
         let rate = [
             w.omega2 - w.omega1,
             w.omega3 - w.omega2,
             w.omega3 - w.omega4,
         ];
-        let setup = Setup {
-            v0: rrr_values(&base),
-            laws: [Pressure::Hinge; 3],
-            c: [0, 1, 2].map(|k| rho[k] * sign(rate[k])),
-            rate,
-        };
-        let out = if setup.frictionless() {
-            setup.none()
+        let c = [
+            rho[0] * sign(rate[0]),
+            rho[1] * sign(rate[1]),
+            rho[2] * sign(rate[2]),
+        ];
+        if c[0] != 0.0 && c[1] != 0.0 && c[2] != 0.0 {
+            // The usual case, written out: friction in every hinge, Newton converging.
+            let v0 = rrr_values(&base);
+            let columns = rrr_friction_columns(d, c);
+            let f = [d.load2.force, d.load3.force];
+            let scale = v0.iter().fold(max_abs(&f), |s, x| wider(s, x.abs()));
+            let tol = options.tolerance * scale;
+            if let Some(Solved { m, v, convergence }) =
+                three_hinges(&v0, &columns, tol, DIRECT_STEPS.min(options.budget))
+            {
+                return Ok(RrrFrictionReactions {
+                    r12: vec(&v, 0),
+                    r23: vec(&v, 1),
+                    r43: vec(&v, 2),
+                    a: JointFriction::new(c[0], m[0], rate[0]),
+                    b: JointFriction::new(c[1], m[1], rate[1]),
+                    c: JointFriction::new(c[2], m[2], rate[2]),
+                    conditioning: base.conditioning,
+                    convergence,
+                });
+            }
+        }
+        self.general(&base, c, rate, options)
+    }
+
+    /// Every other case: no friction at all (the frictionless block's results), friction in
+    /// some hinges only, or the direct Newton not converging (the general solve decides).
+    #[cold]
+    #[inline(never)]
+    fn general(
+        &self,
+        base: &RrrReactions,
+        c: [f64; 3],
+        rate: [f64; 3],
+        options: &Iteration,
+    ) -> Result<RrrFrictionReactions> {
+        let d = &self.dyad;
+        let v0 = rrr_values(base);
+        let norm = |v: &[f64; 6], k: usize| Pressure::Hinge.of(v[2 * k], v[2 * k + 1]);
+        let (r12, r23, r43, [a, b, c], convergence) = if c == [0.0; 3] {
+            let joints = [0, 1, 2].map(|k| JointFriction::none(norm(&v0, k)));
+            (base.r12, base.r23, base.r43, joints, Convergence::NONE)
         } else {
-            let zero = Load::zero(d.b);
-            let e2 = rrr_values(
-                &RrrDyad {
-                    load2: couple(d.b),
-                    load3: zero,
-                    ..*d
-                }
-                .solve()?,
-            );
-            let e3 = rrr_values(
-                &RrrDyad {
-                    load2: zero,
-                    load3: couple(d.b),
-                    ..*d
-                }
-                .solve()?,
-            );
-            setup.solve(
-                [e2, sub(e3, e2), e3],
-                scale(&setup.v0, [&d.load2, &d.load3]),
+            let f = [d.load2.force, d.load3.force];
+            let Solved { m, v, convergence } = Problem {
+                v0,
+                d: rrr_friction_columns(d, c),
+                laws: [Pressure::Hinge; 3],
+                active: c.map(|c| c != 0.0),
+                scale: v0.iter().fold(max_abs(&f), |s, x| wider(s, x.abs())),
+            }
+            .solve(
                 options,
                 "RRR dyad with friction",
                 [
@@ -288,15 +390,16 @@ impl RrrFriction {
                     "joint B (links 2 and 3)",
                     "joint C (links 3 and 4)",
                 ],
-            )?
+            )?;
+            let joints = [0, 1, 2].map(|k| {
+                if c[k] == 0.0 {
+                    JointFriction::none(norm(&v, k))
+                } else {
+                    JointFriction::new(c[k], m[k], rate[k])
+                }
+            });
+            (vec(&v, 0), vec(&v, 1), vec(&v, 2), joints, convergence)
         };
-        let frictionless = setup.frictionless();
-        let (r12, r23, r43) = if frictionless {
-            (base.r12, base.r23, base.r43)
-        } else {
-            (vec(&out.v, 0), vec(&out.v, 1), vec(&out.v, 2))
-        };
-        let [a, b, c] = out.joints;
         Ok(RrrFrictionReactions {
             r12,
             r23,
@@ -304,10 +407,8 @@ impl RrrFriction {
             a,
             b,
             c,
-            on_link1: Load::new(d.a, -r12, -a.load),
-            on_link4: Load::new(d.c, -r43, -c.load),
             conditioning: base.conditioning,
-            convergence: out.convergence,
+            convergence,
         })
     }
 }
@@ -402,10 +503,6 @@ pub struct RrpFrictionReactions {
     pub guide: JointFriction,
     /// The guide's normal reaction (moment about B).
     pub contact43: SlideContact,
-    /// The dyad's load on link 1 at A: −R12 and A's friction couple on link 1.
-    pub on_link1: Load,
-    /// The dyad's load on link 4, reduced to B: −R43 and the normal force's moment, reversed.
-    pub on_link4: Load,
     /// The frictionless closed form's conditioning.
     pub conditioning: Conditioning,
     /// The friction iteration.
@@ -413,6 +510,18 @@ pub struct RrpFrictionReactions {
 }
 
 impl RrpFrictionReactions {
+    /// The dyad's load on link 1 at A: −R12 and A's friction couple on link 1, reversed.
+    #[must_use]
+    pub fn on_link1(&self, dyad: &RrpDyad) -> Load {
+        load(dyad.a, -self.r12, -self.a.load)
+    }
+
+    /// The dyad's load on link 4, reduced to B: −R43 and the normal force's moment about B, reversed.
+    #[must_use]
+    pub fn on_link4(&self, dyad: &RrpDyad) -> Load {
+        load(dyad.b, -self.r43, -self.contact43.moment)
+    }
+
     /// The power lost in the dyad's three joints, W.
     #[must_use]
     pub fn power_lost(&self) -> f64 {
@@ -525,8 +634,6 @@ impl RrpFriction {
             b,
             guide,
             contact43,
-            on_link1: Load::new(d.a, -r12, -a.load),
-            on_link4: Load::new(d.b, -r43, -contact43.moment),
             conditioning: base.conditioning,
             convergence: out.convergence,
         })
@@ -594,10 +701,6 @@ pub struct RprFrictionReactions {
     pub e: JointFriction,
     /// The sliding pair's normal reaction on the rod (moment about A).
     pub contact32: SlideContact,
-    /// The dyad's load on link 1 at A: −R12 and A's friction couple on link 1.
-    pub on_link1: Load,
-    /// The dyad's load on link 4 at E: −R43 and E's friction couple on link 4.
-    pub on_link4: Load,
     /// The frictionless closed form's conditioning.
     pub conditioning: Conditioning,
     /// The friction iteration.
@@ -605,6 +708,18 @@ pub struct RprFrictionReactions {
 }
 
 impl RprFrictionReactions {
+    /// The dyad's load on link 1 at A: −R12 and A's friction couple on link 1, reversed.
+    #[must_use]
+    pub fn on_link1(&self, dyad: &RprDyad) -> Load {
+        load(dyad.a, -self.r12, -self.a.load)
+    }
+
+    /// The dyad's load on link 4 at E: −R43 and E's friction couple on link 4, reversed.
+    #[must_use]
+    pub fn on_link4(&self, dyad: &RprDyad) -> Load {
+        load(dyad.e, -self.r43, -self.e.load)
+    }
+
     /// The power lost in the dyad's three joints, W.
     #[must_use]
     pub fn power_lost(&self) -> f64 {
@@ -717,8 +832,6 @@ impl RprFriction {
             slide,
             e,
             contact32,
-            on_link1: Load::new(d.a, -r12, -a.load),
-            on_link4: Load::new(d.e, -r43, -e.load),
             conditioning: base.conditioning,
             convergence: out.convergence,
         })
@@ -785,10 +898,6 @@ pub struct PrpFrictionReactions {
     pub contact12: SlideContact,
     /// Guide 3's normal reaction (moment about B).
     pub contact43: SlideContact,
-    /// The dyad's load on link 1, reduced to B.
-    pub on_link1: Load,
-    /// The dyad's load on link 4, reduced to B.
-    pub on_link4: Load,
     /// The frictionless closed form's conditioning.
     pub conditioning: Conditioning,
     /// The friction iteration.
@@ -796,6 +905,18 @@ pub struct PrpFrictionReactions {
 }
 
 impl PrpFrictionReactions {
+    /// The dyad's load on link 1, reduced to B: −R12 and guide 2's normal moment about B, reversed.
+    #[must_use]
+    pub fn on_link1(&self, dyad: &PrpDyad) -> Load {
+        load(dyad.b, -self.r12, -self.contact12.moment)
+    }
+
+    /// The dyad's load on link 4, reduced to B: −R43 and guide 3's normal moment about B, reversed.
+    #[must_use]
+    pub fn on_link4(&self, dyad: &PrpDyad) -> Load {
+        load(dyad.b, -self.r43, -self.contact43.moment)
+    }
+
     /// The power lost in the dyad's three joints, W.
     #[must_use]
     pub fn power_lost(&self) -> f64 {
@@ -900,8 +1021,6 @@ impl PrpFriction {
             guide3,
             contact12,
             contact43,
-            on_link1: Load::new(d.b, -r12, -contact12.moment),
-            on_link4: Load::new(d.b, -r43, -contact43.moment),
             conditioning: base.conditioning,
             convergence: out.convergence,
         })
@@ -968,10 +1087,6 @@ pub struct RppFrictionReactions {
     pub contact32: SlideContact,
     /// The guide's normal reaction on link 3 (moment about B).
     pub contact43: SlideContact,
-    /// The dyad's load on link 1 at A: −R12 and A's friction couple on link 1.
-    pub on_link1: Load,
-    /// The dyad's load on link 4, reduced to B.
-    pub on_link4: Load,
     /// The frictionless closed form's conditioning.
     pub conditioning: Conditioning,
     /// The friction iteration.
@@ -979,6 +1094,18 @@ pub struct RppFrictionReactions {
 }
 
 impl RppFrictionReactions {
+    /// The dyad's load on link 1 at A: −R12 and A's friction couple on link 1, reversed.
+    #[must_use]
+    pub fn on_link1(&self, dyad: &RppDyad) -> Load {
+        load(dyad.a, -self.r12, -self.a.load)
+    }
+
+    /// The dyad's load on link 4, reduced to B: −R43 and the guide's normal moment about B, reversed.
+    #[must_use]
+    pub fn on_link4(&self, dyad: &RppDyad) -> Load {
+        load(dyad.b, -self.r43, -self.contact43.moment)
+    }
+
     /// The power lost in the dyad's three joints, W.
     #[must_use]
     pub fn power_lost(&self) -> f64 {
@@ -1081,8 +1208,6 @@ impl RppFriction {
             guide,
             contact32,
             contact43,
-            on_link1: Load::new(d.a, -r12, -a.load),
-            on_link4: Load::new(d.b, -r43, -contact43.moment),
             conditioning: base.conditioning,
             convergence: out.convergence,
         })

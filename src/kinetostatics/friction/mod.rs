@@ -119,6 +119,7 @@ impl Hinge {
     }
 
     /// ρ, checked as the named field of a joint (`"rho_A"`).
+    #[inline]
     pub(crate) fn checked(&self, name: &'static str) -> Result<f64> {
         non_negative(name, self.rho)
     }
@@ -190,6 +191,7 @@ impl Slide {
     }
 
     /// f, and the pressure law, checked with the joint's field names (`f`, `L`, `centre`).
+    #[inline]
     pub(crate) fn checked(&self, names: [&'static str; 3]) -> Result<(f64, solver::Pressure)> {
         let f = non_negative(names[0], self.f)?;
         let centre = finite(names[2], self.centre)?;
@@ -247,8 +249,9 @@ pub struct Convergence {
     pub iterations: usize,
     /// Whether the friction had to be switched on gradually (continuation).
     pub continued: bool,
-    /// det(I − J) at the solution: 1 without friction, towards 0 near self-locking. The
-    /// rounding errors of the reactions are amplified by about 1/det.
+    /// det(I − J) of the last Newton step (within a step of the solution): 1 without
+    /// friction, towards 0 near self-locking. The rounding errors of the reactions are
+    /// amplified by about 1/det.
     pub det: f64,
     /// The largest |m_k − ψ_k(V(m))| at the solution, N: how far the pressures the friction
     /// loads were computed from are from the pressures of the reactions returned.
@@ -275,32 +278,31 @@ pub struct JointFriction {
     /// The pressure the friction is proportional to, N: |R| for a hinge, |N| or |N1| + |N2|
     /// for a slide.
     pub pressure: f64,
-    /// The relative rate: ω_j − ω_i, rad/s, for a hinge; the sliding velocity of the second
-    /// link relative to the first along the slide, m/s, for a slide.
-    pub rate: f64,
-    /// The power lost in the joint, W (≥ 0): ρ·|R|·|ω_rel| or f·|N|·|v_rel|.
+    /// The power lost in the joint, W (≥ 0): ρ·|R|·|ω_rel| or f·|N|·|v_rel|, with the
+    /// relative rate ω_j − ω_i (rad/s) of a hinge, or the second link's sliding velocity
+    /// relative to the first (m/s) of a slide.
     pub power_lost: f64,
 }
 
 impl JointFriction {
     /// `coefficient` (ρ or f, with the sign of the rate folded in: c = coefficient·sgn(rate))
     /// times the pressure, opposed to the motion.
+    #[inline]
     pub(crate) fn new(signed_coefficient: f64, pressure: f64, rate: f64) -> Self {
         let load = -signed_coefficient * pressure;
         Self {
             load,
             pressure,
-            rate,
             power_lost: -load * rate,
         }
     }
 
     /// A joint without friction (pressure as given).
-    pub(crate) fn none(pressure: f64, rate: f64) -> Self {
+    #[inline]
+    pub(crate) fn none(pressure: f64) -> Self {
         Self {
             load: 0.0,
             pressure,
-            rate,
             power_lost: 0.0,
         }
     }
@@ -320,6 +322,7 @@ pub struct SlideContact {
 }
 
 impl SlideContact {
+    #[inline]
     pub(crate) fn new(normal: f64, moment: f64, law: solver::Pressure) -> Self {
         let ends = match law {
             solver::Pressure::Ends { centre, half } => {
@@ -337,11 +340,13 @@ impl SlideContact {
 }
 
 /// `value` ≥ 0 and finite, or an error naming it.
+#[inline]
 pub(crate) fn non_negative(name: &'static str, value: f64) -> Result<f64> {
+    if value >= 0.0 && value.is_finite() {
+        return Ok(value);
+    }
     finite(name, value)?;
-    if value >= 0.0 {
-        Ok(value)
-    } else {
+    {
         Err(Error::OutOfRange {
             name,
             value,

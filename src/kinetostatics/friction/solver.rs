@@ -3,6 +3,7 @@
 
 use super::{sign, Convergence, Iteration};
 use crate::error::{Error, Result};
+use nalgebra::Vector3;
 
 /// Below this det(I − J) the friction's feedback amplifies the rounding of the reactions by
 /// more than 1/√ε ≈ 7·10⁷: the group is treated as self-locking.
@@ -12,7 +13,7 @@ const LOCKED_BELOW: f64 = 1.5e-8;
 const SMALLEST_STEP: f64 = 1.0 / 4096.0;
 
 /// The Newton steps allowed from the frictionless start before the continuation takes over.
-const DIRECT_STEPS: usize = 16;
+pub(crate) const DIRECT_STEPS: usize = 16;
 
 /// The Newton steps allowed at one continuation step before it is halved.
 const STEPS_PER_STAGE: usize = 12;
@@ -180,41 +181,159 @@ impl Problem {
         }
     }
 
-    /// Solves m = ψ(V0 + D·m), directly or by continuation.
+    /// The pressures of the reactions `v`.
+    #[inline(always)]
+    fn pressures(&self, v: &[f64; 6]) -> [f64; 3] {
+        let mut psi = [0.0; 3];
+        for k in 0..3 {
+            if self.active[k] {
+                psi[k] = self.laws[k].of(v[2 * k], v[2 * k + 1]);
+            }
+        }
+        psi
+    }
+
+    /// Solves m = ψ(V0 + D·m): Newton from the frictionless pressures, and where that does
+    /// not converge with det(I − J) > 0, the continuation.
+    #[inline(always)]
     pub(crate) fn solve(
         &self,
         options: &Iteration,
         what: &'static str,
         joints: [&'static str; 3],
     ) -> Result<Solved> {
-        let tol = options.tolerance * self.scale;
-        let budget = options.budget;
-        let e0 = self.eval(0.0, &[0.0; 3]);
-        let m0 = e0.psi;
-        let mut used = 0;
-        let done = |m: [f64; 3], e: Eval, det: f64, used: usize, continued: bool| Solved {
-            m,
-            v: e.v,
-            convergence: Convergence {
-                iterations: used,
-                continued,
-                det,
-                residual: residual(&e.psi, &m),
-            },
-        };
-        match self.newton(1.0, m0, DIRECT_STEPS, tol, &mut used, budget) {
-            Ok((m, e, det)) => return Ok(done(m, e, det, used, false)),
-            Err(Stop::Budget) => return Err(budget_error(what, budget, 1.0)),
-            Err(_) => {}
+        if self.laws == [Pressure::Hinge; 3] {
+            self.direct::<true>(options, what, joints)
+        } else {
+            self.direct::<false>(options, what, joints)
         }
-        // Continuation: switch the friction on gradually from the frictionless solution.
+    }
+
+    /// Newton from the frictionless pressures; `HINGES` when every joint is a hinge (the
+    /// pressures are then three norms, computed side by side, and the gradients only when
+    /// another step is needed).
+    #[inline(always)]
+    fn direct<const HINGES: bool>(
+        &self,
+        options: &Iteration,
+        what: &'static str,
+        joints: [&'static str; 3],
+    ) -> Result<Solved> {
+        let tol = options.tolerance * self.scale;
+        let limit = DIRECT_STEPS.min(options.budget);
+        let mask = self.active.map(|a| f64::from(u8::from(a)));
+        let norms = |v: &[f64; 6]| {
+            [0, 1, 2].map(|k| (v[2 * k] * v[2 * k] + v[2 * k + 1] * v[2 * k + 1]).sqrt())
+        };
+        let m0 = if HINGES {
+            let r = norms(&self.v0);
+            [0, 1, 2].map(|k| r[k] * mask[k])
+        } else {
+            self.pressures(&self.v0)
+        };
+        let mut m = m0;
+        let (mut steps, mut det) = (0, 1.0_f64);
+        loop {
+            let mut v = self.v0;
+            for (col, &mk) in self.d.iter().zip(&m) {
+                for (vi, di) in v.iter_mut().zip(col) {
+                    *vi += mk * di;
+                }
+            }
+            let mut psi = [0.0; 3];
+            let mut grad = [[0.0; 2]; 3];
+            let mut r = [0.0; 3];
+            if HINGES {
+                r = norms(&v);
+                psi = [0, 1, 2].map(|k| r[k] * mask[k]);
+            } else {
+                for k in 0..3 {
+                    if self.active[k] {
+                        (psi[k], grad[k]) = self.laws[k].eval(v[2 * k], v[2 * k + 1]);
+                    }
+                }
+            }
+            let residual = residual(&psi, &m);
+            if steps > 0 && residual <= tol / det.min(1.0) {
+                return Ok(Solved {
+                    m,
+                    v,
+                    convergence: Convergence {
+                        iterations: steps,
+                        continued: false,
+                        det,
+                        residual,
+                    },
+                });
+            }
+            if steps >= limit {
+                break;
+            }
+            if HINGES {
+                // A zero reaction has no direction: the NaN it gives makes det NaN, and the
+                // continuation (whose pressure law handles it) takes over.
+                let i = Vector3::repeat(1.0).component_div(&Vector3::from(r));
+                grad = [0, 1, 2].map(|k| {
+                    let s = i[k] * mask[k];
+                    [v[2 * k] * s, v[2 * k + 1] * s]
+                });
+            }
+            let mut a = [[0.0; 3]; 3];
+            for k in 0..3 {
+                for (j, dj) in self.d.iter().enumerate() {
+                    a[k][j] = f64::from(u8::from(j == k))
+                        - (grad[k][0] * dj[2 * k] + grad[k][1] * dj[2 * k + 1]);
+                }
+            }
+            det = det3(&a);
+            // A NaN det (from non-finite reactions) counts as locked too.
+            if det.is_nan() || det <= LOCKED_BELOW {
+                break;
+            }
+            let g = [psi[0] - m[0], psi[1] - m[1], psi[2] - m[2]];
+            let delta = solve3(&a, det, &g);
+            steps += 1;
+            for k in 0..3 {
+                m[k] += delta[k];
+            }
+            if !(m[0] + m[1] + m[2]).is_finite() {
+                break;
+            }
+        }
+        self.continued(m0, steps, tol, options.budget, what, joints)
+    }
+
+    /// The continuation: switch the friction on gradually from the frictionless solution.
+    #[cold]
+    #[inline(never)]
+    fn continued(
+        &self,
+        m0: [f64; 3],
+        mut used: usize,
+        tol: f64,
+        budget: usize,
+        what: &'static str,
+        joints: [&'static str; 3],
+    ) -> Result<Solved> {
+        if used >= budget {
+            return Err(budget_error(what, budget, 1.0));
+        }
         let (mut t, mut m, mut h) = (0.0_f64, m0, 0.25_f64);
         loop {
             let t1 = (t + h).min(1.0);
             match self.newton(t1, m, STEPS_PER_STAGE, tol, &mut used, budget) {
                 Ok((m1, e, det)) => {
                     if t1 >= 1.0 {
-                        return Ok(done(m1, e, det, used, true));
+                        return Ok(Solved {
+                            m: m1,
+                            v: e.v,
+                            convergence: Convergence {
+                                iterations: used,
+                                continued: true,
+                                det,
+                                residual: residual(&e.psi, &m1),
+                            },
+                        });
                     }
                     (t, m, h) = (t1, m1, (2.0 * h).min(0.5));
                 }
@@ -251,10 +370,20 @@ fn last_small(m: &[f64; 3], psi: &[f64; 3], tol: f64, det: f64) -> bool {
 
 #[inline(always)]
 fn residual(psi: &[f64; 3], m: &[f64; 3]) -> f64 {
-    (psi[0] - m[0])
-        .abs()
-        .max((psi[1] - m[1]).abs())
-        .max((psi[2] - m[2]).abs())
+    let r = [0, 1, 2].map(|k| (psi[k] - m[k]).abs());
+    // Plain comparisons (f64::max's care for NaN costs a chain of instructions on the hot
+    // path), with a NaN carried through by the sum: a NaN residual converges nowhere.
+    wider(wider(r[0], r[1]), r[2]) + (r[0] + r[1] + r[2]) * 0.0
+}
+
+/// The larger of two numbers by a plain comparison.
+#[inline(always)]
+pub(crate) fn wider(a: f64, b: f64) -> f64 {
+    if a > b {
+        a
+    } else {
+        b
+    }
 }
 
 fn budget_error(what: &'static str, limit: usize, t: f64) -> Error {
@@ -304,6 +433,76 @@ fn solve3(a: &[[f64; 3]; 3], det: f64, g: &[f64; 3]) -> [f64; 3] {
         (c10 * g[0] + c11 * g[1] + c12 * g[2]) * i,
         (c20 * g[0] + c21 * g[1] + c22 * g[2]) * i,
     ]
+}
+
+/// Newton for three hinges that all carry friction (the RRR dyad's usual case), written out:
+/// the steps of [`Problem::solve`]'s, with row k of I − J and of the right-hand side
+/// multiplied by r_k = |R_k| (row k of J is R_k·D_kj/r_k), so that the loop divides only in
+/// Cramer's rule (det(I − J) = det/Π r_k). `None` where that does not converge with
+/// det(I − J) > 0 within `limit` steps, or meets a zero reaction: the general solve decides
+/// there.
+#[inline(always)]
+pub(crate) fn three_hinges(
+    v0: &[f64; 6],
+    d: &[[f64; 6]; 3],
+    tol: f64,
+    limit: usize,
+) -> Option<Solved> {
+    let norms = |v: &[f64; 6]| {
+        [
+            (v[0] * v[0] + v[1] * v[1]).sqrt(),
+            (v[2] * v[2] + v[3] * v[3]).sqrt(),
+            (v[4] * v[4] + v[5] * v[5]).sqrt(),
+        ]
+    };
+    let mut m = norms(v0);
+    let mut det = 1.0_f64;
+    let mut steps = 0;
+    loop {
+        let mut v = [0.0; 6];
+        for i in 0..6 {
+            v[i] = v0[i] + m[0] * d[0][i] + m[1] * d[1][i] + m[2] * d[2][i];
+        }
+        let r = norms(&v);
+        let g = [r[0] - m[0], r[1] - m[1], r[2] - m[2]];
+        let residual = wider(wider(g[0].abs(), g[1].abs()), g[2].abs());
+        if steps > 0 && residual <= tol / det.min(1.0) {
+            // A NaN anywhere in the reactions shows in their sum.
+            let sum = v[0] + v[1] + v[2] + v[3] + v[4] + v[5];
+            return sum.is_finite().then_some(Solved {
+                m,
+                v,
+                convergence: Convergence {
+                    iterations: steps,
+                    continued: false,
+                    det,
+                    residual,
+                },
+            });
+        }
+        if steps >= limit {
+            return None;
+        }
+        // Row k: r_k·e_k − R_k·D_kj.
+        let mut a = [[0.0; 3]; 3];
+        for (k, row) in a.iter_mut().enumerate() {
+            let (x, y) = (v[2 * k], v[2 * k + 1]);
+            for (j, aj) in row.iter_mut().enumerate() {
+                *aj = -(x * d[j][2 * k] + y * d[j][2 * k + 1]);
+            }
+            row[k] += r[k];
+        }
+        let scaled = det3(&a);
+        let product = r[0] * r[1] * r[2];
+        // Also false for a NaN, and for a zero reaction (product 0).
+        if !(scaled > LOCKED_BELOW * product && product > 0.0) {
+            return None;
+        }
+        det = scaled / product;
+        let delta = solve3(&a, scaled, &[r[0] * g[0], r[1] * g[1], r[2] * g[2]]);
+        steps += 1;
+        m = [m[0] + delta[0], m[1] + delta[1], m[2] + delta[2]];
+    }
 }
 
 #[cfg(test)]
