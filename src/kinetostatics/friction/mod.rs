@@ -361,11 +361,5 @@ pub(crate) fn non_negative(name: &'static str, value: f64) -> Result<f64> {
 /// convention at rest (see the [module](self)).
 #[inline]
 pub(crate) fn sign(rate: f64) -> f64 {
-    if rate > 0.0 {
-        1.0
-    } else if rate < 0.0 {
-        -1.0
-    } else {
-        0.0
-    }
+    f64::from(u8::from(rate > 0.0)) - f64::from(u8::from(rate < 0.0))
 }

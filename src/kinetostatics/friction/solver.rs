@@ -415,6 +415,28 @@ fn det3(a: &[[f64; 3]; 3]) -> f64 {
         + a[0][2] * (a[1][0] * a[2][1] - a[1][1] * a[2][0])
 }
 
+/// The adjugate of a 3×3 matrix (the transposed cofactors): a·adj = det·I.
+#[inline(always)]
+fn adjugate(a: &[[f64; 3]; 3]) -> [[f64; 3]; 3] {
+    [
+        [
+            a[1][1] * a[2][2] - a[1][2] * a[2][1],
+            a[0][2] * a[2][1] - a[0][1] * a[2][2],
+            a[0][1] * a[1][2] - a[0][2] * a[1][1],
+        ],
+        [
+            a[1][2] * a[2][0] - a[1][0] * a[2][2],
+            a[0][0] * a[2][2] - a[0][2] * a[2][0],
+            a[0][2] * a[1][0] - a[0][0] * a[1][2],
+        ],
+        [
+            a[1][0] * a[2][1] - a[1][1] * a[2][0],
+            a[0][1] * a[2][0] - a[0][0] * a[2][1],
+            a[0][0] * a[1][1] - a[0][1] * a[1][0],
+        ],
+    ]
+}
+
 /// a⁻¹·g by Cramer's rule (the adjugate over det).
 #[inline(always)]
 fn solve3(a: &[[f64; 3]; 3], det: f64, g: &[f64; 3]) -> [f64; 3] {
@@ -456,7 +478,9 @@ pub(crate) fn three_hinges(
         ]
     };
     let mut m = norms(v0);
-    let mut det = 1.0_f64;
+    // det(I − J) = scaled/product of the last step, kept as the pair so that the loop does
+    // not wait for the division.
+    let (mut scaled, mut product) = (1.0_f64, 1.0_f64);
     let mut steps = 0;
     loop {
         let mut v = [0.0; 6];
@@ -466,7 +490,8 @@ pub(crate) fn three_hinges(
         let r = norms(&v);
         let g = [r[0] - m[0], r[1] - m[1], r[2] - m[2]];
         let residual = wider(wider(g[0].abs(), g[1].abs()), g[2].abs());
-        if steps > 0 && residual <= tol / det.min(1.0) {
+        if steps > 0 && residual * scaled.min(product) <= tol * product {
+            let det = scaled / product;
             // A NaN anywhere in the reactions shows in their sum.
             let sum = v[0] + v[1] + v[2] + v[3] + v[4] + v[5];
             return sum.is_finite().then_some(Solved {
@@ -492,14 +517,16 @@ pub(crate) fn three_hinges(
             }
             row[k] += r[k];
         }
-        let scaled = det3(&a);
-        let product = r[0] * r[1] * r[2];
+        let adj = adjugate(&a);
+        scaled = a[0][0] * adj[0][0] + a[0][1] * adj[1][0] + a[0][2] * adj[2][0];
+        product = r[0] * r[1] * r[2];
         // Also false for a NaN, and for a zero reaction (product 0).
         if !(scaled > LOCKED_BELOW * product && product > 0.0) {
             return None;
         }
-        det = scaled / product;
-        let delta = solve3(&a, scaled, &[r[0] * g[0], r[1] * g[1], r[2] * g[2]]);
+        let rhs = [r[0] * g[0], r[1] * g[1], r[2] * g[2]];
+        let i = 1.0 / scaled;
+        let delta = adj.map(|row| (row[0] * rhs[0] + row[1] * rhs[1] + row[2] * rhs[2]) * i);
         steps += 1;
         m = [m[0] + delta[0], m[1] + delta[1], m[2] + delta[2]];
     }
