@@ -1460,3 +1460,28 @@ fn bad_friction_data_is_an_error_naming_the_joint_and_field() {
         Err(Error::OutOfRange { name: "P_lost", .. })
     ));
 }
+
+// ----- The iteration's budget -----
+
+/// A budget too small for the tolerance is an error naming the iteration; a looser
+/// tolerance converges in fewer steps.
+#[test]
+fn a_budget_used_up_is_an_error_and_the_tolerance_is_honoured() {
+    let mut rng = Rng(0x5EED_0050);
+    let p = random_rrr(&mut rng, 0.3);
+    let e = p
+        .solve_with(&Iteration::default().with_budget(1))
+        .unwrap_err();
+    assert!(
+        matches!(&e, Error::In { source, .. } if matches!(**source, Error::Budget { limit: 1, .. })),
+        "{e}"
+    );
+    let tight = p.solve().unwrap();
+    let loose = p
+        .solve_with(&Iteration::default().with_tolerance(1e-4))
+        .unwrap();
+    assert!(loose.convergence.iterations <= tight.convergence.iterations);
+    let scale = tight.r12.norm().max(tight.r23.norm()).max(tight.r43.norm());
+    assert!(tight.convergence.residual <= 1e-14 * scale / tight.convergence.det.min(1.0));
+    assert!(loose.convergence.residual <= 1e-4 * scale);
+}
