@@ -71,14 +71,15 @@
 //! | RPR | [`RprFriction`] | A (1–2), the slide (3–2), E (4–3) |
 //! | PRP | [`PrpFriction`] | guide 2 (1–2), B (2–3), guide 3 (4–3) |
 //! | RPP | [`RppFriction`] | A (1–2), the slot (3–2), the guide (4–3) |
-//! | input link | [`CrankFriction`] | O1 (0–1) |
+//! | input link, coupling | [`CrankFriction`] | O1 (0–1) |
+//! | input link, gear pair | [`GearFriction`] | O1 (0–1) |
 
 mod drive;
 mod dyads;
 mod efficiency;
 mod solver;
 
-pub use drive::{CrankBalance, CrankFriction};
+pub use drive::{CrankBalance, CrankFriction, GearFriction, GearFrictionBalance};
 pub use dyads::{
     PrpFriction, PrpFrictionReactions, PrpJoints, PrpRates, RppFriction, RppFrictionReactions,
     RppJoints, RppRates, RprFriction, RprFrictionReactions, RprJoints, RprRates, RrpFriction,
