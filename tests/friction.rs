@@ -1460,3 +1460,110 @@ fn bad_friction_data_is_an_error_naming_the_joint_and_field() {
         Err(Error::OutOfRange { name: "P_lost", .. })
     ));
 }
+
+// ----- The iteration's budget -----
+
+/// A budget too small for the tolerance is an error naming the iteration; a looser
+/// tolerance converges in fewer steps.
+#[test]
+fn a_budget_used_up_is_an_error_and_the_tolerance_is_honoured() {
+    let mut rng = Rng(0x5EED_0050);
+    let p = random_rrr(&mut rng, 0.3);
+    let e = p
+        .solve_with(&Iteration::default().with_budget(1))
+        .unwrap_err();
+    assert!(
+        matches!(&e, Error::In { source, .. } if matches!(**source, Error::Budget { limit: 1, .. })),
+        "{e}"
+    );
+    let tight = p.solve().unwrap();
+    let loose = p
+        .solve_with(&Iteration::default().with_tolerance(1e-4))
+        .unwrap();
+    assert!(loose.convergence.iterations <= tight.convergence.iterations);
+    let scale = tight.r12.norm().max(tight.r23.norm()).max(tight.r43.norm());
+    assert!(tight.convergence.residual <= 1e-14 * scale / tight.convergence.det.min(1.0));
+    assert!(loose.convergence.residual <= 1e-4 * scale);
+}
+
+// ----- The input link through a gear pair -----
+
+/// A crank driven through a gear pair with pin friction, carrying an RRR dyad: the power
+/// balance holds with the pin's loss, and without friction the results are the gear drive's,
+/// bit for bit.
+#[test]
+fn gear_drive_with_pin_friction_balances_power() {
+    let mut rng = Rng(0x5EED_0060);
+    let mut worst = 0.0_f64;
+    let mut iterations = 0;
+    for f in FS {
+        for _ in 0..CASES {
+            let mut p = random_rrr(&mut rng, f);
+            let d = p.dyad;
+            let crank = Crank::random(&mut rng, d.a, f);
+            let va = crank.v(d.a);
+            let (w2, w3) = solve2(perp(d.b - d.a), -perp(d.b - d.c), -va);
+            p.rates = RrrRates {
+                omega1: crank.omega1,
+                omega2: w2,
+                omega3: w3,
+                omega4: 0.0,
+            };
+            let r = p.solve().unwrap();
+            let drive = tmm::kinetostatics::GearDrive::at_angle(
+                crank.o1,
+                rng.range(0.1, 0.3),
+                rng.range(0.0, std::f64::consts::TAU),
+                rng.range(0.0, 0.45),
+            );
+            let loads = [crank.load1, r.on_link1(&d)];
+            let g = GearFriction {
+                drive,
+                pin: crank.pin,
+                omega1: crank.omega1,
+            }
+            .solve(&loads)
+            .unwrap();
+            iterations = iterations.max(g.iterations);
+            let p_loads = power(&crank.load1, |q| crank.v(q), crank.omega1)
+                + power(&d.load2, |q| va + perp(q - d.a) * w2, w2)
+                + power(&d.load3, |q| perp(q - d.c) * w3, w3);
+            let lost = g.pin.power_lost + r.power_lost();
+            let size = g.power_drive.abs() + p_loads.abs() + lost;
+            worst = worst.max((g.power_drive + p_loads - lost).abs() / size);
+            // Without pin friction: the gear drive's own results.
+            let plain = GearFriction {
+                drive,
+                pin: Hinge::FRICTIONLESS,
+                omega1: crank.omega1,
+            }
+            .solve(&loads)
+            .unwrap();
+            let o = drive.solve(&loads).unwrap();
+            assert_eq!(plain.force, o.force);
+            assert_eq!(plain.r01, o.r01);
+            assert_eq!(
+                plain.balancing_moment.to_bits(),
+                o.balancing_moment.to_bits()
+            );
+        }
+    }
+    println!("gear drive + RRR: power balance to {worst:.2e} relative; at most {iterations} fixed-point steps");
+    assert!(worst <= 1e-12);
+    // A friction circle as large as the tooth force's arm: no tooth force turns the wheel.
+    let drive = tmm::kinetostatics::GearDrive::at_angle(Point2::origin(), 0.1, 0.0, 0.0);
+    let e = GearFriction {
+        drive,
+        pin: Hinge::circle(0.1).unwrap(),
+        omega1: 1.0,
+    }
+    .solve(&[Load::force_at(
+        Point2::new(0.05, 0.0),
+        Vector2::new(0.0, -100.0),
+    )])
+    .unwrap_err();
+    assert!(
+        matches!(&e, Error::In { part, .. } if part == "joint O1 (links 0 and 1) self-locks"),
+        "{e}"
+    );
+}

@@ -353,11 +353,24 @@ impl RrrFriction {
                 });
             }
         }
+        if c == [0.0; 3] {
+            // No friction: the frictionless block's results as they are.
+            return Ok(RrrFrictionReactions {
+                r12: base.r12,
+                r23: base.r23,
+                r43: base.r43,
+                a: JointFriction::none(base.r12.norm()),
+                b: JointFriction::none(base.r23.norm()),
+                c: JointFriction::none(base.r43.norm()),
+                conditioning: base.conditioning,
+                convergence: Convergence::NONE,
+            });
+        }
         self.general(&base, c, rate, options)
     }
 
-    /// Every other case: no friction at all (the frictionless block's results), friction in
-    /// some hinges only, or the direct Newton not converging (the general solve decides).
+    /// Every other case: friction in some hinges only, or the direct Newton not converging
+    /// (the general solve decides).
     #[cold]
     #[inline(never)]
     fn general(

@@ -415,6 +415,28 @@ fn det3(a: &[[f64; 3]; 3]) -> f64 {
         + a[0][2] * (a[1][0] * a[2][1] - a[1][1] * a[2][0])
 }
 
+/// The adjugate of a 3×3 matrix (the transposed cofactors): a·adj = det·I.
+#[inline(always)]
+fn adjugate(a: &[[f64; 3]; 3]) -> [[f64; 3]; 3] {
+    [
+        [
+            a[1][1] * a[2][2] - a[1][2] * a[2][1],
+            a[0][2] * a[2][1] - a[0][1] * a[2][2],
+            a[0][1] * a[1][2] - a[0][2] * a[1][1],
+        ],
+        [
+            a[1][2] * a[2][0] - a[1][0] * a[2][2],
+            a[0][0] * a[2][2] - a[0][2] * a[2][0],
+            a[0][2] * a[1][0] - a[0][0] * a[1][2],
+        ],
+        [
+            a[1][0] * a[2][1] - a[1][1] * a[2][0],
+            a[0][1] * a[2][0] - a[0][0] * a[2][1],
+            a[0][0] * a[1][1] - a[0][1] * a[1][0],
+        ],
+    ]
+}
+
 /// a⁻¹·g by Cramer's rule (the adjugate over det).
 #[inline(always)]
 fn solve3(a: &[[f64; 3]; 3], det: f64, g: &[f64; 3]) -> [f64; 3] {
@@ -433,6 +455,81 @@ fn solve3(a: &[[f64; 3]; 3], det: f64, g: &[f64; 3]) -> [f64; 3] {
         (c10 * g[0] + c11 * g[1] + c12 * g[2]) * i,
         (c20 * g[0] + c21 * g[1] + c22 * g[2]) * i,
     ]
+}
+
+/// Newton for three hinges that all carry friction (the RRR dyad's usual case), written out:
+/// the steps of [`Problem::solve`]'s, with row k of I − J and of the right-hand side
+/// multiplied by r_k = |R_k| (row k of J is R_k·D_kj/r_k), so that the loop divides only in
+/// Cramer's rule (det(I − J) = det/Π r_k). `None` where that does not converge with
+/// det(I − J) > 0 within `limit` steps, or meets a zero reaction: the general solve decides
+/// there.
+#[inline(always)]
+pub(crate) fn three_hinges(
+    v0: &[f64; 6],
+    d: &[[f64; 6]; 3],
+    tol: f64,
+    limit: usize,
+) -> Option<Solved> {
+    let norms = |v: &[f64; 6]| {
+        [
+            (v[0] * v[0] + v[1] * v[1]).sqrt(),
+            (v[2] * v[2] + v[3] * v[3]).sqrt(),
+            (v[4] * v[4] + v[5] * v[5]).sqrt(),
+        ]
+    };
+    let mut m = norms(v0);
+    // det(I − J) = scaled/product of the last step, kept as the pair so that the loop does
+    // not wait for the division.
+    let (mut scaled, mut product) = (1.0_f64, 1.0_f64);
+    let mut steps = 0;
+    loop {
+        let mut v = [0.0; 6];
+        for i in 0..6 {
+            v[i] = v0[i] + m[0] * d[0][i] + m[1] * d[1][i] + m[2] * d[2][i];
+        }
+        let r = norms(&v);
+        let g = [r[0] - m[0], r[1] - m[1], r[2] - m[2]];
+        let residual = wider(wider(g[0].abs(), g[1].abs()), g[2].abs());
+        if steps > 0 && residual * scaled.min(product) <= tol * product {
+            let det = scaled / product;
+            // A NaN anywhere in the reactions shows in their sum.
+            let sum = v[0] + v[1] + v[2] + v[3] + v[4] + v[5];
+            return sum.is_finite().then_some(Solved {
+                m,
+                v,
+                convergence: Convergence {
+                    iterations: steps,
+                    continued: false,
+                    det,
+                    residual,
+                },
+            });
+        }
+        if steps >= limit {
+            return None;
+        }
+        // Row k: r_k·e_k − R_k·D_kj.
+        let mut a = [[0.0; 3]; 3];
+        for (k, row) in a.iter_mut().enumerate() {
+            let (x, y) = (v[2 * k], v[2 * k + 1]);
+            for (j, aj) in row.iter_mut().enumerate() {
+                *aj = -(x * d[j][2 * k] + y * d[j][2 * k + 1]);
+            }
+            row[k] += r[k];
+        }
+        let adj = adjugate(&a);
+        scaled = a[0][0] * adj[0][0] + a[0][1] * adj[1][0] + a[0][2] * adj[2][0];
+        product = r[0] * r[1] * r[2];
+        // Also false for a NaN, and for a zero reaction (product 0).
+        if !(scaled > LOCKED_BELOW * product && product > 0.0) {
+            return None;
+        }
+        let rhs = [r[0] * g[0], r[1] * g[1], r[2] * g[2]];
+        let i = 1.0 / scaled;
+        let delta = adj.map(|row| (row[0] * rhs[0] + row[1] * rhs[1] + row[2] * rhs[2]) * i);
+        steps += 1;
+        m = [m[0] + delta[0], m[1] + delta[1], m[2] + delta[2]];
+    }
 }
 
 #[cfg(test)]
