@@ -77,7 +77,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
                 let c = a.power_check()?;
                 println!(
                     "position {k:2}: input {:8.4}  balance {:12.4} (virtual power {:12.4}, rel. diff {:.1e})  worst link residual {:.1e}",
-                    a.input().value,
+                    a.inputs().first().value,
                     c.chain,
                     c.virtual_power,
                     c.relative_error(),
@@ -106,6 +106,7 @@ mod pictures {
     use std::path::Path;
     use tmm::draw::{self, Course, Diagram, Style};
     use tmm::kinematics::Motion;
+    use tmm::linkage::LinkId;
     use tmm::linkage::{uniform_inputs, Linkage, Output, Plan};
 
     pub fn write(
@@ -149,7 +150,10 @@ mod pictures {
             .joint_names()
             .iter()
             .enumerate()
-            .filter(|&(j, _)| plan.joint_links(j).is_ok_and(|l| !l.contains(&0)))
+            .filter(|&(j, _)| {
+                plan.joint_links(j)
+                    .is_ok_and(|l| !l.contains(&LinkId::FRAME))
+            })
             .map(|(_, n)| n.as_str())
             .chain(plan.point_names().iter().map(String::as_str))
             .collect();
@@ -180,10 +184,10 @@ mod pictures {
             &draw::diagram(plan, &course, &Diagram::Reactions, &style)?.svg,
         )?;
         // The hodograph of the crank pin's reaction: the input link's joint off the frame.
-        let input = plan.input_link();
+        let input = plan.input_links()[0];
         if let Some(j) = (0..plan.joint_names().len()).find(|&j| {
             plan.joint_links(j)
-                .is_ok_and(|l| l.contains(&input) && !l.contains(&0))
+                .is_ok_and(|l| l.contains(&input) && !l.contains(&LinkId::FRAME))
         }) {
             let joint = plan.joint_names()[j].clone();
             save(
