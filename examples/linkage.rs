@@ -90,17 +90,17 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     for (k, p) in positions.iter().enumerate() {
         match p {
             // A rocking input at rest where it reverses has no virtual power to compare.
-            Ok(a) if a.input().rate == 0.0 => println!(
+            Ok(a) if a.inputs().first().rate == 0.0 => println!(
                 "position {k:2}: input {:8.4}  balance {:12.4} (input at rest: no virtual power)  worst link residual {:.1e}",
-                a.input().value,
-                a.balance().value,
+                a.inputs().first().value,
+                a.balance(0)?.value,
                 a.worst_residual()
             ),
             Ok(a) => {
                 let c = a.power_check()?;
                 println!(
                     "position {k:2}: input {:8.4}  balance {:12.4} (virtual power {:12.4}, rel. diff {:.1e})  worst link residual {:.1e}",
-                    a.input().value,
+                    a.inputs().first().value,
                     c.chain,
                     c.virtual_power,
                     c.relative_error(),
@@ -129,6 +129,7 @@ mod pictures {
     use std::path::Path;
     use tmm::draw::{self, Diagram, Style};
     use tmm::kinematics::Motion;
+    use tmm::linkage::LinkId;
     use tmm::linkage::{uniform_inputs, Course, Linkage, Output, Plan, Sweep};
 
     pub fn write(
@@ -169,7 +170,10 @@ mod pictures {
             .joint_names()
             .iter()
             .enumerate()
-            .filter(|&(j, _)| plan.joint_links(j).is_ok_and(|l| !l.contains(&0)))
+            .filter(|&(j, _)| {
+                plan.joint_links(j)
+                    .is_ok_and(|l| !l.contains(&LinkId::FRAME))
+            })
             .map(|(_, n)| n.as_str())
             .chain(plan.point_names().iter().map(String::as_str))
             .collect();
@@ -203,10 +207,10 @@ mod pictures {
             &draw::diagram(plan, &course, &Diagram::Reactions, &style)?.svg,
         )?;
         // The hodograph of the crank pin's reaction: the input link's joint off the frame.
-        let input = plan.input_link();
+        let input = plan.input_links()[0];
         if let Some(j) = (0..plan.joint_names().len()).find(|&j| {
             plan.joint_links(j)
-                .is_ok_and(|l| l.contains(&input) && !l.contains(&0))
+                .is_ok_and(|l| l.contains(&input) && !l.contains(&LinkId::FRAME))
         }) {
             let joint = plan.joint_names()[j].clone();
             save(

@@ -110,7 +110,7 @@ fn csv(dir: &Path, name: &str, table: &Table) -> Res<PathBuf> {
 
 /// The label of the reaction in joint `j`: R(by,on)@joint.
 fn reaction_label(plan: &Plan, a: &Analysis<'_>, j: usize) -> tmm::Result<String> {
-    let r = a.reaction_index(j)?;
+    let r = a.reaction(j)?;
     let links = plan.link_names();
     Ok(format!(
         "R({},{})@{}",
@@ -136,7 +136,7 @@ fn print_reactions(plan: &Plan, plans: &[tmm::Result<Analysis<'_>>]) -> Res<()> 
         let c = p.power_check()?;
         print!("{k:>3}");
         for j in 0..joints {
-            print!(" {:>22.1}", p.reaction_index(j)?.force.norm());
+            print!(" {:>22.1}", p.reaction(j)?.force.norm());
         }
         println!(
             " {:>9.3} {:>9.3} {:>8.1e}",
@@ -195,7 +195,7 @@ fn six_bar(dir: &Path) -> Res<()> {
         println!(
             "{:>3} {:>7.2} {:>8.2} {:>8.4} {:>9.3} {:>8.4} {:>9.3} {:>7.4} {:>8.3}",
             k,
-            p.input().value.to_degrees(),
+            p.inputs().first().value.to_degrees(),
             p.joint("D")?.p.x * 1e3,
             s.rate,
             s.accel,
@@ -269,7 +269,10 @@ fn compressor(dir: &Path) -> Res<()> {
         "Fgas1 N",
         "Fgas2 N"
     );
-    let (p1, p2) = (plan.link_index("piston 1")?, plan.link_index("piston 2")?);
+    let (p1, p2) = (
+        plan.link_id("piston 1")?.index(),
+        plan.link_id("piston 2")?.index(),
+    );
     for (k, p) in plans.iter().enumerate() {
         let p = p.as_ref().map_err(|e| e.to_string())?;
         let (b, d) = (p.joint("B")?, p.joint("D")?);
@@ -286,7 +289,7 @@ fn compressor(dir: &Path) -> Res<()> {
         println!(
             "{:>3} {:>7.2} {:>8.2} {:>8.3} {:>9.1} {:>8.2} {:>8.3} {:>9.1} {:>9.1} {:>9.1}",
             k,
-            p.input().value.to_degrees(),
+            p.inputs().first().value.to_degrees(),
             b.p.y * 1e3,
             b.v.y,
             b.a.y,

@@ -119,7 +119,7 @@ fn assert_hinges(plan: &Plan, input: Motion, pic: &Picture, p: &Pixmap, style: &
         if plan.is_prismatic(j).unwrap() {
             continue;
         }
-        let c = pic.frame.to_pixel(a.joint_motion(j).unwrap().p);
+        let c = pic.frame.to_pixel(a.joint(j).unwrap().p);
         assert!(
             ink(p, c) > 120,
             "{what}: centre of hinge {name} at {c:?} is not drawn"
@@ -209,7 +209,7 @@ fn a_ternary_link_is_a_filled_polygon_and_a_slider_a_block() {
     let a = plan.kinematics(input).unwrap();
     // The ram's block: drawn around Q, white inside its outline, dark along it.
     let q = pic.frame.to_pixel(a.joint("Q").unwrap().p);
-    let d = a.guide_direction(plan.joint_index("Q").unwrap()).unwrap();
+    let d = a.guide_direction(plan.joint_id("Q").unwrap()).unwrap();
     let half = 0.06 * plan.size() * pic.frame.scale;
     let edge = [q[0] + d.x * half, q[1] - d.y * half];
     let dark = (-2..=2).any(|i| ink(&p, [edge[0] + f64::from(i), edge[1]]) > 60);
@@ -239,14 +239,14 @@ fn the_plan_draws_every_course_position_and_the_extremes_bold() {
             .flat_map(|&m| {
                 let a = plan.kinematics(m).unwrap();
                 (0..plan.joint_names().len())
-                    .map(|j| pic.frame.to_pixel(a.joint_motion(j).unwrap().p))
+                    .map(|j| pic.frame.to_pixel(a.joint(j).unwrap().p))
                     .collect::<Vec<_>>()
             })
             .collect();
         for (k, &m) in course.inputs.iter().enumerate() {
             let a = plan.kinematics(m).unwrap();
             for (j, name) in plan.joint_names().iter().enumerate() {
-                let c = pic.frame.to_pixel(a.joint_motion(j).unwrap().p);
+                let c = pic.frame.to_pixel(a.joint(j).unwrap().p);
                 let r = style.hinge_radius + 1.0;
                 if hidden.iter().any(|h| (h[0] - c[0]).hypot(h[1] - c[1]) < r) {
                     continue;
@@ -265,14 +265,13 @@ fn the_plan_draws_every_course_position_and_the_extremes_bold() {
             for k in 1..l {
                 let js: Vec<usize> = (0..plan.joint_names().len())
                     .filter(|&j| {
-                        plan.joint_links(j).unwrap().contains(&k) && !plan.is_prismatic(j).unwrap()
+                        plan.joint_links(j).unwrap().map(usize::from).contains(&k)
+                            && !plan.is_prismatic(j).unwrap()
                     })
                     .collect();
                 if js.len() == 2 {
-                    let mid = nalgebra::center(
-                        &a.joint_motion(js[0]).unwrap().p,
-                        &a.joint_motion(js[1]).unwrap().p,
-                    );
+                    let mid =
+                        nalgebra::center(&a.joint(js[0]).unwrap().p, &a.joint(js[1]).unwrap().p);
                     if ink(&p, pic.frame.to_pixel(mid)) > 150 {
                         dark += 1;
                     }
@@ -414,7 +413,7 @@ fn assert_frames(plan: &Plan, inputs: &[Motion], pic: &Picture) {
         let a = plan.kinematics(m).unwrap();
         let want: Vec<[f64; 2]> = hinges
             .iter()
-            .map(|&j| pic.frame.to_pixel(a.joint_motion(j).unwrap().p))
+            .map(|&j| pic.frame.to_pixel(a.joint(j).unwrap().p))
             .collect();
         for (t, r, c) in &circles {
             let (s, co) = r[k].to_radians().sin_cos();
@@ -473,7 +472,7 @@ fn forces_are_arrows_to_scale_from_their_points() {
         let mut longest: f64 = 0.0;
         let mut drawn = Vec::new();
         for j in 0..plan.joint_names().len() {
-            let r = a.reaction_index(j).unwrap();
+            let r = a.reaction(j).unwrap();
             let len = r.force.norm() / scale;
             longest = longest.max(len);
             if len < 20.0 {
@@ -579,7 +578,7 @@ fn diagrams_cover_their_data_with_si_units_and_mark_the_course() {
                 // The marks are the engine's values at the course positions.
                 let panel = &chart.panels[0];
                 for (k, m) in &panel.marks {
-                    let want = plan.analyse(course.inputs[*k]).unwrap().balance().value;
+                    let want = plan.analyse(course.inputs[*k]).unwrap().balances()[0].value;
                     assert!((m[1] - want).abs() <= 1e-9 * want.abs().max(1.0));
                     assert!(panel.y_range[0] <= want && want <= panel.y_range[1]);
                 }

@@ -10,7 +10,7 @@ use std::hint::black_box;
 use std::time::Duration;
 use tmm::draw::{animation, plan_view, scheme, Style};
 use tmm::kinematics::Motion;
-use tmm::linkage::{bundled, uniform_inputs, Analysis, Course, Plan};
+use tmm::linkage::{bundled, uniform_inputs, Course, Plan};
 
 fn side_by_side(c: &mut Criterion) {
     let plan = Plan::new(&bundled::watt_six_bar()).unwrap();
@@ -22,20 +22,18 @@ fn side_by_side(c: &mut Criterion) {
         b.iter(|| animation(black_box(&plan), black_box(&inputs), 4.0, &style).unwrap())
     });
     g.bench_function("kinematics alone", |b| {
-        let mut a = Analysis::new(&plan);
+        let mut solver = plan.solver();
         b.iter(|| {
             for &m in black_box(&inputs) {
-                a.solve_kinematics(m).unwrap();
-                black_box(a.joint_motion(0).unwrap());
+                black_box(solver.kinematics(m).unwrap().joint(0).unwrap());
             }
         })
     });
     g.bench_function("full analysis (kinematics and reactions)", |b| {
-        let mut a = Analysis::new(&plan);
+        let mut solver = plan.solver();
         b.iter(|| {
             for &m in black_box(&inputs) {
-                plan.analyse_into(m, &mut a).unwrap();
-                black_box(a.balance());
+                black_box(solver.analyse(m).unwrap().balances()[0]);
             }
         })
     });

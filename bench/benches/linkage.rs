@@ -13,7 +13,7 @@ use std::hint::black_box;
 use std::time::Duration;
 use tmm::kinematics::{crank, rrr_dyad, Branch, LinkMotion, Motion, PointMotion};
 use tmm::kinetostatics::{CouplingDrive, RrrDyad};
-use tmm::linkage::{bundled, Analysis, Plan};
+use tmm::linkage::{bundled, run_cycle, Analysis, Plan};
 use tmm::Load;
 
 #[path = "common/yardstick.rs"]
@@ -151,7 +151,7 @@ struct Whole<const L: usize, const J: usize> {
 impl<const L: usize, const J: usize> Whole<L, J> {
     /// The same quantities read from the engine after a solve.
     fn of(a: &Analysis<'_>) -> Self {
-        let link = |k: usize| *a.link_motion(k + 1).unwrap();
+        let link = |k: usize| a.link_motion(k + 1).unwrap();
         Self {
             angle: std::array::from_fn(|k| link(k).angle),
             omega: std::array::from_fn(|k| link(k).omega),
@@ -159,14 +159,14 @@ impl<const L: usize, const J: usize> Whole<L, J> {
             // The force of the lower-numbered link on the higher-numbered one, whichever way
             // the engine records it.
             reaction: std::array::from_fn(|j| {
-                let r = a.reaction_index(j).unwrap();
+                let r = a.reaction(j).unwrap();
                 if r.by < r.on {
                     r.force
                 } else {
                     -r.force
                 }
             }),
-            balance: a.balance().value,
+            balance: a.balances()[0].value,
         }
     }
 
@@ -275,10 +275,10 @@ fn four_bar(c: &mut Criterion) {
     let hand = HandFourBar::new();
     let ins = inputs(512);
     // The yardstick must do the same job: check it against the engine first.
-    let mut a = Analysis::new(&plan);
+    let mut solver = plan.solver();
     for &i in &ins {
-        a.solve(i).unwrap();
-        let (x, y) = (a.balance().value, hand.balance(i));
+        let a = solver.analyse(i).unwrap();
+        let (x, y) = (a.balances()[0].value, hand.balance(i));
         assert!(
             (x - y).abs() <= 1e-9 * x.abs().max(1.0),
             "hand chain {y} vs engine {x}"
@@ -286,12 +286,12 @@ fn four_bar(c: &mut Criterion) {
     }
     let cart = CartesianFourBar::new();
     for &i in &ins {
-        a.solve(i).unwrap();
+        let a = solver.analyse(i).unwrap();
         let y = cart.position(i);
         assert!(
-            y.agrees(&Whole::of(&a), 1e-9),
+            y.agrees(&Whole::of(a), 1e-9),
             "Cartesian closed form {y:?} vs engine {:?}",
-            Whole::<3, 4>::of(&a)
+            Whole::<3, 4>::of(a)
         );
     }
     let by_hand = || {
@@ -299,13 +299,10 @@ fn four_bar(c: &mut Criterion) {
             .map(|&i| cart.position(black_box(i)).fold())
             .sum::<f64>()
     };
-    let mut engine = Analysis::new(&plan);
+    let mut engine = plan.solver();
     let mut tmm = || {
         ins.iter()
-            .map(|&i| {
-                engine.solve(black_box(i)).unwrap();
-                Whole::<3, 4>::of(&engine).fold()
-            })
+            .map(|&i| Whole::<3, 4>::of(engine.analyse(black_box(i)).unwrap()).fold())
             .sum::<f64>()
     };
     yardstick::print_ratio(
@@ -574,10 +571,10 @@ fn six_bar(c: &mut Criterion) {
     let plan = Plan::new(&bundled::watt_six_bar()).unwrap();
     let hand = HandWatt::new();
     let ins = inputs(512);
-    let mut a = Analysis::new(&plan);
+    let mut solver = plan.solver();
     for &i in &ins {
-        a.solve(i).unwrap();
-        let (x, y) = (a.balance().value, hand.balance(i));
+        let a = solver.analyse(i).unwrap();
+        let (x, y) = (a.balances()[0].value, hand.balance(i));
         assert!(
             (x - y).abs() <= 1e-9 * x.abs().max(1.0),
             "hand chain {y} vs engine {x}"
@@ -585,12 +582,12 @@ fn six_bar(c: &mut Criterion) {
     }
     let cart = CartesianWatt::new();
     for &i in &ins {
-        a.solve(i).unwrap();
+        let a = solver.analyse(i).unwrap();
         let y = cart.position(i);
         assert!(
-            y.agrees(&Whole::of(&a), 1e-12),
+            y.agrees(&Whole::of(a), 1e-12),
             "Cartesian closed form {y:?} vs engine {:?}",
-            Whole::<5, 7>::of(&a)
+            Whole::<5, 7>::of(a)
         );
     }
     let by_hand = || {
@@ -598,13 +595,10 @@ fn six_bar(c: &mut Criterion) {
             .map(|&i| cart.position(black_box(i)).fold())
             .sum::<f64>()
     };
-    let mut engine = Analysis::new(&plan);
+    let mut engine = plan.solver();
     let mut tmm = || {
         ins.iter()
-            .map(|&i| {
-                engine.solve(black_box(i)).unwrap();
-                Whole::<5, 7>::of(&engine).fold()
-            })
+            .map(|&i| Whole::<5, 7>::of(engine.analyse(black_box(i)).unwrap()).fold())
             .sum::<f64>()
     };
     yardstick::print_ratio(
@@ -627,8 +621,8 @@ fn six_bar(c: &mut Criterion) {
         b.iter(|| {
             ins.iter()
                 .map(|&i| {
-                    a.solve_kinematics(black_box(i)).unwrap();
-                    a.link_motion(5).unwrap().omega
+                    let k = solver.kinematics(black_box(i)).unwrap();
+                    k.link_motion(5).unwrap().omega
                 })
                 .sum::<f64>()
         })
@@ -650,13 +644,14 @@ fn streamed_sweep(c: &mut Criterion) {
         g.bench_function(format!("positions_{n}"), |b| {
             b.iter(|| {
                 let step = std::f64::consts::TAU / f64::from(n);
-                let inputs = (0..n).map(|k| Motion::new(f64::from(k) * step, 10.0, 0.0));
+                let inputs = (0..n).map(|k| Motion::turning(f64::from(k) * step, 10.0));
                 let mut peak = 0.0f64;
-                plan.for_each(inputs, |_, a| {
-                    if let Ok(a) = a {
-                        peak = peak.max(a.balance().value.abs());
+                let mut solver = plan.solver();
+                for i in inputs {
+                    if let Ok(a) = solver.analyse(i) {
+                        peak = peak.max(a.balances()[0].value.abs());
                     }
-                });
+                }
                 black_box(peak)
             })
         });
@@ -664,5 +659,53 @@ fn streamed_sweep(c: &mut Criterion) {
     g.finish();
 }
 
-criterion_group!(benches, four_bar, six_bar, streamed_sweep);
+/// A cycle of the four-bar (512 positions, every quantity of each folded into one number) by
+/// the calls a reader would write: the README's `plan.cycle`, a solver loop by hand (the
+/// fastest engine path), the one-shot `plan.analyse` per position through `run_cycle` (the
+/// old README call, one allocation of buffers per position), beside the Cartesian closed
+/// form. `plan.cycle` should stay within 1.2× of the solver loop.
+fn four_bar_cycle(c: &mut Criterion) {
+    let plan = Plan::new(&bundled::four_bar()).unwrap();
+    let ins = inputs(512);
+    let cart = CartesianFourBar::new();
+    let mut g = c.benchmark_group("four_bar_cycle");
+    g.measurement_time(Duration::from_secs(3))
+        .warm_up_time(Duration::from_millis(500))
+        .sample_size(30);
+    g.throughput(Throughput::Elements(ins.len() as u64));
+    g.bench_function("cartesian_closed_form", |b| {
+        b.iter(|| {
+            ins.iter()
+                .map(|&i| cart.position(black_box(i)).fold())
+                .sum::<f64>()
+        })
+    });
+    g.bench_function("solver_loop", |b| {
+        let mut solver = plan.solver();
+        b.iter(|| {
+            ins.iter()
+                .map(|&i| Whole::<3, 4>::of(solver.analyse(black_box(i)).unwrap()).fold())
+                .sum::<f64>()
+        })
+    });
+    g.bench_function("plan_cycle", |b| {
+        b.iter(|| {
+            plan.cycle(black_box(&ins), |a| Ok(Whole::<3, 4>::of(a).fold()))
+                .into_iter()
+                .map(|r| r.unwrap())
+                .sum::<f64>()
+        })
+    });
+    g.bench_function("run_cycle_plan_analyse", |b| {
+        b.iter(|| {
+            run_cycle(black_box(&ins), |i| plan.analyse(i))
+                .iter()
+                .map(|r| Whole::<3, 4>::of(r.as_ref().unwrap()).fold())
+                .sum::<f64>()
+        })
+    });
+    g.finish();
+}
+
+criterion_group!(benches, four_bar, six_bar, streamed_sweep, four_bar_cycle);
 criterion_main!(benches);

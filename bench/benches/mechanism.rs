@@ -7,7 +7,7 @@ use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion, Through
 use std::hint::black_box;
 use std::time::Duration;
 use tmm::kinematics::Motion;
-use tmm::linkage::{run_cycle, uniform_inputs, Analysis};
+use tmm::linkage::{run_cycle, uniform_inputs};
 use tmm::mechanism::{Mechanism, SixBar};
 
 /// Input angles from a fixed-seed linear congruential generator (reproducible, no deps).
@@ -36,18 +36,17 @@ fn per_position(c: &mut Criterion) {
         b.iter(|| {
             let mut acc = 0.0;
             for &i in &inputs {
-                acc += black_box(&m).analyse(black_box(i)).unwrap().balance().value;
+                acc += black_box(&m).analyse(black_box(i)).unwrap().balances()[0].value;
             }
             black_box(acc)
         });
     });
-    g.bench_function("analyse_into", |b| {
-        let mut a = Analysis::new(&m);
+    g.bench_function("solver", |b| {
+        let mut solver = m.solver();
         b.iter(|| {
             let mut acc = 0.0;
             for &i in &inputs {
-                black_box(&m).analyse_into(black_box(i), &mut a).unwrap();
-                acc += a.balance().value;
+                acc += solver.analyse(black_box(i)).unwrap().balances()[0].value;
             }
             black_box(acc)
         });

@@ -9,7 +9,9 @@ use tmm::dynamics::machines::LinearMotor;
 use tmm::dynamics::Rk4;
 use tmm::kinematics::{grashof, Grashof, Motion, Rotation};
 use tmm::linkage::dynamics::{LinkageSystem, Motor, RunUpOptions};
-use tmm::linkage::{course_inputs, uniform_inputs, Drive, Linkage, Output, Plan, Table};
+use tmm::linkage::{
+    course_inputs, uniform_inputs, Drive, Inputs, LinkId, Linkage, Output, Plan, Table,
+};
 
 use crate::model::{
     Column, DiagramKind, DynamicsReport, DynamicsRequest, Failure, FlywheelRow, GroupInfo,
@@ -111,12 +113,15 @@ impl Machine {
         let joints = plan.joint_names();
         let refs = plan.reference_inputs();
         let mut inputs = vec![InputInfo {
-            link: links[plan.input_link()].clone(),
+            link: links[plan.input_links()[0].index()].clone(),
             kind: self.input_kind(),
             drive: drive_text(&self.linkage.input.drive, plan.input_is_crank()),
             reference: refs[0],
         }];
-        if let (Some(k), Some(second)) = (plan.second_input_link(), &self.linkage.second_input) {
+        if let (Some(k), Some(second)) = (
+            plan.input_links().get(1).map(|k| k.index()),
+            &self.linkage.second_input,
+        ) {
             inputs.push(InputInfo {
                 link: links[k].clone(),
                 kind: if second_is_crank(&self.linkage, &second.link) {
@@ -252,7 +257,7 @@ impl Machine {
         if g.kind.label() != "RRR" || !plan.input_is_crank() || plan.input_count() != 1 {
             return None;
         }
-        let input = plan.input_link();
+        let input = plan.input_links()[0].index();
         let (a, c) = match g.known {
             [k, 0] if k == input => (g.joints[0], g.joints[2]),
             [0, k] if k == input => (g.joints[2], g.joints[0]),
@@ -261,12 +266,12 @@ impl Machine {
         let b = g.joints[1];
         let pivot = (0..plan.joint_names().len()).find(|&j| {
             plan.joint_links(j)
-                .is_ok_and(|l| l.contains(&input) && l.contains(&0))
+                .is_ok_and(|l| l.iter().any(|k| k.index() == input) && l.contains(&LinkId::FRAME))
         })?;
         let pose = plan
             .kinematics(Motion::fixed(plan.reference_input()))
             .ok()?;
-        let p = |j: usize| pose.joint_motion(j).ok().map(|m| m.p);
+        let p = |j: usize| pose.joint(j).ok().map(|m| m.p);
         let (o, a, b, c) = (p(pivot)?, p(a)?, p(b)?, p(c)?);
         let class = grashof(
             (c - o).norm(),
@@ -376,7 +381,10 @@ impl Machine {
         if inputs.is_empty() {
             return Err(Failure::new("no positions were asked for"));
         }
-        let results: Vec<_> = inputs.iter().map(|i| self.plan.analyse_inputs(i)).collect();
+        let results: Vec<_> = inputs
+            .iter()
+            .map(|i| Inputs::from_slice(i).and_then(|i| self.plan.analyse(i)))
+            .collect();
         let mut failures = Vec::new();
         for (i, r) in inputs.iter().zip(&results) {
             if let Err(e) = r {
@@ -406,7 +414,7 @@ impl Machine {
                 1,
                 tmm::linkage::Column {
                     name: format!("{q} [{unit}]"),
-                    values: second(&|a| a.second_input().map_or(f64::NAN, |m| m.value)),
+                    values: second(&|a| a.inputs().get(1).map_or(f64::NAN, |m| m.value)),
                 },
             );
             // With two inputs the library's virtual-power cell is the drives' power, W
@@ -419,7 +427,7 @@ impl Machine {
             }
             table.columns.push(tmm::linkage::Column {
                 name: balance.to_owned(),
-                values: second(&|a| a.second_balance().map_or(f64::NAN, |b| b.value)),
+                values: second(&|a| a.balances().get(1).map_or(f64::NAN, |b| b.value)),
             });
         }
         let columns = table
@@ -542,7 +550,10 @@ impl Machine {
                     .joint_names()
                     .iter()
                     .enumerate()
-                    .filter(|&(j, _)| plan.joint_links(j).is_ok_and(|l| !l.contains(&0)))
+                    .filter(|&(j, _)| {
+                        plan.joint_links(j)
+                            .is_ok_and(|l| !l.contains(&LinkId::FRAME))
+                    })
                     .map(|(_, n)| n.as_str())
                     .chain(plan.point_names().iter().map(String::as_str))
                     .collect();
@@ -579,11 +590,13 @@ impl Machine {
                     DiagramKind::Balance => (Diagram::Balance, &style),
                     DiagramKind::Reactions => (Diagram::Reactions, &style),
                     DiagramKind::Hodograph => {
-                        let input = plan.input_link();
+                        let input = plan.input_links()[0].index();
                         let pin = (0..plan.joint_names().len())
                             .find(|&j| {
-                                plan.joint_links(j)
-                                    .is_ok_and(|l| l.contains(&input) && !l.contains(&0))
+                                plan.joint_links(j).is_ok_and(|l| {
+                                    l.iter().any(|k| k.index() == input)
+                                        && !l.contains(&LinkId::FRAME)
+                                })
                             })
                             .ok_or_else(|| {
                                 Failure::new("the input link has no joint off the frame")

@@ -6,7 +6,7 @@ use super::scene::{self, Extents, Pose, Topo};
 use super::{Picture, Style};
 use crate::error::{Error, Result};
 use crate::kinematics::Motion;
-use crate::linkage::{Analysis, Plan};
+use crate::linkage::Plan;
 use nalgebra::{Point2, Vector2};
 use std::fmt::Write;
 use svg::node::element::{Animate, AnimateTransform, Group};
@@ -55,14 +55,14 @@ pub fn animation(plan: &Plan, inputs: &[Motion], seconds: f64, style: &Style) ->
         });
     }
     let topo = Topo::new(plan);
-    let mut a = Analysis::new(plan);
+    let mut solver = plan.solver();
     let mut poses = Vec::with_capacity(inputs.len());
     for (k, &m) in inputs.iter().enumerate() {
-        a.solve_kinematics(m).map_err(|e| Error::In {
+        let a = solver.kinematics(m).map_err(|e| Error::In {
             part: format!("frame {k}"),
             source: Box::new(e),
         })?;
-        poses.push(Pose::of(&a)?);
+        poses.push(Pose::of(a)?);
     }
     let mut ext = Extents::new(&topo);
     let mut cover = Vec::new();

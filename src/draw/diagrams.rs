@@ -5,7 +5,7 @@ use super::plan_view::{path_inputs, thin, MAX_PLAN_POSITIONS};
 use super::Style;
 use crate::error::{Error, Result};
 use crate::kinematics::Motion;
-use crate::linkage::{Analysis, Course, Output, Plan, Sweep};
+use crate::linkage::{Course, Output, Plan, Solver, Sweep};
 use plotters::coord::Shift;
 use plotters::prelude::*;
 use std::f64::consts::TAU;
@@ -44,7 +44,7 @@ pub enum Diagram {
     /// The magnitude of the reaction in every joint, N, one line per joint.
     Reactions,
     /// The hodograph of the reaction in the named joint: the tip of R (the force of the
-    /// joint's first link on its second, as [`Analysis::reaction`] gives it), R_y against
+    /// joint's first link on its second, as [`Analysis::reaction`](crate::linkage::Analysis::reaction) gives it), R_y against
     /// R_x, N, over the cycle.
     Hodograph(String),
 }
@@ -188,9 +188,9 @@ pub fn diagram(plan: &Plan, course: &Course, diagram: &Diagram, style: &Style) -
 
     // What each panel plots at one position.
     let specs = panel_specs(plan, diagram, input_unit)?;
-    let mut a = Analysis::new(plan);
+    let mut a = plan.solver();
     let eval =
-        |a: &mut Analysis<'_>, m: Motion| -> Result<Values> { specs_values(plan, diagram, a, m) };
+        |a: &mut Solver<'_>, m: Motion| -> Result<Values> { specs_values(plan, diagram, a, m) };
     let mut data: Vec<Option<Values>> = Vec::with_capacity(samples.len());
     let mut first_error = None;
     for &m in &samples {
@@ -503,7 +503,7 @@ struct Spec {
 fn check(plan: &Plan, d: &Diagram) -> Result<()> {
     match d {
         Diagram::Kinematics(o) | Diagram::Transfer(o) => check_output(plan, o),
-        Diagram::Hodograph(j) => plan.joint_index(j).map(|_| ()),
+        Diagram::Hodograph(j) => plan.joint_id(j).map(|_| ()),
         Diagram::Balance | Diagram::Reactions => Ok(()),
     }
 }
@@ -511,9 +511,9 @@ fn check(plan: &Plan, d: &Diagram) -> Result<()> {
 /// Checks that an output names something of the plan.
 fn check_output(plan: &Plan, o: &Output) -> Result<()> {
     match o {
-        Output::Angle(n) => plan.link_index(n).map(|_| ()),
+        Output::Angle(n) => plan.link_id(n).map(|_| ()),
         Output::Slide(n) => {
-            if plan.is_prismatic_at(plan.joint_index(n)?) {
+            if plan.is_prismatic(n)? {
                 Ok(())
             } else {
                 Err(Error::Description {
@@ -523,9 +523,9 @@ fn check_output(plan: &Plan, o: &Output) -> Result<()> {
             }
         }
         Output::X(n) | Output::Y(n) => plan
-            .joint_index(n)
+            .joint_id(n)
             .map(|_| ())
-            .or_else(|_| plan.point_index(n).map(|_| ())),
+            .or_else(|_| plan.point_id(n).map(|_| ())),
     }
 }
 
@@ -626,7 +626,7 @@ fn panel_specs(plan: &Plan, d: &Diagram, input_unit: &str) -> Result<Vec<Spec>> 
 fn specs_values(
     plan: &Plan,
     d: &Diagram,
-    a: &mut Analysis<'_>,
+    solver: &mut Solver<'_>,
     m: Motion,
 ) -> Result<Vec<Vec<f64>>> {
     let finite = |v: Vec<Vec<f64>>| {
@@ -647,18 +647,16 @@ fn specs_values(
             let v = plan.transfer(o, m.value)?;
             vec![vec![v.value], vec![v.rate], vec![v.accel]]
         }
-        Diagram::Balance => {
-            plan.analyse_into(m, a)?;
-            vec![vec![a.balance().value]]
-        }
+        Diagram::Balance => vec![vec![solver.analyse(m)?.balance(0)?.value]],
         Diagram::Reactions => {
-            plan.analyse_into(m, a)?;
-            let n = plan.joint_names().len();
-            vec![(0..n).map(|j| a.reaction_at(j).force.norm()).collect()]
+            let a = solver.analyse(m)?;
+            vec![plan
+                .joint_ids()
+                .map(|j| Ok(a.reaction(j)?.force.norm()))
+                .collect::<Result<_>>()?]
         }
         Diagram::Hodograph(j) => {
-            plan.analyse_into(m, a)?;
-            let r = a.reaction(j)?;
+            let r = solver.analyse(m)?.reaction(j)?;
             vec![vec![r.force.x, r.force.y]]
         }
     })

@@ -42,9 +42,11 @@ pub fn forces(plan: &Plan, input: Motion, style: &Style) -> Result<Picture> {
     let pose = Pose::of(&a)?;
     let mut ext = Extents::new(&topo);
     ext.add(&topo, &pose);
-    let nj = topo.joint_links.len();
-    let reactions: Vec<_> = (0..nj).map(|j| a.reaction_at(j)).collect();
-    let balance = a.balance();
+    let reactions: Vec<_> = plan
+        .joint_ids()
+        .map(|j| a.reaction(j))
+        .collect::<Result<_>>()?;
+    let balance = a.balance(0)?;
     let fmax = reactions
         .iter()
         .map(|r| r.force.norm())

@@ -7,7 +7,7 @@ use super::scene::{self, Extents, Pose, Topo, Tracer};
 use super::{Picture, Style};
 use crate::error::{Error, Result};
 use crate::kinematics::Motion;
-use crate::linkage::{uniform_inputs, Analysis, Course, Plan, Sweep};
+use crate::linkage::{uniform_inputs, Course, Plan, Sweep};
 use nalgebra::Point2;
 use svg::node::element::path::Data;
 use svg::node::element::Path;
@@ -52,13 +52,13 @@ pub fn plan_view(plan: &Plan, course: &Course, paths: &[&str], style: &Style) ->
         .iter()
         .map(|n| topo.tracer(n))
         .collect::<Result<_>>()?;
-    let mut a = Analysis::new(plan);
+    let mut solver = plan.solver();
     let mut solve = |m: Motion, what: &str, k: usize| -> Result<Pose> {
-        a.solve_kinematics(m).map_err(|e| Error::In {
+        let a = solver.kinematics(m).map_err(|e| Error::In {
             part: format!("{what} {k}"),
             source: Box::new(e),
         })?;
-        Pose::of(&a)
+        Pose::of(a)
     };
     let drawn = thin(course.inputs.len(), MAX_PLAN_POSITIONS);
     let poses: Vec<Pose> = drawn
@@ -73,14 +73,9 @@ pub fn plan_view(plan: &Plan, course: &Course, paths: &[&str], style: &Style) ->
     let mut curves: Vec<Vec<Option<Point2<f64>>>> =
         vec![Vec::with_capacity(samples.len()); tracers.len()];
     for &m in &samples {
-        let ok = a.solve_kinematics(m).is_ok();
+        let pose = solver.kinematics(m).ok().and_then(|a| Pose::of(a).ok());
         for (c, &t) in curves.iter_mut().zip(&tracers) {
-            let p = if ok {
-                Pose::of(&a).ok().map(|p| p.tracer(&topo, t))
-            } else {
-                None
-            };
-            c.push(p);
+            c.push(pose.as_ref().map(|pose| pose.tracer(&topo, t)));
         }
     }
     let mut ext = Extents::new(&topo);

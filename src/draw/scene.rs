@@ -7,7 +7,7 @@ use super::frame::Frame;
 use super::style::Style;
 use crate::error::{Error, Result};
 use crate::kinematics::Motion;
-use crate::linkage::{Analysis, Plan};
+use crate::linkage::{Kinematics, Plan};
 use nalgebra::{Point2, Vector2};
 
 /// The structure of a plan, read once through its public accessors.
@@ -36,15 +36,15 @@ impl Topo {
             }
         }
         Self {
-            guide: (0..nj).map(|j| plan.guide_link_at(j)).collect(),
+            guide: (0..nj).map(|j| plan.chain.guide_link_at(j)).collect(),
             joint_links,
             link_joints,
             joint_names: plan.joint_names().to_vec(),
             point_names: plan.point_names().to_vec(),
             point_link: (0..plan.point_names().len())
-                .map(|i| plan.point_local_at(i).0)
+                .map(|i| plan.chain.points[i].link)
                 .collect(),
-            input: plan.input_link(),
+            input: plan.chain.input.link(),
             crank: plan.input_is_crank(),
             size: plan.size(),
         }
@@ -110,7 +110,7 @@ pub(crate) struct Pose {
 }
 
 impl Pose {
-    pub(crate) fn of(a: &Analysis<'_>) -> Result<Self> {
+    pub(crate) fn of(a: &Kinematics<'_>) -> Result<Self> {
         let plan = a.plan();
         let nj = plan.joint_names().len();
         let solved = a.pose();
@@ -126,9 +126,9 @@ impl Pose {
                 })
                 .collect(),
             points: (0..plan.point_names().len())
-                .map(|i| a.point_motion_at(i).p)
+                .map(|i| solved.point_motion_at(i).p)
                 .collect(),
-            input: a.input(),
+            input: a.inputs().first(),
         };
         let finite = pose
             .joints
@@ -356,7 +356,7 @@ mod tests {
     fn a_slider_travels_along_its_guide() {
         let plan = Plan::new(&bundled::shaper()).unwrap();
         let topo = Topo::new(&plan);
-        let q = plan.joint_index("Q").unwrap();
+        let q = plan.joint_id("Q").unwrap().index();
         assert_eq!(topo.guide[q], Some(0));
         let mut ext = Extents::new(&topo);
         for k in 0..36 {

@@ -31,10 +31,25 @@ impl Motion {
         Self { value, rate, accel }
     }
 
-    /// A coordinate at rest (a constant).
+    /// A coordinate at rest (a constant): a crank held at the angle `value`.
     #[must_use]
     pub fn fixed(value: f64) -> Self {
         Self::new(value, 0.0, 0.0)
+    }
+
+    /// A coordinate moving at the constant speed `rate` (no acceleration): a crank at the
+    /// angle φ = `value` turning steadily at ω = `rate` (rad/s), or a slider at s moving at ṡ.
+    /// The same as `Motion::new(value, rate, 0.0)`, with the numbers labelled.
+    ///
+    /// # Examples
+    /// ```
+    /// use tmm::kinematics::Motion;
+    /// let m = Motion::turning(30f64.to_radians(), 10.0);
+    /// assert_eq!((m.rate, m.accel), (10.0, 0.0));
+    /// ```
+    #[must_use]
+    pub fn turning(value: f64, rate: f64) -> Self {
+        Self::new(value, rate, 0.0)
     }
 
     /// An input coordinate moving at unit speed without acceleration (ω1 = 1, ε1 = 0).

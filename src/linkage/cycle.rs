@@ -2,8 +2,9 @@
 //! course project's plans, lock positions, and runs over many positions.
 
 use super::description::Output;
+use super::inputs::Inputs;
 use super::plan::{LoadPlan, Plan};
-use super::solve::Analysis;
+use super::solve::{Analysis, Kinematics};
 use crate::error::{finite, Error, Result};
 use crate::kinematics::{
     assembly_range, extreme_positions, transfer_functions, try_cycle_angles, Extreme, Motion,
@@ -22,22 +23,13 @@ enum Resolved {
 impl Plan {
     fn resolve(&self, output: &Output) -> Result<Resolved> {
         Ok(match output {
-            Output::Angle(n) => Resolved::Angle(self.link_index(n)?),
-            Output::Slide(n) => {
-                let j = self.joint_index(n)?;
-                if !self.is_prismatic_at(j) {
-                    return Err(Error::Description {
-                        item: format!("joint {n}"),
-                        problem: "is not prismatic: it has no slide".to_owned(),
-                    });
-                }
-                Resolved::Slide(j)
-            }
+            Output::Angle(n) => Resolved::Angle(self.chain.link(n)?),
+            Output::Slide(n) => Resolved::Slide(self.chain.prismatic(n)?),
             Output::X(n) | Output::Y(n) => {
                 let y = matches!(output, Output::Y(_));
-                match self.joint_index(n) {
+                match self.chain.joint(n) {
                     Ok(j) => Resolved::Joint(j, y),
-                    Err(_) => Resolved::Point(self.point_index(n)?, y),
+                    Err(_) => Resolved::Point(self.chain.point(n)?, y),
                 }
             }
         })
@@ -49,9 +41,7 @@ impl Plan {
     /// An unknown name; the kinematics' errors.
     pub fn output(&self, output: &Output, input: Motion) -> Result<Motion> {
         let r = self.resolve(output)?;
-        let mut a = Analysis::new(self);
-        a.solve_kinematics(input)?;
-        Ok(read(&a, r))
+        Ok(read(&self.kinematics(input)?, r))
     }
 
     /// The transfer functions of `output` at the input `q` (its value, first and second
@@ -61,10 +51,10 @@ impl Plan {
     /// As [`Plan::output`].
     pub fn transfer(&self, output: &Output, q: f64) -> Result<Motion> {
         let r = self.resolve(output)?;
-        let mut a = Analysis::new(self);
+        let mut a = Kinematics::new(self);
         transfer_functions(
             |m| {
-                a.solve_kinematics(m)?;
+                a.solve(&[m])?;
                 Ok(read(&a, r))
             },
             q,
@@ -79,12 +69,12 @@ impl Plan {
     pub fn extremes(&self, output: &Output) -> Result<Vec<Extreme>> {
         self.need_crank("extreme positions over a turn")?;
         let r = self.resolve(output)?;
-        let mut a = Analysis::new(self);
+        let mut a = Kinematics::new(self);
         extreme_positions(
             |phi| {
                 transfer_functions(
                     |m| {
-                        a.solve_kinematics(m)?;
+                        a.solve(&[m])?;
                         Ok(read(&a, r))
                     },
                     phi,
@@ -139,13 +129,13 @@ impl Plan {
     /// A slider input; the linkage's error at `phi` itself.
     pub fn lock_positions(&self, phi: f64) -> Result<Option<(f64, f64)>> {
         self.need_crank("lock positions")?;
-        let mut a = Analysis::new(self);
-        assembly_range(phi, |x| a.solve_kinematics(Motion::fixed(x)))
+        let mut a = Kinematics::new(self);
+        assembly_range(phi, |x| a.solve(&[Motion::fixed(x)]))
     }
 
     /// The smallest transmission angle of group `g` over a turn of the crank, and the crank
     /// angle where it occurs: `(μ_min, φ1)`, rad. Found on 720 positions, then refined by
-    /// golden-section search to 1e-12 rad of φ1. See [`Analysis::transmission_angle`].
+    /// golden-section search to 1e-12 rad of φ1. See [`Kinematics::transmission_angle`].
     ///
     /// # Errors
     /// [`Error::OutOfRange`] (`"group index"`) for `g` not below `groups().len()`
@@ -155,9 +145,9 @@ impl Plan {
     pub fn min_transmission_angle(&self, g: usize) -> Result<(f64, f64)> {
         self.check_group(g)?;
         self.need_crank("transmission angles over a turn")?;
-        let mut a = Analysis::new(self);
+        let mut a = Kinematics::new(self);
         let mut mu = |phi: f64| -> Result<f64> {
-            a.solve_kinematics(Motion::fixed(phi))?;
+            a.solve(&[Motion::fixed(phi)])?;
             a.transmission_angle(g)
         };
         let n = 720;
@@ -205,47 +195,61 @@ impl Plan {
         }
     }
 
-    /// Analyses every input in turn, reusing one set of buffers, and hands each position (or
-    /// its error) to `visit`: a sweep of any length without a table of full results, nothing
-    /// allocated per position. `inputs` may be a slice or any iterator of inputs (generated on
-    /// the fly, so a sweep of millions of positions needs no list of them either).
+    /// Analyses every position of `inputs` in turn with one [`Solver`](super::Solver) and
+    /// maps each to what `f` takes of it: the cycle's values in order, a failed position's
+    /// `Err` in its place (the cycle goes on past a group at a dead point). Nothing is
+    /// allocated per position but what `f` returns, so this runs as fast as a solver loop by
+    /// hand. `inputs` may be a slice or any iterator of inputs (generated on the fly).
     ///
     /// # Examples
-    /// The largest balancing moment of the Watt six-bar over 10⁴ positions, streamed:
+    /// The balancing moment of the Watt six-bar over a turn, in 12 positions:
     /// ```
-    /// use tmm::kinematics::Motion;
-    /// use tmm::linkage::{bundled, Plan};
+    /// use tmm::linkage::{bundled, uniform_inputs, Plan};
     /// let plan = Plan::new(&bundled::watt_six_bar())?;
-    /// let n = 10_000;
-    /// let inputs = (0..n).map(|k| Motion::new(k as f64 * std::f64::consts::TAU / n as f64, 10.0, 0.0));
-    /// let mut peak = 0.0f64;
-    /// plan.for_each(inputs, |_, a| {
-    ///     if let Ok(a) = a {
-    ///         peak = peak.max(a.balance().value.abs());
-    ///     }
-    /// });
-    /// assert!(peak > 0.0);
+    /// let inputs = uniform_inputs(12, plan.reference_input(), 10.0, 0.0);
+    /// let mb = plan.cycle(&inputs, |a| Ok(a.balance(0)?.value));
+    /// assert_eq!(mb.len(), 12);
+    /// assert!(mb.iter().all(|m| m.is_ok()));
     /// # Ok::<(), tmm::Error>(())
     /// ```
-    pub fn for_each<I, F>(&self, inputs: I, mut visit: F)
+    pub fn cycle<I, T, F>(&self, inputs: I, mut f: F) -> Vec<Result<T>>
     where
         I: IntoIterator,
-        I::Item: std::borrow::Borrow<Motion>,
-        F: FnMut(Motion, Result<&Analysis<'_>>),
+        I::Item: Into<Inputs>,
+        F: FnMut(&Analysis<'_>) -> Result<T>,
     {
-        use std::borrow::Borrow;
-        let mut a = Analysis::new(self);
+        let inputs = inputs.into_iter();
+        let mut out = Vec::with_capacity(inputs.size_hint().0);
+        let mut solver = self.solver();
         for i in inputs {
-            let i = *i.borrow();
-            match a.solve(i) {
-                Ok(()) => visit(i, Ok(&a)),
-                Err(e) => visit(i, Err(e)),
-            }
+            out.push(solver.analyse(i).and_then(&mut f));
         }
+        out
+    }
+
+    /// [`cycle`](Self::cycle) on all cores (feature `rayon`), one solver per worker: the same
+    /// results, bit for bit, in the same order, because every position is a pure function of
+    /// its inputs.
+    #[cfg(feature = "rayon")]
+    pub fn cycle_parallel<T, F>(
+        &self,
+        inputs: &[impl Into<Inputs> + Copy + Sync],
+        f: F,
+    ) -> Vec<Result<T>>
+    where
+        T: Send,
+        F: Fn(&Analysis<'_>) -> Result<T> + Sync,
+    {
+        use rayon::prelude::*;
+        inputs
+            .par_iter()
+            .map_init(|| self.solver(), |s, &i| s.analyse(i).and_then(&f))
+            .collect()
     }
 }
 
-fn read(a: &Analysis<'_>, r: Resolved) -> Motion {
+fn read(k: &Kinematics<'_>, r: Resolved) -> Motion {
+    let a = k.pose();
     match r {
         Resolved::Angle(k) => a.link_angle_at(k),
         Resolved::Slide(j) => a.slide_at(j),
@@ -335,8 +339,10 @@ pub fn try_course_inputs(strokes: &Strokes, n: usize, omega1: f64) -> Result<Vec
         .collect())
 }
 
-/// Runs an analysis at every input, position by position. A position that fails (for example
-/// a group at a dead point) gives its `Err` in its place and the cycle goes on.
+/// Runs any per-position function at every input, position by position. A position that
+/// fails (for example a group at a dead point) gives its `Err` in its place and the cycle goes
+/// on. For a plan's analyses, [`Plan::cycle`] is the fast path: it reuses one solver, where
+/// `run_cycle(inputs, |i| plan.analyse(i))` allocates a whole analysis per position.
 pub fn run_cycle<P, F>(inputs: &[Motion], analyse: F) -> Vec<Result<P>>
 where
     F: Fn(Motion) -> Result<P>,

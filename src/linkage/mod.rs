@@ -12,7 +12,11 @@
 //!    coordinate read off the reference pose, the assembly mode of every group, the loads.
 //!    Whatever is wrong with a description is found here, and the error names the joint,
 //!    link, load or field;
-//! 3. a **solve** per position ([`Plan::analyse`], or [`Plan::analyse_into`] to reuse buffers):
+//! 3. a **solve** per position: [`Plan::analyse`] (one position, the one-shot convenience),
+//!    a [`Solver`] from [`Plan::solver`] (its buffers reused at every position: the fast path),
+//!    [`Plan::cycle`] (a cycle through one solver), or [`Plan::kinematics`] (the kinematics
+//!    alone, a [`Kinematics`] with no reactions to ask for). One input's motion is a
+//!    [`Motion`](crate::kinematics::Motion), two are [`Inputs::two`]. The solve runs
 //!    kinematics group by group in attachment order, the loads, the reactions from the last
 //!    group back to the input link, and the balancing moment (crank through a coupling), the
 //!    balancing force of a gear pair, or the driving force of a slider. Every result can be
@@ -22,7 +26,9 @@
 //! Conventions: angles of links are measured along each link's declared reference direction
 //! (default: its first joint to its second); the reaction in a joint is the force of one of
 //! its links on the other ([`Reaction`], R_by,on); a prismatic joint's slide is the sliding
-//! link's displacement along the guide from the reference pose.
+//! link's displacement along the guide from the reference pose. A joint, link or point is
+//! named by its name or by its handle ([`JointId`], [`LinkId`], [`PointId`]): resolve a name
+//! once with [`Plan::joint_id`] and read by handle in a loop.
 //!
 //! # Example
 //! The bundled Watt I six-bar, its balancing moment over a turn, each position checked:
@@ -31,9 +37,10 @@
 //! use tmm::kinematics::Motion;
 //! let plan = Plan::new(&bundled::watt_six_bar())?;
 //! assert_eq!(plan.groups().len(), 2);
+//! let mut solver = plan.solver();
 //! for k in 0..12 {
 //!     let phi = plan.reference_input() + k as f64 * std::f64::consts::PI / 6.0;
-//!     let a = plan.analyse(Motion::new(phi, 10.0, 0.0))?;
+//!     let a = solver.analyse(Motion::turning(phi, 10.0))?;
 //!     assert!(a.power_check()?.relative_error() < 1e-9);
 //!     assert!(a.worst_residual() < 1e-12);
 //! }
@@ -46,7 +53,9 @@ mod course;
 mod cycle;
 mod description;
 pub mod dynamics;
+mod handle;
 mod indicator;
+mod inputs;
 mod plan;
 pub(crate) mod solve;
 mod structure;
@@ -59,8 +68,10 @@ pub use cycle::{course_inputs, run_cycle, try_course_inputs, try_uniform_inputs,
 pub use description::{
     At, Drive, Input, Joint, JointKind, Link, Linkage, LoadSpec, Mass, Mode, NamedPoint, Output,
 };
+pub use handle::{JointId, JointRef, LinkId, LinkRef, PointId, PointRef};
 pub use indicator::IndicatorDiagram;
+pub use inputs::Inputs;
 pub use plan::{Group, GroupKind, Plan, Pose};
-pub use solve::{Analysis, Balance, PowerCheck, Reaction};
+pub use solve::{Analysis, Balance, Kinematics, PowerCheck, Reaction, Solver};
 pub use structure::chebyshev;
 pub use table::{Column, Table, Tabulate};

@@ -9,7 +9,9 @@
 //! needs, made and checked first) and the loads on it. Nothing here solves anything.
 
 use super::description::Drive;
+use super::handle::{index_in, JointId, JointRef, LinkId, LinkRef, PointId, PointRef};
 use super::indicator::IndicatorDiagram;
+use super::inputs::Inputs;
 use crate::error::{Error, Result};
 use crate::kinematics::frame_offset;
 use crate::kinematics::{Branch, LinkMotion, Motion, PointMotion};
@@ -212,28 +214,6 @@ pub struct Plan {
     pub(crate) gravity: Vector2<f64>,
 }
 
-/// Checks index `i` (called `name`, for example `"joint index"`) against a collection of `len`
-/// `things`: `Ok(i)` below `len`, else [`Error::OutOfRange`] over `[0, len − 1]`, or
-/// [`Error::Description`] when there are no `things` at all (no interval to name).
-fn index_in(name: &'static str, things: &str, i: usize, len: usize) -> Result<usize> {
-    if i < len {
-        Ok(i)
-    } else if len == 0 {
-        Err(bad(
-            format!("{name} {i}"),
-            format!("the linkage has no {things}"),
-        ))
-    } else {
-        Err(Error::OutOfRange {
-            name,
-            value: i as f64,
-            min: 0.0,
-            max: (len - 1) as f64,
-            ends: crate::Ends::Closed,
-        })
-    }
-}
-
 /// A description error: `item` names the joint, link, load or field, `problem` what is wrong.
 pub(crate) fn bad(item: impl Into<String>, problem: impl Into<String>) -> Error {
     Error::Description {
@@ -241,49 +221,40 @@ pub(crate) fn bad(item: impl Into<String>, problem: impl Into<String>) -> Error 
         problem: problem.into(),
     }
 }
+
 impl Chain {
-    /// The index of the link called `name`.
-    pub(crate) fn link_index(&self, name: &str) -> Result<usize> {
-        self.link_names
-            .iter()
-            .position(|n| n == name)
-            .ok_or_else(|| bad(format!("link {name}"), "is not a link of this linkage"))
+    /// The index of the link `r` names.
+    #[inline]
+    pub(crate) fn link(&self, r: impl LinkRef) -> Result<usize> {
+        Ok(r.link_in(&self.link_names)?.0)
     }
 
-    /// The index of the joint called `name`.
-    pub(crate) fn joint_index(&self, name: &str) -> Result<usize> {
-        self.joint_names
-            .iter()
-            .position(|n| n == name)
-            .ok_or_else(|| bad(format!("joint {name}"), "is not a joint of this linkage"))
+    /// The index of the joint `r` names.
+    #[inline]
+    pub(crate) fn joint(&self, r: impl JointRef) -> Result<usize> {
+        Ok(r.joint_in(&self.joint_names)?.0)
     }
 
-    /// The index of the named point called `name`.
-    pub(crate) fn point_index(&self, name: &str) -> Result<usize> {
-        self.point_names
-            .iter()
-            .position(|n| n == name)
-            .ok_or_else(|| {
-                bad(
-                    format!("point {name}"),
-                    "is not a named point of this linkage",
-                )
-            })
+    /// The index of the named point `r` names.
+    #[inline]
+    pub(crate) fn point(&self, r: impl PointRef) -> Result<usize> {
+        Ok(r.point_in(&self.point_names)?.0)
     }
 
-    /// Checks a link's index: `Ok(k)` for an index below `link_names.len()`.
-    pub(crate) fn check_link(&self, k: usize) -> Result<usize> {
-        index_in("link index", "links", k, self.link_names.len())
-    }
-
-    /// Checks a joint's index: `Ok(j)` for an index below `joint_names.len()`.
-    pub(crate) fn check_joint(&self, j: usize) -> Result<usize> {
-        index_in("joint index", "joints", j, self.joint_names.len())
-    }
-
-    /// Checks a named point's index: `Ok(k)` for an index below `point_names.len()`.
-    pub(crate) fn check_point(&self, k: usize) -> Result<usize> {
-        index_in("point index", "named points", k, self.point_names.len())
+    /// The index of the prismatic joint `r` names.
+    ///
+    /// # Errors
+    /// As [`joint`](Self::joint); [`Error::Description`] for a revolute joint.
+    pub(crate) fn prismatic(&self, r: impl JointRef) -> Result<usize> {
+        let j = self.joint(r)?;
+        if self.is_prismatic_at(j) {
+            Ok(j)
+        } else {
+            Err(bad(
+                format!("joint {}", self.joint_names[j]),
+                "is not prismatic: it has no slide",
+            ))
+        }
     }
 
     /// Checks a group's index: `Ok(g)` for an index below `groups.len()`.
@@ -296,6 +267,11 @@ impl Chain {
         1 + usize::from(self.second_input.is_some())
     }
 
+    /// The input plans, one or two.
+    pub(crate) fn inputs(&self) -> impl Iterator<Item = &InputPlan> {
+        std::iter::once(&self.input).chain(self.second_input.as_ref().map(|(ip, _)| ip))
+    }
+
     /// The input coordinates in the reference pose, one per input.
     pub(crate) fn reference_inputs(&self) -> Vec<f64> {
         std::iter::once(self.reference_input)
@@ -303,12 +279,13 @@ impl Chain {
             .collect()
     }
 
-    /// The reference pose at rest, one motion per input.
-    pub(crate) fn reference_motions(&self) -> Vec<Motion> {
-        self.reference_inputs()
-            .into_iter()
-            .map(|r| Motion::new(r, 0.0, 0.0))
-            .collect()
+    /// The reference pose at rest.
+    pub(crate) fn reference_motions(&self) -> Inputs {
+        let r = self.reference_inputs();
+        match r[..] {
+            [q1, q2] => Inputs::two(Motion::fixed(q1), Motion::fixed(q2)),
+            _ => Inputs::one(Motion::fixed(r[0])),
+        }
     }
 
     /// Whether joint `joint` (a valid index) is prismatic.
@@ -336,22 +313,23 @@ impl Plan {
     /// A spring of 2 kN/m from a fixed point (0.5, 0.5) m to the coupler's point B:
     /// ```
     /// # use tmm::linkage::{Plan, bundled};
+    /// use tmm::kinematics::Motion;
     /// use tmm::Load;
     /// let mut plan = Plan::new(&bundled::four_bar())?;
-    /// plan.add_load_fn("coupler", |a| {
-    ///     let b = a.joint("B")?.p;
+    /// plan.add_load_fn("coupler", |pose| {
+    ///     let b = pose.joint("B")?.p;
     ///     let stretch = b - nalgebra::Point2::new(0.5, 0.5);
     ///     Ok(Load::force_at(b, -2000.0 * stretch))
     /// })?;
-    /// let r = plan.analyse(tmm::kinematics::Motion::new(1.0, 10.0, 0.0))?;
+    /// let r = plan.analyse(Motion::turning(1.0, 10.0))?;
     /// assert!(r.power_check()?.relative_error() < 1e-9);
     /// # Ok::<(), tmm::Error>(())
     /// ```
-    pub fn add_load_fn<F>(&mut self, link: &str, f: F) -> Result<()>
+    pub fn add_load_fn<F>(&mut self, link: impl LinkRef, f: F) -> Result<()>
     where
         F: Fn(&Pose<'_>) -> Result<Load> + Send + Sync + 'static,
     {
-        let link = self.link_index(link)?;
+        let link = self.chain.link(link)?;
         self.loads.push(LoadPlan::Custom {
             link,
             f: LoadFn(Arc::new(f)),
@@ -396,6 +374,63 @@ impl Plan {
         &self.chain.point_names
     }
 
+    /// The handle of the link `link` names (a name, or a handle checked against this plan):
+    /// resolve a name once, then read by handle.
+    ///
+    /// # Errors
+    /// [`Error::Description`] for an unknown name; [`Error::OutOfRange`] for a handle of
+    /// another, larger plan.
+    pub fn link_id(&self, link: impl LinkRef) -> Result<LinkId> {
+        link.link_in(&self.chain.link_names)
+    }
+
+    /// The handle of the joint `joint` names.
+    ///
+    /// # Errors
+    /// As [`link_id`](Self::link_id).
+    ///
+    /// # Examples
+    /// Resolve once, read by handle at every position:
+    /// ```
+    /// use tmm::kinematics::Motion;
+    /// use tmm::linkage::{bundled, Plan};
+    /// let plan = Plan::new(&bundled::four_bar())?;
+    /// let b = plan.joint_id("B")?;
+    /// let mut solver = plan.solver();
+    /// for k in 0..12 {
+    ///     let a = solver.analyse(Motion::turning(0.5 * f64::from(k), 10.0))?;
+    ///     assert!(a.reaction(b)?.force.norm() > 0.0);
+    /// }
+    /// assert!(plan.joint_id("Z").is_err());
+    /// # Ok::<(), tmm::Error>(())
+    /// ```
+    pub fn joint_id(&self, joint: impl JointRef) -> Result<JointId> {
+        joint.joint_in(&self.chain.joint_names)
+    }
+
+    /// The handle of the named point `point` names.
+    ///
+    /// # Errors
+    /// As [`link_id`](Self::link_id).
+    pub fn point_id(&self, point: impl PointRef) -> Result<PointId> {
+        point.point_in(&self.chain.point_names)
+    }
+
+    /// Every link's handle, the frame first.
+    pub fn link_ids(&self) -> impl ExactSizeIterator<Item = LinkId> + use<> {
+        (0..self.chain.link_names.len()).map(LinkId)
+    }
+
+    /// Every joint's handle, in the description's order.
+    pub fn joint_ids(&self) -> impl ExactSizeIterator<Item = JointId> + use<> {
+        (0..self.chain.joint_names.len()).map(JointId)
+    }
+
+    /// Every named point's handle.
+    pub fn point_ids(&self) -> impl ExactSizeIterator<Item = PointId> + use<> {
+        (0..self.chain.point_names.len()).map(PointId)
+    }
+
     /// The input coordinate in the reference pose: the crank's angle (rad), or 0 for a
     /// slider (its coordinate is measured from the reference pose).
     #[must_use]
@@ -403,18 +438,25 @@ impl Plan {
         self.chain.reference_input
     }
 
-    /// Whether the input is a crank (an angle) rather than a slider (a length).
+    /// Whether the (first) input is a crank (an angle) rather than a slider (a length).
     #[must_use]
     pub fn input_is_crank(&self) -> bool {
         matches!(self.chain.input, InputPlan::Crank { .. })
     }
 
-    /// The input link's index.
+    /// The input links, one per input.
+    ///
+    /// # Examples
+    /// ```
+    /// use tmm::linkage::{bundled, Plan};
+    /// let plan = Plan::new(&bundled::five_bar_robot())?;
+    /// assert_eq!(plan.input_links(), [plan.link_id("crank 1")?, plan.link_id("crank 4")?]);
+    /// assert_eq!(Plan::new(&bundled::four_bar())?.input_links().len(), 1);
+    /// # Ok::<(), tmm::Error>(())
+    /// ```
     #[must_use]
-    pub fn input_link(&self) -> usize {
-        match self.chain.input {
-            InputPlan::Crank { link, .. } | InputPlan::Slider { link, .. } => link,
-        }
+    pub fn input_links(&self) -> Vec<LinkId> {
+        self.chain.inputs().map(|ip| LinkId(ip.link())).collect()
     }
 
     /// The number of inputs (degrees of freedom): 1, or 2 for a linkage with a
@@ -430,21 +472,6 @@ impl Plan {
     #[must_use]
     pub fn input_count(&self) -> usize {
         self.chain.input_count()
-    }
-
-    /// The second input link's index, for a linkage with two inputs.
-    ///
-    /// # Examples
-    /// ```
-    /// use tmm::linkage::{bundled, Plan};
-    /// let plan = Plan::new(&bundled::five_bar_robot())?;
-    /// assert_eq!(plan.second_input_link(), Some(plan.link_index("crank 4")?));
-    /// assert_eq!(Plan::new(&bundled::four_bar())?.second_input_link(), None);
-    /// # Ok::<(), tmm::Error>(())
-    /// ```
-    #[must_use]
-    pub fn second_input_link(&self) -> Option<usize> {
-        self.chain.second_input.as_ref().map(|(ip, _)| ip.link())
     }
 
     /// The input coordinates in the reference pose, one per input (see
@@ -469,78 +496,30 @@ impl Plan {
         self.chain.size
     }
 
-    /// The index of the link called `name`.
-    ///
-    /// # Errors
-    /// [`Error::Description`] for an unknown name.
-    pub fn link_index(&self, name: &str) -> Result<usize> {
-        self.chain.link_index(name)
-    }
-
-    /// The index of the joint called `name`.
-    ///
-    /// # Errors
-    /// [`Error::Description`] for an unknown name.
-    pub fn joint_index(&self, name: &str) -> Result<usize> {
-        self.chain.joint_index(name)
-    }
-
-    /// The index of the named point called `name`.
-    ///
-    /// # Errors
-    /// [`Error::Description`] for an unknown name.
-    pub fn point_index(&self, name: &str) -> Result<usize> {
-        self.chain.point_index(name)
-    }
-
-    /// Checks a link's index: `Ok(k)` for an index below `link_names().len()`.
-    pub(crate) fn check_link(&self, k: usize) -> Result<usize> {
-        self.chain.check_link(k)
-    }
-
-    /// Checks a joint's index: `Ok(j)` for an index below `joint_names().len()`.
-    pub(crate) fn check_joint(&self, j: usize) -> Result<usize> {
-        self.chain.check_joint(j)
-    }
-
-    /// Checks a named point's index: `Ok(k)` for an index below `point_names().len()`.
-    pub(crate) fn check_point(&self, k: usize) -> Result<usize> {
-        self.chain.check_point(k)
-    }
-
     /// Checks a group's index: `Ok(g)` for an index below `groups().len()`.
     pub(crate) fn check_group(&self, g: usize) -> Result<usize> {
         self.chain.check_group(g)
     }
 
-    /// The link named point `point` belongs to and its local coordinates, for
-    /// [`LinkMotion::point_at`].
+    /// The link a named point belongs to and its local coordinates (along, across the link's
+    /// frame), for [`LinkMotion::point_in_frame`].
     ///
     /// # Errors
-    /// [`Error::OutOfRange`] (`"point index"`) for `point` not below `point_names().len()`;
-    /// [`Error::Description`] for a linkage without named points.
-    pub fn point_local(&self, point: usize) -> Result<(usize, Vector2<f64>)> {
-        Ok(self.point_local_at(self.check_point(point)?))
+    /// As [`point_id`](Self::point_id).
+    pub fn point_local(&self, point: impl PointRef) -> Result<(LinkId, Vector2<f64>)> {
+        let p = &self.chain.points[self.chain.point(point)?];
+        Ok((LinkId(p.link), p.local))
     }
 
-    /// As [`point_local`](Self::point_local), for an index known to be a named point's.
-    #[inline]
-    pub(crate) fn point_local_at(&self, point: usize) -> (usize, Vector2<f64>) {
-        (
-            self.chain.points[point].link,
-            self.chain.points[point].local,
-        )
-    }
-
-    /// Whether joint `joint` is prismatic.
+    /// Whether a joint is prismatic.
     ///
     /// # Errors
-    /// [`Error::OutOfRange`] (`"joint index"`) for `joint` not below `joint_names().len()`.
-    pub fn is_prismatic(&self, joint: usize) -> Result<bool> {
-        Ok(self.is_prismatic_at(self.check_joint(joint)?))
+    /// As [`joint_id`](Self::joint_id).
+    pub fn is_prismatic(&self, joint: impl JointRef) -> Result<bool> {
+        Ok(self.chain.is_prismatic_at(self.chain.joint(joint)?))
     }
 
-    /// As [`is_prismatic`](Self::is_prismatic), for an index known to be a joint's.
+    /// Whether joint `joint` (a valid index) is prismatic.
     #[inline]
     pub(crate) fn is_prismatic_at(&self, joint: usize) -> bool {
         self.chain.is_prismatic_at(joint)
@@ -549,12 +528,12 @@ impl Plan {
     /// The two links a joint joins.
     ///
     /// # Errors
-    /// [`Error::OutOfRange`] (`"joint index"`) for `joint` not below `joint_names().len()`.
-    pub fn joint_links(&self, joint: usize) -> Result<[usize; 2]> {
-        Ok(self.joint_links_at(self.check_joint(joint)?))
+    /// As [`joint_id`](Self::joint_id).
+    pub fn joint_links(&self, joint: impl JointRef) -> Result<[LinkId; 2]> {
+        Ok(self.joint_links_at(self.chain.joint(joint)?).map(LinkId))
     }
 
-    /// As [`joint_links`](Self::joint_links), for an index known to be a joint's.
+    /// The two links joint `joint` (a valid index) joins.
     #[inline]
     pub(crate) fn joint_links_at(&self, joint: usize) -> [usize; 2] {
         self.chain.joints[joint].links
@@ -564,40 +543,39 @@ impl Plan {
     /// [`joint_links`](Self::joint_links)); `None` for a revolute joint.
     ///
     /// # Errors
-    /// [`Error::OutOfRange`] (`"joint index"`) for `joint` not below `joint_names().len()`.
+    /// As [`joint_id`](Self::joint_id).
     ///
     /// # Examples
-    /// The shaper's ram slides on a guide of the frame (link 0):
+    /// The shaper's ram slides on a guide of the frame:
     /// ```
-    /// use tmm::linkage::{bundled, Plan};
+    /// use tmm::linkage::{bundled, LinkId, Plan};
     /// let plan = Plan::new(&bundled::shaper())?;
-    /// assert_eq!(plan.guide_link(plan.joint_index("Q")?)?, Some(0));
-    /// assert_eq!(plan.guide_link(plan.joint_index("O1")?)?, None);
-    /// assert!(plan.guide_link(plan.joint_names().len()).is_err());
+    /// assert_eq!(plan.guide_link("Q")?, Some(LinkId::FRAME));
+    /// assert_eq!(plan.guide_link("O1")?, None);
+    /// assert!(plan.guide_link("no such joint").is_err());
     /// # Ok::<(), tmm::Error>(())
     /// ```
-    pub fn guide_link(&self, joint: usize) -> Result<Option<usize>> {
-        Ok(self.guide_link_at(self.check_joint(joint)?))
-    }
-
-    /// As [`guide_link`](Self::guide_link), for an index known to be a joint's.
-    #[inline]
-    pub(crate) fn guide_link_at(&self, joint: usize) -> Option<usize> {
-        self.chain.guide_link_at(joint)
+    pub fn guide_link(&self, joint: impl JointRef) -> Result<Option<LinkId>> {
+        Ok(self
+            .chain
+            .guide_link_at(self.chain.joint(joint)?)
+            .map(LinkId))
     }
 }
 
 /// One solved position, read-only: the motions of the links, joints, named points and
 /// slides. It is what a load added by [`Plan::add_load_fn`] sees, and what every result of a
 /// solve reads its kinematics from.
+///
+/// Every reading takes a name or a handle ([`JointRef`], [`LinkRef`], [`PointRef`]); a
+/// handle is read without a string look-up.
 #[derive(Debug, Clone, Copy)]
 pub struct Pose<'a> {
     pub(crate) chain: &'a Chain,
     pub(crate) links: &'a [LinkMotion],
     /// Each link's unit vector e(φ), kept with its motion.
     pub(crate) units: &'a [Vector2<f64>],
-    pub(crate) input: Motion,
-    pub(crate) second_input: Option<Motion>,
+    pub(crate) inputs: Inputs,
 }
 
 impl Pose<'_> {
@@ -617,35 +595,30 @@ impl Pose<'_> {
         self.links[link].origin.p + frame_offset(self.units[link], local)
     }
 
-    /// The input φ1, ω1, ε1 (or s, ṡ, s̈).
+    /// The inputs' motions (φ, ω, ε of a crank; s, ṡ, s̈ of a slider), one per input.
     #[must_use]
-    pub fn input(&self) -> Motion {
-        self.input
+    pub fn inputs(&self) -> Inputs {
+        self.inputs
     }
 
-    /// The second input's motion, for a linkage with two inputs.
-    #[must_use]
-    pub fn second_input(&self) -> Option<Motion> {
-        self.second_input
-    }
-
-    /// The motion of link `k` in the frame the engine uses for it (its origin a joint).
+    /// A link's motion in the frame the engine uses for it (its origin a joint, its angle
+    /// that of the engine's frame).
     ///
     /// # Errors
-    /// [`Error::OutOfRange`] (`"link index"`) for `k` not below `plan.link_names().len()`.
-    pub fn link_motion(&self, k: usize) -> Result<&LinkMotion> {
-        Ok(&self.links[self.chain.check_link(k)?])
+    /// As [`Plan::link_id`].
+    pub fn link_motion(&self, link: impl LinkRef) -> Result<LinkMotion> {
+        Ok(self.links[self.chain.link(link)?])
     }
 
-    /// The angle of link `k` along its declared reference direction, with ω and ε.
+    /// A link's angle along its declared reference direction (rad, in [0, 2π)), with ω and ε.
     ///
     /// # Errors
-    /// [`Error::OutOfRange`] (`"link index"`) for `k` not below `plan.link_names().len()`.
-    pub fn link_angle_index(&self, k: usize) -> Result<Motion> {
-        Ok(self.link_angle_at(self.chain.check_link(k)?))
+    /// As [`Plan::link_id`].
+    pub fn link(&self, link: impl LinkRef) -> Result<Motion> {
+        Ok(self.link_angle_at(self.chain.link(link)?))
     }
 
-    /// As [`link_angle_index`](Self::link_angle_index), for an index known to be a link's.
+    /// As [`link`](Self::link), for an index known to be a link's.
     #[inline]
     pub(crate) fn link_angle_at(&self, k: usize) -> Motion {
         let l = &self.links[k];
@@ -656,51 +629,34 @@ impl Pose<'_> {
         )
     }
 
-    /// The angle of the link called `name` (rad, along its reference direction), ω and ε.
+    /// The motion of a joint (for a prismatic joint, its point on the sliding link).
     ///
     /// # Errors
-    /// An unknown name.
-    pub fn link(&self, name: &str) -> Result<Motion> {
-        Ok(self.link_angle_at(self.chain.link_index(name)?))
+    /// As [`Plan::joint_id`].
+    pub fn joint(&self, joint: impl JointRef) -> Result<PointMotion> {
+        Ok(self.joint_motion_at(self.chain.joint(joint)?))
     }
 
-    /// The motion of joint `j` as a point of the `side`-th of its two links
-    /// ([`Plan::joint_links`]).
-    ///
-    /// # Errors
-    /// [`Error::OutOfRange`] (`"joint index"`) for `j` not below `plan.joint_names().len()`;
-    /// [`Error::OutOfRange`] (`"side"`) for `side` not 0 or 1.
-    pub fn joint_on(&self, j: usize, side: usize) -> Result<PointMotion> {
-        let j = self.chain.check_joint(j)?;
-        if side > 1 {
-            return Err(Error::OutOfRange {
-                name: "side",
-                value: side as f64,
-                min: 0.0,
-                max: 1.0,
-                ends: crate::Ends::Closed,
-            });
-        }
-        Ok(self.joint_on_at(j, side))
-    }
-
-    /// As [`joint_on`](Self::joint_on), for a joint's index and a side 0 or 1.
+    /// As [`joint`](Self::joint), for an index known to be a joint's.
     #[inline]
-    pub(crate) fn joint_on_at(&self, j: usize, side: usize) -> PointMotion {
-        let jp = &self.chain.joints[j];
-        self.at(jp.links[side], jp.local[side])
+    pub(crate) fn joint_motion_at(&self, j: usize) -> PointMotion {
+        let side = match self.chain.joints[j].prismatic {
+            Some((guide, _)) => 1 - guide,
+            None => 0,
+        };
+        self.joint_on_at(j, side)
     }
 
-    /// The motion of joint `j` as a point of link `link` (one of its two links).
+    /// The motion of a joint as a point of `link`, one of the two links it joins (at a
+    /// prismatic joint the two differ).
     ///
     /// # Errors
-    /// [`Error::OutOfRange`] (`"joint index"`, `"link index"`) for `j` not below
-    /// `plan.joint_names().len()` or `link` not below `plan.link_names().len()`;
-    /// [`Error::Description`] naming both when the joint does not join link `link`.
-    pub fn joint_index_on(&self, j: usize, link: usize) -> Result<PointMotion> {
+    /// As [`Plan::joint_id`] and [`Plan::link_id`]; [`Error::Description`] naming both when
+    /// the joint does not join the link.
+    pub fn joint_on(&self, joint: impl JointRef, link: impl LinkRef) -> Result<PointMotion> {
         let c = self.chain;
-        let j = c.check_joint(j)?;
-        let link = c.check_link(link)?;
+        let j = c.joint(joint)?;
+        let link = c.link(link)?;
         let links = c.joints[j].links;
         if !links.contains(&link) {
             return Err(Error::Description {
@@ -714,58 +670,29 @@ impl Pose<'_> {
         Ok(self.joint_on_link(j, link))
     }
 
-    /// As [`joint_index_on`](Self::joint_index_on), for a joint's index and one of its links.
+    /// Joint `j` as a point of the `side`-th of its two links (valid indices).
+    #[inline]
+    pub(crate) fn joint_on_at(&self, j: usize, side: usize) -> PointMotion {
+        let jp = &self.chain.joints[j];
+        self.at(jp.links[side], jp.local[side])
+    }
+
+    /// Joint `j` as a point of `link`, one of its links (valid indices).
     #[inline]
     pub(crate) fn joint_on_link(&self, j: usize, link: usize) -> PointMotion {
         let side = usize::from(self.chain.joints[j].links[1] == link);
         self.joint_on_at(j, side)
     }
 
-    /// The motion of the joint called `name` (for a prismatic joint, its point on the sliding
-    /// link).
+    /// The motion of a named point.
     ///
     /// # Errors
-    /// An unknown name.
-    pub fn joint(&self, name: &str) -> Result<PointMotion> {
-        Ok(self.joint_motion_at(self.chain.joint_index(name)?))
+    /// As [`Plan::point_id`].
+    pub fn point(&self, point: impl PointRef) -> Result<PointMotion> {
+        Ok(self.point_motion_at(self.chain.point(point)?))
     }
 
-    /// The motion of joint `j` (for a prismatic joint, its point on the sliding link).
-    ///
-    /// # Errors
-    /// [`Error::OutOfRange`] (`"joint index"`) for `j` not below `plan.joint_names().len()`.
-    pub fn joint_motion(&self, j: usize) -> Result<PointMotion> {
-        Ok(self.joint_motion_at(self.chain.check_joint(j)?))
-    }
-
-    /// As [`joint_motion`](Self::joint_motion), for an index known to be a joint's.
-    #[inline]
-    pub(crate) fn joint_motion_at(&self, j: usize) -> PointMotion {
-        let side = match self.chain.joints[j].prismatic {
-            Some((guide, _)) => 1 - guide,
-            None => 0,
-        };
-        self.joint_on_at(j, side)
-    }
-
-    /// The motion of the named point `name`.
-    ///
-    /// # Errors
-    /// An unknown name.
-    pub fn point(&self, name: &str) -> Result<PointMotion> {
-        Ok(self.point_motion_at(self.chain.point_index(name)?))
-    }
-
-    /// The motion of named point `k`.
-    ///
-    /// # Errors
-    /// [`Error::OutOfRange`] (`"point index"`) for `k` not below `plan.point_names().len()`;
-    /// [`Error::Description`] for a linkage without named points.
-    pub fn point_motion(&self, k: usize) -> Result<PointMotion> {
-        Ok(self.point_motion_at(self.chain.check_point(k)?))
-    }
-
-    /// As [`point_motion`](Self::point_motion), for an index known to be a named point's.
+    /// As [`point`](Self::point), for an index known to be a named point's.
     #[inline]
     pub(crate) fn point_motion_at(&self, k: usize) -> PointMotion {
         let p = &self.chain.points[k];
@@ -787,13 +714,12 @@ impl Pose<'_> {
         )
     }
 
-    /// The current unit direction of the guide of prismatic joint `j` (zero for a revolute
-    /// joint).
+    /// The current unit direction of a joint's guide (zero for a revolute joint).
     ///
     /// # Errors
-    /// [`Error::OutOfRange`] (`"joint index"`) for `j` not below `plan.joint_names().len()`.
-    pub fn guide_direction(&self, j: usize) -> Result<Vector2<f64>> {
-        Ok(self.guide_direction_at(self.chain.check_joint(j)?))
+    /// As [`Plan::joint_id`].
+    pub fn guide_direction(&self, joint: impl JointRef) -> Result<Vector2<f64>> {
+        Ok(self.guide_direction_at(self.chain.joint(joint)?))
     }
 
     /// As [`guide_direction`](Self::guide_direction), for an index known to be a joint's.
@@ -802,17 +728,18 @@ impl Pose<'_> {
         self.slide_parts(j).2
     }
 
-    /// The slide of prismatic joint `j`: the sliding link's displacement along the guide from
-    /// the reference pose, with its velocity and acceleration relative to the guide (zero for
-    /// a revolute joint).
+    /// The slide of a prismatic joint: the sliding link's displacement along the guide from
+    /// the reference pose, with its velocity and acceleration relative to the guide.
     ///
     /// # Errors
-    /// [`Error::OutOfRange`] (`"joint index"`) for `j` not below `plan.joint_names().len()`.
-    pub fn slide_index(&self, j: usize) -> Result<Motion> {
-        Ok(self.slide_at(self.chain.check_joint(j)?))
+    /// As [`Plan::joint_id`]; [`Error::Description`] naming a revolute joint (it has no
+    /// slide).
+    pub fn slide(&self, joint: impl JointRef) -> Result<Motion> {
+        Ok(self.slide_at(self.chain.prismatic(joint)?))
     }
 
-    /// As [`slide_index`](Self::slide_index), for an index known to be a joint's.
+    /// As [`slide`](Self::slide), for an index known to be a joint's (zero for a revolute
+    /// joint).
     pub(crate) fn slide_at(&self, j: usize) -> Motion {
         let jp = &self.chain.joints[j];
         let Some((g, _)) = jp.prismatic else {
@@ -827,20 +754,5 @@ impl Pose<'_> {
         let v = (on_slider.v - on_guide.v).dot(&d);
         let a = (on_slider.a - on_guide.a).dot(&d) + s * w * w;
         Motion::new(s, v, a)
-    }
-
-    /// The slide of the prismatic joint called `name`.
-    ///
-    /// # Errors
-    /// An unknown name, or a revolute joint.
-    pub fn slide(&self, name: &str) -> Result<Motion> {
-        let j = self.chain.joint_index(name)?;
-        if !self.chain.is_prismatic_at(j) {
-            return Err(Error::Description {
-                item: format!("joint {name}"),
-                problem: "is not prismatic: it has no slide".to_owned(),
-            });
-        }
-        Ok(self.slide_at(j))
     }
 }

@@ -1,6 +1,6 @@
 //! Results over a cycle as named columns, written as CSV.
 
-use super::solve::Analysis;
+use super::solve::{Analysis, Kinematics};
 use crate::error::Result;
 use nalgebra::Vector2;
 use std::io;
@@ -43,40 +43,38 @@ pub(crate) fn push(row: &mut Vec<(String, f64)>, name: &str, unit: &str, value: 
     row.push((format!("{name} [{unit}]"), value));
 }
 
-impl Tabulate for Analysis<'_> {
-    /// The course table's row: the input, every moving link's angle, ω and ε, every joint's
-    /// position, velocity and acceleration magnitudes, every prismatic joint's slide, every
-    /// group's transmission angle, the
-    /// reaction in every joint (R_by,on: x, y, magnitude), and the balancing moment
-    /// `Mb [N·m, + counter-clockwise]` (or force `Fb [N, + along the guide]`) beside its value
-    /// by virtual power (`NaN` when the input is at rest: the virtual power then has no rate).
+impl Tabulate for Kinematics<'_> {
+    /// The course table's kinematic columns: the input, every moving link's angle, ω and ε,
+    /// every joint's position, velocity and acceleration magnitudes, every prismatic joint's
+    /// slide, and every group's transmission angle.
     fn row(&self) -> Vec<(String, f64)> {
         let plan = self.plan();
         let links = plan.link_names();
+        let pose = self.pose();
         let mut r = Vec::with_capacity(8 * plan.joint_names().len() + 4 * links.len());
         let (q, unit, rate, accel) = if plan.input_is_crank() {
             ("phi_in", "rad", "rad/s", "rad/s^2")
         } else {
             ("s_in", "m", "m/s", "m/s^2")
         };
-        let i = self.input();
+        let i = self.inputs().first();
         push(&mut r, q, unit, i.value);
         push(&mut r, &format!("{q}'"), rate, i.rate);
         push(&mut r, &format!("{q}''"), accel, i.accel);
         for (k, name) in links.iter().enumerate().skip(1) {
-            let m = self.link_angle_at(k);
+            let m = pose.link_angle_at(k);
             push(&mut r, &format!("phi({name})"), "rad", m.value);
             push(&mut r, &format!("omega({name})"), "rad/s", m.rate);
             push(&mut r, &format!("eps({name})"), "rad/s^2", m.accel);
         }
         for (j, name) in plan.joint_names().iter().enumerate() {
-            let p = self.joint_motion_at(j);
+            let p = pose.joint_motion_at(j);
             push(&mut r, &format!("x({name})"), "m", p.p.x);
             push(&mut r, &format!("y({name})"), "m", p.p.y);
             push(&mut r, &format!("|v({name})|"), "m/s", p.v.norm());
             push(&mut r, &format!("|a({name})|"), "m/s^2", p.a.norm());
             if plan.is_prismatic_at(j) {
-                let s = self.slide_at(j);
+                let s = pose.slide_at(j);
                 push(&mut r, &format!("s({name})"), "m", s.value);
                 push(&mut r, &format!("v_rel({name})"), "m/s", s.rate);
                 push(&mut r, &format!("a_rel({name})"), "m/s^2", s.accel);
@@ -86,34 +84,45 @@ impl Tabulate for Analysis<'_> {
             let mu = self.transmission_angle(g).unwrap_or(f64::NAN);
             push(&mut r, &format!("mu({})", group.name), "rad", mu);
         }
-        if self.has_statics() {
-            for (j, name) in plan.joint_names().iter().enumerate() {
-                let re = self.reaction_at(j);
-                let label = format!("R({},{})@{name}", links[re.by], links[re.on]);
-                push_vector(&mut r, &label, "N", re.force);
-                if plan.is_prismatic_at(j) {
-                    push(
-                        &mut r,
-                        &format!("M({},{})@{name}", links[re.by], links[re.on]),
-                        "N·m",
-                        re.moment,
-                    );
-                }
+        r
+    }
+}
+
+impl Tabulate for Analysis<'_> {
+    /// The course table's row: the kinematic columns of [`Kinematics`], the reaction in every
+    /// joint (R_by,on: x, y, magnitude), and the balancing moment `Mb [N·m, + counter-clockwise]`
+    /// (or force `Fb [N, + along the guide]`) beside its value by virtual power (`NaN` when the
+    /// input is at rest: the virtual power then has no rate).
+    fn row(&self) -> Vec<(String, f64)> {
+        let mut r = self.kinematics().row();
+        let plan = self.plan();
+        let links = plan.link_names();
+        for (j, name) in plan.joint_names().iter().enumerate() {
+            let re = self.reactions[j];
+            let label = format!("R({},{})@{name}", links[re.by], links[re.on]);
+            push_vector(&mut r, &label, "N", re.force);
+            if plan.is_prismatic_at(j) {
+                push(
+                    &mut r,
+                    &format!("M({},{})@{name}", links[re.by], links[re.on]),
+                    "N·m",
+                    re.moment,
+                );
             }
-            let b = self.balance();
-            // The sign convention rides in the header: a clockwise machine's driving moment is
-            // negative, and its reader should not have to guess why.
-            let (name, unit) = if plan.input_is_crank() {
-                ("Mb", "N·m, + counter-clockwise")
-            } else {
-                ("Fb", "N, + along the guide")
-            };
-            push(&mut r, name, unit, b.value);
-            // At rest the virtual power has no rate to divide by: the cell is NaN ("not
-            // available"), as `Table` documents.
-            let vp = self.power_check().map_or(f64::NAN, |c| c.virtual_power);
-            push(&mut r, &format!("{name} by virtual power"), unit, vp);
         }
+        let b = self.balances[0];
+        // The sign convention rides in the header: a clockwise machine's driving moment is
+        // negative, and its reader should not have to guess why.
+        let (name, unit) = if plan.input_is_crank() {
+            ("Mb", "N·m, + counter-clockwise")
+        } else {
+            ("Fb", "N, + along the guide")
+        };
+        push(&mut r, name, unit, b.value);
+        // At rest the virtual power has no rate to divide by: the cell is NaN ("not
+        // available"), as `Table` documents.
+        let vp = self.power_check().map_or(f64::NAN, |c| c.virtual_power);
+        push(&mut r, &format!("{name} by virtual power"), unit, vp);
         r
     }
 }

@@ -9,7 +9,7 @@ use tmm::dynamics::machines::{FiveBar, LinearMotor};
 use tmm::dynamics::{run, LagrangeSystem, Rk4, RunOptions, State, Trajectory};
 use tmm::kinematics::Motion;
 use tmm::linkage::dynamics::{Damper, LinkageSystem, Motor, RunUpOptions};
-use tmm::linkage::{bundled, At, Linkage, LoadSpec, Mass, Plan};
+use tmm::linkage::{bundled, At, Inputs, Linkage, LoadSpec, Mass, Plan};
 use tmm::mechanism::{Compressor, Mechanism, RockingCylinder, SixBar, SliderCrank};
 use tmm::{Error, Load};
 
@@ -224,7 +224,7 @@ fn inverse_dynamics_equals_the_balancing_moment() {
                         &Vector2::new(eps, 0.0),
                     )
                     .unwrap();
-                let rel = (m[0] - a.balance().value).abs() / balance_scale(&a);
+                let rel = (m[0] - a.balances()[0].value).abs() / balance_scale(&a);
                 worst = worst.max(rel);
                 cases += 1;
             }
@@ -282,7 +282,7 @@ fn inverse_dynamics_of_a_slider_input() {
                 &Vector2::new(acc, 0.0),
             )
             .unwrap();
-        worst = worst.max((m[0] - a.balance().value).abs() / balance_scale(&a));
+        worst = worst.max((m[0] - a.balances()[0].value).abs() / balance_scale(&a));
         cases += 1;
     }
     println!("slider input: {worst:.1e} over {cases} positions");
@@ -320,7 +320,7 @@ fn inverse_dynamics_with_state_dependent_loads() {
                 &Vector2::zeros(),
             )
             .unwrap();
-        worst = worst.max((m[0] - a.balance().value).abs() / balance_scale(&a));
+        worst = worst.max((m[0] - a.balances()[0].value).abs() / balance_scale(&a));
     }
     assert!(worst <= 1e-9, "{worst:e}");
 }
@@ -341,14 +341,14 @@ fn five_bar_inverse_dynamics_equals_both_balancing_moments() {
         let qd = Vector2::new(2.0 - 0.5 * f64::from(i), 1.0);
         let qdd = Vector2::new(3.0, -2.0 + f64::from(i));
         let a = plan
-            .analyse_inputs(&[
+            .analyse(Inputs::two(
                 Motion::new(q[0], qd[0], qdd[0]),
                 Motion::new(q[1], qd[1], qdd[1]),
-            ])
+            ))
             .unwrap();
         assert!(a.worst_residual() < 1e-12);
         let m = sys.inverse_dynamics(&q, &qd, &qdd).unwrap();
-        let b = Vector2::new(a.balance().value, a.second_balance().unwrap().value);
+        let b = Vector2::new(a.balances()[0].value, a.balances()[1].value);
         worst = worst.max((m - b).amax() / b.amax());
     }
     assert!(worst <= 1e-9, "{worst:e}");
@@ -569,10 +569,7 @@ fn run_up_reaches_a_steady_state_within_its_budget() {
     assert!((phi[phi.len() - 1] - phi[0] - TAU).abs() < 1e-9, "one turn");
     // The steady turn once more from its start, at a tenth of the step, for the quadrature.
     let steady = State::new(0.0, Vector2::new(phi[0], 0.0), Vector2::new(w[0], 0.0));
-    let fine = RunUpOptions {
-        h: opts.h / 10.0,
-        ..opts
-    };
+    let fine = opts.with_h(opts.h / 10.0);
     let (_, rf) = sys.turn(&Rk4, steady, &fine).unwrap();
     let tf = &rf.trajectory;
     let (motor, motor_2h) = motor_mean_over_turn(&sys, tf.t(), tf.q()[0], tf.qd()[0]);
@@ -703,7 +700,7 @@ fn bad_input_is_an_error() {
     assert!(far.is_err());
     let plan = five.plan();
     assert!(plan.kinematics(Motion::new(2.0, 1.0, 0.0)).is_err());
-    assert!(plan.analyse_inputs(&[Motion::fixed(2.0)]).is_err());
+    assert!(plan.analyse(Motion::fixed(2.0)).is_err());
     // A second input on a linkage of mobility 1: the mobility does not match.
     let mut l = bundled::four_bar();
     l.second_input = Some(tmm::linkage::Input::crank("rocker"));
@@ -735,10 +732,7 @@ fn a_second_input_reads_and_writes_as_json() {
 static WORST_RATES: std::sync::atomic::AtomicU64 = std::sync::atomic::AtomicU64::new(0);
 
 fn record_rates_difference(plan: &Plan, a: &tmm::linkage::Pose<'_>) -> tmm::Result<()> {
-    let full = match a.second_input() {
-        None => plan.kinematics(a.input())?,
-        Some(m) => plan.kinematics_inputs(&[a.input(), m])?,
-    };
+    let full = plan.kinematics(a.inputs())?;
     let n = plan.link_names().len();
     let (mut v_scale, mut a_scale, mut w_scale, mut e_scale) = (0.0f64, 0.0f64, 0.0f64, 0.0f64);
     for k in 0..n {
@@ -808,7 +802,9 @@ fn the_rates_only_pass_equals_a_full_solve_for_every_group_kind() {
             } else {
                 // Only where the position cannot be solved at all.
                 assert!(
-                    sys.plan().kinematics_inputs(&inputs[..n]).is_err(),
+                    sys.plan()
+                        .kinematics(Inputs::from_slice(&inputs[..n]).unwrap())
+                        .is_err(),
                     "{name} at {q:?}"
                 );
             }

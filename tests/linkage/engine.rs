@@ -49,8 +49,8 @@ fn lu_difference(plan: &Plan, a: &tmm::linkage::Analysis<'_>) -> f64 {
     let mut col = 0;
     let mut cols = Vec::new();
     for j in 0..nj {
-        let [p, q] = plan.joint_links(j).unwrap();
-        let at = a.joint_on(j, 1).unwrap().p;
+        let [p, q] = plan.joint_links(j).unwrap().map(usize::from);
+        let at = a.joint_on(j, q).unwrap().p;
         // A unit unknown: force f and couple c on q (and −f, −c on p).
         let mut put = |col: usize, f: Vector2<f64>, c: f64| {
             for (k, s) in [(q, 1.0), (p, -1.0)] {
@@ -75,8 +75,8 @@ fn lu_difference(plan: &Plan, a: &tmm::linkage::Analysis<'_>) -> f64 {
         col += 2;
     }
     // The drive.
-    let input = plan.input_link();
-    let b = a.balance();
+    let input = plan.input_links()[0].index();
+    let b = a.balances()[0];
     let r = row(input);
     let crank_coupling = plan.input_is_crank() && b.force == Vector2::zeros();
     let drive_dir = if crank_coupling {
@@ -89,8 +89,8 @@ fn lu_difference(plan: &Plan, a: &tmm::linkage::Analysis<'_>) -> f64 {
             a.guide_direction(
                 (0..nj)
                     .find(|&j| {
-                        plan.joint_links(j).unwrap().contains(&input)
-                            && plan.joint_links(j).unwrap().contains(&0)
+                        let [p, q] = plan.joint_links(j).unwrap().map(usize::from);
+                        [p, q].contains(&input) && [p, q].contains(&0)
                     })
                     .unwrap(),
             )
@@ -106,10 +106,10 @@ fn lu_difference(plan: &Plan, a: &tmm::linkage::Analysis<'_>) -> f64 {
     let mut scale: f64 = 0.0;
     let mut worst: f64 = 0.0;
     for j in 0..nj {
-        let [_, q] = plan.joint_links(j).unwrap();
-        let re = a.reaction_index(j).unwrap();
+        let [_, q] = plan.joint_links(j).unwrap().map(usize::from);
+        let re = a.reaction(j).unwrap();
         let load = re.load_on(q).unwrap();
-        let at = a.joint_on(j, 1).unwrap().p;
+        let at = a.joint_on(j, q).unwrap().p;
         let (f, c) = if plan.is_prismatic(j).unwrap() {
             let d = a.guide_direction(j).unwrap();
             (x[cols[j]] * Vector2::new(-d.y, d.x), x[cols[j] + 1])
@@ -190,9 +190,9 @@ fn velocities_and_accelerations_match_finite_differences_of_positions() {
             let pos = |x: f64| plan.kinematics(Motion::fixed(x)).unwrap();
             for j in 0..plan.joint_names().len() {
                 for (c, get) in [(0, 0usize), (1, 1)] {
-                    let f = |x: f64| pos(x).joint_motion(j).unwrap().p[get];
+                    let f = |x: f64| pos(x).joint(j).unwrap().p[get];
                     let (d1, d2) = fd8(&f, phi, h);
-                    let m = a.joint_motion(j).unwrap();
+                    let m = a.joint(j).unwrap();
                     let (v, acc) = (m.v[c], m.a[c]);
                     let scale = plan.size() * (w * w + e.abs());
                     worst = worst.max((v - d1 * w).abs() / scale);
@@ -202,21 +202,21 @@ fn velocities_and_accelerations_match_finite_differences_of_positions() {
             // The slide of every sliding pair, also on a turning guide (the shaper's lever), where
             // its acceleration carries the s·ω² term of the guide's rotation.
             for j in (0..plan.joint_names().len()).filter(|&j| plan.is_prismatic(j).unwrap()) {
-                let f = |x: f64| pos(x).slide_index(j).unwrap().value;
+                let f = |x: f64| pos(x).slide(j).unwrap().value;
                 let (d1, d2) = fd8(&f, phi, h);
-                let m = a.slide_index(j).unwrap();
+                let m = a.slide(j).unwrap();
                 let scale = plan.size() * (w * w + e.abs());
                 worst = worst.max((m.rate - d1 * w).abs() / scale);
                 worst = worst.max((m.accel - (d2 * w * w + d1 * e)).abs() / scale);
             }
             for li in 1..plan.link_names().len() {
-                let base = a.link_angle_index(li).unwrap().value;
+                let base = a.link(li).unwrap().value;
                 let f = |x: f64| {
-                    let v = pos(x).link_angle_index(li).unwrap().value - base;
+                    let v = pos(x).link(li).unwrap().value - base;
                     v - TAU * (v / TAU).round()
                 };
                 let (d1, d2) = fd8(&f, phi, h);
-                let m = a.link_angle_index(li).unwrap();
+                let m = a.link(li).unwrap();
                 worst = worst.max((m.rate - d1 * w).abs() / (w * w + e.abs()));
                 worst = worst.max((m.accel - (d2 * w * w + d1 * e)).abs() / (w * w + e.abs()));
             }

@@ -158,7 +158,7 @@ fn every_file_balances_by_virtual_power_over_a_turn() {
                     Motion::new(r[0] + 0.3 * theta.sin(), 10.0, 3.0),
                     Motion::new(r[1] + 0.3 * theta.cos(), -7.0, 2.0),
                 ];
-                plan.analyse_inputs(&m).unwrap()
+                plan.analyse(m).unwrap()
             };
             vp = vp.max(a.power_check().unwrap().relative_error());
             eq = eq.max(a.worst_residual());

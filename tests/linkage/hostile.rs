@@ -5,9 +5,9 @@
 //!
 //! Entry points: `Plan::new`, `Linkage::from_json`, `Plan::analyse`, `Plan::kinematics`,
 //! `Analysis::power_check`, `worst_residual`, every reaction, joint and point accessor (by
-//! name, and by index with indices out of range: `link_motion`, `link_angle_index`,
-//! `joint_on`, `joint_index_on`, `joint_motion`, `point_motion`, `guide_direction`,
-//! `slide_index`, `reaction_index`, `free_body`, `residual`; `Plan::point_local`,
+//! name, and by index with indices out of range: `link_motion`, `link`, `joint_on`,
+//! `joint`, `point`, `guide_direction`, `slide`, `reaction`, `free_body`, `residual`;
+//! `Plan::point_local`,
 //! `is_prismatic`, `joint_links`, `guide_link`),
 //! `Plan::output`, `Plan::transfer`, `Plan::extremes`, `Plan::strokes`,
 //! `Plan::lock_positions`, `uniform_inputs`, `Table::to_text`, `Analysis::transmission_angle`,
@@ -51,19 +51,15 @@ fn no_panic<T>(what: &str, f: impl FnOnce() -> T) -> T {
 /// Everything an analysis returns must be finite once it is `Ok`.
 fn check_position(plan: &Plan, input: Motion, what: &str) {
     let Ok(a) = plan.analyse(input) else { return };
-    let mut shown = format!("{:?}", a.balance());
+    let mut shown = format!("{:?}", a.balances()[0]);
     for j in 0..plan.joint_names().len() {
-        shown += &format!(
-            "{:?}{:?}",
-            a.reaction_index(j).unwrap(),
-            a.joint_motion(j).unwrap()
-        );
+        shown += &format!("{:?}{:?}", a.reaction(j).unwrap(), a.joint(j).unwrap());
     }
     for k in 0..plan.point_names().len() {
-        shown += &format!("{:?}", a.point_motion(k).unwrap());
+        shown += &format!("{:?}", a.point(k).unwrap());
     }
     for k in 0..plan.link_names().len() {
-        shown += &format!("{:?}", a.link_angle_index(k).unwrap());
+        shown += &format!("{:?}", a.link(k).unwrap());
     }
     shown += &format!("{:?}{:?}", a.conditioning(), a.applied_loads());
     assert!(!has_non_finite(&shown), "{what}: {input:?} gave {shown}");
@@ -644,7 +640,9 @@ fn index_accessors_check_their_indices() {
             .iter()
             .map(|&q| Motion::new(q, 1.5, -0.5))
             .collect();
-        let a = plan.analyse_inputs(&motions).unwrap();
+        let a = plan
+            .analyse(tmm::linkage::Inputs::from_slice(&motions).unwrap())
+            .unwrap();
         let (nl, nj, np, ng) = (
             plan.link_names().len(),
             plan.joint_names().len(),
@@ -664,7 +662,7 @@ fn index_accessors_check_their_indices() {
         for (k, name) in plan.link_names().iter().enumerate() {
             let what = format!("{}: link {name}", l.name);
             let by_name = a.link(name).unwrap();
-            assert_eq!(a.link_angle_index(k).unwrap(), by_name, "{what}");
+            assert_eq!(a.link(k).unwrap(), by_name, "{what}");
             let m = a.link_motion(k).unwrap();
             assert_eq!(
                 (m.omega, m.epsilon),
@@ -682,16 +680,12 @@ fn index_accessors_check_their_indices() {
         for (j, name) in plan.joint_names().iter().enumerate() {
             let what = format!("{}: joint {name}", l.name);
             let by_name = a.joint(name).unwrap();
-            assert_eq!(a.joint_motion(j).unwrap(), by_name, "{what}");
-            assert_eq!(
-                a.reaction_index(j).unwrap(),
-                a.reaction(name).unwrap(),
-                "{what}"
-            );
+            assert_eq!(a.joint(j).unwrap(), by_name, "{what}");
+            assert_eq!(a.reaction(j).unwrap(), a.reaction(name).unwrap(), "{what}");
             // The reaction as a load: equal and opposite on its two links, refused on any
             // other link.
-            let re = a.reaction_index(j).unwrap();
-            let [p, q] = plan.joint_links(j).unwrap();
+            let re = a.reaction(j).unwrap();
+            let [p, q] = plan.joint_links(j).unwrap().map(usize::from);
             let (on_p, on_q) = (re.load_on(p).unwrap(), re.load_on(q).unwrap());
             assert_eq!(on_p.force, -on_q.force, "{what}");
             assert_eq!(on_p.moment, -on_q.moment, "{what}");
@@ -706,27 +700,27 @@ fn index_accessors_check_their_indices() {
             assert_eq!(prismatic, a.slide(name).is_ok(), "{what}");
             assert_eq!(plan.guide_link(j).unwrap().is_some(), prismatic, "{what}");
             let d = a.guide_direction(j).unwrap();
-            let s = a.slide_index(j).unwrap();
+            let s = a.slide(j);
             if prismatic {
                 assert!((d.norm() - 1.0).abs() < 1e-12, "{what}: {d:?}");
-                assert_eq!(s, a.slide(name).unwrap(), "{what}");
+                assert_eq!(s.unwrap(), a.slide(name).unwrap(), "{what}");
             } else {
                 assert_eq!(d.norm(), 0.0, "{what}");
-                assert_eq!(s, Motion::default(), "{what}");
+                // A hinge has no slide: asked by index or by name, an error naming it.
+                assert!(matches!(s, Err(Error::Description { .. })), "{what}");
             }
-            let links = plan.joint_links(j).unwrap();
+            let links = plan.joint_links(j).unwrap().map(usize::from);
             for (side, &k) in links.iter().enumerate() {
                 assert!(
                     desc_link(k).joints.contains(name),
                     "{what}: side {side} is link {}, which does not list it",
                     plan.link_names()[k]
                 );
-                let on = a.joint_on(j, side).unwrap();
-                assert_eq!(a.joint_index_on(j, k).unwrap(), on, "{what}");
+                let on = a.joint_on(j, k).unwrap();
                 // The joint's motion is its point on the sliding link (on the first link of a
                 // hinge), to the bit; a hinge's two points coincide.
                 let guide = plan.guide_link(j).unwrap();
-                if guide.map_or(side == 0, |g| g != k) {
+                if guide.map_or(side == 0, |g| g.index() != k) {
                     assert_eq!(on, by_name, "{what}: side {side}");
                 }
                 let gap = (on.p - by_name.p).norm();
@@ -734,7 +728,7 @@ fn index_accessors_check_their_indices() {
             }
             // A link in range that the joint does not join: named by both names.
             for k in (0..nl).filter(|k| !links.contains(k)) {
-                match a.joint_index_on(j, k) {
+                match a.joint_on(j, k) {
                     Err(Error::Description { item, problem }) => {
                         assert_eq!(item, format!("joint {name}"), "{what}");
                         let link = &plan.link_names()[k];
@@ -746,26 +740,15 @@ fn index_accessors_check_their_indices() {
                     other => panic!("{what}: link {k}: {other:?}"),
                 }
             }
-            for side in [2, 3, usize::MAX] {
-                match a.joint_on(j, side) {
-                    Err(Error::OutOfRange {
-                        name: "side",
-                        value,
-                        min: 0.0,
-                        max: 1.0,
-                        ends: Ends::Closed,
-                    }) => assert_eq!(value, side as f64, "{what}"),
-                    other => panic!("{what}: side {side}: {other:?}"),
-                }
-            }
             for k in [nl, nl + 1, usize::MAX] {
-                assert_index_error(a.joint_index_on(j, k), "link index", k, nl, &what);
+                assert_index_error(a.joint_on(j, k), "link index", k, nl, &what);
             }
         }
         for (k, name) in plan.point_names().iter().enumerate() {
             let what = format!("{}: point {name}", l.name);
-            assert_eq!(a.point_motion(k).unwrap(), a.point(name).unwrap(), "{what}");
+            assert_eq!(a.point(k).unwrap(), a.point(name).unwrap(), "{what}");
             let (link, local) = plan.point_local(k).unwrap();
+            let link = link.index();
             assert!(
                 desc_link(link).points.iter().any(|p| &p.name == name),
                 "{what}: on link {}",
@@ -795,29 +778,23 @@ fn index_accessors_check_their_indices() {
                 &what("link_motion", k),
             );
             let w = what("link_angle_index", k);
-            assert_index_error(a.link_angle_index(k), "link index", k, nl, &w);
+            assert_index_error(a.link(k), "link index", k, nl, &w);
             assert_index_error(a.residual(k), "link index", k, nl, &what("residual", k));
             assert_index_error(a.free_body(k), "link index", k, nl, &what("free_body", k));
             let k = nj.saturating_add(i);
             let joint_index = |r, f: &str| assert_index_error(r, "joint index", k, nj, &what(f, k));
-            joint_index(a.joint_motion(k).map(|_| ()), "joint_motion");
+            joint_index(a.joint(k).map(|_| ()), "joint_motion");
             joint_index(a.joint_on(k, 0).map(|_| ()), "joint_on");
             joint_index(a.joint_on(k, 1).map(|_| ()), "joint_on");
-            joint_index(a.joint_index_on(k, 0).map(|_| ()), "joint_index_on");
+            joint_index(a.joint_on(k, 0).map(|_| ()), "joint_index_on");
             joint_index(a.guide_direction(k).map(|_| ()), "guide_direction");
-            joint_index(a.slide_index(k).map(|_| ()), "slide_index");
-            joint_index(a.reaction_index(k).map(|_| ()), "reaction_index");
+            joint_index(a.slide(k).map(|_| ()), "slide_index");
+            joint_index(a.reaction(k).map(|_| ()), "reaction_index");
             joint_index(plan.is_prismatic(k).map(|_| ()), "is_prismatic");
             joint_index(plan.joint_links(k).map(|_| ()), "joint_links");
             joint_index(plan.guide_link(k).map(|_| ()), "guide_link");
             let k = np.saturating_add(i);
-            assert_index_error(
-                a.point_motion(k),
-                "point index",
-                k,
-                np,
-                &what("point_motion", k),
-            );
+            assert_index_error(a.point(k), "point index", k, np, &what("point_motion", k));
             assert_index_error(
                 plan.point_local(k),
                 "point index",
@@ -838,22 +815,19 @@ fn index_accessors_check_their_indices() {
     );
 }
 
-/// `Plan::analyse_into` solves for the plan it is called on, or refuses: buffers made for
-/// another plan (even an equal copy) are an error, not an analysis of the other linkage.
+/// A solver belongs to the plan that made it (`plan.solver()`): one plan's buffers cannot be
+/// handed to another, so the mistake `Plan::analyse_into` had to refuse at run time cannot be
+/// written. A copy's solver solves the copy, to the bit of the original's one-shot analysis.
 #[test]
-fn analysis_buffers_of_another_plan_are_refused() {
+fn a_solver_solves_the_plan_that_made_it() {
     let four = Plan::new(&bundled::four_bar()).unwrap();
-    let six = Plan::new(&bundled::watt_six_bar()).unwrap();
     let input = Motion::new(four.reference_input(), 10.0, 0.0);
-    let mut a = tmm::linkage::Analysis::new(&six);
-    let e = four.analyse_into(input, &mut a);
-    assert!(matches!(e, Err(Error::Description { .. })), "{e:?}");
     let copy = four.clone();
-    let mut b = tmm::linkage::Analysis::new(&copy);
-    assert!(four.analyse_into(input, &mut b).is_err());
-    copy.analyse_into(input, &mut b).unwrap();
+    let mut solver = copy.solver();
+    assert!(std::ptr::eq(solver.plan(), &copy));
+    let b = solver.analyse(input).unwrap().balances()[0];
     let direct = four.analyse(input).unwrap();
-    assert_eq!(b.balance(), direct.balance());
+    assert_eq!(b, direct.balances()[0]);
 }
 
 /// Inputs of a cycle: `try_uniform_inputs` refuses what has no positions and names it; what

@@ -49,7 +49,7 @@ impl Position<'_, '_> {
     fn compare(&self, w: &mut Worst, size: f64) {
         let a = self.a;
         let plan = a.plan();
-        let at = a.input().value;
+        let at = a.inputs().first().value;
         // Links: angle (relative to 2π), ω, ε (relative to the largest ω, ε + ω²).
         let w_scale = self
             .links
@@ -99,7 +99,10 @@ impl Position<'_, '_> {
         );
         for (joint, by, on, force, moment) in &self.reactions {
             let r = a.reaction(joint).unwrap();
-            let (by, on) = (plan.link_index(by).unwrap(), plan.link_index(on).unwrap());
+            let (by, on) = (
+                plan.link_id(by).unwrap().index(),
+                plan.link_id(on).unwrap().index(),
+            );
             let s = if (r.by, r.on) == (by, on) {
                 1.0
             } else {
@@ -118,7 +121,7 @@ impl Position<'_, '_> {
             );
         }
         let check = a.power_check().unwrap();
-        let b = a.balance();
+        let b = a.balances()[0];
         w.note(
             &format!("M_b at {at}"),
             (b.value - self.moment).abs(),

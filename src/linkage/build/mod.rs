@@ -133,7 +133,7 @@ fn check_modes(linkage: &Linkage, dyads: &[Dyad]) -> Result<()> {
 fn check_closure(chain: &Chain, linkage: &Linkage) -> Result<()> {
     let mut state = KinState::new(chain);
     state
-        .solve(chain, &chain.reference_motions())
+        .solve(chain, chain.reference_motions().as_slice())
         .map_err(|e| bad("reference pose", format!("does not assemble: {e}")))?;
     let pose = state.pose(chain);
     let tol = 1e-9 * chain.size.max(f64::MIN_POSITIVE);

@@ -27,7 +27,18 @@ pub struct Reduced {
 }
 
 /// How [`LinkageSystem::run_up`] integrates and when it stops.
+///
+/// Made by [`RunUpOptions::new`] and changed with the `with_*` builders, so that options can
+/// be added without breaking a caller.
+///
+/// # Examples
+/// ```
+/// use tmm::linkage::dynamics::RunUpOptions;
+/// let o = RunUpOptions::new(1e-3).with_tol(1e-8).with_max_turns(500);
+/// assert_eq!((o.h, o.tol, o.max_turns), (1e-3, 1e-8, 500));
+/// ```
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[non_exhaustive]
 pub struct RunUpOptions {
     /// The step (fixed-step methods) or the first proposed step (adaptive ones), s.
     pub h: f64,
@@ -57,6 +68,41 @@ impl RunUpOptions {
             max_turn_time: 60.0,
             record_every: 1,
         }
+    }
+
+    /// The same options with the step (or first proposed step) `h`, s.
+    #[must_use]
+    pub fn with_h(mut self, h: f64) -> Self {
+        self.h = h;
+        self
+    }
+
+    /// The same options with the steady state's relative tolerance `tol`.
+    #[must_use]
+    pub fn with_tol(mut self, tol: f64) -> Self {
+        self.tol = tol;
+        self
+    }
+
+    /// The same options with at most `max_turns` turns.
+    #[must_use]
+    pub fn with_max_turns(mut self, max_turns: usize) -> Self {
+        self.max_turns = max_turns;
+        self
+    }
+
+    /// The same options with at most `max_turn_time` seconds a turn.
+    #[must_use]
+    pub fn with_max_turn_time(mut self, max_turn_time: f64) -> Self {
+        self.max_turn_time = max_turn_time;
+        self
+    }
+
+    /// The same options recording every `record_every`-th step of a turn.
+    #[must_use]
+    pub fn with_record_every(mut self, record_every: usize) -> Self {
+        self.record_every = record_every;
+        self
     }
 }
 

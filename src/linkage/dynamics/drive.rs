@@ -128,11 +128,11 @@ impl Damper {
         }
         Ok(match self {
             Self::Link { link, .. } => DamperPlan::Link {
-                link: plan.link_index(link)?,
+                link: plan.chain.link(link)?,
                 c,
             },
             Self::Joint { joint, .. } => {
-                let j = plan.joint_index(joint)?;
+                let j = plan.chain.joint(joint)?;
                 if plan.is_prismatic_at(j) {
                     DamperPlan::Slide { joint: j, c }
                 } else {

@@ -595,7 +595,7 @@ impl LinkageSystem {
     /// use tmm::linkage::{bundled, dynamics::LinkageSystem, Plan};
     /// let sys = LinkageSystem::from_linkage(&bundled::watt_six_bar())?;
     /// let m = sys.inverse_dynamics(&Vector2::new(0.7, 0.0), &Vector2::new(12.0, 0.0), &Vector2::zeros())?;
-    /// let b = sys.plan().analyse(Motion::new(0.7, 12.0, 0.0))?.balance().value;
+    /// let b = sys.plan().analyse(Motion::turning(0.7, 12.0))?.balance(0)?.value;
     /// assert!((m[0] - b).abs() < 1e-9 * b.abs());
     /// # Ok::<(), tmm::Error>(())
     /// ```

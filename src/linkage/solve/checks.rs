@@ -3,6 +3,7 @@
 
 use super::analysis::Analysis;
 use crate::error::{Error, Result};
+use crate::linkage::handle::LinkRef;
 use crate::Load;
 
 /// The balancing value found two ways at one position.
@@ -35,9 +36,9 @@ impl Analysis<'_> {
     /// the drive on the input link.
     ///
     /// # Errors
-    /// [`Error::OutOfRange`] (`"link index"`) for `k` not below `plan.link_names().len()`.
-    pub fn free_body(&self, k: usize) -> Result<Vec<Load>> {
-        Ok(self.free_body_at(self.plan.check_link(k)?))
+    /// As [`Plan::link_id`](crate::linkage::Plan::link_id).
+    pub fn free_body(&self, link: impl LinkRef) -> Result<Vec<Load>> {
+        Ok(self.free_body_at(self.k.plan.chain.link(link)?))
     }
 
     /// As [`free_body`](Self::free_body), for an index known to be a link's.
@@ -48,17 +49,16 @@ impl Analysis<'_> {
             .filter(|(l, _)| *l == k)
             .map(|(_, l)| *l)
             .collect();
-        for (j, jp) in self.plan.chain.joints.iter().enumerate() {
+        for (j, jp) in self.k.plan.chain.joints.iter().enumerate() {
             if jp.links.contains(&k) {
                 all.push(self.reactions[j].load_on_side(k));
             }
         }
-        if k == self.plan.input_link() {
-            all.push(self.drive_load());
-        }
-        if Some(k) == self.plan.second_input_link() {
-            all.extend(self.second_drive_load());
-        }
+        all.extend(
+            self.drive_loads()
+                .filter(|&(link, _)| link == k)
+                .map(|(_, l)| l),
+        );
         all
     }
 
@@ -66,15 +66,15 @@ impl Analysis<'_> {
     /// with the scales the largest force and the largest moment (or force × arm).
     ///
     /// # Errors
-    /// [`Error::OutOfRange`] (`"link index"`) for `k` not below `plan.link_names().len()`.
-    pub fn residual(&self, k: usize) -> Result<f64> {
-        Ok(self.residual_at(self.plan.check_link(k)?))
+    /// As [`Plan::link_id`](crate::linkage::Plan::link_id).
+    pub fn residual(&self, link: impl LinkRef) -> Result<f64> {
+        Ok(self.residual_at(self.k.plan.chain.link(link)?))
     }
 
     /// As [`residual`](Self::residual), for an index known to be a link's.
     fn residual_at(&self, k: usize) -> f64 {
         let all = self.free_body_at(k);
-        let pole = self.kin.links[k].origin.p;
+        let pole = self.k.kin.links[k].origin.p;
         let sum = Load::sum_about(&all, pole);
         let fs = all.iter().map(|l| l.force.norm()).fold(0.0, f64::max);
         let arm = all
@@ -89,7 +89,7 @@ impl Analysis<'_> {
     /// The worst [`Analysis::residual`] over the moving links.
     #[must_use]
     pub fn worst_residual(&self) -> f64 {
-        (1..self.kin.links.len())
+        (1..self.k.kin.links.len())
             .map(|k| self.residual_at(k))
             .fold(0.0, f64::max)
     }
@@ -97,7 +97,7 @@ impl Analysis<'_> {
     /// The power of every applied load, W: Σ F·v + M·ω.
     fn powers(&self) -> (f64, f64) {
         self.applied.iter().fold((0.0, 0.0), |(s, a), (k, l)| {
-            let link = &self.kin.links[*k];
+            let link = &self.k.kin.links[*k];
             let p = l.force.dot(&link.motion_of(l.point).v) + l.moment * link.omega;
             (s + p, a + p.abs())
         })
@@ -110,10 +110,10 @@ impl Analysis<'_> {
     /// # Errors
     /// [`Error::Singular`] when the input does not move (q̇ = 0).
     pub fn power_check(&self) -> Result<PowerCheck> {
-        if let (Some(m), Some(b)) = (self.kin.second_input, self.second_balance) {
+        if let (Some(m), [_, b]) = (self.k.kin.second_input, self.balances()) {
             // Two inputs: the drives' power against the loads' power, W.
             let (sum, abs) = self.powers();
-            let chain = self.balance.value * self.kin.input.rate + b.value * m.rate;
+            let chain = self.balances[0].value * self.k.kin.input.rate + b.value * m.rate;
             if !(chain.is_finite() && sum.is_finite()) {
                 return Err(Error::NonFinite {
                     name: "virtual power",
@@ -126,7 +126,7 @@ impl Analysis<'_> {
                 scale: abs.max(chain.abs()),
             });
         }
-        let q = self.kin.input.rate;
+        let q = self.k.kin.input.rate;
         if q == 0.0 || !q.is_finite() {
             return Err(Error::Singular {
                 what: "virtual power balance",
@@ -143,9 +143,9 @@ impl Analysis<'_> {
             });
         }
         Ok(PowerCheck {
-            chain: self.balance.value,
+            chain: self.balances[0].value,
             virtual_power: vp,
-            scale: scale.max(self.balance.value.abs()),
+            scale: scale.max(self.balances[0].value.abs()),
         })
     }
 }

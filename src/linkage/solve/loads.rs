@@ -166,14 +166,14 @@ impl LoadSite for Collect<'_> {
 
 impl Analysis<'_> {
     pub(super) fn apply_loads(&mut self) -> Result<()> {
-        let plan = self.plan;
+        let plan = self.k.plan;
         self.applied.clear();
         for (k, lp) in plan.chain.links.iter().enumerate().skip(1) {
             if lp.mass == 0.0 && lp.inertia == 0.0 {
                 continue;
             }
-            let s = self.kin.at(k, lp.centre);
-            let epsilon = self.kin.links[k].epsilon;
+            let s = self.k.kin.at(k, lp.centre);
+            let epsilon = self.k.kin.links[k].epsilon;
             // The mass and J_S were checked by the plan and the motion by the groups: only the
             // products can overflow, and then `Load::inertia` names what did.
             let force = lp.mass * (plan.gravity - s.a);
@@ -191,7 +191,7 @@ impl Analysis<'_> {
             plan,
             &mut Collect {
                 chain: &plan.chain,
-                kin: &self.kin,
+                kin: &self.k.kin,
                 applied: &mut self.applied,
             },
         )

@@ -4,6 +4,7 @@
 
 use crate::error::Error;
 use crate::kinematics::{Guide, LinkMotion, Motion, PointMotion};
+use crate::linkage::inputs::Inputs;
 use crate::linkage::plan::{Chain, Pose};
 use nalgebra::{Point2, Vector2};
 
@@ -72,8 +73,16 @@ impl KinState {
             chain,
             links: &self.links,
             units: &self.units,
-            input: self.input,
-            second_input: self.second_input,
+            inputs: self.inputs(),
+        }
+    }
+
+    /// The inputs of the last solve.
+    #[inline]
+    pub fn inputs(&self) -> Inputs {
+        match self.second_input {
+            Some(m) => Inputs::two(self.input, m),
+            None => Inputs::one(self.input),
         }
     }
 

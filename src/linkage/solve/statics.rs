@@ -15,9 +15,9 @@ use nalgebra::Vector2;
 
 impl Analysis<'_> {
     pub(super) fn solve_statics(&mut self) -> Result<()> {
-        let plan = self.plan;
+        let plan = self.k.plan;
         for (k, acc) in self.acc.iter_mut().enumerate() {
-            *acc = Load::zero(self.kin.links[k].origin.p);
+            *acc = Load::zero(self.k.kin.links[k].origin.p);
         }
         for &(k, l) in &self.applied {
             add(&mut self.acc[k], &l);
@@ -26,7 +26,6 @@ impl Analysis<'_> {
             self.solve_group(g, group)?;
         }
         self.solve_input()?;
-        self.statics_done = true;
         Ok(())
     }
 
@@ -34,13 +33,13 @@ impl Analysis<'_> {
         let [l2, l3] = group.links;
         let [ja, jb, jc] = group.joints;
         let [ka, kc] = group.known;
-        let a = self.kin.links[l2].origin.p;
+        let a = self.k.kin.links[l2].origin.p;
         let (load2, load3) = (self.acc[l2], self.acc[l3]);
         let name = &group.name;
         let (ra, rb, rc, cond) = match group.kind {
             GroupKind::Rrr => {
                 let b = self.pose().joint_position_on(jb, l2);
-                let c = self.kin.links[l3].origin.p;
+                let c = self.k.kin.links[l3].origin.p;
                 let r = RrrDyad {
                     a,
                     b,
@@ -58,11 +57,11 @@ impl Analysis<'_> {
                 )
             }
             GroupKind::Rrp => {
-                let b = self.kin.links[l3].origin.p;
+                let b = self.k.kin.links[l3].origin.p;
                 let r = RrpDyad {
                     a,
                     b,
-                    guide: self.kin.units[l3],
+                    guide: self.k.kin.units[l3],
                     load2,
                     load3,
                 }
@@ -76,11 +75,11 @@ impl Analysis<'_> {
                 )
             }
             GroupKind::Rpr => {
-                let c = self.kin.links[l3].origin.p;
+                let c = self.k.kin.links[l3].origin.p;
                 let r = RprDyad {
                     a,
                     e: c,
-                    axis: self.kin.units[l2],
+                    axis: self.k.kin.units[l2],
                     load2,
                     load3,
                 }
@@ -94,11 +93,11 @@ impl Analysis<'_> {
                 )
             }
             GroupKind::Prp => {
-                let b = self.kin.links[l2].origin.p;
+                let b = self.k.kin.links[l2].origin.p;
                 let r = PrpDyad {
                     b,
-                    guide2: self.kin.units[l2],
-                    guide3: self.kin.units[l3],
+                    guide2: self.k.kin.units[l2],
+                    guide3: self.k.kin.units[l3],
                     load2,
                     load3,
                 }
@@ -112,12 +111,12 @@ impl Analysis<'_> {
                 )
             }
             GroupKind::Rpp => {
-                let b = self.kin.links[l3].origin.p;
+                let b = self.k.kin.links[l3].origin.p;
                 let r = RppDyad {
                     a,
                     b,
-                    guide: self.kin.units[l3],
-                    slot: self.kin.units[l2],
+                    guide: self.k.kin.units[l3],
+                    slot: self.k.kin.units[l2],
                     load2,
                     load3,
                 }
@@ -141,18 +140,17 @@ impl Analysis<'_> {
     }
 
     fn solve_input(&mut self) -> Result<()> {
-        let plan = self.plan;
-        self.balance = self.solve_drive(&plan.chain.input)?;
-        self.second_balance = match &plan.chain.second_input {
-            Some((ip, _)) => Some(self.solve_drive(ip)?),
-            None => None,
-        };
+        let plan = self.k.plan;
+        self.balances[0] = self.solve_drive(&plan.chain.input)?;
+        if let Some((ip, _)) = &plan.chain.second_input {
+            self.balances[1] = self.solve_drive(ip)?;
+        }
         Ok(())
     }
 
     /// The balancing moment or force of one input link, and its reaction with the frame.
     fn solve_drive(&mut self, ip: &InputPlan) -> Result<Balance> {
-        let plan = self.plan;
+        let plan = self.k.plan;
         let link = ip.link();
         let load = self.acc[link];
         let part = &plan.chain.link_names[link];
@@ -229,19 +227,31 @@ impl Analysis<'_> {
         Ok(balance)
     }
 
-    /// The drive's load on the input link: the balancing couple, or the balancing force.
-    #[must_use]
-    pub fn drive_load(&self) -> Load {
-        drive_load(&self.plan.chain.input, &self.balance)
+    /// The drive's load on input `i`'s link (0 the first): the balancing couple, or the
+    /// balancing force.
+    ///
+    /// # Errors
+    /// [`Error::OutOfRange`] (`"input index"`) for an input the linkage does not have.
+    pub fn drive_load(&self, i: usize) -> Result<Load> {
+        let b = self.balance(i)?;
+        let ip = self
+            .k
+            .plan
+            .chain
+            .inputs()
+            .nth(i)
+            .unwrap_or(&self.k.plan.chain.input);
+        Ok(drive_load(ip, &b))
     }
 
-    /// The second drive's load on the second input link, for a linkage with two inputs.
-    #[must_use]
-    pub fn second_drive_load(&self) -> Option<Load> {
-        match (&self.plan.chain.second_input, &self.second_balance) {
-            (Some((ip, _)), Some(b)) => Some(drive_load(ip, b)),
-            _ => None,
-        }
+    /// Each drive's load on its input link, with the link's index.
+    pub(crate) fn drive_loads(&self) -> impl Iterator<Item = (usize, Load)> + '_ {
+        self.k
+            .plan
+            .chain
+            .inputs()
+            .zip(&self.balances)
+            .map(|(ip, b)| (ip.link(), drive_load(ip, b)))
     }
 }
 
