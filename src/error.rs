@@ -129,6 +129,28 @@ pub enum Error {
         time: f64,
     },
 
+    /// A motion stopped for good where a resistance that opposes it (dry friction, a constant
+    /// resisting moment) holds it: the drive, every other load along the motion, is below the
+    /// resistance's breakaway load (see [`crate::dynamics::SwitchLoads`]).
+    #[error(
+        "{what} stopped at t = {} s: the driving load {} {unit} is below the resistance {} {unit}",
+        sig(*.time),
+        sig(*.drive),
+        sig(*.resistance)
+    )]
+    Stalled {
+        /// What stopped (for example `"crank"`).
+        what: &'static str,
+        /// When, s.
+        time: f64,
+        /// The magnitude of the driving load there.
+        drive: f64,
+        /// The resistance's breakaway load against it.
+        resistance: f64,
+        /// The unit of both loads (`"N·m"` or `"N"`).
+        unit: &'static str,
+    },
+
     /// An error inside one named part of a larger analysis (for example one group of a
     /// mechanism at one position).
     #[error("{part}: {source}")]
