@@ -64,7 +64,6 @@ impl SwitchLoads {
     #[must_use]
     pub fn stalled(&self, time: f64) -> Error {
         Error::Stalled {
-            what: self.what,
             time,
             drive: self.drive.abs(),
             resistance: self.breakaway(),
