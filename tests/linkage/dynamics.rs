@@ -659,7 +659,7 @@ fn a_machine_that_does_not_turn_is_an_error() {
 
 /// The bundled four-bar thrown at 17.25 rad/s with no motor (issue 27): its loads and the
 /// rocker's resistance of 40 N·m bring it to rest within a turn, where the resistance holds
-/// it. The run lands on ω = 0 and ends there, stuck, in a few hundred steps (it chattered
+/// it. The run lands on ω = 0 and ends there, stuck, in a few dozen steps (it chattered
 /// about ω = 0 until ten million steps ran out). The stop is where the energy equation says:
 /// ½·J_red(φ₀)·ω₀² + ∫_φ₀^φ* M_red⁺(φ) dφ = 0, with M_red⁺ the loads' reduced moment while
 /// the crank turns forward (no load depends on the speed's size), by Simpson's rule and
@@ -689,7 +689,7 @@ fn four_bar_thrown_without_a_motor_stops_where_its_energy_runs_out() {
     else {
         panic!("{:?}", r.outcome)
     };
-    assert!(r.steps < 500, "{} steps", r.steps);
+    assert!(r.steps < 100, "{} steps", r.steps);
     // The energy equation's stop angle.
     let e0 = 0.5 * sys.reduced(phi0, w0).unwrap().inertia * w0 * w0;
     let work = |phi: f64| {
@@ -716,7 +716,7 @@ fn four_bar_thrown_without_a_motor_stops_where_its_energy_runs_out() {
         "stopped at t = {t} s, φ = {got} (energy: {phi_stop}), {} steps",
         r.steps
     );
-    assert!((got - phi_stop).abs() < 1e-8, "{got} vs {phi_stop}");
+    assert!((got - phi_stop).abs() < 1e-10, "{got} vs {phi_stop}");
     // The loads there: the drive is the reduced moment at rest, below the breakaway.
     let rest = sys.reduced(got, 0.0).unwrap().loads;
     let forward = sys.reduced(got, 1.0).unwrap().loads;
