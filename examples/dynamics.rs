@@ -148,6 +148,11 @@ fn describe(o: &Outcome) -> String {
         Outcome::NotSteady { acceleration } => {
             format!("not steady by the final time (accelerations {:.3e}, {:.3e})", acceleration[0], acceleration[1])
         }
+        Outcome::Stuck { t, loads, .. } => format!(
+            "stuck at t = {t:.4} s: the drive {:.3} {} within the resistance's {:.3} / {:.3}",
+            loads.drive, loads.unit, loads.forward, loads.backward
+        ),
+        other => format!("{other:?}"),
     }
 }
 

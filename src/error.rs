@@ -155,6 +155,29 @@ pub enum Error {
         problem: String,
     },
 
+    /// A motion stopped for good where a resistance that opposes it (dry friction, a constant
+    /// resisting moment) holds it: the drive, every other load along the motion, is below the
+    /// resistance's breakaway load (see [`crate::dynamics::SwitchLoads`]).
+    ///
+    /// (No field names what stopped: the variant stays within the size of the others, so
+    /// that a `Result` costs the hot loops of a run no more to move.)
+    #[error(
+        "stopped at t = {} s: the driving load {} {unit} is below the resistance {} {unit}",
+        sig(*.time),
+        sig(*.drive),
+        sig(*.resistance)
+    )]
+    Stalled {
+        /// When, s.
+        time: f64,
+        /// The magnitude of the driving load there.
+        drive: f64,
+        /// The resistance's breakaway load against it.
+        resistance: f64,
+        /// The unit of both loads (`"N·m"` or `"N"`).
+        unit: &'static str,
+    },
+
     /// An error inside one named part of a larger analysis (for example one group of a
     /// mechanism at one position).
     #[error("{part}: {source}")]

@@ -16,7 +16,11 @@
 //!   the earliest first where several arguments cross their nodes in one step: the landing
 //!   gear's load-table nodes, each servo's clamp), so that no step straddles a kink; the state at
 //!   requested [`RunOptions::times`] comes from Dormand–Prince's continuous extension
-//!   ([`DenseOutput`]) or from fixed steps that end exactly there.
+//!   ([`DenseOutput`]) or from fixed steps that end exactly there. A resistance that opposes
+//!   a motion (a velocity-sign switch, [`LagrangeSystem::switches`]) is held in one direction
+//!   through each step; the run lands on the zero of the speed it opposes and weighs the
+//!   loads there ([`SwitchLoads`]): the motion reverses, or sticks and the run ends
+//!   ([`Outcome::Stuck`]), instead of chattering about the zero.
 //! - [`machines`]: the five-bar robot (§2), the R–P arm and its decoupled variant (§3), the
 //!   landing-gear drive (§4) and the coaxial-propeller drive (§5), each with realistic
 //!   default data.
@@ -37,6 +41,7 @@ pub mod machines;
 mod rk4;
 mod run;
 mod stepper;
+mod switch;
 mod system;
 mod table;
 mod trajectory;
@@ -46,6 +51,7 @@ pub use finite_increment::FiniteIncrement;
 pub use rk4::Rk4;
 pub use run::{run, Direction, Outcome, Reach, RunOptions, RunResult, Steady, Watch};
 pub use stepper::{Advance, ContinuousExtension, Handover, NoExtension, Stepper};
+pub use switch::SwitchLoads;
 pub use system::{
     accelerations, christoffel_terms, kinetic_energy, powers, LagrangeSystem, LagrangeTerms, State,
 };

@@ -15,6 +15,8 @@
 
 use nalgebra::{Matrix2, Vector2};
 
+use super::switch::SwitchLoads;
+
 use crate::error::{computed_all, finite, finite2, Error, Result};
 
 /// The state of a 2-DOF machine: time, generalized coordinates and their rates.
@@ -376,6 +378,89 @@ pub trait LagrangeSystem {
     ) -> Result<()> {
         let _ = (t, q, qd, out);
         Ok(())
+    }
+
+    /// The number of the system's velocity-sign switches: resistances that oppose a speed
+    /// σᵢ(t, q, q̇) (dry friction, a constant resisting moment on a link) and so jump where σᵢ
+    /// changes sign. [`run`](super::run) locates every zero crossing of each σᵢ inside a step
+    /// and steps exactly onto it (whether or not it locates the
+    /// [`kinks`](Self::kinks)), then weighs the loads there
+    /// ([`switch_loads`](Self::switch_loads)): where the resistance holds the drive the run
+    /// ends, [`Outcome::Stuck`](super::Outcome::Stuck), instead of chattering about σ = 0
+    /// with ever shorter steps; where it does not, the motion goes on (reverses). A start
+    /// with σᵢ = 0 exactly is weighed too. Default: none.
+    fn switches(&self) -> usize {
+        0
+    }
+
+    /// The switch speeds σᵢ at a state into `out`: [`run`](super::run) passes exactly
+    /// [`switches`](Self::switches) entries, each NaN before the call, and refuses a result
+    /// that is not finite. Default: sets nothing (a system without switches is never asked).
+    ///
+    /// # Errors
+    /// When the machine cannot be evaluated at this state, or `out` has the wrong length.
+    fn switch_speeds(
+        &self,
+        t: f64,
+        q: &Vector2<f64>,
+        qd: &Vector2<f64>,
+        out: &mut [f64],
+    ) -> Result<()> {
+        let _ = (t, q, qd, out);
+        Ok(())
+    }
+
+    /// The generalized force of switch `i`'s resistance at a state as it is while σᵢ has the
+    /// sign of `direction` (+1 or −1), whatever σᵢ is there: the part of
+    /// [`forces`](Self::forces) that jumps with σᵢ's sign. Within a step [`run`](super::run)
+    /// holds each resistance in the direction it had at the step's start (or, starting at
+    /// σᵢ = 0, in the direction the motion breaks away), so that σᵢ passes zero smoothly and
+    /// its crossing is located exactly rather than chattered about; where a stage's σᵢ has
+    /// the other sign, the run replaces that side's force by this one.
+    ///
+    /// # Errors
+    /// [`Error::OutOfRange`] for a switch that does not exist (the default: none does); when
+    /// the machine cannot be evaluated at this state.
+    fn switch_force(
+        &self,
+        i: usize,
+        t: f64,
+        q: &Vector2<f64>,
+        qd: &Vector2<f64>,
+        direction: f64,
+    ) -> Result<Vector2<f64>> {
+        let _ = (t, q, qd, direction);
+        Err(Error::OutOfRange {
+            name: "switch index",
+            value: i as f64,
+            min: 0.0,
+            max: self.switches() as f64 - 1.0,
+            ends: crate::Ends::Closed,
+        })
+    }
+
+    /// The loads along switch `i` at a state where its speed σᵢ vanishes (see
+    /// [`SwitchLoads`]): the drive without the switch's own resistance, and the resistance's
+    /// breakaway loads each way.
+    ///
+    /// # Errors
+    /// [`Error::OutOfRange`] for a switch that does not exist (the default: none does); when
+    /// the machine cannot be evaluated at this state.
+    fn switch_loads(
+        &self,
+        i: usize,
+        t: f64,
+        q: &Vector2<f64>,
+        qd: &Vector2<f64>,
+    ) -> Result<SwitchLoads> {
+        let _ = (t, q, qd);
+        Err(Error::OutOfRange {
+            name: "switch index",
+            value: i as f64,
+            min: 0.0,
+            max: self.switches() as f64 - 1.0,
+            ends: crate::Ends::Closed,
+        })
     }
 
     /// Extra outputs at a state, appended to `out` in the order of

@@ -1608,3 +1608,176 @@ fn energies_and_closed_forms_refuse_non_finite_input() {
     c.motor.b = f64::NAN;
     assert!(c.drift_acceleration().is_err() && c.exact(&s0, 1.0).is_err());
 }
+
+/// A block of mass m on a ramp of angle α, x up the slope, with dry friction of a constant
+/// magnitude `friction` against its sliding (a velocity-sign switch, x′ = 0): under gravity
+/// alone its drive at rest is −m·g·sin α. The second coordinate is a decoupled unit mass.
+struct Ramp {
+    m: f64,
+    alpha: f64,
+    friction: f64,
+}
+
+impl Ramp {
+    const G: f64 = 9.81;
+    fn slope_pull(&self) -> f64 {
+        -self.m * Self::G * self.alpha.sin()
+    }
+}
+
+impl LagrangeSystem for Ramp {
+    fn inertia(&self, _: &Vector2<f64>) -> tmm::Result<Matrix2<f64>> {
+        Ok(Matrix2::new(self.m, 0.0, 0.0, 1.0))
+    }
+    fn inertia_derivatives(&self, _: &Vector2<f64>) -> tmm::Result<[Matrix2<f64>; 2]> {
+        Ok([Matrix2::zeros(); 2])
+    }
+    fn forces(&self, _: f64, _: &Vector2<f64>, qd: &Vector2<f64>) -> tmm::Result<Vector2<f64>> {
+        let resist = if qd[0] > 0.0 {
+            -self.friction
+        } else if qd[0] < 0.0 {
+            self.friction
+        } else {
+            0.0
+        };
+        Ok(Vector2::new(self.slope_pull() + resist, 0.0))
+    }
+    fn switches(&self) -> usize {
+        1
+    }
+    fn switch_speeds(
+        &self,
+        _: f64,
+        _: &Vector2<f64>,
+        qd: &Vector2<f64>,
+        out: &mut [f64],
+    ) -> tmm::Result<()> {
+        out[0] = qd[0];
+        Ok(())
+    }
+    fn switch_force(
+        &self,
+        _: usize,
+        _: f64,
+        _: &Vector2<f64>,
+        _: &Vector2<f64>,
+        direction: f64,
+    ) -> tmm::Result<Vector2<f64>> {
+        Ok(Vector2::new(-direction * self.friction, 0.0))
+    }
+    fn switch_loads(
+        &self,
+        _: usize,
+        _: f64,
+        _: &Vector2<f64>,
+        _: &Vector2<f64>,
+    ) -> tmm::Result<tmm::dynamics::SwitchLoads> {
+        Ok(tmm::dynamics::SwitchLoads {
+            what: "block",
+            unit: "N",
+            drive: self.slope_pull(),
+            forward: self.friction,
+            backward: self.friction,
+        })
+    }
+}
+
+/// Thrown up the ramp at v₀, the block decelerates at (m·g·sin α + F)/m to rest at
+/// t₁ = v₀/a₁, x₁ = v₀²/(2a₁). With friction above the slope's pull it stays there: the run
+/// ends at t₁, stuck, naming both loads. Below it, the block slides back down at
+/// (m·g·sin α − F)/m. Piecewise constant accelerations: every method that lands on the switch
+/// integrates both pieces exactly (RK4 and Dormand–Prince to rounding), where stepping across
+/// it chattered about v = 0 until the step budget ran out.
+#[test]
+fn a_block_on_a_ramp_sticks_or_slides_back_exactly() {
+    let (m, alpha, v0) = (2.0, 0.3_f64, 3.0);
+    let pull = m * Ramp::G * alpha.sin(); // 5.80 N
+    let start = State::new(0.0, Vector2::zeros(), Vector2::new(v0, 0.0));
+    let dp = Dopri5::new(1e-10).unwrap();
+    // Sticks: friction 8 N above the pull.
+    let held = Ramp {
+        m,
+        alpha,
+        friction: 8.0,
+    };
+    let a1 = (pull + held.friction) / m;
+    let (t1, x1) = (v0 / a1, v0 * v0 / (2.0 * a1));
+    for (name, r) in [
+        (
+            "RK4",
+            run(&held, &Rk4, start, &RunOptions::until(2.0, 0.01)),
+        ),
+        (
+            "Dormand-Prince",
+            run(&held, &dp, start, &RunOptions::until(2.0, 0.01)),
+        ),
+    ] {
+        let r = r.unwrap();
+        let Outcome::Stuck { t, switch, loads } = r.outcome else {
+            panic!("{name}: {:?}", r.outcome);
+        };
+        assert!((t - t1).abs() < 1e-12, "{name}: stuck at {t}, exact {t1}");
+        assert!(
+            (r.last.q[0] - x1).abs() < 1e-12,
+            "{name}: x = {}",
+            r.last.q[0]
+        );
+        assert!(r.last.qd[0].abs() < 1e-10, "{name}: v = {}", r.last.qd[0]);
+        assert_eq!(switch, 0);
+        assert!(loads.holds() && (loads.drive + pull).abs() < 1e-15);
+        assert!(r.steps < 100, "{name}: {} steps", r.steps);
+        let e = loads.stalled(t);
+        assert!(e.to_string().contains("below the resistance 8 N"), "{e}");
+    }
+    // Slides back: friction 2 N below the pull; the exact motion at t = 2 s.
+    let slides = Ramp {
+        m,
+        alpha,
+        friction: 2.0,
+    };
+    let a1 = (pull + slides.friction) / m;
+    let a2 = (pull - slides.friction) / m;
+    let (t1, x1) = (v0 / a1, v0 * v0 / (2.0 * a1));
+    let t_end = 2.0;
+    let x_end = x1 - 0.5 * a2 * (t_end - t1).powi(2);
+    let v_end = -a2 * (t_end - t1);
+    for (name, r) in [
+        (
+            "RK4",
+            run(&slides, &Rk4, start, &RunOptions::until(t_end, 0.01)),
+        ),
+        (
+            "Dormand-Prince",
+            run(&slides, &dp, start, &RunOptions::until(t_end, 0.01)),
+        ),
+    ] {
+        let r = r.unwrap();
+        assert_eq!(r.outcome, Outcome::FinalTime, "{name}");
+        assert!(
+            (r.last.q[0] - x_end).abs() < 1e-11,
+            "{name}: {} vs {x_end}",
+            r.last.q[0]
+        );
+        assert!(
+            (r.last.qd[0] - v_end).abs() < 1e-11,
+            "{name}: {} vs {v_end}",
+            r.last.qd[0]
+        );
+        // The turning point is a step end (landed on, not stepped across), recorded by the
+        // adaptive method (a fixed-step method records its grid only).
+        let lands = r.trajectory.t().iter().any(|&t| (t - t1).abs() < 1e-12);
+        assert!(lands || name == "RK4", "{name}: no step ends at t₁ = {t1}");
+        assert!(r.steps < 300, "{name}: {} steps", r.steps);
+    }
+    // At rest on the ramp from the start: held at once, or sliding off at once.
+    let rest = State::at_rest(Vector2::zeros());
+    let r = run(&held, &dp, rest, &RunOptions::until(1.0, 0.01)).unwrap();
+    assert!(matches!(r.outcome, Outcome::Stuck { t: 0.0, .. }) && r.steps == 0);
+    // (Its first step sees no friction in its first stage, where v = 0 exactly: not exact.)
+    let r = run(&slides, &Rk4, rest, &RunOptions::until(1.0, 0.01)).unwrap();
+    assert!(
+        (r.last.q[0] + 0.5 * a2).abs() < 1e-3 * 0.5 * a2,
+        "{}",
+        r.last.q[0]
+    );
+}

@@ -639,8 +639,120 @@ fn a_machine_that_does_not_turn_is_an_error() {
         .unwrap()
         .with_motor(0, Motor::Constant(1.0))
         .unwrap();
+    // Its resistances hold it at rest: the run-up says so at once, naming both loads.
     let e = weak.run_up(&Rk4, &opts).unwrap_err();
-    assert!(matches!(e, Error::Singular { what: "run-up", .. }), "{e}");
+    let Error::Stalled {
+        time,
+        drive,
+        resistance,
+        unit: "N·m",
+    } = e
+    else {
+        panic!("{e}")
+    };
+    let phi0 = weak.plan().reference_input();
+    let at_rest = weak.reduced(phi0, 0.0).unwrap();
+    assert_eq!(time, 0.0);
+    assert!(
+        (drive - (at_rest.loads + 1.0).abs()).abs() < 1e-12,
+        "{drive}"
+    );
+    assert!(drive < resistance, "{e}");
+}
+
+/// The bundled four-bar thrown at 17.25 rad/s with no motor (issue 27): its loads and the
+/// rocker's resistance of 40 N·m bring it to rest within a turn, where the resistance holds
+/// it. The run lands on ω = 0 and ends there, stuck, in a few dozen steps (it chattered
+/// about ω = 0 until ten million steps ran out). The stop is where the energy equation says:
+/// ½·J_red(φ₀)·ω₀² + ∫_φ₀^φ* M_red⁺(φ) dφ = 0, with M_red⁺ the loads' reduced moment while
+/// the crank turns forward (no load depends on the speed's size), by Simpson's rule and
+/// bisection; and the driving load there is below the breakaway, as the error says.
+#[test]
+fn four_bar_thrown_without_a_motor_stops_where_its_energy_runs_out() {
+    use tmm::dynamics::{Direction, Dopri5, Outcome, Reach, Watch};
+    let sys = LinkageSystem::from_linkage(&bundled::four_bar()).unwrap();
+    let (phi0, w0) = (0.0, 17.25);
+    let start = State::new(0.0, Vector2::new(phi0, 0.0), Vector2::new(w0, 0.0));
+    let dp = Dopri5 {
+        rtol: 1e-10,
+        atol: 1e-10,
+    };
+    let mut opts = RunOptions::until(0.95, 1e-3);
+    opts.reach = Some(Reach {
+        watch: Watch::Coordinate(0),
+        value: phi0 + TAU,
+        direction: Direction::Rising,
+    });
+    let r = run(&sys, &dp, start, &opts).unwrap();
+    let Outcome::Stuck {
+        t,
+        switch: 0,
+        loads,
+    } = r.outcome
+    else {
+        panic!("{:?}", r.outcome)
+    };
+    assert!(r.steps < 100, "{} steps", r.steps);
+    // The energy equation's stop angle.
+    let e0 = 0.5 * sys.reduced(phi0, w0).unwrap().inertia * w0 * w0;
+    let work = |phi: f64| {
+        let n = 2000;
+        let h = (phi - phi0) / n as f64;
+        let m: Vec<f64> = (0..=n)
+            .map(|i| sys.reduced(phi0 + h * i as f64, 1.0).unwrap().loads)
+            .collect();
+        simpson(h, &m)
+    };
+    let (mut lo, mut hi) = (0.0, 1.0);
+    assert!(e0 + work(hi) < 0.0);
+    for _ in 0..50 {
+        let mid = 0.5 * (lo + hi);
+        if e0 + work(mid) > 0.0 {
+            lo = mid;
+        } else {
+            hi = mid;
+        }
+    }
+    let phi_stop = 0.5 * (lo + hi);
+    let got = r.last.q[0];
+    println!(
+        "stopped at t = {t} s, φ = {got} (energy: {phi_stop}), {} steps",
+        r.steps
+    );
+    assert!((got - phi_stop).abs() < 1e-10, "{got} vs {phi_stop}");
+    // The loads there: the drive is the reduced moment at rest, below the breakaway.
+    let rest = sys.reduced(got, 0.0).unwrap().loads;
+    let forward = sys.reduced(got, 1.0).unwrap().loads;
+    assert!((loads.drive - rest).abs() < 1e-12);
+    assert!((loads.forward - (rest - forward)).abs() < 1e-9);
+    assert!(loads.holds());
+    // Through `turn`, as the issue ran it: an error naming both loads, at once.
+    let turn_opts = RunUpOptions::new(1e-3).with_max_turn_time(0.95);
+    let loose = Dopri5 {
+        rtol: 1e-6,
+        atol: 1e-6,
+    };
+    let e = sys.turn(&loose, start, &turn_opts).unwrap_err();
+    let Error::Stalled {
+        time,
+        drive,
+        resistance,
+        ..
+    } = e
+    else {
+        panic!("{e}")
+    };
+    assert!((time - t).abs() < 1e-6 && drive < resistance, "{e}");
+    assert!(e.to_string().starts_with("stopped at t = 0.0221"), "{e}");
+    // A motor of 3 N·m does not change the verdict: it stalls a little further on.
+    let motored = sys.clone().with_motor(0, Motor::Constant(3.0)).unwrap();
+    let r3 = run(&motored, &dp, start, &opts).unwrap();
+    let Outcome::Stuck { loads: l3, .. } = r3.outcome else {
+        panic!("{:?}", r3.outcome)
+    };
+    assert!(r3.last.q[0] > got && l3.holds());
+    let drive3 = sys.reduced(r3.last.q[0], 0.0).unwrap().loads + 3.0;
+    assert!((l3.drive - drive3).abs() < 1e-12);
 }
 
 /// Bad input is a `tmm::Error`, never a panic or a NaN.

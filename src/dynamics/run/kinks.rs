@@ -1,5 +1,6 @@
-//! Landing on kinks: the nodes of the system's kink arguments crossed inside a step, the
-//! earliest found and the step taken again to end exactly there.
+//! Landing on kinks: the nodes of the system's kink arguments (and the zeros of its switch
+//! speeds) crossed inside a step, the earliest found and the step taken again to end exactly
+//! there.
 
 use super::locate::{locate, Allowance};
 use super::options::RunOptions;
@@ -27,11 +28,23 @@ fn first_crossed(nodes: &[f64], s0: f64, s1: f64, k: usize, skip: &[Node]) -> Op
 }
 
 /// Every kink argument at a state, into `out` (one entry per argument, each set to NaN first
-/// so that one the system leaves unset is caught as not finite).
+/// so that one the system leaves unset is caught as not finite): the system's `n_args` kink
+/// arguments, then its switch speeds.
 #[inline]
-fn kink_args<S: LagrangeSystem + ?Sized>(sys: &S, st: &State, out: &mut [f64]) -> Result<()> {
+fn kink_args<S: LagrangeSystem + ?Sized>(
+    sys: &S,
+    st: &State,
+    out: &mut [f64],
+    n_args: usize,
+) -> Result<()> {
     out.fill(f64::NAN);
-    sys.kink_arguments(st.t, &st.q, &st.qd, out)?;
+    let (args, speeds) = out.split_at_mut(n_args);
+    if !args.is_empty() {
+        sys.kink_arguments(st.t, &st.q, &st.qd, args)?;
+    }
+    if !speeds.is_empty() {
+        sys.switch_speeds(st.t, &st.q, &st.qd, speeds)?;
+    }
     if out.iter().all(|v| v.is_finite()) {
         Ok(())
     } else {
@@ -42,8 +55,11 @@ fn kink_args<S: LagrangeSystem + ?Sized>(sys: &S, st: &State, out: &mut [f64]) -
 /// The kinks of a run: each argument's nodes, and the arguments at the start of the step under
 /// way.
 pub(super) struct Kinks {
-    /// The nodes of each argument, sorted.
+    /// The nodes of each argument, sorted: the system's kink arguments, then one argument
+    /// per switch speed with the one node 0.
     nodes: Vec<Vec<f64>>,
+    /// How many of the arguments are the system's kink arguments (the rest are switches).
+    n_args: usize,
     /// Whether there is any node at all.
     any: bool,
     /// The arguments at the start of the step (σ), at its end (σ₁), and at a trial state.
@@ -57,12 +73,16 @@ pub(super) struct Kinks {
 }
 
 impl Kinks {
-    /// The kinks with these nodes for each argument.
-    pub(super) fn new(nodes: Vec<Vec<f64>>) -> Self {
+    /// The kinks with these nodes for each of the system's kink arguments, and `switches`
+    /// switch speeds.
+    pub(super) fn new(mut nodes: Vec<Vec<f64>>, switches: usize) -> Self {
+        let n_args = nodes.len();
+        nodes.extend(std::iter::repeat_n(vec![0.0], switches));
         let n = nodes.len();
         Self {
             any: nodes.iter().any(|v| !v.is_empty()),
             nodes,
+            n_args,
             sigma: vec![0.0; n],
             sigma1: vec![0.0; n],
             probe: vec![0.0; n],
@@ -82,7 +102,27 @@ impl Kinks {
     /// # Errors
     /// [`Error::NonFiniteState`] when an argument is not finite (or left unset).
     pub(super) fn start<S: LagrangeSystem + ?Sized>(&mut self, sys: &S, s: &State) -> Result<()> {
-        kink_args(sys, s, &mut self.sigma)
+        kink_args(sys, s, &mut self.sigma, self.n_args)
+    }
+
+    /// The switches whose speed is exactly zero at the start of the next step.
+    pub(super) fn switches_at_zero(&self) -> impl Iterator<Item = usize> + '_ {
+        (self.n_args..self.nodes.len())
+            .filter(|&k| self.sigma[k] == 0.0)
+            .map(|k| k - self.n_args)
+    }
+
+    /// The speed of switch `i` at the start of the next step.
+    pub(super) fn switch_speed(&self, i: usize) -> f64 {
+        self.sigma[self.n_args + i]
+    }
+
+    /// The switch the last step landed on (its speed located at zero), if any.
+    pub(super) fn landed_switch(&self) -> Option<usize> {
+        self.on_kink
+            .iter()
+            .find(|&&(k, _)| k >= self.n_args)
+            .map(|&(k, _)| k - self.n_args)
     }
 
     /// Whether argument k has passed node i at a state whose arguments are `v`.
@@ -119,7 +159,7 @@ impl Kinks {
         let mut skip = std::mem::take(&mut self.on_kink);
         let mut landed = None;
         loop {
-            kink_args(sys, &end.s1, &mut self.sigma1)?;
+            kink_args(sys, &end.s1, &mut self.sigma1, self.n_args)?;
             self.crossed.clear();
             for (k, nodes) in self.nodes.iter().enumerate() {
                 if let Some(i) = first_crossed(nodes, self.sigma[k], self.sigma1[k], k, &skip) {
@@ -208,7 +248,12 @@ impl Kinks {
         let mut first = self.crossed[0];
         for _ in 0..60 {
             let mid = 0.5 * (lo + hi);
-            kink_args(sys, &d.at(s.t + mid * (s1.t - s.t))?, &mut self.probe)?;
+            kink_args(
+                sys,
+                &d.at(s.t + mid * (s1.t - s.t))?,
+                &mut self.probe,
+                self.n_args,
+            )?;
             match self.crossed.iter().find(|&&c| self.passed(&self.probe, c)) {
                 Some(&c) => {
                     first = c;
@@ -219,7 +264,7 @@ impl Kinks {
         }
         let node = self.nodes[first.0][first.1];
         let (f0, f1) = (self.sigma[first.0] - node, self.sigma1[first.0] - node);
-        let probe = &mut self.probe;
+        let (probe, n_args) = (&mut self.probe, self.n_args);
         let (hit, resteps) = locate(
             sys,
             method,
@@ -228,7 +273,7 @@ impl Kinks {
             Some(0.5 * (lo + hi)),
             allowance,
             |st| {
-                kink_args(sys, st, probe)?;
+                kink_args(sys, st, probe, n_args)?;
                 Ok(probe[first.0] - node)
             },
         )?;
@@ -250,7 +295,7 @@ impl Kinks {
         let mut resteps: usize = 0;
         for &(k, i) in &self.crossed {
             let node = self.nodes[k][i];
-            let probe = &mut self.probe;
+            let (probe, n_args) = (&mut self.probe, self.n_args);
             let (hit, n) = locate(
                 sys,
                 method,
@@ -263,7 +308,7 @@ impl Kinks {
                         .saturating_add(resteps.saturating_mul(method.evaluations_per_step())),
                 ),
                 |st| {
-                    kink_args(sys, st, probe)?;
+                    kink_args(sys, st, probe, n_args)?;
                     Ok(probe[k] - node)
                 },
             )?;

@@ -2,6 +2,7 @@
 
 use nalgebra::{Matrix2, Vector2};
 
+use crate::dynamics::switch::SwitchLoads;
 use crate::dynamics::system::{LagrangeSystem, LagrangeTerms};
 use crate::error::Result;
 
@@ -65,6 +66,37 @@ impl<S: LagrangeSystem + ?Sized> LagrangeSystem for LeftOf<'_, S> {
         out: &mut [f64],
     ) -> Result<()> {
         self.sys.kink_arguments(t, q, qd, out)
+    }
+    fn switches(&self) -> usize {
+        self.sys.switches()
+    }
+    fn switch_speeds(
+        &self,
+        t: f64,
+        q: &Vector2<f64>,
+        qd: &Vector2<f64>,
+        out: &mut [f64],
+    ) -> Result<()> {
+        self.sys.switch_speeds(t, q, qd, out)
+    }
+    fn switch_force(
+        &self,
+        i: usize,
+        t: f64,
+        q: &Vector2<f64>,
+        qd: &Vector2<f64>,
+        direction: f64,
+    ) -> Result<Vector2<f64>> {
+        self.sys.switch_force(i, self.time(t), q, qd, direction)
+    }
+    fn switch_loads(
+        &self,
+        i: usize,
+        t: f64,
+        q: &Vector2<f64>,
+        qd: &Vector2<f64>,
+    ) -> Result<SwitchLoads> {
+        self.sys.switch_loads(i, t, q, qd)
     }
     fn outputs(
         &self,

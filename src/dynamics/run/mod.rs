@@ -10,6 +10,7 @@
 //! [`progress`], [`locate`] (a state inside a step, by re-stepping) and [`left_of`] (the
 //! system seen from the left of a breakpoint).
 
+mod frozen;
 mod kinks;
 mod lean;
 mod left_of;
@@ -30,6 +31,9 @@ use super::system::{LagrangeSystem, State};
 #[cfg(doc)]
 use crate::error::Error;
 use crate::error::Result;
+use std::cell::Cell;
+
+use frozen::Frozen;
 use schedule::Schedule;
 use step_loop::Runner;
 
@@ -88,5 +92,12 @@ pub fn run<S: LagrangeSystem + ?Sized, M: Stepper>(
 ) -> Result<RunResult> {
     validate::check(sys, &start, opts)?;
     let sched = Schedule::new(sys, method, start.t, opts)?;
-    Runner::start(sys, method, opts, start, sched)?.finish()
+    let switches = sys.switches();
+    if switches == 0 {
+        return Runner::start(sys, method, opts, start, sched, None)?.finish();
+    }
+    // Each switch's resistance held in one direction through a step.
+    let modes = vec![Cell::new(0.0); switches];
+    let held = Frozen::new(sys, &modes);
+    Runner::start(&held, method, opts, start, sched, Some(&modes))?.finish()
 }

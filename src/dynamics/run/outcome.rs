@@ -4,6 +4,7 @@ use nalgebra::Vector2;
 
 #[cfg(doc)]
 use super::{run, Reach};
+use crate::dynamics::switch::SwitchLoads;
 use crate::dynamics::system::{LagrangeSystem, State};
 use crate::dynamics::trajectory::Trajectory;
 #[cfg(doc)]
@@ -11,7 +12,12 @@ use crate::dynamics::Stepper;
 use crate::error::Result;
 
 /// Why a run stopped.
+///
+/// # Breaking change
+/// [`Stuck`](Self::Stuck) is new, and the enum is `#[non_exhaustive]`: a `match` needs a
+/// wildcard arm, so that further reasons do not break it again.
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[non_exhaustive]
 pub enum Outcome {
     /// The final time was reached (no other stop condition was asked for, or the watched
     /// value was never reached).
@@ -35,6 +41,19 @@ pub enum Outcome {
         /// The settled accelerations.
         acceleration: Vector2<f64>,
     },
+    /// A resistance that opposes the motion holds it: at time `t` the speed of switch
+    /// `switch` ([`LagrangeSystem::switches`]) reached zero (located inside the step) and
+    /// the drive along it was within the resistance's breakaway loads, so the motion stops
+    /// there for good (for loads that do not change with time). [`SwitchLoads::stalled`]
+    /// turns it into the error of a motion that had to go on.
+    Stuck {
+        /// The time the motion stopped, s.
+        t: f64,
+        /// The switch that holds it.
+        switch: usize,
+        /// The loads along it there.
+        loads: SwitchLoads,
+    },
     /// A steady state was asked for and the final time came first.
     NotSteady {
         /// The accelerations at the final time.
@@ -49,7 +68,8 @@ pub struct RunResult {
     pub trajectory: Trajectory,
     /// Why it stopped.
     pub outcome: Outcome,
-    /// The last state (the located crossing for [`Outcome::Reached`]).
+    /// The last state (the located crossing for [`Outcome::Reached`], the located zero of
+    /// the switch speed for [`Outcome::Stuck`]).
     pub last: State,
     /// Accepted steps taken.
     pub steps: usize,

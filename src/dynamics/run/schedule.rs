@@ -25,7 +25,7 @@ pub(super) struct Schedule {
     i_stop: usize,
     /// The end of the grid step a fixed-step method was taking when a stop or a kink cut it.
     pub(super) grid_end: Option<f64>,
-    /// The nodes of the kink arguments, and where the arguments are.
+    /// The nodes of the kink arguments and the switch speeds, and where the arguments are.
     pub(super) kinks: Kinks,
     /// Whether the method chooses its own steps.
     pub(super) adaptive: bool,
@@ -103,7 +103,9 @@ impl Schedule {
         } else {
             Vec::new()
         };
-        let kinks = Kinks::new(kinks);
+        // The switch speeds, always located (stepping across one is what chatters): one more
+        // argument each, with the node 0.
+        let kinks = Kinks::new(kinks, sys.switches());
         let stops = if method.has_dense_output() {
             breaks
         } else {

@@ -8,6 +8,9 @@ use super::outcome::{Outcome, RunResult};
 use super::progress::{accept, budgets, record_end, snap_to_end, Progress, StepEnd};
 use super::schedule::Schedule;
 use super::stop_conditions::{ReachWatch, SteadyWatch};
+use std::cell::Cell;
+
+use super::frozen::sign;
 use crate::dynamics::stepper::{ContinuousExtension, Handover, Stepper};
 use crate::dynamics::system::{accelerations, LagrangeSystem, State};
 use crate::dynamics::trajectory::Trajectory;
@@ -29,6 +32,12 @@ pub(super) struct Runner<'a, S: ?Sized, M> {
     traj: Trajectory,
     /// The outputs of a watched state and of every recorded row, one buffer for the run.
     buf: Vec<f64>,
+    /// The direction each switch's resistance is held in through the next step (see
+    /// [`Frozen`](super::frozen::Frozen)), for a system with switches.
+    modes: Option<&'a [Cell<f64>]>,
+    /// The direction a motion broke away in from a switch it was weighed at (0: none), for
+    /// the step that starts there.
+    breakaway: Vec<f64>,
 }
 
 impl<'a, S: LagrangeSystem + ?Sized, M: Stepper> Runner<'a, S, M> {
@@ -40,6 +49,7 @@ impl<'a, S: LagrangeSystem + ?Sized, M: Stepper> Runner<'a, S, M> {
         opts: &'a RunOptions,
         start: State,
         mut sched: Schedule,
+        modes: Option<&'a [Cell<f64>]>,
     ) -> Result<Self> {
         let mut buf = Vec::new();
         let mut traj = Trajectory::for_system(sys);
@@ -75,6 +85,8 @@ impl<'a, S: LagrangeSystem + ?Sized, M: Stepper> Runner<'a, S, M> {
             takes_rows,
             traj,
             buf,
+            modes,
+            breakaway: vec![0.0; modes.map_or(0, <[_]>::len)],
         })
     }
 
@@ -90,6 +102,13 @@ impl<'a, S: LagrangeSystem + ?Sized, M: Stepper> Runner<'a, S, M> {
             hand: Handover::default(),
             h_next: None,
         };
+        // A start exactly at a switch: weighed before the first step.
+        let at_zero: Option<usize> = self.sched.kinks.switches_at_zero().next();
+        if let Some(i) = at_zero
+            && let Some(result) = self.stuck(i, self.progress.s, true)?
+        {
+            return Ok(result);
+        }
         loop {
             // A run with nothing to stop at or watch on the way takes its interior steps in
             // `lean_steps`; the step that reaches the end, and every step of any other run,
@@ -112,6 +131,7 @@ impl<'a, S: LagrangeSystem + ?Sized, M: Stepper> Runner<'a, S, M> {
             }
             let p = &self.progress;
             budgets(opts, p.steps, p.evaluations, p.s.t)?;
+            self.hold_switches();
             self.take_step(&mut end)?;
             if self.sched.kinks.any() {
                 let p = &mut self.progress;
@@ -150,6 +170,52 @@ impl<'a, S: LagrangeSystem + ?Sized, M: Stepper> Runner<'a, S, M> {
         };
         let recorded = self.traj.t().last() == Some(&s.t);
         self.result(s, recorded, outcome)
+    }
+
+    /// Sets the direction each switch's resistance is held in through the next step: the
+    /// one its speed has at the step's start, or the one the motion breaks away in from a
+    /// switch it was weighed at. Where a resistance's direction changes, the accelerations
+    /// handed on from the step before (or from the start's row) belong to the other
+    /// direction: they are dropped, and the step evaluates its own.
+    fn hold_switches(&mut self) {
+        let Some(modes) = self.modes else {
+            return;
+        };
+        let mut changed = false;
+        for (i, (mode, away)) in modes.iter().zip(&mut self.breakaway).enumerate() {
+            let at_start = sign(self.sched.kinks.switch_speed(i));
+            let new = if *away != 0.0 { *away } else { at_start };
+            // The direction the forces were evaluated in, and will be (0 holds none: the
+            // speed's own sign).
+            let held = |m: f64| if m != 0.0 { m } else { at_start };
+            changed |= held(mode.get()) != held(new);
+            mode.set(new);
+            *away = 0.0;
+        }
+        if changed {
+            self.progress.hand.acceleration = None;
+            self.progress.row_handed = false;
+        }
+    }
+
+    /// The run's result when switch `i`'s resistance holds the motion at `s` (its speed
+    /// zero there; `recorded` when `s` is the trajectory's last row): [`Outcome::Stuck`].
+    /// Else the motion breaks away in the drive's direction, where the next step holds the
+    /// resistance.
+    fn stuck(&mut self, i: usize, s: State, recorded: bool) -> Result<Option<RunResult>> {
+        let loads = self.sys.switch_loads(i, s.t, &s.q, &s.qd)?;
+        if !loads.holds() {
+            if let Some(away) = self.breakaway.get_mut(i) {
+                *away = sign(loads.drive);
+            }
+            return Ok(None);
+        }
+        let outcome = Outcome::Stuck {
+            t: s.t,
+            switch: i,
+            loads,
+        };
+        self.result(s, recorded, outcome).map(Some)
     }
 
     /// The run's result, ending at `last`.
@@ -253,6 +319,11 @@ impl<'a, S: LagrangeSystem + ?Sized, M: Stepper> Runner<'a, S, M> {
             return self
                 .result(located, false, Outcome::Reached { t: located.t })
                 .map(Some);
+        }
+        if let Some(i) = self.sched.kinks.landed_switch()
+            && let Some(result) = self.stuck(i, s1, false)?
+        {
+            return Ok(Some(result));
         }
         // Steps cut short on the grid of a fixed-step method count once, with their rest.
         let p = &mut self.progress;

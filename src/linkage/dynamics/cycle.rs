@@ -7,9 +7,11 @@ use nalgebra::Vector2;
 
 use super::system::LinkageSystem;
 use crate::dynamics::{
-    accelerations, run, Direction, Outcome, Reach, RunOptions, RunResult, State, Stepper, Watch,
+    accelerations, run, Direction, Outcome, Reach, RunOptions, RunResult, State, Stepper,
+    SwitchLoads, Watch,
 };
 use crate::error::{finite, positive, Error, Result};
+use crate::linkage::plan::LoadPlan;
 
 /// The machine reduced to its crank at one position.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -184,6 +186,80 @@ fn extreme(t: &[f64], s: &[f64], max: bool) -> f64 {
 }
 
 impl LinkageSystem {
+    /// The machine's velocity-sign switches ([`LagrangeSystem::switches`](
+    /// crate::dynamics::LagrangeSystem::switches)): one, the input's rate q̇₁, for a machine
+    /// with one input and a resistance among its loads (every resistance's rate is q̇₁ times
+    /// a transfer function, so all of them change sign with q̇₁); none otherwise (with two
+    /// inputs a resistance's rate vanishes while the machine moves on, a motion with one
+    /// joint held, which is not modelled).
+    pub(super) fn input_switches(&self) -> usize {
+        let resisted = self
+            .plan()
+            .loads
+            .iter()
+            .any(|l| matches!(l, LoadPlan::Turning { .. } | LoadPlan::Sliding { .. }));
+        usize::from(self.dof() == 1 && resisted)
+    }
+
+    /// The loads along the input at rest at `q` ([`SwitchLoads`]): the drive is Q₁ at
+    /// q̇ = 0, where every resistance is zero (motor, gravity, the other loads); the breakaway
+    /// loads are the resistances reduced to the input, Q₁ at rest minus Q₁ at a vanishing
+    /// rate each way (10⁻²⁰⁰: the resistances' magnitudes do not depend on the speed, and
+    /// every smooth load changes by nothing there).
+    ///
+    /// # Errors
+    /// [`Error::OutOfRange`] for a switch other than 0 or a machine without one; as
+    /// [`split_terms`](Self::split_terms).
+    pub(super) fn input_switch_loads(&self, i: usize, q: &Vector2<f64>) -> Result<SwitchLoads> {
+        if i >= self.input_switches() {
+            return Err(Error::OutOfRange {
+                name: "switch index",
+                value: i as f64,
+                min: 0.0,
+                max: self.input_switches() as f64 - 1.0,
+                ends: crate::Ends::Closed,
+            });
+        }
+        const TINY: f64 = 1e-200;
+        let at = |rate: f64| self.split_terms(q, &Vector2::new(rate, 0.0));
+        let (rest, forward, backward) = (at(0.0)?, at(TINY)?, at(-TINY)?);
+        let (what, unit) = if self.plan().input_is_crank() {
+            ("crank", "N·m")
+        } else {
+            ("input slider", "N")
+        };
+        Ok(SwitchLoads {
+            what,
+            unit,
+            drive: rest.forces()[0],
+            forward: (rest.loads[0] - forward.loads[0]).max(0.0),
+            backward: (backward.loads[0] - rest.loads[0]).max(0.0),
+        })
+    }
+
+    /// The generalized force of the resistances on the input as they are while it moves in
+    /// `direction` (+1 or −1; 0 gives zero): Q₁ at a vanishing rate that way minus Q₁ at
+    /// rest (see [`input_switch_loads`](Self::input_switch_loads)).
+    ///
+    /// # Errors
+    /// As [`input_switch_loads`](Self::input_switch_loads).
+    pub(super) fn input_switch_force(
+        &self,
+        i: usize,
+        q: &Vector2<f64>,
+        direction: f64,
+    ) -> Result<Vector2<f64>> {
+        let l = self.input_switch_loads(i, q)?;
+        let f = if direction > 0.0 {
+            -l.forward
+        } else if direction < 0.0 {
+            l.backward
+        } else {
+            0.0
+        };
+        Ok(Vector2::new(f, 0.0))
+    }
+
     /// Checks that the machine has one input, a crank.
     fn one_crank(&self, what: &str) -> Result<()> {
         if self.dof() == 1 && self.plan().input_is_crank() {
@@ -278,8 +354,10 @@ impl LinkageSystem {
     /// ```
     ///
     /// # Errors
-    /// [`Error::Singular`] when the machine does not start from rest, or does not complete
-    /// the turn within `opts.max_turn_time` (it stalls or turns back); as
+    /// [`Error::Stalled`] naming the driving load and the resistance when the resistances
+    /// hold the machine at rest (it stops, or never starts); [`Error::Singular`] when nothing
+    /// starts the machine from rest, when it does not complete the turn within
+    /// `opts.max_turn_time` (it turns back), or when the turn takes no time; as
     /// [`run`](crate::dynamics::run).
     pub fn turn<M: Stepper>(
         &self,
@@ -314,6 +392,10 @@ impl LinkageSystem {
             },
         });
         let r = run(self, method, start, &ro)?;
+        if let Outcome::Stuck { t, loads, .. } = r.outcome {
+            // The resistances hold the machine at rest: no turn will ever end.
+            return Err(loads.stalled(t));
+        }
         if !matches!(r.outcome, Outcome::Reached { .. }) {
             return Err(Error::Singular {
                 what: "run-up",
@@ -325,7 +407,15 @@ impl LinkageSystem {
         let tr = &r.trajectory;
         let speed: Vec<f64> = tr.qd()[0].iter().map(|w| direction * w).collect();
         let period = r.last.t - start.t;
-        let omega_mean = TAU / period;
+        if period.is_nan() || period <= 0.0 {
+            // A turn that ends where it began has no mean speed (it would be 2π/0).
+            return Err(Error::Singular {
+                what: "turn",
+                measure: "its duration (the turn ended when it began)",
+                value: period,
+            });
+        }
+        let omega_mean = crate::error::computed("mean speed of a turn", TAU / period)?;
         let omega_max = extreme(tr.t(), &speed, true);
         let omega_min = extreme(tr.t(), &speed, false);
         if omega_min.is_nan() || omega_min < 0.0 {

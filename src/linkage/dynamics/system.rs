@@ -706,6 +706,49 @@ impl LagrangeSystem for LinkageSystem {
         Ok(())
     }
 
+    /// One switch, the input's rate, for a machine with one input and a resistance among its
+    /// loads (see [`SwitchLoads`](crate::dynamics::SwitchLoads)); none otherwise.
+    fn switches(&self) -> usize {
+        self.input_switches()
+    }
+
+    /// The input's rate q̇₁ (after checking that `out` has one entry per switch).
+    fn switch_speeds(
+        &self,
+        _t: f64,
+        _q: &Vector2<f64>,
+        qd: &Vector2<f64>,
+        out: &mut [f64],
+    ) -> Result<()> {
+        kink_slots(out, self.input_switches())?;
+        out.fill(qd[0]);
+        Ok(())
+    }
+
+    /// The resistances' generalized force on the input as it is while the input moves in
+    /// `direction`.
+    fn switch_force(
+        &self,
+        i: usize,
+        _t: f64,
+        q: &Vector2<f64>,
+        _qd: &Vector2<f64>,
+        direction: f64,
+    ) -> Result<Vector2<f64>> {
+        self.input_switch_force(i, q, direction)
+    }
+
+    /// The drive on the input at rest and the resistances reduced to it.
+    fn switch_loads(
+        &self,
+        i: usize,
+        _t: f64,
+        q: &Vector2<f64>,
+        _qd: &Vector2<f64>,
+    ) -> Result<crate::dynamics::SwitchLoads> {
+        self.input_switch_loads(i, q)
+    }
+
     fn output_names(&self) -> Vec<&'static str> {
         vec!["drive_1", "drive_2", "loads_1", "loads_2"]
     }

@@ -1,0 +1,159 @@
+//! A system whose velocity-sign switches are held in one direction through a step: the
+//! resistances keep the direction they had at the step's start, so that a switch speed passes
+//! zero smoothly inside the step and its crossing can be located.
+
+use std::cell::{Cell, RefCell};
+
+use nalgebra::{Matrix2, Vector2};
+
+use crate::dynamics::switch::SwitchLoads;
+use crate::dynamics::system::{LagrangeSystem, LagrangeTerms};
+use crate::error::{Error, Result};
+
+/// The sign of `x` as −1, 0 or +1.
+pub(super) fn sign(x: f64) -> f64 {
+    if x > 0.0 {
+        1.0
+    } else if x < 0.0 {
+        -1.0
+    } else {
+        0.0
+    }
+}
+
+/// `sys` with each switch's resistance held in the direction `modes[i]` (±1; 0 leaves the
+/// system's own): where a state's switch speed has another sign, the system's force for that
+/// sign is replaced by the one for the mode ([`LagrangeSystem::switch_force`]). The run sets
+/// the modes before each step.
+pub(super) struct Frozen<'a, S: ?Sized> {
+    sys: &'a S,
+    modes: &'a [Cell<f64>],
+    speeds: RefCell<Vec<f64>>,
+}
+
+impl<'a, S: LagrangeSystem + ?Sized> Frozen<'a, S> {
+    /// `sys` with one mode for each of its switches.
+    pub(super) fn new(sys: &'a S, modes: &'a [Cell<f64>]) -> Self {
+        Self {
+            sys,
+            modes,
+            speeds: RefCell::new(vec![0.0; modes.len()]),
+        }
+    }
+
+    /// What to add to the system's forces at a state for the held directions.
+    fn held(&self, t: f64, q: &Vector2<f64>, qd: &Vector2<f64>) -> Result<Option<Vector2<f64>>> {
+        let mut speeds = self.speeds.borrow_mut();
+        speeds.fill(f64::NAN);
+        self.sys.switch_speeds(t, q, qd, &mut speeds)?;
+        let mut add: Option<Vector2<f64>> = None;
+        for (i, (&v, mode)) in speeds.iter().zip(self.modes).enumerate() {
+            if !v.is_finite() {
+                return Err(Error::NonFiniteState { time: t });
+            }
+            let (mode, actual) = (mode.get(), sign(v));
+            if mode == 0.0 || actual == mode {
+                continue;
+            }
+            let mut d = self.sys.switch_force(i, t, q, qd, mode)?;
+            if actual != 0.0 {
+                d -= self.sys.switch_force(i, t, q, qd, actual)?;
+            }
+            *add.get_or_insert_with(Vector2::zeros) += d;
+        }
+        Ok(add)
+    }
+}
+
+impl<S: LagrangeSystem + ?Sized> LagrangeSystem for Frozen<'_, S> {
+    fn coordinate_names(&self) -> [&'static str; 2] {
+        self.sys.coordinate_names()
+    }
+    fn inertia(&self, q: &Vector2<f64>) -> Result<Matrix2<f64>> {
+        self.sys.inertia(q)
+    }
+    fn inertia_derivatives(&self, q: &Vector2<f64>) -> Result<[Matrix2<f64>; 2]> {
+        self.sys.inertia_derivatives(q)
+    }
+    fn forces(&self, t: f64, q: &Vector2<f64>, qd: &Vector2<f64>) -> Result<Vector2<f64>> {
+        let f = self.sys.forces(t, q, qd)?;
+        Ok(match self.held(t, q, qd)? {
+            Some(d) => f + d,
+            None => f,
+        })
+    }
+    fn potential(&self, q: &Vector2<f64>) -> Result<f64> {
+        self.sys.potential(q)
+    }
+    fn potential_gradient(&self, q: &Vector2<f64>) -> Result<Vector2<f64>> {
+        self.sys.potential_gradient(q)
+    }
+    fn damping(&self, q: &Vector2<f64>) -> Result<Matrix2<f64>> {
+        self.sys.damping(q)
+    }
+    fn terms(&self, t: f64, q: &Vector2<f64>, qd: &Vector2<f64>) -> Result<LagrangeTerms> {
+        let mut terms = self.sys.terms(t, q, qd)?;
+        if let Some(d) = self.held(t, q, qd)? {
+            terms.forces += d;
+        }
+        Ok(terms)
+    }
+    fn output_names(&self) -> Vec<&'static str> {
+        self.sys.output_names()
+    }
+    fn breakpoints(&self) -> Vec<f64> {
+        self.sys.breakpoints()
+    }
+    fn kinks(&self) -> Vec<Vec<f64>> {
+        self.sys.kinks()
+    }
+    fn kink_arguments(
+        &self,
+        t: f64,
+        q: &Vector2<f64>,
+        qd: &Vector2<f64>,
+        out: &mut [f64],
+    ) -> Result<()> {
+        self.sys.kink_arguments(t, q, qd, out)
+    }
+    fn switches(&self) -> usize {
+        self.sys.switches()
+    }
+    fn switch_speeds(
+        &self,
+        t: f64,
+        q: &Vector2<f64>,
+        qd: &Vector2<f64>,
+        out: &mut [f64],
+    ) -> Result<()> {
+        self.sys.switch_speeds(t, q, qd, out)
+    }
+    fn switch_force(
+        &self,
+        i: usize,
+        t: f64,
+        q: &Vector2<f64>,
+        qd: &Vector2<f64>,
+        direction: f64,
+    ) -> Result<Vector2<f64>> {
+        self.sys.switch_force(i, t, q, qd, direction)
+    }
+    fn switch_loads(
+        &self,
+        i: usize,
+        t: f64,
+        q: &Vector2<f64>,
+        qd: &Vector2<f64>,
+    ) -> Result<SwitchLoads> {
+        self.sys.switch_loads(i, t, q, qd)
+    }
+    fn outputs(
+        &self,
+        t: f64,
+        q: &Vector2<f64>,
+        qd: &Vector2<f64>,
+        out: &mut Vec<f64>,
+    ) -> Result<()> {
+        self.sys.outputs(t, q, qd, out)
+    }
+}
