@@ -996,3 +996,97 @@ mod hostile {
         }
     }
 }
+
+mod five_poses {
+    use super::*;
+    use tmm::kinematics::Motion;
+    use tmm::synthesis::{burmester_points, four_bar_from_dyads, Dyad, Pose};
+
+    /// A crank-rocker's hinges A and B at the crank angle φ (σ = +1), O1 = (0, 0), O3 = (d, 0).
+    fn hinges(d: f64, a: f64, b: f64, c: f64, phi: f64) -> Option<([f64; 2], [f64; 2])> {
+        let (ax, ay) = (a * phi.cos(), a * phi.sin());
+        let (vx, vy) = (d - ax, -ay);
+        let e = vx.hypot(vy);
+        let along = (b * b - c * c + e * e) / (2.0 * e);
+        let h2 = b * b - along * along;
+        if h2 <= 0.0 {
+            return None;
+        }
+        let h = h2.sqrt();
+        Some((
+            [ax, ay],
+            [
+                ax + along * vx / e - h * vy / e,
+                ay + along * vy / e + h * vx / e,
+            ],
+        ))
+    }
+
+    #[test]
+    fn a_four_bars_own_dyads_are_among_burmesters_points() {
+        // Five poses of the coupler of random crank-rockers (a coupler point off AB): both of
+        // its dyads come back, and the four-bar made of them passes through the five poses.
+        let mut x: u64 = 0x9E37_79B9_7F4A_7C15;
+        let mut next = || {
+            x ^= x << 13;
+            x ^= x >> 7;
+            x ^= x << 17;
+            (x >> 11) as f64 / (1u64 << 53) as f64
+        };
+        let loose = Options::default().with_min_transmission_angle(0.0);
+        let (mut cases, mut worst): (usize, f64) = (0, 0.0);
+        for _ in 0..40 {
+            let mut r = |lo: f64, hi: f64| lo + (hi - lo) * next();
+            let (d, a, b, c) = (r(0.3, 0.6), r(0.05, 0.12), r(0.3, 0.6), r(0.25, 0.6));
+            if grashof(d, a, b, c).unwrap() != Grashof::CrankRocker {
+                continue;
+            }
+            let (along, off) = (r(0.2, 0.8), r(-0.2, 0.2));
+            let start = r(0.0, 6.0);
+            let phis: Vec<f64> = (0..5)
+                .map(|k| start + 0.45 * f64::from(k) + r(0.0, 0.3))
+                .collect();
+            let pose_of = |phi: f64| {
+                let (pa, pb) = hinges(d, a, b, c, phi).unwrap();
+                let (ux, uy) = ((pb[0] - pa[0]) / b, (pb[1] - pa[1]) / b);
+                Pose::new(
+                    [
+                        pa[0] + along * b * ux - off * uy,
+                        pa[1] + along * b * uy + off * ux,
+                    ],
+                    uy.atan2(ux),
+                )
+            };
+            let poses: [Pose; 5] = std::array::from_fn(|k| pose_of(phis[k]));
+            let points = burmester_points(&poses, 4000).unwrap();
+            let (a1, b1) = hinges(d, a, b, c, phis[0]).unwrap();
+            let crank = Dyad {
+                centre: [0.0, 0.0],
+                circle: a1,
+            };
+            let rocker = Dyad {
+                centre: [d, 0.0],
+                circle: b1,
+            };
+            for own in [crank, rocker] {
+                let found = points.iter().any(|p| {
+                    dist(p.centre, own.centre) < 1e-7 && dist(p.circle, own.circle) < 1e-7
+                });
+                assert!(found, "{own:?} not among {points:?}; poses {poses:?}");
+            }
+            let s = four_bar_from_dyads(&poses, &crank, &rocker, &loose).unwrap();
+            let plan = Plan::new(&s.linkage).unwrap();
+            for (pose, phi) in poses.iter().zip(crank.angles(&poses)) {
+                let k = plan.kinematics(Motion::fixed(phi)).unwrap();
+                let p = k.point("P").unwrap().p;
+                let e = dist([p.x, p.y], pose.at)
+                    .max((k.link("coupler").unwrap().value - pose.angle).sin().abs());
+                worst = worst.max(e);
+            }
+            cases += 1;
+        }
+        assert!(cases >= 10, "{cases}");
+        assert!(worst < 1e-10, "{worst:e}");
+        eprintln!("Burmester five poses: {cases} four-bars recovered, worst miss {worst:.2e}");
+    }
+}

@@ -16,8 +16,13 @@
 //!   linear image of y = f(x) while the crank angle is a linear image of x; three precision
 //!   points at Chebyshev spacing (exact) or least squares over N points; the structural error
 //!   over the whole range by the engine ([`FunctionGenerator::structural_error`]).
-//! - **Motion generation** (Burmester, [`burmester`], [`four_bar_from_dyads`]): dyads that carry a coupler through two
-//!   or three finitely separated poses, and the four-bar of two such dyads.
+//! - **Motion generation** (Burmester): dyads that carry a coupler through finitely
+//!   separated poses — for three, the centre point of a chosen circle point ([`centre_point`])
+//!   and the circle point of a chosen centre point ([`circle_point`]); for two, centre points
+//!   on a bisector ([`centre_point_two`]); for four, the centre-point curve sampled
+//!   ([`centre_point_curve`]); for five, Burmester's points ([`burmester_points`]) — and the
+//!   four-bar of two dyads ([`four_bar_from_dyads`], [`burmester`]), checked for branch and
+//!   order defects.
 //!
 //! Each answer is a [`Synthesis`]: the description and a [`Report`] of what the mechanism
 //! achieves (the time ratio, the stroke or swing, the smallest transmission angle over the
@@ -45,7 +50,7 @@ mod quick_return;
 mod search;
 
 pub use burmester::{
-    burmester, centre_point, centre_point_curve, centre_point_two, circle_point,
+    burmester, burmester_points, centre_point, centre_point_curve, centre_point_two, circle_point,
     four_bar_from_dyads, Dyad, Pose,
 };
 pub use freudenstein::{
