@@ -315,6 +315,15 @@ fn bad_requirements_name_the_parameter() {
             crank_rocker(&below, &o.with_min_transmission_angle(0.0)).is_ok(),
             "{max}"
         );
+        // ... and not just above (for every swing tried, the bound is where feasibility ends).
+        let above = CrankRockerRequirement {
+            time_ratio: 1.0 + 1.001 * (max - 1.0),
+            ..base
+        };
+        assert!(matches!(
+            crank_rocker(&above, &o.with_min_transmission_angle(0.0)),
+            Err(Error::OutOfRange { name: "K", .. })
+        ));
     } else {
         panic!("K = 50 accepted");
     }
@@ -713,6 +722,37 @@ mod burmester {
         }
     }
 
+    /// The four-bar of two dyads as drawn in the first pose, without any check.
+    fn drawn(first: &Pose, crank: &Dyad, rocker: &Dyad) -> Linkage {
+        use tmm::linkage::{Input, Joint, Link};
+        let q = [
+            first.at[0] + 0.1 * first.angle.cos(),
+            first.at[1] + 0.1 * first.angle.sin(),
+        ];
+        let coupler = Link {
+            reference: Some(["P".to_owned(), "Q".to_owned()]),
+            ..Link::new("coupler", &["A", "B"])
+                .with_point("P", first.at)
+                .with_point("Q", q)
+        };
+        Linkage {
+            joints: vec![
+                Joint::revolute("O1", crank.centre),
+                Joint::revolute("A", crank.circle),
+                Joint::revolute("B", rocker.circle),
+                Joint::revolute("O3", rocker.centre),
+            ],
+            links: vec![
+                Link::new("frame", &["O1", "O3"]),
+                Link::new("crank", &["O1", "A"]),
+                coupler,
+                Link::new("rocker", &["O3", "B"]),
+            ],
+            input: Input::crank("crank"),
+            ..Linkage::default()
+        }
+    }
+
     #[test]
     fn three_pose_four_bars_meet_their_poses_through_the_engine() {
         // A seeded generator of three poses and two circle points; the cases without a branch
@@ -726,6 +766,7 @@ mod burmester {
         };
         let loose = Options::default().with_min_transmission_angle(0.0);
         let (mut worst, mut cases, mut defects): (f64, usize, usize) = (0.0, 0, 0);
+        let (mut branch, mut order) = (0, 0);
         for _ in 0..400 {
             let mut r = |lo: f64, hi: f64| lo + (hi - lo) * next();
             let poses = [
@@ -743,12 +784,68 @@ mod burmester {
                     worst = worst.max(e);
                     cases += 1;
                 }
-                Err(Error::NoMechanism { .. } | Error::Singular { .. }) => defects += 1,
+                Err(Error::NoMechanism { problem, .. }) => {
+                    defects += 1;
+                    // A defect is real: the four-bar as drawn in pose 1 (the engine keeps its
+                    // assembly mode) misses a pose (branch), or cannot move between them
+                    // (order).
+                    let crank = centre_point(&poses, za).unwrap();
+                    let rocker = centre_point(&poses, zb).unwrap();
+                    let l = drawn(&poses[0], &crank, &rocker);
+                    let Ok(plan) = Plan::new(&l) else { continue };
+                    let phis = crank.angles(&poses);
+                    let reaches = |phi: f64, pose: &Pose| {
+                        plan.kinematics(Motion::fixed(phi)).is_ok_and(|k| {
+                            let p = k.point("P").unwrap().p;
+                            let turn = k.link("coupler").unwrap().value - pose.angle;
+                            dist([p.x, p.y], pose.at) < 1e-8 && turn.sin().abs() < 1e-8
+                        })
+                    };
+                    if problem.starts_with("branch defect") {
+                        assert!(
+                            !poses
+                                .iter()
+                                .zip(&phis)
+                                .all(|(pose, &phi)| reaches(phi, pose)),
+                            "{problem}: the engine reaches every pose"
+                        );
+                        branch += 1;
+                    } else if problem.starts_with("order defect") {
+                        // Along both arcs from the first pose's crank angle to the last's,
+                        // through the middle one or not: one of them fails to assemble or
+                        // skips the middle pose.
+                        let through = |start: f64, span: f64| {
+                            (0..=400).all(|i| {
+                                let phi = start + span * f64::from(i) / 400.0;
+                                plan.kinematics(Motion::fixed(phi)).is_ok()
+                            })
+                        };
+                        let ccw = (phis[2] - phis[0]).rem_euclid(std::f64::consts::TAU);
+                        let mid = (phis[1] - phis[0]).rem_euclid(std::f64::consts::TAU);
+                        let arc = if mid < ccw {
+                            (phis[0], ccw)
+                        } else {
+                            (phis[2], std::f64::consts::TAU - ccw)
+                        };
+                        assert!(
+                            !through(arc.0, arc.1),
+                            "{problem}: the engine moves through the poses"
+                        );
+                        order += 1;
+                    }
+                }
+                Err(Error::Singular { .. }) => defects += 1,
                 Err(e) => panic!("{e}"),
             }
         }
+        assert!(
+            branch >= 10 && order >= 10,
+            "{branch} branch, {order} order defects"
+        );
         assert!(cases >= 100, "{cases} ({defects} defects)");
-        eprintln!("Burmester three poses: {cases} four-bars, worst miss {worst:.2e} ({defects} with a defect)");
+        eprintln!(
+            "Burmester three poses: {cases} four-bars, worst miss {worst:.2e} ({defects} with a defect: {branch} branch, {order} order confirmed by the engine)"
+        );
     }
 
     #[test]
