@@ -402,15 +402,8 @@ pub fn four_bar_from_dyads(
             });
         }
     }
-    let mut report = fb.report("four-bar for motion generation", Some((start, span)))?;
-    if !report
-        .grashof
-        .is_some_and(crate::kinematics::Grashof::input_turns_fully)
-    {
-        let (gamma, at) = fb.gamma_over(start, span);
-        report.min_transmission_angle = gamma;
-        report.min_transmission_at = fb.world_angle(at);
-    }
+    // γ_min over a full turn if the crank turns fully, over the arc of the poses otherwise.
+    let report = fb.report("four-bar for motion generation", Some((start, span)))?;
     require_transmission(report.min_transmission_angle, required)?;
     let p = first.p();
     let q = p + (b - a).norm() * unit(first.angle);
