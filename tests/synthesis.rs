@@ -484,6 +484,29 @@ mod freudenstein {
     }
 
     #[test]
+    fn a_position_in_the_other_assembly_mode_is_a_branch_defect() {
+        // Freudenstein's equation does not see the mode: three positions of one crank-rocker,
+        // the third in its mirror mode, give the same lengths, and the answer is refused.
+        let (d, a, b, c) = (0.4, 0.1, 0.35, 0.3);
+        let pairs = [
+            (0.5, rocker_angle(d, a, b, c, 1.0, 0.5).unwrap()),
+            (1.5, rocker_angle(d, a, b, c, 1.0, 1.5).unwrap()),
+            (2.5, rocker_angle(d, a, b, c, -1.0, 2.5).unwrap()),
+        ];
+        let o = Options::default().with_min_transmission_angle(0.0);
+        let e = crank_rocker_through(d, &pairs, &o).unwrap_err();
+        assert!(e.to_string().contains("branch defect"), "{e}");
+        // All three in one mode: accepted, the lengths back.
+        let pairs = [
+            pairs[0],
+            pairs[1],
+            (2.5, rocker_angle(d, a, b, c, 1.0, 2.5).unwrap()),
+        ];
+        let s = crank_rocker_through(d, &pairs, &o).unwrap();
+        assert!(rel(s.report.dimension("coupler").unwrap(), b) < 1e-12);
+    }
+
+    #[test]
     fn two_positions_leave_the_crank_ratio_for_the_best_transmission() {
         let deg = f64::to_radians;
         let pairs = [(deg(40.0), deg(101.4)), (deg(160.0), deg(131.8))];
@@ -1185,5 +1208,71 @@ mod five_poses {
         assert!(cases >= 10, "{cases}");
         assert!(worst < 1e-10, "{worst:e}");
         eprintln!("Burmester five poses: {cases} four-bars recovered, worst miss {worst:.2e}");
+    }
+}
+
+/// Every kind's description survives JSON (the format of `docs/linkage-format.md`) and plans
+/// to the same answer.
+#[cfg(feature = "serde")]
+#[test]
+fn descriptions_survive_json() {
+    use tmm::kinematics::Motion;
+    use tmm::synthesis::{burmester, crank_rocker_through, Pose};
+    let o = Options::default().with_min_transmission_angle(0.0);
+    let deg = f64::to_radians;
+    let all = [
+        crank_rocker(
+            &CrankRockerRequirement {
+                rocker: 0.3,
+                swing: 0.8,
+                time_ratio: 1.3,
+                frame: FrameChoice::BestTransmission,
+            },
+            &o,
+        ),
+        slider_crank(
+            &SliderCrankRequirement {
+                stroke: 0.2,
+                time_ratio: 1.2,
+                offset: OffsetChoice::BestTransmission,
+            },
+            &o,
+        ),
+        shaper(
+            &ShaperRequirement {
+                stroke: 0.3,
+                time_ratio: 1.6,
+                centre_distance: 0.25,
+            },
+            &o,
+        ),
+        crank_rocker_through(
+            0.4,
+            &[
+                (deg(40.0), deg(101.4)),
+                (deg(100.0), deg(112.8)),
+                (deg(160.0), deg(131.8)),
+            ],
+            &o,
+        ),
+        burmester(
+            &[
+                Pose::new([0.0, 0.0], 0.0),
+                Pose::new([0.1, 0.05], 0.3),
+                Pose::new([0.2, 0.05], 0.7),
+            ],
+            [-0.05, -0.1],
+            [0.1, -0.08],
+            &o,
+        ),
+    ];
+    for s in all {
+        let s = s.unwrap();
+        let back = Linkage::from_json(&s.linkage.to_json().unwrap()).unwrap();
+        assert_eq!(back, s.linkage);
+        let (p, q) = (Plan::new(&s.linkage).unwrap(), Plan::new(&back).unwrap());
+        let out = s.linkage.output.clone().unwrap();
+        let at = Motion::fixed(p.reference_input() + 0.3);
+        assert_eq!(p.output(&out, at).unwrap(), q.output(&out, at).unwrap());
     }
 }
