@@ -216,6 +216,19 @@ pub fn circle_point(poses: &[Pose; 3], centre: [f64; 2]) -> Result<Dyad> {
 /// the perpendicular bisector of its two positions, `along` (m) from their midpoint, positive
 /// to the left of the direction from the first position to the second.
 ///
+/// # Examples
+/// Two poses; the crank's and the rocker's centre points 0.2 m off the bisectors' midpoints:
+/// ```
+/// use tmm::synthesis::{centre_point_two, four_bar_from_dyads, Options, Pose};
+/// let poses = [Pose::new([0.0, 0.0], 0.0), Pose::new([0.15, 0.05], 0.5)];
+/// let crank = centre_point_two(&poses, [-0.05, -0.1], -0.2)?;
+/// let rocker = centre_point_two(&poses, [0.12, -0.08], 0.2)?;
+/// assert!(crank.misfit(&poses) < 1e-15 && rocker.misfit(&poses) < 1e-15);
+/// let s = four_bar_from_dyads(&poses, &crank, &rocker, &Options::default().with_min_transmission_angle(0.0))?;
+/// assert_eq!(s.linkage.joints.len(), 4);
+/// # Ok::<(), tmm::Error>(())
+/// ```
+///
 /// # Errors
 /// [`Error::NonFinite`] for a non-finite number; [`Error::NoMechanism`] for coinciding poses;
 /// [`Error::Singular`] when the circle point does not move (it is the pole of the two poses).
@@ -444,6 +457,16 @@ pub fn four_bar_from_dyads(
 /// The four-bar through three poses with the circle points `crank_circle` and
 /// `rocker_circle` chosen (in the first pose): [`centre_point`] for each, then
 /// [`four_bar_from_dyads`].
+///
+/// # Examples
+/// ```
+/// use tmm::synthesis::{burmester, Options, Pose};
+/// let poses = [Pose::new([0.0, 0.0], 0.0), Pose::new([0.1, 0.05], 0.3), Pose::new([0.2, 0.05], 0.7)];
+/// let s = burmester(&poses, [-0.05, -0.1], [0.1, -0.08], &Options::default())?;
+/// assert!(s.report.min_transmission_angle > 40f64.to_radians());
+/// println!("{}", s.report);
+/// # Ok::<(), tmm::Error>(())
+/// ```
 ///
 /// # Errors
 /// As [`centre_point`] and [`four_bar_from_dyads`].
