@@ -178,6 +178,32 @@ fn slider_cranks_meet_k_and_stroke_through_the_engine() {
 }
 
 #[test]
+fn the_best_offset_is_a_maximum_of_gamma_min() {
+    let loose = Options::default().with_min_transmission_angle(0.0);
+    for k in [1.1, 1.4, 2.0] {
+        let need = SliderCrankRequirement {
+            stroke: 0.2,
+            time_ratio: k,
+            offset: OffsetChoice::BestTransmission,
+        };
+        let best = slider_crank(&need, &loose).unwrap();
+        let e = best.report.dimension("offset").unwrap();
+        for f in [0.8, 0.95, 0.999, 1.001, 1.05, 1.2] {
+            let other = SliderCrankRequirement {
+                offset: OffsetChoice::Given(f * e),
+                ..need
+            };
+            if let Ok(s) = slider_crank(&other, &loose) {
+                assert!(
+                    s.report.min_transmission_angle <= best.report.min_transmission_angle + 1e-12,
+                    "K {k} offset x{f}"
+                );
+            }
+        }
+    }
+}
+
+#[test]
 fn shapers_meet_k_and_stroke_through_the_engine() {
     let mut worst: f64 = 0.0;
     let mut cases = 0;
