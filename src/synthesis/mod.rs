@@ -68,6 +68,7 @@
 //! ```
 
 mod burmester;
+mod centre_curve;
 mod check;
 mod four_bar;
 mod freudenstein;
@@ -75,9 +76,9 @@ mod quick_return;
 mod search;
 
 pub use burmester::{
-    burmester, burmester_points, centre_point, centre_point_curve, centre_point_two, circle_point,
-    four_bar_from_dyads, Dyad, Pose,
+    burmester, centre_point, centre_point_two, circle_point, four_bar_from_dyads, Dyad, Pose,
 };
+pub use centre_curve::{burmester_points, centre_point_curve};
 pub use freudenstein::{
     crank_rocker_through, freudenstein_coefficients, function_generator, FunctionGenerator,
     FunctionRequirement, Spacing, StructuralError,
