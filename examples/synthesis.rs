@@ -14,10 +14,10 @@ use std::path::Path;
 use tmm::kinematics::{Motion, Rotation};
 use tmm::linkage::{Output, Plan};
 use tmm::synthesis::{
-    burmester, centre_point, centre_point_curve, crank_rocker, crank_rocker_through,
-    four_bar_from_dyads, function_generator, shaper, slider_crank, CrankRockerRequirement,
-    FrameChoice, FunctionRequirement, OffsetChoice, Options, Pose, ShaperRequirement,
-    SliderCrankRequirement, Spacing, Synthesis,
+    burmester, burmester_points, centre_point, centre_point_curve, crank_rocker,
+    crank_rocker_through, four_bar_from_dyads, function_generator, shaper, slider_crank,
+    CrankRockerRequirement, FrameChoice, FunctionRequirement, OffsetChoice, Options, Pose,
+    ShaperRequirement, SliderCrankRequirement, Spacing, Synthesis,
 };
 
 fn deg(x: f64) -> f64 {
@@ -201,6 +201,35 @@ fn run() -> tmm::Result<()> {
         }
         None => println!("  no pair of small dyads without a defect and with γ_min ≥ 30°\n"),
     }
+
+    println!("== Burmester: five poses read off a crank-rocker's coupler, its points ==");
+    // The crank-rocker O1 = (0, 0), O3 = (0.4, 0), crank 0.1, coupler 0.35, rocker 0.3 m; the
+    // coupler point 0.1 m left of the middle of AB.
+    let (a, b, c, d) = (0.1, 0.35, 0.3, 0.4);
+    let pose = |phi: f64| {
+        let (ax, ay) = (a * phi.cos(), a * phi.sin());
+        let (vx, vy) = (d - ax, -ay);
+        let e = vx.hypot(vy);
+        let along = (b * b - c * c + e * e) / (2.0 * e);
+        let h = (b * b - along * along).sqrt();
+        let (bx, by) = (
+            ax + along * vx / e - h * vy / e,
+            ay + along * vy / e + h * vx / e,
+        );
+        let (ux, uy) = ((bx - ax) / b, (by - ay) / b);
+        Pose::new(
+            [ax + 0.5 * b * ux - 0.1 * uy, ay + 0.5 * b * uy + 0.1 * ux],
+            uy.atan2(ux),
+        )
+    };
+    let five = [0.3, 0.9, 1.6, 2.4, 3.0].map(pose);
+    for p in burmester_points(&five, 4000)? {
+        println!(
+            "  centre point ({:9.6}, {:9.6}) m, circle point ({:9.6}, {:9.6}) m",
+            p.centre[0], p.centre[1], p.circle[0], p.circle[1]
+        );
+    }
+    println!("  (the crank's pivot (0, 0) and the rocker's (0.4, 0) among them)\n");
 
     println!("== requirements no mechanism meets ==");
     let hard = CrankRockerRequirement {

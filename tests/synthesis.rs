@@ -178,6 +178,32 @@ fn slider_cranks_meet_k_and_stroke_through_the_engine() {
 }
 
 #[test]
+fn the_best_offset_is_a_maximum_of_gamma_min() {
+    let loose = Options::default().with_min_transmission_angle(0.0);
+    for k in [1.1, 1.4, 2.0] {
+        let need = SliderCrankRequirement {
+            stroke: 0.2,
+            time_ratio: k,
+            offset: OffsetChoice::BestTransmission,
+        };
+        let best = slider_crank(&need, &loose).unwrap();
+        let e = best.report.dimension("offset").unwrap();
+        for f in [0.8, 0.95, 0.999, 1.001, 1.05, 1.2] {
+            let other = SliderCrankRequirement {
+                offset: OffsetChoice::Given(f * e),
+                ..need
+            };
+            if let Ok(s) = slider_crank(&other, &loose) {
+                assert!(
+                    s.report.min_transmission_angle <= best.report.min_transmission_angle + 1e-12,
+                    "K {k} offset x{f}"
+                );
+            }
+        }
+    }
+}
+
+#[test]
 fn shapers_meet_k_and_stroke_through_the_engine() {
     let mut worst: f64 = 0.0;
     let mut cases = 0;
@@ -315,6 +341,15 @@ fn bad_requirements_name_the_parameter() {
             crank_rocker(&below, &o.with_min_transmission_angle(0.0)).is_ok(),
             "{max}"
         );
+        // ... and not just above (for every swing tried, the bound is where feasibility ends).
+        let above = CrankRockerRequirement {
+            time_ratio: 1.0 + 1.001 * (max - 1.0),
+            ..base
+        };
+        assert!(matches!(
+            crank_rocker(&above, &o.with_min_transmission_angle(0.0)),
+            Err(Error::OutOfRange { name: "K", .. })
+        ));
     } else {
         panic!("K = 50 accepted");
     }
@@ -472,6 +507,29 @@ mod freudenstein {
                 prop_assert!(diff < 1e-10, "{}", diff);
             }
         }
+    }
+
+    #[test]
+    fn a_position_in_the_other_assembly_mode_is_a_branch_defect() {
+        // Freudenstein's equation does not see the mode: three positions of one crank-rocker,
+        // the third in its mirror mode, give the same lengths, and the answer is refused.
+        let (d, a, b, c) = (0.4, 0.1, 0.35, 0.3);
+        let pairs = [
+            (0.5, rocker_angle(d, a, b, c, 1.0, 0.5).unwrap()),
+            (1.5, rocker_angle(d, a, b, c, 1.0, 1.5).unwrap()),
+            (2.5, rocker_angle(d, a, b, c, -1.0, 2.5).unwrap()),
+        ];
+        let o = Options::default().with_min_transmission_angle(0.0);
+        let e = crank_rocker_through(d, &pairs, &o).unwrap_err();
+        assert!(e.to_string().contains("branch defect"), "{e}");
+        // All three in one mode: accepted, the lengths back.
+        let pairs = [
+            pairs[0],
+            pairs[1],
+            (2.5, rocker_angle(d, a, b, c, 1.0, 2.5).unwrap()),
+        ];
+        let s = crank_rocker_through(d, &pairs, &o).unwrap();
+        assert!(rel(s.report.dimension("coupler").unwrap(), b) < 1e-12);
     }
 
     #[test]
@@ -713,6 +771,37 @@ mod burmester {
         }
     }
 
+    /// The four-bar of two dyads as drawn in the first pose, without any check.
+    fn drawn(first: &Pose, crank: &Dyad, rocker: &Dyad) -> Linkage {
+        use tmm::linkage::{Input, Joint, Link};
+        let q = [
+            first.at[0] + 0.1 * first.angle.cos(),
+            first.at[1] + 0.1 * first.angle.sin(),
+        ];
+        let coupler = Link {
+            reference: Some(["P".to_owned(), "Q".to_owned()]),
+            ..Link::new("coupler", &["A", "B"])
+                .with_point("P", first.at)
+                .with_point("Q", q)
+        };
+        Linkage {
+            joints: vec![
+                Joint::revolute("O1", crank.centre),
+                Joint::revolute("A", crank.circle),
+                Joint::revolute("B", rocker.circle),
+                Joint::revolute("O3", rocker.centre),
+            ],
+            links: vec![
+                Link::new("frame", &["O1", "O3"]),
+                Link::new("crank", &["O1", "A"]),
+                coupler,
+                Link::new("rocker", &["O3", "B"]),
+            ],
+            input: Input::crank("crank"),
+            ..Linkage::default()
+        }
+    }
+
     #[test]
     fn three_pose_four_bars_meet_their_poses_through_the_engine() {
         // A seeded generator of three poses and two circle points; the cases without a branch
@@ -726,6 +815,7 @@ mod burmester {
         };
         let loose = Options::default().with_min_transmission_angle(0.0);
         let (mut worst, mut cases, mut defects): (f64, usize, usize) = (0.0, 0, 0);
+        let (mut branch, mut order) = (0, 0);
         for _ in 0..400 {
             let mut r = |lo: f64, hi: f64| lo + (hi - lo) * next();
             let poses = [
@@ -743,12 +833,68 @@ mod burmester {
                     worst = worst.max(e);
                     cases += 1;
                 }
-                Err(Error::NoMechanism { .. } | Error::Singular { .. }) => defects += 1,
+                Err(Error::NoMechanism { problem, .. }) => {
+                    defects += 1;
+                    // A defect is real: the four-bar as drawn in pose 1 (the engine keeps its
+                    // assembly mode) misses a pose (branch), or cannot move between them
+                    // (order).
+                    let crank = centre_point(&poses, za).unwrap();
+                    let rocker = centre_point(&poses, zb).unwrap();
+                    let l = drawn(&poses[0], &crank, &rocker);
+                    let Ok(plan) = Plan::new(&l) else { continue };
+                    let phis = crank.angles(&poses);
+                    let reaches = |phi: f64, pose: &Pose| {
+                        plan.kinematics(Motion::fixed(phi)).is_ok_and(|k| {
+                            let p = k.point("P").unwrap().p;
+                            let turn = k.link("coupler").unwrap().value - pose.angle;
+                            dist([p.x, p.y], pose.at) < 1e-8 && turn.sin().abs() < 1e-8
+                        })
+                    };
+                    if problem.starts_with("branch defect") {
+                        assert!(
+                            !poses
+                                .iter()
+                                .zip(&phis)
+                                .all(|(pose, &phi)| reaches(phi, pose)),
+                            "{problem}: the engine reaches every pose"
+                        );
+                        branch += 1;
+                    } else if problem.starts_with("order defect") {
+                        // Along both arcs from the first pose's crank angle to the last's,
+                        // through the middle one or not: one of them fails to assemble or
+                        // skips the middle pose.
+                        let through = |start: f64, span: f64| {
+                            (0..=400).all(|i| {
+                                let phi = start + span * f64::from(i) / 400.0;
+                                plan.kinematics(Motion::fixed(phi)).is_ok()
+                            })
+                        };
+                        let ccw = (phis[2] - phis[0]).rem_euclid(std::f64::consts::TAU);
+                        let mid = (phis[1] - phis[0]).rem_euclid(std::f64::consts::TAU);
+                        let arc = if mid < ccw {
+                            (phis[0], ccw)
+                        } else {
+                            (phis[2], std::f64::consts::TAU - ccw)
+                        };
+                        assert!(
+                            !through(arc.0, arc.1),
+                            "{problem}: the engine moves through the poses"
+                        );
+                        order += 1;
+                    }
+                }
+                Err(Error::Singular { .. }) => defects += 1,
                 Err(e) => panic!("{e}"),
             }
         }
+        assert!(
+            branch >= 10 && order >= 10,
+            "{branch} branch, {order} order defects"
+        );
         assert!(cases >= 100, "{cases} ({defects} defects)");
-        eprintln!("Burmester three poses: {cases} four-bars, worst miss {worst:.2e} ({defects} with a defect)");
+        eprintln!(
+            "Burmester three poses: {cases} four-bars, worst miss {worst:.2e} ({defects} with a defect: {branch} branch, {order} order confirmed by the engine)"
+        );
     }
 
     #[test]
@@ -994,5 +1140,165 @@ mod hostile {
                 prop_assert!(dyads.iter().all(|d| d.centre.iter().chain(&d.circle).all(|v| v.is_finite())));
             }
         }
+    }
+}
+
+mod five_poses {
+    use super::*;
+    use tmm::kinematics::Motion;
+    use tmm::synthesis::{burmester_points, four_bar_from_dyads, Dyad, Pose};
+
+    /// A crank-rocker's hinges A and B at the crank angle φ (σ = +1), O1 = (0, 0), O3 = (d, 0).
+    fn hinges(d: f64, a: f64, b: f64, c: f64, phi: f64) -> Option<([f64; 2], [f64; 2])> {
+        let (ax, ay) = (a * phi.cos(), a * phi.sin());
+        let (vx, vy) = (d - ax, -ay);
+        let e = vx.hypot(vy);
+        let along = (b * b - c * c + e * e) / (2.0 * e);
+        let h2 = b * b - along * along;
+        if h2 <= 0.0 {
+            return None;
+        }
+        let h = h2.sqrt();
+        Some((
+            [ax, ay],
+            [
+                ax + along * vx / e - h * vy / e,
+                ay + along * vy / e + h * vx / e,
+            ],
+        ))
+    }
+
+    #[test]
+    fn a_four_bars_own_dyads_are_among_burmesters_points() {
+        // Five poses of the coupler of random crank-rockers (a coupler point off AB): both of
+        // its dyads come back, and the four-bar made of them passes through the five poses.
+        let mut x: u64 = 0x9E37_79B9_7F4A_7C15;
+        let mut next = || {
+            x ^= x << 13;
+            x ^= x >> 7;
+            x ^= x << 17;
+            (x >> 11) as f64 / (1u64 << 53) as f64
+        };
+        let loose = Options::default().with_min_transmission_angle(0.0);
+        let (mut cases, mut worst): (usize, f64) = (0, 0.0);
+        for _ in 0..40 {
+            let mut r = |lo: f64, hi: f64| lo + (hi - lo) * next();
+            let (d, a, b, c) = (r(0.3, 0.6), r(0.05, 0.12), r(0.3, 0.6), r(0.25, 0.6));
+            if grashof(d, a, b, c).unwrap() != Grashof::CrankRocker {
+                continue;
+            }
+            let (along, off) = (r(0.2, 0.8), r(-0.2, 0.2));
+            let start = r(0.0, 6.0);
+            let phis: Vec<f64> = (0..5)
+                .map(|k| start + 0.45 * f64::from(k) + r(0.0, 0.3))
+                .collect();
+            let pose_of = |phi: f64| {
+                let (pa, pb) = hinges(d, a, b, c, phi).unwrap();
+                let (ux, uy) = ((pb[0] - pa[0]) / b, (pb[1] - pa[1]) / b);
+                Pose::new(
+                    [
+                        pa[0] + along * b * ux - off * uy,
+                        pa[1] + along * b * uy + off * ux,
+                    ],
+                    uy.atan2(ux),
+                )
+            };
+            let poses: [Pose; 5] = std::array::from_fn(|k| pose_of(phis[k]));
+            let points = burmester_points(&poses, 4000).unwrap();
+            let (a1, b1) = hinges(d, a, b, c, phis[0]).unwrap();
+            let crank = Dyad {
+                centre: [0.0, 0.0],
+                circle: a1,
+            };
+            let rocker = Dyad {
+                centre: [d, 0.0],
+                circle: b1,
+            };
+            for own in [crank, rocker] {
+                let found = points.iter().any(|p| {
+                    dist(p.centre, own.centre) < 1e-7 && dist(p.circle, own.circle) < 1e-7
+                });
+                assert!(found, "{own:?} not among {points:?}; poses {poses:?}");
+            }
+            let s = four_bar_from_dyads(&poses, &crank, &rocker, &loose).unwrap();
+            let plan = Plan::new(&s.linkage).unwrap();
+            for (pose, phi) in poses.iter().zip(crank.angles(&poses)) {
+                let k = plan.kinematics(Motion::fixed(phi)).unwrap();
+                let p = k.point("P").unwrap().p;
+                let e = dist([p.x, p.y], pose.at)
+                    .max((k.link("coupler").unwrap().value - pose.angle).sin().abs());
+                worst = worst.max(e);
+            }
+            cases += 1;
+        }
+        assert!(cases >= 10, "{cases}");
+        assert!(worst < 1e-10, "{worst:e}");
+        eprintln!("Burmester five poses: {cases} four-bars recovered, worst miss {worst:.2e}");
+    }
+}
+
+/// Every kind's description survives JSON (the format of `docs/linkage-format.md`) and plans
+/// to the same answer.
+#[cfg(feature = "serde")]
+#[test]
+fn descriptions_survive_json() {
+    use tmm::kinematics::Motion;
+    use tmm::synthesis::{burmester, crank_rocker_through, Pose};
+    let o = Options::default().with_min_transmission_angle(0.0);
+    let deg = f64::to_radians;
+    let all = [
+        crank_rocker(
+            &CrankRockerRequirement {
+                rocker: 0.3,
+                swing: 0.8,
+                time_ratio: 1.3,
+                frame: FrameChoice::BestTransmission,
+            },
+            &o,
+        ),
+        slider_crank(
+            &SliderCrankRequirement {
+                stroke: 0.2,
+                time_ratio: 1.2,
+                offset: OffsetChoice::BestTransmission,
+            },
+            &o,
+        ),
+        shaper(
+            &ShaperRequirement {
+                stroke: 0.3,
+                time_ratio: 1.6,
+                centre_distance: 0.25,
+            },
+            &o,
+        ),
+        crank_rocker_through(
+            0.4,
+            &[
+                (deg(40.0), deg(101.4)),
+                (deg(100.0), deg(112.8)),
+                (deg(160.0), deg(131.8)),
+            ],
+            &o,
+        ),
+        burmester(
+            &[
+                Pose::new([0.0, 0.0], 0.0),
+                Pose::new([0.1, 0.05], 0.3),
+                Pose::new([0.2, 0.05], 0.7),
+            ],
+            [-0.05, -0.1],
+            [0.1, -0.08],
+            &o,
+        ),
+    ];
+    for s in all {
+        let s = s.unwrap();
+        let back = Linkage::from_json(&s.linkage.to_json().unwrap()).unwrap();
+        assert_eq!(back, s.linkage);
+        let (p, q) = (Plan::new(&s.linkage).unwrap(), Plan::new(&back).unwrap());
+        let out = s.linkage.output.clone().unwrap();
+        let at = Motion::fixed(p.reference_input() + 0.3);
+        assert_eq!(p.output(&out, at).unwrap(), q.output(&out, at).unwrap());
     }
 }

@@ -3,16 +3,16 @@
 //! offset), and Freudenstein's function generation over N least-squares points (3 to 3000,
 //! throughput per point, so a linear cost shows as a flat rate), each from requirement to an
 //! accepted description (the engine plans every answer); and the centre-point curve of four
-//! poses over N samples.
+//! poses over N samples, and Burmester's points of five poses over N samples.
 
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion, Throughput};
 use std::f64::consts::{FRAC_PI_2, FRAC_PI_6};
 use std::hint::black_box;
 use std::time::Duration;
 use tmm::synthesis::{
-    burmester, centre_point_curve, crank_rocker, function_generator, shaper, slider_crank,
-    CrankRockerRequirement, FrameChoice, FunctionRequirement, OffsetChoice, Options, Pose,
-    ShaperRequirement, SliderCrankRequirement, Spacing,
+    burmester, burmester_points, centre_point_curve, crank_rocker, function_generator, shaper,
+    slider_crank, CrankRockerRequirement, FrameChoice, FunctionRequirement, OffsetChoice, Options,
+    Pose, ShaperRequirement, SliderCrankRequirement, Spacing,
 };
 
 fn quick_return(c: &mut Criterion) {
@@ -110,6 +110,24 @@ fn function_generation(c: &mut Criterion) {
         g.throughput(Throughput::Elements(n as u64));
         g.bench_with_input(BenchmarkId::from_parameter(n), &n, |b, &n| {
             b.iter(|| black_box(centre_point_curve(black_box(&poses), n).unwrap()));
+        });
+    }
+    g.finish();
+    let five = [
+        poses[0],
+        poses[1],
+        poses[2],
+        poses[3],
+        Pose::new([0.33, -0.05], 1.2),
+    ];
+    let mut g = c.benchmark_group("burmester_points");
+    g.measurement_time(Duration::from_secs(2))
+        .warm_up_time(Duration::from_millis(500))
+        .sample_size(20);
+    for n in [360usize, 3600] {
+        g.throughput(Throughput::Elements(n as u64));
+        g.bench_with_input(BenchmarkId::from_parameter(n), &n, |b, &n| {
+            b.iter(|| black_box(burmester_points(black_box(&five), n).unwrap()));
         });
     }
     g.finish();

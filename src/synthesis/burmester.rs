@@ -73,7 +73,7 @@ impl Dyad {
     }
 }
 
-fn v(p: [f64; 2]) -> V {
+pub(super) fn v(p: [f64; 2]) -> V {
     V::new(p[0], p[1])
 }
 
@@ -95,7 +95,7 @@ fn undisplace(first: &Pose, pose: &Pose, w: V) -> V {
     first.p() + V::new(c * r.x - s * r.y, s * r.x + c * r.y)
 }
 
-fn check_poses(poses: &[Pose]) -> Result<()> {
+pub(super) fn check_poses(poses: &[Pose]) -> Result<()> {
     for p in poses {
         finite("pose x", p.at[0])?;
         finite("pose y", p.at[1])?;
@@ -215,6 +215,19 @@ pub fn circle_point(poses: &[Pose; 3], centre: [f64; 2]) -> Result<Dyad> {
 /// A dyad for two poses: the circle point `circle` (in the first pose) and a centre point on
 /// the perpendicular bisector of its two positions, `along` (m) from their midpoint, positive
 /// to the left of the direction from the first position to the second.
+///
+/// # Examples
+/// Two poses; the crank's and the rocker's centre points 0.2 m off the bisectors' midpoints:
+/// ```
+/// use tmm::synthesis::{centre_point_two, four_bar_from_dyads, Options, Pose};
+/// let poses = [Pose::new([0.0, 0.0], 0.0), Pose::new([0.15, 0.05], 0.5)];
+/// let crank = centre_point_two(&poses, [-0.05, -0.1], -0.2)?;
+/// let rocker = centre_point_two(&poses, [0.12, -0.08], 0.2)?;
+/// assert!(crank.misfit(&poses) < 1e-15 && rocker.misfit(&poses) < 1e-15);
+/// let s = four_bar_from_dyads(&poses, &crank, &rocker, &Options::default().with_min_transmission_angle(0.0))?;
+/// assert_eq!(s.linkage.joints.len(), 4);
+/// # Ok::<(), tmm::Error>(())
+/// ```
 ///
 /// # Errors
 /// [`Error::NonFinite`] for a non-finite number; [`Error::NoMechanism`] for coinciding poses;
@@ -402,15 +415,8 @@ pub fn four_bar_from_dyads(
             });
         }
     }
-    let mut report = fb.report("four-bar for motion generation", Some((start, span)))?;
-    if !report
-        .grashof
-        .is_some_and(crate::kinematics::Grashof::input_turns_fully)
-    {
-        let (gamma, at) = fb.gamma_over(start, span);
-        report.min_transmission_angle = gamma;
-        report.min_transmission_at = fb.world_angle(at);
-    }
+    // γ_min over a full turn if the crank turns fully, over the arc of the poses otherwise.
+    let report = fb.report("four-bar for motion generation", Some((start, span)))?;
     require_transmission(report.min_transmission_angle, required)?;
     let p = first.p();
     let q = p + (b - a).norm() * unit(first.angle);
@@ -452,6 +458,16 @@ pub fn four_bar_from_dyads(
 /// `rocker_circle` chosen (in the first pose): [`centre_point`] for each, then
 /// [`four_bar_from_dyads`].
 ///
+/// # Examples
+/// ```
+/// use tmm::synthesis::{burmester, Options, Pose};
+/// let poses = [Pose::new([0.0, 0.0], 0.0), Pose::new([0.1, 0.05], 0.3), Pose::new([0.2, 0.05], 0.7)];
+/// let s = burmester(&poses, [-0.05, -0.1], [0.1, -0.08], &Options::default())?;
+/// assert!(s.report.min_transmission_angle > 40f64.to_radians());
+/// println!("{}", s.report);
+/// # Ok::<(), tmm::Error>(())
+/// ```
+///
 /// # Errors
 /// As [`centre_point`] and [`four_bar_from_dyads`].
 pub fn burmester(
@@ -463,122 +479,6 @@ pub fn burmester(
     let crank = centre_point(poses, crank_circle)?;
     let rocker = centre_point(poses, rocker_circle)?;
     four_bar_from_dyads(poses, &crank, &rocker, options)
-}
-
-type C = nalgebra::Complex<f64>;
-
-/// The centre-point curve of four poses, sampled: the dyads (centre point, circle point in
-/// the first pose) that carry the coupler through all four, for `n` crank rotations β2
-/// between the first two poses, evenly spaced over a turn (up to two dyads each).
-///
-/// Derivation (the dyad's standard form): with W = A − O (the crank, from the centre point O
-/// to the circle point A in pose 1), Z = P1 − A and the coupler's rotations α_j = θ_j − θ1,
-/// pose j is reached when the crank has turned β_j:
-/// W(e^{iβ_j} − 1) + Z(e^{iα_j} − 1) = δ_j = P_j − P1, j = 2, 3, 4.
-/// Three complex equations in two complex unknowns are compatible only where the 3×3
-/// determinant of [e^{iβ_j} − 1, e^{iα_j} − 1, δ_j] vanishes; expanded along its first column,
-/// Δ1 + Δ2·e^{iβ2} + Δ3·e^{iβ3} + Δ4·e^{iβ4} = 0 (Δ2..Δ4 the cofactors, Δ1 = −ΣΔj). For a
-/// chosen β2 the vectors Δ3·e^{iβ3} and Δ4·e^{iβ4} close a triangle with −(Δ1 + Δ2·e^{iβ2}):
-/// two solutions, or none. Then W and Z solve equations 2 and 3 (Cramer), O = P1 − Z − W and
-/// A = P1 − Z. The trivial solution β_j = α_j (the crank turning with the coupler) is left out.
-///
-/// # Examples
-/// ```
-/// use tmm::synthesis::{centre_point_curve, Pose};
-/// let poses = [
-///     Pose::new([0.0, 0.0], 0.0),
-///     Pose::new([0.1, 0.05], 0.3),
-///     Pose::new([0.2, 0.05], 0.7),
-///     Pose::new([0.28, 0.0], 1.0),
-/// ];
-/// let dyads = centre_point_curve(&poses, 90)?;
-/// assert!(!dyads.is_empty());
-/// // Every dyad keeps its length through the four poses.
-/// for d in &dyads {
-///     assert!(d.misfit(&poses) < 1e-9 * (1.0 + d.length()));
-/// }
-/// # Ok::<(), tmm::Error>(())
-/// ```
-///
-/// # Errors
-/// [`Error::NonFinite`] for a non-finite number; [`Error::NoMechanism`] for coinciding poses;
-/// [`Error::OutOfRange`] (`"n"`) for n = 0 or n above [`MAX_POINTS`](super::MAX_POINTS).
-pub fn centre_point_curve(poses: &[Pose; 4], n: usize) -> Result<Vec<Dyad>> {
-    check_poses(poses)?;
-    if !(1..=super::MAX_POINTS).contains(&n) {
-        return Err(Error::OutOfRange {
-            name: "n",
-            value: n as f64,
-            min: 1.0,
-            max: super::MAX_POINTS as f64,
-            ends: crate::Ends::Closed,
-        });
-    }
-    let p1 = C::new(poses[0].at[0], poses[0].at[1]);
-    let e = |angle: f64| C::from_polar(1.0, angle) - 1.0;
-    let alpha: Vec<C> = poses[1..]
-        .iter()
-        .map(|p| e(p.angle - poses[0].angle))
-        .collect();
-    let delta: Vec<C> = poses[1..]
-        .iter()
-        .map(|p| C::new(p.at[0], p.at[1]) - p1)
-        .collect();
-    // Cofactors of the first column of [e^{iβ} − 1, a, δ] (rows j = 2, 3, 4).
-    let minor = |r: usize, s: usize| alpha[r] * delta[s] - alpha[s] * delta[r];
-    let d2 = minor(1, 2);
-    let d3 = -minor(0, 2);
-    let d4 = minor(0, 1);
-    let d1 = -(d2 + d3 + d4);
-    let size = delta.iter().map(|d| d.norm()).fold(0.0, f64::max);
-    let trivial = |b: [f64; 3]| {
-        b.iter()
-            .zip(&poses[1..])
-            .all(|(&bj, p)| (0.5 * (bj - (p.angle - poses[0].angle))).sin().abs() < 1e-9)
-    };
-    let mut out = Vec::new();
-    for k in 0..n {
-        let beta2 = TAU * (k as f64 + 0.5) / n as f64;
-        let s = -(d1 + d2 * C::from_polar(1.0, beta2));
-        let (r3, r4, l) = (d3.norm(), d4.norm(), s.norm());
-        if !(r3 > 0.0 && r4 > 0.0 && l > 0.0) {
-            continue;
-        }
-        // a = Δ3·e^{iβ3}: |a| = r3, |s − a| = r4.
-        let along = (r3 * r3 - r4 * r4 + l * l) / (2.0 * l);
-        let h2 = r3 * r3 - along * along;
-        if h2 < 0.0 {
-            continue;
-        }
-        let u = s / l;
-        for sign in [1.0, -1.0] {
-            let a = u * C::new(along, sign * h2.sqrt());
-            let (u3, u4) = (a / d3, (s - a) / d4);
-            let betas = [beta2, u3.arg(), u4.arg()];
-            if trivial(betas) {
-                continue;
-            }
-            let (b2, b3) = (e(betas[0]), e(betas[1]));
-            let det = b2 * alpha[1] - b3 * alpha[0];
-            if !(det.norm() > 1e-12) {
-                continue;
-            }
-            let w = (delta[0] * alpha[1] - delta[1] * alpha[0]) / det;
-            let z = (b2 * delta[1] - b3 * delta[0]) / det;
-            let (circle, centre) = (p1 - z, p1 - z - w);
-            let dyad = Dyad {
-                centre: [centre.re, centre.im],
-                circle: [circle.re, circle.im],
-            };
-            let fine = [centre.re, centre.im, circle.re, circle.im]
-                .iter()
-                .all(|x| x.is_finite());
-            if fine && dyad.misfit(poses) <= 1e-9 * (size + dyad.length()) {
-                out.push(dyad);
-            }
-        }
-    }
-    Ok(out)
 }
 
 impl Dyad {

@@ -16,8 +16,13 @@
 //!   linear image of y = f(x) while the crank angle is a linear image of x; three precision
 //!   points at Chebyshev spacing (exact) or least squares over N points; the structural error
 //!   over the whole range by the engine ([`FunctionGenerator::structural_error`]).
-//! - **Motion generation** (Burmester, [`burmester`], [`four_bar_from_dyads`]): dyads that carry a coupler through two
-//!   or three finitely separated poses, and the four-bar of two such dyads.
+//! - **Motion generation** (Burmester): dyads that carry a coupler through finitely
+//!   separated poses — for three, the centre point of a chosen circle point ([`centre_point`])
+//!   and the circle point of a chosen centre point ([`circle_point`]); for two, centre points
+//!   on a bisector ([`centre_point_two`]); for four, the centre-point curve sampled
+//!   ([`centre_point_curve`]); for five, Burmester's points ([`burmester_points`]) — and the
+//!   four-bar of two dyads ([`four_bar_from_dyads`], [`burmester`]), checked for branch and
+//!   order defects.
 //!
 //! Each answer is a [`Synthesis`]: the description and a [`Report`] of what the mechanism
 //! achieves (the time ratio, the stroke or swing, the smallest transmission angle over the
@@ -27,17 +32,43 @@
 //! Conventions: SI units (m, rad); angles counter-clockwise from +x. A four-bar is built in
 //! Freudenstein's frame unless its pivots are part of the requirement: the crank's pivot O1 at
 //! the origin, the rocker's pivot O3 at (d, 0); the crank angle φ is the direction of O1→A, the
-//! rocker angle ψ that of O3→B. Joint names: `O1`, `A`, `B`, `O3` (four-bar); `O1`, `A`, `B`,
-//! `P` (slider-crank, `P` the slider's prismatic joint); links `frame`, `crank`, `coupler`,
-//! `rocker` / `rod`, `slider`.
+//! rocker angle ψ that of O3→B. Joint names: `O1`, `A`, `B`, `O3` (four-bar, links `frame`,
+//! `crank`, `coupler`, `rocker`); `O1`, `A`, `B`, `P` (slider-crank, `P` the slider's
+//! prismatic joint; links `frame`, `crank`, `rod`, `slider`); the shaper's are listed at
+//! [`shaper`]. The descriptions carry no masses or loads: add them before a kinetostatic
+//! analysis.
 //!
 //! Bad requirements (non-finite numbers, K ≤ 1, a swing outside (0, π), too few points,
-//! coinciding poses) are errors naming the parameter; a requirement that no mechanism of the
-//! kind meets is [`Error::Infeasible`] (with the nearest reachable
-//! value), [`Error::OutOfRange`] with the feasible interval, or
-//! [`Error::NoMechanism`] saying why.
+//! coinciding poses) are errors naming the parameter. A requirement that no mechanism of the
+//! kind meets is [`Error::Infeasible`] (with the nearest reachable value, so the message says
+//! by how much it misses), [`Error::OutOfRange`] (with the feasible interval, for K), or
+//! [`Error::NoMechanism`] (saying what came out instead: a negative length, a branch or an
+//! order defect, a crank that does not turn fully).
+//!
+//! # Example
+//! A crank-rocker whose 0.3 m rocker swings 45° with K = 1.25, handed to the engine:
+//! ```
+//! use tmm::kinematics::Rotation;
+//! use tmm::linkage::{Output, Plan};
+//! use tmm::synthesis::{crank_rocker, CrankRockerRequirement, FrameChoice, Options};
+//! let need = CrankRockerRequirement {
+//!     rocker: 0.3,
+//!     swing: 45f64.to_radians(),
+//!     time_ratio: 1.25,
+//!     frame: FrameChoice::BestTransmission,
+//! };
+//! let s = crank_rocker(&need, &Options::default())?;
+//! println!("{}", s.report); // dimensions, K, swing, γ_min and where, Grashof's class
+//! let plan = Plan::new(&s.linkage)?;
+//! let (gamma, _) = plan.min_transmission_angle(0)?;
+//! assert!((gamma - s.report.min_transmission_angle).abs() < 1e-10);
+//! let strokes = plan.strokes(&Output::Angle("rocker".into()), Rotation::Ccw)?;
+//! assert!((strokes.time_ratio - 1.25).abs() < 1e-10);
+//! # Ok::<(), tmm::Error>(())
+//! ```
 
 mod burmester;
+mod centre_curve;
 mod check;
 mod four_bar;
 mod freudenstein;
@@ -45,9 +76,9 @@ mod quick_return;
 mod search;
 
 pub use burmester::{
-    burmester, centre_point, centre_point_curve, centre_point_two, circle_point,
-    four_bar_from_dyads, Dyad, Pose,
+    burmester, centre_point, centre_point_two, circle_point, four_bar_from_dyads, Dyad, Pose,
 };
+pub use centre_curve::{burmester_points, centre_point_curve};
 pub use freudenstein::{
     crank_rocker_through, freudenstein_coefficients, function_generator, FunctionGenerator,
     FunctionRequirement, Spacing, StructuralError,

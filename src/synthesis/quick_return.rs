@@ -323,8 +323,12 @@ fn slider_gamma(a: f64, b: f64, e: f64) -> f64 {
 /// the offset where the smallest transmission angle is largest.
 ///
 /// The crank's pivot O1 is at the origin, the guide the line y = e along +x, the slider to the
-/// right of the crank (see the derivation at the dead centres in the source: x2 solves a
-/// quadratic, and K < 3 because θ = ∠B1O1B2 < π/2 for dead centres on a line that misses O1).
+/// right of the crank. Derivation: at the dead centres B1 = (x2 + H, e) (crank and rod
+/// stretched, |O1B1| = b + a) and B2 = (x2, e) (folded, b − a) the crank angles differ by
+/// π − θ, so ∠B1O1B2 = θ = π(K − 1)/(K + 1); tan θ = e·H/(x1·x2 + e²) gives the quadratic
+/// x2² + H·x2 − (e·H·cot θ − e²) = 0, whose root must be positive (both dead centres ahead of
+/// the crank, one assembly mode): e < H·cot θ, so K < 3 (θ < π/2) and, for a given offset,
+/// θ < arctan(H/e). Then a = (|O1B1| − |O1B2|)/2 and b = (|O1B1| + |O1B2|)/2.
 /// γ_min = arccos((a + e)/b), with the crank pointing down (φ = 3π/2). The description is
 /// posed at the outer dead centre; joints `O1`, `A`, `B`, `P` (prismatic, the slider on the
 /// frame's guide); links `frame`, `crank`, `rod`, `slider`; output the slide of `P`.
