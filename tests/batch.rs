@@ -317,3 +317,207 @@ fn the_parallel_batch_equals_the_serial_one() {
         assert!(same(*x, *y));
     }
 }
+
+mod path {
+    use super::Rng;
+    use nalgebra::{Point2, Vector2};
+    use std::time::Duration;
+    use tmm::kinematics::batch::{four_bar_positions, CrankAngles, FourBarDims, Lane, Positions};
+    use tmm::kinematics::{Branch, Motion};
+    use tmm::linkage::Plan;
+    use tmm::synthesis::{path_generator, PathOptions, PathRequirement, Timing};
+    use tmm::Error;
+
+    /// A random crank-rocker that keeps γ ≥ 40° over a full turn, with a coupler point, and
+    /// its coupler points at `phis`; `None` when the draw misses the constraints.
+    fn random_path(rng: &mut Rng, phis: &[f64]) -> Option<(FourBarDims, Vec<[f64; 2]>)> {
+        let d = FourBarDims {
+            o: Point2::new(rng.range(-0.2, 0.2), rng.range(-0.2, 0.2)),
+            c: Point2::new(rng.range(0.3, 0.8), rng.range(-0.2, 0.2)),
+            l_oa: rng.range(0.08, 0.25),
+            l_ab: rng.range(0.3, 0.9),
+            l_cb: rng.range(0.3, 0.9),
+            branch: if rng.unit() < 0.5 {
+                Branch::Plus
+            } else {
+                Branch::Minus
+            },
+            coupler: Vector2::new(rng.range(-0.3, 0.6), rng.range(-0.4, 0.4)),
+        };
+        let turn = CrankAngles::turn(720);
+        let mut out = Positions::new(turn.len());
+        four_bar_positions(&d, &turn, out.columns_mut()).unwrap();
+        let sin_g = 40f64.to_radians().sin();
+        let good = (0..turn.len())
+            .all(|i| out.status[i] == Lane::Ok && out.measure[i].abs() >= sin_g + 1e-3);
+        let frame = (d.c - d.o).norm();
+        let l = [frame, d.l_oa, d.l_ab, d.l_cb];
+        let ratio = l.iter().cloned().fold(0.0, f64::max) / l.iter().cloned().fold(9.0, f64::min);
+        if !good || ratio > 9.0 {
+            return None;
+        }
+        let angles = CrankAngles::new(phis);
+        let mut out = Positions::new(phis.len());
+        four_bar_positions(&d, &angles, out.columns_mut()).unwrap();
+        let pts: Vec<[f64; 2]> = (0..phis.len()).map(|i| [out.p_x[i], out.p_y[i]]).collect();
+        // Within the search's bounds (5 path sizes about the centroid).
+        let n = pts.len() as f64;
+        let c = pts
+            .iter()
+            .fold([0.0, 0.0], |a, p| [a[0] + p[0] / n, a[1] + p[1] / n]);
+        let size = pts
+            .iter()
+            .map(|p| (p[0] - c[0]).hypot(p[1] - c[1]))
+            .fold(0.0, f64::max);
+        let far = [d.o, d.c]
+            .iter()
+            .map(|q| (q.x - c[0]).hypot(q.y - c[1]))
+            .chain(l)
+            .fold(0.0, f64::max);
+        (far < 4.0 * size).then_some((d, pts))
+    }
+
+    fn path_size(pts: &[[f64; 2]]) -> f64 {
+        let n = pts.len() as f64;
+        let c = pts
+            .iter()
+            .fold([0.0, 0.0], |a, p| [a[0] + p[0] / n, a[1] + p[1] / n]);
+        pts.iter()
+            .map(|p| (p[0] - c[0]).hypot(p[1] - c[1]))
+            .fold(0.0, f64::max)
+    }
+
+    /// Synthesises `req`, checks the best design's mean miss against 1e-6 of the path's size
+    /// and the engine's coupler points against the reported ones; returns the relative miss.
+    fn recover(req: &PathRequirement, seed: u64) -> f64 {
+        let opts = PathOptions::default()
+            .with_seed(seed)
+            .with_population(60)
+            .with_max_evaluations(100_000)
+            .with_max_time(Duration::from_secs(20))
+            .with_designs(2);
+        let designs = path_generator(req, &opts, |_| true).unwrap();
+        let size = path_size(&req.points);
+        let best = &designs[0];
+        let plan = Plan::new(&best.synthesis.linkage).unwrap();
+        for (phi, p) in best.crank_angles.iter().zip(&best.coupler_points) {
+            let q = plan
+                .kinematics(Motion::fixed(*phi))
+                .unwrap()
+                .point("P")
+                .unwrap()
+                .p;
+            let miss = (q.x - p[0]).hypot(q.y - p[1]) / size;
+            assert!(miss <= 1e-10, "engine vs reported: {miss:e}");
+        }
+        best.mean_error / size
+    }
+
+    fn cases() -> usize {
+        std::env::var("TMM_PATH_CASES")
+            .ok()
+            .and_then(|s| s.parse().ok())
+            .unwrap_or(1)
+    }
+
+    fn draw(rng: &mut Rng, phis: &[f64]) -> Vec<[f64; 2]> {
+        loop {
+            if let Some((_, pts)) = random_path(rng, phis) {
+                return pts;
+            }
+        }
+    }
+
+    #[test]
+    fn recovers_prescribed_timing() {
+        let mut rng = Rng(230);
+        for case in 0..cases() {
+            let theta0 = rng.range(0.0, std::f64::consts::TAU);
+            let delta: Vec<f64> = (0..6).map(|k| 1.0 * k as f64).collect();
+            let phis: Vec<f64> = delta.iter().map(|d| theta0 + d).collect();
+            let points = draw(&mut rng, &phis);
+            let req = PathRequirement {
+                points,
+                timing: Timing::Prescribed(delta),
+            };
+            let e = recover(&req, case as u64);
+            assert!(e <= 1e-6, "case {case}: mean miss {e:e} of the path's size");
+        }
+    }
+
+    #[test]
+    fn recovers_free_timing() {
+        let mut rng = Rng(231);
+        for case in 0..cases() {
+            let phis: Vec<f64> = (0..10)
+                .map(|k| 0.6 * k as f64 + rng.range(0.0, 0.2))
+                .collect();
+            let points = draw(&mut rng, &phis);
+            let req = PathRequirement {
+                points,
+                timing: Timing::Free,
+            };
+            let e = recover(&req, case as u64);
+            assert!(e <= 1e-6, "case {case}: mean miss {e:e} of the path's size");
+        }
+    }
+
+    #[test]
+    fn recovers_a_closed_curve() {
+        let mut rng = Rng(232);
+        for case in 0..cases() {
+            let phis: Vec<f64> = (0..24)
+                .map(|k| std::f64::consts::TAU * k as f64 / 24.0)
+                .collect();
+            let points = draw(&mut rng, &phis);
+            let req = PathRequirement {
+                points,
+                timing: Timing::ClosedCurve,
+            };
+            let e = recover(&req, case as u64);
+            assert!(e <= 1e-6, "case {case}: mean miss {e:e} of the path's size");
+        }
+    }
+
+    #[test]
+    fn bad_requirements_name_the_parameter() {
+        let opts = PathOptions::default();
+        let pts: Vec<[f64; 2]> = (0..9).map(|k| [k as f64, (k * k) as f64]).collect();
+        let few = PathRequirement {
+            points: pts[..8].to_vec(),
+            timing: Timing::Free,
+        };
+        assert!(matches!(
+            path_generator(&few, &opts, |_| true),
+            Err(Error::OutOfRange { name: "points", .. })
+        ));
+        let mut nan = pts.clone();
+        nan[3][1] = f64::NAN;
+        let bad = PathRequirement {
+            points: nan,
+            timing: Timing::ClosedCurve,
+        };
+        assert!(matches!(
+            path_generator(&bad, &opts, |_| true),
+            Err(Error::NonFinite { name: "points", .. })
+        ));
+        let mut same = pts.clone();
+        same[5] = same[2];
+        let bad = PathRequirement {
+            points: same,
+            timing: Timing::Free,
+        };
+        assert!(matches!(
+            path_generator(&bad, &opts, |_| true),
+            Err(Error::NoMechanism { .. })
+        ));
+        let timed = PathRequirement {
+            points: pts[..5].to_vec(),
+            timing: Timing::Prescribed(vec![0.0, 0.1, f64::INFINITY, 0.3, 0.4]),
+        };
+        assert!(matches!(
+            path_generator(&timed, &opts, |_| true),
+            Err(Error::NonFinite { name: "timing", .. })
+        ));
+    }
+}
