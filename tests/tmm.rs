@@ -9,6 +9,7 @@
 //! would move them into a `proptest-regressions/` tree at the top of the repository.
 
 mod architecture;
+mod batch;
 mod common;
 mod docs_links;
 #[cfg(feature = "serde")] // it draws the bundled linkages

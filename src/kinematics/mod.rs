@@ -56,6 +56,7 @@
 //! # Ok::<(), tmm::Error>(())
 //! ```
 
+pub mod batch;
 mod contour;
 mod crank;
 mod cycle;

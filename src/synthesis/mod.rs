@@ -72,6 +72,7 @@ mod centre_curve;
 mod check;
 mod four_bar;
 mod freudenstein;
+mod path;
 mod quick_return;
 mod search;
 
@@ -83,6 +84,7 @@ pub use freudenstein::{
     crank_rocker_through, freudenstein_coefficients, function_generator, FunctionGenerator,
     FunctionRequirement, Spacing, StructuralError,
 };
+pub use path::{path_generator, PathDesign, PathOptions, PathRequirement, Progress, Timing};
 pub use quick_return::{
     crank_rocker, shaper, slider_crank, CrankRockerRequirement, FrameChoice, OffsetChoice,
     ShaperRequirement, SliderCrankRequirement,

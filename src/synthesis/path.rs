@@ -1,0 +1,1011 @@
+//! Path generation: a four-bar whose coupler point passes through given points (with or
+//! without prescribed crank angles) or traces a closed curve, by a seeded global search.
+//!
+//! The search is differential evolution (DE/rand/1/bin with dithered F) over the nine
+//! dimensions of a four-bar with a coupler point and its assembly mode, each candidate
+//! evaluated over a turn of the crank (or over its prescribed angles) in one batch
+//! ([`four_bar_positions`]). A candidate must assemble on its one branch over the whole
+//! input range it needs, keep the transmission angle at or above \[γ\] there, and keep its
+//! link ratio within bounds; otherwise it is penalised. The best distinct candidates are then
+//! polished: Nelder–Mead on the sum of squared misses (the crank angle at each point a free
+//! unknown unless prescribed), then Levenberg–Marquardt, which converges quadratically where
+//! the points can be met exactly.
+
+use super::four_bar::FourBar;
+use super::{Options, Synthesis};
+use crate::error::{Error, Result};
+use crate::kinematics::batch::{
+    coupler_point, four_bar_positions, CrankAngles, FourBarDims, Lane, Positions,
+};
+use crate::kinematics::{crank, rrr_dyad, Branch, Motion, PointMotion};
+use crate::linkage::NamedPoint;
+use nalgebra::{DMatrix, DVector, Point2, Vector2};
+use std::f64::consts::TAU;
+use std::time::{Duration, Instant};
+
+type V = Vector2<f64>;
+
+/// How the crank's angles at the target points are given.
+#[derive(Debug, Clone, PartialEq)]
+#[non_exhaustive]
+pub enum Timing {
+    /// Free: the crank may be at any angle at each point (path generation without prescribed
+    /// timing). Nine dimensions and one angle per point: at least 9 points.
+    Free,
+    /// Prescribed: the crank has turned by `Δφ_i` (rad, one per point, the first usually 0)
+    /// from an angle θ0 that the search chooses. Ten unknowns: at least 5 points.
+    Prescribed(Vec<f64>),
+    /// The points sample a closed curve, in order: the crank turns fully and the coupler
+    /// point runs around the curve once per turn. At least 9 points.
+    ClosedCurve,
+}
+
+/// A path-generation requirement: target points of the coupler point, m, and the timing.
+#[derive(Debug, Clone, PartialEq)]
+pub struct PathRequirement {
+    /// The target points, m.
+    pub points: Vec<[f64; 2]>,
+    /// The crank's angles at them.
+    pub timing: Timing,
+}
+
+/// The search's options.
+#[derive(Debug, Clone, PartialEq)]
+#[non_exhaustive]
+pub struct PathOptions {
+    /// \[γ\] and the options common to the synthesis methods.
+    pub options: Options,
+    /// The largest ratio of the longest to the shortest of the four links. Default 10.
+    pub max_link_ratio: f64,
+    /// The largest link length and distance of a pivot from the points' centroid, in units of
+    /// the path's size (the largest distance of a point from the centroid). Default 5.
+    pub max_size: f64,
+    /// The seed of the search (the same seed gives the same designs unless `max_time` cuts
+    /// the search short).
+    pub seed: u64,
+    /// The population of the differential evolution. Default 120.
+    pub population: usize,
+    /// The budget of candidate evaluations of the global stage. Default 200 000.
+    pub max_evaluations: usize,
+    /// The budget of wall-clock time of the global stage; the polish of the first design
+    /// always runs. Default 60 s.
+    pub max_time: Duration,
+    /// How many distinct designs to return, best first. Default 3.
+    pub designs: usize,
+    /// Crank positions per turn in the global stage. Default 360.
+    pub positions: usize,
+    /// The mean miss, in path sizes, at which a design counts as meeting the points: the
+    /// search stops once `designs` designs do. Default 1e-9.
+    pub tolerance: f64,
+}
+
+impl Default for PathOptions {
+    fn default() -> Self {
+        Self {
+            options: Options::default(),
+            max_link_ratio: 10.0,
+            max_size: 5.0,
+            seed: 23,
+            population: 120,
+            max_evaluations: 200_000,
+            max_time: Duration::from_secs(60),
+            designs: 3,
+            positions: 360,
+            tolerance: 1e-9,
+        }
+    }
+}
+
+impl PathOptions {
+    /// With \[γ\] = `angle`, rad.
+    #[must_use]
+    pub fn with_min_transmission_angle(mut self, angle: f64) -> Self {
+        self.options = self.options.with_min_transmission_angle(angle);
+        self
+    }
+    /// With the largest link ratio `ratio`.
+    #[must_use]
+    pub fn with_max_link_ratio(mut self, ratio: f64) -> Self {
+        self.max_link_ratio = ratio;
+        self
+    }
+    /// With the size bound `size` (in path sizes).
+    #[must_use]
+    pub fn with_max_size(mut self, size: f64) -> Self {
+        self.max_size = size;
+        self
+    }
+    /// With the seed `seed`.
+    #[must_use]
+    pub fn with_seed(mut self, seed: u64) -> Self {
+        self.seed = seed;
+        self
+    }
+    /// With the population `n`.
+    #[must_use]
+    pub fn with_population(mut self, n: usize) -> Self {
+        self.population = n;
+        self
+    }
+    /// With the evaluation budget `n`.
+    #[must_use]
+    pub fn with_max_evaluations(mut self, n: usize) -> Self {
+        self.max_evaluations = n;
+        self
+    }
+    /// With the time budget `t`.
+    #[must_use]
+    pub fn with_max_time(mut self, t: Duration) -> Self {
+        self.max_time = t;
+        self
+    }
+    /// Returning `k` designs.
+    #[must_use]
+    pub fn with_designs(mut self, k: usize) -> Self {
+        self.designs = k;
+        self
+    }
+}
+
+/// Where the search is, for a progress callback.
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[non_exhaustive]
+pub struct Progress {
+    /// The generation of the differential evolution.
+    pub generation: usize,
+    /// Candidate evaluations so far.
+    pub evaluations: usize,
+    /// The best objective so far: the mean miss in path sizes (plus penalties while no
+    /// candidate is feasible, ≥ 1000 then).
+    pub best: f64,
+    /// Time since the start.
+    pub elapsed: Duration,
+}
+
+/// One synthesised path generator.
+#[derive(Debug, Clone, PartialEq)]
+pub struct PathDesign {
+    /// The description (joints `O1`, `A`, `B`, `O3`, the coupler point `P` on the coupler),
+    /// posed at the crank angle of the first point, and its report.
+    pub synthesis: Synthesis,
+    /// The mean distance of the coupler point from the targets, m.
+    pub mean_error: f64,
+    /// The largest distance, m.
+    pub max_error: f64,
+    /// The crank angle (world, rad, the engine's input) at each target.
+    pub crank_angles: Vec<f64>,
+    /// The coupler point reached at each of them, m.
+    pub coupler_points: Vec<[f64; 2]>,
+}
+
+/// splitmix64.
+struct Rng(u64);
+
+impl Rng {
+    fn next(&mut self) -> u64 {
+        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
+        let mut z = self.0;
+        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+        z ^ (z >> 31)
+    }
+    fn unit(&mut self) -> f64 {
+        (self.next() >> 11) as f64 / (1u64 << 53) as f64
+    }
+    fn below(&mut self, n: usize) -> usize {
+        (self.next() % n as u64) as usize
+    }
+}
+
+/// Genes: O1 (2), frame angle, frame, crank, coupler, rocker, coupler point (along, across),
+/// the branch's sign (its sign), θ0 (prescribed timing only). Normalised units.
+const BASE: usize = 10;
+const INFEASIBLE: f64 = 1e3;
+/// How many of the best candidates are polished.
+const POLISHED: usize = 8;
+/// Every how many generations the best member is polished within the evolution.
+const MEMETIC: usize = 5;
+/// Generations without improvement that end a run of the differential evolution.
+const STAGNATION: usize = 60;
+
+struct Problem {
+    targets: Vec<V>,
+    timing: Timing,
+    sin_gamma: f64,
+    ratio: f64,
+    size: f64,
+    turn: CrankAngles,
+    angles: CrankAngles,
+    out: Positions,
+    phi: Vec<f64>,
+}
+
+fn dims_of(g: &[f64], sigma: f64) -> FourBarDims {
+    let o = Point2::new(g[0], g[1]);
+    FourBarDims {
+        o,
+        c: o + g[3] * V::new(g[2].cos(), g[2].sin()),
+        l_oa: g[4],
+        l_ab: g[5],
+        l_cb: g[6],
+        branch: if sigma > 0.0 {
+            Branch::Plus
+        } else {
+            Branch::Minus
+        },
+        coupler: V::new(g[7], g[8]),
+    }
+}
+
+/// The coupler point of `d` at the crank angle `phi` by the scalar blocks (exactly a batch
+/// lane), with sin(φ3 − φ2).
+fn point_at(d: &FourBarDims, phi: f64) -> Option<(V, f64)> {
+    let a = crank(d.o, d.l_oa, Motion::fixed(phi)).ok()?.a;
+    let r = rrr_dyad(a, PointMotion::fixed(d.c), d.l_ab, d.l_cb, d.branch).ok()?;
+    Some((coupler_point(a.p, r.b.p, d.coupler_uv()).coords, r.det))
+}
+
+impl Problem {
+    fn genes(&self) -> usize {
+        BASE + usize::from(matches!(self.timing, Timing::Prescribed(_)))
+    }
+
+    /// Lower and upper bounds of the genes.
+    fn bounds(&self) -> (Vec<f64>, Vec<f64>) {
+        let s = self.size;
+        let mut lo = vec![-s, -s, 0.0, 0.02, 0.02, 0.02, 0.02, -s, -s, -1.0];
+        let mut hi = vec![s, s, TAU, s, s, s, s, s, s, 1.0];
+        if self.genes() > BASE {
+            lo.push(0.0);
+            hi.push(TAU);
+        }
+        (lo, hi)
+    }
+
+    fn lengths_ok(&self, g: &[f64]) -> f64 {
+        let l = [g[3], g[4], g[5], g[6]];
+        let (mn, mx) = l
+            .iter()
+            .fold((f64::INFINITY, 0.0f64), |(a, b), &x| (a.min(x), b.max(x)));
+        if mn.is_nan() || mn <= 0.0 || !l.iter().all(|x| x.is_finite()) {
+            return INFEASIBLE * 10.0;
+        }
+        let excess = mx / mn / self.ratio - 1.0;
+        if excess > 0.0 {
+            INFEASIBLE + excess
+        } else {
+            0.0
+        }
+    }
+
+    fn lane_ok(&self, i: usize) -> bool {
+        self.out.status[i] == Lane::Ok && self.out.measure[i].abs() >= self.sin_gamma
+    }
+
+    /// The global stage's objective of the genes `g`.
+    fn objective(&mut self, g: &[f64]) -> f64 {
+        let p = self.lengths_ok(g);
+        if p > 0.0 {
+            return p;
+        }
+        let sigma = g[9];
+        let d = dims_of(g, sigma);
+        match &self.timing {
+            Timing::Prescribed(delta) => {
+                let theta0 = g[10];
+                self.phi.clear();
+                self.phi.extend(delta.iter().map(|&x| theta0 + x));
+                let (mn, mx) = min_max(delta);
+                let steps = ((mx - mn) / 0.035).ceil().max(1.0) as usize;
+                for k in 0..=steps {
+                    self.phi
+                        .push(theta0 + mn + (mx - mn) * k as f64 / steps as f64);
+                }
+                self.angles.set(&self.phi);
+                self.out.resize(self.phi.len());
+                let _ = four_bar_positions(&d, &self.angles, self.out.columns_mut());
+                let bad = (0..self.phi.len()).filter(|&i| !self.lane_ok(i)).count();
+                if bad > 0 {
+                    return INFEASIBLE + bad as f64 / self.phi.len() as f64;
+                }
+                let n = self.targets.len();
+                (0..n)
+                    .map(|i| (V::new(self.out.p_x[i], self.out.p_y[i]) - self.targets[i]).norm())
+                    .sum::<f64>()
+                    / n as f64
+            }
+            Timing::Free | Timing::ClosedCurve => {
+                let m = self.turn.len();
+                self.out.resize(m);
+                let _ = four_bar_positions(&d, &self.turn, self.out.columns_mut());
+                let ok: Vec<bool> = (0..m).map(|i| self.lane_ok(i)).collect();
+                let closed = matches!(self.timing, Timing::ClosedCurve);
+                let n_ok = ok.iter().filter(|&&b| b).count();
+                if n_ok == 0 || (closed && n_ok < m) {
+                    return INFEASIBLE + (m - n_ok) as f64 / m as f64;
+                }
+                let mut sum = 0.0;
+                let mut idx = Vec::with_capacity(self.targets.len());
+                for t in &self.targets {
+                    let (mut best, mut at) = (f64::INFINITY, 0);
+                    for (i, _) in ok.iter().enumerate().filter(|(_, ok)| **ok) {
+                        {
+                            let dd =
+                                (self.out.p_x[i] - t.x).powi(2) + (self.out.p_y[i] - t.y).powi(2);
+                            if dd < best {
+                                best = dd;
+                                at = i;
+                            }
+                        }
+                    }
+                    sum += best.sqrt();
+                    idx.push(at);
+                }
+                let n = self.targets.len() as f64;
+                if closed {
+                    // Once around, in order.
+                    let wind = |sgn: isize| -> usize {
+                        (0..idx.len())
+                            .map(|i| {
+                                let j = (i + 1) % idx.len();
+                                (sgn * (idx[j] as isize - idx[i] as isize)).rem_euclid(m as isize)
+                                    as usize
+                            })
+                            .sum()
+                    };
+                    let turns = wind(1).min(wind(-1)) as f64 / m as f64;
+                    sum / n + 0.2 * (turns - 1.0)
+                } else {
+                    let bad = arc_of(&idx.iter().map(|&i| self.turn.phi()[i]).collect::<Vec<_>>())
+                        .map_or(0, |(start, span)| {
+                            (0..m)
+                                .filter(|&i| {
+                                    !ok[i] && normalize_angle(self.turn.phi()[i] - start) <= span
+                                })
+                                .count()
+                        });
+                    if bad > 0 {
+                        return INFEASIBLE + bad as f64 / m as f64;
+                    }
+                    sum / n
+                }
+            }
+        }
+    }
+
+    /// The polish's unknowns from the genes `g`: the genes without the branch's, then θ0
+    /// (prescribed timing) or each point's crank angle (the nearest good sample of a turn).
+    fn start_of(&mut self, g: &[f64]) -> (Vec<f64>, f64) {
+        let sigma = if g[9] > 0.0 { 1.0 } else { -1.0 };
+        let mut x: Vec<f64> = g[..9].to_vec();
+        if let Timing::Prescribed(_) = self.timing {
+            x.push(g[10]);
+        } else {
+            let d = dims_of(g, sigma);
+            self.out.resize(self.turn.len());
+            let _ = four_bar_positions(&d, &self.turn, self.out.columns_mut());
+            for t in &self.targets {
+                let mut best = (f64::INFINITY, 0.0);
+                for k in 0..self.turn.len() {
+                    if self.out.status[k] == Lane::Ok {
+                        let dd = (self.out.p_x[k] - t.x).powi(2) + (self.out.p_y[k] - t.y).powi(2);
+                        if dd < best.0 {
+                            best = (dd, self.turn.phi()[k]);
+                        }
+                    }
+                }
+                x.push(best.1);
+            }
+        }
+        (x, sigma)
+    }
+
+    /// The genes of the polish's unknowns `x`.
+    fn genes_of(&self, x: &[f64], sigma: f64) -> Vec<f64> {
+        let mut g = x[..9].to_vec();
+        g[2] = g[2].rem_euclid(TAU);
+        g.push(sigma);
+        if let Timing::Prescribed(_) = self.timing {
+            g.push(x[9].rem_euclid(TAU));
+        }
+        g
+    }
+
+    /// Levenberg–Marquardt on the misses from `x` (the link ratio kept; the other
+    /// constraints are checked on the result).
+    fn lm(&self, x: Vec<f64>, sigma: f64, iterations: usize) -> Vec<f64> {
+        let res = |x: &[f64]| pb_residuals(&self.targets, &self.timing, x, sigma);
+        let mut accept = |x: &[f64]| self.lengths_ok(&gene_vec(x, sigma)) == 0.0;
+        levenberg_marquardt(&res, &mut accept, x, iterations)
+    }
+
+    fn angle_of(&self, x: &[f64], i: usize) -> f64 {
+        match &self.timing {
+            Timing::Prescribed(delta) => x[9] + delta[i],
+            _ => x[9 + i],
+        }
+    }
+
+    /// The whole check of a polished point: link ratio, and assembly with γ ≥ \[γ\] over the
+    /// input range it needs (sampled every 1°, and at each target's angle).
+    fn feasible(&mut self, x: &[f64], sigma: f64) -> bool {
+        let g = gene_vec(x, sigma);
+        if self.lengths_ok(&g) > 0.0 {
+            return false;
+        }
+        let d = dims_of(&g, sigma);
+        let phis: Vec<f64> = (0..self.targets.len())
+            .map(|i| self.angle_of(x, i))
+            .collect();
+        let (start, span) = match self.timing {
+            Timing::ClosedCurve => (0.0, TAU),
+            Timing::Prescribed(_) => {
+                let (mn, mx) = min_max(&phis);
+                (mn, mx - mn)
+            }
+            Timing::Free => match arc_of(&phis) {
+                Some(a) => a,
+                None => return false,
+            },
+        };
+        let steps = (span / 0.0175).ceil().max(1.0) as usize;
+        self.phi.clear();
+        self.phi.extend_from_slice(&phis);
+        self.phi
+            .extend((0..=steps).map(|k| start + span * k as f64 / steps as f64));
+        self.angles.set(&self.phi);
+        self.out.resize(self.phi.len());
+        let _ = four_bar_positions(&d, &self.angles, self.out.columns_mut());
+        (0..self.phi.len()).all(|i| self.lane_ok(i))
+    }
+}
+
+fn gene_vec(x: &[f64], sigma: f64) -> Vec<f64> {
+    let mut g = x[..9].to_vec();
+    g.push(sigma);
+    g.push(*x.get(9).unwrap_or(&0.0));
+    g
+}
+
+fn min_max(v: &[f64]) -> (f64, f64) {
+    v.iter()
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &x| {
+            (a.min(x), b.max(x))
+        })
+}
+
+fn normalize_angle(a: f64) -> f64 {
+    crate::angle::normalize(a)
+}
+
+/// The shortest arc (start, span) of the circle that holds every angle: the complement of
+/// the largest gap between neighbours.
+fn arc_of(phis: &[f64]) -> Option<(f64, f64)> {
+    let mut a: Vec<f64> = phis.iter().map(|&p| normalize_angle(p)).collect();
+    if a.is_empty() || a.iter().any(|x| !x.is_finite()) {
+        return None;
+    }
+    a.sort_by(f64::total_cmp);
+    let n = a.len();
+    let (mut gap, mut after) = (a[0] + TAU - a[n - 1], 0);
+    for i in 1..n {
+        if a[i] - a[i - 1] > gap {
+            gap = a[i] - a[i - 1];
+            after = i;
+        }
+    }
+    Some((a[after], TAU - gap))
+}
+
+/// Nelder–Mead on `f` from `x0` with initial steps `step`, `max` evaluations.
+fn nelder_mead(f: &mut dyn FnMut(&[f64]) -> f64, x0: &[f64], step: &[f64], max: usize) -> Vec<f64> {
+    let n = x0.len();
+    let mut simplex: Vec<(Vec<f64>, f64)> = Vec::with_capacity(n + 1);
+    simplex.push((x0.to_vec(), f(x0)));
+    for i in 0..n {
+        let mut x = x0.to_vec();
+        x[i] += step[i];
+        let fx = f(&x);
+        simplex.push((x, fx));
+    }
+    let mut evals = n + 1;
+    while evals < max {
+        simplex.sort_by(|a, b| a.1.total_cmp(&b.1));
+        if (simplex[n].1 - simplex[0].1).abs() <= 1e-30 + 1e-15 * simplex[0].1.abs() {
+            break;
+        }
+        let centroid: Vec<f64> = (0..n)
+            .map(|j| simplex[..n].iter().map(|s| s.0[j]).sum::<f64>() / n as f64)
+            .collect();
+        let along = |t: f64| -> Vec<f64> {
+            (0..n)
+                .map(|j| centroid[j] + t * (simplex[n].0[j] - centroid[j]))
+                .collect()
+        };
+        let xr = along(-1.0);
+        let fr = f(&xr);
+        evals += 1;
+        if fr < simplex[0].1 {
+            let xe = along(-2.0);
+            let fe = f(&xe);
+            evals += 1;
+            simplex[n] = if fe < fr { (xe, fe) } else { (xr, fr) };
+        } else if fr < simplex[n - 1].1 {
+            simplex[n] = (xr, fr);
+        } else {
+            let xc = if fr < simplex[n].1 {
+                along(-0.5)
+            } else {
+                along(0.5)
+            };
+            let fc = f(&xc);
+            evals += 1;
+            if fc < fr.min(simplex[n].1) {
+                simplex[n] = (xc, fc);
+            } else {
+                let best = simplex[0].0.clone();
+                for s in simplex.iter_mut().skip(1) {
+                    for (v, b) in s.0.iter_mut().zip(&best) {
+                        *v = b + 0.5 * (*v - b);
+                    }
+                    s.1 = f(&s.0);
+                }
+                evals += n;
+            }
+        }
+    }
+    simplex.sort_by(|a, b| a.1.total_cmp(&b.1));
+    simplex.swap_remove(0).0
+}
+
+/// Levenberg–Marquardt on the residuals, with a central-difference Jacobian; a step is taken
+/// only where `accept` agrees (the design stays feasible).
+fn levenberg_marquardt(
+    res: &dyn Fn(&[f64]) -> Option<Vec<f64>>,
+    accept: &mut dyn FnMut(&[f64]) -> bool,
+    x0: Vec<f64>,
+    iterations: usize,
+) -> Vec<f64> {
+    let mut x = x0;
+    let Some(mut r) = res(&x) else { return x };
+    let mut cost: f64 = r.iter().map(|v| v * v).sum();
+    let mut lambda = 1e-3;
+    let n = x.len();
+    for _ in 0..iterations {
+        if cost < 1e-30 {
+            break;
+        }
+        let m = r.len();
+        let mut j = DMatrix::zeros(m, n);
+        for k in 0..n {
+            let h = 1e-7 * x[k].abs().max(1.0);
+            let (mut xp, mut xm) = (x.clone(), x.clone());
+            xp[k] += h;
+            xm[k] -= h;
+            let (Some(rp), Some(rm)) = (res(&xp), res(&xm)) else {
+                return x;
+            };
+            for i in 0..m {
+                j[(i, k)] = (rp[i] - rm[i]) / (2.0 * h);
+            }
+        }
+        let jt = j.transpose();
+        let jtj = &jt * &j;
+        let g = &jt * DVector::from_vec(r.clone());
+        let mut improved = false;
+        for _ in 0..12 {
+            let mut a = jtj.clone();
+            for k in 0..n {
+                a[(k, k)] += lambda * (jtj[(k, k)] + 1e-12);
+            }
+            let Some(step) = a.lu().solve(&(-&g)) else {
+                lambda *= 10.0;
+                continue;
+            };
+            let xn: Vec<f64> = x.iter().zip(step.iter()).map(|(a, b)| a + b).collect();
+            if let Some(rn) = res(&xn) {
+                let cn: f64 = rn.iter().map(|v| v * v).sum();
+                if cn < cost && accept(&xn) {
+                    let small =
+                        step.norm() <= 1e-15 * (1.0 + x.iter().map(|v| v * v).sum::<f64>().sqrt());
+                    x = xn;
+                    r = rn;
+                    cost = cn;
+                    lambda = (lambda / 10.0).max(1e-15);
+                    improved = !small;
+                    break;
+                }
+            }
+            lambda *= 10.0;
+        }
+        if !improved {
+            break;
+        }
+    }
+    x
+}
+
+fn check_requirement(req: &PathRequirement, opts: &PathOptions) -> Result<f64> {
+    let gamma = opts.options.check()?;
+    for p in &req.points {
+        crate::error::finite("points", p[0])?;
+        crate::error::finite("points", p[1])?;
+    }
+    let n = req.points.len();
+    let (min, name) = match &req.timing {
+        Timing::Free => (9, "points"),
+        Timing::ClosedCurve => (9, "points"),
+        Timing::Prescribed(d) => {
+            for &x in d {
+                crate::error::finite("timing", x)?;
+            }
+            if d.len() != n {
+                return Err(Error::OutOfRange {
+                    name: "timing (one crank angle per point)",
+                    value: d.len() as f64,
+                    min: n as f64,
+                    max: n as f64,
+                    ends: crate::Ends::Closed,
+                });
+            }
+            let (mn, mx) = min_max(d);
+            if mx - mn >= TAU {
+                return Err(Error::OutOfRange {
+                    name: "timing (span of the crank angles, rad)",
+                    value: mx - mn,
+                    min: 0.0,
+                    max: TAU,
+                    ends: crate::Ends::OpenAbove,
+                });
+            }
+            (5, "points")
+        }
+    };
+    if n < min {
+        return Err(Error::OutOfRange {
+            name,
+            value: n as f64,
+            min: min as f64,
+            max: f64::INFINITY,
+            ends: crate::Ends::Closed,
+        });
+    }
+    let pts: Vec<V> = req.points.iter().map(|p| V::new(p[0], p[1])).collect();
+    let c = pts.iter().sum::<V>() / n as f64;
+    let size = pts.iter().map(|p| (p - c).norm()).fold(0.0, f64::max);
+    for i in 0..n {
+        for j in 0..i {
+            if (pts[i] - pts[j]).norm() <= 1e-9 * size {
+                return Err(Error::NoMechanism {
+                    method: "path generation",
+                    problem: format!("points {} and {} coincide", j + 1, i + 1),
+                });
+            }
+        }
+    }
+    for (name, v, lo) in [
+        ("max_link_ratio", opts.max_link_ratio, 1.0),
+        ("max_size", opts.max_size, 0.0),
+    ] {
+        if v.is_nan() || v <= lo || !v.is_finite() {
+            return Err(Error::OutOfRange {
+                name,
+                value: v,
+                min: lo,
+                max: f64::INFINITY,
+                ends: crate::Ends::Open,
+            });
+        }
+    }
+    if opts.population < 8 || opts.positions < 8 {
+        return Err(Error::OutOfRange {
+            name: "population and positions",
+            value: opts.population.min(opts.positions) as f64,
+            min: 8.0,
+            max: f64::INFINITY,
+            ends: crate::Ends::Closed,
+        });
+    }
+    Ok(gamma)
+}
+
+/// A four-bar whose coupler point passes through the points of `req` (or traces its closed
+/// curve): the `opts.designs` best distinct designs found, best first, each with its misses.
+///
+/// `progress` is called once per generation of the global stage; returning `false` stops
+/// the search there (the polish still runs).
+///
+/// # Errors
+/// [`Error::NonFinite`] naming `points` or `timing`; [`Error::OutOfRange`] naming `points`
+/// for fewer points than the unknowns need (9 free or on a closed curve, 5 with prescribed
+/// timing), or a bad option; [`Error::NoMechanism`] for coinciding points, or when no
+/// candidate met the constraints (γ, link ratio, assembly over the range) within the budget.
+pub fn path_generator(
+    req: &PathRequirement,
+    opts: &PathOptions,
+    mut progress: impl FnMut(&Progress) -> bool,
+) -> Result<Vec<PathDesign>> {
+    let gamma = check_requirement(req, opts)?;
+    let start = Instant::now();
+    let n = req.points.len();
+    let pts: Vec<V> = req.points.iter().map(|p| V::new(p[0], p[1])).collect();
+    let centre = pts.iter().sum::<V>() / n as f64;
+    let scale = pts.iter().map(|p| (p - centre).norm()).fold(0.0, f64::max);
+    let targets: Vec<V> = pts.iter().map(|p| (p - centre) / scale).collect();
+    let mut pb = Problem {
+        targets,
+        timing: req.timing.clone(),
+        sin_gamma: gamma.sin(),
+        ratio: opts.max_link_ratio,
+        size: opts.max_size,
+        turn: CrankAngles::turn(opts.positions),
+        angles: CrankAngles::default(),
+        out: Positions::default(),
+        phi: Vec::new(),
+    };
+    let (lo, hi) = pb.bounds();
+    let dim = lo.len();
+    let np = opts.population;
+    let mut rng = Rng(opts.seed);
+    let mut designs: Vec<PathDesign> = Vec::new();
+    let mut keys: Vec<[f64; 4]> = Vec::new();
+    let want = opts.designs.max(1);
+    let mut evals = 0;
+    let mut generation = 0;
+    let mut stopped = false;
+    // Runs of differential evolution from fresh random populations, each until it stagnates,
+    // its best candidates polished; until enough designs meet the points to `tolerance` or
+    // the budget is spent.
+    while !stopped && evals + 2 * np <= opts.max_evaluations && start.elapsed() < opts.max_time {
+        let mut pop: Vec<Vec<f64>> = (0..np)
+            .map(|_| {
+                (0..dim)
+                    .map(|k| lo[k] + (hi[k] - lo[k]) * rng.unit())
+                    .collect()
+            })
+            .collect();
+        let mut fit: Vec<f64> = pop.iter().map(|g| pb.objective(g)).collect();
+        evals += np;
+        let (mut last_best, mut since) = (f64::INFINITY, 0);
+        while evals + np <= opts.max_evaluations && start.elapsed() < opts.max_time {
+            generation += 1;
+            let f_scale = 0.5 + 0.5 * rng.unit();
+            // DE/current-to-pbest/1/bin: towards one of the best tenth, plus a random difference.
+            let mut ranked: Vec<usize> = (0..np).collect();
+            ranked.sort_by(|&a, &b| fit[a].total_cmp(&fit[b]));
+            let top = (np / 10).max(2);
+            for i in 0..np {
+                let p = ranked[rng.below(top)];
+                let (mut b, mut c) = (i, i);
+                while b == i {
+                    b = rng.below(np);
+                }
+                while c == i || c == b {
+                    c = rng.below(np);
+                }
+                let jr = rng.below(dim);
+                let trial: Vec<f64> = (0..dim)
+                    .map(|k| {
+                        if k == jr || rng.unit() < 0.9 {
+                            let x = pop[i][k];
+                            let v =
+                                x + f_scale * (pop[p][k] - x) + f_scale * (pop[b][k] - pop[c][k]);
+                            if k == 2 || k == 10 {
+                                v.rem_euclid(TAU)
+                            } else if v < lo[k] {
+                                lo[k] + (x - lo[k]) * rng.unit()
+                            } else if v > hi[k] {
+                                hi[k] - (hi[k] - x) * rng.unit()
+                            } else {
+                                v
+                            }
+                        } else {
+                            pop[i][k]
+                        }
+                    })
+                    .collect();
+                let ft = pb.objective(&trial);
+                evals += 1;
+                if ft <= fit[i] {
+                    pop[i] = trial;
+                    fit[i] = ft;
+                }
+            }
+            if generation % MEMETIC == 0 {
+                // Lamarckian local search: the best member and a random one, polished by
+                // Levenberg–Marquardt, replace themselves where that is better.
+                let best_i = (0..np)
+                    .min_by(|&a, &b| fit[a].total_cmp(&fit[b]))
+                    .unwrap_or(0);
+                for i in [best_i, rng.below(np)] {
+                    if fit[i] >= INFEASIBLE {
+                        continue;
+                    }
+                    let (x, sigma) = pb.start_of(&pop[i]);
+                    let x = pb.lm(x, sigma, 30);
+                    let g = pb.genes_of(&x, sigma);
+                    let f = pb.objective(&g);
+                    evals += 1;
+                    if f < fit[i] {
+                        pop[i] = g;
+                        fit[i] = f;
+                    }
+                }
+            }
+            let best = fit.iter().copied().fold(f64::INFINITY, f64::min);
+            let go_on = progress(&Progress {
+                generation,
+                evaluations: evals,
+                best,
+                elapsed: start.elapsed(),
+            });
+            if !go_on {
+                stopped = true;
+                break;
+            }
+            if best < last_best * (1.0 - 1e-6) {
+                (last_best, since) = (best, 0);
+            } else {
+                since += 1;
+                if since >= STAGNATION {
+                    break;
+                }
+            }
+        }
+        // Polish the best candidates, best first, until enough distinct designs are found.
+        let mut order: Vec<usize> = (0..np).filter(|&i| fit[i] < INFEASIBLE).collect();
+        order.sort_by(|&a, &b| fit[a].total_cmp(&fit[b]));
+        for (rank, &i) in order.iter().enumerate() {
+            if rank >= POLISHED {
+                break;
+            }
+            if rank > 0 && start.elapsed() > opts.max_time {
+                break;
+            }
+            let (x, sigma) = pb.start_of(&pop[i]);
+            let step: Vec<f64> = x.iter().map(|v| 0.02 * v.abs().max(0.5)).collect();
+            let xn = {
+                let (targets, timing) = (&pb.targets, &pb.timing);
+                let mut f = |x: &[f64]| {
+                    pb_residuals(targets, timing, x, sigma)
+                        .map_or(f64::INFINITY, |r| r.iter().map(|v| v * v).sum())
+                };
+                nelder_mead(&mut f, &x, &step, 200 * x.len())
+            };
+            let x = if pb.feasible(&xn, sigma) { xn } else { x };
+            let x = pb.lm(x, sigma, 200);
+            if !pb.feasible(&x, sigma) {
+                continue;
+            }
+            let Some(design) = design_of(&pb, &x, sigma, centre, scale)? else {
+                continue;
+            };
+            let key = {
+                let mut l = [x[3], x[4], x[5], x[6]];
+                l.sort_by(f64::total_cmp);
+                l
+            };
+            if keys.iter().any(|k| {
+                k.iter()
+                    .zip(&key)
+                    .all(|(a, b)| (a - b).abs() <= 1e-6 * b.abs())
+            }) {
+                continue;
+            }
+            keys.push(key);
+            designs.push(design);
+        }
+        let good = designs
+            .iter()
+            .filter(|d| d.mean_error <= opts.tolerance * scale)
+            .count();
+        if good >= want {
+            break;
+        }
+    }
+
+    if designs.is_empty() {
+        return Err(Error::NoMechanism {
+            method: "path generation",
+            problem: format!(
+                "no four-bar met the constraints (γ ≥ {:.1}°, link ratio ≤ {}, assembly over the range) in {evals} evaluations",
+                gamma.to_degrees(),
+                opts.max_link_ratio
+            ),
+        });
+    }
+    designs.sort_by(|a, b| a.mean_error.total_cmp(&b.mean_error));
+    designs.truncate(want);
+    Ok(designs)
+}
+
+fn pb_residuals(targets: &[V], timing: &Timing, x: &[f64], sigma: f64) -> Option<Vec<f64>> {
+    let d = dims_of(&gene_vec(x, sigma), sigma);
+    let mut r = Vec::with_capacity(2 * targets.len());
+    for (i, t) in targets.iter().enumerate() {
+        let phi = match timing {
+            Timing::Prescribed(delta) => x[9] + delta[i],
+            _ => x[9 + i],
+        };
+        let (p, _) = point_at(&d, phi)?;
+        r.push(p.x - t.x);
+        r.push(p.y - t.y);
+    }
+    Some(r)
+}
+
+/// The design in the world: the description posed at the first point's crank angle.
+fn design_of(
+    pb: &Problem,
+    x: &[f64],
+    sigma: f64,
+    centre: V,
+    scale: f64,
+) -> Result<Option<PathDesign>> {
+    let g = gene_vec(x, sigma);
+    let mut d = dims_of(&g, sigma);
+    d.o = Point2::from(centre + d.o.coords * scale);
+    d.c = Point2::from(centre + d.c.coords * scale);
+    d.l_oa *= scale;
+    d.l_ab *= scale;
+    d.l_cb *= scale;
+    d.coupler *= scale;
+    let n = pb.targets.len();
+    let phis: Vec<f64> = (0..n).map(|i| normalize_angle(pb.angle_of(x, i))).collect();
+    let mut points = Vec::with_capacity(n);
+    let (mut sum, mut max) = (0.0, 0.0f64);
+    for (i, &phi) in phis.iter().enumerate() {
+        let Some((p, _)) = point_at(&d, phi) else {
+            return Ok(None);
+        };
+        let miss = (p - (pb.targets[i] * scale + centre)).norm();
+        sum += miss;
+        max = max.max(miss);
+        points.push([p.x, p.y]);
+    }
+    let delta = normalize_angle(x[2]);
+    let fb = FourBar {
+        o1: d.o.coords,
+        delta,
+        d: g[3] * scale,
+        a: d.l_oa,
+        b: d.l_ab,
+        c: d.l_cb,
+        sigma,
+    };
+    let (start, span) = match &pb.timing {
+        Timing::ClosedCurve => (0.0, TAU - 1e-9),
+        Timing::Prescribed(_) => {
+            let (mn, mx) = min_max(&(0..n).map(|i| pb.angle_of(x, i)).collect::<Vec<_>>());
+            (mn, mx - mn)
+        }
+        Timing::Free => arc_of(&phis).unwrap_or((0.0, 0.0)),
+    };
+    let mut report = fb.report(
+        "path generator",
+        Some((normalize_angle(start - delta), span.max(1e-9))),
+    )?;
+    report
+        .dimensions
+        .push(("coupler point along AB".to_owned(), d.coupler.x));
+    report
+        .dimensions
+        .push(("coupler point across AB".to_owned(), d.coupler.y));
+    let reference = phis[0];
+    let linkage = fb.linkage(
+        "path generator",
+        normalize_angle(reference - delta),
+        vec![NamedPoint {
+            name: "P".to_owned(),
+            at: points[0],
+        }],
+        None,
+    )?;
+    Ok(Some(PathDesign {
+        synthesis: Synthesis { linkage, report },
+        mean_error: sum / n as f64,
+        max_error: max,
+        crank_angles: phis,
+        coupler_points: points,
+    }))
+}

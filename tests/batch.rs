@@ -1,0 +1,523 @@
+//! Batch evaluation (`tmm::kinematics::batch`) against the scalar blocks, bit for bit, with
+//! failing lanes mixed in; and path synthesis by a global search built on it.
+
+use nalgebra::{Point2, Vector2};
+use tmm::kinematics::batch::{
+    coupler_point, four_bar_motions, four_bar_positions, four_bars_at, CrankAngles, FourBarColumns,
+    FourBarDims, Lane, Positions, Rates,
+};
+use tmm::kinematics::{crank, rrr_dyad, Branch, Motion, PointMotion};
+use tmm::Error;
+
+/// splitmix64: a seeded, reproducible generator.
+struct Rng(u64);
+
+impl Rng {
+    fn next(&mut self) -> u64 {
+        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
+        let mut z = self.0;
+        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+        z ^ (z >> 31)
+    }
+    fn unit(&mut self) -> f64 {
+        (self.next() >> 11) as f64 / (1u64 << 53) as f64
+    }
+    fn range(&mut self, lo: f64, hi: f64) -> f64 {
+        lo + (hi - lo) * self.unit()
+    }
+}
+
+/// A random four-bar, sometimes with a bad dimension (about one in twelve).
+fn random_dims(rng: &mut Rng) -> FourBarDims {
+    let mut d = FourBarDims {
+        o: Point2::new(rng.range(-1.0, 1.0), rng.range(-1.0, 1.0)),
+        c: Point2::new(rng.range(-1.0, 1.0), rng.range(-1.0, 1.0)),
+        l_oa: rng.range(0.05, 1.0),
+        l_ab: rng.range(0.05, 1.5),
+        l_cb: rng.range(0.05, 1.5),
+        branch: if rng.unit() < 0.5 {
+            Branch::Plus
+        } else {
+            Branch::Minus
+        },
+        coupler: Vector2::new(rng.range(-1.0, 1.0), rng.range(-1.0, 1.0)),
+    };
+    let bad = [f64::NAN, f64::INFINITY, 0.0, -0.3, 1e308, 1e-310];
+    if rng.unit() < 1.0 / 12.0 {
+        let v = bad[(rng.next() % bad.len() as u64) as usize];
+        match rng.next() % 5 {
+            0 => d.l_oa = v,
+            1 => d.l_ab = v,
+            2 => d.l_cb = v,
+            3 => d.o.x = v,
+            _ => d.c.y = v,
+        }
+    }
+    d
+}
+
+/// A crank angle at which `d` is at (or within rounding of) a dead or tangent position:
+/// |AC| = l_AB + l_CB or |l_AB − l_CB|, by choosing l_CB from the angle.
+fn at_dead_point(rng: &mut Rng, d: &mut FourBarDims) -> f64 {
+    let phi = rng.range(0.0, std::f64::consts::TAU);
+    let a = d.o + d.l_oa * Vector2::new(phi.cos(), phi.sin());
+    let ac = (d.c - a).norm();
+    let eps = [0.0, 1e-15, -1e-15, 1e-13, -1e-13, 1e-9][(rng.next() % 6) as usize];
+    if rng.unit() < 0.5 && ac > d.l_ab {
+        d.l_cb = ac - d.l_ab + eps;
+    } else {
+        d.l_cb = ac + d.l_ab + eps;
+    }
+    phi
+}
+
+/// The scalar blocks' answer for one lane: status, measure, and the written values
+/// (B, P, then v_B, a_B, v_P, a_P, ω2, ω3, ε2, ε3).
+fn scalar(d: &FourBarDims, phi: f64, w: f64, e: f64) -> (Lane, f64, Option<[f64; 16]>) {
+    let r = crank(d.o, d.l_oa, Motion::new(phi, w, e)).and_then(|c| {
+        rrr_dyad(c.a, PointMotion::fixed(d.c), d.l_ab, d.l_cb, d.branch).map(|r| (c.a, r))
+    });
+    match r {
+        Ok((a, r)) => {
+            let p = coupler_point(a.p, r.b.p, d.coupler_uv());
+            let pm = r.link2.motion_of(p);
+            let v = [
+                r.b.p.x,
+                r.b.p.y,
+                p.x,
+                p.y,
+                r.b.v.x,
+                r.b.v.y,
+                r.b.a.x,
+                r.b.a.y,
+                pm.v.x,
+                pm.v.y,
+                pm.a.x,
+                pm.a.y,
+                r.link2.omega,
+                r.link3.omega,
+                r.link2.epsilon,
+                r.link3.epsilon,
+            ];
+            if v[..12].iter().all(|x| x.is_finite()) {
+                (Lane::Ok, r.det, Some(v))
+            } else {
+                (Lane::Invalid, f64::NAN, None)
+            }
+        }
+        Err(Error::NotAssemblable { gap, .. }) => (Lane::NotAssemblable, gap, None),
+        Err(Error::Singular { value, .. }) => (Lane::Singular, value, None),
+        Err(_) => (Lane::Invalid, f64::NAN, None),
+    }
+}
+
+fn same(a: f64, b: f64) -> bool {
+    a.to_bits() == b.to_bits() || (a.is_nan() && b.is_nan())
+}
+
+/// Tallies of the lanes' statuses: Ok, NotAssemblable, Singular, Invalid.
+#[derive(Default, Debug)]
+struct Tally([usize; 4]);
+
+impl Tally {
+    fn add(&mut self, l: Lane) {
+        self.0[l as usize] += 1;
+    }
+}
+
+/// Compares lane `i` of a batch with the scalar blocks; `rates` when they were computed.
+#[allow(clippy::too_many_arguments)]
+fn check_lane(
+    out: &Positions,
+    rates: Option<&Rates>,
+    i: usize,
+    d: &FourBarDims,
+    phi: f64,
+    w: f64,
+    e: f64,
+    tally: &mut Tally,
+) {
+    let (lane, measure, values) = scalar(d, phi, w, e);
+    tally.add(lane);
+    assert_eq!(out.status[i], lane, "lane {i}: {d:?} at {phi}");
+    assert!(
+        same(out.measure[i], measure),
+        "lane {i}: measure {} vs {measure}",
+        out.measure[i]
+    );
+    let got = [out.b_x[i], out.b_y[i], out.p_x[i], out.p_y[i]];
+    match values {
+        Some(v) => {
+            for k in 0..4 {
+                assert!(
+                    same(got[k], v[k]),
+                    "lane {i} value {k}: {} vs {}",
+                    got[k],
+                    v[k]
+                );
+            }
+            if let Some(r) = rates {
+                let got = [
+                    r.v_b[0][i],
+                    r.v_b[1][i],
+                    r.a_b[0][i],
+                    r.a_b[1][i],
+                    r.v_p[0][i],
+                    r.v_p[1][i],
+                    r.a_p[0][i],
+                    r.a_p[1][i],
+                    r.omega[0][i],
+                    r.omega[1][i],
+                    r.epsilon[0][i],
+                    r.epsilon[1][i],
+                ];
+                for k in 0..12 {
+                    assert!(
+                        same(got[k], v[k + 4]),
+                        "lane {i} rate {k}: {} vs {}",
+                        got[k],
+                        v[k + 4]
+                    );
+                }
+            }
+        }
+        None => assert!(got.iter().all(|x| x.is_nan()), "lane {i}: {got:?}"),
+    }
+}
+
+/// Random angles, some far outside one turn and some not finite.
+fn random_angles(rng: &mut Rng, n: usize) -> Vec<f64> {
+    (0..n)
+        .map(|_| match rng.next() % 50 {
+            0 => f64::NAN,
+            1 => rng.range(-100.0, 100.0),
+            2 => f64::INFINITY,
+            _ => rng.range(0.0, std::f64::consts::TAU),
+        })
+        .collect()
+}
+
+#[test]
+fn positions_of_one_four_bar_equal_the_scalar_blocks_bit_for_bit() {
+    let mut rng = Rng(26);
+    let mut tally = Tally::default();
+    let mut out = Positions::default();
+    for case in 0..300 {
+        let mut d = random_dims(&mut rng);
+        let mut phi = random_angles(&mut rng, 67);
+        if case % 3 == 0 {
+            for p in &mut phi[..8] {
+                *p = at_dead_point(&mut rng, &mut d);
+            }
+        }
+        let angles = CrankAngles::new(&phi);
+        out.resize(phi.len());
+        let ok = four_bar_positions(&d, &angles, out.columns_mut()).unwrap();
+        assert_eq!(ok, out.status.iter().filter(|&&s| s == Lane::Ok).count());
+        for (i, &p) in phi.iter().enumerate() {
+            check_lane(&out, None, i, &d, p, 0.0, 0.0, &mut tally);
+        }
+    }
+    // Every kind of lane was met.
+    assert!(tally.0.iter().all(|&c| c > 20), "{tally:?}");
+}
+
+#[test]
+fn motions_of_one_four_bar_equal_the_scalar_blocks_bit_for_bit() {
+    let mut rng = Rng(2026);
+    let mut tally = Tally::default();
+    let mut out = Positions::default();
+    for case in 0..300 {
+        let mut d = random_dims(&mut rng);
+        let mut phi = random_angles(&mut rng, 41);
+        if case % 3 == 0 {
+            for p in &mut phi[..6] {
+                *p = at_dead_point(&mut rng, &mut d);
+            }
+        }
+        let (w, e) = match case % 7 {
+            0 => (0.0, 0.0),
+            1 => (1e200, 3.0),
+            _ => (rng.range(-50.0, 50.0), rng.range(-500.0, 500.0)),
+        };
+        let angles = CrankAngles::new(&phi);
+        out.resize(phi.len());
+        let mut rates = Rates::new(phi.len());
+        four_bar_motions(&d, &angles, w, e, out.columns_mut(), rates.columns_mut()).unwrap();
+        for (i, &p) in phi.iter().enumerate() {
+            check_lane(&out, Some(&rates), i, &d, p, w, e, &mut tally);
+        }
+    }
+    assert!(tally.0.iter().all(|&c| c > 20), "{tally:?}");
+}
+
+#[test]
+fn many_four_bars_at_one_angle_equal_the_scalar_blocks_bit_for_bit() {
+    let mut rng = Rng(7);
+    let mut tally = Tally::default();
+    for _ in 0..20 {
+        let phi = rng.range(-7.0, 7.0);
+        let mut bars = FourBarColumns::default();
+        let mut dims = Vec::new();
+        for k in 0..500 {
+            let mut d = random_dims(&mut rng);
+            if k % 10 == 0 {
+                // Dead or tangent at this very angle.
+                let a = d.o + d.l_oa * Vector2::new(phi.cos(), phi.sin());
+                d.l_cb = (d.c - a).norm() + d.l_ab * [1.0, -1.0][k % 20 / 10];
+                if d.l_cb <= 0.0 {
+                    d.l_cb = 0.1;
+                }
+            }
+            bars.push(&d);
+            dims.push(d);
+        }
+        let mut out = Positions::new(bars.len());
+        four_bars_at(&bars, phi, out.columns_mut()).unwrap();
+        for (i, d) in dims.iter().enumerate() {
+            check_lane(&out, None, i, d, phi, 0.0, 0.0, &mut tally);
+        }
+    }
+    assert!(tally.0.iter().all(|&c| c > 20), "{tally:?}");
+}
+
+#[test]
+fn columns_of_the_wrong_length_are_an_error_naming_the_column() {
+    let d = FourBarDims {
+        o: Point2::origin(),
+        c: Point2::new(0.4, 0.0),
+        l_oa: 0.1,
+        l_ab: 0.35,
+        l_cb: 0.3,
+        branch: Branch::Plus,
+        coupler: Vector2::zeros(),
+    };
+    let angles = CrankAngles::turn(10);
+    let mut out = Positions::new(10);
+    out.p_y.pop();
+    assert!(matches!(
+        four_bar_positions(&d, &angles, out.columns_mut()),
+        Err(Error::OutOfRange { name: "p_y", .. })
+    ));
+}
+
+#[cfg(feature = "rayon")]
+#[test]
+fn the_parallel_batch_equals_the_serial_one() {
+    use tmm::kinematics::batch::par_four_bar_positions;
+    let mut rng = Rng(3);
+    let d = random_dims(&mut rng);
+    let angles = CrankAngles::new(&random_angles(&mut rng, 20_000));
+    let (mut a, mut b) = (Positions::new(angles.len()), Positions::new(angles.len()));
+    four_bar_positions(&d, &angles, a.columns_mut()).unwrap();
+    par_four_bar_positions(&d, &angles, b.columns_mut()).unwrap();
+    assert_eq!(a.status, b.status);
+    for (x, y) in a.b_x.iter().zip(&b.b_x) {
+        assert!(same(*x, *y));
+    }
+}
+
+mod path {
+    use super::Rng;
+    use nalgebra::{Point2, Vector2};
+    use std::time::Duration;
+    use tmm::kinematics::batch::{four_bar_positions, CrankAngles, FourBarDims, Lane, Positions};
+    use tmm::kinematics::{Branch, Motion};
+    use tmm::linkage::Plan;
+    use tmm::synthesis::{path_generator, PathOptions, PathRequirement, Timing};
+    use tmm::Error;
+
+    /// A random crank-rocker that keeps γ ≥ 40° over a full turn, with a coupler point, and
+    /// its coupler points at `phis`; `None` when the draw misses the constraints.
+    fn random_path(rng: &mut Rng, phis: &[f64]) -> Option<(FourBarDims, Vec<[f64; 2]>)> {
+        let d = FourBarDims {
+            o: Point2::new(rng.range(-0.2, 0.2), rng.range(-0.2, 0.2)),
+            c: Point2::new(rng.range(0.3, 0.8), rng.range(-0.2, 0.2)),
+            l_oa: rng.range(0.08, 0.25),
+            l_ab: rng.range(0.3, 0.9),
+            l_cb: rng.range(0.3, 0.9),
+            branch: if rng.unit() < 0.5 {
+                Branch::Plus
+            } else {
+                Branch::Minus
+            },
+            coupler: Vector2::new(rng.range(-0.3, 0.6), rng.range(-0.4, 0.4)),
+        };
+        let turn = CrankAngles::turn(720);
+        let mut out = Positions::new(turn.len());
+        four_bar_positions(&d, &turn, out.columns_mut()).unwrap();
+        let sin_g = 40f64.to_radians().sin();
+        let good = (0..turn.len())
+            .all(|i| out.status[i] == Lane::Ok && out.measure[i].abs() >= sin_g + 1e-3);
+        let frame = (d.c - d.o).norm();
+        let l = [frame, d.l_oa, d.l_ab, d.l_cb];
+        let ratio = l.iter().cloned().fold(0.0, f64::max) / l.iter().cloned().fold(9.0, f64::min);
+        if !good || ratio > 9.0 {
+            return None;
+        }
+        let angles = CrankAngles::new(phis);
+        let mut out = Positions::new(phis.len());
+        four_bar_positions(&d, &angles, out.columns_mut()).unwrap();
+        let pts: Vec<[f64; 2]> = (0..phis.len()).map(|i| [out.p_x[i], out.p_y[i]]).collect();
+        // Within the search's bounds (5 path sizes about the centroid).
+        let n = pts.len() as f64;
+        let c = pts
+            .iter()
+            .fold([0.0, 0.0], |a, p| [a[0] + p[0] / n, a[1] + p[1] / n]);
+        let size = pts
+            .iter()
+            .map(|p| (p[0] - c[0]).hypot(p[1] - c[1]))
+            .fold(0.0, f64::max);
+        let far = [d.o, d.c]
+            .iter()
+            .map(|q| (q.x - c[0]).hypot(q.y - c[1]))
+            .chain(l)
+            .fold(0.0, f64::max);
+        (far < 4.0 * size).then_some((d, pts))
+    }
+
+    fn path_size(pts: &[[f64; 2]]) -> f64 {
+        let n = pts.len() as f64;
+        let c = pts
+            .iter()
+            .fold([0.0, 0.0], |a, p| [a[0] + p[0] / n, a[1] + p[1] / n]);
+        pts.iter()
+            .map(|p| (p[0] - c[0]).hypot(p[1] - c[1]))
+            .fold(0.0, f64::max)
+    }
+
+    /// Synthesises `req`, checks the best design's mean miss against 1e-6 of the path's size
+    /// and the engine's coupler points against the reported ones; returns the relative miss.
+    fn recover(req: &PathRequirement, seed: u64) -> f64 {
+        let opts = PathOptions::default()
+            .with_seed(seed)
+            .with_population(60)
+            .with_max_evaluations(100_000)
+            .with_max_time(Duration::from_secs(20))
+            .with_designs(2);
+        let designs = path_generator(req, &opts, |_| true).unwrap();
+        let size = path_size(&req.points);
+        let best = &designs[0];
+        let plan = Plan::new(&best.synthesis.linkage).unwrap();
+        for (phi, p) in best.crank_angles.iter().zip(&best.coupler_points) {
+            let q = plan
+                .kinematics(Motion::fixed(*phi))
+                .unwrap()
+                .point("P")
+                .unwrap()
+                .p;
+            let miss = (q.x - p[0]).hypot(q.y - p[1]) / size;
+            assert!(miss <= 1e-10, "engine vs reported: {miss:e}");
+        }
+        best.mean_error / size
+    }
+
+    fn cases() -> usize {
+        std::env::var("TMM_PATH_CASES")
+            .ok()
+            .and_then(|s| s.parse().ok())
+            .unwrap_or(1)
+    }
+
+    fn draw(rng: &mut Rng, phis: &[f64]) -> Vec<[f64; 2]> {
+        loop {
+            if let Some((_, pts)) = random_path(rng, phis) {
+                return pts;
+            }
+        }
+    }
+
+    #[test]
+    fn recovers_prescribed_timing() {
+        let mut rng = Rng(230);
+        for case in 0..cases() {
+            let theta0 = rng.range(0.0, std::f64::consts::TAU);
+            let delta: Vec<f64> = (0..6).map(|k| 1.0 * k as f64).collect();
+            let phis: Vec<f64> = delta.iter().map(|d| theta0 + d).collect();
+            let points = draw(&mut rng, &phis);
+            let req = PathRequirement {
+                points,
+                timing: Timing::Prescribed(delta),
+            };
+            let e = recover(&req, case as u64);
+            assert!(e <= 1e-6, "case {case}: mean miss {e:e} of the path's size");
+        }
+    }
+
+    #[test]
+    fn recovers_free_timing() {
+        let mut rng = Rng(231);
+        for case in 0..cases() {
+            let phis: Vec<f64> = (0..10)
+                .map(|k| 0.6 * k as f64 + rng.range(0.0, 0.2))
+                .collect();
+            let points = draw(&mut rng, &phis);
+            let req = PathRequirement {
+                points,
+                timing: Timing::Free,
+            };
+            let e = recover(&req, case as u64);
+            assert!(e <= 1e-6, "case {case}: mean miss {e:e} of the path's size");
+        }
+    }
+
+    #[test]
+    fn recovers_a_closed_curve() {
+        let mut rng = Rng(232);
+        for case in 0..cases() {
+            let phis: Vec<f64> = (0..24)
+                .map(|k| std::f64::consts::TAU * k as f64 / 24.0)
+                .collect();
+            let points = draw(&mut rng, &phis);
+            let req = PathRequirement {
+                points,
+                timing: Timing::ClosedCurve,
+            };
+            let e = recover(&req, case as u64);
+            assert!(e <= 1e-6, "case {case}: mean miss {e:e} of the path's size");
+        }
+    }
+
+    #[test]
+    fn bad_requirements_name_the_parameter() {
+        let opts = PathOptions::default();
+        let pts: Vec<[f64; 2]> = (0..9).map(|k| [k as f64, (k * k) as f64]).collect();
+        let few = PathRequirement {
+            points: pts[..8].to_vec(),
+            timing: Timing::Free,
+        };
+        assert!(matches!(
+            path_generator(&few, &opts, |_| true),
+            Err(Error::OutOfRange { name: "points", .. })
+        ));
+        let mut nan = pts.clone();
+        nan[3][1] = f64::NAN;
+        let bad = PathRequirement {
+            points: nan,
+            timing: Timing::ClosedCurve,
+        };
+        assert!(matches!(
+            path_generator(&bad, &opts, |_| true),
+            Err(Error::NonFinite { name: "points", .. })
+        ));
+        let mut same = pts.clone();
+        same[5] = same[2];
+        let bad = PathRequirement {
+            points: same,
+            timing: Timing::Free,
+        };
+        assert!(matches!(
+            path_generator(&bad, &opts, |_| true),
+            Err(Error::NoMechanism { .. })
+        ));
+        let timed = PathRequirement {
+            points: pts[..5].to_vec(),
+            timing: Timing::Prescribed(vec![0.0, 0.1, f64::INFINITY, 0.3, 0.4]),
+        };
+        assert!(matches!(
+            path_generator(&timed, &opts, |_| true),
+            Err(Error::NonFinite { name: "timing", .. })
+        ));
+    }
+}
