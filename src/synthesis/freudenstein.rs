@@ -156,6 +156,11 @@ fn solve_ls(p: &[(f64, f64)]) -> Result<[f64; 3]> {
         _ => 1.0,
     });
     let rhs = DVector::from_fn(n, |i, _| (p[i].0 - p[i].1).cos());
+    // The SVD's iteration does not end on a non-finite entry.
+    crate::error::computed_all(
+        "Freudenstein's least-squares system",
+        m.iter().chain(rhs.iter()),
+    )?;
     let svd = m.svd(true, true);
     let (smax, smin) = (svd.singular_values.max(), svd.singular_values.min());
     if !(smin > 1e-12 * smax) {
@@ -509,6 +514,11 @@ pub fn function_generator<F: Fn(f64) -> f64>(
         .iter()
         .map(|&x| Ok((crank_angle(x), rocker_angle(finite("f(x)", f(x))?))))
         .collect::<Result<_>>()?;
+    // Linear maps of huge ranges may overflow; a non-finite angle would stall the SVD.
+    crate::error::computed_all(
+        "the precision points' angles",
+        pairs.iter().flat_map(|(p, q)| [p, q]),
+    )?;
     let k = if n == 3 {
         solve3(&pairs)?
     } else {
