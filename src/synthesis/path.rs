@@ -206,7 +206,7 @@ const POLISHED: usize = 8;
 /// Every how many generations the best member is polished within the evolution.
 const MEMETIC: usize = 5;
 /// Generations without improvement that end a run of the differential evolution.
-const STAGNATION: usize = 60;
+const STAGNATION: usize = 40;
 
 struct Problem {
     targets: Vec<V>,
@@ -282,6 +282,27 @@ impl Problem {
         self.out.status[i] == Lane::Ok && self.out.measure[i].abs() >= self.sin_gamma
     }
 
+    /// How far lane `i` is from acceptable: the shortfall of |sin γ| below sin \[γ\], the gap
+    /// (in path sizes) plus 1 where it does not assemble, 2 where it is singular or invalid.
+    fn shortfall(&self, i: usize) -> f64 {
+        let m = self.out.measure[i];
+        match self.out.status[i] {
+            Lane::Ok => (self.sin_gamma - m.abs()).max(0.0),
+            Lane::NotAssemblable => 1.0 + m.abs().min(10.0),
+            _ => 2.0,
+        }
+    }
+
+    /// The penalty of an infeasible candidate: the mean shortfall over the lanes `lanes`.
+    fn penalty(&self, lanes: impl Iterator<Item = usize>) -> f64 {
+        let (mut sum, mut n) = (0.0, 0usize);
+        for i in lanes {
+            sum += self.shortfall(i);
+            n += 1;
+        }
+        INFEASIBLE + sum / n.max(1) as f64
+    }
+
     /// The global stage's objective of the genes `g`.
     fn objective(&mut self, g: &[f64]) -> f64 {
         let p = self.lengths_ok(g);
@@ -306,7 +327,7 @@ impl Problem {
                 let _ = four_bar_positions(&d, &self.angles, self.out.columns_mut());
                 let bad = (0..self.phi.len()).filter(|&i| !self.lane_ok(i)).count();
                 if bad > 0 {
-                    return INFEASIBLE + bad as f64 / self.phi.len() as f64;
+                    return self.penalty(0..self.phi.len());
                 }
                 let n = self.targets.len();
                 (0..n)
@@ -322,7 +343,7 @@ impl Problem {
                 let closed = matches!(self.timing, Timing::ClosedCurve);
                 let n_ok = ok.iter().filter(|&&b| b).count();
                 if n_ok == 0 || (closed && n_ok < m) {
-                    return INFEASIBLE + (m - n_ok) as f64 / m as f64;
+                    return self.penalty(0..m);
                 }
                 let mut sum = 0.0;
                 let mut idx = Vec::with_capacity(self.targets.len());
@@ -356,16 +377,13 @@ impl Problem {
                     let turns = wind(1).min(wind(-1)) as f64 / m as f64;
                     sum / n + 0.2 * (turns - 1.0)
                 } else {
-                    let bad = arc_of(&idx.iter().map(|&i| self.turn.phi()[i]).collect::<Vec<_>>())
-                        .map_or(0, |(start, span)| {
-                            (0..m)
-                                .filter(|&i| {
-                                    !ok[i] && normalize_angle(self.turn.phi()[i] - start) <= span
-                                })
-                                .count()
-                        });
-                    if bad > 0 {
-                        return INFEASIBLE + bad as f64 / m as f64;
+                    let (start, span) =
+                        arc_of(&idx.iter().map(|&i| self.turn.phi()[i]).collect::<Vec<_>>())
+                            .unwrap_or((0.0, TAU));
+                    let phi = self.turn.phi();
+                    let in_arc = |i: &usize| normalize_angle(phi[*i] - start) <= span;
+                    if (0..m).filter(in_arc).any(|i| !ok[i]) {
+                        return self.penalty((0..m).filter(in_arc));
                     }
                     sum / n
                 }
@@ -416,7 +434,12 @@ impl Problem {
     fn lm(&self, x: Vec<f64>, sigma: f64, iterations: usize) -> Vec<f64> {
         let res = |x: &[f64]| pb_residuals(&self.targets, &self.timing, x, sigma);
         let mut accept = |x: &[f64]| self.lengths_ok(&gene_vec(x, sigma)) == 0.0;
-        levenberg_marquardt(&res, &mut accept, x, iterations)
+        let separable = if let Timing::Prescribed(_) = self.timing {
+            x.len()
+        } else {
+            9
+        };
+        levenberg_marquardt(&res, &mut accept, x, separable, iterations)
     }
 
     fn angle_of(&self, x: &[f64], i: usize) -> f64 {
@@ -560,10 +583,15 @@ fn nelder_mead(f: &mut dyn FnMut(&[f64]) -> f64, x0: &[f64], step: &[f64], max: 
 
 /// Levenberg–Marquardt on the residuals, with a central-difference Jacobian; a step is taken
 /// only where `accept` agrees (the design stays feasible).
+///
+/// The unknowns from `separable` on are the crank angles of the points, one each: angle k
+/// moves only residuals 2(k − separable) and the next, so one pair of evaluations gives all
+/// their columns of the Jacobian.
 fn levenberg_marquardt(
     res: &dyn Fn(&[f64]) -> Option<Vec<f64>>,
     accept: &mut dyn FnMut(&[f64]) -> bool,
     x0: Vec<f64>,
+    separable: usize,
     iterations: usize,
 ) -> Vec<f64> {
     let mut x = x0;
@@ -577,8 +605,9 @@ fn levenberg_marquardt(
         }
         let m = r.len();
         let mut j = DMatrix::zeros(m, n);
-        for k in 0..n {
-            let h = 1e-7 * x[k].abs().max(1.0);
+        let step = |k: usize| 1e-7 * x[k].abs().max(1.0);
+        for k in 0..separable.min(n) {
+            let h = step(k);
             let (mut xp, mut xm) = (x.clone(), x.clone());
             xp[k] += h;
             xm[k] -= h;
@@ -587,6 +616,22 @@ fn levenberg_marquardt(
             };
             for i in 0..m {
                 j[(i, k)] = (rp[i] - rm[i]) / (2.0 * h);
+            }
+        }
+        if separable < n {
+            let (mut xp, mut xm) = (x.clone(), x.clone());
+            for k in separable..n {
+                xp[k] += step(k);
+                xm[k] -= step(k);
+            }
+            let (Some(rp), Some(rm)) = (res(&xp), res(&xm)) else {
+                return x;
+            };
+            for k in separable..n {
+                let h = step(k);
+                for i in [2 * (k - separable), 2 * (k - separable) + 1] {
+                    j[(i, k)] = (rp[i] - rm[i]) / (2.0 * h);
+                }
             }
         }
         let jt = j.transpose();
