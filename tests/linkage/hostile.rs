@@ -17,7 +17,10 @@
 //! `Course::new` with hostile inputs and styles; on every bundled linkage and on every ready
 //! mechanism's description; and the ready mechanisms (`FourBar`, `SliderCrank`, `Compressor`,
 //! `SixBar`, `RockingCylinder`: `plan`, `strokes`, `linkage`, `grashof`) with every public
-//! field hostile. `TMM_HOSTILE_CASES` cases per sweep (default 200).
+//! field hostile; every `Ok` plan is checked finite whole (link data, joints, points, loads).
+//! Planning is linear: `Plan::decomposition_work` on random descriptions of up to 10⁴ joints
+//! in random and last-first order, its exponent fitted over the sizes.
+//! `TMM_HOSTILE_CASES` cases per sweep (default 200).
 
 use std::panic::{catch_unwind, AssertUnwindSafe};
 use tmm::kinematics::{Motion, Rotation};
