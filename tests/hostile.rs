@@ -22,7 +22,12 @@
 //!   `CoaxialPropellers::exact`, `CoaxialPropellers::drift_acceleration`,
 //!   `DecoupledRpArm::closed_form`, `LandingGear::phi_h`.
 //!
-//! 44 entry points. The number of generated cases per sweep is `TMM_HOSTILE_CASES`
+//! - overflowing data: `IndicatorDiagram::force`, `RprSeed::to_dyad`, `PaperGroup::geometry`,
+//!   `PaperGroup::loads`, `FiveBar` (`inertia`, `inertia_derivatives`, `potential`,
+//!   `potential_gradient`, `forces`, `terms`), `RpArm` and `DecoupledRpArm` (`inertia`,
+//!   `inertia_derivatives`, `damping`).
+//!
+//! 58 entry points. The number of generated cases per sweep is `TMM_HOSTILE_CASES`
 //! (default 200; run with a larger number in release, for example
 //! `TMM_HOSTILE_CASES=100000 cargo test --release --test hostile`).
 
@@ -870,4 +875,248 @@ fn coaxial_closed_form_holds_at_large_lambda_t() {
         let scale = direct.qd[i].abs().max(1.0);
         assert!((direct.qd[i] - composed.qd[i]).abs() <= 1e-12 * scale);
     }
+}
+
+// ---------------------------------------------------------------------------------------
+// Sweeps: finite data whose products overflow
+// ---------------------------------------------------------------------------------------
+
+#[test]
+fn sweep_overflowing_data() {
+    use tmm::dynamics::machines::DecoupledRpArm;
+    use tmm::kinetostatics::RprSeed;
+    use tmm::linkage::IndicatorDiagram;
+    sweep(41, |g| {
+        let d = IndicatorDiagram {
+            area: g.f(),
+            outward: vec![[0.0, g.f()], [g.f().abs().min(1.0), g.f()], [1.0, g.f()]],
+            inward: vec![[g.f(), g.f()], [1.0, g.f()]],
+        };
+        let (s, sd, guide, head, crank_end) = (g.f(), g.f(), g.v(), g.f(), g.f());
+        check("IndicatorDiagram::force", &(&d, s, sd, guide, head), || {
+            d.force(s, sd, guide, head, crank_end)
+        });
+        check("IndicatorDiagram::force", &(&d, s, sd), || {
+            d.force(s, sd, Vector2::new(0.0, 1.0), 0.3, 0.2)
+        });
+
+        let r = RprSeed {
+            l_ab: g.len(),
+            l_ec: g.len(),
+            l_bc: g.f(),
+            l_as2: g.f(),
+            l_es3: g.f(),
+            phi2: g.f(),
+            f2: g.f(),
+            gamma2: g.f(),
+            f3: g.f(),
+            gamma3: g.f(),
+            m2: g.f(),
+            m3: g.f(),
+        };
+        check("RprSeed::to_dyad", &r, || r.to_dyad());
+
+        let mut p = PaperGroup::example();
+        for _ in 0..2 {
+            match g.next() % 6 {
+                0 => p.l1 = g.len(),
+                1 => p.l2 = g.f(),
+                2 => p.l3 = g.f(),
+                3 => p.l4 = g.len(),
+                4 => p.alpha4 = g.f(),
+                _ => p.f1 = g.f(),
+            }
+        }
+        check("PaperGroup::geometry", &p, || p.geometry());
+        check("PaperGroup::loads", &p, || p.loads());
+
+        let mut fb = FiveBar::default();
+        for _ in 0..2 {
+            let x = g.f();
+            match g.next() % 8 {
+                0 => fb.m2 = x,
+                1 => fb.m3 = x,
+                2 => fb.j_s2 = Some(x),
+                3 => fb.j_s3 = Some(x),
+                4 => fb.gravity = x,
+                5 => fb.m_on = x,
+                6 => fb.i1 = x,
+                _ => fb.l_as2 = x,
+            }
+        }
+        let q = if g.next().is_multiple_of(2) {
+            Vector2::new(2.0, 1.0)
+        } else {
+            Vector2::new(g.f(), g.f())
+        };
+        let qd = g.v();
+        check("FiveBar::point_masses", &fb, || fb.point_masses());
+        check("FiveBar::inertia", &(fb, q), || fb.inertia(&q));
+        check("FiveBar::inertia_derivatives", &(fb, q), || {
+            fb.inertia_derivatives(&q)
+        });
+        check("FiveBar::potential", &(fb, q), || fb.potential(&q));
+        check("FiveBar::potential_gradient", &(fb, q), || {
+            fb.potential_gradient(&q)
+        });
+        check("FiveBar::forces", &(fb, q, qd), || fb.forces(0.0, &q, &qd));
+        check("FiveBar::terms", &(fb, q, qd), || fb.terms(0.0, &q, &qd));
+
+        let mut arm = RpArm::default();
+        for _ in 0..2 {
+            let x = g.f();
+            match g.next() % 6 {
+                0 => arm.iz1 = x,
+                1 => arm.iz2 = x,
+                2 => arm.m2 = x,
+                3 => arm.r0 = x,
+                4 => arm.b1 = x,
+                _ => arm.b2 = x,
+            }
+        }
+        let q = Vector2::new(g.f(), g.f());
+        check("RpArm::inertia", &(arm, q), || arm.inertia(&q));
+        check("RpArm::inertia_derivatives", &(arm, q), || {
+            arm.inertia_derivatives(&q)
+        });
+        check("RpArm::damping", &(arm, q), || arm.damping(&q));
+        let dec: DecoupledRpArm = arm.decoupled();
+        check("DecoupledRpArm::inertia", &(arm, q), || dec.inertia(&q));
+        check("DecoupledRpArm::damping", &(arm, q), || dec.damping(&q));
+        let s = State::new(0.0, g.v(), g.v());
+        let t = g.f();
+        check("DecoupledRpArm::closed_form", &(arm, s, t), || {
+            dec.closed_form(&s, t)
+        });
+    });
+}
+
+#[test]
+fn repro_overflowing_data_is_an_overflow() {
+    use tmm::kinetostatics::RprSeed;
+    use tmm::linkage::IndicatorDiagram;
+    let overflow = |r: tmm::Result<String>, what: &str| {
+        assert!(matches!(r, Err(Error::Overflow { .. })), "{what}: {r:?}");
+    };
+    // A load far out along the rod.
+    let r = RprSeed {
+        l_ab: 1e308,
+        l_ec: 1e308,
+        l_bc: 0.0,
+        l_as2: -1e308,
+        l_es3: 1e308,
+        phi2: 0.0,
+        f2: 1.0,
+        gamma2: 0.0,
+        f3: 1.0,
+        gamma3: 0.0,
+        m2: 0.0,
+        m3: 0.0,
+    };
+    overflow(r.to_dyad().map(|d| format!("{d:?}")), "RprSeed::to_dyad");
+    // The paper group with links too long for their sum.
+    let p = PaperGroup {
+        l3: 1.5e308,
+        l4: 1.5e308,
+        ..PaperGroup::example()
+    };
+    overflow(
+        p.geometry().map(|g| format!("{g:?}")),
+        "PaperGroup::geometry",
+    );
+    overflow(p.loads().map(|g| format!("{g:?}")), "PaperGroup::loads");
+    // The five-bar's masses and ΔJ too large.
+    let base = FiveBar::default();
+    let fb = FiveBar {
+        m2: f64::MAX,
+        m3: f64::MAX,
+        l_as2: base.l_ab,
+        l_bs3: 0.0,
+        ..base
+    };
+    overflow(
+        fb.point_masses().map(|m| format!("{m:?}")),
+        "FiveBar::point_masses",
+    );
+    let q = Vector2::new(2.0, 1.0);
+    let fb = FiveBar {
+        j_s2: Some(-1e308),
+        j_s3: Some(1e308),
+        ..FiveBar::default()
+    };
+    if let Ok(k) = fb.kinematics(&q) {
+        let _ = k;
+        let r = fb.inertia_derivatives(&q);
+        assert!(
+            r.as_ref()
+                .map_or(true, |d| d.iter().all(|m| m.iter().all(|x| x.is_finite()))),
+            "{r:?}"
+        );
+    }
+    // The R–P arm: l² m2 and b1 r0² too large.
+    let arm = RpArm {
+        m2: 1e300,
+        r0: 1e200,
+        ..RpArm::default()
+    };
+    let q = Vector2::new(0.0, 1e10);
+    overflow(arm.inertia(&q).map(|m| format!("{m:?}")), "RpArm::inertia");
+    overflow(arm.damping(&q).map(|m| format!("{m:?}")), "RpArm::damping");
+    let q = Vector2::new(0.0, 1e300);
+    overflow(
+        arm.inertia_derivatives(&q).map(|m| format!("{m:?}")),
+        "RpArm::inertia_derivatives",
+    );
+    let dec = RpArm {
+        iz1: 1e308,
+        iz2: 1e308,
+        ..RpArm::default()
+    }
+    .decoupled();
+    overflow(
+        dec.inertia(&q).map(|m| format!("{m:?}")),
+        "DecoupledRpArm::inertia",
+    );
+    // The gas force: a NaN station, a negative area, a force p·A beyond f64.
+    let d = IndicatorDiagram {
+        area: 0.01,
+        outward: vec![[0.0, 1e5], [f64::NAN, 1e5], [1.0, 0.0]],
+        inward: vec![[0.0, 1e5], [1.0, 1e5]],
+    };
+    let g = Vector2::new(0.0, 1.0);
+    // Moving away from the head: the outward branch, between its NaN station and its last.
+    let e = d.force(0.25, -1.0, g, 0.3, 0.2).unwrap_err();
+    assert!(
+        matches!(e, Error::NonFinite { name, .. } if name.starts_with("indicator diagram")),
+        "{e}"
+    );
+    let d = IndicatorDiagram {
+        area: -0.01,
+        outward: vec![[0.0, 1e5], [1.0, 0.0]],
+        inward: vec![[0.0, 1e5], [1.0, 1e5]],
+    };
+    let e = d.force(0.25, 1.0, g, 0.3, 0.2).unwrap_err();
+    assert!(
+        matches!(
+            e,
+            Error::NonPositive {
+                name: "piston area",
+                ..
+            }
+        ),
+        "{e}"
+    );
+    let d = IndicatorDiagram {
+        area: 1e300,
+        outward: vec![[0.0, 1e300], [1.0, 0.0]],
+        inward: vec![[0.0, 1e300], [1.0, 1e300]],
+    };
+    overflow(
+        d.force(0.25, -1.0, g, 0.3, 0.2).map(|f| format!("{f:?}")),
+        "IndicatorDiagram::force",
+    );
+    let e = d
+        .force(0.25, 1.0, Vector2::new(f64::NAN, 1.0), 0.3, 0.2)
+        .unwrap_err();
+    assert!(matches!(e, Error::NonFinite { .. }), "{e}");
 }

@@ -308,7 +308,9 @@ impl RprSeed {
     /// The same dyad in Cartesian form, with E at the origin.
     ///
     /// # Errors
-    /// Non-finite numbers, non-positive lengths, or l_EA = l_AB − l_BC + l_EC ≤ 0.
+    /// Non-finite numbers, non-positive lengths, or l_EA = l_AB − l_BC + l_EC ≤ 0;
+    /// [`Error::Overflow`](crate::Error::Overflow) when l_EA, a point of the dyad or a load
+    /// overflows.
     pub fn to_dyad(&self) -> Result<RprDyad> {
         positive("l_AB", self.l_ab)?;
         positive("l_EC", self.l_ec)?;
@@ -324,17 +326,38 @@ impl RprSeed {
             ("M2", self.m2),
             ("M3", self.m3),
         ])?;
-        let l_ea = positive("l_EA", self.l_ab - self.l_bc + self.l_ec)?;
+        let l_ea = positive(
+            "l_EA",
+            crate::error::computed("l_EA", self.l_ab - self.l_bc + self.l_ec)?,
+        )?;
         let e = Point2::origin();
         let u = unit(self.phi2);
         let a = e - u * l_ea;
-        Ok(RprDyad {
+        let dyad = RprDyad {
             a,
             e,
             axis: u,
             load2: Load::polar(a + u * self.l_as2, self.f2, self.gamma2, self.m2),
             load3: Load::polar(e - u * self.l_es3, self.f3, self.gamma3, self.m3),
-        })
+        };
+        for (what, load) in [
+            ("RPR dyad's load on the rod", dyad.load2),
+            ("RPR dyad's load on the cylinder", dyad.load3),
+        ] {
+            crate::error::computed_all(
+                what,
+                [
+                    load.point.x,
+                    load.point.y,
+                    load.force.x,
+                    load.force.y,
+                    load.moment,
+                ]
+                .iter(),
+            )?;
+        }
+        crate::error::computed_all("RPR dyad's joint A", dyad.a.coords.iter())?;
+        Ok(dyad)
     }
 
     /// Solves the dyad; see [`RprDyad::solve`].

@@ -113,8 +113,10 @@ impl IndicatorDiagram {
     /// at `s_crank` (s_head > s_crank). The force pushes away from the head: −p·A·guide.
     ///
     /// # Errors
-    /// As [`IndicatorDiagram::pressure`], and [`Error::NonPositive`] for a stroke
-    /// s_head − s_crank ≤ 0.
+    /// As [`IndicatorDiagram::pressure`]; [`Error::NonFinite`] for a non-finite s, ṡ, guide
+    /// direction or piston area; [`Error::NonPositive`] for a stroke s_head − s_crank ≤ 0 or a
+    /// piston area ≤ 0; [`Error::Overflow`] when the stroke (the difference of finite dead
+    /// centres) or the force p·A overflows.
     pub fn force(
         &self,
         s: f64,
@@ -123,10 +125,41 @@ impl IndicatorDiagram {
         s_head: f64,
         s_crank: f64,
     ) -> Result<Vector2<f64>> {
-        let stroke = crate::error::positive("piston stroke", s_head - s_crank)?;
-        let x = (s_head - s) / stroke;
+        finite("piston slide", s)?;
+        finite("piston speed", s_rate)?;
+        finite("head-end dead centre", s_head)?;
+        finite("crank-end dead centre", s_crank)?;
+        crate::error::finite2(["guide direction x", "guide direction y"], guide)?;
+        let area = crate::error::positive("piston area", self.area)?;
+        let stroke = crate::error::positive(
+            "piston stroke",
+            crate::error::computed("piston stroke", s_head - s_crank)?,
+        )?;
+        let x = crate::error::computed("stroke fraction", (s_head - s) / stroke)?;
         let p = self.pressure(x, s_rate > 0.0)?;
-        Ok(-p * finite("piston area", self.area)? * guide)
+        let f = -p * area * guide;
+        crate::error::computed_all("gas force", f.iter())?;
+        Ok(f)
+    }
+}
+
+impl IndicatorDiagram {
+    /// The first point of either branch with a non-finite station or pressure, described for
+    /// an error (`None` when every point is finite).
+    pub(crate) fn non_finite_point(&self) -> Option<String> {
+        [("outward", &self.outward), ("inward", &self.inward)]
+            .into_iter()
+            .find_map(|(branch, table)| {
+                table
+                    .iter()
+                    .position(|p| !(p[0].is_finite() && p[1].is_finite()))
+                    .map(|k| {
+                        format!(
+                            "diagram.{branch}[{k}] must be finite, got [{}, {}]",
+                            table[k][0], table[k][1]
+                        )
+                    })
+            })
     }
 }
 
@@ -144,12 +177,16 @@ fn interpolate(table: &[[f64; 2]], x: f64) -> Result<f64> {
         return Err(out_of_table(x));
     }
     let [x0, y0] = table[k - 1];
+    finite("indicator diagram station", x0)?;
+    finite("indicator diagram pressure", y0)?;
     if x == x0 {
         return finite("pressure", y0);
     }
     let Some(&[x1, y1]) = table.get(k) else {
         return Err(out_of_table(x));
     };
+    finite("indicator diagram station", x1)?;
+    finite("indicator diagram pressure", y1)?;
     if x1 <= x0 {
         return Err(out_of_table(x1));
     }

@@ -17,7 +17,10 @@
 //! `Course::new` with hostile inputs and styles; on every bundled linkage and on every ready
 //! mechanism's description; and the ready mechanisms (`FourBar`, `SliderCrank`, `Compressor`,
 //! `SixBar`, `RockingCylinder`: `plan`, `strokes`, `linkage`, `grashof`) with every public
-//! field hostile. `TMM_HOSTILE_CASES` cases per sweep (default 200).
+//! field hostile; every `Ok` plan is checked finite whole (link data, joints, points, loads).
+//! Planning is linear: `Plan::decomposition_work` on random descriptions of up to 10⁴ joints
+//! in random and last-first order, its exponent fitted over the sizes.
+//! `TMM_HOSTILE_CASES` cases per sweep (default 200).
 
 use std::panic::{catch_unwind, AssertUnwindSafe};
 use tmm::kinematics::{Motion, Rotation};
@@ -156,6 +159,7 @@ fn hostile_descriptions_plan_or_err_and_then_solve_or_err() {
             let Ok(plan) = no_panic(&what, || Plan::new(&l)) else {
                 continue;
             };
+            check_plan(&plan, &what);
             for k in 0..4 {
                 let input = Motion::new(plan.reference_input() + 1.3 * f64::from(k), 5.0, 1.0);
                 no_panic(&what, || check_position(&plan, input, &what));
@@ -422,6 +426,7 @@ fn mechanism_checks(
         }
     }
     if let Ok(plan) = plan {
+        check_plan(&plan, what);
         for input in [Motion::fixed(plan.reference_input()), g.motion()] {
             check_position(&plan, input, what);
         }
@@ -892,4 +897,233 @@ fn cycle_inputs_refuse_what_has_no_positions() {
         try_course_inputs(&strokes, 0, 1.0),
         Err(Error::OutOfRange { .. })
     ));
+}
+
+/// A random linkage of the 2nd class of `dyads` RRR dyads, each hinged to two links already
+/// placed (the frame, the crank or an earlier dyad's links) at random points, its joints and
+/// links then listed in a random order (or last-first): 3·dyads + 1 joints.
+fn random_chain(dyads: usize, g: &mut Gen, reversed: bool) -> Linkage {
+    use tmm::linkage::{Joint, Link};
+    let mut joints = vec![Joint::revolute("O", [0.0, 0.0])];
+    let mut members: Vec<Vec<String>> = vec![vec!["O".into()], vec!["O".into()]];
+    let p = |g: &mut Gen| [4.0 * g.unit() - 2.0, 4.0 * g.unit() - 2.0];
+    for k in 0..dyads {
+        let known = members.len() as u64;
+        let first = if k == 0 {
+            1
+        } else {
+            (g.next() % known) as usize
+        };
+        let second = (g.next() % known) as usize;
+        let (l2, l3) = (members.len(), members.len() + 1);
+        members.push(Vec::new());
+        members.push(Vec::new());
+        for (name, a, b) in [
+            (format!("A{k}"), first, l2),
+            (format!("B{k}"), l2, l3),
+            (format!("C{k}"), l3, second),
+        ] {
+            joints.push(Joint::revolute(&name, p(g)));
+            members[a].push(name.clone());
+            members[b].push(name);
+        }
+    }
+    let mut links: Vec<Link> = members
+        .iter()
+        .enumerate()
+        .map(|(k, js)| {
+            let name = match k {
+                0 => "frame".to_owned(),
+                1 => "crank".to_owned(),
+                k => format!("L{k}"),
+            };
+            let js: Vec<&str> = js.iter().map(String::as_str).collect();
+            Link::new(&name, &js)
+        })
+        .collect();
+    if reversed {
+        joints.reverse();
+        links.reverse();
+    } else {
+        for v in 1..joints.len() {
+            joints.swap(v, (g.next() % (v as u64 + 1)) as usize);
+        }
+        for v in 1..links.len() {
+            links.swap(v, (g.next() % (v as u64 + 1)) as usize);
+        }
+    }
+    Linkage {
+        name: format!("chain of {dyads} dyads"),
+        joints,
+        links,
+        ..Linkage::default()
+    }
+}
+
+/// The slope of the least-squares line through (ln x, ln y).
+fn fitted_exponent(points: &[(f64, f64)]) -> f64 {
+    let n = points.len() as f64;
+    let (lx, ly): (Vec<f64>, Vec<f64>) = points.iter().map(|&(x, y)| (x.ln(), y.ln())).unzip();
+    let (mx, my) = (lx.iter().sum::<f64>() / n, ly.iter().sum::<f64>() / n);
+    let sxy: f64 = lx.iter().zip(&ly).map(|(x, y)| (x - mx) * (y - my)).sum();
+    let sxx: f64 = lx.iter().map(|x| (x - mx) * (x - mx)).sum();
+    sxy / sxx
+}
+
+#[test]
+fn planning_work_grows_linearly_whatever_the_order() {
+    // Description files of up to 10⁴ joints, their joints and links in a random order and
+    // last-first: the decomposition's work (adjacency entries visited, queue operations)
+    // against the number of joints, fitted over the sizes.
+    let mut g = Gen::new(91);
+    for reversed in [false, true] {
+        let mut points = Vec::new();
+        for dyads in [10, 33, 100, 333, 1000, 3333] {
+            let l = random_chain(dyads, &mut g, reversed);
+            let text = l.to_json().unwrap();
+            let l = Linkage::from_json(&text).unwrap();
+            let work = Plan::decomposition_work(&l).unwrap();
+            let size = (l.joints.len() + l.links.len()) as f64;
+            assert!(work as f64 <= 12.0 * size, "{}: work {work}", l.name);
+            points.push((l.joints.len() as f64, work as f64));
+        }
+        let exponent = fitted_exponent(&points);
+        assert!(
+            exponent <= 1.2,
+            "reversed {reversed}: exponent {exponent}, {points:?}"
+        );
+    }
+    // The plans themselves are made, whatever the order, with one group per dyad.
+    for reversed in [false, true] {
+        let l = random_chain(200, &mut g, reversed);
+        let plan = Plan::new(&l).unwrap_or_else(|e| panic!("{}: {e}", l.name));
+        assert_eq!(plan.groups().len(), 200);
+    }
+}
+
+/// An `Ok` plan holds only finite numbers: its link data (centres of mass, sizes), joints,
+/// points and loads.
+fn check_plan(plan: &Plan, what: &str) {
+    let shown = format!("{plan:?}");
+    assert!(!has_non_finite(&shown), "{what}: the plan holds {shown}");
+}
+
+#[test]
+fn plans_with_overflowing_centres_or_sizes_are_errors() {
+    // Centres of mass and joints far out: the plan is an error naming the link or joint, or
+    // it is finite.
+    let far = [1e154, -1e154, 1e300, 1.7e308, -1.7e308, f64::MAX, 1e200];
+    let mut plans = 0;
+    for (k, &x) in far.iter().enumerate() {
+        let mut m = FourBar::course_example();
+        m.mass[k % 3].along = x;
+        m.mass[(k + 1) % 3].across = -x;
+        match m.plan() {
+            Ok(p) => {
+                plans += 1;
+                check_plan(&p, &format!("four-bar, centre at {x}"));
+            }
+            Err(e) => assert!(
+                matches!(&e, Error::Description { item, .. } if item.starts_with("link ")),
+                "{x}: {e}"
+            ),
+        }
+        let mut m = FourBar::course_example();
+        m.o3.x = x;
+        if let Ok(p) = m.plan() {
+            check_plan(&p, &format!("four-bar, O3 at {x}"));
+        }
+        for l in linkages() {
+            let mut l = l.clone();
+            for link in &mut l.links {
+                if let Some(mass) = &mut link.mass {
+                    mass.centre = At::Coords([x, -x]);
+                }
+                if let Some(p) = link.points.first_mut() {
+                    p.at = [-x, x];
+                }
+            }
+            if let Ok(p) = Plan::new(&l) {
+                check_plan(&p, &format!("{} with centres at {x}", l.name));
+            }
+        }
+    }
+    assert!(plans > 0);
+}
+
+#[test]
+fn checks_of_an_ok_analysis_are_finite() {
+    // Joints at 10³³ m (and beyond): an analysis is an error or its residuals are finite.
+    for scale in [1e33, 1e100, 1e150, 1e152, 1e153, 1e154, 1e-150] {
+        for l in linkages() {
+            let mut l = l.clone();
+            for j in &mut l.joints {
+                j.at = [j.at[0] * scale, j.at[1] * scale];
+            }
+            for link in &mut l.links {
+                for p in &mut link.points {
+                    p.at = [p.at[0] * scale, p.at[1] * scale];
+                }
+                if let Some(m) = &mut link.mass
+                    && let At::Coords(c) = &mut m.centre
+                {
+                    *c = [c[0] * scale, c[1] * scale];
+                }
+            }
+            let Ok(plan) = Plan::new(&l) else { continue };
+            check_plan(&plan, &l.name);
+            for k in 0..6 {
+                let input = Motion::new(plan.reference_input() + f64::from(k), 7.0, 3.0);
+                let what = format!("{} scaled by {scale} at {input:?}", l.name);
+                check_position(&plan, input, &what);
+                if let Ok(a) = plan.analyse(input) {
+                    for k in 0..plan.link_names().len() {
+                        let r = a.residual(k).unwrap();
+                        assert!(r.is_finite(), "{what}: link {k} residual {r}");
+                    }
+                }
+            }
+        }
+    }
+}
+
+#[test]
+fn a_load_function_that_returns_nan_or_huge_loads() {
+    use nalgebra::{Point2, Vector2};
+    let base = Plan::new(&bundled::four_bar()).unwrap();
+    let input = Motion::new(base.reference_input() + 0.5, 10.0, 0.0);
+    for (k, (force, at)) in [
+        (f64::NAN, 0.0),
+        (1.0, f64::NAN),
+        (f64::INFINITY, 0.0),
+        (1e300, 0.0),
+        (1e300, 1e300),
+        (f64::MAX, -f64::MAX),
+        (1.0, 1e300),
+    ]
+    .into_iter()
+    .enumerate()
+    {
+        let mut plan = base.clone();
+        plan.add_load_fn("coupler", move |_| {
+            Ok(tmm::Load::new(
+                Point2::new(at, 0.0),
+                Vector2::new(force, -force),
+                force,
+            ))
+        })
+        .unwrap();
+        match plan.analyse(input) {
+            Ok(_) => {
+                assert!(force.is_finite() && at.is_finite(), "case {k}");
+                check_position(&plan, input, &format!("load fn case {k}"));
+            }
+            Err(e) => {
+                let s = e.to_string();
+                if !(force.is_finite() && at.is_finite()) {
+                    assert!(s.contains("coupler") && s.contains("load"), "case {k}: {s}");
+                }
+            }
+        }
+    }
 }

@@ -4,7 +4,7 @@ use nalgebra::{Matrix2, Point2, Vector2};
 
 use crate::angle::{cross, perp, unit};
 use crate::dynamics::system::{checked_inertia, kink_slots, LagrangeSystem, LagrangeTerms};
-use crate::error::{finite, finite2, positive, Error, Result};
+use crate::error::{computed_all, finite, finite2, positive, Error, Result};
 
 /// A position servo on a crank: M = clamp(k_p·(target − φ) − k_d·φ̇, ±limit).
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -370,7 +370,9 @@ impl FiveBar {
     /// of mass off its coupler, a bad servo); [`Error::Overflow`] when a mass overflows.
     pub fn point_masses(&self) -> Result<[f64; 3]> {
         self.check()?;
-        Ok(self.masses())
+        let m = self.masses();
+        computed_all("five-bar point masses", m.iter())?;
+        Ok(m)
     }
 
     /// [`point_masses`](Self::point_masses) for checked data.
@@ -531,10 +533,12 @@ impl FiveBar {
         q: &Vector2<f64>,
         qd: &Vector2<f64>,
     ) -> Result<Vector2<f64>> {
-        Ok(Vector2::new(
+        let f = Vector2::new(
             self.drive1.torque(q[0], qd[0])? - self.m_on * k.phi3_q[0],
             self.drive4.torque(q[1], qd[1])? - self.m_on * k.phi3_q[1],
-        ))
+        );
+        computed_all("five-bar generalized forces", f.iter())?;
+        Ok(f)
     }
 
     /// ∇Π at q with the analogs of `k`.
@@ -576,13 +580,20 @@ impl LagrangeSystem for FiveBar {
     }
 
     fn inertia(&self, q: &Vector2<f64>) -> Result<Matrix2<f64>> {
-        Ok(self.inertia_from(&self.kinematics(q)?))
+        let a = self.inertia_from(&self.kinematics(q)?);
+        computed_all("five-bar inertia matrix", a.iter())?;
+        Ok(a)
     }
 
     /// ∂A_ij/∂q_k = m_B (B,ik·B,j + B,i·B,jk) + ΔJ (φ,ik φ,j + φ,i φ,jk) from the
     /// second-order analogs.
     fn inertia_derivatives(&self, q: &Vector2<f64>) -> Result<[Matrix2<f64>; 2]> {
-        Ok(self.derivatives_from(&self.kinematics(q)?))
+        let d = self.derivatives_from(&self.kinematics(q)?);
+        computed_all(
+            "five-bar inertia derivatives",
+            d.iter().flat_map(|m| m.iter()),
+        )?;
+        Ok(d)
     }
 
     /// Every term from one [`kinematics`](FiveBar::kinematics) (the separate methods solve
@@ -592,11 +603,18 @@ impl LagrangeSystem for FiveBar {
         let k = self.kinematics_inline(q)?;
         let inertia = self.inertia_from(&k);
         checked_inertia(&inertia, t, q)?;
+        let inertia_derivatives = self.derivatives_from(&k);
+        computed_all(
+            "five-bar inertia derivatives",
+            inertia_derivatives.iter().flat_map(|m| m.iter()),
+        )?;
+        let potential_gradient = self.gradient_from(&k, q);
+        computed_all("five-bar potential gradient", potential_gradient.iter())?;
         Ok(LagrangeTerms {
             inertia,
-            inertia_derivatives: self.derivatives_from(&k),
+            inertia_derivatives,
             forces: self.forces_from(&k, q, qd)?,
-            potential_gradient: self.gradient_from(&k, q),
+            potential_gradient,
             damping: Matrix2::zeros(),
         })
     }
@@ -608,11 +626,16 @@ impl LagrangeSystem for FiveBar {
     fn potential(&self, q: &Vector2<f64>) -> Result<f64> {
         let k = self.kinematics(q)?;
         let [m_a2, m_b, m_c3] = self.masses();
-        Ok(self.gravity * (m_a2 * k.a.y + m_b * k.b.y + m_c3 * k.c.y))
+        crate::error::computed(
+            "five-bar potential",
+            self.gravity * (m_a2 * k.a.y + m_b * k.b.y + m_c3 * k.c.y),
+        )
     }
 
     fn potential_gradient(&self, q: &Vector2<f64>) -> Result<Vector2<f64>> {
-        Ok(self.gradient_from(&self.kinematics(q)?, q))
+        let g = self.gradient_from(&self.kinematics(q)?, q);
+        computed_all("five-bar potential gradient", g.iter())?;
+        Ok(g)
     }
 
     /// The servos' saturation switches: two arguments, crank 1's servo's demand over its

@@ -4,7 +4,7 @@ use nalgebra::{Matrix2, Vector2};
 
 use crate::dynamics::stepper::check_result;
 use crate::dynamics::system::{LagrangeSystem, State};
-use crate::error::{finite, positive, Result};
+use crate::error::{computed_all, finite, positive, Result};
 
 /// A robot arm in a horizontal plane: link 1 turns about a vertical axis (coordinate φ10) and
 /// link 2 slides along it (coordinate l = l_CS2, the distance of its centre of mass S2 from
@@ -60,6 +60,13 @@ impl Default for RpArm {
     }
 }
 
+/// `m` when every entry is finite: [`Error::Overflow`](crate::Error::Overflow) naming `what`
+/// otherwise (finite data whose products overflow).
+fn finite_matrix(what: &'static str, m: Matrix2<f64>) -> Result<Matrix2<f64>> {
+    computed_all(what, m.iter())?;
+    Ok(m)
+}
+
 impl RpArm {
     fn check(&self) -> Result<()> {
         positive("I_z1", self.iz1)?;
@@ -88,19 +95,27 @@ impl LagrangeSystem for RpArm {
 
     fn inertia(&self, q: &Vector2<f64>) -> Result<Matrix2<f64>> {
         self.check()?;
-        Ok(Matrix2::new(
-            self.iz1 + self.iz2 + self.m2 * q[1] * q[1],
-            0.0,
-            0.0,
-            self.m2,
-        ))
+        finite("l_CS2", q[1])?;
+        finite_matrix(
+            "R-P arm inertia matrix",
+            Matrix2::new(
+                self.iz1 + self.iz2 + self.m2 * q[1] * q[1],
+                0.0,
+                0.0,
+                self.m2,
+            ),
+        )
     }
 
     fn inertia_derivatives(&self, q: &Vector2<f64>) -> Result<[Matrix2<f64>; 2]> {
         self.check()?;
+        finite("l_CS2", q[1])?;
         Ok([
             Matrix2::zeros(),
-            Matrix2::new(2.0 * self.m2 * q[1], 0.0, 0.0, 0.0),
+            finite_matrix(
+                "R-P arm inertia derivatives",
+                Matrix2::new(2.0 * self.m2 * q[1], 0.0, 0.0, 0.0),
+            )?,
         ])
     }
 
@@ -111,7 +126,10 @@ impl LagrangeSystem for RpArm {
 
     fn damping(&self, _q: &Vector2<f64>) -> Result<Matrix2<f64>> {
         self.check()?;
-        Ok(Matrix2::new(self.b1 * self.r0 * self.r0, 0.0, 0.0, self.b2))
+        finite_matrix(
+            "R-P arm damping matrix",
+            Matrix2::new(self.b1 * self.r0 * self.r0, 0.0, 0.0, self.b2),
+        )
     }
 }
 
@@ -155,6 +173,7 @@ impl DecoupledRpArm {
         let a = &self.arm;
         a.check()?;
         let c = [positive("b1", a.b1)? * a.r0 * a.r0, positive("b2", a.b2)?];
+        computed_all("R-P arm damping and inertia", [c[0], a.iz1 + a.iz2].iter())?;
         finite("t", t)?;
         check_result(*start)?;
         let m = [a.iz1 + a.iz2, a.m2];
@@ -181,12 +200,10 @@ impl LagrangeSystem for DecoupledRpArm {
 
     fn inertia(&self, _q: &Vector2<f64>) -> Result<Matrix2<f64>> {
         self.arm.check()?;
-        Ok(Matrix2::new(
-            self.arm.iz1 + self.arm.iz2,
-            0.0,
-            0.0,
-            self.arm.m2,
-        ))
+        finite_matrix(
+            "R-P arm inertia matrix",
+            Matrix2::new(self.arm.iz1 + self.arm.iz2, 0.0, 0.0, self.arm.m2),
+        )
     }
 
     fn inertia_derivatives(&self, _q: &Vector2<f64>) -> Result<[Matrix2<f64>; 2]> {

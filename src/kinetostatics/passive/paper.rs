@@ -107,20 +107,24 @@ impl PaperGroup {
     /// The geometry (A, B, C, D, E).
     ///
     /// # Errors
-    /// A non-finite number, or a non-positive length.
+    /// A non-finite number, or a non-positive length; [`Error::Overflow`](crate::Error::Overflow)
+    /// when the lengths are too large for the points or the links' lengths to be finite.
     pub fn geometry(&self) -> Result<Geometry> {
         positive("l1", self.l1)?;
         positive("l2", self.l2)?;
         positive("l3", self.l3)?;
         positive("l4", self.l4)?;
         finite("alpha4", self.alpha4)?;
-        Ok(Geometry::seed(
-            self.l1,
-            self.l2,
-            self.l3,
-            self.l4,
-            self.alpha4,
-        ))
+        let g = Geometry::seed(self.l1, self.l2, self.l3, self.l4, self.alpha4);
+        let lengths = [Link::Ab, Link::Cd, Link::Bde].map(|k| g.length(k));
+        crate::error::computed_all(
+            "passive group's geometry",
+            [g.a, g.b, g.c, g.d, g.e]
+                .iter()
+                .flat_map(|p| p.coords.iter())
+                .chain(lengths.iter()),
+        )?;
+        Ok(g)
     }
 
     /// The loads.

@@ -295,32 +295,117 @@ pub(super) fn plan_points(
             let item = format!("point {}", p.name);
             let xy = finite_pair(&item, "at", p.at)?;
             let li = links.index[k];
+            let local = frames[li].local(Point2::from(xy));
+            if !(local.x.is_finite() && local.y.is_finite()) {
+                return Err(bad(
+                    item,
+                    format!(
+                        "its coordinates on link {} overflow: it lies too far from the link's \
+                         joints",
+                        links.names[li]
+                    ),
+                ));
+            }
             point_names.push(p.name.clone());
-            points.push(PointPlan {
-                link: li,
-                local: frames[li].local(Point2::from(xy)),
-            });
+            points.push(PointPlan { link: li, local });
         }
     }
     Ok((point_names, points))
 }
 
-/// The largest distance between two joints in the reference pose.
+/// The distance of two joints' reference positions.
+fn distance(a: [f64; 2], b: [f64; 2]) -> f64 {
+    ((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2)).sqrt()
+}
+
+/// The largest distance between two joints in the reference pose (its joints' positions
+/// checked finite): every pair for a small linkage; beyond 64 joints, the antipodal pairs of
+/// the joints' convex hull (rotating calipers), so that a description of many joints is
+/// planned in n log n.
 pub(super) fn reference_size(linkage: &Linkage) -> Result<f64> {
-    let size = linkage
-        .joints
-        .iter()
-        .flat_map(|j| {
-            linkage
-                .joints
-                .iter()
-                .map(move |k| ((j.at[0] - k.at[0]).powi(2) + (j.at[1] - k.at[1]).powi(2)).sqrt())
-        })
-        .fold(0.0, f64::max);
+    let at: Vec<[f64; 2]> = linkage.joints.iter().map(|j| j.at).collect();
+    let size = if at.len() <= 64 {
+        at.iter()
+            .flat_map(|&j| at.iter().map(move |&k| distance(j, k)))
+            .fold(0.0, f64::max)
+    } else {
+        hull_diameter(&at)
+    };
     if !size.is_finite() {
         return Err(bad("linkage", format!("its size overflows ({size} m)")));
     }
     Ok(size)
+}
+
+/// The largest distance between two of the points `at` (finite), from the antipodal pairs of
+/// their convex hull. The hull is found on the points scaled by a power of two (exactly), so
+/// that its cross products cannot overflow; the distances are those of the given points.
+fn hull_diameter(at: &[[f64; 2]]) -> f64 {
+    let big = at
+        .iter()
+        .flat_map(|p| [p[0].abs(), p[1].abs()])
+        .fold(0.0, f64::max);
+    if big == 0.0 {
+        return 0.0;
+    }
+    // 2^-e with 2^e ≥ big: every scaled coordinate within [−1, 1].
+    let e = big.log2().ceil().clamp(-1000.0, 1023.0);
+    let scale = 2f64.powf(-e);
+    let scaled: Vec<[f64; 2]> = at.iter().map(|p| [p[0] * scale, p[1] * scale]).collect();
+    let mut order: Vec<usize> = (0..at.len()).collect();
+    order.sort_by(|&a, &b| {
+        scaled[a][0]
+            .total_cmp(&scaled[b][0])
+            .then(scaled[a][1].total_cmp(&scaled[b][1]))
+    });
+    let cross = |o: usize, a: usize, b: usize| {
+        let (o, a, b) = (scaled[o], scaled[a], scaled[b]);
+        (a[0] - o[0]) * (b[1] - o[1]) - (a[1] - o[1]) * (b[0] - o[0])
+    };
+    // Andrew's monotone chain, counter-clockwise, collinear points left out.
+    let mut hull: Vec<usize> = Vec::with_capacity(2 * order.len());
+    for pass in 0..2 {
+        let start = hull.len();
+        let points: Box<dyn Iterator<Item = &usize>> = if pass == 0 {
+            Box::new(order.iter())
+        } else {
+            Box::new(order.iter().rev())
+        };
+        for &p in points {
+            while hull.len() >= start + 2
+                && cross(hull[hull.len() - 2], hull[hull.len() - 1], p) <= 0.0
+            {
+                hull.pop();
+            }
+            hull.push(p);
+        }
+        hull.pop();
+    }
+    let h = hull.len();
+    let d = |a: usize, b: usize| distance(at[hull[a % h]], at[hull[b % h]]);
+    match h {
+        0 => 0.0,
+        1 => 0.0,
+        2 => d(0, 1),
+        _ => {
+            let area = |i: usize, k: usize, j: usize| cross(hull[i % h], hull[k % h], hull[j % h]);
+            let mut best: f64 = 0.0;
+            let mut j = 1;
+            for i in 0..h {
+                let k = i + 1;
+                let mut steps = 0;
+                while steps < h && area(i, k, j + 1) > area(i, k, j) {
+                    j += 1;
+                    steps += 1;
+                }
+                // The pair found, and its neighbours against rounding in the areas.
+                for m in [j + h - 1, j, j + 1] {
+                    best = best.max(d(i, m)).max(d(k, m));
+                }
+            }
+            best
+        }
+    }
 }
 
 /// Every link's reference direction, mass properties and size.
@@ -344,10 +429,21 @@ pub(super) fn plan_links(
             None => (0.0, 0.0, Vector2::zeros()),
             Some(m) => {
                 let c = place(&m.centre, names, li, &links.index, &item, "mass.centre")?;
+                let centre = frames[li].local(c);
+                if !(centre.x.is_finite() && centre.y.is_finite()) {
+                    return Err(bad(
+                        &item,
+                        format!(
+                            "mass.centre [{}, {}] overflows on the link: it lies too far from \
+                             the link's joints",
+                            c.x, c.y
+                        ),
+                    ));
+                }
                 (
                     non_negative(&item, "mass.m", m.m)?,
                     non_negative(&item, "mass.j", m.j)?,
-                    frames[li].local(c),
+                    centre,
                 )
             }
         };
@@ -361,9 +457,17 @@ pub(super) fn plan_links(
     }
     for (j, e) in edges.iter().enumerate() {
         for k in e.links {
-            planned[k].size = planned[k]
-                .size
-                .max(frames[k].local(joint_at(linkage, j)).norm());
+            let local = frames[k].local(joint_at(linkage, j)).norm();
+            if !local.is_finite() {
+                return Err(bad(
+                    format!("joint {}", linkage.joints[j].name),
+                    format!(
+                        "its distance from the origin of link {} overflows",
+                        links.names[k]
+                    ),
+                ));
+            }
+            planned[k].size = planned[k].size.max(local);
         }
     }
     Ok(planned)

@@ -169,6 +169,9 @@ pub(super) fn plan_load(
                     format!("diagram.area must be > 0, got {}", diagram.area),
                 ));
             }
+            if let Some(problem) = diagram.non_finite_point() {
+                return Err(bad(&item, problem));
+            }
             return Ok(Checked::Indicator {
                 joint: j,
                 head: *head,

@@ -15,12 +15,12 @@ use chain::{
     edges, input_links, input_specs, joint_at, plan_inputs, plan_joints, plan_links, plan_points,
     reference_size, Links,
 };
-use reference::{finite_pair, index_names, Frame};
+use reference::{finite_pair, index_names, Frame, Names};
 
-use super::description::Linkage;
+use super::description::{Input, Linkage};
 use super::plan::{bad, Chain, Plan};
 use super::solve::state::KinState;
-use super::structure::{chebyshev, decompose, Dyad};
+use super::structure::{chebyshev, decompose_counted, Dyad, Edge};
 use crate::error::Result;
 use nalgebra::Point2;
 
@@ -36,23 +36,15 @@ impl Plan {
     /// negative masses, a linkage outside the 2nd class or of the wrong mobility, a pose that
     /// does not close, a group at a dead point in the reference pose without a given mode.
     pub fn new(linkage: &Linkage) -> Result<Self> {
-        let names = index_names(linkage)?;
-        let links = Links::new(linkage, &names)?;
-        let edges = edges(linkage, &names, &links)?;
-        let specs = input_specs(linkage);
-        let inputs = input_links(&specs, &names, &links, &edges)?;
-        let explicit: Vec<[usize; 2]> = linkage
-            .groups
-            .iter()
-            .map(|[a, b]| {
-                Ok([
-                    links.index[names.link(a, "field groups")?],
-                    links.index[names.link(b, "field groups")?],
-                ])
-            })
-            .collect::<Result<_>>()?;
-        let input_links: Vec<usize> = inputs.iter().map(|&(l, _)| l).collect();
-        let dyads = decompose(&edges, &links.names, &input_links, &explicit)?;
+        let Structure {
+            names,
+            links,
+            edges,
+            specs,
+            inputs,
+            dyads,
+            ..
+        } = Structure::new(linkage)?;
 
         // Frames in the reference pose: the inputs', then each group's in attachment order.
         let origin = Frame {
@@ -115,11 +107,70 @@ impl Plan {
     }
 }
 
+/// The structure of a description: its names, links, joints as edges, inputs and the Assur
+/// dyads in attachment order, with the work the decomposition did.
+struct Structure<'a> {
+    names: Names<'a>,
+    links: Links,
+    edges: Vec<Edge>,
+    specs: Vec<(&'a Input, &'static str)>,
+    inputs: Vec<(usize, usize)>,
+    dyads: Vec<Dyad>,
+    work: u64,
+}
+
+impl<'a> Structure<'a> {
+    fn new(linkage: &'a Linkage) -> Result<Self> {
+        let names = index_names(linkage)?;
+        let links = Links::new(linkage, &names)?;
+        let edges = edges(linkage, &names, &links)?;
+        let specs = input_specs(linkage);
+        let inputs = input_links(&specs, &names, &links, &edges)?;
+        let explicit: Vec<[usize; 2]> = linkage
+            .groups
+            .iter()
+            .map(|[a, b]| {
+                Ok([
+                    links.index[names.link(a, "field groups")?],
+                    links.index[names.link(b, "field groups")?],
+                ])
+            })
+            .collect::<Result<_>>()?;
+        let input_links: Vec<usize> = inputs.iter().map(|&(l, _)| l).collect();
+        let (dyads, work) = decompose_counted(&edges, &links.names, &input_links, &explicit)?;
+        Ok(Self {
+            names,
+            links,
+            edges,
+            specs,
+            inputs,
+            dyads,
+            work,
+        })
+    }
+}
+
+impl Plan {
+    /// The work of the structural decomposition of `linkage` (adjacency entries visited and
+    /// queue operations), for the tests that show it grows linearly with the size of a
+    /// description whatever its order. Not part of the API.
+    ///
+    /// # Errors
+    /// As [`Plan::new`], for the structure.
+    #[doc(hidden)]
+    pub fn decomposition_work(linkage: &Linkage) -> Result<u64> {
+        Structure::new(linkage).map(|s| s.work)
+    }
+}
+
 /// A mode must name some group's inner joint; a mode that matches none is a typo.
 fn check_modes(linkage: &Linkage, dyads: &[Dyad]) -> Result<()> {
+    let inner: std::collections::HashSet<&str> = dyads
+        .iter()
+        .map(|d| linkage.joints[d.joints[1]].name.as_str())
+        .collect();
     for m in &linkage.modes {
-        let inner = |d: &Dyad| linkage.joints[d.joints[1]].name == m.joint;
-        if !dyads.iter().any(inner) {
+        if !inner.contains(m.joint.as_str()) {
             return Err(bad(
                 format!("mode for joint {}", m.joint),
                 "names no group's inner joint (the joint between a group's two links)",

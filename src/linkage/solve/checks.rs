@@ -75,15 +75,12 @@ impl Analysis<'_> {
     fn residual_at(&self, k: usize) -> f64 {
         let all = self.free_body_at(k);
         let pole = self.k.kin.links[k].origin.p;
-        let sum = Load::sum_about(&all, pole);
-        let fs = all.iter().map(|l| l.force.norm()).fold(0.0, f64::max);
-        let arm = all
-            .iter()
-            .map(|l| (l.point - pole).norm())
-            .fold(0.0, f64::max);
-        let ms = all.iter().map(|l| l.moment.abs()).fold(fs * arm, f64::max);
-        let rel = |r: f64, s: f64| if s > 0.0 { r / s } else { r };
-        rel(sum.force.norm(), fs).max(rel(sum.moment.abs(), ms))
+        let direct = residual_of(&all, pole);
+        if direct.is_finite() {
+            direct
+        } else {
+            scaled_residual(&all, pole)
+        }
     }
 
     /// The worst [`Analysis::residual`] over the moving links.
@@ -148,4 +145,76 @@ impl Analysis<'_> {
             scale: scale.max(self.balances[0].value.abs()),
         })
     }
+}
+
+/// A free body's residual, [`Analysis::residual`]: the larger of |ΣF|/F_scale and
+/// |ΣM|/M_scale about `pole`.
+fn residual_of(all: &[Load], pole: nalgebra::Point2<f64>) -> f64 {
+    let sum = Load::sum_about(all, pole);
+    let fs = all.iter().map(|l| l.force.norm()).fold(0.0, f64::max);
+    let arm = all
+        .iter()
+        .map(|l| (l.point - pole).norm())
+        .fold(0.0, f64::max);
+    let ms = all.iter().map(|l| l.moment.abs()).fold(fs * arm, f64::max);
+    let rel = |r: f64, s: f64| if s > 0.0 { r / s } else { r };
+    rel(sum.force.norm(), fs).max(rel(sum.moment.abs(), ms))
+}
+
+/// [`residual_of`] where its sums overflow (finite loads far from the pole, or huge forces
+/// times arms): the same ratios with every force divided by a power of two near the largest
+/// force, every arm by a power of two near the largest coordinate, and the moments compared
+/// in the logarithm, so that an analysis that is finite gives a finite residual.
+fn scaled_residual(all: &[Load], pole: nalgebra::Point2<f64>) -> f64 {
+    // 2^-e with 2^e ≥ x > 0, and its exponent e.
+    let power = |x: f64| {
+        let e = x.log2().ceil().clamp(-1000.0, 1023.0);
+        (2f64.powf(-e), e)
+    };
+    let largest = |it: &mut dyn Iterator<Item = f64>| it.map(f64::abs).fold(0.0, f64::max);
+    let fbig = largest(&mut all.iter().flat_map(|l| [l.force.x, l.force.y]));
+    let cbig = largest(
+        &mut all
+            .iter()
+            .flat_map(|l| [l.point.x, l.point.y])
+            .chain([pole.x, pole.y]),
+    );
+    let (fsc, fe) = if fbig > 0.0 { power(fbig) } else { (1.0, 0.0) };
+    let (csc, ce) = if cbig > 0.0 { power(cbig) } else { (1.0, 0.0) };
+    let f: Vec<nalgebra::Vector2<f64>> = all.iter().map(|l| l.force * fsc).collect();
+    let r: Vec<nalgebra::Vector2<f64>> = all
+        .iter()
+        .map(|l| l.point.coords * csc - pole.coords * csc)
+        .collect();
+    let fs = f.iter().map(|v| v.norm()).fold(0.0, f64::max);
+    let arm = r.iter().map(|v| v.norm()).fold(0.0, f64::max);
+    let force_sum: nalgebra::Vector2<f64> = f.iter().sum();
+    let force = if fs > 0.0 {
+        force_sum.norm() / fs
+    } else {
+        force_sum.norm()
+    };
+    // Σ r×F = T·2^(ce + fe), F_scale·arm = fs·arm·2^(ce + fe); log2 of the moment scale.
+    let t: f64 = r.iter().zip(&f).map(|(r, f)| r.x * f.y - r.y * f.x).sum();
+    let l_couples = (fs * arm).log2() + ce + fe;
+    let mbig = all.iter().map(|l| l.moment.abs()).fold(0.0, f64::max);
+    let l_scale = l_couples.max(mbig.log2());
+    if l_scale == f64::NEG_INFINITY {
+        return force;
+    }
+    // Each term divided by the scale 2^l_scale, in the logarithm: every quotient at most a
+    // few units, whatever the magnitudes.
+    let over = |x: f64, l: f64| x.signum() * (x.abs().log2() + l - l_scale).exp2();
+    let moment = over(t, ce + fe)
+        + all
+            .iter()
+            .map(|l| {
+                if l.moment == 0.0 {
+                    0.0
+                } else {
+                    over(l.moment, 0.0)
+                }
+            })
+            .sum::<f64>();
+    force.max(moment.abs())
 }
