@@ -8,6 +8,7 @@
 //! attached later. A linkage of the 2nd class is used up exactly; whatever is left is a group
 //! of a higher class, or links that are not connected as a mechanism with one input.
 
+use super::structure_triad::{next_triad, Assur};
 use crate::error::{Error, Result};
 
 /// The kind of a joint, as far as the structure is concerned.
@@ -79,7 +80,7 @@ pub(crate) fn decompose(
     names: &[String],
     inputs: &[usize],
     explicit: &[[usize; 2]],
-) -> Result<Vec<Dyad>> {
+) -> Result<Vec<Assur<Dyad>>> {
     let n = names.len();
     let mobility = chebyshev(n - 1, edges.len());
     let mut known = vec![false; n];
@@ -89,10 +90,24 @@ pub(crate) fn decompose(
     }
     let mut dyads = Vec::new();
     if explicit.is_empty() {
-        while let Some(d) = next_dyad(edges, &known) {
-            known[d.links[0]] = true;
-            known[d.links[1]] = true;
-            dyads.push(d);
+        // A dyad when one attaches, else a triad (structure_triad.rs).
+        let joints: Vec<_> = edges
+            .iter()
+            .map(|e| (e.links, e.pair == Pair::Revolute))
+            .collect();
+        loop {
+            if let Some(d) = next_dyad(edges, &known) {
+                known[d.links[0]] = true;
+                known[d.links[1]] = true;
+                dyads.push(Assur::Dyad(d));
+            } else if let Some(t) = next_triad(&joints, &known) {
+                for l in t.links() {
+                    known[l] = true;
+                }
+                dyads.push(Assur::Triad(t));
+            } else {
+                break;
+            }
         }
     } else {
         for &[a, b] in explicit {
@@ -110,7 +125,7 @@ pub(crate) fn decompose(
                 })?;
             known[a] = true;
             known[b] = true;
-            dyads.push(d);
+            dyads.push(Assur::Dyad(d));
         }
     }
     let left: Vec<&str> = (0..n)
@@ -123,7 +138,7 @@ pub(crate) fn decompose(
             format!("has mobility W = {mobility} by Chebyshev's formula (3·{} moving links − 2·{} lower pairs); the engine needs W = {wanted}, one per declared input", n - 1, edges.len())
         } else {
             format!(
-                "links {} do not decompose into dyads of the 2nd class (mobility W = {mobility} \
+                "links {} do not decompose into dyads of the 2nd class or triads of the 3rd (mobility W = {mobility} \
                  by Chebyshev's formula, {} moving links, {} lower pairs): a group of a higher \
                  class, a wrong mobility or a link hanging free",
                 left.join(", "),
@@ -170,16 +185,16 @@ mod tests {
         let d = decompose(&e, &names(4), &[1], &[]).unwrap();
         assert_eq!(
             d,
-            vec![Dyad {
+            vec![Assur::Dyad(Dyad {
                 links: [2, 3],
                 joints: [1, 2, 3]
-            }]
+            })]
         );
         assert_eq!(chebyshev(3, 4), 1);
     }
 
     #[test]
-    fn a_third_class_group_is_named() {
+    fn a_triad_is_found_when_no_dyad_attaches() {
         // Crank 1 drives link 3; a ternary link 2 is hinged to 3, 4 and 5; 4 and 5 are hinged
         // to the frame: a group of the 3rd class (four links, six joints), W = 3·5 − 2·7 = 1.
         let e = [
@@ -191,9 +206,51 @@ mod tests {
             r(4, 0),
             r(5, 0),
         ];
-        let err = decompose(&e, &names(6), &[1], &[]).unwrap_err().to_string();
-        assert!(err.contains("links 2, 3, 4, 5"), "{err}");
+        let d = decompose(&e, &names(6), &[1], &[]).unwrap();
+        assert_eq!(
+            d,
+            vec![Assur::Triad(crate::linkage::structure_triad::TriadFound {
+                ternary: 2,
+                binary: [3, 4, 5],
+                outer: [1, 5, 6],
+                inner: [2, 3, 4],
+            })]
+        );
+    }
+
+    #[test]
+    fn a_group_of_a_higher_class_is_named() {
+        // A group of the 4th class: the closed contour 2-3-4-5, link 3 hinged to the frame,
+        // 2 held by link 6 from the crank and 4 by link 7 from the frame (six links, nine
+        // joints), W = 3·7 − 2·10 = 1. No dyad and no triad attaches.
+        let e = [
+            r(0, 1),
+            r(2, 3),
+            r(3, 4),
+            r(4, 5),
+            r(5, 2),
+            r(6, 2),
+            r(6, 1),
+            r(7, 4),
+            r(7, 0),
+            r(3, 0),
+        ];
+        let err = decompose(&e, &names(8), &[1], &[]).unwrap_err().to_string();
+        assert!(err.contains("links 2, 3, 4, 5, 6, 7"), "{err}");
         assert!(err.contains("W = 1"), "{err}");
+    }
+
+    #[test]
+    fn a_third_class_group_with_a_wrong_mobility_is_named() {
+        let e = [
+            r(0, 1),
+            r(1, 3),
+            r(3, 2),
+            r(2, 4),
+            r(2, 5),
+            r(4, 0),
+            r(5, 0),
+        ];
         // One more hinge from the frame to 3 makes W = −1.
         let mut e2 = e.to_vec();
         e2.push(r(3, 0));

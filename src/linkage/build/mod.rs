@@ -10,6 +10,7 @@ mod chain;
 mod groups;
 mod loads;
 mod reference;
+mod triad;
 
 use chain::{
     edges, input_links, input_specs, joint_at, plan_inputs, plan_joints, plan_links, plan_points,
@@ -21,6 +22,7 @@ use super::description::Linkage;
 use super::plan::{bad, Chain, Plan};
 use super::solve::state::KinState;
 use super::structure::{chebyshev, decompose, Dyad};
+use super::structure_triad::Assur;
 use crate::error::Result;
 use nalgebra::Point2;
 
@@ -73,7 +75,10 @@ impl Plan {
         check_modes(linkage, &dyads)?;
         let groups = dyads
             .iter()
-            .map(|d| groups::plan_group(d, &edges, &links.names, linkage, &mut frames))
+            .map(|g| match g {
+                Assur::Dyad(d) => groups::plan_group(d, &edges, &links.names, linkage, &mut frames),
+                Assur::Triad(t) => triad::plan_triad(t, &edges, &links.names, linkage, &mut frames),
+            })
             .collect::<Result<Vec<_>>>()?;
 
         let joints = plan_joints(linkage, &edges, (&names, &links), &frames);
@@ -116,9 +121,9 @@ impl Plan {
 }
 
 /// A mode must name some group's inner joint; a mode that matches none is a typo.
-fn check_modes(linkage: &Linkage, dyads: &[Dyad]) -> Result<()> {
+fn check_modes(linkage: &Linkage, dyads: &[Assur<Dyad>]) -> Result<()> {
     for m in &linkage.modes {
-        let inner = |d: &Dyad| linkage.joints[d.joints[1]].name == m.joint;
+        let inner = |g: &Assur<Dyad>| matches!(g, Assur::Dyad(d) if linkage.joints[d.joints[1]].name == m.joint);
         if !dyads.iter().any(inner) {
             return Err(bad(
                 format!("mode for joint {}", m.joint),

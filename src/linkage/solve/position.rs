@@ -121,6 +121,9 @@ impl KinState {
     /// already stored.
     #[inline]
     pub(super) fn solve_group_kinematics(&mut self, g: usize, group: &Group) -> Result<()> {
+        if let Some(t) = &group.triad {
+            return self.solve_triad_kinematics(g, group, t);
+        }
         let [l2, l3] = group.links;
         let [ka, kc] = group.known;
         let a = self.at(ka, group.a_local);
@@ -155,6 +158,7 @@ impl KinState {
                 let (u2, u3) = (turn(self.units[ka], t[0]), turn(self.units[kc], t[1]));
                 (s.link2, s.link3, s.det, u2, u3)
             }
+            GroupKind::Triad => unreachable!("a triad is solved above"),
             GroupKind::Rpp => {
                 let g = self.guide_on(kc, group.c_local, group.guide_offsets[1]);
                 let s = rpp_dyad(a, g, group.slide_angle).map_err(within(&group.name))?;
