@@ -23,8 +23,9 @@ use std::sync::Arc;
 /// A user's load as a function of the kinematic state.
 type LoadFnBox = Arc<dyn Fn(&Pose<'_>) -> Result<Load> + Send + Sync>;
 
-/// The kind of an Assur dyad of the 2nd class, by its joints from one outer joint through the
-/// inner joint to the other (R revolute, P prismatic).
+/// The kind of an Assur group: a dyad of the 2nd class, by its joints from one outer joint
+/// through the inner joint to the other (R revolute, P prismatic), or the triad of the 3rd
+/// class.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub enum GroupKind {
@@ -400,7 +401,7 @@ impl Plan {
         self.chain.mobility
     }
 
-    /// The dyads in attachment order.
+    /// The groups (dyads, and triads) in attachment order.
     #[must_use]
     pub fn groups(&self) -> &[Group] {
         &self.chain.groups

@@ -5,8 +5,10 @@
 //! one more joint (an outer joint) to links whose motion is already known. Starting from the
 //! frame and the input link, the decomposition repeatedly takes a pair of unknown links that
 //! forms such a dyad; their other joints (those of a ternary link) are left for the groups
-//! attached later. A linkage of the 2nd class is used up exactly; whatever is left is a group
-//! of a higher class, or links that are not connected as a mechanism with one input.
+//! attached later. When no dyad attaches, a triad of the 3rd class is looked for
+//! (`structure_triad.rs`). A linkage of the 2nd class, with triads, is used up exactly;
+//! whatever is left is a group of a higher class, or links that are not connected as a
+//! mechanism with one input.
 
 use super::structure_triad::{next_triad, Assur};
 use crate::error::{Error, Result};

@@ -35,7 +35,8 @@ impl Plan {
     /// [`Error::Description`](crate::Error::Description) naming the joint, link, load or
     /// field at fault: unknown or repeated names, a joint not joining exactly two links, a
     /// link with fewer than two joints, a guide without a direction, non-finite numbers,
-    /// negative masses, a linkage outside the 2nd class or of the wrong mobility, a pose that
+    /// negative masses, a linkage whose groups are neither dyads of the 2nd class nor triads
+    /// of the 3rd (the links left over named), or of the wrong mobility, a pose that
     /// does not close, a group at a dead point in the reference pose without a given mode.
     pub fn new(linkage: &Linkage) -> Result<Self> {
         let names = index_names(linkage)?;
