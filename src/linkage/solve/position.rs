@@ -158,7 +158,13 @@ impl KinState {
                 let (u2, u3) = (turn(self.units[ka], t[0]), turn(self.units[kc], t[1]));
                 (s.link2, s.link3, s.det, u2, u3)
             }
-            GroupKind::Triad => unreachable!("a triad is solved above"),
+            // A plan's triad always carries its plan (solved above).
+            GroupKind::Triad => {
+                return Err(Error::Description {
+                    item: group.name.clone(),
+                    problem: "a triad without its plan".to_owned(),
+                })
+            }
             GroupKind::Rpp => {
                 let g = self.guide_on(kc, group.c_local, group.guide_offsets[1]);
                 let s = rpp_dyad(a, g, group.slide_angle).map_err(within(&group.name))?;

@@ -113,7 +113,13 @@ impl Analysis<'_> {
                     r.conditioning,
                 )
             }
-            GroupKind::Triad => unreachable!("a triad is solved above"),
+            // A plan's triad always carries its plan (solved above).
+            GroupKind::Triad => {
+                return Err(Error::Description {
+                    item: group.name.clone(),
+                    problem: "a triad without its plan".to_owned(),
+                })
+            }
             GroupKind::Rpp => {
                 let b = self.k.kin.links[l3].origin.p;
                 let r = RppDyad {
