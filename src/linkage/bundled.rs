@@ -99,6 +99,35 @@ pub fn slotted_rocker() -> Linkage {
     bundled!("slotted-rocker.json")
 }
 
+/// A six-bar with a triad (an Assur group of the 3rd class): the crank O1A (0.08 m) drives
+/// the ternary link B1 B2 B3 through link 2 (A–B1, 0.286 m); the ternary link is also held
+/// by rocker 4 (0.303 m) from O2 = (0.47, 0) m and rocker 5 (0.255 m) from
+/// O3 = (0.16, 0.54) m. One group: the triad (ternary; link 2, rocker 4, rocker 5), which
+/// follows the crank round a whole turn in one assembly mode, its ternary link rocking
+/// between about 30° and 39°. A resistance of 20 N·m opposes rocker 5's turning and a force
+/// of (−150, 50) N acts on the ternary link at B2.
+///
+/// The file `linkages/six-bar-triad.json`.
+///
+/// # Examples
+/// ```
+/// use tmm::kinematics::Motion;
+/// use tmm::linkage::{bundled, GroupKind, Plan};
+/// let plan = Plan::new(&bundled::six_bar_triad())?;
+/// assert_eq!(plan.groups()[0].kind, GroupKind::Triad);
+/// let mut solver = plan.solver();
+/// for k in 0..36 {
+///     let phi = plan.reference_input() + f64::from(k) * std::f64::consts::TAU / 36.0;
+///     let a = solver.analyse(Motion::turning(phi, 10.0))?;
+///     assert!(a.power_check()?.relative_error() < 1e-9);
+/// }
+/// # Ok::<(), tmm::Error>(())
+/// ```
+#[must_use]
+pub fn six_bar_triad() -> Linkage {
+    bundled!("six-bar-triad.json")
+}
+
 /// Every bundled linkage of one input, in the order of the files under `linkages/`.
 #[must_use]
 pub fn all() -> Vec<Linkage> {
@@ -110,6 +139,7 @@ pub fn all() -> Vec<Linkage> {
         shaper(),
         scotch_yoke(),
         slotted_rocker(),
+        six_bar_triad(),
     ]
 }
 

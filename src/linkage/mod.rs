@@ -59,6 +59,7 @@ mod inputs;
 mod plan;
 pub(crate) mod solve;
 mod structure;
+mod structure_triad;
 mod table;
 
 pub use course::{Course, Sweep};

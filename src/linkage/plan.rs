@@ -14,7 +14,7 @@ use super::indicator::IndicatorDiagram;
 use super::inputs::Inputs;
 use crate::error::{Error, Result};
 use crate::kinematics::frame_offset;
-use crate::kinematics::{Branch, LinkMotion, Motion, PointMotion};
+use crate::kinematics::{Branch, LinkMotion, Motion, PointMotion, TriadDims, TriadPose};
 use crate::Load;
 use nalgebra::{Point2, Vector2};
 use std::fmt;
@@ -23,8 +23,9 @@ use std::sync::Arc;
 /// A user's load as a function of the kinematic state.
 type LoadFnBox = Arc<dyn Fn(&Pose<'_>) -> Result<Load> + Send + Sync>;
 
-/// The kind of an Assur dyad of the 2nd class, by its joints from one outer joint through the
-/// inner joint to the other (R revolute, P prismatic).
+/// The kind of an Assur group: a dyad of the 2nd class, by its joints from one outer joint
+/// through the inner joint to the other (R revolute, P prismatic), or the triad of the 3rd
+/// class.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub enum GroupKind {
@@ -40,10 +41,13 @@ pub enum GroupKind {
     /// A link hinged to a known link and sliding in a second link, which slides on a guide of
     /// another known link (the Scotch yoke, the sine and tangent mechanisms).
     Rpp,
+    /// The triad, the Assur group of the 3rd class with revolute joints: a ternary link held
+    /// by three binary links on three known joints (see [`Group::triad_links`]).
+    Triad,
 }
 
 impl GroupKind {
-    /// "RRR", "RRP", "RPR", "PRP" or "RPP".
+    /// "RRR", "RRP", "RPR", "PRP", "RPP" or "triad".
     #[must_use]
     pub fn label(self) -> &'static str {
         match self {
@@ -52,11 +56,18 @@ impl GroupKind {
             Self::Rpr => "RPR",
             Self::Prp => "PRP",
             Self::Rpp => "RPP",
+            Self::Triad => "triad",
         }
     }
 }
 
-/// A dyad of the plan, in attachment order.
+/// A group of the plan (a dyad, or a triad), in attachment order.
+///
+/// The fields `links`, `joints` and `known` describe a dyad; a triad's four links and six
+/// joints are read by [`triad_links`](Self::triad_links) and
+/// [`triad_joints`](Self::triad_joints) (its `links` hold the ternary link twice, `joints`
+/// the ternary link's three joints, `known` the known links of its first and third binary
+/// links).
 #[derive(Debug, Clone, PartialEq)]
 pub struct Group {
     /// Its kind.
@@ -71,6 +82,8 @@ pub struct Group {
     pub joints: [usize; 3],
     /// The known links its outer joints attach to.
     pub known: [usize; 2],
+    /// A triad's plan (`None` for a dyad).
+    pub(crate) triad: Option<Box<TriadPlan>>,
     /// The assembly mode (read off the reference pose unless overridden).
     pub branch: Branch,
     pub(crate) a_local: Vector2<f64>,
@@ -81,6 +94,44 @@ pub struct Group {
     pub(crate) guide_offsets: [f64; 2],
     /// RPP: the angle α from the guide to the slide between the group's links.
     pub(crate) slide_angle: f64,
+}
+
+/// The plan of a triad: its links and joints, where the known links carry its outer joints,
+/// its dimensions and its reference mode.
+#[derive(Debug, Clone, PartialEq)]
+pub(crate) struct TriadPlan {
+    /// The ternary link, then the binary links 1, 2, 3.
+    pub links: [usize; 4],
+    /// The outer joints A_i (binary link i with its known link).
+    pub outer: [usize; 3],
+    /// The joints B_i (binary link i with the ternary link).
+    pub inner: [usize; 3],
+    /// The known links that carry A_i.
+    pub known: [usize; 3],
+    /// A_i in the frames of the known links.
+    pub a_local: [Vector2<f64>; 3],
+    /// The lengths A_i B_i and the ternary link's triangle, from the reference pose.
+    pub dims: TriadDims,
+    /// The reference mode: the mode of [`triad_modes`](crate::kinematics::triad_modes) in the
+    /// reference pose nearest the drawn one. Every solver starts from it.
+    pub reference: TriadPose,
+}
+
+impl Group {
+    /// A triad's links: the ternary link, then the binary links 1, 2, 3 (indices into
+    /// [`Plan::link_names`]); `None` for a dyad.
+    #[must_use]
+    pub fn triad_links(&self) -> Option<[usize; 4]> {
+        self.triad.as_ref().map(|t| t.links)
+    }
+
+    /// A triad's joints: the outer joints A_1, A_2, A_3 (each binary link with its known
+    /// link) and the joints B_1, B_2, B_3 (each binary link with the ternary link); `None`
+    /// for a dyad.
+    #[must_use]
+    pub fn triad_joints(&self) -> Option<[[usize; 3]; 2]> {
+        self.triad.as_ref().map(|t| [t.outer, t.inner])
+    }
 }
 
 /// How the plan drives an input link.
@@ -350,7 +401,7 @@ impl Plan {
         self.chain.mobility
     }
 
-    /// The dyads in attachment order.
+    /// The groups (dyads, and triads) in attachment order.
     #[must_use]
     pub fn groups(&self) -> &[Group] {
         &self.chain.groups

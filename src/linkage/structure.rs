@@ -5,9 +5,12 @@
 //! one more joint (an outer joint) to links whose motion is already known. Starting from the
 //! frame and the input link, the decomposition repeatedly takes a pair of unknown links that
 //! forms such a dyad; their other joints (those of a ternary link) are left for the groups
-//! attached later. A linkage of the 2nd class is used up exactly; whatever is left is a group
-//! of a higher class, or links that are not connected as a mechanism with one input.
+//! attached later. When no dyad attaches, a triad of the 3rd class is looked for
+//! (`structure_triad.rs`). A linkage of the 2nd class, with triads, is used up exactly;
+//! whatever is left is a group of a higher class, or links that are not connected as a
+//! mechanism with one input.
 
+use super::structure_triad::{next_triad, Assur};
 use crate::error::{Error, Result};
 use std::cmp::Reverse;
 use std::collections::{BinaryHeap, HashMap};
@@ -161,18 +164,19 @@ pub(crate) fn decompose(
     names: &[String],
     inputs: &[usize],
     explicit: &[[usize; 2]],
-) -> Result<Vec<Dyad>> {
+) -> Result<Vec<Assur<Dyad>>> {
     decompose_counted(edges, names, inputs, explicit).map(|(dyads, _)| dyads)
 }
 
 /// As [`decompose`], with the work it did: the adjacency entries it visited and its queue
-/// operations (at most a constant times the joints and links, plus the queue's logarithm).
+/// operations (at most a constant times the joints and links, plus the queue's logarithm,
+/// while only dyads attach; a triad's search is the exception, `structure_triad.rs`).
 pub(crate) fn decompose_counted(
     edges: &[Edge],
     names: &[String],
     inputs: &[usize],
     explicit: &[[usize; 2]],
-) -> Result<(Vec<Dyad>, u64)> {
+) -> Result<(Vec<Assur<Dyad>>, u64)> {
     let n = names.len();
     let mobility = chebyshev(n - 1, edges.len());
     let mut graph = Graph::new(edges, n);
@@ -186,7 +190,8 @@ pub(crate) fn decompose_counted(
         // The first joint (in joint order) whose two links form a dyad over the known links,
         // again and again. A joint leaves the set of such joints only for good (links only
         // become known, counts only grow), so a queue with stale entries skipped at the top
-        // gives the same joint as a scan of all joints would.
+        // gives the same joint as a scan of all joints would. When no dyad attaches, a triad
+        // is looked for (structure_triad.rs), and the dyads it makes possible are queued.
         let mut queue = BinaryHeap::new();
         reached.clear();
         for (j, e) in edges.iter().enumerate() {
@@ -194,13 +199,30 @@ pub(crate) fn decompose_counted(
                 queue.push(Reverse(j));
             }
         }
-        while let Some(Reverse(j)) = queue.pop() {
-            graph.work += 1;
-            let [a, b] = edges[j].links;
-            if graph.is_dyad(a, b, j) {
-                dyads.push(graph.take(a, b, j, &mut reached));
-                graph.queue(&mut reached, &mut queue);
+        let mut joints: Vec<([usize; 2], bool)> = Vec::new();
+        loop {
+            while let Some(Reverse(j)) = queue.pop() {
+                graph.work += 1;
+                let [a, b] = edges[j].links;
+                if graph.is_dyad(a, b, j) {
+                    dyads.push(Assur::Dyad(graph.take(a, b, j, &mut reached)));
+                    graph.queue(&mut reached, &mut queue);
+                }
             }
+            if joints.is_empty() {
+                joints = edges
+                    .iter()
+                    .map(|e| (e.links, e.pair == Pair::Revolute))
+                    .collect();
+            }
+            let Some(t) = next_triad(&joints, &graph.known) else {
+                break;
+            };
+            for l in t.links() {
+                graph.learn(l, &mut reached);
+            }
+            dyads.push(Assur::Triad(t));
+            graph.queue(&mut reached, &mut queue);
         }
     } else {
         let mut first: HashMap<[usize; 2], usize> = HashMap::with_capacity(edges.len());
@@ -222,7 +244,7 @@ pub(crate) fn decompose_counted(
                         .to_owned(),
                 })?;
             reached.clear();
-            dyads.push(d);
+            dyads.push(Assur::Dyad(d));
         }
     }
     let left: Vec<&str> = (0..n)
@@ -235,7 +257,7 @@ pub(crate) fn decompose_counted(
             format!("has mobility W = {mobility} by Chebyshev's formula (3·{} moving links − 2·{} lower pairs); the engine needs W = {wanted}, one per declared input", n - 1, edges.len())
         } else {
             format!(
-                "links {} do not decompose into dyads of the 2nd class (mobility W = {mobility} \
+                "links {} do not decompose into dyads of the 2nd class or triads of the 3rd (mobility W = {mobility} \
                  by Chebyshev's formula, {} moving links, {} lower pairs): a group of a higher \
                  class, a wrong mobility or a link hanging free",
                 left.join(", "),
@@ -406,7 +428,17 @@ mod tests {
                 }
             }
             let names = names(n);
-            let found = decompose(&edges, &names, &[1], &[]).ok();
+            // Only dyads: a structure the old algorithm could not finish may now hold a triad.
+            let dyads_only = |r: Result<Vec<Assur<Dyad>>>| -> Option<Vec<Dyad>> {
+                r.ok()?
+                    .into_iter()
+                    .map(|g| match g {
+                        Assur::Dyad(d) => Some(d),
+                        Assur::Triad(_) => None,
+                    })
+                    .collect()
+            };
+            let found = dyads_only(decompose(&edges, &names, &[1], &[]));
             assert_eq!(
                 found,
                 reference(&edges, n, &[1], &[]),
@@ -424,7 +456,7 @@ mod tests {
                     }
                 }
                 assert_eq!(
-                    decompose(&edges, &names, &[1], &explicit).ok(),
+                    dyads_only(decompose(&edges, &names, &[1], &explicit)),
                     reference(&edges, n, &[1], &explicit),
                     "case {case}: {edges:?} {explicit:?}"
                 );
@@ -439,16 +471,16 @@ mod tests {
         let d = decompose(&e, &names(4), &[1], &[]).unwrap();
         assert_eq!(
             d,
-            vec![Dyad {
+            vec![Assur::Dyad(Dyad {
                 links: [2, 3],
                 joints: [1, 2, 3]
-            }]
+            })]
         );
         assert_eq!(chebyshev(3, 4), 1);
     }
 
     #[test]
-    fn a_third_class_group_is_named() {
+    fn a_triad_is_found_when_no_dyad_attaches() {
         // Crank 1 drives link 3; a ternary link 2 is hinged to 3, 4 and 5; 4 and 5 are hinged
         // to the frame: a group of the 3rd class (four links, six joints), W = 3·5 − 2·7 = 1.
         let e = [
@@ -460,9 +492,51 @@ mod tests {
             r(4, 0),
             r(5, 0),
         ];
-        let err = decompose(&e, &names(6), &[1], &[]).unwrap_err().to_string();
-        assert!(err.contains("links 2, 3, 4, 5"), "{err}");
+        let d = decompose(&e, &names(6), &[1], &[]).unwrap();
+        assert_eq!(
+            d,
+            vec![Assur::Triad(crate::linkage::structure_triad::TriadFound {
+                ternary: 2,
+                binary: [3, 4, 5],
+                outer: [1, 5, 6],
+                inner: [2, 3, 4],
+            })]
+        );
+    }
+
+    #[test]
+    fn a_group_of_a_higher_class_is_named() {
+        // A group of the 4th class: the closed contour 2-3-4-5, link 3 hinged to the frame,
+        // 2 held by link 6 from the crank and 4 by link 7 from the frame (six links, nine
+        // joints), W = 3·7 − 2·10 = 1. No dyad and no triad attaches.
+        let e = [
+            r(0, 1),
+            r(2, 3),
+            r(3, 4),
+            r(4, 5),
+            r(5, 2),
+            r(6, 2),
+            r(6, 1),
+            r(7, 4),
+            r(7, 0),
+            r(3, 0),
+        ];
+        let err = decompose(&e, &names(8), &[1], &[]).unwrap_err().to_string();
+        assert!(err.contains("links 2, 3, 4, 5, 6, 7"), "{err}");
         assert!(err.contains("W = 1"), "{err}");
+    }
+
+    #[test]
+    fn a_third_class_group_with_a_wrong_mobility_is_named() {
+        let e = [
+            r(0, 1),
+            r(1, 3),
+            r(3, 2),
+            r(2, 4),
+            r(2, 5),
+            r(4, 0),
+            r(5, 0),
+        ];
         // One more hinge from the frame to 3 makes W = −1.
         let mut e2 = e.to_vec();
         e2.push(r(3, 0));

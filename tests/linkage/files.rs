@@ -49,6 +49,7 @@ fn files() -> Vec<(&'static str, &'static str, Linkage)> {
             RockingCylinder::course_example().linkage().unwrap()
         ),
         file!("five-bar-robot.json", bundled::five_bar_robot()),
+        file!("six-bar-triad.json", bundled::six_bar_triad()),
     ]
 }
 

@@ -9,3 +9,5 @@ mod engine;
 mod files;
 #[cfg(feature = "serde")]
 mod hostile;
+#[cfg(feature = "serde")]
+mod triad;

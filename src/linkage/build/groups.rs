@@ -297,6 +297,7 @@ pub(super) fn plan_group(
         GroupKind::Rpr => site.rpr(),
         GroupKind::Prp => site.prp(),
         GroupKind::Rpp => site.rpp(),
+        GroupKind::Triad => Err(bad(&name, "is a triad, planned by build/triad.rs")),
     }?;
     frames[links[0]] = p.frames[0];
     frames[links[1]] = p.frames[1];
@@ -312,5 +313,6 @@ pub(super) fn plan_group(
         guide_offsets: p.guide_offsets,
         slide_angle: p.slide_angle,
         name,
+        triad: None,
     })
 }

@@ -10,6 +10,7 @@ mod chain;
 mod groups;
 mod loads;
 mod reference;
+mod triad;
 
 use chain::{
     edges, input_links, input_specs, joint_at, plan_inputs, plan_joints, plan_links, plan_points,
@@ -21,6 +22,7 @@ use super::description::{Input, Linkage};
 use super::plan::{bad, Chain, Plan};
 use super::solve::state::KinState;
 use super::structure::{chebyshev, decompose_counted, Dyad, Edge};
+use super::structure_triad::Assur;
 use crate::error::Result;
 use nalgebra::Point2;
 
@@ -33,7 +35,8 @@ impl Plan {
     /// [`Error::Description`](crate::Error::Description) naming the joint, link, load or
     /// field at fault: unknown or repeated names, a joint not joining exactly two links, a
     /// link with fewer than two joints, a guide without a direction, non-finite numbers,
-    /// negative masses, a linkage outside the 2nd class or of the wrong mobility, a pose that
+    /// negative masses, a linkage whose groups are neither dyads of the 2nd class nor triads
+    /// of the 3rd (the links left over named), or of the wrong mobility, a pose that
     /// does not close, a group at a dead point in the reference pose without a given mode.
     pub fn new(linkage: &Linkage) -> Result<Self> {
         let Structure {
@@ -65,7 +68,10 @@ impl Plan {
         check_modes(linkage, &dyads)?;
         let groups = dyads
             .iter()
-            .map(|d| groups::plan_group(d, &edges, &links.names, linkage, &mut frames))
+            .map(|g| match g {
+                Assur::Dyad(d) => groups::plan_group(d, &edges, &links.names, linkage, &mut frames),
+                Assur::Triad(t) => triad::plan_triad(t, &edges, &links.names, linkage, &mut frames),
+            })
             .collect::<Result<Vec<_>>>()?;
 
         let joints = plan_joints(linkage, &edges, (&names, &links), &frames);
@@ -115,7 +121,7 @@ struct Structure<'a> {
     edges: Vec<Edge>,
     specs: Vec<(&'a Input, &'static str)>,
     inputs: Vec<(usize, usize)>,
-    dyads: Vec<Dyad>,
+    dyads: Vec<Assur<Dyad>>,
     work: u64,
 }
 
@@ -164,10 +170,13 @@ impl Plan {
 }
 
 /// A mode must name some group's inner joint; a mode that matches none is a typo.
-fn check_modes(linkage: &Linkage, dyads: &[Dyad]) -> Result<()> {
+fn check_modes(linkage: &Linkage, dyads: &[Assur<Dyad>]) -> Result<()> {
     let inner: std::collections::HashSet<&str> = dyads
         .iter()
-        .map(|d| linkage.joints[d.joints[1]].name.as_str())
+        .filter_map(|g| match g {
+            Assur::Dyad(d) => Some(linkage.joints[d.joints[1]].name.as_str()),
+            Assur::Triad(_) => None,
+        })
         .collect();
     for m in &linkage.modes {
         if !inner.contains(m.joint.as_str()) {

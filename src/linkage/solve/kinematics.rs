@@ -131,6 +131,9 @@ impl<'p> Kinematics<'p> {
     ///
     /// - RRR: the angle between the lines of its two links at the inner joint (the coupler and
     ///   the rocker);
+    /// - triad: the smallest over its binary links of the angle between the link's line and
+    ///   the line from its joint B_i on the ternary link to the point where the other two
+    ///   binary links' lines meet (zero at the triad's dead point, the three lines meeting);
     /// - RRP: π/2 minus the angle between the rod and the guide (μ = 0 with the rod across the
     ///   guide);
     /// - PRP: the angle between the two guides; RPP: between the slide and the guide (the
@@ -143,6 +146,11 @@ impl<'p> Kinematics<'p> {
     /// [`Error::Description`](crate::Error::Description) for a linkage without groups.
     pub fn transmission_angle(&self, g: usize) -> Result<f64> {
         let group = &self.plan.chain.groups[self.plan.check_group(g)?];
+        if let Some(t) = &group.triad {
+            let pose = self.pose();
+            let b = t.inner.map(|j| pose.joint_position_on(j, t.links[0]));
+            return Ok(super::triad::transmission_angle(&self.kin, t, b));
+        }
         let (u2, u3) = (
             self.kin.units[group.links[0]],
             self.kin.units[group.links[1]],
@@ -151,7 +159,7 @@ impl<'p> Kinematics<'p> {
         Ok(match group.kind {
             GroupKind::Rrr | GroupKind::Prp | GroupKind::Rpp => between(u2, u3),
             GroupKind::Rrp => std::f64::consts::FRAC_PI_2 - between(u2, u3),
-            GroupKind::Rpr => std::f64::consts::FRAC_PI_2,
+            GroupKind::Rpr | GroupKind::Triad => std::f64::consts::FRAC_PI_2,
         })
     }
 

@@ -12,6 +12,7 @@ mod rates;
 mod solver;
 pub(crate) mod state;
 mod statics;
+pub(crate) mod triad;
 
 pub use analysis::{Analysis, Balance, Reaction};
 pub use checks::PowerCheck;

@@ -121,6 +121,9 @@ impl KinState {
     /// already stored.
     #[inline]
     pub(super) fn solve_group_kinematics(&mut self, g: usize, group: &Group) -> Result<()> {
+        if let Some(t) = &group.triad {
+            return self.solve_triad_kinematics(g, group, t);
+        }
         let [l2, l3] = group.links;
         let [ka, kc] = group.known;
         let a = self.at(ka, group.a_local);
@@ -154,6 +157,13 @@ impl KinState {
                 let s = prp_dyad(g2, g3).map_err(within(&group.name))?;
                 let (u2, u3) = (turn(self.units[ka], t[0]), turn(self.units[kc], t[1]));
                 (s.link2, s.link3, s.det, u2, u3)
+            }
+            // A plan's triad always carries its plan (solved above).
+            GroupKind::Triad => {
+                return Err(Error::Description {
+                    item: group.name.clone(),
+                    problem: "a triad without its plan".to_owned(),
+                })
             }
             GroupKind::Rpp => {
                 let g = self.guide_on(kc, group.c_local, group.guide_offsets[1]);

@@ -80,6 +80,10 @@ impl KinState {
     /// Group `g`'s rates from its stored positions; `false` (nothing stored) for a PRP or RPP
     /// group or when a rate is not finite.
     fn group_rates(&mut self, g: usize, group: &Group) -> bool {
+        if let Some(t) = &group.triad {
+            // A failure is reported by the full solve that follows.
+            return self.triad_rates_at(g, group, t).is_ok();
+        }
         let [l2, l3] = group.links;
         let [ka, kc] = group.known;
         let (u2, u3) = (self.units[l2], self.units[l3]);
@@ -131,7 +135,7 @@ impl KinState {
                     link(e, angle3, omega, epsilon),
                 )
             }
-            GroupKind::Prp | GroupKind::Rpp => return false,
+            GroupKind::Prp | GroupKind::Rpp | GroupKind::Triad => return false,
         };
         let finite = [m2, m3].iter().fold(true, |ok, m| {
             ok & [

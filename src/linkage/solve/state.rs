@@ -21,6 +21,9 @@ pub(crate) struct KinState {
     /// outer joint) and of an RPP's slide angle: a guide's unit vector is its link's rotated.
     pub turns: Vec<[Vector2<f64>; 3]>,
     pub dets: Vec<f64>,
+    /// Per group, a triad's pose at the last solve (`None` for a dyad, or before the first
+    /// solve): the rates-only pass works at it. No solve of positions reads it.
+    pub triads: Vec<Option<crate::kinematics::TriadPose>>,
 }
 
 /// The frame's link motion (at rest at the origin).
@@ -63,6 +66,7 @@ impl KinState {
                 })
                 .collect(),
             dets: vec![0.0; chain.groups.len()],
+            triads: vec![None; chain.groups.len()],
         }
     }
 

@@ -30,6 +30,9 @@ impl Analysis<'_> {
     }
 
     fn solve_group(&mut self, g: usize, group: &Group) -> Result<()> {
+        if let Some(t) = &group.triad {
+            return self.solve_triad(g, group, t);
+        }
         let [l2, l3] = group.links;
         let [ja, jb, jc] = group.joints;
         let [ka, kc] = group.known;
@@ -109,6 +112,13 @@ impl Analysis<'_> {
                     Reaction::new(kc, l3, r.r43, b, r.moment43),
                     r.conditioning,
                 )
+            }
+            // A plan's triad always carries its plan (solved above).
+            GroupKind::Triad => {
+                return Err(Error::Description {
+                    item: group.name.clone(),
+                    problem: "a triad without its plan".to_owned(),
+                })
             }
             GroupKind::Rpp => {
                 let b = self.k.kin.links[l3].origin.p;
@@ -267,7 +277,7 @@ fn drive_load(ip: &InputPlan, b: &Balance) -> Load {
 }
 
 /// Adds `l` to the resultant `acc` (kept at its point).
-fn add(acc: &mut Load, l: &Load) {
+pub(super) fn add(acc: &mut Load, l: &Load) {
     acc.moment += l.moment + cross(l.point - acc.point, l.force);
     acc.force += l.force;
 }

@@ -1,0 +1,126 @@
+//! The triad in one position's solve: its positions and rates by the kinematics' triad
+//! blocks, its reactions by [`Triad::solve`], applied back onto the known links.
+//!
+//! # Which assembly mode
+//! A triad has up to six assembly modes and no sign that tells them apart. Every solve takes
+//! the mode nearest the plan's reference mode (the drawn pose's), by
+//! [`triad`](crate::kinematics::triad) started from it: Newton's method from the reference
+//! angle, accepted when certified to reach the mode nearest the reference, else the full
+//! bracket of every mode and the nearest. So a solve is a pure function of the inputs — the
+//! same position gives the same bits whatever was solved before, on any thread, by a
+//! [`Solver`](super::Solver) or by a one-shot [`Plan::analyse`](crate::linkage::Plan) —
+//! and the mode is continuous along a cycle as long as the motion keeps the triad nearer
+//! its reference mode than any other (the bundled six-bar's test checks it round a turn).
+//! A triad whose motion carries it farther than that would switch modes; tracking from the
+//! previous position is the way out (`triad` takes any previous pose), not taken here so that
+//! no solve depends on the one before.
+
+use super::analysis::{Analysis, Reaction};
+use super::state::{within, KinState};
+use crate::angle::cross;
+use crate::error::Result;
+use crate::kinematics::{triad, triad_rates, LinkMotion, TriadState};
+use crate::kinetostatics::Triad;
+use crate::linkage::plan::{Group, TriadPlan};
+use nalgebra::{Point2, Vector2};
+
+impl KinState {
+    /// Triad `g` solved in full, in the mode nearest the reference mode (module docs).
+    pub(super) fn solve_triad_kinematics(
+        &mut self,
+        g: usize,
+        group: &Group,
+        t: &TriadPlan,
+    ) -> Result<()> {
+        let a = [0, 1, 2].map(|i| self.at(t.known[i], t.a_local[i]));
+        let s = triad(a, &t.dims, &t.reference).map_err(within(&group.name))?;
+        for (k, m) in triad_links(t, &s) {
+            self.set_link(k, m);
+        }
+        self.dets[g] = s.det;
+        self.triads[g] = Some(s.pose());
+        Ok(())
+    }
+
+    /// Triad `g`'s rates at the pose of the last solve, whose positions (and unit vectors)
+    /// are kept to the bit; `Err` when there is none or a rate fails (the caller then solves
+    /// the group in full, which names the failure).
+    pub(super) fn triad_rates_at(&mut self, g: usize, group: &Group, t: &TriadPlan) -> Result<()> {
+        let a = [0, 1, 2].map(|i| self.at(t.known[i], t.a_local[i]));
+        let pose = self.triads[g].ok_or_else(|| {
+            within(&group.name)(crate::Error::NonFinite {
+                name: "triad pose",
+                value: f64::NAN,
+            })
+        })?;
+        let s = triad_rates(a, &t.dims, &pose).map_err(within(&group.name))?;
+        for (k, m) in triad_links(t, &s) {
+            let link = &mut self.links[k];
+            link.origin.v = m.origin.v;
+            link.origin.a = m.origin.a;
+            link.omega = m.omega;
+            link.epsilon = m.epsilon;
+        }
+        Ok(())
+    }
+}
+
+/// The motions of a triad's four links (the ternary link first), with their indices.
+fn triad_links(t: &TriadPlan, s: &TriadState) -> [(usize, LinkMotion); 4] {
+    [
+        (t.links[0], s.ternary),
+        (t.links[1], s.binary[0]),
+        (t.links[2], s.binary[1]),
+        (t.links[3], s.binary[2]),
+    ]
+}
+
+/// A triad's transmission angle: the smallest over its binary links of μ_i, the acute angle
+/// between binary link i's line and the line from B_i to P_jk, where the lines of the other
+/// two binary links meet (the instant centre of the ternary link were link i taken away, so
+/// B_i would move across B_i P_jk). It is π/2 − the pressure angle at B_i, and vanishes where
+/// the three lines meet at one point: the triad's dead point (det K = 0).
+pub(crate) fn transmission_angle(kin: &KinState, t: &TriadPlan, b: [Point2<f64>; 3]) -> f64 {
+    let [_, l1, l2, l3] = t.links;
+    let u = [l1, l2, l3].map(|k| kin.units[k]);
+    let a = [l1, l2, l3].map(|k| kin.links[k].origin.p);
+    let between = |p: Vector2<f64>, q: Vector2<f64>| cross(p, q).abs().atan2(p.dot(&q).abs());
+    (0..3)
+        .map(|i| {
+            let (j, k) = ((i + 1) % 3, (i + 2) % 3);
+            // (B_i − P_jk)·(u_j × u_k), without dividing: P_jk = A_j + u_j·s with
+            // s = ((A_k − A_j) × u_k)/(u_j × u_k).
+            let d = (b[i] - a[j]) * cross(u[j], u[k]) - u[j] * cross(a[k] - a[j], u[k]);
+            between(u[i], d)
+        })
+        .fold(std::f64::consts::FRAC_PI_2, f64::min)
+}
+
+impl Analysis<'_> {
+    /// Triad `g`'s reactions from the loads collected on its links; its outer reactions are
+    /// added to the known links' loads.
+    pub(super) fn solve_triad(&mut self, g: usize, group: &Group, t: &TriadPlan) -> Result<()> {
+        let kin = &self.k.kin;
+        let [lt, l1, l2, l3] = t.links;
+        let binary = [l1, l2, l3];
+        let a = binary.map(|l| kin.links[l].origin.p);
+        let pose = self.pose();
+        let b = [0, 1, 2].map(|i| pose.joint_position_on(t.inner[i], lt));
+        let r = Triad {
+            a,
+            b,
+            loads: binary.map(|l| self.acc[l]),
+            load_ternary: self.acc[lt],
+        }
+        .solve()
+        .map_err(within(&group.name))?;
+        for i in 0..3 {
+            let ra = Reaction::hinge(t.known[i], binary[i], r.r_a[i], a[i]);
+            super::statics::add(&mut self.acc[t.known[i]], &ra.load_on_side(t.known[i]));
+            self.reactions[t.outer[i]] = ra;
+            self.reactions[t.inner[i]] = Reaction::hinge(binary[i], lt, r.r_b[i], b[i]);
+        }
+        self.conditioning[g] = r.conditioning;
+        Ok(())
+    }
+}
