@@ -76,7 +76,7 @@ fn compressor(psi1: f64, w1: f64, e1: f64) -> tmm::Result<(RrpState, RrpState)> 
     ))
 }
 
-fn main() -> tmm::Result<()> {
+fn run_example() -> tmm::Result<()> {
     let n1 = 960.0; // rpm
     let w1 = n1 * TAU / 60.0;
     let e1 = 0.0; // the seed's ω1 = const; the test suite also runs ε1 ≠ 0
@@ -172,4 +172,12 @@ fn main() -> tmm::Result<()> {
         strokes.time_ratio
     );
     Ok(())
+}
+
+/// Runs the example; an error is printed as its sentence (`Display`), never in `Debug` form.
+fn main() {
+    if let Err(e) = run_example() {
+        eprintln!("error: {e}");
+        std::process::exit(1);
+    }
 }

@@ -18,7 +18,7 @@ fn show(name: &str, v: Vector2<f64>) {
     );
 }
 
-fn main() -> Result<(), tmm::Error> {
+fn run_example() -> Result<(), tmm::Error> {
     let deg = f64::to_radians;
 
     println!("SR1: RRR dyad, l_BA = 0.30 m, l_BC = 0.40 m, phi2 = 30°, phi3 = 120°");
@@ -151,4 +151,12 @@ fn main() -> Result<(), tmm::Error> {
         }
     }
     Ok(())
+}
+
+/// Runs the example; an error is printed as its sentence (`Display`), never in `Debug` form.
+fn main() {
+    if let Err(e) = run_example() {
+        eprintln!("error: {e}");
+        std::process::exit(1);
+    }
 }

@@ -359,7 +359,7 @@ fn coaxial(dir: &Path) -> Res<()> {
     Ok(())
 }
 
-fn main() -> Res<()> {
+fn run_example() -> Res<()> {
     let dir: PathBuf = std::env::args().nth(1).map_or_else(
         || PathBuf::from("target/tmm-charts/dynamics"),
         PathBuf::from,
@@ -372,4 +372,12 @@ fn main() -> Res<()> {
     println!("CSV files and SVG charts written to {}", dir.display());
     println!("Work-precision of the steppers: cargo run --release --example work_precision");
     Ok(())
+}
+
+/// Runs the example; an error is printed as its sentence (`Display`), never in `Debug` form.
+fn main() {
+    if let Err(e) = run_example() {
+        eprintln!("error: {e}");
+        std::process::exit(1);
+    }
 }

@@ -18,7 +18,7 @@ use tmm::linkage::{course_inputs, Course, Linkage, Plan, Sweep, Table};
 
 const BUNDLED: &str = include_str!("../linkages/shaper.json");
 
-fn main() -> Result<(), Box<dyn std::error::Error>> {
+fn run_example() -> Result<(), Box<dyn std::error::Error>> {
     let (text, source) = match std::env::args().nth(1) {
         Some(path) => (fs::read_to_string(&path)?, path),
         None => (
@@ -219,5 +219,13 @@ mod pictures {
             )?;
         }
         Ok(())
+    }
+}
+
+/// Runs the example; an error is printed as its sentence (`Display`), never in `Debug` form.
+fn main() {
+    if let Err(e) = run_example() {
+        eprintln!("error: {e}");
+        std::process::exit(1);
     }
 }

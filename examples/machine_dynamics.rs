@@ -92,7 +92,7 @@ fn turn_row(k: usize, t: &Turn) -> String {
     )
 }
 
-fn main() -> Res<()> {
+fn run_example() -> Res<()> {
     let dir = std::env::args().nth(1).map_or_else(
         || PathBuf::from("target/tmm-charts/machine_dynamics"),
         PathBuf::from,
@@ -278,4 +278,12 @@ fn main() -> Res<()> {
     )?;
     println!("\nCSV and SVG written to {}", dir.display());
     Ok(())
+}
+
+/// Runs the example; an error is printed as its sentence (`Display`), never in `Debug` form.
+fn main() {
+    if let Err(e) = run_example() {
+        eprintln!("error: {e}");
+        std::process::exit(1);
+    }
 }

@@ -377,7 +377,7 @@ fn summary(dir: &Path, name: &str, title: &str, plan: &Plan, inputs: &[Motion]) 
     )
 }
 
-fn main() -> Res<()> {
+fn run_example() -> Res<()> {
     let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("target/tmm-charts/mechanisms");
     create_dir_all(&dir)?;
     six_bar(&dir)?;
@@ -406,4 +406,12 @@ fn main() -> Res<()> {
     )?;
     println!("\nCSV tables and SVG charts written to {}", dir.display());
     Ok(())
+}
+
+/// Runs the example; an error is printed as its sentence (`Display`), never in `Debug` form.
+fn main() {
+    if let Err(e) = run_example() {
+        eprintln!("error: {e}");
+        std::process::exit(1);
+    }
 }

@@ -18,7 +18,7 @@ use tmm::kinetostatics::passive::{
 /// The length scale of the axial-stiffness ratio EA·L²/EI: link 3, l3 + l4.
 const L: f64 = 0.35;
 
-fn main() -> Result<(), Box<dyn Error>> {
+fn run_example() -> Result<(), Box<dyn Error>> {
     let p = PaperGroup::example();
     // EI = 1 N·m²: then δ11 and Δ1F print as δ11·EI and Δ1F·EI, as in the paper.
     let r = p.solve(&Stiffness::bending_only(1.0))?;
@@ -278,4 +278,12 @@ fn draw_sensitivity(
         .draw()?;
     root.present()?;
     Ok(())
+}
+
+/// Runs the example; an error is printed as its sentence (`Display`), never in `Debug` form.
+fn main() {
+    if let Err(e) = run_example() {
+        eprintln!("error: {e}");
+        std::process::exit(1);
+    }
 }

@@ -50,7 +50,7 @@ fn show(s: &Synthesis, output: &Output, dir: &Path, stem: &str) -> tmm::Result<(
     Ok(())
 }
 
-fn run() -> tmm::Result<()> {
+fn run_example() -> tmm::Result<()> {
     let dir = Path::new("target/tmm-charts/synthesis");
     if let Err(e) = fs::create_dir_all(dir) {
         println!("cannot create {}: {e}", dir.display());
@@ -267,7 +267,7 @@ fn need_of(s: &Synthesis) -> CrankRockerRequirement {
 }
 
 fn main() {
-    if let Err(e) = run() {
+    if let Err(e) = run_example() {
         eprintln!("error: {e}");
         std::process::exit(1);
     }
