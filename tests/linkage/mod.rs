@@ -8,4 +8,6 @@ mod dynamics;
 mod engine;
 mod files;
 #[cfg(feature = "serde")]
+mod friction;
+#[cfg(feature = "serde")]
 mod hostile;

@@ -149,7 +149,7 @@ impl Analysis<'_> {
     }
 
     /// The balancing moment or force of one input link, and its reaction with the frame.
-    fn solve_drive(&mut self, ip: &InputPlan) -> Result<Balance> {
+    pub(super) fn solve_drive(&mut self, ip: &InputPlan) -> Result<Balance> {
         let plan = self.k.plan;
         let link = ip.link();
         let load = self.acc[link];
@@ -267,7 +267,7 @@ fn drive_load(ip: &InputPlan, b: &Balance) -> Load {
 }
 
 /// Adds `l` to the resultant `acc` (kept at its point).
-fn add(acc: &mut Load, l: &Load) {
+pub(super) fn add(acc: &mut Load, l: &Load) {
     acc.moment += l.moment + cross(l.point - acc.point, l.force);
     acc.force += l.force;
 }
