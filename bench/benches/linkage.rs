@@ -710,6 +710,8 @@ fn four_bar_cycle(c: &mut Criterion) {
 /// A whole four-bar position with friction in every hinge (f = 0.15 on pins of 10 mm,
 /// `Plan::has_friction`: each group by its friction block, the crank by `CrankFriction`)
 /// beside the same position frictionless, by the same reused solver: the goal is at most 6×.
+/// Measured on a loaded 2-core machine (`uptime` load 5–7): 27.0 µs against 19.5 µs per 64
+/// positions, 1.4–1.6×.
 fn four_bar_friction(c: &mut Criterion) {
     let free = Plan::new(&bundled::four_bar()).unwrap();
     let mut l = bundled::four_bar();

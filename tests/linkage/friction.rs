@@ -222,6 +222,14 @@ fn the_cycle_works_balance_by_the_trapezoid() {
         let free = Plan::new(&base).unwrap();
         let e0 = free.cycle_efficiency(&course.inputs).unwrap();
         assert_eq!(e0.lost, 0.0);
+        let gap = (e.useful - e0.drive).abs() / e0.drive;
+        assert!(
+            gap <= 1e-4,
+            "{}: useful {} against {}",
+            base.name,
+            e.useful,
+            e0.drive
+        );
         println!(
             "{}: η = {:.4}, drive {:.3} J, lost {:.3} J, frictionless drive {:.3} J, balance {err:.1e}",
             base.name,
@@ -341,4 +349,25 @@ fn the_json_format_reads_friction_and_old_files_still_read() {
     let plan = Plan::new(&l).unwrap();
     let a = plan.analyse(Motion::turning(1.0, 10.0)).unwrap();
     assert!(a.friction("Q").unwrap().power_lost > 0.0);
+}
+
+#[test]
+fn two_inputs_with_friction_balance_their_power() {
+    // The five-bar robot: two cranks, each with its frame pin's friction.
+    let l = with_friction(&bundled::five_bar_robot(), 0.15);
+    let plan = Plan::new(&l).unwrap();
+    let r = plan.reference_inputs();
+    let mut solver = plan.solver();
+    for k in 0..24 {
+        let t = k as f64 / 24.0;
+        let m1 = Motion::new(r[0] + 0.3 * (TAU * t).sin(), 2.0, 0.5);
+        let m2 = Motion::new(r[1] + 0.2 * (TAU * t).cos(), -1.5, 0.3);
+        let a = solver.analyse(tmm::linkage::Inputs::two(m1, m2)).unwrap();
+        assert!(worst_equilibrium(&plan, a) <= 1e-12);
+        let lost = losses(&plan, a, 0.15 * 0.02 * plan.size(), 0.15);
+        let (p_loads, abs) = loads_power(a);
+        let drive = a.drive_power();
+        assert!((drive + p_loads - lost).abs() <= 1e-9 * abs.max(drive.abs()));
+        assert!(lost > 0.0);
+    }
 }
