@@ -97,6 +97,13 @@ pub struct Linkage {
     /// crank clockwise. Default 10.
     #[cfg_attr(feature = "serde", serde(default))]
     pub speed: Option<f64>,
+    /// The friction of every joint that gives none of its own (see [`Friction`]). `None`
+    /// (the default): those joints are frictionless.
+    #[cfg_attr(
+        feature = "serde",
+        serde(default, skip_serializing_if = "Option::is_none")
+    )]
+    pub friction: Option<Friction>,
 }
 
 #[cfg(feature = "serde")]
@@ -126,6 +133,7 @@ impl Default for Linkage {
             modes: Vec::new(),
             output: None,
             speed: None,
+            friction: None,
         }
     }
 }
@@ -142,6 +150,13 @@ pub struct Joint {
     /// Revolute (the default) or prismatic.
     #[cfg_attr(feature = "serde", serde(default))]
     pub kind: JointKind,
+    /// Coulomb friction in the joint; `None` (the default): the linkage's
+    /// [`friction`](Linkage::friction), if any.
+    #[cfg_attr(
+        feature = "serde",
+        serde(default, skip_serializing_if = "Option::is_none")
+    )]
+    pub friction: Option<Friction>,
 }
 
 impl Joint {
@@ -152,6 +167,7 @@ impl Joint {
             name: name.to_owned(),
             at,
             kind: JointKind::Revolute,
+            friction: None,
         }
     }
 
@@ -166,7 +182,113 @@ impl Joint {
                 guide: guide.to_owned(),
                 direction,
             },
+            friction: None,
         }
+    }
+
+    /// The same joint with its own friction.
+    #[must_use]
+    pub fn with_friction(mut self, friction: Friction) -> Self {
+        self.friction = Some(friction);
+        self
+    }
+}
+
+/// Coulomb friction in a joint (the model of
+/// [`kinetostatics::friction`](crate::kinetostatics::friction)): every field optional, so one
+/// value can serve as the linkage-wide default for both kinds of joint.
+///
+/// - A revolute joint's friction circle has the radius ρ = `rho` if given, else
+///   f·`pin_radius` (both needed); a friction couple ρ·|R| opposes the relative rotation.
+/// - A prismatic joint's friction force is f·|N| against the relative sliding; with the
+///   slider's `length` L along the guide (centred `centre` along the guide from the joint,
+///   default 0), the normal reaction is two contact forces at the slider's ends, each with
+///   its own friction (a cocked slider). `pin_radius` and `rho` are not for it.
+///
+/// Every number must be finite and ≥ 0 (`length` > 0), checked by
+/// [`Plan::new`](super::Plan::new) with an error naming the joint and the field. Every
+/// coefficient zero is the frictionless linkage, bit for bit.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "serde", serde(deny_unknown_fields))]
+pub struct Friction {
+    /// f, the coefficient of friction (of the journal with `pin_radius`, of the slide).
+    #[cfg_attr(
+        feature = "serde",
+        serde(default, skip_serializing_if = "Option::is_none")
+    )]
+    pub f: Option<f64>,
+    /// r, a revolute joint's pin radius, m: ρ = f·r.
+    #[cfg_attr(
+        feature = "serde",
+        serde(default, skip_serializing_if = "Option::is_none")
+    )]
+    pub pin_radius: Option<f64>,
+    /// ρ, a revolute joint's friction-circle radius, m (instead of f and `pin_radius`).
+    #[cfg_attr(
+        feature = "serde",
+        serde(default, skip_serializing_if = "Option::is_none")
+    )]
+    pub rho: Option<f64>,
+    /// L, a prismatic joint's slider length along the guide, m (> 0).
+    #[cfg_attr(
+        feature = "serde",
+        serde(default, skip_serializing_if = "Option::is_none")
+    )]
+    pub length: Option<f64>,
+    /// Where a prismatic joint's slider's middle lies along the guide from the joint, m
+    /// (default 0).
+    #[cfg_attr(
+        feature = "serde",
+        serde(default, skip_serializing_if = "Option::is_none")
+    )]
+    pub centre: Option<f64>,
+}
+
+impl Friction {
+    /// A journal of radius `pin_radius` (m) with the coefficient `f`: ρ = f·r.
+    #[must_use]
+    pub fn pin(f: f64, pin_radius: f64) -> Self {
+        Self {
+            f: Some(f),
+            pin_radius: Some(pin_radius),
+            ..Self::default()
+        }
+    }
+
+    /// A friction circle of radius `rho` (m).
+    #[must_use]
+    pub fn circle(rho: f64) -> Self {
+        Self {
+            rho: Some(rho),
+            ..Self::default()
+        }
+    }
+
+    /// A slide with the coefficient `f` that takes any couple.
+    #[must_use]
+    pub fn slide(f: f64) -> Self {
+        Self {
+            f: Some(f),
+            ..Self::default()
+        }
+    }
+
+    /// A slide with the coefficient `f`, its slider `length` (m) long along the guide.
+    #[must_use]
+    pub fn cocked(f: f64, length: f64) -> Self {
+        Self {
+            f: Some(f),
+            length: Some(length),
+            ..Self::default()
+        }
+    }
+
+    /// The default for every joint: a journal (f, `pin_radius`) for the revolute joints and
+    /// the same f on the slides.
+    #[must_use]
+    pub fn everywhere(f: f64, pin_radius: f64) -> Self {
+        Self::pin(f, pin_radius)
     }
 }
 

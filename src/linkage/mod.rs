@@ -67,7 +67,8 @@ pub use course::{Course, Sweep};
 pub use cycle::run_cycle_parallel;
 pub use cycle::{course_inputs, run_cycle, try_course_inputs, try_uniform_inputs, uniform_inputs};
 pub use description::{
-    At, Drive, Input, Joint, JointKind, Link, Linkage, LoadSpec, Mass, Mode, NamedPoint, Output,
+    At, Drive, Friction, Input, Joint, JointKind, Link, Linkage, LoadSpec, Mass, Mode, NamedPoint,
+    Output,
 };
 pub use handle::{JointId, JointRef, LinkId, LinkRef, PointId, PointRef};
 pub use indicator::IndicatorDiagram;

@@ -15,6 +15,7 @@ use super::inputs::Inputs;
 use crate::error::{Error, Result};
 use crate::kinematics::frame_offset;
 use crate::kinematics::{Branch, LinkMotion, Motion, PointMotion, TriadDims, TriadPose};
+use crate::kinetostatics::friction::{Hinge, Slide};
 use crate::Load;
 use nalgebra::{Point2, Vector2};
 use std::fmt;
@@ -263,6 +264,17 @@ pub struct Plan {
     pub(crate) chain: Chain,
     pub(crate) loads: Vec<LoadPlan>,
     pub(crate) gravity: Vector2<f64>,
+    /// Each joint's friction (by joint index), or `None` for a frictionless linkage (every
+    /// coefficient zero): then the solve takes the frictionless path.
+    pub(crate) friction: Option<Vec<FrictionPlan>>,
+}
+
+/// One joint's friction: the hinge's for a revolute joint, the slide's for a prismatic one
+/// (the other frictionless).
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub(crate) struct FrictionPlan {
+    pub hinge: Hinge,
+    pub slide: Slide,
 }
 
 /// A description error: `item` names the joint, link, load or field, `problem` what is wrong.
@@ -386,6 +398,13 @@ impl Plan {
             f: LoadFn(Arc::new(f)),
         });
         Ok(())
+    }
+
+    /// Whether any joint has friction (a coefficient above zero): then every solve takes the
+    /// friction statics ([`Analysis::friction`](super::Analysis::friction)).
+    #[must_use]
+    pub fn has_friction(&self) -> bool {
+        self.friction.is_some()
     }
 
     /// The linkage's name.

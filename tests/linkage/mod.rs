@@ -8,6 +8,8 @@ mod dynamics;
 mod engine;
 mod files;
 #[cfg(feature = "serde")]
+mod friction;
+#[cfg(feature = "serde")]
 mod hostile;
 #[cfg(feature = "serde")]
 mod triad;

@@ -126,6 +126,8 @@ pub struct Analysis<'p> {
     pub(crate) conditioning: Vec<Conditioning>,
     /// One per input (the first `plan.input_count()` are meaningful).
     pub(crate) balances: [Balance; 2],
+    /// The joints' friction (empty buffers for a frictionless plan).
+    pub(crate) friction: super::friction::FrictionState,
 }
 
 impl<'p> Deref for Analysis<'p> {
@@ -165,6 +167,11 @@ impl<'p> Analysis<'p> {
             reactions: vec![zero; c.joints.len()],
             conditioning: vec![one; c.groups.len()],
             balances: [balance; 2],
+            friction: if plan.friction.is_some() {
+                super::friction::FrictionState::new(c.joints.len())
+            } else {
+                super::friction::FrictionState::default()
+            },
         }
     }
 
@@ -173,7 +180,11 @@ impl<'p> Analysis<'p> {
     pub(crate) fn solve(&mut self, inputs: &[Motion]) -> Result<()> {
         self.k.solve(inputs)?;
         self.apply_loads()?;
-        self.solve_statics()
+        let plan = self.k.plan;
+        match &plan.friction {
+            None => self.solve_statics(),
+            Some(fp) => self.solve_friction_statics(fp),
+        }
     }
 
     /// The kinematics of this position (also every kinematic reading of `self` directly).

@@ -5,6 +5,7 @@
 
 pub(crate) mod analysis;
 mod checks;
+mod friction;
 pub(crate) mod kinematics;
 pub(crate) mod loads;
 pub(crate) mod position;

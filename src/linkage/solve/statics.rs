@@ -159,7 +159,7 @@ impl Analysis<'_> {
     }
 
     /// The balancing moment or force of one input link, and its reaction with the frame.
-    fn solve_drive(&mut self, ip: &InputPlan) -> Result<Balance> {
+    pub(super) fn solve_drive(&mut self, ip: &InputPlan) -> Result<Balance> {
         let plan = self.k.plan;
         let link = ip.link();
         let load = self.acc[link];
