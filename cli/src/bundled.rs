@@ -38,6 +38,10 @@ pub const FILES: &[(&str, &str)] = &[
     ),
     ("shaper", include_str!("../../linkages/shaper.json")),
     (
+        "six-bar-triad",
+        include_str!("../../linkages/six-bar-triad.json"),
+    ),
+    (
         "slotted-rocker",
         include_str!("../../linkages/slotted-rocker.json"),
     ),
