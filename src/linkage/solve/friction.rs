@@ -138,7 +138,7 @@ impl Analysis<'_> {
             GroupKind::Triad => {
                 // The friction blocks cover the five dyads; a triad's joints are not modelled.
                 return Err(crate::Error::Description {
-                    item: format!("group {}", group.name),
+                    item: group.name.clone(),
                     problem: "friction in the joints of a triad (a group of the 3rd class) is \
                               not modelled: give its joints no friction"
                         .to_owned(),
@@ -474,7 +474,7 @@ impl Analysis<'_> {
     /// external loads (resistances, forces, moments, an indicator diagram, a user's loads)
     /// and the links' weights and inertia loads — so P_useful = −Σ P_loads. Over a steady
     /// cycle the weights' and the inertia loads' work is zero, and the cycle efficiency
-    /// ([`Course::efficiency`](crate::linkage::Course::efficiency)) is the work of the
+    /// ([`Plan::cycle_efficiency`](crate::linkage::Plan::cycle_efficiency)) is the work of the
     /// external loads over the drive's.
     ///
     /// # Errors
