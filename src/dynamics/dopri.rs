@@ -311,7 +311,7 @@ fn rejected_factor(h: f64, err: f64, before: Option<(f64, f64)>) -> f64 {
 /// On the five-bar robot's first 0.5 s at rtol = atol = 10⁻⁸ this takes 595 evaluations for
 /// a final error of 5.1·10⁻⁹, where the elementary controller alone took 679 and ode_solvers'
 /// Dopri5 (Hairer and Wanner's PI controller) takes 637 for 5.2·10⁻⁹ on the same right-hand
-/// side (`bench/benches/peers.rs` prints both; across tolerances the two spend the same).
+/// side (`benches/peers.rs` prints both; across tolerances the two spend the same).
 ///
 /// A step that would fall below 10⁻¹²·max(1, |t|) ends in [`Error::Singular`] (the motion is
 /// too stiff or singular for this tolerance).

@@ -1413,7 +1413,7 @@ fn dormand_prince_shortens_a_failing_step_by_the_exponent_it_shows() {
 
 /// ode_solvers 0.6.2's Dopri5 (Hairer and Wanner's PI controller) spends 637 evaluations on
 /// the five-bar robot's first 0.5 s at rtol = atol = 10⁻⁸ with the same first step, reaching
-/// an error of 5.2e-9 (`bench/benches/peers.rs` prints both): tmm, stepping across the
+/// an error of 5.2e-9 (`benches/peers.rs` prints both): tmm, stepping across the
 /// servos' switches as the peer does, spends no more for no worse an error.
 #[test]
 fn dormand_prince_five_bar_costs_no_more_than_the_peer() {

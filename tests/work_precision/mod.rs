@@ -1,6 +1,6 @@
 //! The observed orders and error bounds of the work-precision charts, asserted from the same
 //! functions that draw them (`tests/work_precision/`; the charts themselves are drawn by
-//! `bench/examples/work_precision.rs`) and from the CSV files committed beside the charts in
+//! `benches/examples/work_precision.rs`) and from the CSV files committed beside the charts in
 //! `docs/charts/`.
 
 mod dd;

@@ -61,7 +61,7 @@
 //! One frictionless closed form, its responses to the three friction loads, and a few Newton
 //! steps of a 3×3 system (two, plus the check, for the usual f ≤ 0.3). The RRR dyad, the
 //! engine's most frequent group, has its responses in closed form and its Newton written out
-//! (`bench/benches/friction.rs`: about 6× its frictionless closed form, side by side); the
+//! (`benches/friction.rs`: about 6× its frictionless closed form, side by side); the
 //! other groups call their closed form once per joint for the responses (15–50× theirs).
 //!
 //! | group | solver | joints (in the order of [`Convergence`]) |

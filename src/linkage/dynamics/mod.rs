@@ -39,7 +39,7 @@
 //! once, and for e₂ and (1, 1) only the groups' velocity and acceleration problems, which are
 //! linear with the matrix of the position already solved (a few dot products per group, no
 //! square root or `atan2`). Then it sums over the links and loads. The bench
-//! `linkage_dynamics` (bench/) prints the ratio to one kinematic position of the same linkage
+//! `linkage_dynamics` (benches/) prints the ratio to one kinematic position of the same linkage
 //! measured side by side: 1.44× for the four-bar, 1.35× for the Watt six-bar, 1.60× for the
 //! compressor and 1.80× for the five-bar robot (3.2× when each rate vector re-solved the
 //! positions). A [`LagrangeSystem`](crate::dynamics::LagrangeSystem) evaluation of the

@@ -1,5 +1,5 @@
-//! `tmm-bench`: the criterion benches of `tmm` (`benches/`, one file per part), its
-//! comparison with a peer ODE crate (`benches/peers.rs`, ode_solvers) and the work-precision
+//! `tmm-bench`: the criterion benches of `tmm` (one file per part beside this one), its
+//! comparison with a peer ODE crate (`peers.rs`, ode_solvers) and the work-precision
 //! charts of the README (`examples/work_precision.rs`, plotters).
 //!
 //! This package is a workspace member and is never published. It exists so that `cargo test`

@@ -17,7 +17,7 @@ use tmm::Load;
 #[path = "common/yardstick.rs"]
 mod yardstick;
 
-#[path = "../../tests/kinetostatics/general_solve.rs"]
+#[path = "../tests/kinetostatics/general_solve.rs"]
 #[allow(dead_code)]
 mod general_solve;
 
