@@ -2,6 +2,8 @@
 //! plain data ([`crate::model`]) out. Every entry point of `tmm` the program uses is named
 //! here, so that a change of the library's API is adapted in this file alone.
 
+pub mod synth;
+
 use std::f64::consts::TAU;
 
 use tmm::draw::{self, Course, Diagram, Style};
@@ -280,17 +282,7 @@ impl Machine {
             (c - b).norm(),
         )
         .ok()?;
-        Some(
-            match class {
-                Grashof::CrankRocker => "crank-rocker (s + l < p + q, the crank the shortest)",
-                Grashof::RockerCrank => "rocker-crank (s + l < p + q, the output the shortest)",
-                Grashof::DoubleCrank => "double crank (s + l < p + q, the frame the shortest)",
-                Grashof::DoubleRocker => "double rocker (s + l < p + q, the coupler the shortest)",
-                Grashof::ChangePoint => "change point (s + l = p + q: it folds flat)",
-                Grashof::TripleRocker => "triple rocker (s + l > p + q: no link turns fully)",
-            }
-            .to_owned(),
-        )
+        Some(grashof_text(class).to_owned())
     }
 
     /// The inputs of the positions asked for.
@@ -398,6 +390,7 @@ impl Machine {
             )));
         }
         let mut table = Table::of(&results);
+        self.add_named_points(&mut table, &results);
         if self.plan.input_count() > 1 {
             // The library's row holds the first input's coordinate and balancing moment; the
             // second input's are added here.
@@ -450,6 +443,42 @@ impl Machine {
             notes,
             speed,
         })
+    }
+
+    /// The named points' columns (a coupler point's path), after the joints' (the library's
+    /// table holds joints only): x, y, |v|, |a| of each, from the positions that solved.
+    fn add_named_points(
+        &self,
+        table: &mut Table,
+        results: &[tmm::Result<tmm::linkage::Analysis<'_>>],
+    ) {
+        let at = table
+            .columns
+            .iter()
+            .position(|c| c.name.starts_with("mu(") || c.name.starts_with("R("))
+            .unwrap_or(table.columns.len());
+        let mut added = Vec::new();
+        for name in self.plan.point_names() {
+            let motion: Vec<_> = results
+                .iter()
+                .flatten()
+                .map(|a| a.kinematics().point(name.as_str()).ok())
+                .collect();
+            let column = |label: String, f: &dyn Fn(&tmm::kinematics::PointMotion) -> f64| {
+                tmm::linkage::Column {
+                    name: label,
+                    values: motion
+                        .iter()
+                        .map(|m| m.as_ref().map_or(f64::NAN, f))
+                        .collect(),
+                }
+            };
+            added.push(column(format!("x({name}) [m]"), &|m| m.p.x));
+            added.push(column(format!("y({name}) [m]"), &|m| m.p.y));
+            added.push(column(format!("|v({name})| [m/s]"), &|m| m.v.norm()));
+            added.push(column(format!("|a({name})| [m/s^2]"), &|m| m.a.norm()));
+        }
+        table.columns.splice(at..at, added);
     }
 
     fn second_is_crank(&self) -> bool {
@@ -734,6 +763,18 @@ impl Machine {
             run_up,
             flywheels,
         })
+    }
+}
+
+/// Grashof's class in words, with the inequality that makes it.
+fn grashof_text(class: Grashof) -> &'static str {
+    match class {
+        Grashof::CrankRocker => "crank-rocker (s + l < p + q, the crank the shortest)",
+        Grashof::RockerCrank => "rocker-crank (s + l < p + q, the output the shortest)",
+        Grashof::DoubleCrank => "double crank (s + l < p + q, the frame the shortest)",
+        Grashof::DoubleRocker => "double rocker (s + l < p + q, the coupler the shortest)",
+        Grashof::ChangePoint => "change point (s + l = p + q: it folds flat)",
+        Grashof::TripleRocker => "triple rocker (s + l > p + q: no link turns fully)",
     }
 }
 

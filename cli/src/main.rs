@@ -7,9 +7,11 @@
 //! (`engine.rs`), which alone names the library's types.
 
 mod bundled;
+mod design;
 mod engine;
 mod model;
 mod report;
+mod synth;
 
 use std::io::{IsTerminal as _, Write as _};
 use std::path::{Path, PathBuf};
@@ -28,6 +30,7 @@ Examples:
   tmm draw linkages/watt-six-bar.json --animate -o watt.svg
   tmm dynamics linkages/mechanism-compressor.json --run-up --flywheel 0.05
   tmm bundled                                    the descriptions built into tmm
+  tmm synth shaper --stroke 0.3 -K 1.6 --centre-distance 0.25 -o my-shaper.json
 
 A FILE that does not exist is looked up among the bundled descriptions (`tmm bundled`).
 Units are SI (m, kg, s, N, N·m, rad) except where an option says degrees.";
@@ -197,6 +200,15 @@ for a machine whose loads average out). The step keeps RK4 well inside its stabi
         /// Also write the reduced quantities over the turn as CSV to this file.
         #[arg(long, value_name = "OUT")]
         csv: Option<PathBuf>,
+    },
+
+    /// From a requirement to a linkage: a crank-rocker, an offset slider-crank or a shaper by
+    /// the time ratio K and the stroke; a crank-rocker through given positions; a function
+    /// generator; a path generator. Writes the description and reports what it achieves.
+    #[command(after_help = synth::EXAMPLES)]
+    Synth {
+        #[command(subcommand)]
+        kind: synth::SynthKind,
     },
 
     /// The descriptions built into tmm; with a NAME, print that description's JSON.
@@ -480,6 +492,7 @@ fn run(command: Command) -> Result<(), Fail> {
                 Report::Json => report::dynamics_json(&d),
             });
         }
+        Command::Synth { kind } => synth::run(kind)?,
         Command::Bundled { name } => match name {
             Some(name) => match bundled::find(&name) {
                 Some(text) => print(text),

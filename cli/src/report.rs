@@ -1,8 +1,12 @@
 //! The program's output as text, CSV and JSON, from its own plain data ([`crate::model`]).
 
+mod synth;
+
 use std::fmt::Write as _;
 
 use crate::model::{DynamicsReport, InputKind, Range, StrokeInfo, Structure, TableData};
+
+pub use synth::design;
 
 /// An angle in rad as degrees, one decimal.
 fn deg(rad: f64) -> String {

@@ -1,0 +1,475 @@
+//! `tmm synth`'s adapter to `tmm::synthesis`: a requirement ([`crate::design::Request`]) in,
+//! the description's JSON and a report out. The report's "checked by the engine" part and the
+//! misses come from the description written, planned and solved again ([`super::load`]),
+//! not from the synthesis's own figures.
+
+use std::f64::consts::{PI, TAU};
+use std::time::Duration;
+
+use tmm::kinematics::Motion;
+use tmm::linkage::Output;
+use tmm::synthesis::{
+    crank_rocker, crank_rocker_through, function_generator, path_generator, shaper, slider_crank,
+    CrankRockerRequirement, FrameChoice, FunctionRequirement, OffsetChoice, Options, PathOptions,
+    PathRequirement, ShaperRequirement, SliderCrankRequirement, Spacing, Synthesis,
+    Timing as PathTiming,
+};
+
+use super::{failure, grashof_text, load, Machine};
+use crate::design::{
+    DesignReport, Designed, Dimension, Kind, MissRow, Misses, PathRequest, Request, Timing,
+};
+use crate::model::Failure;
+
+/// Points of the structural error curve of a function generator, for its largest error.
+const CURVE_POINTS: usize = 1001;
+/// Rows of the structural error shown.
+const CURVE_ROWS: usize = 11;
+
+/// The library's error as a sentence, with the option that sets the parameter it names and,
+/// for an angle, its values in degrees (the command line takes degrees, the library rad).
+fn synth_failure(e: &tmm::Error, flags: &[(&str, &str)]) -> Failure {
+    let f = failure(e);
+    let (name, degrees) = match e {
+        tmm::Error::OutOfRange {
+            name,
+            value,
+            min,
+            max,
+            ..
+        } => (
+            *name,
+            angle_name(name).then(|| {
+                format!(
+                    "{} lies outside {} to {}",
+                    deg(*value),
+                    deg_bound(*min),
+                    deg_bound(*max)
+                )
+            }),
+        ),
+        tmm::Error::Infeasible {
+            parameter,
+            required,
+            reachable,
+        } => (
+            *parameter,
+            angle_name(parameter).then(|| {
+                format!(
+                    "{} asked for, {} reachable",
+                    deg(*required),
+                    deg(*reachable)
+                )
+            }),
+        ),
+        tmm::Error::NonFinite { name, .. } | tmm::Error::NonPositive { name, .. } => (*name, None),
+        _ => ("", None),
+    };
+    let flag = flags
+        .iter()
+        .find(|(n, _)| !name.is_empty() && name.starts_with(n))
+        .map(|(_, flag)| *flag);
+    let hint = match (flag, degrees) {
+        (Some(flag), Some(d)) => Some(format!("set by {flag}; in degrees: {d}")),
+        (Some(flag), None) => Some(format!("set by {flag}")),
+        (None, Some(d)) => Some(format!("in degrees: {d}")),
+        (None, None) => None,
+    };
+    match hint {
+        Some(h) => f.hint(h),
+        None => f,
+    }
+}
+
+fn angle_name(name: &str) -> bool {
+    name.contains("angle") || name.contains("swing") || name.contains("(rad)")
+}
+
+fn deg(rad: f64) -> String {
+    format!("{:.4}°", rad.to_degrees())
+}
+
+fn deg_bound(rad: f64) -> String {
+    if rad.is_infinite() {
+        if rad > 0.0 { "∞" } else { "−∞" }.to_owned()
+    } else {
+        deg(rad)
+    }
+}
+
+/// The library's parameter names and the options of `tmm synth` that set them.
+const COMMON_FLAGS: [(&str, &str); 2] = [
+    ("min_transmission_angle", "--min-transmission"),
+    ("minimum transmission angle", "--min-transmission"),
+];
+
+fn flags_of(kind: &Kind) -> Vec<(&'static str, &'static str)> {
+    let own: &[(&str, &str)] = match kind {
+        Kind::CrankRocker { .. } => &[
+            ("rocker", "--rocker"),
+            ("swing", "--swing"),
+            ("K", "-K/--time-ratio"),
+            ("frame", "--frame"),
+        ],
+        Kind::SliderCrank { .. } => &[
+            ("stroke", "--stroke"),
+            ("K", "-K/--time-ratio"),
+            ("offset", "--offset"),
+        ],
+        Kind::Shaper { .. } => &[
+            ("stroke", "--stroke"),
+            ("K", "-K/--time-ratio"),
+            ("centre_distance", "--centre-distance"),
+        ],
+        Kind::Through { .. } => &[
+            ("frame", "--frame"),
+            ("positions", "--at (two or three pairs φ,ψ)"),
+            ("crank angle", "--at"),
+            ("rocker angle", "--at"),
+        ],
+        Kind::Function { .. } => &[
+            ("x0", "--x"),
+            ("x1", "--x"),
+            ("crank angle", "--crank"),
+            ("rocker angle", "--rocker"),
+            ("frame", "--frame"),
+            ("N", "--least-squares"),
+            ("f(x", "--function and --x"),
+        ],
+        Kind::Path(_) => &[
+            (
+                "points",
+                "the points file (at least 9 points; 5 with crank angles)",
+            ),
+            ("timing", "the points file's third column"),
+            ("population", "--budget"),
+        ],
+    };
+    own.iter().chain(&COMMON_FLAGS).copied().collect()
+}
+
+/// Synthesises the mechanism asked for, writes its description and checks it by the engine.
+///
+/// # Errors
+/// The library's error for a requirement no mechanism of the kind meets (naming the
+/// parameter and by how much), with the option that sets it.
+pub fn synthesise(request: &Request, progress: &mut dyn FnMut(&str)) -> Result<Designed, Failure> {
+    let flags = flags_of(&request.kind);
+    let f = |e: tmm::Error| synth_failure(&e, &flags);
+    let options = Options::default().with_min_transmission_angle(request.min_transmission);
+    let mut notes = Vec::new();
+    let (synthesis, misses): (Synthesis, Option<MissesOf>) = match &request.kind {
+        Kind::CrankRocker {
+            rocker,
+            swing,
+            time_ratio,
+            frame,
+        } => {
+            let need = CrankRockerRequirement {
+                rocker: *rocker,
+                swing: *swing,
+                time_ratio: *time_ratio,
+                frame: frame.map_or(FrameChoice::BestTransmission, FrameChoice::Length),
+            };
+            if frame.is_none() {
+                notes.push("the frame O1O3 chosen for the largest γ_min".to_owned());
+            }
+            (crank_rocker(&need, &options).map_err(f)?, None)
+        }
+        Kind::SliderCrank {
+            stroke,
+            time_ratio,
+            offset,
+        } => {
+            let need = SliderCrankRequirement {
+                stroke: *stroke,
+                time_ratio: *time_ratio,
+                offset: offset.map_or(OffsetChoice::BestTransmission, OffsetChoice::Given),
+            };
+            if offset.is_none() {
+                notes.push("the offset chosen for the largest γ_min".to_owned());
+            }
+            (slider_crank(&need, &options).map_err(f)?, None)
+        }
+        Kind::Shaper {
+            stroke,
+            time_ratio,
+            centre_distance,
+        } => {
+            let need = ShaperRequirement {
+                stroke: *stroke,
+                time_ratio: *time_ratio,
+                centre_distance: *centre_distance,
+            };
+            (shaper(&need, &options).map_err(f)?, None)
+        }
+        Kind::Through { frame, positions } => {
+            let s = crank_rocker_through(*frame, positions, &options).map_err(f)?;
+            (s, Some(MissesOf::Rocker(positions.clone())))
+        }
+        Kind::Function {
+            function,
+            x,
+            crank,
+            rocker,
+            frame,
+            least_squares,
+        } => {
+            let need = FunctionRequirement {
+                x_range: *x,
+                crank_range: *crank,
+                rocker_range: *rocker,
+                frame: *frame,
+                spacing: least_squares.map_or(Spacing::Chebyshev, Spacing::LeastSquares),
+            };
+            let func = |v: f64| function.eval(v);
+            let g = function_generator(func, &need, &options).map_err(f)?;
+            notes.push(format!(
+                "y = {}(x), x from {} to {}: {}",
+                function.name(),
+                x[0],
+                x[1],
+                match least_squares {
+                    None => "three precision points at Chebyshev spacing".to_owned(),
+                    Some(n) => format!("least squares over {n} points at Chebyshev spacing"),
+                }
+            ));
+            let xs: Vec<String> = g
+                .precision_x
+                .iter()
+                .take(8)
+                .map(|x| format!("{x:.6}"))
+                .collect();
+            notes.push(format!(
+                "precision points x = {}{}",
+                xs.join(", "),
+                if g.precision_x.len() > 8 { ", …" } else { "" }
+            ));
+            notes.push(format!(
+                "Freudenstein's coefficients K1 = {:.6}, K2 = {:.6}, K3 = {:.6}",
+                g.coefficients[0], g.coefficients[1], g.coefficients[2]
+            ));
+            // The structural error by the engine: the largest over a fine grid, and a few
+            // rows to read.
+            let curve = g.structural_error(func, CURVE_POINTS).map_err(f)?;
+            let worst = curve
+                .iter()
+                .max_by(|a, b| a.error.abs().total_cmp(&b.error.abs()))
+                .copied();
+            if let Some(w) = worst {
+                notes.push(format!(
+                    "largest structural error {:.3e} at x = {:.4} ({:.3} % of the range of y), over {CURVE_POINTS} points by the engine",
+                    w.error,
+                    w.x,
+                    100.0 * w.error.abs() / (g.y_range[1] - g.y_range[0]).abs()
+                ));
+            }
+            let rows = g
+                .structural_error(func, CURVE_ROWS)
+                .map_err(f)?
+                .into_iter()
+                .map(|p| MissRow {
+                    at: format!("x = {:.4}", p.x),
+                    wanted: vec![p.wanted],
+                    reached: vec![p.generated],
+                    miss: p.error.abs(),
+                })
+                .collect();
+            let misses = Misses {
+                title: "the structural error: y wanted and generated (the rocker's angle by \
+                        the engine, mapped back to y)"
+                    .to_owned(),
+                quantities: vec!["y".to_owned()],
+                unit: "",
+                rows,
+            };
+            (g.synthesis, Some(MissesOf::Done(misses)))
+        }
+        Kind::Path(p) => path(p, request.min_transmission, &flags, &mut notes, progress)?,
+    };
+    let json = synthesis.linkage.to_json().map_err(f)?;
+    // The description as written, read back and planned: what every other command sees.
+    let machine = load(&json)?;
+    let misses = match misses {
+        None => None,
+        Some(MissesOf::Done(m)) => Some(m),
+        Some(MissesOf::Rocker(pairs)) => Some(rocker_misses(&machine, &pairs)),
+        Some(MissesOf::Coupler(targets, angles)) => {
+            Some(coupler_misses(&machine, &targets, &angles))
+        }
+    };
+    let r = &synthesis.report;
+    Ok(Designed {
+        json,
+        report: DesignReport {
+            kind: r.kind.to_owned(),
+            dimensions: r
+                .dimensions
+                .iter()
+                .map(|(name, value)| Dimension {
+                    name: name.trim_end_matches(" (rad)").to_owned(),
+                    value: *value,
+                    angle: name.ends_with("(rad)"),
+                })
+                .collect(),
+            time_ratio: r.time_ratio,
+            stroke: r.stroke,
+            angular_output: matches!(synthesis.linkage.output, Some(Output::Angle(_))),
+            min_transmission: (r.min_transmission_angle, r.min_transmission_at),
+            grashof: r.grashof.map(|g| grashof_text(g).to_owned()),
+            checked: machine.structure(),
+            misses,
+            notes,
+        },
+    })
+}
+
+/// What the misses are measured against, before the description is read back.
+enum MissesOf {
+    /// Already by the engine (the function generator's structural error).
+    Done(Misses),
+    /// (φ, ψ) pairs: the rocker's angle at each crank angle.
+    Rocker(Vec<(f64, f64)>),
+    /// Target points and the crank angles the design reaches them at.
+    Coupler(Vec<[f64; 2]>, Vec<f64>),
+}
+
+/// "φ = 30.000000°": a crank angle in degrees in [0, 360), to the digits that pin a point
+/// of a 1 m linkage to 2e-8 m.
+fn angle_label(phi: f64) -> String {
+    let d = format!("{:.6}", phi.to_degrees().rem_euclid(360.0));
+    if d == "360.000000" {
+        "φ = 0.000000°".to_owned()
+    } else {
+        format!("φ = {d}°")
+    }
+}
+
+/// The difference of two angles, rad in [−π, π).
+fn angle_difference(a: f64, b: f64) -> f64 {
+    (a - b + PI).rem_euclid(TAU) - PI
+}
+
+fn rocker_misses(m: &Machine, pairs: &[(f64, f64)]) -> Misses {
+    let rocker = Output::Angle("rocker".to_owned());
+    let rows = pairs
+        .iter()
+        .map(|&(phi, psi)| {
+            let got = m
+                .plan
+                .output(&rocker, Motion::fixed(phi))
+                .map_or(f64::NAN, |o| o.value);
+            let d = angle_difference(got, psi);
+            MissRow {
+                at: angle_label(phi),
+                wanted: vec![psi],
+                reached: vec![psi + d],
+                miss: d.abs(),
+            }
+        })
+        .collect();
+    Misses {
+        title: "the rocker's angle ψ wanted and reached (by the engine) at each crank angle"
+            .to_owned(),
+        quantities: vec!["ψ".to_owned()],
+        unit: "deg",
+        rows,
+    }
+}
+
+fn coupler_misses(m: &Machine, targets: &[[f64; 2]], angles: &[f64]) -> Misses {
+    let rows = targets
+        .iter()
+        .zip(angles)
+        .map(|(t, &phi)| {
+            let got = m
+                .plan
+                .kinematics(Motion::fixed(phi))
+                .and_then(|k| k.point("P"))
+                .map_or([f64::NAN; 2], |p| [p.p.x, p.p.y]);
+            MissRow {
+                at: angle_label(phi),
+                wanted: t.to_vec(),
+                reached: got.to_vec(),
+                miss: (got[0] - t[0]).hypot(got[1] - t[1]),
+            }
+        })
+        .collect();
+    Misses {
+        title: "the target points and the coupler point P reached (by the engine) at the \
+                design's crank angles"
+            .to_owned(),
+        quantities: vec!["x".to_owned(), "y".to_owned()],
+        unit: "m",
+        rows,
+    }
+}
+
+/// The path search: the best design, and the targets with its crank angles at them.
+fn path(
+    p: &PathRequest,
+    gamma: f64,
+    flags: &[(&str, &str)],
+    notes: &mut Vec<String>,
+    progress: &mut dyn FnMut(&str),
+) -> Result<(Synthesis, Option<MissesOf>), Failure> {
+    let f = |e: tmm::Error| synth_failure(&e, flags);
+    let req = PathRequirement {
+        points: p.points.clone(),
+        timing: match &p.timing {
+            Timing::Free => PathTiming::Free,
+            Timing::Prescribed(d) => PathTiming::Prescribed(d.clone()),
+            Timing::Closed => PathTiming::ClosedCurve,
+        },
+    };
+    if !(p.time.is_finite() && p.time > 0.0) {
+        return Err(Failure::new(format!(
+            "the search's time bound must be a positive number of seconds, got {}",
+            p.time
+        ))
+        .hint("set by --time"));
+    }
+    let mut opts = PathOptions::default()
+        .with_min_transmission_angle(gamma)
+        .with_max_evaluations(p.budget)
+        .with_max_time(Duration::from_secs_f64(p.time.min(1e6)))
+        .with_designs(p.designs);
+    if let Some(seed) = p.seed {
+        opts = opts.with_seed(seed);
+    }
+    let designs = path_generator(&req, &opts, |pr| {
+        progress(&format!(
+            "path search: generation {}, {} of {} evaluations, best mean miss {:.3e} path sizes",
+            pr.generation, pr.evaluations, p.budget, pr.best
+        ));
+        true
+    })
+    .map_err(f)?;
+    let Some(best) = designs.first() else {
+        return Err(Failure::new("the path search returned no design")
+            .hint("raise --budget or --time, or try another --seed"));
+    };
+    notes.push(format!(
+        "seed {}, budget {} evaluations: {} design{} found, the best written",
+        opts.seed,
+        p.budget,
+        designs.len(),
+        if designs.len() == 1 { "" } else { "s" }
+    ));
+    for (k, d) in designs.iter().enumerate() {
+        notes.push(format!(
+            "design {}: mean miss {:.4e} m, largest {:.4e} m, γ_min {:.2}°",
+            k + 1,
+            d.mean_error,
+            d.max_error,
+            d.synthesis.report.min_transmission_angle.to_degrees()
+        ));
+    }
+    Ok((
+        best.synthesis.clone(),
+        Some(MissesOf::Coupler(
+            p.points.clone(),
+            best.crank_angles.clone(),
+        )),
+    ))
+}
