@@ -51,7 +51,7 @@ pub enum SynthKind {
     #[command(after_help = "\
 Examples:
   tmm synth crank-rocker -K 1.25 --swing 45 --rocker 0.3 -o crank-rocker.json
-  tmm synth crank-rocker -K 1.25 --swing 45 --rocker 0.3 --frame 0.5 -o crank-rocker.json
+  tmm synth crank-rocker -K 1.25 --swing 45 --rocker 0.3 --frame 0.4 --min-transmission 30 -o longer.json
 
 K = t_work/t_idle > 1: the crank turns 180° + θ during the working stroke and 180° − θ during
 the idle one, θ = 180°(K − 1)/(K + 1). The crank's pivot lies on a circle through the
@@ -412,11 +412,13 @@ fn points_csv(text: &str) -> Result<Points, Failure> {
     let mut points = Vec::new();
     let mut crank: Vec<f64> = Vec::new();
     let mut columns = None;
+    let mut first = true;
     for (k, line) in text.lines().enumerate() {
         let line = line.trim();
         if line.is_empty() || line.starts_with('#') {
             continue;
         }
+        let header = std::mem::replace(&mut first, false);
         let cells: Vec<&str> = line
             .split([',', ';', '\t'])
             .map(str::trim)
@@ -424,8 +426,8 @@ fn points_csv(text: &str) -> Result<Points, Failure> {
             .collect();
         let numbers: Result<Vec<f64>, _> = cells.iter().map(|c| c.parse::<f64>()).collect();
         let Ok(numbers) = numbers else {
-            if points.is_empty() && columns.is_none() {
-                continue; // a header line
+            if header {
+                continue; // the first line may name the columns
             }
             let bad = cells
                 .iter()

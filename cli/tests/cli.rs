@@ -1,48 +1,18 @@
 //! The built `tmm` program run on every bundled description for each subcommand, and on
 //! broken files. Outputs are parsed back: CSV cells counted and read as finite numbers, JSON
-//! read back, SVG checked for a well-formed tree of tags without `NaN` or `inf`.
+//! read back, SVG checked for a well-formed tree of tags without `NaN` or `inf` and rendered
+//! to pixels by resvg (not blank). `tests/synth.rs` holds `tmm synth`'s round trips.
 //!
 //! Known failures, each a clear one-line error with exit code 1 (never a panic):
 //! - `five-bar-robot.json` has two inputs (mobility 2): it has no single course, so `analyse`
 //!   without `--at` pairs, `draw` (every picture: the library's pictures take one input
-//!   motion) and `dynamics` (reduced to one crank) refuse it. `check` works, and so does
+//!   motion) and `dynamics` (reduced to one crank) refuse it, each with the sentence "… needs
+//!   a linkage with one input, and this one has 2" (asserted). `check` works, and so does
 //!   `analyse --at φ1 φ2 …`.
 
-use std::path::{Path, PathBuf};
-use std::process::Command;
+mod common;
 
-/// The exit code, standard output and standard error of one run.
-struct Run {
-    code: i32,
-    stdout: String,
-    stderr: String,
-}
-
-fn tmm(args: &[&str]) -> Run {
-    tmm_in(&root(), args)
-}
-
-/// Runs `tmm` in the directory `dir`.
-fn tmm_in(dir: &Path, args: &[&str]) -> Run {
-    let out = Command::new(env!("CARGO_BIN_EXE_tmm"))
-        .args(args)
-        .current_dir(dir)
-        .output()
-        .expect("the tmm binary runs");
-    Run {
-        code: out.status.code().expect("tmm exits (no signal)"),
-        stdout: String::from_utf8(out.stdout).expect("stdout is UTF-8"),
-        stderr: String::from_utf8(out.stderr).expect("stderr is UTF-8"),
-    }
-}
-
-/// The repository's root (the CLI's parent).
-fn root() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR"))
-        .parent()
-        .expect("cli/ has a parent")
-        .to_owned()
-}
+use common::{assert_one_line_failure, assert_success, parse_csv, root, tmm, tmm_in, Broken};
 
 /// Every bundled description, as a path relative to the root.
 fn bundled() -> Vec<String> {
@@ -61,75 +31,6 @@ fn bundled() -> Vec<String> {
 /// Files that cannot run a single course (see the module docs).
 fn two_inputs(file: &str) -> bool {
     file.ends_with("five-bar-robot.json")
-}
-
-/// A failure as the program must report it: exit code 1, exactly one line on stderr naming
-/// the file, nothing that looks like a panic or a `Debug` dump.
-fn assert_one_line_failure(r: &Run, file: &str) {
-    assert_eq!(r.code, 1, "exit code for {file}; stderr: {}", r.stderr);
-    assert_eq!(
-        r.stderr.lines().count(),
-        1,
-        "one line on stderr for {file}: {:?}",
-        r.stderr
-    );
-    assert!(r.stderr.starts_with("tmm: "), "{}", r.stderr);
-    assert!(r.stderr.contains(file), "names {file}: {}", r.stderr);
-    for debug in ["panicked", "Description {", "Error {", "Some(", "\\n"] {
-        assert!(!r.stderr.contains(debug), "no {debug:?} in {}", r.stderr);
-    }
-}
-
-fn assert_success(r: &Run, what: &str) {
-    assert_eq!(r.code, 0, "{what} exits 0; stderr: {}", r.stderr);
-}
-
-/// Parses CSV text (no quoted cells with commas in the numbers): the header's cells and the
-/// rows of numbers, every cell a finite number; checks each row has the header's count.
-fn parse_csv(text: &str, what: &str) -> (Vec<String>, Vec<Vec<f64>>) {
-    let mut lines = text.lines();
-    let header = split_csv_line(lines.next().expect("a header"));
-    let rows: Vec<Vec<f64>> = lines
-        .map(|line| {
-            let cells = split_csv_line(line);
-            assert_eq!(
-                cells.len(),
-                header.len(),
-                "{what}: a row has as many cells as the header"
-            );
-            cells
-                .iter()
-                .zip(&header)
-                .map(|(c, h)| {
-                    let v: f64 = c
-                        .parse()
-                        .unwrap_or_else(|_| panic!("{what}: cell {c:?} of {h} is a number"));
-                    assert!(v.is_finite(), "{what}: {h} = {v} is finite");
-                    v
-                })
-                .collect()
-        })
-        .collect();
-    (header, rows)
-}
-
-/// One CSV line's cells, honouring quotes.
-fn split_csv_line(line: &str) -> Vec<String> {
-    let mut cells = vec![String::new()];
-    let mut quoted = false;
-    let mut chars = line.chars().peekable();
-    while let Some(c) = chars.next() {
-        match c {
-            '"' if quoted && chars.peek() == Some(&'"') => {
-                chars.next();
-                cells.last_mut().unwrap().push('"');
-            }
-            '"' => quoted = !quoted,
-            ',' if !quoted => cells.push(String::new()),
-            c => cells.last_mut().unwrap().push(c),
-        }
-    }
-    cells
 }
 
 /// An SVG document: starts with `<svg`, ends with `</svg>`, every tag closed in order, no
@@ -166,6 +67,27 @@ fn assert_svg(svg: &str, what: &str) {
         }
     }
     assert!(open.is_empty(), "{what}: tags left open: {open:?}");
+    assert_renders(svg, what);
+}
+
+/// The SVG rendered to pixels by resvg (as a browser would draw it; labels aside, resvg has no
+/// fonts here): it parses, has a size, and is not blank (some pixel differs from the first).
+fn assert_renders(svg: &str, what: &str) {
+    use resvg::tiny_skia::{Pixmap, Transform};
+    use resvg::usvg;
+    let tree = usvg::Tree::from_str(svg, &usvg::Options::default())
+        .unwrap_or_else(|e| panic!("{what}: resvg reads the SVG: {e}"));
+    let size = tree.size().to_int_size();
+    let mut pixmap = Pixmap::new(size.width(), size.height())
+        .unwrap_or_else(|| panic!("{what}: the picture has a size"));
+    resvg::render(&tree, Transform::default(), &mut pixmap.as_mut());
+    let pixels = pixmap.pixels();
+    let drawn = pixels.iter().filter(|p| **p != pixels[0]).count();
+    assert!(
+        drawn * 1000 > pixels.len(),
+        "{what}: something is drawn ({drawn} of {} pixels differ from the corner's)",
+        pixels.len()
+    );
 }
 
 #[test]
@@ -405,6 +327,12 @@ fn draw_every_picture_of_every_bundled_file() {
             let r = tmm(&args);
             if two_inputs(&file) {
                 assert_one_line_failure(&r, &file);
+                assert!(
+                    r.stderr
+                        .contains("needs a linkage with one input, and this one has 2"),
+                    "{what}: the sentence says why: {}",
+                    r.stderr
+                );
                 continue;
             }
             assert_success(&r, &what);
@@ -431,6 +359,14 @@ fn dynamics_of_every_bundled_file() {
         let r = tmm(&["dynamics", &file, "--flywheel", "0.05", "--positions", "72"]);
         if two_inputs(&file) {
             assert_one_line_failure(&r, &file);
+            assert!(
+                r.stderr.contains(
+                    "a machine reduced to its crank needs a linkage with one input, and this \
+                     one has 2"
+                ),
+                "{file}: the sentence says why: {}",
+                r.stderr
+            );
             continue;
         }
         assert_success(&r, &format!("dynamics {file}"));
@@ -501,28 +437,6 @@ fn bundled_lists_every_file_in_linkages() {
         assert_eq!(text.stdout, on_disk, "{stem} is the file in linkages/");
     }
     assert!(!r.stdout.contains("does not load"), "{}", r.stdout);
-}
-
-/// A broken description in a temporary file.
-struct Broken(PathBuf);
-
-impl Broken {
-    fn new(name: &str, text: &str) -> Self {
-        let path =
-            std::env::temp_dir().join(format!("tmm-cli-test-{}-{name}.json", std::process::id()));
-        std::fs::write(&path, text).expect("a temporary file");
-        Self(path)
-    }
-
-    fn path(&self) -> String {
-        self.0.to_string_lossy().into_owned()
-    }
-}
-
-impl Drop for Broken {
-    fn drop(&mut self) {
-        std::fs::remove_file(&self.0).ok();
-    }
 }
 
 const SUBCOMMANDS: [&str; 4] = ["check", "analyse", "draw", "dynamics"];
@@ -671,9 +585,15 @@ fn a_misspelt_field_is_named() {
         "field",
         &four_bar.replace("\"input\": {\"link\"", "\"input\": {\"lnk\""),
     );
-    let r = tmm(&["check", &file.path()]);
-    assert_one_line_failure(&r, &file.path());
-    assert!(r.stderr.contains("lnk"), "names the field: {}", r.stderr);
+    for sub in SUBCOMMANDS {
+        let r = tmm(&[sub, &file.path()]);
+        assert_one_line_failure(&r, &file.path());
+        assert!(
+            r.stderr.contains("lnk"),
+            "{sub} names the field: {}",
+            r.stderr
+        );
+    }
 }
 
 #[test]
@@ -714,7 +634,7 @@ fn help_has_examples() {
     let r = tmm(&["--help"]);
     assert_success(&r, "--help");
     assert!(r.stdout.contains("Examples:"), "{}", r.stdout);
-    for sub in SUBCOMMANDS.iter().chain(&["bundled"]) {
+    for sub in SUBCOMMANDS.iter().chain(&["bundled", "synth"]) {
         let r = tmm(&[sub, "--help"]);
         assert_success(&r, sub);
         assert!(r.stdout.contains("Examples:"), "{sub}: {}", r.stdout);
@@ -724,7 +644,26 @@ fn help_has_examples() {
             r.stdout
         );
     }
+    for kind in SYNTH_KINDS {
+        let r = tmm(&["synth", kind, "--help"]);
+        assert_success(&r, kind);
+        assert!(r.stdout.contains("Examples:"), "{kind}: {}", r.stdout);
+        assert!(
+            r.stdout.contains(&format!("tmm synth {kind} ")),
+            "{kind}: {}",
+            r.stdout
+        );
+    }
 }
+
+const SYNTH_KINDS: [&str; 6] = [
+    "crank-rocker",
+    "slider-crank",
+    "shaper",
+    "through",
+    "function",
+    "path",
+];
 
 #[test]
 fn every_example_in_the_help_runs() {
@@ -732,12 +671,17 @@ fn every_example_in_the_help_runs() {
     // stand in, and the pictures and tables written land there.
     let dir = std::env::temp_dir().join(format!("tmm-cli-test-{}-examples", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
+    // The points file of the path-generation examples.
+    std::fs::write(dir.join("points.csv"), common::coupler_curve_csv(12)).unwrap();
     let mut examples = Vec::new();
-    for sub in ["", "check", "analyse", "draw", "dynamics", "bundled"] {
-        let args: Vec<&str> = [sub, "--help"]
-            .into_iter()
-            .filter(|a| !a.is_empty())
-            .collect();
+    let synth: Vec<String> = SYNTH_KINDS.iter().map(|k| format!("synth {k}")).collect();
+    let helps = [
+        "", "check", "analyse", "draw", "dynamics", "bundled", "synth",
+    ]
+    .into_iter()
+    .chain(synth.iter().map(String::as_str));
+    for sub in helps {
+        let args: Vec<&str> = sub.split_whitespace().chain(["--help"]).collect();
         let help = tmm(&args).stdout;
         for line in help.lines().filter_map(|l| l.strip_prefix("  tmm ")) {
             // The command ends at a run of spaces (its comment) or a redirection.
@@ -746,13 +690,22 @@ fn every_example_in_the_help_runs() {
             examples.push(command.to_owned());
         }
     }
-    assert!(examples.len() >= 20, "{examples:?}");
+    assert!(examples.len() >= 35, "{examples:?}");
     for example in &examples {
         let args: Vec<&str> = example.split_whitespace().collect();
         let r = tmm_in(&dir, &args);
         assert_eq!(r.code, 0, "tmm {example}: {}", r.stderr);
     }
     assert!(dir.join("watt.svg").exists() && dir.join("shaper.csv").exists());
+    for written in [
+        "crank-rocker.json",
+        "through.json",
+        "square.json",
+        "path.json",
+    ] {
+        let text = std::fs::read_to_string(dir.join(written)).expect(written);
+        assert!(text.contains("\"joints\""), "{written} is a description");
+    }
     std::fs::remove_dir_all(&dir).ok();
 }
 
