@@ -222,7 +222,12 @@ time bound cuts the search). Progress shows on a terminal, nothing when piped.")
               value_parser = clap::value_parser!(u64).range(1..=100_000_000))]
         budget: u64,
         /// Wall-clock bound of the global search, s.
-        #[arg(long, value_name = "SECONDS", default_value_t = 60.0)]
+        #[arg(
+            long,
+            value_name = "SECONDS",
+            default_value_t = 60.0,
+            allow_negative_numbers = true
+        )]
         time: f64,
         /// Distinct designs to look for (the best is written, the others reported).
         #[arg(long, value_name = "K", default_value_t = 3,

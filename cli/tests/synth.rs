@@ -356,6 +356,12 @@ fn a_path_generator_passes_its_coupler_point_through_the_targets() {
             "100000",
         ],
     );
+    // No progress line when stderr is not a terminal.
+    assert!(
+        report.stderr.is_empty(),
+        "quiet when piped: {:?}",
+        report.stderr
+    );
     // The report's rows: "φ = …°", the targets, the reached points and the miss.
     let angles: Vec<String> = report
         .stdout
@@ -595,6 +601,16 @@ fn a_bad_points_file_is_one_line_naming_the_file_and_the_line() {
     assert_refused(
         &["path", "no/such/points.csv"],
         &["no/such/points.csv", "cannot read"],
+    );
+    // A budget below one generation of the search: no design, and the fix.
+    let points = Broken::with_extension("points-budget", "csv", &common::coupler_curve_csv(12));
+    assert_refused(
+        &["path", &points.path(), "--budget", "100"],
+        &[&points.path(), "evaluations", "raise --budget"],
+    );
+    assert_refused(
+        &["path", &points.path(), "--time", "-1"],
+        &["time bound", "--time"],
     );
     let timed = Broken::with_extension(
         "closed-timed",

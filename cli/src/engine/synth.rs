@@ -444,7 +444,16 @@ fn path(
         ));
         true
     })
-    .map_err(f)?;
+    .map_err(|e| {
+        let failure = f(e);
+        // The search ran out of its budget without a design that meets the constraints.
+        if failure.message.contains("evaluations") && failure.hint.is_none() {
+            failure
+                .hint("raise --budget or --time, try another --seed, or lower --min-transmission")
+        } else {
+            failure
+        }
+    })?;
     let Some(best) = designs.first() else {
         return Err(Failure::new("the path search returned no design")
             .hint("raise --budget or --time, or try another --seed"));
