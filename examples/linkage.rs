@@ -10,11 +10,9 @@
 //! cargo run --release --example linkage            # the bundled shaper
 //! ```
 
-use std::f64::consts::TAU;
 use std::fs;
 use std::path::Path;
-use tmm::kinematics::{Motion, Rotation};
-use tmm::linkage::{course_inputs, Course, Linkage, Plan, Sweep, Table};
+use tmm::linkage::{AnyCourse, Linkage, Plan, Sweep, Table};
 
 const BUNDLED: &str = include_str!("../linkages/shaper.json");
 
@@ -26,12 +24,21 @@ fn run_example() -> Result<(), Box<dyn std::error::Error>> {
             "linkages/shaper.json (bundled)".to_owned(),
         ),
     };
-    let linkage = Linkage::from_json(&text)?;
+    run(&text, &source, Path::new("target/tmm-charts/linkage"))?;
+    Ok(())
+}
+
+/// The whole example on the description `text` (read from `source`): the course, its table
+/// printed and written as CSV in `dir`, and the pictures. Returns the table. The test
+/// `tests/linkage/examples_run.rs` runs it on every bundled file.
+pub fn run(text: &str, source: &str, dir: &Path) -> Result<Table, Box<dyn std::error::Error>> {
+    let linkage = Linkage::from_json(text)?;
     let plan = Plan::new(&linkage)?;
     println!("{} — from {source}", linkage.name);
     println!(
-        "mobility W = {} (Chebyshev); groups in attachment order: {}",
+        "mobility W = {} (Chebyshev), {} input(s); groups in attachment order: {}",
         plan.mobility(),
+        plan.input_count(),
         plan.groups()
             .iter()
             .map(|g| g.name.as_str())
@@ -39,87 +46,81 @@ fn run_example() -> Result<(), Box<dyn std::error::Error>> {
             .join(", ")
     );
     let speed = linkage.speed.unwrap_or(10.0);
-    let rotation = if speed < 0.0 {
-        Rotation::Cw
-    } else {
-        Rotation::Ccw
-    };
-    // A crank that cannot turn fully rocks between the angles where the linkage locks.
-    let rocks = plan.input_is_crank()
-        && plan
-            .lock_positions(plan.reference_input())
-            .is_ok_and(|l| l.is_some());
-    let inputs = match (&linkage.output, plan.input_is_crank()) {
-        _ if rocks => {
-            let course = Course::new(&plan, linkage.output.as_ref(), 12, speed)?;
-            if let Sweep::Rocking { from, to } = course.sweep {
-                println!(
-                    "the input cannot turn fully: it rocks from φ1 = {:.2}° to {:.2}° and back",
-                    from.to_degrees(),
-                    to.to_degrees()
-                );
-            }
-            course.inputs
-        }
-        (Some(out), true) => {
-            let s = plan.strokes(out, rotation)?;
-            println!(
-                "output {out:?}: working stroke from φ1 = {:.2}° over {:.2}°, time ratio {:.4}",
-                s.start.to_degrees(),
-                s.working_angle.to_degrees(),
-                s.time_ratio
-            );
-            course_inputs(&s, 12, speed)
-        }
-        _ => (0..12)
-            .map(|k| {
-                let step = if plan.input_is_crank() {
-                    TAU / 12.0
-                } else {
-                    0.01
-                };
-                Motion::new(
-                    plan.reference_input() + speed.signum() * step * f64::from(k),
-                    speed,
-                    0.0,
-                )
-            })
-            .collect(),
-    };
+    let course = plan.default_course(linkage.output.as_ref(), 12, speed)?;
+    match &course {
+        AnyCourse::One(c) => match (c.sweep, &linkage.output) {
+            (Sweep::Rocking { from, to }, _) => println!(
+                "the input cannot turn fully: it rocks from φ1 = {:.2}° to {:.2}° and back",
+                from.to_degrees(),
+                to.to_degrees()
+            ),
+            (Sweep::Turn, Some(out)) => println!(
+                "output {out:?}: the course starts at its working stroke, φ1 = {:.2}°",
+                c.inputs[0].value.to_degrees()
+            ),
+            _ => {}
+        },
+        AnyCourse::Two(_) => println!(
+            "two inputs: the course runs round a closed path about the reference pose \
+             (each input swings harmonically, the second a quarter period behind)"
+        ),
+    }
+    let inputs = course.inputs();
     let positions: Vec<_> = inputs.iter().map(|&i| plan.analyse(i)).collect();
     for (k, p) in positions.iter().enumerate() {
-        match p {
-            // A rocking input at rest where it reverses has no virtual power to compare.
-            Ok(a) if a.inputs().first().rate == 0.0 => println!(
-                "position {k:2}: input {:8.4}  balance {:12.4} (input at rest: no virtual power)  worst link residual {:.1e}",
-                a.inputs().first().value,
-                a.balance(0)?.value,
-                a.worst_residual()
-            ),
-            Ok(a) => {
-                let c = a.power_check()?;
-                println!(
-                    "position {k:2}: input {:8.4}  balance {:12.4} (virtual power {:12.4}, rel. diff {:.1e})  worst link residual {:.1e}",
-                    a.inputs().first().value,
-                    c.chain,
-                    c.virtual_power,
-                    c.relative_error(),
-                    a.worst_residual()
-                );
+        let a = match p {
+            Ok(a) => a,
+            Err(e) => {
+                println!("position {k:2}: {e}");
+                continue;
             }
-            Err(e) => println!("position {k:2}: {e}"),
-        }
+        };
+        let q: Vec<String> = a
+            .inputs()
+            .as_slice()
+            .iter()
+            .map(|m| format!("{:8.4}", m.value))
+            .collect();
+        let b: Vec<String> = a
+            .balances()
+            .iter()
+            .map(|b| format!("{:12.4}", b.value))
+            .collect();
+        let check = match a.power_check() {
+            // Two inputs compare the drives' power with the loads' (W).
+            Ok(c) if plan.input_count() == 2 => format!(
+                "drive power {:10.4} W, by virtual power {:10.4} W, rel. diff {:.1e}",
+                c.chain,
+                c.virtual_power,
+                c.relative_error()
+            ),
+            Ok(c) => format!(
+                "virtual power {:12.4}, rel. diff {:.1e}",
+                c.virtual_power,
+                c.relative_error()
+            ),
+            // A rocking input at rest where it reverses has no virtual power to compare.
+            Err(_) => "input at rest: no virtual power".to_owned(),
+        };
+        println!(
+            "position {k:2}: input {}  balance {} ({check})  worst link residual {:.1e}",
+            q.join(" "),
+            b.join(" "),
+            a.worst_residual()
+        );
     }
     let table = Table::of(&positions);
     println!("\n{}", table.to_text(4));
-    let dir = Path::new("target/tmm-charts/linkage");
     fs::create_dir_all(dir)?;
     let file = dir.join(format!("{}.csv", linkage.name.replace([' ', '/'], "_")));
     table.write_csv(fs::File::create(&file)?)?;
     println!("course table written to {}", file.display());
     #[cfg(feature = "draw")]
-    pictures::write(&linkage, &plan, &inputs, dir)?;
-    Ok(())
+    match &course {
+        AnyCourse::One(c) => pictures::write(&linkage, &plan, &c.inputs, dir)?,
+        AnyCourse::Two(_) => println!("(pictures of two inputs: not yet)"),
+    }
+    Ok(table)
 }
 
 /// The pictures of the linkage (feature `draw`), each an SVG file in `dir`.

@@ -327,7 +327,7 @@ fn stationary(plan: &Plan, output: &Output, from: f64, to: f64) -> Vec<f64> {
 }
 
 /// 1 ≤ n ≤ MAX_POSITIONS.
-fn check_count(n: usize) -> Result<()> {
+pub(crate) fn check_count(n: usize) -> Result<()> {
     if n == 0 || n > MAX_POSITIONS {
         #[allow(clippy::cast_precision_loss)]
         return Err(Error::OutOfRange {

@@ -50,6 +50,7 @@
 mod build;
 pub mod bundled;
 mod course;
+mod course_two;
 mod cycle;
 mod description;
 pub mod dynamics;
@@ -63,6 +64,7 @@ mod structure_triad;
 mod table;
 
 pub use course::{Course, Sweep};
+pub use course_two::{AnyCourse, Assembly, Failure, TwoInputCourse, TwoInputShape};
 #[cfg(feature = "rayon")]
 pub use cycle::run_cycle_parallel;
 pub use cycle::{course_inputs, run_cycle, try_course_inputs, try_uniform_inputs, uniform_inputs};

@@ -61,6 +61,7 @@ impl Tabulate for Kinematics<'_> {
         push(&mut r, q, unit, i.value);
         push(&mut r, &format!("{q}'"), rate, i.rate);
         push(&mut r, &format!("{q}''"), accel, i.accel);
+        second_input_columns(&mut r, self);
         for (k, name) in links.iter().enumerate().skip(1) {
             let m = pose.link_angle_at(k);
             push(&mut r, &format!("phi({name})"), "rad", m.value);
@@ -92,7 +93,9 @@ impl Tabulate for Analysis<'_> {
     /// The course table's row: the kinematic columns of [`Kinematics`], the reaction in every
     /// joint (R_by,on: x, y, magnitude), and the balancing moment `Mb [N·m, + counter-clockwise]`
     /// (or force `Fb [N, + along the guide]`) beside its value by virtual power (`NaN` when the
-    /// input is at rest: the virtual power then has no rate).
+    /// input is at rest: the virtual power then has no rate). With two inputs: each input's
+    /// balancing value (`Mb`, `Mb2`, or `Fb`, `Fb2` for sliders), then the drives' power
+    /// `P_drive [W]` beside `P_drive by virtual power [W]`.
     fn row(&self) -> Vec<(String, f64)> {
         let mut r = self.kinematics().row();
         let plan = self.plan();
@@ -110,6 +113,10 @@ impl Tabulate for Analysis<'_> {
                 );
             }
         }
+        if self.balances.len() == 2 {
+            two_input_balances(&mut r, self);
+            return r;
+        }
         let b = self.balances[0];
         // The sign convention rides in the header: a clockwise machine's driving moment is
         // negative, and its reader should not have to guess why.
@@ -125,6 +132,63 @@ impl Tabulate for Analysis<'_> {
         push(&mut r, &format!("{name} by virtual power"), unit, vp);
         r
     }
+}
+
+// Two inputs (a separate section: the one-input columns above are unchanged).
+
+/// The unit names of input `i`'s coordinate: (name, unit, rate unit, acceleration unit,
+/// balance name, balance unit).
+fn input_units(plan: &super::plan::Plan, i: usize) -> [&'static str; 6] {
+    let crank = plan
+        .chain
+        .inputs()
+        .nth(i)
+        .is_none_or(|ip| matches!(ip, super::plan::InputPlan::Crank { .. }));
+    match (crank, i) {
+        (true, 0) => [
+            "phi_in",
+            "rad",
+            "rad/s",
+            "rad/s^2",
+            "Mb",
+            "N·m, + counter-clockwise",
+        ],
+        (true, _) => [
+            "phi_in2",
+            "rad",
+            "rad/s",
+            "rad/s^2",
+            "Mb2",
+            "N·m, + counter-clockwise",
+        ],
+        (false, 0) => ["s_in", "m", "m/s", "m/s^2", "Fb", "N, + along the guide"],
+        (false, _) => ["s_in2", "m", "m/s", "m/s^2", "Fb2", "N, + along the guide"],
+    }
+}
+
+/// The second input's columns, after the first's, for a linkage with two inputs.
+fn second_input_columns(r: &mut Vec<(String, f64)>, k: &Kinematics<'_>) {
+    if let Some(m) = k.inputs().get(1) {
+        let [q, unit, rate, accel, ..] = input_units(k.plan(), 1);
+        push(r, q, unit, m.value);
+        push(r, &format!("{q}'"), rate, m.rate);
+        push(r, &format!("{q}''"), accel, m.accel);
+    }
+}
+
+/// Two inputs: each input's balancing value, then the drives' power Σ B_k·q̇_k beside the
+/// power found by the principle of virtual power (−Σ P_i of every applied load), both in W —
+/// with two inputs the virtual-power check is of powers, not of one balancing value.
+fn two_input_balances(r: &mut Vec<(String, f64)>, a: &Analysis<'_>) {
+    for (i, b) in a.balances.iter().enumerate() {
+        let [.., name, unit] = input_units(a.plan(), i);
+        push(r, name, unit, b.value);
+    }
+    let (chain, vp) = a
+        .power_check()
+        .map_or((f64::NAN, f64::NAN), |c| (c.chain, c.virtual_power));
+    push(r, "P_drive", "W", chain);
+    push(r, "P_drive by virtual power", "W", vp);
 }
 
 impl Table {

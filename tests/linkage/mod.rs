@@ -6,6 +6,8 @@
 mod dynamics;
 #[cfg(feature = "serde")]
 mod engine;
+#[cfg(feature = "serde")]
+mod examples_run;
 mod files;
 #[cfg(feature = "serde")]
 mod friction;
@@ -13,3 +15,5 @@ mod friction;
 mod hostile;
 #[cfg(feature = "serde")]
 mod triad;
+#[cfg(feature = "serde")]
+mod two_inputs;

@@ -1,0 +1,101 @@
+//! The main example (`examples/linkage.rs`) on every bundled description file: its own code,
+//! included here, runs each file to its end (the course, the table, the CSV and the
+//! pictures) and gives a full table whose balancing values agree with the principle of
+//! virtual power — two-input linkages included.
+
+#[path = "../../examples/linkage.rs"]
+#[allow(dead_code)]
+mod example;
+
+use std::path::Path;
+
+/// Every `linkages/*.json`, sorted by name.
+fn bundled_files() -> Vec<std::path::PathBuf> {
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("linkages");
+    let mut files: Vec<_> = std::fs::read_dir(&dir)
+        .expect("linkages/ is readable")
+        .map(|e| e.expect("a directory entry").path())
+        .filter(|p| p.extension().is_some_and(|e| e == "json"))
+        .collect();
+    files.sort();
+    files
+}
+
+#[test]
+fn the_main_example_runs_every_bundled_file() {
+    let files = bundled_files();
+    assert!(files.len() >= 14, "{} bundled files", files.len());
+    let out = std::env::temp_dir().join(format!("tmm-examples-run-{}", std::process::id()));
+    let mut two_inputs = 0;
+    for file in &files {
+        let name = file.display().to_string();
+        let text = std::fs::read_to_string(file).expect("the file reads");
+        let table = example::run(&text, &name, &out)
+            .unwrap_or_else(|e| panic!("{name}: the example fails: {e}"));
+        // Every one of the 12 course positions solved and tabulated.
+        assert_eq!(table.len(), 12, "{name}: rows of the table");
+        assert!(table.columns.len() > 10, "{name}: columns of the table");
+        // The balancing values against the principle of virtual power, row by row: for two
+        // inputs, the drives' power against the loads' power (W).
+        let pairs = [
+            ("P_drive [W]", "P_drive by virtual power [W]"),
+            (
+                "Mb [N·m, + counter-clockwise]",
+                "Mb by virtual power [N·m, + counter-clockwise]",
+            ),
+            (
+                "Fb [N, + along the guide]",
+                "Fb by virtual power [N, + along the guide]",
+            ),
+        ];
+        let (chain, vp) = pairs
+            .iter()
+            .find_map(|(c, v)| Some((table.column(c)?, table.column(v)?)))
+            .unwrap_or_else(|| panic!("{name}: no balance beside its virtual power"));
+        let scale = chain.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+        let mut compared = 0;
+        for (c, v) in chain.iter().zip(vp) {
+            // NaN: a rocking input at rest where it reverses (no rate to divide by).
+            if v.is_finite() {
+                assert!((c - v).abs() <= 1e-9 * scale, "{name}: {c} against {v}");
+                compared += 1;
+            }
+        }
+        assert!(compared >= 10, "{name}: {compared} rows compared");
+        if table.column("phi_in2 [rad]").is_some() {
+            two_inputs += 1;
+            assert!(table.column("Mb2 [N·m, + counter-clockwise]").is_some());
+        }
+        let csv = out.join(format!("{}.csv", name_of(&text)));
+        let written = std::fs::read_to_string(&csv).expect("the CSV is written");
+        assert_eq!(written.lines().count(), 13, "{name}: header and 12 rows");
+    }
+    assert!(two_inputs >= 1, "the five-bar robot has two inputs");
+    let _ = std::fs::remove_dir_all(&out);
+}
+
+/// The CSV stem the example writes for a description.
+fn name_of(text: &str) -> String {
+    tmm::linkage::Linkage::from_json(text)
+        .expect("it reads")
+        .name
+        .replace([' ', '/'], "_")
+}
+
+#[test]
+fn the_main_example_names_what_is_wrong_in_a_bad_file() {
+    let out = std::env::temp_dir().join(format!("tmm-examples-bad-{}", std::process::id()));
+    let text = std::fs::read_to_string(
+        Path::new(env!("CARGO_MANIFEST_DIR")).join("linkages/five-bar-robot.json"),
+    )
+    .unwrap();
+    // The second input on a link that does not exist: an error naming it, never a panic.
+    let bad = text.replace(
+        r#""second_input": {"link": "crank 4""#,
+        r#""second_input": {"link": "crank 9""#,
+    );
+    assert_ne!(bad, text);
+    let e = example::run(&bad, "bad", &out).expect_err("an unknown link");
+    assert!(e.to_string().contains("crank 9"), "{e}");
+    let _ = std::fs::remove_dir_all(&out);
+}
