@@ -7,13 +7,13 @@
 //! against the engine before timing, and the bench prints the ratio engine/Cartesian
 //! (`yardstick | …` lines), measured in alternating rounds.
 
-use criterion::{criterion_group, criterion_main, Criterion, Throughput};
+use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion, Throughput};
 use nalgebra::{Point2, Vector2};
 use std::hint::black_box;
 use std::time::Duration;
 use tmm::kinematics::{crank, rrr_dyad, Branch, LinkMotion, Motion, PointMotion};
 use tmm::kinetostatics::{CouplingDrive, RrrDyad};
-use tmm::linkage::{bundled, run_cycle, Analysis, Plan};
+use tmm::linkage::{bundled, run_cycle, Analysis, Cells, Plan, Table, Tabulate};
 use tmm::Load;
 
 #[path = "common/yardstick.rs"]
@@ -150,16 +150,19 @@ struct Whole<const L: usize, const J: usize> {
 
 impl<const L: usize, const J: usize> Whole<L, J> {
     /// The same quantities read from the engine after a solve.
+    /// Read as a hot loop reads: the slices indexed by handle (links 1.., joints 0..), no
+    /// `Result` per number.
+    #[inline]
     fn of(a: &Analysis<'_>) -> Self {
-        let link = |k: usize| a.link_motion(k + 1).unwrap();
+        let (links, reactions) = (&a.link_motions()[1..=L], &a.reactions()[..J]);
         Self {
-            angle: std::array::from_fn(|k| link(k).angle),
-            omega: std::array::from_fn(|k| link(k).omega),
-            epsilon: std::array::from_fn(|k| link(k).epsilon),
+            angle: std::array::from_fn(|k| links[k].angle),
+            omega: std::array::from_fn(|k| links[k].omega),
+            epsilon: std::array::from_fn(|k| links[k].epsilon),
             // The force of the lower-numbered link on the higher-numbered one, whichever way
             // the engine records it.
             reaction: std::array::from_fn(|j| {
-                let r = a.reaction(j).unwrap();
+                let r = reactions[j];
                 if r.by < r.on {
                     r.force
                 } else {
@@ -707,6 +710,84 @@ fn four_bar_cycle(c: &mut Criterion) {
     g.finish();
 }
 
+/// A sink of a table's cells that keeps only their sum: the cost of computing a course
+/// table's cells with nothing stored, the fastest a table can be made.
+struct SumCells(f64);
+
+impl Cells for SumCells {
+    #[inline]
+    fn cell(&mut self, _: impl FnOnce() -> String, value: f64) {
+        self.0 += value;
+    }
+}
+
+/// The obvious calls against the fastest path, per position, over N = 36 … 10⁶ positions of
+/// the four-bar (group `four_bar_over_n`, throughput per position, so a flat rate is linear
+/// cost): the README's `plan.cycle` against a solver loop by hand (the same job: every
+/// quantity of each position folded into one number); the one-shot `plan.analyse` per
+/// position (its buffers allocated each time, nothing kept); the course table by
+/// `plan.table` (columns filled in place) against the same cells summed by a solver loop
+/// with nothing stored, and against the old way, `Table::of(&run_cycle(&inputs, |i|
+/// plan.analyse(i)))`, which keeps an analysis per position (up to 36 000 positions).
+fn four_bar_over_n(c: &mut Criterion) {
+    let plan = Plan::new(&bundled::four_bar()).unwrap();
+    let mut g = c.benchmark_group("four_bar_over_n");
+    g.sample_size(10)
+        .warm_up_time(Duration::from_millis(300))
+        .measurement_time(Duration::from_secs(2));
+    for n in [36usize, 1_000, 36_000, 1_000_000] {
+        let ins = inputs(n);
+        // The table holds what the analyses give, and `Table::of` agrees with it.
+        if n == 36 {
+            let kept = run_cycle(&ins, |i| plan.analyse(i));
+            assert_eq!(plan.table(&ins), Table::of(&kept));
+        }
+        g.throughput(Throughput::Elements(n as u64));
+        g.bench_function(BenchmarkId::new("solver_loop", n), |b| {
+            let mut solver = plan.solver();
+            b.iter(|| {
+                ins.iter()
+                    .map(|&i| Whole::<3, 4>::of(solver.analyse(black_box(i)).unwrap()).fold())
+                    .sum::<f64>()
+            })
+        });
+        g.bench_function(BenchmarkId::new("plan_cycle", n), |b| {
+            b.iter(|| {
+                plan.cycle(black_box(&ins), |a| Ok(Whole::<3, 4>::of(a).fold()))
+                    .into_iter()
+                    .map(|r| r.unwrap())
+                    .sum::<f64>()
+            })
+        });
+        g.bench_function(BenchmarkId::new("plan_analyse_per_position", n), |b| {
+            b.iter(|| {
+                ins.iter()
+                    .map(|&i| Whole::<3, 4>::of(&plan.analyse(black_box(i)).unwrap()).fold())
+                    .sum::<f64>()
+            })
+        });
+        g.bench_function(BenchmarkId::new("table_cells_summed", n), |b| {
+            let mut solver = plan.solver();
+            b.iter(|| {
+                let mut sum = SumCells(0.0);
+                for &i in &ins {
+                    solver.analyse(black_box(i)).unwrap().cells(&mut sum);
+                }
+                sum.0
+            })
+        });
+        g.bench_function(BenchmarkId::new("plan_table", n), |b| {
+            b.iter(|| plan.table(black_box(&ins)).len())
+        });
+        if n <= 36_000 {
+            g.bench_function(BenchmarkId::new("table_of_run_cycle", n), |b| {
+                b.iter(|| Table::of(&run_cycle(black_box(&ins), |i| plan.analyse(i))).len())
+            });
+        }
+    }
+    g.finish();
+}
+
 /// A whole four-bar position with friction in every hinge (f = 0.15 on pins of 10 mm,
 /// `Plan::has_friction`: each group by its friction block, the crank by `CrankFriction`)
 /// beside the same position frictionless, by the same reused solver: the goal is at most 6×.
@@ -745,6 +826,7 @@ criterion_group!(
     six_bar,
     streamed_sweep,
     four_bar_cycle,
+    four_bar_over_n,
     four_bar_friction
 );
 criterion_main!(benches);

@@ -55,6 +55,7 @@ impl CouplingDrive {
     ///
     /// # Errors
     /// [`Error::NonFinite`](crate::Error::NonFinite) for a non-finite number, or an overflow.
+    #[inline]
     pub fn solve(&self, loads: &[Load]) -> Result<CouplingBalance> {
         finite2(["O1.x", "O1.y"], self.o1.coords)?;
         loads.iter().try_for_each(Load::validate)?;

@@ -78,4 +78,4 @@ pub use inputs::Inputs;
 pub use plan::{Group, GroupKind, Plan, Pose};
 pub use solve::{Analysis, Balance, Kinematics, PowerCheck, Reaction, Solver};
 pub use structure::chebyshev;
-pub use table::{Column, Table, Tabulate};
+pub use table::{Cells, Column, Table, Tabulate};

@@ -1,5 +1,7 @@
 //! Results over a cycle as named columns, written as CSV.
 
+use super::inputs::Inputs;
+use super::plan::Plan;
 use super::solve::{Analysis, Kinematics};
 use crate::error::Result;
 use nalgebra::Vector2;
@@ -23,69 +25,92 @@ pub struct Table {
     pub columns: Vec<Column>,
 }
 
-/// A result that becomes one row of a [`Table`]: (column name, value) pairs, always the same
-/// names in the same order for one type.
+/// Where a [`Tabulate`] writes one position: a cell per column, its name made only when the
+/// table is laid out (once, at its first position) and its value every time.
+pub trait Cells {
+    /// One cell: its column's name with the unit in brackets (a closure, called only when
+    /// the name is needed) and its value.
+    fn cell(&mut self, name: impl FnOnce() -> String, value: f64);
+}
+
+/// A result that becomes one row of a [`Table`]: always the same columns in the same order
+/// for one type (and one plan).
+///
+/// A table lays its columns out from the first position's names and then takes only the
+/// values of every position, so a row costs no allocation and no formatting.
 pub trait Tabulate {
-    /// The row of this position.
-    fn row(&self) -> Vec<(String, f64)>;
+    /// Writes this position's cells, in column order.
+    fn cells(&self, out: &mut impl Cells);
+
+    /// The row as (column name, value) pairs: every name is made, so this is for reading
+    /// one row, not for a loop (a [`Table`] takes the values alone).
+    fn row(&self) -> Vec<(String, f64)> {
+        struct Pairs(Vec<(String, f64)>);
+        impl Cells for Pairs {
+            fn cell(&mut self, name: impl FnOnce() -> String, value: f64) {
+                self.0.push((name(), value));
+            }
+        }
+        let mut pairs = Pairs(Vec::new());
+        self.cells(&mut pairs);
+        pairs.0
+    }
 }
 
-/// Appends a vector's x, y and magnitude as three columns `"{name}_x [unit]"`, `"{name}_y
+/// Writes a vector's x, y and magnitude as three cells `"{name}_x [unit]"`, `"{name}_y
 /// [unit]"`, `"|{name}| [unit]"`.
-pub(crate) fn push_vector(row: &mut Vec<(String, f64)>, name: &str, unit: &str, v: Vector2<f64>) {
-    row.push((format!("{name}_x [{unit}]"), v.x));
-    row.push((format!("{name}_y [{unit}]"), v.y));
-    row.push((format!("|{name}| [{unit}]"), v.norm()));
-}
-
-/// Appends one scalar column `"{name} [unit]"`.
-pub(crate) fn push(row: &mut Vec<(String, f64)>, name: &str, unit: &str, value: f64) {
-    row.push((format!("{name} [{unit}]"), value));
+pub(crate) fn cell_vector(
+    out: &mut impl Cells,
+    name: impl Fn() -> String,
+    unit: &str,
+    v: Vector2<f64>,
+) {
+    out.cell(|| format!("{}_x [{unit}]", name()), v.x);
+    out.cell(|| format!("{}_y [{unit}]", name()), v.y);
+    out.cell(|| format!("|{}| [{unit}]", name()), v.norm());
 }
 
 impl Tabulate for Kinematics<'_> {
     /// The course table's kinematic columns: the input, every moving link's angle, ω and ε,
     /// every joint's position, velocity and acceleration magnitudes, every prismatic joint's
     /// slide, and every group's transmission angle.
-    fn row(&self) -> Vec<(String, f64)> {
+    fn cells(&self, out: &mut impl Cells) {
         let plan = self.plan();
         let links = plan.link_names();
         let pose = self.pose();
-        let mut r = Vec::with_capacity(8 * plan.joint_names().len() + 4 * links.len());
         let (q, unit, rate, accel) = if plan.input_is_crank() {
             ("phi_in", "rad", "rad/s", "rad/s^2")
         } else {
             ("s_in", "m", "m/s", "m/s^2")
         };
         let i = self.inputs().first();
-        push(&mut r, q, unit, i.value);
-        push(&mut r, &format!("{q}'"), rate, i.rate);
-        push(&mut r, &format!("{q}''"), accel, i.accel);
-        second_input_columns(&mut r, self);
+        out.cell(|| format!("{q} [{unit}]"), i.value);
+        out.cell(|| format!("{q}' [{rate}]"), i.rate);
+        out.cell(|| format!("{q}'' [{accel}]"), i.accel);
+        second_input_cells(out, self);
         for (k, name) in links.iter().enumerate().skip(1) {
             let m = pose.link_angle_at(k);
-            push(&mut r, &format!("phi({name})"), "rad", m.value);
-            push(&mut r, &format!("omega({name})"), "rad/s", m.rate);
-            push(&mut r, &format!("eps({name})"), "rad/s^2", m.accel);
+            out.cell(|| format!("phi({name}) [rad]"), m.value);
+            out.cell(|| format!("omega({name}) [rad/s]"), m.rate);
+            out.cell(|| format!("eps({name}) [rad/s^2]"), m.accel);
         }
         for (j, name) in plan.joint_names().iter().enumerate() {
             let p = pose.joint_motion_at(j);
-            push(&mut r, &format!("x({name})"), "m", p.p.x);
-            push(&mut r, &format!("y({name})"), "m", p.p.y);
-            push(&mut r, &format!("|v({name})|"), "m/s", p.v.norm());
-            push(&mut r, &format!("|a({name})|"), "m/s^2", p.a.norm());
+            out.cell(|| format!("x({name}) [m]"), p.p.x);
+            out.cell(|| format!("y({name}) [m]"), p.p.y);
+            out.cell(|| format!("|v({name})| [m/s]"), p.v.norm());
+            out.cell(|| format!("|a({name})| [m/s^2]"), p.a.norm());
             if plan.is_prismatic_at(j) {
                 let s = pose.slide_at(j);
-                push(&mut r, &format!("s({name})"), "m", s.value);
-                push(&mut r, &format!("v_rel({name})"), "m/s", s.rate);
-                push(&mut r, &format!("a_rel({name})"), "m/s^2", s.accel);
+                out.cell(|| format!("s({name}) [m]"), s.value);
+                out.cell(|| format!("v_rel({name}) [m/s]"), s.rate);
+                out.cell(|| format!("a_rel({name}) [m/s^2]"), s.accel);
             }
         }
         for (g, group) in plan.groups().iter().enumerate() {
             let mu = self.transmission_angle(g).unwrap_or(f64::NAN);
-            push(&mut r, &format!("mu({})", group.name), "rad", mu);
+            out.cell(|| format!("mu({}) [rad]", group.name), mu);
         }
-        r
     }
 }
 
@@ -93,29 +118,36 @@ impl Tabulate for Analysis<'_> {
     /// The course table's row: the kinematic columns of [`Kinematics`], the reaction in every
     /// joint (R_by,on: x, y, magnitude), and the balancing moment `Mb [N·m, + counter-clockwise]`
     /// (or force `Fb [N, + along the guide]`) beside its value by virtual power (`NaN` when the
-    /// input is at rest: the virtual power then has no rate). With two inputs: each input's
-    /// balancing value (`Mb`, `Mb2`, or `Fb`, `Fb2` for sliders), then the drives' power
-    /// `P_drive [W]` beside `P_drive by virtual power [W]`.
-    fn row(&self) -> Vec<(String, f64)> {
-        let mut r = self.kinematics().row();
+    /// input is at rest: the virtual power then has no rate). A plan with friction adds, after
+    /// the reactions, the power lost in every joint `P_lost(J) [W]`, their sum `P_lost [W]` and
+    /// the instantaneous efficiency `eta [-]` (`NaN` where the drive gives no power); a
+    /// frictionless plan has none of these columns. With two inputs: each input's balancing
+    /// value (`Mb`, `Mb2`, or `Fb`, `Fb2` for sliders), then the drives' power `P_drive [W]`
+    /// beside `P_drive by virtual power [W]`.
+    fn cells(&self, out: &mut impl Cells) {
+        self.kinematics().cells(out);
         let plan = self.plan();
         let links = plan.link_names();
         for (j, name) in plan.joint_names().iter().enumerate() {
             let re = self.reactions[j];
-            let label = format!("R({},{})@{name}", links[re.by], links[re.on]);
-            push_vector(&mut r, &label, "N", re.force);
+            let (by, on) = (&links[re.by], &links[re.on]);
+            cell_vector(out, || format!("R({by},{on})@{name}"), "N", re.force);
             if plan.is_prismatic_at(j) {
-                push(
-                    &mut r,
-                    &format!("M({},{})@{name}", links[re.by], links[re.on]),
-                    "N·m",
-                    re.moment,
-                );
+                out.cell(|| format!("M({by},{on})@{name} [N·m]"), re.moment);
             }
         }
+        if plan.has_friction() {
+            for (j, name) in plan.joint_names().iter().enumerate() {
+                let lost = self.friction(j).map_or(f64::NAN, |f| f.power_lost);
+                out.cell(|| format!("P_lost({name}) [W]"), lost);
+            }
+            out.cell(|| "P_lost [W]".to_owned(), self.lost_power());
+            let eta = self.efficiency().ok().and_then(|e| e.eta);
+            out.cell(|| "eta [-]".to_owned(), eta.unwrap_or(f64::NAN));
+        }
         if self.balances.len() == 2 {
-            two_input_balances(&mut r, self);
-            return r;
+            two_input_balances(out, self);
+            return;
         }
         let b = self.balances[0];
         // The sign convention rides in the header: a clockwise machine's driving moment is
@@ -125,12 +157,40 @@ impl Tabulate for Analysis<'_> {
         } else {
             ("Fb", "N, + along the guide")
         };
-        push(&mut r, name, unit, b.value);
+        out.cell(|| format!("{name} [{unit}]"), b.value);
         // At rest the virtual power has no rate to divide by: the cell is NaN ("not
         // available"), as `Table` documents.
         let vp = self.power_check().map_or(f64::NAN, |c| c.virtual_power);
-        push(&mut r, &format!("{name} by virtual power"), unit, vp);
-        r
+        out.cell(|| format!("{name} by virtual power [{unit}]"), vp);
+    }
+}
+
+/// The header sink: every column's name, no values.
+struct Names<'a>(&'a mut Vec<Column>);
+
+impl Cells for Names<'_> {
+    fn cell(&mut self, name: impl FnOnce() -> String, _: f64) {
+        self.0.push(Column {
+            name: name(),
+            values: Vec::new(),
+        });
+    }
+}
+
+/// The value sink: one value into each column in turn; cells past the last column are
+/// dropped (a position of another type or plan cannot make the table ragged).
+struct Values<'a> {
+    columns: &'a mut [Column],
+    next: usize,
+}
+
+impl Cells for Values<'_> {
+    #[inline]
+    fn cell(&mut self, _: impl FnOnce() -> String, value: f64) {
+        if let Some(c) = self.columns.get_mut(self.next) {
+            c.values.push(value);
+        }
+        self.next += 1;
     }
 }
 
@@ -166,41 +226,43 @@ fn input_units(plan: &super::plan::Plan, i: usize) -> [&'static str; 6] {
     }
 }
 
-/// The second input's columns, after the first's, for a linkage with two inputs.
-fn second_input_columns(r: &mut Vec<(String, f64)>, k: &Kinematics<'_>) {
+/// The second input's cells, after the first's, for a linkage with two inputs.
+fn second_input_cells(out: &mut impl Cells, k: &Kinematics<'_>) {
     if let Some(m) = k.inputs().get(1) {
         let [q, unit, rate, accel, ..] = input_units(k.plan(), 1);
-        push(r, q, unit, m.value);
-        push(r, &format!("{q}'"), rate, m.rate);
-        push(r, &format!("{q}''"), accel, m.accel);
+        out.cell(|| format!("{q} [{unit}]"), m.value);
+        out.cell(|| format!("{q}' [{rate}]"), m.rate);
+        out.cell(|| format!("{q}'' [{accel}]"), m.accel);
     }
 }
 
 /// Two inputs: each input's balancing value, then the drives' power Σ B_k·q̇_k beside the
 /// power found by the principle of virtual power (−Σ P_i of every applied load), both in W —
 /// with two inputs the virtual-power check is of powers, not of one balancing value.
-fn two_input_balances(r: &mut Vec<(String, f64)>, a: &Analysis<'_>) {
+fn two_input_balances(out: &mut impl Cells, a: &Analysis<'_>) {
     for (i, b) in a.balances.iter().enumerate() {
         let [.., name, unit] = input_units(a.plan(), i);
-        push(r, name, unit, b.value);
+        out.cell(|| format!("{name} [{unit}]"), b.value);
     }
     let (chain, vp) = a
         .power_check()
         .map_or((f64::NAN, f64::NAN), |c| (c.chain, c.virtual_power));
-    push(r, "P_drive", "W", chain);
-    push(r, "P_drive by virtual power", "W", vp);
+    out.cell(|| "P_drive [W]".to_owned(), chain);
+    out.cell(|| "P_drive by virtual power [W]".to_owned(), vp);
 }
 
 impl Table {
     /// The table of the positions that were analysed; failed positions (their `Err`) are left
-    /// out, so a table's input-angle column tells which positions it holds.
+    /// out, so a table's input-angle column tells which positions it holds. For a plan's
+    /// cycle, [`Plan::table`](super::Plan::table) solves and tabulates in one pass, with no
+    /// analysis kept per position.
     ///
     /// # Examples
     /// ```
-    /// use tmm::linkage::{Table, Tabulate};
+    /// use tmm::linkage::{Cells, Table, Tabulate};
     /// struct P(f64);
     /// impl Tabulate for P {
-    ///     fn row(&self) -> Vec<(String, f64)> { vec![("phi1 [rad]".into(), self.0)] }
+    ///     fn cells(&self, out: &mut impl Cells) { out.cell(|| "phi1 [rad]".into(), self.0) }
     /// }
     /// let rows = [Ok(P(0.0)), Err(tmm::Error::NonFinite { name: "x", value: f64::NAN }), Ok(P(1.0))];
     /// let t = Table::of(&rows);
@@ -213,22 +275,61 @@ impl Table {
     #[must_use]
     pub fn of<P: Tabulate>(positions: &[Result<P>]) -> Self {
         let mut table = Self::default();
+        let rows = positions.iter().filter(|p| p.is_ok()).count();
         for p in positions.iter().flatten() {
-            let row = p.row();
-            if table.columns.is_empty() {
-                table.columns = row
-                    .iter()
-                    .map(|(name, _)| Column {
-                        name: name.clone(),
-                        values: Vec::with_capacity(positions.len()),
-                    })
-                    .collect();
-            }
-            for (col, (_, value)) in table.columns.iter_mut().zip(row) {
-                col.values.push(value);
-            }
+            table.push_reserving(p, rows);
         }
         table
+    }
+
+    /// Appends one position as a row. The first position pushed onto a table without
+    /// columns lays them out (its names); every later one gives its values alone, into the
+    /// same columns in the same order: no allocation per row beyond the columns' growth. A
+    /// row with fewer cells than columns leaves `NaN` in the rest, one with more drops the
+    /// extra cells, so the table stays rectangular.
+    ///
+    /// # Examples
+    /// A table of the four-bar's turn, solved and tabulated position by position:
+    /// ```
+    /// use tmm::kinematics::Motion;
+    /// use tmm::linkage::{bundled, Plan, Table};
+    /// let plan = Plan::new(&bundled::four_bar())?;
+    /// let mut solver = plan.solver();
+    /// let mut table = Table::default();
+    /// for k in 0..36 {
+    ///     table.push(solver.analyse(Motion::turning(f64::from(k) * 0.1745, 10.0))?);
+    /// }
+    /// assert_eq!(table.len(), 36);
+    /// // The chain's balancing moment equals its value by virtual power at every position.
+    /// let (mb, vp) = (table.column("Mb [N·m, + counter-clockwise]").unwrap(),
+    ///                 table.column("Mb by virtual power [N·m, + counter-clockwise]").unwrap());
+    /// assert!(mb.iter().zip(vp).all(|(a, b)| (a - b).abs() <= 1e-9 * a.abs().max(1.0)));
+    /// # Ok::<(), tmm::Error>(())
+    /// ```
+    pub fn push<P: Tabulate + ?Sized>(&mut self, position: &P) {
+        self.push_reserving(position, 0);
+    }
+
+    /// [`push`](Self::push), the columns laid out with room for `rows` values each.
+    fn push_reserving<P: Tabulate + ?Sized>(&mut self, position: &P, rows: usize) {
+        if self.columns.is_empty() {
+            position.cells(&mut Names(&mut self.columns));
+            for c in &mut self.columns {
+                c.values.reserve(rows);
+            }
+        }
+        let len = self.len();
+        let mut values = Values {
+            columns: &mut self.columns,
+            next: 0,
+        };
+        position.cells(&mut values);
+        let given = values.next;
+        for c in self.columns.iter_mut().skip(given) {
+            if c.values.len() == len {
+                c.values.push(f64::NAN);
+            }
+        }
     }
 
     /// The number of rows.
@@ -259,10 +360,10 @@ impl Table {
     ///
     /// # Examples
     /// ```
-    /// use tmm::linkage::{Table, Tabulate};
+    /// use tmm::linkage::{Cells, Table, Tabulate};
     /// struct P(f64);
     /// impl Tabulate for P {
-    ///     fn row(&self) -> Vec<(String, f64)> { vec![("x [m]".into(), self.0)] }
+    ///     fn cells(&self, out: &mut impl Cells) { out.cell(|| "x [m]".into(), self.0) }
     /// }
     /// let t = Table::of(&[Ok(P(-1e-9)), Ok(P(0.25))]);
     /// assert_eq!(t.to_text(3), format!("x [m] {:>11} {:>11}\n", "0.000", "0.250"));
@@ -333,5 +434,43 @@ impl Table {
             writeln!(w, "{}", line.join(","))?;
         }
         Ok(())
+    }
+}
+
+impl Plan {
+    /// The course table of `inputs` (a slice or any iterator of inputs): every position
+    /// analysed by one [`Solver`](super::Solver) and written straight into the table's
+    /// columns (the columns of [`Tabulate for Analysis`](Tabulate)), with nothing kept or
+    /// allocated per position. Positions that fail are left out, as in [`Table::of`]; a
+    /// [`cycle`](Self::cycle) gives their errors.
+    ///
+    /// # Examples
+    /// ```
+    /// use tmm::linkage::{bundled, uniform_inputs, Plan, Table};
+    /// let plan = Plan::new(&bundled::watt_six_bar())?;
+    /// let inputs = uniform_inputs(36, plan.reference_input(), 10.0, 0.0);
+    /// let table = plan.table(&inputs);
+    /// assert_eq!(table.len(), 36);
+    /// // The same table as from the analyses kept one by one.
+    /// let kept: Vec<_> = inputs.iter().map(|&i| plan.analyse(i)).collect();
+    /// assert_eq!(table, Table::of(&kept));
+    /// # Ok::<(), tmm::Error>(())
+    /// ```
+    #[must_use]
+    pub fn table<I>(&self, inputs: I) -> Table
+    where
+        I: IntoIterator,
+        I::Item: Into<Inputs>,
+    {
+        let inputs = inputs.into_iter();
+        let rows = inputs.size_hint().0;
+        let mut table = Table::default();
+        let mut solver = self.solver();
+        for i in inputs {
+            if let Ok(a) = solver.analyse(i) {
+                table.push_reserving(a, rows);
+            }
+        }
+        table
     }
 }

@@ -201,8 +201,36 @@ impl<'p> Analysis<'p> {
         Ok(self.reactions[self.plan.chain.joint(joint)?])
     }
 
+    /// Every joint's reaction, indexed by the joint's handle: `a.reactions()[b.index()]` for
+    /// `b = plan.joint_id("B")?`, resolved once before a loop. The hot path's reading: no
+    /// `Result` per number, since the handle was checked when it was made.
+    ///
+    /// # Examples
+    /// ```
+    /// use tmm::kinematics::Motion;
+    /// use tmm::linkage::{bundled, Plan};
+    /// let plan = Plan::new(&bundled::four_bar())?;
+    /// let b = plan.joint_id("B")?; // checked once
+    /// let mut solver = plan.solver();
+    /// let mut peak = 0.0f64;
+    /// for k in 0..36 {
+    ///     let a = solver.analyse(Motion::turning(f64::from(k) * 0.1745, 10.0))?;
+    ///     let r = a.reactions()[b.index()];
+    ///     assert_eq!(r, a.reaction("B")?); // the same reading as by name
+    ///     peak = peak.max(r.force.norm());
+    /// }
+    /// assert!(peak > 0.0);
+    /// # Ok::<(), tmm::Error>(())
+    /// ```
+    #[must_use]
+    #[inline]
+    pub fn reactions(&self) -> &[Reaction] {
+        &self.reactions
+    }
+
     /// The balancing moments (crank) or forces (slider), one per input.
     #[must_use]
+    #[inline]
     pub fn balances(&self) -> &[Balance] {
         &self.balances[..self.plan.input_count()]
     }

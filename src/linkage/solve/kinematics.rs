@@ -72,8 +72,19 @@ impl<'p> Kinematics<'p> {
     ///
     /// # Errors
     /// As [`Plan::link_id`].
+    #[inline]
     pub fn link_motion(&self, link: impl LinkRef) -> Result<LinkMotion> {
-        self.pose().link_motion(link)
+        Ok(self.kin.links[self.plan.chain.link(link)?])
+    }
+
+    /// Every link's motion in the engine's frame for it (as [`link_motion`](Self::link_motion)),
+    /// indexed by the link's handle: `k.link_motions()[l.index()]` for
+    /// `l = plan.link_id("rocker")?`, resolved once before a loop. The hot path's reading:
+    /// no `Result` per number. Index 0 is the frame.
+    #[must_use]
+    #[inline]
+    pub fn link_motions(&self) -> &[LinkMotion] {
+        &self.kin.links
     }
 
     /// A link's angle along its reference direction, with ω and ε (see [`Pose::link`]).

@@ -119,10 +119,12 @@ struct Collect<'a> {
 }
 
 impl LoadSite for Collect<'_> {
+    #[inline]
     fn position(&self, link: usize, local: Vector2<f64>) -> Point2<f64> {
         self.kin.at(link, local).p
     }
 
+    #[inline]
     fn omega(&self, link: usize) -> f64 {
         self.kin.links[link].omega
     }
@@ -140,11 +142,13 @@ impl LoadSite for Collect<'_> {
         Ok(self.kin.pose(self.chain))
     }
 
+    #[inline]
     fn force_at_local(&mut self, link: usize, local: Vector2<f64>, force: Vector2<f64>) {
         let p = self.position(link, local);
         self.applied.push((link, Load::force_at(p, force)));
     }
 
+    #[inline]
     fn couple(&mut self, link: usize, moment: f64) {
         let p = self.kin.links[link].origin.p;
         self.applied
@@ -159,6 +163,7 @@ impl LoadSite for Collect<'_> {
         }
     }
 
+    #[inline]
     fn load(&mut self, link: usize, load: Load) {
         self.applied.push((link, load));
     }

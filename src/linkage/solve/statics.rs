@@ -159,6 +159,9 @@ impl Analysis<'_> {
     }
 
     /// The balancing moment or force of one input link, and its reaction with the frame.
+    // Inlined: returned through memory, a `Result<Balance>` was copied byte-shifted (the
+    // error's tag first), and reading the balance back stalled on those stores.
+    #[inline(always)]
     pub(super) fn solve_drive(&mut self, ip: &InputPlan) -> Result<Balance> {
         let plan = self.k.plan;
         let link = ip.link();
