@@ -11,6 +11,8 @@
 //! unknown unless prescribed), then Levenberg–Marquardt, which converges quadratically where
 //! the points can be met exactly.
 
+mod shape;
+
 use super::four_bar::FourBar;
 use super::{Options, Synthesis};
 use crate::error::{Error, Result};
@@ -279,15 +281,19 @@ impl Problem {
     }
 
     fn lane_ok(&self, i: usize) -> bool {
-        self.out.status[i] == Lane::Ok && self.out.measure[i].abs() >= self.sin_gamma
+        self.lane_ok_in(&self.out, i)
+    }
+
+    fn lane_ok_in(&self, out: &Positions, i: usize) -> bool {
+        out.status[i] == Lane::Ok && out.measure[i].abs() >= self.sin_gamma
     }
 
     /// How far lane `i` is from acceptable: the shortfall of |sin γ| below sin \[γ\], the gap
     /// (in path sizes) plus 1 where it does not assemble, 2 where it is singular or invalid.
-    fn shortfall(&self, i: usize) -> f64 {
-        let m = self.out.measure[i];
-        match self.out.status[i] {
-            Lane::Ok => (self.sin_gamma - m.abs()).max(0.0),
+    fn shortfall(out: &Positions, sin_gamma: f64, i: usize) -> f64 {
+        let m = out.measure[i];
+        match out.status[i] {
+            Lane::Ok => (sin_gamma - m.abs()).max(0.0),
             Lane::NotAssemblable => 1.0 + m.abs().min(10.0),
             _ => 2.0,
         }
@@ -295,9 +301,13 @@ impl Problem {
 
     /// The penalty of an infeasible candidate: the mean shortfall over the lanes `lanes`.
     fn penalty(&self, lanes: impl Iterator<Item = usize>) -> f64 {
+        self.penalty_in(&self.out, lanes)
+    }
+
+    fn penalty_in(&self, out: &Positions, lanes: impl Iterator<Item = usize>) -> f64 {
         let (mut sum, mut n) = (0.0, 0usize);
         for i in lanes {
-            sum += self.shortfall(i);
+            sum += Self::shortfall(out, self.sin_gamma, i);
             n += 1;
         }
         INFEASIBLE + sum / n.max(1) as f64
@@ -461,12 +471,17 @@ impl Problem {
             .map(|i| self.angle_of(x, i))
             .collect();
         let (start, span) = match self.timing {
-            Timing::ClosedCurve => (0.0, TAU),
+            Timing::ClosedCurve => {
+                if !once_round(&phis) {
+                    return false;
+                }
+                (0.0, TAU)
+            }
             Timing::Prescribed(_) => {
                 let (mn, mx) = min_max(&phis);
                 (mn, mx - mn)
             }
-            Timing::Free => match arc_of(&phis) {
+            Timing::Free => match ordered_arc(&phis) {
                 Some(a) => a,
                 None => return false,
             },
@@ -518,6 +533,109 @@ fn arc_of(phis: &[f64]) -> Option<(f64, f64)> {
         }
     }
     Some((a[after], TAU - gap))
+}
+
+/// The arc (start, span) the crank sweeps to reach the angles `phis` in their order, turning
+/// one way by less than a turn: `None` when no sense does (an order defect).
+fn ordered_arc(phis: &[f64]) -> Option<(f64, f64)> {
+    let sweep = |sense: f64| -> f64 {
+        phis.windows(2)
+            .map(|w| (sense * (w[1] - w[0])).rem_euclid(TAU))
+            .sum()
+    };
+    let n = phis.len();
+    let (fwd, bwd) = (sweep(1.0), sweep(-1.0));
+    if n == 0 {
+        None
+    } else if fwd < TAU {
+        Some((phis[0], fwd))
+    } else if bwd < TAU {
+        Some((phis[n - 1], bwd))
+    } else {
+        None
+    }
+}
+
+/// Whether the angles `phis`, taken cyclically in order, go round once in one sense: the
+/// points of a closed curve met in order, once per turn.
+fn once_round(phis: &[f64]) -> bool {
+    let n = phis.len();
+    [1.0, -1.0].into_iter().any(|sense: f64| {
+        let sum: f64 = (0..n)
+            .map(|i| (sense * (phis[(i + 1) % n] - phis[i])).rem_euclid(TAU))
+            .sum();
+        (sum - TAU).abs() < 1e-6
+    })
+}
+
+/// The designs found so far, with what places them in the world.
+struct Found {
+    designs: Vec<PathDesign>,
+    /// Each design's sorted link lengths (normalised), to tell designs apart.
+    keys: Vec<[f64; 4]>,
+    start: Instant,
+    centre: V,
+    scale: f64,
+}
+
+impl Found {
+    /// How many designs meet the points to `tolerance` path sizes.
+    fn good(&self, tolerance: f64) -> usize {
+        self.designs
+            .iter()
+            .filter(|d| d.mean_error <= tolerance * self.scale)
+            .count()
+    }
+
+    /// Polishes the genes `g` with the crank angles `phis` at the targets (Levenberg–Marquardt,
+    /// `iterations`), and keeps the design when it passes the whole check (and, if
+    /// `only_good`, meets the points to `tolerance`); of two designs with the same links
+    /// (to 1e-4), the better one.
+    fn adopt(
+        &mut self,
+        pb: &mut Problem,
+        g: &[f64],
+        phis: &[f64],
+        iterations: usize,
+        tolerance: f64,
+        only_good: bool,
+    ) -> Result<()> {
+        let sigma = if g[9] > 0.0 { 1.0 } else { -1.0 };
+        let mut x = g[..9].to_vec();
+        x.extend_from_slice(phis);
+        let x = pb.lm(x, sigma, iterations);
+        if !pb.feasible(&x, sigma) {
+            return Ok(());
+        }
+        let Some(design) = design_of(pb, &x, sigma, self.centre, self.scale)? else {
+            return Ok(());
+        };
+        if only_good && design.mean_error > tolerance * self.scale {
+            return Ok(());
+        }
+        let key = {
+            let mut l = [x[3], x[4], x[5], x[6]];
+            l.sort_by(f64::total_cmp);
+            l
+        };
+        let same = self.keys.iter().position(|k| {
+            k.iter()
+                .zip(&key)
+                .all(|(a, b)| (a - b).abs() <= 1e-4 * b.abs())
+        });
+        match same {
+            Some(i) if self.designs[i].mean_error <= design.mean_error => {}
+            Some(i) => {
+                self.designs[i] = design;
+                self.keys[i] = key;
+            }
+            None => {
+                self.designs.push(design);
+                self.keys.push(key);
+            }
+        }
+        Ok(())
+    }
 }
 
 /// Nelder–Mead on `f` from `x0` with initial steps `step`, `max` evaluations.
@@ -788,12 +906,49 @@ pub fn path_generator(
         out: Positions::default(),
         phi: Vec::new(),
     };
+    let mut found = Found {
+        designs: Vec::new(),
+        keys: Vec::new(),
+        start,
+        centre,
+        scale,
+    };
+    let evals = match req.timing {
+        Timing::Prescribed(_) => search_timed(&mut pb, opts, &mut found, &mut progress)?,
+        _ => shape::search(&mut pb, opts, &mut found, &mut progress)?,
+    };
+    let mut designs = found.designs;
+    let want = opts.designs.max(1);
+    if designs.is_empty() {
+        return Err(Error::NoMechanism {
+            method: "path generation",
+            problem: format!(
+                "no four-bar met the constraints (γ ≥ {:.1}°, link ratio ≤ {}, assembly over the range) in {evals} evaluations",
+                gamma.to_degrees(),
+                opts.max_link_ratio
+            ),
+        });
+    }
+    designs.sort_by(|a, b| a.mean_error.total_cmp(&b.mean_error));
+    designs.truncate(want);
+    Ok(designs)
+}
+
+/// The search with prescribed timing: differential evolution over the ten genes (the nine
+/// dimensions, the mode, θ0) with a Lamarckian Levenberg–Marquardt step every few
+/// generations; the best candidates of each run polished by Nelder–Mead and
+/// Levenberg–Marquardt. Returns the evaluations spent.
+fn search_timed(
+    pb: &mut Problem,
+    opts: &PathOptions,
+    found: &mut Found,
+    progress: &mut dyn FnMut(&Progress) -> bool,
+) -> Result<usize> {
     let (lo, hi) = pb.bounds();
     let dim = lo.len();
     let np = opts.population;
     let mut rng = Rng(opts.seed);
-    let mut designs: Vec<PathDesign> = Vec::new();
-    let mut keys: Vec<[f64; 4]> = Vec::new();
+    let start = found.start;
     let want = opts.designs.max(1);
     let mut evals = 0;
     let mut generation = 0;
@@ -922,46 +1077,16 @@ pub fn path_generator(
             if !pb.feasible(&x, sigma) {
                 continue;
             }
-            let Some(design) = design_of(&pb, &x, sigma, centre, scale)? else {
-                continue;
-            };
-            let key = {
-                let mut l = [x[3], x[4], x[5], x[6]];
-                l.sort_by(f64::total_cmp);
-                l
-            };
-            if keys.iter().any(|k| {
-                k.iter()
-                    .zip(&key)
-                    .all(|(a, b)| (a - b).abs() <= 1e-6 * b.abs())
-            }) {
-                continue;
-            }
-            keys.push(key);
-            designs.push(design);
+            let mut g = x[..9].to_vec();
+            g.push(sigma);
+            found.adopt(pb, &g, &x[9..], 0, opts.tolerance, false)?;
         }
-        let good = designs
-            .iter()
-            .filter(|d| d.mean_error <= opts.tolerance * scale)
-            .count();
-        if good >= want {
+        if found.good(opts.tolerance) >= want {
             break;
         }
     }
 
-    if designs.is_empty() {
-        return Err(Error::NoMechanism {
-            method: "path generation",
-            problem: format!(
-                "no four-bar met the constraints (γ ≥ {:.1}°, link ratio ≤ {}, assembly over the range) in {evals} evaluations",
-                gamma.to_degrees(),
-                opts.max_link_ratio
-            ),
-        });
-    }
-    designs.sort_by(|a, b| a.mean_error.total_cmp(&b.mean_error));
-    designs.truncate(want);
-    Ok(designs)
+    Ok(evals)
 }
 
 fn pb_residuals(targets: &[V], timing: &Timing, x: &[f64], sigma: f64) -> Option<Vec<f64>> {
@@ -1024,7 +1149,7 @@ fn design_of(
             let (mn, mx) = min_max(&(0..n).map(|i| pb.angle_of(x, i)).collect::<Vec<_>>());
             (mn, mx - mn)
         }
-        Timing::Free => arc_of(&phis).unwrap_or((0.0, 0.0)),
+        Timing::Free => ordered_arc(&phis).unwrap_or((0.0, 0.0)),
     };
     let mut report = fb.report(
         "path generator",

@@ -12,6 +12,8 @@ use tmm::synthesis::{
 };
 use tmm::Error;
 
+mod path;
+
 fn rel(a: f64, b: f64) -> f64 {
     (a - b).abs() / b.abs().max(1e-300)
 }

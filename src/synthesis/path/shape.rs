@@ -1,0 +1,498 @@
+//! The global stage without prescribed timing: a search over the *shapes* of four-bars —
+//! frame 1, crank, coupler and rocker (by their logarithms), the coupler point in units of the
+//! coupler, the assembly mode — each candidate's coupler curve placed on the targets by the
+//! similarity (scale, turn, shift) that fits it best, in closed form.
+//!
+//! Why: a similarity z ↦ αz + t (α, t complex) maps a four-bar onto a four-bar whose coupler
+//! curve is the image of the first one's, so four of the nine dimensions need no search. For
+//! given correspondences Q_i ↔ P_i the misses P_i − αQ_i − t are linear in α and t, and the
+//! least-squares fit is α = Σ conj(Q_i − Q̄)(P_i − P̄) / Σ|Q_i − Q̄|², t = P̄ − αQ̄, leaving
+//! Σ|P_i − P̄|² − |Σ conj(Q_i − Q̄)(P_i − P̄)|² / Σ|Q_i − Q̄|².
+//!
+//! The correspondences come from arc length, which a similarity scales uniformly: the targets,
+//! in order, sit at fractions τ_i of their polyline's length; the candidate's curve (a closed
+//! loop when its crank turns fully, its longest run of acceptable positions otherwise) is cut
+//! at a start and a span (the whole loop for a closed target curve), each target put at its
+//! fraction along the cut, and the start, span and sense that fit best are chosen on a grid,
+//! then refined by halving steps. For the shape that traces the targets' curve the fit is
+//! close (the chords between targets lag the arcs a little); Levenberg–Marquardt on the exact
+//! misses, with the crank angles found here as its start, then finishes.
+
+use super::{Problem, INFEASIBLE, V};
+use crate::kinematics::batch::{four_bar_positions, CrankAngles, FourBarDims, Positions};
+use crate::kinematics::Branch;
+use nalgebra::Point2;
+use std::f64::consts::TAU;
+
+/// Shape genes: ln crank, ln coupler, ln rocker (frame 1), the coupler point (along, across)
+/// in units of the coupler, the mode's sign.
+pub(super) const SHAPE: usize = 6;
+
+/// Start positions on the grid of a cut, and spans (open paths) tried per sense.
+const STARTS: usize = 48;
+const SPANS: usize = 10;
+
+/// The best cut of a candidate: where the targets sit on its curve and the similarity.
+#[derive(Debug, Clone, Copy)]
+struct Cut {
+    start: f64,
+    span: f64,
+    forward: bool,
+    cost: f64,
+    alpha: V,
+    t: V,
+}
+
+/// The shape stage's data and scratch space.
+pub(super) struct Shapes {
+    targets: Vec<V>,
+    /// Arc-length fraction of each target along the targets' polyline (closed: loop).
+    tau: Vec<f64>,
+    closed: bool,
+    turn: CrankAngles,
+    out: Positions,
+    /// Lanes along the run of acceptable positions, in crank order.
+    run: Vec<usize>,
+    /// Whether the run is the whole turn (a loop).
+    looped: bool,
+    /// Cumulative arc length at each run position (a loop has one more: back to the first).
+    arc: Vec<f64>,
+    q: Vec<V>,
+    pos: Vec<f64>,
+}
+
+/// Complex product a·b of vectors read as complex numbers.
+fn mul(a: V, b: V) -> V {
+    V::new(a.x * b.x - a.y * b.y, a.x * b.y + a.y * b.x)
+}
+
+/// The least-squares similarity taking `q` onto `p`: (remaining sum of squares, α, t).
+fn similarity(p: &[V], q: &[V]) -> Option<(f64, V, V)> {
+    let n = p.len() as f64;
+    let pm = p.iter().sum::<V>() / n;
+    let qm = q.iter().sum::<V>() / n;
+    let (mut num, mut den, mut pp) = (V::zeros(), 0.0, 0.0);
+    for (a, b) in q.iter().zip(p) {
+        let (dq, dp) = (a - qm, b - pm);
+        num += V::new(dq.x * dp.x + dq.y * dp.y, dq.x * dp.y - dq.y * dp.x);
+        den += dq.norm_squared();
+        pp += dp.norm_squared();
+    }
+    if den.is_nan() || den <= 1e-30 {
+        return None;
+    }
+    let alpha = num / den;
+    Some((
+        (pp - num.norm_squared() / den).max(0.0),
+        alpha,
+        pm - mul(alpha, qm),
+    ))
+}
+
+impl Shapes {
+    pub(super) fn new(pb: &Problem, positions: usize) -> Self {
+        let closed = matches!(pb.timing, super::Timing::ClosedCurve);
+        let n = pb.targets.len();
+        let mut tau = vec![0.0; n];
+        for i in 1..n {
+            tau[i] = tau[i - 1] + (pb.targets[i] - pb.targets[i - 1]).norm();
+        }
+        let total = tau[n - 1]
+            + if closed {
+                (pb.targets[0] - pb.targets[n - 1]).norm()
+            } else {
+                0.0
+            };
+        for x in &mut tau {
+            *x /= total;
+        }
+        Self {
+            targets: pb.targets.clone(),
+            tau,
+            closed,
+            turn: CrankAngles::turn(positions),
+            out: Positions::new(positions),
+            run: Vec::with_capacity(positions),
+            looped: false,
+            arc: Vec::with_capacity(positions + 1),
+            q: vec![V::zeros(); n],
+            pos: vec![0.0; n],
+        }
+    }
+
+    /// Gene bounds for the link ratio `ratio`.
+    pub(super) fn bounds(ratio: f64) -> (Vec<f64>, Vec<f64>) {
+        let l = ratio.ln();
+        (
+            vec![-l, -l, -l, -3.0, -3.0, -1.0],
+            vec![l, l, l, 3.0, 3.0, 1.0],
+        )
+    }
+
+    fn dims(h: &[f64]) -> FourBarDims {
+        let b = h[1].exp();
+        FourBarDims {
+            o: Point2::origin(),
+            c: Point2::new(1.0, 0.0),
+            l_oa: h[0].exp(),
+            l_ab: b,
+            l_cb: h[2].exp(),
+            branch: if h[5] > 0.0 {
+                Branch::Plus
+            } else {
+                Branch::Minus
+            },
+            coupler: V::new(h[3] * b, h[4] * b),
+        }
+    }
+
+    /// The objective of the shape `h`: the RMS miss of the best cut, in path sizes, or a
+    /// penalty ≥ [`INFEASIBLE`].
+    pub(super) fn cost(&mut self, pb: &Problem, h: &[f64]) -> f64 {
+        match self.cut(pb, h) {
+            Ok(c) => c.cost,
+            Err(p) => p,
+        }
+    }
+
+    /// The genes of [`Problem`] (normalised world) and the crank angles at the targets of
+    /// the shape `h` placed by its best cut.
+    pub(super) fn place(&mut self, pb: &Problem, h: &[f64]) -> Option<(Vec<f64>, Vec<f64>)> {
+        let c = self.cut(pb, h).ok()?;
+        self.fill(c.start, c.span, c.forward);
+        let (k, turn) = (c.alpha.norm(), c.alpha.y.atan2(c.alpha.x));
+        let d = Self::dims(h);
+        let genes = vec![
+            c.t.x,
+            c.t.y,
+            turn.rem_euclid(TAU),
+            k,
+            d.l_oa * k,
+            d.l_ab * k,
+            d.l_cb * k,
+            d.coupler.x * k,
+            d.coupler.y * k,
+            h[5].signum(),
+        ];
+        let m = self.turn.len() as f64;
+        let first = self.turn.phi()[self.run[0]];
+        let phis = self
+            .pos
+            .iter()
+            .map(|&j| first + j * TAU / m + turn)
+            .collect();
+        Some((genes, phis))
+    }
+
+    fn cut(&mut self, pb: &Problem, h: &[f64]) -> Result<Cut, f64> {
+        let l = [1.0, h[0].exp(), h[1].exp(), h[2].exp()];
+        let (mn, mx) = super::min_max(&l);
+        if mx / mn > pb.ratio || (mx / mn).is_nan() {
+            return Err(INFEASIBLE + (mx / mn / pb.ratio).min(1e3));
+        }
+        let d = Self::dims(h);
+        let _ = four_bar_positions(&d, &self.turn, self.out.columns_mut());
+        self.runs(pb)?;
+        let total = *self.arc.last().unwrap_or(&0.0);
+        if total.is_nan() || total <= 0.0 {
+            return Err(INFEASIBLE + 2.0);
+        }
+        let mut best: Option<Cut> = None;
+        let spans: Vec<f64> = if self.closed {
+            vec![total]
+        } else {
+            (0..SPANS)
+                .map(|k| total * 0.08f64.powf(k as f64 / SPANS as f64))
+                .collect()
+        };
+        for forward in [true, false] {
+            for &span in &spans {
+                let room = if self.looped { total } else { total - span };
+                let starts = if self.looped || room > 0.0 { STARTS } else { 1 };
+                for k in 0..starts {
+                    let start = room * k as f64 / starts as f64;
+                    if let Some(c) = self.try_cut(start, span, forward)
+                        && best.is_none_or(|b| c.cost < b.cost)
+                    {
+                        best = Some(c);
+                    }
+                }
+            }
+        }
+        let mut best = best.ok_or(INFEASIBLE + 2.0)?;
+        // Refine the start (and an open path's span) by halving steps about the best.
+        let mut step = total / STARTS as f64;
+        for _ in 0..8 {
+            step /= 2.0;
+            for (ds, dw) in [(step, 0.0), (-step, 0.0), (0.0, step), (0.0, -step)] {
+                if self.closed && dw != 0.0 {
+                    continue;
+                }
+                let (start, span) = (best.start + ds, best.span + dw);
+                let fits = span > 0.0
+                    && span <= total
+                    && (self.looped || (start >= 0.0 && start + span <= total));
+                if fits
+                    && let Some(c) = self.try_cut(start, span, best.forward)
+                    && c.cost < best.cost
+                {
+                    best = c;
+                }
+            }
+        }
+        // The placed design within the size bound.
+        let k = best.alpha.norm();
+        let far = [
+            k * l[0],
+            k * l[1],
+            k * l[2],
+            k * l[3],
+            best.t.norm(),
+            (best.alpha + best.t).norm(),
+            k * d.coupler.x.abs(),
+            k * d.coupler.y.abs(),
+        ]
+        .into_iter()
+        .fold(0.0, f64::max);
+        if far.is_nan() || far > pb.size {
+            return Err(INFEASIBLE + (far / pb.size).min(1e3));
+        }
+        Ok(best)
+    }
+
+    /// The run of acceptable lanes: the whole turn, or (open paths) the longest stretch of
+    /// consecutive ones; its cumulative arc length. A penalty when there is none.
+    fn runs(&mut self, pb: &Problem) -> Result<(), f64> {
+        let m = self.turn.len();
+        let ok = |i: usize| pb.lane_ok_in(&self.out, i);
+        self.run.clear();
+        self.arc.clear();
+        let bad = (0..m).filter(|&i| !ok(i)).count();
+        if bad == 0 {
+            self.looped = true;
+            self.run.extend(0..m);
+        } else if self.closed || bad == m {
+            return Err(pb.penalty_in(&self.out, 0..m));
+        } else {
+            self.looped = false;
+            // The longest stretch of good lanes, cyclically: start after a bad lane.
+            let first_bad = (0..m).find(|&i| !ok(i)).unwrap_or(0);
+            let (mut best, mut cur) = ((0, 0), (0, 0));
+            for s in 1..=m {
+                let i = (first_bad + s) % m;
+                if ok(i) {
+                    if cur.1 == 0 {
+                        cur.0 = i;
+                    }
+                    cur.1 += 1;
+                    if cur.1 > best.1 {
+                        best = cur;
+                    }
+                } else {
+                    cur.1 = 0;
+                }
+            }
+            if best.1 < 8 {
+                return Err(pb.penalty_in(&self.out, 0..m));
+            }
+            self.run.extend((0..best.1).map(|j| (best.0 + j) % m));
+        }
+        let mut s = 0.0;
+        self.arc.push(0.0);
+        let len = self.run.len() + usize::from(self.looped);
+        for j in 1..len {
+            s += (self.point(j) - self.point(j - 1)).norm();
+            self.arc.push(s);
+        }
+        Ok(())
+    }
+
+    /// The coupler point at run position `j` (a loop wraps).
+    fn point(&self, j: usize) -> V {
+        let i = self.run[j % self.run.len()];
+        V::new(self.out.p_x[i], self.out.p_y[i])
+    }
+
+    /// The point at arc length `s` along the run, and its fractional run position.
+    fn at(&self, s: f64) -> (V, f64) {
+        let total = self.arc[self.arc.len() - 1];
+        let s = if self.looped {
+            s.rem_euclid(total)
+        } else {
+            s.clamp(0.0, total)
+        };
+        let j = self
+            .arc
+            .partition_point(|&x| x <= s)
+            .saturating_sub(1)
+            .min(self.arc.len() - 2);
+        let seg = self.arc[j + 1] - self.arc[j];
+        let f = if seg > 0.0 {
+            ((s - self.arc[j]) / seg).clamp(0.0, 1.0)
+        } else {
+            0.0
+        };
+        let (p0, p1) = (self.point(j), self.point(j + 1));
+        (p0 + f * (p1 - p0), j as f64 + f)
+    }
+
+    /// Puts the targets on the cut (start, span, sense): their points in `q`, their run
+    /// positions in `pos`.
+    fn fill(&mut self, start: f64, span: f64, forward: bool) {
+        for i in 0..self.targets.len() {
+            let f = if forward {
+                self.tau[i]
+            } else {
+                1.0 - self.tau[i]
+            };
+            let (p, j) = self.at(start + f * span);
+            self.q[i] = p;
+            self.pos[i] = j;
+        }
+    }
+
+    fn try_cut(&mut self, start: f64, span: f64, forward: bool) -> Option<Cut> {
+        self.fill(start, span, forward);
+        let (res, alpha, t) = similarity(&self.targets, &self.q)?;
+        Some(Cut {
+            start,
+            span,
+            forward,
+            cost: (res / self.targets.len() as f64).sqrt(),
+            alpha,
+            t,
+        })
+    }
+}
+
+/// One generation of DE/current-to-pbest/1/bin with dithered F over `pop` (fitness `fit`),
+/// the trial of each member kept where it is no worse; gene 5 (the mode) is free in [−1, 1].
+fn generation(
+    pop: &mut [Vec<f64>],
+    fit: &mut [f64],
+    lo: &[f64],
+    hi: &[f64],
+    rng: &mut super::Rng,
+    f: &mut dyn FnMut(&[f64]) -> f64,
+) {
+    let np = pop.len();
+    let dim = lo.len();
+    let f_scale = 0.5 + 0.5 * rng.unit();
+    let mut ranked: Vec<usize> = (0..np).collect();
+    ranked.sort_by(|&a, &b| fit[a].total_cmp(&fit[b]));
+    let top = (np / 10).max(2);
+    for i in 0..np {
+        let p = ranked[rng.below(top)];
+        let (mut b, mut c) = (i, i);
+        while b == i {
+            b = rng.below(np);
+        }
+        while c == i || c == b {
+            c = rng.below(np);
+        }
+        let jr = rng.below(dim);
+        let trial: Vec<f64> = (0..dim)
+            .map(|k| {
+                let x = pop[i][k];
+                if k != jr && rng.unit() >= 0.9 {
+                    return x;
+                }
+                let v = x + f_scale * (pop[p][k] - x) + f_scale * (pop[b][k] - pop[c][k]);
+                if v < lo[k] {
+                    lo[k] + (x - lo[k]) * rng.unit()
+                } else if v > hi[k] {
+                    hi[k] - (hi[k] - x) * rng.unit()
+                } else {
+                    v
+                }
+            })
+            .collect();
+        let ft = f(&trial);
+        if ft <= fit[i] {
+            pop[i] = trial;
+            fit[i] = ft;
+        }
+    }
+}
+
+/// The search over shapes: runs of differential evolution from fresh random populations,
+/// each until it stagnates, the best member polished every few generations (kept when it
+/// meets the points to the tolerance) and the best few at the end of each run; until
+/// `opts.designs` designs meet the points or the budget is spent.
+pub(super) fn search(
+    pb: &mut Problem,
+    opts: &super::PathOptions,
+    found: &mut super::Found,
+    progress: &mut dyn FnMut(&super::Progress) -> bool,
+) -> crate::error::Result<usize> {
+    let mut shapes = Shapes::new(pb, opts.positions);
+    let (lo, hi) = Shapes::bounds(pb.ratio);
+    let np = opts.population;
+    let want = opts.designs.max(1);
+    let mut rng = super::Rng(opts.seed);
+    let (mut evals, mut generations) = (0usize, 0usize);
+    let start = found.start;
+    let in_budget =
+        |evals: usize| evals + np <= opts.max_evaluations && start.elapsed() < opts.max_time;
+    while in_budget(evals + np) {
+        let mut pop: Vec<Vec<f64>> = (0..np)
+            .map(|_| {
+                (0..SHAPE)
+                    .map(|k| lo[k] + (hi[k] - lo[k]) * rng.unit())
+                    .collect()
+            })
+            .collect();
+        let mut fit: Vec<f64> = pop.iter().map(|h| shapes.cost(pb, h)).collect();
+        evals += np;
+        let (mut last, mut since) = (f64::INFINITY, 0);
+        while in_budget(evals) {
+            generations += 1;
+            generation(&mut pop, &mut fit, &lo, &hi, &mut rng, &mut |h| {
+                shapes.cost(pb, h)
+            });
+            evals += np;
+            let best_i = (0..np)
+                .min_by(|&a, &b| fit[a].total_cmp(&fit[b]))
+                .unwrap_or(0);
+            let best = fit[best_i];
+            if generations % super::MEMETIC == 0
+                && best < INFEASIBLE
+                && let Some((g, phis)) = shapes.place(pb, &pop[best_i])
+            {
+                evals += 1;
+                found.adopt(pb, &g, &phis, 60, opts.tolerance, true)?;
+                if found.good(opts.tolerance) >= want {
+                    return Ok(evals);
+                }
+            }
+            let go_on = progress(&super::Progress {
+                generation: generations,
+                evaluations: evals,
+                best,
+                elapsed: start.elapsed(),
+            });
+            if !go_on {
+                return Ok(evals);
+            }
+            if best < last * (1.0 - 1e-6) {
+                (last, since) = (best, 0);
+            } else {
+                since += 1;
+                if since >= super::STAGNATION {
+                    break;
+                }
+            }
+        }
+        let mut order: Vec<usize> = (0..np).filter(|&i| fit[i] < INFEASIBLE).collect();
+        order.sort_by(|&a, &b| fit[a].total_cmp(&fit[b]));
+        for &i in order.iter().take(super::POLISHED) {
+            if let Some((g, phis)) = shapes.place(pb, &pop[i]) {
+                found.adopt(pb, &g, &phis, 200, opts.tolerance, false)?;
+            }
+        }
+        if found.good(opts.tolerance) >= want {
+            break;
+        }
+    }
+    Ok(evals)
+}
