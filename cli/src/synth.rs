@@ -214,7 +214,7 @@ time bound cuts the search). Progress shows on a terminal, nothing when piped.")
         /// The points sample a closed curve: the crank turns fully and P runs around it once.
         #[arg(long)]
         closed: bool,
-        /// The search's seed.
+        /// The search's seed (a fixed one without it: the same run gives the same design).
         #[arg(long, value_name = "S")]
         seed: Option<u64>,
         /// Candidate evaluations of the global search.
