@@ -537,6 +537,25 @@ fn bad_requirements_are_one_line_naming_the_parameter() {
         ],
         &["K must be finite"],
     );
+    // A centre distance so large that the crank's circle reaches the ram's block.
+    assert_refused(
+        &[
+            "shaper",
+            "--stroke",
+            "0.3",
+            "-K",
+            "100",
+            "--centre-distance",
+            "0.25",
+            "--min-transmission",
+            "0",
+        ],
+        &[
+            "centre distance O1O3 (m) = 0.25",
+            "nearest reachable",
+            "--centre-distance",
+        ],
+    );
     assert_refused(
         &["through", "--frame", "0.4", "--at", "40,101.4"],
         &["positions = 1", "[2, 3]", "--at"],

@@ -121,6 +121,7 @@ fn flags_of(kind: &Kind) -> Vec<(&'static str, &'static str)> {
             ("stroke", "--stroke"),
             ("K", "-K/--time-ratio"),
             ("centre_distance", "--centre-distance"),
+            ("centre distance", "--centre-distance"),
         ],
         Kind::Through { .. } => &[
             ("frame", "--frame"),
