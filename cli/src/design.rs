@@ -54,22 +54,27 @@ pub enum Kind {
         positions: Vec<(f64, f64)>,
     },
     /// A four-bar function generator (Freudenstein) for y = f(x).
-    Function {
-        /// f.
-        function: Function,
-        /// [x0, x1].
-        x: [f64; 2],
-        /// The crank angles at x0 and x1, rad.
-        crank: [f64; 2],
-        /// The rocker angles at f(x0) and f(x1), rad.
-        rocker: [f64; 2],
-        /// O1O3, m.
-        frame: f64,
-        /// `None`: three Chebyshev precision points; `Some(n)`: least squares over n points.
-        least_squares: Option<usize>,
-    },
+    Function(FunctionRequest),
     /// A four-bar whose coupler point passes through target points (a seeded search).
     Path(PathRequest),
+}
+
+/// A function generator's requirement: the crank's angle a linear image of x, the rocker's
+/// one of y = f(x).
+#[derive(Debug, Clone, PartialEq)]
+pub struct FunctionRequest {
+    /// f.
+    pub function: Function,
+    /// [x0, x1].
+    pub x: [f64; 2],
+    /// The crank angles at x0 and x1, rad.
+    pub crank: [f64; 2],
+    /// The rocker angles at f(x0) and f(x1), rad.
+    pub rocker: [f64; 2],
+    /// O1O3, m.
+    pub frame: f64,
+    /// `None`: three Chebyshev precision points; `Some(n)`: least squares over n points.
+    pub least_squares: Option<usize>,
 }
 
 /// A path-generation requirement and the search's bounds.

@@ -5,7 +5,7 @@ use std::path::{Path, PathBuf};
 
 use clap::{Args, Subcommand};
 
-use crate::design::{Function, Kind, PathRequest, Request, Timing};
+use crate::design::{Function, FunctionRequest, Kind, PathRequest, Request, Timing};
 use crate::model::Failure;
 use crate::{clear_progress, engine, print, progress, report, write_file, Fail};
 
@@ -214,7 +214,7 @@ time bound cuts the search). Progress shows on a terminal, nothing when piped.")
         /// The points sample a closed curve: the crank turns fully and P runs around it once.
         #[arg(long)]
         closed: bool,
-        /// The search's seed.
+        /// The search's seed (a fixed one without it: the same run gives the same design).
         #[arg(long, value_name = "S")]
         seed: Option<u64>,
         /// Candidate evaluations of the global search.
@@ -339,14 +339,14 @@ fn request_of(kind: SynthKind) -> Result<(String, Request, Common), Fail> {
             common,
         } => (
             "synth function".to_owned(),
-            Kind::Function {
+            Kind::Function(FunctionRequest {
                 function,
                 x: pair(x),
                 crank: radians(crank),
                 rocker: radians(rocker),
                 frame,
                 least_squares,
-            },
+            }),
             common,
         ),
         SynthKind::Path {

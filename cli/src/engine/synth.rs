@@ -17,7 +17,8 @@ use tmm::synthesis::{
 
 use super::{failure, grashof_text, load, Machine};
 use crate::design::{
-    DesignReport, Designed, Dimension, Kind, MissRow, Misses, PathRequest, Request, Timing,
+    DesignReport, Designed, Dimension, FunctionRequest, Kind, MissRow, Misses, PathRequest,
+    Request, Timing,
 };
 use crate::model::Failure;
 
@@ -120,6 +121,7 @@ fn flags_of(kind: &Kind) -> Vec<(&'static str, &'static str)> {
             ("stroke", "--stroke"),
             ("K", "-K/--time-ratio"),
             ("centre_distance", "--centre-distance"),
+            ("centre distance", "--centre-distance"),
         ],
         Kind::Through { .. } => &[
             ("frame", "--frame"),
@@ -127,7 +129,7 @@ fn flags_of(kind: &Kind) -> Vec<(&'static str, &'static str)> {
             ("crank angle", "--at"),
             ("rocker angle", "--at"),
         ],
-        Kind::Function { .. } => &[
+        Kind::Function(_) => &[
             ("x0", "--x"),
             ("x1", "--x"),
             ("crank angle", "--crank"),
@@ -207,84 +209,7 @@ pub fn synthesise(request: &Request, progress: &mut dyn FnMut(&str)) -> Result<D
             let s = crank_rocker_through(*frame, positions, &options).map_err(f)?;
             (s, Some(MissesOf::Rocker(positions.clone())))
         }
-        Kind::Function {
-            function,
-            x,
-            crank,
-            rocker,
-            frame,
-            least_squares,
-        } => {
-            let need = FunctionRequirement {
-                x_range: *x,
-                crank_range: *crank,
-                rocker_range: *rocker,
-                frame: *frame,
-                spacing: least_squares.map_or(Spacing::Chebyshev, Spacing::LeastSquares),
-            };
-            let func = |v: f64| function.eval(v);
-            let g = function_generator(func, &need, &options).map_err(f)?;
-            notes.push(format!(
-                "y = {}(x), x from {} to {}: {}",
-                function.name(),
-                x[0],
-                x[1],
-                match least_squares {
-                    None => "three precision points at Chebyshev spacing".to_owned(),
-                    Some(n) => format!("least squares over {n} points at Chebyshev spacing"),
-                }
-            ));
-            let xs: Vec<String> = g
-                .precision_x
-                .iter()
-                .take(8)
-                .map(|x| format!("{x:.6}"))
-                .collect();
-            notes.push(format!(
-                "precision points x = {}{}",
-                xs.join(", "),
-                if g.precision_x.len() > 8 { ", …" } else { "" }
-            ));
-            notes.push(format!(
-                "Freudenstein's coefficients K1 = {:.6}, K2 = {:.6}, K3 = {:.6}",
-                g.coefficients[0], g.coefficients[1], g.coefficients[2]
-            ));
-            // The structural error by the engine: the largest over a fine grid, and a few
-            // rows to read.
-            let curve = g.structural_error(func, CURVE_POINTS).map_err(f)?;
-            let worst = curve
-                .iter()
-                .max_by(|a, b| a.error.abs().total_cmp(&b.error.abs()))
-                .copied();
-            if let Some(w) = worst {
-                notes.push(format!(
-                    "largest structural error {:.3e} at x = {:.4} ({:.3} % of the range of y), over {CURVE_POINTS} points by the engine",
-                    w.error,
-                    w.x,
-                    100.0 * w.error.abs() / (g.y_range[1] - g.y_range[0]).abs()
-                ));
-            }
-            let rows = g
-                .structural_error(func, CURVE_ROWS)
-                .map_err(f)?
-                .into_iter()
-                .map(|p| MissRow {
-                    at: format!("x = {:.4}", p.x),
-                    wanted: vec![p.wanted],
-                    reached: vec![p.generated],
-                    miss: p.error.abs(),
-                })
-                .collect();
-            let misses = Misses {
-                title: "the structural error: y wanted and generated (the rocker's angle by \
-                        the engine, mapped back to y)"
-                    .to_owned(),
-                quantities: vec!["y".to_owned()],
-                unit: "",
-                rows,
-            };
-            (g.synthesis, Some(MissesOf::Done(misses)))
-        }
+        Kind::Function(r) => function(r, &options, &flags, &mut notes)?,
         Kind::Path(p) => path(p, request.min_transmission, &flags, &mut notes, progress)?,
     };
     let json = synthesis.linkage.to_json().map_err(f)?;
@@ -322,6 +247,94 @@ pub fn synthesise(request: &Request, progress: &mut dyn FnMut(&str)) -> Result<D
             notes,
         },
     })
+}
+
+/// The function generator, its notes (precision points, coefficients, the largest structural
+/// error) and the structural error across the range as the misses.
+fn function(
+    r: &FunctionRequest,
+    options: &Options,
+    flags: &[(&str, &str)],
+    notes: &mut Vec<String>,
+) -> Result<(Synthesis, Option<MissesOf>), Failure> {
+    let FunctionRequest {
+        function,
+        x,
+        crank,
+        rocker,
+        frame,
+        least_squares,
+    } = r;
+    let f = |e: tmm::Error| synth_failure(&e, flags);
+    let need = FunctionRequirement {
+        x_range: *x,
+        crank_range: *crank,
+        rocker_range: *rocker,
+        frame: *frame,
+        spacing: least_squares.map_or(Spacing::Chebyshev, Spacing::LeastSquares),
+    };
+    let func = |v: f64| function.eval(v);
+    let g = function_generator(func, &need, options).map_err(&f)?;
+    notes.push(format!(
+        "y = {}(x), x from {} to {}: {}",
+        function.name(),
+        x[0],
+        x[1],
+        match least_squares {
+            None => "three precision points at Chebyshev spacing".to_owned(),
+            Some(n) => format!("least squares over {n} points at Chebyshev spacing"),
+        }
+    ));
+    let xs: Vec<String> = g
+        .precision_x
+        .iter()
+        .take(8)
+        .map(|x| format!("{x:.6}"))
+        .collect();
+    notes.push(format!(
+        "precision points x = {}{}",
+        xs.join(", "),
+        if g.precision_x.len() > 8 { ", …" } else { "" }
+    ));
+    notes.push(format!(
+        "Freudenstein's coefficients K1 = {:.6}, K2 = {:.6}, K3 = {:.6}",
+        g.coefficients[0], g.coefficients[1], g.coefficients[2]
+    ));
+    // The structural error by the engine: the largest over a fine grid, and a few
+    // rows to read.
+    let curve = g.structural_error(func, CURVE_POINTS).map_err(&f)?;
+    let worst = curve
+        .iter()
+        .max_by(|a, b| a.error.abs().total_cmp(&b.error.abs()))
+        .copied();
+    if let Some(w) = worst {
+        notes.push(format!(
+            "largest structural error {:.3e} at x = {:.4} ({:.3} % of the range of y), over {CURVE_POINTS} points by the engine",
+            w.error,
+            w.x,
+            100.0 * w.error.abs() / (g.y_range[1] - g.y_range[0]).abs()
+        ));
+    }
+    let rows = g
+        .structural_error(func, CURVE_ROWS)
+        .map_err(&f)?
+        .into_iter()
+        .map(|p| MissRow {
+            at: format!("x = {:.4}", p.x),
+            wanted: vec![p.wanted],
+            reached: vec![p.generated],
+            miss: p.error.abs(),
+        })
+        .collect();
+    let misses = Misses {
+        title: "the structural error: y wanted and generated (the rocker's angle by \
+                the engine, mapped back to y)"
+            .to_owned(),
+        quantities: vec!["y".to_owned()],
+        unit: "",
+        rows,
+    };
+    Ok((g.synthesis, Some(MissesOf::Done(misses))))
 }
 
 /// What the misses are measured against, before the description is read back.
