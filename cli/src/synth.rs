@@ -205,7 +205,7 @@ The points file: CSV with x,y in m on each line (a header line and lines startin
 skipped), with an optional third column, the crank's turn from the first point in degrees
 (prescribed timing: at least 5 points); or JSON, [[x, y], …] or {\"points\": [[x, y], …],
 \"crank\": [Δφ, …]}. Free timing needs at least 9 points, and so does --closed (the points
-sample a closed curve, traced once per turn). The search stops at --budget evaluations or
+sample a closed curve, traced once per turn); at most 500 points. The search stops at --budget evaluations or
 --time seconds, whichever comes first; the same --seed gives the same design (unless the
 time bound cuts the search). Progress shows on a terminal, nothing when piped.")]
     Path {
@@ -406,12 +406,31 @@ fn read_points(path: &Path) -> Result<Points, Failure> {
     let json = path
         .extension()
         .is_some_and(|e| e.eq_ignore_ascii_case("json"));
-    if json {
-        points_json(&text)
+    let (points, crank) = if json {
+        points_json(&text)?
     } else {
-        points_csv(&text)
+        points_csv(&text)?
+    };
+    if points.len() > MAX_TARGETS {
+        return Err(Failure::new(format!(
+            "{} target points, more than the {MAX_TARGETS} the search takes: its final polish \
+             solves for the crank's angle at every point, a dense system whose cost grows with \
+             the cube of their number",
+            points.len()
+        ))
+        .hint(format!(
+            "thin them: keep one point in {}",
+            points.len().div_ceil(MAX_TARGETS)
+        )));
     }
+    Ok((points, crank))
 }
+
+/// The most target points `tmm synth path` takes. The library's search has no bound of its
+/// own, and its polish (Levenberg–Marquardt over the link dimensions and one crank angle per
+/// point, dense) is not cut by the time bound: 300 points took 17 s of CPU in a debug build,
+/// 1000 more than 75 s without finishing. A path is given by a few dozen points.
+const MAX_TARGETS: usize = 500;
 
 fn points_csv(text: &str) -> Result<Points, Failure> {
     let mut points = Vec::new();

@@ -621,6 +621,12 @@ fn a_bad_points_file_is_one_line_naming_the_file_and_the_line() {
         &["path", "no/such/points.csv"],
         &["no/such/points.csv", "cannot read"],
     );
+    // More points than the search takes (its polish is dense in their number): the limit.
+    let many = Broken::with_extension("many", "csv", &common::coupler_curve_csv(501));
+    assert_refused(
+        &["path", &many.path()],
+        &[&many.path(), "501 target points", "500", "one point in 2"],
+    );
     // A budget below one generation of the search: no design, and the fix.
     let points = Broken::with_extension("points-budget", "csv", &common::coupler_curve_csv(12));
     assert_refused(
