@@ -12,4 +12,6 @@ mod friction;
 #[cfg(feature = "serde")]
 mod hostile;
 #[cfg(feature = "serde")]
+mod springs;
+#[cfg(feature = "serde")]
 mod triad;
