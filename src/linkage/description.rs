@@ -550,6 +550,98 @@ pub enum LoadSpec {
         /// +1: the head lies along the guide direction; −1: against it.
         head: f64,
     },
+    /// A linear spring between two places: its tension (positive pulls the ends together)
+    /// is T = `preload` + `stiffness`·(L − `free_length`) at the length L between its ends,
+    /// and its potential energy V = `preload`·(L − L₀) + ½·`stiffness`·(L − L₀)² (so a
+    /// spring with zero stiffness is a constant force, a gas spring's model).
+    Spring {
+        /// A name for errors and readings (default: the load's number).
+        #[cfg_attr(feature = "serde", serde(default))]
+        name: String,
+        /// Its two ends.
+        ends: [Anchor; 2],
+        /// k, N/m (≥ 0).
+        stiffness: f64,
+        /// L₀, the length at which it carries only its preload, m (≥ 0).
+        free_length: f64,
+        /// The tension at the free length, N (default 0; negative pushes the ends apart).
+        #[cfg_attr(feature = "serde", serde(default))]
+        preload: f64,
+    },
+    /// A linear viscous damper between two places: the force c·L̇ along the line of its ends
+    /// opposes the rate L̇ of their distance (it dissipates the power c·L̇²).
+    Damper {
+        /// A name for errors and readings (default: the load's number).
+        #[cfg_attr(feature = "serde", serde(default))]
+        name: String,
+        /// Its two ends.
+        ends: [Anchor; 2],
+        /// c, N·s/m (≥ 0).
+        c: f64,
+    },
+    /// A torsion spring between two links: the moment k·(Δθ − Δθ₀) + `preload` on the
+    /// first link (and its opposite on the second), Δθ = θ₂ − θ₁ the angle of the second link
+    /// from the first, measured along their reference directions. The twist Δθ − Δθ₀ is read
+    /// in (−π, π]: the spring is for links that turn less than half a turn either way from its
+    /// free angle.
+    TorsionSpring {
+        /// A name for errors and readings (default: the load's number).
+        #[cfg_attr(feature = "serde", serde(default))]
+        name: String,
+        /// The two links (one may be the frame).
+        links: [String; 2],
+        /// k, N·m/rad (≥ 0).
+        stiffness: f64,
+        /// Δθ₀, rad; default: the angle in the reference pose (the spring relaxed as drawn).
+        #[cfg_attr(
+            feature = "serde",
+            serde(default, skip_serializing_if = "Option::is_none")
+        )]
+        free_angle: Option<f64>,
+        /// The moment at the free angle, N·m (default 0).
+        #[cfg_attr(feature = "serde", serde(default))]
+        preload: f64,
+    },
+}
+
+/// Where a spring or damper is fastened: a place on a link.
+///
+/// With `link` given, `at` is a joint of that link, one of its named points, or coordinates
+/// in the reference pose. Without it, `at` names a point (fastened to its link) or a joint
+/// with the frame (fastened to the joint's other link); a joint between two moving links
+/// needs `link`, since the reactions in the joint depend on which link holds the end.
+#[derive(Debug, Clone, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "serde", serde(deny_unknown_fields))]
+pub struct Anchor {
+    /// The link the end is fastened to (see above when it may be left out).
+    #[cfg_attr(
+        feature = "serde",
+        serde(default, skip_serializing_if = "Option::is_none")
+    )]
+    pub link: Option<String>,
+    /// The place: a joint or point name, or coordinates in the reference pose, m.
+    pub at: At,
+}
+
+impl Anchor {
+    /// The named point (or the joint with the frame) `name`.
+    #[must_use]
+    pub fn named(name: &str) -> Self {
+        Self {
+            link: None,
+            at: At::name(name),
+        }
+    }
+
+    /// The place `at` of link `link`.
+    #[must_use]
+    pub fn on(link: &str, at: At) -> Self {
+        Self {
+            link: Some(link.to_owned()),
+            at,
+        }
+    }
 }
 
 #[cfg(feature = "serde")]

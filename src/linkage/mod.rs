@@ -55,10 +55,12 @@ mod cycle;
 mod description;
 pub mod dynamics;
 mod handle;
+mod hinges;
 mod indicator;
 mod inputs;
 mod plan;
 pub(crate) mod solve;
+mod springs;
 mod structure;
 mod structure_triad;
 mod table;
@@ -69,8 +71,8 @@ pub use course_two::{AnyCourse, Assembly, Failure, TwoInputCourse, TwoInputShape
 pub use cycle::run_cycle_parallel;
 pub use cycle::{course_inputs, run_cycle, try_course_inputs, try_uniform_inputs, uniform_inputs};
 pub use description::{
-    At, Drive, Friction, Input, Joint, JointKind, Link, Linkage, LoadSpec, Mass, Mode, NamedPoint,
-    Output,
+    Anchor, At, Drive, Friction, Input, Joint, JointKind, Link, Linkage, LoadSpec, Mass, Mode,
+    NamedPoint, Output,
 };
 pub use handle::{JointId, JointRef, LinkId, LinkRef, PointId, PointRef};
 pub use indicator::IndicatorDiagram;

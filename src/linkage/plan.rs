@@ -12,6 +12,7 @@ use super::description::Drive;
 use super::handle::{index_in, JointId, JointRef, LinkId, LinkRef, PointId, PointRef};
 use super::indicator::IndicatorDiagram;
 use super::inputs::Inputs;
+use super::springs::{DamperPlan, SpringPlan, TorsionPlan};
 use crate::error::{Error, Result};
 use crate::kinematics::frame_offset;
 use crate::kinematics::{Branch, LinkMotion, Motion, PointMotion, TriadDims, TriadPose};
@@ -234,6 +235,9 @@ pub(crate) enum LoadPlan {
         link: usize,
         f: LoadFn,
     },
+    Spring(SpringPlan),
+    Damper(DamperPlan),
+    Torsion(TorsionPlan),
 }
 
 /// The kinematic chain of a plan: the names, the links' and joints' local geometry, the

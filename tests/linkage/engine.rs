@@ -394,10 +394,15 @@ fn bad_descriptions_name_the_joint_link_or_field() {
         force: [1.0, 0.0],
     });
     check(l, "load 3", "\"Z\"");
-    // A joint listed by three links.
+    // A joint listed by three links is a hinge of three; here one the structure refuses,
+    // and the error says how the hinge was taken.
     let mut l = base.clone();
     l.links[0].joints.push("B".into());
-    check(l, "joint B", "listed by 3");
+    check(
+        l,
+        "linkage",
+        "hinge B joins 3 links [frame, coupler, rocker]",
+    );
     // A third link hinged to the frame and the coupler's point: W = 0.
     let mut l = base.clone();
     l.joints.push(Joint::revolute("X", [0.5, 0.5]));

@@ -122,6 +122,9 @@ fn corrupt(l: &mut Linkage, g: &mut Gen) {
                     LoadSpec::Moment { moment, .. } => *moment = x,
                     LoadSpec::Resistance { forward, .. } => *forward = x,
                     LoadSpec::Indicator { head, .. } => *head = x,
+                    LoadSpec::Spring { stiffness, .. } => *stiffness = x,
+                    LoadSpec::Damper { c, .. } => *c = x,
+                    LoadSpec::TorsionSpring { preload, .. } => *preload = x,
                 }
             }
         }

@@ -14,6 +14,8 @@ mod friction;
 #[cfg(feature = "serde")]
 mod hostile;
 #[cfg(feature = "serde")]
+mod springs;
+#[cfg(feature = "serde")]
 mod table;
 #[cfg(feature = "serde")]
 mod triad;

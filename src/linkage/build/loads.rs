@@ -6,10 +6,11 @@
 use super::reference::{finite_num, finite_pair, non_negative, place, Frame, Names};
 use crate::error::Result;
 use crate::kinematics::{extreme_positions, transfer_functions, Motion};
-use crate::linkage::description::{At, LoadSpec};
+use crate::linkage::description::{Anchor, At, LoadSpec};
 use crate::linkage::indicator::IndicatorDiagram;
 use crate::linkage::plan::{bad, Chain, LoadPlan};
 use crate::linkage::solve::state::KinState;
+use crate::linkage::springs::{DamperPlan, End, SpringPlan, TorsionPlan};
 use nalgebra::Vector2;
 
 /// A load checked against the description, waiting only for what the solved chain tells: an
@@ -178,5 +179,153 @@ pub(super) fn plan_load(
                 diagram: diagram.clone(),
             });
         }
+        LoadSpec::Spring {
+            name,
+            ends,
+            stiffness,
+            free_length,
+            preload,
+        } => {
+            let item = named(&item, "spring", name);
+            LoadPlan::Spring(SpringPlan {
+                ends: plan_ends(ends, &item, names, link_index, frames, plan)?,
+                stiffness: non_negative(&item, "stiffness", *stiffness)?,
+                free_length: non_negative(&item, "free_length", *free_length)?,
+                preload: finite_num(&item, "preload", *preload)?,
+                name: item,
+            })
+        }
+        LoadSpec::Damper { name, ends, c } => {
+            let item = named(&item, "damper", name);
+            LoadPlan::Damper(DamperPlan {
+                ends: plan_ends(ends, &item, names, link_index, frames, plan)?,
+                c: non_negative(&item, "c", *c)?,
+                name: item,
+            })
+        }
+        LoadSpec::TorsionSpring {
+            name,
+            links,
+            stiffness,
+            free_angle,
+            preload,
+        } => {
+            let item = named(&item, "torsion spring", name);
+            let [a, b] =
+                [&links[0], &links[1]].map(|l| names.link(l, &item).map(|k| link_index[k]));
+            let (a, b) = (a?, b?);
+            if a == b {
+                return Err(bad(
+                    &item,
+                    format!("joins link {} to itself: name two links", links[0]),
+                ));
+            }
+            // The engine's link angles are its frames'; a given Δθ₀ is along the links'
+            // reference directions, which lie at the plans' offsets from the frames.
+            let free = match free_angle {
+                None => frames[b].angle - frames[a].angle,
+                Some(f) => {
+                    finite_num(&item, "free_angle", *f)?
+                        - (plan.links[b].angle_offset - plan.links[a].angle_offset)
+                }
+            };
+            LoadPlan::Torsion(TorsionPlan {
+                links: [a, b],
+                stiffness: non_negative(&item, "stiffness", *stiffness)?,
+                free,
+                preload: finite_num(&item, "preload", *preload)?,
+            })
+        }
     }))
+}
+
+/// "spring NAME", or "load N (spring)" for an unnamed one.
+fn named(item: &str, kind: &str, name: &str) -> String {
+    if name.is_empty() {
+        format!("{item} ({kind})")
+    } else {
+        format!("{kind} {name}")
+    }
+}
+
+/// The two ends of a spring or damper `item`, each on its link, on two different links.
+fn plan_ends(
+    ends: &[Anchor; 2],
+    item: &str,
+    names: &Names<'_>,
+    link_index: &[usize],
+    frames: &[Frame],
+    plan: &Chain,
+) -> Result<[End; 2]> {
+    let mut out = [(0, Vector2::zeros()); 2];
+    for (e, (anchor, field)) in out.iter_mut().zip(ends.iter().zip(["ends[0]", "ends[1]"])) {
+        *e = plan_end(anchor, item, field, names, link_index, frames, plan)?;
+    }
+    if out[0].0 == out[1].0 {
+        return Err(bad(
+            item,
+            format!(
+                "has both ends on link {}: it would pull on nothing",
+                plan.link_names[out[0].0]
+            ),
+        ));
+    }
+    Ok(out)
+}
+
+/// One end: its link (given, or read off a point or a joint with the frame) and its local
+/// coordinates there.
+fn plan_end(
+    anchor: &Anchor,
+    item: &str,
+    field: &str,
+    names: &Names<'_>,
+    link_index: &[usize],
+    frames: &[Frame],
+    plan: &Chain,
+) -> Result<End> {
+    let joint_links = |n: &str| names.joints.get(n).map(|&j| plan.joints[j].links);
+    let link = match (&anchor.link, &anchor.at) {
+        (Some(l), at) => {
+            let li = link_index[names.link(l, item)?];
+            if let At::Name(n) = at
+                && let Some(ls) = joint_links(n)
+                && !ls.contains(&li)
+            {
+                return Err(bad(
+                    item,
+                    format!("{field} names joint {n}, which link {l} does not hold"),
+                ));
+            }
+            li
+        }
+        (None, At::Name(n)) => match (names.points.get(n.as_str()), joint_links(n)) {
+            (Some(&(k, _)), _) => link_index[k],
+            (None, Some([0, other]) | Some([other, 0])) => other,
+            (None, Some([a, b])) => {
+                return Err(bad(
+                    item,
+                    format!(
+                        "{field} names joint {n} of links {} and {}: say which holds the end \
+                         with `link`",
+                        plan.link_names[a], plan.link_names[b]
+                    ),
+                ))
+            }
+            (None, None) => {
+                return Err(bad(
+                    item,
+                    format!("{field} names \"{n}\", which is neither a joint nor a point"),
+                ))
+            }
+        },
+        (None, At::Coords(_)) => {
+            return Err(bad(
+                item,
+                format!("{field} gives coordinates without the `link` they are on"),
+            ))
+        }
+    };
+    let p = place(&anchor.at, names, link, link_index, item, field)?;
+    Ok((link, frames[link].local(p)))
 }

@@ -34,12 +34,19 @@ impl Plan {
     ///
     /// # Errors
     /// [`Error::Description`](crate::Error::Description) naming the joint, link, load or
-    /// field at fault: unknown or repeated names, a joint not joining exactly two links, a
+    /// field at fault: unknown or repeated names, a joint listed by fewer than two links (a hinge
+    /// listed by three or more is expanded to binary joints), a prismatic joint of more, a
     /// link with fewer than two joints, a guide without a direction, non-finite numbers,
     /// negative masses, a linkage whose groups are neither dyads of the 2nd class nor triads
     /// of the 3rd (the links left over named), or of the wrong mobility, a pose that
     /// does not close, a group at a dead point in the reference pose without a given mode.
     pub fn new(linkage: &Linkage) -> Result<Self> {
+        let binary = super::hinges::binary_joints(linkage)?;
+        Self::from_binary(&binary).map_err(|e| super::hinges::explain(e, linkage))
+    }
+
+    /// [`Plan::new`] of a description whose joints each join two links.
+    fn from_binary(linkage: &Linkage) -> Result<Self> {
         let Structure {
             names,
             links,
@@ -180,7 +187,8 @@ impl Plan {
     /// As [`Plan::new`], for the structure.
     #[doc(hidden)]
     pub fn decomposition_work(linkage: &Linkage) -> Result<u64> {
-        Structure::new(linkage).map(|s| s.work)
+        let linkage = super::hinges::binary_joints(linkage)?;
+        Structure::new(&linkage).map(|s| s.work)
     }
 }
 

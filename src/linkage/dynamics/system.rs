@@ -240,6 +240,16 @@ impl LoadSite for Project<'_, '_> {
         self.tr.point(0, link, local).p
     }
 
+    fn velocity(&self, link: usize, local: Vector2<f64>) -> Vector2<f64> {
+        (0..self.tr.n)
+            .map(|k| self.tr.vel(k, link, local) * self.qd[k])
+            .sum()
+    }
+
+    fn angle(&self, link: usize) -> f64 {
+        self.tr.kin.links[link].angle
+    }
+
     fn omega(&self, link: usize) -> f64 {
         self.tr.rate(self.qd, |k| self.tr.omega(k, link))
     }

@@ -4,8 +4,9 @@
 
 use super::analysis::Analysis;
 use super::state::{within, KinState};
-use crate::error::{Error, Result};
+use crate::error::{computed, Error, Result};
 use crate::linkage::plan::{Chain, LoadPlan, Plan, Pose};
+use crate::linkage::springs::End;
 use crate::Load;
 use nalgebra::{Point2, Vector2};
 
@@ -17,6 +18,10 @@ use nalgebra::{Point2, Vector2};
 pub(crate) trait LoadSite {
     /// The position of the point at `local` of link `link`.
     fn position(&self, link: usize, local: Vector2<f64>) -> Point2<f64>;
+    /// The velocity of the point at `local` of link `link`.
+    fn velocity(&self, link: usize, local: Vector2<f64>) -> Vector2<f64>;
+    /// The angle of link `link`'s frame.
+    fn angle(&self, link: usize) -> f64;
     /// The angular velocity of link `link`.
     fn omega(&self, link: usize) -> f64;
     /// The sliding link, the guide's link and the guide's unit direction now of the prismatic
@@ -100,6 +105,27 @@ pub(crate) fn apply(plan: &Plan, site: &mut impl LoadSite) -> Result<()> {
                 let local = jp.local[usize::from(jp.links[1] == slider)];
                 site.force_at_local(slider, local, f);
             }
+            LoadPlan::Spring(sp) => {
+                let (u, l) = line_of(site, &sp.ends, &sp.name, names.size)?;
+                pull(site, &sp.ends, sp.tension(l) * u);
+            }
+            LoadPlan::Damper(dp) => {
+                let (u, _) = line_of(site, &dp.ends, &dp.name, names.size)?;
+                let [(a, pa), (b, pb)] = dp.ends;
+                let rate = u.dot(&(site.velocity(b, pb) - site.velocity(a, pa)));
+                pull(site, &dp.ends, dp.c * rate * u);
+            }
+            LoadPlan::Torsion(tp) => {
+                let [a, b] = tp.links;
+                let m = tp.moment(tp.twist([site.angle(a), site.angle(b)]));
+                // The frame holds its share without a free body of its own.
+                if a != 0 {
+                    site.couple(a, m);
+                }
+                if b != 0 {
+                    site.couple(b, -m);
+                }
+            }
             LoadPlan::Custom { link, f } => {
                 let part = within(&names.link_names[*link]);
                 let l = (f.0)(&site.pose()?).map_err(&part)?;
@@ -109,6 +135,42 @@ pub(crate) fn apply(plan: &Plan, site: &mut impl LoadSite) -> Result<()> {
         }
     }
     Ok(())
+}
+
+/// The unit vector from the first end of a spring or damper `name` to its second, and their
+/// distance.
+///
+/// # Errors
+/// [`Error::Singular`] (within `name`) when the ends meet (to 10⁻¹² of the linkage's
+/// `size`, where rounding alone turns the direction): the line of the force is lost.
+fn line_of(
+    site: &impl LoadSite,
+    ends: &[End; 2],
+    name: &str,
+    size: f64,
+) -> Result<(Vector2<f64>, f64)> {
+    let [(a, pa), (b, pb)] = *ends;
+    let d = site.position(b, pb) - site.position(a, pa);
+    let l = d.norm();
+    if l > 1e-12 * size && l.is_finite() {
+        Ok((d / l, l))
+    } else {
+        Err(within(name)(Error::Singular {
+            what: "the line between the ends",
+            measure: "the distance between the ends",
+            value: l,
+        }))
+    }
+}
+
+/// The force `f` on the first end (toward the second when it pulls) and −`f` on the
+/// second; the frame's share is left out of the free bodies.
+fn pull(site: &mut impl LoadSite, ends: &[End; 2], f: Vector2<f64>) {
+    for ((link, local), f) in ends.iter().zip([f, -f]) {
+        if *link != 0 {
+            site.force_at_local(*link, *local, f);
+        }
+    }
 }
 
 /// The kinetostatics' site: one solved position, the loads collected on the links.
@@ -122,6 +184,16 @@ impl LoadSite for Collect<'_> {
     #[inline]
     fn position(&self, link: usize, local: Vector2<f64>) -> Point2<f64> {
         self.kin.at(link, local).p
+    }
+
+    #[inline]
+    fn velocity(&self, link: usize, local: Vector2<f64>) -> Vector2<f64> {
+        self.kin.at(link, local).v
+    }
+
+    #[inline]
+    fn angle(&self, link: usize) -> f64 {
+        self.kin.links[link].angle
     }
 
     #[inline]
@@ -200,5 +272,59 @@ impl Analysis<'_> {
                 applied: &mut self.applied,
             },
         )
+    }
+}
+
+impl Plan {
+    /// The potential energy stored in the description's springs (linear and torsion) at a
+    /// solved position, J: zero at each spring's free length (or angle).
+    ///
+    /// # Errors
+    /// [`Error::Overflow`](crate::Error::Overflow) when the sum overflows;
+    /// [`Error::Description`](crate::Error::Description) for a pose of another plan.
+    ///
+    /// # Examples
+    /// A spring of 200 N/m and free length 0.1 m from a frame point to the four-bar's
+    /// coupler: its energy at the reference pose is ½·k·(L − L₀)².
+    /// ```
+    /// use tmm::linkage::{bundled, Anchor, At, LoadSpec, Plan};
+    /// let mut l = bundled::four_bar();
+    /// l.loads = vec![LoadSpec::Spring {
+    ///     name: "s".into(),
+    ///     ends: [Anchor::on("frame", At::Coords([0.2, 0.5])), Anchor::on("coupler", At::name("B"))],
+    ///     stiffness: 200.0,
+    ///     free_length: 0.1,
+    ///     preload: 0.0,
+    /// }];
+    /// let plan = Plan::new(&l)?;
+    /// let b = l.joints.iter().find(|j| j.name == "B").unwrap().at;
+    /// let len = ((b[0] - 0.2f64).powi(2) + (b[1] - 0.5f64).powi(2)).sqrt();
+    /// let k = plan.kinematics(tmm::kinematics::Motion::fixed(plan.reference_input()))?;
+    /// let v = plan.spring_energy(&k.pose())?;
+    /// assert!((v - 0.5 * 200.0 * (len - 0.1f64).powi(2)).abs() < 1e-12);
+    /// # Ok::<(), tmm::Error>(())
+    /// ```
+    pub fn spring_energy(&self, pose: &Pose<'_>) -> Result<f64> {
+        if !(std::ptr::eq(pose.chain, &self.chain) || *pose.chain == self.chain) {
+            return Err(crate::linkage::plan::bad(
+                "pose",
+                "is a position of another plan",
+            ));
+        }
+        let mut v = 0.0;
+        for l in &self.loads {
+            v += match l {
+                LoadPlan::Spring(s) => {
+                    let [(a, pa), (b, pb)] = s.ends;
+                    s.energy((pose.at(b, pb).p - pose.at(a, pa).p).norm())
+                }
+                LoadPlan::Torsion(t) => {
+                    let [a, b] = t.links;
+                    t.energy(t.twist([pose.links[a].angle, pose.links[b].angle]))
+                }
+                _ => 0.0,
+            };
+        }
+        computed("the springs' potential energy", v)
     }
 }
