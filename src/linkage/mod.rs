@@ -49,6 +49,7 @@
 
 mod build;
 pub mod bundled;
+mod contour;
 mod course;
 mod course_two;
 mod cycle;
@@ -62,6 +63,7 @@ pub(crate) mod solve;
 mod structure;
 mod structure_triad;
 mod table;
+mod workspace;
 
 pub use course::{Course, Sweep};
 pub use course_two::{AnyCourse, Assembly, Failure, TwoInputCourse, TwoInputShape};
@@ -79,3 +81,4 @@ pub use plan::{Group, GroupKind, Plan, Pose};
 pub use solve::{Analysis, Balance, Kinematics, PowerCheck, Reaction, Solver};
 pub use structure::chebyshev;
 pub use table::{Column, Table, Tabulate};
+pub use workspace::{Region, SingularCurve, Singularity, Workspace, WorkspaceOptions};

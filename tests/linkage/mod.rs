@@ -17,3 +17,5 @@ mod hostile;
 mod triad;
 #[cfg(feature = "serde")]
 mod two_inputs;
+#[cfg(feature = "serde")]
+mod workspace;
