@@ -3,7 +3,10 @@
 //! the principle of virtual power, at the 12 course positions. Written as CSV too, and, with
 //! the feature `draw` (on by default), the pictures: the kinematic scheme, the plan in the 12
 //! positions with the paths of the joints, an animation of the cycle, the reactions as arrows
-//! and the diagrams over the cycle, as SVG files beside the CSV.
+//! and the diagrams over the cycle, as SVG files beside the CSV. A linkage with two inputs
+//! (the five-bar robot) runs round a loop about its reference pose: its table has both
+//! balancing moments and the drives' power against the virtual power, and its pictures the
+//! plan and animation along that loop and the workspace of its end effector.
 //!
 //! ```sh
 //! cargo run --release --example linkage -- linkages/watt-six-bar.json
@@ -118,7 +121,7 @@ pub fn run(text: &str, source: &str, dir: &Path) -> Result<Table, Box<dyn std::e
     #[cfg(feature = "draw")]
     match &course {
         AnyCourse::One(c) => pictures::write(&linkage, &plan, &c.inputs, dir)?,
-        AnyCourse::Two(_) => println!("(pictures of two inputs: not yet)"),
+        AnyCourse::Two(c) => pictures::write_two(&linkage, &plan, c, dir)?,
     }
     Ok(table)
 }
@@ -131,7 +134,63 @@ mod pictures {
     use tmm::draw::{self, Diagram, Style};
     use tmm::kinematics::Motion;
     use tmm::linkage::LinkId;
-    use tmm::linkage::{uniform_inputs, Course, Linkage, Output, Plan, Sweep};
+    use tmm::linkage::{
+        uniform_inputs, Course, Linkage, Output, Plan, Sweep, TwoInputCourse, WorkspaceOptions,
+    };
+
+    /// The pictures of a linkage with two inputs: the scheme and the reactions at the first
+    /// position, the plan along the course, an animation round it, and the workspace of the
+    /// first named point (or the first joint between two links that are neither the frame
+    /// nor an input link).
+    pub fn write_two(
+        linkage: &Linkage,
+        plan: &Plan,
+        course: &TwoInputCourse,
+        dir: &Path,
+    ) -> Result<(), Box<dyn std::error::Error>> {
+        let stem = linkage.name.replace([' ', '/'], "_");
+        let style = Style::default();
+        let save = |what: &str, svg: &str| -> std::io::Result<()> {
+            let file = dir.join(format!("{stem}_{what}.svg"));
+            fs::write(&file, svg)?;
+            println!("{what} drawn in {}", file.display());
+            Ok(())
+        };
+        let first = course.inputs[0];
+        save("scheme", &draw::scheme(plan, first, &style)?.svg)?;
+        save("forces", &draw::forces(plan, first, &style)?.svg)?;
+        let inputs = plan.input_links();
+        let free = |l: &LinkId| *l != LinkId::FRAME && !inputs.contains(l);
+        let point = plan.point_names().first().cloned().or_else(|| {
+            plan.joint_names()
+                .iter()
+                .enumerate()
+                .find(|&(j, _)| plan.joint_links(j).is_ok_and(|l| l.iter().all(free)))
+                .map(|(_, n)| n.clone())
+        });
+        let paths: Vec<&str> = point.iter().map(String::as_str).collect();
+        save(
+            "plan",
+            &draw::plan_view_two(plan, course, &paths, &style)?.svg,
+        )?;
+        let speed = linkage.speed.unwrap_or(10.0);
+        let round = TwoInputCourse::around_reference(plan, 360, speed)?;
+        save(
+            "animation",
+            &draw::animation_path(plan, &round.inputs, 4.0, &style)?.svg,
+        )?;
+        if let Some(point) = point {
+            let ws = plan.workspace(&point, &WorkspaceOptions::default())?;
+            println!(
+                "workspace of {point}: {:.4} m², {} outline(s), {} singular curve(s)",
+                ws.region.area(),
+                ws.boundary.len(),
+                ws.singular.len()
+            );
+            save("workspace", &draw::workspace(plan, &ws, &style)?.svg)?;
+        }
+        Ok(())
+    }
 
     pub fn write(
         linkage: &Linkage,

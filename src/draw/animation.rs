@@ -6,7 +6,7 @@ use super::scene::{self, Extents, Pose, Topo};
 use super::{Picture, Style};
 use crate::error::{Error, Result};
 use crate::kinematics::Motion;
-use crate::linkage::Plan;
+use crate::linkage::{Inputs, Plan};
 use nalgebra::{Point2, Vector2};
 use std::fmt::Write;
 use svg::node::element::{Animate, AnimateTransform, Group};
@@ -42,8 +42,42 @@ use svg::Node;
 /// # Ok::<(), tmm::Error>(())
 /// ```
 pub fn animation(plan: &Plan, inputs: &[Motion], seconds: f64, style: &Style) -> Result<Picture> {
+    super::limits::check_count("number of positions", inputs.len())?;
+    let inputs: Vec<Inputs> = inputs.iter().map(|&m| Inputs::one(m)).collect();
+    animation_path(plan, &inputs, seconds, style)
+}
+
+/// An animation of a linkage with two inputs along a path in the plane of its inputs: as
+/// [`animation`], one frame per pair of input motions ([`Inputs::two`]; for example the
+/// positions of a [`TwoInputCourse`](crate::linkage::TwoInputCourse) along two laws).
+/// Positions of one input are animated as well.
+///
+/// # Errors
+/// As [`animation`]; [`Error::In`] naming the frame whose number of motions is not the
+/// linkage's number of inputs.
+///
+/// # Examples
+/// The five-bar robot's end effector round a loop about its reference pose:
+/// ```
+/// use tmm::draw::{animation_path, Style};
+/// use tmm::linkage::{bundled, Plan, TwoInputCourse};
+/// let plan = Plan::new(&bundled::five_bar_robot())?;
+/// let course = TwoInputCourse::around_reference(&plan, 48, 1.0)?;
+/// let pic = animation_path(&plan, &course.inputs, 4.0, &Style::default())?;
+/// assert!(pic.svg.contains("48 frames"));
+/// # Ok::<(), tmm::Error>(())
+/// ```
+pub fn animation_path(
+    plan: &Plan,
+    inputs: &[Inputs],
+    seconds: f64,
+    style: &Style,
+) -> Result<Picture> {
     style.check()?;
-    super::limits::check_inputs(inputs)?;
+    super::limits::check_count("number of positions", inputs.len())?;
+    for i in inputs {
+        super::limits::check_inputs(i.as_slice())?;
+    }
     crate::error::finite("seconds", seconds)?;
     if !(1e-3..=1e6).contains(&seconds) {
         return Err(Error::OutOfRange {

@@ -5,8 +5,7 @@ use super::primitives;
 use super::scene::{self, Extents, Pose, Topo};
 use super::{Picture, Style};
 use crate::error::Result;
-use crate::kinematics::Motion;
-use crate::linkage::Plan;
+use crate::linkage::{Inputs, Plan};
 use svg::Node;
 
 /// The force arrows at `input`: the scheme (faded), and in every joint the reaction R_i,j —
@@ -35,7 +34,8 @@ use svg::Node;
 /// assert!(pic.svg.contains("N·m"));
 /// # Ok::<(), tmm::Error>(())
 /// ```
-pub fn forces(plan: &Plan, input: Motion, style: &Style) -> Result<Picture> {
+pub fn forces(plan: &Plan, input: impl Into<Inputs>, style: &Style) -> Result<Picture> {
+    let input = input.into();
     style.check()?;
     let a = plan.analyse(input)?;
     let topo = Topo::new(plan);
@@ -74,7 +74,11 @@ pub fn forces(plan: &Plan, input: Motion, style: &Style) -> Result<Picture> {
     let frame = scene::fit_with_input(&topo, &pose, &mut cover, style)?;
     let force_scale = (fmax > 0.0).then(|| fmax / (longest * frame.scale));
 
-    let title = format!("{} — reactions at input {:.4}", plan.name(), input.value);
+    let title = format!(
+        "{} — reactions at input {}",
+        plan.name(),
+        super::scheme::values(input)
+    );
     let mut doc = primitives::document(style, &title);
     doc.append(parts::ground(&topo, &pose, &ext, &frame, style));
     let faded = Pen {

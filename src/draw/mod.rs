@@ -11,6 +11,10 @@
 //!   numbered, its extreme positions bold, the paths (coupler curves) of named points;
 //! - [`animation`]: a whole cycle that plays in any browser, one frame per position, by SMIL
 //!   animation (no script);
+//! - [`workspace`]: the region a point of a linkage with two inputs reaches, its outline and
+//!   its singular curves, over the linkage ([`Plan::workspace`](crate::linkage::Plan::workspace));
+//!   [`plan_view_two`] and [`animation_path`] draw a linkage with two inputs along a path of
+//!   its inputs, and [`scheme`] and [`forces`] take both inputs' motions;
 //! - [`forces`]: the reaction in every joint as a scaled arrow on the scheme, with the
 //!   balancing moment or force;
 //! - [`diagram`]: the diagrams over the cycle ([`Diagram`]) — an output's position, velocity
@@ -62,14 +66,16 @@ mod primitives;
 mod scene;
 mod scheme;
 mod style;
+mod workspace;
 
-pub use animation::animation;
+pub use animation::{animation, animation_path};
 pub use diagrams::{diagram, Chart, Diagram, Panel};
 pub use forces::forces;
 pub use frame::Frame;
-pub use plan_view::{plan_view, MAX_PLAN_POSITIONS};
+pub use plan_view::{plan_view, plan_view_two, MAX_PLAN_POSITIONS};
 pub use scheme::scheme;
 pub use style::Style;
+pub use workspace::{workspace, ASSEMBLY_COLOUR, SERIAL_COLOUR, WORKSPACE_FILL};
 
 /// The course of positions the plan and the diagrams draw; it lives in [`crate::linkage`]
 /// (formerly `tmm::draw::Course`) and is re-exported here beside the pictures that take it.

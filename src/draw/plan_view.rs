@@ -7,7 +7,7 @@ use super::scene::{self, Extents, Pose, Topo, Tracer};
 use super::{Picture, Style};
 use crate::error::{Error, Result};
 use crate::kinematics::Motion;
-use crate::linkage::{uniform_inputs, Course, Plan, Sweep};
+use crate::linkage::{uniform_inputs, Course, Inputs, Plan, Sweep, TwoInputCourse, TwoInputShape};
 use nalgebra::Point2;
 use svg::node::element::path::Data;
 use svg::node::element::Path;
@@ -47,33 +47,125 @@ use svg::Node;
 pub fn plan_view(plan: &Plan, course: &Course, paths: &[&str], style: &Style) -> Result<Picture> {
     style.check()?;
     course.check()?;
+    let one = |m: &Motion| Some(Inputs::one(*m));
+    let positions: Vec<Inputs> = course.inputs.iter().map(|&m| Inputs::one(m)).collect();
+    let extremes: Vec<Inputs> = course.extremes.iter().map(|&m| Inputs::one(m)).collect();
+    // The paths over a turn (a slider's input over the course's range).
+    let samples: Vec<Option<Inputs>> = path_inputs(plan, course, style.samples)
+        .iter()
+        .map(one)
+        .collect();
+    draw_plan(plan, &positions, &extremes, &samples, paths, style)
+}
+
+/// The plan of a linkage with two inputs over the positions of `course`, overlaid and
+/// numbered as in [`plan_view`] (no extreme positions), with the paths of the joints or named
+/// points in `paths`: along a path course ([`TwoInputShape::Path`]) through its positions
+/// in order, [`Style::samples`] positions in all with straight steps in the plane of the
+/// inputs between the course's; over a grid, along each row of it (the second input
+/// varying).
+///
+/// # Errors
+/// As [`plan_view`]; the errors of [`TwoInputCourse::check`].
+///
+/// # Examples
+/// ```
+/// use tmm::draw::{plan_view_two, Style};
+/// use tmm::linkage::{bundled, Plan, TwoInputCourse};
+/// let plan = Plan::new(&bundled::five_bar_robot())?;
+/// let course = TwoInputCourse::around_reference(&plan, 12, 1.0)?;
+/// let pic = plan_view_two(&plan, &course, &["B"], &Style::default())?;
+/// assert!(pic.svg.contains("plan in 12 positions"));
+/// # Ok::<(), tmm::Error>(())
+/// ```
+pub fn plan_view_two(
+    plan: &Plan,
+    course: &TwoInputCourse,
+    paths: &[&str],
+    style: &Style,
+) -> Result<Picture> {
+    style.check()?;
+    course.check()?;
+    let q = &course.inputs;
+    let mut samples = Vec::with_capacity(style.samples + q.len());
+    match course.shape {
+        TwoInputShape::Grid { n2, .. } => {
+            // Each row in at most `samples / rows` positions, the pen lifted between rows.
+            let rows = q.len() / n2.max(1);
+            let per_row = (style.samples / rows.max(1)).max(2);
+            for row in q.chunks(n2.max(1)).take(style.samples) {
+                samples.extend(thin(row.len(), per_row).map(|k| Some(row[k])));
+                samples.push(None);
+            }
+        }
+        TwoInputShape::Path if q.len() > style.samples => {
+            samples.extend(thin(q.len(), style.samples).map(|k| Some(q[k])));
+        }
+        TwoInputShape::Path => {
+            let steps = (style.samples / q.len().max(1)).max(1);
+            for w in q.windows(2) {
+                for s in 0..steps {
+                    #[allow(clippy::cast_precision_loss)]
+                    let t = s as f64 / steps as f64;
+                    samples.push(Some(between(w[0], w[1], t)));
+                }
+            }
+            samples.extend(q.last().map(|&i| Some(i)));
+        }
+    }
+    draw_plan(plan, q, &[], &samples, paths, style)
+}
+
+/// The inputs a fraction `t` of the way from `a` to `b`, motion by motion.
+fn between(a: Inputs, b: Inputs, t: f64) -> Inputs {
+    let mix = |m: Motion, n: Motion| {
+        Motion::new(
+            m.value + t * (n.value - m.value),
+            m.rate + t * (n.rate - m.rate),
+            m.accel + t * (n.accel - m.accel),
+        )
+    };
+    match (a.as_slice(), b.as_slice()) {
+        ([m1, m2], [n1, n2]) => Inputs::two(mix(*m1, *n1), mix(*m2, *n2)),
+        _ => Inputs::one(mix(a.first(), b.first())),
+    }
+}
+
+/// The plan: `positions` light and numbered, `extremes` bold, the paths of `paths` through
+/// `samples` (the pen lifted at a `None` and where the linkage cannot be assembled).
+fn draw_plan(
+    plan: &Plan,
+    positions: &[Inputs],
+    extremes: &[Inputs],
+    samples: &[Option<Inputs>],
+    paths: &[&str],
+    style: &Style,
+) -> Result<Picture> {
     let topo = Topo::new(plan);
     let tracers: Vec<Tracer> = paths
         .iter()
         .map(|n| topo.tracer(n))
         .collect::<Result<_>>()?;
     let mut solver = plan.solver();
-    let mut solve = |m: Motion, what: &str, k: usize| -> Result<Pose> {
+    let mut solve = |m: Inputs, what: &str, k: usize| -> Result<Pose> {
         let a = solver.kinematics(m).map_err(|e| Error::In {
             part: format!("{what} {k}"),
             source: Box::new(e),
         })?;
         Pose::of(a)
     };
-    let drawn = thin(course.inputs.len(), MAX_PLAN_POSITIONS);
+    let drawn = thin(positions.len(), MAX_PLAN_POSITIONS);
     let poses: Vec<Pose> = drawn
         .clone()
-        .map(|k| solve(course.inputs[k], "course position", k))
+        .map(|k| solve(positions[k], "course position", k))
         .collect::<Result<_>>()?;
-    let bold: Vec<Pose> = thin(course.extremes.len(), MAX_PLAN_POSITIONS)
-        .map(|k| solve(course.extremes[k], "extreme position", k))
+    let bold: Vec<Pose> = thin(extremes.len(), MAX_PLAN_POSITIONS)
+        .map(|k| solve(extremes[k], "extreme position", k))
         .collect::<Result<_>>()?;
-    // The paths over a turn (a slider's input over the course's range).
-    let samples = path_inputs(plan, course, style.samples);
     let mut curves: Vec<Vec<Option<Point2<f64>>>> =
         vec![Vec::with_capacity(samples.len()); tracers.len()];
-    for &m in &samples {
-        let pose = solver.kinematics(m).ok().and_then(|a| Pose::of(a).ok());
+    for &m in samples {
+        let pose = m.and_then(|m| solver.kinematics(m).ok().and_then(|a| Pose::of(a).ok()));
         for (c, &t) in curves.iter_mut().zip(&tracers) {
             c.push(pose.as_ref().map(|pose| pose.tracer(&topo, t)));
         }
@@ -95,12 +187,12 @@ pub fn plan_view(plan: &Plan, course: &Course, paths: &[&str], style: &Style) ->
     };
     let frame = scene::fit_with_input(&topo, first, &mut cover, style)?;
 
-    let title = if poses.len() < course.inputs.len() {
+    let title = if poses.len() < positions.len() {
         format!(
             "{} — plan in {} of {} positions",
             plan.name(),
             poses.len(),
-            course.inputs.len()
+            positions.len()
         )
     } else {
         format!("{} — plan in {} positions", plan.name(), poses.len())

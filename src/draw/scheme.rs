@@ -5,11 +5,11 @@ use super::primitives::{self, Labels};
 use super::scene::{self, Extents, Pose, Topo};
 use super::{Picture, Style};
 use crate::error::Result;
-use crate::kinematics::Motion;
-use crate::linkage::Plan;
+use crate::linkage::{Inputs, Plan};
 use svg::Node;
 
-/// The kinematic scheme of `plan` at the input `input`: bars for binary links, filled
+/// The kinematic scheme of `plan` at the input `input` (a [`Motion`](crate::kinematics::Motion),
+/// or both inputs' motions, [`Inputs::two`], for a linkage with two inputs): bars for binary links, filled
 /// polygons for ternary and larger ones (each link in its own colour), hinges as circles,
 /// sliders as blocks on their guides, the ground hatched under every fixed pivot and along
 /// every fixed guide, the names of joints and points, and the input's sense of motion (the
@@ -36,7 +36,8 @@ use svg::Node;
 /// assert!(scheme(&plan, Motion::new(f64::NAN, 1.0, 0.0), &Style::default()).is_err());
 /// # Ok::<(), tmm::Error>(())
 /// ```
-pub fn scheme(plan: &Plan, input: Motion, style: &Style) -> Result<Picture> {
+pub fn scheme(plan: &Plan, input: impl Into<Inputs>, style: &Style) -> Result<Picture> {
+    let input = input.into();
     style.check()?;
     let a = plan.kinematics(input)?;
     let topo = Topo::new(plan);
@@ -47,9 +48,9 @@ pub fn scheme(plan: &Plan, input: Motion, style: &Style) -> Result<Picture> {
     pose.cover(&topo, &ext, &mut cover);
     let frame = scene::fit_with_input(&topo, &pose, &mut cover, style)?;
     let title = format!(
-        "{} — kinematic scheme at input {:.4}",
+        "{} — kinematic scheme at input {}",
         plan.name(),
-        input.value
+        values(input)
     );
     let mut doc = primitives::document(style, &title);
     doc.append(parts::ground(&topo, &pose, &ext, &frame, style));
@@ -78,4 +79,15 @@ pub fn scheme(plan: &Plan, input: Motion, style: &Style) -> Result<Picture> {
         frame,
         force_scale: None,
     })
+}
+
+/// The inputs' values for a title: `0.5000`, or `(0.5000, 1.2000)` for two inputs.
+pub(crate) fn values(inputs: Inputs) -> String {
+    match inputs.as_slice() {
+        [m] => format!("{:.4}", m.value),
+        ms => {
+            let v: Vec<String> = ms.iter().map(|m| format!("{:.4}", m.value)).collect();
+            format!("({})", v.join(", "))
+        }
+    }
 }

@@ -49,6 +49,7 @@
 
 mod build;
 pub mod bundled;
+mod contour;
 mod course;
 mod course_two;
 mod cycle;
@@ -64,6 +65,7 @@ mod springs;
 mod structure;
 mod structure_triad;
 mod table;
+mod workspace;
 
 pub use course::{Course, Sweep};
 pub use course_two::{AnyCourse, Assembly, Failure, TwoInputCourse, TwoInputShape};
@@ -81,3 +83,4 @@ pub use plan::{Group, GroupKind, Plan, Pose};
 pub use solve::{Analysis, Balance, Kinematics, PowerCheck, Reaction, Solver};
 pub use structure::chebyshev;
 pub use table::{Cells, Column, Table, Tabulate};
+pub use workspace::{Region, SingularCurve, Singularity, Workspace, WorkspaceOptions};

@@ -21,3 +21,5 @@ mod table;
 mod triad;
 #[cfg(feature = "serde")]
 mod two_inputs;
+#[cfg(feature = "serde")]
+mod workspace;

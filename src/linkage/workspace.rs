@@ -1,0 +1,645 @@
+//! The workspace of a point of a linkage with two inputs: the region the point reaches, its
+//! boundary, and the singular curves.
+//!
+//! The inputs are sampled on a grid (a crank over a whole turn, a slider over a range given),
+//! each node solved once for the point's position and once more for the second column of
+//! the Jacobian J = ∂P/∂(q₁, q₂) (the point's velocity at unit rate of each input). Then:
+//! - the **singular curves** where det J = 0 (the point cannot move in some direction, a leg
+//!   stretched or folded: the serial singularities of a five-bar), found by marching squares
+//!   on det J over the input grid, each crossing bisected to the last bits and mapped to the
+//!   plane; and where the linkage stops assembling (a group's determinant vanishes: a
+//!   five-bar's couplers in line), each crossing bisected to the last assemblable input;
+//! - the **region**: the image of every cell of the input grid (its corners, and where it
+//!   meets the assembly boundary, the bisected points there) filled on a raster of the plane;
+//! - its **boundary**: the raster's outline by marching squares, as closed polylines.
+//!
+//! The boundary lies within a raster cell (and the chord of an input cell's image) of the
+//! true one; the tests check it against closed-form inverse kinematics on a dense grid.
+
+use super::contour::{contours, Grid, Node};
+use super::plan::{InputPlan, Plan};
+use super::solve::Kinematics;
+use crate::error::{Error, Result};
+use crate::kinematics::Motion;
+use nalgebra::{Point2, Vector2};
+use std::f64::consts::PI;
+
+/// How finely a [`Workspace`] is sampled, and over which inputs.
+///
+/// # Examples
+/// ```
+/// use tmm::linkage::WorkspaceOptions;
+/// let o = WorkspaceOptions::default().with_samples(91).with_resolution(150);
+/// assert_eq!((o.samples, o.resolution), (91, 150));
+/// ```
+#[derive(Debug, Clone, PartialEq)]
+#[non_exhaustive]
+pub struct WorkspaceOptions {
+    /// The range of each input, `[from, to]` (rad or m); `None`: a crank's whole turn (a
+    /// slider needs a range).
+    pub ranges: [Option<[f64; 2]>; 2],
+    /// The nodes of the input grid along each input, 8 to 2000 (default 181).
+    pub samples: usize,
+    /// The raster cells of the region along its longer side, 8 to 4000 (default 240).
+    pub resolution: usize,
+}
+
+impl Default for WorkspaceOptions {
+    fn default() -> Self {
+        Self {
+            ranges: [None, None],
+            samples: 181,
+            resolution: 240,
+        }
+    }
+}
+
+impl WorkspaceOptions {
+    /// With `samples` nodes of the input grid along each input.
+    #[must_use]
+    pub fn with_samples(mut self, samples: usize) -> Self {
+        self.samples = samples;
+        self
+    }
+
+    /// With `resolution` raster cells along the region's longer side.
+    #[must_use]
+    pub fn with_resolution(mut self, resolution: usize) -> Self {
+        self.resolution = resolution;
+        self
+    }
+
+    /// With input `i` (0 or 1; another index changes nothing) over `[from, to]`.
+    #[must_use]
+    pub fn with_range(mut self, i: usize, from: f64, to: f64) -> Self {
+        if let Some(r) = self.ranges.get_mut(i) {
+            *r = Some([from, to]);
+        }
+        self
+    }
+}
+
+/// The workspace of a point of a linkage with two inputs: the region it reaches, its
+/// outline and the singular curves; made by [`Plan::workspace`].
+#[derive(Debug, Clone, PartialEq)]
+pub struct Workspace {
+    /// The joint or named point.
+    pub point: String,
+    /// The region the point reaches, on a raster.
+    pub region: Region,
+    /// The region's outline: closed polylines (each ends at its first point), m.
+    pub boundary: Vec<Vec<Point2<f64>>>,
+    /// The singular curves, mapped to the plane.
+    pub singular: Vec<SingularCurve>,
+}
+
+/// A region of the plane on a raster of square cells.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Region {
+    /// The lower-left corner of the raster, m.
+    pub origin: Point2<f64>,
+    /// The side of a cell, m.
+    pub cell: f64,
+    /// The cells along x.
+    pub nx: usize,
+    /// The cells along y.
+    pub ny: usize,
+    /// Whether each cell is reached, row by row from the bottom (`iy · nx + ix`).
+    pub cells: Vec<bool>,
+}
+
+impl Region {
+    /// The centre of cell `(ix, iy)`.
+    #[must_use]
+    pub fn centre(&self, ix: usize, iy: usize) -> Point2<f64> {
+        #[allow(clippy::cast_precision_loss)]
+        let c = Vector2::new(ix as f64 + 0.5, iy as f64 + 0.5) * self.cell;
+        self.origin + c
+    }
+
+    /// Whether the cell holding `p` is reached (`false` off the raster).
+    #[must_use]
+    pub fn contains(&self, p: Point2<f64>) -> bool {
+        self.cell_of(p)
+            .is_some_and(|(ix, iy)| self.cells[iy * self.nx + ix])
+    }
+
+    /// The cell holding `p`, if on the raster.
+    #[must_use]
+    pub fn cell_of(&self, p: Point2<f64>) -> Option<(usize, usize)> {
+        let u = (p - self.origin) / self.cell;
+        #[allow(clippy::cast_precision_loss)]
+        if !(u.x >= 0.0 && u.y >= 0.0 && u.x < self.nx as f64 && u.y < self.ny as f64) {
+            return None;
+        }
+        #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
+        Some((u.x as usize, u.y as usize))
+    }
+
+    /// The area reached, m².
+    #[must_use]
+    pub fn area(&self) -> f64 {
+        #[allow(clippy::cast_precision_loss)]
+        let n = self.cells.iter().filter(|&&c| c).count() as f64;
+        n * self.cell * self.cell
+    }
+}
+
+/// A singular curve of a [`Workspace`].
+#[derive(Debug, Clone, PartialEq)]
+pub struct SingularCurve {
+    /// Which singularity.
+    pub kind: Singularity,
+    /// The inputs along the curve, `[q₁, q₂]`.
+    pub inputs: Vec<[f64; 2]>,
+    /// The point's positions there, m.
+    pub points: Vec<Point2<f64>>,
+}
+
+/// The kinds of singular curve.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Singularity {
+    /// det ∂P/∂q = 0: the point cannot move in some direction whatever the inputs do (a leg
+    /// stretched or folded).
+    Serial,
+    /// The linkage stops assembling: a group's determinant vanishes (its links in line), and
+    /// beyond it the inputs have no position.
+    Assembly,
+}
+
+/// The input grid: each axis's first value, step and whether it wraps.
+struct Axes {
+    lo: [f64; 2],
+    step: [f64; 2],
+    grid: Grid,
+}
+
+impl Axes {
+    fn q(&self, (i, j): Node) -> [f64; 2] {
+        #[allow(clippy::cast_precision_loss)]
+        [
+            self.lo[0] + self.step[0] * i as f64,
+            self.lo[1] + self.step[1] * j as f64,
+        ]
+    }
+}
+
+impl Plan {
+    /// The workspace of the joint or named point `point` of a linkage with two inputs.
+    ///
+    /// The inputs are sampled on a grid (a crank over a whole turn, a slider over a range
+    /// given), each node solved for the point's position and the Jacobian J = ∂P/∂(q₁, q₂)
+    /// (its velocity at unit rate of each input). The serial singular curves are where
+    /// det J = 0 (marching squares on the grid, each crossing bisected to the last bits and
+    /// mapped to the plane); the assembly curves where the linkage stops assembling (each
+    /// crossing bisected to the last assemblable input). The region is the image of every
+    /// grid cell filled on a raster (a cell split where its map is far from linear), and its
+    /// boundary the raster's outline: within about a raster cell of the true one.
+    ///
+    /// The cost is 2 · `samples`² solves, a few hundred more per curve crossing, and
+    /// `resolution`² raster cells.
+    ///
+    /// # Errors
+    /// [`Error::Description`] (`"field second_input"`) for a linkage with one input, naming
+    /// the point when it is neither a joint nor a named point, or naming the input whose range
+    /// is missing (a slider); [`Error::NonFinite`] or [`Error::NonPositive`] for a range that
+    /// is not finite or empty; [`Error::OutOfRange`] for `samples` or `resolution` out of
+    /// their bounds; [`Error::NotAssemblable`] when no node of the input grid assembles.
+    ///
+    /// # Examples
+    /// The five-bar robot's end effector B reaches an area about its reference position:
+    /// ```
+    /// use tmm::kinematics::Motion;
+    /// use tmm::linkage::{bundled, Inputs, Plan, WorkspaceOptions};
+    /// let plan = Plan::new(&bundled::five_bar_robot())?;
+    /// let ws = plan.workspace("B", &WorkspaceOptions::default().with_samples(61).with_resolution(80))?;
+    /// let r = plan.reference_inputs();
+    /// let b = plan.kinematics(Inputs::two(Motion::fixed(r[0]), Motion::fixed(r[1])))?.joint("B")?.p;
+    /// assert!(ws.region.contains(b));
+    /// assert!(ws.region.area() > 0.05 && !ws.boundary.is_empty() && !ws.singular.is_empty());
+    /// # Ok::<(), tmm::Error>(())
+    /// ```
+    pub fn workspace(&self, point: &str, options: &WorkspaceOptions) -> Result<Workspace> {
+        let read = self.point_reader(point)?;
+        range_check("samples of a workspace", options.samples, 8, 2000)?;
+        range_check("resolution of a workspace", options.resolution, 8, 4000)?;
+        let axes = self.workspace_axes(options)?;
+        let mut k = Kinematics::new(self);
+        // The position and both Jacobian columns at q, if it assembles.
+        let mut at = |q: [f64; 2]| -> Option<(Point2<f64>, f64)> {
+            k.solve(&[Motion::new(q[0], 1.0, 0.0), Motion::new(q[1], 0.0, 0.0)])
+                .ok()?;
+            let (p, v1) = read(&k);
+            k.solve(&[Motion::new(q[0], 0.0, 0.0), Motion::new(q[1], 1.0, 0.0)])
+                .ok()?;
+            let (_, v2) = read(&k);
+            let det = v1.x * v2.y - v1.y * v2.x;
+            (p.iter().all(|x| x.is_finite()) && det.is_finite()).then_some((p, det))
+        };
+        let g = axes.grid;
+        let mut nodes = Vec::with_capacity(g.n1 * g.n2);
+        for i in 0..g.n1 {
+            for j in 0..g.n2 {
+                nodes.push(at(axes.q((i, j))));
+            }
+        }
+        if nodes.iter().all(Option::is_none) {
+            return Err(Error::NotAssemblable {
+                group: "linkage at every input of the workspace grid",
+                gap: f64::NAN,
+            });
+        }
+        let singular = singular_curves(&axes, &nodes, &mut at);
+        let region = fill(&axes, &nodes, &mut at, options.resolution);
+        let boundary = outline(&region);
+        Ok(Workspace {
+            point: point.to_owned(),
+            region,
+            boundary,
+            singular,
+        })
+    }
+
+    /// A function reading the position and velocity of a joint or named point.
+    fn point_reader(
+        &self,
+        point: &str,
+    ) -> Result<impl Fn(&Kinematics<'_>) -> (Point2<f64>, Vector2<f64>) + use<>> {
+        if self.input_count() != 2 {
+            return Err(Error::Description {
+                item: "field second_input".to_owned(),
+                problem: "a workspace needs a linkage with two inputs".to_owned(),
+            });
+        }
+        let joint = self.chain.joint(point).ok();
+        let named = match joint {
+            Some(_) => None,
+            None => Some(self.chain.point(point).map_err(|_| Error::Description {
+                item: format!("point {point:?}"),
+                problem: "the workspace's point is neither a joint nor a named point".to_owned(),
+            })?),
+        };
+        Ok(move |k: &Kinematics<'_>| {
+            let pose = k.pose();
+            let m = match (joint, named) {
+                (Some(j), _) => pose.joint_motion_at(j),
+                (_, Some(p)) => pose.point_motion_at(p),
+                _ => unreachable!("one of them is set"),
+            };
+            (m.p, m.v)
+        })
+    }
+
+    /// The input grid of a workspace.
+    fn workspace_axes(&self, options: &WorkspaceOptions) -> Result<Axes> {
+        let n = options.samples.max(2);
+        let reference = self.reference_inputs();
+        let mut lo = [0.0; 2];
+        let mut step = [0.0; 2];
+        let mut wrap = [false; 2];
+        for (i, ip) in self.chain.inputs().enumerate().take(2) {
+            let which = if i == 0 { "first" } else { "second" };
+            #[allow(clippy::cast_precision_loss)]
+            match (options.ranges[i], ip) {
+                (Some([a, b]), _) => {
+                    crate::error::all_finite(&[
+                        ("start of an input range", a),
+                        ("end of an input range", b),
+                    ])?;
+                    if a == b {
+                        return Err(Error::NonPositive {
+                            name: "width of an input range",
+                            value: 0.0,
+                        });
+                    }
+                    lo[i] = a;
+                    step[i] = (b - a) / (n - 1) as f64;
+                }
+                (None, InputPlan::Crank { .. }) => {
+                    lo[i] = reference[i] - PI;
+                    step[i] = 2.0 * PI / n as f64;
+                    wrap[i] = true;
+                }
+                (None, InputPlan::Slider { .. }) => {
+                    return Err(Error::Description {
+                        item: format!("ranges[{i}]"),
+                        problem: format!(
+                            "the {which} input is a slider: give its range for a workspace"
+                        ),
+                    });
+                }
+            }
+        }
+        Ok(Axes {
+            lo,
+            step,
+            grid: Grid {
+                n1: n,
+                n2: n,
+                wrap1: wrap[0],
+                wrap2: wrap[1],
+            },
+        })
+    }
+}
+
+/// `min ≤ n ≤ max`.
+fn range_check(name: &'static str, n: usize, min: usize, max: usize) -> Result<()> {
+    if (min..=max).contains(&n) {
+        return Ok(());
+    }
+    #[allow(clippy::cast_precision_loss)]
+    Err(Error::OutOfRange {
+        name,
+        value: n as f64,
+        min: min as f64,
+        max: max as f64,
+        ends: crate::Ends::Closed,
+    })
+}
+
+type At<'a> = dyn FnMut([f64; 2]) -> Option<(Point2<f64>, f64)> + 'a;
+
+/// The point between `qa` (where `good` holds) and `qb` (where it does not) where it stops
+/// holding, bisected to the last bits; with the value there.
+fn bisect<T>(
+    qa: [f64; 2],
+    qb: [f64; 2],
+    mut good: impl FnMut([f64; 2]) -> Option<T>,
+) -> Option<([f64; 2], T)> {
+    let (mut a, mut b) = (qa, qb);
+    let mut best = (a, good(a)?);
+    for _ in 0..60 {
+        let m = [0.5 * (a[0] + b[0]), 0.5 * (a[1] + b[1])];
+        if m == a || m == b {
+            break;
+        }
+        match good(m) {
+            Some(v) => {
+                a = m;
+                best = (m, v);
+            }
+            None => b = m,
+        }
+    }
+    Some(best)
+}
+
+/// The serial and assembly singular curves over the input grid.
+fn singular_curves(
+    axes: &Axes,
+    nodes: &[Option<(Point2<f64>, f64)>],
+    at: &mut At<'_>,
+) -> Vec<SingularCurve> {
+    let g = axes.grid;
+    // det J = 0 between nodes that both assemble; a pole of det J (where it changes sign
+    // through infinity) is not a zero: the bisection lands on a large |det| and is dropped.
+    let det: Vec<f64> = nodes
+        .iter()
+        .map(|n| n.map_or(f64::NAN, |(_, d)| d))
+        .collect();
+    let serial = contours(g, &det, |a, b| {
+        let (da, db) = (det[g.index(a)], det[g.index(b)]);
+        let sign = da > 0.0;
+        let (q, (p, d)) = bisect(axes.q(a), axes.q(b), |q| {
+            at(q).filter(|&(_, d)| (d > 0.0) == sign)
+        })?;
+        (d.abs() <= da.abs().min(db.abs())).then_some((q, p))
+    });
+    // Where the nodes stop assembling: from the node that assembles towards the other.
+    let ok: Vec<f64> = nodes
+        .iter()
+        .map(|n| if n.is_some() { 1.0 } else { -1.0 })
+        .collect();
+    let assembly = contours(g, &ok, |a, b| {
+        let (a, b) = if ok[g.index(a)] > 0.0 { (a, b) } else { (b, a) };
+        let (q, (p, _)) = bisect(axes.q(a), axes.q(b), &mut *at)?;
+        Some((q, p))
+    });
+    let curve = |kind, c: &[([f64; 2], Point2<f64>)]| SingularCurve {
+        kind,
+        inputs: c.iter().map(|x| x.0).collect(),
+        points: c.iter().map(|x| x.1).collect(),
+    };
+    let serial = serial.iter().flat_map(|c| split_at_jumps(c));
+    let assembly = assembly.iter().flat_map(|c| split_at_jumps(c));
+    serial
+        .map(|c| curve(Singularity::Serial, c))
+        .chain(assembly.map(|c| curve(Singularity::Assembly, c)))
+        .collect()
+}
+
+/// A curve cut where it jumps: a step more than 8 times its median step. Near a pole of the
+/// map (a five-bar's couplers folded onto each other) neighbouring inputs land far apart, and
+/// a line between them would cross the plane where no singular point lies.
+fn split_at_jumps(c: &[([f64; 2], Point2<f64>)]) -> Vec<&[([f64; 2], Point2<f64>)]> {
+    let step = |w: &[([f64; 2], Point2<f64>)]| (w[1].1 - w[0].1).norm();
+    let mut steps: Vec<f64> = c.windows(2).map(step).collect();
+    steps.sort_by(f64::total_cmp);
+    let Some(&median) = steps.get(steps.len() / 2) else {
+        return Vec::new();
+    };
+    let mut out = Vec::new();
+    let mut start = 0;
+    for k in 1..c.len() {
+        if step(&c[k - 1..=k]) > 8.0 * median {
+            out.push(&c[start..k]);
+            start = k;
+        }
+    }
+    out.push(&c[start..]);
+    out.retain(|piece| piece.len() >= 2);
+    out
+}
+
+/// The image of every cell of the input grid, filled on a raster of `resolution` cells
+/// along the longer side (two empty cells of margin round it): each cell's corners that
+/// assemble and, on an edge from one that does to one that does not, the last assemblable
+/// point, as a polygon, filled as a fan of triangles from its first corner.
+fn fill(
+    axes: &Axes,
+    nodes: &[Option<(Point2<f64>, f64)>],
+    at: &mut At<'_>,
+    resolution: usize,
+) -> Region {
+    let g = axes.grid;
+    // The raster's cell from the nodes' images: a cell whose map departs from linear by
+    // more than a quarter of it is split.
+    let (lo, hi) = bounds(nodes.iter().flatten().map(|n| n.0));
+    let span = (hi - lo).max();
+    #[allow(clippy::cast_precision_loss)]
+    let cell = if span > 0.0 {
+        span / resolution as f64
+    } else {
+        1e-3
+    };
+    let mut polygons: Vec<Vec<Point2<f64>>> = Vec::new();
+    for (i, j) in g.cells() {
+        let c = [(i, j), (i + 1, j), (i + 1, j + 1), (i, j + 1)];
+        if let [Some(a), Some(b), Some(d), Some(e)] = c.map(|n| nodes[g.index(n)]) {
+            let p = [a.0, b.0, d.0, e.0];
+            fill_cell(&mut polygons, at, c.map(|n| axes.q(n)), p, 0.25 * cell, 6);
+            continue;
+        }
+        let mut poly = Vec::with_capacity(6);
+        for k in 0..4 {
+            let (a, b) = (c[k], c[(k + 1) % 4]);
+            let (na, nb) = (nodes[g.index(a)], nodes[g.index(b)]);
+            if let Some((p, _)) = na {
+                poly.push(p);
+            }
+            let edge = match (na, nb) {
+                (Some(_), None) => bisect(axes.q(a), axes.q(b), &mut *at),
+                (None, Some(_)) => bisect(axes.q(b), axes.q(a), &mut *at),
+                _ => None,
+            };
+            poly.extend(edge.map(|(_, (p, _))| p));
+        }
+        if !poly.is_empty() {
+            polygons.push(poly);
+        }
+    }
+    let (lo, hi) = bounds(polygons.iter().flatten().copied());
+    let origin = lo - Vector2::new(2.0, 2.0) * cell;
+    #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
+    let count = |w: f64| (w / cell).ceil() as usize + 4;
+    let (nx, ny) = (count(hi.x - lo.x), count(hi.y - lo.y));
+    let mut region = Region {
+        origin,
+        cell,
+        nx,
+        ny,
+        cells: vec![false; nx * ny],
+    };
+    for poly in &polygons {
+        for &p in poly {
+            if let Some((ix, iy)) = region.cell_of(p) {
+                region.cells[iy * nx + ix] = true;
+            }
+        }
+        for k in 1..poly.len().saturating_sub(1) {
+            triangle(&mut region, [poly[0], poly[k], poly[k + 1]], 0.25 * cell);
+        }
+    }
+    region
+}
+
+/// The corners of the box round `points`.
+fn bounds(points: impl Iterator<Item = Point2<f64>>) -> (Point2<f64>, Point2<f64>) {
+    let inf = f64::INFINITY;
+    points.fold(
+        (Point2::new(inf, inf), Point2::new(-inf, -inf)),
+        |(lo, hi), p| (lo.inf(&p), hi.sup(&p)),
+    )
+}
+
+/// A cell of the input grid whose four corners assemble (inputs `q`, images `p`, in order
+/// round it), as polygons to fill: itself when the map is near linear over it (the image of
+/// its centre within `tol` of its corners' mean), otherwise its four quarters, `depth` times
+/// at most. A cell that stays far from linear holds a pole of
+/// the map (a five-bar's couplers folded onto each other, where the end effector swings
+/// round a whole circle): it is left to its neighbours and its corners.
+fn fill_cell(
+    polygons: &mut Vec<Vec<Point2<f64>>>,
+    at: &mut At<'_>,
+    q: [[f64; 2]; 4],
+    p: [Point2<f64>; 4],
+    tol: f64,
+    depth: u32,
+) {
+    let mid = |a: [f64; 2], b: [f64; 2]| [0.5 * (a[0] + b[0]), 0.5 * (a[1] + b[1])];
+    let qc = mid(mid(q[0], q[1]), mid(q[2], q[3]));
+    let mean = Point2::from((p[0].coords + p[1].coords + p[2].coords + p[3].coords) / 4.0);
+    let Some((pc, _)) = at(qc) else {
+        polygons.push(p.to_vec());
+        return;
+    };
+    if (pc - mean).norm() <= tol {
+        polygons.push(p.to_vec());
+        return;
+    }
+    if depth == 0 {
+        return;
+    }
+    let qm = [
+        mid(q[0], q[1]),
+        mid(q[1], q[2]),
+        mid(q[2], q[3]),
+        mid(q[3], q[0]),
+    ];
+    let pm = qm.map(|q| at(q).map(|x| x.0));
+    let [Some(m0), Some(m1), Some(m2), Some(m3)] = pm else {
+        polygons.push(p.to_vec());
+        return;
+    };
+    let quarters = [
+        ([q[0], qm[0], qc, qm[3]], [p[0], m0, pc, m3]),
+        ([qm[0], q[1], qm[1], qc], [m0, p[1], m1, pc]),
+        ([qc, qm[1], q[2], qm[2]], [pc, m1, p[2], m2]),
+        ([qm[3], qc, qm[2], q[3]], [m3, pc, m2, p[3]]),
+    ];
+    for (q, p) in quarters {
+        fill_cell(polygons, at, q, p, tol, depth - 1);
+    }
+}
+
+/// Marks every cell of `region` whose centre lies in the triangle `t` or within `margin` of
+/// it: the margin closes the slivers between a split cell's images and its neighbour's
+/// (they differ from linear by `margin` at most).
+fn triangle(region: &mut Region, t: [Point2<f64>; 3], margin: f64) {
+    let cross = |o: Point2<f64>, a: Point2<f64>, b: Point2<f64>| {
+        (a.x - o.x) * (b.y - o.y) - (a.y - o.y) * (b.x - o.x)
+    };
+    let area = cross(t[0], t[1], t[2]);
+    if area == 0.0 {
+        return;
+    }
+    let m = Vector2::new(margin, margin);
+    let lo = t[0].inf(&t[1]).inf(&t[2]) - m;
+    let hi = t[0].sup(&t[1]).sup(&t[2]) + m;
+    let (Some(a), Some(b)) = (region.cell_of(lo), region.cell_of(hi)) else {
+        return;
+    };
+    let sides = [
+        (t[2] - t[1]).norm(),
+        (t[0] - t[2]).norm(),
+        (t[1] - t[0]).norm(),
+    ];
+    for iy in a.1..=b.1 {
+        for ix in a.0..=b.0 {
+            let c = region.centre(ix, iy);
+            let w = [
+                cross(t[1], t[2], c),
+                cross(t[2], t[0], c),
+                cross(t[0], t[1], c),
+            ];
+            // Inside, or within `margin` of every side's line.
+            if (0..3).all(|i| w[i] * area.signum() >= -margin * sides[i]) {
+                region.cells[iy * region.nx + ix] = true;
+            }
+        }
+    }
+}
+
+/// The outline of the region: marching squares over the cells' centres, each crossing
+/// halfway between a reached centre and one that is not.
+fn outline(region: &Region) -> Vec<Vec<Point2<f64>>> {
+    let grid = Grid {
+        n1: region.nx,
+        n2: region.ny,
+        wrap1: false,
+        wrap2: false,
+    };
+    let mut value = vec![-1.0; region.nx * region.ny];
+    for iy in 0..region.ny {
+        for ix in 0..region.nx {
+            if region.cells[iy * region.nx + ix] {
+                value[grid.index((ix, iy))] = 1.0;
+            }
+        }
+    }
+    contours(grid, &value, |a, b| {
+        let (pa, pb) = (region.centre(a.0, a.1), region.centre(b.0, b.1));
+        Some(Point2::from((pa.coords + pb.coords) / 2.0))
+    })
+}
