@@ -145,7 +145,7 @@ impl Tabulate for Analysis<'_> {
             let eta = self.efficiency().ok().and_then(|e| e.eta);
             out.cell(|| "eta [-]".to_owned(), eta.unwrap_or(f64::NAN));
         }
-        if self.balances.len() == 2 {
+        if plan.input_count() == 2 {
             two_input_balances(out, self);
             return;
         }
@@ -240,7 +240,7 @@ fn second_input_cells(out: &mut impl Cells, k: &Kinematics<'_>) {
 /// power found by the principle of virtual power (−Σ P_i of every applied load), both in W —
 /// with two inputs the virtual-power check is of powers, not of one balancing value.
 fn two_input_balances(out: &mut impl Cells, a: &Analysis<'_>) {
-    for (i, b) in a.balances.iter().enumerate() {
+    for (i, b) in a.balances().iter().enumerate() {
         let [.., name, unit] = input_units(a.plan(), i);
         out.cell(|| format!("{name} [{unit}]"), b.value);
     }
