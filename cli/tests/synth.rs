@@ -621,6 +621,21 @@ fn a_bad_points_file_is_one_line_naming_the_file_and_the_line() {
         &["path", "no/such/points.csv"],
         &["no/such/points.csv", "cannot read"],
     );
+    // Crank angles that do not match the points: a count, named, not an angle in degrees.
+    let mismatched = Broken::new(
+        "mismatched",
+        r#"{"points": [[0, 0], [1, 0], [1, 1], [0, 1], [0.5, 0.2]], "crank": [0, 10]}"#,
+    );
+    assert_refused(
+        &["path", &mismatched.path()],
+        &[
+            "one crank angle per point",
+            "must be 5, got 2",
+            "\"crank\" in JSON",
+        ],
+    );
+    let r = tmm(&["synth", "path", &mismatched.path()]);
+    assert!(!r.stderr.contains('°'), "{}", r.stderr);
     // More points than the search takes (its polish is dense in their number): the limit.
     let many = Broken::with_extension("many", "csv", &common::coupler_curve_csv(501));
     assert_refused(

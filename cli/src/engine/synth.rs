@@ -82,8 +82,14 @@ fn synth_failure(e: &tmm::Error, flags: &[(&str, &str)]) -> Failure {
     }
 }
 
+/// Whether the library's parameter `name` is an angle (rad), whose values the hint repeats in
+/// degrees ("timing (one crank angle per point)" is a count, not an angle).
 fn angle_name(name: &str) -> bool {
-    name.contains("angle") || name.contains("swing") || name.contains("(rad)")
+    name.contains("(rad)")
+        || name.contains("swing")
+        || name.contains("transmission")
+        || name.starts_with("crank angle")
+        || name.starts_with("rocker angle")
 }
 
 fn deg(rad: f64) -> String {
@@ -143,7 +149,10 @@ fn flags_of(kind: &Kind) -> Vec<(&'static str, &'static str)> {
                 "points",
                 "the points file (at least 9 points; 5 with crank angles)",
             ),
-            ("timing", "the points file's third column"),
+            (
+                "timing",
+                "the points file's crank angles (its third CSV column, or \"crank\" in JSON)",
+            ),
             ("population", "--budget"),
         ],
     };
