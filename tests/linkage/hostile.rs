@@ -13,10 +13,11 @@
 //! `Plan::lock_positions`, `uniform_inputs`, `Table::to_text`, `Analysis::transmission_angle`,
 //! `Plan::min_transmission_angle`, `kinematics::grashof`; `linkage::dynamics::LinkageSystem`
 //! (`from_linkage`, `with_motor`, `with_inertia`, `with_damper`, `terms`, `inverse_dynamics`,
-//! `reduced`, `flywheel`, `turn` and `run_up_from` on the four-bar and the Scotch yoke thrown
-//! at random speeds under random motors: each ends with a finite turn or a named reason);
-//! `draw::{scheme, forces, animation, plan_view, diagram}` and `Course::new` with hostile
-//! inputs and styles, every SVG written scanned for a non-finite number; on every bundled linkage and on every ready
+//! `reduced`, `flywheel`, `turn`, `run_up`, `run_up_from` and `dynamics::run` on the
+//! four-bar and the Scotch yoke thrown at random speeds under random motors: each ends with a
+//! finite turn or a named reason); `draw::{scheme, forces, animation, plan_view, diagram}`
+//! and `Course::new` with hostile inputs and styles, every SVG written scanned for a
+//! non-finite number; on every bundled linkage and on every ready
 //! mechanism's description; and the ready mechanisms (`FourBar`, `SliderCrank`, `Compressor`,
 //! `SixBar`, `RockingCylinder`: `plan`, `strokes`, `linkage`, `grashof`) with every public
 //! field hostile; every `Ok` plan is checked finite whole (link data, joints, points, loads).
@@ -340,11 +341,12 @@ fn check_turn(t: &tmm::linkage::dynamics::Turn, what: &str) {
 /// about ω = 0 until ten million steps ran out: every `turn` ends with a turn (finite,
 /// consistent) or an error naming why (stalled with both loads, turned back, …), never an
 /// exhausted step budget; `run_up_from` never returns a turn of no duration or an infinite
-/// mean speed. `cases()` calls of each per suite.
+/// mean speed; `run` ends within a budget of 10⁵ steps. `cases()` calls of `turn`,
+/// `run_up`, `run_up_from` and `run` per suite.
 #[test]
 fn turns_and_run_ups_end_with_a_reason() {
     use nalgebra::Vector2;
-    use tmm::dynamics::{Dopri5, Rk4, State};
+    use tmm::dynamics::{run, Dopri5, Rk4, RunOptions, State};
     use tmm::linkage::dynamics::RunUpOptions;
     let mut g = Gen::new(67);
     let (mut turned, mut stalled) = (0, 0);
@@ -410,6 +412,38 @@ fn turns_and_run_ups_end_with_a_reason() {
             match r {
                 Ok(up) => up.turns.iter().for_each(|t| check_turn(t, &what)),
                 Err(Error::Budget { what: budget, .. }) => assert_eq!(budget, "turn", "{what}"),
+                Err(_) => {}
+            }
+            // The same machine from rest in its reference pose, and a bare run of 0.3 s:
+            // each ends (stuck, at its final time or with a named error) well within a
+            // budget of 10⁵ steps.
+            let r = no_panic(&what, || {
+                if use_dp {
+                    sys.run_up(&dp, &opts)
+                } else {
+                    sys.run_up(&Rk4, &opts)
+                }
+            });
+            match r {
+                Ok(up) => up.turns.iter().for_each(|t| check_turn(t, &what)),
+                Err(Error::Budget { what: budget, .. }) => assert_eq!(budget, "turn", "{what}"),
+                Err(_) => {}
+            }
+            let mut ro = RunOptions::until(0.3, h);
+            ro.max_steps = 100_000;
+            let r = no_panic(&what, || {
+                if use_dp {
+                    run(&sys, &dp, start, &ro)
+                } else {
+                    run(&sys, &Rk4, start, &ro)
+                }
+            });
+            match r {
+                Ok(r) => {
+                    let shown = format!("{:?} {:?}", r.outcome, r.last);
+                    assert!(!has_non_finite(&shown), "{what}: {shown}");
+                }
+                Err(e @ Error::Budget { .. }) => panic!("{what}: {e}"),
                 Err(_) => {}
             }
         }
