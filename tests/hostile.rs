@@ -25,11 +25,13 @@
 //! - overflowing data: `IndicatorDiagram::force`, `RprSeed::to_dyad`, `PaperGroup::geometry`,
 //!   `PaperGroup::loads`, `FiveBar` (`inertia`, `inertia_derivatives`, `potential`,
 //!   `potential_gradient`, `forces`, `terms`), `RpArm` and `DecoupledRpArm` (`inertia`,
-//!   `inertia_derivatives`, `damping`).
+//!   `inertia_derivatives`, `damping`);
+//! - a user's system: the defaults of `LagrangeSystem` (`inertia_derivatives`,
+//!   `potential_gradient`, `terms`) on steep and huge inertia and potential.
 //!
-//! 58 entry points. The number of generated cases per sweep is `TMM_HOSTILE_CASES`
+//! 61 entry points. The number of generated cases per sweep is `TMM_HOSTILE_CASES`
 //! (default 200; run with a larger number in release, for example
-//! `TMM_HOSTILE_CASES=100000 cargo test --release --test hostile`).
+//! `TMM_HOSTILE_CASES=100000 cargo test --release --test tmm hostile::`).
 
 #![allow(clippy::field_reassign_with_default)]
 
@@ -1119,4 +1121,299 @@ fn repro_overflowing_data_is_an_overflow() {
         .force(0.25, 1.0, Vector2::new(f64::NAN, 1.0), 0.3, 0.2)
         .unwrap_err();
     assert!(matches!(e, Error::NonFinite { .. }), "{e}");
+}
+
+// ---------------------------------------------------------------------------------------
+// The trait's default methods on a user's system
+// ---------------------------------------------------------------------------------------
+
+/// A user's system with A = diag(a·(2 + sin(ν q₁)), 1) and Π = p·sin(ν q₂): only `inertia`,
+/// `forces` and `potential` written, every derivative left to the trait's numerical defaults.
+#[derive(Debug, Clone, Copy)]
+struct Wild {
+    a: f64,
+    nu: f64,
+    p: f64,
+}
+
+impl LagrangeSystem for Wild {
+    fn inertia(&self, q: &Vector2<f64>) -> tmm::Result<Matrix2<f64>> {
+        Ok(Matrix2::new(
+            self.a * (2.0 + (self.nu * q[0]).sin()),
+            0.0,
+            0.0,
+            1.0,
+        ))
+    }
+    fn forces(&self, _: f64, _: &Vector2<f64>, qd: &Vector2<f64>) -> tmm::Result<Vector2<f64>> {
+        Ok(-qd)
+    }
+    fn potential(&self, q: &Vector2<f64>) -> tmm::Result<f64> {
+        Ok(self.p * (self.nu * q[1]).sin())
+    }
+}
+
+#[test]
+fn sweep_default_methods_of_a_users_system() {
+    sweep(43, |g| {
+        let sys = Wild {
+            a: g.f(),
+            nu: g.f(),
+            p: g.f(),
+        };
+        let (q, qd) = (g.v(), g.v());
+        check(
+            "LagrangeSystem::inertia_derivatives (default)",
+            &(sys, q),
+            || sys.inertia_derivatives(&q),
+        );
+        check(
+            "LagrangeSystem::potential_gradient (default)",
+            &(sys, q),
+            || sys.potential_gradient(&q),
+        );
+        check("LagrangeSystem::terms (default)", &(sys, q, qd), || {
+            sys.terms(0.0, &q, &qd)
+        });
+        check("accelerations (defaults)", &(sys, q, qd), || {
+            accelerations(&sys, 0.0, &q, &qd)
+        });
+    });
+}
+
+#[test]
+fn repro_default_derivatives_overflow_as_overflow_and_name_non_finite_samples() {
+    let q = Vector2::new(0.3, 0.2);
+    // Ordinary data: the defaults are the derivatives (a·ν·cos(ν q₁), p·ν·cos(ν q₂)) to the
+    // fallback's documented accuracy.
+    let calm = Wild {
+        a: 2.0,
+        nu: 1.5,
+        p: 3.0,
+    };
+    let d = calm.inertia_derivatives(&q).unwrap();
+    let exact = 2.0 * 1.5 * (1.5 * 0.3_f64).cos();
+    assert!((d[0][(0, 0)] - exact).abs() < 1e-10 * exact, "{d:?}");
+    assert_eq!(d[1], Matrix2::zeros());
+    let grad = calm.potential_gradient(&q).unwrap();
+    let exact = 3.0 * 1.5 * (1.5 * 0.2_f64).cos();
+    assert!(
+        grad[0] == 0.0 && (grad[1] - exact).abs() < 1e-10 * exact,
+        "{grad:?}"
+    );
+    // Finite samples whose differences overflow: with ν·ε = π/2 (ε = 2·10⁻⁴ at q = 0) the
+    // samples at ±ε are ±1.5·10³⁰⁸, and their difference is beyond f64's range (the
+    // gradient gave inf in an Ok).
+    let (nu, zero) = (std::f64::consts::FRAC_PI_2 / 2e-4, Vector2::zeros());
+    let steep = Wild {
+        a: 1.0,
+        nu,
+        p: 1.5e308,
+    };
+    for r in [
+        steep.potential_gradient(&zero).map(|_| ()),
+        steep.terms(0.0, &zero, &q).map(|_| ()),
+    ] {
+        assert!(
+            matches!(r, Err(Error::Overflow { what }) if what.contains("gradient of the potential")),
+            "{r:?}"
+        );
+    }
+    let steep = Wild {
+        a: 5e307,
+        nu,
+        p: 0.0,
+    };
+    let r = steep.inertia_derivatives(&zero);
+    assert!(
+        matches!(r, Err(Error::Overflow { what }) if what.contains("inertia matrix")),
+        "{r:?}"
+    );
+    // A user's A or Π that is not finite near q is named, not differenced into NaN.
+    let nan = Wild {
+        a: f64::NAN,
+        nu: 1.0,
+        p: f64::INFINITY,
+    };
+    let r = nan.inertia_derivatives(&q);
+    assert!(
+        matches!(r, Err(Error::NonFinite { name, .. }) if name.starts_with("inertia matrix")),
+        "{r:?}"
+    );
+    let r = nan.potential_gradient(&q);
+    assert!(
+        matches!(r, Err(Error::NonFinite { name, .. }) if name.starts_with("potential energy")),
+        "{r:?}"
+    );
+    let r = calm.inertia_derivatives(&Vector2::new(f64::NAN, 0.0));
+    assert!(
+        matches!(r, Err(Error::NonFinite { name: "q1", .. })),
+        "{r:?}"
+    );
+}
+
+// ---------------------------------------------------------------------------------------
+// Stops and reversals: a resistance that flips sign with the speed
+// ---------------------------------------------------------------------------------------
+
+use crate::dynamics::scenarios::Ramp;
+use tmm::dynamics::Outcome;
+
+/// The exact motion of the block on the ramp ([`Ramp`]) thrown at `v0` (x up the slope):
+/// `(t₁, x₁, sticks)` where it first comes to rest, or `None` when it never does (it
+/// slides down faster and faster); and x, v at a time `t` after the start.
+fn ramp_exact(r: &Ramp, v0: f64, t: f64) -> (Option<(f64, f64, bool)>, f64, f64) {
+    let pull = -r.slope_pull(); // down the slope, > 0
+    let (m, f) = (r.m, r.friction);
+    // Each piece has a constant acceleration: up the slope −(P + F)/m, down it (F − P)/m.
+    let piece = |x0: f64, v: f64, a: f64, dt: f64| (x0 + v * dt + 0.5 * a * dt * dt, v + a * dt);
+    if v0 > 0.0 {
+        let a1 = (pull + f) / m;
+        let (t1, x1) = (v0 / a1, v0 * v0 / (2.0 * a1));
+        let sticks = f >= pull;
+        let (x, v) = if t <= t1 {
+            piece(0.0, v0, -a1, t)
+        } else if sticks {
+            (x1, 0.0)
+        } else {
+            piece(x1, 0.0, -(pull - f) / m, t - t1)
+        };
+        (Some((t1, x1, sticks)), x, v)
+    } else if f > pull {
+        let a1 = (f - pull) / m;
+        let (t1, x1) = (-v0 / a1, -v0 * v0 / (2.0 * a1));
+        let (x, v) = if t <= t1 {
+            piece(0.0, v0, a1, t)
+        } else {
+            (x1, 0.0)
+        };
+        (Some((t1, x1, true)), x, v)
+    } else {
+        let (x, v) = piece(0.0, v0, (f - pull) / m, t);
+        (None, x, v)
+    }
+}
+
+/// Blocks of random mass on random ramps thrown up or down at random speeds, friction above
+/// or below the slope's pull, run by RK4 (random step) and Dormand–Prince (random
+/// tolerance) past the stop: each run lands on the zero of the speed and sticks there
+/// (ending [`Outcome::Stuck`] at the exact time and place, the loads named) or reverses and
+/// goes on exactly; no run chatters (a bounded number of steps). Accelerations are constant
+/// on each piece, so both methods are exact up to rounding: the bound is 10⁻¹² of the
+/// motion's scale. Then hostile numbers for every parameter: an error or a finite result.
+#[test]
+fn sweep_stops_and_reversals_of_a_block_on_a_ramp() {
+    let (mut worst, mut stuck, mut reversed) = (0.0_f64, 0, 0);
+    sweep(47, |g| {
+        let m = 0.1 + 10.0 * g.unit();
+        let alpha = 0.05 + 1.4 * g.unit();
+        let pull = m * Ramp::G * alpha.sin();
+        let friction = pull * 2.0 * g.unit();
+        let v0 = (0.1 + 10.0 * g.unit())
+            * if g.next().is_multiple_of(2) {
+                1.0
+            } else {
+                -1.0
+            };
+        let r = Ramp { m, alpha, friction };
+        let (stop, ..) = ramp_exact(&r, v0, 0.0);
+        let t_end = stop.map_or(1.0, |(t1, ..)| t1 * (1.1 + 2.0 * g.unit()));
+        let start = State::new(0.0, Vector2::zeros(), Vector2::new(v0, 0.0));
+        let h = t_end * (0.003 + 0.2 * g.unit());
+        let opts = RunOptions::until(t_end, h);
+        let dp = Dopri5::new(10f64.powf(-12.0 + 6.0 * g.unit())).unwrap();
+        let case = (r, v0, t_end, h);
+        for (name, res, max_steps) in [
+            ("RK4", run(&r, &Rk4, start, &opts), (t_end / h) as usize + 4),
+            ("Dormand-Prince", run(&r, &dp, start, &opts), 400),
+        ] {
+            let res = res.unwrap_or_else(|e| panic!("{name} {case:?}: {e}"));
+            assert!(
+                res.steps <= max_steps,
+                "{name} {case:?}: {} steps",
+                res.steps
+            );
+            // The motion's scale: its largest speed and the longest way it went.
+            let (_, x_end, v_end) = ramp_exact(&r, v0, res.last.t);
+            let (vs, xs) = (v0.abs().max(v_end.abs()), 1.0 + x_end.abs() + v0 * v0);
+            match (stop, res.outcome) {
+                (
+                    Some((t1, x1, true)),
+                    Outcome::Stuck {
+                        t,
+                        switch: 0,
+                        loads,
+                    },
+                ) => {
+                    stuck += 1;
+                    let e = ((t - t1) / t1)
+                        .abs()
+                        .max(((res.last.q[0] - x1) / xs).abs())
+                        .max((res.last.qd[0] / vs).abs());
+                    worst = worst.max(e);
+                    assert!(e < 1e-12, "{name} {case:?}: stuck at {t}, {:?}", res.last);
+                    assert!(loads.holds() && loads.drive == r.slope_pull(), "{loads:?}");
+                    let msg = loads.stalled(t).to_string();
+                    assert!(msg.contains("below the resistance"), "{msg}");
+                }
+                (Some((_, _, false)) | None, Outcome::FinalTime) => {
+                    reversed += usize::from(stop.is_some());
+                    let e = ((res.last.q[0] - x_end) / xs)
+                        .abs()
+                        .max(((res.last.qd[0] - v_end) / vs).abs());
+                    worst = worst.max(e);
+                    assert!(
+                        e < 1e-12,
+                        "{name} {case:?}: {:?} vs x {x_end}, v {v_end}",
+                        res.last
+                    );
+                }
+                (_, o) => panic!("{name} {case:?}: {o:?}, exact stop {stop:?}"),
+            }
+        }
+        // Hostile numbers: an error or a finite result, within a small budget.
+        let wild = Ramp {
+            m: g.len(),
+            alpha: g.f(),
+            friction: g.f().abs(),
+        };
+        let s = State::new(0.0, Vector2::new(g.f(), 0.0), Vector2::new(g.f(), 0.0));
+        let (t_end, h) = (g.len(), g.len());
+        check("run (switches, RK4)", &(wild, s, t_end, h), || {
+            run(&wild, &Rk4, s, &small_budget(t_end, h)).map(|r| (r.outcome, r.last))
+        });
+        check(
+            "run (switches, Dormand-Prince)",
+            &(wild, s, t_end, h),
+            || run(&wild, &dp, s, &small_budget(t_end, h)).map(|r| (r.outcome, r.last)),
+        );
+    });
+    println!("ramp: {stuck} runs stuck, {reversed} reversed; worst relative error {worst:.2e}");
+    assert!(stuck > 0 && (reversed > 0 || cases() < 20));
+}
+
+/// The loads a system hands the run at a zero of its switch speed are checked: an infinite
+/// or NaN breakaway load (friction `inf`, found by the sweep) or a negative one is an error
+/// naming it, not a stuck run holding `inf` in its `Ok`.
+#[test]
+fn repro_switch_loads_are_checked() {
+    let rest = State::at_rest(Vector2::zeros());
+    let opts = RunOptions::until(1.0, 0.01);
+    for (friction, bad) in [
+        (f64::INFINITY, "forward breakaway load"),
+        (f64::NAN, "forward breakaway load"),
+        (-1.0, "forward breakaway load"),
+    ] {
+        let r = Ramp {
+            m: 1.0,
+            alpha: 0.1,
+            friction,
+        };
+        let e = run(&r, &Rk4, rest, &opts).unwrap_err();
+        let named = match &e {
+            Error::NonFinite { name, .. } | Error::OutOfRange { name, .. } => name.contains(bad),
+            _ => false,
+        };
+        assert!(named, "friction {friction}: {e}");
+    }
 }

@@ -1,7 +1,7 @@
 //! Velocity-sign switches: resistances that oppose a motion (dry friction, a constant
 //! resisting moment) and so jump where the speed they oppose changes sign.
 
-use crate::error::Error;
+use crate::error::{finite, Error, Result};
 
 /// The loads along a velocity-sign switch where its speed σ vanishes, as a system gives them
 /// ([`LagrangeSystem::switch_loads`](super::LagrangeSystem::switch_loads)) and
@@ -57,6 +57,37 @@ impl SwitchLoads {
         } else {
             self.backward
         }
+    }
+
+    /// Checks the loads a system handed over: every one finite, the breakaway loads ≥ 0 (a
+    /// run weighs them, and a stuck run returns them).
+    ///
+    /// # Errors
+    /// [`Error::NonFinite`] or [`Error::OutOfRange`] naming the load.
+    pub(crate) fn checked(self) -> Result<Self> {
+        finite("drive along a switch (switch_loads)", self.drive)?;
+        for (name, v) in [
+            (
+                "forward breakaway load of a switch (switch_loads)",
+                self.forward,
+            ),
+            (
+                "backward breakaway load of a switch (switch_loads)",
+                self.backward,
+            ),
+        ] {
+            finite(name, v)?;
+            if v < 0.0 {
+                return Err(Error::OutOfRange {
+                    name,
+                    value: v,
+                    min: 0.0,
+                    max: f64::INFINITY,
+                    ends: crate::Ends::Closed,
+                });
+            }
+        }
+        Ok(self)
     }
 
     /// The error of a motion that must go on (a turn of a crank) and stuck at time `time`

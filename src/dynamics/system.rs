@@ -61,23 +61,76 @@ const FD_STEP: f64 = 2e-4;
 /// The truncation error is ε⁴/30·f⁽⁵⁾ and the rounding error about 10⁻¹⁶·|f|/ε: about
 /// 10⁻¹² relative for a function that varies on a scale of one unit of qₖ, more where it
 /// varies faster (near a singular position).
-fn central_difference<T, F>(q: &Vector2<f64>, k: usize, mut f: F) -> Result<T>
+///
+/// What a user's system hands the fallback is checked, since nothing downstream of a public
+/// default method would: a non-finite q or sample of `f` is [`Error::NonFinite`] naming
+/// `what.0`, a derivative that overflows from finite samples (values near f64's limit,
+/// divided by 12ε) is [`Error::Overflow`] naming `what.1`.
+fn central_difference<T, F>(
+    q: &Vector2<f64>,
+    k: usize,
+    what: (&'static str, &'static str),
+    values: fn(&T) -> &[f64],
+    mut f: F,
+) -> Result<T>
 where
     T: std::ops::Sub<Output = T> + std::ops::Mul<f64, Output = T> + std::ops::Add<Output = T>,
     F: FnMut(&Vector2<f64>) -> Result<T>,
 {
+    finite2(["q1", "q2"], *q)?;
     let eps = FD_STEP * q[k].abs().max(1.0);
-    let at = |d: f64| {
+    let mut at = |d: f64| {
         let mut p = *q;
         p[k] += d;
-        p
+        let v = f(&p)?;
+        for &x in values(&v) {
+            finite(what.0, x)?;
+        }
+        Ok::<T, Error>(v)
     };
-    let m2 = f(&at(-2.0 * eps))?;
-    let m1 = f(&at(-eps))?;
-    let p1 = f(&at(eps))?;
-    let p2 = f(&at(2.0 * eps))?;
-    Ok(((m2 - p2) + (p1 - m1) * 8.0) * (1.0 / (12.0 * eps)))
+    let m2 = at(-2.0 * eps)?;
+    let m1 = at(-eps)?;
+    let p1 = at(eps)?;
+    let p2 = at(2.0 * eps)?;
+    let d = ((m2 - p2) + (p1 - m1) * 8.0) * (1.0 / (12.0 * eps));
+    computed_all(what.1, values(&d).iter())?;
+    Ok(d)
 }
+
+/// An error of the numerical fallbacks as the equations at time `t` report it: a sample of A
+/// or Π that is not finite (a motion diverging to where they overflow, or a user's NaN) is a
+/// non-finite state at t, as every other non-finite term is there; any other error as it is.
+#[cold]
+fn at_time(e: Error, t: f64) -> Error {
+    match e {
+        Error::NonFinite { name, .. } if name == INERTIA_FD.0 || name == POTENTIAL_FD.0 => {
+            Error::NonFiniteState { time: t }
+        }
+        e => e,
+    }
+}
+
+/// The entries of a matrix, for [`central_difference`].
+fn matrix_values(m: &Matrix2<f64>) -> &[f64] {
+    m.as_slice()
+}
+
+/// A number as a slice of one, for [`central_difference`].
+fn scalar_values(x: &f64) -> &[f64] {
+    std::slice::from_ref(x)
+}
+
+/// What the numerical derivatives of A name: a sample, the result.
+const INERTIA_FD: (&str, &str) = (
+    "inertia matrix A(q) (sampled for its numerical derivatives)",
+    "numerical derivatives of the inertia matrix dA/dq",
+);
+
+/// What the numerical gradient of Π names: a sample, the result.
+const POTENTIAL_FD: (&str, &str) = (
+    "potential energy (sampled for its numerical gradient)",
+    "numerical gradient of the potential energy",
+);
 
 /// Every term of Lagrange's equations at one state (t, q, q̇), as
 /// [`LagrangeSystem::terms`] gives them together.
@@ -124,12 +177,12 @@ pub trait LagrangeSystem {
     /// gear drives with zeros).
     ///
     /// # Errors
-    /// As [`inertia`](Self::inertia).
+    /// As [`inertia`](Self::inertia); for the default, [`Error::NonFinite`] for a non-finite
+    /// q or a non-finite entry of A near q, [`Error::Overflow`] for a derivative that
+    /// overflows (an A near f64's limit).
     fn inertia_derivatives(&self, q: &Vector2<f64>) -> Result<[Matrix2<f64>; 2]> {
-        Ok([
-            central_difference(q, 0, |p| self.inertia(p))?,
-            central_difference(q, 1, |p| self.inertia(p))?,
-        ])
+        let d = |k| central_difference(q, k, INERTIA_FD, matrix_values, |p| self.inertia(p));
+        Ok([d(0)?, d(1)?])
     }
 
     /// The generalized forces Q(t, q, q̇) of the loads that are neither potential nor viscous
@@ -152,12 +205,11 @@ pub trait LagrangeSystem {
     /// differences of [`potential`](Self::potential) (as for the inertia derivatives).
     ///
     /// # Errors
-    /// As [`potential`](Self::potential).
+    /// As [`potential`](Self::potential); for the default, [`Error::NonFinite`] for a
+    /// non-finite q or Π near q, [`Error::Overflow`] for a gradient that overflows.
     fn potential_gradient(&self, q: &Vector2<f64>) -> Result<Vector2<f64>> {
-        Ok(Vector2::new(
-            central_difference(q, 0, |p| self.potential(p))?,
-            central_difference(q, 1, |p| self.potential(p))?,
-        ))
+        let d = |k| central_difference(q, k, POTENTIAL_FD, scalar_values, |p| self.potential(p));
+        Ok(Vector2::new(d(0)?, d(1)?))
     }
 
     /// The matrix B(q) of Rayleigh's dissipation function Φ = ½ q̇ᵀ B q̇ (viscous friction,
@@ -210,18 +262,19 @@ pub trait LagrangeSystem {
     /// # Errors
     /// The first error of the separate methods; [`Error::NotPositiveDefinite`] (with t and q)
     /// when A(q) is not positive-definite, [`Error::Overflow`] when its determinant overflows;
-    /// [`Error::NonFiniteState`] for a part that is not finite.
+    /// [`Error::NonFiniteState`] for a part that is not finite (a sample of A or Π that the
+    /// numerical fallbacks take included).
     #[inline]
     fn terms(&self, t: f64, q: &Vector2<f64>, qd: &Vector2<f64>) -> Result<LagrangeTerms> {
         let non_finite = || Error::NonFiniteState { time: t };
         let inertia = self.inertia(q)?;
         checked_inertia(&inertia, t, q)?;
-        let inertia_derivatives = self.inertia_derivatives(q)?;
+        let inertia_derivatives = self.inertia_derivatives(q).map_err(|e| at_time(e, t))?;
         let forces = self.forces(t, q, qd)?;
         if !all_finite(forces.as_slice()) {
             return Err(non_finite());
         }
-        let potential_gradient = self.potential_gradient(q)?;
+        let potential_gradient = self.potential_gradient(q).map_err(|e| at_time(e, t))?;
         if !all_finite(potential_gradient.as_slice()) {
             return Err(non_finite());
         }

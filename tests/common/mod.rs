@@ -1,3 +1,4 @@
-//! Helpers shared by the subjects: the generator of hostile inputs.
+//! Helpers shared by the subjects: the generator of hostile inputs, the scan of an SVG.
 
 pub mod hostile_gen;
+pub mod svg_scan;

@@ -5,5 +5,5 @@ mod breakpoints;
 mod five_bar_servo;
 #[cfg(feature = "serde")] // it reads a bundled linkage
 mod kinks;
-mod scenarios;
+pub(crate) mod scenarios;
 mod stability;

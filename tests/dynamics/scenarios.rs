@@ -1612,15 +1612,16 @@ fn energies_and_closed_forms_refuse_non_finite_input() {
 /// A block of mass m on a ramp of angle α, x up the slope, with dry friction of a constant
 /// magnitude `friction` against its sliding (a velocity-sign switch, x′ = 0): under gravity
 /// alone its drive at rest is −m·g·sin α. The second coordinate is a decoupled unit mass.
-struct Ramp {
-    m: f64,
-    alpha: f64,
-    friction: f64,
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Ramp {
+    pub(crate) m: f64,
+    pub(crate) alpha: f64,
+    pub(crate) friction: f64,
 }
 
 impl Ramp {
-    const G: f64 = 9.81;
-    fn slope_pull(&self) -> f64 {
+    pub(crate) const G: f64 = 9.81;
+    pub(crate) fn slope_pull(&self) -> f64 {
         -self.m * Self::G * self.alpha.sin()
     }
 }

@@ -13,8 +13,11 @@
 //! `Plan::lock_positions`, `uniform_inputs`, `Table::to_text`, `Analysis::transmission_angle`,
 //! `Plan::min_transmission_angle`, `kinematics::grashof`; `linkage::dynamics::LinkageSystem`
 //! (`from_linkage`, `with_motor`, `with_inertia`, `with_damper`, `terms`, `inverse_dynamics`,
-//! `reduced`, `flywheel`); `draw::{scheme, forces, animation, plan_view, diagram}` and
-//! `Course::new` with hostile inputs and styles; on every bundled linkage and on every ready
+//! `reduced`, `flywheel`, `turn`, `run_up`, `run_up_from` and `dynamics::run` on the
+//! four-bar and the Scotch yoke thrown at random speeds under random motors: each ends with a
+//! finite turn or a named reason); `draw::{scheme, forces, animation, plan_view, diagram}`
+//! and `Course::new` with hostile inputs and styles, every SVG written scanned for a
+//! non-finite number; on every bundled linkage and on every ready
 //! mechanism's description; and the ready mechanisms (`FourBar`, `SliderCrank`, `Compressor`,
 //! `SixBar`, `RockingCylinder`: `plan`, `strokes`, `linkage`, `grashof`) with every public
 //! field hostile; every `Ok` plan is checked finite whole (link data, joints, points, loads).
@@ -322,10 +325,142 @@ fn hostile_dynamics_of_linkages() {
     }
 }
 
+/// A turn's numbers are finite and consistent: a positive period, the mean speed 2π over it,
+/// ω_min ≤ ω_max, the coefficient of fluctuation from them.
+fn check_turn(t: &tmm::linkage::dynamics::Turn, what: &str) {
+    assert!(!has_non_finite(&format!("{t:?}")), "{what}: {t:?}");
+    assert!(t.period > 0.0, "{what}: {t:?}");
+    assert_eq!(t.omega_mean, std::f64::consts::TAU / t.period, "{what}");
+    assert!(
+        0.0 <= t.omega_min && t.omega_min <= t.omega_max,
+        "{what}: {t:?}"
+    );
+}
+
+/// The bundled four-bar and the Scotch yoke (one crank, resistances that flip with its speed)
+/// thrown at random speeds from random angles under random constant motors, each run by
+/// Dormand–Prince (random tolerance) or RK4 (random step) as in issue 27's
+/// `turn(&Dopri5 { rtol: 1e-6, atol: 1e-6 }, (0, 17.25), max_turn_time 0.95)`, which chattered
+/// about ω = 0 until ten million steps ran out: every `turn` ends with a turn (finite,
+/// consistent) or an error naming why (stalled with both loads, turned back, …), never an
+/// exhausted step budget; `run_up_from` never returns a turn of no duration or an infinite
+/// mean speed; `run` ends within a budget of 10⁵ steps. `cases()` calls of `turn`,
+/// `run_up`, `run_up_from` and `run` per suite.
+#[test]
+fn turns_and_run_ups_end_with_a_reason() {
+    use nalgebra::Vector2;
+    use tmm::dynamics::{run, Dopri5, Rk4, RunOptions, State};
+    use tmm::linkage::dynamics::RunUpOptions;
+    let mut g = Gen::new(67);
+    let (mut turned, mut stalled) = (0, 0);
+    for l in [bundled::four_bar(), bundled::scotch_yoke()] {
+        let base = LinkageSystem::from_linkage(&l).unwrap();
+        for case in 0..cases().div_ceil(2) {
+            let moment = match g.next() % 4 {
+                0 => 0.0,
+                1 => g.f(),
+                _ => 80.0 * (g.unit() - 0.3),
+            };
+            let Ok(sys) = base.clone().with_motor(0, Motor::Constant(moment)) else {
+                continue;
+            };
+            let (phi, omega) = match g.next() % 4 {
+                0 => (0.0, 17.25),
+                1 => (g.f(), g.f()),
+                _ => (10.0 * (g.unit() - 0.5), 60.0 * (g.unit() - 0.5)),
+            };
+            let start = State::new(0.0, Vector2::new(phi, 0.0), Vector2::new(omega, 0.0));
+            let tol = 10f64.powf(-9.0 + 5.0 * g.unit());
+            let h = 10f64.powf(-4.0 + 2.0 * g.unit());
+            let opts = RunUpOptions::new(h)
+                .with_max_turns(3)
+                .with_max_turn_time(0.95);
+            let dp = Dopri5 {
+                rtol: tol,
+                atol: tol,
+            };
+            let what = format!(
+                "{} case {case}: M {moment}, start {start:?}, h {h}, tol {tol}",
+                l.name
+            );
+            let use_dp = g.next().is_multiple_of(2);
+            let r = no_panic(&what, || {
+                if use_dp {
+                    sys.turn(&dp, start, &opts)
+                } else {
+                    sys.turn(&Rk4, start, &opts)
+                }
+            });
+            match r {
+                Ok((t, _)) => {
+                    turned += 1;
+                    check_turn(&t, &what);
+                }
+                Err(Error::Stalled {
+                    drive, resistance, ..
+                }) => {
+                    stalled += 1;
+                    assert!(drive <= resistance, "{what}: {drive} vs {resistance}");
+                }
+                Err(e @ Error::Budget { .. }) => panic!("{what}: {e}"),
+                Err(_) => {}
+            }
+            let r = no_panic(&what, || {
+                if use_dp {
+                    sys.run_up_from(&dp, start, &opts)
+                } else {
+                    sys.run_up_from(&Rk4, start, &opts)
+                }
+            });
+            match r {
+                Ok(up) => up.turns.iter().for_each(|t| check_turn(t, &what)),
+                Err(Error::Budget { what: budget, .. }) => assert_eq!(budget, "turn", "{what}"),
+                Err(_) => {}
+            }
+            // The same machine from rest in its reference pose, and a bare run of 0.3 s:
+            // each ends (stuck, at its final time or with a named error) well within a
+            // budget of 10⁵ steps.
+            let r = no_panic(&what, || {
+                if use_dp {
+                    sys.run_up(&dp, &opts)
+                } else {
+                    sys.run_up(&Rk4, &opts)
+                }
+            });
+            match r {
+                Ok(up) => up.turns.iter().for_each(|t| check_turn(t, &what)),
+                Err(Error::Budget { what: budget, .. }) => assert_eq!(budget, "turn", "{what}"),
+                Err(_) => {}
+            }
+            let mut ro = RunOptions::until(0.3, h);
+            ro.max_steps = 100_000;
+            let r = no_panic(&what, || {
+                if use_dp {
+                    run(&sys, &dp, start, &ro)
+                } else {
+                    run(&sys, &Rk4, start, &ro)
+                }
+            });
+            match r {
+                Ok(r) => {
+                    let shown = format!("{:?} {:?}", r.outcome, r.last);
+                    assert!(!has_non_finite(&shown), "{what}: {shown}");
+                }
+                Err(e @ Error::Budget { .. }) => panic!("{what}: {e}"),
+                Err(_) => {}
+            }
+        }
+    }
+    println!("turns: {turned} completed, {stalled} stalled");
+    assert!(turned > 0 && stalled > 0);
+}
+
 #[cfg(feature = "draw")]
 #[test]
 fn hostile_pictures() {
+    use crate::common::svg_scan::assert_finite_svg;
     let mut g = Gen::new(59);
+    let mut svgs = 0;
     for l in bundled::all() {
         let plan = Plan::new(&l).unwrap();
         for case in 0..cases() / 10 {
@@ -339,20 +474,43 @@ fn hostile_pictures() {
             }
             let what = format!("{} case {case}: {input:?} {style:?}", l.name);
             no_panic(&what, || {
-                let _ = draw::scheme(&plan, input, &style);
-                let _ = draw::forces(&plan, input, &style);
-                let _ = draw::animation(&plan, &[input, g.motion()], g.f(), &style);
                 let inputs = vec![input, g.motion()];
                 let course = Course {
                     extremes: vec![g.motion()],
                     ..Course::given(inputs)
                 };
-                let _ = draw::plan_view(&plan, &course, &["B", "nowhere"], &style);
-                let _ = draw::diagram(&plan, &course, &Diagram::Balance, &style);
+                let pictures = [
+                    ("scheme", draw::scheme(&plan, input, &style)),
+                    ("forces", draw::forces(&plan, input, &style)),
+                    (
+                        "animation",
+                        draw::animation(&plan, &[input, g.motion()], g.f(), &style),
+                    ),
+                    (
+                        "plan_view",
+                        draw::plan_view(&plan, &course, &["B", "nowhere"], &style),
+                    ),
+                ];
+                if let Ok(chart) = draw::diagram(&plan, &course, &Diagram::Balance, &style) {
+                    svgs += 1;
+                    assert_finite_svg(&chart.svg, &format!("diagram of {what}"));
+                    let numbers = format!("{:?}", chart.panels);
+                    assert!(!has_non_finite(&numbers), "{what}: {numbers}");
+                }
+                for (name, pic) in pictures {
+                    if let Ok(pic) = pic {
+                        svgs += 1;
+                        assert_finite_svg(&pic.svg, &format!("{name} of {what}"));
+                        let numbers = format!("{:?} {:?}", pic.frame, pic.force_scale);
+                        assert!(!has_non_finite(&numbers), "{what}: {numbers}");
+                    }
+                }
                 let _ = Course::new(&plan, l.output.as_ref(), (g.next() % 30) as usize, g.f());
             });
         }
     }
+    println!("{svgs} pictures drawn and scanned");
+    assert!(svgs > 0 || cases() < 10);
 }
 
 #[test]

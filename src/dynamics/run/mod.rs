@@ -61,7 +61,9 @@ use step_loop::Runner;
 /// (h below the rounding of t); [`Error::NonFiniteState`] naming the time when the motion
 /// diverges (or a recorded quantity overflows); [`Error::Budget`] naming the time reached
 /// when the steps, evaluations or rows of `opts` run out (or [`Error::OutOfRange`] for a row
-/// budget below 2); any error of the system or the method.
+/// budget below 2); [`Error::NonFinite`] or [`Error::OutOfRange`] naming the load when the
+/// system's [`LagrangeSystem::switch_loads`] are not finite or a breakaway load is negative;
+/// any error of the system or the method.
 ///
 /// # Examples
 /// A 1 kg slider pushed by 2 N from rest reaches x = 1 m at t = 1 s; with steps of 0.3 s the

@@ -203,7 +203,7 @@ impl<'a, S: LagrangeSystem + ?Sized, M: Stepper> Runner<'a, S, M> {
     /// Else the motion breaks away in the drive's direction, where the next step holds the
     /// resistance.
     fn stuck(&mut self, i: usize, s: State, recorded: bool) -> Result<Option<RunResult>> {
-        let loads = self.sys.switch_loads(i, s.t, &s.q, &s.qd)?;
+        let loads = self.sys.switch_loads(i, s.t, &s.q, &s.qd)?.checked()?;
         if !loads.holds() {
             if let Some(away) = self.breakaway.get_mut(i) {
                 *away = sign(loads.drive);
