@@ -707,3 +707,105 @@ fn a_self_locking_machine_is_an_error() {
     }
     assert!(errors > 0);
 }
+
+/// The course slider-crank driven by its piston (a slider input) with the gas force
+/// replaced by a force on the rod and its weights.
+fn piston_driven() -> Linkage {
+    let mut l = SliderCrank::course_example().linkage().unwrap();
+    l.input = tmm::linkage::Input::crank("piston");
+    l.groups.clear();
+    l.modes.clear();
+    l.gravity = [0.0, -9.81];
+    l.loads = vec![tmm::linkage::LoadSpec::Force {
+        link: "rod".to_owned(),
+        at: tmm::linkage::At::name("A"),
+        force: [30.0, -40.0],
+    }];
+    l
+}
+
+/// A slider input on a guide with friction (refused before): at ≥ 72 positions,
+/// for f ∈ {0.05, 0.15, 0.3}, every link in equilibrium with the friction as data, each
+/// joint's friction law (the input's guide included: |T| = f·|N| against the sliding), and
+/// P_drive = P_useful + Σ P_lost; a cocked piston (length 30 mm) has the pressure
+/// |N1| + |N2| = max(|N|, 2|K'|/L) of its two ends, recomputed here from the reaction
+/// (under a couple of 0.8 N·m on it that cocks it at some positions).
+#[test]
+fn a_slider_input_with_guide_friction_is_in_equilibrium_and_balances_its_power() {
+    let base = piston_driven();
+    let (mut worst_eq, mut worst_power, mut cases) = (0.0f64, 0.0f64, 0);
+    for f in COEFFICIENTS {
+        let l = with_friction(&base, f);
+        let plan = Plan::new(&l).unwrap();
+        let rho = f * 0.02 * plan.size();
+        // Positions over the piston's travel, each both ways; those near the dyad's dead
+        // point (|det| < 0.1) left out: at least 72 per coefficient remain.
+        for k in 0..6 * POSITIONS {
+            let s = -0.12 + 0.24 * (k / 2) as f64 / (3 * POSITIONS) as f64;
+            let v = if k % 2 == 0 { 1.5 } else { -1.5 };
+            let Ok(a) = plan.analyse(Motion::new(s, v, -4.0)) else {
+                continue;
+            };
+            if a.group_determinants()[0].abs() < 0.1 {
+                continue;
+            }
+            worst_eq = worst_eq.max(worst_equilibrium(&plan, &a));
+            let lost = losses(&plan, &a, rho, f);
+            let (p_loads, p_abs) = loads_power(&a);
+            let e = a.efficiency().unwrap();
+            worst_power = worst_power.max((e.drive + p_loads - lost).abs() / p_abs);
+            assert!(a.drive_power() - e.drive == 0.0);
+            cases += 1;
+        }
+    }
+    println!("slider input: equilibrium {worst_eq:.1e}, power {worst_power:.1e}, {cases} cases");
+    assert!(cases >= 3 * POSITIONS, "{cases}");
+    assert!(
+        worst_eq < 1e-12 && worst_power < 1e-9,
+        "{worst_eq:e} {worst_power:e}"
+    );
+    // The cocked piston: its guide joint's own friction with the piston's length.
+    let plan0 = Plan::new(&base).unwrap();
+    let piston = plan0.input_links()[0];
+    let guide = plan0
+        .joint_ids()
+        .find(|&j| {
+            plan0.is_prismatic(j).unwrap() && plan0.joint_links(j).unwrap().contains(&piston)
+        })
+        .unwrap();
+    let (f, len) = (0.2, 0.03);
+    let mut l = base.clone();
+    // A couple on the piston that cocks it at some positions.
+    l.loads.push(tmm::linkage::LoadSpec::Moment {
+        link: "piston".to_owned(),
+        moment: 0.8,
+    });
+    l.joints[guide.index()].friction = Some(Friction {
+        f: Some(f),
+        length: Some(len),
+        ..Friction::default()
+    });
+    let plan = Plan::new(&l).unwrap();
+    let mut cocked = 0;
+    for k in 0..POSITIONS {
+        let s = -0.12 + 0.24 * k as f64 / POSITIONS as f64;
+        let Ok(a) = plan.analyse(Motion::new(s, 1.5, -4.0)) else {
+            continue;
+        };
+        let r = a.reaction(guide).unwrap();
+        let fr = a.friction(guide).unwrap();
+        let d = a.guide_direction(guide).unwrap();
+        let n = r.force.dot(&tmm::angle::perp(d));
+        // The reaction's moment about the joint's point places N; the piston's middle is
+        // there (centre 0).
+        let pressure = n.abs().max(2.0 * r.moment.abs() / len);
+        assert!(
+            (fr.pressure - pressure).abs() <= 1e-12 * pressure,
+            "{fr:?} {pressure}"
+        );
+        assert!((fr.load + f * pressure).abs() <= 1e-12 * pressure);
+        cocked += usize::from(2.0 * r.moment.abs() / len > n.abs());
+        assert!(worst_equilibrium(&plan, &a) < 1e-12);
+    }
+    assert!(cocked > 0, "no position where the couple cocks the piston");
+}
