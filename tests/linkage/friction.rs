@@ -392,3 +392,420 @@ fn two_inputs_with_friction_balance_their_power() {
         assert!(lost > 0.0);
     }
 }
+
+// ---------------------------------------------------------------------------------------
+// Friction in the equation of motion (`LinkageSystem`).
+
+use nalgebra::Vector2;
+use tmm::dynamics::machines::LinearMotor;
+use tmm::dynamics::{accelerations, run, Dopri5, LagrangeSystem, Rk4, RunOptions, State};
+use tmm::linkage::dynamics::{LinkageSystem, Motor, RunUpOptions};
+use tmm::linkage::Inputs;
+use tmm::mechanism::{Mechanism, SliderCrank};
+
+/// `l` with pins of radius 2 % of its size and the coefficient `f` in every joint.
+fn machine(l: &Linkage, f: f64, motor: Motor, added: f64) -> LinkageSystem {
+    let mut s = LinkageSystem::from_linkage(&with_friction(l, f))
+        .unwrap()
+        .with_inertia(0, added)
+        .unwrap()
+        .with_motor(0, motor)
+        .unwrap();
+    if s.dof() == 2 {
+        s = s.with_motor(1, Motor::Constant(-0.5)).unwrap();
+    }
+    s
+}
+
+/// The q̈ the dynamics solves with friction is the motion whose friction kinetostatics needs
+/// exactly the motors' moments: at 24 states of each machine (one and two inputs, a gear
+/// drive, a slide's guide), the balancing moments of the independent friction solve at
+/// (q, q̇, q̈) equal each motor's moment less the added inertia's J·q̈, and the friction's
+/// power Q_f·q̇ equals −Σ P_lost of that solve; the inverse dynamics at q̈ gives the motors'
+/// moments back.
+#[test]
+fn the_solved_acceleration_is_the_friction_kinetostatics_motion() {
+    let motor = Motor::Linear(LinearMotor { a: 30.0, b: 0.5 });
+    let cases = [
+        ("four-bar", bundled::four_bar()),
+        ("geared four-bar", bundled::geared_four_bar()),
+        ("shaper", bundled::shaper()),
+        (
+            "slider-crank",
+            SliderCrank::course_example().linkage().unwrap(),
+        ),
+        ("five-bar robot", bundled::five_bar_robot()),
+    ];
+    let mut worst = 0.0f64;
+    for (name, l) in &cases {
+        for f in COEFFICIENTS {
+            let sys = machine(l, f, motor.clone(), 0.01);
+            assert!(sys.has_joint_friction());
+            let plan = sys.plan();
+            let n = sys.dof();
+            for k in 0..24 {
+                let phi = plan.reference_input() + TAU * k as f64 / 24.0;
+                let w = if k % 3 == 0 { -7.0 } else { 12.0 };
+                let q = Vector2::new(
+                    phi,
+                    if n == 2 {
+                        0.3 + 0.1 * (k as f64).sin()
+                    } else {
+                        0.0
+                    },
+                );
+                let qd = Vector2::new(w, if n == 2 { 2.0 } else { 0.0 });
+                let t = sys.split_terms(&q, &qd).unwrap();
+                let qdd = accelerations(&sys, 0.0, &q, &qd).unwrap();
+                let m = |i: usize| Motion::new(q[i], qd[i], qdd[i]);
+                let inputs = if n == 1 {
+                    Inputs::from(m(0))
+                } else {
+                    Inputs::two(m(0), m(1))
+                };
+                let a = plan.analyse(inputs).unwrap();
+                let mut scale = a.lost_power().abs() / w.abs();
+                for i in 0..n {
+                    let needed = t.drives[i] - sys.added_inertia(i).unwrap() * qdd[i];
+                    let b = a.balance(i).unwrap().value;
+                    scale = scale.max(t.drives[i].abs()).max(b.abs());
+                    worst = worst.max((b - needed).abs() / scale);
+                    let inv = sys.inverse_dynamics(&q, &qd, &qdd).unwrap();
+                    worst = worst.max((inv[i] - t.drives[i]).abs() / scale);
+                }
+                let p = t.friction.dot(&qd);
+                worst = worst.max((p + a.lost_power()).abs() / (scale * w.abs()));
+                assert!(p < 0.0, "{name}, f = {f}: friction power {p}");
+            }
+        }
+    }
+    println!("largest relative difference: {worst:.1e}");
+    assert!(worst < 1e-9, "{worst:e}");
+}
+
+/// ∫ y dt over the points (t, y): Simpson's rule over each pair of equal intervals, the
+/// trapezoid on an interval without an equal neighbour (a step cut at a kink).
+fn simpson_steps(t: &[f64], y: &[f64]) -> f64 {
+    let mut s = 0.0;
+    let mut i = 0;
+    while i + 1 < t.len() {
+        let h0 = t[i + 1] - t[i];
+        if i + 2 < t.len() && ((t[i + 2] - t[i + 1]) - h0).abs() <= 1e-9 * h0 {
+            s += h0 / 3.0 * (y[i] + 4.0 * y[i + 1] + y[i + 2]);
+            i += 2;
+        } else {
+            s += 0.5 * h0 * (y[i] + y[i + 1]);
+            i += 1;
+        }
+    }
+    s
+}
+
+/// A four-bar with no loads and no gravity, thrown at 20 rad/s, coasts down with only its
+/// joints' friction, in the joints whose relative motion never reverses over a turn (so
+/// that the friction power is smooth but where a reaction passes through zero, and the
+/// quadrature below keeps its order): over the run T(t_end) − T(0) = −∫ Σ P_lost dt, with
+/// Σ P_lost from the independent friction kinetostatics at each recorded (q, q̇, q̈)
+/// (Simpson's rule over the RK4 steps: the difference falls with h). Its reactions are the
+/// inertia loads alone, so the friction falls with ω² and the machine slows without
+/// stopping.
+#[test]
+fn a_coast_down_loses_its_energy_to_the_joints() {
+    let mut weightless = bundled::four_bar();
+    weightless.loads.clear();
+    weightless.gravity = [0.0, 0.0];
+    let plan0 = Plan::new(&weightless).unwrap();
+    let rho = 0.3 * 0.02 * plan0.size();
+    let mut kept = Vec::new();
+    for (j, joint) in weightless.joints.iter_mut().enumerate() {
+        let [l0, l1] = plan0.joint_links(j).unwrap();
+        let steady = (0..360).all(|k| {
+            let a = plan0
+                .kinematics(Motion::turning(TAU * k as f64 / 360.0, 1.0))
+                .unwrap();
+            let rel = a.link_motion(l1).unwrap().omega - a.link_motion(l0).unwrap().omega;
+            rel.abs() > 0.1
+        });
+        if steady {
+            joint.friction = Some(Friction::circle(rho));
+            kept.push(joint.name.clone());
+        }
+    }
+    assert!(kept.len() >= 2, "{kept:?}");
+    let sys = LinkageSystem::from_linkage(&weightless).unwrap();
+    let plan = sys.plan();
+    let start = State::new(
+        0.0,
+        Vector2::new(plan.reference_input(), 0.0),
+        Vector2::new(20.0, 0.0),
+    );
+    let coast = |h: f64| {
+        let r = run(&sys, &Rk4, start, &RunOptions::until(2.0, h)).unwrap();
+        let tr = &r.trajectory;
+        let (q, qd, qdd) = (tr.q()[0], tr.qd()[0], tr.qdd()[0]);
+        let lost: Vec<f64> = (0..tr.len())
+            .map(|i| {
+                plan.analyse(Motion::new(q[i], qd[i], qdd[i]))
+                    .unwrap()
+                    .lost_power()
+            })
+            .collect();
+        let e = tr.kinetic();
+        let (e0, e1) = (e[0], e[tr.len() - 1]);
+        let work = simpson_steps(tr.t(), &lost);
+        ((e1 - e0 + work).abs() / e0, work / e0)
+    };
+    let (e1, share) = coast(2e-3);
+    let (e2, _) = coast(1e-3);
+    println!(
+        "coast-down, friction in {kept:?}: lost {share:.6} of T0 in 2 s; |ΔT + ∫ΣP| / T0 = \
+         {e1:.1e} (h = 2 ms), {e2:.1e} (h = 1 ms)"
+    );
+    assert!(share > 0.05);
+    assert!(e2 < 1e-6 && e2 < e1 / 4.0, "{e1:e} -> {e2:e}");
+}
+
+/// Under the same motor, the machine with friction settles at a lower mean speed; the drop
+/// is the mean friction moment over the motor's slope (to first order: the machine's own
+/// losses change with the speed).
+#[test]
+fn a_run_up_with_friction_settles_slower() {
+    let mut l = bundled::four_bar();
+    l.loads
+        .retain(|x| !matches!(x, tmm::linkage::LoadSpec::Resistance { .. }));
+    let b = 50.0 / 30.0;
+    let motor = Motor::Linear(LinearMotor { a: 50.0, b });
+    let free = LinkageSystem::from_linkage(&l)
+        .unwrap()
+        .with_motor(0, motor.clone())
+        .unwrap()
+        .with_inertia(0, 0.05)
+        .unwrap();
+    let rough = machine(&l, 0.3, motor, 0.05);
+    let opts = RunUpOptions::new(1e-3);
+    let w0 = free
+        .run_up(&Rk4, &opts)
+        .unwrap()
+        .turns
+        .last()
+        .unwrap()
+        .omega_mean;
+    let r = rough.run_up(&Rk4, &opts).unwrap();
+    let w1 = r.turns.last().unwrap().omega_mean;
+    // The mean friction moment over a turn at the steady speed: ∮ ΣP_lost/ω dφ / 2π.
+    let plan = rough.plan();
+    let n = 720;
+    let m_f: f64 = (0..n)
+        .map(|k| {
+            let phi = TAU * k as f64 / n as f64;
+            plan.analyse(Motion::turning(phi, w1)).unwrap().lost_power() / w1
+        })
+        .sum::<f64>()
+        / n as f64;
+    let predicted = m_f / b;
+    println!(
+        "steady ω: {w0:.5} without friction, {w1:.5} with; drop {:.5}, predicted {predicted:.5}",
+        w0 - w1
+    );
+    assert!(
+        w1 < w0 - 0.5 * predicted && w1 > w0 - 1.5 * predicted,
+        "{w0} {w1} {predicted}"
+    );
+}
+
+/// Zero coefficients everywhere make no friction at all: the same trajectory to the bit.
+#[test]
+fn zero_coefficients_give_identical_trajectories() {
+    let l = bundled::four_bar();
+    let motor = Motor::Linear(LinearMotor { a: 30.0, b: 0.5 });
+    let free = LinkageSystem::from_linkage(&l)
+        .unwrap()
+        .with_motor(0, motor.clone())
+        .unwrap();
+    let zero = machine(&l, 0.0, motor, 0.0);
+    assert!(!zero.has_joint_friction());
+    let start = State::at_rest(Vector2::new(free.plan().reference_input(), 0.0));
+    let opts = RunOptions::until(0.3, 1e-3);
+    let (a, b) = (
+        run(&free, &Rk4, start, &opts).unwrap(),
+        run(&zero, &Rk4, start, &opts).unwrap(),
+    );
+    assert_eq!(a.trajectory.to_csv(), b.trajectory.to_csv());
+    assert_eq!(a.last, b.last);
+}
+
+/// Each joint's relative rate is a kink argument with the node 0; an adaptive run steps
+/// exactly onto the rocker's reversal (ω of the rocker = 0 at its joint with the frame).
+#[test]
+fn a_joints_reversal_is_a_kink_the_run_steps_onto() {
+    let l = bundled::four_bar();
+    let sys = machine(
+        &l,
+        0.15,
+        Motor::Linear(LinearMotor { a: 30.0, b: 0.5 }),
+        0.01,
+    );
+    let plan = sys.plan().clone();
+    let joints = plan.joint_names().len();
+    let kinks = sys.kinks();
+    assert_eq!(kinks.len(), joints);
+    assert!(kinks.iter().all(|k| k == &[0.0]));
+    let (q, qd) = (Vector2::new(0.7, 0.0), Vector2::new(9.0, 0.0));
+    let mut out = vec![f64::NAN; joints];
+    sys.kink_arguments(0.0, &q, &qd, &mut out).unwrap();
+    let a = plan.kinematics(Motion::turning(0.7, 9.0)).unwrap();
+    for (j, &o) in out.iter().enumerate() {
+        let [l0, l1] = plan.joint_links(j).unwrap();
+        let rel = a.link_motion(l1).unwrap().omega - a.link_motion(l0).unwrap().omega;
+        assert!(
+            (o - rel).abs() < 1e-12 * (1.0 + rel.abs()),
+            "joint {j}: {o} vs {rel}"
+        );
+    }
+    assert!(sys.kink_arguments(0.0, &q, &qd, &mut [0.0; 1]).is_err());
+    let start = State::new(0.0, Vector2::new(0.0, 0.0), Vector2::new(10.0, 0.0));
+    let dp = Dopri5::new(1e-9).unwrap();
+    let r = run(&sys, &dp, start, &RunOptions::until(0.8, 1e-2)).unwrap();
+    let rocker = plan.link_id("rocker").unwrap();
+    let tr = &r.trajectory;
+    let stops = (0..tr.len())
+        .filter(|&i| {
+            let m = Motion::turning(tr.q()[0][i], tr.qd()[0][i]);
+            let w3 = plan
+                .kinematics(m)
+                .unwrap()
+                .link_motion(rocker)
+                .unwrap()
+                .omega;
+            w3.abs() < 1e-9 * tr.qd()[0][i].abs()
+        })
+        .count();
+    assert!(stops >= 2, "{stops} rows at a rocker reversal");
+}
+
+/// A friction couple as large as the links makes the motion self-lock: an error, never a
+/// silent result.
+#[test]
+fn a_self_locking_machine_is_an_error() {
+    let mut l = bundled::four_bar();
+    l.friction = Some(Friction::circle(2.0 * Plan::new(&l).unwrap().size()));
+    let sys = LinkageSystem::from_linkage(&l)
+        .unwrap()
+        .with_motor(0, Motor::Constant(5.0))
+        .unwrap();
+    let mut errors = 0;
+    for k in 0..12 {
+        let q = Vector2::new(TAU * k as f64 / 12.0, 0.0);
+        match sys.split_terms(&q, &Vector2::new(10.0, 0.0)) {
+            Ok(t) => assert!(t.friction.iter().all(|v| v.is_finite())),
+            Err(e) => {
+                errors += 1;
+                let s = e.to_string();
+                assert!(s.contains("self-lock") || s.contains("friction"), "{s}");
+            }
+        }
+    }
+    assert!(errors > 0);
+}
+
+/// The course slider-crank driven by its piston (a slider input) with the gas force
+/// replaced by a force on the rod and its weights.
+fn piston_driven() -> Linkage {
+    let mut l = SliderCrank::course_example().linkage().unwrap();
+    l.input = tmm::linkage::Input::crank("piston");
+    l.groups.clear();
+    l.modes.clear();
+    l.gravity = [0.0, -9.81];
+    l.loads = vec![tmm::linkage::LoadSpec::Force {
+        link: "rod".to_owned(),
+        at: tmm::linkage::At::name("A"),
+        force: [30.0, -40.0],
+    }];
+    l
+}
+
+/// A slider input on a guide with friction (refused before): at ≥ 72 positions,
+/// for f ∈ {0.05, 0.15, 0.3}, every link in equilibrium with the friction as data, each
+/// joint's friction law (the input's guide included: |T| = f·|N| against the sliding), and
+/// P_drive = P_useful + Σ P_lost; a cocked piston (length 30 mm) has the pressure
+/// |N1| + |N2| = max(|N|, 2|K'|/L) of its two ends, recomputed here from the reaction
+/// (under a couple of 0.8 N·m on it that cocks it at some positions).
+#[test]
+fn a_slider_input_with_guide_friction_is_in_equilibrium_and_balances_its_power() {
+    let base = piston_driven();
+    let (mut worst_eq, mut worst_power, mut cases) = (0.0f64, 0.0f64, 0);
+    for f in COEFFICIENTS {
+        let l = with_friction(&base, f);
+        let plan = Plan::new(&l).unwrap();
+        let rho = f * 0.02 * plan.size();
+        // Positions over the piston's travel, each both ways; those near the dyad's dead
+        // point (|det| < 0.1) left out: at least 72 per coefficient remain.
+        for k in 0..6 * POSITIONS {
+            let s = -0.12 + 0.24 * (k / 2) as f64 / (3 * POSITIONS) as f64;
+            let v = if k % 2 == 0 { 1.5 } else { -1.5 };
+            let Ok(a) = plan.analyse(Motion::new(s, v, -4.0)) else {
+                continue;
+            };
+            if a.group_determinants()[0].abs() < 0.1 {
+                continue;
+            }
+            worst_eq = worst_eq.max(worst_equilibrium(&plan, &a));
+            let lost = losses(&plan, &a, rho, f);
+            let (p_loads, p_abs) = loads_power(&a);
+            let e = a.efficiency().unwrap();
+            worst_power = worst_power.max((e.drive + p_loads - lost).abs() / p_abs);
+            assert!(a.drive_power() - e.drive == 0.0);
+            cases += 1;
+        }
+    }
+    println!("slider input: equilibrium {worst_eq:.1e}, power {worst_power:.1e}, {cases} cases");
+    assert!(cases >= 3 * POSITIONS, "{cases}");
+    assert!(
+        worst_eq < 1e-12 && worst_power < 1e-9,
+        "{worst_eq:e} {worst_power:e}"
+    );
+    // The cocked piston: its guide joint's own friction with the piston's length.
+    let plan0 = Plan::new(&base).unwrap();
+    let piston = plan0.input_links()[0];
+    let guide = plan0
+        .joint_ids()
+        .find(|&j| {
+            plan0.is_prismatic(j).unwrap() && plan0.joint_links(j).unwrap().contains(&piston)
+        })
+        .unwrap();
+    let (f, len) = (0.2, 0.03);
+    let mut l = base.clone();
+    // A couple on the piston that cocks it at some positions.
+    l.loads.push(tmm::linkage::LoadSpec::Moment {
+        link: "piston".to_owned(),
+        moment: 0.8,
+    });
+    l.joints[guide.index()].friction = Some(Friction {
+        f: Some(f),
+        length: Some(len),
+        ..Friction::default()
+    });
+    let plan = Plan::new(&l).unwrap();
+    let mut cocked = 0;
+    for k in 0..POSITIONS {
+        let s = -0.12 + 0.24 * k as f64 / POSITIONS as f64;
+        let Ok(a) = plan.analyse(Motion::new(s, 1.5, -4.0)) else {
+            continue;
+        };
+        let r = a.reaction(guide).unwrap();
+        let fr = a.friction(guide).unwrap();
+        let d = a.guide_direction(guide).unwrap();
+        let n = r.force.dot(&tmm::angle::perp(d));
+        // The reaction's moment about the joint's point places N; the piston's middle is
+        // there (centre 0).
+        let pressure = n.abs().max(2.0 * r.moment.abs() / len);
+        assert!(
+            (fr.pressure - pressure).abs() <= 1e-12 * pressure,
+            "{fr:?} {pressure}"
+        );
+        assert!((fr.load + f * pressure).abs() <= 1e-12 * pressure);
+        cocked += usize::from(2.0 * r.moment.abs() / len > n.abs());
+        assert!(worst_equilibrium(&plan, &a) < 1e-12);
+    }
+    assert!(cocked > 0, "no position where the couple cocks the piston");
+}

@@ -113,18 +113,6 @@ impl Plan {
             .map(|c| c.complete(&chain))
             .collect::<Result<_>>()?;
         let friction = friction::plan_friction(linkage)?;
-        if let Some(fp) = &friction {
-            for ip in chain.inputs() {
-                if let super::plan::InputPlan::Slider { joint, .. } = *ip
-                    && fp[joint].slide.f != 0.0
-                {
-                    return Err(bad(
-                        format!("joint {}, friction", chain.joint_names[joint]),
-                        "friction on a slider input's guide is not covered yet",
-                    ));
-                }
-            }
-        }
         Ok(Self {
             name: linkage.name.clone(),
             chain,

@@ -188,8 +188,9 @@ fn extreme(t: &[f64], s: &[f64], max: bool) -> f64 {
 impl LinkageSystem {
     /// The machine's velocity-sign switches ([`LagrangeSystem::switches`](
     /// crate::dynamics::LagrangeSystem::switches)): one, the input's rate q̇₁, for a machine
-    /// with one input and a resistance among its loads (every resistance's rate is q̇₁ times
-    /// a transfer function, so all of them change sign with q̇₁); none otherwise (with two
+    /// with one input and a resistance among its loads or friction in its joints (every
+    /// resistance's and every joint's rate is q̇₁ times a transfer function, so all of them
+    /// change sign with q̇₁); none otherwise (with two
     /// inputs a resistance's rate vanishes while the machine moves on, a motion with one
     /// joint held, which is not modelled).
     pub(super) fn input_switches(&self) -> usize {
@@ -198,7 +199,7 @@ impl LinkageSystem {
             .loads
             .iter()
             .any(|l| matches!(l, LoadPlan::Turning { .. } | LoadPlan::Sliding { .. }));
-        usize::from(self.dof() == 1 && resisted)
+        usize::from(self.dof() == 1 && (resisted || self.has_joint_friction()))
     }
 
     /// The loads along the input at rest at `q` ([`SwitchLoads`]): the drive is Q₁ at
@@ -221,6 +222,8 @@ impl LinkageSystem {
             });
         }
         const TINY: f64 = 1e-200;
+        // The loads and the joints' friction (zero at rest).
+        let resisting = |t: &super::Terms| t.loads[0] + t.friction[0];
         let at = |rate: f64| self.split_terms(q, &Vector2::new(rate, 0.0));
         let (rest, forward, backward) = (at(0.0)?, at(TINY)?, at(-TINY)?);
         let (what, unit) = if self.plan().input_is_crank() {
@@ -232,8 +235,8 @@ impl LinkageSystem {
             what,
             unit,
             drive: rest.forces()[0],
-            forward: (rest.loads[0] - forward.loads[0]).max(0.0),
-            backward: (backward.loads[0] - rest.loads[0]).max(0.0),
+            forward: (resisting(&rest) - resisting(&forward)).max(0.0),
+            backward: (resisting(&backward) - resisting(&rest)).max(0.0),
         })
     }
 

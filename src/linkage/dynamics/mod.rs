@@ -32,6 +32,51 @@
 //! [`Plan::add_load_fn`](crate::linkage::Plan::add_load_fn)) is evaluated at the state's
 //! actual rates; it must not depend on the accelerations, which the equation is solved for.
 //!
+//! # Friction in the joints
+//! A linkage described with Coulomb friction ([`Friction`](crate::linkage::Friction), see
+//! [`kinetostatics::friction`](crate::kinetostatics::friction)) has the generalized friction
+//! forces Q_f,k = −Σ_j |L_j|·sgn(ṙ_j)·∂ṙ_j/∂q̇_k ([`Terms::friction`]): L_j the friction
+//! couple ρ·|R_j| of a hinge (or force f·|N_j| of a slide), ṙ_j the joint's relative rate,
+//! so that Q_f·q̇ = −Σ P_lost. The reactions hold the inertia loads, affine in q̈
+//! (R = R₀ + R₁·q̈ for one input without friction; with friction, the friction statics at
+//! (q, q̇, q̈)), so the equation of motion A·q̈ = b + Q_f(q̈), b = Q − c − B·q̇, is solved for
+//! q̈ at every evaluation: the fixed point q̈ = A⁻¹(b + Q_f(q̈)) from the frictionless q̈, by
+//! the secant method for one input and plain iteration for two, until the fixed-point
+//! residual is at most [`FRICTION_TOLERANCE`] of the acceleration scale, within
+//! [`FRICTION_BUDGET`] friction solves (else an error: the friction's feedback on q̈ reaches
+//! the inertia, the motion self-locks). The Q_f of the solution is the one returned, so
+//! every integrator steps the motion with friction unchanged. The inverse dynamics takes Q_f
+//! at the given q̈ directly.
+//!
+//! At rest there is no friction; a linkage of one input weighs its rest against the
+//! friction's breakaway loads through the input's velocity-sign switch
+//! ([`LagrangeSystem::switch_loads`](crate::dynamics::LagrangeSystem::switch_loads)), and
+//! each joint's relative rate is a kink argument with the node 0
+//! ([`LagrangeSystem::kinks`](crate::dynamics::LagrangeSystem::kinks)): where it reverses
+//! the friction couple flips, and a run steps exactly onto it. The reactions see the
+//! description's loads, the weights, the inertia loads and the drive on the input link; a
+//! [`Damper`] between two other links acts through B only (its forces are not in the
+//! joints' pressures). Without friction (every coefficient zero) nothing of this is
+//! evaluated: the terms are the frictionless ones, bit for bit.
+//!
+//! ```
+//! use nalgebra::Vector2;
+//! use tmm::dynamics::accelerations;
+//! use tmm::kinematics::Motion;
+//! use tmm::linkage::{bundled, dynamics::LinkageSystem, Friction};
+//! let mut l = bundled::four_bar();
+//! l.friction = Some(Friction::pin(0.15, 0.01));
+//! let sys = LinkageSystem::from_linkage(&l)?;
+//! let (q, qd) = (Vector2::new(0.8, 0.0), Vector2::new(10.0, 0.0));
+//! let t = sys.split_terms(&q, &qd)?;
+//! let qdd = accelerations(&sys, 0.0, &q, &qd)?;
+//! // The friction kinetostatics of that motion: no drive needed, and the same lost power.
+//! let a = sys.plan().analyse(Motion::new(q[0], qd[0], qdd[0]))?;
+//! assert!(a.balance(0)?.value.abs() < 1e-9);
+//! assert!((t.friction.dot(&qd) + a.lost_power()).abs() < 1e-9 * a.lost_power());
+//! # Ok::<(), tmm::Error>(())
+//! ```
+//!
 //! # Cost
 //! [`LinkageSystem::split_terms`] makes one set of buffers and one kinematic solve for a linkage
 //! with one input. Two inputs need the rates at q̇ = e₁, e₂ and (1, 1) (the three
@@ -108,9 +153,12 @@
 mod cycle;
 mod drive;
 mod flywheel;
+mod friction;
 mod system;
+mod transfer;
 
 pub use cycle::{Reduced, RunUp, RunUpOptions, Turn};
 pub use drive::{Damper, Motor};
 pub use flywheel::Flywheel;
+pub use friction::{FRICTION_BUDGET, FRICTION_TOLERANCE};
 pub use system::{LinkageSystem, Terms};

@@ -4,14 +4,15 @@
 use nalgebra::{Matrix2, Point2, Vector2};
 
 use super::drive::{Damper, DamperPlan, Motor};
+use super::friction::{FrictionJoint, StateFriction};
+use super::transfer::Transfer;
 use crate::dynamics::{
     checked_inertia, christoffel_terms, kink_slots, LagrangeSystem, LagrangeTerms,
 };
 use crate::error::{computed_all, finite, finite2, Error, Result};
-use crate::kinematics::{LinkMotion, Motion, PointMotion};
-use crate::linkage::plan::{Chain, Pose};
+use crate::kinematics::Motion;
+use crate::linkage::plan::Pose;
 use crate::linkage::solve::loads::{apply, LoadSite};
-use crate::linkage::solve::state::KinState;
 use crate::linkage::{Linkage, Plan};
 use crate::Load;
 
@@ -49,13 +50,24 @@ pub struct Terms {
     pub loads: Vector2<f64>,
     /// The matrix B of Rayleigh's dissipation function Φ = ½ q̇ᵀ B q̇.
     pub damping: Matrix2<f64>,
+    /// The generalized forces of the joints' Coulomb friction, Q_f (zero without friction or
+    /// at rest): solved with q̈ (see [`LinkageSystem::split_terms`]); their power
+    /// Q_f·q̇ = −Σ P_lost.
+    pub friction: Vector2<f64>,
 }
 
 impl Terms {
-    /// All applied generalized forces: drives and loads (not the viscous −B q̇).
+    /// All applied generalized forces: drives, loads and the joints' friction (not the
+    /// viscous −B q̇).
     #[must_use]
     pub fn forces(&self) -> Vector2<f64> {
-        self.drives + self.loads
+        let f = self.drives + self.loads;
+        if self.friction == Vector2::zeros() {
+            // Bit for bit the frictionless sum (−0 + 0 would be +0).
+            f
+        } else {
+            f + self.friction
+        }
     }
 }
 
@@ -88,139 +100,8 @@ pub struct LinkageSystem {
     motors: [Motor; 2],
     extra: [f64; 2],
     dampers: Vec<DamperPlan>,
-}
-
-/// The rates of one link in one solve: its origin's velocity and acceleration, ω and ε (the
-/// positions are the same in every solve and stay in the buffers).
-#[derive(Clone, Copy)]
-struct Rates {
-    v: Vector2<f64>,
-    a: Vector2<f64>,
-    omega: f64,
-    epsilon: f64,
-}
-
-/// The exact first- and second-order transfer functions of every link at one position:
-/// kinematic solves at unit input rates and zero input accelerations, made with one set of
-/// buffers; the positions are solved once, the rates at the other unit vectors again.
-struct Transfer<'p> {
-    n: usize,
-    nl: usize,
-    /// The link rates of the solves, one block of `nl` per solve: q̇ = e₁ (and, for two
-    /// inputs, e₂ and (1, 1)). The velocities of solve k are the first-order transfer
-    /// functions ∂v/∂q̇_k, its accelerations the second-order ones ∂²r/∂q_k²; those of the
-    /// solve at (1, 1) are Σ_jk ∂²r/∂q_j∂q_k, so the mixed derivative is
-    /// (a_(1,1) − a_11 − a_22)/2.
-    rates: Vec<Rates>,
-    /// The chain solved.
-    chain: &'p Chain,
-    /// The buffers of the solves: their positions (the same in every solve, with every
-    /// link's unit vector) serve the position-only look-ups.
-    kin: KinState,
-}
-
-impl<'p> Transfer<'p> {
-    #[inline]
-    fn new(plan: &'p Plan, n: usize, q: &Vector2<f64>) -> Result<Self> {
-        let chain = &plan.chain;
-        let mut kin = KinState::new(chain);
-        let nl = chain.link_names.len();
-        let unit_rates: &[[f64; 2]] = if n == 1 {
-            &[[1.0, 0.0]]
-        } else {
-            &[[1.0, 0.0], [0.0, 1.0], [1.0, 1.0]]
-        };
-        let mut rates = Vec::with_capacity(nl * unit_rates.len());
-        for (i, r) in unit_rates.iter().enumerate() {
-            let m = [Motion::new(q[0], r[0], 0.0), Motion::new(q[1], r[1], 0.0)];
-            if i == 0 {
-                kin.solve(chain, &m[..n])?;
-            } else {
-                // The same positions: only the (linear) rate problems again.
-                kin.solve_rates(chain, &m[..n])?;
-            }
-            rates.extend((0..nl).map(|l| {
-                let m = &kin.links[l];
-                Rates {
-                    v: m.origin.v,
-                    a: m.origin.a,
-                    omega: m.omega,
-                    epsilon: m.epsilon,
-                }
-            }));
-        }
-        Ok(Self {
-            n,
-            nl,
-            rates,
-            chain,
-            kin,
-        })
-    }
-
-    /// The motion of the point at `local` (along, across) of link `l` in solve `s`.
-    #[inline]
-    fn point(&self, s: usize, l: usize, local: Vector2<f64>) -> PointMotion {
-        self.link(s, l).point_in_frame(self.kin.units[l], local)
-    }
-
-    /// Link `l` in solve `s` (0, 1: unit rate of input s; 2: both).
-    #[inline]
-    fn link(&self, s: usize, l: usize) -> LinkMotion {
-        let r = &self.rates[s * self.nl + l];
-        let m = &self.kin.links[l];
-        LinkMotion {
-            origin: PointMotion::new(m.origin.p, r.v, r.a),
-            angle: m.angle,
-            omega: r.omega,
-            epsilon: r.epsilon,
-        }
-    }
-
-    /// ∂ω_l/∂q̇_k.
-    #[inline]
-    fn omega(&self, k: usize, l: usize) -> f64 {
-        self.link(k, l).omega
-    }
-
-    /// ∂v_P/∂q̇_k of the point of link `l` at the local coordinates `local`.
-    fn vel(&self, k: usize, l: usize, local: Vector2<f64>) -> Vector2<f64> {
-        self.point(k, l, local).v
-    }
-
-    /// ∂v_P/∂q̇_k of the point of link `l` at `p`.
-    fn vel_of(&self, k: usize, l: usize, p: Point2<f64>) -> Vector2<f64> {
-        self.link(k, l).motion_of(p).v
-    }
-
-    /// The sliding link and the guide's link of prismatic joint `j`, and the guide's unit
-    /// direction now.
-    fn slide_parts(&self, j: usize) -> (usize, usize, Vector2<f64>) {
-        self.kin.pose(self.chain).slide_parts(j)
-    }
-
-    /// The motions of prismatic joint `j`'s point on its sliding link and on its guide's
-    /// link in solve `k`.
-    fn slide_points(&self, k: usize, j: usize) -> [PointMotion; 2] {
-        let jp = &self.chain.joints[j];
-        let g = jp.prismatic.map_or(0, |(g, _)| g);
-        [1 - g, g].map(|side| {
-            let local = jp.local[side];
-            self.point(k, jp.links[side], local)
-        })
-    }
-
-    /// ∂ṡ/∂q̇_k of the slide of prismatic joint `j` along the guide direction `d`: the
-    /// relative velocity of its points on the sliding link and on the guide's link.
-    fn slide_rate(&self, k: usize, j: usize, d: Vector2<f64>) -> f64 {
-        let [on, guide] = self.slide_points(k, j);
-        (on.v - guide.v).dot(&d)
-    }
-
-    /// The actual rate Σ_k (∂r/∂q_k)·q̇_k of a quantity with transfer functions `f(k)`.
-    fn rate(&self, qd: &Vector2<f64>, f: impl Fn(usize) -> f64) -> f64 {
-        (0..self.n).map(|k| f(k) * qd[k]).sum()
-    }
+    /// The joints with friction (none for a frictionless plan).
+    friction: Vec<FrictionJoint>,
 }
 
 /// The dynamics' site of the load interpreter: each load's generalized forces
@@ -331,6 +212,7 @@ impl LinkageSystem {
     /// None today (every plan has one or two inputs); kept fallible for checks to come.
     pub fn new(plan: Plan) -> Result<Self> {
         Ok(Self {
+            friction: FrictionJoint::of(&plan),
             plan,
             motors: [Motor::None, Motor::None],
             extra: [0.0; 2],
@@ -398,6 +280,13 @@ impl LinkageSystem {
         &self.plan
     }
 
+    /// Whether any joint has Coulomb friction ([`Plan::has_friction`]): then every evaluation
+    /// of the forces solves for q̈ with the friction (see the [module docs](super)).
+    #[must_use]
+    pub fn has_joint_friction(&self) -> bool {
+        !self.friction.is_empty()
+    }
+
     /// The number of degrees of freedom (inputs): 1 or 2.
     #[must_use]
     pub fn dof(&self) -> usize {
@@ -440,18 +329,20 @@ impl LinkageSystem {
     /// cannot be assembled or is at a dead point) wrapped in [`Error::In`]; a load's or a
     /// motor's error; [`Error::Overflow`] when a term overflows.
     pub fn split_terms(&self, q: &Vector2<f64>, qd: &Vector2<f64>) -> Result<Terms> {
-        self.evaluate(q, qd, true, None)
+        self.evaluate(q, qd, true, None, None)
     }
 
     /// The terms at (q, q̇), the forces only when `forces`. With `inertia_at` = Some(t), A is
     /// also checked positive-definite (the error naming t) before the loads are evaluated:
-    /// the order in which [`crate::dynamics::accelerations`] reports the first failure.
+    /// the order in which [`crate::dynamics::accelerations`] reports the first failure. The
+    /// joints' friction is solved with q̈, or taken at `qdd` when given.
     fn evaluate(
         &self,
         q: &Vector2<f64>,
         qd: &Vector2<f64>,
         forces: bool,
         inertia_at: Option<f64>,
+        qdd: Option<&Vector2<f64>>,
     ) -> Result<Terms> {
         finite2(["q1", "q2"], *q)?;
         finite2(["q1_dot", "q2_dot"], *qd)?;
@@ -537,12 +428,27 @@ impl LinkageSystem {
             }
         }
         computed_all("generalized forces Q", loads.iter().chain(drives.iter()))?;
+        let mut friction = Vector2::zeros();
+        if forces
+            && !self.friction.is_empty()
+            && let Some(mut sf) = StateFriction::new(plan, &self.friction, &tr, q, qd)
+        {
+            friction = match qdd {
+                Some(qdd) => sf.force(qdd)?,
+                None => {
+                    let b = loads + drives - christoffel_terms(&da, qd)? - damping * qd;
+                    sf.solve(&a, &b, inertia_at.unwrap_or(0.0))?
+                }
+            };
+            computed_all("joint friction Q_f", friction.iter())?;
+        }
         Ok(Terms {
             inertia: a,
             inertia_derivatives: da,
             drives,
             loads,
             damping,
+            friction,
         })
     }
 
@@ -616,9 +522,12 @@ impl LinkageSystem {
         qdd: &Vector2<f64>,
     ) -> Result<Vector2<f64>> {
         finite2(["q1_ddot", "q2_ddot"], *qdd)?;
-        let t = self.evaluate(q, qd, true, None)?;
+        let t = self.evaluate(q, qd, true, None, Some(qdd))?;
         let c = christoffel_terms(&t.inertia_derivatives, qd)?;
-        let m = t.inertia * qdd + c + t.damping * qd - t.loads;
+        let mut m = t.inertia * qdd + c + t.damping * qd - t.loads;
+        if t.friction != Vector2::zeros() {
+            m -= t.friction;
+        }
         computed_all("inverse dynamics", m.iter())?;
         Ok(m)
     }
@@ -637,12 +546,14 @@ impl LinkageSystem {
 
 impl LagrangeSystem for LinkageSystem {
     fn inertia(&self, q: &Vector2<f64>) -> Result<Matrix2<f64>> {
-        Ok(self.evaluate(q, &Vector2::zeros(), false, None)?.inertia)
+        Ok(self
+            .evaluate(q, &Vector2::zeros(), false, None, None)?
+            .inertia)
     }
 
     fn inertia_derivatives(&self, q: &Vector2<f64>) -> Result<[Matrix2<f64>; 2]> {
         Ok(self
-            .evaluate(q, &Vector2::zeros(), false, None)?
+            .evaluate(q, &Vector2::zeros(), false, None, None)?
             .inertia_derivatives)
     }
 
@@ -656,7 +567,7 @@ impl LagrangeSystem for LinkageSystem {
     /// A not positive-definite, then a load or a motor, Q overflowing. No potential: gravity
     /// is one of the loads.
     fn terms(&self, t: f64, q: &Vector2<f64>, qd: &Vector2<f64>) -> Result<LagrangeTerms> {
-        let all = self.evaluate(q, qd, true, Some(t))?;
+        let all = self.evaluate(q, qd, true, Some(t), None)?;
         Ok(LagrangeTerms {
             inertia: all.inertia,
             inertia_derivatives: all.inertia_derivatives,
@@ -670,7 +581,9 @@ impl LagrangeSystem for LinkageSystem {
         if self.dampers.is_empty() {
             return Ok(Matrix2::zeros());
         }
-        Ok(self.evaluate(q, &Vector2::zeros(), false, None)?.damping)
+        Ok(self
+            .evaluate(q, &Vector2::zeros(), false, None, None)?
+            .damping)
     }
 
     /// The switches of the motors' characteristics, which are kinks of Q: one argument for
@@ -680,6 +593,9 @@ impl LagrangeSystem for LinkageSystem {
     /// input order. None for smooth motors. Each is located on its own, so a tabulated motor
     /// beside a servo, or two servos switching in one step, all have their switches stepped
     /// onto.
+    ///
+    /// Then one argument for each joint with friction: its relative rate ṙ_j, with the node
+    /// 0 (where its friction reverses).
     fn kinks(&self) -> Vec<Vec<f64>> {
         self.kinked_motors()
             .map(|(_, m)| match m {
@@ -687,12 +603,14 @@ impl LagrangeSystem for LinkageSystem {
                 Motor::Tabulated(t) => t.xs().to_vec(),
                 _ => Vec::new(),
             })
+            .chain(self.friction.iter().map(|_| vec![0.0]))
             .collect()
     }
 
     /// The arguments of [`kinks`](Self::kinks), one per servo or tabulated motor in input
     /// order: a servo's demand over its limit (kept within [−2, 2], inside (−1, 1) while the
-    /// servo follows its demand; 0 for limit 0), a tabulated motor's input rate q̇.
+    /// servo follows its demand; 0 for limit 0), a tabulated motor's input rate q̇; then each
+    /// friction joint's relative rate (rad/s, or m/s for a slide).
     ///
     /// # Errors
     /// A non-finite state; a servo's error; [`Error::OutOfRange`] when `out` has not one
@@ -704,14 +622,23 @@ impl LagrangeSystem for LinkageSystem {
         qd: &Vector2<f64>,
         out: &mut [f64],
     ) -> Result<()> {
-        kink_slots(out, self.kinked_motors().count())?;
+        let motors = self.kinked_motors().count();
+        kink_slots(out, motors + self.friction.len())?;
         finite2(["q1", "q2"], *q)?;
         finite2(["q1_dot", "q2_dot"], *qd)?;
-        for (o, (i, m)) in out.iter_mut().zip(self.kinked_motors()) {
+        let (by_motor, by_joint) = out.split_at_mut(motors);
+        for (o, (i, m)) in by_motor.iter_mut().zip(self.kinked_motors()) {
             *o = match m {
                 Motor::Servo(s) => s.switch_argument(q[i], qd[i])?.unwrap_or(0.0),
                 _ => qd[i],
             };
+        }
+        if !self.friction.is_empty() {
+            let tr = Transfer::new(&self.plan, self.dof(), q)?;
+            for (o, fj) in by_joint.iter_mut().zip(&self.friction) {
+                let r = fj.transfer(&tr);
+                *o = r[0] * qd[0] + r[1] * qd[1];
+            }
         }
         Ok(())
     }
@@ -759,8 +686,14 @@ impl LagrangeSystem for LinkageSystem {
         self.input_switch_loads(i, q)
     }
 
+    /// The drives' and the loads' generalized forces, and for a linkage with friction the
+    /// friction's (`friction_1`, `friction_2`).
     fn output_names(&self) -> Vec<&'static str> {
-        vec!["drive_1", "drive_2", "loads_1", "loads_2"]
+        let mut names = vec!["drive_1", "drive_2", "loads_1", "loads_2"];
+        if !self.friction.is_empty() {
+            names.extend(["friction_1", "friction_2"]);
+        }
+        names
     }
 
     fn outputs(
@@ -772,6 +705,9 @@ impl LagrangeSystem for LinkageSystem {
     ) -> Result<()> {
         let t = self.split_terms(q, qd)?;
         out.extend([t.drives[0], t.drives[1], t.loads[0], t.loads[1]]);
+        if !self.friction.is_empty() {
+            out.extend([t.friction[0], t.friction[1]]);
+        }
         Ok(())
     }
 }

@@ -2,7 +2,8 @@
 //! the frictionless statics (the groups from the last attached back to the input links),
 //! each group solved by its friction block ([`kinetostatics::friction`]) with the relative
 //! rates of the solved kinematics, and each crank by [`CrankFriction`] (coupling) or
-//! [`GearFriction`] (gear pair). Taken only when the plan has friction
+//! [`GearFriction`] (gear pair), a slider input by its closed form with the guide's friction
+//! ([`Analysis::slider_input_friction`]). Taken only when the plan has friction
 //! ([`Plan::has_friction`](crate::linkage::Plan::has_friction)); the frictionless path is
 //! untouched.
 //!
@@ -340,21 +341,25 @@ impl Analysis<'_> {
         Ok(())
     }
 
-    /// The balancing moment or force of one input link with the friction of its frame pin.
+    /// The balancing moment or force of one input link with the friction of its frame pin
+    /// or guide.
     fn friction_drive(&mut self, ip: &InputPlan, fp: &[FrictionPlan]) -> Result<Balance> {
         let plan = self.k.plan;
         let link = ip.link();
         let load = self.acc[link];
         let part = &plan.chain.link_names[link];
-        let InputPlan::Crank {
-            joint,
-            pivot,
-            drive,
-            ..
-        } = *ip
-        else {
-            // A slider input: its guide is frictionless (the plan refuses friction on it).
-            return self.solve_drive(ip);
+        let (joint, pivot, drive) = match *ip {
+            InputPlan::Crank {
+                joint,
+                pivot,
+                drive,
+                ..
+            } => (joint, pivot, drive),
+            InputPlan::Slider { joint, angle, .. } if fp[joint].slide.f != 0.0 => {
+                return self.slider_input_friction(joint, link, angle, fp[joint].slide);
+            }
+            // A slider input on a frictionless guide: the frictionless closed form.
+            InputPlan::Slider { .. } => return self.solve_drive(ip),
         };
         let omega1 = self.k.kin.links[link].omega;
         let pin = fp[joint].hinge;
@@ -411,6 +416,60 @@ impl Analysis<'_> {
         self.reactions[joint] = Reaction::new(0, link, r01, pivot, friction.load);
         self.friction.joints[joint] = friction;
         Ok(balance)
+    }
+
+    /// The balancing force of a slider input on a guide of the frame with friction.
+    ///
+    /// The balancing force acts along the guide d and the friction along the guide's line
+    /// through the pair's reference point o (the joint on the slider), so neither has a
+    /// moment about o, and the slider's equilibrium across the guide and about o gives the
+    /// normal reaction without friction: N = −F·n and its moment about o, K = −(M + (P − o)×F)
+    /// (F, M the slider's load reduced to P, n = d turned +90°). The friction force on the
+    /// slider is then −f·ψ(N, K)·sgn(v)·d (ψ = |N|, or |N1| + |N2| for a cocked slider, v the
+    /// slider's rate along d) and the balancing force along d is B = −F·d + f·ψ·sgn(v): a
+    /// closed form, no iteration (a slider input cannot self-lock: its drive is along its
+    /// guide).
+    fn slider_input_friction(
+        &mut self,
+        joint: usize,
+        link: usize,
+        angle: f64,
+        slide: crate::kinetostatics::friction::Slide,
+    ) -> Result<Balance> {
+        let plan = self.k.plan;
+        let part = &plan.chain.link_names[link];
+        let load = self.acc[link];
+        let d = crate::angle::unit(angle);
+        let n = Vector2::new(-d.y, d.x);
+        let o = self.pose().joint_position_on(joint, link);
+        let arm = load.point - o;
+        let normal = -load.force.dot(&n);
+        let moment = -(load.moment + arm.x * load.force.y - arm.y * load.force.x);
+        let names = ["f", "length", "centre"];
+        let (f, law) = slide.checked(names).map_err(within(part))?;
+        let pressure = law.of(normal, moment);
+        let v = self.relative_slide(joint, link, d);
+        let signed = f * crate::kinetostatics::friction::sign(v);
+        let friction = JointFriction::new(signed, pressure, v);
+        let fb = -load.force.dot(&d) - friction.load;
+        let all = [fb, normal, moment, friction.load];
+        if !all.iter().all(|x| x.is_finite()) {
+            return Err(within(part)(Error::NonFinite {
+                name: "balancing force",
+                value: fb,
+            }));
+        }
+        self.reactions[joint] = Reaction::new(0, link, normal * n + friction.load * d, o, moment);
+        self.friction.joints[joint] = friction;
+        Ok(Balance {
+            value: fb,
+            force: fb * d,
+            point: load.point,
+            conditioning: Conditioning {
+                measure: 1.0,
+                condition: 1.0,
+            },
+        })
     }
 
     /// The friction in a joint at this position: the friction load of the reaction's `by`

@@ -1,0 +1,263 @@
+//! Coulomb friction in the joints as generalized forces of a [`LinkageSystem`].
+//!
+//! # The generalized friction force
+//! Each joint j with friction has a relative rate ṙ_j (the relative angular velocity of a
+//! hinge's two links, the sliding velocity of a slide) that is linear in q̇:
+//! ṙ_j = Σ_k r_jk(q)·q̇_k, with the first-order transfer functions r_jk = ∂ṙ_j/∂q̇_k of the
+//! same kinematic solve that gives A(q). The joint's friction load (a couple ρ·|R_j| in a
+//! hinge, a force f·|N_j| along a slide) opposes ṙ_j, so its power is −|L_j|·|ṙ_j| and, by
+//! virtual power, its generalized forces are
+//!
+//! ```text
+//! Q_f,k = −Σ_j |L_j|·sgn(ṙ_j)·r_jk,        Σ_k Q_f,k·q̇_k = −Σ_j P_lost,j.
+//! ```
+//!
+//! # Why an equation for q̈
+//! |L_j| is ρ_j·|R_j| (or f_j·|N_j|), and the reactions hold the links' inertia loads, which
+//! are affine in q̈: every link's acceleration is a = a₀(q, q̇) + Σ_k u_k(q)·q̈_k, so a
+//! frictionless reaction is R = R₀ + R₁·q̈ for one input (R₀ at q̈ = 0, R₁ its response to a
+//! unit q̈). With friction the reactions are the friction statics' (nonlinear, solved to
+//! full precision by [`kinetostatics::friction`](crate::kinetostatics::friction)) at the
+//! motion (q, q̇, q̈), so Lagrange's equations become a small nonlinear system for q̈:
+//!
+//! ```text
+//! A(q)·q̈ = b + Q_f(q̈),      b = Q − c(q, q̇) − B·q̇,
+//! ```
+//!
+//! solved here as the fixed point q̈ = F(q̈) = A⁻¹·(b + Q_f(q̈)) from the frictionless
+//! q̈₀ = A⁻¹·b: for one input by the secant method on g(q̈) = q̈ − F(q̈) (superlinear; its
+//! slope 1 − ∂Q_f/∂q̈ / A₁₁ is near 1 because a friction couple ρ·|R| is small beside the
+//! inertia's lever), for two inputs by the plain fixed-point iteration (a contraction with
+//! the factor ‖A⁻¹·∂Q_f/∂q̈‖ ≈ ρ/l). The iteration stops when the fixed-point residual
+//! ‖q̈ − F(q̈)‖ at an evaluated q̈ is at most [`FRICTION_TOLERANCE`] of the acceleration scale
+//! ‖q̈₀‖ + ‖F(q̈₀) − q̈₀‖, and the Q_f of that q̈ is returned: the integrators' q̈ = F(q̈) then
+//! lies within that tolerance of the solution. [`FRICTION_BUDGET`] evaluations at most, else an error:
+//! where the friction's feedback reaches the inertia (‖A⁻¹·∂Q_f/∂q̈‖ ≥ 1) the motion
+//! self-locks and no q̈ is found.
+//!
+//! At rest (every ṙ_j = 0) there is no friction (the convention of
+//! [`kinetostatics::friction`](crate::kinetostatics::friction)); whether the machine stays
+//! at rest or breaks away is weighed by the velocity-sign switch of the input
+//! ([`LagrangeSystem::switch_loads`](crate::dynamics::LagrangeSystem::switch_loads)).
+//!
+//! # What the reactions hold
+//! The friction statics sees what the kinetostatics sees: the description's loads, the
+//! weights, the inertia loads and the drive on the input link (motor, added inertia and the
+//! input's own torque act on the input link as couples, or through the described gear pair).
+//! A viscous damper ([`Damper`](super::Damper)) between two links other than the frame and
+//! the input acts in the equation through B only: its forces are not among the joints'
+//! pressures.
+//!
+//! # Reversals
+//! Where ṙ_j changes sign with q̇ ≠ 0 (a rocker at its extreme position), Q_f has a kink (one
+//! input: the term |L_j|·|r_j1|·sgn(q̇) is continuous) or a jump (two inputs); each
+//! ṙ_j is reported to the integrators as a kink argument with the node 0
+//! ([`LagrangeSystem::kinks`](crate::dynamics::LagrangeSystem::kinks)), so that a run steps
+//! exactly onto it.
+
+use nalgebra::{Matrix2, Vector2};
+
+use super::transfer::Transfer;
+use crate::error::{Error, Result};
+use crate::kinematics::Motion;
+use crate::linkage::{Inputs, Plan};
+
+/// The fixed-point residual accepted, relative to the acceleration scale.
+pub const FRICTION_TOLERANCE: f64 = 1e-12;
+
+/// The evaluations of the friction statics allowed for one q̈.
+pub const FRICTION_BUDGET: usize = 60;
+
+/// One joint with friction: a hinge between two links, or a slide.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(super) enum FrictionJoint {
+    /// A revolute joint (its index) between `links[0]` and `links[1]`: ṙ = ω₁ − ω₀.
+    Hinge { joint: usize, links: [usize; 2] },
+    /// A prismatic joint (its index): ṙ is the sliding link's velocity along the guide.
+    Slide { joint: usize },
+}
+
+impl FrictionJoint {
+    /// The joints of `plan` that have friction (none for a frictionless plan).
+    pub(super) fn of(plan: &Plan) -> Vec<Self> {
+        let Some(fp) = &plan.friction else {
+            return Vec::new();
+        };
+        fp.iter()
+            .enumerate()
+            .filter(|(_, f)| f.hinge.rho != 0.0 || f.slide.f != 0.0)
+            .map(|(j, _)| {
+                let jp = &plan.chain.joints[j];
+                if jp.prismatic.is_some() {
+                    Self::Slide { joint: j }
+                } else {
+                    Self::Hinge {
+                        joint: j,
+                        links: jp.links,
+                    }
+                }
+            })
+            .collect()
+    }
+
+    /// The joint's index.
+    pub(super) fn joint(self) -> usize {
+        match self {
+            Self::Hinge { joint, .. } | Self::Slide { joint } => joint,
+        }
+    }
+
+    /// r_k = ∂ṙ/∂q̇_k, for k < n (0 beyond).
+    pub(super) fn transfer(self, tr: &Transfer<'_>) -> [f64; 2] {
+        [0, 1].map(|k| {
+            if k >= tr.n {
+                return 0.0;
+            }
+            match self {
+                Self::Hinge { links, .. } => tr.omega(k, links[1]) - tr.omega(k, links[0]),
+                Self::Slide { joint } => {
+                    let d = tr.slide_parts(joint).2;
+                    tr.slide_rate(k, joint, d)
+                }
+            }
+        })
+    }
+}
+
+/// The sign of `x` as −1, 0 or +1 (0 for a joint at rest: no friction).
+fn sign(x: f64) -> f64 {
+    if x > 0.0 {
+        1.0
+    } else if x < 0.0 {
+        -1.0
+    } else {
+        0.0
+    }
+}
+
+/// The friction of one state (q, q̇): each joint's r_jk and sgn(ṙ_j), and the friction
+/// statics to evaluate Q_f(q̈).
+pub(super) struct StateFriction<'p> {
+    joints: Vec<(usize, [f64; 2], f64)>,
+    solver: crate::linkage::Solver<'p>,
+    n: usize,
+    q: Vector2<f64>,
+    qd: Vector2<f64>,
+    /// The evaluations of the friction statics made.
+    pub(super) evaluations: usize,
+}
+
+impl<'p> StateFriction<'p> {
+    /// The friction of the state, or `None` when every joint is at rest relative to its
+    /// partner (no friction at all).
+    pub(super) fn new(
+        plan: &'p Plan,
+        joints: &[FrictionJoint],
+        tr: &Transfer<'_>,
+        q: &Vector2<f64>,
+        qd: &Vector2<f64>,
+    ) -> Option<Self> {
+        let joints: Vec<_> = joints
+            .iter()
+            .map(|fj| {
+                let r = fj.transfer(tr);
+                (fj.joint(), r, sign(r[0] * qd[0] + r[1] * qd[1]))
+            })
+            .filter(|j| j.2 != 0.0)
+            .collect();
+        (!joints.is_empty()).then(|| Self {
+            joints,
+            solver: plan.solver(),
+            n: tr.n,
+            q: *q,
+            qd: *qd,
+            evaluations: 0,
+        })
+    }
+
+    /// Q_f at the accelerations `qdd`: the friction statics of the motion (q, q̇, q̈).
+    ///
+    /// # Errors
+    /// The friction statics' errors (a self-locking joint, named).
+    pub(super) fn force(&mut self, qdd: &Vector2<f64>) -> Result<Vector2<f64>> {
+        let m = |k: usize| Motion::new(self.q[k], self.qd[k], qdd[k]);
+        let inputs = if self.n == 1 {
+            Inputs::from(m(0))
+        } else {
+            Inputs::two(m(0), m(1))
+        };
+        self.evaluations += 1;
+        let a = self.solver.analyse(inputs)?;
+        let mut qf = Vector2::zeros();
+        for &(j, r, s) in &self.joints {
+            let load = a.friction(j)?.load.abs();
+            qf[0] -= load * s * r[0];
+            qf[1] -= load * s * r[1];
+        }
+        Ok(qf)
+    }
+
+    /// Solves A·q̈ = b + Q_f(q̈) (see the [module docs](self)) and returns Q_f at the
+    /// solution.
+    ///
+    /// # Errors
+    /// [`Error::Singular`] when A has no inverse; the friction statics' errors;
+    /// [`Error::Budget`] (within [`Error::In`]) when [`FRICTION_BUDGET`] evaluations do not reach
+    /// [`FRICTION_TOLERANCE`].
+    pub(super) fn solve(
+        &mut self,
+        a: &Matrix2<f64>,
+        b: &Vector2<f64>,
+        time: f64,
+    ) -> Result<Vector2<f64>> {
+        let inv = a.try_inverse().ok_or(Error::Singular {
+            what: "joint friction in the equation of motion",
+            measure: "det A",
+            value: a.determinant(),
+        })?;
+        let fixed = |qf: &Vector2<f64>| inv * (b + qf);
+        let mut x = fixed(&Vector2::zeros());
+        let mut qf = self.force(&x)?;
+        let mut fx = fixed(&qf);
+        let scale = x.norm() + (fx - x).norm();
+        let tol = FRICTION_TOLERANCE * scale;
+        // The previous point of the secant (one input) and its residual g = x − F(x).
+        let mut prev: Option<(f64, f64)> = None;
+        loop {
+            let g = x - fx;
+            let residual = g.norm();
+            if residual <= tol {
+                return Ok(qf);
+            }
+            if !residual.is_finite() || self.evaluations >= FRICTION_BUDGET {
+                break;
+            }
+            let next = match prev {
+                Some((x0, g0)) if self.n == 1 && g[0] != g0 => {
+                    x[0] - g[0] * (x[0] - x0) / (g[0] - g0)
+                }
+                _ => fx[0],
+            };
+            prev = Some((x[0], g[0]));
+            x = if self.n == 1 {
+                Vector2::new(next, fx[1])
+            } else {
+                fx
+            };
+            qf = self.force(&x)?;
+            fx = fixed(&qf);
+        }
+        Err(Error::In {
+            part: format!(
+                "joint friction in the equation of motion at q = ({}, {}), q̇ = ({}, {}): \
+                 q̈ not found (the friction's feedback may reach the inertia: self-locking)",
+                self.q[0], self.q[1], self.qd[0], self.qd[1]
+            ),
+            source: Box::new(Error::Budget {
+                what: "friction evaluation",
+                limit: FRICTION_BUDGET,
+                time,
+            }),
+        })
+    }
+}
