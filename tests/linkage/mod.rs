@@ -10,6 +10,8 @@ mod files;
 #[cfg(feature = "serde")]
 mod friction;
 #[cfg(feature = "serde")]
+mod gallery;
+#[cfg(feature = "serde")]
 mod hostile;
 #[cfg(feature = "serde")]
 mod springs;
