@@ -14,6 +14,8 @@ mod gallery;
 #[cfg(feature = "serde")]
 mod hostile;
 #[cfg(feature = "serde")]
+mod instant_centres;
+#[cfg(feature = "serde")]
 mod springs;
 #[cfg(feature = "serde")]
 mod triad;
