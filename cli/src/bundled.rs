@@ -4,6 +4,10 @@
 /// Each bundled file: its name without `.json`, and its text.
 pub const FILES: &[(&str, &str)] = &[
     (
+        "chebyshev-straight-line",
+        include_str!("../../linkages/chebyshev-straight-line.json"),
+    ),
+    (
         "five-bar-robot",
         include_str!("../../linkages/five-bar-robot.json"),
     ),
@@ -12,6 +16,11 @@ pub const FILES: &[(&str, &str)] = &[
         "geared-four-bar",
         include_str!("../../linkages/geared-four-bar.json"),
     ),
+    (
+        "hoekens-straight-line",
+        include_str!("../../linkages/hoekens-straight-line.json"),
+    ),
+    ("jansen-leg", include_str!("../../linkages/jansen-leg.json")),
     (
         "mechanism-compressor",
         include_str!("../../linkages/mechanism-compressor.json"),
@@ -33,6 +42,10 @@ pub const FILES: &[(&str, &str)] = &[
         include_str!("../../linkages/mechanism-slider-crank.json"),
     ),
     (
+        "peaucellier-lipkin",
+        include_str!("../../linkages/peaucellier-lipkin.json"),
+    ),
+    (
         "scotch-yoke",
         include_str!("../../linkages/scotch-yoke.json"),
     ),
@@ -46,8 +59,16 @@ pub const FILES: &[(&str, &str)] = &[
         include_str!("../../linkages/slotted-rocker.json"),
     ),
     (
+        "stephenson-ii-six-bar",
+        include_str!("../../linkages/stephenson-ii-six-bar.json"),
+    ),
+    (
         "stephenson-six-bar",
         include_str!("../../linkages/stephenson-six-bar.json"),
+    ),
+    (
+        "watt-ii-six-bar",
+        include_str!("../../linkages/watt-ii-six-bar.json"),
     ),
     (
         "watt-six-bar",

@@ -164,3 +164,92 @@ pub fn all() -> Vec<Linkage> {
 pub fn five_bar_robot() -> Linkage {
     bundled!("five-bar-robot.json")
 }
+
+/// The Peaucellier–Lipkin inversor (Peaucellier 1864, Lipkin 1871), the first exact
+/// straight-line linkage: the crank O1A (45 mm) turns about O1 = (45, 0) mm, so A's circle
+/// passes through the pivot O of the long links (100 mm); the rhombus A–C–P–D has sides of
+/// 40 mm. Since OA·OP = 100² − 40² mm² (P is A's inverse in the circle about O of that power),
+/// P runs on the line x = (100² − 40²)/(2·45) mm = 93.33 mm. The crank cannot turn fully: it
+/// rocks between the positions where |OA| = 100 − 40 mm and the rhombus folds. Its joints O,
+/// A, C and D each join three links (hinges of three); a 20 N load hangs at P.
+///
+/// The file `linkages/peaucellier-lipkin.json`.
+#[must_use]
+pub fn peaucellier_lipkin() -> Linkage {
+    bundled!("peaucellier-lipkin.json")
+}
+
+/// Chebyshev's straight-line linkage (P. L. Chebyshev, 1850s; the proportions of every
+/// textbook): frame A0B0 = 4a, crossed cranks A0A = B0B = 5a, coupler AB = 2a, a = 50 mm;
+/// the coupler's middle P is at the height 4a in the middle position and at both ends of its
+/// stroke of length 4a (when either crank stands vertical), and near it in between. The cranks
+/// rock (the coupler is the shortest link); a 30 N force resists at P.
+///
+/// The file `linkages/chebyshev-straight-line.json`.
+#[must_use]
+pub fn chebyshev_straight_line() -> Linkage {
+    bundled!("chebyshev-straight-line.json")
+}
+
+/// Hoekens' straight-line linkage (K. Hoecken, Werkstattstechnik, 1926): crank 1, frame 2,
+/// rocker 2.5, coupler 2.5 extended to 5 (the point P at its end), in units a = 50 mm. It is
+/// a cognate of [`chebyshev_straight_line`] (Roberts–Chebyshev theorem): its crank turns
+/// fully and P traces the same curve, its crank parallel to Chebyshev's coupler.
+///
+/// The file `linkages/hoekens-straight-line.json`.
+#[must_use]
+pub fn hoekens_straight_line() -> Linkage {
+    bundled!("hoekens-straight-line.json")
+}
+
+/// Theo Jansen's leg with his "holy numbers" (T. Jansen, *The Great Pretender*, 2007):
+/// a = 38, l = 7.8 (the frame pivot Z from the crank's axle O), m = 15 (the crank), j = 50,
+/// k = 61.9, b = 41.5, c = 39.3, d = 40.1, e = 55.8 (the triangle Z–Y–U), f = 39.4,
+/// g = 36.7, h = 65.7, i = 49 (the leg's triangle W–V–foot), read as centimetres. The joints
+/// Z, X and W each join three links. The foot runs along a nearly straight ground line for a
+/// large part of the turn and lifts for the rest.
+///
+/// The file `linkages/jansen-leg.json`.
+#[must_use]
+pub fn jansen_leg() -> Linkage {
+    bundled!("jansen-leg.json")
+}
+
+/// A Watt II six-bar: two four-bars in series (Svoboda's "double three-bar" layout), the
+/// first four-bar's rocker 3, a ternary link on the frame, being the second's input; the
+/// frame and rocker 3 are the Watt chain's two ternary links, joined at O3.
+///
+/// The file `linkages/watt-ii-six-bar.json`.
+#[must_use]
+pub fn watt_ii_six_bar() -> Linkage {
+    bundled!("watt-ii-six-bar.json")
+}
+
+/// A Stephenson six-bar whose frame is the binary link joining its two ternary links: the
+/// ternary crank O1–A–E and the ternary rocker O3–B–F are joined by the coupler AB (a
+/// four-bar) and by the dyad E–G–F. The texts number the Stephenson inversions differently;
+/// this is the one that is neither [`stephenson_six_bar`] (whose frame is ternary) nor the
+/// inversion whose frame lies in the chain's path of two binary links (a group of the 3rd
+/// class for either input).
+///
+/// The file `linkages/stephenson-ii-six-bar.json`.
+#[must_use]
+pub fn stephenson_ii_six_bar() -> Linkage {
+    bundled!("stephenson-ii-six-bar.json")
+}
+
+/// The gallery of published linkages, each with the figure it reproduces (see each
+/// function): the Peaucellier–Lipkin inversor, Chebyshev's and Hoekens' straight-line
+/// linkages, Jansen's leg, a Watt II and a Stephenson six-bar. Two rock
+/// ([`peaucellier_lipkin`], [`chebyshev_straight_line`]), so they are not in [`all`].
+#[must_use]
+pub fn gallery() -> Vec<Linkage> {
+    vec![
+        peaucellier_lipkin(),
+        chebyshev_straight_line(),
+        hoekens_straight_line(),
+        jansen_leg(),
+        watt_ii_six_bar(),
+        stephenson_ii_six_bar(),
+    ]
+}

@@ -59,6 +59,7 @@ mod handle;
 mod hinges;
 mod indicator;
 mod inputs;
+mod instant_centres;
 mod plan;
 pub(crate) mod solve;
 mod springs;
@@ -79,6 +80,7 @@ pub use description::{
 pub use handle::{JointId, JointRef, LinkId, LinkRef, PointId, PointRef};
 pub use indicator::IndicatorDiagram;
 pub use inputs::Inputs;
+pub use instant_centres::{Centre, Found, InstantCentre};
 pub use plan::{Group, GroupKind, Plan, Pose};
 pub use solve::{Analysis, Balance, Kinematics, PowerCheck, Reaction, Solver};
 pub use structure::chebyshev;

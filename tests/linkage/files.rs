@@ -53,9 +53,33 @@ fn files() -> Vec<(&'static str, &'static str, Linkage)> {
     ]
 }
 
+/// The gallery's files (`bundled::gallery`), tested in `gallery.rs` over their own ranges.
+fn gallery_files() -> Vec<(&'static str, &'static str, Linkage)> {
+    vec![
+        file!("peaucellier-lipkin.json", bundled::peaucellier_lipkin()),
+        file!(
+            "chebyshev-straight-line.json",
+            bundled::chebyshev_straight_line()
+        ),
+        file!(
+            "hoekens-straight-line.json",
+            bundled::hoekens_straight_line()
+        ),
+        file!("jansen-leg.json", bundled::jansen_leg()),
+        file!("watt-ii-six-bar.json", bundled::watt_ii_six_bar()),
+        file!(
+            "stephenson-ii-six-bar.json",
+            bundled::stephenson_ii_six_bar()
+        ),
+    ]
+}
+
 #[test]
 fn every_file_reads_back_as_its_bundled_function_or_ready_mechanism() {
-    let files = files();
+    let gallery = gallery_files();
+    assert_eq!(gallery.len(), bundled::gallery().len());
+    let mut files = files();
+    files.extend(gallery);
     // Every file under linkages/ is in the list.
     let on_disk = std::fs::read_dir(concat!(env!("CARGO_MANIFEST_DIR"), "/linkages"))
         .unwrap()

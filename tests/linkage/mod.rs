@@ -12,7 +12,11 @@ mod files;
 #[cfg(feature = "serde")]
 mod friction;
 #[cfg(feature = "serde")]
+mod gallery;
+#[cfg(feature = "serde")]
 mod hostile;
+#[cfg(feature = "serde")]
+mod instant_centres;
 #[cfg(feature = "serde")]
 mod springs;
 #[cfg(feature = "serde")]

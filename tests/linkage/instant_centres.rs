@@ -1,0 +1,168 @@
+//! Instant centres (Aronhold–Kennedy) against the velocities: at the centre of links i and j
+//! their velocity fields agree (a finite centre), or the two links translate relative to
+//! each other across the centre's direction with equal angular velocities (a centre at
+//! infinity). Over every bundled and gallery linkage at many positions, a parallelogram whose
+//! coupler translates, and a slider-crank.
+
+use nalgebra::Vector2;
+use std::f64::consts::TAU;
+use tmm::kinematics::Motion;
+use tmm::linkage::{
+    bundled, Centre, Course, Found, Input, InstantCentre, Joint, Link, Linkage, Plan,
+};
+use tmm::mechanism::{Mechanism, SliderCrank};
+
+/// The largest disagreement of the centres with the velocities at `m`, relative to the
+/// velocities' scale, and how many centres each method found.
+fn check(plan: &Plan, m: Motion, name: &str) -> (f64, [usize; 3]) {
+    let k = plan.kinematics(m).unwrap();
+    let ics: Vec<InstantCentre> = plan.instant_centres(&k.pose()).unwrap();
+    let n = plan.link_names().len();
+    assert_eq!(ics.len(), n * (n - 1) / 2, "{}", plan.name());
+    let motions: Vec<_> = (0..n).map(|l| k.link_motion(l).unwrap()).collect();
+    let w_max = motions.iter().map(|m| m.omega.abs()).fold(0.0, f64::max);
+    let v_scale = w_max * plan.size()
+        + motions
+            .iter()
+            .map(|m| m.origin.v.norm())
+            .fold(0.0, f64::max);
+    let (mut worst, mut count) = (0.0f64, [0; 3]);
+    for ic in &ics {
+        let [i, j] = ic.links.map(|l| l.index());
+        count[match ic.found {
+            Found::Joint => 0,
+            Found::Kennedy => 1,
+            Found::Velocities => 2,
+        }] += 1;
+        let (mi, mj) = (motions[i], motions[j]);
+        match ic.centre {
+            Centre::At(p) => {
+                assert!(p.x.is_finite() && p.y.is_finite(), "{ic:?}");
+                let gap = (mi.motion_of(p).v - mj.motion_of(p).v).norm();
+                // Far centres (nearly parallel lines) carry their distance into the check.
+                let far = 1.0 + (p - k.link_motion(0).unwrap().origin.p).norm() / plan.size();
+                worst = worst.max(gap / (v_scale * far));
+            }
+            Centre::Infinite(d) => {
+                assert!((d.norm() - 1.0).abs() < 1e-12, "{name} at {m:?}: {ic:?}");
+                let q = mi.origin.p;
+                let rel = mi.motion_of(q).v - mj.motion_of(q).v;
+                worst = worst
+                    .max((mi.omega - mj.omega).abs() * plan.size() / v_scale)
+                    .max(rel.dot(&d).abs() / v_scale);
+            }
+        }
+    }
+    (worst, count)
+}
+
+#[test]
+fn every_centre_is_where_the_velocities_agree() {
+    let mut report = Vec::new();
+    for l in bundled::all().into_iter().chain(bundled::gallery()) {
+        let plan = Plan::new(&l).unwrap();
+        let course = Course::new(&plan, None, 144, 10.0).unwrap();
+        let (mut worst, mut total) = (0.0f64, [0; 3]);
+        for m in course.inputs.iter().filter(|m| m.rate != 0.0) {
+            let (w, c) = check(&plan, Motion::new(m.value, m.rate, 0.0), &l.name);
+            worst = worst.max(w);
+            total = [0, 1, 2].map(|i| total[i] + c[i]);
+        }
+        report.push(format!(
+            "{}: worst {worst:.1e}; found at joints {}, by Kennedy {}, by velocities {}",
+            l.name, total[0], total[1], total[2]
+        ));
+        assert!(worst < 1e-9, "{}", report.last().unwrap());
+    }
+    println!("{}", report.join("\n"));
+}
+
+/// A parallelogram four-bar: the coupler translates, so the centre of frame and coupler is at
+/// infinity along the cranks (a direction, never a point at infinity); the two cranks turn
+/// alike about distinct pivots, so theirs is at infinity along the frame.
+#[test]
+fn parallel_links_have_their_centre_at_infinity() {
+    let (r, d) = (0.1, 0.3);
+    let phi = 1.0f64;
+    let a = [r * phi.cos(), r * phi.sin()];
+    let l = Linkage {
+        name: "parallelogram".into(),
+        joints: vec![
+            Joint::revolute("O1", [0.0, 0.0]),
+            Joint::revolute("A", a),
+            Joint::revolute("B", [a[0] + d, a[1]]),
+            Joint::revolute("O3", [d, 0.0]),
+        ],
+        links: vec![
+            Link::new("frame", &["O1", "O3"]),
+            Link::new("crank", &["O1", "A"]),
+            Link::new("coupler", &["A", "B"]),
+            Link::new("rocker", &["O3", "B"]),
+        ],
+        input: Input::crank("crank"),
+        ..Linkage::default()
+    };
+    let plan = Plan::new(&l).unwrap();
+    // Up to the change point at φ = π (every link on one line), beyond which the mode read
+    // off the pose is the crossed (antiparallel) one.
+    for k in 1..18 {
+        let phi = TAU * f64::from(k) / 36.0;
+        let m = Motion::turning(phi, 3.0);
+        let (worst, _) = check(&plan, m, "");
+        assert!(worst < 1e-9, "{phi}: {worst:e}");
+        let kin = plan.kinematics(m).unwrap();
+        let ics = plan.instant_centres(&kin.pose()).unwrap();
+        let find = |i: usize, j: usize| {
+            ics.iter()
+                .find(|c| c.links.map(|l| l.index()) == [i, j])
+                .unwrap()
+                .centre
+        };
+        let Centre::Infinite(d02) = find(0, 2) else {
+            panic!("{phi}: {:?}", find(0, 2))
+        };
+        let along = Vector2::new(phi.cos(), phi.sin());
+        assert!(d02.perp(&along).abs() < 1e-12, "{d02:?}");
+        let Centre::Infinite(d13) = find(1, 3) else {
+            panic!("{phi}: {:?}", find(1, 3))
+        };
+        assert!(d13.y.abs() < 1e-12, "{d13:?}");
+    }
+}
+
+/// A slider's centre with its guide's link is at infinity across the guide.
+#[test]
+fn a_slider_has_its_centre_at_infinity_across_the_guide() {
+    let l = SliderCrank::course_example().linkage().unwrap();
+    let plan = Plan::new(&l).unwrap();
+    let mut sliders = 0;
+    for k in 0..72 {
+        let phi = plan.reference_input() + TAU * (f64::from(k) + 0.5) / 72.0;
+        let m = Motion::turning(phi, 5.0);
+        let (worst, _) = check(&plan, m, "");
+        assert!(worst < 1e-9, "{phi}: {worst:e}");
+        let kin = plan.kinematics(m).unwrap();
+        for ic in plan.instant_centres(&kin.pose()).unwrap() {
+            if let (Found::Joint, Centre::Infinite(d)) = (ic.found, ic.centre) {
+                let j = (0..plan.joint_names().len())
+                    .find(|&j| {
+                        plan.is_prismatic(j).unwrap()
+                            && plan.joint_links(j).unwrap().map(|x| x.index())
+                                == ic.links.map(|x| x.index())
+                    })
+                    .unwrap();
+                assert!(kin.guide_direction(j).unwrap().dot(&d).abs() < 1e-12);
+                sliders += 1;
+            }
+        }
+    }
+    assert_eq!(sliders, 72);
+}
+
+#[test]
+fn a_pose_of_another_plan_is_refused() {
+    let a = Plan::new(&bundled::four_bar()).unwrap();
+    let b = Plan::new(&bundled::watt_six_bar()).unwrap();
+    let k = b.kinematics(Motion::turning(0.3, 1.0)).unwrap();
+    assert!(a.instant_centres(&k.pose()).is_err());
+}
