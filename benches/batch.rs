@@ -1,7 +1,8 @@
 //! Benches of batch evaluation (`tmm::kinematics::batch`): one four-bar over N crank
 //! positions, and many candidate four-bars at one position, against the scalar blocks and the
-//! hand yardstick of `kinematics.rs` (the four-bar's positions, velocities and accelerations
-//! written by hand, with its `sin_cos` and two `atan2`).
+//! hand yardstick of `common/four_bar.rs`, shared with `kinematics.rs` (the four-bar's
+//! positions, velocities and accelerations written by hand, with its `sin_cos` and two
+//! `atan2`, all twelve numbers consumed).
 //!
 //! Printed ratios (`yardstick | …` lines), each measured side by side in alternating rounds:
 //! - batch positions per position / hand kernel per position (goal ≤ 0.5);
@@ -23,10 +24,9 @@ use tmm::kinematics::{crank, rrr_dyad, Branch, Motion, PointMotion};
 #[path = "common/yardstick.rs"]
 mod yardstick;
 
-const L1: f64 = 0.1;
-const L2: f64 = 0.35;
-const L3: f64 = 0.3;
-const C: Point2<f64> = Point2::new(0.4, 0.05);
+#[path = "common/four_bar.rs"]
+mod hand_four_bar;
+use hand_four_bar::{four_bar_by_hand, seeded_angles, C, L1, L2, L3};
 
 fn dims() -> FourBarDims {
     FourBarDims {
@@ -40,69 +40,11 @@ fn dims() -> FourBarDims {
     }
 }
 
-/// Input angles from a fixed-seed linear congruential generator (as in `kinematics.rs`).
-fn seeded_angles(n: usize) -> Vec<f64> {
-    let mut x: u64 = 0x9E37_79B9_7F4A_7C15;
-    (0..n)
-        .map(|_| {
-            x = x
-                .wrapping_mul(6_364_136_223_846_793_005)
-                .wrapping_add(1_442_695_040_888_963_407);
-            (x >> 11) as f64 / (1u64 << 53) as f64 * std::f64::consts::TAU
-        })
-        .collect()
-}
-
-/// The hand yardstick of `kinematics.rs`: B, v_B, a_B and (φ2, ω2, ε2), (φ3, ω3, ε3).
-#[inline]
-fn four_bar_by_hand(phi: f64, omega: f64, epsilon: f64) -> [f64; 12] {
-    let perp = |v: Vector2<f64>| Vector2::new(-v.y, v.x);
-    let (s, c) = phi.sin_cos();
-    let r1 = L1 * Vector2::new(c, s);
-    let (va, aa) = (omega * perp(r1), epsilon * perp(r1) - omega * omega * r1);
-    let d = C.coords - r1;
-    let l_sq = d.norm_squared();
-    let l = l_sq.sqrt();
-    let x = (l_sq + L2 * L2 - L3 * L3) / (2.0 * l);
-    let h = (L2 * L2 - x * x).sqrt();
-    let r2 = (x * d + h * perp(d)) / l;
-    let r3 = r2 - d;
-    let dd = r2.x * r3.y - r2.y * r3.x;
-    let (w2, w3) = (-va.dot(&r3) / dd, -va.dot(&r2) / dd);
-    let rhs = -aa + w2 * w2 * r2 - w3 * w3 * r3;
-    let (e2, e3) = (rhs.dot(&r3) / dd, rhs.dot(&r2) / dd);
-    let angle = |v: Vector2<f64>| {
-        let t = v.y.atan2(v.x);
-        if t < 0.0 {
-            t + std::f64::consts::TAU
-        } else {
-            t
-        }
-    };
-    let b = r1 + r2;
-    let vb = va + w2 * perp(r2);
-    let ab = aa + e2 * perp(r2) - w2 * w2 * r2;
-    [
-        b.x,
-        b.y,
-        vb.x,
-        vb.y,
-        ab.x,
-        ab.y,
-        angle(r2),
-        w2,
-        e2,
-        angle(r3),
-        w3,
-        e3,
-    ]
-}
-
-/// The hand kernel over `angles`, summed.
+/// The hand kernel over `angles`, every one of its numbers consumed.
 fn hand(angles: &[f64]) -> f64 {
     let mut acc = 0.0;
     for &phi in angles {
-        acc += four_bar_by_hand(black_box(phi), 10.0, 1.0)[11];
+        acc += hand_four_bar::fold(four_bar_by_hand(black_box(phi), 10.0, 1.0));
     }
     acc
 }

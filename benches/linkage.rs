@@ -742,6 +742,55 @@ fn four_bar_over_n(c: &mut Criterion) {
             let kept = run_cycle(&ins, |i| plan.analyse(i));
             assert_eq!(plan.table(&ins), Table::of(&kept));
         }
+        {
+            // The ratios, side by side in alternating rounds (criterion's means below drift with
+            // the load of a shared machine; the fastest rounds do not).
+            let mut solver = plan.solver();
+            let mut loop_ = || {
+                ins.iter()
+                    .map(|&i| Whole::<3, 4>::of(solver.analyse(black_box(i)).unwrap()).fold())
+                    .sum::<f64>()
+            };
+            let cycle = || {
+                plan.cycle(black_box(&ins), |a| Ok(Whole::<3, 4>::of(a).fold()))
+                    .into_iter()
+                    .map(|r| r.unwrap())
+                    .sum::<f64>()
+            };
+            let name = |what: &str| format!("four-bar N = {n}: {what}");
+            yardstick::print_ratio(
+                &name("plan.cycle / solver loop"),
+                n as u32,
+                cycle,
+                &mut loop_,
+            );
+            let one_shot = || {
+                ins.iter()
+                    .map(|&i| Whole::<3, 4>::of(&plan.analyse(black_box(i)).unwrap()).fold())
+                    .sum::<f64>()
+            };
+            yardstick::print_ratio(
+                &name("plan.analyse per position / solver loop"),
+                n as u32,
+                one_shot,
+                &mut loop_,
+            );
+            let mut cells_solver = plan.solver();
+            let summed = || {
+                let mut sum = SumCells(0.0);
+                for &i in &ins {
+                    cells_solver.analyse(black_box(i)).unwrap().cells(&mut sum);
+                }
+                sum.0
+            };
+            let table = || plan.table(black_box(&ins)).len();
+            yardstick::print_ratio(
+                &name("plan.table / its cells summed by a solver loop"),
+                n as u32,
+                table,
+                summed,
+            );
+        }
         g.throughput(Throughput::Elements(n as u64));
         g.bench_function(BenchmarkId::new("solver_loop", n), |b| {
             let mut solver = plan.solver();

@@ -334,6 +334,18 @@ pub struct PositionsMut<'a> {
 }
 
 impl<'a> PositionsMut<'a> {
+    /// The columns cut to `n` lanes (as [`RatesMut::cut`]).
+    fn cut(&mut self, n: usize) -> PositionsMut<'_> {
+        PositionsMut {
+            b_x: &mut self.b_x[..n],
+            b_y: &mut self.b_y[..n],
+            p_x: &mut self.p_x[..n],
+            p_y: &mut self.p_y[..n],
+            measure: &mut self.measure[..n],
+            status: &mut self.status[..n],
+        }
+    }
+
     fn len(&self) -> Result<usize> {
         let n = self.b_x.len();
         for (name, len) in [
@@ -399,6 +411,24 @@ pub struct RatesMut<'a> {
 }
 
 impl RatesMut<'_> {
+    /// The columns cut to `n` lanes: a reborrow whose lengths the compiler sees, so that the
+    /// lane loop has no bounds check and vectorises (the length checks above, made in a
+    /// loop over the columns, do not carry into it).
+    fn cut(&mut self, n: usize) -> RatesMut<'_> {
+        fn two<'b>(c: &'b mut [&mut [f64]; 2], n: usize) -> [&'b mut [f64]; 2] {
+            let [x, y] = c;
+            [&mut x[..n], &mut y[..n]]
+        }
+        RatesMut {
+            v_b: two(&mut self.v_b, n),
+            a_b: two(&mut self.a_b, n),
+            v_p: two(&mut self.v_p, n),
+            a_p: two(&mut self.a_p, n),
+            omega: two(&mut self.omega, n),
+            epsilon: two(&mut self.epsilon, n),
+        }
+    }
+
     fn check(&self, n: usize) -> Result<()> {
         let names = ["v_b", "a_b", "v_p", "a_p", "omega", "epsilon"];
         let cols = [
@@ -932,10 +962,11 @@ pub fn four_bar_motions(
     let d = Dims::of(dims);
     let rate = [omega1, epsilon1];
     let (phi, cos, sin) = (&angles.phi[..n], &angles.cos[..n], &angles.sin[..n]);
+    let (mut lanes, mut lane_rates) = (out.cut(n), rates.cut(n));
     for i in 0..n {
         let o = lane::<true>(d, phi[i], cos[i], sin[i], rate);
-        store(&o, i, &mut out);
-        store_rates(&o, i, &mut rates);
+        store(&o, i, &mut lanes);
+        store_rates(&o, i, &mut lane_rates);
     }
     Ok(settle(&mut out, Some(&mut rates), |i| (d, phi[i]), rate))
 }

@@ -251,6 +251,67 @@ fn two_input_balances(out: &mut impl Cells, a: &Analysis<'_>) {
     out.cell(|| "P_drive by virtual power [W]".to_owned(), vp);
 }
 
+/// The value sink of a block of rows: every cell one push onto one buffer.
+struct Flat<'a>(&'a mut Vec<f64>);
+
+impl Cells for Flat<'_> {
+    #[inline]
+    fn cell(&mut self, _: impl FnOnce() -> String, value: f64) {
+        self.0.push(value);
+    }
+}
+
+/// A table filled many rows at a time: the rows gather in a block, row after row in one
+/// buffer, and each column takes the block's values in one pass. A cell is then one push
+/// onto one buffer, where writing it straight into its column touched a different vector
+/// per cell (each row of a four-bar's analysis writes 43 of them).
+struct Rows {
+    table: Table,
+    block: Vec<f64>,
+    reserve: usize,
+}
+
+impl Rows {
+    /// Rows per block.
+    const BLOCK: usize = 64;
+
+    /// An empty table whose columns will have room for `reserve` rows.
+    fn new(reserve: usize) -> Self {
+        Self {
+            table: Table::default(),
+            block: Vec::new(),
+            reserve,
+        }
+    }
+
+    /// Appends one position's row, as [`Table::push`] does.
+    fn push<P: Tabulate + ?Sized>(&mut self, position: &P) {
+        self.table.lay_out(position, self.reserve);
+        let width = self.table.columns.len();
+        let start = self.block.len();
+        position.cells(&mut Flat(&mut self.block));
+        // Rectangular: a short row is padded with NaN, a long one cut.
+        self.block.resize(start + width, f64::NAN);
+        if self.block.len() >= Self::BLOCK * width {
+            self.flush();
+        }
+    }
+
+    fn flush(&mut self) {
+        let width = self.table.columns.len();
+        for (k, c) in self.table.columns.iter_mut().enumerate() {
+            c.values
+                .extend(self.block.iter().skip(k).step_by(width.max(1)).copied());
+        }
+        self.block.clear();
+    }
+
+    fn finish(mut self) -> Table {
+        self.flush();
+        self.table
+    }
+}
+
 impl Table {
     /// The table of the positions that were analysed; failed positions (their `Err`) are left
     /// out, so a table's input-angle column tells which positions it holds. For a plan's
@@ -274,12 +335,11 @@ impl Table {
     /// ```
     #[must_use]
     pub fn of<P: Tabulate>(positions: &[Result<P>]) -> Self {
-        let mut table = Self::default();
-        let rows = positions.iter().filter(|p| p.is_ok()).count();
+        let mut rows = Rows::new(positions.iter().filter(|p| p.is_ok()).count());
         for p in positions.iter().flatten() {
-            table.push_reserving(p, rows);
+            rows.push(p);
         }
-        table
+        rows.finish()
     }
 
     /// Appends one position as a row. The first position pushed onto a table without
@@ -307,17 +367,7 @@ impl Table {
     /// # Ok::<(), tmm::Error>(())
     /// ```
     pub fn push<P: Tabulate + ?Sized>(&mut self, position: &P) {
-        self.push_reserving(position, 0);
-    }
-
-    /// [`push`](Self::push), the columns laid out with room for `rows` values each.
-    fn push_reserving<P: Tabulate + ?Sized>(&mut self, position: &P, rows: usize) {
-        if self.columns.is_empty() {
-            position.cells(&mut Names(&mut self.columns));
-            for c in &mut self.columns {
-                c.values.reserve(rows);
-            }
-        }
+        self.lay_out(position, 0);
         let len = self.len();
         let mut values = Values {
             columns: &mut self.columns,
@@ -328,6 +378,17 @@ impl Table {
         for c in self.columns.iter_mut().skip(given) {
             if c.values.len() == len {
                 c.values.push(f64::NAN);
+            }
+        }
+    }
+
+    /// Lays the columns out from `position`'s names (with room for `rows` values each) if
+    /// the table has none yet.
+    fn lay_out<P: Tabulate + ?Sized>(&mut self, position: &P, rows: usize) {
+        if self.columns.is_empty() {
+            position.cells(&mut Names(&mut self.columns));
+            for c in &mut self.columns {
+                c.values.reserve(rows);
             }
         }
     }
@@ -463,14 +524,13 @@ impl Plan {
         I::Item: Into<Inputs>,
     {
         let inputs = inputs.into_iter();
-        let rows = inputs.size_hint().0;
-        let mut table = Table::default();
+        let mut rows = Rows::new(inputs.size_hint().0);
         let mut solver = self.solver();
         for i in inputs {
             if let Ok(a) = solver.analyse(i) {
-                table.push_reserving(a, rows);
+                rows.push(a);
             }
         }
-        table
+        rows.finish()
     }
 }
