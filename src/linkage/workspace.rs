@@ -203,8 +203,9 @@ impl Plan {
     /// [`Error::Description`] (`"field second_input"`) for a linkage with one input, naming
     /// the point when it is neither a joint nor a named point, or naming the input whose range
     /// is missing (a slider); [`Error::NonFinite`] or [`Error::NonPositive`] for a range that
-    /// is not finite or empty; [`Error::OutOfRange`] for `samples` or `resolution` out of
-    /// their bounds; [`Error::NotAssemblable`] when no node of the input grid assembles.
+    /// is not finite or empty, [`Error::Overflow`] for one too wide for `f64`;
+    /// [`Error::OutOfRange`] for `samples` or `resolution` out of their bounds;
+    /// [`Error::Description`] (`"ranges"`) when no node of the input grid assembles.
     ///
     /// # Examples
     /// The five-bar robot's end effector B reaches an area about its reference position:
@@ -244,9 +245,9 @@ impl Plan {
             }
         }
         if nodes.iter().all(Option::is_none) {
-            return Err(Error::NotAssemblable {
-                group: "linkage at every input of the workspace grid",
-                gap: f64::NAN,
+            return Err(Error::Description {
+                item: "ranges".to_owned(),
+                problem: "the linkage assembles at no input of the workspace's grid".to_owned(),
             });
         }
         let singular = singular_curves(&axes, &nodes, &mut at);
@@ -312,6 +313,7 @@ impl Plan {
                             value: 0.0,
                         });
                     }
+                    crate::error::computed("width of an input range", b - a)?;
                     lo[i] = a;
                     step[i] = (b - a) / (n - 1) as f64;
                 }

@@ -201,6 +201,34 @@ fn bad_workspace_requests_are_refused_naming_the_field() {
         .workspace("B", &o.clone().with_range(0, 1.0, 1.0))
         .unwrap_err();
     assert!(matches!(e, Error::NonPositive { .. }), "{e}");
+    let e = plan
+        .workspace("B", &o.clone().with_range(0, -1e308, 1e308))
+        .unwrap_err();
+    assert!(matches!(e, Error::Overflow { .. }), "{e}");
+    // Inputs where the linkage never assembles: the couplers of the wide five-bar cannot
+    // meet with crank 1 at 180° and crank 4 at 0°.
+    let wide = Plan::new(&wide_five_bar()).unwrap();
+    let pi = std::f64::consts::PI;
+    let nowhere = o
+        .clone()
+        .with_samples(8)
+        .with_range(0, pi - 0.01, pi + 0.01)
+        .with_range(1, -0.01, 0.01);
+    let e = wide.workspace("B", &nowhere).unwrap_err();
+    assert!(
+        matches!(&e, Error::Description { item, .. } if item == "ranges"),
+        "{e}"
+    );
+    // A joint on the frame stands still: its workspace is a point, a cell or so.
+    let still = plan
+        .workspace("O", &o.clone().with_samples(16).with_resolution(16))
+        .unwrap();
+    assert!(
+        still.region.area() <= 4.0 * still.region.cell.powi(2),
+        "{}",
+        still.region.area()
+    );
+    assert!(still.singular.is_empty());
     // A range given by hand: a smaller workspace, inside the whole one.
     let whole = plan.workspace("B", &o.clone().with_samples(61)).unwrap();
     let r = plan.reference_inputs();
