@@ -134,6 +134,36 @@ fn the_five_bar_workspace_boundary_agrees_with_a_dense_inverse_kinematics_grid()
         }
     }
     assert!(serial > 100, "{serial}");
+    // The isolated singular inputs: the couplers folded onto each other (A = C, where B
+    // sweeps the circle of radius l2 about them) and stretched in line (|AC| = l2 + l3).
+    let mut folded = 0;
+    for c in ws
+        .singular
+        .iter()
+        .filter(|c| c.kind == Singularity::Isolated)
+    {
+        let n = c.inputs.len() as f64;
+        let q = c
+            .inputs
+            .iter()
+            .fold([0.0; 2], |s, q| [s[0] + q[0] / n, s[1] + q[1] / n]);
+        let (a, cc) = five.cranks(q[0], q[1]);
+        let ac = (a - cc).norm();
+        assert!(
+            ac.min((l[1] + l[2] - ac).abs()) < 0.02,
+            "{q:?}: |AC| = {ac}"
+        );
+        if ac < 0.02 {
+            for p in &c.points {
+                assert!(((p - a).norm() - l[1]).abs() < 5e-3, "{p}");
+            }
+            folded += c.points.len();
+        }
+    }
+    assert!(
+        folded > 300,
+        "{folded} points on the circles of the folded couplers"
+    );
 }
 
 #[test]
