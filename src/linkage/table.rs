@@ -113,7 +113,7 @@ impl Tabulate for Analysis<'_> {
                 );
             }
         }
-        if self.balances.len() == 2 {
+        if plan.input_count() == 2 {
             two_input_balances(&mut r, self);
             return r;
         }
@@ -180,7 +180,7 @@ fn second_input_columns(r: &mut Vec<(String, f64)>, k: &Kinematics<'_>) {
 /// power found by the principle of virtual power (−Σ P_i of every applied load), both in W —
 /// with two inputs the virtual-power check is of powers, not of one balancing value.
 fn two_input_balances(r: &mut Vec<(String, f64)>, a: &Analysis<'_>) {
-    for (i, b) in a.balances.iter().enumerate() {
+    for (i, b) in a.balances().iter().enumerate() {
         let [.., name, unit] = input_units(a.plan(), i);
         push(r, name, unit, b.value);
     }
