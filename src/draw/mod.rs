@@ -75,7 +75,7 @@ pub use frame::Frame;
 pub use plan_view::{plan_view, plan_view_two, MAX_PLAN_POSITIONS};
 pub use scheme::scheme;
 pub use style::Style;
-pub use workspace::{workspace, ASSEMBLY_COLOUR, SERIAL_COLOUR, WORKSPACE_FILL};
+pub use workspace::{workspace, ASSEMBLY_COLOUR, ISOLATED_COLOUR, SERIAL_COLOUR, WORKSPACE_FILL};
 
 /// The course of positions the plan and the diagrams draw; it lives in [`crate::linkage`]
 /// (formerly `tmm::draw::Course`) and is re-exported here beside the pictures that take it.

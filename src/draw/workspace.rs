@@ -17,11 +17,13 @@ pub const WORKSPACE_FILL: &str = "#bcd7f0";
 pub const SERIAL_COLOUR: &str = "#d62728";
 /// The colour of the curves where the linkage stops assembling.
 pub const ASSEMBLY_COLOUR: &str = "#2ca02c";
+/// The colour of the curves an isolated singular input maps to.
+pub const ISOLATED_COLOUR: &str = "#9467bd";
 
 /// The workspace `ws` of a point of `plan` ([`Plan::workspace`]): the region it reaches
 /// filled ([`WORKSPACE_FILL`]) inside its outline, the serial singular curves
 /// ([`SERIAL_COLOUR`]) and the curves where the linkage stops assembling
-/// ([`ASSEMBLY_COLOUR`]) over it, and the linkage in its reference pose on top. One scale on
+/// ([`ASSEMBLY_COLOUR`]) and those of isolated singular inputs ([`ISOLATED_COLOUR`]) over it, and the linkage in its reference pose on top. One scale on
 /// both axes.
 ///
 /// # Errors
@@ -91,6 +93,7 @@ pub fn workspace(plan: &Plan, ws: &Workspace, style: &Style) -> Result<Picture> 
         let (colour, class) = match c.kind {
             Singularity::Serial => (SERIAL_COLOUR, "singular serial"),
             Singularity::Assembly => (ASSEMBLY_COLOUR, "singular assembly"),
+            Singularity::Isolated => (ISOLATED_COLOUR, "singular isolated"),
         };
         doc.append(
             Path::new()

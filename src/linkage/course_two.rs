@@ -77,7 +77,7 @@ impl TwoInputCourse {
     ///
     /// # Errors
     /// [`Error::NonFinite`] naming the first non-finite range end or rate;
-    /// [`Error::OutOfRange`] (`"number of positions"`) for a count of 0 or more than
+    /// [`Error::Overflow`] for a range too wide for `f64`; [`Error::OutOfRange`] (`"number of positions"`) for a count of 0 or more than
     /// [`MAX_POSITIONS`](crate::kinematics::MAX_POSITIONS) positions in all.
     pub fn grid(first: [f64; 2], second: [f64; 2], n: [usize; 2], rates: [f64; 2]) -> Result<Self> {
         crate::error::all_finite(&[
@@ -88,6 +88,9 @@ impl TwoInputCourse {
             ("rate of the first input", rates[0]),
             ("rate of the second input", rates[1]),
         ])?;
+        for r in [first, second] {
+            crate::error::computed("width of an input range", r[1] - r[0])?;
+        }
         check_count(n[0])?;
         check_count(n[1])?;
         check_count(n[0].saturating_mul(n[1]))?;

@@ -165,6 +165,11 @@ pub enum Singularity {
     /// The linkage stops assembling: a group's determinant vanishes (its links in line), and
     /// beyond it the inputs have no position.
     Assembly,
+    /// The image of an isolated input where a group's determinant vanishes but the linkage
+    /// assembles all round it (a five-bar's couplers folded onto each other): as the inputs
+    /// go round it the point sweeps a whole curve (a circle of the coupler's length about the
+    /// folded hinges), traced about it at an eighth of a grid step.
+    Isolated,
 }
 
 /// The input grid: each axis's first value, step and whether it wraps.
@@ -203,8 +208,9 @@ impl Plan {
     /// [`Error::Description`] (`"field second_input"`) for a linkage with one input, naming
     /// the point when it is neither a joint nor a named point, or naming the input whose range
     /// is missing (a slider); [`Error::NonFinite`] or [`Error::NonPositive`] for a range that
-    /// is not finite or empty; [`Error::OutOfRange`] for `samples` or `resolution` out of
-    /// their bounds; [`Error::NotAssemblable`] when no node of the input grid assembles.
+    /// is not finite or empty, [`Error::Overflow`] for one too wide for `f64`;
+    /// [`Error::OutOfRange`] for `samples` or `resolution` out of their bounds;
+    /// [`Error::Description`] (`"ranges"`) when no node of the input grid assembles.
     ///
     /// # Examples
     /// The five-bar robot's end effector B reaches an area about its reference position:
@@ -244,13 +250,14 @@ impl Plan {
             }
         }
         if nodes.iter().all(Option::is_none) {
-            return Err(Error::NotAssemblable {
-                group: "linkage at every input of the workspace grid",
-                gap: f64::NAN,
+            return Err(Error::Description {
+                item: "ranges".to_owned(),
+                problem: "the linkage assembles at no input of the workspace's grid".to_owned(),
             });
         }
-        let singular = singular_curves(&axes, &nodes, &mut at);
-        let region = fill(&axes, &nodes, &mut at, options.resolution);
+        let (region, poles) = fill(&axes, &nodes, &mut at, options.resolution);
+        let mut singular = singular_curves(&axes, &nodes, &mut at);
+        singular.extend(isolated_curves(&axes, &poles, &mut at));
         let boundary = outline(&region);
         Ok(Workspace {
             point: point.to_owned(),
@@ -312,6 +319,7 @@ impl Plan {
                             value: 0.0,
                         });
                     }
+                    crate::error::computed("width of an input range", b - a)?;
                     lo[i] = a;
                     step[i] = (b - a) / (n - 1) as f64;
                 }
@@ -429,6 +437,46 @@ fn singular_curves(
         .collect()
 }
 
+/// The curves an isolated singular input maps to: round each of `poles` (the inputs where
+/// [`fill_cell`] found the map far from linear at its finest split; those closer than a few
+/// of those splits taken as one), the images of a small circle of inputs about it, an
+/// eighth of a grid step across, in 720 positions, cut where a position fails or the curve
+/// jumps.
+fn isolated_curves(axes: &Axes, poles: &[[f64; 2]], at: &mut At<'_>) -> Vec<SingularCurve> {
+    let h = axes.step[0].abs().max(axes.step[1].abs());
+    let mut kept: Vec<[f64; 2]> = Vec::new();
+    for &q in poles {
+        if kept
+            .iter()
+            .all(|k| (k[0] - q[0]).abs().max((k[1] - q[1]).abs()) > h / 8.0)
+        {
+            kept.push(q);
+        }
+    }
+    let mut out = Vec::new();
+    for q in kept {
+        let mut pieces: Vec<Vec<([f64; 2], Point2<f64>)>> = vec![Vec::new()];
+        for k in 0..=720 {
+            let t = std::f64::consts::TAU * f64::from(k) / 720.0;
+            let qk = [q[0] + h / 8.0 * t.cos(), q[1] + h / 8.0 * t.sin()];
+            match at(qk) {
+                Some((p, _)) => pieces.last_mut().expect("one piece").push((qk, p)),
+                None => pieces.push(Vec::new()),
+            }
+        }
+        for piece in &pieces {
+            for c in split_at_jumps(piece) {
+                out.push(SingularCurve {
+                    kind: Singularity::Isolated,
+                    inputs: c.iter().map(|x| x.0).collect(),
+                    points: c.iter().map(|x| x.1).collect(),
+                });
+            }
+        }
+    }
+    out
+}
+
 /// A curve cut where it jumps: a step more than 8 times its median step. Near a pole of the
 /// map (a five-bar's couplers folded onto each other) neighbouring inputs land far apart, and
 /// a line between them would cross the plane where no singular point lies.
@@ -461,7 +509,7 @@ fn fill(
     nodes: &[Option<(Point2<f64>, f64)>],
     at: &mut At<'_>,
     resolution: usize,
-) -> Region {
+) -> (Region, Vec<[f64; 2]>) {
     let g = axes.grid;
     // The raster's cell from the nodes' images: a cell whose map departs from linear by
     // more than a quarter of it is split.
@@ -474,11 +522,13 @@ fn fill(
         1e-3
     };
     let mut polygons: Vec<Vec<Point2<f64>>> = Vec::new();
+    let mut poles = Vec::new();
     for (i, j) in g.cells() {
         let c = [(i, j), (i + 1, j), (i + 1, j + 1), (i, j + 1)];
         if let [Some(a), Some(b), Some(d), Some(e)] = c.map(|n| nodes[g.index(n)]) {
             let p = [a.0, b.0, d.0, e.0];
-            fill_cell(&mut polygons, at, c.map(|n| axes.q(n)), p, 0.25 * cell, 6);
+            let q = c.map(|n| axes.q(n));
+            fill_cell(&mut polygons, &mut poles, at, q, p, 0.25 * cell, 6);
             continue;
         }
         let mut poly = Vec::with_capacity(6);
@@ -521,7 +571,7 @@ fn fill(
             triangle(&mut region, [poly[0], poly[k], poly[k + 1]], 0.25 * cell);
         }
     }
-    region
+    (region, poles)
 }
 
 /// The corners of the box round `points`.
@@ -541,6 +591,7 @@ fn bounds(points: impl Iterator<Item = Point2<f64>>) -> (Point2<f64>, Point2<f64
 /// round a whole circle): it is left to its neighbours and its corners.
 fn fill_cell(
     polygons: &mut Vec<Vec<Point2<f64>>>,
+    poles: &mut Vec<[f64; 2]>,
     at: &mut At<'_>,
     q: [[f64; 2]; 4],
     p: [Point2<f64>; 4],
@@ -559,6 +610,7 @@ fn fill_cell(
         return;
     }
     if depth == 0 {
+        poles.push(qc);
         return;
     }
     let qm = [
@@ -579,7 +631,7 @@ fn fill_cell(
         ([qm[3], qc, qm[2], q[3]], [m3, pc, m2, p[3]]),
     ];
     for (q, p) in quarters {
-        fill_cell(polygons, at, q, p, tol, depth - 1);
+        fill_cell(polygons, poles, at, q, p, tol, depth - 1);
     }
 }
 

@@ -302,6 +302,8 @@ fn bad_courses_are_refused_naming_the_field() {
     let e =
         TwoInputCourse::grid([0.0, 1.0], [0.0, 1.0], [1 << 13, 1 << 12], [1.0, 1.0]).unwrap_err();
     assert!(matches!(e, Error::OutOfRange { .. }), "{e}");
+    let e = TwoInputCourse::grid([-1e308, 1e308], [0.0, 1.0], [3, 3], [1.0, 1.0]).unwrap_err();
+    assert!(matches!(e, Error::Overflow { .. }), "{e}");
     let fixed = |t: f64| Motion::fixed(t);
     let e = TwoInputCourse::laws(&[0.0, 1.0, 1.0], fixed, fixed).unwrap_err();
     assert!(

@@ -134,6 +134,36 @@ fn the_five_bar_workspace_boundary_agrees_with_a_dense_inverse_kinematics_grid()
         }
     }
     assert!(serial > 100, "{serial}");
+    // The isolated singular inputs: the couplers folded onto each other (A = C, where B
+    // sweeps the circle of radius l2 about them) and stretched in line (|AC| = l2 + l3).
+    let mut folded = 0;
+    for c in ws
+        .singular
+        .iter()
+        .filter(|c| c.kind == Singularity::Isolated)
+    {
+        let n = c.inputs.len() as f64;
+        let q = c
+            .inputs
+            .iter()
+            .fold([0.0; 2], |s, q| [s[0] + q[0] / n, s[1] + q[1] / n]);
+        let (a, cc) = five.cranks(q[0], q[1]);
+        let ac = (a - cc).norm();
+        assert!(
+            ac.min((l[1] + l[2] - ac).abs()) < 0.02,
+            "{q:?}: |AC| = {ac}"
+        );
+        if ac < 0.02 {
+            for p in &c.points {
+                assert!(((p - a).norm() - l[1]).abs() < 5e-3, "{p}");
+            }
+            folded += c.points.len();
+        }
+    }
+    assert!(
+        folded > 300,
+        "{folded} points on the circles of the folded couplers"
+    );
 }
 
 #[test]
@@ -201,6 +231,34 @@ fn bad_workspace_requests_are_refused_naming_the_field() {
         .workspace("B", &o.clone().with_range(0, 1.0, 1.0))
         .unwrap_err();
     assert!(matches!(e, Error::NonPositive { .. }), "{e}");
+    let e = plan
+        .workspace("B", &o.clone().with_range(0, -1e308, 1e308))
+        .unwrap_err();
+    assert!(matches!(e, Error::Overflow { .. }), "{e}");
+    // Inputs where the linkage never assembles: the couplers of the wide five-bar cannot
+    // meet with crank 1 at 180° and crank 4 at 0°.
+    let wide = Plan::new(&wide_five_bar()).unwrap();
+    let pi = std::f64::consts::PI;
+    let nowhere = o
+        .clone()
+        .with_samples(8)
+        .with_range(0, pi - 0.01, pi + 0.01)
+        .with_range(1, -0.01, 0.01);
+    let e = wide.workspace("B", &nowhere).unwrap_err();
+    assert!(
+        matches!(&e, Error::Description { item, .. } if item == "ranges"),
+        "{e}"
+    );
+    // A joint on the frame stands still: its workspace is a point, a cell or so.
+    let still = plan
+        .workspace("O", &o.clone().with_samples(16).with_resolution(16))
+        .unwrap();
+    assert!(
+        still.region.area() <= 4.0 * still.region.cell.powi(2),
+        "{}",
+        still.region.area()
+    );
+    assert!(still.singular.is_empty());
     // A range given by hand: a smaller workspace, inside the whole one.
     let whole = plan.workspace("B", &o.clone().with_samples(61)).unwrap();
     let r = plan.reference_inputs();
