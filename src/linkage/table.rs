@@ -95,7 +95,7 @@ impl Tabulate for Analysis<'_> {
     /// (or force `Fb [N, + along the guide]`) beside its value by virtual power (`NaN` when the
     /// input is at rest: the virtual power then has no rate). With two inputs: each input's
     /// balancing value (`Mb`, `Mb2`, or `Fb`, `Fb2` for sliders), then the drives' power
-    /// `P_drive [W]` beside `P_drive by virtual power [W]`.
+    /// `drive power [W]` beside `drive power by virtual power [W]`.
     fn row(&self) -> Vec<(String, f64)> {
         let mut r = self.kinematics().row();
         let plan = self.plan();
@@ -187,8 +187,8 @@ fn two_input_balances(r: &mut Vec<(String, f64)>, a: &Analysis<'_>) {
     let (chain, vp) = a
         .power_check()
         .map_or((f64::NAN, f64::NAN), |c| (c.chain, c.virtual_power));
-    push(r, "P_drive", "W", chain);
-    push(r, "P_drive by virtual power", "W", vp);
+    push(r, "drive power", "W", chain);
+    push(r, "drive power by virtual power", "W", vp);
 }
 
 impl Table {
