@@ -389,40 +389,10 @@ impl Machine {
                 "no position could be analysed: {first}"
             )));
         }
+        // With two inputs the library's row holds both inputs, both balances and the drives'
+        // power beside its value by virtual power (W).
         let mut table = Table::of(&results);
         self.add_named_points(&mut table, &results);
-        if self.plan.input_count() > 1 {
-            // The library's row holds the first input's coordinate and balancing moment; the
-            // second input's are added here.
-            let ok: Vec<_> = results.iter().flatten().collect();
-            let second = |f: &dyn Fn(&tmm::linkage::Analysis<'_>) -> f64| -> Vec<f64> {
-                ok.iter().map(|a| f(a)).collect()
-            };
-            let (q, unit, balance) = if self.second_is_crank() {
-                ("phi_in2", "rad", "Mb2 [N·m, + counter-clockwise]")
-            } else {
-                ("s_in2", "m", "Fb2 [N, + along the guide]")
-            };
-            table.columns.insert(
-                1,
-                tmm::linkage::Column {
-                    name: format!("{q} [{unit}]"),
-                    values: second(&|a| a.inputs().get(1).map_or(f64::NAN, |m| m.value)),
-                },
-            );
-            // With two inputs the library's virtual-power cell is the drives' power, W
-            // (Mb·ω1 + Mb2·ω2), though its row names it as Mb in N·m: named here for what
-            // it holds.
-            for c in &mut table.columns {
-                if c.name.starts_with("Mb by virtual power") {
-                    c.name = "drive power by virtual power [W]".to_owned();
-                }
-            }
-            table.columns.push(tmm::linkage::Column {
-                name: balance.to_owned(),
-                values: second(&|a| a.balances().get(1).map_or(f64::NAN, |b| b.value)),
-            });
-        }
         let columns = table
             .columns
             .into_iter()

@@ -55,12 +55,12 @@ pub struct Assembly {
     /// The number of positions that assemble.
     pub solved: usize,
     /// Every position that does not, in course order.
-    pub failures: Vec<Failure>,
+    pub failures: Vec<AssemblyFailure>,
 }
 
 /// A position of a course that cannot be solved, and why.
 #[derive(Debug, Clone, PartialEq)]
-pub struct Failure {
+pub struct AssemblyFailure {
     /// Its place in the course.
     pub index: usize,
     /// Its inputs.
@@ -291,7 +291,7 @@ impl TwoInputCourse {
         let mut failures = Vec::new();
         for (index, &inputs) in self.inputs.iter().enumerate() {
             if let Err(error) = solver.kinematics(inputs) {
-                failures.push(Failure {
+                failures.push(AssemblyFailure {
                     index,
                     inputs,
                     error,

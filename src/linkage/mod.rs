@@ -69,7 +69,7 @@ mod table;
 mod workspace;
 
 pub use course::{Course, Sweep};
-pub use course_two::{AnyCourse, Assembly, Failure, TwoInputCourse, TwoInputShape};
+pub use course_two::{AnyCourse, Assembly, AssemblyFailure, TwoInputCourse, TwoInputShape};
 #[cfg(feature = "rayon")]
 pub use cycle::run_cycle_parallel;
 pub use cycle::{course_inputs, run_cycle, try_course_inputs, try_uniform_inputs, uniform_inputs};

@@ -122,8 +122,8 @@ impl Tabulate for Analysis<'_> {
     /// the reactions, the power lost in every joint `P_lost(J) [W]`, their sum `P_lost [W]` and
     /// the instantaneous efficiency `eta [-]` (`NaN` where the drive gives no power); a
     /// frictionless plan has none of these columns. With two inputs: each input's balancing
-    /// value (`Mb`, `Mb2`, or `Fb`, `Fb2` for sliders), then the drives' power `P_drive [W]`
-    /// beside `P_drive by virtual power [W]`.
+    /// value (`Mb`, `Mb2`, or `Fb`, `Fb2` for sliders), then the drives' power `drive power [W]`
+    /// beside `drive power by virtual power [W]`.
     fn cells(&self, out: &mut impl Cells) {
         self.kinematics().cells(out);
         let plan = self.plan();
@@ -247,8 +247,8 @@ fn two_input_balances(out: &mut impl Cells, a: &Analysis<'_>) {
     let (chain, vp) = a
         .power_check()
         .map_or((f64::NAN, f64::NAN), |c| (c.chain, c.virtual_power));
-    out.cell(|| "P_drive [W]".to_owned(), chain);
-    out.cell(|| "P_drive by virtual power [W]".to_owned(), vp);
+    out.cell(|| "drive power [W]".to_owned(), chain);
+    out.cell(|| "drive power by virtual power [W]".to_owned(), vp);
 }
 
 /// The value sink of a block of rows: every cell one push onto one buffer.

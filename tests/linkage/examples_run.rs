@@ -39,7 +39,7 @@ fn the_main_example_runs_every_bundled_file() {
         // inputs, the drives' power against the loads' power (W).
         let two = table.column("phi_in2 [rad]").is_some();
         let pairs: &[(&str, &str)] = if two {
-            &[("P_drive [W]", "P_drive by virtual power [W]")]
+            &[("drive power [W]", "drive power by virtual power [W]")]
         } else {
             &[
                 (
@@ -52,7 +52,7 @@ fn the_main_example_runs_every_bundled_file() {
                 ),
             ]
         };
-        assert_eq!(table.column("P_drive [W]").is_some(), two, "{name}");
+        assert_eq!(table.column("drive power [W]").is_some(), two, "{name}");
         let (chain, vp) = pairs
             .iter()
             .find_map(|(c, v)| Some((table.column(c)?, table.column(v)?)))

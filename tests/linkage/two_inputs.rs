@@ -226,8 +226,8 @@ fn along_two_laws_the_rates_and_the_table_agree_with_independent_references() {
         table.column("phi_in2' [rad/s]").unwrap(),
     );
     let (p, vp) = (
-        table.column("P_drive [W]").unwrap(),
-        table.column("P_drive by virtual power [W]").unwrap(),
+        table.column("drive power [W]").unwrap(),
+        table.column("drive power by virtual power [W]").unwrap(),
     );
     for k in 0..40 {
         assert!((mb1[k] * w1[k] + mb2[k] * w2[k] - p[k]).abs() < 1e-12 * (1.0 + p[k].abs()));
