@@ -22,7 +22,7 @@ use std::f64::consts::TAU;
 /// let course = Course::new(&plan, Some(&out), 12, 10.0)?;
 /// let style = Style { samples: 72, ..Style::default() };
 /// for d in [Diagram::Kinematics(out.clone()), Diagram::Transfer(out), Diagram::Balance,
-///           Diagram::Reactions, Diagram::Hodograph("A".into())] {
+///           Diagram::Reactions, Diagram::Hodograph("A".into()), Diagram::Friction] {
 ///     let chart = diagram(&plan, &course, &d, &style)?;
 ///     assert!(!chart.panels.is_empty());
 /// }
@@ -47,6 +47,12 @@ pub enum Diagram {
     /// joint's first link on its second, as [`Analysis::reaction`](crate::linkage::Analysis::reaction) gives it), R_y against
     /// R_x, N, over the cycle.
     Hodograph(String),
+    /// The friction over the cycle (two panels): the instantaneous efficiency
+    /// η = P_useful / P_drive ([`Analysis::efficiency`](crate::linkage::Analysis::efficiency)),
+    /// dimensionless, and the power lost in each joint, W, one line per joint. A position
+    /// where the drive takes no power (η undefined: the loads drive the machine) leaves a gap.
+    /// Without friction η = 1 and nothing is lost.
+    Friction,
 }
 
 /// One panel of a [`Chart`]: its axes, what it plots and where on the picture.
@@ -504,7 +510,7 @@ fn check(plan: &Plan, d: &Diagram) -> Result<()> {
     match d {
         Diagram::Kinematics(o) | Diagram::Transfer(o) => check_output(plan, o),
         Diagram::Hodograph(j) => plan.joint_id(j).map(|_| ()),
-        Diagram::Balance | Diagram::Reactions => Ok(()),
+        Diagram::Balance | Diagram::Reactions | Diagram::Friction => Ok(()),
     }
 }
 
@@ -609,6 +615,21 @@ fn panel_specs(plan: &Plan, d: &Diagram, input_unit: &str) -> Result<Vec<Spec>> 
                 .map(|j| format!("R in {j}"))
                 .collect(),
         )],
+        Diagram::Friction => vec![
+            one(
+                format!("{name}: instantaneous efficiency"),
+                "η = P_useful / P_drive, 1".to_owned(),
+                vec!["efficiency".to_owned()],
+            ),
+            one(
+                format!("{name}: power lost in the joints"),
+                "P_lost, W".to_owned(),
+                plan.joint_names()
+                    .iter()
+                    .map(|j| format!("lost in {j}"))
+                    .collect(),
+            ),
+        ],
         Diagram::Hodograph(j) => {
             let r = format!("R in {j}");
             vec![Spec {
@@ -654,6 +675,19 @@ fn specs_values(
                 .joint_ids()
                 .map(|j| Ok(a.reaction(j)?.force.norm()))
                 .collect::<Result<_>>()?]
+        }
+        Diagram::Friction => {
+            let a = solver.analyse(m)?;
+            let eta = a.efficiency()?.eta.ok_or(Error::Singular {
+                what: "instantaneous efficiency",
+                measure: "drive power",
+                value: a.drive_power(),
+            })?;
+            let lost = plan
+                .joint_ids()
+                .map(|j| Ok(a.friction(j)?.power_lost))
+                .collect::<Result<_>>()?;
+            vec![vec![eta], lost]
         }
         Diagram::Hodograph(j) => {
             let r = solver.analyse(m)?.reaction(j)?;

@@ -1,4 +1,5 @@
-//! The reactions in the joints as scaled arrows on the scheme at one position.
+//! The reactions in the joints as scaled arrows on the scheme at one position, with the
+//! friction circles of the hinges.
 
 use super::parts::{self, Pen};
 use super::primitives;
@@ -15,6 +16,12 @@ use svg::Node;
 /// moment of a crank is an arc arrow about its pivot in its own sense, a balancing force an
 /// arrow to the same scale; each arrow is labelled with its magnitude (N, N·m), and a legend
 /// gives the scale. [`Picture::force_scale`] is the force per pixel of arrow, N/px.
+///
+/// A linkage with friction ([`Plan::has_friction`]) has, at each revolute joint with a
+/// friction circle, that circle of radius ρ = f·r drawn to the scheme's scale (a `circle`
+/// of class `friction-circle` with the joint's name in `data-joint`): the textbook's
+/// construction, in which the reaction is tangent to the circle. Without friction the
+/// picture is the frictionless one.
 ///
 /// # Errors
 /// As [`scheme`](super::scheme), and the kinetostatics' errors at this input.
@@ -111,6 +118,20 @@ pub fn forces(plan: &Plan, input: impl Into<Inputs>, style: &Style) -> Result<Pi
             ));
         }
     }
+    let circles = friction_circles(plan, &reactions, &frame);
+    for (name, q, r) in &circles {
+        doc.append(
+            svg::node::element::Circle::new()
+                .set("cx", primitives::r2(q[0]))
+                .set("cy", primitives::r2(q[1]))
+                .set("r", primitives::r2(*r))
+                .set("fill", "none")
+                .set("stroke", "#d35400")
+                .set("stroke-width", w.min(0.5 * r.max(0.5)))
+                .set("class", "friction-circle")
+                .set("data-joint", name.as_str()),
+        );
+    }
     // The balancing moment or force.
     let blue = "#0b3d91";
     let mut legend = vec![
@@ -164,6 +185,13 @@ pub fn forces(plan: &Plan, input: impl Into<Inputs>, style: &Style) -> Result<Pi
     if let Some(s) = force_scale {
         legend.push(format!("scale: 1 px = {} N", primitives::short(s)));
     }
+    if !circles.is_empty() {
+        legend.push(
+            "friction circles (orange): radius ρ = f·r at each hinge, to the scheme's scale; \
+             each reaction R is tangent to its circle"
+                .to_owned(),
+        );
+    }
     if style.labels {
         for (i, line) in legend.iter().enumerate() {
             #[allow(clippy::cast_precision_loss)]
@@ -176,4 +204,28 @@ pub fn forces(plan: &Plan, input: impl Into<Inputs>, style: &Style) -> Result<Pi
         frame,
         force_scale,
     })
+}
+
+/// The friction circles of the hinges: (joint name, centre px, radius px) for every revolute
+/// joint with ρ > 0, centred on the joint (where its reaction acts).
+fn friction_circles(
+    plan: &Plan,
+    reactions: &[crate::linkage::Reaction],
+    frame: &super::frame::Frame,
+) -> Vec<(String, [f64; 2], f64)> {
+    let Some(fp) = &plan.friction else {
+        return Vec::new();
+    };
+    fp.iter()
+        .zip(reactions)
+        .enumerate()
+        .filter(|(j, (f, _))| f.hinge.rho > 0.0 && plan.chain.joints[*j].prismatic.is_none())
+        .map(|(j, (f, r))| {
+            (
+                plan.chain.joint_names[j].clone(),
+                frame.to_pixel(r.point),
+                f.hinge.rho * frame.scale,
+            )
+        })
+        .collect()
 }

@@ -809,3 +809,137 @@ fn a_slider_input_with_guide_friction_is_in_equilibrium_and_balances_its_power()
     }
     assert!(cocked > 0, "no position where the couple cocks the piston");
 }
+
+// ---------------------------------------------------------------------------------------
+// Pictures: the friction circles on the force plan, η and the lost powers over the cycle.
+
+#[cfg(feature = "draw")]
+mod pictures {
+    use super::*;
+    use resvg::tiny_skia::{Pixmap, Transform};
+    use resvg::usvg;
+    use tmm::draw::{diagram, forces, Diagram, Style};
+
+    fn render(svg: &str) -> Pixmap {
+        let tree = usvg::Tree::from_str(svg, &usvg::Options::default()).expect("the SVG parses");
+        let size = tree.size().to_int_size();
+        let mut p = Pixmap::new(size.width(), size.height()).expect("a picture has a size");
+        resvg::render(&tree, Transform::default(), &mut p.as_mut());
+        p
+    }
+
+    /// The value of attribute `name` in the element text `el`.
+    fn attr<'a>(el: &'a str, name: &str) -> &'a str {
+        let key = format!(" {name}=\"");
+        let i = el.find(&key).unwrap_or_else(|| panic!("{name} in {el}")) + key.len();
+        &el[i..i + el[i..].find('"').unwrap()]
+    }
+
+    /// Each hinge's friction circle is drawn at the hinge with radius ρ·scale (ρ = f·r of
+    /// the description), in the SVG and in the rendered pixels (orange on the circle); the
+    /// frictionless picture has none.
+    #[test]
+    fn the_force_plan_draws_the_friction_circles_at_the_hinges() {
+        let base = bundled::four_bar();
+        let size = Plan::new(&base).unwrap().size();
+        let (f, r) = (0.3, 0.08 * size);
+        let mut l = base.clone();
+        l.friction = Some(Friction::pin(f, r));
+        let plan = Plan::new(&l).unwrap();
+        let input = Motion::turning(0.9, 10.0);
+        let style = Style::default();
+        let pic = forces(&plan, input, &style).unwrap();
+        let a = plan.analyse(input).unwrap();
+        let circles: Vec<&str> = pic
+            .svg
+            .split("<circle")
+            .skip(1)
+            .map(|c| &c[..c.find('>').unwrap()])
+            .filter(|c| c.contains("friction-circle"))
+            .collect();
+        let hinges: Vec<_> = plan
+            .joint_ids()
+            .filter(|&j| !plan.is_prismatic(j).unwrap())
+            .collect();
+        assert_eq!(circles.len(), hinges.len());
+        let pixmap = render(&pic.svg);
+        let want_r = f * r * pic.frame.scale;
+        assert!(
+            want_r > 2.0 * style.hinge_radius,
+            "{want_r} px: too small to see"
+        );
+        for (c, &j) in circles.iter().zip(&hinges) {
+            assert_eq!(attr(c, "data-joint"), plan.joint_names()[j.index()]);
+            let at = pic.frame.to_pixel(a.reaction(j).unwrap().point);
+            let (cx, cy, rad): (f64, f64, f64) = (
+                attr(c, "cx").parse().unwrap(),
+                attr(c, "cy").parse().unwrap(),
+                attr(c, "r").parse().unwrap(),
+            );
+            assert!(
+                (cx - at[0]).abs() <= 0.01 && (cy - at[1]).abs() <= 0.01,
+                "{c}"
+            );
+            assert!((rad - want_r).abs() <= 0.01, "{rad} vs {want_r}");
+            // Orange pixels on the circle, at most of 16 points round it (an arrow or a bar
+            // may cross a few).
+            let orange = (0..16)
+                .filter(|k| {
+                    let t = TAU * f64::from(*k) / 16.0;
+                    let (x, y) = (cx + rad * t.cos(), cy + rad * t.sin());
+                    let p = pixmap.pixel(x.round() as u32, y.round() as u32).unwrap();
+                    p.red() > 150 && p.green() < 140 && p.blue() < 90 && p.alpha() > 100
+                })
+                .count();
+            assert!(orange >= 8, "joint {j:?}: {orange} of 16 points orange");
+        }
+        let free = forces(&Plan::new(&base).unwrap(), input, &style).unwrap();
+        assert!(!free.svg.contains("friction-circle"));
+    }
+
+    /// The friction diagram plots η and each joint's lost power as the analysis gives them
+    /// at the sampled positions, renders, and η lies in (0, 1].
+    #[test]
+    fn the_friction_diagram_plots_eta_and_the_lost_powers() {
+        let mut l = bundled::four_bar();
+        l.friction = Some(Friction::pin(0.15, 0.02 * Plan::new(&l).unwrap().size()));
+        let plan = Plan::new(&l).unwrap();
+        let course = Course::new(&plan, None, 12, 10.0).unwrap();
+        let style = Style {
+            samples: 72,
+            ..Style::default()
+        };
+        let chart = diagram(&plan, &course, &Diagram::Friction, &style).unwrap();
+        assert_eq!(chart.panels.len(), 2);
+        let (eta, lost) = (&chart.panels[0], &chart.panels[1]);
+        assert_eq!(lost.series.len(), plan.joint_names().len());
+        let m0 = course.inputs[0];
+        let at = |x: f64| Motion::turning(m0.value + x * m0.rate.signum(), m0.rate);
+        let mut checked = 0;
+        for &[x, y] in &eta.series[0].1 {
+            if !y.is_finite() {
+                continue;
+            }
+            let e = plan.analyse(at(x)).unwrap().efficiency().unwrap();
+            assert!(y > 0.0 && y <= 1.0, "η = {y}");
+            assert!((y - e.eta.unwrap()).abs() <= 1e-12, "{y} vs {:?}", e.eta);
+            checked += 1;
+        }
+        for (j, (_, points)) in lost.series.iter().enumerate() {
+            for &[x, y] in points.iter().filter(|p| p[1].is_finite()) {
+                let p = plan.analyse(at(x)).unwrap().friction(j).unwrap().power_lost;
+                assert!(
+                    (y - p).abs() <= 1e-12 * p.abs().max(1.0),
+                    "joint {j}: {y} vs {p}"
+                );
+                assert!(y >= 0.0);
+            }
+        }
+        assert!(checked >= 36, "{checked} positions with η");
+        let p = render(&chart.svg);
+        assert!(p
+            .pixels()
+            .iter()
+            .any(|c| c.alpha() > 0 && c.red() != c.blue()));
+    }
+}

@@ -60,6 +60,7 @@ use nalgebra::{Matrix2, Vector2};
 use super::transfer::Transfer;
 use crate::error::{Error, Result};
 use crate::kinematics::Motion;
+use crate::kinetostatics::friction::sign;
 use crate::linkage::{Inputs, Plan};
 
 /// The fixed-point residual accepted, relative to the acceleration scale.
@@ -121,17 +122,6 @@ impl FrictionJoint {
                 }
             }
         })
-    }
-}
-
-/// The sign of `x` as −1, 0 or +1 (0 for a joint at rest: no friction).
-fn sign(x: f64) -> f64 {
-    if x > 0.0 {
-        1.0
-    } else if x < 0.0 {
-        -1.0
-    } else {
-        0.0
     }
 }
 

@@ -50,6 +50,12 @@ impl FrictionState {
     }
 }
 
+/// The conditioning of a closed form that divides by nothing (a drive's balance).
+const ONE: Conditioning = Conditioning {
+    measure: 1.0,
+    condition: 1.0,
+};
+
 /// A joint without friction.
 const NO_FRICTION: JointFriction = JointFriction {
     load: 0.0,
@@ -363,10 +369,6 @@ impl Analysis<'_> {
         };
         let omega1 = self.k.kin.links[link].omega;
         let pin = fp[joint].hinge;
-        let one = Conditioning {
-            measure: 1.0,
-            condition: 1.0,
-        };
         let (balance, r01, friction) = match drive {
             Drive::Coupling => {
                 let b = CrankFriction {
@@ -380,7 +382,7 @@ impl Analysis<'_> {
                     value: b.balancing_moment,
                     force: Vector2::zeros(),
                     point: pivot,
-                    conditioning: one,
+                    conditioning: ONE,
                 };
                 (balance, b.r01, b.pin)
             }
@@ -408,7 +410,7 @@ impl Analysis<'_> {
                     value: b.balancing_moment,
                     force: b.force,
                     point: d.pitch_point,
-                    conditioning: one,
+                    conditioning: ONE,
                 };
                 (balance, b.r01, b.pin)
             }
@@ -465,10 +467,7 @@ impl Analysis<'_> {
             value: fb,
             force: fb * d,
             point: load.point,
-            conditioning: Conditioning {
-                measure: 1.0,
-                condition: 1.0,
-            },
+            conditioning: ONE,
         })
     }
 
