@@ -68,7 +68,7 @@ pub use diagrams::{diagram, Chart, Diagram, Panel};
 pub use forces::forces;
 pub use frame::Frame;
 pub use plan_view::{plan_view, MAX_PLAN_POSITIONS};
-pub use scheme::scheme;
+pub use scheme::{scheme, scheme_with_centres};
 pub use style::Style;
 
 /// The course of positions the plan and the diagrams draw; it lives in [`crate::linkage`]
