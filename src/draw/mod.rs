@@ -73,7 +73,7 @@ pub use diagrams::{diagram, Chart, Diagram, Panel};
 pub use forces::forces;
 pub use frame::Frame;
 pub use plan_view::{plan_view, plan_view_two, MAX_PLAN_POSITIONS};
-pub use scheme::scheme;
+pub use scheme::{scheme, scheme_with_centres};
 pub use style::Style;
 pub use workspace::{workspace, ASSEMBLY_COLOUR, ISOLATED_COLOUR, SERIAL_COLOUR, WORKSPACE_FILL};
 

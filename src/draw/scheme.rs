@@ -5,7 +5,7 @@ use super::primitives::{self, Labels};
 use super::scene::{self, Extents, Pose, Topo};
 use super::{Picture, Style};
 use crate::error::Result;
-use crate::linkage::{Inputs, Plan};
+use crate::linkage::{Centre, Inputs, Plan};
 use svg::Node;
 
 /// The kinematic scheme of `plan` at the input `input` (a [`Motion`](crate::kinematics::Motion),
@@ -37,7 +37,38 @@ use svg::Node;
 /// # Ok::<(), tmm::Error>(())
 /// ```
 pub fn scheme(plan: &Plan, input: impl Into<Inputs>, style: &Style) -> Result<Picture> {
-    let input = input.into();
+    draw(plan, input.into(), style, false)
+}
+
+/// The kinematic scheme of [`scheme`] with the instant centres of every pair of links
+/// ([`Plan::instant_centres`]) drawn over it: each centre that lies on the picture as a small
+/// ring labelled `Iij` (i, j the links' indices in [`Plan::link_names`]). Centres off the
+/// picture or at infinity are not drawn.
+///
+/// # Errors
+/// As [`scheme`]; as [`Plan::instant_centres`].
+///
+/// # Examples
+/// The four-bar's centres I13 (crank and rocker, by Kennedy) and I23 (the hinge B) are on its
+/// picture:
+/// ```
+/// use tmm::draw::{scheme_with_centres, Style};
+/// use tmm::kinematics::Motion;
+/// use tmm::linkage::{bundled, Plan};
+/// let plan = Plan::new(&bundled::four_bar())?;
+/// let pic = scheme_with_centres(&plan, Motion::turning(1.2, 10.0), &Style::default())?;
+/// assert!(pic.svg.contains("\nI13\n") && pic.svg.contains("\nI23\n"));
+/// # Ok::<(), tmm::Error>(())
+/// ```
+pub fn scheme_with_centres(
+    plan: &Plan,
+    input: impl Into<Inputs>,
+    style: &Style,
+) -> Result<Picture> {
+    draw(plan, input.into(), style, true)
+}
+
+fn draw(plan: &Plan, input: Inputs, style: &Style, with_centres: bool) -> Result<Picture> {
     style.check()?;
     let a = plan.kinematics(input)?;
     let topo = Topo::new(plan);
@@ -65,6 +96,9 @@ pub fn scheme(plan: &Plan, input: impl Into<Inputs>, style: &Style) -> Result<Pi
     if let Some(arrow) = parts::input_arrow(&topo, &pose, &frame, style) {
         doc.append(arrow);
     }
+    if with_centres {
+        doc.append(centres(plan, &a, &frame, style)?);
+    }
     if style.labels {
         doc.append(parts::labels(
             &topo,
@@ -90,4 +124,35 @@ pub(crate) fn values(inputs: Inputs) -> String {
             format!("({})", v.join(", "))
         }
     }
+}
+
+/// The instant centres that lie on the picture: rings labelled `Iij`.
+fn centres(
+    plan: &Plan,
+    a: &crate::linkage::Kinematics<'_>,
+    frame: &super::Frame,
+    style: &Style,
+) -> Result<svg::node::element::Group> {
+    let mut g = svg::node::element::Group::new().set("class", "instant-centres");
+    for ic in plan.instant_centres(&a.pose())? {
+        let Centre::At(p) = ic.centre else { continue };
+        let q = frame.to_pixel(p);
+        if !(q[0] >= 0.0 && q[0] <= frame.width && q[1] >= 0.0 && q[1] <= frame.height) {
+            continue;
+        }
+        let r = 0.6 * style.hinge_radius;
+        g.append(
+            primitives::dot(q, r, "none")
+                .set("stroke", "#b03030")
+                .set("stroke-width", primitives::r2(0.5 * style.line_width)),
+        );
+        let [i, j] = ic.links.map(|l| l.index());
+        g.append(primitives::text(
+            &format!("I{i}{j}"),
+            [q[0] + r, q[1] - r],
+            11.0,
+            "#b03030",
+        ));
+    }
+    Ok(g)
 }

@@ -326,6 +326,100 @@ fn stationary(plan: &Plan, output: &Output, from: f64, to: f64) -> Vec<f64> {
     found
 }
 
+impl Plan {
+    /// The extreme positions of `output` over the range a rocking input sweeps (between its
+    /// lock positions through the reference pose, [`Plan::lock_positions`]), in the order of
+    /// the input angle: the output at both locks, where the input and with it every link
+    /// reverses, and wherever it stands still in between (found on 360 positions, each refined
+    /// by bisection; a maximum or minimum by the sign of its second transfer function).
+    ///
+    /// At a lock the output's transfer functions are unbounded (the input reverses at a dead
+    /// point of its own): its `rate` and `accel` are reported as 0. Its `kind` there compares
+    /// the lock's value with the output's next stationary value or other lock. `input` is the
+    /// input angle as the range holds it (not reduced to [0, 2π)).
+    ///
+    /// # Errors
+    /// [`Error::Description`] for an input that turns fully ([`Plan::extremes`] is for it) or
+    /// a slider input; an unknown output; the linkage's errors at the locks.
+    ///
+    /// # Examples
+    /// A crank rocking between its locks makes a four-bar's rocker swing between the values
+    /// at the locks (the file `linkages/chebyshev-straight-line.json`):
+    /// ```
+    /// use tmm::linkage::{bundled, Output, Plan};
+    /// let plan = Plan::new(&bundled::chebyshev_straight_line())?;
+    /// let out = Output::Angle("rocker".into());
+    /// let ext = plan.rocking_extremes(&out)?;
+    /// let (lo, hi) = plan.lock_positions(plan.reference_input())?.unwrap();
+    /// assert_eq!((ext[0].input, ext[ext.len() - 1].input), (lo, hi));
+    /// assert!(plan.rocking_stroke(&out)? > 0.0);
+    /// # Ok::<(), tmm::Error>(())
+    /// ```
+    pub fn rocking_extremes(&self, output: &Output) -> Result<Vec<crate::kinematics::Extreme>> {
+        use crate::kinematics::{Extreme, ExtremeKind};
+        if !self.input_is_crank() {
+            return Err(Error::Description {
+                item: "field input".to_owned(),
+                problem: "a slider input has no lock positions; its extremes are its own"
+                    .to_owned(),
+            });
+        }
+        let Some((from, to)) = self.lock_positions(self.reference_input())? else {
+            return Err(Error::Description {
+                item: "field input".to_owned(),
+                problem: "the input turns fully: its output's extremes are Plan::extremes"
+                    .to_owned(),
+            });
+        };
+        let value = |q: f64| self.output(output, Motion::fixed(q)).map(|m| m.value);
+        let mut ext = vec![Extreme {
+            input: from,
+            output: Motion::fixed(value(from)?),
+            kind: ExtremeKind::Max,
+        }];
+        for q in stationary(self, output, from, to) {
+            let m = self.transfer(output, q)?;
+            ext.push(Extreme {
+                input: q,
+                output: m,
+                kind: if m.accel < 0.0 {
+                    ExtremeKind::Max
+                } else {
+                    ExtremeKind::Min
+                },
+            });
+        }
+        ext.push(Extreme {
+            input: to,
+            output: Motion::fixed(value(to)?),
+            kind: ExtremeKind::Max,
+        });
+        // A lock is a maximum when the output comes down from it toward its neighbour.
+        let n = ext.len();
+        for (k, nb) in [(0, 1), (n - 1, n - 2)] {
+            ext[k].kind = if ext[k].output.value >= ext[nb].output.value {
+                ExtremeKind::Max
+            } else {
+                ExtremeKind::Min
+            };
+        }
+        Ok(ext)
+    }
+
+    /// The stroke (or swing) of `output` over a rocking input's range: the largest of its
+    /// extreme values ([`Plan::rocking_extremes`]) less the smallest.
+    ///
+    /// # Errors
+    /// As [`Plan::rocking_extremes`].
+    pub fn rocking_stroke(&self, output: &Output) -> Result<f64> {
+        let ext = self.rocking_extremes(output)?;
+        let values = ext.iter().map(|e| e.output.value);
+        let hi = values.clone().fold(f64::NEG_INFINITY, f64::max);
+        let lo = values.fold(f64::INFINITY, f64::min);
+        crate::error::computed("the stroke of a rocking input's output", hi - lo)
+    }
+}
+
 /// 1 ≤ n ≤ MAX_POSITIONS.
 pub(crate) fn check_count(n: usize) -> Result<()> {
     if n == 0 || n > MAX_POSITIONS {

@@ -388,3 +388,54 @@ fn the_six_bars_agree_with_their_own_solve() {
     assert!(worst2 < 1e-12, "Stephenson: {worst2:e}");
     assert_eq!(plan.groups().len(), 2);
 }
+
+/// A rocking input's extremes and stroke: the Peaucellier tracer's stroke along its line is
+/// 2·r·sin(lock)·(l + s)/(l − s) (P is A's inverse, |OA| = l − s at the locks), and
+/// Chebyshev's P sweeps in x what an independent dense scan of its range finds.
+#[test]
+fn rocking_inputs_have_strokes_and_extremes() {
+    use tmm::kinematics::ExtremeKind;
+    use tmm::linkage::Output;
+    let l = bundled::peaucellier_lipkin();
+    let plan = Plan::new(&l).unwrap();
+    let (r, long, side) = (dist(&l, "O", "O1"), dist(&l, "O", "C"), dist(&l, "A", "C"));
+    let lock = 2.0 * ((long - side) / (2.0 * r)).acos();
+    let expect = 2.0 * r * lock.sin() * (long + side) / (long - side);
+    let y = Output::Y("P".into());
+    let ext = plan.rocking_extremes(&y).unwrap();
+    assert_eq!(ext.len(), 2, "{ext:?}");
+    let stroke = plan.rocking_stroke(&y).unwrap();
+    println!("Peaucellier: stroke {stroke:.12} m, closed form {expect:.12} m");
+    assert!(
+        (stroke - expect).abs() < 1e-7 * plan.size(),
+        "{stroke} {expect}"
+    );
+    assert!(ext[0].kind != ext[1].kind);
+
+    let l = bundled::chebyshev_straight_line();
+    let plan = Plan::new(&l).unwrap();
+    let ch = Chebyshev::new(&l);
+    let x = Output::X("P".into());
+    let ext = plan.rocking_extremes(&x).unwrap();
+    let (lo, hi) = plan.lock_positions(1.0).unwrap().unwrap();
+    let n = 20000;
+    let xs: Vec<f64> = (0..=n)
+        .map(|k| ch.at(lo + (hi - lo) * f64::from(k) / f64::from(n)).2.x)
+        .collect();
+    let own = xs.iter().cloned().fold(f64::NEG_INFINITY, f64::max)
+        - xs.iter().cloned().fold(f64::INFINITY, f64::min);
+    let stroke = plan.rocking_stroke(&x).unwrap();
+    println!(
+        "Chebyshev: x stroke {stroke:.9} m over {} extremes, own scan {own:.9} m",
+        ext.len()
+    );
+    assert!((stroke - own).abs() < 1e-7 * plan.size(), "{stroke} {own}");
+    for e in &ext[1..ext.len() - 1] {
+        assert!(e.output.rate.abs() < 1e-9, "{e:?}");
+        let side = (ch.at(e.input + 1e-4).2.x + ch.at(e.input - 1e-4).2.x) / 2.0 - e.output.value;
+        assert_eq!(e.kind == ExtremeKind::Max, side < 0.0, "{e:?}");
+    }
+    // An input that turns fully is sent to Plan::extremes.
+    let turns = Plan::new(&bundled::hoekens_straight_line()).unwrap();
+    assert!(turns.rocking_extremes(&x).is_err());
+}

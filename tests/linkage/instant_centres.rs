@@ -166,3 +166,39 @@ fn a_pose_of_another_plan_is_refused() {
     let k = b.kinematics(Motion::turning(0.3, 1.0)).unwrap();
     assert!(a.instant_centres(&k.pose()).is_err());
 }
+
+/// The scheme's opt-in layer rings every centre that lies on the picture at its pixel, with
+/// its label, and the plain scheme has none.
+#[cfg(feature = "draw")]
+#[test]
+fn the_scheme_draws_the_centres_on_request() {
+    use tmm::draw::{scheme, scheme_with_centres, Style};
+    let plan = Plan::new(&bundled::watt_six_bar()).unwrap();
+    let style = Style::default();
+    let mut drawn = 0;
+    for k in 0..12 {
+        let m = Motion::turning(plan.reference_input() + TAU * f64::from(k) / 12.0, 10.0);
+        let pic = scheme_with_centres(&plan, m, &style).unwrap();
+        assert!(!scheme(&plan, m, &style)
+            .unwrap()
+            .svg
+            .contains("instant-centres"));
+        let kin = plan.kinematics(m).unwrap();
+        for ic in plan.instant_centres(&kin.pose()).unwrap() {
+            let Centre::At(p) = ic.centre else { continue };
+            let [x, y] = pic.frame.to_pixel(p);
+            let inside =
+                (0.0..=pic.frame.width).contains(&x) && (0.0..=pic.frame.height).contains(&y);
+            let [i, j] = ic.links.map(|l| l.index());
+            let ring = format!(
+                r#"cx="{}" cy="{}" fill="none""#,
+                (x * 100.0).round() / 100.0,
+                (y * 100.0).round() / 100.0
+            );
+            assert_eq!(pic.svg.contains(&ring), inside, "I{i}{j} at {p}");
+            assert_eq!(pic.svg.contains(&format!("\nI{i}{j}\n")), inside, "I{i}{j}");
+            drawn += usize::from(inside);
+        }
+    }
+    assert!(drawn > 60, "{drawn}");
+}
