@@ -62,6 +62,7 @@ mod primitives;
 mod scene;
 mod scheme;
 mod style;
+mod synthesis;
 
 pub use animation::animation;
 pub use diagrams::{diagram, Chart, Diagram, Panel};
@@ -70,6 +71,7 @@ pub use frame::Frame;
 pub use plan_view::{plan_view, MAX_PLAN_POSITIONS};
 pub use scheme::scheme;
 pub use style::Style;
+pub use synthesis::{synthesis_scheme, Targets, MAX_TARGET_VERTICES};
 
 /// The course of positions the plan and the diagrams draw; it lives in [`crate::linkage`]
 /// (formerly `tmm::draw::Course`) and is re-exported here beside the pictures that take it.
