@@ -8,16 +8,18 @@
 //! cargo run --release --example synthesis
 //! ```
 
-use std::f64::consts::PI;
+use std::f64::consts::{PI, TAU};
 use std::fs;
 use std::path::Path;
+use tmm::draw::{synthesis_scheme, Style, Targets};
 use tmm::kinematics::{Motion, Rotation};
 use tmm::linkage::{Output, Plan};
 use tmm::synthesis::{
     burmester, burmester_points, centre_point, centre_point_curve, crank_rocker,
-    crank_rocker_through, four_bar_from_dyads, function_generator, shaper, slider_crank,
-    CrankRockerRequirement, FrameChoice, FunctionRequirement, OffsetChoice, Options, Pose,
-    ShaperRequirement, SliderCrankRequirement, Spacing, Synthesis,
+    crank_rocker_through, four_bar_from_dyads, function_generator, path_generator, shaper,
+    slider_crank, CrankRockerRequirement, FrameChoice, FunctionRequirement, OffsetChoice, Options,
+    PathOptions, PathRequirement, Pose, ShaperRequirement, SliderCrankRequirement, Spacing,
+    Synthesis, Timing,
 };
 
 fn deg(x: f64) -> f64 {
@@ -231,6 +233,43 @@ fn run_example() -> tmm::Result<()> {
     }
     println!("  (the crank's pivot (0, 0) and the rocker's (0.4, 0) among them)\n");
 
+    println!("== path generation: a four-bar through 24 points of a closed curve ==");
+    // The points: the coupler curve of the crank-rocker above, in 24 steps of the crank.
+    let closed: Vec<[f64; 2]> = (0..24).map(|k| pose(TAU * k as f64 / 24.0).at).collect();
+    let req = PathRequirement {
+        points: closed.clone(),
+        timing: Timing::ClosedCurve,
+    };
+    let opts = PathOptions::default().with_population(40).with_designs(3);
+    let designs = path_generator(&req, &opts, |_| true)?;
+    for (i, d) in designs.iter().enumerate() {
+        println!(
+            "  design {}: mean miss {:.2e} m, largest {:.2e} m",
+            i + 1,
+            d.mean_error,
+            d.max_error
+        );
+    }
+    let first = &designs[0];
+    show(&first.synthesis, &rocker, dir, "path-generator")?;
+    picture(
+        &first.synthesis,
+        first.crank_angles[0],
+        &Targets::points(&closed, "P"),
+        dir,
+        "path-generator",
+    )?;
+    picture(
+        &s,
+        crank.angles(&poses)[0],
+        &Targets::poses(&poses).with_curves(vec![
+            curve.iter().map(|d| d.centre).collect(),
+            curve.iter().map(|d| d.circle).collect(),
+        ]),
+        dir,
+        "burmester-curves",
+    )?;
+
     println!("== requirements no mechanism meets ==");
     let hard = CrankRockerRequirement {
         time_ratio: 2.5,
@@ -252,6 +291,19 @@ fn run_example() -> tmm::Result<()> {
             Ok(s) => print!("{}", s.report),
             Err(e) => println!("  {e}"),
         }
+    }
+    Ok(())
+}
+
+/// Writes the scheme of `s` at the crank angle `phi` with `targets` drawn on it to
+/// `dir/stem.svg`.
+fn picture(s: &Synthesis, phi: f64, targets: &Targets, dir: &Path, stem: &str) -> tmm::Result<()> {
+    let plan = Plan::new(&s.linkage)?;
+    let pic = synthesis_scheme(&plan, Motion::fixed(phi), targets, &Style::default())?;
+    let file = dir.join(format!("{stem}.svg"));
+    match fs::write(&file, pic.svg) {
+        Ok(()) => println!("  picture: {}\n", file.display()),
+        Err(e) => println!("  (picture not written: {e})\n"),
     }
     Ok(())
 }

@@ -66,6 +66,7 @@ mod primitives;
 mod scene;
 mod scheme;
 mod style;
+mod synthesis;
 mod workspace;
 
 pub use animation::{animation, animation_path};
@@ -75,6 +76,7 @@ pub use frame::Frame;
 pub use plan_view::{plan_view, plan_view_two, MAX_PLAN_POSITIONS};
 pub use scheme::{scheme, scheme_with_centres};
 pub use style::Style;
+pub use synthesis::{synthesis_scheme, Targets, MAX_TARGET_VERTICES};
 pub use workspace::{workspace, ASSEMBLY_COLOUR, ISOLATED_COLOUR, SERIAL_COLOUR, WORKSPACE_FILL};
 
 /// The course of positions the plan and the diagrams draw; it lives in [`crate::linkage`]

@@ -13,6 +13,7 @@ use tmm::synthesis::{
 use tmm::Error;
 
 mod path;
+mod pictures;
 
 fn rel(a: f64, b: f64) -> f64 {
     (a - b).abs() / b.abs().max(1e-300)

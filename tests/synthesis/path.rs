@@ -202,3 +202,135 @@ fn recovers_a_closed_curve() {
         }
     });
 }
+
+/// A closed-curve requirement of 24 points (a recoverable one).
+fn closed_target() -> PathRequirement {
+    let phis: Vec<f64> = (0..24).map(|k| TAU * k as f64 / 24.0).collect();
+    PathRequirement {
+        points: target(&mut Rng(7), &phis),
+        timing: Timing::ClosedCurve,
+    }
+}
+
+#[test]
+fn every_search_keeps_its_evaluation_budget_and_reports_progress() {
+    let free = {
+        let phis: Vec<f64> = (0..10).map(|k| 0.5 * k as f64).collect();
+        PathRequirement {
+            points: target(&mut Rng(8), &phis),
+            timing: Timing::Free,
+        }
+    };
+    let timed = PathRequirement {
+        points: target(&mut Rng(9), &[0.0, 0.8, 1.6, 2.4, 3.2, 4.0]),
+        timing: Timing::Prescribed(vec![0.0, 0.8, 1.6, 2.4, 3.2, 4.0]),
+    };
+    for req in [closed_target(), free, timed] {
+        // An impossible tolerance: the search runs until its budget is spent.
+        let mut opts = PathOptions::default()
+            .with_population(20)
+            .with_max_evaluations(3000);
+        opts.tolerance = 0.0;
+        let (mut calls, mut last) = (0usize, 0usize);
+        let r = path_generator(&req, &opts, |p| {
+            assert!(p.evaluations >= last && p.best.is_finite());
+            calls += 1;
+            last = p.evaluations;
+            true
+        });
+        assert!(calls > 0, "no progress reported");
+        assert!(last <= 3000 + 2, "{last} evaluations past a budget of 3000");
+        if let Ok(designs) = r {
+            assert!(!designs.is_empty() && designs.len() <= opts.designs);
+        }
+        // A callback that says stop is called once, and the search ends there.
+        let mut calls = 0;
+        let _ = path_generator(&req, &opts, |_| {
+            calls += 1;
+            false
+        });
+        assert_eq!(calls, 1);
+        // No time at all: nothing is evaluated, and the error says so.
+        let none = opts.clone().with_max_time(Duration::ZERO);
+        match path_generator(&req, &none, |_| true) {
+            Err(tmm::Error::NoMechanism { problem, .. }) => {
+                assert!(problem.contains("in 0 evaluations"), "{problem}");
+            }
+            other => panic!("expected NoMechanism, got {other:?}"),
+        }
+    }
+}
+
+#[test]
+fn bad_path_requirements_name_the_parameter() {
+    let good = closed_target();
+    let opts = PathOptions::default();
+    let name = |req: &PathRequirement, opts: &PathOptions| match path_generator(req, opts, |_| true)
+    {
+        Err(tmm::Error::OutOfRange { name, .. } | tmm::Error::NonFinite { name, .. }) => {
+            name.to_owned()
+        }
+        Err(tmm::Error::NoMechanism { problem, .. }) => problem,
+        Err(e) => format!("other: {e}"),
+        Ok(_) => "ok".to_owned(),
+    };
+    let with = |points: Vec<[f64; 2]>, timing: Timing| PathRequirement { points, timing };
+    let pts = good.points.clone();
+    // Fewer points than unknowns: 9 without timing, 5 with it.
+    assert_eq!(
+        name(&with(pts[..8].to_vec(), Timing::ClosedCurve), &opts),
+        "points"
+    );
+    assert_eq!(
+        name(&with(pts[..8].to_vec(), Timing::Free), &opts),
+        "points"
+    );
+    assert_eq!(
+        name(
+            &with(
+                pts[..4].to_vec(),
+                Timing::Prescribed(vec![0.0, 0.1, 0.2, 0.3])
+            ),
+            &opts
+        ),
+        "points"
+    );
+    // Non-finite numbers.
+    for bad in [f64::NAN, f64::INFINITY, -f64::INFINITY] {
+        let mut p = pts.clone();
+        p[5][0] = bad;
+        assert_eq!(name(&with(p, Timing::Free), &opts), "points");
+        let t = vec![0.0, 0.1, bad, 0.3, 0.4];
+        assert_eq!(
+            name(&with(pts[..5].to_vec(), Timing::Prescribed(t)), &opts),
+            "timing"
+        );
+    }
+    // One angle per point, spanning less than a turn.
+    assert!(name(
+        &with(pts[..5].to_vec(), Timing::Prescribed(vec![0.0; 4])),
+        &opts
+    )
+    .starts_with("timing"));
+    assert!(name(
+        &with(
+            pts[..5].to_vec(),
+            Timing::Prescribed(vec![0.0, 1.0, 2.0, 3.0, 7.0])
+        ),
+        &opts
+    )
+    .starts_with("timing"));
+    // Coinciding points are named.
+    let mut same = pts.clone();
+    same[9] = same[3];
+    assert!(name(&with(same, Timing::ClosedCurve), &opts).contains("points 4 and 10 coincide"));
+    // Bad options.
+    let bad = PathOptions::default().with_max_link_ratio(1.0);
+    assert_eq!(name(&good, &bad), "max_link_ratio");
+    let bad = PathOptions::default().with_max_size(f64::NAN);
+    assert_eq!(name(&good, &bad), "max_size");
+    let bad = PathOptions::default().with_population(3);
+    assert_eq!(name(&good, &bad), "population and positions");
+    let bad = PathOptions::default().with_min_transmission_angle(2.0);
+    assert_eq!(name(&good, &bad), "min_transmission_angle");
+}

@@ -1,15 +1,23 @@
 //! Path generation: a four-bar whose coupler point passes through given points (with or
 //! without prescribed crank angles) or traces a closed curve, by a seeded global search.
 //!
-//! The search is differential evolution (DE/rand/1/bin with dithered F) over the nine
-//! dimensions of a four-bar with a coupler point and its assembly mode, each candidate
-//! evaluated over a turn of the crank (or over its prescribed angles) in one batch
-//! ([`four_bar_positions`]). A candidate must assemble on its one branch over the whole
-//! input range it needs, keep the transmission angle at or above \[γ\] there, and keep its
-//! link ratio within bounds; otherwise it is penalised. The best distinct candidates are then
-//! polished: Nelder–Mead on the sum of squared misses (the crank angle at each point a free
-//! unknown unless prescribed), then Levenberg–Marquardt, which converges quadratically where
-//! the points can be met exactly.
+//! With prescribed timing the search is differential evolution (DE/current-to-pbest/1/bin
+//! with dithered F) over the nine dimensions of a four-bar with a coupler point, its assembly
+//! mode and the first crank angle θ0, each candidate evaluated at its prescribed angles and
+//! over the range between them in one batch ([`four_bar_positions`]).
+//!
+//! Without it (free timing, a closed curve) the search runs over the *shapes* of four-bars
+//! only — five ratios and the mode — and places each candidate's coupler curve on the targets
+//! by the similarity that fits best, in closed form ([`shape`]): four of the nine dimensions
+//! need no search, and the crank angles at the targets come with the placement.
+//!
+//! A candidate must assemble on its one branch over the whole input range it needs, keep the
+//! transmission angle at or above \[γ\] there, keep its link ratio and size within bounds, and
+//! meet the points in their order (no order defect); otherwise it is penalised or refused.
+//! The best candidates are polished by Levenberg–Marquardt on the exact misses (the crank
+//! angle at each point an unknown unless prescribed), which converges quadratically where the
+//! points can be met exactly; every few generations the best one is polished, and the search
+//! ends as soon as enough distinct designs meet the points to the tolerance.
 
 mod shape;
 
@@ -32,7 +40,8 @@ type V = Vector2<f64>;
 #[non_exhaustive]
 pub enum Timing {
     /// Free: the crank may be at any angle at each point (path generation without prescribed
-    /// timing). Nine dimensions and one angle per point: at least 9 points.
+    /// timing), but meets the points in their order, turning one way by less than a turn.
+    /// Nine dimensions and one angle per point: at least 9 points.
     Free,
     /// Prescribed: the crank has turned by `Δφ_i` (rad, one per point, the first usually 0)
     /// from an angle θ0 that the search chooses. Ten unknowns: at least 5 points.
@@ -157,8 +166,9 @@ pub struct Progress {
     pub generation: usize,
     /// Candidate evaluations so far.
     pub evaluations: usize,
-    /// The best objective so far: the mean miss in path sizes (plus penalties while no
-    /// candidate is feasible, ≥ 1000 then).
+    /// The best objective so far, in path sizes: the mean miss at the points with prescribed
+    /// timing, the RMS miss of the best-placed coupler curve without (≥ 1000 while no
+    /// candidate is feasible: a penalty then).
     pub best: f64,
     /// Time since the start.
     pub elapsed: Duration,

@@ -59,6 +59,9 @@ pub(super) struct Shapes {
     arc: Vec<f64>,
     q: Vec<V>,
     pos: Vec<f64>,
+    /// Scratch of [`Shapes::snap`].
+    q2: Vec<V>,
+    pos2: Vec<f64>,
 }
 
 /// Complex product a·b of vectors read as complex numbers.
@@ -117,6 +120,8 @@ impl Shapes {
             arc: Vec::with_capacity(positions + 1),
             q: vec![V::zeros(); n],
             pos: vec![0.0; n],
+            q2: vec![V::zeros(); n],
+            pos2: vec![0.0; n],
         }
     }
 
@@ -159,7 +164,6 @@ impl Shapes {
     /// the shape `h` placed by its best cut.
     pub(super) fn place(&mut self, pb: &Problem, h: &[f64]) -> Option<(Vec<f64>, Vec<f64>)> {
         let c = self.cut(pb, h).ok()?;
-        self.fill(c.start, c.span, c.forward);
         let (k, turn) = (c.alpha.norm(), c.alpha.y.atan2(c.alpha.x));
         let d = Self::dims(h);
         let genes = vec![
@@ -198,15 +202,11 @@ impl Shapes {
             return Err(INFEASIBLE + 2.0);
         }
         let mut best: Option<Cut> = None;
-        let spans: Vec<f64> = if self.closed {
-            vec![total]
-        } else {
-            (0..SPANS)
-                .map(|k| total * 0.08f64.powf(k as f64 / SPANS as f64))
-                .collect()
-        };
+        let spans = if self.closed { 1 } else { SPANS };
         for forward in [true, false] {
-            for &span in &spans {
+            for k in 0..spans {
+                // Spans from the whole run down to a tenth of it, geometrically.
+                let span = total * 0.08f64.powf(k as f64 / SPANS as f64);
                 let room = if self.looped { total } else { total - span };
                 let starts = if self.looped || room > 0.0 { STARTS } else { 1 };
                 for k in 0..starts {
@@ -240,6 +240,8 @@ impl Shapes {
                 }
             }
         }
+        self.fill(best.start, best.span, best.forward);
+        self.snap(&mut best);
         // The placed design within the size bound.
         let k = best.alpha.norm();
         let far = [
@@ -349,6 +351,53 @@ impl Shapes {
             self.q[i] = p;
             self.pos[i] = j;
         }
+    }
+
+    /// Moves each target's point on the curve to the sample nearest to the target as placed
+    /// (within a target's share of the run about where the cut put it) and fits the
+    /// similarity again, twice, keeping what is better. The chords between the targets lag
+    /// the arcs most where the curve turns sharply: this takes the correspondences from the
+    /// geometry instead. Leaves the run positions of the best correspondences in `pos`.
+    fn snap(&mut self, best: &mut Cut) {
+        let len = self.run.len() as isize;
+        let n = self.targets.len();
+        let w = (len / n as isize).max(2);
+        let (mut pos, mut q) = (std::mem::take(&mut self.pos2), std::mem::take(&mut self.q2));
+        pos.copy_from_slice(&self.pos);
+        q.copy_from_slice(&self.q);
+        for _ in 0..2 {
+            for i in 0..n {
+                let centre = pos[i].round() as isize;
+                let mut near = (f64::INFINITY, centre);
+                for j in centre - w..=centre + w {
+                    let j = if self.looped {
+                        j.rem_euclid(len)
+                    } else if (0..len).contains(&j) {
+                        j
+                    } else {
+                        continue;
+                    };
+                    let p = mul(best.alpha, self.point(j as usize)) + best.t;
+                    let dd = (p - self.targets[i]).norm_squared();
+                    if dd < near.0 {
+                        near = (dd, j);
+                    }
+                }
+                pos[i] = near.1 as f64;
+                q[i] = self.point(near.1 as usize);
+            }
+            let Some((res, alpha, t)) = similarity(&self.targets, &q) else {
+                break;
+            };
+            let cost = (res / n as f64).sqrt();
+            if cost >= best.cost {
+                break;
+            }
+            (best.alpha, best.t, best.cost) = (alpha, t, cost);
+            self.pos.copy_from_slice(&pos);
+            self.q.copy_from_slice(&q);
+        }
+        (self.pos2, self.q2) = (pos, q);
     }
 
     fn try_cut(&mut self, start: f64, span: f64, forward: bool) -> Option<Cut> {
