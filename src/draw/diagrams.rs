@@ -431,6 +431,9 @@ impl Curves<'_> {
                 )
             })
             .flatten()
+            // A position whose abscissa or value is not a finite number (an input too large
+            // to place on the axis) has no place on the chart: its mark is left out.
+            .filter(|(_, m)| m[0].is_finite() && m[1].is_finite())
             .collect();
         let all = series
             .iter()

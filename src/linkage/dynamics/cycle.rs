@@ -394,7 +394,19 @@ impl LinkageSystem {
                 Direction::Falling
             },
         });
-        let r = run(self, method, start, &ro)?;
+        let r = match run(self, method, start, &ro) {
+            // A machine driven backwards spins the other way ever faster and fills its
+            // budget before max_turn_time: that is a turn that never comes, said as one.
+            Err(Error::Budget { time, .. }) => {
+                return Err(Error::Singular {
+                    what: "run-up",
+                    measure: "time reached without completing a turn before the run's step or \
+                              row budget ran out (the machine turns back or stalls)",
+                    value: time - start.t,
+                });
+            }
+            r => r?,
+        };
         if let Outcome::Stuck { t, loads, .. } = r.outcome {
             // The resistances hold the machine at rest: no turn will ever end.
             return Err(loads.stalled(t));
