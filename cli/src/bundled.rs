@@ -4,6 +4,10 @@
 /// Each bundled file: its name without `.json`, and its text.
 pub const FILES: &[(&str, &str)] = &[
     (
+        "double-butterfly",
+        include_str!("../../linkages/double-butterfly.json"),
+    ),
+    (
         "five-bar-robot",
         include_str!("../../linkages/five-bar-robot.json"),
     ),

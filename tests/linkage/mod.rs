@@ -10,6 +10,10 @@ mod files;
 #[cfg(feature = "serde")]
 mod friction;
 #[cfg(feature = "serde")]
+mod general;
+#[cfg(feature = "serde")]
 mod hostile;
+mod planning;
+mod singular;
 #[cfg(feature = "serde")]
 mod triad;
