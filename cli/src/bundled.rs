@@ -8,6 +8,10 @@ pub const FILES: &[(&str, &str)] = &[
         include_str!("../../linkages/chebyshev-straight-line.json"),
     ),
     (
+        "double-butterfly",
+        include_str!("../../linkages/double-butterfly.json"),
+    ),
+    (
         "five-bar-robot",
         include_str!("../../linkages/five-bar-robot.json"),
     ),

@@ -56,6 +56,7 @@
 //! # Ok::<(), tmm::Error>(())
 //! ```
 
+mod assur;
 pub mod batch;
 mod contour;
 mod crank;
@@ -73,6 +74,7 @@ mod rrr;
 mod transfer;
 mod triad;
 
+pub use assur::{GroupMotion, GroupPose, GroupReactions, HingeEnd, HingedGroup};
 pub use contour::{
     contour_residual, solve_contour, solve_contour_position, Branch, ContourCase, ContourSolution,
     LoopVector, Part, SINGULAR_DETERMINANT,

@@ -128,6 +128,15 @@ pub fn six_bar_triad() -> Linkage {
     bundled!("six-bar-triad.json")
 }
 
+/// The double butterfly eight-bar: the input ACD turns about A = (0, 0) and carries C and D;
+/// one six-link group (CE, EFG, BFJ, DHI, GH, IJ, hinged to the frame at B = (6.17, 0)),
+/// which holds neither a dyad nor a triad, solved as a general group. The file
+/// `linkages/double-butterfly.json`.
+#[must_use]
+pub fn double_butterfly() -> Linkage {
+    bundled!("double-butterfly.json")
+}
+
 /// Every bundled linkage of one input, in the order of the files under `linkages/`.
 #[must_use]
 pub fn all() -> Vec<Linkage> {
@@ -140,6 +149,7 @@ pub fn all() -> Vec<Linkage> {
         scotch_yoke(),
         slotted_rocker(),
         six_bar_triad(),
+        double_butterfly(),
     ]
 }
 

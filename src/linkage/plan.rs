@@ -46,10 +46,14 @@ pub enum GroupKind {
     /// The triad, the Assur group of the 3rd class with revolute joints: a ternary link held
     /// by three binary links on three known joints (see [`Group::triad_links`]).
     Triad,
+    /// A larger rigid group of hinges with no closed form (the double butterfly's six-link
+    /// group, a group of the 4th class), solved by its closure equations (see
+    /// [`Group::general_links`]).
+    General,
 }
 
 impl GroupKind {
-    /// "RRR", "RRP", "RPR", "PRP", "RPP" or "triad".
+    /// "RRR", "RRP", "RPR", "PRP", "RPP", "triad" or "general".
     #[must_use]
     pub fn label(self) -> &'static str {
         match self {
@@ -59,6 +63,7 @@ impl GroupKind {
             Self::Prp => "PRP",
             Self::Rpp => "RPP",
             Self::Triad => "triad",
+            Self::General => "general",
         }
     }
 }
@@ -86,6 +91,8 @@ pub struct Group {
     pub known: [usize; 2],
     /// A triad's plan (`None` for a dyad).
     pub(crate) triad: Option<Box<TriadPlan>>,
+    /// A general group's plan (`None` for a dyad or a triad).
+    pub(crate) general: Option<Box<super::plan_general::GeneralPlan>>,
     /// The assembly mode (read off the reference pose unless overridden).
     pub branch: Branch,
     pub(crate) a_local: Vector2<f64>,
@@ -120,6 +127,16 @@ pub(crate) struct TriadPlan {
 }
 
 impl Group {
+    /// A general group's links and its joints (the hinges between two of its links, then
+    /// the hinges to known links), indices into [`Plan::link_names`] and
+    /// [`Plan::joint_names`]; `None` for a dyad or a triad.
+    #[must_use]
+    pub fn general_links(&self) -> Option<(&[usize], &[usize], &[usize])> {
+        self.general
+            .as_ref()
+            .map(|g| (g.links.as_slice(), g.inner.as_slice(), g.outer.as_slice()))
+    }
+
     /// A triad's links: the ternary link, then the binary links 1, 2, 3 (indices into
     /// [`Plan::link_names`]); `None` for a dyad.
     #[must_use]

@@ -5,12 +5,12 @@
 //! one more joint (an outer joint) to links whose motion is already known. Starting from the
 //! frame and the input link, the decomposition repeatedly takes a pair of unknown links that
 //! forms such a dyad; their other joints (those of a ternary link) are left for the groups
-//! attached later. When no dyad attaches, a triad of the 3rd class is looked for
-//! (`structure_triad.rs`). A linkage of the 2nd class, with triads, is used up exactly;
-//! whatever is left is a group of a higher class, or links that are not connected as a
-//! mechanism with one input.
+//! attached later. When no dyad attaches, a triad of the 3rd class is looked for, and when
+//! none attaches either, a larger rigid group of hinges (`structure_triad.rs`). Whatever is
+//! left then is links that are not connected as a mechanism with its inputs (or a higher
+//! group with sliding pairs), and is named.
 
-use super::structure_triad::{next_triad, Assur};
+use super::structure_triad::{next_general, triad_on, Assur, Joint, TriadFound};
 use crate::error::{Error, Result};
 use std::cmp::Reverse;
 use std::collections::{BinaryHeap, HashMap};
@@ -59,6 +59,8 @@ struct Graph<'a> {
     known: Vec<bool>,
     /// For each link, how many of its joints go to known links.
     known_neighbours: Vec<u32>,
+    /// Unknown links that may be a triad's ternary link (stale entries are skipped).
+    ternary: BinaryHeap<Reverse<usize>>,
     /// Adjacency entries visited and queue operations: the decomposition's work.
     work: u64,
 }
@@ -83,6 +85,7 @@ impl<'a> Graph<'a> {
             between,
             known: vec![false; n],
             known_neighbours: vec![0; n],
+            ternary: (0..n).map(Reverse).collect(),
             work: edges.len() as u64,
         }
     }
@@ -140,18 +143,40 @@ impl<'a> Graph<'a> {
         }
     }
 
-    /// Queues every joint of the `reached` links that now joins a dyad.
+    /// Queues every joint of the `reached` links that now joins a dyad, and each of their
+    /// unknown neighbours as a triad's possible ternary link (a triad over the known links
+    /// appears only when one of its binary links is reached).
     fn queue(&mut self, reached: &mut Vec<usize>, queue: &mut BinaryHeap<Reverse<usize>>) {
         for link in reached.drain(..) {
-            for &(j, _) in &self.adjacent[link] {
+            for &(j, other) in &self.adjacent[link] {
                 self.work += 1;
                 let [a, b] = self.edges[j].links;
                 if self.is_dyad(a, b, j) {
                     self.work += 1;
                     queue.push(Reverse(j));
                 }
+                if !self.known[other] {
+                    self.work += 1;
+                    self.ternary.push(Reverse(other));
+                }
             }
         }
+    }
+
+    /// The triad over the known links with the smallest ternary link, if any. A link leaves
+    /// the set of ternary links for good only (a known neighbour, or a binary link with a
+    /// second known neighbour, stays), and enters it only when a neighbour is reached, when
+    /// it is queued again: so the smallest queued link that makes a triad is the smallest of
+    /// all, as a scan of every link would find.
+    fn next_triad(&mut self, joints: &[Joint]) -> Option<TriadFound> {
+        while let Some(&Reverse(t)) = self.ternary.peek() {
+            self.work += 1;
+            if let Some(found) = triad_on(joints, &self.adjacent, &self.known, t, &mut self.work) {
+                return Some(found);
+            }
+            self.ternary.pop();
+        }
+        None
     }
 }
 
@@ -215,13 +240,21 @@ pub(crate) fn decompose_counted(
                     .map(|e| (e.links, e.pair == Pair::Revolute))
                     .collect();
             }
-            let Some(t) = next_triad(&joints, &graph.known) else {
+            if let Some(t) = graph.next_triad(&joints) {
+                for l in t.links() {
+                    graph.learn(l, &mut reached);
+                }
+                dyads.push(Assur::Triad(t));
+            } else if let Some(g) =
+                next_general(&joints, &graph.adjacent, &graph.known, &mut graph.work)
+            {
+                for &l in &g.links {
+                    graph.learn(l, &mut reached);
+                }
+                dyads.push(Assur::General(g));
+            } else {
                 break;
-            };
-            for l in t.links() {
-                graph.learn(l, &mut reached);
             }
-            dyads.push(Assur::Triad(t));
             graph.queue(&mut reached, &mut queue);
         }
     } else {
@@ -257,9 +290,10 @@ pub(crate) fn decompose_counted(
             format!("has mobility W = {mobility} by Chebyshev's formula (3·{} moving links − 2·{} lower pairs); the engine needs W = {wanted}, one per declared input", n - 1, edges.len())
         } else {
             format!(
-                "links {} do not decompose into dyads of the 2nd class or triads of the 3rd (mobility W = {mobility} \
-                 by Chebyshev's formula, {} moving links, {} lower pairs): a group of a higher \
-                 class, a wrong mobility or a link hanging free",
+                "links {} do not decompose into dyads of the 2nd class, triads of the 3rd or rigid \
+                 groups of hinges (mobility W = {mobility} by Chebyshev's formula, {} moving \
+                 links, {} lower pairs): a wrong mobility, a link hanging free, or a group of \
+                 a higher class with a sliding pair",
                 left.join(", "),
                 n - 1,
                 edges.len()
@@ -434,7 +468,7 @@ mod tests {
                     .into_iter()
                     .map(|g| match g {
                         Assur::Dyad(d) => Some(d),
-                        Assur::Triad(_) => None,
+                        Assur::Triad(_) | Assur::General(_) => None,
                     })
                     .collect()
             };
@@ -505,11 +539,11 @@ mod tests {
     }
 
     #[test]
-    fn a_group_of_a_higher_class_is_named() {
+    fn a_group_of_a_higher_class_is_a_general_group_and_with_a_slider_is_named() {
         // A group of the 4th class: the closed contour 2-3-4-5, link 3 hinged to the frame,
         // 2 held by link 6 from the crank and 4 by link 7 from the frame (six links, nine
-        // joints), W = 3·7 − 2·10 = 1. No dyad and no triad attaches.
-        let e = [
+        // joints), W = 3·7 − 2·10 = 1. No dyad and no triad attaches: one general group.
+        let mut e = vec![
             r(0, 1),
             r(2, 3),
             r(3, 4),
@@ -521,6 +555,19 @@ mod tests {
             r(7, 0),
             r(3, 0),
         ];
+        let d = decompose(&e, &names(8), &[1], &[]).unwrap();
+        assert_eq!(
+            d,
+            vec![Assur::General(
+                crate::linkage::structure_triad::GeneralFound {
+                    links: vec![2, 3, 4, 5, 6, 7],
+                    inner: vec![1, 2, 3, 4, 5, 7],
+                    outer: vec![6, 8, 9],
+                }
+            )]
+        );
+        // With a sliding pair it is no group the engine solves: the links are named.
+        e[3].pair = Pair::Prismatic;
         let err = decompose(&e, &names(8), &[1], &[]).unwrap_err().to_string();
         assert!(err.contains("links 2, 3, 4, 5, 6, 7"), "{err}");
         assert!(err.contains("W = 1"), "{err}");

@@ -1,10 +1,16 @@
-//! The triad in the structural decomposition: the Assur group of the 3rd class with revolute
-//! joints, found when no dyad can be attached.
+//! The groups above the 2nd class in the structural decomposition: the triad (the Assur
+//! group of the 3rd class with revolute joints), looked for when no dyad can be attached, and
+//! the general fallback, a larger rigid group of hinges, when no triad can be either.
 //!
 //! A triad is four unknown links: a ternary link T hinged to three binary links L1, L2, L3,
 //! each of which is hinged by its other joint to a known link (T itself has no joint to a
 //! known link, and the binary links none to each other). Its three outer joints A_i are then
 //! known points, and the group is rigid: 3·4 − 2·6 = 0.
+//!
+//! A general group is a connected set of unknown links, all of whose joints are hinges,
+//! with 2·joints = 3·links (rigid by count): the double butterfly's six-link group, a group of
+//! the 4th class. It may hold smaller groups that the walk could not reach first (a dyad
+//! hinged to a larger group); it is then solved whole, which is exact, only slower.
 
 /// One triad found by the decomposition: the ternary link and the binary links, the outer
 /// joints A_i (binary link i with its known link) and the joints B_i (binary link i with the
@@ -24,64 +30,81 @@ impl TriadFound {
     }
 }
 
-/// A group found by the decomposition: a dyad (`D`, the structure's dyad) or a triad.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+/// A rigid group of hinges of no smaller kind (the general fallback): its links, the hinges
+/// between two of them (`inner`) and the hinges to known links (`outer`), each in joint
+/// order.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub(crate) struct GeneralFound {
+    pub links: Vec<usize>,
+    pub inner: Vec<usize>,
+    pub outer: Vec<usize>,
+}
+
+/// A group found by the decomposition: a dyad (`D`, the structure's dyad), a triad or a
+/// larger group.
+#[derive(Debug, Clone, PartialEq, Eq)]
 pub(crate) enum Assur<D> {
     /// A dyad of the 2nd class.
     Dyad(D),
     /// A triad of the 3rd class.
     Triad(TriadFound),
+    /// A larger rigid group of hinges, solved by its closure equations.
+    General(GeneralFound),
 }
 
-/// A joint as the triad's search reads it: the two links it joins, and whether it is a hinge.
+/// A joint as the searches read it: the two links it joins, and whether it is a hinge.
 pub(crate) type Joint = ([usize; 2], bool);
 
-/// The link across joint `e` from `link`.
-fn other(e: &Joint, link: usize) -> usize {
-    if e.0[0] == link {
-        e.0[1]
-    } else {
-        e.0[0]
+/// Each link's joints, with the link at each joint's other end.
+pub(crate) type Adjacent = [Vec<(usize, usize)>];
+
+/// The triad whose ternary link is `t`, if its joints make one over `known`; `work` counts
+/// the adjacency entries read.
+pub(crate) fn triad_on(
+    edges: &[Joint],
+    adjacent: &Adjacent,
+    known: &[bool],
+    t: usize,
+    work: &mut u64,
+) -> Option<TriadFound> {
+    if known[t] {
+        return None;
     }
-}
-
-/// The first triad (by the ternary link's index) over `known`, if any.
-pub(crate) fn next_triad(edges: &[Joint], known: &[bool]) -> Option<TriadFound> {
-    (0..known.len())
-        .filter(|&t| !known[t])
-        .find_map(|t| triad_on(edges, known, t))
-}
-
-/// The triad whose ternary link is `t`, if its joints make one.
-fn triad_on(edges: &[Joint], known: &[bool], t: usize) -> Option<TriadFound> {
-    let joints: Vec<usize> = (0..edges.len())
-        .filter(|&j| edges[j].0.contains(&t))
-        .collect();
+    let joints = &adjacent[t];
+    *work += joints.len() as u64;
     // T is joined to no known link.
-    if joints.iter().any(|&j| known[other(&edges[j], t)]) {
+    if joints.iter().any(|&(_, l)| known[l]) {
         return None;
     }
     // Candidates: revolute joints of T to a binary link that has one revolute joint to a
     // known link and no other joint to a known link or to T.
-    let candidates: Vec<(usize, usize, usize)> = joints
-        .iter()
-        .filter(|&&j| edges[j].1)
-        .filter_map(|&j| {
-            let l = other(&edges[j], t);
-            let mine: Vec<usize> = (0..edges.len())
-                .filter(|&k| k != j && edges[k].0.contains(&l))
-                .collect();
-            let to_t = mine.iter().filter(|&&k| other(&edges[k], l) == t).count();
-            let outer: Vec<usize> = mine
-                .iter()
-                .copied()
-                .filter(|&k| known[other(&edges[k], l)])
-                .collect();
-            (to_t == 0 && outer.len() == 1 && edges[outer[0]].1).then(|| (l, outer[0], j))
-        })
-        .collect();
+    let mut candidates: Vec<(usize, usize, usize)> = Vec::new();
+    for &(j, l) in joints.iter().filter(|&&(j, _)| edges[j].1) {
+        let (mut to_t, mut outer, mut count) = (0, None, 0);
+        for &(k, m) in &adjacent[l] {
+            *work += 1;
+            if k == j {
+                continue;
+            }
+            if m == t {
+                to_t += 1;
+            }
+            if known[m] {
+                count += 1;
+                outer = Some(k);
+            }
+        }
+        if let (0, 1, Some(o)) = (to_t, count, outer)
+            && edges[o].1
+        {
+            candidates.push((l, o, j));
+        }
+    }
     let n = candidates.len();
-    let joined = |a: usize, b: usize| edges.iter().any(|e| e.0.contains(&a) && e.0.contains(&b));
+    let mut joined = |a: usize, b: usize| {
+        *work += adjacent[a].len() as u64;
+        adjacent[a].iter().any(|&(_, m)| m == b)
+    };
     for i in 0..n {
         for j in i + 1..n {
             for k in j + 1..n {
@@ -100,6 +123,59 @@ fn triad_on(edges: &[Joint], known: &[bool], t: usize) -> Option<TriadFound> {
                     inner: c.map(|x| x.2),
                 });
             }
+        }
+    }
+    None
+}
+
+/// The first connected set of unknown links (by its smallest link) that is a rigid group of
+/// hinges over `known`: every joint of its links a hinge, 2·joints = 3·links. `work` counts
+/// the adjacency entries read (each unknown link's list once).
+pub(crate) fn next_general(
+    edges: &[Joint],
+    adjacent: &Adjacent,
+    known: &[bool],
+    work: &mut u64,
+) -> Option<GeneralFound> {
+    let mut seen = vec![false; known.len()];
+    for start in 0..known.len() {
+        if known[start] || seen[start] {
+            continue;
+        }
+        seen[start] = true;
+        let mut links = vec![start];
+        let (mut inner, mut outer) = (Vec::new(), Vec::new());
+        let mut hinges = true;
+        let mut next = 0;
+        while next < links.len() {
+            let l = links[next];
+            next += 1;
+            for &(j, m) in &adjacent[l] {
+                *work += 1;
+                hinges &= edges[j].1;
+                if known[m] {
+                    outer.push(j);
+                } else {
+                    // Each inner joint is met from both of its links: kept from the first.
+                    if l < m {
+                        inner.push(j);
+                    }
+                    if !seen[m] {
+                        seen[m] = true;
+                        links.push(m);
+                    }
+                }
+            }
+        }
+        if hinges && 2 * (inner.len() + outer.len()) == 3 * links.len() {
+            links.sort_unstable();
+            inner.sort_unstable();
+            outer.sort_unstable();
+            return Some(GeneralFound {
+                links,
+                inner,
+                outer,
+            });
         }
     }
     None

@@ -18,7 +18,7 @@ fn bundled_all() -> Vec<Linkage> {
         .flat_map(|l| Plan::new(l).unwrap().groups().to_vec())
         .map(|g| g.kind.label())
         .collect();
-    assert_eq!(kinds.len(), 6, "{kinds:?}");
+    assert_eq!(kinds.len(), 7, "{kinds:?}");
     all
 }
 

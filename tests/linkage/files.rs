@@ -50,6 +50,7 @@ fn files() -> Vec<(&'static str, &'static str, Linkage)> {
         ),
         file!("five-bar-robot.json", bundled::five_bar_robot()),
         file!("six-bar-triad.json", bundled::six_bar_triad()),
+        file!("double-butterfly.json", bundled::double_butterfly()),
     ]
 }
 

@@ -15,7 +15,11 @@ fn dyads_only() -> Vec<Linkage> {
     bundled::all()
         .into_iter()
         .filter(|l| {
-            Plan::new(l).is_ok_and(|p| p.groups().iter().all(|g| g.kind != GroupKind::Triad))
+            Plan::new(l).is_ok_and(|p| {
+                p.groups()
+                    .iter()
+                    .all(|g| !matches!(g.kind, GroupKind::Triad | GroupKind::General))
+            })
         })
         .collect()
 }

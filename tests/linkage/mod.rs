@@ -14,9 +14,13 @@ mod friction;
 #[cfg(feature = "serde")]
 mod gallery;
 #[cfg(feature = "serde")]
+mod general;
+#[cfg(feature = "serde")]
 mod hostile;
 #[cfg(feature = "serde")]
 mod instant_centres;
+mod planning;
+mod singular;
 #[cfg(feature = "serde")]
 mod springs;
 #[cfg(feature = "serde")]

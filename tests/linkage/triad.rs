@@ -1,12 +1,11 @@
 //! The triad (the Assur group of the 3rd class) in the engine, on the bundled six-bar with a
 //! triad: closure, rates against finite differences, the whole linkage's Newton–Euler system,
-//! virtual power, the mode kept round a turn; and a group of a higher class still named.
+//! virtual power, the mode kept round a turn (a group of a higher class: tests/linkage/general.rs).
 
 use super::engine::{fd8, lu_difference};
 use std::f64::consts::TAU;
 use tmm::kinematics::Motion;
-use tmm::linkage::{bundled, GroupKind, Linkage, Plan};
-use tmm::Error;
+use tmm::linkage::{bundled, GroupKind, Plan};
 
 fn plan() -> Plan {
     Plan::new(&bundled::six_bar_triad()).unwrap()
@@ -173,43 +172,4 @@ fn reactions_agree_with_the_whole_system_virtual_power_and_equilibrium() {
     assert!(lu < 1e-11, "LU {lu:e}");
     assert!(vp < 1e-12, "virtual power {vp:e}");
     assert!(eq < 1e-12, "equilibrium {eq:e}");
-}
-
-/// A group of the 4th class (the closed contour l2-l3-l4-l5, l3 hinged to the frame, l2 held
-/// by l6 from the crank and l4 by l7 from the frame): neither a dyad nor a triad attaches,
-/// and the error names the links left over.
-#[test]
-fn a_group_of_a_higher_class_names_the_links_left_over() {
-    let json = r#"{
-      "name": "4th class",
-      "joints": [
-        {"name": "O1", "at": [0.0, 0.0]}, {"name": "A", "at": [0.1, 0.0]},
-        {"name": "P", "at": [0.3, 0.2]}, {"name": "Q", "at": [0.5, 0.2]},
-        {"name": "R", "at": [0.6, 0.4]}, {"name": "S", "at": [0.5, 0.6]},
-        {"name": "T", "at": [0.3, 0.5]}, {"name": "U", "at": [0.8, 0.5]},
-        {"name": "V", "at": [0.9, 0.1]}, {"name": "W", "at": [0.6, 0.0]}
-      ],
-      "links": [
-        {"name": "frame", "joints": ["O1", "V", "W"]},
-        {"name": "crank", "joints": ["O1", "A"]},
-        {"name": "l2", "joints": ["P", "Q", "T"]},
-        {"name": "l3", "joints": ["Q", "R", "W"]},
-        {"name": "l4", "joints": ["R", "S", "U"]},
-        {"name": "l5", "joints": ["S", "T"]},
-        {"name": "l6", "joints": ["A", "P"]},
-        {"name": "l7", "joints": ["U", "V"]}
-      ],
-      "input": {"link": "crank"}
-    }"#;
-    let l = Linkage::from_json(json).unwrap();
-    let err = Plan::new(&l).unwrap_err();
-    let Error::Description { item, problem } = &err else {
-        panic!("{err}");
-    };
-    assert_eq!(item, "linkage");
-    assert!(
-        problem.contains("links l2, l3, l4, l5, l6, l7"),
-        "{problem}"
-    );
-    assert!(problem.contains("W = 1"), "{problem}");
 }

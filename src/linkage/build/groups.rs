@@ -11,6 +11,7 @@ use crate::linkage::description::{JointKind, Linkage};
 use crate::linkage::plan::{bad, Group, GroupKind};
 use crate::linkage::structure::{Dyad, Edge, Pair};
 use nalgebra::{Point2, Vector2};
+use std::collections::HashMap;
 
 /// A dyad's kind, its links (an RRP's slider second, an RPP's hinged link first) and its
 /// joints in the order outer, inner, outer.
@@ -247,12 +248,13 @@ impl Site<'_> {
 }
 
 /// Classifies a dyad, orders its links so that an RRP's slider comes second, sets the frames
-/// of its links in the reference pose and reads its assembly mode off the pose.
+/// of its links in the reference pose and reads its assembly mode off the pose (or `modes`,
+/// the description's modes by joint name, looked up once per group).
 pub(super) fn plan_group(
     d: &Dyad,
     edges: &[Edge],
     link_names: &[String],
-    linkage: &Linkage,
+    (linkage, modes): (&Linkage, &HashMap<&str, Branch>),
     frames: &mut [Frame],
 ) -> Result<Group> {
     let (kind, links, joints) = classify(d, edges, link_names)?;
@@ -285,11 +287,7 @@ pub(super) fn plan_group(
         dirs: joints.map(dir),
         known_angles: known.map(|k| frames[k].angle),
         joint_names: joints.map(|j| joint(j).name.as_str()),
-        mode: linkage
-            .modes
-            .iter()
-            .find(|m| m.joint == joint(joints[1]).name)
-            .map(|m| m.branch),
+        mode: modes.get(joint(joints[1]).name.as_str()).copied(),
     };
     let p = match kind {
         GroupKind::Rrr => site.rrr(),
@@ -297,7 +295,10 @@ pub(super) fn plan_group(
         GroupKind::Rpr => site.rpr(),
         GroupKind::Prp => site.prp(),
         GroupKind::Rpp => site.rpp(),
-        GroupKind::Triad => Err(bad(&name, "is a triad, planned by build/triad.rs")),
+        GroupKind::Triad | GroupKind::General => Err(bad(
+            &name,
+            "is not a dyad (planned by build/triad.rs or general.rs)",
+        )),
     }?;
     frames[links[0]] = p.frames[0];
     frames[links[1]] = p.frames[1];
@@ -314,5 +315,6 @@ pub(super) fn plan_group(
         slide_angle: p.slide_angle,
         name,
         triad: None,
+        general: None,
     })
 }

@@ -8,6 +8,7 @@
 
 mod chain;
 mod friction;
+mod general;
 mod groups;
 mod loads;
 mod reference;
@@ -74,11 +75,21 @@ impl Plan {
         let second_input = planned.get(1).cloned();
         let (input, reference_input) = planned.swap_remove(0);
         check_modes(linkage, &dyads)?;
+        // The first mode given for each joint (as a search of the list would find it).
+        let mut modes = std::collections::HashMap::with_capacity(linkage.modes.len());
+        for m in &linkage.modes {
+            modes.entry(m.joint.as_str()).or_insert(m.branch);
+        }
         let groups = dyads
             .iter()
             .map(|g| match g {
-                Assur::Dyad(d) => groups::plan_group(d, &edges, &links.names, linkage, &mut frames),
+                Assur::Dyad(d) => {
+                    groups::plan_group(d, &edges, &links.names, (linkage, &modes), &mut frames)
+                }
                 Assur::Triad(t) => triad::plan_triad(t, &edges, &links.names, linkage, &mut frames),
+                Assur::General(g) => {
+                    general::plan_general(g, &edges, &links.names, linkage, &mut frames)
+                }
             })
             .collect::<Result<Vec<_>>>()?;
 
@@ -186,7 +197,7 @@ fn check_modes(linkage: &Linkage, dyads: &[Assur<Dyad>]) -> Result<()> {
         .iter()
         .filter_map(|g| match g {
             Assur::Dyad(d) => Some(linkage.joints[d.joints[1]].name.as_str()),
-            Assur::Triad(_) => None,
+            Assur::Triad(_) | Assur::General(_) => None,
         })
         .collect();
     for m in &linkage.modes {

@@ -192,10 +192,31 @@ pub(super) fn reference_direction(
         Some([a, b]) => (pos(a)?, pos(b)?),
         None => {
             // The first two distinct joints; a link whose joints all coincide (a slider
-            // block) keeps the engine's frame: `None`.
-            let ps: Vec<Point2<f64>> = link.joints.iter().map(|j| pos(j)).collect::<Result<_>>()?;
-            match ps.iter().skip(1).find(|p| **p != ps[0]) {
-                Some(&b) => (ps[0], b),
+            // block) keeps the engine's frame: `None`. Each is a joint of this link by
+            // construction, so it is looked up without the membership test of `pos`
+            // (which would read the whole list for each: quadratic in a frame of many
+            // joints).
+            let at = |n: &str| -> Result<Point2<f64>> {
+                names
+                    .joints
+                    .get(n)
+                    .map(|&j| names.joint_at[j])
+                    .ok_or_else(|| bad(item, format!("names the unknown joint \"{n}\"")))
+            };
+            let mut ps = link.joints.iter().map(|j| at(j));
+            let Some(first) = ps.next().transpose()? else {
+                return Ok(None);
+            };
+            let mut second = None;
+            for p in ps {
+                let p = p?;
+                if p != first {
+                    second = Some(p);
+                    break;
+                }
+            }
+            match second {
+                Some(b) => (first, b),
                 None => return Ok(None),
             }
         }

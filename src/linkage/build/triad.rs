@@ -101,5 +101,6 @@ pub(super) fn plan_triad(
             dims,
             reference,
         })),
+        general: None,
     })
 }

@@ -142,12 +142,12 @@ impl Analysis<'_> {
         let (load2, load3) = (self.acc[l2], self.acc[l3]);
         let named = name_joint(&plan.chain.joint_names, group.joints, &group.name);
         let (ra, rb, rc, fr, cond, conv) = match group.kind {
-            GroupKind::Triad => {
-                // The friction blocks cover the five dyads; a triad's joints are not modelled.
+            GroupKind::Triad | GroupKind::General => {
+                // The friction blocks cover the five dyads; a larger group's are not modelled.
                 return Err(crate::Error::Description {
                     item: group.name.clone(),
-                    problem: "friction in the joints of a triad (a group of the 3rd class) is \
-                              not modelled: give its joints no friction"
+                    problem: "friction in the joints of a triad or a general group (above the \
+                              2nd class) is not modelled: give its joints no friction"
                         .to_owned(),
                 });
             }

@@ -170,7 +170,7 @@ impl<'p> Kinematics<'p> {
         Ok(match group.kind {
             GroupKind::Rrr | GroupKind::Prp | GroupKind::Rpp => between(u2, u3),
             GroupKind::Rrp => std::f64::consts::FRAC_PI_2 - between(u2, u3),
-            GroupKind::Rpr | GroupKind::Triad => std::f64::consts::FRAC_PI_2,
+            GroupKind::Rpr | GroupKind::Triad | GroupKind::General => std::f64::consts::FRAC_PI_2,
         })
     }
 

@@ -6,10 +6,12 @@
 pub(crate) mod analysis;
 mod checks;
 mod friction;
+mod general;
 pub(crate) mod kinematics;
 pub(crate) mod loads;
 pub(crate) mod position;
 mod rates;
+mod singular;
 mod solver;
 pub(crate) mod state;
 mod statics;
@@ -18,4 +20,5 @@ pub(crate) mod triad;
 pub use analysis::{Analysis, Balance, Reaction};
 pub use checks::PowerCheck;
 pub use kinematics::Kinematics;
+pub use singular::Position;
 pub use solver::Solver;

@@ -124,6 +124,9 @@ impl KinState {
         if let Some(t) = &group.triad {
             return self.solve_triad_kinematics(g, group, t);
         }
+        if let Some(gp) = &group.general {
+            return self.solve_general_kinematics(g, group, gp);
+        }
         let [l2, l3] = group.links;
         let [ka, kc] = group.known;
         let a = self.at(ka, group.a_local);
@@ -159,7 +162,7 @@ impl KinState {
                 (s.link2, s.link3, s.det, u2, u3)
             }
             // A plan's triad always carries its plan (solved above).
-            GroupKind::Triad => {
+            GroupKind::Triad | GroupKind::General => {
                 return Err(Error::Description {
                     item: group.name.clone(),
                     problem: "a triad without its plan".to_owned(),

@@ -84,6 +84,9 @@ impl KinState {
             // A failure is reported by the full solve that follows.
             return self.triad_rates_at(g, group, t).is_ok();
         }
+        if let Some(gp) = &group.general {
+            return self.general_rates_at(g, gp).is_ok();
+        }
         let [l2, l3] = group.links;
         let [ka, kc] = group.known;
         let (u2, u3) = (self.units[l2], self.units[l3]);
@@ -135,7 +138,9 @@ impl KinState {
                     link(e, angle3, omega, epsilon),
                 )
             }
-            GroupKind::Prp | GroupKind::Rpp | GroupKind::Triad => return false,
+            GroupKind::Prp | GroupKind::Rpp | GroupKind::Triad | GroupKind::General => {
+                return false
+            }
         };
         let finite = [m2, m3].iter().fold(true, |ok, m| {
             ok & [

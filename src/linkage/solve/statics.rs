@@ -33,6 +33,9 @@ impl Analysis<'_> {
         if let Some(t) = &group.triad {
             return self.solve_triad(g, group, t);
         }
+        if let Some(gp) = &group.general {
+            return self.solve_general(g, group, gp);
+        }
         let [l2, l3] = group.links;
         let [ja, jb, jc] = group.joints;
         let [ka, kc] = group.known;
@@ -114,7 +117,7 @@ impl Analysis<'_> {
                 )
             }
             // A plan's triad always carries its plan (solved above).
-            GroupKind::Triad => {
+            GroupKind::Triad | GroupKind::General => {
                 return Err(Error::Description {
                     item: group.name.clone(),
                     problem: "a triad without its plan".to_owned(),

@@ -1,0 +1,559 @@
+#![allow(clippy::neg_cmp_op_on_partial_ord)] // `!(x > 0.0)` rejects NaN too, on purpose.
+//! Any rigid group of links joined by hinges, by its closure equations: the general fallback
+//! for an Assur group of a class that has no closed form (the six-link group of the "double
+//! butterfly" eight-bar, a group of the 4th class, …).
+//!
+//! # The equations
+//! Link k's frame has its origin o_k and angle θ_k; a point given in its frame at l lies at
+//! p_k(l) = o_k + R(θ_k)·l. Each hinge between two links of the group closes when
+//! p_a(l_a) − p_b(l_b) = 0, each hinge to a known point P when p_k(l) − P = 0: with n links and
+//! m hinges, 2m equations in the 3n unknowns q = (o_k, θ_k), and a rigid group has 2m = 3n.
+//! The derivative of p_k(l) is ȯ_k + θ̇_k·J·R(θ_k)l (J the quarter turn), so the closure
+//! Jacobian K has the blocks [I, J·R(θ_k)l] per link and hinge.
+//!
+//! - **Positions**: Newton's method on the closure equations, each step one LU solve of K.
+//!   A group has many assembly modes (the double butterfly's six-link group has dozens at a
+//!   given input) and no sign tells them apart, so the engine fixes the mode by continuation
+//!   ([`HingedGroup::track`]): the known points move from their reference places to their
+//!   places now along a path the caller gives, in steps small enough that each Newton
+//!   corrector contracts at once from the tangent predictor; the mode is the one the
+//!   reference pose turns into. [`HingedGroup::modes`] searches for all of them.
+//! - **Rates**: the velocity and acceleration closure are linear with the same matrix:
+//!   K·q̇ = (0 | v_P) and K·q̈ = (θ̇_a²·R l_a − θ̇_b²·R l_b | a_P + θ̇_k²·R l), one factorisation
+//!   for both.
+//! - **Reactions**: by virtual work the equilibrium of the links is Kᵀλ + Q = 0, with Q_k the
+//!   resultant force on link k and its moment about o_k; λ at a hinge between links a and b is
+//!   the force that b exerts on a, at a hinge to a known point the force of the known link on
+//!   the group's link. So the statics needs no second matrix.
+//!
+//! The conditioning of all three is that of K with its angle columns scaled by the group's
+//! size (so that every column is a length): its reciprocal condition number σ_min/σ_max,
+//! which vanishes at a dead point or a branch point of the group.
+
+use super::link::LinkMotion;
+use super::motion::PointMotion;
+use crate::angle::{normalize, perp, unit};
+use crate::error::{Error, Result};
+use crate::load::Load;
+use nalgebra::{DMatrix, DVector, Point2, Vector2};
+
+/// Where a hinge sits on a group's link: the link's index in the group and the hinge's point
+/// in the link's frame.
+pub type HingeEnd = (usize, Vector2<f64>);
+
+/// A group of rigid links joined by hinges to each other and to known points.
+#[derive(Debug, Clone, PartialEq)]
+pub struct HingedGroup {
+    /// The number of links.
+    pub links: usize,
+    /// The hinges between two of the group's links.
+    pub inner: Vec<[HingeEnd; 2]>,
+    /// The hinges to known points (given at each solve, in this order).
+    pub outer: Vec<HingeEnd>,
+}
+
+/// A pose of a [`HingedGroup`]: each link's frame origin (m) and angle (rad).
+#[derive(Debug, Clone, PartialEq)]
+pub struct GroupPose {
+    /// Each link's frame origin.
+    pub origins: Vec<Point2<f64>>,
+    /// Each link's frame angle.
+    pub angles: Vec<f64>,
+}
+
+/// A group's motion: every link's motion and the conditioning σ_min/σ_max of the closure
+/// Jacobian (module docs).
+#[derive(Debug, Clone, PartialEq)]
+pub struct GroupMotion {
+    /// Each link's motion (its frame origin's point motion, angle, ω, ε).
+    pub links: Vec<LinkMotion>,
+    /// σ_min/σ_max of the scaled closure Jacobian.
+    pub conditioning: f64,
+}
+
+/// A group's reactions (module docs): at each inner hinge the force the hinge's second link
+/// exerts on its first, at each outer hinge the force the known link exerts on the group.
+#[derive(Debug, Clone, PartialEq)]
+pub struct GroupReactions {
+    /// Per inner hinge, the force of its second link on its first, N.
+    pub inner: Vec<Vector2<f64>>,
+    /// Per outer hinge, the force of the known link on the group's link, N.
+    pub outer: Vec<Vector2<f64>>,
+    /// σ_min/σ_max of the scaled closure Jacobian.
+    pub conditioning: f64,
+}
+
+/// The largest number of Newton steps of one solve.
+const MAX_NEWTON: usize = 40;
+/// Below this σ_min/σ_max the closure Jacobian carries no significant digit.
+const SINGULAR_BELOW: f64 = 8.0 * f64::EPSILON;
+
+impl GroupPose {
+    fn to_q(&self) -> DVector<f64> {
+        DVector::from_iterator(
+            3 * self.angles.len(),
+            self.origins
+                .iter()
+                .zip(&self.angles)
+                .flat_map(|(o, &a)| [o.x, o.y, a]),
+        )
+    }
+
+    fn from_q(q: &DVector<f64>) -> Self {
+        let n = q.len() / 3;
+        Self {
+            origins: (0..n)
+                .map(|k| Point2::new(q[3 * k], q[3 * k + 1]))
+                .collect(),
+            angles: (0..n).map(|k| q[3 * k + 2]).collect(),
+        }
+    }
+
+    /// The largest distance between the two poses' hinge points, the angles' differences
+    /// measured as arcs at `size`: how far apart two assembly modes are.
+    #[must_use]
+    pub fn distance(&self, other: &Self, size: f64) -> f64 {
+        self.origins
+            .iter()
+            .zip(&other.origins)
+            .map(|(a, b)| (a - b).norm())
+            .chain(self.angles.iter().zip(&other.angles).map(|(a, b)| {
+                size * (normalize(a - b + std::f64::consts::PI) - std::f64::consts::PI).abs()
+            }))
+            .fold(0.0, f64::max)
+    }
+}
+
+impl HingedGroup {
+    /// Checks that the group is rigid by count (2m = 3n), names links in range and holds
+    /// finite points.
+    ///
+    /// # Errors
+    /// [`Error::Description`] naming what is wrong.
+    pub fn check(&self) -> Result<()> {
+        let m = self.inner.len() + self.outer.len();
+        let bad = |problem: String| Error::Description {
+            item: "hinged group".to_owned(),
+            problem,
+        };
+        if self.links == 0 || 2 * m != 3 * self.links {
+            return Err(bad(format!(
+                "{} links and {m} hinges: a rigid group needs 2·hinges = 3·links",
+                self.links
+            )));
+        }
+        let ends = self.inner.iter().flatten().chain(&self.outer);
+        for &(k, l) in ends {
+            if k >= self.links || !(l.x.is_finite() && l.y.is_finite()) {
+                return Err(bad(format!(
+                    "a hinge names link {k} (of {}) at [{}, {}]",
+                    self.links, l.x, l.y
+                )));
+            }
+        }
+        if self.inner.iter().any(|[a, b]| a.0 == b.0) {
+            return Err(bad("a hinge joins a link to itself".to_owned()));
+        }
+        Ok(())
+    }
+
+    fn rows(&self) -> usize {
+        2 * (self.inner.len() + self.outer.len())
+    }
+
+    /// The point `l` of link `k` at `q`, with R(θ_k)·l.
+    fn point(q: &DVector<f64>, (k, l): HingeEnd) -> (Point2<f64>, Vector2<f64>) {
+        let e = unit(q[3 * k + 2]);
+        let r = Vector2::new(e.x * l.x - e.y * l.y, e.y * l.x + e.x * l.y);
+        (Point2::new(q[3 * k], q[3 * k + 1]) + r, r)
+    }
+
+    /// The closure residual at `q` (inner hinges first, then outer).
+    fn residual_q(&self, q: &DVector<f64>, outer: &[Point2<f64>]) -> DVector<f64> {
+        let mut f = DVector::zeros(self.rows());
+        for (i, &[a, b]) in self.inner.iter().enumerate() {
+            let d = Self::point(q, a).0 - Self::point(q, b).0;
+            f[2 * i] = d.x;
+            f[2 * i + 1] = d.y;
+        }
+        let base = 2 * self.inner.len();
+        for (o, (&end, p)) in self.outer.iter().zip(outer).enumerate() {
+            let d = Self::point(q, end).0 - p;
+            f[base + 2 * o] = d.x;
+            f[base + 2 * o + 1] = d.y;
+        }
+        f
+    }
+
+    /// The closure Jacobian K at `q` (module docs), its angle columns multiplied by `scale`.
+    fn jacobian(&self, q: &DVector<f64>, scale: f64) -> DMatrix<f64> {
+        let mut k = DMatrix::zeros(self.rows(), 3 * self.links);
+        let mut put = |row: usize, end: HingeEnd, sign: f64| {
+            let r = Self::point(q, end).1;
+            let c = 3 * end.0;
+            let t = perp(r) * scale;
+            k[(row, c)] += sign;
+            k[(row + 1, c + 1)] += sign;
+            k[(row, c + 2)] += sign * t.x;
+            k[(row + 1, c + 2)] += sign * t.y;
+        };
+        for (i, &[a, b]) in self.inner.iter().enumerate() {
+            put(2 * i, a, 1.0);
+            put(2 * i, b, -1.0);
+        }
+        let base = 2 * self.inner.len();
+        for (o, &end) in self.outer.iter().enumerate() {
+            put(base + 2 * o, end, 1.0);
+        }
+        k
+    }
+
+    /// The largest closure gap of `pose` with the known points `outer`, m.
+    #[must_use]
+    pub fn residual(&self, pose: &GroupPose, outer: &[Point2<f64>]) -> f64 {
+        let f = self.residual_q(&pose.to_q(), outer);
+        f.as_slice()
+            .chunks(2)
+            .map(|c| c[0].hypot(c[1]))
+            .fold(0.0, f64::max)
+    }
+
+    /// A step's size: its translations and its rotations as arcs at `size`.
+    fn step_norm(dq: &DVector<f64>, size: f64) -> f64 {
+        dq.as_slice()
+            .chunks(3)
+            .map(|c| c[0].hypot(c[1]).max(size * c[2].abs()))
+            .fold(0.0, f64::max)
+    }
+
+    /// Newton's method from `q`; `Some((q, first step, iterations))` when it converges
+    /// (the step falls to rounding, 4ε of `size`) within `max` steps, each step no more
+    /// than `limit` of `size` and, once `contract` is set, each at most half the one before.
+    fn newton_q(
+        &self,
+        mut q: DVector<f64>,
+        outer: &[Point2<f64>],
+        size: f64,
+        max: usize,
+        contract: bool,
+    ) -> Option<(DVector<f64>, f64)> {
+        let mut first = None;
+        let mut last = f64::INFINITY;
+        for _ in 0..max {
+            let f = self.residual_q(&q, outer);
+            let k = self.jacobian(&q, 1.0);
+            let dq = k.lu().solve(&(-f))?;
+            let step = Self::step_norm(&dq, size);
+            if !step.is_finite() || step > size {
+                return None;
+            }
+            first.get_or_insert(step);
+            q += &dq;
+            if step <= 4.0 * f64::EPSILON * size || (step >= last && step <= 1e-12 * size) {
+                return Some((q, first.unwrap_or(0.0)));
+            }
+            if contract && step > 1e-11 * size && step > 0.5 * last {
+                return None;
+            }
+            last = step;
+        }
+        None
+    }
+
+    /// The pose closing the group on `outer` nearest (by Newton's method) `start`.
+    ///
+    /// # Errors
+    /// [`Error::NotAssemblable`] (the gap at `start`) when Newton's method does not converge
+    /// from `start` (the group does not assemble near it).
+    pub fn newton(&self, start: &GroupPose, outer: &[Point2<f64>], size: f64) -> Result<GroupPose> {
+        self.check()?;
+        self.newton_q(start.to_q(), outer, size, MAX_NEWTON, false)
+            .map(|(q, _)| GroupPose::from_q(&q))
+            .ok_or_else(|| no_assembly(self.residual(start, outer)))
+    }
+
+    /// The pose the group reaches from `reference` (closed on `path(0)`) while its known
+    /// points move along `path(t)`, t from 0 to 1 (`path` writes them into its slice): the
+    /// assembly mode by continuity. Each step is predicted along the tangent (one solve with
+    /// the factorised K) and corrected by Newton's method, which must contract from the first
+    /// step and stay within a tenth of `size`; otherwise the step is halved (to 2⁻³⁰).
+    ///
+    /// # Errors
+    /// [`Error::NotAssemblable`] with the closure gap of the last pose at the next step of
+    /// the path where the path cannot be followed (the group does not assemble beyond it,
+    /// or passes a branch point there).
+    pub fn track(
+        &self,
+        reference: &GroupPose,
+        mut path: impl FnMut(f64, &mut [Point2<f64>]),
+        size: f64,
+    ) -> Result<GroupPose> {
+        let mut q = reference.to_q();
+        let mut pts = vec![Point2::origin(); self.outer.len()];
+        let (mut t, mut dt) = (0.0f64, 1.0f64);
+        let mut before = pts.clone();
+        path(0.0, &mut before);
+        while t < 1.0 {
+            let t1 = (t + dt).min(1.0);
+            path(t1, &mut pts);
+            // Tangent predictor: K·Δq = (0 | ΔP).
+            let k = self.jacobian(&q, 1.0);
+            let mut rhs = DVector::zeros(self.rows());
+            let base = 2 * self.inner.len();
+            for (o, (p1, p0)) in pts.iter().zip(&before).enumerate() {
+                rhs[base + 2 * o] = p1.x - p0.x;
+                rhs[base + 2 * o + 1] = p1.y - p0.y;
+            }
+            let guess = k.lu().solve(&rhs).map(|d| &q + d);
+            let corrected = guess.and_then(|g| {
+                self.newton_q(g, &pts, size, 12, true)
+                    .filter(|(_, first)| *first <= 0.1 * size)
+            });
+            match corrected {
+                Some((q1, _)) => {
+                    q = q1;
+                    t = t1;
+                    before.copy_from_slice(&pts);
+                    dt = (2.0 * dt).min(1.0);
+                }
+                None if dt > 1e-9 => dt *= 0.5,
+                None => {
+                    let gap = self.residual(&GroupPose::from_q(&q), &pts);
+                    return Err(no_assembly(gap));
+                }
+            }
+        }
+        // Polish at the end: the corrector stopped at rounding already; one more solve
+        // brings every hinge to the last bit the closure allows.
+        let q0 = q.clone();
+        let (q, _) = self
+            .newton_q(q, &pts, size, MAX_NEWTON, false)
+            .ok_or_else(|| no_assembly(self.residual(&GroupPose::from_q(&q0), &pts)))?;
+        Ok(GroupPose::from_q(&q))
+    }
+
+    /// σ_min/σ_max of K at `q` with its angle columns scaled by `size`.
+    fn conditioning_q(&self, q: &DVector<f64>, size: f64) -> f64 {
+        let k = self.jacobian(q, size);
+        // A non-finite K (an overflowing pose) has no conditioning; the SVD's iteration is
+        // bounded all the same.
+        if !k.iter().all(|x| x.is_finite()) {
+            return 0.0;
+        }
+        let Some(svd) = k.try_svd(false, false, f64::EPSILON, 10_000) else {
+            return 0.0;
+        };
+        let s = svd.singular_values;
+        let (lo, hi) = s.iter().fold((f64::INFINITY, 0.0f64), |(lo, hi), &x| {
+            (lo.min(x), hi.max(x))
+        });
+        if hi > 0.0 {
+            lo / hi
+        } else {
+            0.0
+        }
+    }
+
+    /// σ_min/σ_max of the scaled closure Jacobian at `pose` (module docs).
+    #[must_use]
+    pub fn conditioning(&self, pose: &GroupPose, size: f64) -> f64 {
+        self.conditioning_q(&pose.to_q(), size)
+    }
+
+    /// The links' velocities and accelerations at `pose` (closed on the positions of
+    /// `outer`), from the known points' motions `outer`.
+    ///
+    /// # Errors
+    /// [`Error::Singular`] when K is singular (σ_min/σ_max ≤ 8ε: a dead point or branch
+    /// point of the group); [`Error::NonFinite`] when a rate overflows.
+    pub fn rates(&self, pose: &GroupPose, outer: &[PointMotion], size: f64) -> Result<GroupMotion> {
+        let q = pose.to_q();
+        let conditioning = self.regular(&q, size)?;
+        let lu = self.jacobian(&q, 1.0).lu();
+        let base = 2 * self.inner.len();
+        let mut rhs = DVector::zeros(self.rows());
+        for (o, m) in outer.iter().enumerate() {
+            rhs[base + 2 * o] = m.v.x;
+            rhs[base + 2 * o + 1] = m.v.y;
+        }
+        let qd = lu.solve(&rhs).ok_or_else(singular)?;
+        // The centripetal terms: p̈ = ö + θ̈·J·R l − θ̇²·R l.
+        let spin = |end: HingeEnd| Self::point(&q, end).1 * qd[3 * end.0 + 2].powi(2);
+        for (i, &[a, b]) in self.inner.iter().enumerate() {
+            let c = spin(a) - spin(b);
+            rhs[2 * i] = c.x;
+            rhs[2 * i + 1] = c.y;
+        }
+        for (o, (&end, m)) in self.outer.iter().zip(outer).enumerate() {
+            let c = m.a + spin(end);
+            rhs[base + 2 * o] = c.x;
+            rhs[base + 2 * o + 1] = c.y;
+        }
+        let qdd = lu.solve(&rhs).ok_or_else(singular)?;
+        if !(qd.iter().chain(qdd.iter()).all(|x| x.is_finite())) {
+            return Err(Error::NonFinite {
+                name: "a group's velocity or acceleration",
+                value: f64::NAN,
+            });
+        }
+        let links = (0..self.links)
+            .map(|k| LinkMotion {
+                origin: PointMotion::new(
+                    pose.origins[k],
+                    Vector2::new(qd[3 * k], qd[3 * k + 1]),
+                    Vector2::new(qdd[3 * k], qdd[3 * k + 1]),
+                ),
+                angle: normalize(pose.angles[k]),
+                omega: qd[3 * k + 2],
+                epsilon: qdd[3 * k + 2],
+            })
+            .collect();
+        Ok(GroupMotion {
+            links,
+            conditioning,
+        })
+    }
+
+    /// The conditioning at `q`, or [`Error::Singular`] at a singular K.
+    fn regular(&self, q: &DVector<f64>, size: f64) -> Result<f64> {
+        let c = self.conditioning_q(q, size);
+        if c.is_nan() || c <= SINGULAR_BELOW {
+            return Err(Error::Singular {
+                what: "hinged group",
+                measure: "sigma_min/sigma_max of its closure Jacobian",
+                value: c,
+            });
+        }
+        Ok(c)
+    }
+
+    /// The reactions of the group at `pose` under `loads` (one resultant per link, at any
+    /// point), by Kᵀλ + Q = 0 (module docs).
+    ///
+    /// # Errors
+    /// [`Error::Singular`] at a singular K; [`Error::NonFinite`] when a reaction overflows.
+    pub fn reactions(&self, pose: &GroupPose, loads: &[Load], size: f64) -> Result<GroupReactions> {
+        let q = pose.to_q();
+        let conditioning = self.regular(&q, size)?;
+        let kt = self.jacobian(&q, 1.0).transpose();
+        let mut rhs = DVector::zeros(3 * self.links);
+        for (k, l) in loads.iter().enumerate() {
+            let r = l.point - pose.origins[k];
+            rhs[3 * k] = -l.force.x;
+            rhs[3 * k + 1] = -l.force.y;
+            rhs[3 * k + 2] = -(l.moment + crate::angle::cross(r, l.force));
+        }
+        let lambda = kt.lu().solve(&rhs).ok_or_else(singular)?;
+        if !lambda.iter().all(|x| x.is_finite()) {
+            return Err(Error::NonFinite {
+                name: "a group's reaction",
+                value: f64::NAN,
+            });
+        }
+        let at = |h: usize| Vector2::new(lambda[2 * h], lambda[2 * h + 1]);
+        let ni = self.inner.len();
+        Ok(GroupReactions {
+            inner: (0..ni).map(at).collect(),
+            outer: (0..self.outer.len()).map(|o| at(ni + o)).collect(),
+            conditioning,
+        })
+    }
+
+    /// Every assembly mode of the group on the known points `outer` that a search from
+    /// `starts` random link angles finds (seeded by `seed`): for each start the origins are
+    /// fitted to the angles by least squares (the closure is linear in them), then Newton's
+    /// method, each step limited to `size`, runs to convergence; the converged poses are
+    /// kept once each (two poses are one mode when they are within 1e-7 of `size`), the
+    /// regular ones only (σ_min/σ_max > 1e-10). The count is a lower bound that grows with
+    /// `starts` until every mode is found; compare two counts to see it has stopped growing.
+    ///
+    /// # Errors
+    /// As [`check`](Self::check).
+    pub fn modes(
+        &self,
+        outer: &[Point2<f64>],
+        size: f64,
+        starts: usize,
+        seed: u64,
+    ) -> Result<Vec<GroupPose>> {
+        self.check()?;
+        let mut rng = seed | 1;
+        let mut next = move || {
+            rng ^= rng << 13;
+            rng ^= rng >> 7;
+            rng ^= rng << 17;
+            (rng >> 11) as f64 / (1u64 << 53) as f64
+        };
+        let mut found: Vec<GroupPose> = Vec::new();
+        let n = self.links;
+        for _ in 0..starts {
+            let mut q = DVector::zeros(3 * n);
+            for k in 0..n {
+                q[3 * k + 2] = std::f64::consts::TAU * next();
+            }
+            // Origins by least squares at these angles: the closure is K_o·o = −f(0).
+            let f = self.residual_q(&q, outer);
+            let k = self.jacobian(&q, 1.0);
+            let cols: Vec<usize> = (0..n).flat_map(|k| [3 * k, 3 * k + 1]).collect();
+            let ko = k.select_columns(&cols);
+            let Some(o) = (ko.transpose() * &ko).lu().solve(&(-(ko.transpose() * f))) else {
+                continue;
+            };
+            for (i, &c) in cols.iter().enumerate() {
+                q[c] = o[i];
+            }
+            let Some(q) = self.damped_newton(q, outer, size) else {
+                continue;
+            };
+            if self.conditioning_q(&q, size) <= 1e-10 {
+                continue;
+            }
+            let pose = GroupPose::from_q(&q);
+            if !found.iter().any(|p| p.distance(&pose, size) <= 1e-7 * size) {
+                found.push(pose);
+            }
+        }
+        Ok(found)
+    }
+
+    /// Newton's method with each step cut to `size`, up to 100 steps, to rounding.
+    fn damped_newton(
+        &self,
+        mut q: DVector<f64>,
+        outer: &[Point2<f64>],
+        size: f64,
+    ) -> Option<DVector<f64>> {
+        for _ in 0..100 {
+            let f = self.residual_q(&q, outer);
+            let mut dq = self.jacobian(&q, 1.0).lu().solve(&(-f))?;
+            let step = Self::step_norm(&dq, size);
+            if !step.is_finite() {
+                return None;
+            }
+            if step > size {
+                dq *= size / step;
+            }
+            q += dq;
+            if step <= 1e-13 * size {
+                return self.newton_q(q, outer, size, 4, false).map(|(q, _)| q);
+            }
+        }
+        None
+    }
+}
+
+fn singular() -> Error {
+    Error::Singular {
+        what: "hinged group",
+        measure: "sigma_min/sigma_max of its closure Jacobian",
+        value: 0.0,
+    }
+}
+
+/// The group does not close: `gap` is its largest closure gap where the solve gave up.
+fn no_assembly(gap: f64) -> Error {
+    Error::NotAssemblable {
+        group: "hinged group",
+        gap,
+    }
+}

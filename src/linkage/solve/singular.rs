@@ -1,0 +1,190 @@
+//! Positions where the rates do not exist: a dead centre or a branch point of a group, where
+//! its velocity system is singular but its position is still defined (two assembly modes
+//! meet there, or the group is stretched straight). [`Plan::position`] returns the position
+//! there, and the rates as the error that names the measure that vanished.
+//!
+//! The position pass is the ordinary one with the inputs at rest; a group whose closed form
+//! refuses the position (its determinant vanished, or its closure fails by no more than
+//! rounding: the tangent case) is placed by its position problem alone
+//! ([`solve_contour_position`]), which has the tangent circles' one point. The RRR dyad is
+//! covered so; the other kinds report their error as before.
+
+use super::kinematics::Kinematics;
+use super::state::{within, KinState};
+use crate::angle::{normalize, unit};
+use crate::error::{Error, Result};
+use crate::kinematics::{solve_contour_position, LinkMotion, LoopVector, Motion, PointMotion};
+use crate::linkage::inputs::Inputs;
+use crate::linkage::plan::{Chain, Group, GroupKind, Plan};
+use std::f64::consts::PI;
+
+/// A position solved where its rates may not exist (see [`Plan::position`]).
+#[derive(Debug, Clone)]
+pub struct Position<'p> {
+    k: Kinematics<'p>,
+    rates: Option<Error>,
+}
+
+impl<'p> Position<'p> {
+    /// The position: every position reading of [`Kinematics`] (joints, points, link
+    /// angles, slides). Its rates are those of the inputs when [`rates`](Self::rates) is
+    /// `Ok`, and zero (the linkage at rest) when it is not.
+    #[must_use]
+    pub fn pose(&self) -> &Kinematics<'p> {
+        &self.k
+    }
+
+    /// The full kinematics (positions and rates) at the given input motions.
+    ///
+    /// # Errors
+    /// The error of the group whose rates do not exist here: [`Error::In`] naming the group,
+    /// around [`Error::Singular`] naming the measure that vanished (for an RRR dyad
+    /// `sin(phi3 - phi2)`, with its value).
+    pub fn rates(&self) -> Result<&Kinematics<'p>> {
+        match &self.rates {
+            None => Ok(&self.k),
+            Some(e) => Err(e.clone()),
+        }
+    }
+}
+
+impl Plan {
+    /// The position at one motion per input, also at a dead centre or a branch point, where
+    /// [`kinematics`](Self::kinematics) fails because the rates do not exist there: the
+    /// position is returned and the rates as the error naming the vanished measure
+    /// ([`Position::rates`]).
+    ///
+    /// # Errors
+    /// As [`kinematics`](Self::kinematics), for a position that does not exist (a group that
+    /// cannot be assembled by more than rounding) or whose group is not an RRR dyad.
+    ///
+    /// # Examples
+    /// A four-bar stretched straight: at φ = 0 its coupler (2 m) and rocker (1 m) lie along
+    /// one line from the crank pin (1, 0) to the pivot (−2, 0).
+    /// ```
+    /// use tmm::kinematics::Motion;
+    /// use tmm::linkage::{Joint, Link, Linkage, Plan};
+    /// use tmm::Error;
+    /// let (s, c) = 0.5f64.sin_cos();
+    /// let p = [c, s];
+    /// // B at 2 m from the pin and 1 m from (−2, 0), left of the pin → pivot line.
+    /// let (dx, dy) = (-2.0 - c, -s);
+    /// let l = dx.hypot(dy);
+    /// let x = 0.5 * (l + 3.0 / l);
+    /// let h = (4.0 - x * x).sqrt();
+    /// let b = [c + (x * dx - h * dy) / l, s + (x * dy + h * dx) / l];
+    /// let linkage = Linkage {
+    ///     name: "stretched".into(),
+    ///     joints: vec![
+    ///         Joint::revolute("O", [0.0, 0.0]),
+    ///         Joint::revolute("P", p),
+    ///         Joint::revolute("B", b),
+    ///         Joint::revolute("Q", [-2.0, 0.0]),
+    ///     ],
+    ///     links: vec![
+    ///         Link::new("frame", &["O", "Q"]),
+    ///         Link::new("crank", &["O", "P"]),
+    ///         Link::new("coupler", &["P", "B"]),
+    ///         Link::new("rocker", &["B", "Q"]),
+    ///     ],
+    ///     ..Linkage::default()
+    /// };
+    /// let plan = Plan::new(&linkage)?;
+    /// assert!(plan.kinematics(Motion::turning(0.0, 1.0)).is_err());
+    /// let at = plan.position(Motion::turning(0.0, 1.0))?;
+    /// assert!((at.pose().joint("B")?.p.x + 1.0).abs() < 1e-7);
+    /// let Err(Error::In { source, .. }) = at.rates() else { panic!() };
+    /// assert!(matches!(*source, Error::Singular { measure: "sin(phi3 - phi2)", .. }));
+    /// # Ok::<(), tmm::Error>(())
+    /// ```
+    pub fn position(&self, inputs: impl Into<Inputs>) -> Result<Position<'_>> {
+        let inputs = inputs.into();
+        let mut k = Kinematics::new(self);
+        let first = match k.kin.solve(&self.chain, inputs.as_slice()) {
+            Ok(()) => return Ok(Position { k, rates: None }),
+            Err(e) => e,
+        };
+        let rest: Vec<Motion> = inputs
+            .as_slice()
+            .iter()
+            .map(|m| Motion::fixed(m.value))
+            .collect();
+        let rates = k.kin.solve_positions(&self.chain, &rest).map_err(|e| {
+            if matches!(e, Error::In { .. }) {
+                e
+            } else {
+                first.clone()
+            }
+        })?;
+        Ok(Position {
+            k,
+            rates: Some(rates.unwrap_or(first)),
+        })
+    }
+}
+
+impl KinState {
+    /// Positions at the inputs `rest` (at rest), each group by its closed form or, where that
+    /// refuses a defined position, by its position problem alone; the first such group's
+    /// error (the rates' error) is returned with the positions.
+    fn solve_positions(&mut self, chain: &Chain, rest: &[Motion]) -> Result<Option<Error>> {
+        // The inputs and the groups before the first failing one are placed by this solve.
+        let failed = match self.solve(chain, rest) {
+            Ok(()) => return Ok(None),
+            Err(e) => e,
+        };
+        if !matches!(failed, Error::In { .. }) {
+            return Err(failed);
+        }
+        let mut rates = None;
+        for (g, group) in chain.groups.iter().enumerate() {
+            if let Err(e) = self.solve_group_kinematics(g, group) {
+                let singular = self.position_only(g, group).map_err(|_| e)?;
+                rates.get_or_insert(singular);
+            }
+        }
+        Ok(rates)
+    }
+
+    /// Group `g` placed by its position problem alone, at rest; `Ok` with the error its rates
+    /// have there (a vanished determinant).
+    fn position_only(&mut self, g: usize, group: &Group) -> Result<Error> {
+        if group.kind != GroupKind::Rrr || group.triad.is_some() || group.general.is_some() {
+            return Err(Error::Description {
+                item: group.name.clone(),
+                problem: "no position-only solve".to_owned(),
+            });
+        }
+        let [l2, l3] = group.links;
+        let [ka, kc] = group.known;
+        let (a, c) = (self.at(ka, group.a_local).p, self.at(kc, group.c_local).p);
+        // The loop C → A → B → C, as the dyad's closed form writes it.
+        let loop_ = [
+            LoopVector::Cartesian {
+                r: a - c,
+                v: nalgebra::Vector2::zeros(),
+                a: nalgebra::Vector2::zeros(),
+            },
+            LoopVector::unknown_angle(group.lengths[0]),
+            LoopVector::unknown_angle(group.lengths[1]),
+        ];
+        let [phi2, phi3] = solve_contour_position(&loop_, group.branch)?;
+        let phi3 = normalize(phi3 - PI);
+        let at_rest = |p, angle| LinkMotion {
+            origin: PointMotion::fixed(p),
+            angle,
+            omega: 0.0,
+            epsilon: 0.0,
+        };
+        let (u2, u3) = (unit(phi2), unit(phi3));
+        self.put_link(l2, at_rest(a, phi2), u2);
+        self.put_link(l3, at_rest(c, phi3), u3);
+        let det = crate::angle::cross(u2, u3);
+        self.dets[g] = det;
+        Ok(within(&group.name)(Error::Singular {
+            what: "RRR dyad",
+            measure: "sin(phi3 - phi2)",
+            value: det,
+        }))
+    }
+}
