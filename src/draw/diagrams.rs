@@ -489,7 +489,10 @@ fn wrap(d: f64) -> f64 {
 /// A range around [lo, hi] with a margin of `frac` of its width (a flat one opened up).
 fn pad(lo: f64, hi: f64, frac: f64) -> [f64; 2] {
     let w = hi - lo;
-    if w > 0.0 {
+    // The chart steps its tick marks by a fraction of the width: a width of a few ulps of
+    // the values would never advance, so a range narrower than 1e-9 of its magnitude is
+    // opened up as a flat one.
+    if w > 1e-9 * lo.abs().max(hi.abs()) {
         [lo - frac * w, hi + frac * w]
     } else {
         let m = (lo.abs() * 0.1).max(1e-9);
