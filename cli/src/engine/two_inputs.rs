@@ -1,0 +1,268 @@
+//! The adapter's part for linkages with two inputs (a five-bar robot): the inputs of a
+//! picture, the path of the plan and the animation in the plane of the inputs, the workspace
+//! of a point, and the mass matrix over a grid of the inputs.
+
+use tmm::draw::{self, Style};
+use tmm::kinematics::Motion;
+use tmm::linkage::dynamics::LinkageSystem;
+use tmm::linkage::{Inputs, TwoInputCourse, TwoInputShape, WorkspaceOptions};
+
+use super::{failure, Machine};
+use crate::model::{Failure, MassRow, TwoInputDynamics};
+use tmm::nalgebra::Vector2;
+
+/// The nodes of the input grid of a workspace along each input (the library's default).
+pub const WORKSPACE_SAMPLES: usize = 181;
+
+impl Machine {
+    /// Whether input `k` (0 or 1) is a crank (its coordinates in degrees at the command line).
+    fn is_crank(&self, k: usize) -> bool {
+        if k == 0 {
+            self.plan.input_is_crank()
+        } else {
+            self.second_is_crank()
+        }
+    }
+
+    /// A coordinate of input `k` as typed (degrees for a crank, m for a slider) in rad or m.
+    fn coordinate(&self, k: usize, typed: f64) -> f64 {
+        if self.is_crank(k) {
+            typed.to_radians()
+        } else {
+            typed
+        }
+    }
+
+    /// The inputs of a picture at one position: one coordinate per input as typed, or the
+    /// reference pose for none; every input moving at `speed`.
+    pub(super) fn inputs_at(&self, typed: &[f64], speed: f64) -> Result<Inputs, Failure> {
+        let n = self.plan.input_count();
+        let reference = self.plan.reference_inputs();
+        let value = |k: usize| match typed.get(k) {
+            Some(&v) => self.coordinate(k, v),
+            None => reference[k],
+        };
+        if !typed.is_empty() && typed.len() != n {
+            return Err(Failure::new(format!(
+                "a position of this linkage is {} (one coordinate per input), and {} {} given",
+                if n == 2 {
+                    "a pair φ1 φ2"
+                } else {
+                    "one value φ"
+                },
+                typed.len(),
+                if typed.len() == 1 { "was" } else { "were" }
+            ))
+            .hint(if n == 2 {
+                "give both inputs, for example --scheme 120 60 (degrees for a crank)"
+            } else {
+                "give the input's angle in degrees (metres for a slider)"
+            }));
+        }
+        let one = |k: usize| Motion::new(value(k), speed, 0.0);
+        Ok(if n == 2 {
+            Inputs::two(one(0), one(1))
+        } else {
+            Inputs::one(one(0))
+        })
+    }
+
+    /// The path of a linkage with two inputs for the plan (`n` = 12 positions) and the
+    /// animation: through the pairs `along` (as typed) by straight steps in the plane of the
+    /// inputs, `n` positions equally spaced along it by its length there (both ends
+    /// included); without pairs, the library's loop about the reference pose.
+    pub(super) fn two_input_path(
+        &self,
+        along: &[f64],
+        n: usize,
+        speed: f64,
+    ) -> Result<TwoInputCourse, Failure> {
+        if along.is_empty() {
+            return TwoInputCourse::around_reference(&self.plan, n, speed).map_err(|e| failure(&e));
+        }
+        if !along.len().is_multiple_of(2) || along.len() < 4 {
+            return Err(Failure::new(format!(
+                "--along takes pairs of input coordinates (φ1 φ2), at least two pairs, and \
+                 {} value(s) were given",
+                along.len()
+            )));
+        }
+        let points: Vec<[f64; 2]> = along
+            .chunks(2)
+            .map(|p| [self.coordinate(0, p[0]), self.coordinate(1, p[1])])
+            .collect();
+        let lengths: Vec<f64> = points
+            .windows(2)
+            .map(|w| (w[1][0] - w[0][0]).hypot(w[1][1] - w[0][1]))
+            .collect();
+        let total: f64 = lengths.iter().sum();
+        if !(total.is_finite() && total > 0.0) {
+            return Err(Failure::new(format!(
+                "the path given by --along has length {total} in the plane of the inputs; it \
+                 needs two different finite pairs"
+            )));
+        }
+        // Each position at its arc length s along the polyline; the inputs' rates are the
+        // path's direction there times |speed| (the pictures need positions only).
+        let mut inputs = Vec::with_capacity(n);
+        for i in 0..n {
+            #[allow(clippy::cast_precision_loss)]
+            let mut s = total * i as f64 / (n - 1).max(1) as f64;
+            let mut seg = 0;
+            while seg + 1 < lengths.len() && s > lengths[seg] {
+                s -= lengths[seg];
+                seg += 1;
+            }
+            let (a, b, l) = (points[seg], points[seg + 1], lengths[seg]);
+            let t = if l > 0.0 { (s / l).min(1.0) } else { 0.0 };
+            let d = if l > 0.0 {
+                [(b[0] - a[0]) / l, (b[1] - a[1]) / l]
+            } else {
+                [0.0, 0.0]
+            };
+            let at = |k: usize| Motion::new(a[k] + (b[k] - a[k]) * t, speed.abs() * d[k], 0.0);
+            inputs.push(Inputs::two(at(0), at(1)));
+        }
+        let course = TwoInputCourse {
+            inputs,
+            shape: TwoInputShape::Path,
+        };
+        course.check().map_err(|e| failure(&e))?;
+        Ok(course)
+    }
+
+    /// The plan of a linkage with two inputs along its path, with the paths of the joints
+    /// off the frame and the named points.
+    pub(super) fn plan_two(
+        &self,
+        along: &[f64],
+        speed: f64,
+        paths: &[&str],
+        style: &Style,
+    ) -> Result<String, Failure> {
+        let course = self.two_input_path(along, 12, speed)?;
+        draw::plan_view_two(&self.plan, &course, paths, style)
+            .map(|p| p.svg)
+            .map_err(|e| failure(&e))
+    }
+
+    /// An animation of a linkage with two inputs along its path: 180 frames there (and back
+    /// again for a path given by `along`, so the animation loops without a jump).
+    pub(super) fn animation_two(
+        &self,
+        along: &[f64],
+        speed: f64,
+        style: &Style,
+    ) -> Result<String, Failure> {
+        let mut frames = self.two_input_path(along, 180, speed)?.inputs;
+        if !along.is_empty() {
+            let back: Vec<Inputs> = frames.iter().rev().skip(1).copied().collect();
+            frames.extend(back);
+        }
+        draw::animation_path(&self.plan, &frames, 4.0, style)
+            .map(|p| p.svg)
+            .map_err(|e| failure(&e))
+    }
+
+    /// The workspace of the joint or named point `point`: the region it reaches as both
+    /// inputs move (each crank over a whole turn), its outline and the singular curves.
+    pub(super) fn workspace(
+        &self,
+        point: &str,
+        style: &Style,
+        progress: &mut dyn FnMut(&str),
+    ) -> Result<String, Failure> {
+        let n = self.plan.input_count();
+        if n != 2 {
+            return Err(Failure::new(format!(
+                "a workspace is the region a point reaches as two inputs move independently, \
+                 and this linkage has {n} input, along which {point} only traces a path"
+            ))
+            .hint("`tmm draw FILE --plan` draws the paths of the joints and named points"));
+        }
+        if !(self.is_crank(0) && self.is_crank(1)) {
+            return Err(Failure::new(
+                "the workspace of a linkage with a slider input needs the slider's range, \
+                 which the command line does not take yet; both inputs must be cranks",
+            ));
+        }
+        progress(&format!(
+            "the workspace of {point} ({WORKSPACE_SAMPLES} × {WORKSPACE_SAMPLES} input pairs)"
+        ));
+        let options = WorkspaceOptions::default().with_samples(WORKSPACE_SAMPLES);
+        let ws = self
+            .plan
+            .workspace(point, &options)
+            .map_err(|e| failure(&e))?;
+        draw::workspace(&self.plan, &ws, style)
+            .map(|p| p.svg)
+            .map_err(|e| failure(&e))
+    }
+
+    /// The mass matrix A(q) and the loads' generalized forces at rest Q(q) of a linkage with
+    /// two inputs over a grid of `n` × `n` input pairs about the reference pose, each input
+    /// over ± `span` (as typed; 30° for a crank, a tenth of the size for a slider), with
+    /// `rotor` (kg·m² or kg) added on the first input.
+    ///
+    /// # Errors
+    /// A grid of fewer than 2 nodes a side; a span that is not positive and finite; no node
+    /// of the grid assembles.
+    pub(super) fn mass_matrix_grid(
+        &self,
+        n: usize,
+        span: Option<f64>,
+        rotor: f64,
+        progress: &mut dyn FnMut(&str),
+    ) -> Result<TwoInputDynamics, Failure> {
+        let reference = self.plan.reference_inputs();
+        let half = |k: usize| match span {
+            Some(v) => self.coordinate(k, v),
+            None if self.is_crank(k) => 30f64.to_radians(),
+            None => 0.1 * self.plan.size(),
+        };
+        let halves = [half(0), half(1)];
+        if let Some(bad) = halves.iter().find(|h| !(h.is_finite() && **h > 0.0)) {
+            return Err(Failure::new(format!(
+                "the span of the grid must be positive and finite, and it is {bad}"
+            ))
+            .hint("give --span in degrees (metres for a slider input)"));
+        }
+        let ranges = [0, 1].map(|k| [reference[k] - halves[k], reference[k] + halves[k]]);
+        let sys = LinkageSystem::new(self.plan.clone())
+            .and_then(|s| s.with_inertia(0, rotor))
+            .map_err(|e| failure(&e))?;
+        progress(&format!("the mass matrix over {n} × {n} input pairs"));
+        let mut rows = Vec::with_capacity(n * n);
+        let mut skipped = 0;
+        #[allow(clippy::cast_precision_loss)]
+        let at = |r: [f64; 2], i: usize| r[0] + (r[1] - r[0]) * i as f64 / (n - 1) as f64;
+        for i in 0..n {
+            for j in 0..n {
+                let q = Vector2::new(at(ranges[0], i), at(ranges[1], j));
+                match sys.split_terms(&q, &Vector2::zeros()) {
+                    Ok(t) => rows.push(MassRow {
+                        q: [q[0], q[1]],
+                        a: [t.inertia[(0, 0)], t.inertia[(0, 1)], t.inertia[(1, 1)]],
+                        loads: [t.loads[0], t.loads[1]],
+                    }),
+                    Err(_) => skipped += 1,
+                }
+            }
+        }
+        if rows.is_empty() {
+            return Err(Failure::new(format!(
+                "the linkage assembles at no node of the {n} × {n} grid about its reference pose"
+            ))
+            .hint("give a smaller --span"));
+        }
+        let unit = |k: usize| if self.is_crank(k) { "rad" } else { "m" };
+        Ok(TwoInputDynamics {
+            name: self.name().to_owned(),
+            units: [unit(0), unit(1)],
+            ranges,
+            n,
+            rows,
+            skipped,
+        })
+    }
+}
