@@ -380,6 +380,17 @@ impl Machine {
                         Ok(spread(*n, notes))
                     }
                 },
+                (_, true, Range::Rocking(lo, hi)) if speed.is_finite() && speed != 0.0 => {
+                    let course = Course::new(plan, None, *n, speed).map_err(|e| failure(&e))?;
+                    notes.push(format!(
+                        "{n} positions of the crank rocking as the mechanism runs, from the lock \
+                         angle {:.4}° to {:.4}° and back (at the locks it stops and reverses: \
+                         rate 0 there)",
+                        if speed < 0.0 { hi } else { lo }.to_degrees(),
+                        if speed < 0.0 { lo } else { hi }.to_degrees(),
+                    ));
+                    Ok(course.inputs)
+                }
                 _ => Ok(spread(*n, notes)),
             },
         }
@@ -541,8 +552,9 @@ impl Machine {
             ))
             .hint("give --speed, not zero"));
         }
-        if plan.input_is_crank() && matches!(self.range(), Range::FullTurn) {
-            // An output without strokes (one that turns fully) still has a turn to draw.
+        if plan.input_is_crank() && matches!(self.range(), Range::FullTurn | Range::Rocking(..)) {
+            // An output without strokes (one that turns fully) still has a turn to draw; a
+            // rocking crank sweeps from lock to lock and back.
             return Course::new(plan, self.linkage.output.as_ref(), 12, speed)
                 .or_else(|e| Course::new(plan, None, 12, speed).map_err(|_| e))
                 .map_err(|e| failure(&e));

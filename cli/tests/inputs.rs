@@ -525,6 +525,19 @@ fn a_rocking_crank_has_its_reduced_quantities_between_its_lock_angles() {
                 "{file}: turned grows"
             );
         }
+        // The course table: from one lock to the other and back, as the mechanism runs.
+        for (speed, ends) in [("7", lock), ("-7", [lock[1], lock[0]])] {
+            let r = tmm(&["analyse", file, "--speed", speed, "--format", "csv"]);
+            assert_success(&r, &format!("analyse {file}"));
+            let (header, rows) = parse_csv(&r.stdout, file);
+            let q: Vec<f64> = rows.iter().map(|r| r[col(&header, "phi_in")]).collect();
+            assert_eq!(q.len(), 12);
+            assert!(
+                (q[0] - ends[0]).abs() <= 1e-12 && (q[6] - ends[1]).abs() <= 1e-12,
+                "{file} at {speed} rad/s: the course turns at the locks {ends:?}: {q:?}"
+            );
+            assert!(q.iter().all(|&x| x >= lock[0] && x <= lock[1]), "{q:?}");
+        }
         let r = tmm(&["dynamics", file, "--run-up"]);
         assert_one_line_failure(&r, file);
         let degrees = format!("{:.4}°", lock[0].to_degrees());
@@ -610,6 +623,35 @@ fn a_rocking_crank_has_its_reduced_quantities_between_its_lock_angles() {
     // Towards a lock the rocker's transfer function, and with it J_red, grows.
     let mid = jr[3].min(jr[4]);
     assert!(jr[0] > mid && jr[7] > mid, "J_red {jr:?}");
+}
+
+#[test]
+fn the_peaucellier_tracer_stays_on_its_line_between_the_locks() {
+    let r = tmm(&[
+        "analyse",
+        "peaucellier-lipkin",
+        "--positions",
+        "200",
+        "--format",
+        "csv",
+    ]);
+    assert_success(&r, "analyse the inversor");
+    let (header, rows) = parse_csv(&r.stdout, "inversor");
+    let (x, y) = (col(&header, "x(P)"), col(&header, "y(P)"));
+    // The line x = x_P of the reference pose; the linkage's size about 0.1 m.
+    let j = joints("linkages/peaucellier-lipkin.json");
+    let line = joint(&j, "P")[0];
+    let worst = rows.iter().map(|r| (r[x] - line).abs()).fold(0.0, f64::max);
+    let span = rows
+        .iter()
+        .map(|r| r[y])
+        .fold(0.0, |m: f64, v| m.max(v.abs()));
+    eprintln!("inversor: P off its line by {worst:e} m over |y| ≤ {span} m");
+    assert!(worst < 1e-13, "P off its line by {worst} m");
+    assert!(
+        span > 0.09,
+        "the tracer runs along the line: |y| up to {span} m"
+    );
 }
 
 /// The first input's angle in the reference pose, from `tmm check`.
