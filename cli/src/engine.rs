@@ -107,6 +107,12 @@ impl Machine {
             )
             .hint("without --run-up and --flywheel, its mass matrix over a grid of the inputs"));
         }
+        if !request.speed.is_finite() {
+            return Err(Failure::new(format!(
+                "the speed must be finite, got {}",
+                request.speed
+            )));
+        }
         self.mass_matrix_grid(request.grid, request.span, request.rotor, progress)
     }
 

@@ -721,6 +721,8 @@ fn mistakes_in_a_description_never_panic() {
         "scotch-yoke",
         "slotted-rocker",
         "watt-six-bar",
+        "five-bar-robot",
+        "peaucellier-lipkin",
     ] {
         let text = std::fs::read_to_string(root().join(format!("linkages/{file}.json"))).unwrap();
         for (k, (what, mutated)) in mutations(&text).into_iter().enumerate() {
@@ -729,7 +731,9 @@ fn mistakes_in_a_description_never_panic() {
                 &["check"][..],
                 &["analyse", "--format", "csv"],
                 &["draw", "--plan"],
-                &["dynamics", "--positions", "36"],
+                &["draw", "--animate"],
+                &["draw", "--workspace", "B"],
+                &["dynamics", "--positions", "36", "--grid", "5"],
             ] {
                 let mut all = vec![args[0], broken.0.to_str().unwrap()];
                 all.extend_from_slice(&args[1..]);

@@ -452,6 +452,9 @@ fn the_mass_matrix_of_two_inputs_is_the_links_kinetic_energy() {
         (&["--run-up"][..], "no cycle of its own"),
         (&["--flywheel", "0.05"], "no cycle of its own"),
         (&["--span", "-5"], "span"),
+        (&["--span", "200"], "at most 180°"),
+        (&["--span", "nan"], "span"),
+        (&["--speed", "inf"], "speed must be finite"),
     ] {
         let mut all = vec!["dynamics", "five-bar-robot"];
         all.extend_from_slice(args);

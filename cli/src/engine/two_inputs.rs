@@ -2,6 +2,8 @@
 //! picture, the path of the plan and the animation in the plane of the inputs, the workspace
 //! of a point, and the mass matrix over a grid of the inputs.
 
+use std::f64::consts::PI;
+
 use tmm::draw::{self, Style};
 use tmm::kinematics::Motion;
 use tmm::linkage::dynamics::LinkageSystem;
@@ -226,6 +228,14 @@ impl Machine {
                 "the span of the grid must be positive and finite, and it is {bad}"
             ))
             .hint("give --span in degrees (metres for a slider input)"));
+        }
+        if let Some(k) = (0..2).find(|&k| self.is_crank(k) && halves[k] > PI) {
+            return Err(Failure::new(format!(
+                "the span of the grid about crank {}'s reference angle is at most 180° (a \
+                 whole turn), and it is {}°",
+                k + 1,
+                halves[k].to_degrees()
+            )));
         }
         let ranges = [0, 1].map(|k| [reference[k] - halves[k], reference[k] + halves[k]]);
         let sys = LinkageSystem::new(self.plan.clone())
