@@ -113,7 +113,11 @@ impl Machine {
                 request.speed
             )));
         }
-        self.mass_matrix_grid(request.grid, request.span, request.rotor, progress)
+        let mut d = self.mass_matrix_grid(request.grid, request.span, request.rotor, progress)?;
+        if let Some(t_end) = request.run {
+            d.run = Some(self.run_two(request, t_end, progress)?);
+        }
+        Ok(d)
     }
 
     /// The input speed of the file (10 rad/s when it gives none).

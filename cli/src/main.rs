@@ -187,11 +187,13 @@ Examples:
   tmm dynamics linkages/watt-six-bar.json --flywheel 0.05 --format json
   tmm dynamics linkages/peaucellier-lipkin.json      a rocking crank: between its lock angles
   tmm dynamics linkages/five-bar-robot.json --grid 7 --span 20   two inputs: A(q) on 7 × 7
+  tmm dynamics linkages/five-bar-robot.json --run 0.5 --motor 0.2,0.05 --motor2 -0.1,0.05
 
 A rocking crank has the reduced quantities over its range between the lock angles (at the
 locks J_red is unbounded: the positions are the middles of equal steps between them); it has
 no turn to run up or to even out with a flywheel. A linkage with two inputs has its mass
-matrix A(q) (T = ½ q̇ᵀ A q̇) and the loads' generalized forces over a grid of the inputs.
+matrix A(q) (T = ½ q̇ᵀ A q̇) and the loads' generalized forces over a grid of the inputs,
+and with --run the motion from rest under two motors, with the energy balance.
 
 Without --motor the run-up uses an induction motor chosen from the machine: 4 % slip at the
 speed asked for, and a nominal moment 10 % above the loads' mean (or a tenth of their peak,
@@ -210,7 +212,7 @@ for a machine whose loads average out). The step keeps RK4 well inside its stabi
         speed: Option<f64>,
         /// The motor of the run-up, M = a − b·|ω| in the sense of rotation: a in N·m, b in
         /// N·m·s/rad.
-        #[arg(long, value_name = "a,b", value_parser = parse_pair)]
+        #[arg(long, value_name = "a,b", value_parser = parse_pair, allow_hyphen_values = true)]
         motor: Option<(f64, f64)>,
         /// A rotor or flywheel on the crank, kg·m².
         #[arg(long, value_name = "J", default_value_t = 0.0)]
@@ -223,6 +225,14 @@ for a machine whose loads average out). The step keeps RK4 well inside its stabi
         #[arg(long, value_name = "N", default_value_t = 13,
               value_parser = clap::value_parser!(u32).range(2..=401))]
         grid: u32,
+        /// Two inputs: run from rest in the reference pose for T seconds under the motors
+        /// (--motor on input 1, --motor2 on input 2, M = a − b·q̇, signed) and the loads (RK4).
+        #[arg(long, value_name = "T")]
+        run: Option<f64>,
+        /// Two inputs: the motor of the second input, M = a − b·q̇₂: a in N·m, b in
+        /// N·m·s/rad.
+        #[arg(long, value_name = "a,b", value_parser = parse_pair, allow_hyphen_values = true)]
+        motor2: Option<(f64, f64)>,
         /// Two inputs: the grid's half-width about the reference pose, degrees (metres for a
         /// slider input); 30° (a tenth of the linkage's size for a slider) by default.
         #[arg(long, value_name = "Δ", allow_negative_numbers = true)]
@@ -514,6 +524,8 @@ fn run(command: Command) -> Result<(), Fail> {
             positions,
             grid,
             span,
+            run,
+            motor2,
             format,
             csv,
         } => {
@@ -527,6 +539,8 @@ fn run(command: Command) -> Result<(), Fail> {
                 positions: positions as usize,
                 grid: grid as usize,
                 span,
+                run,
+                motor2,
             };
             if m.input_count() == 2 {
                 let d = m.dynamics_two(&request, &mut progress);
@@ -540,6 +554,16 @@ fn run(command: Command) -> Result<(), Fail> {
                     Report::Json => report::mass_matrix_json(&d),
                 });
                 return Ok(());
+            }
+            if run.is_some() || motor2.is_some() {
+                return Err(Fail::on(
+                    &file,
+                    Failure::new(
+                        "--run and --motor2 are for a linkage with two inputs, and this one has \
+                         one",
+                    )
+                    .hint("a machine with one input runs from rest with --run-up"),
+                ));
             }
             let d = m.dynamics(&request, &mut progress);
             clear_progress();

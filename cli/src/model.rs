@@ -255,6 +255,10 @@ pub struct DynamicsRequest {
     pub positions: usize,
     /// Two inputs: the nodes of the grid along each input.
     pub grid: usize,
+    /// Two inputs: run from rest for this many seconds under the motors.
+    pub run: Option<f64>,
+    /// Two inputs: the motor of the second input, M = a − b·q̇₂.
+    pub motor2: Option<(f64, f64)>,
     /// Two inputs: the half-width of the grid about the reference pose (degrees for a crank,
     /// m for a slider); `None` for 30° (a tenth of the linkage's size for a slider).
     pub span: Option<f64>,
@@ -370,4 +374,24 @@ pub struct TwoInputDynamics {
     pub rows: Vec<MassRow>,
     /// The nodes that do not assemble.
     pub skipped: usize,
+    /// The run from rest, when asked for.
+    pub run: Option<TwoInputRun>,
+}
+
+/// A run of a linkage with two inputs from rest in its reference pose under two motors.
+#[derive(Debug, Clone, PartialEq)]
+pub struct TwoInputRun {
+    /// The motors (a, b of M = a − b·q̇ on each input; zeros for none).
+    pub motors: [(f64, f64); 2],
+    /// The step of RK4, s.
+    pub step: f64,
+    /// Steps and right-hand-side evaluations.
+    pub steps: usize,
+    /// Evaluations.
+    pub evaluations: usize,
+    /// Each recorded row: t, q₁, q₂, q̇₁, q̇₂, T (J), and P (W) the power of the applied
+    /// loads and motors less the dampers' losses.
+    pub rows: Vec<[f64; 7]>,
+    /// The work ∫ P dt by the trapezoidal rule, J.
+    pub work: f64,
 }

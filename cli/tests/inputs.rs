@@ -464,6 +464,76 @@ fn the_mass_matrix_of_two_inputs_is_the_links_kinetic_energy() {
     }
 }
 
+/// A JSON array of numbers.
+fn numbers(v: &serde_json::Value) -> Vec<f64> {
+    v.as_array()
+        .unwrap_or_else(|| panic!("an array: {v}"))
+        .iter()
+        .map(|x| x.as_f64().unwrap())
+        .collect()
+}
+
+#[test]
+fn a_linkage_with_two_inputs_runs_from_rest_under_two_motors() {
+    let v = json(&[
+        "dynamics",
+        "five-bar-robot",
+        "--grid",
+        "3",
+        "--run",
+        "0.5",
+        "--motor",
+        "0.2,0.05",
+        "--motor2",
+        "-0.1,0.05",
+        "--format",
+        "json",
+    ]);
+    let run = &v["run"];
+    let (t, kinetic) = (numbers(&run["t"]), numbers(&run["kinetic"]));
+    let (qd1, qd2) = (numbers(&run["qd1"]), numbers(&run["qd2"]));
+    assert_eq!(*t.last().unwrap(), 0.5);
+    // The energy balance: the kinetic energy gained from rest is the work of the loads and
+    // motors (trapezoids over the steps: an error of order h²).
+    let gained = *kinetic.last().unwrap();
+    let work = run["work"].as_f64().unwrap();
+    eprintln!(
+        "five-bar run: T = {gained} J, W = {work} J, {:e} relative",
+        (gained - work) / gained
+    );
+    assert!(gained > 1e-3 && (gained - work).abs() < 1e-6 * gained);
+    // The first step from rest: q̈(0) = A⁻¹·Q with A and Q of the grid's middle node (the
+    // reference pose) and the motors' moments at rest, Q + (0.2, −0.1).
+    let m = &v["mass_matrix"];
+    let at = |name: &str| numbers(&m[name])[4];
+    let (a11, a12, a22) = (at("A11"), at("A12"), at("A22"));
+    let (f1, f2) = (at("Q1") + 0.2, at("Q2") - 0.1);
+    let det = a11 * a22 - a12 * a12;
+    let qdd = [(a22 * f1 - a12 * f2) / det, (a11 * f2 - a12 * f1) / det];
+    let started = [qd1[1] / t[1], qd2[1] / t[1]];
+    eprintln!("five-bar run: q̈(0) from the first step {started:?}, A⁻¹Q {qdd:?}");
+    for k in 0..2 {
+        assert!(
+            (started[k] - qdd[k]).abs() < 1e-3 * qdd[0].abs().max(qdd[1].abs()),
+            "q̈(0): {started:?} vs A⁻¹Q = {qdd:?}"
+        );
+    }
+    for (args, words) in [
+        (&["--run", "0"][..], "duration"),
+        (&["--run", "nan"], "duration"),
+        (&["--run", "1", "--motor2", "1,nan"], "finite"),
+    ] {
+        let mut all = vec!["dynamics", "five-bar-robot"];
+        all.extend_from_slice(args);
+        let r = tmm(&all);
+        assert_one_line_failure(&r, "five-bar-robot");
+        assert!(r.stderr.contains(words), "{all:?}: {}", r.stderr);
+    }
+    let r = tmm(&["dynamics", "four-bar", "--run", "1"]);
+    assert_one_line_failure(&r, "four-bar");
+    assert!(r.stderr.contains("--run-up"), "{}", r.stderr);
+}
+
 /// `tmm dynamics … --format json`'s reduced column `name`.
 fn reduced(v: &serde_json::Value, name: &str) -> Vec<f64> {
     v["reduced"][name]

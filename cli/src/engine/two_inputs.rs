@@ -5,12 +5,14 @@
 use std::f64::consts::PI;
 
 use tmm::draw::{self, Style};
+use tmm::dynamics::machines::LinearMotor;
+use tmm::dynamics::{run, LagrangeSystem as _, Rk4, RunOptions, State};
 use tmm::kinematics::Motion;
-use tmm::linkage::dynamics::LinkageSystem;
+use tmm::linkage::dynamics::{LinkageSystem, Motor};
 use tmm::linkage::{Inputs, TwoInputCourse, TwoInputShape, WorkspaceOptions};
 
 use super::{failure, Machine};
-use crate::model::{Failure, MassRow, TwoInputDynamics};
+use crate::model::{DynamicsRequest, Failure, MassRow, TwoInputDynamics, TwoInputRun};
 use tmm::nalgebra::Vector2;
 
 /// The nodes of the input grid of a workspace along each input (the library's default).
@@ -273,6 +275,78 @@ impl Machine {
             n,
             rows,
             skipped,
+            run: None,
+        })
+    }
+
+    /// The linkage with two inputs run from rest in its reference pose for `t_end` seconds
+    /// under the motors of `request` (M = a − b·q̇ on each input, none where not given) and
+    /// its loads, by RK4 with every step recorded.
+    ///
+    /// # Errors
+    /// A duration that is not positive and finite (or above 10⁴ s); the run's error (a
+    /// position that does not assemble or is singular, named with its time; the budget).
+    pub(super) fn run_two(
+        &self,
+        request: &DynamicsRequest,
+        t_end: f64,
+        progress: &mut dyn FnMut(&str),
+    ) -> Result<TwoInputRun, Failure> {
+        if !(t_end.is_finite() && t_end > 0.0 && t_end <= 1e4) {
+            return Err(Failure::new(format!(
+                "the duration of the run must be positive, finite and at most 10⁴ s, and it \
+                 is {t_end} s"
+            ))
+            .hint("give --run T in seconds"));
+        }
+        let f = |e: tmm::Error| failure(&e);
+        let motors = [request.motor, request.motor2].map(|m| m.unwrap_or((0.0, 0.0)));
+        let mut sys = LinkageSystem::new(self.plan.clone())
+            .and_then(|s| s.with_inertia(0, request.rotor))
+            .map_err(f)?;
+        for (k, m) in [request.motor, request.motor2].into_iter().enumerate() {
+            if let Some((a, b)) = m {
+                sys = sys
+                    .with_motor(k, Motor::Linear(LinearMotor { a, b }))
+                    .map_err(f)?;
+            }
+        }
+        let reference = self.plan.reference_inputs();
+        let q0 = Vector2::new(reference[0], reference[1]);
+        // 4000 steps at most, and RK4 well inside its stability limit (hλ ≈ −2.785) for the
+        // motors' damping b/A at the start.
+        let a0 = sys.inertia(&q0).map_err(f)?;
+        let damping = (motors[0].1.abs() / a0[(0, 0)]).max(motors[1].1.abs() / a0[(1, 1)]);
+        let h = (t_end / 4000.0).min(0.5 / damping.max(f64::MIN_POSITIVE));
+        let mut opts = RunOptions::until(t_end, h);
+        opts.record_every = 1;
+        progress(&format!(
+            "a run of {t_end} s from rest (RK4, h = {h:.3e} s)"
+        ));
+        let r = run(&sys, &Rk4, State::at_rest(q0), &opts).map_err(f)?;
+        let tr = &r.trajectory;
+        let (t, q, qd) = (tr.t(), tr.q(), tr.qd());
+        let (kinetic, power, lost) = (tr.kinetic(), tr.power_applied(), tr.power_dissipated());
+        let rows: Vec<[f64; 7]> = (0..tr.len())
+            .map(|i| {
+                let p = power[i] - lost[i];
+                [t[i], q[0][i], q[1][i], qd[0][i], qd[1][i], kinetic[i], p]
+            })
+            .collect();
+        // The work of the applied loads less the dampers' losses, which the kinetic energy
+        // gained from rest must equal: trapezoids over the recorded steps, an error of
+        // order h².
+        let work = rows
+            .windows(2)
+            .map(|w| 0.5 * (w[0][6] + w[1][6]) * (w[1][0] - w[0][0]))
+            .sum();
+        Ok(TwoInputRun {
+            motors,
+            step: h,
+            steps: r.steps,
+            evaluations: r.evaluations,
+            rows,
+            work,
         })
     }
 }

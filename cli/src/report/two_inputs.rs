@@ -3,7 +3,7 @@
 use std::fmt::Write as _;
 
 use super::{array, json_number, json_string, number, object};
-use crate::model::{MassRow, TwoInputDynamics};
+use crate::model::{MassRow, TwoInputDynamics, TwoInputRun};
 
 /// The units of A₁₁, A₁₂, A₂₂ and of Q₁, Q₂ for inputs of the units `u` ("rad" or "m").
 fn mass_units(u: [&str; 2]) -> ([&'static str; 3], [&'static str; 2]) {
@@ -92,7 +92,77 @@ pub fn mass_matrix(d: &TwoInputDynamics) -> String {
             number(r.loads[1])
         );
     }
+    if let Some(run) = &d.run {
+        run_text(&mut o, run, d.units);
+    }
     o
+}
+
+/// The run from rest, as text: a few of its rows and the energy balance.
+fn run_text(o: &mut String, run: &TwoInputRun, units: [&str; 2]) {
+    let last = run.rows.last().copied().unwrap_or([0.0; 7]);
+    let _ = writeln!(
+        o,
+        "\nrun from rest in the reference pose for {} s under M1 = {} − {}·q̇1 and M2 = {} − \
+         {}·q̇2 and the loads: RK4, h = {} s ({} steps, {} evaluations)",
+        number(last[0]),
+        number(run.motors[0].0),
+        number(run.motors[0].1),
+        number(run.motors[1].0),
+        number(run.motors[1].1),
+        number(run.step),
+        run.steps,
+        run.evaluations
+    );
+    let _ = writeln!(
+        o,
+        "energy: kinetic energy gained {} J, work of the loads and motors {} J (trapezoids \
+         over the steps), difference {:.3e} J",
+        number(last[5]),
+        number(run.work),
+        last[5] - run.work
+    );
+    let u = |k: usize| {
+        if units[k] == "rad" {
+            ("deg", "rad/s")
+        } else {
+            ("m", "m/s")
+        }
+    };
+    let _ = writeln!(
+        o,
+        "{:>10} {:>10} {:>10} {:>12} {:>12} {:>12}",
+        "t", "q1", "q2", "q̇1", "q̇2", "T"
+    );
+    let _ = writeln!(
+        o,
+        "{:>10} {:>10} {:>10} {:>12} {:>12} {:>12}",
+        "s",
+        u(0).0,
+        u(1).0,
+        u(0).1,
+        u(1).1,
+        "J"
+    );
+    let step = (run.rows.len() / 10).max(1);
+    let deg = |k: usize, v: f64| if units[k] == "rad" { v.to_degrees() } else { v };
+    let shown = run
+        .rows
+        .iter()
+        .step_by(step)
+        .chain((!(run.rows.len() - 1).is_multiple_of(step)).then_some(&last));
+    for r in shown {
+        let _ = writeln!(
+            o,
+            "{:>10} {:>10.3} {:>10.3} {:>12} {:>12} {:>12}",
+            number(r[0]),
+            deg(0, r[1]),
+            deg(1, r[2]),
+            number(r[3]),
+            number(r[4]),
+            number(r[5])
+        );
+    }
 }
 
 /// `tmm dynamics --csv` of a linkage with two inputs: one line per pair of the grid.
@@ -128,6 +198,7 @@ pub fn mass_matrix_json(d: &TwoInputDynamics) -> String {
         ),
         ("grid", d.n.to_string()),
         ("skipped", d.skipped.to_string()),
+        ("run", d.run.as_ref().map_or("null".to_owned(), run_json)),
         (
             "mass_matrix",
             object(&[
@@ -143,4 +214,31 @@ pub fn mass_matrix_json(d: &TwoInputDynamics) -> String {
     ]);
     o.push('\n');
     o
+}
+
+/// The run from rest as JSON: the motors, the step, the energy balance and every row's
+/// columns in SI units.
+fn run_json(run: &TwoInputRun) -> String {
+    let column = |k: usize| array(run.rows.iter().map(|r| json_number(r[k])));
+    object(&[
+        (
+            "motors",
+            array(
+                run.motors
+                    .iter()
+                    .map(|&(a, b)| object(&[("a", json_number(a)), ("b", json_number(b))])),
+            ),
+        ),
+        ("step", json_number(run.step)),
+        ("steps", run.steps.to_string()),
+        ("evaluations", run.evaluations.to_string()),
+        ("work", json_number(run.work)),
+        ("t", column(0)),
+        ("q1", column(1)),
+        ("q2", column(2)),
+        ("qd1", column(3)),
+        ("qd2", column(4)),
+        ("kinetic", column(5)),
+        ("power", column(6)),
+    ])
 }
