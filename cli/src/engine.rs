@@ -3,6 +3,7 @@
 //! here, so that a change of the library's API is adapted in this file alone.
 
 pub mod synth;
+mod two_inputs;
 
 use std::f64::consts::TAU;
 
@@ -13,12 +14,13 @@ use tmm::kinematics::{grashof, Grashof, Motion, Rotation};
 use tmm::linkage::dynamics::{LinkageSystem, Motor, RunUpOptions};
 use tmm::linkage::{
     course_inputs, uniform_inputs, Drive, Inputs, LinkId, Linkage, Output, Plan, Table,
+    TwoInputCourse,
 };
 
 use crate::model::{
     Column, DiagramKind, DynamicsReport, DynamicsRequest, Failure, FlywheelRow, GroupInfo,
-    InputInfo, InputKind, PictureKind, Positions, Range, ReducedRow, RunUpReport, StrokeInfo,
-    Structure, TableData, TurnRow,
+    InputInfo, InputKind, PictureKind, PictureRequest, Positions, Range, ReducedRow, RunUpReport,
+    StrokeInfo, Structure, TableData, TurnRow, TwoInputDynamics,
 };
 
 /// The library's error as a person reads it: its `Display` text.
@@ -79,6 +81,43 @@ impl Machine {
                 }
             ),
         )
+    }
+
+    /// The number of inputs (1 or 2).
+    pub fn input_count(&self) -> usize {
+        self.plan.input_count()
+    }
+
+    /// The dynamics of a linkage with two inputs: the mass matrix and the loads'
+    /// generalized forces over a grid of the inputs about the reference pose.
+    ///
+    /// # Errors
+    /// A run-up or a flywheel asked for (a linkage with two inputs has no cycle of its own);
+    /// see [`Machine::mass_matrix_grid`].
+    pub fn dynamics_two(
+        &self,
+        request: &DynamicsRequest,
+        progress: &mut dyn FnMut(&str),
+    ) -> Result<TwoInputDynamics, Failure> {
+        if request.run_up || !request.flywheel.is_empty() {
+            return Err(Failure::new(
+                "a run-up and a flywheel need one crank that turns fully, and a linkage with \
+                 two inputs (mobility 2) has no cycle of its own: it moves as its two drives \
+                 make it",
+            )
+            .hint("without --run-up and --flywheel, its mass matrix over a grid of the inputs"));
+        }
+        if !request.speed.is_finite() {
+            return Err(Failure::new(format!(
+                "the speed must be finite, got {}",
+                request.speed
+            )));
+        }
+        let mut d = self.mass_matrix_grid(request.grid, request.span, request.rotor, progress)?;
+        if let Some(t_end) = request.run {
+            d.run = Some(self.run_two(request, t_end, progress)?);
+        }
+        Ok(d)
     }
 
     /// The input speed of the file (10 rad/s when it gives none).
@@ -351,6 +390,17 @@ impl Machine {
                         Ok(spread(*n, notes))
                     }
                 },
+                (_, true, Range::Rocking(lo, hi)) if speed.is_finite() && speed != 0.0 => {
+                    let course = Course::new(plan, None, *n, speed).map_err(|e| failure(&e))?;
+                    notes.push(format!(
+                        "{n} positions of the crank rocking as the mechanism runs, from the lock \
+                         angle {:.4}° to {:.4}° and back (at the locks it stops and reverses: \
+                         rate 0 there)",
+                        if speed < 0.0 { hi } else { lo }.to_degrees(),
+                        if speed < 0.0 { lo } else { hi }.to_degrees(),
+                    ));
+                    Ok(course.inputs)
+                }
                 _ => Ok(spread(*n, notes)),
             },
         }
@@ -363,7 +413,7 @@ impl Machine {
     pub fn table(&self, positions: &Positions, speed: f64) -> Result<TableData, Failure> {
         let mut notes = Vec::new();
         let inputs: Vec<Vec<Motion>> = if self.plan.input_count() > 1 {
-            self.input_pairs(positions, speed)?
+            self.input_pairs(positions, speed, &mut notes)?
         } else {
             self.inputs(positions, speed, &mut notes)?
                 .into_iter()
@@ -458,14 +508,31 @@ impl Machine {
             .is_none_or(|s| second_is_crank(&self.linkage, &s.link))
     }
 
-    /// The positions of a linkage with two inputs: `--at` values taken in pairs.
-    fn input_pairs(&self, positions: &Positions, speed: f64) -> Result<Vec<Vec<Motion>>, Failure> {
-        let Positions::At(values) = positions else {
-            return Err(Failure::new(format!(
-                "a linkage with two inputs (mobility {}) has no single course",
-                self.plan.mobility()
-            ))
-            .hint("give its positions as pairs of input coordinates, --at φ1 φ2 [φ1 φ2 …]"));
+    /// The positions of a linkage with two inputs: `--at` values taken in pairs, or `n`
+    /// positions round a loop about the reference pose (each input swinging about its
+    /// reference value, the second a quarter period behind).
+    fn input_pairs(
+        &self,
+        positions: &Positions,
+        speed: f64,
+        notes: &mut Vec<String>,
+    ) -> Result<Vec<Vec<Motion>>, Failure> {
+        let values = match positions {
+            Positions::At(values) => values,
+            Positions::Course(n) | Positions::Uniform(n) => {
+                let course = TwoInputCourse::around_reference(&self.plan, *n, speed)
+                    .map_err(|e| failure(&e))?;
+                notes.push(format!(
+                    "two inputs: {n} positions round a loop about the reference pose, each \
+                     input swinging harmonically about its reference value, the second a \
+                     quarter period behind (--at φ1 φ2 … for positions of your own)"
+                ));
+                return Ok(course
+                    .inputs
+                    .iter()
+                    .map(|i| i.as_slice().to_vec())
+                    .collect());
+            }
         };
         if values.len() % 2 != 0 {
             return Err(Failure::new(format!(
@@ -486,16 +553,6 @@ impl Machine {
             .collect())
     }
 
-    /// The input at `at` (degrees for a crank, m for a slider), or the reference pose.
-    fn input_at(&self, at: Option<f64>, speed: f64) -> Motion {
-        let value = match at {
-            Some(v) if self.plan.input_is_crank() => v.to_radians(),
-            Some(v) => v,
-            None => self.plan.reference_input(),
-        };
-        Motion::new(value, speed, 0.0)
-    }
-
     /// The course of the pictures over the cycle.
     fn course(&self, speed: f64) -> Result<Course, Failure> {
         let plan = &self.plan;
@@ -505,8 +562,9 @@ impl Machine {
             ))
             .hint("give --speed, not zero"));
         }
-        if plan.input_is_crank() && matches!(self.range(), Range::FullTurn) {
-            // An output without strokes (one that turns fully) still has a turn to draw.
+        if plan.input_is_crank() && matches!(self.range(), Range::FullTurn | Range::Rocking(..)) {
+            // An output without strokes (one that turns fully) still has a turn to draw; a
+            // rocking crank sweeps from lock to lock and back.
             return Course::new(plan, self.linkage.output.as_ref(), 12, speed)
                 .or_else(|e| Course::new(plan, None, 12, speed).map_err(|_| e))
                 .map_err(|e| failure(&e));
@@ -529,37 +587,70 @@ impl Machine {
     /// A picture as SVG text.
     ///
     /// # Errors
-    /// The library's error for the picture.
-    pub fn draw(&self, picture: &PictureKind, speed: f64) -> Result<String, Failure> {
+    /// The library's error for the picture; a picture over the cycle of a linkage with two
+    /// inputs (which has none); a workspace of a linkage with one input.
+    pub fn draw(
+        &self,
+        request: &PictureRequest,
+        progress: &mut dyn FnMut(&str),
+    ) -> Result<String, Failure> {
         let plan = &self.plan;
         let style = Style::default();
-        let svg = match picture {
+        let speed = request.speed;
+        let two = plan.input_count() == 2;
+        if !two && !request.along.is_empty() {
+            return Err(Failure::new(
+                "--along gives a path in the plane of two inputs, and this linkage has one",
+            )
+            .hint("its plan and animation follow its own cycle"));
+        }
+        if !request.along.is_empty()
+            && !matches!(request.kind, PictureKind::Plan | PictureKind::Animation)
+        {
+            return Err(Failure::new(
+                "--along gives the path of --plan and --animate, and neither was asked for",
+            ));
+        }
+        let paths: Vec<&str> = plan
+            .joint_names()
+            .iter()
+            .enumerate()
+            .filter(|&(j, _)| {
+                plan.joint_links(j)
+                    .is_ok_and(|l| !l.contains(&LinkId::FRAME))
+            })
+            .map(|(_, n)| n.as_str())
+            .chain(plan.point_names().iter().map(String::as_str))
+            .collect();
+        let svg = match &request.kind {
             PictureKind::Scheme(at) => {
-                self.one_input("a picture of the scheme")?;
-                draw::scheme(plan, self.input_at(*at, speed), &style).map(|p| p.svg)
+                draw::scheme(plan, self.inputs_at(at, speed)?, &style).map(|p| p.svg)
             }
             PictureKind::Forces(at) => {
-                self.one_input("a picture of the forces")?;
-                draw::forces(plan, self.input_at(*at, speed), &style).map(|p| p.svg)
+                draw::forces(plan, self.inputs_at(at, speed)?, &style).map(|p| p.svg)
+            }
+            PictureKind::Workspace(point) => return self.workspace(point, &style, progress),
+            PictureKind::Plan if two => {
+                return self.plan_two(&request.along, speed, &paths, &style);
+            }
+            PictureKind::Animation if two => {
+                return self.animation_two(&request.along, speed, &style);
+            }
+            PictureKind::Diagram(_) if two => {
+                return Err(Failure::new(
+                    "a diagram is drawn over the cycle of one input, and a linkage with two \
+                     inputs has no cycle of its own (its motion is whatever its two drives do)",
+                )
+                .hint(
+                    "`tmm analyse FILE --at φ1 φ2 …` tabulates its positions, `tmm draw FILE \
+                     --workspace POINT` draws what a point reaches",
+                ));
             }
             PictureKind::Plan => {
-                self.one_input("a plan of positions")?;
                 let course = self.course(speed)?;
-                let paths: Vec<&str> = plan
-                    .joint_names()
-                    .iter()
-                    .enumerate()
-                    .filter(|&(j, _)| {
-                        plan.joint_links(j)
-                            .is_ok_and(|l| !l.contains(&LinkId::FRAME))
-                    })
-                    .map(|(_, n)| n.as_str())
-                    .chain(plan.point_names().iter().map(String::as_str))
-                    .collect();
                 draw::plan_view(plan, &course, &paths, &style).map(|p| p.svg)
             }
             PictureKind::Animation => {
-                self.one_input("an animation of the cycle")?;
                 let frames = match (plan.input_is_crank(), self.range()) {
                     (true, Range::FullTurn) => {
                         let start = self.course(speed)?.inputs[0].value;
@@ -576,37 +667,40 @@ impl Machine {
                 };
                 draw::animation(plan, &frames, 4.0, &style).map(|p| p.svg)
             }
-            PictureKind::Diagram(kind) => {
-                self.one_input("a diagram over the cycle")?;
-                let course = self.course(speed)?;
-                let tall = Style {
-                    height: 900,
-                    ..Style::default()
-                };
-                let (diagram, style) = match kind {
-                    DiagramKind::Kinematics => (Diagram::Kinematics(self.output()), &tall),
-                    DiagramKind::Transfer => (Diagram::Transfer(self.output()), &tall),
-                    DiagramKind::Balance => (Diagram::Balance, &style),
-                    DiagramKind::Reactions => (Diagram::Reactions, &style),
-                    DiagramKind::Hodograph => {
-                        let input = plan.input_links()[0].index();
-                        let pin = (0..plan.joint_names().len())
-                            .find(|&j| {
-                                plan.joint_links(j).is_ok_and(|l| {
-                                    l.iter().any(|k| k.index() == input)
-                                        && !l.contains(&LinkId::FRAME)
-                                })
-                            })
-                            .ok_or_else(|| {
-                                Failure::new("the input link has no joint off the frame")
-                            })?;
-                        (Diagram::Hodograph(plan.joint_names()[pin].clone()), &style)
-                    }
-                };
-                draw::diagram(plan, &course, &diagram, style).map(|c| c.svg)
-            }
+            PictureKind::Diagram(kind) => return self.diagram(*kind, speed),
         };
         svg.map_err(|e| failure(&e))
+    }
+
+    /// A diagram over the cycle of a linkage with one input.
+    fn diagram(&self, kind: DiagramKind, speed: f64) -> Result<String, Failure> {
+        let plan = &self.plan;
+        let course = self.course(speed)?;
+        let style = Style::default();
+        let tall = Style {
+            height: 900,
+            ..Style::default()
+        };
+        let (diagram, style) = match kind {
+            DiagramKind::Kinematics => (Diagram::Kinematics(self.output()), &tall),
+            DiagramKind::Transfer => (Diagram::Transfer(self.output()), &tall),
+            DiagramKind::Balance => (Diagram::Balance, &style),
+            DiagramKind::Reactions => (Diagram::Reactions, &style),
+            DiagramKind::Hodograph => {
+                let input = plan.input_links()[0].index();
+                let pin = (0..plan.joint_names().len())
+                    .find(|&j| {
+                        plan.joint_links(j).is_ok_and(|l| {
+                            l.iter().any(|k| k.index() == input) && !l.contains(&LinkId::FRAME)
+                        })
+                    })
+                    .ok_or_else(|| Failure::new("the input link has no joint off the frame"))?;
+                (Diagram::Hodograph(plan.joint_names()[pin].clone()), &style)
+            }
+        };
+        draw::diagram(plan, &course, &diagram, style)
+            .map(|c| c.svg)
+            .map_err(|e| failure(&e))
     }
 
     /// The machine's dynamics: reduced quantities, run-up and flywheels.
@@ -625,13 +719,21 @@ impl Machine {
                  linkage is driven by a slider",
             ));
         }
-        if let Range::Rocking(lo, hi) = self.range() {
+        let rocking = match self.range() {
+            Range::Rocking(lo, hi) => Some((lo, hi)),
+            _ => None,
+        };
+        if let Some((lo, hi)) = rocking
+            && (request.run_up || !request.flywheel.is_empty())
+        {
             return Err(Failure::new(format!(
-                "the crank rocks between {:.1}° and {:.1}°, and the dynamics of a machine \
-                 reduced to its crank need a crank that turns fully",
+                "a run-up and a flywheel need a crank that turns fully, and this crank rocks \
+                 between the lock angles {:.4}° and {:.4}° ({lo} and {hi} rad), where the \
+                 linkage stops it and it must reverse",
                 lo.to_degrees(),
                 hi.to_degrees()
-            )));
+            ))
+            .hint("without --run-up and --flywheel, the reduced quantities over that range"));
         }
         let speed = request.speed;
         if !(speed.is_finite() && speed != 0.0) {
@@ -645,12 +747,48 @@ impl Machine {
         if request.rotor != 0.0 {
             bare = bare.with_inertia(0, request.rotor).map_err(f)?;
         }
-        progress("reduced moment of inertia and moment over a turn");
-        let reduced = bare.reduced_cycle(request.positions, speed).map_err(f)?;
-        let phi0 = reduced.first().map_or(0.0, |r| r.phi);
+        let reduced = match rocking {
+            None => {
+                progress("reduced moment of inertia and moment over a turn");
+                bare.reduced_cycle(request.positions, speed).map_err(f)?
+            }
+            Some((lo, hi)) => {
+                progress("reduced moment of inertia and moment over the rocking range");
+                // At a lock the linkage is at a dead point: the crank's rate moves no
+                // dead-pointed group, whose links' transfer functions and so J_red grow
+                // without bound. The positions are the middles of equal steps between the
+                // locks, in the order the crank meets them at `speed`.
+                let n = request.positions;
+                #[allow(clippy::cast_precision_loss)]
+                let h = (hi - lo) / n as f64;
+                let mut phis: Vec<f64> = (0..n)
+                    .map(|k| {
+                        #[allow(clippy::cast_precision_loss)]
+                        let k = k as f64;
+                        lo + h * (k + 0.5)
+                    })
+                    .collect();
+                if speed < 0.0 {
+                    phis.reverse();
+                }
+                phis.iter()
+                    .map(|&phi| {
+                        bare.reduced(phi, speed).map_err(|e| {
+                            Failure::new(format!("at φ = {:.6}°: {e}", phi.to_degrees()))
+                        })
+                    })
+                    .collect::<Result<Vec<_>, _>>()?
+            }
+        };
+        let phi0 = match rocking {
+            Some((_, hi)) if speed < 0.0 => hi,
+            Some((lo, _)) => lo,
+            None => reduced.first().map_or(0.0, |r| r.phi),
+        };
         let rows: Vec<ReducedRow> = reduced
             .iter()
             .map(|r| ReducedRow {
+                phi: r.phi,
                 turned: (r.phi - phi0).abs(),
                 inertia: r.inertia,
                 inertia_derivative: r.inertia_derivative,
@@ -729,6 +867,7 @@ impl Machine {
             name: self.name().to_owned(),
             speed,
             rotor: request.rotor,
+            rocking,
             reduced: rows,
             run_up,
             flywheels,

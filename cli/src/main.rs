@@ -19,7 +19,7 @@ use std::process::ExitCode;
 
 use clap::{ArgGroup, Parser, Subcommand, ValueEnum};
 
-use model::{DiagramKind, DynamicsRequest, Failure, PictureKind, Positions};
+use model::{DiagramKind, DynamicsRequest, Failure, PictureKind, PictureRequest, Positions};
 
 const EXAMPLES: &str = "\
 Examples:
@@ -116,9 +116,10 @@ null in JSON."
 
     /// A picture as SVG: the kinematic scheme at a position (the default), the plan in the 12
     /// course positions with the paths of the joints, an animation of the cycle, the reactions
-    /// as arrows, or a diagram over the cycle.
+    /// as arrows, a diagram over the cycle, or the workspace of a point (two inputs).
     #[command(
-        group(ArgGroup::new("picture").args(["scheme", "plan", "animate", "forces", "diagram"])),
+        group(ArgGroup::new("picture")
+            .args(["scheme", "plan", "animate", "forces", "diagram", "workspace"])),
         after_help = "\
 Examples:
   tmm draw linkages/shaper.json -o shaper.svg                 the scheme in the reference pose
@@ -126,15 +127,23 @@ Examples:
   tmm draw linkages/watt-six-bar.json --plan -o plan.svg
   tmm draw linkages/watt-six-bar.json --animate -o watt.svg   open it in a browser
   tmm draw linkages/four-bar.json --forces 30 -o forces.svg
-  tmm draw linkages/shaper.json --diagram kinematics -o ram.svg"
+  tmm draw linkages/shaper.json --diagram kinematics -o ram.svg
+  tmm draw linkages/peaucellier-lipkin.json --plan -o straight.svg   a rocking crank's range
+  tmm draw linkages/five-bar-robot.json --scheme 110 70 -o robot.svg  two inputs: φ1 φ2
+  tmm draw linkages/five-bar-robot.json --workspace B -o reach.svg
+  tmm draw linkages/five-bar-robot.json --animate --along 120 60 90 60 90 90 -o path.svg
+
+A linkage with two inputs is drawn at pairs φ1 φ2; its plan and animation follow a loop
+about the reference pose, or the path through the pairs of --along. A rocking crank's plan,
+animation and diagrams run between its lock angles."
     )]
     Draw {
         /// The description file (JSON), or the name of a bundled one.
         file: String,
         /// The kinematic scheme at the input angle φ, degrees (metres for a slider input; the
-        /// reference pose without one).
-        #[arg(long, value_name = "φ", num_args = 0..=1, allow_negative_numbers = true)]
-        scheme: Option<Option<f64>>,
+        /// reference pose without one); two values φ1 φ2 for a linkage with two inputs.
+        #[arg(long, value_name = "φ", num_args = 0..=2, allow_negative_numbers = true)]
+        scheme: Option<Vec<f64>>,
         /// The plan: the 12 course positions overlaid, the extreme positions bold, the paths of
         /// the joints and named points.
         #[arg(long)]
@@ -143,12 +152,20 @@ Examples:
         #[arg(long)]
         animate: bool,
         /// The reaction in every joint as an arrow, at the input angle φ, degrees (metres for a
-        /// slider input; the reference pose without one).
-        #[arg(long, value_name = "φ", num_args = 0..=1, allow_negative_numbers = true)]
-        forces: Option<Option<f64>>,
+        /// slider input; the reference pose without one); φ1 φ2 for two inputs.
+        #[arg(long, value_name = "φ", num_args = 0..=2, allow_negative_numbers = true)]
+        forces: Option<Vec<f64>>,
         /// A diagram over the cycle (balance without a KIND).
         #[arg(long, visible_alias = "diagrams", value_enum, value_name = "KIND", num_args = 0..=1, default_missing_value = "balance")]
         diagram: Option<DiagramArg>,
+        /// The region a joint or named point reaches as two inputs move (each crank over a
+        /// whole turn), its outline and the singular curves.
+        #[arg(long, value_name = "POINT")]
+        workspace: Option<String>,
+        /// Two inputs: the plan and the animation along the path through these pairs of input
+        /// coordinates φ1 φ2 (degrees; metres for a slider), by straight steps.
+        #[arg(long, value_name = "φ1 φ2", num_args = 4.., allow_negative_numbers = true)]
+        along: Vec<f64>,
         /// The input speed ω, rad/s (negative: clockwise); the file's `speed` by default.
         #[arg(long, value_name = "ω", allow_negative_numbers = true)]
         speed: Option<f64>,
@@ -158,8 +175,9 @@ Examples:
     },
 
     /// The linkage as a machine reduced to its crank: the reduced moment of inertia and moment
-    /// over a turn, the run-up from rest under a motor to the steady state, and the flywheel
-    /// for a coefficient of speed fluctuation δ.
+    /// over a turn (or a rocking crank's range), the run-up from rest under a motor to the
+    /// steady state, and the flywheel for a coefficient of speed fluctuation δ; for two
+    /// inputs, the mass matrix over a grid of the inputs.
     #[command(after_help = "\
 Examples:
   tmm dynamics linkages/watt-six-bar.json
@@ -167,6 +185,15 @@ Examples:
   tmm dynamics linkages/four-bar.json --run-up --motor 60,2 --rotor 0.05
   tmm dynamics linkages/shaper.json --csv reduced.csv
   tmm dynamics linkages/watt-six-bar.json --flywheel 0.05 --format json
+  tmm dynamics linkages/peaucellier-lipkin.json      a rocking crank: between its lock angles
+  tmm dynamics linkages/five-bar-robot.json --grid 7 --span 20   two inputs: A(q) on 7 × 7
+  tmm dynamics linkages/five-bar-robot.json --run 0.5 --motor 0.2,0.05 --motor2 -0.1,0.05
+
+A rocking crank has the reduced quantities over its range between the lock angles (at the
+locks J_red is unbounded: the positions are the middles of equal steps between them); it has
+no turn to run up or to even out with a flywheel. A linkage with two inputs has its mass
+matrix A(q) (T = ½ q̇ᵀ A q̇) and the loads' generalized forces over a grid of the inputs,
+and with --run the motion from rest under two motors, with the energy balance.
 
 Without --motor the run-up uses an induction motor chosen from the machine: 4 % slip at the
 speed asked for, and a nominal moment 10 % above the loads' mean (or a tenth of their peak,
@@ -185,15 +212,31 @@ for a machine whose loads average out). The step keeps RK4 well inside its stabi
         speed: Option<f64>,
         /// The motor of the run-up, M = a − b·|ω| in the sense of rotation: a in N·m, b in
         /// N·m·s/rad.
-        #[arg(long, value_name = "a,b", value_parser = parse_pair)]
+        #[arg(long, value_name = "a,b", value_parser = parse_pair, allow_hyphen_values = true)]
         motor: Option<(f64, f64)>,
         /// A rotor or flywheel on the crank, kg·m².
         #[arg(long, value_name = "J", default_value_t = 0.0)]
         rotor: f64,
-        /// Positions over a turn for the reduced quantities.
+        /// Positions over a turn (or a rocking crank's range) for the reduced quantities.
         #[arg(long, value_name = "N", default_value_t = 360,
               value_parser = clap::value_parser!(u32).range(1..=100_000))]
         positions: u32,
+        /// Two inputs: the nodes of the grid along each input.
+        #[arg(long, value_name = "N", default_value_t = 13,
+              value_parser = clap::value_parser!(u32).range(2..=401))]
+        grid: u32,
+        /// Two inputs: run from rest in the reference pose for T seconds under the motors
+        /// (--motor on input 1, --motor2 on input 2, M = a − b·q̇, signed) and the loads (RK4).
+        #[arg(long, value_name = "T")]
+        run: Option<f64>,
+        /// Two inputs: the motor of the second input, M = a − b·q̇₂: a in N·m, b in
+        /// N·m·s/rad.
+        #[arg(long, value_name = "a,b", value_parser = parse_pair, allow_hyphen_values = true)]
+        motor2: Option<(f64, f64)>,
+        /// Two inputs: the grid's half-width about the reference pose, degrees (metres for a
+        /// slider input); 30° (a tenth of the linkage's size for a slider) by default.
+        #[arg(long, value_name = "Δ", allow_negative_numbers = true)]
+        span: Option<f64>,
         /// The format on standard output.
         #[arg(long, value_enum, default_value_t = Report::Text)]
         format: Report,
@@ -433,11 +476,15 @@ fn run(command: Command) -> Result<(), Fail> {
             animate,
             forces,
             diagram,
+            workspace,
+            along,
             speed,
             output,
         } => {
             let m = load(&file)?;
-            let picture = if plan {
+            let picture = if let Some(point) = workspace {
+                PictureKind::Workspace(point)
+            } else if plan {
                 PictureKind::Plan
             } else if animate {
                 PictureKind::Animation
@@ -452,10 +499,16 @@ fn run(command: Command) -> Result<(), Fail> {
                     DiagramArg::Hodograph => DiagramKind::Hodograph,
                 })
             } else {
-                PictureKind::Scheme(scheme.flatten())
+                PictureKind::Scheme(scheme.unwrap_or_default())
             };
-            let speed = speed.unwrap_or_else(|| m.default_speed());
-            let svg = m.draw(&picture, speed).map_err(|f| Fail::on(&file, f))?;
+            let request = PictureRequest {
+                kind: picture,
+                speed: speed.unwrap_or_else(|| m.default_speed()),
+                along,
+            };
+            let svg = m.draw(&request, &mut progress);
+            clear_progress();
+            let svg = svg.map_err(|f| Fail::on(&file, f))?;
             match output {
                 Some(path) => write_file(&path, &svg)?,
                 None => print(&svg),
@@ -469,6 +522,10 @@ fn run(command: Command) -> Result<(), Fail> {
             motor,
             rotor,
             positions,
+            grid,
+            span,
+            run,
+            motor2,
             format,
             csv,
         } => {
@@ -480,7 +537,34 @@ fn run(command: Command) -> Result<(), Fail> {
                 rotor,
                 flywheel,
                 positions: positions as usize,
+                grid: grid as usize,
+                span,
+                run,
+                motor2,
             };
+            if m.input_count() == 2 {
+                let d = m.dynamics_two(&request, &mut progress);
+                clear_progress();
+                let d = d.map_err(|f| Fail::on(&file, f))?;
+                if let Some(path) = &csv {
+                    write_file(path, &report::mass_matrix_csv(&d))?;
+                }
+                print(&match format {
+                    Report::Text => report::mass_matrix(&d),
+                    Report::Json => report::mass_matrix_json(&d),
+                });
+                return Ok(());
+            }
+            if run.is_some() || motor2.is_some() {
+                return Err(Fail::on(
+                    &file,
+                    Failure::new(
+                        "--run and --motor2 are for a linkage with two inputs, and this one has \
+                         one",
+                    )
+                    .hint("a machine with one input runs from rest with --run-up"),
+                ));
+            }
             let d = m.dynamics(&request, &mut progress);
             clear_progress();
             let d = d.map_err(|f| Fail::on(&file, f))?;

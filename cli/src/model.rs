@@ -208,16 +208,32 @@ pub enum DiagramKind {
 /// Which picture to draw.
 #[derive(Debug, Clone, PartialEq)]
 pub enum PictureKind {
-    /// The kinematic scheme at an input (degrees or m; the reference pose when absent).
-    Scheme(Option<f64>),
+    /// The kinematic scheme at the inputs (one coordinate per input, degrees or m; the
+    /// reference pose when empty).
+    Scheme(Vec<f64>),
     /// The plan in the course positions with the joints' paths.
     Plan,
     /// An animation of the cycle.
     Animation,
-    /// The reactions as arrows at an input.
-    Forces(Option<f64>),
+    /// The reactions as arrows at the inputs (as for the scheme).
+    Forces(Vec<f64>),
     /// A diagram over the cycle.
     Diagram(DiagramKind),
+    /// The workspace of a joint or named point of a linkage with two inputs.
+    Workspace(String),
+}
+
+/// A picture and how a linkage with two inputs moves in it.
+#[derive(Debug, Clone, PartialEq)]
+pub struct PictureRequest {
+    /// Which picture.
+    pub kind: PictureKind,
+    /// The input speed, rad/s (m/s for a slider).
+    pub speed: f64,
+    /// For two inputs: the path of the plan and the animation through these pairs of input
+    /// coordinates (degrees or m), `[φ1, φ2, φ1, φ2, …]`; empty for a loop about the
+    /// reference pose.
+    pub along: Vec<f64>,
 }
 
 /// What `tmm dynamics` is asked for.
@@ -234,14 +250,26 @@ pub struct DynamicsRequest {
     pub rotor: f64,
     /// The coefficients of speed fluctuation to design flywheels for.
     pub flywheel: Vec<f64>,
-    /// Positions over a turn for the reduced quantities.
+    /// Positions over a turn (or the rocking range) for the reduced quantities; for two
+    /// inputs, see `grid`.
     pub positions: usize,
+    /// Two inputs: the nodes of the grid along each input.
+    pub grid: usize,
+    /// Two inputs: run from rest for this many seconds under the motors.
+    pub run: Option<f64>,
+    /// Two inputs: the motor of the second input, M = a − b·q̇₂.
+    pub motor2: Option<(f64, f64)>,
+    /// Two inputs: the half-width of the grid about the reference pose (degrees for a crank,
+    /// m for a slider); `None` for 30° (a tenth of the linkage's size for a slider).
+    pub span: Option<f64>,
 }
 
 /// The machine reduced to its crank at one angle.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct ReducedRow {
-    /// The angle turned from the reference pose in the sense of rotation, rad.
+    /// The crank angle, rad.
+    pub phi: f64,
+    /// The angle turned from the first position in the sense of rotation, rad.
     pub turned: f64,
     /// J_red, kg·m².
     pub inertia: f64,
@@ -309,10 +337,61 @@ pub struct DynamicsReport {
     pub speed: f64,
     /// The rotor added to the crank, kg·m².
     pub rotor: f64,
-    /// The reduced quantities over a turn.
+    /// The lock angles of a rocking crank (rad, the smaller first): the reduced quantities
+    /// are then over the range between them; `None` for a crank that turns fully.
+    pub rocking: Option<(f64, f64)>,
+    /// The reduced quantities over a turn, or over the rocking range.
     pub reduced: Vec<ReducedRow>,
     /// The run-up, when asked for.
     pub run_up: Option<RunUpReport>,
     /// The flywheels, when asked for.
     pub flywheels: Vec<FlywheelRow>,
+}
+
+/// The mass matrix of a linkage with two inputs at one pair of inputs: T = ½ q̇ᵀ A q̇.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct MassRow {
+    /// The inputs' coordinates q₁, q₂ (rad or m).
+    pub q: [f64; 2],
+    /// A₁₁, A₁₂, A₂₂ (kg·m², kg·m or kg, by the inputs' kinds).
+    pub a: [f64; 3],
+    /// The generalized forces of the loads at rest, Q₁, Q₂ (N·m or N).
+    pub loads: [f64; 2],
+}
+
+/// What `tmm dynamics` reports for a linkage with two inputs.
+#[derive(Debug, Clone, PartialEq)]
+pub struct TwoInputDynamics {
+    /// The linkage's name.
+    pub name: String,
+    /// The units of q₁ and q₂ ("rad" or "m").
+    pub units: [&'static str; 2],
+    /// The ranges of the grid, `[from, to]` of each input.
+    pub ranges: [[f64; 2]; 2],
+    /// The nodes along each input.
+    pub n: usize,
+    /// The nodes of the grid that assemble, the first input varying slowest.
+    pub rows: Vec<MassRow>,
+    /// The nodes that do not assemble.
+    pub skipped: usize,
+    /// The run from rest, when asked for.
+    pub run: Option<TwoInputRun>,
+}
+
+/// A run of a linkage with two inputs from rest in its reference pose under two motors.
+#[derive(Debug, Clone, PartialEq)]
+pub struct TwoInputRun {
+    /// The motors (a, b of M = a − b·q̇ on each input; zeros for none).
+    pub motors: [(f64, f64); 2],
+    /// The step of RK4, s.
+    pub step: f64,
+    /// Steps and right-hand-side evaluations.
+    pub steps: usize,
+    /// Evaluations.
+    pub evaluations: usize,
+    /// Each recorded row: t, q₁, q₂, q̇₁, q̇₂, T (J), and P (W) the power of the applied
+    /// loads and motors less the dampers' losses.
+    pub rows: Vec<[f64; 7]>,
+    /// The work ∫ P dt by the trapezoidal rule, J.
+    pub work: f64,
 }

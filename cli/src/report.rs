@@ -1,12 +1,14 @@
 //! The program's output as text, CSV and JSON, from its own plain data ([`crate::model`]).
 
 mod synth;
+mod two_inputs;
 
 use std::fmt::Write as _;
 
 use crate::model::{DynamicsReport, InputKind, Range, StrokeInfo, Structure, TableData};
 
 pub use synth::design;
+pub use two_inputs::{mass_matrix, mass_matrix_csv, mass_matrix_json};
 
 /// An angle in rad as degrees, one decimal.
 fn deg(rad: f64) -> String {
@@ -332,6 +334,20 @@ pub fn dynamics(d: &DynamicsReport) -> String {
     if d.rotor != 0.0 {
         let _ = writeln!(o, "rotor on the crank: {} kg·m²", number(d.rotor));
     }
+    if let Some((lo, hi)) = d.rocking {
+        let _ = writeln!(
+            o,
+            "the crank rocks: the reduced quantities over its range between the lock angles \
+             {}° and {}° ({} and {} rad); at the locks the linkage is at a dead point, where \
+             its transfer functions and so J_red are unbounded, so the {} positions are the middles of equal steps \
+             between them (φ the crank angle, turned from the lock it starts at)",
+            number(lo.to_degrees()),
+            number(hi.to_degrees()),
+            lo,
+            hi,
+            d.reduced.len()
+        );
+    }
     let n = d.reduced.len().max(1);
     let mean = d.reduced.iter().map(|r| r.loads).sum::<f64>() / n as f64;
     let j_mean = d.reduced.iter().map(|r| r.inertia).sum::<f64>() / n as f64;
@@ -344,19 +360,20 @@ pub fn dynamics(d: &DynamicsReport) -> String {
     );
     let _ = writeln!(
         o,
-        "{:>10} {:>14} {:>14} {:>14}",
-        "turned", "J_red", "dJ_red/dφ", "M_red"
+        "{:>10} {:>10} {:>14} {:>14} {:>14}",
+        "φ", "turned", "J_red", "dJ_red/dφ", "M_red"
     );
     let _ = writeln!(
         o,
-        "{:>10} {:>14} {:>14} {:>14}",
-        "deg", "kg·m²", "kg·m²", "N·m"
+        "{:>10} {:>10} {:>14} {:>14} {:>14}",
+        "deg", "deg", "kg·m²", "kg·m²", "N·m"
     );
     let step = (d.reduced.len() / 12).max(1);
     for r in d.reduced.iter().step_by(step) {
         let _ = writeln!(
             o,
-            "{:>10.1} {:>14} {:>14} {:>14}",
+            "{:>10.1} {:>10.1} {:>14} {:>14} {:>14}",
+            r.phi.to_degrees(),
             r.turned.to_degrees(),
             number(r.inertia),
             number(r.inertia_derivative),
@@ -436,12 +453,13 @@ pub fn dynamics(d: &DynamicsReport) -> String {
 
 /// `tmm dynamics --csv`: the reduced quantities over the turn, one line per position.
 pub fn reduced_csv(d: &DynamicsReport) -> String {
-    let mut o = String::from("turned [rad],J_red [kg·m^2],dJ_red/dphi [kg·m^2],M_red [N·m]\n");
+    let mut o =
+        String::from("phi [rad],turned [rad],J_red [kg·m^2],dJ_red/dphi [kg·m^2],M_red [N·m]\n");
     for r in &d.reduced {
         let _ = writeln!(
             o,
-            "{},{},{},{}",
-            r.turned, r.inertia, r.inertia_derivative, r.loads
+            "{},{},{},{},{}",
+            r.phi, r.turned, r.inertia, r.inertia_derivative, r.loads
         );
     }
     o
@@ -545,6 +563,7 @@ pub fn dynamics_json(d: &DynamicsReport) -> String {
         array(d.reduced.iter().map(|r| json_number(f(r))))
     };
     let reduced = object(&[
+        ("phi", column(&|r| r.phi)),
         ("turned", column(&|r| r.turned)),
         ("J_red", column(&|r| r.inertia)),
         ("dJ_red_dphi", column(&|r| r.inertia_derivative)),
@@ -591,6 +610,17 @@ pub fn dynamics_json(d: &DynamicsReport) -> String {
         ("name", json_string(&d.name)),
         ("speed", json_number(d.speed)),
         ("rotor", json_number(d.rotor)),
+        (
+            "range",
+            match d.rocking {
+                None => object(&[("kind", json_string("full turn"))]),
+                Some((lo, hi)) => object(&[
+                    ("kind", json_string("rocking")),
+                    ("from", json_number(lo)),
+                    ("to", json_number(hi)),
+                ]),
+            },
+        ),
         ("reduced", reduced),
         ("run_up", run_up),
         ("flywheels", flywheels),

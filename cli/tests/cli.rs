@@ -3,19 +3,23 @@
 //! read back, SVG checked for a well-formed tree of tags without `NaN` or `inf` and rendered
 //! to pixels by resvg (not blank). `tests/synth.rs` holds `tmm synth`'s round trips.
 //!
-//! Known failures, each a clear one-line error with exit code 1 (never a panic):
-//! - `five-bar-robot.json` has two inputs (mobility 2): it has no single course, so `analyse`
-//!   without `--at` pairs, `draw` (every picture: the library's pictures take one input
-//!   motion) and `dynamics` (reduced to one crank) refuse it, each with the sentence "… needs
-//!   a linkage with one input, and this one has 2" (asserted). `check` works, and so does
-//!   `analyse --at φ1 φ2 …`.
+//! Linkages with two inputs and rocking inputs have their own file, `tests/inputs.rs`; here
+//! they run through every subcommand like the others, with these differences (each refusal a
+//! clear one-line error with exit code 1, never a panic):
+//! - `five-bar-robot.json` has two inputs (mobility 2): its pictures are taken at pairs
+//!   φ1 φ2, its plan and animation follow a loop about the reference pose, and its
+//!   `dynamics` is the mass matrix over a grid of the inputs. A diagram over the cycle and a
+//!   run-up or flywheel refuse it (it has no cycle of its own: asserted).
 //! - `peaucellier-lipkin.json` and `chebyshev-straight-line.json` have rocking inputs: their
-//!   pictures and `--at` positions are taken at angles inside their ranges, and `dynamics`
-//!   (a machine reduced to a crank that turns fully) refuses them.
+//!   pictures, tables and reduced quantities are taken inside their lock angles; a run-up or
+//!   flywheel refuses them, naming the lock angles.
 
 mod common;
 
-use common::{assert_one_line_failure, assert_success, parse_csv, root, tmm, tmm_in, Broken};
+use common::{
+    assert_one_line_failure, assert_success, assert_svg, parse_csv, rocking_four_bar, root, tmm,
+    tmm_in, Broken,
+};
 
 /// Every bundled description, as a path relative to the root.
 fn bundled() -> Vec<String> {
@@ -39,63 +43,6 @@ fn two_inputs(file: &str) -> bool {
 /// Files whose input rocks (see the module docs).
 fn rocking(file: &str) -> bool {
     file.ends_with("peaucellier-lipkin.json") || file.ends_with("chebyshev-straight-line.json")
-}
-
-/// An SVG document: starts with `<svg`, ends with `</svg>`, every tag closed in order, no
-/// `NaN` or `inf` anywhere.
-fn assert_svg(svg: &str, what: &str) {
-    assert!(svg.starts_with("<svg"), "{what} starts with <svg");
-    assert!(
-        svg.trim_end().ends_with("</svg>"),
-        "{what} ends with </svg>"
-    );
-    for bad in ["NaN", "inf"] {
-        assert!(!svg.contains(bad), "{what} contains {bad}");
-    }
-    let mut open: Vec<&str> = Vec::new();
-    let mut rest = svg;
-    while let Some(k) = rest.find('<') {
-        let end = rest[k..]
-            .find('>')
-            .unwrap_or_else(|| panic!("{what}: a tag is closed"));
-        let tag = &rest[k + 1..k + end];
-        rest = &rest[k + end + 1..];
-        if tag.starts_with('?') || tag.starts_with('!') || tag.ends_with('/') {
-            continue;
-        }
-        let name = tag
-            .trim_start_matches('/')
-            .split(|c: char| c.is_whitespace())
-            .next()
-            .unwrap_or("");
-        if tag.starts_with('/') {
-            assert_eq!(open.pop(), Some(name), "{what}: </{name}> closes its tag");
-        } else {
-            open.push(name);
-        }
-    }
-    assert!(open.is_empty(), "{what}: tags left open: {open:?}");
-    assert_renders(svg, what);
-}
-
-/// The SVG rendered to pixels by resvg (as a browser would draw it; labels aside, resvg has no
-/// fonts here): it parses, has a size, and is not blank (some pixel differs from the first).
-fn assert_renders(svg: &str, what: &str) {
-    use resvg::tiny_skia::{Pixmap, Transform};
-    use resvg::usvg;
-    let tree = usvg::Tree::from_str(svg, &usvg::Options::default())
-        .unwrap_or_else(|e| panic!("{what}: resvg reads the SVG: {e}"));
-    let size = tree.size().to_int_size();
-    let mut pixmap = Pixmap::new(size.width(), size.height())
-        .unwrap_or_else(|| panic!("{what}: the picture has a size"));
-    resvg::render(&tree, Transform::default(), &mut pixmap.as_mut());
-    let pixels = pixmap.pixels();
-    let drawn = pixels.iter().filter(|p| **p != pixels[0]).count();
-    assert!(
-        drawn * 1000 > pixels.len(),
-        "{what}: something is drawn ({drawn} of {} pixels differ from the corner's)",
-        pixels.len()
-    );
 }
 
 #[test]
@@ -155,12 +102,6 @@ fn check_names_the_range_grashof_and_transmission_angle() {
 fn analyse_every_bundled_file_as_csv() {
     for file in bundled() {
         let r = tmm(&["analyse", &file, "--format", "csv"]);
-        if two_inputs(&file) {
-            assert_one_line_failure(&r, &file);
-            assert!(r.stderr.contains("two inputs"), "{}", r.stderr);
-            assert!(r.stderr.contains("--at φ1 φ2"), "the fix: {}", r.stderr);
-            continue;
-        }
         assert_success(&r, &format!("analyse {file}"));
         let (header, rows) = parse_csv(&r.stdout, &file);
         assert_eq!(rows.len(), 12, "{file}: the 12 course positions");
@@ -177,7 +118,7 @@ fn analyse_every_bundled_file_as_csv() {
 
 #[test]
 fn analyse_every_bundled_file_as_json_and_table() {
-    for file in bundled().into_iter().filter(|f| !two_inputs(f)) {
+    for file in bundled() {
         let r = tmm(&["analyse", &file, "--positions", "8", "--format", "json"]);
         assert_success(&r, &format!("analyse --format json {file}"));
         let v: serde_json::Value = serde_json::from_str(&r.stdout)
@@ -200,12 +141,16 @@ fn analyse_every_bundled_file_as_json_and_table() {
                 "{file}: {c}"
             );
         }
-        let at: [&str; 3] = if rocking(&file) {
-            ["60", "80", "70"]
+        let at: &[&str] = if two_inputs(&file) {
+            &["120", "60", "110", "70", "125", "55"]
+        } else if rocking(&file) {
+            &["60", "80", "70"]
         } else {
-            ["10", "-20", "370"]
+            &["10", "-20", "370"]
         };
-        let t = tmm(&["analyse", &file, "--at", at[0], at[1], at[2]]);
+        let mut args = vec!["analyse", file.as_str(), "--at"];
+        args.extend_from_slice(at);
+        let t = tmm(&args);
         assert_success(&t, &format!("analyse --at {file}"));
         // A title line, the positions' line, then one line per column.
         assert_eq!(t.stdout.lines().count(), columns.len() + 2, "{file}");
@@ -335,17 +280,19 @@ fn draw_every_picture_of_every_bundled_file() {
     for file in bundled() {
         for picture in pictures {
             let mut args = vec!["draw", file.as_str()];
-            args.extend(picture.iter().map(|&a| match a {
-                "30" | "45" if rocking(&file) => "60",
-                a => a,
-            }));
+            for &a in *picture {
+                match a {
+                    "30" | "45" if two_inputs(&file) => args.extend(["110", "70"]),
+                    "30" | "45" if rocking(&file) => args.push("60"),
+                    a => args.push(a),
+                }
+            }
             let what = args.join(" ");
             let r = tmm(&args);
-            if two_inputs(&file) {
+            if two_inputs(&file) && args.iter().any(|a| a.starts_with("--diagram")) {
                 assert_one_line_failure(&r, &file);
                 assert!(
-                    r.stderr
-                        .contains("needs a linkage with one input, and this one has 2"),
+                    r.stderr.contains("has no cycle of its own"),
                     "{what}: the sentence says why: {}",
                     r.stderr
                 );
@@ -376,14 +323,23 @@ fn dynamics_of_every_bundled_file() {
         if two_inputs(&file) || rocking(&file) {
             assert_one_line_failure(&r, &file);
             let why = if two_inputs(&file) {
-                "a machine reduced to its crank needs a linkage with one input, and this one has 2"
+                "a linkage with two inputs (mobility 2) has no cycle of its own"
             } else {
-                "need a crank that turns fully"
+                "need a crank that turns fully, and this crank rocks between the lock angles"
             };
             assert!(
                 r.stderr.contains(why),
                 "{file}: the sentence says why: {}",
                 r.stderr
+            );
+            // Without a flywheel: what is meaningful for them.
+            let r = tmm(&["dynamics", &file, "--positions", "72", "--grid", "5"]);
+            assert_success(&r, &format!("dynamics {file}"));
+            let what = if two_inputs(&file) { "A11" } else { "J_red" };
+            assert!(r.stdout.contains(what), "{file}: {}", r.stdout);
+            assert!(
+                !r.stdout.contains("NaN") && !r.stdout.contains("inf"),
+                "{file}"
             );
             continue;
         }
@@ -431,9 +387,9 @@ fn dynamics_writes_the_reduced_quantities_as_csv() {
     let text = std::fs::read_to_string(&out).expect("the CSV file is written");
     std::fs::remove_file(&out).ok();
     let (header, rows) = parse_csv(&text, "reduced");
-    assert_eq!(header.len(), 4);
+    assert_eq!(header.len(), 5);
     assert_eq!(rows.len(), 36);
-    assert!(rows.iter().all(|r| r[1] > 0.0), "J_red > 0");
+    assert!(rows.iter().all(|r| r[2] > 0.0), "J_red > 0");
 }
 
 #[test]
@@ -458,20 +414,6 @@ fn bundled_lists_every_file_in_linkages() {
 }
 
 const SUBCOMMANDS: [&str; 4] = ["check", "analyse", "draw", "dynamics"];
-
-/// The bundled four-bar with a crank too long to turn: it rocks between two lock angles
-/// (s + l > p + q, a triple rocker).
-fn rocking_four_bar() -> Broken {
-    let four_bar = std::fs::read_to_string(root().join("linkages/four-bar.json")).unwrap();
-    let text = four_bar
-        .replace("\"at\": [0.1, 0.0]", "\"at\": [0.0, 0.3]")
-        .replace(
-            "\"at\": [0.25612516773077276, 0.3132489936153635]",
-            "\"at\": [0.3, 0.35]",
-        );
-    assert_ne!(text, four_bar, "the test's edit applies");
-    Broken::new("rocking", &text)
-}
 
 #[test]
 fn a_rocking_crank_is_tabulated_and_drawn_inside_its_lock_angles() {
@@ -500,10 +442,11 @@ fn a_rocking_crank_is_tabulated_and_drawn_inside_its_lock_angles() {
         assert_success(&r, &args.join(" "));
         assert_svg(&r.stdout, &args.join(" "));
     }
-    // A machine reduced to its crank needs a turn: one sentence says so.
-    let r = tmm(&["dynamics", &file.path()]);
+    // A run-up needs a turn: one sentence says so, naming the lock angles.
+    let r = tmm(&["dynamics", &file.path(), "--run-up"]);
     assert_one_line_failure(&r, &file.path());
     assert!(r.stderr.contains("turns fully"), "{}", r.stderr);
+    assert!(r.stderr.contains("lock angles"), "{}", r.stderr);
 }
 
 /// A slider-crank driven by its piston (a slider input), the crank loaded by a couple.
@@ -778,6 +721,8 @@ fn mistakes_in_a_description_never_panic() {
         "scotch-yoke",
         "slotted-rocker",
         "watt-six-bar",
+        "five-bar-robot",
+        "peaucellier-lipkin",
     ] {
         let text = std::fs::read_to_string(root().join(format!("linkages/{file}.json"))).unwrap();
         for (k, (what, mutated)) in mutations(&text).into_iter().enumerate() {
@@ -786,7 +731,9 @@ fn mistakes_in_a_description_never_panic() {
                 &["check"][..],
                 &["analyse", "--format", "csv"],
                 &["draw", "--plan"],
-                &["dynamics", "--positions", "36"],
+                &["draw", "--animate"],
+                &["draw", "--workspace", "B"],
+                &["dynamics", "--positions", "36", "--grid", "5"],
             ] {
                 let mut all = vec![args[0], broken.0.to_str().unwrap()];
                 all.extend_from_slice(&args[1..]);

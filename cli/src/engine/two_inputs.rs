@@ -1,0 +1,352 @@
+//! The adapter's part for linkages with two inputs (a five-bar robot): the inputs of a
+//! picture, the path of the plan and the animation in the plane of the inputs, the workspace
+//! of a point, and the mass matrix over a grid of the inputs.
+
+use std::f64::consts::PI;
+
+use tmm::draw::{self, Style};
+use tmm::dynamics::machines::LinearMotor;
+use tmm::dynamics::{run, LagrangeSystem as _, Rk4, RunOptions, State};
+use tmm::kinematics::Motion;
+use tmm::linkage::dynamics::{LinkageSystem, Motor};
+use tmm::linkage::{Inputs, TwoInputCourse, TwoInputShape, WorkspaceOptions};
+
+use super::{failure, Machine};
+use crate::model::{DynamicsRequest, Failure, MassRow, TwoInputDynamics, TwoInputRun};
+use tmm::nalgebra::Vector2;
+
+/// The nodes of the input grid of a workspace along each input (the library's default).
+pub const WORKSPACE_SAMPLES: usize = 181;
+
+impl Machine {
+    /// Whether input `k` (0 or 1) is a crank (its coordinates in degrees at the command line).
+    fn is_crank(&self, k: usize) -> bool {
+        if k == 0 {
+            self.plan.input_is_crank()
+        } else {
+            self.second_is_crank()
+        }
+    }
+
+    /// A coordinate of input `k` as typed (degrees for a crank, m for a slider) in rad or m.
+    fn coordinate(&self, k: usize, typed: f64) -> f64 {
+        if self.is_crank(k) {
+            typed.to_radians()
+        } else {
+            typed
+        }
+    }
+
+    /// The inputs of a picture at one position: one coordinate per input as typed, or the
+    /// reference pose for none; every input moving at `speed`.
+    pub(super) fn inputs_at(&self, typed: &[f64], speed: f64) -> Result<Inputs, Failure> {
+        let n = self.plan.input_count();
+        let reference = self.plan.reference_inputs();
+        let value = |k: usize| match typed.get(k) {
+            Some(&v) => self.coordinate(k, v),
+            None => reference[k],
+        };
+        if !typed.is_empty() && typed.len() != n {
+            return Err(Failure::new(format!(
+                "a position of this linkage is {} (one coordinate per input), and {} {} given",
+                if n == 2 {
+                    "a pair φ1 φ2"
+                } else {
+                    "one value φ"
+                },
+                typed.len(),
+                if typed.len() == 1 { "was" } else { "were" }
+            ))
+            .hint(if n == 2 {
+                "give both inputs, for example --scheme 120 60 (degrees for a crank)"
+            } else {
+                "give the input's angle in degrees (metres for a slider)"
+            }));
+        }
+        let one = |k: usize| Motion::new(value(k), speed, 0.0);
+        Ok(if n == 2 {
+            Inputs::two(one(0), one(1))
+        } else {
+            Inputs::one(one(0))
+        })
+    }
+
+    /// The path of a linkage with two inputs for the plan (`n` = 12 positions) and the
+    /// animation: through the pairs `along` (as typed) by straight steps in the plane of the
+    /// inputs, `n` positions equally spaced along it by its length there (both ends
+    /// included); without pairs, the library's loop about the reference pose.
+    pub(super) fn two_input_path(
+        &self,
+        along: &[f64],
+        n: usize,
+        speed: f64,
+    ) -> Result<TwoInputCourse, Failure> {
+        if along.is_empty() {
+            return TwoInputCourse::around_reference(&self.plan, n, speed).map_err(|e| failure(&e));
+        }
+        if !along.len().is_multiple_of(2) || along.len() < 4 {
+            return Err(Failure::new(format!(
+                "--along takes pairs of input coordinates (φ1 φ2), at least two pairs, and \
+                 {} value(s) were given",
+                along.len()
+            )));
+        }
+        let points: Vec<[f64; 2]> = along
+            .chunks(2)
+            .map(|p| [self.coordinate(0, p[0]), self.coordinate(1, p[1])])
+            .collect();
+        let lengths: Vec<f64> = points
+            .windows(2)
+            .map(|w| (w[1][0] - w[0][0]).hypot(w[1][1] - w[0][1]))
+            .collect();
+        let total: f64 = lengths.iter().sum();
+        if !(total.is_finite() && total > 0.0) {
+            return Err(Failure::new(format!(
+                "the path given by --along has length {total} in the plane of the inputs; it \
+                 needs two different finite pairs"
+            )));
+        }
+        // Each position at its arc length s along the polyline; the inputs' rates are the
+        // path's direction there times |speed| (the pictures need positions only).
+        let mut inputs = Vec::with_capacity(n);
+        for i in 0..n {
+            #[allow(clippy::cast_precision_loss)]
+            let mut s = total * i as f64 / (n - 1).max(1) as f64;
+            let mut seg = 0;
+            while seg + 1 < lengths.len() && s > lengths[seg] {
+                s -= lengths[seg];
+                seg += 1;
+            }
+            let (a, b, l) = (points[seg], points[seg + 1], lengths[seg]);
+            let t = if l > 0.0 { (s / l).min(1.0) } else { 0.0 };
+            let d = if l > 0.0 {
+                [(b[0] - a[0]) / l, (b[1] - a[1]) / l]
+            } else {
+                [0.0, 0.0]
+            };
+            let at = |k: usize| Motion::new(a[k] + (b[k] - a[k]) * t, speed.abs() * d[k], 0.0);
+            inputs.push(Inputs::two(at(0), at(1)));
+        }
+        let course = TwoInputCourse {
+            inputs,
+            shape: TwoInputShape::Path,
+        };
+        course.check().map_err(|e| failure(&e))?;
+        Ok(course)
+    }
+
+    /// The plan of a linkage with two inputs along its path, with the paths of the joints
+    /// off the frame and the named points.
+    pub(super) fn plan_two(
+        &self,
+        along: &[f64],
+        speed: f64,
+        paths: &[&str],
+        style: &Style,
+    ) -> Result<String, Failure> {
+        let course = self.two_input_path(along, 12, speed)?;
+        draw::plan_view_two(&self.plan, &course, paths, style)
+            .map(|p| p.svg)
+            .map_err(|e| failure(&e))
+    }
+
+    /// An animation of a linkage with two inputs along its path: 180 frames there (and back
+    /// again for a path given by `along`, so the animation loops without a jump).
+    pub(super) fn animation_two(
+        &self,
+        along: &[f64],
+        speed: f64,
+        style: &Style,
+    ) -> Result<String, Failure> {
+        let mut frames = self.two_input_path(along, 180, speed)?.inputs;
+        if !along.is_empty() {
+            let back: Vec<Inputs> = frames.iter().rev().skip(1).copied().collect();
+            frames.extend(back);
+        }
+        draw::animation_path(&self.plan, &frames, 4.0, style)
+            .map(|p| p.svg)
+            .map_err(|e| failure(&e))
+    }
+
+    /// The workspace of the joint or named point `point`: the region it reaches as both
+    /// inputs move (each crank over a whole turn), its outline and the singular curves.
+    pub(super) fn workspace(
+        &self,
+        point: &str,
+        style: &Style,
+        progress: &mut dyn FnMut(&str),
+    ) -> Result<String, Failure> {
+        let n = self.plan.input_count();
+        if n != 2 {
+            return Err(Failure::new(format!(
+                "a workspace is the region a point reaches as two inputs move independently, \
+                 and this linkage has {n} input, along which {point} only traces a path"
+            ))
+            .hint("`tmm draw FILE --plan` draws the paths of the joints and named points"));
+        }
+        if !(self.is_crank(0) && self.is_crank(1)) {
+            return Err(Failure::new(
+                "the workspace of a linkage with a slider input needs the slider's range, \
+                 which the command line does not take yet; both inputs must be cranks",
+            ));
+        }
+        progress(&format!(
+            "the workspace of {point} ({WORKSPACE_SAMPLES} × {WORKSPACE_SAMPLES} input pairs)"
+        ));
+        let options = WorkspaceOptions::default().with_samples(WORKSPACE_SAMPLES);
+        let ws = self
+            .plan
+            .workspace(point, &options)
+            .map_err(|e| failure(&e))?;
+        draw::workspace(&self.plan, &ws, style)
+            .map(|p| p.svg)
+            .map_err(|e| failure(&e))
+    }
+
+    /// The mass matrix A(q) and the loads' generalized forces at rest Q(q) of a linkage with
+    /// two inputs over a grid of `n` × `n` input pairs about the reference pose, each input
+    /// over ± `span` (as typed; 30° for a crank, a tenth of the size for a slider), with
+    /// `rotor` (kg·m² or kg) added on the first input.
+    ///
+    /// # Errors
+    /// A grid of fewer than 2 nodes a side; a span that is not positive and finite; no node
+    /// of the grid assembles.
+    pub(super) fn mass_matrix_grid(
+        &self,
+        n: usize,
+        span: Option<f64>,
+        rotor: f64,
+        progress: &mut dyn FnMut(&str),
+    ) -> Result<TwoInputDynamics, Failure> {
+        let reference = self.plan.reference_inputs();
+        let half = |k: usize| match span {
+            Some(v) => self.coordinate(k, v),
+            None if self.is_crank(k) => 30f64.to_radians(),
+            None => 0.1 * self.plan.size(),
+        };
+        let halves = [half(0), half(1)];
+        if let Some(bad) = halves.iter().find(|h| !(h.is_finite() && **h > 0.0)) {
+            return Err(Failure::new(format!(
+                "the span of the grid must be positive and finite, and it is {bad}"
+            ))
+            .hint("give --span in degrees (metres for a slider input)"));
+        }
+        if let Some(k) = (0..2).find(|&k| self.is_crank(k) && halves[k] > PI) {
+            return Err(Failure::new(format!(
+                "the span of the grid about crank {}'s reference angle is at most 180° (a \
+                 whole turn), and it is {}°",
+                k + 1,
+                halves[k].to_degrees()
+            )));
+        }
+        let ranges = [0, 1].map(|k| [reference[k] - halves[k], reference[k] + halves[k]]);
+        let sys = LinkageSystem::new(self.plan.clone())
+            .and_then(|s| s.with_inertia(0, rotor))
+            .map_err(|e| failure(&e))?;
+        progress(&format!("the mass matrix over {n} × {n} input pairs"));
+        let mut rows = Vec::with_capacity(n * n);
+        let mut skipped = 0;
+        #[allow(clippy::cast_precision_loss)]
+        let at = |r: [f64; 2], i: usize| r[0] + (r[1] - r[0]) * i as f64 / (n - 1) as f64;
+        for i in 0..n {
+            for j in 0..n {
+                let q = Vector2::new(at(ranges[0], i), at(ranges[1], j));
+                match sys.split_terms(&q, &Vector2::zeros()) {
+                    Ok(t) => rows.push(MassRow {
+                        q: [q[0], q[1]],
+                        a: [t.inertia[(0, 0)], t.inertia[(0, 1)], t.inertia[(1, 1)]],
+                        loads: [t.loads[0], t.loads[1]],
+                    }),
+                    Err(_) => skipped += 1,
+                }
+            }
+        }
+        if rows.is_empty() {
+            return Err(Failure::new(format!(
+                "the linkage assembles at no node of the {n} × {n} grid about its reference pose"
+            ))
+            .hint("give a smaller --span"));
+        }
+        let unit = |k: usize| if self.is_crank(k) { "rad" } else { "m" };
+        Ok(TwoInputDynamics {
+            name: self.name().to_owned(),
+            units: [unit(0), unit(1)],
+            ranges,
+            n,
+            rows,
+            skipped,
+            run: None,
+        })
+    }
+
+    /// The linkage with two inputs run from rest in its reference pose for `t_end` seconds
+    /// under the motors of `request` (M = a − b·q̇ on each input, none where not given) and
+    /// its loads, by RK4 with every step recorded.
+    ///
+    /// # Errors
+    /// A duration that is not positive and finite (or above 10⁴ s); the run's error (a
+    /// position that does not assemble or is singular, named with its time; the budget).
+    pub(super) fn run_two(
+        &self,
+        request: &DynamicsRequest,
+        t_end: f64,
+        progress: &mut dyn FnMut(&str),
+    ) -> Result<TwoInputRun, Failure> {
+        if !(t_end.is_finite() && t_end > 0.0 && t_end <= 1e4) {
+            return Err(Failure::new(format!(
+                "the duration of the run must be positive, finite and at most 10⁴ s, and it \
+                 is {t_end} s"
+            ))
+            .hint("give --run T in seconds"));
+        }
+        let f = |e: tmm::Error| failure(&e);
+        let motors = [request.motor, request.motor2].map(|m| m.unwrap_or((0.0, 0.0)));
+        let mut sys = LinkageSystem::new(self.plan.clone())
+            .and_then(|s| s.with_inertia(0, request.rotor))
+            .map_err(f)?;
+        for (k, m) in [request.motor, request.motor2].into_iter().enumerate() {
+            if let Some((a, b)) = m {
+                sys = sys
+                    .with_motor(k, Motor::Linear(LinearMotor { a, b }))
+                    .map_err(f)?;
+            }
+        }
+        let reference = self.plan.reference_inputs();
+        let q0 = Vector2::new(reference[0], reference[1]);
+        // 4000 steps at most, and RK4 well inside its stability limit (hλ ≈ −2.785) for the
+        // motors' damping b/A at the start.
+        let a0 = sys.inertia(&q0).map_err(f)?;
+        let damping = (motors[0].1.abs() / a0[(0, 0)]).max(motors[1].1.abs() / a0[(1, 1)]);
+        let h = (t_end / 4000.0).min(0.5 / damping.max(f64::MIN_POSITIVE));
+        let mut opts = RunOptions::until(t_end, h);
+        opts.record_every = 1;
+        progress(&format!(
+            "a run of {t_end} s from rest (RK4, h = {h:.3e} s)"
+        ));
+        let r = run(&sys, &Rk4, State::at_rest(q0), &opts).map_err(f)?;
+        let tr = &r.trajectory;
+        let (t, q, qd) = (tr.t(), tr.q(), tr.qd());
+        let (kinetic, power, lost) = (tr.kinetic(), tr.power_applied(), tr.power_dissipated());
+        let rows: Vec<[f64; 7]> = (0..tr.len())
+            .map(|i| {
+                let p = power[i] - lost[i];
+                [t[i], q[0][i], q[1][i], qd[0][i], qd[1][i], kinetic[i], p]
+            })
+            .collect();
+        // The work of the applied loads less the dampers' losses, which the kinetic energy
+        // gained from rest must equal: trapezoids over the recorded steps, an error of
+        // order h².
+        let work = rows
+            .windows(2)
+            .map(|w| 0.5 * (w[0][6] + w[1][6]) * (w[1][0] - w[0][0]))
+            .sum();
+        Ok(TwoInputRun {
+            motors,
+            step: h,
+            steps: r.steps,
+            evaluations: r.evaluations,
+            rows,
+            work,
+        })
+    }
+}
