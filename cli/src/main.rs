@@ -164,7 +164,7 @@ animation and diagrams run between its lock angles."
         workspace: Option<String>,
         /// Two inputs: the plan and the animation along the path through these pairs of input
         /// coordinates φ1 φ2 (degrees; metres for a slider), by straight steps.
-        #[arg(long, value_name = "φ1 φ2", num_args = 4.., allow_negative_numbers = true)]
+        #[arg(long, value_name = "φ1 φ2", num_args = 1.., allow_negative_numbers = true)]
         along: Vec<f64>,
         /// The input speed ω, rad/s (negative: clockwise); the file's `speed` by default.
         #[arg(long, value_name = "ω", allow_negative_numbers = true)]
