@@ -406,7 +406,12 @@ impl Machine {
     ///
     /// # Errors
     /// Two inputs; no position could be analysed (the first position's error).
-    pub fn table(&self, positions: &Positions, speed: f64) -> Result<TableData, Failure> {
+    pub fn table(
+        &self,
+        positions: &Positions,
+        speed: f64,
+        progress: &mut dyn FnMut(&str),
+    ) -> Result<TableData, Failure> {
         let mut notes = Vec::new();
         let inputs: Vec<Vec<Motion>> = if self.plan.input_count() > 1 {
             self.input_pairs(positions, speed, &mut notes)?
@@ -419,9 +424,16 @@ impl Machine {
         if inputs.is_empty() {
             return Err(Failure::new("no positions were asked for"));
         }
+        let n = inputs.len();
         let results: Vec<_> = inputs
             .iter()
-            .map(|i| Inputs::from_slice(i).and_then(|i| self.plan.analyse(i)))
+            .enumerate()
+            .map(|(k, i)| {
+                if k % 5000 == 0 && n > 5000 {
+                    progress(&format!("position {} of {n}", k + 1));
+                }
+                Inputs::from_slice(i).and_then(|i| self.plan.analyse(i))
+            })
             .collect();
         let mut failures = Vec::new();
         for (i, r) in inputs.iter().zip(&results) {

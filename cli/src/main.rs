@@ -447,7 +447,9 @@ fn run(command: Command) -> Result<(), Fail> {
                 None => Positions::Course(12),
             };
             let speed = speed.unwrap_or_else(|| m.default_speed());
-            let mut table = m.table(&which, speed).map_err(|f| Fail::on(&file, f))?;
+            let table = m.table(&which, speed, &mut progress);
+            clear_progress();
+            let mut table = table.map_err(|f| Fail::on(&file, f))?;
             if degrees {
                 table = table.in_degrees();
             }

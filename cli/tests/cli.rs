@@ -800,3 +800,28 @@ fn mistakes_in_a_description_never_panic() {
     }
     assert!(runs > 200, "{runs} runs");
 }
+
+#[test]
+fn long_runs_are_quiet_when_piped() {
+    // Progress goes to a terminal only (stderr here is a pipe): nothing on stderr.
+    for args in [
+        &[
+            "analyse",
+            "four-bar",
+            "--positions",
+            "12000",
+            "--format",
+            "csv",
+        ][..],
+        &["dynamics", "four-bar", "--run-up", "--flywheel", "0.05"],
+        &["draw", "five-bar-robot", "--workspace", "B"],
+    ] {
+        let r = tmm(args);
+        assert_success(&r, &args.join(" "));
+        assert!(r.stderr.is_empty(), "{args:?}: {:?}", r.stderr);
+        assert!(
+            !r.stdout.contains('\r') && !r.stdout.contains('\x1b'),
+            "{args:?}"
+        );
+    }
+}
