@@ -164,7 +164,7 @@ animation and diagrams run between its lock angles."
         workspace: Option<String>,
         /// Two inputs: the plan and the animation along the path through these pairs of input
         /// coordinates φ1 φ2 (degrees; metres for a slider), by straight steps.
-        #[arg(long, value_name = "φ1 φ2", num_args = 4.., allow_negative_numbers = true)]
+        #[arg(long, value_name = "φ1 φ2", num_args = 1.., allow_negative_numbers = true)]
         along: Vec<f64>,
         /// The input speed ω, rad/s (negative: clockwise); the file's `speed` by default.
         #[arg(long, value_name = "ω", allow_negative_numbers = true)]
@@ -447,7 +447,9 @@ fn run(command: Command) -> Result<(), Fail> {
                 None => Positions::Course(12),
             };
             let speed = speed.unwrap_or_else(|| m.default_speed());
-            let mut table = m.table(&which, speed).map_err(|f| Fail::on(&file, f))?;
+            let table = m.table(&which, speed, &mut progress);
+            clear_progress();
+            let mut table = table.map_err(|f| Fail::on(&file, f))?;
             if degrees {
                 table = table.in_degrees();
             }
@@ -482,25 +484,7 @@ fn run(command: Command) -> Result<(), Fail> {
             output,
         } => {
             let m = load(&file)?;
-            let picture = if let Some(point) = workspace {
-                PictureKind::Workspace(point)
-            } else if plan {
-                PictureKind::Plan
-            } else if animate {
-                PictureKind::Animation
-            } else if let Some(at) = forces {
-                PictureKind::Forces(at)
-            } else if let Some(d) = diagram {
-                PictureKind::Diagram(match d {
-                    DiagramArg::Kinematics => DiagramKind::Kinematics,
-                    DiagramArg::Transfer => DiagramKind::Transfer,
-                    DiagramArg::Balance => DiagramKind::Balance,
-                    DiagramArg::Reactions => DiagramKind::Reactions,
-                    DiagramArg::Hodograph => DiagramKind::Hodograph,
-                })
-            } else {
-                PictureKind::Scheme(scheme.unwrap_or_default())
-            };
+            let picture = picture_kind(scheme, plan, animate, forces, diagram, workspace);
             let request = PictureRequest {
                 kind: picture,
                 speed: speed.unwrap_or_else(|| m.default_speed()),
@@ -542,39 +526,7 @@ fn run(command: Command) -> Result<(), Fail> {
                 run,
                 motor2,
             };
-            if m.input_count() == 2 {
-                let d = m.dynamics_two(&request, &mut progress);
-                clear_progress();
-                let d = d.map_err(|f| Fail::on(&file, f))?;
-                if let Some(path) = &csv {
-                    write_file(path, &report::mass_matrix_csv(&d))?;
-                }
-                print(&match format {
-                    Report::Text => report::mass_matrix(&d),
-                    Report::Json => report::mass_matrix_json(&d),
-                });
-                return Ok(());
-            }
-            if run.is_some() || motor2.is_some() {
-                return Err(Fail::on(
-                    &file,
-                    Failure::new(
-                        "--run and --motor2 are for a linkage with two inputs, and this one has \
-                         one",
-                    )
-                    .hint("a machine with one input runs from rest with --run-up"),
-                ));
-            }
-            let d = m.dynamics(&request, &mut progress);
-            clear_progress();
-            let d = d.map_err(|f| Fail::on(&file, f))?;
-            if let Some(path) = &csv {
-                write_file(path, &report::reduced_csv(&d))?;
-            }
-            print(&match format {
-                Report::Text => report::dynamics(&d),
-                Report::Json => report::dynamics_json(&d),
-            });
+            dynamics(&file, &m, &request, format, csv.as_deref())?;
         }
         Command::Synth { kind } => synth::run(kind)?,
         Command::Bundled { name } => match name {
@@ -608,6 +560,81 @@ fn run(command: Command) -> Result<(), Fail> {
         },
     }
     Ok(())
+}
+
+/// `tmm dynamics`: the machine reduced to its crank, or the mass matrix and run of a linkage
+/// with two inputs, printed in `format` (and the table written as CSV to `csv`).
+fn dynamics(
+    file: &str,
+    m: &engine::Machine,
+    request: &DynamicsRequest,
+    format: Report,
+    csv: Option<&Path>,
+) -> Result<(), Fail> {
+    if m.input_count() == 2 {
+        let d = m.dynamics_two(request, &mut progress);
+        clear_progress();
+        let d = d.map_err(|f| Fail::on(file, f))?;
+        if let Some(path) = csv {
+            write_file(path, &report::mass_matrix_csv(&d))?;
+        }
+        print(&match format {
+            Report::Text => report::mass_matrix(&d),
+            Report::Json => report::mass_matrix_json(&d),
+        });
+        return Ok(());
+    }
+    if request.run.is_some() || request.motor2.is_some() {
+        return Err(Fail::on(
+            file,
+            Failure::new(
+                "--run and --motor2 are for a linkage with two inputs, and this one has \
+                 one",
+            )
+            .hint("a machine with one input runs from rest with --run-up"),
+        ));
+    }
+    let d = m.dynamics(request, &mut progress);
+    clear_progress();
+    let d = d.map_err(|f| Fail::on(file, f))?;
+    if let Some(path) = csv {
+        write_file(path, &report::reduced_csv(&d))?;
+    }
+    print(&match format {
+        Report::Text => report::dynamics(&d),
+        Report::Json => report::dynamics_json(&d),
+    });
+    Ok(())
+}
+
+/// The picture the options of `tmm draw` ask for (clap lets one at most through).
+fn picture_kind(
+    scheme: Option<Vec<f64>>,
+    plan: bool,
+    animate: bool,
+    forces: Option<Vec<f64>>,
+    diagram: Option<DiagramArg>,
+    workspace: Option<String>,
+) -> PictureKind {
+    if let Some(point) = workspace {
+        PictureKind::Workspace(point)
+    } else if plan {
+        PictureKind::Plan
+    } else if animate {
+        PictureKind::Animation
+    } else if let Some(at) = forces {
+        PictureKind::Forces(at)
+    } else if let Some(d) = diagram {
+        PictureKind::Diagram(match d {
+            DiagramArg::Kinematics => DiagramKind::Kinematics,
+            DiagramArg::Transfer => DiagramKind::Transfer,
+            DiagramArg::Balance => DiagramKind::Balance,
+            DiagramArg::Reactions => DiagramKind::Reactions,
+            DiagramArg::Hodograph => DiagramKind::Hodograph,
+        })
+    } else {
+        PictureKind::Scheme(scheme.unwrap_or_default())
+    }
 }
 
 /// One line about a planned linkage: its name and groups.

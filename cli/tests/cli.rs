@@ -276,6 +276,8 @@ fn draw_every_picture_of_every_bundled_file() {
         &["--diagram", "transfer"],
         &["--diagram", "reactions"],
         &["--diagram", "hodograph"],
+        &["--workspace", "B"],
+        &["--animate", "--along", "120", "60", "100", "80"],
     ];
     for file in bundled() {
         for picture in pictures {
@@ -289,10 +291,22 @@ fn draw_every_picture_of_every_bundled_file() {
             }
             let what = args.join(" ");
             let r = tmm(&args);
-            if two_inputs(&file) && args.iter().any(|a| a.starts_with("--diagram")) {
+            // What a picture cannot show, one sentence says why.
+            let refused = if two_inputs(&file) {
+                args.iter()
+                    .any(|a| a.starts_with("--diagram"))
+                    .then_some("has no cycle of its own")
+            } else if args.contains(&"--workspace") {
+                Some("as two inputs move independently")
+            } else if args.contains(&"--along") {
+                Some("this linkage has one")
+            } else {
+                None
+            };
+            if let Some(why) = refused {
                 assert_one_line_failure(&r, &file);
                 assert!(
-                    r.stderr.contains("has no cycle of its own"),
+                    r.stderr.contains(why),
                     "{what}: the sentence says why: {}",
                     r.stderr
                 );
@@ -350,6 +364,38 @@ fn dynamics_of_every_bundled_file() {
             assert!(!r.stdout.contains(bad), "{file}: {bad} in {}", r.stdout);
         }
     }
+}
+
+#[test]
+fn dynamics_of_every_bundled_file_as_csv_with_units() {
+    let out = std::env::temp_dir().join(format!("tmm-cli-test-{}-dyn.csv", std::process::id()));
+    let out_s = out.to_string_lossy().into_owned();
+    for file in bundled() {
+        let r = tmm(&[
+            "dynamics",
+            &file,
+            "--positions",
+            "24",
+            "--grid",
+            "4",
+            "--csv",
+            &out_s,
+        ]);
+        assert_success(&r, &format!("dynamics --csv {file}"));
+        let text = std::fs::read_to_string(&out).expect("the CSV file is written");
+        let (header, rows) = parse_csv(&text, &file);
+        assert!(
+            header.iter().all(|h| h.ends_with(']') && h.contains(" [")),
+            "{file}: every column has its unit: {header:?}"
+        );
+        let (n, first) = if two_inputs(&file) {
+            (16, "q1 [rad]")
+        } else {
+            (24, "phi [rad]")
+        };
+        assert_eq!((rows.len(), header[0].as_str()), (n, first), "{file}");
+    }
+    std::fs::remove_file(&out).ok();
 }
 
 #[test]
@@ -753,4 +799,29 @@ fn mistakes_in_a_description_never_panic() {
         }
     }
     assert!(runs > 200, "{runs} runs");
+}
+
+#[test]
+fn long_runs_are_quiet_when_piped() {
+    // Progress goes to a terminal only (stderr here is a pipe): nothing on stderr.
+    for args in [
+        &[
+            "analyse",
+            "four-bar",
+            "--positions",
+            "12000",
+            "--format",
+            "csv",
+        ][..],
+        &["dynamics", "four-bar", "--run-up", "--flywheel", "0.05"],
+        &["draw", "five-bar-robot", "--workspace", "B"],
+    ] {
+        let r = tmm(args);
+        assert_success(&r, &args.join(" "));
+        assert!(r.stderr.is_empty(), "{args:?}: {:?}", r.stderr);
+        assert!(
+            !r.stdout.contains('\r') && !r.stdout.contains('\x1b'),
+            "{args:?}"
+        );
+    }
 }

@@ -1,0 +1,212 @@
+//! The adapter's part for a machine reduced to its crank: the reduced moment of inertia and
+//! moment over a turn (or a rocking crank's range), the run-up and the flywheels.
+
+use std::f64::consts::TAU;
+
+use tmm::dynamics::machines::LinearMotor;
+use tmm::dynamics::Rk4;
+use tmm::linkage::dynamics::{LinkageSystem, Motor, RunUpOptions};
+
+use super::{failure, Machine};
+use crate::model::{
+    DynamicsReport, DynamicsRequest, Failure, FlywheelRow, Range, ReducedRow, RunUpReport, TurnRow,
+};
+
+impl Machine {
+    /// The machine's dynamics: reduced quantities, run-up and flywheels.
+    ///
+    /// # Errors
+    /// Two inputs or a slider; the library's errors.
+    pub fn dynamics(
+        &self,
+        request: &DynamicsRequest,
+        progress: &mut dyn FnMut(&str),
+    ) -> Result<DynamicsReport, Failure> {
+        self.one_input("a machine reduced to its crank")?;
+        if !self.plan.input_is_crank() {
+            return Err(Failure::new(
+                "the dynamics of a machine reduced to its crank need a crank input, and this \
+                 linkage is driven by a slider",
+            ));
+        }
+        let rocking = match self.range() {
+            Range::Rocking(lo, hi) => Some((lo, hi)),
+            _ => None,
+        };
+        if let Some((lo, hi)) = rocking
+            && (request.run_up || !request.flywheel.is_empty())
+        {
+            return Err(Failure::new(format!(
+                "a run-up and a flywheel need a crank that turns fully, and this crank rocks \
+                 between the lock angles {:.4}° and {:.4}° ({lo} and {hi} rad), where the \
+                 linkage stops it and it must reverse",
+                lo.to_degrees(),
+                hi.to_degrees()
+            ))
+            .hint("without --run-up and --flywheel, the reduced quantities over that range"));
+        }
+        let speed = request.speed;
+        if !(speed.is_finite() && speed != 0.0) {
+            return Err(Failure::new(format!(
+                "the speed must be finite and not zero, got {speed}"
+            ))
+            .hint("give --speed, rad/s, negative for clockwise"));
+        }
+        let f = |e: tmm::Error| failure(&e);
+        let mut bare = LinkageSystem::new(self.plan.clone()).map_err(f)?;
+        if request.rotor != 0.0 {
+            bare = bare.with_inertia(0, request.rotor).map_err(f)?;
+        }
+        let rows = Self::reduced_rows(&bare, rocking, request, progress)?;
+        let mut flywheels = Vec::new();
+        for &delta in &request.flywheel {
+            progress(&format!("flywheel for δ = {delta}"));
+            let fw = bare.flywheel(delta, speed, 3600).map_err(f)?;
+            flywheels.push(FlywheelRow {
+                delta,
+                inertia: fw.moment_of_inertia,
+                simplified: fw.simplified,
+                energy_range: fw.energy_range,
+                driving_moment: fw.driving_moment,
+            });
+        }
+        let run_up = if request.run_up {
+            Some(Self::run_up(&bare, &rows, request, progress)?)
+        } else {
+            None
+        };
+        Ok(DynamicsReport {
+            name: self.name().to_owned(),
+            speed,
+            rotor: request.rotor,
+            rocking,
+            reduced: rows,
+            run_up,
+            flywheels,
+        })
+    }
+
+    /// The reduced quantities at `request.positions` crank angles: over a turn from the
+    /// reference pose, or between the lock angles of a rocking crank.
+    fn reduced_rows(
+        bare: &LinkageSystem,
+        rocking: Option<(f64, f64)>,
+        request: &DynamicsRequest,
+        progress: &mut dyn FnMut(&str),
+    ) -> Result<Vec<ReducedRow>, Failure> {
+        let f = |e: tmm::Error| failure(&e);
+        let speed = request.speed;
+        let reduced = match rocking {
+            None => {
+                progress("reduced moment of inertia and moment over a turn");
+                bare.reduced_cycle(request.positions, speed).map_err(f)?
+            }
+            Some((lo, hi)) => {
+                progress("reduced moment of inertia and moment over the rocking range");
+                // At a lock the linkage is at a dead point: the crank's rate moves no
+                // dead-pointed group, whose links' transfer functions and so J_red grow
+                // without bound. The positions are the middles of equal steps between the
+                // locks, in the order the crank meets them at `speed`.
+                let n = request.positions;
+                #[allow(clippy::cast_precision_loss)]
+                let h = (hi - lo) / n as f64;
+                let mut phis: Vec<f64> = (0..n)
+                    .map(|k| {
+                        #[allow(clippy::cast_precision_loss)]
+                        let k = k as f64;
+                        lo + h * (k + 0.5)
+                    })
+                    .collect();
+                if speed < 0.0 {
+                    phis.reverse();
+                }
+                phis.iter()
+                    .map(|&phi| {
+                        bare.reduced(phi, speed).map_err(|e| {
+                            Failure::new(format!("at φ = {:.6}°: {e}", phi.to_degrees()))
+                        })
+                    })
+                    .collect::<Result<Vec<_>, _>>()?
+            }
+        };
+        let phi0 = match rocking {
+            Some((_, hi)) if speed < 0.0 => hi,
+            Some((lo, _)) => lo,
+            None => reduced.first().map_or(0.0, |r| r.phi),
+        };
+        Ok(reduced
+            .iter()
+            .map(|r| ReducedRow {
+                phi: r.phi,
+                turned: (r.phi - phi0).abs(),
+                inertia: r.inertia,
+                inertia_derivative: r.inertia_derivative,
+                loads: r.loads,
+            })
+            .collect())
+    }
+
+    /// The run-up from rest under the motor of `request` (or one sized from the loads of
+    /// `rows`) to the steady state, by RK4.
+    fn run_up(
+        bare: &LinkageSystem,
+        rows: &[ReducedRow],
+        request: &DynamicsRequest,
+        progress: &mut dyn FnMut(&str),
+    ) -> Result<RunUpReport, Failure> {
+        let f = |e: tmm::Error| failure(&e);
+        let speed = request.speed;
+        let (a, b, default_motor) = match request.motor {
+            Some((a, b)) => (a, b, false),
+            None => {
+                let mean = rows.iter().map(|r| r.loads).sum::<f64>() / rows.len() as f64;
+                let peak = rows.iter().map(|r| r.loads.abs()).fold(0.0, f64::max);
+                // An induction motor of 4 % slip at the speed asked for, whose nominal
+                // moment covers the loads' mean with 10 % to spare (or a tenth of their
+                // peak, for a machine whose loads average out).
+                let nominal = (1.1 * mean.abs()).max(0.1 * peak);
+                if nominal.is_nan() || nominal <= 0.0 {
+                    return Err(
+                        Failure::new("the machine has no loads to size a motor from")
+                            .hint("give the motor with --motor a,b (M = a − b·|ω|, N·m)"),
+                    );
+                }
+                let m = LinearMotor::from_nominal(nominal, speed.abs() / 0.96, speed.abs())
+                    .map_err(f)?;
+                (m.a, m.b, true)
+            }
+        };
+        let sense = speed.signum();
+        let machine = bare
+            .clone()
+            .with_motor(0, Motor::Linear(LinearMotor { a: sense * a, b }))
+            .map_err(f)?;
+        // 2000 steps a turn, and RK4 well inside its stability limit (hλ ≈ −2.785) for
+        // the motor's damping b/J_red.
+        let j_min = rows.iter().map(|r| r.inertia).fold(f64::INFINITY, f64::min);
+        let h = (TAU / speed.abs() / 2000.0).min(0.5 * j_min / b.abs().max(f64::MIN_POSITIVE));
+        let mut opts = RunUpOptions::new(h);
+        opts.record_every = 1;
+        progress("run-up from rest (RK4)");
+        let r = machine.run_up(&Rk4, &opts).map_err(f)?;
+        Ok(RunUpReport {
+            motor: (a, b),
+            default_motor,
+            step: h,
+            turns: r
+                .turns
+                .iter()
+                .map(|t| TurnRow {
+                    t_start: t.t_start,
+                    period: t.period,
+                    omega_mean: t.omega_mean,
+                    omega_max: t.omega_max,
+                    omega_min: t.omega_min,
+                    delta: t.delta,
+                })
+                .collect(),
+            steps: r.steps,
+            evaluations: r.evaluations,
+        })
+    }
+}
