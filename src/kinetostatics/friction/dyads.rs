@@ -5,7 +5,8 @@
 //! response to each joint's friction load (the closed forms are linear in the loads), and the
 //! friction equations on the three joint pressures (see the [module](super)).
 
-use super::solver::{three_hinges, wider, Pressure, Problem, Solved, DIRECT_STEPS};
+use super::newton::DIRECT_STEPS;
+use super::solver::{three_hinges, wider, Pressure, Problem, Solved};
 use super::{sign, Convergence, Hinge, Iteration, JointFriction, Slide, SlideContact};
 use crate::angle::{cross, perp};
 use crate::error::{unit_direction, Result};

@@ -63,6 +63,8 @@
 //! engine's most frequent group, has its responses in closed form and its Newton written out
 //! (`benches/friction.rs`: about 6× its frictionless closed form, side by side); the
 //! other groups call their closed form once per joint for the responses (15–50× theirs).
+//! A triad or a general group calls its block once per hinge with friction and takes Newton
+//! steps of an n×n LU ([`TriadFriction`]; the continuation of every group is that solve's).
 //!
 //! | group | solver | joints (in the order of [`Convergence`]) |
 //! |-------|--------|--------|
@@ -71,12 +73,16 @@
 //! | RPR | [`RprFriction`] | A (1–2), the slide (3–2), E (4–3) |
 //! | PRP | [`PrpFriction`] | guide 2 (1–2), B (2–3), guide 3 (4–3) |
 //! | RPP | [`RppFriction`] | A (1–2), the slot (3–2), the guide (4–3) |
+//! | triad | [`TriadFriction`] | A1, A2, A3 (outer), B1, B2, B3 (ternary) |
+//! | any group of hinges | the engine's general groups (`group.rs`) | its hinges |
 //! | input link, coupling | [`CrankFriction`] | O1 (0–1) |
 //! | input link, gear pair | [`GearFriction`] | O1 (0–1) |
 
 mod drive;
 mod dyads;
 mod efficiency;
+mod group;
+mod newton;
 mod solver;
 
 pub use drive::{CrankBalance, CrankFriction, GearFriction, GearFrictionBalance};
@@ -87,6 +93,8 @@ pub use dyads::{
     RrrRates,
 };
 pub use efficiency::Efficiency;
+pub(crate) use group::{hinged_group, triad_block, Frictionless, GroupHinge};
+pub use group::{TriadFriction, TriadFrictionReactions, TriadJoints, TriadRates};
 
 use crate::error::{finite, Ends, Error, Result};
 

@@ -1,73 +1,12 @@
-//! Newton's method on a dyad's three joint pressures, with a continuation in the friction
-//! coefficients as the fallback (see the [module](super) for the equations).
+//! Newton's method on a dyad's three joint pressures, written out for 3×3, with the
+//! continuation in the friction coefficients of [`super::newton`] as the fallback (see the
+//! [module](super) for the equations).
 
-use super::{sign, Convergence, Iteration};
-use crate::error::{Error, Result};
+pub(crate) use super::newton::Pressure;
+use super::newton::{Pressures, DIRECT_STEPS, LOCKED_BELOW};
+use super::{Convergence, Iteration};
+use crate::error::Result;
 use nalgebra::Vector3;
-
-/// Below this det(I − J) the friction's feedback amplifies the rounding of the reactions by
-/// more than 1/√ε ≈ 7·10⁷: the group is treated as self-locking.
-const LOCKED_BELOW: f64 = 1.5e-8;
-
-/// The smallest continuation step before the continuation gives up.
-const SMALLEST_STEP: f64 = 1.0 / 4096.0;
-
-/// The Newton steps allowed from the frictionless start before the continuation takes over.
-pub(crate) const DIRECT_STEPS: usize = 16;
-
-/// The Newton steps allowed at one continuation step before it is halved.
-const STEPS_PER_STAGE: usize = 12;
-
-/// How a joint's pressure follows from its pair of reaction numbers.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub(crate) enum Pressure {
-    /// A hinge: the pair is (R_x, R_y), the pressure |R|.
-    Hinge,
-    /// A slide that takes any couple: the pair is (N, K), the pressure |N|.
-    Normal,
-    /// A cocked slider: the pair is (N, K) with K about the reference point, the pressure
-    /// |N1| + |N2| = max(|N|, |K − c·N|/h) for the middle c and half-length h.
-    Ends {
-        /// The slider's middle along the guide from the reference point, m.
-        centre: f64,
-        /// Half the slider's length, m.
-        half: f64,
-    },
-}
-
-impl Pressure {
-    /// ψ, the pressure of a pair.
-    #[inline]
-    pub(crate) fn of(self, x: f64, y: f64) -> f64 {
-        self.eval(x, y).0
-    }
-
-    /// ψ and its gradient with respect to the pair.
-    #[inline(always)]
-    fn eval(self, x: f64, y: f64) -> (f64, [f64; 2]) {
-        match self {
-            Self::Hinge => {
-                let r = (x * x + y * y).sqrt();
-                if r > 0.0 {
-                    let i = 1.0 / r;
-                    (r, [x * i, y * i])
-                } else {
-                    (0.0, [0.0, 0.0])
-                }
-            }
-            Self::Normal => (x.abs(), [sign(x), 0.0]),
-            Self::Ends { centre, half } => {
-                let k = (y - centre * x) / half;
-                if x.abs() >= k.abs() {
-                    (x.abs(), [sign(x), 0.0])
-                } else {
-                    let s = sign(k) / half;
-                    (k.abs(), [-s * centre, s])
-                }
-            }
-        }
-    }
-}
 
 /// A dyad's friction equations: the reactions V(m) = V0 + t·D·m as three pairs of numbers,
 /// one pair per joint, and each joint's pressure law.
@@ -94,93 +33,7 @@ pub(crate) struct Solved {
     pub convergence: Convergence,
 }
 
-/// Why a Newton run stopped short.
-enum Stop {
-    /// det(I − J) at or below the threshold, with J's diagonal.
-    Locked(f64, [f64; 3]),
-    /// Not converged within the steps allowed.
-    Slow(f64, [f64; 3]),
-    /// The whole budget used.
-    Budget,
-}
-
-struct Eval {
-    v: [f64; 6],
-    psi: [f64; 3],
-    jac: [[f64; 3]; 3],
-}
-
 impl Problem {
-    #[inline(always)]
-    fn eval(&self, t: f64, m: &[f64; 3]) -> Eval {
-        let mut v = self.v0;
-        for (col, &mk) in self.d.iter().zip(m) {
-            let w = t * mk;
-            for (vi, di) in v.iter_mut().zip(col) {
-                *vi += w * di;
-            }
-        }
-        let mut psi = [0.0; 3];
-        let mut jac = [[0.0; 3]; 3];
-        for k in 0..3 {
-            if !self.active[k] {
-                continue;
-            }
-            let (p, g) = self.laws[k].eval(v[2 * k], v[2 * k + 1]);
-            psi[k] = p;
-            for (jk, dj) in jac[k].iter_mut().zip(&self.d) {
-                *jk = t * (g[0] * dj[2 * k] + g[1] * dj[2 * k + 1]);
-            }
-        }
-        Eval { v, psi, jac }
-    }
-
-    /// Newton from `m` at the friction factor `t`, at most `limit` steps.
-    fn newton(
-        &self,
-        t: f64,
-        mut m: [f64; 3],
-        limit: usize,
-        tol: f64,
-        used: &mut usize,
-        budget: usize,
-    ) -> std::result::Result<([f64; 3], Eval, f64), Stop> {
-        let mut steps = 0;
-        loop {
-            let e = self.eval(t, &m);
-            let a = minus_identity(&e.jac);
-            let det = det3(&a);
-            let diag = [e.jac[0][0], e.jac[1][1], e.jac[2][2]];
-            // A NaN det (from non-finite reactions) counts as locked too.
-            if det.is_nan() || det <= LOCKED_BELOW {
-                return Err(Stop::Locked(det, diag));
-            }
-            if steps > 0 {
-                // Converged at the previous step: this evaluation is the final one.
-                let residual = residual(&e.psi, &m);
-                if residual.is_finite() && last_small(&m, &e.psi, tol, det) {
-                    return Ok((m, e, det));
-                }
-            }
-            if *used >= budget {
-                return Err(Stop::Budget);
-            }
-            if steps >= limit {
-                return Err(Stop::Slow(det, diag));
-            }
-            let g = [e.psi[0] - m[0], e.psi[1] - m[1], e.psi[2] - m[2]];
-            let delta = solve3(&a, det, &g);
-            *used += 1;
-            steps += 1;
-            for k in 0..3 {
-                m[k] += delta[k];
-            }
-            if !m.iter().all(|x| x.is_finite()) {
-                return Err(Stop::Slow(det, diag));
-            }
-        }
-    }
-
     /// The pressures of the reactions `v`.
     #[inline(always)]
     fn pressures(&self, v: &[f64; 6]) -> [f64; 3] {
@@ -303,69 +156,40 @@ impl Problem {
         self.continued(m0, steps, tol, options.budget, what, joints)
     }
 
-    /// The continuation: switch the friction on gradually from the frictionless solution.
+    /// The continuation, by the general solve's ([`Pressures::continued`]).
     #[cold]
     #[inline(never)]
     fn continued(
         &self,
         m0: [f64; 3],
-        mut used: usize,
+        used: usize,
         tol: f64,
         budget: usize,
         what: &'static str,
         joints: [&'static str; 3],
     ) -> Result<Solved> {
-        if used >= budget {
-            return Err(budget_error(what, budget, 1.0));
-        }
-        let (mut t, mut m, mut h) = (0.0_f64, m0, 0.25_f64);
-        loop {
-            let t1 = (t + h).min(1.0);
-            match self.newton(t1, m, STEPS_PER_STAGE, tol, &mut used, budget) {
-                Ok((m1, e, det)) => {
-                    if t1 >= 1.0 {
-                        return Ok(Solved {
-                            m: m1,
-                            v: e.v,
-                            convergence: Convergence {
-                                iterations: used,
-                                continued: true,
-                                det,
-                                residual: residual(&e.psi, &m1),
-                            },
-                        });
-                    }
-                    (t, m, h) = (t1, m1, (2.0 * h).min(0.5));
-                }
-                Err(Stop::Budget) => return Err(budget_error(what, budget, t)),
-                Err(Stop::Locked(det, diag) | Stop::Slow(det, diag)) => {
-                    h /= 2.0;
-                    if h < SMALLEST_STEP {
-                        let k = (0..3)
-                            .filter(|&k| self.active[k])
-                            .max_by(|&i, &j| diag[i].total_cmp(&diag[j]))
-                            .unwrap_or(0);
-                        return Err(Error::In {
-                            part: format!("{} self-locks", joints[k]),
-                            source: Box::new(Error::Singular {
-                                what,
-                                measure: "det(I - J)",
-                                value: det,
-                            }),
-                        });
-                    }
-                }
-            }
-        }
+        let many = Pressures {
+            v0: (0..3)
+                .map(|k| [self.v0[2 * k], self.v0[2 * k + 1]])
+                .collect(),
+            d: self
+                .d
+                .iter()
+                .map(|col| (0..3).map(|k| [col[2 * k], col[2 * k + 1]]).collect())
+                .collect(),
+            laws: self.laws.to_vec(),
+            active: self.active.to_vec(),
+            scale: self.scale,
+        };
+        let s = many.continued(m0.to_vec(), used, tol, budget, what, &|k| {
+            joints[k].to_owned()
+        })?;
+        Ok(Solved {
+            m: [s.m[0], s.m[1], s.m[2]],
+            v: [0, 1, 2, 3, 4, 5].map(|i| s.v[i / 2][i % 2]),
+            convergence: s.convergence,
+        })
     }
-}
-
-/// Converged: the step that led to `m` (m − previous) is not known here, so the test is on
-/// the Newton residual ψ − m, which after a step is the size of the next step up to the
-/// factor 1/det.
-#[inline(always)]
-fn last_small(m: &[f64; 3], psi: &[f64; 3], tol: f64, det: f64) -> bool {
-    residual(psi, m) <= tol / det.min(1.0)
 }
 
 #[inline(always)]
@@ -384,28 +208,6 @@ pub(crate) fn wider(a: f64, b: f64) -> f64 {
     } else {
         b
     }
-}
-
-fn budget_error(what: &'static str, limit: usize, t: f64) -> Error {
-    Error::In {
-        part: format!("{what}: friction iteration (t is the share of the friction reached)"),
-        source: Box::new(Error::Budget {
-            what: "Newton step",
-            limit,
-            time: t,
-        }),
-    }
-}
-
-#[inline(always)]
-fn minus_identity(j: &[[f64; 3]; 3]) -> [[f64; 3]; 3] {
-    let mut a = [[0.0; 3]; 3];
-    for r in 0..3 {
-        for c in 0..3 {
-            a[r][c] = if r == c { 1.0 } else { 0.0 } - j[r][c];
-        }
-    }
-    a
 }
 
 #[inline(always)]

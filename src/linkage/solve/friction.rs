@@ -132,6 +132,12 @@ impl Analysis<'_> {
 
     #[allow(clippy::too_many_lines)]
     fn friction_group(&mut self, g: usize, group: &Group, fp: &[FrictionPlan]) -> Result<()> {
+        if let Some(t) = &group.triad {
+            return self.friction_triad(g, group, t, fp);
+        }
+        if let Some(gp) = &group.general {
+            return self.friction_general(g, group, gp, fp);
+        }
         let plan = self.k.plan;
         let [l2, l3] = group.links;
         let [ja, jb, jc] = group.joints;
@@ -142,13 +148,11 @@ impl Analysis<'_> {
         let (load2, load3) = (self.acc[l2], self.acc[l3]);
         let named = name_joint(&plan.chain.joint_names, group.joints, &group.name);
         let (ra, rb, rc, fr, cond, conv) = match group.kind {
+            // A plan's triad and general group always carry their plans (solved above).
             GroupKind::Triad | GroupKind::General => {
-                // The friction blocks cover the five dyads; a larger group's are not modelled.
                 return Err(crate::Error::Description {
                     item: group.name.clone(),
-                    problem: "friction in the joints of a triad or a general group (above the \
-                              2nd class) is not modelled: give its joints no friction"
-                        .to_owned(),
+                    problem: "a group above the 2nd class without its plan".to_owned(),
                 });
             }
             GroupKind::Rrr => {

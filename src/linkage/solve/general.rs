@@ -100,7 +100,7 @@ impl KinState {
     }
 
     /// The stored pose of general group `gp`.
-    fn general_stored(&self, gp: &GeneralPlan) -> GroupPose {
+    pub(super) fn general_stored(&self, gp: &GeneralPlan) -> GroupPose {
         GroupPose {
             origins: gp.links.iter().map(|&k| self.links[k].origin.p).collect(),
             angles: gp.links.iter().map(|&k| self.links[k].angle).collect(),

@@ -6,6 +6,7 @@
 pub(crate) mod analysis;
 mod checks;
 mod friction;
+mod friction_groups;
 mod general;
 pub(crate) mod kinematics;
 pub(crate) mod loads;
