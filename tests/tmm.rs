@@ -24,4 +24,5 @@ mod linkage;
 mod mechanism;
 mod synthesis;
 mod triad;
+mod triad_slider;
 mod work_precision;

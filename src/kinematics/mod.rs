@@ -73,6 +73,8 @@ mod rrp;
 mod rrr;
 mod transfer;
 mod triad;
+mod triad_slider;
+mod trig_roots;
 
 pub use assur::{GroupMotion, GroupPose, GroupReactions, HingeEnd, HingedGroup};
 pub use contour::{
@@ -102,4 +104,8 @@ pub use transfer::transfer_functions;
 pub use triad::{
     triad, triad_modes, triad_rates, triad_tracked, TriadDims, TriadModes, TriadPose, TriadState,
     MAX_TRIAD_MODES, SINGULAR_TRIAD,
+};
+pub use triad_slider::{
+    slider_triad, slider_triad_modes, slider_triad_rates, SliderTriadDims, SliderTriadModes,
+    SlidingPair, MAX_SLIDER_TRIAD_MODES,
 };

@@ -55,6 +55,7 @@
 
 use super::link::LinkMotion;
 use super::motion::PointMotion;
+use super::trig_roots::{along, bracket_all, unit, Periodic, Roots};
 use crate::angle::{cross, direction, perp};
 use crate::error::{finite, finite2, positive, Error, Result};
 use nalgebra::{Complex, Matrix3, Point2, Vector2, Vector3};
@@ -69,11 +70,6 @@ pub const MAX_TRIAD_MODES: usize = 6;
 /// Below this |det K|/L_T the triad's velocity system is treated as singular (as the dyads'
 /// [`SINGULAR_DETERMINANT`](super::SINGULAR_DETERMINANT)).
 pub const SINGULAR_TRIAD: f64 = 1e-12;
-/// Cells of the first scan of the circle.
-const CELLS: usize = 32;
-/// The width (rad) below which a cell that is neither excluded nor monotone is taken to hold a
-/// near-tangency of F with zero.
-const TANGENT_WIDTH: f64 = 1.0 / (1u64 << 24) as f64;
 
 /// The dimensions of a triad: the lengths of the three binary links and the ternary link's
 /// triangle.
@@ -301,7 +297,7 @@ pub fn triad_modes(a: [Point2<f64>; 3], dims: &TriadDims) -> Result<TriadModes> 
         });
     }
     let mut roots = Roots::default();
-    e.bracket_all(&mut roots);
+    bracket_all(&e, &mut roots);
     let mut modes = TriadModes {
         count: 0,
         poses: [TriadPose {
@@ -715,37 +711,19 @@ fn valid_points(a: [Point2<f64>; 3]) -> bool {
     a.iter().all(|p| p.x.is_finite() && p.y.is_finite())
 }
 
-/// z turned by the angle 2·atan(t): z·(1 + i·t)²/(1 + t²), without a trigonometric function.
-#[inline]
-fn along(z: C, t: f64) -> C {
-    let w = C::new(1.0 - t * t, 2.0 * t) / (1.0 + t * t);
-    z * w
-}
-
-/// The roots of F found by the scan, as unit complex numbers z = e^{iθ}, in the order of θ.
-/// Roots closer than [`CLUSTER`] merge into one marked `multiple`: a near-tangency of F, where
-/// rounding can make F cross zero several times.
-#[derive(Default)]
-struct Roots {
-    n: usize,
-    z: [C; 12],
-    multiple: [bool; 12],
-}
-
-/// Roots of F closer than this (rad) are one cluster.
-const CLUSTER: f64 = 1e-6;
-
-impl Roots {
-    fn push(&mut self, z: C) {
-        let near = |w: C| (z - w).norm() < CLUSTER;
-        if self.n > 0 && near(self.z[self.n - 1]) {
-            self.multiple[self.n - 1] = true;
-        } else if self.n > 0 && near(self.z[0]) {
-            self.multiple[0] = true;
-        } else if self.n < self.z.len() {
-            self.z[self.n] = z;
-            self.n += 1;
-        }
+impl Periodic for Eliminated {
+    #[inline]
+    fn eval(&self, z: C) -> (f64, f64) {
+        Eliminated::eval(self, z)
+    }
+    fn second(&self, z: C) -> f64 {
+        Eliminated::second(self, z)
+    }
+    fn m2(&self) -> f64 {
+        self.m2
+    }
+    fn tol(&self) -> f64 {
+        self.tol
     }
 }
 
@@ -903,88 +881,6 @@ impl Eliminated {
         -2.0 * p.re
     }
 
-    /// Brackets every root of F on the circle (module docs) into `roots`.
-    fn bracket_all(&self, roots: &mut Roots) {
-        let h0 = std::f64::consts::TAU / CELLS as f64;
-        let step = C::new(h0.cos(), h0.sin());
-        let mut grid = [C::new(1.0, 0.0); CELLS + 1];
-        for j in 1..CELLS {
-            grid[j] = grid[j - 1] * step;
-        }
-        let mut values = [0.0; CELLS + 1];
-        for j in 0..CELLS {
-            values[j] = self.eval(grid[j]).0;
-        }
-        values[CELLS] = values[0];
-        // Cells to examine: (z_a, F_a, z_b, F_b, width).
-        // Depth-first: at most CELLS + 24 cells wait (each halving adds one).
-        let mut stack = [(C::new(0.0, 0.0), 0.0, C::new(0.0, 0.0), 0.0, 0.0); CELLS + 32];
-        let mut top = 0;
-        for j in (0..CELLS).rev() {
-            stack[top] = (grid[j], values[j], grid[j + 1], values[j + 1], h0);
-            top += 1;
-        }
-        while top > 0 {
-            top -= 1;
-            let (za, fa, zb, fb, h) = stack[top];
-            let same = (fa < 0.0) == (fb < 0.0);
-            if same && fa.abs().min(fb.abs()) > self.m2 * h * h / 8.0 + self.tol {
-                continue;
-            }
-            let zm = unit(za + zb);
-            let (fm, gm) = self.eval(zm);
-            if gm.abs() > self.m2 * h / 2.0 + self.tol {
-                if !same {
-                    roots.push(self.brent_cell(za, fa, zb, fb));
-                }
-                continue;
-            }
-            if h <= TANGENT_WIDTH {
-                self.tangent(za, fa, zb, fb, zm, gm, h, roots);
-                continue;
-            }
-            stack[top] = (zm, fm, zb, fb, 0.5 * h);
-            stack[top + 1] = (za, fa, zm, fm, 0.5 * h);
-            top += 2;
-        }
-    }
-
-    /// A tiny cell that is neither excluded nor certified monotone: a near-tangency of F with
-    /// zero. The extremum of F (one Newton step on F′ from the middle) decides.
-    #[allow(clippy::too_many_arguments)]
-    fn tangent(&self, za: C, fa: f64, zb: C, fb: f64, zm: C, gm: f64, h: f64, roots: &mut Roots) {
-        if (fa < 0.0) != (fb < 0.0) {
-            roots.push(self.brent_cell(za, fa, zb, fb));
-            return;
-        }
-        let hm = self.second(zm);
-        let u = if hm != 0.0 {
-            (-gm / hm).clamp(-0.5 * h, 0.5 * h)
-        } else {
-            0.0
-        };
-        let te = 0.5 * u;
-        let ze = along(zm, te);
-        let fe = self.eval(ze).0;
-        let tau = half_tangent(zm, zb);
-        if (fe < 0.0) != (fa < 0.0) {
-            let g = |t: f64| self.eval(along(zm, t)).0;
-            roots.push(along(zm, brent(&g, -tau, te, fa, fe, tau)));
-            roots.push(along(zm, brent(&g, te, tau, fe, fb, tau)));
-        } else if fe.abs() <= self.tol {
-            roots.push(ze);
-        }
-    }
-
-    /// The root of F in a cell whose ends have opposite signs, by Brent's method on the
-    /// half-angle tangent about the cell's centre.
-    fn brent_cell(&self, za: C, fa: f64, zb: C, fb: f64) -> C {
-        let zc = unit(za + zb);
-        let tau = half_tangent(zc, zb);
-        let g = |t: f64| self.eval(along(zc, t)).0;
-        along(zc, brent(&g, -tau, tau, fa, fb, tau))
-    }
-
     /// W(z) and D(z).
     fn w_d(&self, z: C) -> (C, f64) {
         let w = &self.w;
@@ -1130,89 +1026,6 @@ impl Eliminated {
         }
         best
     }
-}
-
-/// The unit complex number along z.
-#[inline]
-fn unit(z: C) -> C {
-    z / z.norm()
-}
-
-/// tan(α/2) for the angle α from zc to zb (less than π).
-#[inline]
-fn half_tangent(zc: C, zb: C) -> f64 {
-    let r = zc.conj() * zb;
-    r.im / (1.0 + r.re)
-}
-
-/// Brent's method (zeroin) for a root of g in [a, b] with g(a) = fa, g(b) = fb of opposite
-/// signs (or one of them zero), to the resolution of f64 on an interval of half-width `half`.
-fn brent(g: &impl Fn(f64) -> f64, a: f64, b: f64, fa: f64, fb: f64, half: f64) -> f64 {
-    let (mut a, mut b, mut fa, mut fb) = (a, b, fa, fb);
-    if fa == 0.0 {
-        return a;
-    }
-    if fb == 0.0 {
-        return b;
-    }
-    let xtol = 2.0 * f64::EPSILON * half;
-    let (mut c, mut fc) = (a, fa);
-    let mut d = b - a;
-    let mut e = d;
-    for _ in 0..200 {
-        if (fb > 0.0) == (fc > 0.0) {
-            c = a;
-            fc = fa;
-            d = b - a;
-            e = d;
-        }
-        if fc.abs() < fb.abs() {
-            a = b;
-            b = c;
-            c = a;
-            fa = fb;
-            fb = fc;
-            fc = fa;
-        }
-        let tol1 = 2.0 * f64::EPSILON * b.abs() + 0.5 * xtol;
-        let xm = 0.5 * (c - b);
-        if xm.abs() <= tol1 || fb == 0.0 {
-            return b;
-        }
-        if e.abs() >= tol1 && fa.abs() > fb.abs() {
-            let s = fb / fa;
-            let (mut p, mut q);
-            if a == c {
-                p = 2.0 * xm * s;
-                q = 1.0 - s;
-            } else {
-                let qq = fa / fc;
-                let r = fb / fc;
-                p = s * (2.0 * xm * qq * (qq - r) - (b - a) * (r - 1.0));
-                q = (qq - 1.0) * (r - 1.0) * (s - 1.0);
-            }
-            if p > 0.0 {
-                q = -q;
-            } else {
-                p = -p;
-            }
-            if 2.0 * p < (3.0 * xm * q - (tol1 * q).abs()).min((e * q).abs()) {
-                e = d;
-                d = p / q;
-            } else {
-                d = xm;
-                e = d;
-            }
-        } else {
-            d = xm;
-            e = d;
-        }
-        a = b;
-        fa = fb;
-        b += if d.abs() > tol1 { d } else { tol1.copysign(xm) };
-        fb = g(b);
-    }
-    b
 }
 
 #[cfg(test)]

@@ -39,6 +39,7 @@ mod rpr;
 mod rrp;
 mod rrr;
 mod triad;
+mod triad_slider;
 
 pub use conditioning::Conditioning;
 pub use coupling::{CouplingBalance, CouplingDrive, CouplingSeed};
@@ -49,3 +50,4 @@ pub use rpr::{RprDyad, RprReactions, RprSeed};
 pub use rrp::{RrpDyad, RrpReactions, RrpSeed};
 pub use rrr::{RrrDyad, RrrReactions, RrrSeed};
 pub use triad::{Triad, TriadReactions};
+pub use triad_slider::{SlideAt, SliderTriad, SliderTriadReactions};

@@ -62,6 +62,7 @@ mod inputs;
 mod instant_centres;
 mod plan;
 mod plan_general;
+mod plan_triad;
 pub(crate) mod solve;
 mod springs;
 mod structure;

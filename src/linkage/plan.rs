@@ -124,6 +124,8 @@ pub(crate) struct TriadPlan {
     /// The reference mode: the mode of [`triad_modes`](crate::kinematics::triad_modes) in the
     /// reference pose nearest the drawn one. Every solver starts from it.
     pub reference: TriadPose,
+    /// The sliding leg (the first) of a triad with a sliding pair; `None` for revolute joints.
+    pub slider: Option<super::plan_triad::SliderLeg>,
 }
 
 impl Group {

@@ -2,10 +2,11 @@
 //! group of the 3rd class with revolute joints), looked for when no dyad can be attached, and
 //! the general fallback, a larger rigid group of hinges, when no triad can be either.
 //!
-//! A triad is four unknown links: a ternary link T hinged to three binary links L1, L2, L3,
-//! each of which is hinged by its other joint to a known link (T itself has no joint to a
+//! A triad is four unknown links: a ternary link T joined to three binary links L1, L2, L3,
+//! each of which is joined by its other joint to a known link (T itself has no joint to a
 //! known link, and the binary links none to each other). Its three outer joints A_i are then
-//! known points, and the group is rigid: 3·4 − 2·6 = 0.
+//! known points, and the group is rigid: 3·4 − 2·6 = 0. All six joints are hinges, or one of
+//! them slides (the triad with a sliding pair; its leg is then planned first).
 //!
 //! A general group is a connected set of unknown links, all of whose joints are hinges,
 //! with 2·joints = 3·links (rigid by count): the double butterfly's six-link group, a group of
@@ -76,10 +77,10 @@ pub(crate) fn triad_on(
     if joints.iter().any(|&(_, l)| known[l]) {
         return None;
     }
-    // Candidates: revolute joints of T to a binary link that has one revolute joint to a
-    // known link and no other joint to a known link or to T.
+    // Candidates: joints of T to a binary link that has one joint to a known link and no
+    // other joint to a known link or to T (at most one of a triad's six joints slides).
     let mut candidates: Vec<(usize, usize, usize)> = Vec::new();
-    for &(j, l) in joints.iter().filter(|&&(j, _)| edges[j].1) {
+    for &(j, l) in joints {
         let (mut to_t, mut outer, mut count) = (0, None, 0);
         for &(k, m) in &adjacent[l] {
             *work += 1;
@@ -95,7 +96,7 @@ pub(crate) fn triad_on(
             }
         }
         if let (0, 1, Some(o)) = (to_t, count, outer)
-            && edges[o].1
+            && (edges[o].1 || edges[j].1)
         {
             candidates.push((l, o, j));
         }
@@ -111,6 +112,10 @@ pub(crate) fn triad_on(
                 let c = [candidates[i], candidates[j], candidates[k]];
                 let l = c.map(|x| x.0);
                 if l[0] == l[1] || l[1] == l[2] || l[0] == l[2] {
+                    continue;
+                }
+                let slides = c.iter().filter(|x| !(edges[x.1].1 && edges[x.2].1)).count();
+                if slides > 1 {
                     continue;
                 }
                 if joined(l[0], l[1]) || joined(l[1], l[2]) || joined(l[0], l[2]) {

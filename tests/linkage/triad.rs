@@ -173,3 +173,104 @@ fn reactions_agree_with_the_whole_system_virtual_power_and_equilibrium() {
     assert!(vp < 1e-12, "virtual power {vp:e}");
     assert!(eq < 1e-12, "equilibrium {eq:e}");
 }
+
+/// The six-bar with its triad given one sliding pair, as a description file: `outer`, the
+/// rocker O2 B2 becomes a slider on a guide of the frame through O2; otherwise the joint B3
+/// becomes a slide of rocker 5 along a guide of the ternary link.
+fn slider_six_bar(outer: bool) -> tmm::linkage::Linkage {
+    let (o2, b3) = if outer {
+        (
+            r#"{"name": "O2", "at": [0.47, 0.0], "kind": {"prismatic": {"guide": "frame", "direction": [0.3, 1.0]}}}"#,
+            r#"{"name": "B3", "at": [0.27, 0.31]}"#,
+        )
+    } else {
+        (
+            r#"{"name": "O2", "at": [0.47, 0.0]}"#,
+            r#"{"name": "B3", "at": [0.27, 0.31], "kind": {"prismatic": {"guide": "ternary", "direction": [1.0, 0.4]}}}"#,
+        )
+    };
+    let text = format!(
+        r#"{{
+  "name": "six-bar with a sliding triad",
+  "joints": [
+    {{"name": "O1", "at": [0.0, 0.0]}},
+    {{"name": "A", "at": [0.08, 0.0]}},
+    {{"name": "B1", "at": [0.31, 0.17]}},
+    {{"name": "B2", "at": [0.51, 0.3]}},
+    {b3},
+    {o2},
+    {{"name": "O3", "at": [0.16, 0.54]}}
+  ],
+  "links": [
+    {{"name": "frame", "joints": ["O1", "O2", "O3"]}},
+    {{"name": "crank", "joints": ["O1", "A"], "mass": {{"m": 1.0, "j": 0.002, "centre": [0.0, 0.0]}}}},
+    {{"name": "link 2", "joints": ["A", "B1"], "mass": {{"m": 1.2, "j": 0.00818, "centre": [0.195, 0.085]}}}},
+    {{"name": "ternary", "joints": ["B1", "B2", "B3"], "mass": {{"m": 3.0, "j": 0.02, "centre": [0.363333, 0.26]}}}},
+    {{"name": "rocker 4", "joints": ["O2", "B2"], "mass": {{"m": 1.5, "j": 0.01145, "centre": [0.49, 0.15]}}}},
+    {{"name": "rocker 5", "joints": ["O3", "B3"], "mass": {{"m": 1.4, "j": 0.00758333, "centre": [0.215, 0.425]}}}}
+  ],
+  "input": {{"link": "crank", "drive": "coupling"}},
+  "gravity": [0.0, -9.81],
+  "loads": [
+    {{"resistance": {{"on": "rocker 5", "forward": 20.0, "backward": 20.0}}}},
+    {{"force": {{"link": "ternary", "at": "B2", "force": [-150.0, 50.0]}}}}
+  ],
+  "output": {{"angle": "rocker 5"}}
+}}"#
+    );
+    serde_json::from_str(&text).unwrap()
+}
+
+/// Inputs where both sliding six-bars assemble: a band around the drawn crank angle.
+fn slider_inputs(plan: &Plan, n: u32) -> Vec<f64> {
+    (0..n)
+        .map(|k| plan.reference_input() + 0.6 * (f64::from(k) / f64::from(n - 1) - 0.5))
+        .collect()
+}
+
+#[test]
+fn a_triad_with_a_sliding_pair_is_found_solved_and_balanced() {
+    for outer in [true, false] {
+        let plan = Plan::new(&slider_six_bar(outer)).unwrap();
+        let g = &plan.groups()[0];
+        assert_eq!(plan.groups().len(), 1);
+        assert_eq!(g.kind, GroupKind::Triad);
+        let names = |ks: &[usize]| -> Vec<String> {
+            ks.iter().map(|&k| plan.link_names()[k].clone()).collect()
+        };
+        // The sliding leg first.
+        let first = if outer { "rocker 4" } else { "rocker 5" };
+        assert_eq!(names(&g.triad_links().unwrap())[1], first);
+        let phis = slider_inputs(&plan, 25);
+        // Rates against eighth-order differences of positions.
+        let (w, e) = (3.0, -2.0);
+        let fd = [1e-3, 2e-3, 4e-3]
+            .map(|h| crate::common::fd::plan_rates_vs_differences(&plan, &phis, w, e, h));
+        let best = fd.iter().copied().fold(f64::INFINITY, f64::min);
+        // Reactions against the whole linkage's Newton–Euler system, virtual power and every
+        // link's equilibrium; the transmission angle stays positive.
+        let (mut lu, mut vp, mut eq, mut mu) = (0.0f64, 0.0f64, 0.0f64, f64::INFINITY);
+        let mut solver = plan.solver();
+        for &phi in &phis {
+            let a = solver.analyse(Motion::new(phi, 12.0, -7.0)).unwrap();
+            lu = lu.max(lu_difference(&plan, a));
+            vp = vp.max(a.power_check().unwrap().relative_error());
+            eq = eq.max(a.worst_residual());
+            mu = mu.min(a.kinematics().transmission_angle(0).unwrap());
+        }
+        println!(
+            "six-bar with a sliding triad ({}): rates vs differences {:.1e}, {:.1e}, {:.1e} (h = 1, 2, 4e-3); LU {lu:.1e}, \
+             virtual power {vp:.1e}, equilibrium {eq:.1e}, min transmission angle {:.1}°",
+            if outer { "outer" } else { "inner" },
+            fd[0],
+            fd[1],
+            fd[2],
+            mu.to_degrees()
+        );
+        assert!(best < 1e-9, "{fd:?}");
+        assert!(lu < 1e-11, "LU {lu:e}");
+        assert!(vp < 1e-12, "virtual power {vp:e}");
+        assert!(eq < 1e-12, "equilibrium {eq:e}");
+        assert!(mu > 0.0 && mu <= std::f64::consts::FRAC_PI_2, "{mu}");
+    }
+}

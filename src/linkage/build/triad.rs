@@ -3,15 +3,16 @@
 //! read off the pose, and its reference mode (the assembly mode nearest the drawn pose).
 
 use super::reference::Frame;
-use crate::angle::direction;
+use crate::angle::{cross, direction};
 use crate::error::Result;
-use crate::kinematics::Branch;
+use crate::kinematics::{slider_triad_modes, Branch, Guide, SliderTriadDims, SlidingPair};
 use crate::kinematics::{triad_modes, TriadDims, TriadPose};
-use crate::linkage::description::Linkage;
+use crate::linkage::description::{JointKind, Linkage};
 use crate::linkage::plan::{bad, Group, GroupKind, TriadPlan};
-use crate::linkage::structure::Edge;
+use crate::linkage::plan_triad::SliderLeg;
+use crate::linkage::structure::{Edge, Pair};
 use crate::linkage::structure_triad::TriadFound;
-use nalgebra::Point2;
+use nalgebra::{Point2, Vector2};
 
 /// Plans the triad `t`: sets the frames of its links (the ternary link's at B1 along
 /// B1 → B2, each binary link's at A_i along A_i → B_i), reads its dimensions and picks the
@@ -23,6 +24,20 @@ pub(super) fn plan_triad(
     linkage: &Linkage,
     frames: &mut [Frame],
 ) -> Result<Group> {
+    let slides = |i: usize| {
+        edges[t.outer[i]].pair == Pair::Prismatic || edges[t.inner[i]].pair == Pair::Prismatic
+    };
+    if let Some(i) = (0..3).find(|&i| slides(i)) {
+        // The sliding leg first, the others in their order.
+        let order = [i, (i + 1) % 3, (i + 2) % 3];
+        let legs = TriadFound {
+            ternary: t.ternary,
+            binary: order.map(|k| t.binary[k]),
+            outer: order.map(|k| t.outer[k]),
+            inner: order.map(|k| t.inner[k]),
+        };
+        return plan_slider_triad(&legs, edges, link_names, linkage, frames);
+    }
     let other = |j: usize, l: usize| {
         let e = edges[j].links;
         if e[0] == l {
@@ -100,6 +115,141 @@ pub(super) fn plan_triad(
             a_local,
             dims,
             reference,
+            slider: None,
+        })),
+        general: None,
+    })
+}
+
+/// Plans a triad whose first leg `t` slides (at its outer joint or at its inner one): the
+/// frames as for the triad (the sliding link's at B1, outer, or at A1, inner, along the
+/// guide), the guide read off the description, and the mode of [`slider_triad_modes`]
+/// nearest the drawn pose.
+fn plan_slider_triad(
+    t: &TriadFound,
+    edges: &[Edge],
+    link_names: &[String],
+    linkage: &Linkage,
+    frames: &mut [Frame],
+) -> Result<Group> {
+    let other = |j: usize, l: usize| {
+        let e = edges[j].links;
+        if e[0] == l {
+            e[1]
+        } else {
+            e[0]
+        }
+    };
+    let known = [0, 1, 2].map(|i| other(t.outer[i], t.binary[i]));
+    let name = format!(
+        "group ({}; {}, {}, {}) triad with a sliding pair",
+        link_names[t.ternary],
+        link_names[t.binary[0]],
+        link_names[t.binary[1]],
+        link_names[t.binary[2]]
+    );
+    let at = |j: usize| Point2::new(linkage.joints[j].at[0], linkage.joints[j].at[1]);
+    let a = t.outer.map(at);
+    let b = t.inner.map(at);
+    let outer_slides = edges[t.outer[0]].pair == Pair::Prismatic;
+    let slide = if outer_slides { t.outer[0] } else { t.inner[0] };
+    let d = match &linkage.joints[slide].kind {
+        JointKind::Prismatic { direction, .. } => Vector2::new(direction[0], direction[1]),
+        JointKind::Revolute => Vector2::zeros(),
+    };
+    let dn = d.norm();
+    if !(dn > 0.0 && dn.is_finite()) {
+        return Err(bad(
+            linkage.joints[slide].name.clone(),
+            "needs a finite, non-zero guide direction",
+        ));
+    }
+    let d = d / dn;
+    let l = [1, 2].map(|i| (b[i] - a[i]).norm());
+    let side = (b[1] - b[0]).norm();
+    if !(l.iter().all(|&x| x > 0.0) && side > 0.0) {
+        return Err(bad(
+            name,
+            "has a link of zero length in the reference pose (A_i = B_i, or B1 = B2)",
+        ));
+    }
+    let theta = direction(b[1] - b[0]);
+    let ternary = Frame {
+        origin: b[0],
+        angle: theta,
+    };
+    let b3 = ternary.local(b[2]);
+    let slide_angle = direction(d);
+    let pair = if outer_slides {
+        SlidingPair::Outer {
+            offset: cross(d, b[0] - a[0]),
+        }
+    } else {
+        SlidingPair::Inner {
+            angle: slide_angle - theta,
+            offset: cross(d, a[0] - b[0]),
+        }
+    };
+    let dims = SliderTriadDims {
+        pair,
+        l,
+        l_b1b2: side,
+        b3_along: b3.x,
+        b3_across: b3.y,
+    };
+    let phi = [slide_angle, direction(b[1] - a[1]), direction(b[2] - a[2])];
+    let drawn = TriadPose {
+        b,
+        theta,
+        phi,
+        det: 0.0,
+    };
+    let reference = *slider_triad_modes(&Guide::fixed(a[0], slide_angle), [a[1], a[2]], &dims)
+        .map_err(|e| {
+            bad(
+                name.clone(),
+                format!("does not assemble in the reference pose: {e}"),
+            )
+        })?
+        .nearest(&drawn);
+    frames[t.ternary] = ternary;
+    frames[t.binary[0]] = Frame {
+        origin: if outer_slides { b[0] } else { a[0] },
+        angle: slide_angle,
+    };
+    for i in 1..3 {
+        frames[t.binary[i]] = Frame {
+            origin: a[i],
+            angle: phi[i],
+        };
+    }
+    let a_local = [0, 1, 2].map(|i| frames[known[i]].local(a[i]));
+    let guide_offset = if outer_slides {
+        slide_angle - frames[known[0]].angle
+    } else {
+        0.0
+    };
+    Ok(Group {
+        kind: GroupKind::Triad,
+        name,
+        links: [t.ternary, t.ternary],
+        joints: t.inner,
+        known: [known[0], known[2]],
+        branch: Branch::Plus,
+        a_local: a_local[0],
+        c_local: a_local[2],
+        lengths: l,
+        guide_offsets: [guide_offset, 0.0],
+        slide_angle: 0.0,
+        triad: Some(Box::new(TriadPlan {
+            links: [t.ternary, t.binary[0], t.binary[1], t.binary[2]],
+            outer: t.outer,
+            inner: t.inner,
+            known,
+            a_local,
+            dims: TriadDims::new([1.0, l[0], l[1]], side, b3.x, b3.y),
+            reference,
+            slider: Some(SliderLeg { dims, guide_offset }),
         })),
         general: None,
     })

@@ -18,10 +18,13 @@
 use super::analysis::{Analysis, Reaction};
 use super::state::{within, KinState};
 use crate::angle::cross;
+use crate::angle::perp;
 use crate::error::Result;
+use crate::kinematics::{slider_triad, slider_triad_rates, Guide, Motion, SlidingPair};
 use crate::kinematics::{triad, triad_rates, LinkMotion, TriadState};
-use crate::kinetostatics::Triad;
+use crate::kinetostatics::{SlideAt, SliderTriad, Triad};
 use crate::linkage::plan::{Group, TriadPlan};
+use crate::linkage::plan_triad::SliderLeg;
 use nalgebra::{Point2, Vector2};
 
 impl KinState {
@@ -32,8 +35,17 @@ impl KinState {
         group: &Group,
         t: &TriadPlan,
     ) -> Result<()> {
-        let a = [0, 1, 2].map(|i| self.at(t.known[i], t.a_local[i]));
-        let s = triad(a, &t.dims, &t.reference).map_err(within(&group.name))?;
+        let s = match &t.slider {
+            Some(leg) => {
+                let hinged = [1, 2].map(|i| self.at(t.known[i], t.a_local[i]));
+                slider_triad(&self.first_leg(t, leg), hinged, &leg.dims, &t.reference)
+            }
+            None => {
+                let a = [0, 1, 2].map(|i| self.at(t.known[i], t.a_local[i]));
+                triad(a, &t.dims, &t.reference)
+            }
+        }
+        .map_err(within(&group.name))?;
         for (k, m) in triad_links(t, &s) {
             self.set_link(k, m);
         }
@@ -46,14 +58,23 @@ impl KinState {
     /// are kept to the bit; `Err` when there is none or a rate fails (the caller then solves
     /// the group in full, which names the failure).
     pub(super) fn triad_rates_at(&mut self, g: usize, group: &Group, t: &TriadPlan) -> Result<()> {
-        let a = [0, 1, 2].map(|i| self.at(t.known[i], t.a_local[i]));
         let pose = self.triads[g].ok_or_else(|| {
             within(&group.name)(crate::Error::NonFinite {
                 name: "triad pose",
                 value: f64::NAN,
             })
         })?;
-        let s = triad_rates(a, &t.dims, &pose).map_err(within(&group.name))?;
+        let s = match &t.slider {
+            Some(leg) => {
+                let hinged = [1, 2].map(|i| self.at(t.known[i], t.a_local[i]));
+                slider_triad_rates(&self.first_leg(t, leg), hinged, &leg.dims, &pose)
+            }
+            None => {
+                let a = [0, 1, 2].map(|i| self.at(t.known[i], t.a_local[i]));
+                triad_rates(a, &t.dims, &pose)
+            }
+        }
+        .map_err(within(&group.name))?;
         for (k, m) in triad_links(t, &s) {
             let link = &mut self.links[k];
             link.origin.v = m.origin.v;
@@ -62,6 +83,20 @@ impl KinState {
             link.epsilon = m.epsilon;
         }
         Ok(())
+    }
+}
+
+impl KinState {
+    /// The sliding leg's known part: the known link's guide (outer pair), or A1 (inner pair,
+    /// the guide's angle unused).
+    fn first_leg(&self, t: &TriadPlan, leg: &SliderLeg) -> Guide {
+        match leg.dims.pair {
+            SlidingPair::Outer { .. } => self.guide_on(t.known[0], t.a_local[0], leg.guide_offset),
+            SlidingPair::Inner { .. } => Guide {
+                point: self.at(t.known[0], t.a_local[0]),
+                angle: Motion::fixed(0.0),
+            },
+        }
     }
 }
 
@@ -80,10 +115,19 @@ fn triad_links(t: &TriadPlan, s: &TriadState) -> [(usize, LinkMotion); 4] {
 /// two binary links meet (the instant centre of the ternary link were link i taken away, so
 /// B_i would move across B_i P_jk). It is π/2 − the pressure angle at B_i, and vanishes where
 /// the three lines meet at one point: the triad's dead point (det K = 0).
+///
+/// A sliding leg's line is its pair's line of action: across the guide, through B1 (outer
+/// pair) or A1 (inner pair), which then stands for B_1 as well.
 pub(crate) fn transmission_angle(kin: &KinState, t: &TriadPlan, b: [Point2<f64>; 3]) -> f64 {
     let [_, l1, l2, l3] = t.links;
-    let u = [l1, l2, l3].map(|k| kin.units[k]);
+    let mut u = [l1, l2, l3].map(|k| kin.units[k]);
     let a = [l1, l2, l3].map(|k| kin.links[k].origin.p);
+    let mut b = b;
+    if t.slider.is_some() {
+        // The sliding link's frame lies along the guide, its origin at B1 or A1.
+        u[0] = perp(u[0]);
+        b[0] = a[0];
+    }
     let between = |p: Vector2<f64>, q: Vector2<f64>| cross(p, q).abs().atan2(p.dot(&q).abs());
     (0..3)
         .map(|i| {
@@ -100,6 +144,9 @@ impl Analysis<'_> {
     /// Triad `g`'s reactions from the loads collected on its links; its outer reactions are
     /// added to the known links' loads.
     pub(super) fn solve_triad(&mut self, g: usize, group: &Group, t: &TriadPlan) -> Result<()> {
+        if let Some(leg) = &t.slider {
+            return self.solve_slider_triad(g, group, t, leg);
+        }
         let kin = &self.k.kin;
         let [lt, l1, l2, l3] = t.links;
         let binary = [l1, l2, l3];
@@ -119,6 +166,62 @@ impl Analysis<'_> {
             super::statics::add(&mut self.acc[t.known[i]], &ra.load_on_side(t.known[i]));
             self.reactions[t.outer[i]] = ra;
             self.reactions[t.inner[i]] = Reaction::hinge(binary[i], lt, r.r_b[i], b[i]);
+        }
+        self.conditioning[g] = r.conditioning;
+        Ok(())
+    }
+
+    /// A triad with a sliding pair: its reactions by [`SliderTriad::solve`], the sliding
+    /// pair's as a force on its line with the couple (see [`Reaction::offset`]).
+    fn solve_slider_triad(
+        &mut self,
+        g: usize,
+        group: &Group,
+        t: &TriadPlan,
+        leg: &SliderLeg,
+    ) -> Result<()> {
+        let kin = &self.k.kin;
+        let [lt, l1, l2, l3] = t.links;
+        let binary = [l1, l2, l3];
+        let a = binary.map(|l| kin.links[l].origin.p);
+        let normal = perp(kin.units[l1]);
+        let pose = self.pose();
+        let b = [0, 1, 2].map(|i| pose.joint_position_on(t.inner[i], lt));
+        let slide = match leg.dims.pair {
+            SlidingPair::Outer { .. } => SlideAt::Outer,
+            SlidingPair::Inner { .. } => SlideAt::Inner,
+        };
+        let r = SliderTriad {
+            slide,
+            normal,
+            a,
+            b,
+            loads: binary.map(|l| self.acc[l]),
+            load_ternary: self.acc[lt],
+        }
+        .solve()
+        .map_err(within(&group.name))?;
+        let (outer, inner) = match slide {
+            SlideAt::Outer => (
+                Reaction::new(t.known[0], l1, r.r_a[0], b[0], r.couple),
+                Reaction::hinge(l1, lt, r.r_b[0], b[0]),
+            ),
+            SlideAt::Inner => (
+                Reaction::hinge(t.known[0], l1, r.r_a[0], a[0]),
+                Reaction::new(l1, lt, r.r_b[0], a[0], r.couple),
+            ),
+        };
+        let mut reactions = [(outer, inner); 3];
+        for i in 1..3 {
+            reactions[i] = (
+                Reaction::hinge(t.known[i], binary[i], r.r_a[i], a[i]),
+                Reaction::hinge(binary[i], lt, r.r_b[i], b[i]),
+            );
+        }
+        for (i, (ra, rb)) in reactions.into_iter().enumerate() {
+            super::statics::add(&mut self.acc[t.known[i]], &ra.load_on_side(t.known[i]));
+            self.reactions[t.outer[i]] = ra;
+            self.reactions[t.inner[i]] = rb;
         }
         self.conditioning[g] = r.conditioning;
         Ok(())

@@ -1,0 +1,743 @@
+//! The triad with one sliding pair: the Assur group of the 3rd class whose first binary link
+//! is joined by a prismatic pair instead of a hinge, either to its known link (the *outer*
+//! pair: link 1 is a slider on a guide of the known link, hinged to the ternary link at B1) or
+//! to the ternary link (the *inner* pair: link 1 is hinged to the known link at A1 and slides
+//! along a guide of the ternary link through B1). The other two binary links are hinged at
+//! both ends, as in the [`triad`](super::triad).
+//!
+//! # Positions: one equation in one angle, every root bracketed
+//! With the ternary link's angle θ fixed (z = e^{iθ}; the ternary link's frame has its origin
+//! O at B1 and its x axis along B1 → B2), each leg is one equation in O:
+//! - leg 1 a line, n·O = h: outer, B1 = O on the guide's line at the offset e,
+//!   n = d⊥ (d the guide's unit vector) and h = n·P + e (P a point of the guide); inner, A1 on
+//!   the ternary link's guide through O at the offset e, n = (R(θ)·δ)⊥ (δ the guide's direction
+//!   in the ternary link's frame) and h = n·A1 − e;
+//! - legs 2 and 3 circles, |O − c_k| = l_k with c_k = A_k − R(θ)·β_k.
+//!
+//! The circles' difference is the radical axis b·O = s, b = 2(c_3 − c_2),
+//! s = |c_3|² − |c_2|² + l_2² − l_3²; with the line it gives Δ·O = X = s·n⊥ − h·b⊥,
+//! Δ = n × b, and the second circle leaves the eliminated equation
+//!
+//! F(θ) = |X − Δ·c_2|² − l_2²·Δ² = 0,
+//!
+//! a real trigonometric polynomial of degree 4 (outer: Δ and X of degree 1, c_2 of degree 1)
+//! or 6 (inner: n turns with θ, so Δ and X are of degree 2). Its Fourier coefficients are
+//! read exactly (to rounding) off 16 equally spaced values — a polynomial of degree below 8
+//! does not alias on 16 points — and every root is bracketed by the certified scan of the
+//! RRR triad ([`trig_roots`](super::trig_roots)): no mode is missed or found twice. Each
+//! root's pose follows from the linear equations (or, where Δ vanishes, from the line and the
+//! second circle) and is polished by Newton's method on the three closures in (O, θ), whose
+//! matrix is the velocity system below.
+//!
+//! # Rates: the velocity system
+//! Each leg can push the ternary link only along one line (its Plücker row (w, (p − O) × w)):
+//! a hinged leg along itself (w = u_k, p = B_k), the outer slider across its guide through
+//! B1 (w = n, p = O), the inner slider across the ternary link's guide through A1 (w = n,
+//! p = A1). The time derivative of each closure projected on w is
+//!
+//! w·v_O + ((p − O) × w)·ω_T = w·v_known(p),
+//!
+//! the point p's velocity as a point of the known link; a 3×3 system K whose determinant
+//! vanishes when the three lines meet at one point (the group's dead point). The
+//! accelerations solve the same K; besides the hinged legs' centripetal terms
+//! (−l_k·ω_k² + ω_T²·(r_k·u_k)), a slider adds its Coriolis term: outer
+//! n·a_O = n·a_K(O) + 2·ω_K·ṡ, inner n·a_O + ((A1 − O) × n)·ε_T = n·a_A1 − 2·ω_T·ṡ +
+//! ω_T²·n·(A1 − O), with ṡ the slide's rate along the guide. The sliding link turns with the
+//! link that carries its guide.
+
+use super::link::LinkMotion;
+use super::motion::PointMotion;
+use super::rrp::Guide;
+use super::triad::{TriadDims, TriadPose, TriadState, SINGULAR_TRIAD};
+use super::trig_roots::{bracket_all, unit as unit_c, Periodic, Roots};
+use crate::angle::{cross, direction, perp, unit};
+use crate::error::{finite, finite2, positive, Error, Result};
+use nalgebra::{Complex, Matrix3, Point2, Vector2, Vector3};
+
+type C = Complex<f64>;
+
+const GROUP: &str = "triad with a sliding pair";
+const MEASURE: &str = "det(velocity system)/L_T";
+/// The most assembly modes a triad with a sliding pair can have: the roots of its eliminated
+/// equation (of degree 6 in the inner case).
+pub const MAX_SLIDER_TRIAD_MODES: usize = 12;
+/// Samples of the eliminated equation for its Fourier coefficients.
+const SAMPLES: usize = 16;
+/// Fourier coefficients kept (degrees 0 to 6).
+const DEGREE: usize = 6;
+
+/// Where the first binary link's sliding pair is, with the dimension the pair fixes.
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+pub enum SlidingPair {
+    /// Link 1 slides on a guide of its known link and is hinged to the ternary link at B1
+    /// (the leg's input is that [`Guide`]).
+    Outer {
+        /// e, B1's distance to the left of the guide line (along the guide's direction), m.
+        offset: f64,
+    },
+    /// Link 1 is hinged to its known link at A1 and slides along a guide of the ternary link
+    /// through B1 (the leg's input is A1's motion).
+    Inner {
+        /// The guide's direction in the ternary link's frame (from B1 → B2), rad.
+        angle: f64,
+        /// e, A1's distance to the left of the guide line (along its direction), m.
+        offset: f64,
+    },
+}
+
+/// The dimensions of a triad with a sliding pair in its first leg.
+///
+/// The ternary link's frame has its origin at B1 (for the inner pair: the point of the
+/// ternary link's guide that was at the joint when drawn) and its x axis along B1 → B2, as in
+/// [`TriadDims`].
+///
+/// # Examples
+/// ```
+/// use tmm::kinematics::{SliderTriadDims, SlidingPair};
+/// let dims = SliderTriadDims {
+///     pair: SlidingPair::Outer { offset: 0.1 },
+///     l: [0.35, 0.4],
+///     l_b1b2: 0.2,
+///     b3_along: 0.1,
+///     b3_across: 0.17,
+/// };
+/// assert_eq!(dims.l[0], 0.35);
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+pub struct SliderTriadDims {
+    /// The sliding pair of leg 1.
+    pub pair: SlidingPair,
+    /// l_A2B2, l_A3B3: the hinged legs' lengths, m.
+    pub l: [f64; 2],
+    /// l_B1B2, m.
+    pub l_b1b2: f64,
+    /// B3's coordinate along B1 → B2, m.
+    pub b3_along: f64,
+    /// B3's coordinate across B1 → B2 (to the left of it), m.
+    pub b3_across: f64,
+}
+
+impl SliderTriadDims {
+    /// The ternary link's triangle as a [`TriadDims`] (its legs 1 long: unused), for
+    /// [`TriadDims::ternary_size`].
+    fn triangle(&self) -> TriadDims {
+        TriadDims::new(
+            [1.0, self.l[0], self.l[1]],
+            self.l_b1b2,
+            self.b3_along,
+            self.b3_across,
+        )
+    }
+
+    fn validate(&self) -> Result<()> {
+        positive("l_A2B2", self.l[0])?;
+        positive("l_A3B3", self.l[1])?;
+        positive("l_B1B2", self.l_b1b2)?;
+        finite("B3 along", self.b3_along)?;
+        finite("B3 across", self.b3_across)?;
+        match self.pair {
+            SlidingPair::Outer { offset } => finite("guide offset", offset)?,
+            SlidingPair::Inner { angle, offset } => {
+                finite("guide angle", angle)?;
+                finite("guide offset", offset)?
+            }
+        };
+        Ok(())
+    }
+}
+
+/// All assembly modes of a triad with a sliding pair at one position, in the order of θ; no
+/// heap.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SliderTriadModes {
+    count: usize,
+    poses: [TriadPose; MAX_SLIDER_TRIAD_MODES],
+}
+
+impl SliderTriadModes {
+    /// The modes, ordered by the ternary link's angle θ.
+    #[must_use]
+    pub fn as_slice(&self) -> &[TriadPose] {
+        &self.poses[..self.count]
+    }
+
+    /// The number of modes.
+    #[must_use]
+    pub fn len(&self) -> usize {
+        self.count
+    }
+
+    /// Never true for a value returned by [`slider_triad_modes`].
+    #[must_use]
+    pub fn is_empty(&self) -> bool {
+        self.count == 0
+    }
+
+    /// The mode nearest `reference` by D² = Σ|B_i − B_i′|² (as
+    /// [`TriadModes::nearest`](super::TriadModes::nearest)).
+    ///
+    /// # Panics
+    /// Never for a value returned by [`slider_triad_modes`], which holds at least one mode.
+    #[must_use]
+    pub fn nearest(&self, reference: &TriadPose) -> &TriadPose {
+        self.as_slice()
+            .iter()
+            .min_by(|p, q| {
+                p.distance_squared(reference)
+                    .total_cmp(&q.distance_squared(reference))
+            })
+            .expect("a triad's modes are never empty")
+    }
+}
+
+/// The first leg's known part at one position: the guide's point and unit vector (outer), or
+/// A1 (inner, `d` unused).
+#[derive(Clone, Copy)]
+struct First {
+    p: Point2<f64>,
+    d: Vector2<f64>,
+}
+
+/// Every assembly mode of a triad with a sliding pair, its first leg on `first` (for the
+/// outer pair the guide of the known link; for the inner pair `first.point` is A1, and
+/// `first.angle` only has to be finite) and its hinged legs on `a` = [A2, A3]. Only positions are
+/// read. `TriadPose::phi[0]` is the sliding link's angle: the guide's for the outer pair,
+/// θ plus the guide's angle for the inner one.
+///
+/// # Examples
+/// A slider on the x axis carries B1; the ternary link B1 = (0, 0), B2 = (1, 0),
+/// B3 = (0.5, 0.8) m was drawn on legs of 1 m from A2 = (1.6, 0.8) and A3 = (0.5, 1.8). The
+/// drawn pose is one of the modes, and every mode closes.
+/// ```
+/// use nalgebra::Point2;
+/// use approx::assert_relative_eq;
+/// use tmm::kinematics::{slider_triad_modes, Guide, SliderTriadDims, SlidingPair};
+/// let dims = SliderTriadDims {
+///     pair: SlidingPair::Outer { offset: 0.0 },
+///     l: [1.0, 1.0],
+///     l_b1b2: 1.0,
+///     b3_along: 0.5,
+///     b3_across: 0.8,
+/// };
+/// let a = [Point2::new(1.6, 0.8), Point2::new(0.5, 1.8)];
+/// let modes = slider_triad_modes(&Guide::fixed(Point2::new(-2.0, 0.0), 0.0), a, &dims)?;
+/// assert!(modes.as_slice().iter().any(|m| m.b[0].coords.norm() < 1e-12));
+/// for m in modes.as_slice() {
+///     assert_relative_eq!(m.b[0].y, 0.0, epsilon = 1e-12);
+///     assert_relative_eq!((m.b[1] - a[0]).norm(), 1.0, epsilon = 1e-12);
+///     assert_relative_eq!((m.b[2] - a[1]).norm(), 1.0, epsilon = 1e-12);
+/// }
+/// # Ok::<(), tmm::Error>(())
+/// ```
+///
+/// # Errors
+/// - [`Error::NonFinite`] / [`Error::NonPositive`] for bad input;
+/// - [`Error::NotAssemblable`] (`group = "triad with a sliding pair"`) when F has no root
+///   (`gap`: the least closure miss of the second circle over 1024 orientations);
+/// - [`Error::Singular`] with `measure = "eliminated equation F(theta)"` when F vanishes
+///   identically (the group moves: a continuum of modes);
+/// - [`Error::Overflow`] when the eliminated equation overflows.
+pub fn slider_triad_modes(
+    first: &Guide,
+    a: [Point2<f64>; 2],
+    dims: &SliderTriadDims,
+) -> Result<SliderTriadModes> {
+    finite2(["A1.x", "A1.y"], first.point.p.coords)?;
+    finite2(["A2.x", "A2.y"], a[0].coords)?;
+    finite2(["A3.x", "A3.y"], a[1].coords)?;
+    finite("guide angle", first.angle.value)?;
+    dims.validate()?;
+    let e = Equation::new(first, a, dims);
+    if !e.scale.is_finite() || !e.f.iter().all(|c| c.re.is_finite() && c.im.is_finite()) {
+        return Err(Error::Overflow {
+            what: "triad with a sliding pair: eliminated equation",
+        });
+    }
+    if e.s <= 1024.0 * f64::EPSILON * e.scale {
+        return Err(Error::Singular {
+            what: GROUP,
+            measure: "eliminated equation F(theta)",
+            value: e.s / e.scale,
+        });
+    }
+    let mut roots = Roots::default();
+    bracket_all(&e, &mut roots);
+    let blank = TriadPose {
+        b: [Point2::origin(); 3],
+        theta: 0.0,
+        phi: [0.0; 3],
+        det: 0.0,
+    };
+    let mut modes = SliderTriadModes {
+        count: 0,
+        poses: [blank; MAX_SLIDER_TRIAD_MODES],
+    };
+    let tol = 1e-9 * e.length;
+    for r in 0..roots.n {
+        for pose in e.poses(roots.z[r], roots.multiple[r]).into_iter().flatten() {
+            let seen = modes.poses[..modes.count]
+                .iter()
+                .any(|m| m.distance_squared(&pose) <= tol * tol);
+            if !seen && modes.count < MAX_SLIDER_TRIAD_MODES {
+                modes.poses[modes.count] = pose;
+                modes.count += 1;
+            }
+        }
+    }
+    if modes.count == 0 {
+        return Err(Error::NotAssemblable {
+            group: GROUP,
+            gap: e.gap(),
+        });
+    }
+    modes.poses[..modes.count].sort_by(|p, q| p.theta.total_cmp(&q.theta));
+    Ok(modes)
+}
+
+/// Positions, velocities and accelerations of a triad with a sliding pair, in the mode
+/// nearest `previous` (by [`slider_triad_modes`] and
+/// [`nearest`](SliderTriadModes::nearest), then [`slider_triad_rates`]).
+///
+/// # Errors
+/// As [`slider_triad_modes`] and [`slider_triad_rates`].
+pub fn slider_triad(
+    first: &Guide,
+    a: [PointMotion; 2],
+    dims: &SliderTriadDims,
+    previous: &TriadPose,
+) -> Result<TriadState> {
+    let pose = *slider_triad_modes(first, [a[0].p, a[1].p], dims)?.nearest(previous);
+    slider_triad_rates(first, a, dims, &pose)
+}
+
+/// Velocities and accelerations of a triad with a sliding pair in a given mode (`pose`, one
+/// of [`slider_triad_modes`]' at the positions of `first` and `a`), from the velocity system
+/// K (module docs). The first binary link of the returned state is the sliding link: for the
+/// outer pair its origin is B1 and it turns with the guide; for the inner pair its origin is
+/// A1 and it turns with the ternary link.
+///
+/// # Errors
+/// - [`Error::NonFinite`] for bad input;
+/// - [`Error::Singular`] with `measure = "det(velocity system)/L_T"` when |det K|/L_T ≤
+///   [`SINGULAR_TRIAD`]: the three legs' lines of action meet at one point;
+/// - [`Error::Overflow`] when a rate overflows.
+pub fn slider_triad_rates(
+    first: &Guide,
+    a: [PointMotion; 2],
+    dims: &SliderTriadDims,
+    pose: &TriadPose,
+) -> Result<TriadState> {
+    first
+        .point
+        .validate(["A1.x", "A1.y", "v_A1.x", "v_A1.y", "a_A1.x", "a_A1.y"])?;
+    first
+        .angle
+        .validate(["guide angle", "guide omega", "guide epsilon"])?;
+    for m in &a {
+        m.validate(["A.x", "A.y", "v_A.x", "v_A.y", "a_A.x", "a_A.y"])?;
+    }
+    for b in &pose.b {
+        finite2(["B.x", "B.y"], b.coords)?;
+    }
+    finite("theta", pose.theta)?;
+    dims.validate()?;
+    let b = pose.b;
+    let o = b[0];
+    let zt = unit(pose.theta);
+    let r = [Vector2::zeros(), b[1] - o, b[2] - o];
+    let leg = [b[1] - a[0].p, b[2] - a[1].p];
+    let len = [leg[0].norm(), leg[1].norm()];
+    let u = [leg[0] / len[0], leg[1] / len[1]];
+    let (n, p, d, slide_angle) = match dims.pair {
+        SlidingPair::Outer { .. } => {
+            let d = unit(first.angle.value);
+            (perp(d), o, d, first.angle.value)
+        }
+        SlidingPair::Inner { angle, .. } => {
+            let d = rotate(zt, unit(angle));
+            (perp(d), first.point.p, d, direction(d))
+        }
+    };
+    let k = matrix(n, cross(p - o, n), u, [r[1], r[2]]);
+    let det = k.determinant() / dims.triangle().ternary_size();
+    let singular = Error::Singular {
+        what: GROUP,
+        measure: MEASURE,
+        value: det,
+    };
+    if det.is_nan() || det.abs() <= SINGULAR_TRIAD {
+        return Err(singular);
+    }
+    let k_inv = k.try_inverse().ok_or(singular)?;
+    let (wk, ek) = (first.angle.rate, first.angle.accel);
+    // The known point at p: the guide's point of the known link (outer) or A1 (inner).
+    let (vk, ak) = match dims.pair {
+        SlidingPair::Outer { .. } => {
+            let q = o - first.point.p;
+            (
+                first.point.v + wk * perp(q),
+                first.point.a + ek * perp(q) - wk * wk * q,
+            )
+        }
+        SlidingPair::Inner { .. } => (first.point.v, first.point.a),
+    };
+    let vel = k_inv * Vector3::new(n.dot(&vk), u[0].dot(&a[0].v), u[1].dot(&a[1].v));
+    let (v_o, omega_t) = (Vector2::new(vel.x, vel.y), vel.z);
+    let vb = [v_o, v_o + omega_t * perp(r[1]), v_o + omega_t * perp(r[2])];
+    let omega = [0, 1].map(|k| perp(u[k]).dot(&(vb[k + 1] - a[k].v)) / len[k]);
+    let w2 = omega_t * omega_t;
+    let first_acc = match dims.pair {
+        SlidingPair::Outer { .. } => n.dot(&ak) + 2.0 * wk * d.dot(&(v_o - vk)),
+        SlidingPair::Inner { .. } => {
+            let q = p - o;
+            let s_dot = d.dot(&(vk - v_o - omega_t * perp(q)));
+            n.dot(&ak) - 2.0 * omega_t * s_dot + w2 * n.dot(&q)
+        }
+    };
+    let acc = k_inv
+        * Vector3::new(
+            first_acc,
+            u[0].dot(&a[0].a) - len[0] * omega[0] * omega[0] + w2 * r[1].dot(&u[0]),
+            u[1].dot(&a[1].a) - len[1] * omega[1] * omega[1] + w2 * r[2].dot(&u[1]),
+        );
+    let (a_o, eps_t) = (Vector2::new(acc.x, acc.y), acc.z);
+    let ternary = LinkMotion {
+        origin: PointMotion::new(o, v_o, a_o),
+        angle: pose.theta,
+        omega: omega_t,
+        epsilon: eps_t,
+    };
+    let bm = [0, 1, 2].map(|i| ternary.motion_of(b[i]));
+    let eps = [0, 1].map(|k| perp(u[k]).dot(&(bm[k + 1].a - a[k].a)) / len[k]);
+    let sliding = match dims.pair {
+        SlidingPair::Outer { .. } => LinkMotion {
+            origin: bm[0],
+            angle: slide_angle,
+            omega: wk,
+            epsilon: ek,
+        },
+        SlidingPair::Inner { .. } => LinkMotion {
+            origin: first.point,
+            angle: slide_angle,
+            omega: omega_t,
+            epsilon: eps_t,
+        },
+    };
+    let hinged = |k: usize| LinkMotion {
+        origin: a[k],
+        angle: direction(leg[k]),
+        omega: omega[k],
+        epsilon: eps[k],
+    };
+    let out = TriadState {
+        b: bm,
+        ternary,
+        binary: [sliding, hinged(0), hinged(1)],
+        det,
+    };
+    let finite = bm
+        .iter()
+        .all(|m| m.v.iter().chain(m.a.iter()).all(|x| x.is_finite()))
+        && omega.iter().chain(eps.iter()).all(|x| x.is_finite())
+        && omega_t.is_finite()
+        && eps_t.is_finite();
+    if finite {
+        Ok(out)
+    } else {
+        Err(Error::Overflow {
+            what: "triad with a sliding pair: rates",
+        })
+    }
+}
+
+/// The velocity system K: row 0 the sliding leg's line (n, m), rows 1 and 2 (u_k, r_k × u_k).
+fn matrix(n: Vector2<f64>, m: f64, u: [Vector2<f64>; 2], r: [Vector2<f64>; 2]) -> Matrix3<f64> {
+    Matrix3::new(
+        n.x,
+        n.y,
+        m,
+        u[0].x,
+        u[0].y,
+        cross(r[0], u[0]),
+        u[1].x,
+        u[1].y,
+        cross(r[1], u[1]),
+    )
+}
+
+/// v turned by the unit complex number z.
+#[inline]
+fn rotate(z: Vector2<f64>, v: Vector2<f64>) -> Vector2<f64> {
+    Vector2::new(z.x * v.x - z.y * v.y, z.y * v.x + z.x * v.y)
+}
+
+fn vec(z: C) -> Vector2<f64> {
+    Vector2::new(z.re, z.im)
+}
+
+/// The eliminated equation of one triad with a sliding pair at one position.
+struct Equation {
+    first: First,
+    inner: bool,
+    offset: f64,
+    /// The inner guide's direction in the ternary link's frame.
+    delta: Vector2<f64>,
+    a: [Point2<f64>; 2],
+    beta: [Vector2<f64>; 3],
+    l: [f64; 2],
+    /// F's Fourier coefficients: F = f[0] + 2·Re(Σ_{k=1..6} f[k]·z^k).
+    f: [C; DEGREE + 1],
+    m2: f64,
+    /// Σ|F_k| (F_0 once, the others twice): a bound of |F|.
+    s: f64,
+    scale: f64,
+    tol: f64,
+    /// The largest |Δ| over the samples.
+    dscale: f64,
+    /// The group's largest dimension, m.
+    length: f64,
+}
+
+impl Periodic for Equation {
+    #[inline]
+    fn eval(&self, z: C) -> (f64, f64) {
+        let (mut p, mut dp, mut zk) = (C::new(0.0, 0.0), C::new(0.0, 0.0), z);
+        for k in 1..=DEGREE {
+            let t = self.f[k] * zk;
+            p += t;
+            dp += t * k as f64;
+            zk *= z;
+        }
+        (self.f[0].re + 2.0 * p.re, -2.0 * dp.im)
+    }
+
+    fn second(&self, z: C) -> f64 {
+        let (mut p, mut zk) = (C::new(0.0, 0.0), z);
+        for k in 1..=DEGREE {
+            p += self.f[k] * zk * (k * k) as f64;
+            zk *= z;
+        }
+        -2.0 * p.re
+    }
+
+    fn m2(&self) -> f64 {
+        self.m2
+    }
+
+    fn tol(&self) -> f64 {
+        self.tol
+    }
+}
+
+impl Equation {
+    fn new(first: &Guide, a: [Point2<f64>; 2], dims: &SliderTriadDims) -> Self {
+        let (inner, offset, delta) = match dims.pair {
+            SlidingPair::Outer { offset } => (false, offset, Vector2::zeros()),
+            SlidingPair::Inner { angle, offset } => (true, offset, unit(angle)),
+        };
+        let beta = [
+            Vector2::zeros(),
+            Vector2::new(dims.l_b1b2, 0.0),
+            Vector2::new(dims.b3_along, dims.b3_across),
+        ];
+        let mut e = Self {
+            first: First {
+                p: first.point.p,
+                d: unit(first.angle.value),
+            },
+            inner,
+            offset,
+            delta,
+            a,
+            beta,
+            l: dims.l,
+            f: [C::new(0.0, 0.0); DEGREE + 1],
+            m2: 0.0,
+            s: 0.0,
+            scale: 0.0,
+            tol: 0.0,
+            dscale: 0.0,
+            length: 0.0,
+        };
+        // The discrete Fourier transform of 16 values of F.
+        let mut values = [0.0; SAMPLES];
+        for (j, v) in values.iter_mut().enumerate() {
+            let th = std::f64::consts::TAU * j as f64 / SAMPLES as f64;
+            let (f, size, delta) = e.value(C::new(th.cos(), th.sin()));
+            *v = f;
+            e.scale = e.scale.max(size);
+            e.dscale = e.dscale.max(delta.abs());
+        }
+        for k in 0..=DEGREE {
+            let mut sum = C::new(0.0, 0.0);
+            for (j, v) in values.iter().enumerate() {
+                let th = -std::f64::consts::TAU * (j * k) as f64 / SAMPLES as f64;
+                sum += C::new(th.cos(), th.sin()) * *v;
+            }
+            e.f[k] = sum / SAMPLES as f64;
+        }
+        e.f[0] = C::new(e.f[0].re, 0.0);
+        let n1 = |c: C| c.re.abs() + c.im.abs();
+        e.m2 = 2.0
+            * (1..=DEGREE)
+                .map(|k| (k * k) as f64 * n1(e.f[k]))
+                .sum::<f64>();
+        e.s = e.f[0].re.abs() + 2.0 * (1..=DEGREE).map(|k| n1(e.f[k])).sum::<f64>();
+        e.tol = 256.0 * f64::EPSILON * e.scale;
+        let mut length = dims.l[0]
+            .max(dims.l[1])
+            .max(beta[1].norm())
+            .max(beta[2].norm());
+        length = length.max(offset.abs());
+        for p in [a[0], a[1]] {
+            length = length.max((p - e.first.p).norm());
+        }
+        e.length = length.max((a[1] - a[0]).norm());
+        e
+    }
+
+    /// The line of leg 1 at z: n·O = h, n a unit vector.
+    fn line(&self, z: Vector2<f64>) -> (Vector2<f64>, f64) {
+        if self.inner {
+            let n = perp(rotate(z, self.delta));
+            (n, n.dot(&self.first.p.coords) - self.offset)
+        } else {
+            let n = perp(self.first.d);
+            (n, n.dot(&self.first.p.coords) + self.offset)
+        }
+    }
+
+    /// The circles' centres c_2, c_3 for O at z.
+    fn centres(&self, z: Vector2<f64>) -> [Vector2<f64>; 2] {
+        [0, 1].map(|k| self.a[k].coords - rotate(z, self.beta[k + 1]))
+    }
+
+    /// F at z, the size of its terms, and Δ.
+    fn value(&self, z: C) -> (f64, f64, f64) {
+        let zv = vec(z);
+        let (n, h) = self.line(zv);
+        let c = self.centres(zv);
+        let b = 2.0 * (c[1] - c[0]);
+        let s = c[1].norm_squared() - c[0].norm_squared() + self.l[0] * self.l[0]
+            - self.l[1] * self.l[1];
+        let delta = cross(n, b);
+        let x = s * perp(n) - h * perp(b);
+        let w = x - delta * c[0];
+        let ld = self.l[0] * delta;
+        let size = (s.abs() + h.abs() * b.norm() + delta.abs() * c[0].norm()).powi(2) + ld * ld;
+        (w.norm_squared() - ld * ld, size, delta)
+    }
+
+    /// The poses at a root z: O from the linear equations, or, where Δ nearly vanishes or
+    /// the root is `multiple`, both intersections of the line with the second circle; each
+    /// polished (module docs).
+    fn poses(&self, z: C, multiple: bool) -> [Option<TriadPose>; 2] {
+        let zv = vec(z);
+        let (n, h) = self.line(zv);
+        let c = self.centres(zv);
+        let b = 2.0 * (c[1] - c[0]);
+        let s = c[1].norm_squared() - c[0].norm_squared() + self.l[0] * self.l[0]
+            - self.l[1] * self.l[1];
+        let delta = cross(n, b);
+        if delta.abs() > 1e-3 * self.dscale && !multiple {
+            let o = (s * perp(n) - h * perp(b)) / delta;
+            return [self.polish(o, z), None];
+        }
+        // The line n·O = h against the circle |O − c_2| = l_2.
+        let dist = h - n.dot(&c[0]);
+        let foot = c[0] + dist * n;
+        let half = (self.l[0] * self.l[0] - dist * dist).max(0.0).sqrt();
+        let t = perp(n);
+        [
+            self.polish(foot + half * t, z),
+            self.polish(foot - half * t, z),
+        ]
+    }
+
+    /// The residuals of the three closures at (O, z), with the velocity system there.
+    fn residual(&self, o: Vector2<f64>, z: C) -> (Vector3<f64>, Matrix3<f64>) {
+        let zv = vec(z);
+        let r = [rotate(zv, self.beta[1]), rotate(zv, self.beta[2])];
+        let leg = [0, 1].map(|k| o + r[k] - self.a[k].coords);
+        let len = leg.map(|v| v.norm());
+        let u = [leg[0] / len[0], leg[1] / len[1]];
+        let (n, h) = self.line(zv);
+        let m = if self.inner {
+            cross(self.first.p.coords - o, n)
+        } else {
+            0.0
+        };
+        (
+            Vector3::new(n.dot(&o) - h, len[0] - self.l[0], len[1] - self.l[1]),
+            matrix(n, m, u, r),
+        )
+    }
+
+    /// The pose from O = `o` at z, polished by Newton's method on the closures (kept while
+    /// it reduces the closure error); `None` when it does not close to 1e-9 of the size.
+    fn polish(&self, o: Vector2<f64>, z: C) -> Option<TriadPose> {
+        let (mut o, mut z) = (o, z);
+        let (mut g, mut k) = self.residual(o, z);
+        let mut err = g.amax();
+        for _ in 0..8 {
+            if err <= 1e-15 * self.length {
+                break;
+            }
+            let Some(k_inv) = k.try_inverse() else {
+                break;
+            };
+            let step = k_inv * (-g);
+            let on = o + Vector2::new(step.x, step.y);
+            let zn = unit_c(z * C::new(1.0, step.z));
+            let (gn, kn) = self.residual(on, zn);
+            if gn.amax() < err {
+                (o, z, g, k, err) = (on, zn, gn, kn, gn.amax());
+            } else {
+                break;
+            }
+        }
+        if err.is_nan() || err > 1e-9 * self.length {
+            return None;
+        }
+        let size =
+            TriadDims::new([1.0; 3], self.beta[1].x, self.beta[2].x, self.beta[2].y).ternary_size();
+        let zv = vec(z);
+        let b = [0, 1, 2].map(|i| Point2::from(o + rotate(zv, self.beta[i])));
+        let slide = if self.inner {
+            direction(rotate(zv, self.delta))
+        } else {
+            direction(self.first.d)
+        };
+        Some(TriadPose {
+            b,
+            theta: direction(zv),
+            phi: [
+                slide,
+                direction(b[1] - self.a[0]),
+                direction(b[2] - self.a[1]),
+            ],
+            det: k.determinant() / size,
+        })
+    }
+
+    /// The least miss of the second circle by the linear equations' O, at the best of 1024
+    /// orientations: the `gap` of [`Error::NotAssemblable`].
+    #[cold]
+    fn gap(&self) -> f64 {
+        let mut best = f64::INFINITY;
+        for j in 0..1024 {
+            let th = std::f64::consts::TAU * j as f64 / 1024.0;
+            let z = C::new(th.cos(), th.sin());
+            let (f, _, delta) = self.value(z);
+            if delta.abs() <= 1e-9 * self.dscale {
+                continue;
+            }
+            // |X − Δ·c_2|² − l_2²·Δ² = Δ²·(|O − c_2|² − l_2²): the miss in length.
+            let q = f / (delta * delta) + self.l[0] * self.l[0];
+            best = best.min((q.max(0.0).sqrt() - self.l[0]).abs());
+        }
+        best
+    }
+}
