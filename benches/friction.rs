@@ -12,34 +12,16 @@ use tmm::kinetostatics::friction::{
     Hinge, PrpFriction, PrpJoints, PrpRates, RppFriction, RppJoints, RppRates, RprFriction,
     RprJoints, RprRates, RrpFriction, RrpJoints, RrpRates, RrrFriction, RrrJoints, RrrRates, Slide,
 };
-use tmm::kinetostatics::{PrpDyad, RppDyad, RprDyad, RrpDyad, RrrDyad};
-use tmm::Load;
+use tmm::kinetostatics::{PrpDyad, RppDyad, RprDyad, RrpDyad};
 
 const BATCH: usize = 256;
 
-/// A small seeded generator (xorshift64*), so every run benches the same inputs.
-struct Rng(u64);
+#[path = "common/dyads.rs"]
+mod dyads;
+use dyads::Rng;
 
+/// The friction blocks over the shared seeded dyads.
 impl Rng {
-    fn unit(&mut self) -> f64 {
-        self.0 ^= self.0 >> 12;
-        self.0 ^= self.0 << 25;
-        self.0 ^= self.0 >> 27;
-        (self.0.wrapping_mul(0x2545_F491_4F6C_DD1D) >> 11) as f64 / (1u64 << 53) as f64
-    }
-    fn range(&mut self, lo: f64, hi: f64) -> f64 {
-        lo + (hi - lo) * self.unit()
-    }
-    fn point(&mut self) -> Point2<f64> {
-        Point2::new(self.range(-1.0, 1.0), self.range(-1.0, 1.0))
-    }
-    fn load(&mut self) -> Load {
-        Load::new(
-            self.point(),
-            Vector2::new(self.range(-500.0, 500.0), self.range(-500.0, 500.0)),
-            self.range(-50.0, 50.0),
-        )
-    }
     fn rate(&mut self) -> f64 {
         let s = if self.unit() < 0.5 { -1.0 } else { 1.0 };
         s * self.range(0.5, 10.0)
@@ -47,24 +29,9 @@ impl Rng {
     fn hinge(&mut self, f: f64) -> Hinge {
         Hinge::pin(self.range(0.01, 0.05), f).unwrap()
     }
-    fn a(&mut self) -> Point2<f64> {
-        Point2::new(self.range(-1.0, -0.5), self.range(-0.2, 0.2))
-    }
-    fn b(&mut self) -> Point2<f64> {
-        Point2::new(self.range(-0.2, 0.2), self.range(0.5, 1.0))
-    }
-    fn c(&mut self) -> Point2<f64> {
-        Point2::new(self.range(0.5, 1.0), self.range(-0.2, 0.2))
-    }
     fn rrr(&mut self, f: f64) -> RrrFriction {
         RrrFriction {
-            dyad: RrrDyad {
-                a: self.a(),
-                b: self.b(),
-                c: self.c(),
-                load2: self.load(),
-                load3: self.load(),
-            },
+            dyad: self.rrr_dyad(),
             joints: RrrJoints {
                 a: self.hinge(f),
                 b: self.hinge(f),

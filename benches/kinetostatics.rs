@@ -12,52 +12,21 @@ use nalgebra::{Point2, Vector2};
 use std::hint::black_box;
 use std::time::Duration;
 use tmm::kinetostatics::{CouplingDrive, GearDrive, PrpDyad, RppDyad, RprDyad, RrpDyad, RrrDyad};
-use tmm::Load;
 
 #[path = "common/yardstick.rs"]
 mod yardstick;
+
+#[path = "common/dyads.rs"]
+mod dyads;
+use dyads::Rng;
 
 #[path = "../tests/kinetostatics/general_solve.rs"]
 #[allow(dead_code)]
 mod general_solve;
 
-/// A small seeded generator (xorshift64*), so every run benches the same inputs.
-struct Rng(u64);
-
-impl Rng {
-    fn unit(&mut self) -> f64 {
-        self.0 ^= self.0 >> 12;
-        self.0 ^= self.0 << 25;
-        self.0 ^= self.0 >> 27;
-        (self.0.wrapping_mul(0x2545_F491_4F6C_DD1D) >> 11) as f64 / (1u64 << 53) as f64
-    }
-    fn range(&mut self, lo: f64, hi: f64) -> f64 {
-        lo + (hi - lo) * self.unit()
-    }
-    fn point(&mut self) -> Point2<f64> {
-        Point2::new(self.range(-1.0, 1.0), self.range(-1.0, 1.0))
-    }
-    fn load(&mut self) -> Load {
-        Load::new(
-            self.point(),
-            Vector2::new(self.range(-500.0, 500.0), self.range(-500.0, 500.0)),
-            self.range(-50.0, 50.0),
-        )
-    }
-    fn rrr(&mut self) -> RrrDyad {
-        RrrDyad {
-            a: Point2::new(self.range(-1.0, -0.5), self.range(-0.2, 0.2)),
-            b: Point2::new(self.range(-0.2, 0.2), self.range(0.5, 1.0)),
-            c: Point2::new(self.range(0.5, 1.0), self.range(-0.2, 0.2)),
-            load2: self.load(),
-            load3: self.load(),
-        }
-    }
-}
-
 fn per_call(c: &mut Criterion) {
     let mut rng = Rng(0x9E37_79B9_7F4A_7C15);
-    let rrr = rng.rrr();
+    let rrr = rng.rrr_dyad();
     let rrp = RrpDyad {
         a: rrr.a,
         b: rrr.b,
@@ -232,7 +201,7 @@ fn close(a: [Vector2<f64>; 3], b: [Vector2<f64>; 3]) -> bool {
 fn yardsticks(c: &mut Criterion) {
     const N: usize = 1024;
     let mut rng = Rng(0x5EED);
-    let rrr: Vec<RrrDyad> = (0..N).map(|_| rng.rrr()).collect();
+    let rrr: Vec<RrrDyad> = (0..N).map(|_| rng.rrr_dyad()).collect();
     let rrp: Vec<RrpDyad> = rrr
         .iter()
         .map(|d| RrpDyad {
@@ -351,7 +320,7 @@ fn sweep(c: &mut Criterion) {
         .warm_up_time(Duration::from_millis(500));
     for n in [1_000usize, 10_000, 100_000, 1_000_000] {
         let mut rng = Rng(42);
-        let dyads: Vec<RrrDyad> = (0..n).map(|_| rng.rrr()).collect();
+        let dyads: Vec<RrrDyad> = (0..n).map(|_| rng.rrr_dyad()).collect();
         g.throughput(Throughput::Elements(n as u64));
         g.bench_with_input(BenchmarkId::from_parameter(n), &dyads, |b, dyads| {
             b.iter(|| {

@@ -17,6 +17,30 @@ use crate::kinetostatics::{
 use crate::Load;
 use nalgebra::{Point2, Vector2};
 
+/// A friction block's `solve` with the default [`Iteration`], and its reactions' power lost
+/// in the joints `$joint`.
+macro_rules! block_api {
+    ($block:ident, $reactions:ident, [$($joint:ident),+]) => {
+        impl $block {
+            /// Solves the dyad with friction, with the default [`Iteration`].
+            ///
+            /// # Errors
+            /// As [`Self::solve_with`].
+            pub fn solve(&self) -> Result<$reactions> {
+                self.solve_with(&Iteration::default())
+            }
+        }
+
+        impl $reactions {
+            /// The power lost in the dyad's three joints, W.
+            #[must_use]
+            pub fn power_lost(&self) -> f64 {
+                [$(self.$joint.power_lost),+].iter().sum()
+            }
+        }
+    };
+}
+
 /// The numbers shared by every dyad's friction solve.
 struct Setup {
     v0: [f64; 6],
@@ -34,6 +58,36 @@ struct Outcome {
 }
 
 impl Setup {
+    /// The setup of a dyad whose frictionless reactions are `v0`, its joints' pressure laws,
+    /// coefficients (ρ or f) and relative rates.
+    fn new(v0: [f64; 6], laws: [Pressure; 3], coefficient: [f64; 3], rate: [f64; 3]) -> Self {
+        Self {
+            v0,
+            laws,
+            c: [0, 1, 2].map(|k| coefficient[k] * sign(rate[k])),
+            rate,
+        }
+    }
+
+    /// The frictionless solution when no joint has friction, else the friction equations
+    /// solved with the reactions' responses `unit()` (as [`Setup::solve`]) and the load
+    /// scale of the frictionless reactions' force numbers `forces` and the loads.
+    #[inline(always)]
+    fn run(
+        &self,
+        unit: impl FnOnce() -> Result<[[f64; 6]; 3]>,
+        forces: &[f64],
+        loads: [&Load; 2],
+        options: &Iteration,
+        what: &'static str,
+        joints: [&'static str; 3],
+    ) -> Result<Outcome> {
+        if self.frictionless() {
+            return Ok(self.none());
+        }
+        self.solve(unit()?, scale(forces, loads), options, what, joints)
+    }
+
     fn frictionless(&self) -> bool {
         self.c.iter().all(|&c| c == 0.0)
     }
@@ -128,6 +182,17 @@ fn max_abs(v: &[Vector2<f64>; 2]) -> f64 {
         wider(v[0].x.abs(), v[0].y.abs()),
         wider(v[1].x.abs(), v[1].y.abs()),
     )
+}
+
+/// A slide's whole force on its second link: the normal force across the unit direction
+/// `dir` (turned +90°) and the friction along it.
+#[inline(always)]
+fn slide_force(
+    dir: Vector2<f64>,
+    contact: &SlideContact,
+    friction: &JointFriction,
+) -> Vector2<f64> {
+    perp(dir) * contact.normal + dir * friction.load
 }
 
 fn couple(at: Point2<f64>) -> Load {
@@ -241,13 +306,9 @@ impl RrrFrictionReactions {
     pub fn on_link4(&self, dyad: &RrrDyad) -> Load {
         load(dyad.c, -self.r43, -self.c.load)
     }
-
-    /// The power lost in the dyad's three hinges, W.
-    #[must_use]
-    pub fn power_lost(&self) -> f64 {
-        self.a.power_lost + self.b.power_lost + self.c.power_lost
-    }
 }
+
+block_api!(RrrFriction, RrrFrictionReactions, [a, b, c]);
 
 fn rrr_values(r: &RrrReactions) -> [f64; 6] {
     [r.r12.x, r.r12.y, r.r23.x, r.r23.y, r.r43.x, r.r43.y]
@@ -286,14 +347,6 @@ fn rrr_friction_columns(d: &RrrDyad, c: [f64; 3]) -> [[f64; 6]; 3] {
 }
 
 impl RrrFriction {
-    /// Solves the dyad with friction, with the default [`Iteration`].
-    ///
-    /// # Errors
-    /// As [`RrrFriction::solve_with`].
-    pub fn solve(&self) -> Result<RrrFrictionReactions> {
-        self.solve_with(&Iteration::default())
-    }
-
     /// Solves the dyad with friction.
     ///
     /// # Errors
@@ -535,27 +588,15 @@ impl RrpFrictionReactions {
     pub fn on_link4(&self, dyad: &RrpDyad) -> Load {
         load(dyad.b, -self.r43, -self.contact43.moment)
     }
-
-    /// The power lost in the dyad's three joints, W.
-    #[must_use]
-    pub fn power_lost(&self) -> f64 {
-        self.a.power_lost + self.b.power_lost + self.guide.power_lost
-    }
 }
+
+block_api!(RrpFriction, RrpFrictionReactions, [a, b, guide]);
 
 fn rrp_values(r: &RrpReactions) -> [f64; 6] {
     [r.r12.x, r.r12.y, r.r23.x, r.r23.y, r.r43_n, r.guide_moment]
 }
 
 impl RrpFriction {
-    /// Solves the dyad with friction, with the default [`Iteration`].
-    ///
-    /// # Errors
-    /// As [`RrpFriction::solve_with`].
-    pub fn solve(&self) -> Result<RrpFrictionReactions> {
-        self.solve_with(&Iteration::default())
-    }
-
     /// Solves the dyad with friction.
     ///
     /// # Errors
@@ -583,62 +624,40 @@ impl RrpFriction {
             ("slide", w.slide),
         ])?;
         let rate = [w.omega2 - w.omega1, w.omega4 - w.omega2, w.slide];
-        let coefficient = [rho_a, rho_b, f];
-        let setup = Setup {
-            v0: rrp_values(&base),
-            laws: [Pressure::Hinge, Pressure::Hinge, law],
-            c: [0, 1, 2].map(|k| coefficient[k] * sign(rate[k])),
-            rate,
-        };
+        let laws = [Pressure::Hinge, Pressure::Hinge, law];
+        let setup = Setup::new(rrp_values(&base), laws, [rho_a, rho_b, f], rate);
         let g = unit_direction("|guide|", d.guide)?;
-        let out = if setup.frictionless() {
-            setup.none()
-        } else {
-            let zero = Load::zero(d.b);
-            let e2 = rrp_values(
-                &RrpDyad {
-                    load2: couple(d.b),
-                    load3: zero,
-                    ..*d
-                }
-                .solve()?,
-            );
-            let e3 = rrp_values(
-                &RrpDyad {
-                    load2: zero,
-                    load3: couple(d.b),
-                    ..*d
-                }
-                .solve()?,
-            );
-            let slide = RrpDyad {
-                load2: zero,
-                load3: Load::force_at(d.b, g),
-                ..*d
-            };
-            let v = &setup.v0;
-            setup.solve(
-                [e2, sub(e3, e2), rrp_values(&slide.solve()?)],
-                scale(&[v[0], v[1], v[2], v[3], v[4]], [&d.load2, &d.load3]),
-                options,
-                "RRP dyad with friction",
-                [
-                    "joint A (links 1 and 2)",
-                    "joint B (links 2 and 3)",
-                    "the guide (links 4 and 3)",
-                ],
-            )?
+        let solve = |load2, load3| {
+            RrpDyad { load2, load3, ..*d }
+                .solve()
+                .map(|r| rrp_values(&r))
         };
+        let zero = Load::zero(d.b);
+        let unit = || {
+            let e2 = solve(couple(d.b), zero)?;
+            let e3 = solve(zero, couple(d.b))?;
+            Ok([e2, sub(e3, e2), solve(zero, Load::force_at(d.b, g))?])
+        };
+        let v = &setup.v0;
+        let out = setup.run(
+            unit,
+            &[v[0], v[1], v[2], v[3], v[4]],
+            [&d.load2, &d.load3],
+            options,
+            "RRP dyad with friction",
+            [
+                "joint A (links 1 and 2)",
+                "joint B (links 2 and 3)",
+                "the guide (links 4 and 3)",
+            ],
+        )?;
         let [a, b, guide] = out.joints;
         let contact43 = SlideContact::new(out.v[4], out.v[5], law);
         let (r12, r23, r43) = if setup.frictionless() {
             (base.r12, base.r23, base.r43)
         } else {
-            (
-                vec(&out.v, 0),
-                vec(&out.v, 1),
-                perp(g) * contact43.normal + g * guide.load,
-            )
+            let r43 = slide_force(g, &contact43, &guide);
+            (vec(&out.v, 0), vec(&out.v, 1), r43)
         };
         Ok(RrpFrictionReactions {
             r12,
@@ -733,27 +752,15 @@ impl RprFrictionReactions {
     pub fn on_link4(&self, dyad: &RprDyad) -> Load {
         load(dyad.e, -self.r43, -self.e.load)
     }
-
-    /// The power lost in the dyad's three joints, W.
-    #[must_use]
-    pub fn power_lost(&self) -> f64 {
-        self.a.power_lost + self.slide.power_lost + self.e.power_lost
-    }
 }
+
+block_api!(RprFriction, RprFrictionReactions, [a, slide, e]);
 
 fn rpr_values(r: &RprReactions) -> [f64; 6] {
     [r.r12.x, r.r12.y, r.r32_n, r.couple, r.r43.x, r.r43.y]
 }
 
 impl RprFriction {
-    /// Solves the dyad with friction, with the default [`Iteration`].
-    ///
-    /// # Errors
-    /// As [`RprFriction::solve_with`].
-    pub fn solve(&self) -> Result<RprFrictionReactions> {
-        self.solve_with(&Iteration::default())
-    }
-
     /// Solves the dyad with friction.
     ///
     /// # Errors
@@ -781,62 +788,39 @@ impl RprFriction {
             ("slide", w.slide),
         ])?;
         let rate = [w.omega - w.omega1, w.slide, w.omega - w.omega4];
-        let coefficient = [rho_a, f, rho_e];
-        let setup = Setup {
-            v0: rpr_values(&base),
-            laws: [Pressure::Hinge, law, Pressure::Hinge],
-            c: [0, 1, 2].map(|k| coefficient[k] * sign(rate[k])),
-            rate,
-        };
+        let laws = [Pressure::Hinge, law, Pressure::Hinge];
+        let setup = Setup::new(rpr_values(&base), laws, [rho_a, f, rho_e], rate);
         let u = unit_direction("|axis|", d.axis)?;
-        let out = if setup.frictionless() {
-            setup.none()
-        } else {
-            let zero = Load::zero(d.a);
-            let e2 = rpr_values(
-                &RprDyad {
-                    load2: couple(d.a),
-                    load3: zero,
-                    ..*d
-                }
-                .solve()?,
-            );
-            let e3 = rpr_values(
-                &RprDyad {
-                    load2: zero,
-                    load3: couple(d.a),
-                    ..*d
-                }
-                .solve()?,
-            );
-            let slide = RprDyad {
-                load2: Load::force_at(d.a, u),
-                load3: Load::force_at(d.a, -u),
-                ..*d
-            };
-            let v = &setup.v0;
-            setup.solve(
-                [e2, rpr_values(&slide.solve()?), e3],
-                scale(&[v[0], v[1], v[2], v[4], v[5]], [&d.load2, &d.load3]),
-                options,
-                "RPR dyad with friction",
-                [
-                    "joint A (links 1 and 2)",
-                    "the slide (links 3 and 2)",
-                    "joint E (links 4 and 3)",
-                ],
-            )?
+        let solve = |load2, load3| {
+            RprDyad { load2, load3, ..*d }
+                .solve()
+                .map(|r| rpr_values(&r))
         };
+        let zero = Load::zero(d.a);
+        let unit = || {
+            let slide = solve(Load::force_at(d.a, u), Load::force_at(d.a, -u))?;
+            Ok([solve(couple(d.a), zero)?, slide, solve(zero, couple(d.a))?])
+        };
+        let v = &setup.v0;
+        let out = setup.run(
+            unit,
+            &[v[0], v[1], v[2], v[4], v[5]],
+            [&d.load2, &d.load3],
+            options,
+            "RPR dyad with friction",
+            [
+                "joint A (links 1 and 2)",
+                "the slide (links 3 and 2)",
+                "joint E (links 4 and 3)",
+            ],
+        )?;
         let [a, slide, e] = out.joints;
         let contact32 = SlideContact::new(out.v[2], out.v[3], law);
         let (r12, r32, r43) = if setup.frictionless() {
             (base.r12, base.r32, base.r43)
         } else {
-            (
-                vec(&out.v, 0),
-                perp(u) * contact32.normal + u * slide.load,
-                vec(&out.v, 2),
-            )
+            let r32 = slide_force(u, &contact32, &slide);
+            (vec(&out.v, 0), r32, vec(&out.v, 2))
         };
         Ok(RprFrictionReactions {
             r12,
@@ -930,27 +914,15 @@ impl PrpFrictionReactions {
     pub fn on_link4(&self, dyad: &PrpDyad) -> Load {
         load(dyad.b, -self.r43, -self.contact43.moment)
     }
-
-    /// The power lost in the dyad's three joints, W.
-    #[must_use]
-    pub fn power_lost(&self) -> f64 {
-        self.guide2.power_lost + self.b.power_lost + self.guide3.power_lost
-    }
 }
+
+block_api!(PrpFriction, PrpFrictionReactions, [guide2, b, guide3]);
 
 fn prp_values(r: &PrpReactions) -> [f64; 6] {
     [r.r12_n, r.moment12, r.r23.x, r.r23.y, r.r43_n, r.moment43]
 }
 
 impl PrpFriction {
-    /// Solves the dyad with friction, with the default [`Iteration`].
-    ///
-    /// # Errors
-    /// As [`PrpFriction::solve_with`].
-    pub fn solve(&self) -> Result<PrpFrictionReactions> {
-        self.solve_with(&Iteration::default())
-    }
-
     /// Solves the dyad with friction.
     ///
     /// # Errors
@@ -979,52 +951,43 @@ impl PrpFriction {
             ("slide3", w.slide3),
         ])?;
         let rate = [w.slide2, w.omega4 - w.omega1, w.slide3];
-        let coefficient = [f2, rho_b, f3];
-        let setup = Setup {
-            v0: prp_values(&base),
-            laws: [law2, Pressure::Hinge, law3],
-            c: [0, 1, 2].map(|k| coefficient[k] * sign(rate[k])),
-            rate,
-        };
+        let laws = [law2, Pressure::Hinge, law3];
+        let setup = Setup::new(prp_values(&base), laws, [f2, rho_b, f3], rate);
         let g2 = unit_direction("|guide2|", d.guide2)?;
         let g3 = unit_direction("|guide3|", d.guide3)?;
-        let out = if setup.frictionless() {
-            setup.none()
-        } else {
-            let zero = Load::zero(d.b);
-            let solve = |load2, load3| {
-                PrpDyad { load2, load3, ..*d }
-                    .solve()
-                    .map(|r| prp_values(&r))
-            };
+        let solve = |load2, load3| {
+            PrpDyad { load2, load3, ..*d }
+                .solve()
+                .map(|r| prp_values(&r))
+        };
+        let zero = Load::zero(d.b);
+        let unit = || {
             let e2 = solve(couple(d.b), zero)?;
             let e3 = solve(zero, couple(d.b))?;
             let s2 = solve(Load::force_at(d.b, g2), zero)?;
-            let s3 = solve(zero, Load::force_at(d.b, g3))?;
-            let v = &setup.v0;
-            setup.solve(
-                [s2, sub(e3, e2), s3],
-                scale(&[v[0], v[2], v[3], v[4]], [&d.load2, &d.load3]),
-                options,
-                "PRP dyad with friction",
-                [
-                    "guide 2 (links 1 and 2)",
-                    "joint B (links 2 and 3)",
-                    "guide 3 (links 4 and 3)",
-                ],
-            )?
+            Ok([s2, sub(e3, e2), solve(zero, Load::force_at(d.b, g3))?])
         };
+        let v = &setup.v0;
+        let out = setup.run(
+            unit,
+            &[v[0], v[2], v[3], v[4]],
+            [&d.load2, &d.load3],
+            options,
+            "PRP dyad with friction",
+            [
+                "guide 2 (links 1 and 2)",
+                "joint B (links 2 and 3)",
+                "guide 3 (links 4 and 3)",
+            ],
+        )?;
         let [guide2, b, guide3] = out.joints;
         let contact12 = SlideContact::new(out.v[0], out.v[1], law2);
         let contact43 = SlideContact::new(out.v[4], out.v[5], law3);
         let (r12, r23, r43) = if setup.frictionless() {
             (base.r12, base.r23, base.r43)
         } else {
-            (
-                perp(g2) * contact12.normal + g2 * guide2.load,
-                vec(&out.v, 1),
-                perp(g3) * contact43.normal + g3 * guide3.load,
-            )
+            let r12 = slide_force(g2, &contact12, &guide2);
+            (r12, vec(&out.v, 1), slide_force(g3, &contact43, &guide3))
         };
         Ok(PrpFrictionReactions {
             r12,
@@ -1119,27 +1082,15 @@ impl RppFrictionReactions {
     pub fn on_link4(&self, dyad: &RppDyad) -> Load {
         load(dyad.b, -self.r43, -self.contact43.moment)
     }
-
-    /// The power lost in the dyad's three joints, W.
-    #[must_use]
-    pub fn power_lost(&self) -> f64 {
-        self.a.power_lost + self.slot.power_lost + self.guide.power_lost
-    }
 }
+
+block_api!(RppFriction, RppFrictionReactions, [a, slot, guide]);
 
 fn rpp_values(r: &RppReactions) -> [f64; 6] {
     [r.r12.x, r.r12.y, r.r32_n, r.moment32, r.r43_n, r.moment43]
 }
 
 impl RppFriction {
-    /// Solves the dyad with friction, with the default [`Iteration`].
-    ///
-    /// # Errors
-    /// As [`RppFriction::solve_with`].
-    pub fn solve(&self) -> Result<RppFrictionReactions> {
-        self.solve_with(&Iteration::default())
-    }
-
     /// Solves the dyad with friction.
     ///
     /// # Errors
@@ -1168,50 +1119,42 @@ impl RppFriction {
             ("slide", w.slide),
         ])?;
         let rate = [w.omega4 - w.omega1, w.slot, w.slide];
-        let coefficient = [rho_a, fs, fg];
-        let setup = Setup {
-            v0: rpp_values(&base),
-            laws: [Pressure::Hinge, law_s, law_g],
-            c: [0, 1, 2].map(|k| coefficient[k] * sign(rate[k])),
-            rate,
-        };
+        let laws = [Pressure::Hinge, law_s, law_g];
+        let setup = Setup::new(rpp_values(&base), laws, [rho_a, fs, fg], rate);
         let u = unit_direction("|guide|", d.guide)?;
         let v_dir = unit_direction("|slot|", d.slot)?;
-        let out = if setup.frictionless() {
-            setup.none()
-        } else {
-            let solve = |load2, load3| {
-                RppDyad { load2, load3, ..*d }
-                    .solve()
-                    .map(|r| rpp_values(&r))
-            };
-            let e2 = solve(couple(d.a), Load::zero(d.a))?;
-            let slot = solve(Load::force_at(d.a, v_dir), Load::force_at(d.a, -v_dir))?;
-            let guide = solve(Load::zero(d.a), Load::force_at(d.b, u))?;
-            let v = &setup.v0;
-            setup.solve(
-                [e2, slot, guide],
-                scale(&[v[0], v[1], v[2], v[4]], [&d.load2, &d.load3]),
-                options,
-                "RPP dyad with friction",
-                [
-                    "joint A (links 1 and 2)",
-                    "the slot (links 3 and 2)",
-                    "the guide (links 4 and 3)",
-                ],
-            )?
+        let solve = |load2, load3| {
+            RppDyad { load2, load3, ..*d }
+                .solve()
+                .map(|r| rpp_values(&r))
         };
+        let zero = Load::zero(d.a);
+        let unit = || {
+            let e2 = solve(couple(d.a), zero)?;
+            let slot = solve(Load::force_at(d.a, v_dir), Load::force_at(d.a, -v_dir))?;
+            Ok([e2, slot, solve(zero, Load::force_at(d.b, u))?])
+        };
+        let v = &setup.v0;
+        let out = setup.run(
+            unit,
+            &[v[0], v[1], v[2], v[4]],
+            [&d.load2, &d.load3],
+            options,
+            "RPP dyad with friction",
+            [
+                "joint A (links 1 and 2)",
+                "the slot (links 3 and 2)",
+                "the guide (links 4 and 3)",
+            ],
+        )?;
         let [a, slot, guide] = out.joints;
         let contact32 = SlideContact::new(out.v[2], out.v[3], law_s);
         let contact43 = SlideContact::new(out.v[4], out.v[5], law_g);
         let (r12, r32, r43) = if setup.frictionless() {
             (base.r12, base.r32, base.r43)
         } else {
-            (
-                vec(&out.v, 0),
-                perp(v_dir) * contact32.normal + v_dir * slot.load,
-                perp(u) * contact43.normal + u * guide.load,
-            )
+            let r32 = slide_force(v_dir, &contact32, &slot);
+            (vec(&out.v, 0), r32, slide_force(u, &contact43, &guide))
         };
         Ok(RppFrictionReactions {
             r12,

@@ -33,6 +33,23 @@ pub(crate) struct Solved {
     pub convergence: Convergence,
 }
 
+impl Solved {
+    /// Converged by the direct Newton (no continuation) in `steps` steps.
+    #[inline(always)]
+    fn direct(m: [f64; 3], v: [f64; 6], steps: usize, det: f64, residual: f64) -> Self {
+        Self {
+            m,
+            v,
+            convergence: Convergence {
+                iterations: steps,
+                continued: false,
+                det,
+                residual,
+            },
+        }
+    }
+}
+
 impl Problem {
     /// The pressures of the reactions `v`.
     #[inline(always)]
@@ -108,16 +125,7 @@ impl Problem {
             }
             let residual = residual(&psi, &m);
             if steps > 0 && residual <= tol / det.min(1.0) {
-                return Ok(Solved {
-                    m,
-                    v,
-                    convergence: Convergence {
-                        iterations: steps,
-                        continued: false,
-                        det,
-                        residual,
-                    },
-                });
+                return Ok(Solved::direct(m, v, steps, det, residual));
             }
             if steps >= limit {
                 break;
@@ -296,16 +304,9 @@ pub(crate) fn three_hinges(
             let det = scaled / product;
             // A NaN anywhere in the reactions shows in their sum.
             let sum = v[0] + v[1] + v[2] + v[3] + v[4] + v[5];
-            return sum.is_finite().then_some(Solved {
-                m,
-                v,
-                convergence: Convergence {
-                    iterations: steps,
-                    continued: false,
-                    det,
-                    residual,
-                },
-            });
+            return sum
+                .is_finite()
+                .then_some(Solved::direct(m, v, steps, det, residual));
         }
         if steps >= limit {
             return None;
