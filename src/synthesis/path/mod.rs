@@ -30,6 +30,7 @@ use crate::kinematics::batch::{
 use crate::kinematics::{crank, rrr_dyad, Branch, Motion, PointMotion};
 use crate::linkage::NamedPoint;
 use nalgebra::{DMatrix, DVector, Point2, Vector2};
+use std::cell::Cell;
 use std::f64::consts::TAU;
 use std::time::{Duration, Instant};
 
@@ -76,10 +77,13 @@ pub struct PathOptions {
     pub seed: u64,
     /// The population of the differential evolution. Default 120.
     pub population: usize,
-    /// The budget of candidate evaluations of the global stage. Default 200 000.
+    /// The budget of candidate evaluations, at least twice the population: in the global
+    /// stage a candidate over a turn (or at its prescribed angles), in the polish a candidate
+    /// at the target points. Default 200 000.
     pub max_evaluations: usize,
-    /// The budget of wall-clock time of the global stage; the polish of the first design
-    /// always runs. Default 60 s.
+    /// The budget of wall-clock time, positive, of the global stage and the polish alike
+    /// (a polish that reaches it ends where it is, and its result is still checked whole).
+    /// Default 60 s.
     pub max_time: Duration,
     /// How many distinct designs to return, best first. Default 3.
     pub designs: usize,
@@ -215,12 +219,50 @@ const BASE: usize = 10;
 const INFEASIBLE: f64 = 1e3;
 /// How many of the best candidates are polished.
 const POLISHED: usize = 8;
+/// The most target points: the polish's Jacobian without prescribed timing is dense, of
+/// 2n rows and n + 9 columns.
+const MAX_POINTS: usize = 500;
+/// The largest population, and the most crank positions per turn (memory).
+const MAX_POPULATION: usize = 100_000;
 /// Every how many generations the best member is polished within the evolution.
 const MEMETIC: usize = 5;
 /// Generations without improvement that end a run of the differential evolution.
 const STAGNATION: usize = 40;
 
+/// The search's budget, shared by the global stage and the polish: candidate evaluations
+/// (one candidate over a turn, or at its prescribed angles, in the global stage; one
+/// candidate at the target points in the polish) and wall-clock time.
+struct Budget {
+    used: Cell<usize>,
+    max: usize,
+    start: Instant,
+    max_time: Duration,
+}
+
+impl Budget {
+    /// Whether `n` more evaluations fit, in number and in time.
+    fn room(&self, n: usize) -> bool {
+        self.used.get().saturating_add(n) <= self.max && self.start.elapsed() < self.max_time
+    }
+    fn add(&self, n: usize) {
+        self.used.set(self.used.get() + n);
+    }
+    fn used(&self) -> usize {
+        self.used.get()
+    }
+    /// Takes one evaluation of the polish, leaving one for the check of its result: `false`
+    /// when the budget (of evaluations or time) is spent.
+    fn take_polish(&self) -> bool {
+        let ok = self.room(2);
+        if ok {
+            self.add(1);
+        }
+        ok
+    }
+}
+
 struct Problem {
+    budget: Budget,
     targets: Vec<V>,
     timing: Timing,
     sin_gamma: f64,
@@ -452,7 +494,13 @@ impl Problem {
     /// Levenberg–Marquardt on the misses from `x` (the link ratio kept; the other
     /// constraints are checked on the result).
     fn lm(&self, x: Vec<f64>, sigma: f64, iterations: usize) -> Vec<f64> {
-        let res = |x: &[f64]| pb_residuals(&self.targets, &self.timing, x, sigma);
+        let res = |x: &[f64]| {
+            if self.budget.take_polish() {
+                pb_residuals(&self.targets, &self.timing, x, sigma)
+            } else {
+                None
+            }
+        };
         let mut accept = |x: &[f64]| self.lengths_ok(&gene_vec(x, sigma)) == 0.0;
         let separable = if let Timing::Prescribed(_) = self.timing {
             x.len()
@@ -472,6 +520,7 @@ impl Problem {
     /// The whole check of a polished point: link ratio, and assembly with γ ≥ \[γ\] over the
     /// input range it needs (sampled every 1°, and at each target's angle).
     fn feasible(&mut self, x: &[f64], sigma: f64) -> bool {
+        self.budget.add(1);
         let g = gene_vec(x, sigma);
         if self.lengths_ok(&g) > 0.0 {
             return false;
@@ -648,8 +697,21 @@ impl Found {
     }
 }
 
-/// Nelder–Mead on `f` from `x0` with initial steps `step`, `max` evaluations.
-fn nelder_mead(f: &mut dyn FnMut(&[f64]) -> f64, x0: &[f64], step: &[f64], max: usize) -> Vec<f64> {
+/// Nelder–Mead on `f` from `x0` with initial steps `step`, `max` evaluations; `f` says
+/// `None` when the budget is spent, which ends the search at the best vertex so far.
+fn nelder_mead(
+    f: &mut dyn FnMut(&[f64]) -> Option<f64>,
+    x0: &[f64],
+    step: &[f64],
+    max: usize,
+) -> Vec<f64> {
+    let spent = Cell::new(false);
+    let mut f = |x: &[f64]| {
+        f(x).unwrap_or_else(|| {
+            spent.set(true);
+            f64::INFINITY
+        })
+    };
     let n = x0.len();
     let mut simplex: Vec<(Vec<f64>, f64)> = Vec::with_capacity(n + 1);
     simplex.push((x0.to_vec(), f(x0)));
@@ -660,7 +722,7 @@ fn nelder_mead(f: &mut dyn FnMut(&[f64]) -> f64, x0: &[f64], step: &[f64], max: 
         simplex.push((x, fx));
     }
     let mut evals = n + 1;
-    while evals < max {
+    while evals < max && !spent.get() {
         simplex.sort_by(|a, b| a.1.total_cmp(&b.1));
         if (simplex[n].1 - simplex[0].1).abs() <= 1e-30 + 1e-15 * simplex[0].1.abs() {
             break;
@@ -805,6 +867,15 @@ fn check_requirement(req: &PathRequirement, opts: &PathOptions) -> Result<f64> {
         crate::error::finite("points", p[1])?;
     }
     let n = req.points.len();
+    if n > MAX_POINTS {
+        return Err(Error::OutOfRange {
+            name: "points",
+            value: n as f64,
+            min: 0.0,
+            max: MAX_POINTS as f64,
+            ends: crate::Ends::Closed,
+        });
+    }
     let (min, name) = match &req.timing {
         Timing::Free => (9, "points"),
         Timing::ClosedCurve => (9, "points"),
@@ -843,9 +914,15 @@ fn check_requirement(req: &PathRequirement, opts: &PathOptions) -> Result<f64> {
             ends: crate::Ends::Closed,
         });
     }
-    let pts: Vec<V> = req.points.iter().map(|p| V::new(p[0], p[1])).collect();
-    let c = pts.iter().sum::<V>() / n as f64;
-    let size = pts.iter().map(|p| (p - c).norm()).fold(0.0, f64::max);
+    let (pts, _, size) = normalised(&req.points);
+    // The engine squares lengths and coordinates: a path too large (or too small) for that
+    // is no path of `f64` four-bars. A size of 0 is coinciding points, named below.
+    let far = pts.iter().map(|p| p.norm()).fold(0.0, f64::max);
+    if !(far * far).is_finite() || (size > 0.0 && size * size < f64::MIN_POSITIVE) {
+        return Err(Error::Overflow {
+            what: "points (their coordinates or the path's size)",
+        });
+    }
     for i in 0..n {
         for j in 0..i {
             if (pts[i] - pts[j]).norm() <= 1e-9 * size {
@@ -870,16 +947,63 @@ fn check_requirement(req: &PathRequirement, opts: &PathOptions) -> Result<f64> {
             });
         }
     }
-    if opts.population < 8 || opts.positions < 8 {
+    for (name, v) in [
+        ("population", opts.population),
+        ("positions", opts.positions),
+    ] {
+        if !(8..=MAX_POPULATION).contains(&v) {
+            return Err(Error::OutOfRange {
+                name,
+                value: v as f64,
+                min: 8.0,
+                max: MAX_POPULATION as f64,
+                ends: crate::Ends::Closed,
+            });
+        }
+    }
+    if !(opts.tolerance >= 0.0 && opts.tolerance.is_finite()) {
         return Err(Error::OutOfRange {
-            name: "population and positions",
-            value: opts.population.min(opts.positions) as f64,
-            min: 8.0,
+            name: "tolerance",
+            value: opts.tolerance,
+            min: 0.0,
+            max: f64::INFINITY,
+            ends: crate::Ends::OpenAbove,
+        });
+    }
+    // The first population and one generation.
+    let least = 2 * opts.population;
+    if opts.max_evaluations < least {
+        return Err(Error::OutOfRange {
+            name: "max_evaluations (at least twice the population)",
+            value: opts.max_evaluations as f64,
+            min: least as f64,
             max: f64::INFINITY,
             ends: crate::Ends::Closed,
         });
     }
+    if opts.max_time.is_zero() {
+        return Err(Error::OutOfRange {
+            name: "max_time",
+            value: 0.0,
+            min: 0.0,
+            max: f64::INFINITY,
+            ends: crate::Ends::OpenBelow,
+        });
+    }
     Ok(gamma)
+}
+
+/// The points as vectors, their centroid and the path's size (the largest distance of a
+/// point from the centroid), computed so that no sum overflows where the points do not.
+fn normalised(points: &[[f64; 2]]) -> (Vec<V>, V, f64) {
+    let pts: Vec<V> = points.iter().map(|p| V::new(p[0], p[1])).collect();
+    let n = pts.len().max(1) as f64;
+    let c = pts.iter().map(|p| p / n).sum::<V>();
+    let size = pts
+        .iter()
+        .map(|p| (p.x - c.x).hypot(p.y - c.y))
+        .fold(0.0, f64::max);
+    (pts, c, size)
 }
 
 /// A four-bar whose coupler point passes through the points of `req` (or traces its closed
@@ -891,8 +1015,11 @@ fn check_requirement(req: &PathRequirement, opts: &PathOptions) -> Result<f64> {
 /// # Errors
 /// [`Error::NonFinite`] naming `points` or `timing`; [`Error::OutOfRange`] naming `points`
 /// for fewer points than the unknowns need (9 free or on a closed curve, 5 with prescribed
-/// timing), or a bad option; [`Error::NoMechanism`] for coinciding points, or when no
-/// candidate met the constraints (γ, link ratio, assembly over the range) within the budget.
+/// timing) or more than 500, or naming a bad option (a budget of no evaluations or no time
+/// among them); [`Error::Overflow`] naming `points` when their coordinates or the path's
+/// size cannot be squared in `f64`; [`Error::NoMechanism`] for coinciding points, or when no
+/// candidate met the constraints (γ, link ratio, assembly over the range) within the budget
+/// (the message gives the evaluations and time spent, and the budget).
 pub fn path_generator(
     req: &PathRequirement,
     opts: &PathOptions,
@@ -900,12 +1027,15 @@ pub fn path_generator(
 ) -> Result<Vec<PathDesign>> {
     let gamma = check_requirement(req, opts)?;
     let start = Instant::now();
-    let n = req.points.len();
-    let pts: Vec<V> = req.points.iter().map(|p| V::new(p[0], p[1])).collect();
-    let centre = pts.iter().sum::<V>() / n as f64;
-    let scale = pts.iter().map(|p| (p - centre).norm()).fold(0.0, f64::max);
+    let (pts, centre, scale) = normalised(&req.points);
     let targets: Vec<V> = pts.iter().map(|p| (p - centre) / scale).collect();
     let mut pb = Problem {
+        budget: Budget {
+            used: Cell::new(0),
+            max: opts.max_evaluations,
+            start,
+            max_time: opts.max_time,
+        },
         targets,
         timing: req.timing.clone(),
         sin_gamma: gamma.sin(),
@@ -933,9 +1063,12 @@ pub fn path_generator(
         return Err(Error::NoMechanism {
             method: "path generation",
             problem: format!(
-                "no four-bar met the constraints (γ ≥ {:.1}°, link ratio ≤ {}, assembly over the range) in {evals} evaluations",
+                "no four-bar met the constraints (γ ≥ {:.1}°, link ratio ≤ {}, assembly over the range) in {evals} evaluations and {:.3} s (the budget: {} evaluations, {:.3} s)",
                 gamma.to_degrees(),
-                opts.max_link_ratio
+                opts.max_link_ratio,
+                start.elapsed().as_secs_f64(),
+                opts.max_evaluations,
+                opts.max_time.as_secs_f64(),
             ),
         });
     }
@@ -960,13 +1093,12 @@ fn search_timed(
     let mut rng = Rng(opts.seed);
     let start = found.start;
     let want = opts.designs.max(1);
-    let mut evals = 0;
     let mut generation = 0;
     let mut stopped = false;
     // Runs of differential evolution from fresh random populations, each until it stagnates,
     // its best candidates polished; until enough designs meet the points to `tolerance` or
     // the budget is spent.
-    while !stopped && evals + 2 * np <= opts.max_evaluations && start.elapsed() < opts.max_time {
+    while !stopped && pb.budget.room(2 * np) {
         let mut pop: Vec<Vec<f64>> = (0..np)
             .map(|_| {
                 (0..dim)
@@ -975,9 +1107,9 @@ fn search_timed(
             })
             .collect();
         let mut fit: Vec<f64> = pop.iter().map(|g| pb.objective(g)).collect();
-        evals += np;
+        pb.budget.add(np);
         let (mut last_best, mut since) = (f64::INFINITY, 0);
-        while evals + np <= opts.max_evaluations && start.elapsed() < opts.max_time {
+        while pb.budget.room(np) {
             generation += 1;
             let f_scale = 0.5 + 0.5 * rng.unit();
             // DE/current-to-pbest/1/bin: towards one of the best tenth, plus a random difference.
@@ -1015,7 +1147,7 @@ fn search_timed(
                     })
                     .collect();
                 let ft = pb.objective(&trial);
-                evals += 1;
+                pb.budget.add(1);
                 if ft <= fit[i] {
                     pop[i] = trial;
                     fit[i] = ft;
@@ -1028,14 +1160,14 @@ fn search_timed(
                     .min_by(|&a, &b| fit[a].total_cmp(&fit[b]))
                     .unwrap_or(0);
                 for i in [best_i, rng.below(np)] {
-                    if fit[i] >= INFEASIBLE {
+                    if fit[i] >= INFEASIBLE || !pb.budget.room(2) {
                         continue;
                     }
                     let (x, sigma) = pb.start_of(&pop[i]);
                     let x = pb.lm(x, sigma, 30);
                     let g = pb.genes_of(&x, sigma);
                     let f = pb.objective(&g);
-                    evals += 1;
+                    pb.budget.add(1);
                     if f < fit[i] {
                         pop[i] = g;
                         fit[i] = f;
@@ -1045,7 +1177,7 @@ fn search_timed(
             let best = fit.iter().copied().fold(f64::INFINITY, f64::min);
             let go_on = progress(&Progress {
                 generation,
-                evaluations: evals,
+                evaluations: pb.budget.used(),
                 best,
                 elapsed: start.elapsed(),
             });
@@ -1069,16 +1201,21 @@ fn search_timed(
             if rank >= POLISHED {
                 break;
             }
-            if rank > 0 && start.elapsed() > opts.max_time {
+            if !pb.budget.room(2) {
                 break;
             }
             let (x, sigma) = pb.start_of(&pop[i]);
             let step: Vec<f64> = x.iter().map(|v| 0.02 * v.abs().max(0.5)).collect();
             let xn = {
-                let (targets, timing) = (&pb.targets, &pb.timing);
+                let (targets, timing, budget) = (&pb.targets, &pb.timing, &pb.budget);
                 let mut f = |x: &[f64]| {
-                    pb_residuals(targets, timing, x, sigma)
-                        .map_or(f64::INFINITY, |r| r.iter().map(|v| v * v).sum())
+                    if !budget.take_polish() {
+                        return None;
+                    }
+                    Some(
+                        pb_residuals(targets, timing, x, sigma)
+                            .map_or(f64::INFINITY, |r| r.iter().map(|v| v * v).sum()),
+                    )
                 };
                 nelder_mead(&mut f, &x, &step, 200 * x.len())
             };
@@ -1096,7 +1233,7 @@ fn search_timed(
         }
     }
 
-    Ok(evals)
+    Ok(pb.budget.used())
 }
 
 fn pb_residuals(targets: &[V], timing: &Timing, x: &[f64], sigma: f64) -> Option<Vec<f64>> {

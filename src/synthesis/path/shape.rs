@@ -30,6 +30,8 @@ pub(super) const SHAPE: usize = 6;
 
 /// Start positions on the grid of a cut, and spans (open paths) tried per sense.
 const STARTS: usize = 48;
+/// The largest population of a run, in first runs' populations.
+const GROWTH: usize = 16;
 const SPANS: usize = 10;
 
 /// The best cut of a candidate: where the targets sit on its curve and the similarity.
@@ -163,6 +165,7 @@ impl Shapes {
     /// The genes of [`Problem`] (normalised world) and the crank angles at the targets of
     /// the shape `h` placed by its best cut.
     pub(super) fn place(&mut self, pb: &Problem, h: &[f64]) -> Option<(Vec<f64>, Vec<f64>)> {
+        pb.budget.add(1);
         let c = self.cut(pb, h).ok()?;
         let (k, turn) = (c.alpha.norm(), c.alpha.y.atan2(c.alpha.x));
         let d = Self::dims(h);
@@ -353,38 +356,22 @@ impl Shapes {
         }
     }
 
-    /// Moves each target's point on the curve to the sample nearest to the target as placed
-    /// (within a target's share of the run about where the cut put it) and fits the
-    /// similarity again, twice, keeping what is better. The chords between the targets lag
-    /// the arcs most where the curve turns sharply: this takes the correspondences from the
-    /// geometry instead. Leaves the run positions of the best correspondences in `pos`.
+    /// Moves each target's point on the curve to the point of the sampled curve (a polyline)
+    /// nearest to the target as placed — within a target's share of the run about where the
+    /// cut put it, and between samples — and fits the similarity again, up to three times,
+    /// keeping what is better. The chords between the targets lag the arcs most where the
+    /// curve turns sharply: this takes the correspondences from the geometry instead; taking
+    /// them between samples leaves the traced curve a miss of the order of the polyline's
+    /// sagitta instead of half a sample's spacing, so the shape that traces the targets stands
+    /// out from its neighbours. Leaves the run positions of the best correspondences in `pos`.
     fn snap(&mut self, best: &mut Cut) {
-        let len = self.run.len() as isize;
         let n = self.targets.len();
-        let w = (len / n as isize).max(2);
         let (mut pos, mut q) = (std::mem::take(&mut self.pos2), std::mem::take(&mut self.q2));
         pos.copy_from_slice(&self.pos);
         q.copy_from_slice(&self.q);
-        for _ in 0..2 {
+        for _ in 0..3 {
             for i in 0..n {
-                let centre = pos[i].round() as isize;
-                let mut near = (f64::INFINITY, centre);
-                for j in centre - w..=centre + w {
-                    let j = if self.looped {
-                        j.rem_euclid(len)
-                    } else if (0..len).contains(&j) {
-                        j
-                    } else {
-                        continue;
-                    };
-                    let p = mul(best.alpha, self.point(j as usize)) + best.t;
-                    let dd = (p - self.targets[i]).norm_squared();
-                    if dd < near.0 {
-                        near = (dd, j);
-                    }
-                }
-                pos[i] = near.1 as f64;
-                q[i] = self.point(near.1 as usize);
+                (pos[i], q[i]) = self.nearest(best, pos[i], self.targets[i]);
             }
             let Some((res, alpha, t)) = similarity(&self.targets, &q) else {
                 break;
@@ -398,6 +385,55 @@ impl Shapes {
             self.q.copy_from_slice(&q);
         }
         (self.pos2, self.q2) = (pos, q);
+    }
+
+    /// The point of the run's polyline, placed by `cut`'s similarity, nearest to `target`
+    /// within a target's share of the run about the run position `about`: its (fractional)
+    /// run position and the point on the unplaced curve.
+    fn nearest(&self, cut: &Cut, about: f64, target: V) -> (f64, V) {
+        let len = self.run.len() as isize;
+        let w = (len / self.targets.len() as isize).max(2);
+        // A run position within the run, or None past an open run's ends.
+        let wrap = |j: isize| -> Option<isize> {
+            if self.looped {
+                Some(j.rem_euclid(len))
+            } else {
+                (0..len).contains(&j).then_some(j)
+            }
+        };
+        let placed = |j: isize| mul(cut.alpha, self.point(j as usize)) + cut.t;
+        let centre = about.round() as isize;
+        let mut near = (f64::INFINITY, centre.clamp(0, len - 1));
+        for j in centre - w..=centre + w {
+            if let Some(j) = wrap(j) {
+                let dd = (placed(j) - target).norm_squared();
+                if dd < near.0 {
+                    near = (dd, j);
+                }
+            }
+        }
+        let j = near.1;
+        let mut best = (near.0, j as f64, self.point(j as usize));
+        // The segments on either side of the nearest sample: the foot of the perpendicular
+        // (a similarity keeps the fraction along a segment).
+        for a in [j - 1, j] {
+            let (Some(a), Some(b)) = (wrap(a), wrap(a + 1)) else {
+                continue;
+            };
+            let (pa, pb) = (placed(a), placed(b));
+            let seg = pb - pa;
+            let l2 = seg.norm_squared();
+            if l2.is_nan() || l2 <= 0.0 {
+                continue;
+            }
+            let f = ((target - pa).dot(&seg) / l2).clamp(0.0, 1.0);
+            let dd = (pa + f * seg - target).norm_squared();
+            if dd < best.0 {
+                let (qa, qb) = (self.point(a as usize), self.point(b as usize));
+                best = (dd, a as f64 + f, qa + f * (qb - qa));
+            }
+        }
+        (best.1, best.2)
     }
 
     fn try_cut(&mut self, start: f64, span: f64, forward: bool) -> Option<Cut> {
@@ -464,10 +500,39 @@ fn generation(
     }
 }
 
+/// Up to `k` feasible members, best first, each unlike those before it (a population that
+/// has gathered in one basin offers its neighbours of the best in other basins too): two
+/// shapes are alike when they share the mode and no gene differs by more than 1e-3.
+fn distinct_best(pop: &[Vec<f64>], fit: &[f64], k: usize) -> Vec<usize> {
+    let mut order: Vec<usize> = (0..pop.len()).filter(|&i| fit[i] < INFEASIBLE).collect();
+    order.sort_by(|&a, &b| fit[a].total_cmp(&fit[b]));
+    let mut kept: Vec<usize> = Vec::with_capacity(k);
+    for i in order {
+        if kept.len() >= k {
+            break;
+        }
+        let alike = |j: &usize| {
+            (pop[i][5] > 0.0) == (pop[*j][5] > 0.0)
+                && (0..5).all(|g| (pop[i][g] - pop[*j][g]).abs() <= 1e-3)
+        };
+        if !kept.iter().any(alike) {
+            kept.push(i);
+        }
+    }
+    kept
+}
+
 /// The search over shapes: runs of differential evolution from fresh random populations,
 /// each until it stagnates, the best member polished every few generations (kept when it
-/// meets the points to the tolerance) and the best few at the end of each run; until
-/// `opts.designs` designs meet the points or the budget is spent.
+/// meets the points to the tolerance) and the best few distinct ones at the end of each run;
+/// until `opts.designs` designs meet the points or the budget is spent.
+///
+/// Each run has twice the population of the one before (up to [`GROWTH`] times the first,
+/// as the budget allows): a small population converges fast, which finds most shapes
+/// cheaply, but gathers in whichever broad basin it lands in first, however often it is
+/// restarted; a larger one spreads over more of the space before it converges, so a later
+/// run reaches the narrow basins the earlier ones missed (restarts with growing populations,
+/// as in IPOP).
 pub(super) fn search(
     pb: &mut Problem,
     opts: &super::PathOptions,
@@ -476,14 +541,15 @@ pub(super) fn search(
 ) -> crate::error::Result<usize> {
     let mut shapes = Shapes::new(pb, opts.positions);
     let (lo, hi) = Shapes::bounds(pb.ratio);
-    let np = opts.population;
+    let mut np = opts.population;
     let want = opts.designs.max(1);
     let mut rng = super::Rng(opts.seed);
-    let (mut evals, mut generations) = (0usize, 0usize);
+    let mut generations = 0usize;
     let start = found.start;
-    let in_budget =
-        |evals: usize| evals + np <= opts.max_evaluations && start.elapsed() < opts.max_time;
-    while in_budget(evals + np) {
+    while pb.budget.room(2 * opts.population) {
+        while np > opts.population && !pb.budget.room(2 * np) {
+            np /= 2;
+        }
         let mut pop: Vec<Vec<f64>> = (0..np)
             .map(|_| {
                 (0..SHAPE)
@@ -492,36 +558,36 @@ pub(super) fn search(
             })
             .collect();
         let mut fit: Vec<f64> = pop.iter().map(|h| shapes.cost(pb, h)).collect();
-        evals += np;
+        pb.budget.add(np);
         let (mut last, mut since) = (f64::INFINITY, 0);
-        while in_budget(evals) {
+        while pb.budget.room(np) {
             generations += 1;
             generation(&mut pop, &mut fit, &lo, &hi, &mut rng, &mut |h| {
                 shapes.cost(pb, h)
             });
-            evals += np;
+            pb.budget.add(np);
             let best_i = (0..np)
                 .min_by(|&a, &b| fit[a].total_cmp(&fit[b]))
                 .unwrap_or(0);
             let best = fit[best_i];
-            if generations % super::MEMETIC == 0
+            if generations.is_multiple_of(super::MEMETIC)
                 && best < INFEASIBLE
+                && pb.budget.room(3)
                 && let Some((g, phis)) = shapes.place(pb, &pop[best_i])
             {
-                evals += 1;
                 found.adopt(pb, &g, &phis, 60, opts.tolerance, true)?;
                 if found.good(opts.tolerance) >= want {
-                    return Ok(evals);
+                    return Ok(pb.budget.used());
                 }
             }
             let go_on = progress(&super::Progress {
                 generation: generations,
-                evaluations: evals,
+                evaluations: pb.budget.used(),
                 best,
                 elapsed: start.elapsed(),
             });
             if !go_on {
-                return Ok(evals);
+                return Ok(pb.budget.used());
             }
             if best < last * (1.0 - 1e-6) {
                 (last, since) = (best, 0);
@@ -532,9 +598,10 @@ pub(super) fn search(
                 }
             }
         }
-        let mut order: Vec<usize> = (0..np).filter(|&i| fit[i] < INFEASIBLE).collect();
-        order.sort_by(|&a, &b| fit[a].total_cmp(&fit[b]));
-        for &i in order.iter().take(super::POLISHED) {
+        for i in distinct_best(&pop, &fit, super::POLISHED) {
+            if !pb.budget.room(3) {
+                break;
+            }
             if let Some((g, phis)) = shapes.place(pb, &pop[i]) {
                 found.adopt(pb, &g, &phis, 200, opts.tolerance, false)?;
             }
@@ -542,6 +609,7 @@ pub(super) fn search(
         if found.good(opts.tolerance) >= want {
             break;
         }
+        np = (2 * np).min(GROWTH * opts.population);
     }
-    Ok(evals)
+    Ok(pb.budget.used())
 }
