@@ -158,19 +158,91 @@ fn candidates(c: &mut Criterion) {
     g.finish();
 }
 
+/// This process's CPU time so far, all threads, user and system (Linux `/proc/self/stat`,
+/// in clock ticks of 10 ms); `None` where that file is not.
 #[cfg(feature = "rayon")]
-fn parallel(_c: &mut Criterion) {
+fn cpu_time() -> Option<Duration> {
+    let stat = std::fs::read_to_string("/proc/self/stat").ok()?;
+    // After the command name in parentheses: state (field 3), ..., utime (14), stime (15).
+    let fields: Vec<&str> = stat[stat.rfind(')')? + 2..].split_whitespace().collect();
+    let ticks = fields.get(11)?.parse::<u64>().ok()? + fields.get(12)?.parse::<u64>().ok()?;
+    Some(Duration::from_millis(ticks * 10))
+}
+
+/// Runs `f` for about `secs` seconds of wall time: (wall, CPU time) per call.
+#[cfg(feature = "rayon")]
+fn wall_and_cpu<R>(secs: f64, mut f: impl FnMut() -> R) -> (Duration, Option<Duration>) {
+    let (start, cpu0) = (std::time::Instant::now(), cpu_time());
+    let mut calls = 0u32;
+    while start.elapsed().as_secs_f64() < secs {
+        black_box(f());
+        calls += 1;
+    }
+    let wall = start.elapsed() / calls;
+    let cpu = cpu0.zip(cpu_time()).map(|(a, b)| (b - a) / calls);
+    (wall, cpu)
+}
+
+/// Rayon over batches (group `batch_rayon`): `par_four_bar_positions` against the serial
+/// batch on 2^18 positions, the same lanes (checked bit for bit first). Beside the ratio of
+/// wall times it prints each one's CPU time per call and the load average, since on a shared
+/// machine a parallel speed-up is bounded by the cores the others leave free: a speed-up
+/// below the core count with the parallel CPU time near the serial one means the cores were
+/// busy, not that the work did not split.
+#[cfg(feature = "rayon")]
+fn parallel(c: &mut Criterion) {
     use tmm::kinematics::batch::par_four_bar_positions;
     let n = 1 << 18;
     let d = dims();
     let angles = CrankAngles::new(&seeded_angles(n));
     let (mut a, mut b) = (Positions::new(n), Positions::new(n));
-    yardstick::print_ratio(
+    par_four_bar_positions(&d, &angles, a.columns_mut()).unwrap();
+    four_bar_positions(&d, &angles, b.columns_mut()).unwrap();
+    for (x, y) in [(&a.b_x, &b.b_x), (&a.p_y, &b.p_y), (&a.measure, &b.measure)] {
+        assert!(x
+            .iter()
+            .zip(y.iter())
+            .all(|(p, q)| p.to_bits() == q.to_bits()));
+    }
+    assert_eq!(a.status, b.status);
+    let load = std::fs::read_to_string("/proc/loadavg").unwrap_or_default();
+    let ratio = yardstick::print_ratio(
         "rayon batch / serial batch (2^18 positions)",
         n as u32,
         || par_four_bar_positions(black_box(&d), &angles, a.columns_mut()).unwrap(),
         || four_bar_positions(black_box(&d), &angles, b.columns_mut()).unwrap(),
     );
+    let (par_wall, par_cpu) = wall_and_cpu(2.0, || {
+        par_four_bar_positions(black_box(&d), &angles, a.columns_mut()).unwrap()
+    });
+    let (ser_wall, ser_cpu) = wall_and_cpu(2.0, || {
+        four_bar_positions(black_box(&d), &angles, b.columns_mut()).unwrap()
+    });
+    let ms = |t: Option<Duration>| t.map_or(f64::NAN, |t| t.as_secs_f64() * 1e3);
+    println!(
+        "rayon | {} cores, speed-up {:.2} (fastest rounds), {:.2} (2 s each): wall {:.3} ms \
+         parallel vs {:.3} ms serial, CPU {:.3} ms vs {:.3} ms per call; load average {}",
+        std::thread::available_parallelism().map_or(0, usize::from),
+        1.0 / ratio,
+        ser_wall.as_secs_f64() / par_wall.as_secs_f64(),
+        par_wall.as_secs_f64() * 1e3,
+        ser_wall.as_secs_f64() * 1e3,
+        ms(par_cpu),
+        ms(ser_cpu),
+        load.trim()
+    );
+    let mut g = c.benchmark_group("batch_rayon");
+    g.measurement_time(Duration::from_secs(3))
+        .warm_up_time(Duration::from_millis(500))
+        .sample_size(20)
+        .throughput(Throughput::Elements(n as u64));
+    g.bench_function("serial", |bch| {
+        bch.iter(|| four_bar_positions(black_box(&d), &angles, b.columns_mut()).unwrap())
+    });
+    g.bench_function("rayon", |bch| {
+        bch.iter(|| par_four_bar_positions(black_box(&d), &angles, a.columns_mut()).unwrap())
+    });
+    g.finish();
 }
 
 #[cfg(not(feature = "rayon"))]

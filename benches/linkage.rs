@@ -273,58 +273,85 @@ impl CartesianFourBar {
     }
 }
 
-fn four_bar(c: &mut Criterion) {
-    let plan = Plan::new(&bundled::four_bar()).unwrap();
-    let hand = HandFourBar::new();
+/// One linkage's whole position (group `group`): its hand chain (the balancing moment) and its
+/// Cartesian closed form (every quantity of [`Whole`]) are checked against the engine over
+/// 512 positions (the closed form to `tol`), then timed beside it, side by side (the
+/// `yardstick | {label} whole position` line) and by criterion, with the engine's kinematics
+/// alone beside them.
+fn whole_position<const L: usize, const J: usize>(
+    c: &mut Criterion,
+    group: &str,
+    label: &str,
+    plan: &Plan,
+    hand_balance: impl Fn(Motion) -> f64,
+    cartesian: impl Fn(Motion) -> Whole<L, J>,
+    tol: f64,
+) {
     let ins = inputs(512);
-    // The yardstick must do the same job: check it against the engine first.
+    // The yardsticks must do the same job: check them against the engine first.
     let mut solver = plan.solver();
     for &i in &ins {
         let a = solver.analyse(i).unwrap();
-        let (x, y) = (a.balances()[0].value, hand.balance(i));
+        let (x, y) = (a.balances()[0].value, hand_balance(i));
         assert!(
             (x - y).abs() <= 1e-9 * x.abs().max(1.0),
-            "hand chain {y} vs engine {x}"
+            "{label}: hand chain {y} vs engine {x}"
         );
-    }
-    let cart = CartesianFourBar::new();
-    for &i in &ins {
-        let a = solver.analyse(i).unwrap();
-        let y = cart.position(i);
+        let (y, x) = (cartesian(i), Whole::<L, J>::of(a));
         assert!(
-            y.agrees(&Whole::of(a), 1e-9),
-            "Cartesian closed form {y:?} vs engine {:?}",
-            Whole::<3, 4>::of(a)
+            y.agrees(&x, tol),
+            "{label}: Cartesian closed form {y:?} vs engine {x:?}"
         );
     }
     let by_hand = || {
         ins.iter()
-            .map(|&i| cart.position(black_box(i)).fold())
+            .map(|&i| cartesian(black_box(i)).fold())
             .sum::<f64>()
     };
     let mut engine = plan.solver();
     let mut tmm = || {
         ins.iter()
-            .map(|&i| Whole::<3, 4>::of(engine.analyse(black_box(i)).unwrap()).fold())
+            .map(|&i| Whole::<L, J>::of(engine.analyse(black_box(i)).unwrap()).fold())
             .sum::<f64>()
     };
     yardstick::print_ratio(
-        "four-bar whole position",
+        &format!("{label} whole position"),
         ins.len() as u32,
         &mut tmm,
         by_hand,
     );
-    let mut g = c.benchmark_group("four_bar_whole_position");
+    let mut g = c.benchmark_group(group);
     g.measurement_time(Duration::from_secs(3))
         .warm_up_time(Duration::from_millis(500))
         .sample_size(30);
     g.throughput(Throughput::Elements(ins.len() as u64));
     g.bench_function("cartesian_closed_form", |b| b.iter(by_hand));
     g.bench_function("hand_chain", |b| {
-        b.iter(|| ins.iter().map(|&i| hand.balance(black_box(i))).sum::<f64>())
+        b.iter(|| ins.iter().map(|&i| hand_balance(black_box(i))).sum::<f64>())
     });
     g.bench_function("engine", |b| b.iter(&mut tmm));
+    g.bench_function("engine_kinematics_only", |b| {
+        b.iter(|| {
+            ins.iter()
+                .map(|&i| solver.kinematics(black_box(i)).unwrap().link_motions()[L].omega)
+                .sum::<f64>()
+        })
+    });
     g.finish();
+}
+
+fn four_bar(c: &mut Criterion) {
+    let plan = Plan::new(&bundled::four_bar()).unwrap();
+    let (hand, cart) = (HandFourBar::new(), CartesianFourBar::new());
+    whole_position(
+        c,
+        "four_bar_whole_position",
+        "four-bar",
+        &plan,
+        |i| hand.balance(i),
+        |i| cart.position(i),
+        1e-9,
+    );
 }
 
 /// The bundled Watt six-bar chained by hand: crank, RRR (coupler ABE, rocker O3BF), RRR
@@ -572,65 +599,16 @@ impl CartesianWatt {
 
 fn six_bar(c: &mut Criterion) {
     let plan = Plan::new(&bundled::watt_six_bar()).unwrap();
-    let hand = HandWatt::new();
-    let ins = inputs(512);
-    let mut solver = plan.solver();
-    for &i in &ins {
-        let a = solver.analyse(i).unwrap();
-        let (x, y) = (a.balances()[0].value, hand.balance(i));
-        assert!(
-            (x - y).abs() <= 1e-9 * x.abs().max(1.0),
-            "hand chain {y} vs engine {x}"
-        );
-    }
-    let cart = CartesianWatt::new();
-    for &i in &ins {
-        let a = solver.analyse(i).unwrap();
-        let y = cart.position(i);
-        assert!(
-            y.agrees(&Whole::of(a), 1e-12),
-            "Cartesian closed form {y:?} vs engine {:?}",
-            Whole::<5, 7>::of(a)
-        );
-    }
-    let by_hand = || {
-        ins.iter()
-            .map(|&i| cart.position(black_box(i)).fold())
-            .sum::<f64>()
-    };
-    let mut engine = plan.solver();
-    let mut tmm = || {
-        ins.iter()
-            .map(|&i| Whole::<5, 7>::of(engine.analyse(black_box(i)).unwrap()).fold())
-            .sum::<f64>()
-    };
-    yardstick::print_ratio(
-        "Watt six-bar whole position",
-        ins.len() as u32,
-        &mut tmm,
-        by_hand,
+    let (hand, cart) = (HandWatt::new(), CartesianWatt::new());
+    whole_position(
+        c,
+        "watt_six_bar_whole_position",
+        "Watt six-bar",
+        &plan,
+        |i| hand.balance(i),
+        |i| cart.position(i),
+        1e-12,
     );
-    let mut g = c.benchmark_group("watt_six_bar_whole_position");
-    g.measurement_time(Duration::from_secs(3))
-        .warm_up_time(Duration::from_millis(500))
-        .sample_size(30);
-    g.throughput(Throughput::Elements(ins.len() as u64));
-    g.bench_function("cartesian_closed_form", |b| b.iter(by_hand));
-    g.bench_function("hand_chain", |b| {
-        b.iter(|| ins.iter().map(|&i| hand.balance(black_box(i))).sum::<f64>())
-    });
-    g.bench_function("engine", |b| b.iter(&mut tmm));
-    g.bench_function("engine_kinematics_only", |b| {
-        b.iter(|| {
-            ins.iter()
-                .map(|&i| {
-                    let k = solver.kinematics(black_box(i)).unwrap();
-                    k.link_motion(5).unwrap().omega
-                })
-                .sum::<f64>()
-        })
-    });
-    g.finish();
 }
 
 /// The cost per position of a streamed sweep (inputs generated on the fly, each position's

@@ -334,18 +334,6 @@ pub struct PositionsMut<'a> {
 }
 
 impl<'a> PositionsMut<'a> {
-    /// The columns cut to `n` lanes (as [`RatesMut::cut`]).
-    fn cut(&mut self, n: usize) -> PositionsMut<'_> {
-        PositionsMut {
-            b_x: &mut self.b_x[..n],
-            b_y: &mut self.b_y[..n],
-            p_x: &mut self.p_x[..n],
-            p_y: &mut self.p_y[..n],
-            measure: &mut self.measure[..n],
-            status: &mut self.status[..n],
-        }
-    }
-
     fn len(&self) -> Result<usize> {
         let n = self.b_x.len();
         for (name, len) in [
@@ -411,24 +399,6 @@ pub struct RatesMut<'a> {
 }
 
 impl RatesMut<'_> {
-    /// The columns cut to `n` lanes: a reborrow whose lengths the compiler sees, so that the
-    /// lane loop has no bounds check and vectorises (the length checks above, made in a
-    /// loop over the columns, do not carry into it).
-    fn cut(&mut self, n: usize) -> RatesMut<'_> {
-        fn two<'b>(c: &'b mut [&mut [f64]; 2], n: usize) -> [&'b mut [f64]; 2] {
-            let [x, y] = c;
-            [&mut x[..n], &mut y[..n]]
-        }
-        RatesMut {
-            v_b: two(&mut self.v_b, n),
-            a_b: two(&mut self.a_b, n),
-            v_p: two(&mut self.v_p, n),
-            a_p: two(&mut self.a_p, n),
-            omega: two(&mut self.omega, n),
-            epsilon: two(&mut self.epsilon, n),
-        }
-    }
-
     fn check(&self, n: usize) -> Result<()> {
         let names = ["v_b", "a_b", "v_p", "a_p", "omega", "epsilon"];
         let cols = [
@@ -962,13 +932,99 @@ pub fn four_bar_motions(
     let d = Dims::of(dims);
     let rate = [omega1, epsilon1];
     let (phi, cos, sin) = (&angles.phi[..n], &angles.cos[..n], &angles.sin[..n]);
-    let (mut lanes, mut lane_rates) = (out.cut(n), rates.cut(n));
-    for i in 0..n {
-        let o = lane::<true>(d, phi[i], cos[i], sin[i], rate);
-        store(&o, i, &mut lanes);
-        store_rates(&o, i, &mut lane_rates);
+    {
+        let PositionsMut {
+            b_x,
+            b_y,
+            p_x,
+            p_y,
+            measure,
+            status,
+        } = &mut out;
+        let RatesMut {
+            v_b: [v_bx, v_by],
+            a_b: [a_bx, a_by],
+            v_p: [v_px, v_py],
+            a_p: [a_px, a_py],
+            omega: [w2, w3],
+            epsilon: [e2, e3],
+        } = &mut rates;
+        motion_lanes(
+            d,
+            rate,
+            [phi, cos, sin],
+            b_x,
+            b_y,
+            p_x,
+            p_y,
+            measure,
+            status,
+            [
+                v_bx, v_by, a_bx, a_by, v_px, v_py, a_px, a_py, w2, w3, e2, e3,
+            ],
+        );
     }
     Ok(settle(&mut out, Some(&mut rates), |i| (d, phi[i]), rate))
+}
+
+/// The lane loop of [`four_bar_motions`] in a function of its own, every output column a
+/// separate `&mut` argument: the compiler then knows that no two columns overlap and
+/// vectorises the loop with no run-time overlap checks (for eighteen columns reached through
+/// a struct it made none and kept the loop scalar). Each column has `phi.len()` lanes.
+#[inline(never)]
+#[allow(clippy::too_many_arguments)]
+fn motion_lanes(
+    d: Dims,
+    rate: [f64; 2],
+    [phi, cos, sin]: [&[f64]; 3],
+    b_x: &mut [f64],
+    b_y: &mut [f64],
+    p_x: &mut [f64],
+    p_y: &mut [f64],
+    measure: &mut [f64],
+    status: &mut [Lane],
+    [v_bx, v_by, a_bx, a_by, v_px, v_py, a_px, a_py, w2, w3, e2, e3]: [&mut [f64]; 12],
+) {
+    let n = phi.len();
+    let (cos, sin) = (&cos[..n], &sin[..n]);
+    let (b_x, b_y, p_x, p_y) = (&mut b_x[..n], &mut b_y[..n], &mut p_x[..n], &mut p_y[..n]);
+    let (measure, status) = (&mut measure[..n], &mut status[..n]);
+    let (v_bx, v_by, a_bx, a_by) = (
+        &mut v_bx[..n],
+        &mut v_by[..n],
+        &mut a_bx[..n],
+        &mut a_by[..n],
+    );
+    let (v_px, v_py, a_px, a_py) = (
+        &mut v_px[..n],
+        &mut v_py[..n],
+        &mut a_px[..n],
+        &mut a_py[..n],
+    );
+    let (w2, w3, e2, e3) = (&mut w2[..n], &mut w3[..n], &mut e2[..n], &mut e3[..n]);
+    for i in 0..n {
+        let o = lane::<true>(d, phi[i], cos[i], sin[i], rate);
+        // As `store` and `store_rates`.
+        let pick = |v: f64| if o.ok { v } else { f64::NAN };
+        b_x[i] = pick(o.bx);
+        b_y[i] = pick(o.by);
+        p_x[i] = pick(o.px);
+        p_y[i] = pick(o.py);
+        measure[i] = pick(o.det);
+        status[i] = if o.ok { Lane::Ok } else { Lane::Pending };
+        v_bx[i] = pick(o.vb[0]);
+        v_by[i] = pick(o.vb[1]);
+        a_bx[i] = pick(o.ab[0]);
+        a_by[i] = pick(o.ab[1]);
+        v_px[i] = pick(o.vp[0]);
+        v_py[i] = pick(o.vp[1]);
+        a_px[i] = pick(o.ap[0]);
+        a_py[i] = pick(o.ap[1]);
+        w2[i] = pick(o.w[0]);
+        w3[i] = pick(o.w[1]);
+        e2[i] = pick(o.e[0]);
+        e3[i] = pick(o.e[1]);
+    }
 }
 
 /// The positions of many four-bars (`bars`, one lane each) at one crank angle `phi` (rad),

@@ -290,6 +290,8 @@ pub struct Plan {
     /// Each joint's friction (by joint index), or `None` for a frictionless linkage (every
     /// coefficient zero): then the solve takes the frictionless path.
     pub(crate) friction: Option<Vec<FrictionPlan>>,
+    /// The buffers of finished one-shot solves, for the next (not part of what the plan is).
+    pub(crate) spare: super::solve::spare::Spares,
 }
 
 /// One joint's friction: the hinge's for a revolute joint, the slide's for a prismatic one

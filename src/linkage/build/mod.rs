@@ -130,6 +130,7 @@ impl Plan {
             loads,
             gravity,
             friction,
+            spare: Default::default(),
         })
     }
 }

@@ -2,115 +2,18 @@
 //! every joint and each drive's balancing moment or force, and the readings of them.
 
 use super::kinematics::Kinematics;
-use crate::angle::cross;
-use crate::error::{Error, Result};
+pub use super::reaction::{Balance, Reaction};
+use super::spare::StaticBuffers;
+use super::state::KinState;
+use crate::error::Result;
 use crate::kinematics::Motion;
 use crate::kinetostatics::Conditioning;
 use crate::linkage::handle::JointRef;
 use crate::linkage::plan::Plan;
 use crate::Load;
 use nalgebra::{Point2, Vector2};
+use std::mem::take;
 use std::ops::Deref;
-
-/// The reaction in one joint: the force (and, in a sliding pair, the couple) that link `by`
-/// exerts on link `on`, R_by,on. The other link feels the opposite.
-#[derive(Debug, Clone, Copy, PartialEq)]
-#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
-pub struct Reaction {
-    /// The link that exerts it (its index in [`Plan::link_names`], [`LinkId::index`](crate::linkage::LinkId::index)).
-    pub by: usize,
-    /// The link it acts on.
-    pub on: usize,
-    /// The force, N.
-    pub force: Vector2<f64>,
-    /// The point the force is reduced to (the hinge, or a point on a sliding pair's axis), m.
-    pub point: Point2<f64>,
-    /// The couple about `point`, N·m (zero in a hinge; in a sliding pair it places the normal
-    /// force's line of action, see [`Reaction::offset`]).
-    pub moment: f64,
-}
-
-impl Reaction {
-    /// The force (and couple) of link `by` on link `on`, reduced to `point`.
-    #[must_use]
-    pub fn new(by: usize, on: usize, force: Vector2<f64>, point: Point2<f64>, moment: f64) -> Self {
-        Self {
-            by,
-            on,
-            force,
-            point,
-            moment,
-        }
-    }
-
-    /// A hinge's reaction: a force at the hinge, no couple.
-    #[must_use]
-    pub fn hinge(by: usize, on: usize, force: Vector2<f64>, point: Point2<f64>) -> Self {
-        Self::new(by, on, force, point, 0.0)
-    }
-
-    /// The reaction as a load on link `on`.
-    #[must_use]
-    pub fn load(&self) -> Load {
-        Load::new(self.point, self.force, self.moment)
-    }
-
-    /// The load on link `link`: the reaction itself if `link == on`, its opposite if
-    /// `link == by`.
-    ///
-    /// # Errors
-    /// [`Error::Description`] when `link` is neither of the two links the reaction joins
-    /// (no load of this joint acts on it).
-    pub fn load_on(&self, link: impl Into<usize>) -> Result<Load> {
-        let link = link.into();
-        if link == self.on || link == self.by {
-            Ok(self.load_on_side(link))
-        } else {
-            Err(Error::Description {
-                item: format!("link index {link}"),
-                problem: format!(
-                    "is not joined by this reaction (it acts between links {} and {})",
-                    self.by, self.on
-                ),
-            })
-        }
-    }
-
-    /// [`load_on`](Self::load_on) for a link known to be `on` or `by`.
-    pub(crate) fn load_on_side(&self, link: usize) -> Load {
-        if link == self.on {
-            self.load()
-        } else {
-            Load::new(self.point, -self.force, -self.moment)
-        }
-    }
-
-    /// For a sliding pair with the axis direction `axis`: where the normal force's line of
-    /// action crosses the axis through `point`, measured from `point` along `axis`, m. `None`
-    /// when the force vanishes and the pair carries a pure couple.
-    #[must_use]
-    pub fn offset(&self, axis: Vector2<f64>) -> Option<f64> {
-        let h = self.moment / cross(axis / axis.norm(), self.force);
-        h.is_finite().then_some(h)
-    }
-}
-
-/// What the drive supplies to the input link and what the frame holds.
-#[derive(Debug, Clone, Copy, PartialEq)]
-#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
-pub struct Balance {
-    /// The balancing generalized force: for a crank M_b about its pivot, N·m, counter-clockwise
-    /// positive (for a gear drive the moment of the tooth force); for a slider the force along
-    /// its guide direction, N.
-    pub value: f64,
-    /// The balancing force: the pinion's tooth force at the pitch point (gear drive), the
-    /// drive's force along the guide (slider), zero for a coupling, N.
-    pub force: Vector2<f64>,
-    /// Where `force` acts: the pitch point, the slider's reference point, or the pivot, m.
-    pub point: Point2<f64>,
-    /// The conditioning of the balance (the gear drive's arm; 1 otherwise).
-    pub conditioning: Conditioning,
-}
 
 /// One analysed position of a [`Plan`]: its [`Kinematics`] (every kinematic reading, through
 /// `Deref`), the applied loads, the reactions and the balances.
@@ -138,18 +41,28 @@ impl<'p> Deref for Analysis<'p> {
     }
 }
 
+/// The buffers go back to the plan for its next solve (see `spare`).
+impl Drop for Analysis<'_> {
+    #[inline]
+    fn drop(&mut self) {
+        let statics = StaticBuffers {
+            applied: take(&mut self.applied),
+            acc: take(&mut self.acc),
+            reactions: take(&mut self.reactions),
+            conditioning: take(&mut self.conditioning),
+        };
+        self.k
+            .plan
+            .spare
+            .give(self.k.kin.take_buffers(), Some(statics));
+    }
+}
+
 impl<'p> Analysis<'p> {
-    /// Buffers for analysing positions of `plan` (allocated once).
+    /// Buffers for analysing positions of `plan`: a dropped analysis's, or allocated here.
     pub(crate) fn new(plan: &'p Plan) -> Self {
         let c = &plan.chain;
         let n = c.link_names.len();
-        let zero = Reaction {
-            by: 0,
-            on: 0,
-            force: Vector2::zeros(),
-            point: Point2::origin(),
-            moment: 0.0,
-        };
         let one = Conditioning {
             measure: 1.0,
             condition: 1.0,
@@ -160,19 +73,45 @@ impl<'p> Analysis<'p> {
             point: Point2::origin(),
             conditioning: one,
         };
-        Self {
-            k: Kinematics::new(plan),
-            applied: Vec::with_capacity(n + plan.loads.len() * 2),
-            acc: vec![Load::zero(Point2::origin()); n],
-            reactions: vec![zero; c.joints.len()],
-            conditioning: vec![one; c.groups.len()],
+        // Built empty, then the buffers moved into place (not built apart and copied in).
+        let mut a = Self {
+            k: Kinematics {
+                plan,
+                kin: KinState::default(),
+            },
+            applied: Vec::new(),
+            acc: Vec::new(),
+            reactions: Vec::new(),
+            conditioning: Vec::new(),
             balances: [balance; 2],
             friction: if plan.friction.is_some() {
                 super::friction::FrictionState::new(c.joints.len())
             } else {
                 super::friction::FrictionState::default()
             },
+        };
+        let (kin, statics) = plan.spare.analysis();
+        match kin {
+            Some(b) => a.k.kin.put_buffers(b),
+            None => a.k.kin = KinState::new(c),
         }
+        // Every solve writes each load, reaction and conditioning it reads.
+        match statics {
+            Some(s) => {
+                a.applied = s.applied;
+                a.acc = s.acc;
+                a.reactions = s.reactions;
+                a.conditioning = s.conditioning;
+            }
+            None => {
+                a.applied = Vec::with_capacity(n + plan.loads.len() * 2);
+                a.acc = vec![Load::zero(Point2::origin()); n];
+                a.reactions =
+                    vec![Reaction::hinge(0, 0, Vector2::zeros(), Point2::origin()); c.joints.len()];
+                a.conditioning = vec![one; c.groups.len()];
+            }
+        }
+        a
     }
 
     /// Kinematics, loads, the reactions from the last group back to the input links, and the

@@ -34,12 +34,23 @@ pub struct Kinematics<'p> {
     pub(crate) kin: KinState,
 }
 
+/// The buffers go back to the plan for its next solve (see `spare`).
+impl Drop for Kinematics<'_> {
+    #[inline]
+    fn drop(&mut self) {
+        if let Some(b) = self.kin.take_buffers() {
+            self.plan.spare.give(Some(b), None);
+        }
+    }
+}
+
 impl<'p> Kinematics<'p> {
-    /// Buffers for the kinematics of `plan` (allocated once).
+    /// Buffers for the kinematics of `plan` (a dropped solve's, or allocated here).
+    #[inline]
     pub(crate) fn new(plan: &'p Plan) -> Self {
         Self {
             plan,
-            kin: KinState::new(&plan.chain),
+            kin: KinState::reusing(&plan.chain, plan.spare.kin()),
         }
     }
 

@@ -12,14 +12,17 @@ pub(crate) mod kinematics;
 pub(crate) mod loads;
 pub(crate) mod position;
 mod rates;
+mod reaction;
 mod singular;
 mod solver;
+pub(crate) mod spare;
 pub(crate) mod state;
 mod statics;
 pub(crate) mod triad;
 
-pub use analysis::{Analysis, Balance, Reaction};
+pub use analysis::Analysis;
 pub use checks::PowerCheck;
 pub use kinematics::Kinematics;
+pub use reaction::{Balance, Reaction};
 pub use singular::Position;
 pub use solver::Solver;

@@ -96,6 +96,7 @@ impl Plan {
     /// assert!(a.reaction("B")?.force.norm() > 0.0);
     /// # Ok::<(), tmm::Error>(())
     /// ```
+    #[inline]
     pub fn analyse(&self, inputs: impl Into<Inputs>) -> Result<Analysis<'_>> {
         let mut a = Analysis::new(self);
         a.solve(inputs.into().as_slice())?;
@@ -107,6 +108,7 @@ impl Plan {
     ///
     /// # Errors
     /// As [`Solver::kinematics`].
+    #[inline]
     pub fn kinematics(&self, inputs: impl Into<Inputs>) -> Result<Kinematics<'_>> {
         let mut k = Kinematics::new(self);
         k.solve(inputs.into().as_slice())?;

@@ -2,6 +2,7 @@
 //! position: each link's motion with its unit vector, the groups' constant turns and their
 //! kinematic determinants.
 
+use super::spare::KinBuffers;
 use crate::error::Error;
 use crate::kinematics::{Guide, LinkMotion, Motion, PointMotion};
 use crate::linkage::inputs::Inputs;
@@ -9,7 +10,7 @@ use crate::linkage::plan::{Chain, Pose};
 use nalgebra::{Point2, Vector2};
 
 /// The kinematic state of one position of a [`Chain`].
-#[derive(Debug, Clone)]
+#[derive(Debug, Clone, Default)]
 pub(crate) struct KinState {
     pub input: Motion,
     pub second_input: Option<Motion>,
@@ -68,6 +69,48 @@ impl KinState {
             dets: vec![0.0; chain.groups.len()],
             triads: vec![None; chain.groups.len()],
         }
+    }
+
+    /// Puts a spare set of buffers of another solve of the same plan in place (only the
+    /// triads' poses are cleared: every solve writes whatever else it reads).
+    #[inline]
+    pub fn put_buffers(&mut self, b: KinBuffers) {
+        self.links = b.links;
+        self.units = b.units;
+        self.turns = b.turns;
+        self.dets = b.dets;
+        self.triads = b.triads;
+        self.triads.fill(None);
+    }
+
+    /// The buffers of `chain`'s positions: `spare` if there is one (see
+    /// [`put_buffers`](Self::put_buffers)), else new ones.
+    #[inline]
+    pub fn reusing(chain: &Chain, spare: Option<KinBuffers>) -> Self {
+        match spare {
+            Some(b) => {
+                let mut s = Self::default();
+                s.put_buffers(b);
+                s
+            }
+            None => Self::new(chain),
+        }
+    }
+
+    /// Takes the buffers out (to give them to the next solve), leaving none: `None` if they
+    /// were taken already.
+    #[inline]
+    pub fn take_buffers(&mut self) -> Option<KinBuffers> {
+        if self.links.capacity() == 0 {
+            return None;
+        }
+        Some(KinBuffers {
+            links: std::mem::take(&mut self.links),
+            units: std::mem::take(&mut self.units),
+            turns: std::mem::take(&mut self.turns),
+            dets: std::mem::take(&mut self.dets),
+            triads: std::mem::take(&mut self.triads),
+        })
     }
 
     /// The read-only view of this position.
