@@ -1,4 +1,5 @@
-//! Triads (the Assur group of the 3rd class, revolute joints), over 10⁴ seeded random groups:
+//! Triads (the Assur group of the 3rd class, revolute joints), over `TMM_TRIAD_CASES` seeded
+//! random groups (default 1000; 10⁴ in CI, in release):
 //! every assembly mode found (the count against two independent counts: a dense scan of the
 //! same eliminated equation written out here, and a dense scan of a different elimination,
 //! by the first binary link's angle along the branches of its four-bar), every mode closed
@@ -7,7 +8,7 @@
 //! against one LU solve of the group's full Newton–Euler system.
 
 use nalgebra::{DMatrix, DVector, Point2, Vector2};
-use std::f64::consts::{PI, TAU};
+use std::f64::consts::TAU;
 use tmm::angle::{cross, perp, unit};
 use tmm::kinematics::{
     triad, triad_modes, triad_rates, triad_tracked, PointMotion, TriadDims, TriadPose,
@@ -15,27 +16,13 @@ use tmm::kinematics::{
 use tmm::kinetostatics::Triad;
 use tmm::{Error, Load};
 
-/// A seeded generator (SplitMix64), so that every run tests the same groups.
-struct Rng(u64);
+use crate::common::fd::{cases, fd, fd2, near_angle, Rng};
 
-impl Rng {
-    fn next(&mut self) -> f64 {
-        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        z ^= z >> 31;
-        (z >> 11) as f64 / (1u64 << 53) as f64
-    }
-    fn range(&mut self, lo: f64, hi: f64) -> f64 {
-        lo + (hi - lo) * self.next()
-    }
-    fn vector(&mut self, r: f64) -> Vector2<f64> {
-        Vector2::new(self.range(-r, r), self.range(-r, r))
-    }
+/// The number of seeded groups per sweep: `TMM_TRIAD_CASES` (default 1000; CI runs 10⁴ in
+/// release).
+fn n_cases() -> usize {
+    cases("TMM_TRIAD_CASES", 1000)
 }
-
-const CASES: usize = 10_000;
 
 fn random_dims(rng: &mut Rng) -> TriadDims {
     TriadDims::new(
@@ -179,7 +166,7 @@ fn triad_modes_match_independent_counts_and_close() {
     let (mut worst_closure, mut worst_generating): (f64, f64) = (0.0, 0.0);
     let mut not_assemblable = 0;
     let mut free_cases = 0;
-    for case in 0..CASES {
+    for case in 0..n_cases() {
         let dims = random_dims(&mut rng);
         // Built from a pose: at least one mode.
         let (a, b) = from_pose(&mut rng, &dims);
@@ -241,9 +228,10 @@ fn triad_modes_match_independent_counts_and_close() {
         ));
     }
     println!(
-        "triad modes: {CASES} groups from poses, modes 1..6: {:?}; {free_cases} free groups, \
+        "triad modes: {} groups from poses, modes 1..6: {:?}; {free_cases} free groups, \
          {not_assemblable} not assemblable; largest closure {worst_closure:.2e} of the size; \
          generating pose recovered to {worst_generating:.2e} (times |det|)",
+        n_cases(),
         &histogram[1..]
     );
 }
@@ -253,38 +241,12 @@ fn at(a: &[PointMotion; 3], t: f64) -> [PointMotion; 3] {
     a.map(|m| PointMotion::new(m.p + m.v * t + 0.5 * m.a * t * t, m.v + m.a * t, m.a))
 }
 
-const D1: [f64; 9] = [
-    1.0 / 280.0,
-    -4.0 / 105.0,
-    1.0 / 5.0,
-    -4.0 / 5.0,
-    0.0,
-    4.0 / 5.0,
-    -1.0 / 5.0,
-    4.0 / 105.0,
-    -1.0 / 280.0,
-];
-
-/// The eighth-order central difference of samples at t = −4h…4h.
-fn fd(samples: &[f64; 9], h: f64) -> f64 {
-    samples.iter().zip(D1).map(|(s, c)| s * c).sum::<f64>() / h
-}
-
-fn fd2(samples: &[Vector2<f64>; 9], h: f64) -> Vector2<f64> {
-    Vector2::new(fd(&samples.map(|v| v.x), h), fd(&samples.map(|v| v.y), h))
-}
-
-/// An angle unwrapped to lie within π of `reference`.
-fn near_angle(angle: f64, reference: f64) -> f64 {
-    reference + (angle - reference + PI).rem_euclid(TAU) - PI
-}
-
 #[test]
 fn triad_rates_match_finite_differences_and_tracking_matches_the_bracket() {
     let mut rng = Rng(0x5EED_0028);
     let (mut worst_v, mut worst_a): (f64, f64) = (0.0, 0.0);
     let (mut checked, mut tracked, mut tried) = (0, 0, 0);
-    for case in 0..CASES {
+    for case in 0..n_cases() {
         let dims = random_dims(&mut rng);
         let (p, _) = from_pose(&mut rng, &dims);
         let s = size(&p, &dims);
@@ -467,7 +429,7 @@ fn triad_reactions_match_the_general_solve_and_balance_every_link() {
     let (mut worst_lu, mut worst_eq): (f64, f64) = (0.0, 0.0);
     let mut cond: f64 = 0.0;
     let mut checked = 0;
-    for case in 0..CASES {
+    for case in 0..n_cases() {
         let dims = random_dims(&mut rng);
         let (a, b) = from_pose(&mut rng, &dims);
         let s = size(&a, &dims);

@@ -160,20 +160,8 @@ fn bundled_linkages_agree_with_the_whole_system_virtual_power_and_equilibrium() 
     println!("{}", report.join("\n"));
 }
 
-/// 8th-order central differences of f at x with step h: first and second derivatives.
-pub(super) fn fd8(f: &dyn Fn(f64) -> f64, x: f64, h: f64) -> (f64, f64) {
-    const D1: [f64; 4] = [4.0 / 5.0, -1.0 / 5.0, 4.0 / 105.0, -1.0 / 280.0];
-    const D2: [f64; 4] = [8.0 / 5.0, -1.0 / 5.0, 8.0 / 315.0, -1.0 / 560.0];
-    let f0 = f(x);
-    let (mut d1, mut d2) = (0.0, -205.0 / 72.0 * f0);
-    for k in 0..4 {
-        let s = (k + 1) as f64 * h;
-        let (fp, fm) = (f(x + s), f(x - s));
-        d1 += D1[k] * (fp - fm);
-        d2 += D2[k] * (fp + fm);
-    }
-    (d1 / h, d2 / (h * h))
-}
+/// Eighth-order central differences (shared: tests/common/fd.rs).
+pub(super) use crate::common::fd::fd8;
 
 #[test]
 fn velocities_and_accelerations_match_finite_differences_of_positions() {

@@ -4,7 +4,8 @@
 //! linkage's Newton–Euler system, and the count of its real assembly modes at the reference
 //! input by two independent searches; and a group of the 4th class solved the same way.
 
-use super::engine::{fd8, lu_difference};
+use super::engine::lu_difference;
+use crate::common::fd::plan_rates_vs_differences;
 use nalgebra::{DMatrix, DVector, Point2, Vector2};
 use std::f64::consts::TAU;
 use tmm::kinematics::{GroupPose, Motion};
@@ -128,33 +129,8 @@ fn velocities_and_accelerations_match_finite_differences_of_positions() {
     let mut report = Vec::new();
     let mut best = f64::INFINITY;
     for h in [1e-3, 2e-3, 4e-3] {
-        let mut worst: f64 = 0.0;
         // Inside the range by 4h on each side: the differences need their 8 neighbours.
-        for &phi in &phis[1..phis.len() - 1] {
-            let a = plan.kinematics(Motion::new(phi, w, e)).unwrap();
-            let pos = |x: f64| plan.kinematics(Motion::fixed(x)).unwrap();
-            let scale = plan.size() * (w * w + e.abs());
-            for j in 0..plan.joint_names().len() {
-                for c in 0..2 {
-                    let f = |x: f64| pos(x).joint(j).unwrap().p[c];
-                    let (d1, d2) = fd8(&f, phi, h);
-                    let m = a.joint(j).unwrap();
-                    worst = worst.max((m.v[c] - d1 * w).abs() / scale);
-                    worst = worst.max((m.a[c] - (d2 * w * w + d1 * e)).abs() / scale);
-                }
-            }
-            for li in 1..plan.link_names().len() {
-                let base = a.link(li).unwrap().value;
-                let f = |x: f64| {
-                    let v = pos(x).link(li).unwrap().value - base;
-                    v - TAU * (v / TAU).round()
-                };
-                let (d1, d2) = fd8(&f, phi, h);
-                let m = a.link(li).unwrap();
-                worst = worst.max((m.rate - d1 * w).abs() / (w * w + e.abs()));
-                worst = worst.max((m.accel - (d2 * w * w + d1 * e)).abs() / (w * w + e.abs()));
-            }
-        }
+        let worst = plan_rates_vs_differences(&plan, &phis[1..phis.len() - 1], w, e, h);
         report.push(format!("h = {h:.0e}: {worst:.1e}"));
         best = best.min(worst);
     }

@@ -2,7 +2,8 @@
 //! triad: closure, rates against finite differences, the whole linkage's Newton–Euler system,
 //! virtual power, the mode kept round a turn (a group of a higher class: tests/linkage/general.rs).
 
-use super::engine::{fd8, lu_difference};
+use super::engine::lu_difference;
+use crate::common::fd::plan_rates_vs_differences;
 use std::f64::consts::TAU;
 use tmm::kinematics::Motion;
 use tmm::linkage::{bundled, GroupKind, Plan};
@@ -119,35 +120,12 @@ fn velocities_and_accelerations_match_finite_differences_of_positions() {
     assert!(best < 1e-9, "{report:?}");
 }
 
+/// 72 positions round a turn, off the drawn one.
 fn rates_vs_differences(plan: &Plan, w: f64, e: f64, h: f64) -> f64 {
-    let mut worst: f64 = 0.0;
-    for k in 0..72 {
-        let phi = plan.reference_input() + TAU * (f64::from(k) + 0.3) / 72.0;
-        let a = plan.kinematics(Motion::new(phi, w, e)).unwrap();
-        let pos = |x: f64| plan.kinematics(Motion::fixed(x)).unwrap();
-        let scale = plan.size() * (w * w + e.abs());
-        for j in 0..plan.joint_names().len() {
-            for c in 0..2 {
-                let f = |x: f64| pos(x).joint(j).unwrap().p[c];
-                let (d1, d2) = fd8(&f, phi, h);
-                let m = a.joint(j).unwrap();
-                worst = worst.max((m.v[c] - d1 * w).abs() / scale);
-                worst = worst.max((m.a[c] - (d2 * w * w + d1 * e)).abs() / scale);
-            }
-        }
-        for li in 1..plan.link_names().len() {
-            let base = a.link(li).unwrap().value;
-            let f = |x: f64| {
-                let v = pos(x).link(li).unwrap().value - base;
-                v - TAU * (v / TAU).round()
-            };
-            let (d1, d2) = fd8(&f, phi, h);
-            let m = a.link(li).unwrap();
-            worst = worst.max((m.rate - d1 * w).abs() / (w * w + e.abs()));
-            worst = worst.max((m.accel - (d2 * w * w + d1 * e)).abs() / (w * w + e.abs()));
-        }
-    }
-    worst
+    let phis: Vec<f64> = (0..72)
+        .map(|k| plan.reference_input() + TAU * (f64::from(k) + 0.3) / 72.0)
+        .collect();
+    plan_rates_vs_differences(plan, &phis, w, e, h)
 }
 
 #[test]
@@ -244,8 +222,7 @@ fn a_triad_with_a_sliding_pair_is_found_solved_and_balanced() {
         let phis = slider_inputs(&plan, 25);
         // Rates against eighth-order differences of positions.
         let (w, e) = (3.0, -2.0);
-        let fd = [1e-3, 2e-3, 4e-3]
-            .map(|h| crate::common::fd::plan_rates_vs_differences(&plan, &phis, w, e, h));
+        let fd = [1e-3, 2e-3, 4e-3].map(|h| plan_rates_vs_differences(&plan, &phis, w, e, h));
         let best = fd.iter().copied().fold(f64::INFINITY, f64::min);
         // Reactions against the whole linkage's Newton–Euler system, virtual power and every
         // link's equilibrium; the transmission angle stays positive.
