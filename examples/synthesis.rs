@@ -2,20 +2,23 @@
 //! linkage description, whose report is printed and which the engine then analyses (its time
 //! ratio, stroke and smallest transmission angle printed beside the report's). The
 //! descriptions are written as JSON files to `target/tmm-charts/synthesis/`, ready for
-//! `cargo run --example linkage -- FILE`.
+//! `cargo run --example linkage -- FILE`, each beside its picture (SVG): the linkage with
+//! what it was made for drawn on it (the path of a joint, the positions or precision
+//! points, the poses, Burmester's curves, the target points), and the structural error of
+//! the function generators.
 //!
 //! ```sh
 //! cargo run --release --example synthesis
 //! ```
 
-use std::f64::consts::{PI, TAU};
+use std::f64::consts::{FRAC_PI_2, PI, TAU};
 use std::fs;
 use std::path::Path;
-use tmm::draw::{synthesis_scheme, Style, Targets};
+use tmm::draw::{structural_error, synthesis_scheme, Style, Targets};
 use tmm::kinematics::{Motion, Rotation};
 use tmm::linkage::{Output, Plan};
 use tmm::synthesis::{
-    burmester, burmester_points, centre_point, centre_point_curve, crank_rocker,
+    burmester, burmester_curves, burmester_points, centre_point, centre_point_curve, crank_rocker,
     crank_rocker_through, four_bar_from_dyads, function_generator, path_generator, shaper,
     slider_crank, CrankRockerRequirement, FrameChoice, FunctionRequirement, OffsetChoice, Options,
     PathOptions, PathRequirement, Pose, ShaperRequirement, SliderCrankRequirement, Spacing,
@@ -69,6 +72,14 @@ fn run_example() -> tmm::Result<()> {
     };
     let best = crank_rocker(&need, &options)?;
     show(&best, &rocker, dir, "crank-rocker")?;
+    let plan = Plan::new(&best.linkage)?;
+    picture(
+        &best,
+        plan.reference_input(),
+        &Targets::points(&[], "B"),
+        dir,
+        "crank-rocker",
+    )?;
     let longer = CrankRockerRequirement {
         frame: FrameChoice::Length(1.2 * best.report.dimension("frame").unwrap_or(0.5)),
         ..need
@@ -89,6 +100,7 @@ fn run_example() -> tmm::Result<()> {
         &options,
     )?;
     show(&sc, &Output::Slide("P".to_owned()), dir, "slider-crank")?;
+    picture(&sc, 0.0, &Targets::points(&[], "A"), dir, "slider-crank")?;
 
     println!("== shaper: ram stroke 300 mm, K = 1.6, O1O3 = 250 mm ==");
     let sh = shaper(
@@ -100,6 +112,7 @@ fn run_example() -> tmm::Result<()> {
         &options,
     )?;
     show(&sh, &Output::Slide("G".to_owned()), dir, "shaper")?;
+    picture(&sh, FRAC_PI_2, &Targets::points(&[], "D"), dir, "shaper")?;
 
     println!("== crank-rocker through three positions (frame 400 mm) ==");
     let pairs = [
@@ -110,6 +123,15 @@ fn run_example() -> tmm::Result<()> {
     let loose = options.with_min_transmission_angle(0.0);
     let through = crank_rocker_through(0.4, &pairs, &loose)?;
     show(&through, &rocker, dir, "crank-rocker-through-positions")?;
+    // The rocker's pin at the three given positions, on the path it traces.
+    let at_pairs = joint_at(&through, "B", &pairs.map(|p| p.0))?;
+    picture(
+        &through,
+        pairs[0].0,
+        &Targets::points(&at_pairs, "B"),
+        dir,
+        "crank-rocker-through-positions",
+    )?;
 
     println!("== function generator: y = log10 x on [1, 2], crank −30°..30°, rocker 0°..90° ==");
     let need = FunctionRequirement {
@@ -139,6 +161,18 @@ fn run_example() -> tmm::Result<()> {
         );
         let stem = format!("function-generator-{}", g.precision_x.len());
         show(&g.synthesis, &rocker, dir, &stem)?;
+        // The rocker's pin at the precision points; the structural error over the range.
+        let phis: Vec<f64> = g.precision_x.iter().map(|&x| g.crank_angle(x)).collect();
+        let at_precision = joint_at(&g.synthesis, "B", &phis)?;
+        picture(
+            &g.synthesis,
+            g.crank_angle(need.x_range[0]),
+            &Targets::points(&at_precision, "B"),
+            dir,
+            &stem,
+        )?;
+        let chart = structural_error(&g, f64::log10, &Style::default())?;
+        write(dir, &format!("{stem}-structural-error"), &chart.svg);
     }
 
     println!("== Burmester: three poses of the coupler point P and its line ==");
@@ -171,6 +205,13 @@ fn run_example() -> tmm::Result<()> {
         dir,
         "burmester-three-poses",
     )?;
+    picture(
+        &s,
+        crank.angles(&poses)[0],
+        &Targets::poses(&poses),
+        dir,
+        "burmester-three-poses",
+    )?;
 
     println!("== Burmester: four poses, dyads from the centre-point curve ==");
     let four = [poses[0], poses[1], poses[2], Pose::new([0.28, 0.0], 1.0)];
@@ -200,6 +241,13 @@ fn run_example() -> tmm::Result<()> {
                 dir,
                 "burmester-four-poses",
             )?;
+            picture(
+                &s,
+                crank.angles(&four)[0],
+                &Targets::poses(&four).with_burmester_curves(&burmester_curves(&four, 720)?),
+                dir,
+                "burmester-four-poses",
+            )?;
         }
         None => println!("  no pair of small dyads without a defect and with γ_min ≥ 30°\n"),
     }
@@ -225,13 +273,38 @@ fn run_example() -> tmm::Result<()> {
         )
     };
     let five = [0.3, 0.9, 1.6, 2.4, 3.0].map(pose);
-    for p in burmester_points(&five, 4000)? {
+    let points = burmester_points(&five, 4000)?;
+    for p in &points {
         println!(
             "  centre point ({:9.6}, {:9.6}) m, circle point ({:9.6}, {:9.6}) m",
             p.centre[0], p.centre[1], p.circle[0], p.circle[1]
         );
     }
     println!("  (the crank's pivot (0, 0) and the rocker's (0.4, 0) among them)\n");
+    // The four-bar of the first two of Burmester's points that make one without a defect.
+    let pair = points.iter().enumerate().find_map(|(i, c)| {
+        points[i + 1..].iter().find_map(|r| {
+            four_bar_from_dyads(&five, c, r, &loose)
+                .ok()
+                .map(|s| (s, *c))
+        })
+    });
+    if let Some((s5, crank5)) = pair {
+        show(
+            &s5,
+            &Output::Angle("coupler".to_owned()),
+            dir,
+            "burmester-five-poses",
+        )?;
+        let first_four = [five[0], five[1], five[2], five[3]];
+        picture(
+            &s5,
+            crank5.angles(&five)[0],
+            &Targets::poses(&five).with_burmester_curves(&burmester_curves(&first_four, 720)?),
+            dir,
+            "burmester-five-poses",
+        )?;
+    }
 
     println!("== path generation: a four-bar through 24 points of a closed curve ==");
     // The points: the coupler curve of the crank-rocker above, in 24 steps of the crank.
@@ -262,10 +335,7 @@ fn run_example() -> tmm::Result<()> {
     picture(
         &s,
         crank.angles(&poses)[0],
-        &Targets::poses(&poses).with_curves(vec![
-            curve.iter().map(|d| d.centre).collect(),
-            curve.iter().map(|d| d.circle).collect(),
-        ]),
+        &Targets::poses(&four).with_burmester_curves(&burmester_curves(&four, 720)?),
         dir,
         "burmester-curves",
     )?;
@@ -300,12 +370,28 @@ fn run_example() -> tmm::Result<()> {
 fn picture(s: &Synthesis, phi: f64, targets: &Targets, dir: &Path, stem: &str) -> tmm::Result<()> {
     let plan = Plan::new(&s.linkage)?;
     let pic = synthesis_scheme(&plan, Motion::fixed(phi), targets, &Style::default())?;
+    write(dir, stem, &pic.svg);
+    Ok(())
+}
+
+/// Writes `svg` to `dir/stem.svg`.
+fn write(dir: &Path, stem: &str, svg: &str) {
     let file = dir.join(format!("{stem}.svg"));
-    match fs::write(&file, pic.svg) {
+    match fs::write(&file, svg) {
         Ok(()) => println!("  picture: {}\n", file.display()),
         Err(e) => println!("  (picture not written: {e})\n"),
     }
-    Ok(())
+}
+
+/// Where the engine puts the joint `name` of `s` at each crank angle.
+fn joint_at(s: &Synthesis, name: &str, phis: &[f64]) -> tmm::Result<Vec<[f64; 2]>> {
+    let plan = Plan::new(&s.linkage)?;
+    phis.iter()
+        .map(|&phi| {
+            let p = plan.kinematics(Motion::fixed(phi))?.joint(name)?.p;
+            Ok([p.x, p.y])
+        })
+        .collect()
 }
 
 /// The requirement of the first crank-rocker, for variations.

@@ -487,7 +487,7 @@ fn wrap(d: f64) -> f64 {
 }
 
 /// A range around [lo, hi] with a margin of `frac` of its width (a flat one opened up).
-fn pad(lo: f64, hi: f64, frac: f64) -> [f64; 2] {
+pub(super) fn pad(lo: f64, hi: f64, frac: f64) -> [f64; 2] {
     let w = hi - lo;
     // The chart steps its tick marks by a fraction of the width: a width of a few ulps of
     // the values would never advance, so a range narrower than 1e-9 of its magnitude is
@@ -713,7 +713,7 @@ const COLOURS: [RGBColor; 8] = [
     RGBColor(176, 58, 122),
 ];
 
-fn render(panels: &mut [Panel], style: &Style, hodograph: bool) -> Result<String> {
+pub(super) fn render(panels: &mut [Panel], style: &Style, hodograph: bool) -> Result<String> {
     let fail = |e: &dyn std::fmt::Display| drawing("a diagram", e.to_string());
     let mut svg = String::new();
     {

@@ -76,7 +76,7 @@ pub use frame::Frame;
 pub use plan_view::{plan_view, plan_view_two, MAX_PLAN_POSITIONS};
 pub use scheme::{scheme, scheme_with_centres};
 pub use style::Style;
-pub use synthesis::{synthesis_scheme, Targets, MAX_TARGET_VERTICES};
+pub use synthesis::{structural_error, synthesis_scheme, Targets, MAX_TARGET_VERTICES};
 pub use workspace::{workspace, ASSEMBLY_COLOUR, ISOLATED_COLOUR, SERIAL_COLOUR, WORKSPACE_FILL};
 
 /// The course of positions the plan and the diagrams draw; it lives in [`crate::linkage`]

@@ -1,15 +1,17 @@
 //! A synthesised linkage with what it was synthesised for: the target points of path
 //! generation, the poses of motion generation, the path its coupler point traces over a turn,
-//! and curves such as Burmester's centre-point and circle-point curves.
+//! and curves such as Burmester's centre-point and circle-point curves; and the structural
+//! error of a function generator.
 
+use super::diagrams::{pad, render};
 use super::parts::{self, Pen};
 use super::primitives::{self, r2, Labels};
 use super::scene::{self, Extents, Pose, Topo};
-use super::{Picture, Style};
+use super::{Chart, Panel, Picture, Style};
 use crate::error::{Error, Result};
 use crate::kinematics::Motion;
 use crate::linkage::Plan;
-use crate::synthesis::Pose as BodyPose;
+use crate::synthesis::{Dyad, FunctionGenerator, Pose as BodyPose};
 use nalgebra::Point2;
 use std::f64::consts::TAU;
 use svg::node::element::path::Data;
@@ -59,6 +61,84 @@ impl Targets {
         self.curves.extend(curves);
         self
     }
+
+    /// With Burmester's curves added: for each run of dyads (as
+    /// [`burmester_curves`](crate::synthesis::burmester_curves) gives them), the line of its
+    /// centre points (the centre-point curve) and that of its circle points in the first pose
+    /// (the circle-point curve).
+    #[must_use]
+    pub fn with_burmester_curves(mut self, runs: &[Vec<Dyad>]) -> Self {
+        for run in runs {
+            self.curves.push(run.iter().map(|d| d.centre).collect());
+            self.curves.push(run.iter().map(|d| d.circle).collect());
+        }
+        self
+    }
+}
+
+/// The structural error of a function generator over its whole range: y generated − y
+/// wanted against x at [`Style::samples`] evenly spaced x (by the engine, as
+/// [`FunctionGenerator::structural_error`]), its precision points marked and numbered on
+/// the curve (where the error vanishes for exact precision points). One panel; the axes in
+/// the units of x and y.
+///
+/// # Examples
+/// The log10 generator of [`function_generator`](crate::synthesis::function_generator): the
+/// curve is zero at its three precision points.
+/// ```
+/// use tmm::draw::{structural_error, Style};
+/// use tmm::synthesis::{function_generator, FunctionRequirement, Options, Spacing};
+/// let deg = f64::to_radians;
+/// let need = FunctionRequirement {
+///     x_range: [1.0, 2.0],
+///     crank_range: [deg(-30.0), deg(30.0)],
+///     rocker_range: [deg(0.0), deg(90.0)],
+///     frame: 0.1,
+///     spacing: Spacing::Chebyshev,
+/// };
+/// let g = function_generator(f64::log10, &need, &Options::default())?;
+/// let chart = structural_error(&g, f64::log10, &Style::default())?;
+/// let marks = &chart.panels[0].marks;
+/// assert_eq!(marks.len(), 3);
+/// assert!(marks.iter().all(|(_, m)| m[1].abs() < 1e-12));
+/// # Ok::<(), tmm::Error>(())
+/// ```
+///
+/// # Errors
+/// The errors of [`Style::check`] and of [`FunctionGenerator::structural_error`] (with n =
+/// [`Style::samples`]); [`Error::Drawing`] when the chart cannot be drawn.
+pub fn structural_error<F: Fn(f64) -> f64>(
+    generator: &FunctionGenerator,
+    f: F,
+    style: &Style,
+) -> Result<Chart> {
+    style.check()?;
+    let curve = generator.structural_error(&f, style.samples.max(2))?;
+    let at = generator.structural_error_at(&f, &generator.precision_x)?;
+    let points: Vec<[f64; 2]> = curve.iter().map(|p| [p.x, p.error]).collect();
+    let marks: Vec<(usize, [f64; 2])> = at
+        .iter()
+        .enumerate()
+        .map(|(i, p)| (i + 1, [p.x, p.error]))
+        .collect();
+    let (lo, hi) = points
+        .iter()
+        .chain(marks.iter().map(|(_, m)| m))
+        .fold((0.0f64, 0.0f64), |(lo, hi), p| (lo.min(p[1]), hi.max(p[1])));
+    let [x0, x1] = generator.requirement.x_range;
+    let mut panels = vec![Panel {
+        title: "structural error of the function generator (precision points numbered)".to_owned(),
+        x_label: "x".to_owned(),
+        y_label: "y generated − y wanted".to_owned(),
+        x_range: pad(x0.min(x1), x0.max(x1), 0.0),
+        y_range: pad(lo, hi, 0.08),
+        x_pixels: [0.0; 2],
+        y_pixels: [0.0; 2],
+        series: vec![("structural error".to_owned(), points)],
+        marks,
+    }];
+    let svg = render(&mut panels, style, false)?;
+    Ok(Chart { svg, panels })
 }
 
 /// The most vertices of all the [`Targets`] of one picture together (10⁵).

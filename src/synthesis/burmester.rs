@@ -12,7 +12,7 @@
 //! of the circle through those.
 
 use super::four_bar::FourBar;
-use super::{check, require_transmission, Options, Synthesis};
+use super::{check, coordinate, require_transmission, Options, Synthesis};
 use crate::angle::{cross, direction, normalize, perp, unit};
 use crate::error::{finite, Error, Result};
 use crate::linkage::{Input, Joint, Link, Linkage, NamedPoint, Output};
@@ -97,8 +97,8 @@ fn undisplace(first: &Pose, pose: &Pose, w: V) -> V {
 
 pub(super) fn check_poses(poses: &[Pose]) -> Result<()> {
     for p in poses {
-        finite("pose x", p.at[0])?;
-        finite("pose y", p.at[1])?;
+        coordinate("pose x", p.at[0])?;
+        coordinate("pose y", p.at[1])?;
         finite("pose angle", p.angle)?;
     }
     let scale = poses
@@ -158,8 +158,8 @@ fn circumcentre(what: &'static str, z: [V; 3]) -> Result<V> {
 /// infinity: a slider would do) or two of them coincide (the circle point is a pole).
 pub fn centre_point(poses: &[Pose; 3], circle: [f64; 2]) -> Result<Dyad> {
     check_poses(poses)?;
-    finite("circle point x", circle[0])?;
-    finite("circle point y", circle[1])?;
+    coordinate("circle point x", circle[0])?;
+    coordinate("circle point y", circle[1])?;
     let z = v(circle);
     let c = circumcentre(
         "the three positions of the circle point",
@@ -194,8 +194,8 @@ pub fn centre_point(poses: &[Pose; 3], circle: [f64; 2]) -> Result<Dyad> {
 /// As [`centre_point`].
 pub fn circle_point(poses: &[Pose; 3], centre: [f64; 2]) -> Result<Dyad> {
     check_poses(poses)?;
-    finite("centre point x", centre[0])?;
-    finite("centre point y", centre[1])?;
+    coordinate("centre point x", centre[0])?;
+    coordinate("centre point y", centre[1])?;
     let c = v(centre);
     let z = circumcentre(
         "the three inverted positions of the centre point",
@@ -234,9 +234,9 @@ pub fn circle_point(poses: &[Pose; 3], centre: [f64; 2]) -> Result<Dyad> {
 /// [`Error::Singular`] when the circle point does not move (it is the pole of the two poses).
 pub fn centre_point_two(poses: &[Pose; 2], circle: [f64; 2], along: f64) -> Result<Dyad> {
     check_poses(poses)?;
-    finite("circle point x", circle[0])?;
-    finite("circle point y", circle[1])?;
-    finite("along", along)?;
+    coordinate("circle point x", circle[0])?;
+    coordinate("circle point y", circle[1])?;
+    coordinate("along", along)?;
     let z1 = v(circle);
     let z2 = displace(&poses[0], &poses[1], z1);
     let chord = z2 - z1;
@@ -319,8 +319,8 @@ pub fn four_bar_from_dyads(
         ("rocker centre point", rocker.centre),
         ("rocker circle point", rocker.circle),
     ] {
-        finite(name, p[0])?;
-        finite(name, p[1])?;
+        coordinate(name, p[0])?;
+        coordinate(name, p[1])?;
     }
     let (o1, a, b, o3) = (
         v(crank.centre),
@@ -373,6 +373,7 @@ pub fn four_bar_from_dyads(
         });
     }
     let fb = FourBar::from_points(o1, a, b, o3);
+    fb.proportions(METHOD)?;
     // The crank's arc from the first pose to the last through the others, in local angles.
     let phis: Vec<f64> = crank
         .angles(poses)

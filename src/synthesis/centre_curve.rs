@@ -56,19 +56,74 @@ pub fn centre_point_curve(poses: &[Pose; 4], n: usize) -> Result<Vec<Dyad>> {
             ends: crate::Ends::Closed,
         });
     }
+    Ok(burmester_curves(poses, n)?.concat())
+}
+
+/// Burmester's curves of four poses as lines to draw: the dyads of [`centre_point_curve`]
+/// in runs along one branch of the compatibility triangle, each run without a gap (a run
+/// ends where the triangle stops closing, at a fold where the two branches meet, or at a
+/// dyad that does not fit). The centre points of a run trace the centre-point curve, their
+/// circle points (in the first pose) the circle-point curve.
+///
+/// # Examples
+/// ```
+/// use tmm::synthesis::{burmester_curves, centre_point_curve, Pose};
+/// let poses = [
+///     Pose::new([0.0, 0.0], 0.0),
+///     Pose::new([0.1, 0.05], 0.3),
+///     Pose::new([0.2, 0.05], 0.7),
+///     Pose::new([0.28, 0.0], 1.0),
+/// ];
+/// let runs = burmester_curves(&poses, 360)?;
+/// let all: usize = runs.iter().map(Vec::len).sum();
+/// assert_eq!(all, centre_point_curve(&poses, 360)?.len());
+/// # Ok::<(), tmm::Error>(())
+/// ```
+///
+/// # Errors
+/// As [`centre_point_curve`].
+pub fn burmester_curves(poses: &[Pose; 4], n: usize) -> Result<Vec<Vec<Dyad>>> {
+    check_poses(poses)?;
+    if !(1..=super::MAX_POINTS).contains(&n) {
+        return Err(Error::OutOfRange {
+            name: "n",
+            value: n as f64,
+            min: 1.0,
+            max: super::MAX_POINTS as f64,
+            ends: crate::Ends::Closed,
+        });
+    }
     let compat = Compatibility::new(poses);
-    let mut out = Vec::new();
-    for k in 0..n {
-        let beta2 = TAU * (k as f64 + 0.5) / n as f64;
-        for sign in [1.0, -1.0] {
-            if let Some(dyad) = compat.dyad(beta2, sign)
-                && dyad.misfit(poses) <= 1e-9 * (compat.size + dyad.length())
+    let mut runs: Vec<Vec<Dyad>> = Vec::new();
+    for sign in [1.0, -1.0] {
+        let first = runs.len();
+        let mut run: Vec<Dyad> = Vec::new();
+        let (mut at_start, mut at_end) = (false, false);
+        for k in 0..n {
+            let beta2 = TAU * (k as f64 + 0.5) / n as f64;
+            match compat
+                .dyad(beta2, sign)
+                .filter(|d| d.misfit(poses) <= 1e-9 * (compat.size + d.length()))
             {
-                out.push(dyad);
+                Some(d) => {
+                    at_start |= k == 0;
+                    at_end = k == n - 1;
+                    run.push(d);
+                }
+                None if !run.is_empty() => runs.push(std::mem::take(&mut run)),
+                None => {}
             }
         }
+        if !run.is_empty() {
+            runs.push(run);
+        }
+        // A run through β2 = 0 is one line: its end joins its beginning.
+        if at_start && at_end && runs.len() > first + 1 {
+            let last = runs.pop().unwrap_or_default();
+            runs[first].splice(0..0, last);
+        }
     }
-    Ok(out)
+    Ok(runs)
 }
 
 /// Burmester's compatibility of four poses (see [`centre_point_curve`]): the coefficients
@@ -257,7 +312,8 @@ impl Loop {
 /// ```
 ///
 /// # Errors
-/// [`Error::NonFinite`] for a non-finite number; [`Error::NoMechanism`] for coinciding poses;
+/// [`Error::NonFinite`] for a non-finite number; [`Error::NoMechanism`] for coinciding poses
+/// and for degenerate poses that more than four dyads fit (a continuum of them);
 /// [`Error::OutOfRange`] (`"n"`) for n below 8 or above [`MAX_POINTS`](super::MAX_POINTS).
 pub fn burmester_points(poses: &[Pose; 5], n: usize) -> Result<Vec<Dyad>> {
     check_poses(poses)?;
@@ -383,6 +439,19 @@ pub fn burmester_points(poses: &[Pose; 5], n: usize) -> Result<Vec<Dyad>> {
         if dyad.misfit(poses) <= 1e-9 * scale && !duplicate {
             out.push(dyad);
         }
+    }
+    // Two centre-point curves in general position meet in at most four real Burmester
+    // points; more means they share a piece (for example poses that all turn about one
+    // point): a continuum of dyads, not a finite answer.
+    if out.len() > 4 {
+        return Err(Error::NoMechanism {
+            method: "Burmester's points",
+            problem: format!(
+                "the five poses are degenerate: {} distinct dyads fit them (at most four in \
+                 general position), so the centre-point curves share a piece",
+                out.len()
+            ),
+        });
     }
     Ok(out)
 }

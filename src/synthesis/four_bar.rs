@@ -6,7 +6,7 @@
 //! direction `delta`. The assembly mode σ = +1 puts B to the left of the line A→O3 (the
 //! engine's `Plus` for the group (coupler, rocker)).
 
-use super::{acute, time_ratio_of, Report};
+use super::{acute, time_ratio_of, Report, MAX_LINK_RATIO};
 use crate::angle::{cross, direction, normalize, perp, unit};
 use crate::error::{Error, Result};
 use crate::kinematics::{grashof, Grashof};
@@ -92,33 +92,44 @@ impl FourBar {
     }
 
     /// A and B (local) at the local crank angle `phi`, `None` where it does not assemble.
+    /// The largest of the four lengths: the positions are found in units of it, so that
+    /// neither squares of huge lengths overflow nor those of tiny ones underflow.
+    fn size(&self) -> f64 {
+        self.d.max(self.a).max(self.b).max(self.c)
+    }
+
     pub fn local_pose(&self, phi: f64) -> Option<(V, V)> {
-        let a = self.a * unit(phi);
-        let v = V::new(self.d, 0.0) - a;
+        let s = self.size();
+        let (d, a_len, b, c) = (self.d / s, self.a / s, self.b / s, self.c / s);
+        let a = a_len * unit(phi);
+        let v = V::new(d, 0.0) - a;
         let e = v.norm();
         if e == 0.0 {
             return None;
         }
-        let along = (self.b * self.b - self.c * self.c + e * e) / (2.0 * e);
-        let h2 = self.b * self.b - along * along;
-        if h2 < -1e-12 * self.b * self.b {
+        let along = (b * b - c * c + e * e) / (2.0 * e);
+        let h2 = b * b - along * along;
+        if h2 < -1e-12 * b * b {
             return None;
         }
         let u = v / e;
-        Some((a, a + along * u + self.sigma * h2.max(0.0).sqrt() * perp(u)))
+        Some((
+            s * a,
+            s * (a + along * u + self.sigma * h2.max(0.0).sqrt() * perp(u)),
+        ))
     }
 
-    /// The transmission angle (acute, between coupler and rocker) where |AO3| = e.
+    /// The transmission angle (acute, between coupler and rocker) where |AO3| = e: the
+    /// cosine (b² + c² − e²)/(2bc) in ratios, free of overflow.
     fn mu(&self, e: f64) -> f64 {
-        acute(acos(
-            (self.b * self.b + self.c * self.c - e * e) / (2.0 * self.b * self.c),
-        ))
+        let (b, c) = (self.b, self.c);
+        acute(acos(0.5 * (b / c + c / b - (e / b) * (e / c))))
     }
 
     /// The transmission angle at the local crank angle `phi`.
     pub fn transmission(&self, phi: f64) -> f64 {
-        let e2 = self.a * self.a + self.d * self.d - 2.0 * self.a * self.d * phi.cos();
-        self.mu(e2.max(0.0).sqrt())
+        let (sin, cos) = phi.sin_cos();
+        self.mu((self.d - self.a * cos).hypot(self.a * sin))
     }
 
     /// γ_min over a full turn and the local crank angle where it occurs: |AO3| runs from
@@ -158,9 +169,10 @@ impl FourBar {
     /// (σ = +1: above it, since then cross(O3 − A, B − A) = d·B_y with A on the line O1B).
     pub fn extremes(&self) -> Extremes {
         let (d, c, s) = (self.d, self.c, self.sigma);
+        // The cosines of the triangle O1 B O3 (|O1B| = r) in ratios, free of overflow.
         let at = |r: f64| {
-            let alpha = acos((r * r + d * d - c * c) / (2.0 * r * d));
-            let beta = acos((c * c + d * d - r * r) / (2.0 * c * d));
+            let alpha = acos(0.5 * (r / d + d / r - (c / r) * (c / d)));
+            let beta = acos(0.5 * (c / d + d / c - (r / c) * (r / d)));
             (alpha, beta)
         };
         let (ae, be) = at(self.a + self.b);
@@ -172,6 +184,23 @@ impl FourBar {
             psi_fold: normalize(PI - s * bf),
             theta: (af - ae).abs(),
             swing: (be - bf).abs(),
+        }
+    }
+
+    /// Checks the proportions: the longest link at most [`MAX_LINK_RATIO`] times the
+    /// shortest, [`Error::NoMechanism`] otherwise.
+    pub fn proportions(&self, method: &'static str) -> Result<()> {
+        let shortest = self.d.min(self.a).min(self.b).min(self.c);
+        let ratio = self.size() / shortest;
+        if ratio <= MAX_LINK_RATIO {
+            Ok(())
+        } else {
+            Err(Error::NoMechanism {
+                method,
+                problem: format!(
+                    "its longest link is {ratio:.4e} times its shortest (at most {MAX_LINK_RATIO:e})"
+                ),
+            })
         }
     }
 

@@ -14,7 +14,7 @@
 
 use super::four_bar::FourBar;
 use super::search::maximise;
-use super::{check, require_transmission, Options, Synthesis, MAX_POINTS};
+use super::{check, length, require_transmission, Options, Synthesis, MAX_POINTS};
 use crate::angle::normalize;
 use crate::error::{finite, positive, Ends, Error, Result};
 use crate::kinematics::Grashof;
@@ -217,7 +217,7 @@ pub fn crank_rocker_through(
     options: &Options,
 ) -> Result<Synthesis> {
     const METHOD: &str = "crank-rocker through given positions";
-    let d = positive("frame", frame)?;
+    let d = length("frame", frame)?;
     let required = options.check()?;
     if !(2..=3).contains(&positions.len()) {
         return Err(Error::OutOfRange {
@@ -233,6 +233,7 @@ pub fn crank_rocker_through(
         let (a, b, c) = lengths(METHOD, d, k)?;
         let sigma = one_mode(METHOD, d, a, c, positions)?;
         let fb = FourBar::local(d, a, b, c, sigma);
+        fb.proportions(METHOD)?;
         let class = fb.grashof()?;
         if class != Grashof::CrankRocker {
             return Err(Error::NoMechanism {
@@ -368,8 +369,8 @@ impl FunctionGenerator {
     /// rocker angle at φ(x), mapped back to y, against f(x).
     ///
     /// # Errors
-    /// [`Error::OutOfRange`] for n outside [2, [`MAX_POINTS`]]; the engine's error at a position where the four-bar
-    /// does not assemble; [`Error::NonFinite`] where f is not finite.
+    /// [`Error::OutOfRange`] for n outside [2, [`MAX_POINTS`]]; as
+    /// [`FunctionGenerator::structural_error_at`].
     pub fn structural_error<F: Fn(f64) -> f64>(
         &self,
         f: F,
@@ -388,7 +389,35 @@ impl FunctionGenerator {
         let xs: Vec<f64> = (0..n)
             .map(|k| x0 + (x1 - x0) * k as f64 / (n - 1) as f64)
             .collect();
+        self.structural_error_at(f, &xs)
+    }
+
+    /// The structural error at the given x (for example the precision points, where it
+    /// vanishes): the engine's rocker angle at φ(x), mapped back to y, against f(x).
+    ///
+    /// # Errors
+    /// [`Error::OutOfRange`] (`"x"`) for more than [`MAX_POINTS`] of them; [`Error::NonFinite`]
+    /// for a non-finite x or where f is not finite; the engine's error at a position where
+    /// the four-bar does not assemble.
+    pub fn structural_error_at<F: Fn(f64) -> f64>(
+        &self,
+        f: F,
+        xs: &[f64],
+    ) -> Result<Vec<StructuralError>> {
+        if xs.len() > MAX_POINTS {
+            return Err(Error::OutOfRange {
+                name: "x",
+                value: xs.len() as f64,
+                min: 0.0,
+                max: MAX_POINTS as f64,
+                ends: Ends::Closed,
+            });
+        }
+        for &x in xs {
+            finite("x", x)?;
+        }
         let phis: Vec<f64> = xs.iter().map(|&x| self.crank_angle(x)).collect();
+        crate::error::computed_all("the crank angles φ(x)", &phis)?;
         let psis = check::output_values(
             &self.synthesis.linkage,
             &Output::Angle("rocker".to_owned()),
@@ -403,6 +432,7 @@ impl FunctionGenerator {
                 // The engine's angle is in [0, 2π); the wanted one anywhere: compare mod 2π.
                 let diff = normalize(psi - self.rocker_angle(wanted) + PI) - PI;
                 let generated = wanted + diff * scale;
+                crate::error::computed("the generated y", generated)?;
                 Ok(StructuralError {
                     x,
                     wanted,
@@ -471,7 +501,7 @@ pub fn function_generator<F: Fn(f64) -> f64>(
     let [q0, q1] = need.rocker_range;
     finite("rocker angle at y0", q0)?;
     finite("rocker angle at y1", q1)?;
-    let d = positive("frame", need.frame)?;
+    let d = length("frame", need.frame)?;
     let n = match need.spacing {
         Spacing::Chebyshev => 3,
         Spacing::LeastSquares(n) if !(3..=MAX_POINTS).contains(&n) => {
@@ -557,6 +587,7 @@ pub fn function_generator<F: Fn(f64) -> f64>(
         }
     };
     let fb = FourBar::local(d, a, b, c, sigma);
+    fb.proportions(METHOD)?;
     let start = p0.min(p1);
     for i in 0..=1024 {
         let phi = start + span * f64::from(i) / 1024.0;

@@ -20,7 +20,7 @@
 //!   separated poses — for three, the centre point of a chosen circle point ([`centre_point`])
 //!   and the circle point of a chosen centre point ([`circle_point`]); for two, centre points
 //!   on a bisector ([`centre_point_two`]); for four, the centre-point curve sampled
-//!   ([`centre_point_curve`]); for five, Burmester's points ([`burmester_points`]) — and the
+//!   ([`centre_point_curve`]; as lines to draw, [`burmester_curves`]); for five, Burmester's points ([`burmester_points`]) — and the
 //!   four-bar of two dyads ([`four_bar_from_dyads`], [`burmester`]), checked for branch and
 //!   order defects.
 //!
@@ -43,7 +43,11 @@
 //! kind meets is [`Error::Infeasible`] (with the nearest reachable value, so the message says
 //! by how much it misses), [`Error::OutOfRange`] (with the feasible interval, for K), or
 //! [`Error::NoMechanism`] (saying what came out instead: a negative length, a branch or an
-//! order defect, a crank that does not turn fully).
+//! order defect, a crank that does not turn fully). Lengths and coordinates, given and
+//! found, lie within [`MIN_LENGTH`]..[`MAX_LENGTH`] (an error names the one that does not),
+//! and a four-bar's links within a ratio of [`MAX_LINK_RATIO`];
+//! no answer passes a dead point (γ_min > [`DEAD_POINT`] always); every answer's description
+//! is solved by the engine at its reference pose before it is returned.
 //!
 //! # Example
 //! A crank-rocker whose 0.3 m rocker swings 45° with K = 1.25, handed to the engine:
@@ -79,7 +83,7 @@ mod search;
 pub use burmester::{
     burmester, centre_point, centre_point_two, circle_point, four_bar_from_dyads, Dyad, Pose,
 };
-pub use centre_curve::{burmester_points, centre_point_curve};
+pub use centre_curve::{burmester_curves, burmester_points, centre_point_curve};
 pub use freudenstein::{
     crank_rocker_through, freudenstein_coefficients, function_generator, FunctionGenerator,
     FunctionRequirement, Spacing, StructuralError,
@@ -251,15 +255,67 @@ pub(crate) fn acute(x: f64) -> f64 {
     x.min(std::f64::consts::PI - x)
 }
 
-/// Checks that γ_min meets \[γ\]: [`Error::Infeasible`] otherwise.
+/// Checks that γ_min meets \[γ\], and in any case exceeds [`DEAD_POINT`]:
+/// [`Error::Infeasible`] otherwise (with what is reachable).
 pub(crate) fn require_transmission(achieved: f64, required: f64) -> Result<()> {
-    if achieved < required {
+    let required = required.max(DEAD_POINT);
+    if achieved.is_nan() || achieved < required {
         Err(Error::Infeasible {
             parameter: "minimum transmission angle (rad)",
             required,
-            reachable: achieved,
+            reachable: if achieved.is_nan() { 0.0 } else { achieved },
         })
     } else {
         Ok(())
+    }
+}
+
+/// The smallest γ_min any synthesised mechanism keeps, rad (10⁻⁶), even with \[γ\] = 0: a
+/// mechanism whose transmission angle reaches zero passes a dead point, where the engine's
+/// velocity system is singular and the crank cannot drive the output through it.
+pub const DEAD_POINT: f64 = 1e-6;
+
+/// The largest ratio of a synthesised four-bar's longest link to its shortest (10³): the
+/// engine finds a hinge between a long and a short link to a relative precision of about
+/// ε·(long/short)², so beyond this the answer could not be checked to 10⁻¹⁰.
+pub const MAX_LINK_RATIO: f64 = 1e3;
+
+/// The largest length or coordinate a synthesis takes or gives, m (10¹⁰⁰): far inside the
+/// range where the engine's squares of lengths stay finite (about 1.3·10¹⁵⁴).
+pub const MAX_LENGTH: f64 = 1e100;
+
+/// The smallest length a synthesis takes, m (10⁻¹⁰⁰): far above the range where the
+/// engine's squares of lengths underflow.
+pub const MIN_LENGTH: f64 = 1e-100;
+
+/// Checks a given length: finite, positive and within [[`MIN_LENGTH`], [`MAX_LENGTH`]].
+pub(crate) fn length(name: &'static str, value: f64) -> Result<f64> {
+    let v = crate::error::positive(name, value)?;
+    if (MIN_LENGTH..=MAX_LENGTH).contains(&v) {
+        Ok(v)
+    } else {
+        Err(Error::OutOfRange {
+            name,
+            value: v,
+            min: MIN_LENGTH,
+            max: MAX_LENGTH,
+            ends: crate::Ends::Closed,
+        })
+    }
+}
+
+/// Checks a given coordinate or signed distance: finite, |value| ≤ [`MAX_LENGTH`].
+pub(crate) fn coordinate(name: &'static str, value: f64) -> Result<f64> {
+    let v = crate::error::finite(name, value)?;
+    if v.abs() <= MAX_LENGTH {
+        Ok(v)
+    } else {
+        Err(Error::OutOfRange {
+            name,
+            value: v,
+            min: -MAX_LENGTH,
+            max: MAX_LENGTH,
+            ends: crate::Ends::Closed,
+        })
     }
 }

@@ -4,7 +4,9 @@
 
 use super::four_bar::FourBar;
 use super::search::maximise;
-use super::{check, crank_excess, require_transmission, time_ratio_of, Options, Report, Synthesis};
+use super::{
+    check, crank_excess, length, require_transmission, time_ratio_of, Options, Report, Synthesis,
+};
 use crate::angle::{cross, normalize};
 use crate::error::{finite, positive, Ends, Error, Result};
 use crate::kinematics::Grashof;
@@ -207,7 +209,7 @@ const SCAN: usize = 2048;
 /// [`Error::Infeasible`] for a frame length on which no crank-rocker's pivot lies (with the
 /// nearest that works) and for γ_min below \[γ\] (with the best reachable).
 pub fn crank_rocker(need: &CrankRockerRequirement, options: &Options) -> Result<Synthesis> {
-    let c = positive("rocker", need.rocker)?;
+    let c = length("rocker", need.rocker)?;
     let swing = finite("swing", need.swing)?;
     if !(swing > 0.0 && swing < PI) {
         return Err(Error::OutOfRange {
@@ -221,7 +223,7 @@ pub fn crank_rocker(need: &CrankRockerRequirement, options: &Options) -> Result<
     let theta = crank_excess(need.time_ratio)?;
     let required = options.check()?;
     if let FrameChoice::Length(d) = need.frame {
-        positive("frame length", d)?;
+        length("frame length", d)?;
     }
     // The problem is similar in scale: solved for a rocker of 1, scaled by c at the end.
     let locus = Locus::new(1.0, swing, theta);
@@ -262,6 +264,7 @@ pub fn crank_rocker(need: &CrankRockerRequirement, options: &Options) -> Result<
         best
     };
     let design = design.scaled(c)?;
+    design.proportions("crank-rocker")?;
     let report = design.report("crank-rocker", None)?;
     require_transmission(report.min_transmission_angle, required)?;
     let linkage = design.linkage(
@@ -356,7 +359,7 @@ fn slider_gamma(a: f64, b: f64, e: f64) -> f64 {
 /// [`Error::OutOfRange`] for K outside (1, 3), or above the largest K of the given offset
 /// (θ < arctan(H/e)); [`Error::Infeasible`] for γ_min below \[γ\].
 pub fn slider_crank(need: &SliderCrankRequirement, options: &Options) -> Result<Synthesis> {
-    let h = positive("stroke", need.stroke)?;
+    let h = length("stroke", need.stroke)?;
     let theta = crank_excess(need.time_ratio)?;
     let required = options.check()?;
     let out_of_range = |max: f64| Error::OutOfRange {
@@ -372,7 +375,7 @@ pub fn slider_crank(need: &SliderCrankRequirement, options: &Options) -> Result<
     // Similar in scale: solved for H = 1 (the offset e/H), scaled by H at the end.
     let e = match need.offset {
         OffsetChoice::Given(e) => {
-            let e = positive("offset", e)? / h;
+            let e = length("offset", e)? / h;
             if slider_design(1.0, theta, e).is_none() {
                 return Err(out_of_range(time_ratio_of(e.recip().atan())));
             }
@@ -492,8 +495,8 @@ pub struct ShaperRequirement {
 /// [`Error::OutOfRange`] for K ≤ 1; [`Error::Infeasible`] for γ_min = π/2 − θ/2 below \[γ\], and
 /// for a centre distance so large that the crank's circle reaches the ram's block (h ≤ d + r).
 pub fn shaper(need: &ShaperRequirement, options: &Options) -> Result<Synthesis> {
-    let stroke = positive("stroke", need.stroke)?;
-    let d = positive("centre_distance", need.centre_distance)?;
+    let stroke = length("stroke", need.stroke)?;
+    let d = length("centre_distance", need.centre_distance)?;
     let theta = crank_excess(need.time_ratio)?;
     let required = options.check()?;
     let (s, co) = (0.5 * theta).sin_cos();

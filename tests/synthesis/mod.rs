@@ -12,6 +12,7 @@ use tmm::synthesis::{
 };
 use tmm::Error;
 
+mod hostile_requirements;
 mod path;
 mod pictures;
 
@@ -1323,7 +1324,7 @@ fn overflowing_maps_are_an_error() {
         x_range: [1.768432583298752e299, -6.78640403404003e299],
         crank_range: [0.0, 2.6806225978709803],
         rocker_range: [-3.777638690240938e299, 1.3307248007636203],
-        frame: 1.9698036829944107e-291,
+        frame: 0.1,
         spacing: Spacing::LeastSquares(4),
     };
     let o = Options::default().with_min_transmission_angle(0.0);
