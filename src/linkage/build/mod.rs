@@ -124,13 +124,15 @@ impl Plan {
             .map(|c| c.complete(&chain))
             .collect::<Result<_>>()?;
         let friction = friction::plan_friction(linkage)?;
-        Ok(Self {
+        let plan = Self {
             name: linkage.name.clone(),
             chain,
             loads,
             gravity,
             friction,
-        })
+        };
+        super::springs::check_torsion(&plan)?;
+        Ok(plan)
     }
 }
 
