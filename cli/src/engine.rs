@@ -182,10 +182,12 @@ impl Machine {
             .collect();
         let range = self.range();
         let full = matches!(range, Range::FullTurn);
+        // A general group (above the 3rd class) has no transmission angle: no line.
         let transmission = plan
             .groups()
             .iter()
             .enumerate()
+            .filter(|(_, group)| group.kind != tmm::linkage::GroupKind::General)
             .map(|(g, group)| {
                 let value = if full {
                     plan.min_transmission_angle(g).map_err(|e| e.to_string())

@@ -583,7 +583,8 @@ pub enum LoadSpec {
     /// first link (and its opposite on the second), Δθ = θ₂ − θ₁ the angle of the second link
     /// from the first, measured along their reference directions. The twist Δθ − Δθ₀ is read
     /// in (−π, π]: the spring is for links that turn less than half a turn either way from its
-    /// free angle.
+    /// free angle, and one whose twist comes within 0.1 rad of ±π over the inputs' range (links
+    /// that turn fully relative to each other) is refused when the plan is made, by name.
     TorsionSpring {
         /// A name for errors and readings (default: the load's number).
         #[cfg_attr(feature = "serde", serde(default))]

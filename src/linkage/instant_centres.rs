@@ -4,17 +4,26 @@
 //! links; a sliding pair's lies at infinity across its guide), then each missing centre C_ij
 //! where two lines C_ik–C_kj meet (the three centres of any three links lie on one line).
 //! A centre that no pair of such lines fixes (some six-bars have them) is read off the
-//! velocities instead: the point where the two links' velocity fields agree.
+//! velocities instead: the point where the two links' velocity fields agree, the fields from
+//! the chain's velocity equations at the position (a unit-rate solve, up to scale). For a
+//! linkage of one input every centre is thus geometry alone: the same at any input rate, at
+//! rest too (`Motion::fixed`, a rocking input at its lock). A linkage of two inputs has its
+//! centres where its inputs' rates put them (their ratio), from the pose's rates.
+//!
+//! Links are numbered by the plan's order ([`Plan::link_names`]: the description's links with
+//! the frame swapped into place 0), not by the numbering of the textbook figures (GUIDE §2,
+//! input = 1): the centre of links i and j is labelled I{i}{j} with these indices, on the
+//! scheme too.
 //!
 //! A centre at infinity (two links translating relative to each other: parallel lines of
 //! Kennedy, or equal angular velocities) is reported as a direction, never as a point with
 //! infinite coordinates.
 
 use super::handle::LinkId;
-use super::plan::{Plan, Pose};
+use super::plan::{Chain, InputPlan, Plan, Pose};
 use crate::angle::{cross, perp};
 use crate::error::{Error, Result};
-use nalgebra::{Point2, Vector2};
+use nalgebra::{DMatrix, DVector, Point2, Vector2};
 
 /// Where an instant centre lies.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -33,14 +42,15 @@ pub enum Found {
     Joint,
     /// By the theorem of Aronhold and Kennedy, from two lines of three centres.
     Kennedy,
-    /// From the velocities (a centre that Kennedy's theorem leaves open).
+    /// From the velocities of the chain's motion at the position, a unit-rate solve up to
+    /// scale (a centre that Kennedy's theorem leaves open).
     Velocities,
 }
 
 /// The instant centre of two links.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct InstantCentre {
-    /// The two links, the lower index first.
+    /// The two links, the lower index first (the plan's link indices, 0 the frame).
     pub links: [LinkId; 2],
     /// Where it lies.
     pub centre: Centre,
@@ -57,9 +67,11 @@ impl Plan {
     ///
     /// # Errors
     /// [`Error::Description`] for a pose of another plan; [`Error::Singular`] for a centre
-    /// that Kennedy's theorem leaves open where the two links are at rest relative to each
-    /// other (every point is then their centre), as at a pose whose rates are all zero: solve
-    /// the position at a non-zero input rate.
+    /// that Kennedy's theorem leaves open where the velocity equations of the position have
+    /// more motions than inputs (a branch point: the singular value that vanished, relative
+    /// to the largest), where
+    /// the two links are at rest relative to each other (every point is then their centre),
+    /// or, with two inputs, where both input rates of the pose are zero.
     ///
     /// # Examples
     /// The four-bar's coupler turns about the meeting point of its crank's and rocker's
@@ -135,12 +147,22 @@ impl Plan {
                 break;
             }
         }
+        // The pairs left open are read off one unit-rate solve of this position.
+        let fields = if known
+            .iter()
+            .enumerate()
+            .any(|(s, c)| c.is_none() && s / n < s % n)
+        {
+            chain_motion(&self.chain, pose)?
+        } else {
+            Vec::new()
+        };
         let mut out = Vec::with_capacity(n * (n - 1) / 2);
         for i in 0..n {
             for j in i + 1..n {
                 let (centre, found) = match known[slot(i, j)] {
                     Some(c) => c,
-                    None => (from_velocities(pose, i, j)?, Found::Velocities),
+                    None => (from_velocities(&fields, size, i, j)?, Found::Velocities),
                 };
                 out.push(InstantCentre {
                     links: [LinkId(i), LinkId(j)],
@@ -194,30 +216,142 @@ fn meet(lines: &[Line], size: f64) -> Option<Centre> {
     }
 }
 
-/// The centre of links `i` and `j` from their velocity fields: where the relative velocity
-/// v_rel(Q) + ω_rel × (P − Q) vanishes, P = Q + (−v_y, v_x)/ω_rel; at infinity across the
-/// relative velocity when ω_rel vanishes.
-fn from_velocities(pose: &Pose<'_>, i: usize, j: usize) -> Result<Centre> {
-    let (mi, mj) = (pose.links[i], pose.links[j]);
-    let q = mi.origin.p;
-    let v = mi.origin.v - mj.motion_of(q).v;
-    let w = mi.omega - mj.omega;
-    let scale = pose.links.iter().map(|m| m.omega.abs()).fold(0.0, f64::max);
-    let vs = pose
-        .links
-        .iter()
-        .map(|m| m.origin.v.norm())
-        .fold(0.0, f64::max);
-    if w.abs() <= 1e-12 * scale && !(v.norm() > 1e-12 * vs) {
-        // At rest relative to each other (or every rate zero): every point is their centre.
+/// Each link's velocity field in the chain's motion at the position of `pose`, as (u, ω)
+/// with the velocity of the link's point P equal to u + ω·perp(P) (u: the velocity of the
+/// link's point passing the origin; the frame's is (0, 0)). With one input the fields are
+/// those of a unit-rate solve up to a common factor, which no centre depends on; with two,
+/// those of the pose's input rates, whose ratio the centres depend on.
+///
+/// One linear system of the whole chain at the pose's positions, whatever its groups: each
+/// hinge makes its two links' velocities agree at the hinge; each sliding pair makes their
+/// angular velocities equal and their relative velocity run along its guide. With one input
+/// its motions form a line, the null space of these equations (found by the SVD, so that a
+/// rocking input at its lock, whose own rate vanishes there, is not singular); two inputs add
+/// their rates as equations. Only positions are read: the centres do not depend on the rates.
+/// The unknown ω is scaled by the plan's size so that the columns are alike.
+fn chain_motion(chain: &Chain, pose: &Pose<'_>) -> Result<Vec<(Vector2<f64>, f64)>> {
+    let n = chain.link_names.len();
+    let size = chain.size.max(f64::MIN_POSITIVE);
+    let two = chain.input_count() == 2;
+    let rates: Vec<f64> = pose.inputs().as_slice().iter().map(|m| m.rate).collect();
+    if two && rates.iter().all(|&r| r == 0.0) {
         return Err(Error::Singular {
-            what: "an instant centre left open by Kennedy's theorem",
-            measure: "the relative velocity of its two links",
-            value: v.norm(),
+            what: "an instant centre left open by Kennedy's theorem (two inputs at rest)",
+            measure: "the input rates",
+            value: 0.0,
         });
     }
-    if w.abs() <= 1e-12 * scale {
-        return Ok(Centre::Infinite(perp(v).normalize()));
+    let cols = 3 * (n - 1);
+    let equations = 2 * chain.joints.len() + if two { 2 } else { 0 };
+    // Rows of zeros pad the system to a square at least, so that the SVD gives every
+    // singular vector.
+    let mut a = DMatrix::<f64>::zeros(equations.max(cols), cols);
+    let mut b = DVector::<f64>::zeros(equations.max(cols));
+    // Adds `sign` × (the velocity of link k's point P, projected on `on`) to row r.
+    let put =
+        |a: &mut DMatrix<f64>, r: usize, k: usize, p: Point2<f64>, on: Vector2<f64>, sign: f64| {
+            if k == 0 {
+                return;
+            }
+            let c = 3 * (k - 1);
+            a[(r, c)] += sign * on.x;
+            a[(r, c + 1)] += sign * on.y;
+            a[(r, c + 2)] += sign * on.dot(&perp(p.coords)) / size;
+        };
+    for (j, jp) in chain.joints.iter().enumerate() {
+        let [ka, kb] = jp.links;
+        let p = pose.joint_position_on(j, ka);
+        let r = 2 * j;
+        if jp.prismatic.is_some() {
+            let across = perp(pose.guide_direction_at(j));
+            put(&mut a, r, ka, p, across, 1.0);
+            put(&mut a, r, kb, p, across, -1.0);
+            for (k, sign) in [(ka, 1.0), (kb, -1.0)] {
+                if k != 0 {
+                    a[(r + 1, 3 * (k - 1) + 2)] += sign;
+                }
+            }
+        } else {
+            for (row, on) in [(r, Vector2::x()), (r + 1, Vector2::y())] {
+                put(&mut a, row, ka, p, on, 1.0);
+                put(&mut a, row, kb, p, on, -1.0);
+            }
+        }
     }
-    Ok(Centre::At(q + Vector2::new(-v.y, v.x) / w))
+    if two {
+        for (i, (ip, &rate)) in chain.inputs().zip(&rates).enumerate() {
+            let (r, k) = (2 * chain.joints.len() + i, ip.link());
+            match ip {
+                InputPlan::Crank { .. } => {
+                    a[(r, 3 * (k - 1) + 2)] = 1.0;
+                    b[r] = rate * size;
+                }
+                InputPlan::Slider { .. } => {
+                    put(&mut a, r, k, pose.links[k].origin.p, pose.units[k], 1.0);
+                    b[r] = rate;
+                }
+            }
+        }
+    }
+    let svd = a.svd(true, true);
+    let mut sigma: Vec<(f64, usize)> = svd.singular_values.iter().copied().zip(0..).collect();
+    sigma.sort_by(|x, y| x.0.total_cmp(&y.0));
+    let hi = sigma.last().map_or(0.0, |s| s.0);
+    // One input: one motion (the smallest singular value ~0, the next not); two: none free.
+    let free = usize::from(!two);
+    let conditioning = sigma[free].0 / hi;
+    if !(conditioning > 1e-12) {
+        return Err(Error::Singular {
+            what: "the chain's motion for an instant centre left open by Kennedy's theorem",
+            measure: "a singular value of the chain's velocity equations beyond its mobility \
+                      (relative to the largest)",
+            value: conditioning,
+        });
+    }
+    let x = if two {
+        svd.solve(&b, 0.0)
+            .map_err(|_| super::plan::bad("pose", "has no velocity solution"))?
+    } else {
+        let Some(v_t) = svd.v_t.as_ref() else {
+            return Err(super::plan::bad("pose", "has no velocity solution"));
+        };
+        v_t.row(sigma[0].1).transpose()
+    };
+    let mut fields = vec![(Vector2::zeros(), 0.0); n];
+    for (k, f) in fields.iter_mut().enumerate().skip(1) {
+        let c = 3 * (k - 1);
+        *f = (Vector2::new(x[c], x[c + 1]), x[c + 2] / size);
+    }
+    Ok(fields)
+}
+
+/// The centre of links `i` and `j` from their velocity fields (u, ω) of
+/// [`chain_motion`]: where the relative velocity u_rel + ω_rel·perp(P) vanishes,
+/// P = (−u_rel,y, u_rel,x)/ω_rel; at infinity across the relative velocity when ω_rel
+/// vanishes.
+fn from_velocities(
+    fields: &[(Vector2<f64>, f64)],
+    size: f64,
+    i: usize,
+    j: usize,
+) -> Result<Centre> {
+    let u = fields[i].0 - fields[j].0;
+    let w = fields[i].1 - fields[j].1;
+    // The largest speed of the links' points within the plan's size of the origin.
+    let scale = fields
+        .iter()
+        .map(|(u, w)| u.norm() + w.abs() * size)
+        .fold(0.0, f64::max);
+    if w.abs() * size <= 1e-12 * scale {
+        if !(u.norm() > 1e-12 * scale) {
+            // At rest relative to each other: every point is their centre.
+            return Err(Error::Singular {
+                what: "an instant centre left open by Kennedy's theorem",
+                measure: "the relative velocity of its two links",
+                value: u.norm(),
+            });
+        }
+        return Ok(Centre::Infinite(perp(u).normalize()));
+    }
+    Ok(Centre::At(Point2::new(-u.y / w, u.x / w)))
 }

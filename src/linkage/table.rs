@@ -108,6 +108,10 @@ impl Tabulate for Kinematics<'_> {
             }
         }
         for (g, group) in plan.groups().iter().enumerate() {
+            if group.kind == crate::linkage::GroupKind::General {
+                // Not defined above the 3rd class: no column.
+                continue;
+            }
             let mu = self.transmission_angle(g).unwrap_or(f64::NAN);
             out.cell(|| format!("mu({}) [rad]", group.name), mu);
         }

@@ -430,6 +430,23 @@ fn rocking_inputs_have_strokes_and_extremes() {
         ext.len()
     );
     assert!((stroke - own).abs() < 1e-7 * plan.size(), "{stroke} {own}");
+    // The two locks end the list, where the input reverses: each is an extreme of the output
+    // on the one side the input reaches; between them the output stands still.
+    assert!(ext.len() >= 2, "{ext:?}");
+    let (first, last) = (ext[0], ext[ext.len() - 1]);
+    // Angles compared a turn apart (an extreme's input lies in [0, 2π)).
+    let near = |a: f64, b: f64| ((a - b) - TAU * ((a - b) / TAU).round()).abs() < 1e-12;
+    for (e, lock) in [(first, lo), (last, hi)] {
+        let ends = near(e.input, lo) || near(e.input, hi);
+        assert!(ends, "{e:?} not at a lock ({lo}, {hi})");
+        let inward = if near(e.input, lo) { 1e-4 } else { -1e-4 };
+        let side = ch.at(e.input + inward).2.x - e.output.value;
+        assert_eq!(
+            e.kind == ExtremeKind::Max,
+            side < 0.0,
+            "{e:?} at the lock {lock}"
+        );
+    }
     for e in &ext[1..ext.len() - 1] {
         assert!(e.output.rate.abs() < 1e-9, "{e:?}");
         let side = (ch.at(e.input + 1e-4).2.x + ch.at(e.input - 1e-4).2.x) / 2.0 - e.output.value;
@@ -438,4 +455,54 @@ fn rocking_inputs_have_strokes_and_extremes() {
     // An input that turns fully is sent to Plan::extremes.
     let turns = Plan::new(&bundled::hoekens_straight_line()).unwrap();
     assert!(turns.rocking_extremes(&x).is_err());
+}
+
+/// A group above the 3rd class (the double butterfly's six links) has no transmission angle:
+/// an error naming it, not π/2; the table leaves its column out and keeps every other
+/// group's (the triad six-bar's, each between 0 and π/2).
+#[test]
+fn a_general_group_has_no_transmission_angle() {
+    use tmm::linkage::GroupKind;
+    let plan = Plan::new(&bundled::double_butterfly()).unwrap();
+    let phi = plan.reference_input();
+    let k = plan.kinematics(Motion::fixed(phi)).unwrap();
+    let general: Vec<usize> = (0..plan.groups().len())
+        .filter(|&g| plan.groups()[g].kind == GroupKind::General)
+        .collect();
+    assert!(!general.is_empty());
+    for &g in &general {
+        let e = k.transmission_angle(g).unwrap_err().to_string();
+        assert!(
+            e.contains("3rd class") && e.contains(&plan.groups()[g].name),
+            "{e}"
+        );
+        assert!(plan.min_transmission_angle(g).is_err());
+    }
+    let inputs: Vec<Motion> = (0..3)
+        .map(|i| Motion::turning(phi + 0.01 * f64::from(i), 1.0))
+        .collect();
+    let table = plan.table(inputs.iter().copied());
+    assert_eq!(table.len(), 3);
+    let mu = |t: &tmm::linkage::Table| {
+        t.columns
+            .iter()
+            .filter(|c| c.name.starts_with("mu("))
+            .map(|c| c.values.clone())
+            .collect::<Vec<_>>()
+    };
+    assert_eq!(
+        mu(&table).len(),
+        plan.groups().len() - general.len(),
+        "{:?}",
+        table.columns.iter().map(|c| &c.name).collect::<Vec<_>>()
+    );
+    let triad = Plan::new(&bundled::six_bar_triad()).unwrap();
+    let t = triad
+        .table((0..3).map(|i| Motion::turning(triad.reference_input() + 0.01 * f64::from(i), 1.0)));
+    let columns = mu(&t);
+    assert_eq!(columns.len(), triad.groups().len());
+    assert!(columns
+        .iter()
+        .flatten()
+        .all(|m| (0.0..=FRAC_PI_2).contains(m)));
 }

@@ -425,3 +425,64 @@ fn springs_read_and_write_as_json() {
         .to_string();
     assert!(e.contains("stifness"), "{e}");
 }
+
+/// A torsion spring between links that turn fully relative to each other (the crank and the
+/// frame), or whose free angle lies half a turn from where its links go, would have its twist
+/// jump a turn (read in (−π, π]) and its energy not conserved: it is refused by name, with
+/// the twist it reached; the same spring on the rocker, which swings less than half a turn
+/// from its free angle, is taken.
+#[test]
+fn a_torsion_spring_that_would_pass_half_a_turn_is_refused_by_name() {
+    let on = |links: [&str; 2], free_angle: Option<f64>| {
+        Plan::new(&four_bar_with(
+            vec![LoadSpec::TorsionSpring {
+                name: "clock".into(),
+                links: links.map(String::from),
+                stiffness: 2.0,
+                free_angle,
+                preload: 0.0,
+            }],
+            [0.0; 2],
+        ))
+    };
+    let (item, problem) = described(on(["frame", "crank"], None).unwrap_err());
+    assert_eq!(item, "torsion spring clock", "{problem}");
+    assert!(
+        problem.contains("frame") && problem.contains("crank") && problem.contains("half a turn"),
+        "{problem}"
+    );
+    let bare = Plan::new(&four_bar_with(vec![], [0.0; 2])).unwrap();
+    // The rocker's swing, read here from its angles over a turn of the crank.
+    let angles: Vec<f64> = (0..720)
+        .map(|k| {
+            let phi = TAU * f64::from(k) / 720.0;
+            let k = bare.kinematics(Motion::fixed(phi)).unwrap();
+            k.link("rocker").unwrap().value
+        })
+        .collect();
+    let theta0 = rocker(&bare, bare.reference_input());
+    let swing = angles
+        .iter()
+        .map(|a| {
+            let d = a - theta0;
+            (d - TAU * (d / TAU).round()).abs()
+        })
+        .fold(0.0, f64::max);
+    assert!(swing < 2.0, "{swing}");
+    assert!(on(["frame", "rocker"], None).is_ok());
+    // Free half a turn from the reference pose: the twist starts at ±π.
+    let k0 = bare
+        .kinematics(Motion::fixed(bare.reference_input()))
+        .unwrap();
+    let rocker_angle = theta0 - k0.link("frame").unwrap().value;
+    let (item, problem) = described(
+        on(
+            ["frame", "rocker"],
+            Some(rocker_angle + std::f64::consts::PI),
+        )
+        .unwrap_err(),
+    );
+    assert_eq!(item, "torsion spring clock", "{problem}");
+    // Free a quarter turn away, the twist stays within π/2 + the swing < π.
+    assert!(on(["frame", "rocker"], Some(rocker_angle + 1.0)).is_ok());
+}

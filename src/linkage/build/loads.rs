@@ -234,6 +234,7 @@ pub(super) fn plan_load(
                 stiffness: non_negative(&item, "stiffness", *stiffness)?,
                 free,
                 preload: finite_num(&item, "preload", *preload)?,
+                name: item,
             })
         }
     }))

@@ -124,14 +124,16 @@ impl Plan {
             .map(|c| c.complete(&chain))
             .collect::<Result<_>>()?;
         let friction = friction::plan_friction(linkage)?;
-        Ok(Self {
+        let plan = Self {
             name: linkage.name.clone(),
             chain,
             loads,
             gravity,
             friction,
             spare: Default::default(),
-        })
+        };
+        super::springs::check_torsion(&plan)?;
+        Ok(plan)
     }
 }
 

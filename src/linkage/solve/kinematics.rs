@@ -161,11 +161,13 @@ impl<'p> Kinematics<'p> {
     /// - PRP: the angle between the two guides; RPP: between the slide and the guide (the
     ///   force crosses each sliding pair along its normal);
     /// - RPR: π/2 always: the sliding pair pushes the cylinder across its axis, which is the
-    ///   direction its point there moves in.
+    ///   direction its point there moves in;
+    /// - a general group (above the 3rd class): not defined, an error.
     ///
     /// # Errors
     /// [`Error::OutOfRange`](crate::Error::OutOfRange) (`"group index"`) for `g` not below `plan.groups().len()`;
-    /// [`Error::Description`](crate::Error::Description) for a linkage without groups.
+    /// [`Error::Description`](crate::Error::Description) for a linkage without groups, or
+    /// naming a [`GroupKind::General`] group ("not defined for a group above the 3rd class").
     pub fn transmission_angle(&self, g: usize) -> Result<f64> {
         let group = &self.plan.chain.groups[self.plan.check_group(g)?];
         if let Some(t) = &group.triad {
@@ -181,7 +183,14 @@ impl<'p> Kinematics<'p> {
         Ok(match group.kind {
             GroupKind::Rrr | GroupKind::Prp | GroupKind::Rpp => between(u2, u3),
             GroupKind::Rrp => std::f64::consts::FRAC_PI_2 - between(u2, u3),
-            GroupKind::Rpr | GroupKind::Triad | GroupKind::General => std::f64::consts::FRAC_PI_2,
+            GroupKind::Rpr | GroupKind::Triad => std::f64::consts::FRAC_PI_2,
+            // No driving link meets a single driven one: no angle says how well it transmits.
+            GroupKind::General => {
+                return Err(crate::linkage::plan::bad(
+                    &group.name,
+                    "the transmission angle is not defined for a group above the 3rd class",
+                ))
+            }
         })
     }
 
