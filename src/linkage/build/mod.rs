@@ -131,7 +131,7 @@ impl Plan {
             gravity,
             friction,
         };
-        super::springs::check_torsion(&plan)?;
+        super::torsion_range::check_torsion(&plan)?;
         Ok(plan)
     }
 }
