@@ -68,6 +68,7 @@ mod springs;
 mod structure;
 mod structure_triad;
 mod table;
+mod torsion_range;
 mod workspace;
 
 pub use course::{Course, Sweep};

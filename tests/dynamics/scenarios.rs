@@ -801,10 +801,15 @@ fn landing_gear_inertia_is_the_seeds_corrected_71_to_73() {
     let a = g.inertia_matrix().unwrap();
     let want = Matrix2::new(i11, i16, i16, i66);
     assert!((a - want).amax() < 1e-15 * want.amax(), "{a} vs {want}");
-    // Willis: with the carrier held, sun and ring turn at −z3/z1.
-    let s = g.link_ratios();
-    let q = Vector2::new(1.0, -(z1 / z3) / u36 * 1.0);
-    let _ = s;
+    // D23, D26: the carrier's ratios (uH1, uH3·u36) as corrected, to the bit.
+    assert_eq!(
+        g.carrier_ratios(),
+        Vector2::new(z1 / (z1 + z3), z3 / (z1 + z3) * z6 / z4)
+    );
+    // The printed (69), z1/(z2 + z3), is another number for this gear.
+    assert!((z1 / (z2 + z3) - uh1).abs() > 1e-3, "{z2}");
+    // Willis: with the sun at 1 and the ring (u36·q̇2) at −z1/z3, the carrier stands still.
+    let q = Vector2::new(1.0, -(z1 / z3) / u36);
     assert!(g.carrier_ratios().dot(&q).abs() < 1e-15);
 }
 

@@ -357,6 +357,37 @@ fn compressor_reproduces_seed_2_10_to_2_14_with_k1_k2() {
     // K1: the printed (2.14) is wrong by 2·l1·ω1²·cos φ1, up to twice the crank pin's
     // centripetal acceleration.
     assert!(printed_k1_error > 1.9, "{printed_k1_error}");
+
+    // K3: the second contour on its own branch, the opposed cylinder (D below O). With the
+    // pin C = −l1·(sin φ1, cos φ1) and D = (0, l5) on the guide, |D − C| = l4 gives
+    // l5 = −l1 cos φ1 ∓ √(l4² − l1² sin² φ1); Minus is the lower root. Its rates by the chain
+    // rule (φ̇1 = ω1, φ̈1 = ε1 in the seed's clockwise convention), with R = √(l4² − l1² sin² φ1):
+    // dl5/dφ1 = l1 sin φ1 + l1² sin φ1 cos φ1 / R,
+    // d²l5/dφ1² = l1 cos φ1 + l1² cos 2φ1 / R + (l1² sin φ1 cos φ1)² / R³.
+    let mut k3 = 0.0f64;
+    for k in 0..12 {
+        let phi1 = k as f64 * TAU / 12.0 + 0.1;
+        let input = Motion::new(FRAC_PI_2 - phi1 + PI, -omega1, -eps1);
+        let c = crank(O, l1, input).unwrap().a;
+        let (sn, cs) = phi1.sin_cos();
+        let root = (l4 * l4 - l1 * l1 * sn * sn).sqrt();
+        let l5 = -l1 * cs - root;
+        let d1 = l1 * sn + l1 * l1 * sn * cs / root;
+        let d2 = l1 * cs
+            + l1 * l1 * (2.0 * phi1).cos() / root
+            + (l1 * l1 * sn * cs).powi(2) / root.powi(3);
+        let (v5, a5) = (omega1 * d1, eps1 * d1 + omega1 * omega1 * d2);
+        let minus = rrp_dyad(c, guide, l4, Branch::Minus).unwrap();
+        assert!(minus.slide.value < 0.0, "the opposed cylinder is below O");
+        k3 = k3
+            .max((minus.slide.value - l5).abs() / l1)
+            .max((minus.slide.rate - v5).abs() / (l1 * omega1))
+            .max((minus.slide.accel - a5).abs() / (l1 * omega1 * omega1));
+        // Plus is the other root, above O: both contours on it put the pistons on one side.
+        let plus = rrp_dyad(c, guide, l4, Branch::Plus).unwrap();
+        k3 = k3.max((plus.slide.value - (-l1 * cs + root)).abs() / l1);
+    }
+    assert!(k3 <= 1e-12, "K3: largest relative difference {k3:e}");
 }
 
 /// Observed orders log2(e_h / e_{h/2}) over successive halvings.

@@ -351,3 +351,81 @@ fn bad_courses_are_refused_naming_the_field() {
     let report = course.assembly(&wide);
     assert_eq!((report.solved, report.failures.len()), (0, 1));
 }
+
+/// Along two input laws q1(t), q2(t) (the bundled five-bar robot), every
+/// joint's and point's velocity and acceleration and every link's angular velocity and
+/// acceleration are the time derivatives of the engine's own positions along the laws, by
+/// 8th-order central differences in t (truncation ~ (3h)⁸ with the laws' frequencies ≤ 3,
+/// rounding ~ 6.5·ε·size/h² for the second derivative), to 1e-7 of their scales.
+#[test]
+fn along_two_laws_rates_and_accelerations_are_the_derivatives_of_the_positions() {
+    use super::engine::fd8;
+    for linkage in [bundled::five_bar_robot()] {
+        let plan = Plan::new(&linkage).unwrap();
+        let r = plan.reference_inputs();
+        let (r0, r1) = (r[0], r[1]);
+        let law1 = move |t: f64| {
+            let (s, c) = (2.0 * t).sin_cos();
+            Motion::new(r0 + 0.4 * s, 0.8 * c, -1.6 * s)
+        };
+        let law2 = move |t: f64| {
+            let (s, c) = (3.0 * t).sin_cos();
+            Motion::new(r1 + 0.3 * c, -0.9 * s, -2.7 * c)
+        };
+        let at = |t: f64| Inputs::two(law1(t), law2(t));
+        let pos = |t: f64| {
+            let still = |m: Motion| Motion::fixed(m.value);
+            plan.kinematics(Inputs::two(still(law1(t)), still(law2(t))))
+                .unwrap()
+        };
+        let h = 5e-3;
+        let (mut worst, mut checked) = (0.0f64, 0);
+        for k in 0..40 {
+            let t = 0.05 * f64::from(k) + 0.013;
+            let a = plan.kinematics(at(t)).unwrap();
+            let (m1, m2) = (law1(t), law2(t));
+            let w2 = m1.rate * m1.rate + m2.rate * m2.rate;
+            let (vs, acs) = (
+                plan.size() * (m1.rate.abs() + m2.rate.abs()),
+                plan.size() * (w2 + m1.accel.abs() + m2.accel.abs()),
+            );
+            let mut compare = |v: f64, acc: f64, d: (f64, f64), scale: [f64; 2]| {
+                worst = worst
+                    .max((v - d.0).abs() / scale[0])
+                    .max((acc - d.1).abs() / scale[1]);
+                checked += 1;
+            };
+            for j in 0..plan.joint_names().len() {
+                let m = a.joint(j).unwrap();
+                for c in 0..2 {
+                    let d = fd8(&|x| pos(x).joint(j).unwrap().p[c], t, h);
+                    compare(m.v[c], m.a[c], d, [vs, acs]);
+                }
+            }
+            for p in 0..plan.point_names().len() {
+                let m = a.point(p).unwrap();
+                for c in 0..2 {
+                    let d = fd8(&|x| pos(x).point(p).unwrap().p[c], t, h);
+                    compare(m.v[c], m.a[c], d, [vs, acs]);
+                }
+            }
+            for li in 1..plan.link_names().len() {
+                let m = a.link(li).unwrap();
+                let f = |x: f64| {
+                    let v = pos(x).link(li).unwrap().value - m.value;
+                    v - TAU * (v / TAU).round()
+                };
+                let d = fd8(&f, t, h);
+                let scale = [vs, acs].map(|s| s / plan.size());
+                compare(m.rate, m.accel, d, scale);
+            }
+        }
+        println!(
+            "{}: {checked} rates and accelerations against 8th-order differences in t, \
+             largest relative difference {worst:.1e}",
+            linkage.name
+        );
+        assert!(checked > 40 * 10, "{checked}");
+        assert!(worst < 1e-7, "{}: {worst:e}", linkage.name);
+    }
+}

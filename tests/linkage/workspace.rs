@@ -7,7 +7,7 @@
 //! a leg is stretched or folded (|OB| = l1 ± l2, |DB| = l4 ± l3), the assembly curves where
 //! the couplers are in line (|AC| = l2 + l3). Bad requests get errors naming the field.
 
-use super::two_inputs::{wide_five_bar, FiveBar};
+use super::two_inputs::{circles, wide_five_bar, FiveBar};
 use tmm::linkage::{bundled, Linkage, Plan, Singularity, Workspace, WorkspaceOptions};
 use tmm::nalgebra::Point2;
 use tmm::Error;
@@ -134,32 +134,76 @@ fn the_five_bar_workspace_boundary_agrees_with_a_dense_inverse_kinematics_grid()
         }
     }
     assert!(serial > 100, "{serial}");
-    // The isolated singular inputs: the couplers folded onto each other (A = C, where B
-    // sweeps the circle of radius l2 about them) and stretched in line (|AC| = l2 + l3).
+    // The isolated singular inputs in closed form: the couplers folded onto each other (the
+    // crank pins meet, A = C, where the circles (O, l1) and (D, l4) cross; B then sweeps the
+    // circle of radius l2 about them). (Stretched in line, |AC| = l2 + l3 at q = (π, 0) here,
+    // B stays continuous: a small loop of inputs about it maps to a small loop, no curve.)
+    let angle = |v: tmm::nalgebra::Vector2<f64>| v.y.atan2(v.x);
+    let poles: Vec<([f64; 2], Point2<f64>)> = circles(five.o, l[0], five.d, l[3])
+        .into_iter()
+        .flatten()
+        .map(|p| ([angle(p - five.o), angle(p - five.d)], p))
+        .collect();
+    // Inputs compared a turn apart.
+    let gap = |a: [f64; 2], b: [f64; 2]| {
+        let w = |x: f64| x - std::f64::consts::TAU * (x / std::f64::consts::TAU).round();
+        w(a[0] - b[0]).hypot(w(a[1] - b[1]))
+    };
     let mut folded = 0;
+    let mut found = vec![false; poles.len()];
+    let (mut worst_pole, mut worst_radius) = (0.0f64, 0.0f64);
     for c in ws
         .singular
         .iter()
         .filter(|c| c.kind == Singularity::Isolated)
     {
-        let n = c.inputs.len() as f64;
-        let q = c
-            .inputs
+        // The inputs lie on a small circle about the engine's pole: its centre from three of
+        // them (the circumcentre).
+        let n = c.inputs.len();
+        assert!(n >= 3, "{n}");
+        // (A whole loop ends where it starts: three points a third of it apart.)
+        let [p1, p2, p3] =
+            [c.inputs[0], c.inputs[n / 3], c.inputs[2 * n / 3]].map(|q| Point2::new(q[0], q[1]));
+        let (b, cc) = (p2 - p1, p3 - p1);
+        let dd = 2.0 * (b.x * cc.y - b.y * cc.x);
+        let centre = p1
+            + tmm::nalgebra::Vector2::new(
+                cc.y * b.norm_squared() - b.y * cc.norm_squared(),
+                b.x * cc.norm_squared() - cc.x * b.norm_squared(),
+            ) / dd;
+        let radius = (p1 - centre).norm();
+        let q = [centre.x, centre.y];
+        let (k, &(pole, pin)) = poles
             .iter()
-            .fold([0.0; 2], |s, q| [s[0] + q[0] / n, s[1] + q[1] / n]);
-        let (a, cc) = five.cranks(q[0], q[1]);
-        let ac = (a - cc).norm();
+            .enumerate()
+            .min_by(|x, y| gap(q, x.1 .0).total_cmp(&gap(q, y.1 .0)))
+            .unwrap();
+        let off = gap(q, pole);
+        // The closed-form singular input lies inside the loop of inputs the curve is traced
+        // along (the curve is the image of a loop about it).
         assert!(
-            ac.min((l[1] + l[2] - ac).abs()) < 0.02,
-            "{q:?}: |AC| = {ac}"
+            off < radius,
+            "{q:?}: {off} from the pole {pole:?}, loop radius {radius}"
         );
-        if ac < 0.02 {
-            for p in &c.points {
-                assert!(((p - a).norm() - l[1]).abs() < 5e-3, "{p}");
-            }
-            folded += c.points.len();
+        found[k] = true;
+        worst_pole = worst_pole.max(off);
+        worst_radius = worst_radius.max(radius);
+        for (p, qk) in c.points.iter().zip(&c.inputs) {
+            // Every point is B at its inputs (closed-form forward kinematics)...
+            let exact = five.forward(qk[0], qk[1]).unwrap();
+            assert!((p - exact).norm() < 1e-12, "{p} vs {exact}");
+            // ...and on the circle of radius l2 about the pins' meeting point to
+            // within how far the pin A moved from it: |A(q) − A*| ≤ l1·|q − q*|.
+            let bound = l[0] * (gap(*qk, pole) + 1e-12);
+            assert!(((p - pin).norm() - l[1]).abs() <= bound, "{p}: {bound}");
+            folded += 1;
         }
     }
+    println!(
+        "isolated singular inputs: the engine's poles within {worst_pole:.1e} rad of the closed \
+         form (loops of radius ≤ {worst_radius:.1e} rad); {folded} points on the folded circles"
+    );
+    assert!(found.iter().all(|&f| f), "{poles:?}: found {found:?}");
     assert!(
         folded > 300,
         "{folded} points on the circles of the folded couplers"
@@ -271,8 +315,25 @@ fn bad_workspace_requests_are_refused_naming_the_field() {
         )
         .unwrap();
     assert!(part.region.area() < 0.5 * whole.region.area());
-    let c = part.region.centre(part.region.nx / 2, part.region.ny / 2);
-    assert!(!part.region.contains(c) || whole.region.contains(c));
+    // Every cell the smaller range fills is in the whole workspace: filled there too, or
+    // within the two rasters' resolution of the whole one's boundary.
+    let r = &part.region;
+    let mut inside = 0;
+    for iy in 0..r.ny {
+        for ix in 0..r.nx {
+            if !r.cells[iy * r.nx + ix] {
+                continue;
+            }
+            let c = r.centre(ix, iy);
+            let edge = distance(c, &whole.boundary);
+            assert!(
+                whole.region.contains(c) || edge <= 1.5 * (whole.region.cell + r.cell),
+                "cell ({ix}, {iy}) at {c} is {edge} m outside the whole workspace"
+            );
+            inside += 1;
+        }
+    }
+    assert!(inside > 10, "{inside}");
 }
 
 /// The workspace picture rendered to pixels (resvg): the region's inside is filled, the

@@ -132,7 +132,7 @@ impl Plan {
             friction,
             spare: Default::default(),
         };
-        super::springs::check_torsion(&plan)?;
+        super::torsion_range::check_torsion(&plan)?;
         Ok(plan)
     }
 }
