@@ -2,7 +2,7 @@
 //! closed form, over the same batch of seeded dyads (the ratio is measured side by side, and
 //! printed as `ratio | …` lines from interleaved rounds, the median of 31), and the RRR dyad
 //! across friction coefficients (`BenchmarkId::from_parameter`): the Newton steps grow with
-//! the friction's feedback on itself.
+//! the friction's feedback on itself; and a whole four-bar's analysis with and without.
 
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion, Throughput};
 use nalgebra::{Point2, Vector2};
@@ -221,5 +221,47 @@ fn across_coefficients(c: &mut Criterion) {
     g.finish();
 }
 
-criterion_group!(benches, per_call, across_coefficients);
+/// The whole four-bar (`bundled::four_bar`, its weights, inertia and resistance) at 360
+/// positions of a turn, each position's full analysis (kinematics, loads, kinetostatics, the
+/// balancing moment) with friction f = 0.15 in every pin (radius 2 % of its size) beside
+/// the same without.
+fn four_bar(c: &mut Criterion) {
+    use tmm::kinematics::Motion;
+    use tmm::linkage::{bundled, Friction, Plan};
+    let base = bundled::four_bar();
+    let free = Plan::new(&base).unwrap();
+    let mut with = base.clone();
+    with.friction = Some(Friction::pin(0.15, 0.02 * free.size()));
+    let plan = Plan::new(&with).unwrap();
+    let inputs: Vec<Motion> = (0..360)
+        .map(|k| {
+            let phi = free.reference_input() + std::f64::consts::TAU * f64::from(k) / 360.0;
+            Motion::turning(phi, 10.0)
+        })
+        .collect();
+    let (mut s0, mut s1) = (free.solver(), plan.solver());
+    let mut without = || {
+        for &m in black_box(&inputs) {
+            black_box(s0.analyse(m).unwrap().balance(0).unwrap().value);
+        }
+    };
+    let mut friction = || {
+        for &m in black_box(&inputs) {
+            black_box(s1.analyse(m).unwrap().balance(0).unwrap().value);
+        }
+    };
+    println!(
+        "ratio | four-bar whole position friction (f = 0.15) / frictionless = {:.2}",
+        interleaved_ratio(&mut without, &mut friction)
+    );
+    let mut g = c.benchmark_group("friction_four_bar");
+    g.measurement_time(Duration::from_secs(2))
+        .warm_up_time(Duration::from_millis(500))
+        .throughput(Throughput::Elements(inputs.len() as u64));
+    g.bench_function("frictionless", |b| b.iter(&mut without));
+    g.bench_function("friction", |b| b.iter(&mut friction));
+    g.finish();
+}
+
+criterion_group!(benches, per_call, across_coefficients, four_bar);
 criterion_main!(benches);

@@ -2,7 +2,7 @@
 //! - an independent Newton solve of each dyad's full nonlinear Newton–Euler system (every
 //!   reaction component an unknown, the friction loads functions of them, the Jacobian by
 //!   central differences, each step by LU), on seeded random well-conditioned dyads of each
-//!   kind for f in {0.05, 0.15, 0.3};
+//!   kind for f in {0.05, 0.15, 0.3}, and of the triad's twelve equations;
 //! - every link's equilibrium with the friction loads the solvers report, taken as data;
 //! - the power balance of a crank with each dyad: P_drive = P_useful + Σ P_lost;
 //! - textbook closed forms derived here: the slider on an inclined guide (self-locking beyond
@@ -116,7 +116,16 @@ fn independent(
     residual: &dyn Fn(&DVector<f64>, f64) -> DVector<f64>,
     scale: f64,
 ) -> Option<DVector<f64>> {
-    let mut x = newton(&|x| residual(x, 0.0), DVector::zeros(6), scale)?;
+    independent_of(6, residual, scale)
+}
+
+/// As [`independent`], for `n` unknowns.
+fn independent_of(
+    n: usize,
+    residual: &dyn Fn(&DVector<f64>, f64) -> DVector<f64>,
+    scale: f64,
+) -> Option<DVector<f64>> {
+    let mut x = newton(&|x| residual(x, 0.0), DVector::zeros(n), scale)?;
     for i in 1..=20 {
         let t = f64::from(i) / 20.0;
         x = newton(&|x| residual(x, t), x, scale)?;
@@ -546,6 +555,121 @@ fn expect_solved(
 
 fn max_abs_diff(a: &DVector<f64>, b: &DVector<f64>) -> f64 {
     (a - b).amax()
+}
+
+/// Triad: x = [R_A1, R_A2, R_A3, R_B1, R_B2, R_B3] (R_Ai of the outer link on binary link
+/// i, R_Bi of binary link i on the ternary link); `given` = the couples [on binary link i
+/// from its outer link, i = 1..3; on the ternary link from binary link i, i = 1..3] as data,
+/// else from x (times t).
+fn triad_residual(
+    p: &TriadFriction,
+    x: &DVector<f64>,
+    t: f64,
+    given: Option<[f64; 6]>,
+) -> DVector<f64> {
+    let (tr, w) = (&p.triad, &p.rates);
+    let ra = [0, 1, 2].map(|i| v2(x, 2 * i));
+    let rb = [0, 1, 2].map(|i| v2(x, 6 + 2 * i));
+    let c = given.unwrap_or_else(|| {
+        let mut c = [0.0; 6];
+        for i in 0..3 {
+            c[i] = -t * p.joints.a[i].rho * ra[i].norm() * sgn(w.binary[i] - w.outer[i]);
+            c[3 + i] = -t * p.joints.b[i].rho * rb[i].norm() * sgn(w.ternary - w.binary[i]);
+        }
+        c
+    });
+    let mut out = Vec::with_capacity(12);
+    for i in 0..3 {
+        let l = &tr.loads[i];
+        let e = ra[i] - rb[i] + l.force;
+        let m = mom(tr.a[i], ra[i]) - mom(tr.b[i], rb[i])
+            + (l.moment_about(pole()) + c[i] - c[3 + i]) / LEN;
+        out.extend([e.x, e.y, m]);
+    }
+    let lt = &tr.load_ternary;
+    let e = rb[0] + rb[1] + rb[2] + lt.force;
+    let m = (0..3)
+        .map(|i| mom(tr.b[i], rb[i]) + c[3 + i] / LEN)
+        .sum::<f64>()
+        + lt.moment_about(pole()) / LEN;
+    out.extend([e.x, e.y, m]);
+    DVector::from_vec(out)
+}
+
+/// A seeded triad: the ternary link's joints about the origin 0.3 m out at roughly 120°
+/// apart, each binary link 0.4–0.8 m long at a random angle, random loads, rates and pins;
+/// `None` when the lines of the binary links come near one point (|det K/L_T| < 0.2).
+fn random_triad(rng: &mut Rng, f: f64) -> Option<TriadFriction> {
+    let b = [0, 1, 2].map(|i| {
+        let th = std::f64::consts::TAU * f64::from(i) / 3.0 + rng.range(-0.3, 0.3);
+        Point2::from(unit(th) * 0.3)
+    });
+    let a =
+        [0, 1, 2].map(|i| b[i] + unit(rng.range(0.0, std::f64::consts::TAU)) * rng.range(0.4, 0.8));
+    let triad = tmm::kinetostatics::Triad {
+        a,
+        b,
+        loads: [rng.load(), rng.load(), rng.load()],
+        load_ternary: rng.load(),
+    };
+    let p = TriadFriction {
+        triad,
+        joints: TriadJoints {
+            a: [rng.hinge(f), rng.hinge(f), rng.hinge(f)],
+            b: [rng.hinge(f), rng.hinge(f), rng.hinge(f)],
+        },
+        rates: TriadRates {
+            outer: [rng.rate(), rng.rate(), rng.rate()],
+            binary: [rng.rate(), rng.rate(), rng.rate()],
+            ternary: rng.rate(),
+        },
+    };
+    (triad.solve().ok()?.conditioning.measure.abs() >= 0.2).then_some(p)
+}
+
+/// The triad with friction in its six hinges against the independent nonlinear solve of its
+/// twelve Newton–Euler equations, every link's equilibrium with the reported couples as
+/// data, and each hinge's friction law, on 200 seeded triads for each f.
+#[test]
+fn triad_against_an_independent_nonlinear_solve() {
+    let mut rng = Rng(0x5EED_0006);
+    for f in FS {
+        let (mut gap, mut eq, mut law, mut steps, mut n) = (0.0f64, 0.0f64, 0.0f64, 0, 0);
+        while n < 200 {
+            let Some(p) = random_triad(&mut rng, f) else {
+                continue;
+            };
+            let r = p.solve().unwrap();
+            let ours =
+                DVector::from_iterator(12, r.r_a.iter().chain(&r.r_b).flat_map(|v| [v.x, v.y]));
+            let tr = &p.triad;
+            let s = tr
+                .loads
+                .iter()
+                .chain([&tr.load_ternary])
+                .map(|l| l.force.amax())
+                .fold(ours.amax(), f64::max);
+            let theirs = independent_of(12, &|x, t| triad_residual(&p, x, t, None), s)
+                .expect("tmm solved, the independent solve did not");
+            let given =
+                [0, 1, 2, 3, 4, 5].map(|k| if k < 3 { r.a[k].load } else { r.b[k - 3].load });
+            gap = gap.max(max_abs_diff(&ours, &theirs) / s);
+            eq = eq.max(triad_residual(&p, &ours, 1.0, Some(given)).amax() / s);
+            for i in 0..3 {
+                let da = r.a[i].load.abs() - p.joints.a[i].rho * r.r_a[i].norm();
+                let db = r.b[i].load.abs() - p.joints.b[i].rho * r.r_b[i].norm();
+                law = law.max(da.abs().max(db.abs()) / s);
+            }
+            steps += r.convergence.iterations;
+            n += 1;
+        }
+        println!(
+            "triad f = {f}: {n} cases, relative to the load scale: vs independent {gap:.2e}, \
+             equilibrium {eq:.2e}, friction law {law:.2e}; mean Newton steps {:.2}",
+            steps as f64 / f64::from(n)
+        );
+        assert!(gap <= 1e-12 && eq <= 1e-12 && law <= 1e-12);
+    }
 }
 
 #[test]
