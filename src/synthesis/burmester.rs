@@ -142,6 +142,24 @@ fn circumcentre(what: &'static str, z: [V; 3]) -> Result<V> {
 /// poses: the centre of the circle through its three positions.
 ///
 /// # Examples
+/// A worked problem: the coupler point P at (0, 0), (100, 0) and (0, 100) mm, the coupler
+/// turned 0°, 90° and 180°; the circle point chosen at P itself. Its three positions are the
+/// poses' points, a right angle at (0, 0), so by hand the centre point is the midpoint of the
+/// hypotenuse, (50, 50) mm, and the crank |OA| = 50√2 = 70.71 mm stands at 225°, 315° and
+/// 135° in the three poses (the directions from the centre point to the three positions):
+/// ```
+/// use tmm::synthesis::{centre_point, Pose};
+/// let deg = f64::to_radians;
+/// let poses = [Pose::new([0.0, 0.0], 0.0), Pose::new([0.1, 0.0], deg(90.0)), Pose::new([0.0, 0.1], deg(180.0))];
+/// let dyad = centre_point(&poses, [0.0, 0.0])?;
+/// assert!((dyad.centre[0] - 0.05).abs() < 1e-15 && (dyad.centre[1] - 0.05).abs() < 1e-15);
+/// assert!((dyad.length() - 0.05 * 2f64.sqrt()).abs() < 1e-15);
+/// let turns: Vec<f64> = dyad.angles(&poses).iter().map(|a| a.to_degrees()).collect();
+/// assert!((turns[0] - 225.0).abs() < 1e-12 && (turns[1] - 315.0).abs() < 1e-12);
+/// assert!((turns[2] - 135.0).abs() < 1e-12);
+/// # Ok::<(), tmm::Error>(())
+/// ```
+/// Any poses and circle point:
 /// ```
 /// use tmm::synthesis::{centre_point, Pose};
 /// let poses = [Pose::new([0.0, 0.0], 0.0), Pose::new([0.1, 0.05], 0.3), Pose::new([0.2, 0.05], 0.7)];

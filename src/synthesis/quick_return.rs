@@ -182,7 +182,9 @@ const SCAN: usize = 2048;
 /// stretched extreme position; output: the rocker's angle.
 ///
 /// # Examples
-/// A rocker of 0.3 m swinging 45° with K = 1.25, the frame chosen for the best transmission:
+/// A worked problem: a rocker of 0.3 m swinging 45° with K = 1.25, the frame chosen for the
+/// best transmission. By hand, θ = 180°·(1.25 − 1)/(1.25 + 1) = 20°: the crank turns
+/// 180° + 20° = 200° on the working stroke and 160° on the return.
 /// ```
 /// use tmm::synthesis::{crank_rocker, CrankRockerRequirement, FrameChoice, Options};
 /// use tmm::kinematics::Rotation;
@@ -199,6 +201,8 @@ const SCAN: usize = 2048;
 /// let strokes = Plan::new(&s.linkage)?.strokes(&Output::Angle("rocker".into()), Rotation::Ccw)?;
 /// assert!((strokes.time_ratio - 1.25).abs() < 1e-9);
 /// assert!((strokes.stroke - 45f64.to_radians()).abs() < 1e-9);
+/// assert!((strokes.working_angle.to_degrees() - 200.0).abs() < 1e-8);
+/// assert!((strokes.idle_angle.to_degrees() - 160.0).abs() < 1e-8);
 /// # Ok::<(), tmm::Error>(())
 /// ```
 ///
@@ -353,6 +357,20 @@ fn slider_gamma(a: f64, b: f64, e: f64) -> f64 {
 /// assert!(slider_crank(&harder, &Options::default()).is_err());
 /// # Ok::<(), tmm::Error>(())
 /// ```
+/// A worked problem with the offset given: H = 200 mm, K = 1.2, e = 50 mm. By hand:
+/// θ = 180°·0.2/2.2 = 16.364°; q = e·H·cot θ − e² = 31 716 mm², x2 = 2q/(H + √(H² + 4q)) =
+/// 103.86 mm, x1 = x2 + H = 303.86 mm; |O1B1| = √(x1² + e²) = 307.94 mm = b + a and
+/// |O1B2| = √(x2² + e²) = 115.26 mm = b − a, so the crank a = 96.34 mm, the rod
+/// b = 211.60 mm, and γ_min = arccos((a + e)/b) = 46.25°:
+/// ```
+/// use tmm::synthesis::{slider_crank, OffsetChoice, Options, SliderCrankRequirement};
+/// let need = SliderCrankRequirement { stroke: 0.2, time_ratio: 1.2, offset: OffsetChoice::Given(0.05) };
+/// let s = slider_crank(&need, &Options::default())?;
+/// assert!((s.report.dimension("crank").unwrap() - 0.096_34).abs() < 5e-6);
+/// assert!((s.report.dimension("rod").unwrap() - 0.211_60).abs() < 5e-6);
+/// assert!((s.report.min_transmission_angle.to_degrees() - 46.25).abs() < 5e-3);
+/// # Ok::<(), tmm::Error>(())
+/// ```
 ///
 /// # Errors
 /// [`Error::NonFinite`] / [`Error::NonPositive`] for the stroke or the offset;
@@ -478,7 +496,10 @@ pub struct ShaperRequirement {
 /// its tip `D`), `ram block`, `ram`; output the slide of `G`. Posed with the crank straight up.
 ///
 /// # Examples
-/// A ram stroke of 0.3 m with K = 1.6, the lever's pivot 0.25 m below the crank's:
+/// A worked problem: a ram stroke of 0.3 m with K = 1.6, the lever's pivot 0.25 m below the
+/// crank's. By hand, θ = ψ = 180°·0.6/2.6 = 41.538°; the crank r = 250 mm·sin 20.769° =
+/// 88.65 mm; the guide h = 300 mm/(2 tan 20.769°) = 395.52 mm above O3; the lever
+/// h/cos 20.769° = 423.01 mm; γ_min = 90° − 20.769° = 69.23°:
 /// ```
 /// use tmm::synthesis::{shaper, Options, ShaperRequirement};
 /// use tmm::kinematics::Rotation;
@@ -487,6 +508,11 @@ pub struct ShaperRequirement {
 /// let strokes = Plan::new(&s.linkage)?.strokes(&Output::Slide("G".into()), Rotation::Ccw)?;
 /// assert!((strokes.stroke - 0.3).abs() < 1e-10);
 /// assert!((strokes.time_ratio - 1.6).abs() < 1e-9);
+/// let r = &s.report;
+/// assert!((r.dimension("crank").unwrap() - 0.088_65).abs() < 5e-6);
+/// assert!((r.dimension("guide height").unwrap() - 0.395_52).abs() < 5e-6);
+/// assert!((r.dimension("lever O3D").unwrap() - 0.423_01).abs() < 5e-6);
+/// assert!((r.min_transmission_angle.to_degrees() - 69.23).abs() < 5e-3);
 /// # Ok::<(), tmm::Error>(())
 /// ```
 ///

@@ -12,6 +12,7 @@ use tmm::synthesis::{
 };
 use tmm::Error;
 
+mod closed_form;
 mod hostile_requirements;
 mod path;
 mod pictures;

@@ -1,0 +1,231 @@
+//! What must hold for the closed-form kinds, beside the round trips in `mod.rs`: the γ_min
+//! a function generator and a Burmester four-bar report is the engine's over their motion;
+//! Burmester's standard-form equation against the displacements evaluated directly; and
+//! the count of Burmester's points of five poses (at most four, in pairs).
+
+use proptest::prelude::*;
+use std::f64::consts::TAU;
+use tmm::kinematics::Motion;
+use tmm::linkage::Plan;
+use tmm::synthesis::{
+    burmester, burmester_points, centre_point, function_generator, FunctionRequirement, Options,
+    Pose, Spacing, Synthesis,
+};
+
+/// The engine's transmission angle of the four-bar's one group at the crank angle φ.
+fn gamma_at(plan: &Plan, phi: f64) -> Option<f64> {
+    plan.kinematics(Motion::fixed(phi))
+        .ok()
+        .and_then(|k| k.transmission_angle(0).ok())
+}
+
+/// Checks the report's γ_min against the engine over the crank's arc from `start` through
+/// `span`: the engine's angle where the report puts γ_min equals it, and no sample of the arc
+/// is smaller. Returns the relative error at the reported place.
+fn reported_gamma_holds(s: &Synthesis, start: f64, span: f64) -> f64 {
+    let plan = Plan::new(&s.linkage).unwrap();
+    let r = &s.report;
+    let there = gamma_at(&plan, r.min_transmission_at).expect("it assembles where γ_min is");
+    let e = (there - r.min_transmission_angle).abs() / r.min_transmission_angle;
+    for i in 0..=2000 {
+        let phi = start + span * f64::from(i) / 2000.0;
+        if let Some(g) = gamma_at(&plan, phi) {
+            assert!(
+                g >= r.min_transmission_angle - 1e-12,
+                "γ = {g} at φ = {phi} below the reported {}",
+                r.min_transmission_angle
+            );
+        }
+    }
+    e
+}
+
+/// A function and the rocker's first angle, degrees.
+type Case = (fn(f64) -> f64, f64);
+
+#[test]
+fn function_generators_keep_the_reported_gamma_over_their_range() {
+    let deg = f64::to_radians;
+    let loose = Options::default().with_min_transmission_angle(0.0);
+    let cases: [Case; 4] = [
+        (f64::log10, 0.0),
+        (|x| x * x, 270.0),
+        (f64::sqrt, 345.0),
+        (|x| 1.0 / x, 15.0),
+    ];
+    let mut worst: f64 = 0.0;
+    for (f, rocker) in cases {
+        for spacing in [Spacing::Chebyshev, Spacing::LeastSquares(15)] {
+            let need = FunctionRequirement {
+                x_range: [1.0, 2.0],
+                crank_range: [deg(-30.0), deg(30.0)],
+                rocker_range: [deg(rocker), deg(rocker + 90.0)],
+                frame: 0.1,
+                spacing,
+            };
+            let g = function_generator(f, &need, &loose).unwrap();
+            let e = reported_gamma_holds(&g.synthesis, deg(-30.0), deg(60.0));
+            assert!(e < 1e-10, "{e:e}");
+            worst = worst.max(e);
+        }
+    }
+    eprintln!("function generators' γ_min against the engine: worst relative error {worst:.2e}");
+}
+
+#[test]
+fn burmester_four_bars_keep_the_reported_gamma() {
+    let mut x: u64 = 0x1234_5678_9ABC_DEF1;
+    let mut next = || {
+        x ^= x << 13;
+        x ^= x >> 7;
+        x ^= x << 17;
+        (x >> 11) as f64 / (1u64 << 53) as f64
+    };
+    let loose = Options::default().with_min_transmission_angle(0.0);
+    let (mut cases, mut worst): (usize, f64) = (0, 0.0);
+    for _ in 0..300 {
+        let mut r = |lo: f64, hi: f64| lo + (hi - lo) * next();
+        let poses = [
+            Pose::new([0.0, 0.0], 0.0),
+            Pose::new([r(0.02, 0.15), r(-0.05, 0.1)], r(-0.6, 0.6)),
+            Pose::new([r(0.1, 0.3), r(-0.05, 0.15)], r(-1.0, 1.0)),
+        ];
+        let za = [r(-0.2, 0.0), r(-0.2, 0.0)];
+        let zb = [r(0.05, 0.3), r(-0.2, 0.0)];
+        let Ok(s) = burmester(&poses, za, zb, &loose) else {
+            continue;
+        };
+        // The crank's arc through the poses: a full turn if it turns fully, else between
+        // the first pose's crank angle and the last's, through the middle one.
+        let phis = centre_point(&poses, za).unwrap().angles(&poses);
+        let (start, span) = if s.report.grashof.unwrap().input_turns_fully() {
+            (0.0, TAU)
+        } else {
+            let last = (phis[2] - phis[0]).rem_euclid(TAU);
+            if (phis[1] - phis[0]).rem_euclid(TAU) <= last {
+                (phis[0], last)
+            } else {
+                (phis[2], TAU - last)
+            }
+        };
+        let e = reported_gamma_holds(&s, start, span);
+        assert!(e < 1e-10, "{poses:?} {za:?} {zb:?}: {e:e}");
+        worst = worst.max(e);
+        cases += 1;
+    }
+    assert!(cases >= 100, "{cases}");
+    eprintln!("Burmester four-bars' γ_min against the engine: {cases} cases, worst {worst:.2e}");
+}
+
+/// Five poses of a coupler carried by the dyad (W, Z) in Burmester's standard form, the crank
+/// turned β_j and the coupler α_j from the first pose: P_j = P1 + W(e^{iβ_j} − 1) +
+/// Z(e^{iα_j} − 1), evaluated as the chain centre → circle point → coupler point directly
+/// (the centre O = P1 − Z − W, the circle point rotated about O, then Z rotated with the
+/// coupler).
+fn carried(p1: [f64; 2], w: [f64; 2], z: [f64; 2], turns: &[(f64, f64)]) -> Vec<Pose> {
+    let rot = |v: [f64; 2], t: f64| {
+        [
+            v[0] * t.cos() - v[1] * t.sin(),
+            v[0] * t.sin() + v[1] * t.cos(),
+        ]
+    };
+    let o = [p1[0] - z[0] - w[0], p1[1] - z[1] - w[1]];
+    std::iter::once((0.0, 0.0))
+        .chain(turns.iter().copied())
+        .map(|(beta, alpha)| {
+            let a = rot(w, beta);
+            let zz = rot(z, alpha);
+            Pose::new([o[0] + a[0] + zz[0], o[1] + a[1] + zz[1]], 0.3 + alpha)
+        })
+        .collect()
+}
+
+fn vector() -> impl Strategy<Value = [f64; 2]> {
+    (0.05..0.5f64, 0.0..TAU).prop_map(|(r, t)| [r * t.cos(), r * t.sin()])
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(48))]
+
+    /// Burmester's standard form against the displacements: the dyad that carries the poses
+    /// is found back by the three-pose construction, and among Burmester's points of five.
+    #[test]
+    fn burmesters_equations_match_direct_evaluation(
+        w in vector(), z in vector(),
+        b in proptest::collection::vec(0.25..1.2f64, 4),
+        a in proptest::collection::vec(-0.5..0.5f64, 4),
+    ) {
+        // Distinct, increasing crank turns; coupler turns that differ from them.
+        let mut beta = 0.0;
+        let turns: Vec<(f64, f64)> = b.iter().zip(&a).map(|(db, da)| {
+            beta += db;
+            (beta, beta * 0.3 + da)
+        }).collect();
+        let poses = carried([0.1, 0.2], w, z, &turns);
+        let centre = [0.1 - z[0] - w[0], 0.2 - z[1] - w[1]];
+        let circle = [0.1 - z[0], 0.2 - z[1]];
+        let size = 1.0;
+        let three = [poses[0], poses[1], poses[2]];
+        let dyad = centre_point(&three, circle);
+        prop_assume!(dyad.is_ok());
+        let dyad = dyad.unwrap();
+        prop_assert!((dyad.centre[0] - centre[0]).hypot(dyad.centre[1] - centre[1]) < 1e-9 * size,
+            "{:?} vs {:?}", dyad.centre, centre);
+        // The dyad's own angles are the crank turns (from its first angle).
+        let angles = dyad.angles(&poses);
+        for (k, &(beta, _)) in turns.iter().enumerate() {
+            let d = angles[k + 1] - angles[0] - beta;
+            prop_assert!(d.sin().abs() < 1e-9 && d.cos() > 0.0, "turn {}: {}", k + 2, d);
+        }
+        let five: [Pose; 5] = std::array::from_fn(|k| poses[k]);
+        let points = burmester_points(&five, 2000);
+        prop_assume!(points.is_ok());
+        let points = points.unwrap();
+        prop_assert!(points.len() <= 4, "{:?}", points);
+        prop_assert!(
+            points.iter().any(|p| (p.centre[0] - centre[0]).hypot(p.centre[1] - centre[1]) < 1e-7
+                && (p.circle[0] - circle[0]).hypot(p.circle[1] - circle[1]) < 1e-7),
+            "{:?} not among {:?}", (centre, circle), points
+        );
+    }
+}
+
+#[test]
+fn five_poses_have_at_most_four_burmester_points_in_pairs() {
+    // Random five poses (not made by a four-bar): Burmester's points are the real roots of a
+    // quartic-like system whose complex roots pair off, so 0, 2 or 4 of them.
+    let mut x: u64 = 0xDEAD_BEEF_0BAD_F00D;
+    let mut next = || {
+        x ^= x << 13;
+        x ^= x >> 7;
+        x ^= x << 17;
+        (x >> 11) as f64 / (1u64 << 53) as f64
+    };
+    let mut counts = [0usize; 5];
+    for _ in 0..60 {
+        let mut r = |lo: f64, hi: f64| lo + (hi - lo) * next();
+        let poses: [Pose; 5] = std::array::from_fn(|j| {
+            let t = j as f64;
+            Pose::new(
+                [0.1 * t + r(-0.03, 0.03), 0.05 * t.sin() + r(-0.03, 0.03)],
+                0.25 * t + r(-0.1, 0.1),
+            )
+        });
+        let points = burmester_points(&poses, 4000).unwrap();
+        assert!(points.len() <= 4, "{poses:?}: {points:?}");
+        for p in &points {
+            assert!(p.misfit(&poses) < 1e-9 * (1.0 + p.length()), "{p:?}");
+        }
+        assert!(
+            points.len().is_multiple_of(2),
+            "{} points: {poses:?}: {points:?}",
+            points.len()
+        );
+        counts[points.len()] += 1;
+    }
+    assert!(counts[2] + counts[4] > 0, "{counts:?}");
+    eprintln!(
+        "Burmester's points of 60 random five-pose sets: counts 0/2/4 = {:?}",
+        [counts[0], counts[2], counts[4]]
+    );
+}
