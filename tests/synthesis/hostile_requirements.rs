@@ -465,3 +465,93 @@ fn five_pose_requirements() {
     }
     no_failures("five poses");
 }
+
+/// The pictures of a synthesis with hostile targets and styles: an error, or an SVG without
+/// a non-finite number.
+#[cfg(feature = "draw")]
+#[test]
+fn pictures_of_hostile_targets() {
+    use crate::common::svg_scan::assert_finite_svg;
+    use tmm::draw::{structural_error, synthesis_scheme, Style, Targets};
+    let deg = f64::to_radians;
+    let s = crank_rocker(
+        &CrankRockerRequirement {
+            rocker: 0.3,
+            swing: deg(45.0),
+            time_ratio: 1.25,
+            frame: FrameChoice::BestTransmission,
+        },
+        &Options::default(),
+    )
+    .unwrap();
+    let plan = Plan::new(&s.linkage).unwrap();
+    let fg = function_generator(
+        f64::log10,
+        &FunctionRequirement {
+            x_range: [1.0, 2.0],
+            crank_range: [deg(-30.0), deg(30.0)],
+            rocker_range: [deg(0.0), deg(90.0)],
+            frame: 0.1,
+            spacing: Spacing::Chebyshev,
+        },
+        &Options::default(),
+    )
+    .unwrap();
+    let mut g = Gen::new(0x51_0005);
+    let (mut drawn, n) = (0, cases().div_ceil(4));
+    for case in 0..n {
+        record("pictures", case, || {
+            let style = Style {
+                samples: [0, 1, 2, 90, 100_000_000][(g.next() % 5) as usize],
+                line_width: if g.next().is_multiple_of(4) {
+                    g.f()
+                } else {
+                    2.0
+                },
+                ..Style::default()
+            };
+            let k = (g.next() % 6) as usize;
+            let points: Vec<[f64; 2]> = (0..k)
+                .map(|_| [mostly(&mut g, -0.3, 0.5), mostly(&mut g, -0.3, 0.5)])
+                .collect();
+            let poses: Vec<Pose> = (0..k)
+                .map(|_| {
+                    Pose::new(
+                        [mostly(&mut g, -0.3, 0.5), mostly(&mut g, -0.3, 0.5)],
+                        g.f(),
+                    )
+                })
+                .collect();
+            let curve: Vec<[f64; 2]> = (0..(g.next() % 50) as usize)
+                .map(|i| {
+                    let t = i as f64 * 0.1;
+                    if g.next().is_multiple_of(7) {
+                        [g.f(), g.f()]
+                    } else {
+                        [0.2 * t.cos(), 0.2 * t.sin()]
+                    }
+                })
+                .collect();
+            let path = ["B", "A", "Z", ""][(g.next() % 4) as usize];
+            let mut targets = Targets::points(&points, path).with_curves(vec![curve]);
+            targets.poses = poses;
+            let phi = mostly(&mut g, 0.0, TAU);
+            let what = format!("case {case}: synthesis_scheme(φ {phi:e}, {targets:?}, {style:?})");
+            if let Ok(pic) = no_panic(&what, || {
+                synthesis_scheme(&plan, Motion::fixed(phi), &targets, &style)
+            }) {
+                assert_finite_svg(&pic.svg, &what);
+                drawn += 1;
+            }
+            let wild = g.f();
+            let what = format!("case {case}: structural_error(wild {wild:e}, {style:?})");
+            let f = |x: f64| if x > 1.9 { wild } else { x.log10() };
+            if let Ok(chart) = no_panic(&what, || structural_error(&fg, f, &style)) {
+                assert_finite_svg(&chart.svg, &what);
+                drawn += 1;
+            }
+        });
+    }
+    no_failures("pictures");
+    assert!(drawn >= n / 4, "{drawn} pictures");
+}
