@@ -138,25 +138,21 @@ impl Rng {
     }
 }
 
-/// The median over 31 interleaved rounds of (time of `with`) / (time of `without`), each
-/// round one pass over the batch: interleaving keeps a changing machine load out of the
-/// ratio.
-fn interleaved_ratio(without: &mut dyn FnMut(), with: &mut dyn FnMut()) -> f64 {
+/// The median over 301 interleaved rounds of (time of `with`) / (time of `without`), each
+/// round one pass of each (a batch short beside the scheduler's slice, so that on a loaded
+/// machine a preemption spoils a few rounds, not the median); `round` is the round's index.
+fn interleaved_ratio(without: &mut dyn FnMut(usize), with: &mut dyn FnMut(usize)) -> f64 {
     let mut ratios = Vec::new();
-    for _ in 0..31 {
+    for round in 0..301 {
         let t0 = Instant::now();
-        for _ in 0..20 {
-            without();
-        }
+        without(round);
         let t1 = Instant::now();
-        for _ in 0..20 {
-            with();
-        }
+        with(round);
         let t2 = Instant::now();
         ratios.push((t2 - t1).as_secs_f64() / (t1 - t0).as_secs_f64());
     }
     ratios.sort_by(f64::total_cmp);
-    ratios[15]
+    ratios[150]
 }
 
 macro_rules! side_by_side {
@@ -179,7 +175,7 @@ macro_rules! side_by_side {
         println!(
             "ratio | {} friction (f = 0.15) / frictionless = {:.2} (mean Newton steps {:.2})",
             $name,
-            interleaved_ratio(&mut without, &mut with),
+            interleaved_ratio(&mut |_| without(), &mut |_| with()),
             iterations as f64 / batch.len() as f64
         );
         $g.bench_function(concat!($name, "/frictionless"), |b| b.iter(&mut without));
@@ -250,10 +246,22 @@ fn four_bar(c: &mut Criterion) {
             black_box(s1.analyse(m).unwrap().balance(0).unwrap().value);
         }
     };
-    println!(
-        "ratio | four-bar whole position friction (f = 0.15) / frictionless = {:.2}",
-        interleaved_ratio(&mut without, &mut friction)
+    // The interleaved rounds take 36 positions each (every tenth, from the round's).
+    let (mut s2, mut s3) = (free.solver(), plan.solver());
+    let tenth = |round: usize| inputs.iter().skip(round % 10).step_by(10);
+    let ratio = interleaved_ratio(
+        &mut |round| {
+            for &m in tenth(round) {
+                black_box(s2.analyse(m).unwrap().balance(0).unwrap().value);
+            }
+        },
+        &mut |round| {
+            for &m in tenth(round) {
+                black_box(s3.analyse(m).unwrap().balance(0).unwrap().value);
+            }
+        },
     );
+    println!("ratio | four-bar whole position friction (f = 0.15) / frictionless = {ratio:.2}");
     let mut g = c.benchmark_group("friction_four_bar");
     g.measurement_time(Duration::from_secs(2))
         .warm_up_time(Duration::from_millis(500))

@@ -672,6 +672,34 @@ fn triad_against_an_independent_nonlinear_solve() {
     }
 }
 
+/// Bad friction data or rates in a triad are errors naming the field.
+#[test]
+fn a_triad_with_bad_friction_data_names_the_field() {
+    let mut rng = Rng(0x5EED_0007);
+    let p = loop {
+        if let Some(p) = random_triad(&mut rng, 0.15) {
+            break p;
+        }
+    };
+    let mut bad = p;
+    bad.joints.b[1] = Hinge { rho: -0.01 };
+    let e = bad.solve().unwrap_err().to_string();
+    assert!(e.contains("rho_B2"), "{e}");
+    let mut bad = p;
+    bad.joints.a[2] = Hinge { rho: f64::INFINITY };
+    let e = bad.solve().unwrap_err().to_string();
+    assert!(e.contains("rho_A3"), "{e}");
+    let mut bad = p;
+    bad.rates.ternary = f64::NAN;
+    let e = bad.solve().unwrap_err().to_string();
+    assert!(e.contains("omega_ternary"), "{e}");
+    // A budget of one Newton step is an error, never a silent result.
+    let e = p
+        .solve_with(&Iteration::default().with_budget(1))
+        .unwrap_err();
+    assert!(e.to_string().contains("Newton step"), "{e}");
+}
+
 #[test]
 fn rrr_against_an_independent_nonlinear_solve() {
     let mut rng = Rng(0x5EED_0001);

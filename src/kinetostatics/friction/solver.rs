@@ -273,14 +273,6 @@ fn solve3(a: &[[f64; 3]; 3], det: f64, g: &[f64; 3]) -> [f64; 3] {
 /// Cramer's rule (det(I − J) = det/Π r_k). `None` where that does not converge with
 /// det(I − J) > 0 within `limit` steps, or meets a zero reaction: the general solve decides
 /// there.
-///
-/// The exit needs no evaluation after the last step: a step δ from m moves joint k's
-/// reaction from a = R_k(m) by b = (D·δ)_k, and since |a| + â·b ≤ |a + b| ≤ |a| + â·b +
-/// |b|²/(2|a|) (the first by Cauchy–Schwarz, the second as √(x² + y) ≤ x + y/(2x)), the
-/// Newton residual there is 0 ≤ |R_k(m + δ)| − (m_k + δ_k) ≤ |b|²/(2 r_k): the row's
-/// linearization is exact but for that term. So the step is accepted as soon as that bound
-/// is below the tolerance, without its three square roots (two steps, not two and the
-/// check, for the usual f ≤ 0.3), and the bound is the residual reported.
 #[inline(always)]
 pub(crate) fn three_hinges(
     v0: &[f64; 6],
@@ -340,28 +332,6 @@ pub(crate) fn three_hinges(
         let delta = adj.map(|row| (row[0] * rhs[0] + row[1] * rhs[1] + row[2] * rhs[2]) * i);
         steps += 1;
         m = [m[0] + delta[0], m[1] + delta[1], m[2] + delta[2]];
-        let mut b = [0.0; 6];
-        for (i, bi) in b.iter_mut().enumerate() {
-            *bi = delta[0] * d[0][i] + delta[1] * d[1][i] + delta[2] * d[2][i];
-        }
-        let b2 = [0, 1, 2].map(|k| b[2 * k] * b[2 * k] + b[2 * k + 1] * b[2 * k + 1]);
-        // |b_k|²/(2 r_k) ≤ tol/min(det(I − J), 1) for every k, the loop's own test,
-        // undivided (det = scaled/product).
-        let (lhs, bound) = (scaled.min(product), 2.0 * tol * product);
-        if b2[0] * lhs <= bound * r[0] && b2[1] * lhs <= bound * r[1] && b2[2] * lhs <= bound * r[2]
-        {
-            let v = [0, 1, 2, 3, 4, 5].map(|i| v[i] + b[i]);
-            let residual = wider(wider(b2[0] / r[0], b2[1] / r[1]), b2[2] / r[2]) * 0.5;
-            // A NaN anywhere in the reactions shows in their sum.
-            let sum = v[0] + v[1] + v[2] + v[3] + v[4] + v[5] + residual;
-            return sum.is_finite().then_some(Solved::direct(
-                m,
-                v,
-                steps,
-                scaled / product,
-                residual,
-            ));
-        }
     }
 }
 
