@@ -299,6 +299,24 @@ impl Strokes {
         })
     }
 
+    /// The same strokes of an angle output read in [0, 2π) (a link's angle): the swing is the
+    /// angle the output turns through from its minimum up to its maximum. The plain difference
+    /// of the two readings is 2π minus the swing when the link swings across the reading's cut
+    /// at 0 (the +x direction).
+    pub(crate) fn of_angle(mut self, extremes: &[Extreme]) -> Self {
+        if let [a, b] = extremes {
+            if a.kind != b.kind {
+                let (min, max) = if a.kind == ExtremeKind::Min {
+                    (a, b)
+                } else {
+                    (b, a)
+                };
+                self.stroke = normalize(max.output.value - min.output.value);
+            }
+        }
+        self
+    }
+
     /// The same strokes with the working stroke in the direction the output works in: rising
     /// (`true`) or falling. A machine whose load resists the output in one direction only
     /// works in that direction, even when that is the faster stroke; then the time ratio is

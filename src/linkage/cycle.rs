@@ -97,8 +97,12 @@ impl Plan {
     /// As [`Plan::extremes`]; an output without exactly two extreme positions (one that turns
     /// fully, or one with more extremes per turn).
     pub fn strokes(&self, output: &Output, rotation: Rotation) -> Result<Strokes> {
-        let strokes = Strokes::new(&self.extremes(output)?, rotation)?;
+        let extremes = self.extremes(output)?;
         let resolved = self.resolve(output)?;
+        let strokes = match resolved {
+            Resolved::Angle(_) => Strokes::new(&extremes, rotation)?.of_angle(&extremes),
+            _ => Strokes::new(&extremes, rotation)?,
+        };
         let worked = self.loads.iter().find_map(|l| match (l, resolved) {
             (
                 LoadPlan::Turning {

@@ -23,6 +23,7 @@ mod planning;
 mod singular;
 #[cfg(feature = "serde")]
 mod springs;
+mod strokes;
 #[cfg(feature = "serde")]
 mod table;
 #[cfg(feature = "serde")]
