@@ -703,7 +703,7 @@ impl Cells for SumCells {
 /// the four-bar (group `four_bar_over_n`, throughput per position, so a flat rate is linear
 /// cost): the README's `plan.cycle` against a solver loop by hand (the same job: every
 /// quantity of each position folded into one number); the one-shot `plan.analyse` per
-/// position (its buffers allocated each time, nothing kept); the course table by
+/// position (its buffers the plan's spares, nothing kept); the course table by
 /// `plan.table` (columns filled in place) against the same cells summed by a solver loop
 /// with nothing stored, and against the old way, `Table::of(&run_cycle(&inputs, |i|
 /// plan.analyse(i)))`, which keeps an analysis per position (up to 36 000 positions).

@@ -18,8 +18,9 @@ use std::ops::Deref;
 /// One analysed position of a [`Plan`]: its [`Kinematics`] (every kinematic reading, through
 /// `Deref`), the applied loads, the reactions and the balances.
 ///
-/// Made by [`Plan::analyse`] (one position, its own buffers) or a
-/// [`Solver`](super::Solver) (the same buffers refilled at every position: no allocation).
+/// Made by [`Plan::analyse`] (one position; dropped, it gives its buffers back to the plan
+/// for the next) or a [`Solver`](super::Solver) (the same buffers refilled at every
+/// position).
 #[derive(Debug, Clone)]
 pub struct Analysis<'p> {
     pub(crate) k: Kinematics<'p>,
@@ -177,7 +178,8 @@ impl<'p> Analysis<'p> {
     /// The balancing moment or force of input `i` (0 the first).
     ///
     /// # Errors
-    /// [`Error::OutOfRange`] (`"input index"`) for an input the linkage does not have.
+    /// [`Error::OutOfRange`](crate::Error::OutOfRange) (`"input index"`) for an input the
+    /// linkage does not have.
     pub fn balance(&self, i: usize) -> Result<Balance> {
         let n = self.plan.input_count();
         crate::linkage::handle::index_in("input index", "inputs", i, n)?;

@@ -42,6 +42,14 @@ fn direction_of(v: Vector2<f64>) -> Vector2<f64> {
     v / v.norm()
 }
 
+/// A dyad's solution read where its block wrote it, or the block's error named after the
+/// group. A solution is some 200 bytes: moving it out of its `Result` (by `map_err` and `?`)
+/// copied it twice per group and position.
+#[inline]
+fn in_place<'r, T>(r: &'r Result<T>, group: &Group) -> Result<&'r T> {
+    r.as_ref().map_err(|e| within(&group.name)(e.clone()))
+}
+
 /// `u` turned by the angle whose cosine and sine are `r`.
 #[inline]
 fn turn(u: Vector2<f64>, r: Vector2<f64>) -> Vector2<f64> {
@@ -136,28 +144,30 @@ impl KinState {
         let (s2, s3, det, u2, u3) = match group.kind {
             GroupKind::Rrr => {
                 let c = self.at(kc, group.c_local);
-                let s = rrr_dyad(a, c, group.lengths[0], group.lengths[1], group.branch)
-                    .map_err(within(&group.name))?;
+                let r = rrr_dyad(a, c, group.lengths[0], group.lengths[1], group.branch);
+                let s = in_place(&r, group)?;
                 let (u2, u3) = (direction_of(s.b.p - a.p), direction_of(s.b.p - c.p));
                 (s.link2, s.link3, s.det, u2, u3)
             }
             GroupKind::Rrp => {
                 let guide = self.guide_on(kc, group.c_local, group.guide_offsets[1]);
-                let s = rrp_dyad(a, guide, group.lengths[0], group.branch)
-                    .map_err(within(&group.name))?;
+                let r = rrp_dyad(a, guide, group.lengths[0], group.branch);
+                let s = in_place(&r, group)?;
                 let u3 = turn(self.units[kc], t[1]);
                 (s.link2, s.link3, s.det, direction_of(s.b.p - a.p), u3)
             }
             GroupKind::Rpr => {
                 let c = self.at(kc, group.c_local);
-                let s = rpr_dyad(a, c).map_err(within(&group.name))?;
+                let r = rpr_dyad(a, c);
+                let s = in_place(&r, group)?;
                 let u = direction_of(c.p - a.p);
                 (s.link2, s.link3, s.slide.value, u, -u)
             }
             GroupKind::Prp => {
                 let g2 = self.guide_on(ka, group.a_local, group.guide_offsets[0]);
                 let g3 = self.guide_on(kc, group.c_local, group.guide_offsets[1]);
-                let s = prp_dyad(g2, g3).map_err(within(&group.name))?;
+                let r = prp_dyad(g2, g3);
+                let s = in_place(&r, group)?;
                 let (u2, u3) = (turn(self.units[ka], t[0]), turn(self.units[kc], t[1]));
                 (s.link2, s.link3, s.det, u2, u3)
             }
@@ -170,7 +180,8 @@ impl KinState {
             }
             GroupKind::Rpp => {
                 let g = self.guide_on(kc, group.c_local, group.guide_offsets[1]);
-                let s = rpp_dyad(a, g, group.slide_angle).map_err(within(&group.name))?;
+                let r = rpp_dyad(a, g, group.slide_angle);
+                let s = in_place(&r, group)?;
                 let u3 = turn(self.units[kc], t[1]);
                 (s.link2, s.link3, s.det, turn(u3, t[2]), u3)
             }

@@ -79,9 +79,11 @@ impl Plan {
         }
     }
 
-    /// Analyses one position, the one-shot convenience: it allocates the buffers of one
-    /// analysis and hands them over. For many positions, reuse a [`solver`](Self::solver)
-    /// or run [`cycle`](Self::cycle).
+    /// Analyses one position, the one-shot convenience. Its buffers are those a dropped
+    /// analysis of this plan gave back (allocated when there are none), so a loop of
+    /// `plan.analyse` allocates nothing after its first call. For many positions a reused
+    /// [`solver`](Self::solver) or [`cycle`](Self::cycle) is still the fastest form: the
+    /// analysis is not moved out at every position.
     ///
     /// # Errors
     /// As [`Solver::analyse`].

@@ -40,16 +40,22 @@ pub(crate) struct StaticBuffers {
     pub conditioning: Vec<Conditioning>,
 }
 
-#[derive(Debug, Default)]
+#[derive(Default)]
 struct Pool {
     kin: Vec<KinBuffers>,
     statics: Vec<StaticBuffers>,
 }
 
-/// A plan's spare buffers. Not part of what a plan is: a clone starts with none, and two
-/// plans compare equal whatever they hold.
-#[derive(Debug, Default)]
+/// A plan's spare buffers. Not part of what a plan is: a clone starts with none, two plans
+/// compare equal whatever they hold, and a plan's `Debug` does not list them.
+#[derive(Default)]
 pub(crate) struct Spares(Mutex<Pool>);
+
+impl std::fmt::Debug for Spares {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str("Spares")
+    }
+}
 
 impl Clone for Spares {
     fn clone(&self) -> Self {
