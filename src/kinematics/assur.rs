@@ -30,6 +30,7 @@
 //! size (so that every column is a length): its reciprocal condition number σ_min/σ_max,
 //! which vanishes at a dead point or a branch point of the group.
 
+use super::assur_work::{GroupWork, Linear};
 use super::link::LinkMotion;
 use super::motion::PointMotion;
 use crate::angle::{normalize, perp, unit};
@@ -84,7 +85,7 @@ pub struct GroupReactions {
 }
 
 /// The largest number of Newton steps of one solve.
-const MAX_NEWTON: usize = 40;
+pub(super) const MAX_NEWTON: usize = 40;
 /// Below this σ_min/σ_max the closure Jacobian carries no significant digit.
 const SINGULAR_BELOW: f64 = 8.0 * f64::EPSILON;
 
@@ -99,7 +100,20 @@ impl GroupPose {
         )
     }
 
-    fn from_q(q: &DVector<f64>) -> Self {
+    /// Writes q = (o_k, θ_k) into `q` (resized when its length differs).
+    pub(super) fn write_q(&self, q: &mut DVector<f64>) {
+        let n = 3 * self.angles.len();
+        if q.len() != n {
+            *q = DVector::zeros(n);
+        }
+        for (k, (o, &a)) in self.origins.iter().zip(&self.angles).enumerate() {
+            q[3 * k] = o.x;
+            q[3 * k + 1] = o.y;
+            q[3 * k + 2] = a;
+        }
+    }
+
+    pub(super) fn from_q(q: &DVector<f64>) -> Self {
         let n = q.len() / 3;
         Self {
             origins: (0..n)
@@ -171,6 +185,18 @@ impl HingedGroup {
     /// The closure residual at `q` (inner hinges first, then outer).
     fn residual_q(&self, q: &DVector<f64>, outer: &[Point2<f64>]) -> DVector<f64> {
         let mut f = DVector::zeros(self.rows());
+        self.residual_into(q, outer, &mut f);
+        f
+    }
+
+    /// [`residual_q`](Self::residual_q) into `f` (of the group's number of rows; every entry
+    /// written).
+    pub(super) fn residual_into(
+        &self,
+        q: &DVector<f64>,
+        outer: &[Point2<f64>],
+        f: &mut DVector<f64>,
+    ) {
         for (i, &[a, b]) in self.inner.iter().enumerate() {
             let d = Self::point(q, a).0 - Self::point(q, b).0;
             f[2 * i] = d.x;
@@ -182,12 +208,18 @@ impl HingedGroup {
             f[base + 2 * o] = d.x;
             f[base + 2 * o + 1] = d.y;
         }
-        f
     }
 
     /// The closure Jacobian K at `q` (module docs), its angle columns multiplied by `scale`.
     fn jacobian(&self, q: &DVector<f64>, scale: f64) -> DMatrix<f64> {
         let mut k = DMatrix::zeros(self.rows(), 3 * self.links);
+        self.jacobian_into(q, scale, &mut k);
+        k
+    }
+
+    /// [`jacobian`](Self::jacobian) into `k` (of the group's shape; zeroed first).
+    pub(super) fn jacobian_into(&self, q: &DVector<f64>, scale: f64, k: &mut DMatrix<f64>) {
+        k.fill(0.0);
         let mut put = |row: usize, end: HingeEnd, sign: f64| {
             let r = Self::point(q, end).1;
             let c = 3 * end.0;
@@ -205,7 +237,6 @@ impl HingedGroup {
         for (o, &end) in self.outer.iter().enumerate() {
             put(base + 2 * o, end, 1.0);
         }
-        k
     }
 
     /// The largest closure gap of `pose` with the known points `outer`, m.
@@ -219,45 +250,11 @@ impl HingedGroup {
     }
 
     /// A step's size: its translations and its rotations as arcs at `size`.
-    fn step_norm(dq: &DVector<f64>, size: f64) -> f64 {
+    pub(super) fn step_norm(dq: &DVector<f64>, size: f64) -> f64 {
         dq.as_slice()
             .chunks(3)
             .map(|c| c[0].hypot(c[1]).max(size * c[2].abs()))
             .fold(0.0, f64::max)
-    }
-
-    /// Newton's method from `q`; `Some((q, first step, iterations))` when it converges
-    /// (the step falls to rounding, 4ε of `size`) within `max` steps, each step no more
-    /// than `limit` of `size` and, once `contract` is set, each at most half the one before.
-    fn newton_q(
-        &self,
-        mut q: DVector<f64>,
-        outer: &[Point2<f64>],
-        size: f64,
-        max: usize,
-        contract: bool,
-    ) -> Option<(DVector<f64>, f64)> {
-        let mut first = None;
-        let mut last = f64::INFINITY;
-        for _ in 0..max {
-            let f = self.residual_q(&q, outer);
-            let k = self.jacobian(&q, 1.0);
-            let dq = k.lu().solve(&(-f))?;
-            let step = Self::step_norm(&dq, size);
-            if !step.is_finite() || step > size {
-                return None;
-            }
-            first.get_or_insert(step);
-            q += &dq;
-            if step <= 4.0 * f64::EPSILON * size || (step >= last && step <= 1e-12 * size) {
-                return Some((q, first.unwrap_or(0.0)));
-            }
-            if contract && step > 1e-11 * size && step > 0.5 * last {
-                return None;
-            }
-            last = step;
-        }
-        None
     }
 
     /// The pose closing the group on `outer` nearest (by Newton's method) `start`.
@@ -267,9 +264,17 @@ impl HingedGroup {
     /// from `start` (the group does not assemble near it).
     pub fn newton(&self, start: &GroupPose, outer: &[Point2<f64>], size: f64) -> Result<GroupPose> {
         self.check()?;
-        self.newton_q(start.to_q(), outer, size, MAX_NEWTON, false)
-            .map(|(q, _)| GroupPose::from_q(&q))
-            .ok_or_else(|| no_assembly(self.residual(start, outer)))
+        let mut q = start.to_q();
+        self.newton_in(
+            &mut q,
+            &mut Linear::default(),
+            outer,
+            size,
+            MAX_NEWTON,
+            false,
+        )
+        .map(|_| GroupPose::from_q(&q))
+        .ok_or_else(|| no_assembly(self.residual(start, outer)))
     }
 
     /// The pose the group reaches from `reference` (closed on `path(0)`) while its known
@@ -282,54 +287,16 @@ impl HingedGroup {
     /// [`Error::NotAssemblable`] with the closure gap of the last pose at the next step of
     /// the path where the path cannot be followed (the group does not assemble beyond it,
     /// or passes a branch point there).
+    ///
+    /// Its buffers are allocated for this call; [`track_in`](Self::track_in) reuses a
+    /// [`GroupWork`] instead (the same bits).
     pub fn track(
         &self,
         reference: &GroupPose,
-        mut path: impl FnMut(f64, &mut [Point2<f64>]),
+        path: impl FnMut(f64, &mut [Point2<f64>]),
         size: f64,
     ) -> Result<GroupPose> {
-        let mut q = reference.to_q();
-        let mut pts = vec![Point2::origin(); self.outer.len()];
-        let (mut t, mut dt) = (0.0f64, 1.0f64);
-        let mut before = pts.clone();
-        path(0.0, &mut before);
-        while t < 1.0 {
-            let t1 = (t + dt).min(1.0);
-            path(t1, &mut pts);
-            // Tangent predictor: K·Δq = (0 | ΔP).
-            let k = self.jacobian(&q, 1.0);
-            let mut rhs = DVector::zeros(self.rows());
-            let base = 2 * self.inner.len();
-            for (o, (p1, p0)) in pts.iter().zip(&before).enumerate() {
-                rhs[base + 2 * o] = p1.x - p0.x;
-                rhs[base + 2 * o + 1] = p1.y - p0.y;
-            }
-            let guess = k.lu().solve(&rhs).map(|d| &q + d);
-            let corrected = guess.and_then(|g| {
-                self.newton_q(g, &pts, size, 12, true)
-                    .filter(|(_, first)| *first <= 0.1 * size)
-            });
-            match corrected {
-                Some((q1, _)) => {
-                    q = q1;
-                    t = t1;
-                    before.copy_from_slice(&pts);
-                    dt = (2.0 * dt).min(1.0);
-                }
-                None if dt > 1e-9 => dt *= 0.5,
-                None => {
-                    let gap = self.residual(&GroupPose::from_q(&q), &pts);
-                    return Err(no_assembly(gap));
-                }
-            }
-        }
-        // Polish at the end: the corrector stopped at rounding already; one more solve
-        // brings every hinge to the last bit the closure allows.
-        let q0 = q.clone();
-        let (q, _) = self
-            .newton_q(q, &pts, size, MAX_NEWTON, false)
-            .ok_or_else(|| no_assembly(self.residual(&GroupPose::from_q(&q0), &pts)))?;
-        Ok(GroupPose::from_q(&q))
+        self.track_in(reference, path, size, &mut GroupWork::default())
     }
 
     /// σ_min/σ_max of K at `q` with its angle columns scaled by `size`.
@@ -535,7 +502,10 @@ impl HingedGroup {
             }
             q += dq;
             if step <= 1e-13 * size {
-                return self.newton_q(q, outer, size, 4, false).map(|(q, _)| q);
+                let mut q = q;
+                return self
+                    .newton_in(&mut q, &mut Linear::default(), outer, size, 4, false)
+                    .map(|_| q);
             }
         }
         None
@@ -551,7 +521,7 @@ fn singular() -> Error {
 }
 
 /// The group does not close: `gap` is its largest closure gap where the solve gave up.
-fn no_assembly(gap: f64) -> Error {
+pub(super) fn no_assembly(gap: f64) -> Error {
     Error::NotAssemblable {
         group: "hinged group",
         gap,

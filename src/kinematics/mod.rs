@@ -57,6 +57,7 @@
 //! ```
 
 mod assur;
+mod assur_work;
 pub mod batch;
 mod contour;
 mod crank;
@@ -77,6 +78,7 @@ mod triad_slider;
 mod trig_roots;
 
 pub use assur::{GroupMotion, GroupPose, GroupReactions, HingeEnd, HingedGroup};
+pub use assur_work::GroupWork;
 pub use contour::{
     contour_residual, solve_contour, solve_contour_position, Branch, ContourCase, ContourSolution,
     LoopVector, Part, SINGULAR_DETERMINANT,
