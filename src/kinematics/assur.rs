@@ -29,9 +29,13 @@
 //! The conditioning of all three is that of K with its angle columns scaled by the group's
 //! size (so that every column is a length): its reciprocal condition number σ_min/σ_max,
 //! which vanishes at a dead point or a branch point of the group.
+//!
+//! A [`GroupWork`] keeps the Newton solves' buffers from one solve to the next
+//! ([`HingedGroup::track_in`]): tracking a group along a cycle allocates nothing but the pose
+//! it returns.
 
-use super::assur_work::{GroupWork, Linear};
 use super::link::LinkMotion;
+use super::lu_work::Linear;
 use super::motion::PointMotion;
 use crate::angle::{normalize, perp, unit};
 use crate::error::{Error, Result};
@@ -85,7 +89,7 @@ pub struct GroupReactions {
 }
 
 /// The largest number of Newton steps of one solve.
-pub(super) const MAX_NEWTON: usize = 40;
+const MAX_NEWTON: usize = 40;
 /// Below this σ_min/σ_max the closure Jacobian carries no significant digit.
 const SINGULAR_BELOW: f64 = 8.0 * f64::EPSILON;
 
@@ -101,7 +105,7 @@ impl GroupPose {
     }
 
     /// Writes q = (o_k, θ_k) into `q` (resized when its length differs).
-    pub(super) fn write_q(&self, q: &mut DVector<f64>) {
+    fn write_q(&self, q: &mut DVector<f64>) {
         let n = 3 * self.angles.len();
         if q.len() != n {
             *q = DVector::zeros(n);
@@ -113,7 +117,7 @@ impl GroupPose {
         }
     }
 
-    pub(super) fn from_q(q: &DVector<f64>) -> Self {
+    fn from_q(q: &DVector<f64>) -> Self {
         let n = q.len() / 3;
         Self {
             origins: (0..n)
@@ -191,12 +195,7 @@ impl HingedGroup {
 
     /// [`residual_q`](Self::residual_q) into `f` (of the group's number of rows; every entry
     /// written).
-    pub(super) fn residual_into(
-        &self,
-        q: &DVector<f64>,
-        outer: &[Point2<f64>],
-        f: &mut DVector<f64>,
-    ) {
+    fn residual_into(&self, q: &DVector<f64>, outer: &[Point2<f64>], f: &mut DVector<f64>) {
         for (i, &[a, b]) in self.inner.iter().enumerate() {
             let d = Self::point(q, a).0 - Self::point(q, b).0;
             f[2 * i] = d.x;
@@ -218,7 +217,7 @@ impl HingedGroup {
     }
 
     /// [`jacobian`](Self::jacobian) into `k` (of the group's shape; zeroed first).
-    pub(super) fn jacobian_into(&self, q: &DVector<f64>, scale: f64, k: &mut DMatrix<f64>) {
+    fn jacobian_into(&self, q: &DVector<f64>, scale: f64, k: &mut DMatrix<f64>) {
         k.fill(0.0);
         let mut put = |row: usize, end: HingeEnd, sign: f64| {
             let r = Self::point(q, end).1;
@@ -250,7 +249,7 @@ impl HingedGroup {
     }
 
     /// A step's size: its translations and its rotations as arcs at `size`.
-    pub(super) fn step_norm(dq: &DVector<f64>, size: f64) -> f64 {
+    fn step_norm(dq: &DVector<f64>, size: f64) -> f64 {
         dq.as_slice()
             .chunks(3)
             .map(|c| c[0].hypot(c[1]).max(size * c[2].abs()))
@@ -512,6 +511,127 @@ impl HingedGroup {
     }
 }
 
+/// Reusable buffers for the Newton solves of one [`HingedGroup`] (any size; resized when the
+/// group's size changes). `Default` allocates nothing.
+#[derive(Debug, Clone, Default)]
+pub struct GroupWork {
+    lin: Linear,
+    q: DVector<f64>,
+    guess: DVector<f64>,
+    pts: Vec<Point2<f64>>,
+    before: Vec<Point2<f64>>,
+}
+
+impl HingedGroup {
+    /// Newton's method from `q` (in place): the first step's size when it converges (the step
+    /// falls to rounding, 4ε of `size`) within `max` steps, each step no more than `size` and,
+    /// once `contract` is set, each at most half the one before.
+    fn newton_in(
+        &self,
+        q: &mut DVector<f64>,
+        lin: &mut Linear,
+        outer: &[Point2<f64>],
+        size: f64,
+        max: usize,
+        contract: bool,
+    ) -> Option<f64> {
+        lin.size(q.len());
+        let mut first = None;
+        let mut last = f64::INFINITY;
+        for _ in 0..max {
+            self.residual_into(q, outer, &mut lin.f);
+            self.jacobian_into(q, 1.0, &mut lin.k);
+            lin.factorise();
+            lin.f.neg_mut();
+            if !lin.solve() {
+                return None;
+            }
+            let step = Self::step_norm(&lin.f, size);
+            if !step.is_finite() || step > size {
+                return None;
+            }
+            first.get_or_insert(step);
+            *q += &lin.f;
+            if step <= 4.0 * f64::EPSILON * size || (step >= last && step <= 1e-12 * size) {
+                return Some(first.unwrap_or(0.0));
+            }
+            if contract && step > 1e-11 * size && step > 0.5 * last {
+                return None;
+            }
+            last = step;
+        }
+        None
+    }
+
+    /// [`track`](Self::track) in the buffers of `work` (the same steps, the same bits).
+    ///
+    /// # Errors
+    /// As [`track`](Self::track).
+    pub fn track_in(
+        &self,
+        reference: &GroupPose,
+        mut path: impl FnMut(f64, &mut [Point2<f64>]),
+        size: f64,
+        work: &mut GroupWork,
+    ) -> Result<GroupPose> {
+        let GroupWork {
+            lin,
+            q,
+            guess,
+            pts,
+            before,
+        } = work;
+        reference.write_q(q);
+        lin.size(q.len());
+        pts.clear();
+        pts.resize(self.outer.len(), Point2::origin());
+        before.clear();
+        before.resize(self.outer.len(), Point2::origin());
+        let (mut t, mut dt) = (0.0f64, 1.0f64);
+        path(0.0, before);
+        let base = 2 * self.inner.len();
+        while t < 1.0 {
+            let t1 = (t + dt).min(1.0);
+            path(t1, pts);
+            // Tangent predictor: K·Δq = (0 | ΔP).
+            self.jacobian_into(q, 1.0, &mut lin.k);
+            lin.f.fill(0.0);
+            for (o, (p1, p0)) in pts.iter().zip(before.iter()).enumerate() {
+                lin.f[base + 2 * o] = p1.x - p0.x;
+                lin.f[base + 2 * o + 1] = p1.y - p0.y;
+            }
+            lin.factorise();
+            let corrected = lin.solve() && {
+                guess.clone_from(q);
+                *guess += &lin.f;
+                self.newton_in(guess, lin, pts, size, 12, true)
+                    .is_some_and(|first| first <= 0.1 * size)
+            };
+            if corrected {
+                std::mem::swap(q, guess);
+                t = t1;
+                before.copy_from_slice(pts);
+                dt = (2.0 * dt).min(1.0);
+            } else if dt > 1e-9 {
+                dt *= 0.5;
+            } else {
+                let gap = self.residual(&GroupPose::from_q(q), pts);
+                return Err(no_assembly(gap));
+            }
+        }
+        // Polish at the end: the corrector stopped at rounding already; one more solve
+        // brings every hinge to the last bit the closure allows.
+        guess.clone_from(q);
+        if self
+            .newton_in(guess, lin, pts, size, MAX_NEWTON, false)
+            .is_none()
+        {
+            return Err(no_assembly(self.residual(&GroupPose::from_q(q), pts)));
+        }
+        Ok(GroupPose::from_q(guess))
+    }
+}
+
 fn singular() -> Error {
     Error::Singular {
         what: "hinged group",
@@ -521,7 +641,7 @@ fn singular() -> Error {
 }
 
 /// The group does not close: `gap` is its largest closure gap where the solve gave up.
-pub(super) fn no_assembly(gap: f64) -> Error {
+fn no_assembly(gap: f64) -> Error {
     Error::NotAssemblable {
         group: "hinged group",
         gap,

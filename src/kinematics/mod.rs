@@ -57,7 +57,6 @@
 //! ```
 
 mod assur;
-mod assur_work;
 pub mod batch;
 mod contour;
 mod crank;
@@ -65,6 +64,7 @@ mod cycle;
 mod extreme;
 mod grashof;
 mod link;
+mod lu_work;
 mod motion;
 mod numeric;
 mod prp;
@@ -77,8 +77,8 @@ mod triad;
 mod triad_slider;
 mod trig_roots;
 
-pub use assur::{GroupMotion, GroupPose, GroupReactions, HingeEnd, HingedGroup};
-pub use assur_work::GroupWork;
+pub use assur::{GroupMotion, GroupPose, GroupReactions, GroupWork, HingeEnd, HingedGroup};
+
 pub use contour::{
     contour_residual, solve_contour, solve_contour_position, Branch, ContourCase, ContourSolution,
     LoopVector, Part, SINGULAR_DETERMINANT,
