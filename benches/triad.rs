@@ -7,7 +7,10 @@
 //!   where the certificate fails);
 //! - `triad_tracked`: the fast path's positions alone;
 //! - `triad_modes`: every assembly mode by the certified scan (positions only);
-//! - `triad_modes_nearest_rates`: the full path, every mode then the nearest's rates.
+//! - `triad_modes_nearest_rates`: the full path, every mode then the nearest's rates;
+//! - `slider_triad`: the triad with a sliding pair (its first leg a slider on a fixed guide),
+//!   positions, velocities and accelerations, the mode nearest the previous position's (it
+//!   has no fast path: every mode by the certified scan, then the nearest's rates).
 //!
 //! Before criterion runs, the ratio triad/RRR is measured in alternating rounds (both see the
 //! same load on a shared machine; each one's fastest round kept) and printed as a
@@ -18,8 +21,8 @@ use nalgebra::{Point2, Vector2};
 use std::hint::black_box;
 use std::time::{Duration, Instant};
 use tmm::kinematics::{
-    rrr_dyad, triad, triad_modes, triad_rates, triad_tracked, Branch, PointMotion, TriadDims,
-    TriadPose,
+    rrr_dyad, slider_triad, triad, triad_modes, triad_rates, triad_tracked, Branch, Guide,
+    PointMotion, SliderTriadDims, SlidingPair, TriadDims, TriadPose,
 };
 
 const N: usize = 1024;
@@ -94,6 +97,65 @@ fn triad_inputs() -> (TriadDims, Vec<([PointMotion; 3], TriadPose)>) {
     panic!("no crank radius assembles all round");
 }
 
+/// The triad of [`triad_inputs`] with its first leg a slider on a fixed horizontal guide
+/// through B1, its second outer joint A2 on a crank at 10 rad/s (the largest crank of 0.05,
+/// 0.03, 0.02, 0.01 m with which it assembles all round).
+type SliderInput = ([PointMotion; 2], TriadPose);
+
+fn slider_inputs() -> (SliderTriadDims, Guide, Vec<SliderInput>) {
+    let dims = SliderTriadDims {
+        pair: SlidingPair::Outer { offset: 0.0 },
+        l: [0.55, 0.5],
+        l_b1b2: 0.5,
+        b3_along: 0.2,
+        b3_across: 0.35,
+    };
+    let guide = Guide::fixed(Point2::new(-1.0, 0.0), 0.0);
+    let b = [
+        Point2::new(0.0, 0.0),
+        Point2::new(0.5, 0.0),
+        Point2::new(0.2, 0.35),
+    ];
+    let leg = |l: f64, angle: f64| l * Vector2::new(angle.cos(), angle.sin());
+    let a0 = [b[1] - leg(0.55, 2.2), b[2] - leg(0.5, -2.0)];
+    for radius in [0.05, 0.03, 0.02, 0.01] {
+        let centre = a0[0] - Vector2::new(radius, 0.0);
+        let at = |k: usize| -> [PointMotion; 2] {
+            let phi = std::f64::consts::TAU * k as f64 / N as f64;
+            let (s, co) = phi.sin_cos();
+            let r = radius * Vector2::new(co, s);
+            let perp = Vector2::new(-r.y, r.x);
+            [
+                PointMotion::new(centre + r, 10.0 * perp, -100.0 * r),
+                PointMotion::fixed(a0[1]),
+            ]
+        };
+        let first = TriadPose {
+            b,
+            theta: 0.0,
+            phi: [0.0; 3],
+            det: 0.0,
+        };
+        let mut prev = first;
+        let mut out = Vec::with_capacity(N);
+        for k in 0..=N {
+            let a = at(k % N);
+            if k > 0 {
+                out.push((a, prev));
+            }
+            match slider_triad(&guide, a, &dims, &prev) {
+                Ok(s) => prev = s.pose(),
+                Err(_) => break,
+            }
+        }
+        if out.len() == N {
+            println!("triad | slider triad: crank radius {radius} m");
+            return (dims, guide, out);
+        }
+    }
+    panic!("no crank radius assembles the slider triad all round");
+}
+
 /// The fastest of 300 alternating rounds of each, per position, and their ratio. Each round
 /// lasts about 0.3 ms for either function (calibrated), so that a round of the slower one is
 /// no likelier to be interrupted on a loaded machine than a round of the faster one.
@@ -160,6 +222,20 @@ fn positions(c: &mut Criterion) {
         rrr_all,
     );
     print_ratio("every assembly mode (positions only)", modes_all, rrr_all);
+    let (sdims, guide, sli) = slider_inputs();
+    let slider_all = || {
+        sli.iter()
+            .map(|(a, prev)| {
+                slider_triad(&guide, black_box(*a), &sdims, black_box(prev))
+                    .map_or(0.0, |s| s.b[2].a.x + s.ternary.angle + s.binary[2].epsilon)
+            })
+            .sum::<f64>()
+    };
+    print_ratio(
+        "with a sliding pair: positions, velocities, accelerations, nearest mode",
+        slider_all,
+        rrr_all,
+    );
     let mut g = c.benchmark_group("triad_vs_rrr");
     g.measurement_time(Duration::from_secs(2))
         .warm_up_time(Duration::from_millis(500))
@@ -188,6 +264,7 @@ fn positions(c: &mut Criterion) {
                 .sum::<f64>()
         })
     });
+    g.bench_function("slider_triad", |b| b.iter(slider_all));
     g.finish();
 }
 

@@ -29,8 +29,13 @@
 //! The conditioning of all three is that of K with its angle columns scaled by the group's
 //! size (so that every column is a length): its reciprocal condition number σ_min/σ_max,
 //! which vanishes at a dead point or a branch point of the group.
+//!
+//! A [`GroupWork`] keeps the Newton solves' buffers from one solve to the next
+//! ([`HingedGroup::track_in`]): tracking a group along a cycle allocates nothing but the pose
+//! it returns.
 
 use super::link::LinkMotion;
+use super::lu_work::Linear;
 use super::motion::PointMotion;
 use crate::angle::{normalize, perp, unit};
 use crate::error::{Error, Result};
@@ -97,6 +102,19 @@ impl GroupPose {
                 .zip(&self.angles)
                 .flat_map(|(o, &a)| [o.x, o.y, a]),
         )
+    }
+
+    /// Writes q = (o_k, θ_k) into `q` (resized when its length differs).
+    fn write_q(&self, q: &mut DVector<f64>) {
+        let n = 3 * self.angles.len();
+        if q.len() != n {
+            *q = DVector::zeros(n);
+        }
+        for (k, (o, &a)) in self.origins.iter().zip(&self.angles).enumerate() {
+            q[3 * k] = o.x;
+            q[3 * k + 1] = o.y;
+            q[3 * k + 2] = a;
+        }
     }
 
     fn from_q(q: &DVector<f64>) -> Self {
@@ -171,6 +189,13 @@ impl HingedGroup {
     /// The closure residual at `q` (inner hinges first, then outer).
     fn residual_q(&self, q: &DVector<f64>, outer: &[Point2<f64>]) -> DVector<f64> {
         let mut f = DVector::zeros(self.rows());
+        self.residual_into(q, outer, &mut f);
+        f
+    }
+
+    /// [`residual_q`](Self::residual_q) into `f` (of the group's number of rows; every entry
+    /// written).
+    fn residual_into(&self, q: &DVector<f64>, outer: &[Point2<f64>], f: &mut DVector<f64>) {
         for (i, &[a, b]) in self.inner.iter().enumerate() {
             let d = Self::point(q, a).0 - Self::point(q, b).0;
             f[2 * i] = d.x;
@@ -182,12 +207,18 @@ impl HingedGroup {
             f[base + 2 * o] = d.x;
             f[base + 2 * o + 1] = d.y;
         }
-        f
     }
 
     /// The closure Jacobian K at `q` (module docs), its angle columns multiplied by `scale`.
     fn jacobian(&self, q: &DVector<f64>, scale: f64) -> DMatrix<f64> {
         let mut k = DMatrix::zeros(self.rows(), 3 * self.links);
+        self.jacobian_into(q, scale, &mut k);
+        k
+    }
+
+    /// [`jacobian`](Self::jacobian) into `k` (of the group's shape; zeroed first).
+    fn jacobian_into(&self, q: &DVector<f64>, scale: f64, k: &mut DMatrix<f64>) {
+        k.fill(0.0);
         let mut put = |row: usize, end: HingeEnd, sign: f64| {
             let r = Self::point(q, end).1;
             let c = 3 * end.0;
@@ -205,7 +236,6 @@ impl HingedGroup {
         for (o, &end) in self.outer.iter().enumerate() {
             put(base + 2 * o, end, 1.0);
         }
-        k
     }
 
     /// The largest closure gap of `pose` with the known points `outer`, m.
@@ -226,40 +256,6 @@ impl HingedGroup {
             .fold(0.0, f64::max)
     }
 
-    /// Newton's method from `q`; `Some((q, first step, iterations))` when it converges
-    /// (the step falls to rounding, 4ε of `size`) within `max` steps, each step no more
-    /// than `limit` of `size` and, once `contract` is set, each at most half the one before.
-    fn newton_q(
-        &self,
-        mut q: DVector<f64>,
-        outer: &[Point2<f64>],
-        size: f64,
-        max: usize,
-        contract: bool,
-    ) -> Option<(DVector<f64>, f64)> {
-        let mut first = None;
-        let mut last = f64::INFINITY;
-        for _ in 0..max {
-            let f = self.residual_q(&q, outer);
-            let k = self.jacobian(&q, 1.0);
-            let dq = k.lu().solve(&(-f))?;
-            let step = Self::step_norm(&dq, size);
-            if !step.is_finite() || step > size {
-                return None;
-            }
-            first.get_or_insert(step);
-            q += &dq;
-            if step <= 4.0 * f64::EPSILON * size || (step >= last && step <= 1e-12 * size) {
-                return Some((q, first.unwrap_or(0.0)));
-            }
-            if contract && step > 1e-11 * size && step > 0.5 * last {
-                return None;
-            }
-            last = step;
-        }
-        None
-    }
-
     /// The pose closing the group on `outer` nearest (by Newton's method) `start`.
     ///
     /// # Errors
@@ -267,9 +263,17 @@ impl HingedGroup {
     /// from `start` (the group does not assemble near it).
     pub fn newton(&self, start: &GroupPose, outer: &[Point2<f64>], size: f64) -> Result<GroupPose> {
         self.check()?;
-        self.newton_q(start.to_q(), outer, size, MAX_NEWTON, false)
-            .map(|(q, _)| GroupPose::from_q(&q))
-            .ok_or_else(|| no_assembly(self.residual(start, outer)))
+        let mut q = start.to_q();
+        self.newton_in(
+            &mut q,
+            &mut Linear::default(),
+            outer,
+            size,
+            MAX_NEWTON,
+            false,
+        )
+        .map(|_| GroupPose::from_q(&q))
+        .ok_or_else(|| no_assembly(self.residual(start, outer)))
     }
 
     /// The pose the group reaches from `reference` (closed on `path(0)`) while its known
@@ -282,54 +286,16 @@ impl HingedGroup {
     /// [`Error::NotAssemblable`] with the closure gap of the last pose at the next step of
     /// the path where the path cannot be followed (the group does not assemble beyond it,
     /// or passes a branch point there).
+    ///
+    /// Its buffers are allocated for this call; [`track_in`](Self::track_in) reuses a
+    /// [`GroupWork`] instead (the same bits).
     pub fn track(
         &self,
         reference: &GroupPose,
-        mut path: impl FnMut(f64, &mut [Point2<f64>]),
+        path: impl FnMut(f64, &mut [Point2<f64>]),
         size: f64,
     ) -> Result<GroupPose> {
-        let mut q = reference.to_q();
-        let mut pts = vec![Point2::origin(); self.outer.len()];
-        let (mut t, mut dt) = (0.0f64, 1.0f64);
-        let mut before = pts.clone();
-        path(0.0, &mut before);
-        while t < 1.0 {
-            let t1 = (t + dt).min(1.0);
-            path(t1, &mut pts);
-            // Tangent predictor: K·Δq = (0 | ΔP).
-            let k = self.jacobian(&q, 1.0);
-            let mut rhs = DVector::zeros(self.rows());
-            let base = 2 * self.inner.len();
-            for (o, (p1, p0)) in pts.iter().zip(&before).enumerate() {
-                rhs[base + 2 * o] = p1.x - p0.x;
-                rhs[base + 2 * o + 1] = p1.y - p0.y;
-            }
-            let guess = k.lu().solve(&rhs).map(|d| &q + d);
-            let corrected = guess.and_then(|g| {
-                self.newton_q(g, &pts, size, 12, true)
-                    .filter(|(_, first)| *first <= 0.1 * size)
-            });
-            match corrected {
-                Some((q1, _)) => {
-                    q = q1;
-                    t = t1;
-                    before.copy_from_slice(&pts);
-                    dt = (2.0 * dt).min(1.0);
-                }
-                None if dt > 1e-9 => dt *= 0.5,
-                None => {
-                    let gap = self.residual(&GroupPose::from_q(&q), &pts);
-                    return Err(no_assembly(gap));
-                }
-            }
-        }
-        // Polish at the end: the corrector stopped at rounding already; one more solve
-        // brings every hinge to the last bit the closure allows.
-        let q0 = q.clone();
-        let (q, _) = self
-            .newton_q(q, &pts, size, MAX_NEWTON, false)
-            .ok_or_else(|| no_assembly(self.residual(&GroupPose::from_q(&q0), &pts)))?;
-        Ok(GroupPose::from_q(&q))
+        self.track_in(reference, path, size, &mut GroupWork::default())
     }
 
     /// σ_min/σ_max of K at `q` with its angle columns scaled by `size`.
@@ -535,10 +501,134 @@ impl HingedGroup {
             }
             q += dq;
             if step <= 1e-13 * size {
-                return self.newton_q(q, outer, size, 4, false).map(|(q, _)| q);
+                let mut q = q;
+                return self
+                    .newton_in(&mut q, &mut Linear::default(), outer, size, 4, false)
+                    .map(|_| q);
             }
         }
         None
+    }
+}
+
+/// Reusable buffers for the Newton solves of one [`HingedGroup`] (any size; resized when the
+/// group's size changes). `Default` allocates nothing.
+#[derive(Debug, Clone, Default)]
+pub struct GroupWork {
+    lin: Linear,
+    q: DVector<f64>,
+    guess: DVector<f64>,
+    pts: Vec<Point2<f64>>,
+    before: Vec<Point2<f64>>,
+}
+
+impl HingedGroup {
+    /// Newton's method from `q` (in place): the first step's size when it converges (the step
+    /// falls to rounding, 4ε of `size`) within `max` steps, each step no more than `size` and,
+    /// once `contract` is set, each at most half the one before.
+    fn newton_in(
+        &self,
+        q: &mut DVector<f64>,
+        lin: &mut Linear,
+        outer: &[Point2<f64>],
+        size: f64,
+        max: usize,
+        contract: bool,
+    ) -> Option<f64> {
+        lin.size(q.len());
+        let mut first = None;
+        let mut last = f64::INFINITY;
+        for _ in 0..max {
+            self.residual_into(q, outer, &mut lin.f);
+            self.jacobian_into(q, 1.0, &mut lin.k);
+            lin.factorise();
+            lin.f.neg_mut();
+            if !lin.solve() {
+                return None;
+            }
+            let step = Self::step_norm(&lin.f, size);
+            if !step.is_finite() || step > size {
+                return None;
+            }
+            first.get_or_insert(step);
+            *q += &lin.f;
+            if step <= 4.0 * f64::EPSILON * size || (step >= last && step <= 1e-12 * size) {
+                return Some(first.unwrap_or(0.0));
+            }
+            if contract && step > 1e-11 * size && step > 0.5 * last {
+                return None;
+            }
+            last = step;
+        }
+        None
+    }
+
+    /// [`track`](Self::track) in the buffers of `work` (the same steps, the same bits).
+    ///
+    /// # Errors
+    /// As [`track`](Self::track).
+    pub fn track_in(
+        &self,
+        reference: &GroupPose,
+        mut path: impl FnMut(f64, &mut [Point2<f64>]),
+        size: f64,
+        work: &mut GroupWork,
+    ) -> Result<GroupPose> {
+        let GroupWork {
+            lin,
+            q,
+            guess,
+            pts,
+            before,
+        } = work;
+        reference.write_q(q);
+        lin.size(q.len());
+        pts.clear();
+        pts.resize(self.outer.len(), Point2::origin());
+        before.clear();
+        before.resize(self.outer.len(), Point2::origin());
+        let (mut t, mut dt) = (0.0f64, 1.0f64);
+        path(0.0, before);
+        let base = 2 * self.inner.len();
+        while t < 1.0 {
+            let t1 = (t + dt).min(1.0);
+            path(t1, pts);
+            // Tangent predictor: K·Δq = (0 | ΔP).
+            self.jacobian_into(q, 1.0, &mut lin.k);
+            lin.f.fill(0.0);
+            for (o, (p1, p0)) in pts.iter().zip(before.iter()).enumerate() {
+                lin.f[base + 2 * o] = p1.x - p0.x;
+                lin.f[base + 2 * o + 1] = p1.y - p0.y;
+            }
+            lin.factorise();
+            let corrected = lin.solve() && {
+                guess.clone_from(q);
+                *guess += &lin.f;
+                self.newton_in(guess, lin, pts, size, 12, true)
+                    .is_some_and(|first| first <= 0.1 * size)
+            };
+            if corrected {
+                std::mem::swap(q, guess);
+                t = t1;
+                before.copy_from_slice(pts);
+                dt = (2.0 * dt).min(1.0);
+            } else if dt > 1e-9 {
+                dt *= 0.5;
+            } else {
+                let gap = self.residual(&GroupPose::from_q(q), pts);
+                return Err(no_assembly(gap));
+            }
+        }
+        // Polish at the end: the corrector stopped at rounding already; one more solve
+        // brings every hinge to the last bit the closure allows.
+        guess.clone_from(q);
+        if self
+            .newton_in(guess, lin, pts, size, MAX_NEWTON, false)
+            .is_none()
+        {
+            return Err(no_assembly(self.residual(&GroupPose::from_q(q), pts)));
+        }
+        Ok(GroupPose::from_q(guess))
     }
 }
 

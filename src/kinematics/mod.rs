@@ -64,6 +64,7 @@ mod cycle;
 mod extreme;
 mod grashof;
 mod link;
+mod lu_work;
 mod motion;
 mod numeric;
 mod prp;
@@ -76,7 +77,8 @@ mod triad;
 mod triad_slider;
 mod trig_roots;
 
-pub use assur::{GroupMotion, GroupPose, GroupReactions, HingeEnd, HingedGroup};
+pub use assur::{GroupMotion, GroupPose, GroupReactions, GroupWork, HingeEnd, HingedGroup};
+
 pub use contour::{
     contour_residual, solve_contour, solve_contour_position, Branch, ContourCase, ContourSolution,
     LoopVector, Part, SINGULAR_DETERMINANT,

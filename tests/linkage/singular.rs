@@ -80,3 +80,67 @@ fn the_position_at_an_exact_dead_centre_with_the_rates_singular() {
         assert_eq!(r.joint(j).unwrap(), k.joint(j).unwrap());
     }
 }
+
+/// Crank O P of length 1, rod P B of 4, slider B on the guide y = −3 of the frame, drawn at
+/// φ = 0.5 with B ahead of P along the guide. The pin's distance from the guide, 3 + sin φ,
+/// reaches the rod's length only at φ = π/2: there the rod stands across the guide (its
+/// circle touches the guide's line), B = (0, −3), and the crank turns through it.
+fn touching_slider_crank() -> Linkage {
+    let (s, c) = 0.5f64.sin_cos();
+    let bx = c + (16.0 - (s + 3.0) * (s + 3.0)).sqrt();
+    Linkage {
+        name: "slider-crank touching its guide".into(),
+        joints: vec![
+            Joint::revolute("O", [0.0, 0.0]),
+            Joint::revolute("P", [c, s]),
+            Joint::revolute("B", [bx, -3.0]),
+            Joint::prismatic("G", [bx, -3.0], "frame", [1.0, 0.0]),
+        ],
+        links: vec![
+            Link::new("frame", &["O", "G"]),
+            Link::new("crank", &["O", "P"]),
+            Link::new("rod", &["P", "B"]),
+            Link::new("slider", &["B", "G"]),
+        ],
+        ..Linkage::default()
+    }
+}
+
+#[test]
+fn the_position_of_an_rrp_dyad_across_its_guide_with_the_rates_singular() {
+    let plan = Plan::new(&touching_slider_crank()).unwrap();
+    let m = Motion::new(FRAC_PI_2, 1.5, 0.0);
+    assert!(plan.kinematics(m).is_err());
+    let at = plan.position(m).unwrap();
+    let k = at.pose();
+    let b = k.joint("B").unwrap().p;
+    let p = k.joint("P").unwrap().p;
+    println!(
+        "RRP across its guide: B = {b:?}, |PB| − 4 = {:.1e}",
+        (b - p).norm() - 4.0
+    );
+    // The tangent point: under P on the guide, the rod's length to rounding.
+    assert!(
+        (b - nalgebra::Point2::new(0.0, -3.0)).norm() < 1e-12,
+        "{b:?}"
+    );
+    assert!(((b - p).norm() - 4.0).abs() < 1e-12);
+    assert!(k.link("rod").unwrap().value.sin() < -1.0 + 1e-15);
+    match at.rates() {
+        Err(Error::In { part, source }) => {
+            assert!(part.contains("rod"), "{part}");
+            assert!(
+                matches!(*source, Error::Singular { measure: "cos(phi2 - phi4)", value, .. } if value.abs() < 1e-12),
+                "{source}"
+            );
+        }
+        other => panic!("{other:?}"),
+    }
+    // Near it, the closed form: the position is the full kinematics', bit for bit.
+    let m = Motion::new(1.2, 1.5, -0.5);
+    let r = plan.position(m).unwrap();
+    let k = plan.kinematics(m).unwrap();
+    for j in 0..plan.joint_names().len() {
+        assert_eq!(r.rates().unwrap().joint(j).unwrap(), k.joint(j).unwrap());
+    }
+}

@@ -8,14 +8,14 @@
 //! line, its angle along the shorter arc, and if the group cannot follow that path, the
 //! longer one), tracking the group by continuation. So the mode is the one the drawn pose
 //! turns into, a solve is a pure function of the inputs (the same bits whatever was solved
-//! before), and a crank input's path is the crank's own motion. A general group allocates its
-//! Newton matrices at each solve (it has no fixed size).
+//! before), and a crank input's path is the crank's own motion. Its Newton buffers
+//! ([`GroupWork`]) are kept with the solver's state and reused from one position to the next.
 
 use super::analysis::{Analysis, Reaction};
 use super::state::{within, KinState};
 use crate::angle::{normalize, unit};
 use crate::error::Result;
-use crate::kinematics::{GroupPose, PointMotion};
+use crate::kinematics::{GroupPose, GroupWork, PointMotion};
 use crate::linkage::plan::Group;
 use crate::linkage::plan_general::GeneralPlan;
 use nalgebra::{Point2, Vector2};
@@ -34,14 +34,19 @@ impl KinState {
 
     /// The pose of general group `gp` now, by continuation from its reference pose (module
     /// docs).
-    fn general_pose(&self, gp: &GeneralPlan, outer: &[PointMotion]) -> Result<GroupPose> {
+    fn general_pose(
+        &self,
+        gp: &GeneralPlan,
+        outer: &[PointMotion],
+        work: &mut GroupWork,
+    ) -> Result<GroupPose> {
         let turns: Vec<f64> = gp
             .known
             .iter()
             .zip(&gp.known_reference)
             .map(|(&(k, _), &(_, a0))| normalize(self.links[k].angle - a0 + PI) - PI)
             .collect();
-        let follow = |longer: bool| {
+        let mut follow = |longer: bool| {
             let path = |t: f64, pts: &mut [Point2<f64>]| {
                 for (o, p) in pts.iter_mut().enumerate() {
                     if t == 1.0 {
@@ -59,7 +64,7 @@ impl KinState {
                     *p = origin + turned(unit(a0 + t * turn), l);
                 }
             };
-            gp.block.track(&gp.reference, path, gp.size)
+            gp.block.track_in(&gp.reference, path, gp.size, work)
         };
         follow(false).or_else(|e| {
             if turns.iter().any(|&t| t != 0.0) {
@@ -78,7 +83,11 @@ impl KinState {
         gp: &GeneralPlan,
     ) -> Result<()> {
         let outer = self.general_outer(gp);
-        let pose = self.general_pose(gp, &outer).map_err(within(&group.name))?;
+        // The buffers are lent out for the solve (taking them allocates nothing).
+        let mut work = std::mem::take(&mut self.general_work[g]);
+        let pose = self.general_pose(gp, &outer, &mut work);
+        self.general_work[g] = work;
+        let pose = pose.map_err(within(&group.name))?;
         self.put_general(g, gp, &pose, &outer)
             .map_err(within(&group.name))
     }

@@ -6,8 +6,9 @@
 //! The position pass is the ordinary one with the inputs at rest; a group whose closed form
 //! refuses the position (its determinant vanished, or its closure fails by no more than
 //! rounding: the tangent case) is placed by its position problem alone
-//! ([`solve_contour_position`]), which has the tangent circles' one point. The RRR dyad is
-//! covered so; the other kinds report their error as before.
+//! ([`solve_contour_position`]), which has the tangent circles' one point (or the circle's
+//! tangent point on a line). The RRR and RRP dyads are covered so; the other kinds report
+//! their error as before.
 
 use super::kinematics::Kinematics;
 use super::state::{within, KinState};
@@ -56,7 +57,8 @@ impl Plan {
     ///
     /// # Errors
     /// As [`kinematics`](Self::kinematics), for a position that does not exist (a group that
-    /// cannot be assembled by more than rounding) or whose group is not an RRR dyad.
+    /// cannot be assembled by more than rounding) or whose group is neither an RRR nor an RRP
+    /// dyad.
     ///
     /// # Examples
     /// A four-bar stretched straight: at φ = 0 its coupler (2 m) and rocker (1 m) lie along
@@ -149,6 +151,9 @@ impl KinState {
     /// Group `g` placed by its position problem alone, at rest; `Ok` with the error its rates
     /// have there (a vanished determinant).
     fn position_only(&mut self, g: usize, group: &Group) -> Result<Error> {
+        if group.kind == GroupKind::Rrp && group.triad.is_none() && group.general.is_none() {
+            return self.rrp_position_only(g, group);
+        }
         if group.kind != GroupKind::Rrr || group.triad.is_some() || group.general.is_some() {
             return Err(Error::Description {
                 item: group.name.clone(),
@@ -184,6 +189,46 @@ impl KinState {
         Ok(within(&group.name)(Error::Singular {
             what: "RRR dyad",
             measure: "sin(phi3 - phi2)",
+            value: det,
+        }))
+    }
+
+    /// An RRP dyad placed by its position problem alone (the rod's circle against the
+    /// guide's line, which has the tangent point where they touch), at rest; `Ok` with the
+    /// error its rates have there: the rod across the guide, cos(φ2 − φ4) = 0.
+    fn rrp_position_only(&mut self, g: usize, group: &Group) -> Result<Error> {
+        let [l2, l3] = group.links;
+        let [ka, kc] = group.known;
+        let a = self.at(ka, group.a_local).p;
+        let guide = self.guide_on(kc, group.c_local, group.guide_offsets[1]);
+        let beta = guide.angle.value;
+        // The loop G → A → B → G, as the dyad's closed form writes it (its Plus puts B ahead
+        // along the guide: the contour's opposite).
+        let loop_ = [
+            LoopVector::Cartesian {
+                r: a - guide.point.p,
+                v: nalgebra::Vector2::zeros(),
+                a: nalgebra::Vector2::zeros(),
+            },
+            LoopVector::unknown_angle(group.lengths[0]),
+            LoopVector::unknown_length(Motion::fixed(beta + PI)),
+        ];
+        let [phi2, _] = solve_contour_position(&loop_, group.branch.flipped())?;
+        let (u2, g4) = (unit(phi2), unit(beta));
+        let b = a + group.lengths[0] * u2;
+        let at_rest = |p, angle| LinkMotion {
+            origin: PointMotion::fixed(p),
+            angle,
+            omega: 0.0,
+            epsilon: 0.0,
+        };
+        self.put_link(l2, at_rest(a, phi2), u2);
+        self.put_link(l3, at_rest(b, normalize(beta)), g4);
+        let det = u2.dot(&g4);
+        self.dets[g] = det;
+        Ok(within(&group.name)(Error::Singular {
+            what: "RRP dyad",
+            measure: "cos(phi2 - phi4)",
             value: det,
         }))
     }

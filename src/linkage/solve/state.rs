@@ -25,6 +25,8 @@ pub(crate) struct KinState {
     /// Per group, a triad's pose at the last solve (`None` for a dyad, or before the first
     /// solve): the rates-only pass works at it. No solve of positions reads it.
     pub triads: Vec<Option<crate::kinematics::TriadPose>>,
+    /// Per group, a general group's Newton buffers (empty for the other kinds).
+    pub general_work: Vec<crate::kinematics::GroupWork>,
 }
 
 /// The frame's link motion (at rest at the origin).
@@ -68,6 +70,7 @@ impl KinState {
                 .collect(),
             dets: vec![0.0; chain.groups.len()],
             triads: vec![None; chain.groups.len()],
+            general_work: vec![Default::default(); chain.groups.len()],
         }
     }
 
