@@ -822,13 +822,7 @@ fn four_bar_scaled(k: f64, shift: f64) -> Linkage {
 
 #[test]
 fn hostile_styles_and_inputs_give_errors_or_finite_pictures() {
-    // The double butterfly (a general group solved by Newton) is left out: a hostile course
-    // of it made a diagram run without end (reported in the round's closing note; to fix).
-    let mut plans: Vec<Plan> = plans()
-        .into_iter()
-        .filter(|(name, _)| name != "double butterfly")
-        .map(|(_, p)| p)
-        .collect();
+    let mut plans: Vec<Plan> = plans().into_iter().map(|(_, p)| p).collect();
     for (k, shift) in [
         (1e-150, 0.0),
         (1e150, 0.0),
@@ -901,6 +895,89 @@ fn hostile_styles_and_inputs_give_errors_or_finite_pictures() {
         drawn > 100 && refused > 100,
         "{drawn} drawn, {refused} refused"
     );
+}
+
+#[test]
+fn a_diagram_whose_values_span_more_than_f64_max_ends_with_finite_axes() {
+    // The hostile double butterfly's diagram ran without end: a hodograph whose reaction
+    // components reach beyond ±f64::MAX / 2 on both sides has an axis of infinite width, and
+    // the chart's ticks, stepped across it, never advanced. The same happens to the four-bar
+    // with heavy links turned fast: without loads or gravity its reactions are the inertia
+    // forces alone, proportional to the links' masses and inertias (scaled by k together).
+    let heavy = |k: f64| {
+        let mut l = bundled::four_bar();
+        l.loads.clear();
+        l.gravity = [0.0, 0.0];
+        for link in &mut l.links {
+            if let Some(m) = &mut link.mass {
+                (m.m, m.j) = (k * m.m, k * m.j);
+            }
+        }
+        Plan::new(&l).unwrap()
+    };
+    let rx = |plan: &Plan, phi: f64, w: f64| {
+        plan.analyse(Motion::new(phi, w, 0.0))
+            .and_then(|s| s.reaction("O1"))
+            .map(|r| r.force.x)
+    };
+    let phis: Vec<f64> = (0..360).map(|k| TAU * f64::from(k) / 360.0).collect();
+    let w = 1e100;
+    let unit = heavy(1.0);
+    let (fmin, fmax) = phis
+        .iter()
+        .map(|&phi| rx(&unit, phi, w).unwrap())
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), v| {
+            (l.min(v), h.max(v))
+        });
+    assert!(fmin < 0.0 && fmax > 0.0, "R_x spans [{fmin}, {fmax}]");
+    // Both extremes at 1.5e308: their difference overflows.
+    let plan = heavy(1.5e308 / fmax.min(-fmin));
+    let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
+    for &phi in &phis {
+        if let Ok(x) = rx(&plan, phi, w) {
+            (lo, hi) = (lo.min(x), hi.max(x));
+        }
+    }
+    assert!(
+        lo < -f64::MAX / 2.0 && hi > f64::MAX / 2.0 && (hi - lo).is_infinite(),
+        "R_x spans [{lo:e}, {hi:e}]"
+    );
+    let course = Course::new(&plan, None, 12, w).unwrap();
+    // The reactions' magnitudes overflow wherever both components are that large: that
+    // diagram may find no position to draw (an error); the hodograph draws its gaps.
+    for d in [Diagram::Hodograph("O1".to_owned()), Diagram::Reactions] {
+        let chart = match diagram(&plan, &course, &d, &Style::default()) {
+            Ok(c) => c,
+            Err(e) if d == Diagram::Reactions => {
+                assert!(matches!(e, tmm::Error::In { .. }), "{e}");
+                continue;
+            }
+            Err(e) => panic!("{d:?}: {e}"),
+        };
+        assert_finite_svg(&chart.svg, "a fast four-bar's diagram");
+        for p in &chart.panels {
+            for r in [p.x_range, p.y_range] {
+                let width = r[1] - r[0];
+                assert!(width.is_finite() && width > 0.0, "{d:?}: axis {r:?}");
+            }
+            // Every point drawn lies on the axes (the values beyond 1e300 are gaps).
+            for q in p
+                .series
+                .iter()
+                .flat_map(|(_, s)| s)
+                .chain(p.marks.iter().map(|(_, m)| m))
+            {
+                assert!(
+                    (p.x_range[0]..=p.x_range[1]).contains(&q[0])
+                        && (p.y_range[0]..=p.y_range[1]).contains(&q[1])
+                        && q.iter().all(|v| v.abs() <= 1e300),
+                    "{d:?}: {q:?} outside {:?} × {:?}",
+                    p.x_range,
+                    p.y_range
+                );
+            }
+        }
+    }
 }
 
 #[test]

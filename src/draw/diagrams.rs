@@ -150,11 +150,14 @@ pub struct Chart {
 /// other end and back, rad (the two ends, where it reverses, are not sampled: the velocities
 /// there grow without bound at a lock; the course's marks show them); for a slider, its
 /// coordinate, m. Every axis carries its SI unit. A position where the linkage fails leaves a
-/// gap.
+/// gap, and so does a value beyond ±10³⁰⁰ (an axis must have a finite width for its ticks to
+/// be placed).
 ///
 /// The time is bounded by the picture: [`Style::samples`] analyses for the curves, at most
 /// [`MAX_PLAN_POSITIONS`] marked course positions (a longer course is thinned as
-/// [`plan_view`](super::plan_view) thins it), and one pass over the course to check it.
+/// [`plan_view`](super::plan_view) thins it), one pass over the course to check it, and
+/// ticks on axes whose ends and width are finite and whose width is at least 10⁻⁹ of their
+/// magnitude (so a tick's step always advances).
 ///
 /// # Errors
 /// [`Error::OutOfRange`] or [`Error::NonFinite`] naming the field of a bad style
@@ -309,7 +312,7 @@ impl Abscissa {
                 xs: samples.iter().map(|&m| axis.x(m)).collect(),
                 samples,
                 axis,
-                range: [0.0, 2.0 * span],
+                range: pad(0.0, 2.0 * span, 0.0),
                 label: format!(
                     "φ1 swept from {from:.3} rad to {to:.3} rad and back (rocking), rad"
                 ),
@@ -393,10 +396,15 @@ impl Curves<'_> {
                     }
                     prev = Some(y);
                 }
-                if hodograph {
-                    pts.push([d[p][0], d[p][1]]);
+                let q = if hodograph {
+                    [d[p][0], d[p][1]]
                 } else {
-                    pts.push([*x, y]);
+                    [*x, y]
+                };
+                if placeable(q) {
+                    pts.push(q);
+                } else {
+                    prev = None;
                 }
             }
             series.push((name.clone(), pts));
@@ -432,8 +440,9 @@ impl Curves<'_> {
             })
             .flatten()
             // A position whose abscissa or value is not a finite number (an input too large
-            // to place on the axis) has no place on the chart: its mark is left out.
-            .filter(|(_, m)| m[0].is_finite() && m[1].is_finite())
+            // to place on the axis) or lies beyond the axes' limit has no place on the chart:
+            // its mark is left out.
+            .filter(|(_, m)| placeable(*m))
             .collect();
         let all = series
             .iter()
@@ -486,8 +495,31 @@ fn wrap(d: f64) -> f64 {
     d - TAU * (d / TAU).round()
 }
 
-/// A range around [lo, hi] with a margin of `frac` of its width (a flat one opened up).
+/// The largest magnitude a diagram's axis reaches: a value beyond it is left out, as a
+/// failed position is.
+///
+/// The chart's ticks are placed by stepping across the axis's width: an axis whose ends
+/// differ by more than `f64::MAX` (values near ±10³⁰⁸ of both signs) has an infinite width,
+/// and its ticks would never be placed. With every value within ±10³⁰⁰ the width, its
+/// margins and every pixel stay finite.
+const AXIS_LIMIT: f64 = 1e300;
+
+/// Whether the point can be placed on an axis: both coordinates finite and within
+/// ±[`AXIS_LIMIT`].
+fn placeable(q: [f64; 2]) -> bool {
+    q.iter().all(|v| v.abs() <= AXIS_LIMIT)
+}
+
+/// A range around [lo, hi] with a margin of `frac` (at most 1) of its width (a flat one
+/// opened up); the unit range [−1, 1] when there is no value (lo > hi, or NaN).
+///
+/// The ends are finite, and so is the width, which is at least 10⁻⁹ of the magnitude.
 pub(super) fn pad(lo: f64, hi: f64, frac: f64) -> [f64; 2] {
+    // No value (an empty panel, lo = +inf and hi = -inf) or NaN.
+    if lo.is_nan() || hi.is_nan() || lo > hi {
+        return [-1.0, 1.0];
+    }
+    let (lo, hi) = (lo.max(-AXIS_LIMIT), hi.min(AXIS_LIMIT));
     let w = hi - lo;
     // The chart steps its tick marks by a fraction of the width: a width of a few ulps of
     // the values would never advance, so a range narrower than 1e-9 of its magnitude is

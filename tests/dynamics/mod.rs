@@ -5,5 +5,9 @@ mod breakpoints;
 mod five_bar_servo;
 #[cfg(feature = "serde")] // it reads a bundled linkage
 mod kinks;
+#[cfg(feature = "serde")] // it reads a bundled linkage
+mod run_up_ends;
 pub(crate) mod scenarios;
 mod stability;
+#[cfg(feature = "serde")] // it reads a bundled linkage
+mod two_input_stops;

@@ -7,11 +7,9 @@ use nalgebra::Vector2;
 
 use super::system::LinkageSystem;
 use crate::dynamics::{
-    accelerations, run, Direction, Outcome, Reach, RunOptions, RunResult, State, Stepper,
-    SwitchLoads, Watch,
+    accelerations, run, Direction, Outcome, Reach, RunOptions, RunResult, State, Stepper, Watch,
 };
 use crate::error::{finite, positive, Error, Result};
-use crate::linkage::plan::LoadPlan;
 
 /// The machine reduced to its crank at one position.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -186,83 +184,6 @@ fn extreme(t: &[f64], s: &[f64], max: bool) -> f64 {
 }
 
 impl LinkageSystem {
-    /// The machine's velocity-sign switches ([`LagrangeSystem::switches`](
-    /// crate::dynamics::LagrangeSystem::switches)): one, the input's rate q̇₁, for a machine
-    /// with one input and a resistance among its loads or friction in its joints (every
-    /// resistance's and every joint's rate is q̇₁ times a transfer function, so all of them
-    /// change sign with q̇₁); none otherwise (with two
-    /// inputs a resistance's rate vanishes while the machine moves on, a motion with one
-    /// joint held, which is not modelled).
-    pub(super) fn input_switches(&self) -> usize {
-        let resisted = self
-            .plan()
-            .loads
-            .iter()
-            .any(|l| matches!(l, LoadPlan::Turning { .. } | LoadPlan::Sliding { .. }));
-        usize::from(self.dof() == 1 && (resisted || self.has_joint_friction()))
-    }
-
-    /// The loads along the input at rest at `q` ([`SwitchLoads`]): the drive is Q₁ at
-    /// q̇ = 0, where every resistance is zero (motor, gravity, the other loads); the breakaway
-    /// loads are the resistances reduced to the input, Q₁ at rest minus Q₁ at a vanishing
-    /// rate each way (10⁻²⁰⁰: the resistances' magnitudes do not depend on the speed, and
-    /// every smooth load changes by nothing there).
-    ///
-    /// # Errors
-    /// [`Error::OutOfRange`] for a switch other than 0 or a machine without one; as
-    /// [`split_terms`](Self::split_terms).
-    pub(super) fn input_switch_loads(&self, i: usize, q: &Vector2<f64>) -> Result<SwitchLoads> {
-        if i >= self.input_switches() {
-            return Err(Error::OutOfRange {
-                name: "switch index",
-                value: i as f64,
-                min: 0.0,
-                max: self.input_switches() as f64 - 1.0,
-                ends: crate::Ends::Closed,
-            });
-        }
-        const TINY: f64 = 1e-200;
-        // The loads and the joints' friction (zero at rest).
-        let resisting = |t: &super::Terms| t.loads[0] + t.friction[0];
-        let at = |rate: f64| self.split_terms(q, &Vector2::new(rate, 0.0));
-        let (rest, forward, backward) = (at(0.0)?, at(TINY)?, at(-TINY)?);
-        let (what, unit) = if self.plan().input_is_crank() {
-            ("crank", "N·m")
-        } else {
-            ("input slider", "N")
-        };
-        Ok(SwitchLoads {
-            what,
-            unit,
-            drive: rest.forces()[0],
-            forward: (resisting(&rest) - resisting(&forward)).max(0.0),
-            backward: (resisting(&backward) - resisting(&rest)).max(0.0),
-        })
-    }
-
-    /// The generalized force of the resistances on the input as they are while it moves in
-    /// `direction` (+1 or −1; 0 gives zero): Q₁ at a vanishing rate that way minus Q₁ at
-    /// rest (see [`input_switch_loads`](Self::input_switch_loads)).
-    ///
-    /// # Errors
-    /// As [`input_switch_loads`](Self::input_switch_loads).
-    pub(super) fn input_switch_force(
-        &self,
-        i: usize,
-        q: &Vector2<f64>,
-        direction: f64,
-    ) -> Result<Vector2<f64>> {
-        let l = self.input_switch_loads(i, q)?;
-        let f = if direction > 0.0 {
-            -l.forward
-        } else if direction < 0.0 {
-            l.backward
-        } else {
-            0.0
-        };
-        Ok(Vector2::new(f, 0.0))
-    }
-
     /// Checks that the machine has one input, a crank.
     fn one_crank(&self, what: &str) -> Result<()> {
         if self.dof() == 1 && self.plan().input_is_crank() {
@@ -471,8 +392,15 @@ impl LinkageSystem {
     /// Integrates turn after turn from `start` until a turn's mean speed changes from the
     /// previous turn's by at most `opts.tol` (relative): the steady state.
     ///
+    /// The cost is bounded: at most `opts.max_turns` turns, each at most
+    /// `opts.max_turn_time` of motion and the run's step budget
+    /// ([`RunOptions`](crate::dynamics::RunOptions)).
+    ///
     /// # Errors
-    /// [`Error::Budget`] when `opts.max_turns` turns pass without a steady state;
+    /// [`Error::Budget`] when `opts.max_turns` turns pass without a steady state, wrapped
+    /// in [`Error::In`] saying why when at least 8 turns were run: the mean speed grew in
+    /// each of the last turns (the machine runs away), fell in each, or went up and down
+    /// without settling;
     /// [`Error::NonFinite`]/[`Error::NonPositive`] for a bad tolerance; as
     /// [`turn`](Self::turn).
     pub fn run_up_from<M: Stepper>(
@@ -518,10 +446,61 @@ impl LinkageSystem {
                 return Ok(out);
             }
         }
-        Err(Error::Budget {
+        let budget = Error::Budget {
             what: "turn",
             limit: opts.max_turns,
             time: s.t,
+        };
+        Err(match no_steady_state(&out.turns, opts.tol) {
+            Some(why) => Error::In {
+                part: why,
+                source: Box::new(budget),
+            },
+            None => budget,
         })
     }
+}
+
+/// Why the mean speeds of a run-up's turns did not settle, read from the last (at most 16)
+/// turns: they grew in every one (the drive still exceeds the resistances at every speed
+/// reached: a machine without a steady state runs away, its mean speed rising like the
+/// square root of the work done), fell in every one, or went up and down without settling
+/// to `tol` (a regime that repeats over several turns). `None` for fewer than 8 turns: too
+/// few to tell a slow approach from none.
+fn no_steady_state(turns: &[Turn], tol: f64) -> Option<String> {
+    const LAST: usize = 16;
+    if turns.len() < 8 {
+        return None;
+    }
+    let w: Vec<f64> = turns[turns.len().saturating_sub(LAST)..]
+        .iter()
+        .map(|t| t.omega_mean)
+        .collect();
+    let n = w.len();
+    let (first, last) = (w[0], w[n - 1]);
+    let rising = w.windows(2).all(|p| p[1] > p[0]);
+    let falling = w.windows(2).all(|p| p[1] < p[0]);
+    let (lo, hi) = w
+        .iter()
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), &x| {
+            (l.min(x), h.max(x))
+        });
+    Some(if rising {
+        format!(
+            "run-up without a steady state: the mean speed grew in each of the last {n} turns, \
+             from {first:.6e} to {last:.6e} rad/s (the drive exceeds the resistances at every \
+             speed reached)"
+        )
+    } else if falling {
+        format!(
+            "run-up without a steady state: the mean speed fell in each of the last {n} turns, \
+             from {first:.6e} to {last:.6e} rad/s"
+        )
+    } else {
+        format!(
+            "run-up without a steady state: the mean speed went up and down between \
+             {lo:.6e} and {hi:.6e} rad/s over the last {n} turns without settling to a \
+             relative {tol:e} (a regime that repeats over several turns)"
+        )
+    })
 }

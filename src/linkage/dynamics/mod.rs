@@ -154,6 +154,7 @@ mod cycle;
 mod drive;
 mod flywheel;
 mod friction;
+mod stops;
 mod system;
 mod transfer;
 

@@ -644,46 +644,48 @@ impl LagrangeSystem for LinkageSystem {
     }
 
     /// One switch, the input's rate, for a machine with one input and a resistance among its
-    /// loads (see [`SwitchLoads`](crate::dynamics::SwitchLoads)); none otherwise.
+    /// loads or friction in its joints; one per resistance for a machine with two inputs
+    /// (see [`SwitchLoads`](crate::dynamics::SwitchLoads) and the module `stops`); none
+    /// otherwise.
     fn switches(&self) -> usize {
         self.input_switches()
     }
 
-    /// The input's rate q̇₁ (after checking that `out` has one entry per switch).
+    /// The input's rate q̇₁, or with two inputs each resistance's rate (after checking that
+    /// `out` has one entry per switch).
     fn switch_speeds(
         &self,
         _t: f64,
-        _q: &Vector2<f64>,
+        q: &Vector2<f64>,
         qd: &Vector2<f64>,
         out: &mut [f64],
     ) -> Result<()> {
-        kink_slots(out, self.input_switches())?;
-        out.fill(qd[0]);
-        Ok(())
+        self.input_switch_speeds(q, qd, out)
     }
 
-    /// The resistances' generalized force on the input as it is while the input moves in
+    /// The resistances' generalized force as it is while the switch's speed has the sign of
     /// `direction`.
     fn switch_force(
         &self,
         i: usize,
-        _t: f64,
+        t: f64,
         q: &Vector2<f64>,
-        _qd: &Vector2<f64>,
+        qd: &Vector2<f64>,
         direction: f64,
     ) -> Result<Vector2<f64>> {
-        self.input_switch_force(i, q, direction)
+        self.input_switch_force(i, t, q, qd, direction)
     }
 
-    /// The drive on the input at rest and the resistances reduced to it.
+    /// With one input, the drive on the input at rest and the resistances reduced to it;
+    /// with two, the load that drives a resisted rate and the resistance.
     fn switch_loads(
         &self,
         i: usize,
-        _t: f64,
+        t: f64,
         q: &Vector2<f64>,
-        _qd: &Vector2<f64>,
+        qd: &Vector2<f64>,
     ) -> Result<crate::dynamics::SwitchLoads> {
-        self.input_switch_loads(i, q)
+        self.input_switch_loads(i, t, q, qd)
     }
 
     /// The drives' and the loads' generalized forces, and for a linkage with friction the
