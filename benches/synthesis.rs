@@ -4,16 +4,36 @@
 //! throughput per point, so a linear cost shows as a flat rate), each from requirement to an
 //! accepted description (the engine plans every answer); and the centre-point curve of four
 //! poses over N samples, and Burmester's points of five poses over N samples.
+//!
+//! Path synthesis (`path_search`): one whole search that recovers a closed coupler curve
+//! (24 points of the bench four-bar of `common/four_bar.rs`), and the search's cost per
+//! candidate evaluation against 360 single-position scalar solves of that four-bar (goal
+//! ≤ 2: a candidate is a shape over a turn of 360 positions, placed on the targets), printed
+//! as a `yardstick |` line measured side by side. The search there runs its whole budget
+//! (tolerance 0), so the count of evaluations is the budget, polish included.
 
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion, Throughput};
 use std::f64::consts::{FRAC_PI_2, FRAC_PI_6};
 use std::hint::black_box;
 use std::time::Duration;
-use tmm::synthesis::{
-    burmester, burmester_points, centre_point_curve, crank_rocker, function_generator, shaper,
-    slider_crank, CrankRockerRequirement, FrameChoice, FunctionRequirement, OffsetChoice, Options,
-    Pose, ShaperRequirement, SliderCrankRequirement, Spacing,
+use tmm::kinematics::batch::{
+    coupler_point, four_bar_positions, CrankAngles, FourBarDims, Positions,
 };
+use tmm::kinematics::{crank, rrr_dyad, Branch, Motion, PointMotion};
+use tmm::synthesis::{
+    burmester, burmester_points, centre_point_curve, crank_rocker, function_generator,
+    path_generator, shaper, slider_crank, CrankRockerRequirement, FrameChoice, FunctionRequirement,
+    OffsetChoice, Options, PathOptions, PathRequirement, Pose, ShaperRequirement,
+    SliderCrankRequirement, Spacing, Timing,
+};
+
+#[path = "common/yardstick.rs"]
+mod yardstick;
+
+#[path = "common/four_bar.rs"]
+#[allow(dead_code)] // the hand kernel is not used here
+mod hand_four_bar;
+use hand_four_bar::{C, L1, L2, L3};
 
 fn quick_return(c: &mut Criterion) {
     let loose = Options::default().with_min_transmission_angle(0.0);
@@ -133,5 +153,94 @@ fn function_generation(c: &mut Criterion) {
     g.finish();
 }
 
-criterion_group!(benches, quick_return, function_generation);
+/// The bench four-bar with a coupler point.
+fn bench_dims() -> FourBarDims {
+    FourBarDims {
+        o: nalgebra::Point2::origin(),
+        c: C,
+        l_oa: L1,
+        l_ab: L2,
+        l_cb: L3,
+        branch: Branch::Plus,
+        coupler: nalgebra::Vector2::new(0.2, 0.1),
+    }
+}
+
+/// 24 points of the bench four-bar's coupler curve, evenly spaced in crank angle.
+fn closed_curve() -> PathRequirement {
+    let turn = CrankAngles::turn(24);
+    let mut out = Positions::new(24);
+    four_bar_positions(&bench_dims(), &turn, out.columns_mut()).unwrap();
+    PathRequirement {
+        points: (0..24).map(|i| [out.p_x[i], out.p_y[i]]).collect(),
+        timing: Timing::ClosedCurve,
+    }
+}
+
+/// The scalar blocks, one position at a time: B and the coupler point.
+fn scalar(d: &FourBarDims, angles: &[f64]) -> f64 {
+    let uv = d.coupler_uv();
+    let mut acc = 0.0;
+    for &phi in angles {
+        let a = crank(d.o, d.l_oa, Motion::fixed(black_box(phi))).unwrap().a;
+        let r = rrr_dyad(a, PointMotion::fixed(d.c), d.l_ab, d.l_cb, d.branch).unwrap();
+        acc += coupler_point(a.p, r.b.p, uv).y;
+    }
+    acc
+}
+
+fn path_search(c: &mut Criterion) {
+    let req = closed_curve();
+    let opts = PathOptions::default().with_population(40).with_designs(1);
+    let size = {
+        let n = req.points.len() as f64;
+        let m = req
+            .points
+            .iter()
+            .fold([0.0, 0.0], |a, p| [a[0] + p[0] / n, a[1] + p[1] / n]);
+        req.points
+            .iter()
+            .map(|p| (p[0] - m[0]).hypot(p[1] - m[1]))
+            .fold(0.0, f64::max)
+    };
+    let mut evaluations = 0;
+    let best = path_generator(&req, &opts, |p| {
+        evaluations = p.evaluations;
+        true
+    })
+    .unwrap();
+    println!(
+        "path search | closed curve of 24 points: mean miss {:.1e} of the path's size after about {evaluations} evaluations",
+        best[0].mean_error / size
+    );
+    let mut g = c.benchmark_group("path_search");
+    g.measurement_time(Duration::from_secs(10))
+        .warm_up_time(Duration::from_secs(1))
+        .sample_size(10);
+    g.bench_function("closed_curve_24_points", |b| {
+        b.iter(|| black_box(path_generator(black_box(&req), &opts, |_| true).unwrap()));
+    });
+    g.finish();
+    // A fixed budget spent whole: the cost per evaluation.
+    let budget = 2000;
+    let mut spend = PathOptions::default()
+        .with_population(20)
+        .with_max_evaluations(budget)
+        .with_designs(1);
+    spend.tolerance = 0.0;
+    let d = bench_dims();
+    let turn: Vec<f64> = CrankAngles::turn(360).phi().to_vec();
+    yardstick::print_ratio(
+        "path search per candidate evaluation / 360 scalar solves (goal <= 2)",
+        budget as u32,
+        || path_generator(black_box(&req), &spend, |_| true),
+        || {
+            (0..budget)
+                .map(|_| scalar(black_box(&d), &turn))
+                .sum::<f64>()
+        },
+    );
+}
+
+criterion_group!(benches, quick_return, function_generation, path_search);
 criterion_main!(benches);

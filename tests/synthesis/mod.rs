@@ -29,6 +29,26 @@ fn dist(p: [f64; 2], q: [f64; 2]) -> f64 {
     (p[0] - q[0]).hypot(p[1] - q[1])
 }
 
+/// The hinges A and B of the four-bar (frame d, crank a, coupler b, rocker c) with O1 =
+/// (0, 0), O3 = (d, 0) at the crank angle φ, by direct circle intersection (independent of
+/// the engine), in the mode σ (B left of A→O3 for +1); `None` where it does not assemble.
+fn hinges(d: f64, a: f64, b: f64, c: f64, sigma: f64, phi: f64) -> Option<([f64; 2], [f64; 2])> {
+    let (ax, ay) = (a * phi.cos(), a * phi.sin());
+    let (vx, vy) = (d - ax, -ay);
+    let e = vx.hypot(vy);
+    let along = (b * b - c * c + e * e) / (2.0 * e);
+    let h2 = b * b - along * along;
+    if h2 <= 0.0 {
+        return None;
+    }
+    let (ux, uy) = (vx / e, vy / e);
+    let h = sigma * h2.sqrt();
+    Some((
+        [ax, ay],
+        [ax + along * ux - h * uy, ay + along * uy + h * ux],
+    ))
+}
+
 /// The engine's K, stroke and γ_min (over every group) for `output` with a crank turning
 /// counter-clockwise.
 fn measured(s: &Synthesis, output: &Output) -> (f64, f64, f64) {
@@ -449,21 +469,9 @@ mod freudenstein {
         Spacing,
     };
 
-    /// B of the four-bar (d, a, b, c) at the crank angle φ by direct circle intersection, in
-    /// the mode σ (B left of A→O3 for +1); its rocker angle ψ.
+    /// The rocker angle ψ of the four-bar (d, a, b, c) at the crank angle φ in the mode σ.
     fn rocker_angle(d: f64, a: f64, b: f64, c: f64, sigma: f64, phi: f64) -> Option<f64> {
-        let (ax, ay) = (a * phi.cos(), a * phi.sin());
-        let (vx, vy) = (d - ax, -ay);
-        let e = vx.hypot(vy);
-        let along = (b * b - c * c + e * e) / (2.0 * e);
-        let h2 = b * b - along * along;
-        if h2 <= 0.0 {
-            return None;
-        }
-        let (ux, uy) = (vx / e, vy / e);
-        let h = sigma * h2.sqrt();
-        let (bx, by) = (ax + along * ux - h * uy, ay + along * uy + h * ux);
-        Some(by.atan2(bx - d))
+        hinges(d, a, b, c, sigma, phi).map(|(_, b)| b[1].atan2(b[0] - d))
     }
 
     proptest! {
@@ -1161,26 +1169,6 @@ mod five_poses {
     use tmm::kinematics::Motion;
     use tmm::synthesis::{burmester_points, four_bar_from_dyads, Dyad, Pose};
 
-    /// A crank-rocker's hinges A and B at the crank angle φ (σ = +1), O1 = (0, 0), O3 = (d, 0).
-    fn hinges(d: f64, a: f64, b: f64, c: f64, phi: f64) -> Option<([f64; 2], [f64; 2])> {
-        let (ax, ay) = (a * phi.cos(), a * phi.sin());
-        let (vx, vy) = (d - ax, -ay);
-        let e = vx.hypot(vy);
-        let along = (b * b - c * c + e * e) / (2.0 * e);
-        let h2 = b * b - along * along;
-        if h2 <= 0.0 {
-            return None;
-        }
-        let h = h2.sqrt();
-        Some((
-            [ax, ay],
-            [
-                ax + along * vx / e - h * vy / e,
-                ay + along * vy / e + h * vx / e,
-            ],
-        ))
-    }
-
     #[test]
     fn a_four_bars_own_dyads_are_among_burmesters_points() {
         // Five poses of the coupler of random crank-rockers (a coupler point off AB): both of
@@ -1206,7 +1194,7 @@ mod five_poses {
                 .map(|k| start + 0.45 * f64::from(k) + r(0.0, 0.3))
                 .collect();
             let pose_of = |phi: f64| {
-                let (pa, pb) = hinges(d, a, b, c, phi).unwrap();
+                let (pa, pb) = hinges(d, a, b, c, 1.0, phi).unwrap();
                 let (ux, uy) = ((pb[0] - pa[0]) / b, (pb[1] - pa[1]) / b);
                 Pose::new(
                     [
@@ -1218,7 +1206,7 @@ mod five_poses {
             };
             let poses: [Pose; 5] = std::array::from_fn(|k| pose_of(phis[k]));
             let points = burmester_points(&poses, 4000).unwrap();
-            let (a1, b1) = hinges(d, a, b, c, phis[0]).unwrap();
+            let (a1, b1) = hinges(d, a, b, c, 1.0, phis[0]).unwrap();
             let crank = Dyad {
                 centre: [0.0, 0.0],
                 circle: a1,

@@ -77,9 +77,10 @@ pub struct PathOptions {
     pub seed: u64,
     /// The population of the differential evolution. Default 120.
     pub population: usize,
-    /// The budget of candidate evaluations, at least twice the population: in the global
-    /// stage a candidate over a turn (or at its prescribed angles), in the polish a candidate
-    /// at the target points. Default 200 000.
+    /// The budget of candidate evaluations, at least twice the population: a candidate over
+    /// a turn (or at its prescribed angles) in the global stage; in the polish, a candidate
+    /// at the n target points counts as n/`positions` of one (the positions it solves).
+    /// Default 200 000.
     pub max_evaluations: usize,
     /// The budget of wall-clock time, positive, of the global stage and the polish alike
     /// (a polish that reaches it ends where it is, and its result is still checked whole).
@@ -229,12 +230,15 @@ const MEMETIC: usize = 5;
 /// Generations without improvement that end a run of the differential evolution.
 const STAGNATION: usize = 40;
 
-/// The search's budget, shared by the global stage and the polish: candidate evaluations
-/// (one candidate over a turn, or at its prescribed angles, in the global stage; one
-/// candidate at the target points in the polish) and wall-clock time.
+/// The search's budget, shared by the global stage and the polish, and wall-clock time.
+/// Its unit is a candidate evaluation of the global stage (one candidate over a turn, or
+/// at its prescribed angles); the polish's evaluation of a candidate at the n target points
+/// solves n positions instead of a turn's, and counts as n/positions of one.
 struct Budget {
-    used: Cell<usize>,
+    used: Cell<f64>,
     max: usize,
+    /// What one evaluation of the polish counts.
+    polish: f64,
     start: Instant,
     max_time: Duration,
 }
@@ -242,20 +246,21 @@ struct Budget {
 impl Budget {
     /// Whether `n` more evaluations fit, in number and in time.
     fn room(&self, n: usize) -> bool {
-        self.used.get().saturating_add(n) <= self.max && self.start.elapsed() < self.max_time
+        self.used.get() + n as f64 <= self.max as f64 && self.start.elapsed() < self.max_time
     }
     fn add(&self, n: usize) {
-        self.used.set(self.used.get() + n);
+        self.used.set(self.used.get() + n as f64);
     }
+    /// The evaluations spent, rounded up.
     fn used(&self) -> usize {
-        self.used.get()
+        self.used.get().ceil() as usize
     }
     /// Takes one evaluation of the polish, leaving one for the check of its result: `false`
     /// when the budget (of evaluations or time) is spent.
     fn take_polish(&self) -> bool {
         let ok = self.room(2);
         if ok {
-            self.add(1);
+            self.used.set(self.used.get() + self.polish);
         }
         ok
     }
@@ -1031,8 +1036,9 @@ pub fn path_generator(
     let targets: Vec<V> = pts.iter().map(|p| (p - centre) / scale).collect();
     let mut pb = Problem {
         budget: Budget {
-            used: Cell::new(0),
+            used: Cell::new(0.0),
             max: opts.max_evaluations,
+            polish: req.points.len() as f64 / opts.positions as f64,
             start,
             max_time: opts.max_time,
         },

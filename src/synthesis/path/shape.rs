@@ -30,8 +30,6 @@ pub(super) const SHAPE: usize = 6;
 
 /// Start positions on the grid of a cut, and spans (open paths) tried per sense.
 const STARTS: usize = 48;
-/// The largest population of a run, in first runs' populations.
-const GROWTH: usize = 16;
 const SPANS: usize = 10;
 
 /// The best cut of a candidate: where the targets sit on its curve and the similarity.
@@ -526,13 +524,6 @@ fn distinct_best(pop: &[Vec<f64>], fit: &[f64], k: usize) -> Vec<usize> {
 /// each until it stagnates, the best member polished every few generations (kept when it
 /// meets the points to the tolerance) and the best few distinct ones at the end of each run;
 /// until `opts.designs` designs meet the points or the budget is spent.
-///
-/// Each run has twice the population of the one before (up to [`GROWTH`] times the first,
-/// as the budget allows): a small population converges fast, which finds most shapes
-/// cheaply, but gathers in whichever broad basin it lands in first, however often it is
-/// restarted; a larger one spreads over more of the space before it converges, so a later
-/// run reaches the narrow basins the earlier ones missed (restarts with growing populations,
-/// as in IPOP).
 pub(super) fn search(
     pb: &mut Problem,
     opts: &super::PathOptions,
@@ -541,15 +532,12 @@ pub(super) fn search(
 ) -> crate::error::Result<usize> {
     let mut shapes = Shapes::new(pb, opts.positions);
     let (lo, hi) = Shapes::bounds(pb.ratio);
-    let mut np = opts.population;
+    let np = opts.population;
     let want = opts.designs.max(1);
     let mut rng = super::Rng(opts.seed);
     let mut generations = 0usize;
     let start = found.start;
-    while pb.budget.room(2 * opts.population) {
-        while np > opts.population && !pb.budget.room(2 * np) {
-            np /= 2;
-        }
+    while pb.budget.room(2 * np) {
         let mut pop: Vec<Vec<f64>> = (0..np)
             .map(|_| {
                 (0..SHAPE)
@@ -609,7 +597,6 @@ pub(super) fn search(
         if found.good(opts.tolerance) >= want {
             break;
         }
-        np = (2 * np).min(GROWTH * opts.population);
     }
     Ok(pb.budget.used())
 }
