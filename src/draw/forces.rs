@@ -15,7 +15,9 @@ use svg::Node;
 /// acts at, all to one scale: the largest is 30 % of the linkage's size long. The balancing
 /// moment of a crank is an arc arrow about its pivot in its own sense, a balancing force an
 /// arrow to the same scale; each arrow is labelled with its magnitude (N, N·m), and a legend
-/// gives the scale. [`Picture::force_scale`] is the force per pixel of arrow, N/px.
+/// gives the scale. A linkage with two inputs has both inputs' balancing moments or forces,
+/// labelled M_b1 and M_b2 (F_b1, F_b2); every balance element (class `balance`) names its
+/// input in `data-input` (0 the first) and holds its exact value in `data-value`. [`Picture::force_scale`] is the force per pixel of arrow, N/px.
 ///
 /// A linkage with friction ([`Plan::has_friction`]) has, at each revolute joint with a
 /// friction circle, that circle of radius ρ = f·r drawn to the scheme's scale (a `circle`
