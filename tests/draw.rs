@@ -1195,3 +1195,78 @@ fn a_rocking_input_is_drawn_over_its_sweep() {
         }
     }
 }
+
+/// Each element of class `balance`: its `data-input` and `data-value`.
+fn balance_values(svg: &str) -> Vec<(usize, f64)> {
+    let attr = |tag: &str, name: &str| -> Option<String> {
+        let key = format!("{name}=\"");
+        let start = tag.find(&key)? + key.len();
+        Some(tag[start..].split('"').next()?.to_owned())
+    };
+    svg.split('<')
+        .filter(|tag| tag.contains("class=\"balance\""))
+        .map(|tag| {
+            let i = attr(tag, "data-input").expect("a balance names its input");
+            let v = attr(tag, "data-value").expect("a balance gives its value");
+            (i.parse().unwrap(), v.parse().unwrap())
+        })
+        .collect()
+}
+
+/// The number in the label that starts with `prefix` ("M_b1 = 1.234 N·m" → 1.234).
+fn label_value(svg: &str, prefix: &str) -> f64 {
+    let start = svg
+        .find(prefix)
+        .unwrap_or_else(|| panic!("no label {prefix:?}"))
+        + prefix.len();
+    let text = svg[start..].split(' ').next().unwrap();
+    text.parse()
+        .unwrap_or_else(|_| panic!("{prefix}{text}: not a number"))
+}
+
+#[test]
+fn the_forces_of_a_two_input_linkage_show_both_balancing_moments() {
+    let plan = Plan::new(&bundled::five_bar_robot()).unwrap();
+    let r = plan.reference_inputs();
+    let style = Style::default();
+    let mut checked = 0;
+    for (k, (w1, w2)) in [(2.0, -1.0), (-3.0, 0.5), (1.0, 4.0)]
+        .into_iter()
+        .enumerate()
+    {
+        #[allow(clippy::cast_precision_loss)]
+        let d = 0.3 * k as f64;
+        let input = tmm::linkage::Inputs::two(
+            Motion::new(r[0] + d, w1, 0.5),
+            Motion::new(r[1] - d, w2, -0.5),
+        );
+        let a = plan.analyse(input).unwrap();
+        let pic = forces(&plan, input, &style).unwrap();
+        // Renders, with every number in it finite.
+        let px = render(&pic.svg, &format!("five-bar forces {k}"));
+        assert!(inked(&px) > 0.005);
+        for token in ["NaN", "inf"] {
+            assert!(!pic.svg.contains(token), "{token} in the picture");
+        }
+        let drawn = balance_values(&pic.svg);
+        assert_eq!(drawn.len(), 2, "one balance per input: {drawn:?}");
+        for i in 0..2 {
+            let exact = a.balance(i).unwrap().value;
+            assert!(exact.is_finite() && exact != 0.0, "{exact}");
+            let (_, v) = drawn.iter().find(|(j, _)| *j == i).copied().unwrap();
+            assert!(
+                (v - exact).abs() <= 1e-9 * exact.abs(),
+                "input {i}: drawn {v}, analysed {exact}"
+            );
+            // The visible label, to the digits it prints (3 decimals, or 4 significant
+            // figures).
+            let shown = label_value(&pic.svg, &format!("M_b{} = ", i + 1));
+            assert!(
+                (shown - exact).abs() <= 5.001e-4 * (exact.abs() + 1.0),
+                "input {i}: label {shown}, analysed {exact}"
+            );
+            checked += 1;
+        }
+    }
+    assert_eq!(checked, 6);
+}

@@ -173,11 +173,25 @@ impl Machine {
         let groups = plan
             .groups()
             .iter()
-            .map(|g| GroupInfo {
-                kind: g.kind.label().to_owned(),
-                links: g.links.map(|k| links[k].clone()),
-                joints: g.joints.map(|j| joints[j].clone()),
-                name: g.name.clone(),
+            .map(|g| {
+                let names = |ix: &[usize], of: &[String]| -> Vec<String> {
+                    ix.iter().map(|&k| of[k].clone()).collect()
+                };
+                let (l, j, inner) = match g.general_links() {
+                    Some((l, inner, outer)) => (
+                        names(l, links),
+                        names(&[inner, outer].concat(), joints),
+                        Some(inner.len()),
+                    ),
+                    None => (names(&g.links, links), names(&g.joints, joints), None),
+                };
+                GroupInfo {
+                    kind: g.kind.label().to_owned(),
+                    links: l,
+                    joints: j,
+                    inner,
+                    name: g.name.clone(),
+                }
             })
             .collect();
         let range = self.range();

@@ -60,10 +60,14 @@ pub struct InputInfo {
 pub struct GroupInfo {
     /// "RRR", "RRP", …
     pub kind: String,
-    /// Its two links.
-    pub links: [String; 2],
-    /// Its joints: outer, inner, outer.
-    pub joints: [String; 3],
+    /// Its links: a dyad's two (a triad's first two); every link of a general group.
+    pub links: Vec<String>,
+    /// Its joints: a dyad's outer, inner, outer; a general group's hinges between two of its
+    /// links, then its hinges to known links.
+    pub joints: Vec<String>,
+    /// How many of `joints` are a general group's hinges between two of its links (`None`
+    /// for a dyad or a triad).
+    pub inner: Option<usize>,
     /// The library's name of the group (used in column names).
     pub name: String,
 }

@@ -75,17 +75,21 @@ pub fn structure(s: &Structure) -> String {
         let _ = writeln!(o, "  (none)");
     }
     for (k, g) in s.groups.iter().enumerate() {
-        let _ = writeln!(
-            o,
-            "  {}. {}  links {} and {}, joints {}–{}–{}",
-            k + 1,
-            g.kind,
-            g.links[0],
-            g.links[1],
-            g.joints[0],
-            g.joints[1],
-            g.joints[2]
-        );
+        let line = match g.inner {
+            // A general group: every link, its inner hinges, its hinges to known links.
+            Some(n) => format!(
+                "links {}; joints {} inside, {} to known links",
+                g.links.join(", "),
+                g.joints[..n].join(", "),
+                g.joints[n..].join(", ")
+            ),
+            None => format!(
+                "links {}, joints {}",
+                g.links.join(" and "),
+                g.joints.join("–")
+            ),
+        };
+        let _ = writeln!(o, "  {}. {}  {line}", k + 1, g.kind);
     }
     let range = match &s.range {
         Range::FullTurn => "the crank turns fully".to_owned(),

@@ -55,6 +55,32 @@ fn check_every_bundled_file() {
         assert!(r.stdout.contains("range: "), "{file}");
         assert!(!r.stdout.contains("NaN"), "{file}: {}", r.stdout);
     }
+    // The double butterfly's general group: all six links and its nine hinges (six inside,
+    // three to the crank and the frame), each named once.
+    let r = tmm(&["check", "linkages/double-butterfly.json"]);
+    let line = r
+        .stdout
+        .lines()
+        .find(|l| l.contains("general"))
+        .unwrap_or_else(|| panic!("no general group: {}", r.stdout));
+    let words: Vec<&str> = line
+        .split(|c: char| !c.is_alphanumeric())
+        .filter(|w| !w.is_empty())
+        .collect();
+    for name in ["CE", "EFG", "BFJ", "DHI", "GH", "IJ"] {
+        assert_eq!(
+            words.iter().filter(|w| **w == name).count(),
+            1,
+            "{name}: {line}"
+        );
+    }
+    for name in ["C", "D", "E", "F", "G", "H", "I", "J", "B"] {
+        assert_eq!(
+            words.iter().filter(|w| **w == name).count(),
+            1,
+            "{name}: {line}"
+        );
+    }
 }
 
 #[test]

@@ -15,7 +15,9 @@ use svg::Node;
 /// acts at, all to one scale: the largest is 30 % of the linkage's size long. The balancing
 /// moment of a crank is an arc arrow about its pivot in its own sense, a balancing force an
 /// arrow to the same scale; each arrow is labelled with its magnitude (N, N·m), and a legend
-/// gives the scale. [`Picture::force_scale`] is the force per pixel of arrow, N/px.
+/// gives the scale. A linkage with two inputs has both inputs' balancing moments or forces,
+/// labelled M_b1 and M_b2 (F_b1, F_b2); every balance element (class `balance`) names its
+/// input in `data-input` (0 the first) and holds its exact value in `data-value`. [`Picture::force_scale`] is the force per pixel of arrow, N/px.
 ///
 /// A linkage with friction ([`Plan::has_friction`]) has, at each revolute joint with a
 /// friction circle, that circle of radius ρ = f·r drawn to the scheme's scale (a `circle`
@@ -53,11 +55,11 @@ pub fn forces(plan: &Plan, input: impl Into<Inputs>, style: &Style) -> Result<Pi
         .joint_ids()
         .map(|j| a.reaction(j))
         .collect::<Result<_>>()?;
-    let balance = a.balance(0)?;
+    let balances = a.balances().to_vec();
     let fmax = reactions
         .iter()
         .map(|r| r.force.norm())
-        .chain(std::iter::once(balance.force.norm()))
+        .chain(balances.iter().map(|b| b.force.norm()))
         .fold(0.0, f64::max);
     crate::error::computed("the largest reaction", fmax)?;
     // Metres of drawing per newton.
@@ -77,7 +79,7 @@ pub fn forces(plan: &Plan, input: impl Into<Inputs>, style: &Style) -> Result<Pi
     for r in &reactions {
         cover.push(r.point + reach(r.force));
     }
-    cover.push(balance.point + reach(balance.force));
+    cover.extend(balances.iter().map(|b| b.point + reach(b.force)));
     let frame = scene::fit_with_input(&topo, &pose, &mut cover, style)?;
     let force_scale = (fmax > 0.0).then(|| fmax / (longest * frame.scale));
 
@@ -132,7 +134,7 @@ pub fn forces(plan: &Plan, input: impl Into<Inputs>, style: &Style) -> Result<Pi
                 .set("data-joint", name.as_str()),
         );
     }
-    // The balancing moment or force.
+    // The balancing moment or force of each input.
     let blue = "#0b3d91";
     let mut legend = vec![
         "R i,j: the force of link i on link j".to_owned(),
@@ -146,41 +148,68 @@ pub fn forces(plan: &Plan, input: impl Into<Inputs>, style: &Style) -> Result<Pi
                 .join(", ")
         ),
     ];
-    if balance.force.norm() > 0.0 {
-        let from = frame.to_pixel(balance.point);
-        let to = frame.to_pixel(balance.point + reach(balance.force));
-        doc.append(primitives::arrow(from, to, w, blue).set("class", "balance"));
-        legend.push(format!(
-            "balancing force F_b = {} N{}",
-            primitives::short(balance.force.norm()),
-            if plan.input_is_crank() {
-                format!(
-                    ", its moment M_b = {} N·m",
-                    primitives::short(balance.value)
-                )
-            } else {
-                String::new()
+    let two = balances.len() > 1;
+    for (i, (link, balance)) in plan.input_links().iter().zip(&balances).enumerate() {
+        // With two inputs each balance is named by its input: M_b1, M_b2.
+        let tag = if two {
+            format!("{}", i + 1)
+        } else {
+            String::new()
+        };
+        let pivot = pivot(&topo, link.index());
+        // A crank turns about a hinge on the frame, a slider slides in a guide.
+        let crank = pivot.is_some_and(|j| plan.chain.joints[j].prismatic.is_none());
+        let exact = format!("{}", balance.value);
+        if balance.force.norm() > 0.0 {
+            let from = frame.to_pixel(balance.point);
+            let to = frame.to_pixel(balance.point + reach(balance.force));
+            doc.append(
+                primitives::arrow(from, to, w, blue)
+                    .set("class", "balance")
+                    .set("data-input", i)
+                    .set("data-value", exact.as_str()),
+            );
+            let text = format!("F_b{tag} = {} N", primitives::short(balance.force.norm()));
+            if two && style.labels {
+                let q = labels.place(to, style);
+                doc.append(primitives::text(&text, q, 12.0, blue));
             }
-        ));
-    } else if let Some(j) = topo.input_joint() {
-        let q0 = frame.to_pixel(pose.joints[j][0]);
-        let sense = if balance.value < 0.0 { -1.0 } else { 1.0 };
-        let r = style.hinge_radius.max(2.0);
-        let (arc, at) =
-            primitives::arc_arrow(q0, 5.0 * r, 0.5 * std::f64::consts::PI, sense, r, blue);
-        doc.append(arc.set("class", "balance"));
-        let text = format!("M_b = {} N·m", primitives::short(balance.value));
-        if style.labels {
-            doc.append(primitives::text(
-                &text,
-                [at[0] + 8.0, at[1] - 4.0],
-                12.0,
-                blue,
+            legend.push(format!(
+                "balancing force {text}{}",
+                if crank {
+                    format!(
+                        ", its moment M_b{tag} = {} N·m",
+                        primitives::short(balance.value)
+                    )
+                } else {
+                    String::new()
+                }
+            ));
+        } else if let Some(j) = pivot {
+            let q0 = frame.to_pixel(pose.joints[j][0]);
+            let sense = if balance.value < 0.0 { -1.0 } else { 1.0 };
+            let r = style.hinge_radius.max(2.0);
+            let (arc, at) =
+                primitives::arc_arrow(q0, 5.0 * r, 0.5 * std::f64::consts::PI, sense, r, blue);
+            doc.append(
+                arc.set("class", "balance")
+                    .set("data-input", i)
+                    .set("data-value", exact.as_str()),
+            );
+            let unit = if crank { "N·m" } else { "N" };
+            let text = format!("M_b{tag} = {} {unit}", primitives::short(balance.value));
+            if style.labels {
+                doc.append(primitives::text(
+                    &text,
+                    [at[0] + 8.0, at[1] - 4.0],
+                    12.0,
+                    blue,
+                ));
+            }
+            legend.push(format!(
+                "balancing moment {text} (counter-clockwise positive)"
             ));
         }
-        legend.push(format!(
-            "balancing moment {text} (counter-clockwise positive)"
-        ));
     }
     if let Some(s) = force_scale {
         legend.push(format!("scale: 1 px = {} N", primitives::short(s)));
@@ -204,6 +233,14 @@ pub fn forces(plan: &Plan, input: impl Into<Inputs>, style: &Style) -> Result<Pi
         frame,
         force_scale,
     })
+}
+
+/// The joint between input link `link` and the frame, if it has one.
+fn pivot(topo: &Topo, link: usize) -> Option<usize> {
+    topo.link_joints[link]
+        .iter()
+        .copied()
+        .find(|&j| topo.joint_links[j].contains(&0))
 }
 
 /// The friction circles of the hinges: (joint name, centre px, radius px) for every revolute

@@ -168,7 +168,8 @@ pub enum Singularity {
     /// The image of an isolated input where a group's determinant vanishes but the linkage
     /// assembles all round it (a five-bar's couplers folded onto each other): as the inputs
     /// go round it the point sweeps a whole curve (a circle of the coupler's length about the
-    /// folded hinges), traced about it at an eighth of a grid step.
+    /// folded hinges), traced about it at an eighth of a grid step, the singular input
+    /// located to full precision (the loop's centre).
     Isolated,
 }
 
@@ -232,15 +233,19 @@ impl Plan {
         let axes = self.workspace_axes(options)?;
         let mut k = Kinematics::new(self);
         // The position and both Jacobian columns at q, if it assembles.
-        let mut at = |q: [f64; 2]| -> Option<(Point2<f64>, f64)> {
+        let mut jac = |q: [f64; 2]| -> Option<(Point2<f64>, Vector2<f64>, Vector2<f64>)> {
             k.solve(&[Motion::new(q[0], 1.0, 0.0), Motion::new(q[1], 0.0, 0.0)])
                 .ok()?;
             let (p, v1) = read(&k);
             k.solve(&[Motion::new(q[0], 0.0, 0.0), Motion::new(q[1], 1.0, 0.0)])
                 .ok()?;
             let (_, v2) = read(&k);
+            (p.iter().chain(&v1).chain(&v2).all(|x| x.is_finite())).then_some((p, v1, v2))
+        };
+        let mut at = |q: [f64; 2]| -> Option<(Point2<f64>, f64)> {
+            let (p, v1, v2) = jac(q)?;
             let det = v1.x * v2.y - v1.y * v2.x;
-            (p.iter().all(|x| x.is_finite()) && det.is_finite()).then_some((p, det))
+            det.is_finite().then_some((p, det))
         };
         let g = axes.grid;
         let mut nodes = Vec::with_capacity(g.n1 * g.n2);
@@ -257,6 +262,12 @@ impl Plan {
         }
         let (region, poles) = fill(&axes, &nodes, &mut at, options.resolution);
         let mut singular = singular_curves(&axes, &nodes, &mut at);
+        let poles = refine_poles(&axes, &poles, &mut jac);
+        let mut at = |q: [f64; 2]| -> Option<(Point2<f64>, f64)> {
+            let (p, v1, v2) = jac(q)?;
+            let det = v1.x * v2.y - v1.y * v2.x;
+            det.is_finite().then_some((p, det))
+        };
         singular.extend(isolated_curves(&axes, &poles, &mut at));
         let boundary = outline(&region);
         Ok(Workspace {
@@ -437,12 +448,8 @@ fn singular_curves(
         .collect()
 }
 
-/// The curves an isolated singular input maps to: round each of `poles` (the inputs where
-/// [`fill_cell`] found the map far from linear at its finest split; those closer than a few
-/// of those splits taken as one), the images of a small circle of inputs about it, an
-/// eighth of a grid step across, in 720 positions, cut where a position fails or the curve
-/// jumps.
-fn isolated_curves(axes: &Axes, poles: &[[f64; 2]], at: &mut At<'_>) -> Vec<SingularCurve> {
+/// `poles` without those within an eighth of a grid step of one kept before.
+fn distinct(axes: &Axes, poles: &[[f64; 2]]) -> Vec<[f64; 2]> {
     let h = axes.step[0].abs().max(axes.step[1].abs());
     let mut kept: Vec<[f64; 2]> = Vec::new();
     for &q in poles {
@@ -453,8 +460,83 @@ fn isolated_curves(axes: &Axes, poles: &[[f64; 2]], at: &mut At<'_>) -> Vec<Sing
             kept.push(q);
         }
     }
+    kept
+}
+
+type Jac<'a> = dyn FnMut([f64; 2]) -> Option<(Point2<f64>, Vector2<f64>, Vector2<f64>)> + 'a;
+
+/// The isolated singular inputs located to full precision: each of `poles` (distinct ones,
+/// located to a split of a grid cell) refined by [`refine_pole`], or kept as it is where the
+/// refinement does not settle near it.
+fn refine_poles(axes: &Axes, poles: &[[f64; 2]], jac: &mut Jac<'_>) -> Vec<[f64; 2]> {
+    let h = axes.step[0].abs().max(axes.step[1].abs());
+    let refined: Vec<[f64; 2]> = distinct(axes, poles)
+        .into_iter()
+        .map(|q| refine_pole(q, h, jac).unwrap_or(q))
+        .collect();
+    distinct(axes, &refined)
+}
+
+/// An isolated singular input q* near `q0` (within a quarter of the grid step `h`).
+///
+/// Near q* the point's position depends, to first order, only on the direction of q − q*
+/// (it swings round a whole curve as the inputs go round q*): along a ray from q* it moves
+/// at a bounded rate, across it at a rate ~ 1/|q − q*|. So the Jacobian's right singular
+/// vector of the smaller singular value points along the ray, to within O(|q − q*|) of
+/// angle: the line through a probe q along it passes within O(|q − q*|²) of q*. The lines
+/// of eight probes round the estimate meet (least squares) at the next estimate; the
+/// probes' circle shrinks with the step, down to 1e-6 of a grid step (below that the
+/// position loses its digits as 1/|q − q*|).
+fn refine_pole(q0: [f64; 2], h: f64, jac: &mut Jac<'_>) -> Option<[f64; 2]> {
+    let mut q = Vector2::new(q0[0], q0[1]);
+    let mut rho = h / 8.0;
+    for _ in 0..24 {
+        let mut m = nalgebra::Matrix2::zeros();
+        let mut rhs = Vector2::zeros();
+        for k in 0..8 {
+            let t = std::f64::consts::TAU * (f64::from(k) + 0.5) / 8.0;
+            let qk = q + rho * Vector2::new(t.cos(), t.sin());
+            let (_, v1, v2) = jac([qk.x, qk.y])?;
+            let n = null_direction(v1, v2)?;
+            // Projection across the line: its distance from x is |(I − n nᵀ)(x − qk)|.
+            let across = nalgebra::Matrix2::identity() - n * n.transpose();
+            m += across;
+            rhs += across * qk;
+        }
+        let next = m.lu().solve(&rhs)?;
+        let moved = (next - q).norm();
+        if !(moved.is_finite() && (next - Vector2::new(q0[0], q0[1])).norm() <= h / 4.0) {
+            return None;
+        }
+        q = next;
+        if moved <= 1e-14 * (1.0 + q.norm()) {
+            break;
+        }
+        rho = (4.0 * moved).min(rho / 4.0).max(1e-6 * h);
+    }
+    Some([q.x, q.y])
+}
+
+/// The unit vector x minimising |J x| for J = [v1 v2]: the eigenvector of JᵀJ of its
+/// smaller eigenvalue; `None` when J vanishes or is not finite.
+fn null_direction(v1: Vector2<f64>, v2: Vector2<f64>) -> Option<Vector2<f64>> {
+    let (a, b, c) = (v1.dot(&v1), v1.dot(&v2), v2.dot(&v2));
+    let lambda = 0.5 * (a + c) - (0.5 * (a - c)).hypot(b);
+    // Two forms of the same eigenvector: the longer is the better conditioned.
+    let x = Vector2::new(b, lambda - a);
+    let y = Vector2::new(lambda - c, b);
+    let v = if x.norm() >= y.norm() { x } else { y };
+    let n = v.norm();
+    (n > 0.0 && n.is_finite()).then(|| v / n)
+}
+
+/// The curves an isolated singular input maps to: round each of `poles` (refined by
+/// [`refine_poles`]), the images of a small circle of inputs about it, an eighth of a grid
+/// step across, in 720 positions, cut where a position fails or the curve jumps.
+fn isolated_curves(axes: &Axes, poles: &[[f64; 2]], at: &mut At<'_>) -> Vec<SingularCurve> {
+    let h = axes.step[0].abs().max(axes.step[1].abs());
     let mut out = Vec::new();
-    for q in kept {
+    for &q in poles {
         let mut pieces: Vec<Vec<([f64; 2], Point2<f64>)>> = vec![Vec::new()];
         for k in 0..=720 {
             let t = std::f64::consts::TAU * f64::from(k) / 720.0;
