@@ -12,7 +12,7 @@
 //! This file names only plain data, so that the plan can hold the pool.
 
 use super::reaction::Reaction;
-use crate::kinematics::{LinkMotion, TriadPose};
+use crate::kinematics::{GroupWork, LinkMotion, TriadPose};
 use crate::kinetostatics::Conditioning;
 use crate::Load;
 use nalgebra::Vector2;
@@ -29,6 +29,7 @@ pub(crate) struct KinBuffers {
     pub turns: Vec<[Vector2<f64>; 3]>,
     pub dets: Vec<f64>,
     pub triads: Vec<Option<TriadPose>>,
+    pub general_work: Vec<GroupWork>,
 }
 
 /// The buffers an analysis adds to the kinematics': loads, reactions, conditioning.

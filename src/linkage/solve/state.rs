@@ -84,6 +84,8 @@ impl KinState {
         self.dets = b.dets;
         self.triads = b.triads;
         self.triads.fill(None);
+        // A general group's Newton buffers: only scratch space, every solve overwrites them.
+        self.general_work = b.general_work;
     }
 
     /// The buffers of `chain`'s positions: `spare` if there is one (see
@@ -113,6 +115,7 @@ impl KinState {
             turns: std::mem::take(&mut self.turns),
             dets: std::mem::take(&mut self.dets),
             triads: std::mem::take(&mut self.triads),
+            general_work: std::mem::take(&mut self.general_work),
         })
     }
 
