@@ -354,22 +354,38 @@ impl Shapes {
         }
     }
 
-    /// Moves each target's point on the curve to the point of the sampled curve (a polyline)
-    /// nearest to the target as placed — within a target's share of the run about where the
-    /// cut put it, and between samples — and fits the similarity again, up to three times,
-    /// keeping what is better. The chords between the targets lag the arcs most where the
-    /// curve turns sharply: this takes the correspondences from the geometry instead; taking
-    /// them between samples leaves the traced curve a miss of the order of the polyline's
-    /// sagitta instead of half a sample's spacing, so the shape that traces the targets stands
-    /// out from its neighbours. Leaves the run positions of the best correspondences in `pos`.
+    /// Moves each target's point on the curve to the sample nearest to the target as placed
+    /// (within a target's share of the run about where the cut put it) and fits the
+    /// similarity again, twice, keeping what is better. The chords between the targets lag
+    /// the arcs most where the curve turns sharply: this takes the correspondences from the
+    /// geometry instead. Leaves the run positions of the best correspondences in `pos`.
     fn snap(&mut self, best: &mut Cut) {
+        let len = self.run.len() as isize;
         let n = self.targets.len();
+        let w = (len / n as isize).max(2);
         let (mut pos, mut q) = (std::mem::take(&mut self.pos2), std::mem::take(&mut self.q2));
         pos.copy_from_slice(&self.pos);
         q.copy_from_slice(&self.q);
-        for _ in 0..3 {
+        for _ in 0..2 {
             for i in 0..n {
-                (pos[i], q[i]) = self.nearest(best, pos[i], self.targets[i]);
+                let centre = pos[i].round() as isize;
+                let mut near = (f64::INFINITY, centre);
+                for j in centre - w..=centre + w {
+                    let j = if self.looped {
+                        j.rem_euclid(len)
+                    } else if (0..len).contains(&j) {
+                        j
+                    } else {
+                        continue;
+                    };
+                    let p = mul(best.alpha, self.point(j as usize)) + best.t;
+                    let dd = (p - self.targets[i]).norm_squared();
+                    if dd < near.0 {
+                        near = (dd, j);
+                    }
+                }
+                pos[i] = near.1 as f64;
+                q[i] = self.point(near.1 as usize);
             }
             let Some((res, alpha, t)) = similarity(&self.targets, &q) else {
                 break;
@@ -383,55 +399,6 @@ impl Shapes {
             self.q.copy_from_slice(&q);
         }
         (self.pos2, self.q2) = (pos, q);
-    }
-
-    /// The point of the run's polyline, placed by `cut`'s similarity, nearest to `target`
-    /// within a target's share of the run about the run position `about`: its (fractional)
-    /// run position and the point on the unplaced curve.
-    fn nearest(&self, cut: &Cut, about: f64, target: V) -> (f64, V) {
-        let len = self.run.len() as isize;
-        let w = (len / self.targets.len() as isize).max(2);
-        // A run position within the run, or None past an open run's ends.
-        let wrap = |j: isize| -> Option<isize> {
-            if self.looped {
-                Some(j.rem_euclid(len))
-            } else {
-                (0..len).contains(&j).then_some(j)
-            }
-        };
-        let placed = |j: isize| mul(cut.alpha, self.point(j as usize)) + cut.t;
-        let centre = about.round() as isize;
-        let mut near = (f64::INFINITY, centre.clamp(0, len - 1));
-        for j in centre - w..=centre + w {
-            if let Some(j) = wrap(j) {
-                let dd = (placed(j) - target).norm_squared();
-                if dd < near.0 {
-                    near = (dd, j);
-                }
-            }
-        }
-        let j = near.1;
-        let mut best = (near.0, j as f64, self.point(j as usize));
-        // The segments on either side of the nearest sample: the foot of the perpendicular
-        // (a similarity keeps the fraction along a segment).
-        for a in [j - 1, j] {
-            let (Some(a), Some(b)) = (wrap(a), wrap(a + 1)) else {
-                continue;
-            };
-            let (pa, pb) = (placed(a), placed(b));
-            let seg = pb - pa;
-            let l2 = seg.norm_squared();
-            if l2.is_nan() || l2 <= 0.0 {
-                continue;
-            }
-            let f = ((target - pa).dot(&seg) / l2).clamp(0.0, 1.0);
-            let dd = (pa + f * seg - target).norm_squared();
-            if dd < best.0 {
-                let (qa, qb) = (self.point(a as usize), self.point(b as usize));
-                best = (dd, a as f64 + f, qa + f * (qb - qa));
-            }
-        }
-        (best.1, best.2)
     }
 
     fn try_cut(&mut self, start: f64, span: f64, forward: bool) -> Option<Cut> {
@@ -498,31 +465,9 @@ fn generation(
     }
 }
 
-/// Up to `k` feasible members, best first, each unlike those before it (a population that
-/// has gathered in one basin offers its neighbours of the best in other basins too): two
-/// shapes are alike when they share the mode and no gene differs by more than 1e-3.
-fn distinct_best(pop: &[Vec<f64>], fit: &[f64], k: usize) -> Vec<usize> {
-    let mut order: Vec<usize> = (0..pop.len()).filter(|&i| fit[i] < INFEASIBLE).collect();
-    order.sort_by(|&a, &b| fit[a].total_cmp(&fit[b]));
-    let mut kept: Vec<usize> = Vec::with_capacity(k);
-    for i in order {
-        if kept.len() >= k {
-            break;
-        }
-        let alike = |j: &usize| {
-            (pop[i][5] > 0.0) == (pop[*j][5] > 0.0)
-                && (0..5).all(|g| (pop[i][g] - pop[*j][g]).abs() <= 1e-3)
-        };
-        if !kept.iter().any(alike) {
-            kept.push(i);
-        }
-    }
-    kept
-}
-
 /// The search over shapes: runs of differential evolution from fresh random populations,
 /// each until it stagnates, the best member polished every few generations (kept when it
-/// meets the points to the tolerance) and the best few distinct ones at the end of each run;
+/// meets the points to the tolerance) and the best few at the end of each run;
 /// until `opts.designs` designs meet the points or the budget is spent.
 pub(super) fn search(
     pb: &mut Problem,
@@ -586,7 +531,9 @@ pub(super) fn search(
                 }
             }
         }
-        for i in distinct_best(&pop, &fit, super::POLISHED) {
+        let mut order: Vec<usize> = (0..np).filter(|&i| fit[i] < INFEASIBLE).collect();
+        order.sort_by(|&a, &b| fit[a].total_cmp(&fit[b]));
+        for &i in order.iter().take(super::POLISHED) {
             if !pb.budget.room(3) {
                 break;
             }
