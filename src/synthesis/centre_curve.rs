@@ -409,20 +409,24 @@ pub fn burmester_points(poses: &[Pose; 5], n: usize) -> Result<Vec<Dyad>> {
                 candidates.push(at(us[i]));
             }
             if flo * fhi < 0.0 {
-                let (mut a, mut b, mut fa) = (us[i], us[i + 1], flo);
-                for _ in 0..200 {
-                    let mid = 0.5 * (a + b);
-                    if mid == a || mid == b {
-                        break;
-                    }
-                    let Some(fm) = value(mid) else { break };
-                    if (fm < 0.0) == (fa < 0.0) && fm != 0.0 {
-                        (a, fa) = (mid, fm);
-                    } else {
-                        b = mid;
-                    }
-                }
-                candidates.push(at(0.5 * (a + b)));
+                candidates.push(at(bisect(&value, us[i], us[i + 1], flo)));
+            }
+        }
+        // Two roots closer than a sample step change no sign between samples: a local
+        // minimum of |f| between neighbours of its sign is searched for a dip across zero,
+        // and each side of the dip bisected.
+        for i in 1..m {
+            let (Some(f0), Some(f1), Some(f2)) = (vals[i - 1], vals[i], vals[i + 1]) else {
+                continue;
+            };
+            if f0 * f1 <= 0.0 || f1 * f2 <= 0.0 || f1.abs() > f0.abs() || f1.abs() > f2.abs() {
+                continue;
+            }
+            let s = f1.signum();
+            let (lo, hi) = (us[i - 1], us[i + 1]);
+            if let Some((u, fu)) = dip(&|u| value(u).map(|f| s * f), lo, hi) {
+                candidates.push(at(bisect(&value, lo, u, f0)));
+                candidates.push(at(bisect(&value, u, hi, s * fu)));
             }
         }
     }
@@ -454,4 +458,47 @@ pub fn burmester_points(poses: &[Pose; 5], n: usize) -> Result<Vec<Dyad>> {
         });
     }
     Ok(out)
+}
+
+/// A root of `value` in [a, b] by bisection, `fa` the value at `a` (of the sign opposite to
+/// the value at `b`).
+fn bisect(value: &dyn Fn(f64) -> Option<f64>, a: f64, b: f64, fa: f64) -> f64 {
+    let (mut a, mut b, mut fa) = (a, b, fa);
+    for _ in 0..200 {
+        let mid = 0.5 * (a + b);
+        if mid == a || mid == b {
+            break;
+        }
+        let Some(fm) = value(mid) else { break };
+        if (fm < 0.0) == (fa < 0.0) && fm != 0.0 {
+            (a, fa) = (mid, fm);
+        } else {
+            b = mid;
+        }
+    }
+    0.5 * (a + b)
+}
+
+/// The minimum of `f` on [a, b] by golden-section search, if it is below zero: `(u, f(u))`.
+fn dip(f: &dyn Fn(f64) -> Option<f64>, a: f64, b: f64) -> Option<(f64, f64)> {
+    let g = 0.5 * (5f64.sqrt() - 1.0);
+    let (mut a, mut b) = (a, b);
+    let (mut c, mut d) = (b - g * (b - a), a + g * (b - a));
+    let (mut fc, mut fd) = (f(c)?, f(d)?);
+    for _ in 0..120 {
+        if fc <= 0.0 || fd <= 0.0 {
+            break;
+        }
+        if fc < fd {
+            (b, d, fd) = (d, c, fc);
+            c = b - g * (b - a);
+            fc = f(c)?;
+        } else {
+            (a, c, fc) = (c, d, fd);
+            d = a + g * (b - a);
+            fd = f(d)?;
+        }
+    }
+    let (u, fu) = if fc < fd { (c, fc) } else { (d, fd) };
+    (fu <= 0.0).then_some((u, fu))
 }
