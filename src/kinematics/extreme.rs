@@ -304,15 +304,15 @@ impl Strokes {
     /// of the two readings is 2π minus the swing when the link swings across the reading's cut
     /// at 0 (the +x direction).
     pub(crate) fn of_angle(mut self, extremes: &[Extreme]) -> Self {
-        if let [a, b] = extremes {
-            if a.kind != b.kind {
-                let (min, max) = if a.kind == ExtremeKind::Min {
-                    (a, b)
-                } else {
-                    (b, a)
-                };
-                self.stroke = normalize(max.output.value - min.output.value);
-            }
+        if let [a, b] = extremes
+            && a.kind != b.kind
+        {
+            let (min, max) = if a.kind == ExtremeKind::Min {
+                (a, b)
+            } else {
+                (b, a)
+            };
+            self.stroke = normalize(max.output.value - min.output.value);
         }
         self
     }

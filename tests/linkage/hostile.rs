@@ -187,6 +187,16 @@ fn hostile_outputs_cycles_and_tables() {
         ];
         outputs.extend(plan.link_names().iter().map(|n| Output::Angle(n.clone())));
         outputs.extend(plan.joint_names().iter().map(|n| Output::Y(n.clone())));
+        // Below 10³ cases (the default run) every third real output, from a different first
+        // one per linkage; CI's run covers them all.
+        let stride = if cases() < 1000 { 3 } else { 1 };
+        let skip = l.name.len() % stride;
+        let outputs: Vec<Output> = outputs
+            .into_iter()
+            .enumerate()
+            .filter(|(i, _)| *i < 3 || (i - 3) % stride == skip)
+            .map(|(_, o)| o)
+            .collect();
         for out in &outputs {
             let what = format!("{} {out:?}", l.name);
             no_panic(&what, || {
