@@ -96,8 +96,24 @@ fn check_and_dynamics_as_json_read_back() {
     let r = tmm(&["check", "four-bar", "--format", "json"]);
     let v: serde_json::Value = serde_json::from_str(&r.stdout).unwrap();
     assert_eq!(v["range"]["kind"], "full turn");
-    let mu = v["transmission"][0]["min"].as_f64().unwrap().to_degrees();
-    assert!(mu > 54.0 && mu < 56.0, "γ_min of the four-bar, {mu}°");
+    let mu = v["transmission"][0]["min"].as_f64().unwrap();
+    // The cosine law at the crank's two positions in line with the frame, from the file's
+    // joints: cos μ = (b² + c² − (d ∓ a)²)/(2bc), the transmission angle taken acute.
+    let [o1, a, b, o3] = [
+        [0.0, 0.0],
+        [0.1, 0.0],
+        [0.25612516773077276, 0.3132489936153635],
+        [0.4, 0.05],
+    ];
+    let len = |p: [f64; 2], q: [f64; 2]| (p[0] - q[0]).hypot(p[1] - q[1]);
+    let (la, lb, lc, ld) = (len(o1, a), len(a, b), len(o3, b), len(o1, o3));
+    let acute = |x: f64| x.min(std::f64::consts::PI - x);
+    let at = |l: f64| acute(((lb * lb + lc * lc - l * l) / (2.0 * lb * lc)).acos());
+    let exact = at(ld - la).min(at(ld + la));
+    assert!(
+        (mu - exact).abs() < 1e-9,
+        "γ_min of the four-bar, {mu} against {exact} rad"
+    );
     let r = tmm(&[
         "dynamics",
         "four-bar",
