@@ -338,6 +338,7 @@ fn triad_rates_match_finite_differences_and_tracking_matches_the_bracket() {
 fn triad_tracking_along_a_cycle_keeps_the_mode() {
     let mut rng = Rng(0xC1C1_E028);
     let (mut steps, mut fast) = (0, 0);
+    let mut worst: f64 = 0.0;
     for _ in 0..200 {
         let dims = random_dims(&mut rng);
         let (p, b) = from_pose(&mut rng, &dims);
@@ -379,13 +380,26 @@ fn triad_tracking_along_a_cycle_keeps_the_mode() {
                 }
                 None => full,
             };
-            // Continuity: the step moves the joints by about the crank's step.
-            assert!(next.distance_squared(&prev).sqrt() <= 0.5 * s);
+            // Continuity: the joints move by the crank's step r·2π/720 times the group's
+            // gain, which grows as 1/|det| (the seeded run reaches 3.9 of this bound's 10); a
+            // jump to another mode moves them by a part of the size.
+            let step = next.distance_squared(&prev).sqrt();
+            let det = prev.det.abs().min(next.det.abs());
+            let crank_step = r * TAU / 720.0;
+            worst = worst.max(step * det / crank_step);
+            assert!(
+                step <= 10.0 * crank_step / det,
+                "step {step:e} at |det| {det:e}"
+            );
             prev = next;
             steps += 1;
         }
     }
-    println!("triad tracking: {steps} steps along cycles, {fast} by the fast path");
+    println!(
+        "triad tracking: {steps} steps along cycles, {fast} by the fast path; the largest \
+         step was {worst:.2} crank steps / |det|"
+    );
+    assert!(steps > 10_000 && fast > 0, "{steps} steps, {fast} fast");
 }
 
 /// The group's full Newton–Euler system, 12×12, solved by LU: unknowns R_A1..3, R_B1..3;
