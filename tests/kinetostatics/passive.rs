@@ -330,30 +330,40 @@ fn link_load(len: f64) -> impl Strategy<Value = LinkLoad> {
 }
 
 fn case() -> impl Strategy<Value = Case> {
-    geometry().prop_flat_map(|g| {
-        let (l1, l2, l3) = (g.length(Link::Ab), g.length(Link::Cd), g.length(Link::Bde));
-        (
-            link_load(l1),
-            link_load(l2),
-            link_load(l3),
-            link_load(l3),
-            [vec2(800.0), vec2(800.0), vec2(800.0)],
-            [1e2..1e4f64, 1e2..1e4f64, 1e2..1e4f64],
-            [1e1..1e5f64, 1e1..1e5f64, 1e1..1e5f64],
-        )
-            .prop_map(move |(f1, f2, f3, m, w, ei, ea_ratio)| Case {
-                g,
-                loads: Loads {
-                    f1,
-                    f2,
-                    f3,
-                    m,
-                    per_length: w,
-                },
-                ei,
-                ea_ratio,
-            })
-    })
+    geometry()
+        .prop_flat_map(|g| {
+            let (l1, l2, l3) = (g.length(Link::Ab), g.length(Link::Cd), g.length(Link::Bde));
+            (
+                link_load(l1),
+                link_load(l2),
+                link_load(l3),
+                link_load(l3),
+                [vec2(800.0), vec2(800.0), vec2(800.0)],
+                [1e2..1e4f64, 1e2..1e4f64, 1e2..1e4f64],
+                [1e1..1e5f64, 1e1..1e5f64, 1e1..1e5f64],
+            )
+                .prop_map(move |(f1, f2, f3, m, w, ei, ea_ratio)| Case {
+                    g,
+                    loads: Loads {
+                        f1,
+                        f2,
+                        f3,
+                        m,
+                        per_length: w,
+                    },
+                    ei,
+                    ea_ratio,
+                })
+        })
+        // A random group can land at δ11 → 0 (X1 does not deform the released structure): the
+        // solver names the vanished measure, which its own singular tests check; the
+        // comparisons here need a regular group.
+        .prop_filter("a singular group (δ11 vanishes)", |c| {
+            !matches!(
+                solve(&c.g, &c.loads, &Stiffness { ei: c.ei, ea: None }),
+                Err(Error::Singular { .. })
+            )
+        })
 }
 
 /// The sum of the forces on every link and of their moments about E, from the returned
