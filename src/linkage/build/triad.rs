@@ -38,22 +38,8 @@ pub(super) fn plan_triad(
         };
         return plan_slider_triad(&legs, edges, link_names, linkage, frames);
     }
-    let other = |j: usize, l: usize| {
-        let e = edges[j].links;
-        if e[0] == l {
-            e[1]
-        } else {
-            e[0]
-        }
-    };
-    let known = [0, 1, 2].map(|i| other(t.outer[i], t.binary[i]));
-    let name = format!(
-        "group ({}; {}, {}, {}) triad",
-        link_names[t.ternary],
-        link_names[t.binary[0]],
-        link_names[t.binary[1]],
-        link_names[t.binary[2]]
-    );
+    let known = known_links(t, edges);
+    let name = triad_name(t, link_names, "triad");
     let at = |j: usize| Point2::new(linkage.joints[j].at[0], linkage.joints[j].at[1]);
     let a = t.outer.map(at);
     let b = t.inner.map(at);
@@ -132,22 +118,8 @@ fn plan_slider_triad(
     linkage: &Linkage,
     frames: &mut [Frame],
 ) -> Result<Group> {
-    let other = |j: usize, l: usize| {
-        let e = edges[j].links;
-        if e[0] == l {
-            e[1]
-        } else {
-            e[0]
-        }
-    };
-    let known = [0, 1, 2].map(|i| other(t.outer[i], t.binary[i]));
-    let name = format!(
-        "group ({}; {}, {}, {}) triad with a sliding pair",
-        link_names[t.ternary],
-        link_names[t.binary[0]],
-        link_names[t.binary[1]],
-        link_names[t.binary[2]]
-    );
+    let known = known_links(t, edges);
+    let name = triad_name(t, link_names, "triad with a sliding pair");
     let at = |j: usize| Point2::new(linkage.joints[j].at[0], linkage.joints[j].at[1]);
     let a = t.outer.map(at);
     let b = t.inner.map(at);
@@ -253,4 +225,27 @@ fn plan_slider_triad(
         })),
         general: None,
     })
+}
+
+/// The known link of each leg: the one its outer joint joins, other than the leg itself.
+fn known_links(t: &TriadFound, edges: &[Edge]) -> [usize; 3] {
+    [0, 1, 2].map(|i| {
+        let e = edges[t.outer[i]].links;
+        if e[0] == t.binary[i] {
+            e[1]
+        } else {
+            e[0]
+        }
+    })
+}
+
+/// The group's name in errors and reports: its ternary link, then its legs.
+fn triad_name(t: &TriadFound, link_names: &[String], kind: &str) -> String {
+    format!(
+        "group ({}; {}, {}, {}) {kind}",
+        link_names[t.ternary],
+        link_names[t.binary[0]],
+        link_names[t.binary[1]],
+        link_names[t.binary[2]]
+    )
 }
