@@ -46,16 +46,7 @@ type C = nalgebra::Complex<f64>;
 /// [`Error::NonFinite`] for a non-finite number; [`Error::NoMechanism`] for coinciding poses;
 /// [`Error::OutOfRange`] (`"n"`) for n = 0 or n above [`MAX_POINTS`](super::MAX_POINTS).
 pub fn centre_point_curve(poses: &[Pose; 4], n: usize) -> Result<Vec<Dyad>> {
-    check_poses(poses)?;
-    if !(1..=super::MAX_POINTS).contains(&n) {
-        return Err(Error::OutOfRange {
-            name: "n",
-            value: n as f64,
-            min: 1.0,
-            max: super::MAX_POINTS as f64,
-            ends: crate::Ends::Closed,
-        });
-    }
+    // The runs check the poses and n.
     Ok(burmester_curves(poses, n)?.concat())
 }
 
