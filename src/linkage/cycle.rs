@@ -13,7 +13,7 @@ use crate::kinematics::{
 
 /// An output resolved to indices.
 #[derive(Debug, Clone, Copy)]
-enum Resolved {
+pub(super) enum Resolved {
     Angle(usize),
     Slide(usize),
     Joint(usize, bool),
@@ -21,7 +21,9 @@ enum Resolved {
 }
 
 impl Plan {
-    fn resolve(&self, output: &Output) -> Result<Resolved> {
+    /// The indices `output` names; an unknown name is an error of the description's field
+    /// `output` (checked once, by [`Plan::new`]).
+    pub(super) fn resolve(&self, output: &Output) -> Result<Resolved> {
         Ok(match output {
             Output::Angle(n) => Resolved::Angle(self.chain.link(n)?),
             Output::Slide(n) => Resolved::Slide(self.chain.prismatic(n)?),

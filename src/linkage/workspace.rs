@@ -117,11 +117,17 @@ impl Region {
         self.origin + c
     }
 
-    /// Whether the cell holding `p` is reached (`false` off the raster).
+    /// Whether the cell holding `p` is reached (`false` off the raster, and for a cell the
+    /// `cells` of a hand-made region do not hold).
     #[must_use]
     pub fn contains(&self, p: Point2<f64>) -> bool {
-        self.cell_of(p)
-            .is_some_and(|(ix, iy)| self.cells[iy * self.nx + ix])
+        self.cell_of(p).is_some_and(|(ix, iy)| {
+            iy.checked_mul(self.nx)
+                .and_then(|k| k.checked_add(ix))
+                .and_then(|k| self.cells.get(k))
+                .copied()
+                .unwrap_or(false)
+        })
     }
 
     /// The cell holding `p`, if on the raster.
@@ -776,4 +782,26 @@ fn outline(region: &Region) -> Vec<Vec<Point2<f64>>> {
         let (pa, pb) = (region.centre(a.0, a.1), region.centre(b.0, b.1));
         Some(Point2::from((pa.coords + pb.coords) / 2.0))
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A hand-made region whose cells are fewer than `nx · ny` answers `false` where it
+    /// holds no cell, and reads the cells it holds.
+    #[test]
+    fn a_short_region_answers_without_indexing_past_its_cells() {
+        let region = Region {
+            origin: Point2::origin(),
+            cell: 1.0,
+            nx: 10,
+            ny: 10,
+            cells: vec![true; 5],
+        };
+        assert!(region.contains(Point2::new(4.5, 0.5)));
+        assert!(!region.contains(Point2::new(5.5, 0.5)));
+        assert!(!region.contains(Point2::new(5.5, 5.5)));
+        assert!(!region.contains(Point2::new(-0.5, 0.5)));
+    }
 }

@@ -360,6 +360,16 @@ fn bad_descriptions_name_the_joint_link_or_field() {
     let mut l = base.clone();
     l.links[3].joints.pop();
     check(l, "link rocker", "at least two");
+    // An output naming nothing is found when the plan is made, not when strokes are asked.
+    let mut l = base.clone();
+    l.output = Some(tmm::linkage::Output::Angle("nosuch".into()));
+    check(l, "field output", "nosuch");
+    let mut l = base.clone();
+    l.output = Some(tmm::linkage::Output::Slide("B".into()));
+    check(l, "field output", "B");
+    let mut l = base.clone();
+    l.output = Some(tmm::linkage::Output::Y("Q".into()));
+    check(l, "field output", "Q");
     let mut l = base.clone();
     l.joints[2].kind = tmm::linkage::JointKind::Prismatic {
         guide: "rocker".into(),

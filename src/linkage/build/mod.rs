@@ -38,7 +38,7 @@ impl Plan {
     /// field at fault: unknown or repeated names, a joint listed by fewer than two links (a hinge
     /// listed by three or more is expanded to binary joints), a prismatic joint of more, a
     /// link with fewer than two joints, a guide without a direction, non-finite numbers,
-    /// negative masses, a linkage whose groups are neither dyads of the 2nd class nor triads
+    /// negative masses, an output naming no link, prismatic joint, joint or point, a linkage whose groups are neither dyads of the 2nd class nor triads
     /// of the 3rd (the links left over named), or of the wrong mobility, a pose that
     /// does not close, a group at a dead point in the reference pose without a given mode.
     pub fn new(linkage: &Linkage) -> Result<Self> {
@@ -133,6 +133,11 @@ impl Plan {
             spare: Default::default(),
         };
         super::torsion_range::check_torsion(&plan)?;
+        // A typo in the output would otherwise surface only when strokes are asked for.
+        if let Some(output) = &linkage.output {
+            plan.resolve(output)
+                .map_err(|e| bad("field output", e.to_string()))?;
+        }
         Ok(plan)
     }
 }
