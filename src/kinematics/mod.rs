@@ -108,6 +108,6 @@ pub use triad::{
     MAX_TRIAD_MODES, SINGULAR_TRIAD,
 };
 pub use triad_slider::{
-    slider_triad, slider_triad_modes, slider_triad_rates, SliderTriadDims, SliderTriadModes,
-    SlidingPair, MAX_SLIDER_TRIAD_MODES,
+    slider_triad, slider_triad_modes, slider_triad_rates, slider_triad_tracked, SliderTriadDims,
+    SliderTriadModes, SlidingPair, MAX_SLIDER_TRIAD_MODES,
 };

@@ -128,7 +128,7 @@ impl TriadDims {
     }
 
     /// Σ|β_i − β̄|², the polar moment of the joints about their centroid, m².
-    fn ternary_moment(&self) -> f64 {
+    pub(super) fn ternary_moment(&self) -> f64 {
         // Σ|β_i|² − |Σβ_i|²/3, with β_1 = 0.
         let (x, y) = (self.l_b1b2 + self.b3_along, self.b3_across);
         self.l_b1b2 * self.l_b1b2 + self.b3_along * self.b3_along + y * y - (x * x + y * y) / 3.0
@@ -721,6 +721,9 @@ impl Periodic for Eliminated {
     }
     fn m2(&self) -> f64 {
         self.m2
+    }
+    fn m3(&self) -> f64 {
+        self.m3
     }
     fn tol(&self) -> f64 {
         self.tol
