@@ -142,25 +142,7 @@ fn count_by_branches(c: &Case, n: usize) -> usize {
         let o = c2 + dist * nv + sigma * h2.sqrt() * perp(nv);
         Some((o + rotate(be[2], theta) - c.a[1].coords).norm() - c.dims.l[1])
     };
-    let thetas: Vec<f64> = (0..n).map(|j| TAU * j as f64 / n as f64).collect();
-    let plus: Vec<Option<f64>> = thetas.iter().map(|&t| g(t, 1.0)).collect();
-    let minus: Vec<Option<f64>> = thetas.iter().map(|&t| g(t, -1.0)).collect();
-    let neg = |x: f64| x < 0.0;
-    let mut count = 0;
-    for j in 0..n {
-        let k = (j + 1) % n;
-        for branch in [&plus, &minus] {
-            if let (Some(x), Some(y)) = (branch[j], branch[k]) {
-                count += usize::from(neg(x) != neg(y));
-            }
-        }
-        match (plus[j], plus[k], minus[j], minus[k]) {
-            (Some(p), None, Some(m), _) => count += usize::from(neg(p) != neg(m)),
-            (None, Some(p), _, Some(m)) => count += usize::from(neg(p) != neg(m)),
-            _ => {}
-        }
-    }
-    count
+    crate::triad::count_branch_roots(n, g)
 }
 
 /// The largest closure error of a mode: the sliding leg's line, the hinged legs' lengths, the

@@ -48,7 +48,7 @@
 use super::link::LinkMotion;
 use super::motion::PointMotion;
 use super::rrp::Guide;
-use super::triad::{TriadDims, TriadPose, TriadState, SINGULAR_TRIAD};
+use super::triad::{AssemblyModes, TriadDims, TriadPose, TriadState, SINGULAR_TRIAD};
 use super::trig_roots::{bracket_all, newton_root, unit as unit_c, Periodic, Roots};
 use crate::angle::{cross, direction, perp, unit};
 use crate::error::{finite, finite2, positive, Error, Result};
@@ -173,49 +173,9 @@ impl SliderTriadDims {
     }
 }
 
-/// All assembly modes of a triad with a sliding pair at one position, in the order of θ; no
-/// heap.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct SliderTriadModes {
-    count: usize,
-    poses: [TriadPose; MAX_SLIDER_TRIAD_MODES],
-}
-
-impl SliderTriadModes {
-    /// The modes, ordered by the ternary link's angle θ.
-    #[must_use]
-    pub fn as_slice(&self) -> &[TriadPose] {
-        &self.poses[..self.count]
-    }
-
-    /// The number of modes.
-    #[must_use]
-    pub fn len(&self) -> usize {
-        self.count
-    }
-
-    /// Never true for a value returned by [`slider_triad_modes`].
-    #[must_use]
-    pub fn is_empty(&self) -> bool {
-        self.count == 0
-    }
-
-    /// The mode nearest `reference` by D² = Σ|B_i − B_i′|² (as
-    /// [`TriadModes::nearest`](super::TriadModes::nearest)).
-    ///
-    /// # Panics
-    /// Never for a value returned by [`slider_triad_modes`], which holds at least one mode.
-    #[must_use]
-    pub fn nearest(&self, reference: &TriadPose) -> &TriadPose {
-        self.as_slice()
-            .iter()
-            .min_by(|p, q| {
-                p.distance_squared(reference)
-                    .total_cmp(&q.distance_squared(reference))
-            })
-            .expect("a triad's modes are never empty")
-    }
-}
+/// All assembly modes of a triad with a sliding pair at one position, in the order of θ (at
+/// most [`MAX_SLIDER_TRIAD_MODES`]).
+pub type SliderTriadModes = AssemblyModes<MAX_SLIDER_TRIAD_MODES>;
 
 /// The first leg's known part at one position: the guide's point and unit vector (outer), or
 /// A1 (inner, `d` unused).
@@ -289,35 +249,20 @@ pub fn slider_triad_modes(
     }
     let mut roots = Roots::default();
     bracket_all(&e, &mut roots);
-    let blank = TriadPose {
-        b: [Point2::origin(); 3],
-        theta: 0.0,
-        phi: [0.0; 3],
-        det: 0.0,
-    };
-    let mut modes = SliderTriadModes {
-        count: 0,
-        poses: [blank; MAX_SLIDER_TRIAD_MODES],
-    };
+    let mut modes = SliderTriadModes::empty();
     let tol = 1e-9 * e.length;
     for r in 0..roots.n {
         for pose in e.poses(roots.z[r], roots.multiple[r]).into_iter().flatten() {
-            let seen = modes.poses[..modes.count]
-                .iter()
-                .any(|m| m.distance_squared(&pose) <= tol * tol);
-            if !seen && modes.count < MAX_SLIDER_TRIAD_MODES {
-                modes.poses[modes.count] = pose;
-                modes.count += 1;
-            }
+            modes.push_distinct(pose, tol);
         }
     }
-    if modes.count == 0 {
+    if modes.is_empty() {
         return Err(Error::NotAssemblable {
             group: GROUP,
             gap: e.gap(),
         });
     }
-    modes.poses[..modes.count].sort_by(|p, q| p.theta.total_cmp(&q.theta));
+    modes.sort();
     Ok(modes)
 }
 
