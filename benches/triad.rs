@@ -9,8 +9,9 @@
 //! - `triad_modes`: every assembly mode by the certified scan (positions only);
 //! - `triad_modes_nearest_rates`: the full path, every mode then the nearest's rates;
 //! - `slider_triad`: the triad with a sliding pair (its first leg a slider on a fixed guide),
-//!   positions, velocities and accelerations, the mode nearest the previous position's (it
-//!   has no fast path: every mode by the certified scan, then the nearest's rates).
+//!   positions, velocities and accelerations, the mode tracked from the previous position
+//!   (its fast path as the triad's; every mode by the certified scan where it fails);
+//! - `slider_triad_modes`: every assembly mode of the triad with a sliding pair.
 //!
 //! Before criterion runs, the ratio triad/RRR is measured in alternating rounds (both see the
 //! same load on a shared machine; each one's fastest round kept) and printed as a
@@ -21,8 +22,9 @@ use nalgebra::{Point2, Vector2};
 use std::hint::black_box;
 use std::time::{Duration, Instant};
 use tmm::kinematics::{
-    rrr_dyad, slider_triad, triad, triad_modes, triad_rates, triad_tracked, Branch, Guide,
-    PointMotion, SliderTriadDims, SlidingPair, TriadDims, TriadPose,
+    rrr_dyad, slider_triad, slider_triad_modes, slider_triad_tracked, triad, triad_modes,
+    triad_rates, triad_tracked, Branch, Guide, PointMotion, SliderTriadDims, SlidingPair,
+    TriadDims, TriadPose,
 };
 
 const N: usize = 1024;
@@ -231,8 +233,13 @@ fn positions(c: &mut Criterion) {
             })
             .sum::<f64>()
     };
+    let slider_fast = sli
+        .iter()
+        .filter(|(a, prev)| slider_triad_tracked(&guide, [a[0].p, a[1].p], &sdims, prev).is_some())
+        .count();
+    println!("triad | with a sliding pair, the fast path answers {slider_fast} of {N} positions");
     print_ratio(
-        "with a sliding pair: positions, velocities, accelerations, nearest mode",
+        "with a sliding pair: positions, velocities, accelerations, mode tracked",
         slider_all,
         rrr_all,
     );
@@ -265,6 +272,16 @@ fn positions(c: &mut Criterion) {
         })
     });
     g.bench_function("slider_triad", |b| b.iter(slider_all));
+    g.bench_function("slider_triad_modes", |b| {
+        b.iter(|| {
+            sli.iter()
+                .map(|(a, _)| {
+                    slider_triad_modes(&guide, black_box([a[0].p, a[1].p]), &sdims)
+                        .map_or(0.0, |m| m.as_slice()[0].theta)
+                })
+                .sum::<f64>()
+        })
+    });
     g.finish();
 }
 

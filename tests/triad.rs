@@ -106,9 +106,17 @@ fn count_by_leg_angle(a: &[Point2<f64>; 3], dims: &TriadDims, n: usize) -> usize
         let b3 = b1 + dims.b3_along * ex + dims.b3_across * perp(ex);
         Some((b3 - a[2]).norm() - l3)
     };
-    let phis: Vec<f64> = (0..n).map(|j| TAU * j as f64 / n as f64).collect();
-    let plus: Vec<Option<f64>> = phis.iter().map(|&p| g(p, 1.0)).collect();
-    let minus: Vec<Option<f64>> = phis.iter().map(|&p| g(p, -1.0)).collect();
+    count_branch_roots(n, g)
+}
+
+/// The roots of g(x, σ) = 0 over x on a grid of n points of the circle, along two branches
+/// σ = ±1 that may end (g = None) where they meet: the sign changes along each branch, plus
+/// one where the branches meet at the end of a run of defined points with opposite signs
+/// (the configuration curve's loop goes round from one branch to the other there).
+pub(crate) fn count_branch_roots(n: usize, g: impl Fn(f64, f64) -> Option<f64>) -> usize {
+    let xs: Vec<f64> = (0..n).map(|j| TAU * j as f64 / n as f64).collect();
+    let plus: Vec<Option<f64>> = xs.iter().map(|&x| g(x, 1.0)).collect();
+    let minus: Vec<Option<f64>> = xs.iter().map(|&x| g(x, -1.0)).collect();
     let neg = |x: f64| x < 0.0;
     let mut count = 0;
     for j in 0..n {

@@ -104,10 +104,10 @@ pub(crate) use rrr::rrr_rates;
 pub use rrr::{rrr_dyad, RrrState};
 pub use transfer::transfer_functions;
 pub use triad::{
-    triad, triad_modes, triad_rates, triad_tracked, TriadDims, TriadModes, TriadPose, TriadState,
-    MAX_TRIAD_MODES, SINGULAR_TRIAD,
+    triad, triad_modes, triad_rates, triad_tracked, AssemblyModes, TriadDims, TriadModes,
+    TriadPose, TriadState, MAX_TRIAD_MODES, SINGULAR_TRIAD,
 };
 pub use triad_slider::{
-    slider_triad, slider_triad_modes, slider_triad_rates, SliderTriadDims, SliderTriadModes,
-    SlidingPair, MAX_SLIDER_TRIAD_MODES,
+    slider_triad, slider_triad_modes, slider_triad_rates, slider_triad_tracked, SliderTriadDims,
+    SliderTriadModes, SlidingPair, MAX_SLIDER_TRIAD_MODES,
 };

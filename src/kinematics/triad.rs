@@ -128,7 +128,7 @@ impl TriadDims {
     }
 
     /// Σ|β_i − β̄|², the polar moment of the joints about their centroid, m².
-    fn ternary_moment(&self) -> f64 {
+    pub(super) fn ternary_moment(&self) -> f64 {
         // Σ|β_i|² − |Σβ_i|²/3, with β_1 = 0.
         let (x, y) = (self.l_b1b2 + self.b3_along, self.b3_across);
         self.l_b1b2 * self.l_b1b2 + self.b3_along * self.b3_along + y * y - (x * x + y * y) / 3.0
@@ -172,27 +172,64 @@ impl TriadPose {
 }
 
 /// All assembly modes of a triad at one position, in the order of θ (at most
-/// [`MAX_TRIAD_MODES`]); no heap.
+/// [`MAX_TRIAD_MODES`]).
+pub type TriadModes = AssemblyModes<MAX_TRIAD_MODES>;
+
+/// All assembly modes of a group of the 3rd class at one position, in the order of the
+/// ternary link's angle θ (at most `N`); no heap. [`TriadModes`] and
+/// [`SliderTriadModes`](super::SliderTriadModes) are its two kinds.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct TriadModes {
+pub struct AssemblyModes<const N: usize> {
     count: usize,
-    poses: [TriadPose; MAX_TRIAD_MODES],
+    poses: [TriadPose; N],
 }
 
-impl TriadModes {
+impl<const N: usize> AssemblyModes<N> {
+    /// No mode yet.
+    pub(super) fn empty() -> Self {
+        let blank = TriadPose {
+            b: [Point2::origin(); 3],
+            theta: 0.0,
+            phi: [0.0; 3],
+            det: 0.0,
+        };
+        Self {
+            count: 0,
+            poses: [blank; N],
+        }
+    }
+
+    /// Adds `pose` unless a mode within `tol` (by D) is there already or all `N` are taken.
+    pub(super) fn push_distinct(&mut self, pose: TriadPose, tol: f64) {
+        let seen = self
+            .as_slice()
+            .iter()
+            .any(|m| m.distance_squared(&pose) <= tol * tol);
+        if !seen && self.count < N {
+            self.poses[self.count] = pose;
+            self.count += 1;
+        }
+    }
+
+    /// Orders the modes by θ.
+    pub(super) fn sort(&mut self) {
+        self.poses[..self.count].sort_by(|p, q| p.theta.total_cmp(&q.theta));
+    }
+
     /// The modes, ordered by the ternary link's angle θ.
     #[must_use]
     pub fn as_slice(&self) -> &[TriadPose] {
         &self.poses[..self.count]
     }
 
-    /// The number of modes (1 to 6).
+    /// The number of modes.
     #[must_use]
     pub fn len(&self) -> usize {
         self.count
     }
 
-    /// Never true for a value returned by [`triad_modes`] (a triad without modes is an error).
+    /// Never true for a value returned by [`triad_modes`] or
+    /// [`slider_triad_modes`](super::slider_triad_modes) (a group without modes is an error).
     #[must_use]
     pub fn is_empty(&self) -> bool {
         self.count == 0
@@ -202,7 +239,8 @@ impl TriadModes {
     /// cycle: pass the previous position's pose).
     ///
     /// # Panics
-    /// Never for a value returned by [`triad_modes`], which holds at least one mode.
+    /// Never for a value returned by [`triad_modes`] or
+    /// [`slider_triad_modes`](super::slider_triad_modes), which hold at least one mode.
     #[must_use]
     pub fn nearest(&self, reference: &TriadPose) -> &TriadPose {
         self.as_slice()
@@ -298,15 +336,7 @@ pub fn triad_modes(a: [Point2<f64>; 3], dims: &TriadDims) -> Result<TriadModes> 
     }
     let mut roots = Roots::default();
     bracket_all(&e, &mut roots);
-    let mut modes = TriadModes {
-        count: 0,
-        poses: [TriadPose {
-            b: [Point2::origin(); 3],
-            theta: 0.0,
-            phi: [0.0; 3],
-            det: 0.0,
-        }; MAX_TRIAD_MODES],
-    };
+    let mut modes = TriadModes::empty();
     let tol = 1e-9 * e.length();
     for r in 0..roots.n {
         for pose in e
@@ -314,22 +344,16 @@ pub fn triad_modes(a: [Point2<f64>; 3], dims: &TriadDims) -> Result<TriadModes> 
             .into_iter()
             .flatten()
         {
-            let seen = modes.poses[..modes.count]
-                .iter()
-                .any(|m| m.distance_squared(&pose) <= tol * tol);
-            if !seen && modes.count < MAX_TRIAD_MODES {
-                modes.poses[modes.count] = pose;
-                modes.count += 1;
-            }
+            modes.push_distinct(pose, tol);
         }
     }
-    if modes.count == 0 {
+    if modes.is_empty() {
         return Err(Error::NotAssemblable {
             group: GROUP,
             gap: e.gap(),
         });
     }
-    modes.poses[..modes.count].sort_by(|p, q| p.theta.total_cmp(&q.theta));
+    modes.sort();
     Ok(modes)
 }
 
@@ -721,6 +745,9 @@ impl Periodic for Eliminated {
     }
     fn m2(&self) -> f64 {
         self.m2
+    }
+    fn m3(&self) -> f64 {
+        self.m3
     }
     fn tol(&self) -> f64 {
         self.tol

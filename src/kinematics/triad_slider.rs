@@ -48,8 +48,8 @@
 use super::link::LinkMotion;
 use super::motion::PointMotion;
 use super::rrp::Guide;
-use super::triad::{TriadDims, TriadPose, TriadState, SINGULAR_TRIAD};
-use super::trig_roots::{bracket_all, unit as unit_c, Periodic, Roots};
+use super::triad::{AssemblyModes, TriadDims, TriadPose, TriadState, SINGULAR_TRIAD};
+use super::trig_roots::{bracket_all, newton_root, unit as unit_c, Periodic, Roots};
 use crate::angle::{cross, direction, perp, unit};
 use crate::error::{finite, finite2, positive, Error, Result};
 use nalgebra::{Complex, Matrix3, Point2, Vector2, Vector3};
@@ -65,6 +65,31 @@ pub const MAX_SLIDER_TRIAD_MODES: usize = 12;
 const SAMPLES: usize = 16;
 /// Fourier coefficients kept (degrees 0 to 6).
 const DEGREE: usize = 6;
+/// e^{2πij/16}, j = 0…15: the sample points of the eliminated equation and the discrete
+/// Fourier transform's factors (cos π/8, sin π/8 and √½ to the nearest f64).
+const UNITS: [(f64, f64); SAMPLES] = {
+    const C1: f64 = 0.923_879_532_511_286_7;
+    const S1: f64 = 0.382_683_432_365_089_8;
+    const R: f64 = std::f64::consts::FRAC_1_SQRT_2;
+    [
+        (1.0, 0.0),
+        (C1, S1),
+        (R, R),
+        (S1, C1),
+        (0.0, 1.0),
+        (-S1, C1),
+        (-R, R),
+        (-C1, S1),
+        (-1.0, 0.0),
+        (-C1, -S1),
+        (-R, -R),
+        (-S1, -C1),
+        (0.0, -1.0),
+        (S1, -C1),
+        (R, -R),
+        (C1, -S1),
+    ]
+};
 
 /// Where the first binary link's sliding pair is, with the dimension the pair fixes.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -148,49 +173,9 @@ impl SliderTriadDims {
     }
 }
 
-/// All assembly modes of a triad with a sliding pair at one position, in the order of θ; no
-/// heap.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct SliderTriadModes {
-    count: usize,
-    poses: [TriadPose; MAX_SLIDER_TRIAD_MODES],
-}
-
-impl SliderTriadModes {
-    /// The modes, ordered by the ternary link's angle θ.
-    #[must_use]
-    pub fn as_slice(&self) -> &[TriadPose] {
-        &self.poses[..self.count]
-    }
-
-    /// The number of modes.
-    #[must_use]
-    pub fn len(&self) -> usize {
-        self.count
-    }
-
-    /// Never true for a value returned by [`slider_triad_modes`].
-    #[must_use]
-    pub fn is_empty(&self) -> bool {
-        self.count == 0
-    }
-
-    /// The mode nearest `reference` by D² = Σ|B_i − B_i′|² (as
-    /// [`TriadModes::nearest`](super::TriadModes::nearest)).
-    ///
-    /// # Panics
-    /// Never for a value returned by [`slider_triad_modes`], which holds at least one mode.
-    #[must_use]
-    pub fn nearest(&self, reference: &TriadPose) -> &TriadPose {
-        self.as_slice()
-            .iter()
-            .min_by(|p, q| {
-                p.distance_squared(reference)
-                    .total_cmp(&q.distance_squared(reference))
-            })
-            .expect("a triad's modes are never empty")
-    }
-}
+/// All assembly modes of a triad with a sliding pair at one position, in the order of θ (at
+/// most [`MAX_SLIDER_TRIAD_MODES`]).
+pub type SliderTriadModes = AssemblyModes<MAX_SLIDER_TRIAD_MODES>;
 
 /// The first leg's known part at one position: the guide's point and unit vector (outer), or
 /// A1 (inner, `d` unused).
@@ -264,41 +249,74 @@ pub fn slider_triad_modes(
     }
     let mut roots = Roots::default();
     bracket_all(&e, &mut roots);
-    let blank = TriadPose {
-        b: [Point2::origin(); 3],
-        theta: 0.0,
-        phi: [0.0; 3],
-        det: 0.0,
-    };
-    let mut modes = SliderTriadModes {
-        count: 0,
-        poses: [blank; MAX_SLIDER_TRIAD_MODES],
-    };
+    let mut modes = SliderTriadModes::empty();
     let tol = 1e-9 * e.length;
     for r in 0..roots.n {
         for pose in e.poses(roots.z[r], roots.multiple[r]).into_iter().flatten() {
-            let seen = modes.poses[..modes.count]
-                .iter()
-                .any(|m| m.distance_squared(&pose) <= tol * tol);
-            if !seen && modes.count < MAX_SLIDER_TRIAD_MODES {
-                modes.poses[modes.count] = pose;
-                modes.count += 1;
-            }
+            modes.push_distinct(pose, tol);
         }
     }
-    if modes.count == 0 {
+    if modes.is_empty() {
         return Err(Error::NotAssemblable {
             group: GROUP,
             gap: e.gap(),
         });
     }
-    modes.poses[..modes.count].sort_by(|p, q| p.theta.total_cmp(&q.theta));
+    modes.sort();
     Ok(modes)
 }
 
+/// The fast path of tracking, as [`triad_tracked`](super::triad_tracked) for the triad:
+/// the mode reached by Newton's method on F(θ) from `previous`'s angle, or `None` when it
+/// cannot be certified to be the mode that
+/// [`slider_triad_modes`]`(first, a, dims)?.`[`nearest`](SliderTriadModes::nearest)`(previous)`
+/// returns (the same two conditions: no other root of F near, and no other mode can be as
+/// near `previous`). `None` also for invalid input (the full path names the error).
+#[must_use]
+pub fn slider_triad_tracked(
+    first: &Guide,
+    a: [Point2<f64>; 2],
+    dims: &SliderTriadDims,
+    previous: &TriadPose,
+) -> Option<TriadPose> {
+    let valid = [first.point.p, a[0], a[1]]
+        .iter()
+        .all(|p| p.x.is_finite() && p.y.is_finite())
+        && first.angle.value.is_finite()
+        && previous
+            .b
+            .iter()
+            .all(|p| p.x.is_finite() && p.y.is_finite());
+    if !valid || dims.validate().is_err() {
+        return None;
+    }
+    let e = Equation::new(first, a, dims);
+    let d = previous.b[1] - previous.b[0];
+    let root = newton_root(&e, C::new(d.x, d.y) / d.norm())?;
+    let zv = vec(root.z);
+    let (n, h) = e.line(zv);
+    let c = e.centres(zv);
+    let b = 2.0 * (c[1] - c[0]);
+    let s = c[1].norm_squared() - c[0].norm_squared() + e.l[0] * e.l[0] - e.l[1] * e.l[1];
+    let delta = cross(n, b);
+    if delta.is_nan() || delta.abs() <= 1e-3 * e.dscale {
+        return None;
+    }
+    let pose = e.polish((s * perp(n) - h * perp(b)) / delta, root.z)?;
+    // The polish must not have left the root's angle (it stays on this mode's branch).
+    let side = pose.b[1] - pose.b[0];
+    let zp = side / side.norm();
+    let moved = pose.distance_squared(previous);
+    (cross(zv, zp).abs() <= 1e-8 && e.closure(&pose, zp) <= 1e-13 * e.length)
+        .then_some(())
+        .filter(|()| root.certifies(&e, moved, dims.triangle().ternary_moment()))
+        .map(|()| pose)
+}
+
 /// Positions, velocities and accelerations of a triad with a sliding pair, in the mode
-/// nearest `previous` (by [`slider_triad_modes`] and
-/// [`nearest`](SliderTriadModes::nearest), then [`slider_triad_rates`]).
+/// nearest `previous`: the fast path [`slider_triad_tracked`] first, else
+/// [`slider_triad_modes`] with [`nearest`](SliderTriadModes::nearest); then
+/// [`slider_triad_rates`].
 ///
 /// # Errors
 /// As [`slider_triad_modes`] and [`slider_triad_rates`].
@@ -308,7 +326,11 @@ pub fn slider_triad(
     dims: &SliderTriadDims,
     previous: &TriadPose,
 ) -> Result<TriadState> {
-    let pose = *slider_triad_modes(first, [a[0].p, a[1].p], dims)?.nearest(previous);
+    let p = [a[0].p, a[1].p];
+    let pose = match slider_triad_tracked(first, p, dims, previous) {
+        Some(pose) => pose,
+        None => *slider_triad_modes(first, p, dims)?.nearest(previous),
+    };
     slider_triad_rates(first, a, dims, &pose)
 }
 
@@ -490,6 +512,7 @@ struct Equation {
     /// F's Fourier coefficients: F = f[0] + 2·Re(Σ_{k=1..6} f[k]·z^k).
     f: [C; DEGREE + 1],
     m2: f64,
+    m3: f64,
     /// Σ|F_k| (F_0 once, the others twice): a bound of |F|.
     s: f64,
     scale: f64,
@@ -526,6 +549,10 @@ impl Periodic for Equation {
         self.m2
     }
 
+    fn m3(&self) -> f64 {
+        self.m3
+    }
+
     fn tol(&self) -> f64 {
         self.tol
     }
@@ -555,6 +582,7 @@ impl Equation {
             l: dims.l,
             f: [C::new(0.0, 0.0); DEGREE + 1],
             m2: 0.0,
+            m3: 0.0,
             s: 0.0,
             scale: 0.0,
             tol: 0.0,
@@ -563,9 +591,8 @@ impl Equation {
         };
         // The discrete Fourier transform of 16 values of F.
         let mut values = [0.0; SAMPLES];
-        for (j, v) in values.iter_mut().enumerate() {
-            let th = std::f64::consts::TAU * j as f64 / SAMPLES as f64;
-            let (f, size, delta) = e.value(C::new(th.cos(), th.sin()));
+        for (v, &(c, s)) in values.iter_mut().zip(&UNITS) {
+            let (f, size, delta) = e.value(C::new(c, s));
             *v = f;
             e.scale = e.scale.max(size);
             e.dscale = e.dscale.max(delta.abs());
@@ -573,8 +600,8 @@ impl Equation {
         for k in 0..=DEGREE {
             let mut sum = C::new(0.0, 0.0);
             for (j, v) in values.iter().enumerate() {
-                let th = -std::f64::consts::TAU * (j * k) as f64 / SAMPLES as f64;
-                sum += C::new(th.cos(), th.sin()) * *v;
+                let (c, s) = UNITS[(j * k) % SAMPLES];
+                sum += C::new(c, -s) * *v;
             }
             e.f[k] = sum / SAMPLES as f64;
         }
@@ -583,6 +610,10 @@ impl Equation {
         e.m2 = 2.0
             * (1..=DEGREE)
                 .map(|k| (k * k) as f64 * n1(e.f[k]))
+                .sum::<f64>();
+        e.m3 = 2.0
+            * (1..=DEGREE)
+                .map(|k| (k * k * k) as f64 * n1(e.f[k]))
                 .sum::<f64>();
         e.s = e.f[0].re.abs() + 2.0 * (1..=DEGREE).map(|k| n1(e.f[k])).sum::<f64>();
         e.tol = 256.0 * f64::EPSILON * e.scale;
@@ -673,6 +704,15 @@ impl Equation {
             Vector3::new(n.dot(&o) - h, len[0] - self.l[0], len[1] - self.l[1]),
             matrix(n, m, u, r),
         )
+    }
+
+    /// The largest closure error of a pose, m.
+    fn closure(&self, pose: &TriadPose, z: Vector2<f64>) -> f64 {
+        let (n, h) = self.line(z);
+        (n.dot(&pose.b[0].coords) - h)
+            .abs()
+            .max(((pose.b[1] - self.a[0]).norm() - self.l[0]).abs())
+            .max(((pose.b[2] - self.a[1]).norm() - self.l[1]).abs())
     }
 
     /// The pose from O = `o` at z, polished by Newton's method on the closures (kept while

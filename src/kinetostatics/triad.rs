@@ -104,12 +104,7 @@ impl Triad {
     ///   lines of the three binary links meet at one point or are parallel, to working
     ///   precision.
     pub fn solve(&self) -> Result<TriadReactions> {
-        for i in 0..3 {
-            finite2(["A.x", "A.y"], self.a[i].coords)?;
-            finite2(["B.x", "B.y"], self.b[i].coords)?;
-            self.loads[i].validate()?;
-        }
-        self.load_ternary.validate()?;
+        validate(&self.a, &self.b, &self.loads, &self.load_ternary)?;
         let names = ["l_A1B1", "l_A2B2", "l_A3B3"];
         let mut u = [Vector2::zeros(); 3];
         let mut l = [0.0; 3];
@@ -118,31 +113,15 @@ impl Triad {
             l[i] = length(names[i], leg)?;
             u[i] = leg / l[i];
         }
-        let g = (self.b[0].coords + self.b[1].coords + self.b[2].coords) / 3.0;
-        let moment: f64 = self.b.iter().map(|p| (p.coords - g).norm_squared()).sum();
-        let size = length("L_T", Vector2::new((moment / 3.0).sqrt(), 0.0))?;
         let r = [0, 1, 2].map(|i| self.b[i] - self.b[0]);
-        // Kᵀ: column i is (u_i, r_i × u_i).
-        let kt = Matrix3::from_fn(|row, i| match row {
-            0 => u[i].x,
-            1 => u[i].y,
-            _ => cross(r[i], u[i]),
-        });
-        let det = kt.determinant();
-        let conditioning = Conditioning::of(WHAT, MEASURE, det / size, 1.0)?;
+        let lines = LegLines::new(WHAT, &self.b, u, r)?;
 
         let t = [0, 1, 2].map(|i| self.loads[i].moment_about(self.b[i]) / l[i]);
         let q = [0, 1, 2].map(|i| perp(u[i]) * t[i] + self.loads[i].force);
         let f = -(self.load_ternary.force + q[0] + q[1] + q[2]);
         let m = -(self.load_ternary.moment_about(self.b[0])
             + (0..3).map(|i| cross(r[i], q[i])).sum::<f64>());
-        let rhs = Vector3::new(f.x, f.y, m);
-        // Cramer's rule on Kᵀ·n = rhs.
-        let n = [0, 1, 2].map(|i| {
-            let mut k = kt;
-            k.set_column(i, &rhs);
-            k.determinant() / det
-        });
+        let n = lines.solve(f, m);
         let r_a = [0, 1, 2].map(|i| u[i] * n[i] + perp(u[i]) * t[i]);
         let r_b = [0, 1, 2].map(|i| r_a[i] + self.loads[i].force);
         let values: Vec<f64> = r_a
@@ -152,13 +131,75 @@ impl Triad {
             .chain(n)
             .chain(t)
             .collect();
-        ensure_finite(WHAT, MEASURE, conditioning.measure, &values)?;
+        ensure_finite(WHAT, MEASURE, lines.conditioning.measure, &values)?;
         Ok(TriadReactions {
             r_a,
             r_b,
             r_a_n: n,
             r_a_t: t,
+            conditioning: lines.conditioning,
+        })
+    }
+}
+
+/// Checks the joints and the loads of a triad (either kind).
+pub(super) fn validate(
+    a: &[Point2<f64>; 3],
+    b: &[Point2<f64>; 3],
+    loads: &[Load; 3],
+    load_ternary: &Load,
+) -> Result<()> {
+    for i in 0..3 {
+        finite2(["A.x", "A.y"], a[i].coords)?;
+        finite2(["B.x", "B.y"], b[i].coords)?;
+        loads[i].validate()?;
+    }
+    load_ternary.validate()
+}
+
+/// The ternary link's equilibrium under the legs' forces, shared by the triads: leg i pushes
+/// it with s_i along the unit vector u_i on a line through B1 + r_i, so the equilibrium of
+/// forces and of moments about B1 is Kᵀ·s = (f, m), Kᵀ's column i being (u_i, r_i × u_i):
+/// the velocity system transposed (virtual work), with its conditioning det K / L_T.
+pub(super) struct LegLines {
+    kt: Matrix3<f64>,
+    det: f64,
+    pub(super) conditioning: Conditioning,
+}
+
+impl LegLines {
+    /// Kᵀ of the ternary link with the joints `b`; [`Error::NonPositive`](crate::Error) when
+    /// the joints coincide (`L_T`), [`Error::Singular`](crate::Error) as [`Conditioning::of`].
+    pub(super) fn new(
+        what: &'static str,
+        b: &[Point2<f64>; 3],
+        u: [Vector2<f64>; 3],
+        r: [Vector2<f64>; 3],
+    ) -> Result<Self> {
+        let g = (b[0].coords + b[1].coords + b[2].coords) / 3.0;
+        let moment: f64 = b.iter().map(|p| (p.coords - g).norm_squared()).sum();
+        let size = length("L_T", Vector2::new((moment / 3.0).sqrt(), 0.0))?;
+        let kt = Matrix3::from_fn(|row, i| match row {
+            0 => u[i].x,
+            1 => u[i].y,
+            _ => cross(r[i], u[i]),
+        });
+        let det = kt.determinant();
+        let conditioning = Conditioning::of(what, MEASURE, det / size, 1.0)?;
+        Ok(Self {
+            kt,
+            det,
             conditioning,
+        })
+    }
+
+    /// s with Kᵀ·s = (f, m), by Cramer's rule.
+    pub(super) fn solve(&self, f: Vector2<f64>, m: f64) -> [f64; 3] {
+        let rhs = Vector3::new(f.x, f.y, m);
+        [0, 1, 2].map(|i| {
+            let mut k = self.kt;
+            k.set_column(i, &rhs);
+            k.determinant() / self.det
         })
     }
 }

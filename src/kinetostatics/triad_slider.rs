@@ -19,10 +19,11 @@
 //! where the three lines of action meet at one point.
 
 use super::conditioning::{ensure_finite, Conditioning};
+use super::triad::{validate, LegLines};
 use crate::angle::{cross, perp};
 use crate::error::{finite2, length, Result};
 use crate::Load;
-use nalgebra::{Matrix3, Point2, Vector2, Vector3};
+use nalgebra::{Point2, Vector2};
 
 const WHAT: &str = "triad with a sliding pair";
 const MEASURE: &str = "det(velocity system)/L_T";
@@ -113,12 +114,7 @@ impl SliderTriad {
     /// - [`Error::Singular`](crate::Error::Singular) with `det(velocity system)/L_T` when the
     ///   three lines of action meet at one point or are parallel.
     pub fn solve(&self) -> Result<SliderTriadReactions> {
-        for i in 0..3 {
-            finite2(["A.x", "A.y"], self.a[i].coords)?;
-            finite2(["B.x", "B.y"], self.b[i].coords)?;
-            self.loads[i].validate()?;
-        }
-        self.load_ternary.validate()?;
+        validate(&self.a, &self.b, &self.loads, &self.load_ternary)?;
         finite2(["normal.x", "normal.y"], self.normal)?;
         let n = self.normal / length("normal", self.normal)?;
         let names = ["l_A2B2", "l_A3B3"];
@@ -130,9 +126,6 @@ impl SliderTriad {
             l[i] = length(names[i - 1], leg)?;
             u[i] = leg / l[i];
         }
-        let g = (self.b[0].coords + self.b[1].coords + self.b[2].coords) / 3.0;
-        let moment: f64 = self.b.iter().map(|p| (p.coords - g).norm_squared()).sum();
-        let size = length("L_T", Vector2::new((moment / 3.0).sqrt(), 0.0))?;
         let o = self.b[0];
         // The point each leg's line passes through.
         let p0 = match self.slide {
@@ -140,13 +133,7 @@ impl SliderTriad {
             SlideAt::Inner => self.a[0],
         };
         let r = [p0 - o, self.b[1] - o, self.b[2] - o];
-        let kt = Matrix3::from_fn(|row, i| match row {
-            0 => u[i].x,
-            1 => u[i].y,
-            _ => cross(r[i], u[i]),
-        });
-        let det = kt.determinant();
-        let conditioning = Conditioning::of(WHAT, MEASURE, det / size, 1.0)?;
+        let lines = LegLines::new(WHAT, &self.b, u, r)?;
         let t = [
             0.0,
             self.loads[1].moment_about(self.b[1]) / l[1],
@@ -168,12 +155,7 @@ impl SliderTriad {
         let m = -(self.load_ternary.moment_about(o)
             + couple_on_t
             + (0..3).map(|i| cross(r[i], q[i])).sum::<f64>());
-        let rhs = Vector3::new(f.x, f.y, m);
-        let s = [0, 1, 2].map(|i| {
-            let mut k = kt;
-            k.set_column(i, &rhs);
-            k.determinant() / det
-        });
+        let s = lines.solve(f, m);
         let r_b = [0, 1, 2].map(|i| u[i] * s[i] + q[i]);
         let r_a = [
             match self.slide {
@@ -190,13 +172,13 @@ impl SliderTriad {
             .chain(s)
             .chain([couple])
             .collect();
-        ensure_finite(WHAT, MEASURE, conditioning.measure, &values)?;
+        ensure_finite(WHAT, MEASURE, lines.conditioning.measure, &values)?;
         Ok(SliderTriadReactions {
             r_a,
             r_b,
             normal_force: s[0],
             couple,
-            conditioning,
+            conditioning: lines.conditioning,
         })
     }
 }
