@@ -1270,3 +1270,105 @@ fn the_forces_of_a_two_input_linkage_show_both_balancing_moments() {
     }
     assert_eq!(checked, 6);
 }
+
+/// A linkage with two inputs has its diagrams along a path of its inputs: every plotted value
+/// is the one-shot analysis's own at that position (both balancing moments; the x of the end
+/// point B, its velocity and acceleration at the path's rates), to 1e-9 of the values'
+/// scale, and the abscissa is the length along the path in the plane of the inputs, summed
+/// here independently. A grid, a transfer function and a linkage with one input are refused
+/// by name.
+#[test]
+fn a_two_input_diagram_plots_the_analysis_along_the_path() {
+    use tmm::draw::diagram_two;
+    use tmm::linkage::TwoInputCourse;
+    let plan = Plan::new(&bundled::five_bar_robot()).unwrap();
+    let n = 48;
+    let course = TwoInputCourse::around_reference(&plan, n, 2.0).unwrap();
+    let style = Style {
+        samples: 360,
+        ..Style::default()
+    };
+    let mut s = 0.0;
+    let mut xs = vec![0.0];
+    for w in course.inputs.windows(2) {
+        let (a, b) = (w[0].as_slice(), w[1].as_slice());
+        s += (b[0].value - a[0].value).hypot(b[1].value - a[1].value);
+        xs.push(s);
+    }
+    let close = |got: f64, want: f64, scale: f64, what: &str| {
+        assert!(
+            (got - want).abs() <= 1e-9 * scale,
+            "{what}: plotted {got}, analysed {want}"
+        );
+    };
+    let mut compared = 0;
+    // Both balancing moments.
+    let chart = diagram_two(&plan, &course, &Diagram::Balance, &style).unwrap();
+    assert_finite_svg(&chart.svg, "five-bar balance diagram");
+    assert!(inked(&render(&chart.svg, "five-bar balance diagram")) > 0.005);
+    let p = &chart.panels[0];
+    assert_eq!(p.series.len(), 2);
+    assert_eq!(p.y_label, "M_b1, M_b2, N·m");
+    assert!(p.x_label.contains("rad"), "{}", p.x_label);
+    let analyses: Vec<_> = course
+        .inputs
+        .iter()
+        .map(|&i| plan.analyse(i).unwrap())
+        .collect();
+    let scale = analyses
+        .iter()
+        .flat_map(|a| [a.balance(0).unwrap().value, a.balance(1).unwrap().value])
+        .fold(0.0f64, |m, v| m.max(v.abs()));
+    assert!(scale > 0.0);
+    for (i, (_, pts)) in p.series.iter().enumerate() {
+        assert_eq!(pts.len(), n, "every position assembles and is plotted");
+        for (k, q) in pts.iter().enumerate() {
+            close(q[0], xs[k], xs[n - 1], "abscissa");
+            close(q[1], analyses[k].balance(i).unwrap().value, scale, "M_b");
+            compared += 1;
+        }
+    }
+    assert_eq!(p.marks.len(), n);
+    assert!(p.series.iter().flat_map(|(_, s)| s).all(|q| {
+        p.y_range[0] <= q[1] && q[1] <= p.y_range[1] && p.x_range[0] <= q[0] && q[0] <= p.x_range[1]
+    }));
+    // Where the end point is and how it moves.
+    let out = Output::X("B".into());
+    let chart = diagram_two(&plan, &course, &Diagram::Kinematics(out), &style).unwrap();
+    assert_eq!(chart.panels.len(), 3);
+    for (panel, pick) in chart.panels.iter().zip([0, 1, 2]) {
+        let want: Vec<f64> = analyses
+            .iter()
+            .map(|a| {
+                let b = a.kinematics().joint("B").unwrap();
+                [b.p.x, b.v.x, b.a.x][pick]
+            })
+            .collect();
+        let scale = want.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+        let pts = &panel.series[0].1;
+        assert_eq!(pts.len(), n);
+        for (q, w) in pts.iter().zip(&want) {
+            close(q[1], *w, scale, &panel.y_label);
+            compared += 1;
+        }
+    }
+    assert_eq!(compared, 5 * n);
+    // What has no meaning along a path of two inputs, or no second input.
+    let refused = |r: tmm::Result<tmm::draw::Chart>, item: &str| match r {
+        Err(tmm::Error::Description { item: i, .. }) => assert_eq!(i, item),
+        other => panic!("expected a description error naming {item}: {other:?}"),
+    };
+    let r = plan.reference_inputs();
+    let grid = TwoInputCourse::grid([r[0], r[0] + 0.1], [r[1], r[1] + 0.1], [3, 3], [1.0, 1.0]);
+    refused(
+        diagram_two(&plan, &grid.unwrap(), &Diagram::Balance, &style),
+        "course",
+    );
+    let transfer = Diagram::Transfer(Output::X("B".into()));
+    refused(diagram_two(&plan, &course, &transfer, &style), "course");
+    let four = Plan::new(&bundled::four_bar()).unwrap();
+    refused(
+        diagram_two(&four, &course, &Diagram::Balance, &style),
+        "field second_input",
+    );
+}

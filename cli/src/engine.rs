@@ -19,6 +19,26 @@ use crate::model::{
     PictureRequest, Positions, Range, StrokeInfo, Structure, TableData, TwoInputDynamics,
 };
 
+/// The largest input angle the program takes, rad. An `f64` near 10⁹ is spaced 1.2·10⁻⁷
+/// apart, so a larger angle (`--at 1e300`) names a crank position no better than to a tenth
+/// of a microradian — at 10¹⁶ not even to a turn: such an angle is refused rather than
+/// silently rounded to some other position.
+pub const MAX_ANGLE: f64 = 1e9;
+
+/// An input angle typed in degrees after `option`, in rad: a finite number within
+/// ±[`MAX_ANGLE`], or a sentence naming the option.
+pub fn typed_angle(option: &str, degrees: f64) -> Result<f64, Failure> {
+    let rad = degrees.to_radians();
+    if rad.abs() <= MAX_ANGLE {
+        return Ok(rad);
+    }
+    Err(Failure::new(format!(
+        "{option} {degrees:?}: an input angle must be a finite number within ±10⁹ rad \
+         (±5.7·10¹⁰°), where an f64 still holds it to 10⁻⁷ rad"
+    ))
+    .hint("give the angle in degrees within a few turns of zero"))
+}
+
 /// The library's error as a person reads it: its `Display` text.
 fn failure(e: &tmm::Error) -> Failure {
     Failure::new(e.to_string())
@@ -177,13 +197,20 @@ impl Machine {
                 let names = |ix: &[usize], of: &[String]| -> Vec<String> {
                     ix.iter().map(|&k| of[k].clone()).collect()
                 };
-                let (l, j, inner) = match g.general_links() {
-                    Some((l, inner, outer)) => (
+                let (l, j, inner) = match (g.general_links(), g.triad_links(), g.triad_joints()) {
+                    (Some((l, inner, outer)), ..) => (
                         names(l, links),
                         names(&[inner, outer].concat(), joints),
                         Some(inner.len()),
                     ),
-                    None => (names(&g.links, links), names(&g.joints, joints), None),
+                    // A triad: the ternary link and its three legs; the legs' hinges on the
+                    // ternary link, then their joints to known links.
+                    (None, Some(l), Some([outer, inner])) => (
+                        names(&l, links),
+                        names(&[inner, outer].concat(), joints),
+                        Some(3),
+                    ),
+                    _ => (names(&g.links, links), names(&g.joints, joints), None),
                 };
                 GroupInfo {
                     kind: g.kind.label().to_owned(),
@@ -240,6 +267,11 @@ impl Machine {
             mobility: plan.mobility(),
             inputs,
             groups,
+            input_ranges: if plan.input_count() == 2 {
+                self.input_ranges()
+            } else {
+                Vec::new()
+            },
             range,
             grashof: self.grashof(),
             transmission,
@@ -255,7 +287,9 @@ impl Machine {
     fn find_range(&self) -> Range {
         let plan = &self.plan;
         if plan.input_count() > 1 {
-            return Range::Unknown("two inputs: the range of each depends on the other".to_owned());
+            return Range::Unknown(
+                "two inputs move over a 2-D region of input pairs, with no single turn".to_owned(),
+            );
         }
         if !plan.input_is_crank() {
             return self.slider_travel();
@@ -273,34 +307,9 @@ impl Machine {
     /// finds lock positions of cranks only.)
     fn slider_travel(&self) -> Range {
         let plan = &self.plan;
-        let solves = |s: f64| plan.kinematics(Motion::fixed(s)).is_ok();
-        let reference = plan.reference_input();
-        if !solves(reference) {
-            return Range::Unknown("the reference pose does not solve".to_owned());
-        }
-        let size = plan.size();
-        let step = size / 200.0;
-        let edge = |sense: f64| {
-            let mut good = reference;
-            for k in 1..=800 {
-                let s = reference + sense * step * f64::from(k);
-                if !solves(s) {
-                    let (mut a, mut b) = (good, s);
-                    for _ in 0..60 {
-                        let m = 0.5 * (a + b);
-                        if solves(m) {
-                            a = m;
-                        } else {
-                            b = m;
-                        }
-                    }
-                    return a;
-                }
-                good = s;
-            }
-            good
-        };
-        Range::Travel(edge(-1.0), edge(1.0))
+        travel(plan.size(), plan.reference_input(), |s| {
+            plan.kinematics(Motion::fixed(s)).is_ok()
+        })
     }
 
     /// Grashof's class of a four-bar: one RRR group hinged to the crank and the frame.
@@ -379,10 +388,13 @@ impl Machine {
             }
         };
         match positions {
-            Positions::At(values) => Ok(values
+            Positions::At(values) => values
                 .iter()
-                .map(|&v| Motion::new(if crank { v.to_radians() } else { v }, speed, 0.0))
-                .collect()),
+                .map(|&v| {
+                    let q = if crank { typed_angle("--at", v)? } else { v };
+                    Ok(Motion::new(q, speed, 0.0))
+                })
+                .collect(),
             Positions::Uniform(n) => Ok(spread(*n, notes)),
             Positions::Course(n) => match (&self.linkage.output, crank, &range) {
                 (Some(out), true, Range::FullTurn) => match plan.strokes(out, rotation(speed)) {
@@ -564,17 +576,18 @@ impl Machine {
                 values.len()
             )));
         }
-        let convert = |v: f64, crank: bool| if crank { v.to_radians() } else { v };
+        let convert = |v: f64, crank: bool| {
+            Ok(Motion::new(
+                if crank { typed_angle("--at", v)? } else { v },
+                speed,
+                0.0,
+            ))
+        };
         let (first, second) = (self.plan.input_is_crank(), self.second_is_crank());
-        Ok(values
+        values
             .chunks(2)
-            .map(|p| {
-                vec![
-                    Motion::new(convert(p[0], first), speed, 0.0),
-                    Motion::new(convert(p[1], second), speed, 0.0),
-                ]
-            })
-            .collect())
+            .map(|p| Ok(vec![convert(p[0], first)?, convert(p[1], second)?]))
+            .collect()
     }
 
     /// The course of the pictures over the cycle.
@@ -629,10 +642,13 @@ impl Machine {
             .hint("its plan and animation follow its own cycle"));
         }
         if !request.along.is_empty()
-            && !matches!(request.kind, PictureKind::Plan | PictureKind::Animation)
+            && !matches!(
+                request.kind,
+                PictureKind::Plan | PictureKind::Animation | PictureKind::Diagram(_)
+            )
         {
             return Err(Failure::new(
-                "--along gives the path of --plan and --animate, and neither was asked for",
+                "--along gives the path of --plan, --animate and --diagram, and none was asked for",
             ));
         }
         let paths: Vec<&str> = plan
@@ -648,10 +664,10 @@ impl Machine {
             .collect();
         let svg = match &request.kind {
             PictureKind::Scheme(at) => {
-                draw::scheme(plan, self.inputs_at(at, speed)?, &style).map(|p| p.svg)
+                draw::scheme(plan, self.inputs_at("--scheme", at, speed)?, &style).map(|p| p.svg)
             }
             PictureKind::Forces(at) => {
-                draw::forces(plan, self.inputs_at(at, speed)?, &style).map(|p| p.svg)
+                draw::forces(plan, self.inputs_at("--forces", at, speed)?, &style).map(|p| p.svg)
             }
             PictureKind::Workspace(point) => return self.workspace(point, &style, progress),
             PictureKind::Plan if two => {
@@ -660,15 +676,8 @@ impl Machine {
             PictureKind::Animation if two => {
                 return self.animation_two(&request.along, speed, &style);
             }
-            PictureKind::Diagram(_) if two => {
-                return Err(Failure::new(
-                    "a diagram is drawn over the cycle of one input, and a linkage with two \
-                     inputs has no cycle of its own (its motion is whatever its two drives do)",
-                )
-                .hint(
-                    "`tmm analyse FILE --at φ1 φ2 …` tabulates its positions, `tmm draw FILE \
-                     --workspace POINT` draws what a point reaches",
-                ));
+            PictureKind::Diagram(kind) if two => {
+                return self.diagram_two(*kind, &request.along, speed);
             }
             PictureKind::Plan => {
                 let course = self.course(speed)?;
@@ -696,6 +705,20 @@ impl Machine {
         svg.map_err(|e| failure(&e))
     }
 
+    /// The (first) input link's joint off the frame, whose reaction the hodograph draws.
+    fn crank_pin(&self) -> Result<String, Failure> {
+        let plan = &self.plan;
+        let input = plan.input_links()[0].index();
+        let pin = (0..plan.joint_names().len())
+            .find(|&j| {
+                plan.joint_links(j).is_ok_and(|l| {
+                    l.iter().any(|k| k.index() == input) && !l.contains(&LinkId::FRAME)
+                })
+            })
+            .ok_or_else(|| Failure::new("the input link has no joint off the frame"))?;
+        Ok(plan.joint_names()[pin].clone())
+    }
+
     /// A diagram over the cycle of a linkage with one input.
     fn diagram(&self, kind: DiagramKind, speed: f64) -> Result<String, Failure> {
         let plan = &self.plan;
@@ -710,17 +733,7 @@ impl Machine {
             DiagramKind::Transfer => (Diagram::Transfer(self.output()), &tall),
             DiagramKind::Balance => (Diagram::Balance, &style),
             DiagramKind::Reactions => (Diagram::Reactions, &style),
-            DiagramKind::Hodograph => {
-                let input = plan.input_links()[0].index();
-                let pin = (0..plan.joint_names().len())
-                    .find(|&j| {
-                        plan.joint_links(j).is_ok_and(|l| {
-                            l.iter().any(|k| k.index() == input) && !l.contains(&LinkId::FRAME)
-                        })
-                    })
-                    .ok_or_else(|| Failure::new("the input link has no joint off the frame"))?;
-                (Diagram::Hodograph(plan.joint_names()[pin].clone()), &style)
-            }
+            DiagramKind::Hodograph => (Diagram::Hodograph(self.crank_pin()?), &style),
         };
         draw::diagram(plan, &course, &diagram, style)
             .map(|c| c.svg)
@@ -797,4 +810,35 @@ fn split_unit(name: &str) -> (String, String) {
         }
         _ => (name.to_owned(), String::new()),
     }
+}
+
+/// The travel of a slider from `reference` over which `solves` holds: the nearest slides,
+/// either way, where it stops (stepping out by 1/200 of `size` and bisecting); at most 4
+/// sizes either way.
+fn travel(size: f64, reference: f64, solves: impl Fn(f64) -> bool) -> Range {
+    if !solves(reference) {
+        return Range::Unknown("the reference pose does not solve".to_owned());
+    }
+    let step = size / 200.0;
+    let edge = |sense: f64| {
+        let mut good = reference;
+        for k in 1..=800 {
+            let s = reference + sense * step * f64::from(k);
+            if !solves(s) {
+                let (mut a, mut b) = (good, s);
+                for _ in 0..60 {
+                    let m = 0.5 * (a + b);
+                    if solves(m) {
+                        a = m;
+                    } else {
+                        b = m;
+                    }
+                }
+                return a;
+            }
+            good = s;
+        }
+        good
+    };
+    Range::Travel(edge(-1.0), edge(1.0))
 }

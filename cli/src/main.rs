@@ -132,9 +132,12 @@ Examples:
   tmm draw linkages/five-bar-robot.json --scheme 110 70 -o robot.svg  two inputs: φ1 φ2
   tmm draw linkages/five-bar-robot.json --workspace B -o reach.svg
   tmm draw linkages/five-bar-robot.json --animate --along 120 60 90 60 90 90 -o path.svg
+  tmm draw linkages/five-bar-robot.json --diagram balance --along 120 60 90 90 -o mb.svg
 
-A linkage with two inputs is drawn at pairs φ1 φ2; its plan and animation follow a loop
-about the reference pose, or the path through the pairs of --along. A rocking crank's plan,
+A linkage with two inputs is drawn at pairs φ1 φ2; its plan, animation and diagrams follow
+a loop about the reference pose, or the path through the pairs of --along (a diagram's
+abscissa is the length along that path in the plane of the inputs, and its balance diagram
+plots both balancing moments M_b1 and M_b2). A rocking crank's plan,
 animation and diagrams run between its lock angles."
     )]
     Draw {
@@ -155,15 +158,16 @@ animation and diagrams run between its lock angles."
         /// slider input; the reference pose without one); φ1 φ2 for two inputs.
         #[arg(long, value_name = "φ", num_args = 0..=2, allow_negative_numbers = true)]
         forces: Option<Vec<f64>>,
-        /// A diagram over the cycle (balance without a KIND).
+        /// A diagram over the cycle (balance without a KIND); for two inputs, along their
+        /// path (see --along).
         #[arg(long, visible_alias = "diagrams", value_enum, value_name = "KIND", num_args = 0..=1, default_missing_value = "balance")]
         diagram: Option<DiagramArg>,
         /// The region a joint or named point reaches as two inputs move (each crank over a
         /// whole turn), its outline and the singular curves.
         #[arg(long, value_name = "POINT")]
         workspace: Option<String>,
-        /// Two inputs: the plan and the animation along the path through these pairs of input
-        /// coordinates φ1 φ2 (degrees; metres for a slider), by straight steps.
+        /// Two inputs: the plan, the animation and the diagrams along the path through these
+        /// pairs of input coordinates φ1 φ2 (degrees; metres for a slider), by straight steps.
         #[arg(long, value_name = "φ1 φ2", num_args = 1.., allow_negative_numbers = true)]
         along: Vec<f64>,
         /// The input speed ω, rad/s (negative: clockwise); the file's `speed` by default.

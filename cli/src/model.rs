@@ -60,13 +60,14 @@ pub struct InputInfo {
 pub struct GroupInfo {
     /// "RRR", "RRP", …
     pub kind: String,
-    /// Its links: a dyad's two (a triad's first two); every link of a general group.
+    /// Its links: a dyad's two; a triad's ternary link, then its three legs; every link of a
+    /// general group.
     pub links: Vec<String>,
-    /// Its joints: a dyad's outer, inner, outer; a general group's hinges between two of its
-    /// links, then its hinges to known links.
+    /// Its joints: a dyad's outer, inner, outer; a triad's or a general group's hinges
+    /// between two of its links, then its joints to known links.
     pub joints: Vec<String>,
-    /// How many of `joints` are a general group's hinges between two of its links (`None`
-    /// for a dyad or a triad).
+    /// How many of `joints` are a triad's or a general group's hinges between two of its
+    /// links (`None` for a dyad).
     pub inner: Option<usize>,
     /// The library's name of the group (used in column names).
     pub name: String,
@@ -118,6 +119,9 @@ pub struct Structure {
     pub groups: Vec<GroupInfo>,
     /// The range of the (first) crank.
     pub range: Range,
+    /// With two inputs, each input's range with the other fixed at its reference value
+    /// (first input, second); empty with one input.
+    pub input_ranges: Vec<Range>,
     /// Grashof's class, where the linkage is a four-bar.
     pub grashof: Option<String>,
     /// The smallest transmission angle of each group and the crank angle there (rad), or why

@@ -91,23 +91,25 @@ pub fn structure(s: &Structure) -> String {
         };
         let _ = writeln!(o, "  {}. {}  {line}", k + 1, g.kind);
     }
-    let range = match &s.range {
-        Range::FullTurn => "the crank turns fully".to_owned(),
-        Range::Rocking(a, b) => format!(
-            "the crank rocks between the lock angles {} and {} (a swing of {})",
-            deg(*a),
-            deg(*b),
-            deg(b - a)
-        ),
-        Range::Travel(a, b) => format!(
-            "the slider travels from s = {} m to {} m (a stroke of {} m)",
-            number(*a),
-            number(*b),
-            number(b - a)
-        ),
-        Range::Unknown(why) => format!("not determined: {why}"),
-    };
-    let _ = writeln!(o, "range: {range}");
+    if let [first, second] = s.inputs.as_slice()
+        && let [r1, r2] = s.input_ranges.as_slice()
+    {
+        let _ = writeln!(
+            o,
+            "range: two inputs move the linkage over a 2-D region of input pairs (draw what a \
+             point reaches with `tmm draw FILE --workspace POINT`); each input alone, the \
+             other fixed at its reference value:"
+        );
+        for (this, other, r) in [(first, second, r1), (second, first, r2)] {
+            let held = match other.kind {
+                InputKind::Crank => format!("{} at {}", other.link, direction(other.reference)),
+                InputKind::Slider => format!("{} at s = 0 m", other.link),
+            };
+            let _ = writeln!(o, "  {} ({held}): {}", this.link, range_text(r));
+        }
+    } else {
+        let _ = writeln!(o, "range: {}", range_text(&s.range));
+    }
     if let Some(g) = &s.grashof {
         let _ = writeln!(o, "Grashof: {g}");
     }
@@ -507,22 +509,8 @@ pub fn structure_json(s: &Structure) -> String {
             ("joints", array(g.joints.iter().map(|j| json_string(j)))),
         ])
     }));
-    let range = match &s.range {
-        Range::FullTurn => object(&[("kind", json_string("full turn"))]),
-        Range::Rocking(a, b) => object(&[
-            ("kind", json_string("rocking")),
-            ("from", json_number(*a)),
-            ("to", json_number(*b)),
-        ]),
-        Range::Travel(a, b) => object(&[
-            ("kind", json_string("travel")),
-            ("from", json_number(*a)),
-            ("to", json_number(*b)),
-        ]),
-        Range::Unknown(why) => {
-            object(&[("kind", json_string("unknown")), ("why", json_string(why))])
-        }
-    };
+    let range = range_json(&s.range);
+    let input_ranges = array(s.input_ranges.iter().map(range_json));
     let transmission = array(s.transmission.iter().map(|(name, t)| match t {
         Ok((mu, at)) => object(&[
             ("group", json_string(name)),
@@ -549,6 +537,7 @@ pub fn structure_json(s: &Structure) -> String {
         ("inputs", inputs),
         ("groups", groups),
         ("range", range),
+        ("input_ranges", input_ranges),
         (
             "grashof",
             s.grashof.as_deref().map_or("null".to_owned(), json_string),
@@ -631,4 +620,44 @@ pub fn dynamics_json(d: &DynamicsReport) -> String {
     ]);
     o.push('\n');
     o
+}
+
+/// A range in words: a full turn, the lock angles, a slider's travel, or why not known.
+fn range_text(range: &Range) -> String {
+    match range {
+        Range::FullTurn => "the crank turns fully".to_owned(),
+        Range::Rocking(a, b) => format!(
+            "the crank rocks between the lock angles {} and {} (a swing of {})",
+            deg(*a),
+            deg(*b),
+            deg(b - a)
+        ),
+        Range::Travel(a, b) => format!(
+            "the slider travels from s = {} m to {} m (a stroke of {} m)",
+            number(*a),
+            number(*b),
+            number(b - a)
+        ),
+        Range::Unknown(why) => format!("not determined: {why}"),
+    }
+}
+
+/// A range as JSON: its kind, and its ends (rad or m) or why it is not known.
+fn range_json(range: &Range) -> String {
+    match range {
+        Range::FullTurn => object(&[("kind", json_string("full turn"))]),
+        Range::Rocking(a, b) => object(&[
+            ("kind", json_string("rocking")),
+            ("from", json_number(*a)),
+            ("to", json_number(*b)),
+        ]),
+        Range::Travel(a, b) => object(&[
+            ("kind", json_string("travel")),
+            ("from", json_number(*a)),
+            ("to", json_number(*b)),
+        ]),
+        Range::Unknown(why) => {
+            object(&[("kind", json_string("unknown")), ("why", json_string(why))])
+        }
+    }
 }

@@ -7,9 +7,9 @@
 //! they run through every subcommand like the others, with these differences (each refusal a
 //! clear one-line error with exit code 1, never a panic):
 //! - `five-bar-robot.json` has two inputs (mobility 2): its pictures are taken at pairs
-//!   φ1 φ2, its plan and animation follow a loop about the reference pose, and its
-//!   `dynamics` is the mass matrix over a grid of the inputs. A diagram over the cycle and a
-//!   run-up or flywheel refuse it (it has no cycle of its own: asserted).
+//!   φ1 φ2, its plan, animation and diagrams follow a loop about the reference pose, and
+//!   its `dynamics` is the mass matrix over a grid of the inputs. A transfer function (a
+//!   derivative with respect to one input) and a run-up or flywheel refuse it (asserted).
 //! - `peaucellier-lipkin.json` and `chebyshev-straight-line.json` have rocking inputs: their
 //!   pictures, tables and reduced quantities are taken inside their lock angles; a run-up or
 //!   flywheel refuses them, naming the lock angles.
@@ -335,9 +335,8 @@ fn draw_every_picture_of_every_bundled_file() {
             let r = tmm(&args);
             // What a picture cannot show, one sentence says why.
             let refused = if two_inputs(&file) {
-                args.iter()
-                    .any(|a| a.starts_with("--diagram"))
-                    .then_some("has no cycle of its own")
+                args.contains(&"transfer")
+                    .then_some("a derivative with respect to one input")
             } else if args.contains(&"--workspace") {
                 Some("as two inputs move independently")
             } else if args.contains(&"--along") {

@@ -5,7 +5,7 @@ use super::plan_view::{path_inputs, thin, MAX_PLAN_POSITIONS};
 use super::Style;
 use crate::error::{Error, Result};
 use crate::kinematics::Motion;
-use crate::linkage::{Course, Output, Plan, Solver, Sweep};
+use crate::linkage::{Course, Inputs, Kinematics, Output, Plan, Solver, Sweep};
 use plotters::coord::Shift;
 use plotters::prelude::*;
 use std::f64::consts::TAU;
@@ -198,8 +198,9 @@ pub fn diagram(plan: &Plan, course: &Course, diagram: &Diagram, style: &Style) -
     // What each panel plots at one position.
     let specs = panel_specs(plan, diagram, input_unit)?;
     let mut a = plan.solver();
-    let eval =
-        |a: &mut Solver<'_>, m: Motion| -> Result<Values> { specs_values(plan, diagram, a, m) };
+    let eval = |a: &mut Solver<'_>, m: Motion| -> Result<Values> {
+        specs_values(plan, diagram, a, Inputs::one(m))
+    };
     let mut data: Vec<Option<Values>> = Vec::with_capacity(samples.len());
     let mut first_error = None;
     for &m in &samples {
@@ -362,22 +363,22 @@ impl Abscissa {
 }
 
 /// The sampled values of a diagram, for drawing its panels.
-struct Curves<'a> {
+pub(super) struct Curves<'a> {
     /// The abscissa of every sample.
-    xs: &'a [f64],
+    pub xs: &'a [f64],
     /// Every sample's values (per panel, per curve), `None` where the position failed.
-    data: &'a [Option<Values>],
+    pub data: &'a [Option<Values>],
     /// The course positions: number, abscissa and values.
-    marks: &'a [(usize, f64, Option<Values>)],
-    x_range: [f64; 2],
-    x_label: &'a str,
-    hodograph: bool,
-    reactions: bool,
+    pub marks: &'a [(usize, f64, Option<Values>)],
+    pub x_range: [f64; 2],
+    pub x_label: &'a str,
+    pub hodograph: bool,
+    pub reactions: bool,
 }
 
 impl Curves<'_> {
     /// Panel `p` of `spec`: its curves, its marks and the ranges that cover them.
-    fn panel(&self, p: usize, spec: &Spec) -> Panel {
+    pub(super) fn panel(&self, p: usize, spec: &Spec) -> Panel {
         let (xs, data, marks_data, x_range, hodograph) =
             (self.xs, self.data, self.marks, self.x_range, self.hodograph);
         let mut series = Vec::with_capacity(spec.series.len());
@@ -533,10 +534,10 @@ pub(super) fn pad(lo: f64, hi: f64, frac: f64) -> [f64; 2] {
 }
 
 /// The values at one position: per panel, per curve.
-type Values = Vec<Vec<f64>>;
+pub(super) type Values = Vec<Vec<f64>>;
 
 /// One panel's titles and the names of its curves.
-struct Spec {
+pub(super) struct Spec {
     title: String,
     x_label: String,
     y_label: String,
@@ -544,7 +545,7 @@ struct Spec {
     unwrap: bool,
 }
 
-fn check(plan: &Plan, d: &Diagram) -> Result<()> {
+pub(super) fn check(plan: &Plan, d: &Diagram) -> Result<()> {
     match d {
         Diagram::Kinematics(o) | Diagram::Transfer(o) => check_output(plan, o),
         Diagram::Hodograph(j) => plan.joint_id(j).map(|_| ()),
@@ -582,7 +583,7 @@ fn output_name(o: &Output) -> (String, &'static str) {
     }
 }
 
-fn panel_specs(plan: &Plan, d: &Diagram, input_unit: &str) -> Result<Vec<Spec>> {
+pub(super) fn panel_specs(plan: &Plan, d: &Diagram, input_unit: &str) -> Result<Vec<Spec>> {
     let name = plan.name();
     let one = |title: String, y: String, series: Vec<String>| Spec {
         title,
@@ -633,6 +634,29 @@ fn panel_specs(plan: &Plan, d: &Diagram, input_unit: &str) -> Result<Vec<Spec>> 
                 })
                 .collect()
         }
+        Diagram::Balance if plan.input_count() == 2 => {
+            // Each input's own: a crank's moment, N·m, a slider's force, N.
+            let units: Vec<&str> = super::diagrams_two::input_is_crank(plan)
+                .into_iter()
+                .map(|crank| if crank { "N·m" } else { "N" })
+                .collect();
+            let y = if units[0] == units[1] {
+                format!("M_b1, M_b2, {}", units[0])
+            } else {
+                format!("M_b1, {}; F_b2, {}", units[0], units[1])
+            };
+            let links = plan.input_links();
+            let names = plan.link_names();
+            vec![one(
+                format!("{name}: balancing moments of the two inputs"),
+                y,
+                links
+                    .iter()
+                    .enumerate()
+                    .map(|(i, l)| format!("input {} ({})", i + 1, names[l.index()]))
+                    .collect(),
+            )]
+        }
         Diagram::Balance => {
             let (t, y) = if plan.input_is_crank() {
                 ("balancing moment", "M_b, N·m")
@@ -681,13 +705,14 @@ fn panel_specs(plan: &Plan, d: &Diagram, input_unit: &str) -> Result<Vec<Spec>> 
     })
 }
 
-/// The values of every panel's curves at one input.
-fn specs_values(
+/// The values of every panel's curves at one position (one input's motion, or two).
+pub(super) fn specs_values(
     plan: &Plan,
     d: &Diagram,
     solver: &mut Solver<'_>,
-    m: Motion,
+    inputs: Inputs,
 ) -> Result<Vec<Vec<f64>>> {
+    let m = inputs.as_slice()[0];
     let finite = |v: Vec<Vec<f64>>| {
         if v.iter().flatten().all(|x| x.is_finite()) {
             Ok(v)
@@ -699,23 +724,33 @@ fn specs_values(
     };
     finite(match d {
         Diagram::Kinematics(o) => {
-            let v = plan.output(o, m)?;
+            let v = if inputs.len() == 1 {
+                plan.output(o, m)?
+            } else {
+                read_output(solver.kinematics(inputs)?, o)?
+            };
             vec![vec![v.value], vec![v.rate], vec![v.accel]]
         }
         Diagram::Transfer(o) => {
             let v = plan.transfer(o, m.value)?;
             vec![vec![v.value], vec![v.rate], vec![v.accel]]
         }
-        Diagram::Balance => vec![vec![solver.analyse(m)?.balance(0)?.value]],
+        Diagram::Balance if inputs.len() == 1 => vec![vec![solver.analyse(m)?.balance(0)?.value]],
+        Diagram::Balance => {
+            let a = solver.analyse(inputs)?;
+            vec![(0..inputs.len())
+                .map(|i| Ok(a.balance(i)?.value))
+                .collect::<Result<_>>()?]
+        }
         Diagram::Reactions => {
-            let a = solver.analyse(m)?;
+            let a = solver.analyse(inputs)?;
             vec![plan
                 .joint_ids()
                 .map(|j| Ok(a.reaction(j)?.force.norm()))
                 .collect::<Result<_>>()?]
         }
         Diagram::Friction => {
-            let a = solver.analyse(m)?;
+            let a = solver.analyse(inputs)?;
             let eta = a.efficiency()?.eta.ok_or(Error::Singular {
                 what: "instantaneous efficiency",
                 measure: "drive power",
@@ -728,8 +763,24 @@ fn specs_values(
             vec![vec![eta], lost]
         }
         Diagram::Hodograph(j) => {
-            let r = solver.analyse(m)?.reaction(j)?;
+            let r = solver.analyse(inputs)?.reaction(j)?;
             vec![vec![r.force.x, r.force.y]]
+        }
+    })
+}
+
+/// The value, rate and acceleration of `o` at a solved position.
+fn read_output(k: &Kinematics<'_>, o: &Output) -> Result<Motion> {
+    Ok(match o {
+        Output::Angle(n) => k.link(n.as_str())?,
+        Output::Slide(n) => k.slide(n.as_str())?,
+        Output::X(n) | Output::Y(n) => {
+            let p = k.joint(n.as_str()).or_else(|_| k.point(n.as_str()))?;
+            if matches!(o, Output::Y(_)) {
+                Motion::new(p.p.y, p.v.y, p.a.y)
+            } else {
+                Motion::new(p.p.x, p.v.x, p.a.x)
+            }
         }
     })
 }

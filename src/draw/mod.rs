@@ -20,7 +20,8 @@
 //! - [`diagram`]: the diagrams over the cycle ([`Diagram`]) — an output's position, velocity
 //!   and acceleration or its transfer functions, the balancing moment, the reactions'
 //!   magnitudes and the hodograph of one reaction — with SI units on every axis and the
-//!   course positions marked.
+//!   course positions marked; [`diagram_two`] draws them for a linkage with two inputs along
+//!   a path of its inputs (both balancing moments, an output's motion, the reactions).
 //!
 //! Conventions: the plane of the linkage (m, x right, y up) maps to the picture (px, x right,
 //! y down) by [`Frame`], one scale for both axes, so angles look as they are. On the diagrams
@@ -57,6 +58,7 @@
 
 mod animation;
 mod diagrams;
+mod diagrams_two;
 mod forces;
 mod frame;
 mod limits;
@@ -71,6 +73,7 @@ mod workspace;
 
 pub use animation::{animation, animation_path};
 pub use diagrams::{diagram, Chart, Diagram, Panel};
+pub use diagrams_two::diagram_two;
 pub use forces::forces;
 pub use frame::Frame;
 pub use plan_view::{plan_view, plan_view_two, MAX_PLAN_POSITIONS};

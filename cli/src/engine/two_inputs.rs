@@ -4,15 +4,17 @@
 
 use std::f64::consts::PI;
 
-use tmm::draw::{self, Style};
+use tmm::draw::{self, Diagram, Style};
 use tmm::dynamics::machines::LinearMotor;
 use tmm::dynamics::{run, LagrangeSystem as _, Rk4, RunOptions, State};
-use tmm::kinematics::Motion;
+use tmm::kinematics::{assembly_range, Motion};
 use tmm::linkage::dynamics::{LinkageSystem, Motor};
-use tmm::linkage::{Inputs, TwoInputCourse, TwoInputShape, WorkspaceOptions};
+use tmm::linkage::{Inputs, LinkId, Output, TwoInputCourse, TwoInputShape, WorkspaceOptions};
 
 use super::{failure, Machine};
-use crate::model::{DynamicsRequest, Failure, MassRow, TwoInputDynamics, TwoInputRun};
+use crate::model::{
+    DiagramKind, DynamicsRequest, Failure, MassRow, Range, TwoInputDynamics, TwoInputRun,
+};
 use tmm::nalgebra::Vector2;
 
 /// The nodes of the input grid of a workspace along each input (the library's default).
@@ -28,23 +30,29 @@ impl Machine {
         }
     }
 
-    /// A coordinate of input `k` as typed (degrees for a crank, m for a slider) in rad or m.
-    fn coordinate(&self, k: usize, typed: f64) -> f64 {
+    /// A coordinate of input `k` as typed after `option` (degrees for a crank, m for a
+    /// slider) in rad or m; an angle beyond ±[`MAX_ANGLE`](super::MAX_ANGLE) is refused.
+    fn coordinate(&self, option: &str, k: usize, typed: f64) -> Result<f64, Failure> {
         if self.is_crank(k) {
-            typed.to_radians()
+            super::typed_angle(option, typed)
         } else {
-            typed
+            Ok(typed)
         }
     }
 
     /// The inputs of a picture at one position: one coordinate per input as typed, or the
     /// reference pose for none; every input moving at `speed`.
-    pub(super) fn inputs_at(&self, typed: &[f64], speed: f64) -> Result<Inputs, Failure> {
+    pub(super) fn inputs_at(
+        &self,
+        option: &str,
+        typed: &[f64],
+        speed: f64,
+    ) -> Result<Inputs, Failure> {
         let n = self.plan.input_count();
         let reference = self.plan.reference_inputs();
         let value = |k: usize| match typed.get(k) {
-            Some(&v) => self.coordinate(k, v),
-            None => reference[k],
+            Some(&v) => self.coordinate(option, k, v),
+            None => Ok(reference[k]),
         };
         if !typed.is_empty() && typed.len() != n {
             return Err(Failure::new(format!(
@@ -63,12 +71,38 @@ impl Machine {
                 "give the input's angle in degrees (metres for a slider)"
             }));
         }
-        let one = |k: usize| Motion::new(value(k), speed, 0.0);
+        let one = |k: usize| Ok::<_, Failure>(Motion::new(value(k)?, speed, 0.0));
         Ok(if n == 2 {
-            Inputs::two(one(0), one(1))
+            Inputs::two(one(0)?, one(1)?)
         } else {
-            Inputs::one(one(0))
+            Inputs::one(one(0)?)
         })
+    }
+
+    /// Each input's range with the other fixed at its reference value: a crank's full turn
+    /// or its lock angles (the library's assembly range, followed from the reference pose), a
+    /// slider's travel.
+    pub(super) fn input_ranges(&self) -> Vec<Range> {
+        let plan = &self.plan;
+        let r = plan.reference_inputs();
+        (0..2)
+            .map(|k| {
+                let at = |x: f64| {
+                    let mut q = [Motion::fixed(r[0]), Motion::fixed(r[1])];
+                    q[k] = Motion::fixed(x);
+                    Inputs::two(q[0], q[1])
+                };
+                if !self.is_crank(k) {
+                    return super::travel(plan.size(), r[k], |s| plan.kinematics(at(s)).is_ok());
+                }
+                let mut solver = plan.solver();
+                match assembly_range(r[k], |x| solver.kinematics(at(x)).map(|_| ())) {
+                    Ok(None) => Range::FullTurn,
+                    Ok(Some((a, b))) => Range::Rocking(a.min(b), a.max(b)),
+                    Err(e) => Range::Unknown(e.to_string()),
+                }
+            })
+            .collect()
     }
 
     /// The path of a linkage with two inputs for the plan (`n` = 12 positions) and the
@@ -93,8 +127,13 @@ impl Machine {
         }
         let points: Vec<[f64; 2]> = along
             .chunks(2)
-            .map(|p| [self.coordinate(0, p[0]), self.coordinate(1, p[1])])
-            .collect();
+            .map(|p| {
+                Ok([
+                    self.coordinate("--along", 0, p[0])?,
+                    self.coordinate("--along", 1, p[1])?,
+                ])
+            })
+            .collect::<Result<_, Failure>>()?;
         let lengths: Vec<f64> = points
             .windows(2)
             .map(|w| (w[1][0] - w[0][0]).hypot(w[1][1] - w[0][1]))
@@ -168,6 +207,62 @@ impl Machine {
             .map_err(|e| failure(&e))
     }
 
+    /// A diagram of a linkage with two inputs along its path (180 positions; the loop about
+    /// the reference pose, or the path through the pairs of `along`): both balancing moments,
+    /// the motion of the described output (without one, the x of the first joint on no input
+    /// link and off the frame, the end point of a five-bar), the reactions, or the hodograph
+    /// of the first crank's pin.
+    pub(super) fn diagram_two(
+        &self,
+        kind: DiagramKind,
+        along: &[f64],
+        speed: f64,
+    ) -> Result<String, Failure> {
+        let style = Style::default();
+        let tall = Style {
+            height: 900,
+            ..Style::default()
+        };
+        let (diagram, style) = match kind {
+            DiagramKind::Kinematics => (Diagram::Kinematics(self.output_two()), &tall),
+            DiagramKind::Transfer => {
+                return Err(Failure::new(
+                    "a transfer function is a derivative with respect to one input, and this \
+                     linkage has two",
+                )
+                .hint("`--diagram kinematics` draws an output's motion along the path"));
+            }
+            DiagramKind::Balance => (Diagram::Balance, &style),
+            DiagramKind::Reactions => (Diagram::Reactions, &style),
+            DiagramKind::Hodograph => (Diagram::Hodograph(self.crank_pin()?), &style),
+        };
+        let course = self.two_input_path(along, 180, speed)?;
+        draw::diagram_two(&self.plan, &course, &diagram, style)
+            .map(|c| c.svg)
+            .map_err(|e| failure(&e))
+    }
+
+    /// The output of a diagram of a linkage with two inputs: the described one, or the x of
+    /// the first joint on no input link and off the frame (the last link's angle without one).
+    fn output_two(&self) -> Output {
+        if let Some(o) = &self.linkage.output {
+            return o.clone();
+        }
+        let plan = &self.plan;
+        let inputs = plan.input_links();
+        let free = (0..plan.joint_names().len()).find(|&j| {
+            plan.joint_links(j)
+                .is_ok_and(|l| !l.contains(&LinkId::FRAME) && l.iter().all(|k| !inputs.contains(k)))
+        });
+        match free {
+            Some(j) => Output::X(plan.joint_names()[j].clone()),
+            None => {
+                let names = plan.link_names();
+                Output::Angle(names[names.len() - 1].clone())
+            }
+        }
+    }
+
     /// The workspace of the joint or named point `point`: the region it reaches as both
     /// inputs move (each crank over a whole turn), its outline and the singular curves.
     pub(super) fn workspace(
@@ -220,7 +315,9 @@ impl Machine {
     ) -> Result<TwoInputDynamics, Failure> {
         let reference = self.plan.reference_inputs();
         let half = |k: usize| match span {
-            Some(v) => self.coordinate(k, v),
+            // Checked below: positive, finite and at most half a turn.
+            Some(v) if self.is_crank(k) => v.to_radians(),
+            Some(v) => v,
             None if self.is_crank(k) => 30f64.to_radians(),
             None => 0.1 * self.plan.size(),
         };
