@@ -9,15 +9,18 @@
 //! - batch positions, velocities and accelerations per position / hand kernel;
 //! - one candidate over 360 positions / 360 single-position scalar solves (goal ≤ 2; the
 //!   synthesis case, with the angles' sines and cosines made once per search);
-//! - with `--features rayon`: the parallel batch / the serial one.
+//! - with `--features rayon`: the parallel batch / the serial one, and a population of
+//!   candidates scored in parallel / serially (the synthesis case). One command, which skips
+//!   the other groups and prints the `rayon |` lines:
+//!   `TMM_BATCH=rayon cargo bench -p tmm-bench --bench batch --features rayon -- batch_rayon`.
 
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion, Throughput};
 use nalgebra::{Point2, Vector2};
 use std::hint::black_box;
 use std::time::Duration;
 use tmm::kinematics::batch::{
-    coupler_point, four_bar_motions, four_bar_positions, four_bars_at, CrankAngles, FourBarColumns,
-    FourBarDims, Positions, Rates,
+    coupler_point, four_bar_motions, four_bar_positions, four_bar_scores, four_bars_at,
+    CrankAngles, FourBarColumns, FourBarDims, Positions, Rates,
 };
 use tmm::kinematics::{crank, rrr_dyad, Branch, Motion, PointMotion};
 
@@ -61,7 +64,15 @@ fn scalar(d: &FourBarDims, angles: &[f64]) -> f64 {
     acc
 }
 
+/// `TMM_BATCH=rayon` runs only the parallel group.
+fn only_rayon() -> bool {
+    std::env::var("TMM_BATCH").is_ok_and(|v| v == "rayon")
+}
+
 fn per_position(c: &mut Criterion) {
+    if only_rayon() {
+        return;
+    }
     let d = dims();
     let mut g = c.benchmark_group("batch_four_bar");
     g.measurement_time(Duration::from_secs(2))
@@ -138,6 +149,9 @@ fn per_position(c: &mut Criterion) {
 }
 
 fn candidates(c: &mut Criterion) {
+    if only_rayon() {
+        return;
+    }
     let n = 1024;
     let mut bars = FourBarColumns::default();
     for (k, phi) in seeded_angles(n).iter().enumerate() {
@@ -158,8 +172,9 @@ fn candidates(c: &mut Criterion) {
     g.finish();
 }
 
-/// This process's CPU time so far, all threads, user and system (Linux `/proc/self/stat`,
-/// in clock ticks of 10 ms); `None` where that file is not.
+/// This process's CPU time so far, all threads, user and system (what `getrusage` reports,
+/// read from Linux's `/proc/self/stat` in clock ticks of 10 ms, since the bench has no
+/// `libc`); `None` where that file is not.
 #[cfg(feature = "rayon")]
 fn cpu_time() -> Option<Duration> {
     let stat = std::fs::read_to_string("/proc/self/stat").ok()?;
@@ -183,15 +198,83 @@ fn wall_and_cpu<R>(secs: f64, mut f: impl FnMut() -> R) -> (Duration, Option<Dur
     (wall, cpu)
 }
 
-/// Rayon over batches (group `batch_rayon`): `par_four_bar_positions` against the serial
-/// batch on 2^18 positions, the same lanes (checked bit for bit first). Beside the ratio of
-/// wall times it prints each one's CPU time per call and the load average, since on a shared
-/// machine a parallel speed-up is bounded by the cores the others leave free: a speed-up
-/// below the core count with the parallel CPU time near the serial one means the cores were
-/// busy, not that the work did not split.
+/// Prints one `rayon |` line: the speed-up of `par` over `serial` from the fastest
+/// alternating rounds and from 2 s of each, with both one's wall and CPU time per call.
+#[cfg(feature = "rayon")]
+fn speed_up<A, B>(
+    name: &str,
+    elements: u32,
+    mut par: impl FnMut() -> A,
+    mut serial: impl FnMut() -> B,
+) {
+    let ratio = yardstick::print_ratio(name, elements, &mut par, &mut serial);
+    let (par_wall, par_cpu) = wall_and_cpu(2.0, &mut par);
+    let (ser_wall, ser_cpu) = wall_and_cpu(2.0, &mut serial);
+    let ms = |t: Option<Duration>| t.map_or(f64::NAN, |t| t.as_secs_f64() * 1e3);
+    let load = std::fs::read_to_string("/proc/loadavg").unwrap_or_default();
+    println!(
+        "rayon | {name}: {} cores, speed-up {:.2} (fastest rounds), {:.2} (2 s each): wall \
+         {:.3} ms parallel vs {:.3} ms serial, CPU {:.3} ms vs {:.3} ms per call; load average {}",
+        std::thread::available_parallelism().map_or(0, usize::from),
+        1.0 / ratio,
+        ser_wall.as_secs_f64() / par_wall.as_secs_f64(),
+        par_wall.as_secs_f64() * 1e3,
+        ser_wall.as_secs_f64() * 1e3,
+        ms(par_cpu),
+        ms(ser_cpu),
+        load.trim()
+    );
+}
+
+/// A population of `count` candidate four-bars near `dims()` (some that cannot be assembled
+/// over the whole turn), seeded.
+#[cfg(feature = "rayon")]
+fn population(count: usize) -> Vec<FourBarDims> {
+    seeded_angles(count)
+        .iter()
+        .enumerate()
+        .map(|(k, phi)| {
+            let mut d = dims();
+            d.l_oa = 0.05 + 0.06 * phi / std::f64::consts::TAU;
+            d.l_ab += 0.01 * (k % 7) as f64;
+            d.coupler.y += 0.002 * (k % 11) as f64;
+            d
+        })
+        .collect()
+}
+
+/// The squared distance of the coupler point to a target curve (a circle of 0.1 m about
+/// (0.3, 0.25)) summed over the solved lanes, plus a penalty per failed lane: one error
+/// number per candidate, as a path synthesis scores it.
+#[cfg(feature = "rayon")]
+fn path_error(_: usize, p: &Positions) -> f64 {
+    let mut e = 0.0;
+    for i in 0..p.p_x.len() {
+        let (x, y) = (p.p_x[i] - 0.3, p.p_y[i] - 0.25);
+        let miss = (x * x + y * y).sqrt() - 0.1;
+        e += if p.status[i] == tmm::kinematics::batch::Lane::Ok {
+            miss * miss
+        } else {
+            1.0
+        };
+    }
+    e
+}
+
+/// Rayon over batches (group `batch_rayon`):
+/// - `par_four_bar_positions` against the serial batch on 2^18 positions of one four-bar,
+///   the same lanes (checked bit for bit first);
+/// - a population of 4096 candidates, each over 360 positions to one error number, by
+///   `par_four_bar_scores` against `four_bar_scores` (checked equal first): the
+///   compute-bound case a synthesis runs, each candidate's columns in a worker's cache.
+///
+/// Beside each ratio of wall times it prints each one's CPU time per call and the load
+/// average, since on a shared machine a parallel speed-up is bounded by the cores the others
+/// leave free: a speed-up below the core count with the parallel CPU time near the serial one
+/// means the cores were busy, not that the work did not split.
 #[cfg(feature = "rayon")]
 fn parallel(c: &mut Criterion) {
-    use tmm::kinematics::batch::par_four_bar_positions;
+    use tmm::kinematics::batch::{par_four_bar_positions, par_four_bar_scores};
     let n = 1 << 18;
     let d = dims();
     let angles = CrankAngles::new(&seeded_angles(n));
@@ -205,31 +288,27 @@ fn parallel(c: &mut Criterion) {
             .all(|(p, q)| p.to_bits() == q.to_bits()));
     }
     assert_eq!(a.status, b.status);
-    let load = std::fs::read_to_string("/proc/loadavg").unwrap_or_default();
-    let ratio = yardstick::print_ratio(
+    speed_up(
         "rayon batch / serial batch (2^18 positions)",
         n as u32,
         || par_four_bar_positions(black_box(&d), &angles, a.columns_mut()).unwrap(),
         || four_bar_positions(black_box(&d), &angles, b.columns_mut()).unwrap(),
     );
-    let (par_wall, par_cpu) = wall_and_cpu(2.0, || {
-        par_four_bar_positions(black_box(&d), &angles, a.columns_mut()).unwrap()
-    });
-    let (ser_wall, ser_cpu) = wall_and_cpu(2.0, || {
-        four_bar_positions(black_box(&d), &angles, b.columns_mut()).unwrap()
-    });
-    let ms = |t: Option<Duration>| t.map_or(f64::NAN, |t| t.as_secs_f64() * 1e3);
-    println!(
-        "rayon | {} cores, speed-up {:.2} (fastest rounds), {:.2} (2 s each): wall {:.3} ms \
-         parallel vs {:.3} ms serial, CPU {:.3} ms vs {:.3} ms per call; load average {}",
-        std::thread::available_parallelism().map_or(0, usize::from),
-        1.0 / ratio,
-        ser_wall.as_secs_f64() / par_wall.as_secs_f64(),
-        par_wall.as_secs_f64() * 1e3,
-        ser_wall.as_secs_f64() * 1e3,
-        ms(par_cpu),
-        ms(ser_cpu),
-        load.trim()
+    let pop = population(4096);
+    let turn = CrankAngles::turn(360);
+    let serial = four_bar_scores(&pop, &turn, path_error);
+    let par = par_four_bar_scores(&pop, &turn, path_error);
+    assert!(serial
+        .iter()
+        .zip(&par)
+        .all(|(p, q)| p.to_bits() == q.to_bits()));
+    // Finite errors that tell the candidates apart.
+    assert!(serial.iter().all(|e| e.is_finite()) && serial.iter().any(|&e| e != serial[0]));
+    speed_up(
+        "rayon scores / serial scores (4096 candidates x 360 positions)",
+        (pop.len() * turn.len()) as u32,
+        || par_four_bar_scores(black_box(&pop), &turn, path_error),
+        || four_bar_scores(black_box(&pop), &turn, path_error),
     );
     let mut g = c.benchmark_group("batch_rayon");
     g.measurement_time(Duration::from_secs(3))
@@ -241,6 +320,13 @@ fn parallel(c: &mut Criterion) {
     });
     g.bench_function("rayon", |bch| {
         bch.iter(|| par_four_bar_positions(black_box(&d), &angles, a.columns_mut()).unwrap())
+    });
+    g.throughput(Throughput::Elements((pop.len() * turn.len()) as u64));
+    g.bench_function("scores_serial", |bch| {
+        bch.iter(|| four_bar_scores(black_box(&pop), &turn, path_error))
+    });
+    g.bench_function("scores_rayon", |bch| {
+        bch.iter(|| par_four_bar_scores(black_box(&pop), &turn, path_error))
     });
     g.finish();
 }

@@ -713,11 +713,11 @@ fn four_bar_over_n(c: &mut Criterion) {
     g.sample_size(10)
         .warm_up_time(Duration::from_millis(300))
         .measurement_time(Duration::from_secs(2));
-    // `TMM_OVER_N=36,1000` runs only those N (all four by default).
+    // `TMM_OVER_N=36,360` runs only those N (all five by default).
     let only: Option<Vec<usize>> = std::env::var("TMM_OVER_N")
         .ok()
         .map(|v| v.split(',').filter_map(|x| x.trim().parse().ok()).collect());
-    for n in [36usize, 1_000, 36_000, 1_000_000] {
+    for n in [36usize, 360, 3_600, 36_000, 1_000_000] {
         if only.as_ref().is_some_and(|o| !o.contains(&n)) {
             continue;
         }

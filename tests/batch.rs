@@ -4,8 +4,8 @@
 
 use nalgebra::{Point2, Vector2};
 use tmm::kinematics::batch::{
-    coupler_point, four_bar_motions, four_bar_positions, four_bars_at, CrankAngles, FourBarColumns,
-    FourBarDims, Lane, Positions, Rates,
+    coupler_point, four_bar_motions, four_bar_positions, four_bar_scores, four_bars_at,
+    CrankAngles, FourBarColumns, FourBarDims, Lane, Positions, Rates,
 };
 use tmm::kinematics::{crank, rrr_dyad, Branch, Motion, PointMotion};
 use tmm::Error;
@@ -316,5 +316,57 @@ fn the_parallel_batch_equals_the_serial_one() {
     assert_eq!(a.status, b.status);
     for (x, y) in a.b_x.iter().zip(&b.b_x) {
         assert!(same(*x, *y));
+    }
+}
+
+/// A path error of one candidate's positions against a target (a circle), with each failed
+/// lane counted by its own term: every column and the status take part.
+fn path_score(k: usize, p: &Positions) -> f64 {
+    let mut e = k as f64;
+    for i in 0..p.status.len() {
+        if p.status[i] == Lane::Ok {
+            let (dx, dy) = (p.p_x[i] - 0.3 * (i as f64).cos(), p.p_y[i] - 0.3);
+            e += dx * dx + dy * dy + p.b_x[i] * p.b_y[i] + p.measure[i];
+        } else {
+            e += 1e3 * (p.status[i] as u8 as f64) + p.measure[i].abs().min(1.0);
+        }
+    }
+    e
+}
+
+/// Candidates with failing lanes mixed in; each one's score is that of its own batch.
+fn candidates(rng: &mut Rng, count: usize) -> (Vec<FourBarDims>, CrankAngles) {
+    let dims: Vec<FourBarDims> = (0..count).map(|_| random_dims(rng)).collect();
+    (dims, CrankAngles::new(&random_angles(rng, 97)))
+}
+
+#[test]
+fn scores_of_candidates_are_those_of_their_own_batches() {
+    let mut rng = Rng(2601);
+    let (dims, angles) = candidates(&mut rng, 400);
+    let scores = four_bar_scores(&dims, &angles, path_score);
+    let mut out = Positions::new(angles.len());
+    let mut failed = 0;
+    for (k, d) in dims.iter().enumerate() {
+        four_bar_positions(d, &angles, out.columns_mut()).unwrap();
+        failed += out.status.iter().filter(|&&s| s != Lane::Ok).count();
+        assert!(same(scores[k], path_score(k, &out)), "candidate {k}");
+    }
+    // Failing lanes were met (so a score depends on the previous candidate's columns only
+    // if a lane left one unwritten).
+    assert!(failed > 1000, "{failed}");
+}
+
+#[cfg(feature = "rayon")]
+#[test]
+fn the_parallel_scores_equal_the_serial_ones() {
+    use tmm::kinematics::batch::par_four_bar_scores;
+    let mut rng = Rng(2602);
+    let (dims, angles) = candidates(&mut rng, 3000);
+    let serial = four_bar_scores(&dims, &angles, path_score);
+    let parallel = par_four_bar_scores(&dims, &angles, path_score);
+    assert_eq!(serial.len(), parallel.len());
+    for (a, b) in serial.iter().zip(&parallel) {
+        assert!(same(*a, *b));
     }
 }

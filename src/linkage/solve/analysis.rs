@@ -4,7 +4,6 @@
 use super::kinematics::Kinematics;
 pub use super::reaction::{Balance, Reaction};
 use super::spare::StaticBuffers;
-use super::state::KinState;
 use crate::error::Result;
 use crate::kinematics::Motion;
 use crate::kinetostatics::Conditioning;
@@ -14,6 +13,34 @@ use crate::Load;
 use nalgebra::{Point2, Vector2};
 use std::mem::take;
 use std::ops::Deref;
+
+/// A closed form that divides by nothing.
+const ONE: Conditioning = Conditioning {
+    measure: 1.0,
+    condition: 1.0,
+};
+
+/// The static buffers of `plan`'s positions (every solve writes each load, reaction and
+/// conditioning it reads).
+#[cold]
+fn new_statics(plan: &Plan) -> StaticBuffers {
+    let c = &plan.chain;
+    let n = c.link_names.len();
+    let balance = Balance {
+        value: 0.0,
+        force: Vector2::zeros(),
+        point: Point2::origin(),
+        conditioning: ONE,
+    };
+    StaticBuffers {
+        applied: Vec::with_capacity(n + plan.loads.len() * 2),
+        acc: vec![Load::zero(Point2::origin()); n].into(),
+        reactions: vec![Reaction::hinge(0, 0, Vector2::zeros(), Point2::origin()); c.joints.len()]
+            .into(),
+        conditioning: vec![ONE; c.groups.len()].into(),
+        balances: vec![balance; 2].into(),
+    }
+}
 
 /// One analysed position of a [`Plan`]: its [`Kinematics`] (every kinematic reading, through
 /// `Deref`), the applied loads, the reactions and the balances.
@@ -25,11 +52,11 @@ use std::ops::Deref;
 pub struct Analysis<'p> {
     pub(crate) k: Kinematics<'p>,
     pub(crate) applied: Vec<(usize, Load)>,
-    pub(crate) acc: Vec<Load>,
-    pub(crate) reactions: Vec<Reaction>,
-    pub(crate) conditioning: Vec<Conditioning>,
-    /// One per input (the first `plan.input_count()` are meaningful).
-    pub(crate) balances: [Balance; 2],
+    pub(crate) acc: Box<[Load]>,
+    pub(crate) reactions: Box<[Reaction]>,
+    pub(crate) conditioning: Box<[Conditioning]>,
+    /// One per input (two; the first `plan.input_count()` are meaningful).
+    pub(crate) balances: Box<[Balance]>,
     /// The joints' friction (empty buffers for a frictionless plan).
     pub(crate) friction: super::friction::FrictionState,
 }
@@ -42,7 +69,8 @@ impl<'p> Deref for Analysis<'p> {
     }
 }
 
-/// The buffers go back to the plan for its next solve (see `spare`).
+/// The static buffers go back into the position's box, which goes back to the plan for its
+/// next one-shot solve when the kinematics are dropped (see `spare`).
 impl Drop for Analysis<'_> {
     #[inline]
     fn drop(&mut self) {
@@ -51,68 +79,35 @@ impl Drop for Analysis<'_> {
             acc: take(&mut self.acc),
             reactions: take(&mut self.reactions),
             conditioning: take(&mut self.conditioning),
+            balances: take(&mut self.balances),
         };
-        self.k
-            .plan
-            .spare
-            .give(self.k.kin.take_buffers(), Some(statics));
+        self.k.kin.park(statics);
     }
 }
 
 impl<'p> Analysis<'p> {
-    /// Buffers for analysing positions of `plan`: a dropped analysis's, or allocated here.
+    /// Buffers for analysing positions of `plan`: a dropped solve's box, or allocated here
+    /// (the static buffers when the box has none yet).
+    #[inline]
     pub(crate) fn new(plan: &'p Plan) -> Self {
-        let c = &plan.chain;
-        let n = c.link_names.len();
-        let one = Conditioning {
-            measure: 1.0,
-            condition: 1.0,
-        };
-        let balance = Balance {
-            value: 0.0,
-            force: Vector2::zeros(),
-            point: Point2::origin(),
-            conditioning: one,
-        };
-        // Built empty, then the buffers moved into place (not built apart and copied in).
-        let mut a = Self {
-            k: Kinematics {
-                plan,
-                kin: KinState::default(),
-            },
-            applied: Vec::new(),
-            acc: Vec::new(),
-            reactions: Vec::new(),
-            conditioning: Vec::new(),
-            balances: [balance; 2],
+        let mut k = Kinematics::new(plan);
+        let mut s = k.kin.unpark();
+        if s.acc.is_empty() {
+            s = new_statics(plan);
+        }
+        Self {
+            k,
+            applied: s.applied,
+            acc: s.acc,
+            reactions: s.reactions,
+            conditioning: s.conditioning,
+            balances: s.balances,
             friction: if plan.friction.is_some() {
-                super::friction::FrictionState::new(c.joints.len())
+                super::friction::FrictionState::new(plan.chain.joints.len())
             } else {
                 super::friction::FrictionState::default()
             },
-        };
-        let (kin, statics) = plan.spare.analysis();
-        match kin {
-            Some(b) => a.k.kin.put_buffers(b),
-            None => a.k.kin = KinState::new(c),
         }
-        // Every solve writes each load, reaction and conditioning it reads.
-        match statics {
-            Some(s) => {
-                a.applied = s.applied;
-                a.acc = s.acc;
-                a.reactions = s.reactions;
-                a.conditioning = s.conditioning;
-            }
-            None => {
-                a.applied = Vec::with_capacity(n + plan.loads.len() * 2);
-                a.acc = vec![Load::zero(Point2::origin()); n];
-                a.reactions =
-                    vec![Reaction::hinge(0, 0, Vector2::zeros(), Point2::origin()); c.joints.len()];
-                a.conditioning = vec![one; c.groups.len()];
-            }
-        }
-        a
     }
 
     /// Kinematics, loads, the reactions from the last group back to the input links, and the

@@ -1,7 +1,7 @@
 //! The kinematics of one position, alone: the result of a solve that asks for no loads, so it
 //! has no reactions to give.
 
-use super::state::KinState;
+use super::spare::Held;
 use crate::angle::cross;
 use crate::error::Result;
 use crate::kinematics::{LinkMotion, Motion, PointMotion};
@@ -31,15 +31,16 @@ use nalgebra::Vector2;
 #[derive(Debug, Clone)]
 pub struct Kinematics<'p> {
     pub(crate) plan: &'p Plan,
-    pub(crate) kin: KinState,
+    /// The position's buffers, one box (read as a `KinState`).
+    pub(crate) kin: Held,
 }
 
-/// The buffers go back to the plan for its next solve (see `spare`).
+/// The buffers go back to the plan for its next one-shot solve (see `spare`).
 impl Drop for Kinematics<'_> {
     #[inline]
     fn drop(&mut self) {
-        if let Some(b) = self.kin.take_buffers() {
-            self.plan.spare.give(Some(b), None);
+        if let Some(p) = self.kin.0.take() {
+            self.plan.spare.give(p);
         }
     }
 }
@@ -50,7 +51,7 @@ impl<'p> Kinematics<'p> {
     pub(crate) fn new(plan: &'p Plan) -> Self {
         Self {
             plan,
-            kin: KinState::reusing(&plan.chain, plan.spare.kin()),
+            kin: Held::of(&plan.chain, &plan.spare),
         }
     }
 

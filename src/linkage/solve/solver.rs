@@ -79,11 +79,12 @@ impl Plan {
         }
     }
 
-    /// Analyses one position, the one-shot convenience. Its buffers are those a dropped
-    /// analysis of this plan gave back (allocated when there are none), so a loop of
-    /// `plan.analyse` allocates nothing after its first call. For many positions a reused
-    /// [`solver`](Self::solver) or [`cycle`](Self::cycle) is still the fastest form: the
-    /// analysis is not moved out at every position.
+    /// Analyses one position, the one-shot convenience. Its buffers are one box, the one a
+    /// dropped analysis of this plan gave back (allocated when there is none), so a loop of
+    /// `plan.analyse` allocates nothing after its first call, and the result moves a pointer
+    /// to its buffers, not the buffers. A reused [`solver`](Self::solver) or
+    /// [`cycle`](Self::cycle) does the same work without giving the box back at every
+    /// position.
     ///
     /// # Errors
     /// As [`Solver::analyse`].
@@ -100,9 +101,14 @@ impl Plan {
     /// ```
     #[inline]
     pub fn analyse(&self, inputs: impl Into<Inputs>) -> Result<Analysis<'_>> {
-        let mut a = Analysis::new(self);
-        a.solve(inputs.into().as_slice())?;
-        Ok(a)
+        // Built where it is returned (one value returned on every path), not moved there.
+        let mut r = Ok(Analysis::new(self));
+        if let Ok(a) = &mut r
+            && let Err(e) = a.solve(inputs.into().as_slice())
+        {
+            r = Err(e);
+        }
+        r
     }
 
     /// The kinematics alone at one position, the one-shot convenience (see
@@ -112,8 +118,12 @@ impl Plan {
     /// As [`Solver::kinematics`].
     #[inline]
     pub fn kinematics(&self, inputs: impl Into<Inputs>) -> Result<Kinematics<'_>> {
-        let mut k = Kinematics::new(self);
-        k.solve(inputs.into().as_slice())?;
-        Ok(k)
+        let mut r = Ok(Kinematics::new(self));
+        if let Ok(k) = &mut r
+            && let Err(e) = k.solve(inputs.into().as_slice())
+        {
+            r = Err(e);
+        }
+        r
     }
 }

@@ -2,7 +2,6 @@
 //! position: each link's motion with its unit vector, the groups' constant turns and their
 //! kinematic determinants.
 
-use super::spare::KinBuffers;
 use crate::error::Error;
 use crate::kinematics::{Guide, LinkMotion, Motion, PointMotion};
 use crate::linkage::inputs::Inputs;
@@ -72,51 +71,6 @@ impl KinState {
             triads: vec![None; chain.groups.len()],
             general_work: vec![Default::default(); chain.groups.len()],
         }
-    }
-
-    /// Puts a spare set of buffers of another solve of the same plan in place (only the
-    /// triads' poses are cleared: every solve writes whatever else it reads).
-    #[inline]
-    pub fn put_buffers(&mut self, b: KinBuffers) {
-        self.links = b.links;
-        self.units = b.units;
-        self.turns = b.turns;
-        self.dets = b.dets;
-        self.triads = b.triads;
-        self.triads.fill(None);
-        // A general group's Newton buffers: only scratch space, every solve overwrites them.
-        self.general_work = b.general_work;
-    }
-
-    /// The buffers of `chain`'s positions: `spare` if there is one (see
-    /// [`put_buffers`](Self::put_buffers)), else new ones.
-    #[inline]
-    pub fn reusing(chain: &Chain, spare: Option<KinBuffers>) -> Self {
-        match spare {
-            Some(b) => {
-                let mut s = Self::default();
-                s.put_buffers(b);
-                s
-            }
-            None => Self::new(chain),
-        }
-    }
-
-    /// Takes the buffers out (to give them to the next solve), leaving none: `None` if they
-    /// were taken already.
-    #[inline]
-    pub fn take_buffers(&mut self) -> Option<KinBuffers> {
-        if self.links.capacity() == 0 {
-            return None;
-        }
-        Some(KinBuffers {
-            links: std::mem::take(&mut self.links),
-            units: std::mem::take(&mut self.units),
-            turns: std::mem::take(&mut self.turns),
-            dets: std::mem::take(&mut self.dets),
-            triads: std::mem::take(&mut self.triads),
-            general_work: std::mem::take(&mut self.general_work),
-        })
     }
 
     /// The read-only view of this position.
