@@ -137,6 +137,22 @@ pub fn double_butterfly() -> Linkage {
     bundled!("double-butterfly.json")
 }
 
+/// The six-bar of [`six_bar_triad`] with a sliding pair in its triad: its rocker 4 replaced
+/// by a slider block `slider 4` hinged to the ternary link at B2 = (0.51, 0.3) m and sliding
+/// on a frame guide through B2 along (0.3, −0.04) (the tangent of rocker 4's arc at B2), so
+/// that the group is a triad whose first leg is a slider on a guide of the frame (the outer
+/// pair). A documented layout, not a published one: besides the loads of [`six_bar_triad`],
+/// a resistance of 100 N opposes the slide. Its reference figure: over a turn of the crank
+/// the slide travels from −0.221899 m to +0.016157 m of the drawn position, a stroke of
+/// 0.238056 m (the tests check it, and every joint to 1e-9 of the size, against an
+/// independent solve of the group). Not in [`all`]: the main example runs it from its file.
+///
+/// The file `linkages/six-bar-slider-triad.json`.
+#[must_use]
+pub fn six_bar_slider_triad() -> Linkage {
+    bundled!("six-bar-slider-triad.json")
+}
+
 /// Every bundled linkage of one input, in the order of the files under `linkages/`.
 #[must_use]
 pub fn all() -> Vec<Linkage> {

@@ -85,7 +85,7 @@ impl TorsionPlan {
 }
 
 /// `a` brought into (−π, π].
-fn wrap(a: f64) -> f64 {
+pub(super) fn wrap(a: f64) -> f64 {
     let w = a - 2.0 * PI * (a / (2.0 * PI)).round();
     if w <= -PI {
         w + 2.0 * PI

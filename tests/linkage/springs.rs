@@ -486,3 +486,66 @@ fn a_torsion_spring_that_would_pass_half_a_turn_is_refused_by_name() {
     // Free a quarter turn away, the twist stays within π/2 + the swing < π.
     assert!(on(["frame", "rocker"], Some(rocker_angle + 1.0)).is_ok());
 }
+
+/// A triple-rocker four-bar whose input crank rocks: crank O1A = 1, coupler AB = 1, rocker
+/// O3B = 1 with O3 = (1.5, 0) m (s + l = 2.5 > p + q = 2), drawn at φ = 0.5; the crank locks
+/// where |AO3| = 2, at φ = ±acos(−1/4), with `loads`.
+fn triple_rocker(loads: Vec<LoadSpec>) -> Linkage {
+    let (s, c) = 0.5f64.sin_cos();
+    // B: 1 from A and from O3, left of A → O3.
+    let (dx, dy) = (1.5 - c, -s);
+    let l = dx.hypot(dy);
+    let h = (1.0 - 0.25 * l * l).sqrt();
+    let b = [c + 0.5 * dx - h * dy / l, s + 0.5 * dy + h * dx / l];
+    Linkage {
+        name: "triple rocker".into(),
+        joints: vec![
+            Joint::revolute("O1", [0.0, 0.0]),
+            Joint::revolute("A", [c, s]),
+            Joint::revolute("B", b),
+            Joint::revolute("O3", [1.5, 0.0]),
+        ],
+        links: vec![
+            Link::new("frame", &["O1", "O3"]),
+            Link::new("crank", &["O1", "A"]),
+            Link::new("coupler", &["A", "B"]),
+            Link::new("rocker", &["B", "O3"]),
+        ],
+        loads,
+        ..Linkage::default()
+    }
+}
+
+/// The torsion spring's range is decided over the input's exact range: on a crank that rocks
+/// between lock positions, a spring between the frame and the crank whose twist reaches
+/// π − 0.1 + 0.002 rad exactly at the upper lock (the crank's angle there is the closed form
+/// acos(−1/4)) is refused, and with 0.004 rad more free angle (π − 0.1 − 0.002 at the lock) it
+/// is taken; the lock lies between the samples of a 720-step grid over the turn (5.8e-3 rad
+/// past the last sample below it), which would read the first twist below π − 0.1.
+#[test]
+fn a_torsion_spring_is_checked_up_to_the_exact_lock_position() {
+    let hi = (-0.25f64).acos();
+    let bare = Plan::new(&triple_rocker(vec![])).unwrap();
+    let (lo, up) = bare
+        .lock_positions(bare.reference_input())
+        .unwrap()
+        .unwrap();
+    assert!(
+        (up - hi).abs() < 1e-9 && (lo + hi).abs() < 1e-9,
+        "{lo} {up}"
+    );
+    let on = |free: f64| {
+        Plan::new(&triple_rocker(vec![LoadSpec::TorsionSpring {
+            name: "clock".into(),
+            links: ["frame".into(), "crank".into()],
+            stiffness: 2.0,
+            free_angle: Some(free),
+            preload: 0.0,
+        }]))
+    };
+    let margin = 0.1;
+    let (item, problem) = described(on(hi - (std::f64::consts::PI - margin + 0.002)).unwrap_err());
+    assert_eq!(item, "torsion spring clock", "{problem}");
+    assert!(problem.contains("half a turn"), "{problem}");
+    assert!(on(hi - (std::f64::consts::PI - margin - 0.002)).is_ok());
+}
