@@ -663,6 +663,10 @@ impl Machine {
             .chain(plan.point_names().iter().map(String::as_str))
             .collect();
         let svg = match &request.kind {
+            PictureKind::Scheme(at) if request.centres => {
+                draw::scheme_with_centres(plan, self.inputs_at("--scheme", at, speed)?, &style)
+                    .map(|p| p.svg)
+            }
             PictureKind::Scheme(at) => {
                 draw::scheme(plan, self.inputs_at("--scheme", at, speed)?, &style).map(|p| p.svg)
             }

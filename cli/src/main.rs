@@ -127,6 +127,7 @@ Examples:
   tmm draw linkages/watt-six-bar.json --plan -o plan.svg
   tmm draw linkages/watt-six-bar.json --animate -o watt.svg   open it in a browser
   tmm draw linkages/four-bar.json --forces 30 -o forces.svg
+  tmm draw linkages/four-bar.json --scheme 30 --centres -o centres.svg   instant centres
   tmm draw linkages/shaper.json --diagram kinematics -o ram.svg
   tmm draw linkages/peaucellier-lipkin.json --plan -o straight.svg   a rocking crank's range
   tmm draw linkages/five-bar-robot.json --scheme 110 70 -o robot.svg  two inputs: φ1 φ2
@@ -147,6 +148,11 @@ animation and diagrams run between its lock angles."
         /// reference pose without one); two values φ1 φ2 for a linkage with two inputs.
         #[arg(long, value_name = "φ", num_args = 0..=2, allow_negative_numbers = true)]
         scheme: Option<Vec<f64>>,
+        /// The scheme with the instant centres of every pair of links (Aronhold–Kennedy),
+        /// labelled by the links' places in the file's `links` (I13: the 1st and 3rd written,
+        /// counting from 0), with a key of the links' names.
+        #[arg(long, conflicts_with_all = ["plan", "animate", "forces", "diagram", "workspace"])]
+        centres: bool,
         /// The plan: the 12 course positions overlaid, the extreme positions bold, the paths of
         /// the joints and named points.
         #[arg(long)]
@@ -478,6 +484,7 @@ fn run(command: Command) -> Result<(), Fail> {
         Command::Draw {
             file,
             scheme,
+            centres,
             plan,
             animate,
             forces,
@@ -493,6 +500,7 @@ fn run(command: Command) -> Result<(), Fail> {
                 kind: picture,
                 speed: speed.unwrap_or_else(|| m.default_speed()),
                 along,
+                centres,
             };
             let svg = m.draw(&request, &mut progress);
             clear_progress();

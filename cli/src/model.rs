@@ -242,6 +242,8 @@ pub struct PictureRequest {
     /// coordinates (degrees or m), `[φ1, φ2, φ1, φ2, …]`; empty for a loop about the
     /// reference pose.
     pub along: Vec<f64>,
+    /// The scheme with the instant centres of every pair of links.
+    pub centres: bool,
 }
 
 /// What `tmm dynamics` is asked for.

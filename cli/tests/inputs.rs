@@ -946,3 +946,23 @@ fn check_lists_a_triads_four_links_and_six_joints() {
         "{line}"
     );
 }
+
+/// `tmm draw --centres` draws the instant centres on the scheme in the file's numbering of
+/// the links, with the key; the four-bar's crank–rocker centre I13 lies on the picture at
+/// 30°, and its frame–crank pivot I01 too.
+#[test]
+fn the_scheme_draws_the_instant_centres_in_the_files_numbering() {
+    let r = tmm(&["draw", "four-bar", "--scheme", "30", "--centres"]);
+    assert_success(&r, "draw --centres");
+    assert_svg(&r.stdout, "draw --centres");
+    assert!(r
+        .stdout
+        .contains("links: 0 frame, 1 crank, 2 coupler, 3 rocker"));
+    for label in ["\nI13\n", "\nI01\n", "\nI12\n"] {
+        assert!(r.stdout.contains(label), "{label:?}");
+    }
+    let plain = tmm(&["draw", "four-bar", "--scheme", "30"]);
+    assert!(!plain.stdout.contains("instant-centres"));
+    let r = tmm(&["draw", "four-bar", "--plan", "--centres"]);
+    assert_eq!(r.code, 2, "a usage error: {}", r.stderr);
+}

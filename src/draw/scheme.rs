@@ -42,15 +42,19 @@ pub fn scheme(plan: &Plan, input: impl Into<Inputs>, style: &Style) -> Result<Pi
 
 /// The kinematic scheme of [`scheme`] with the instant centres of every pair of links
 /// ([`Plan::instant_centres`]) drawn over it: each centre that lies on the picture as a small
-/// ring labelled `Iij` (i, j the links' indices in [`Plan::link_names`]). Centres off the
-/// picture or at infinity are not drawn.
+/// ring labelled `Iij` in the user's numbering of the links ([`InstantCentre::label`]: i, j
+/// their places in the description's `links`, 0 the first written), its two links' names in
+/// the label's `data-links` (`"crank|rocker"`), and a key of the numbers with the links' names
+/// in the lower left corner. Centres off the picture or at infinity are not drawn.
+///
+/// [`InstantCentre::label`]: crate::linkage::InstantCentre::label
 ///
 /// # Errors
 /// As [`scheme`]; as [`Plan::instant_centres`].
 ///
 /// # Examples
-/// The four-bar's centres I13 (crank and rocker, by Kennedy) and I23 (the hinge B) are on its
-/// picture:
+/// The four-bar (written frame, crank, coupler, rocker) has its centres I13 (crank and
+/// rocker, by Kennedy) and I23 (the hinge B) on its picture:
 /// ```
 /// use tmm::draw::{scheme_with_centres, Style};
 /// use tmm::kinematics::Motion;
@@ -126,7 +130,8 @@ pub(crate) fn values(inputs: Inputs) -> String {
     }
 }
 
-/// The instant centres that lie on the picture: rings labelled `Iij`.
+/// The instant centres that lie on the picture: rings labelled `Iij` in the user's numbering,
+/// and the key of that numbering.
 fn centres(
     plan: &Plan,
     a: &crate::linkage::Kinematics<'_>,
@@ -134,6 +139,22 @@ fn centres(
     style: &Style,
 ) -> Result<svg::node::element::Group> {
     let mut g = svg::node::element::Group::new().set("class", "instant-centres");
+    let names = plan.link_names();
+    let mut key: Vec<(usize, &str)> = plan
+        .link_ids()
+        .map(|l| Ok((plan.link_number(l)?, names[l.index()].as_str())))
+        .collect::<Result<_>>()?;
+    key.sort_unstable();
+    let key: Vec<String> = key.iter().map(|(k, n)| format!("{k} {n}")).collect();
+    g.append(
+        primitives::text(
+            &format!("links: {}", key.join(", ")),
+            [8.0, frame.height - 8.0],
+            11.0,
+            "#b03030",
+        )
+        .set("class", "link-key"),
+    );
     for ic in plan.instant_centres(&a.pose())? {
         let Centre::At(p) = ic.centre else { continue };
         let q = frame.to_pixel(p);
@@ -146,13 +167,11 @@ fn centres(
                 .set("stroke", "#b03030")
                 .set("stroke-width", primitives::r2(0.5 * style.line_width)),
         );
-        let [i, j] = ic.links.map(|l| l.index());
-        g.append(primitives::text(
-            &format!("I{i}{j}"),
-            [q[0] + r, q[1] - r],
-            11.0,
-            "#b03030",
-        ));
+        let [i, j] = ic.links.map(|l| names[l.index()].as_str());
+        g.append(
+            primitives::text(&ic.label(plan)?, [q[0] + r, q[1] - r], 11.0, "#b03030")
+                .set("data-links", format!("{i}|{j}")),
+        );
     }
     Ok(g)
 }

@@ -10,10 +10,11 @@
 //! rest too (`Motion::fixed`, a rocking input at its lock). A linkage of two inputs has its
 //! centres where its inputs' rates put them (their ratio), from the pose's rates.
 //!
-//! Links are numbered by the plan's order ([`Plan::link_names`]: the description's links with
-//! the frame swapped into place 0), not by the numbering of the textbook figures (GUIDE §2,
-//! input = 1): the centre of links i and j is labelled I{i}{j} with these indices, on the
-//! scheme too.
+//! The centres name their links by the plan's [`LinkId`]s (the frame is link 0 of the plan),
+//! and are labelled by the user's numbering: each link's place in the description's `links`
+//! list ([`Plan::link_number`], 0 the first written), so that the centre of the links written
+//! 1st and 3rd reads I13 wherever the frame was written ([`InstantCentre::label`]; the
+//! scheme writes these labels and a key of the numbers with the links' names).
 //!
 //! A centre at infinity (two links translating relative to each other: parallel lines of
 //! Kennedy, or equal angular velocities) is reported as a direction, never as a point with
@@ -50,12 +51,74 @@ pub enum Found {
 /// The instant centre of two links.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct InstantCentre {
-    /// The two links, the lower index first (the plan's link indices, 0 the frame).
+    /// The two links, the lower index first (the plan's link indices, 0 the frame; the
+    /// user's numbers are [`Plan::link_number`], the label [`InstantCentre::label`]).
     pub links: [LinkId; 2],
     /// Where it lies.
     pub centre: Centre,
     /// How it was found.
     pub found: Found,
+}
+
+impl InstantCentre {
+    /// The centre's label in the user's numbering of the links ([`Plan::link_number`]):
+    /// `I13` for the links written 1st and 3rd in the description's `links` (counting from
+    /// 0), the smaller number first; with a number of two digits or more the two are
+    /// separated, `I3,12`.
+    ///
+    /// # Errors
+    /// [`Error::Description`] for a centre whose links are not `plan`'s.
+    ///
+    /// # Examples
+    /// The four-bar written with its frame last: its crank (written first, number 0) and
+    /// rocker (number 2) have the centre I02, whatever the plan's own order:
+    /// ```
+    /// use tmm::kinematics::Motion;
+    /// use tmm::linkage::{bundled, Plan};
+    /// let mut four_bar = bundled::four_bar();
+    /// four_bar.links.rotate_left(1); // crank, coupler, rocker, frame
+    /// let plan = Plan::new(&four_bar)?;
+    /// let k = plan.kinematics(Motion::fixed(0.7))?;
+    /// let crank = plan.link_id("crank")?;
+    /// let rocker = plan.link_id("rocker")?;
+    /// let ics = plan.instant_centres(&k.pose())?;
+    /// let ic = ics.iter().find(|c| c.links.contains(&crank) && c.links.contains(&rocker));
+    /// assert_eq!(ic.unwrap().label(&plan)?, "I02");
+    /// # Ok::<(), tmm::Error>(())
+    /// ```
+    pub fn label(&self, plan: &Plan) -> Result<String> {
+        let [a, b] = self.links.map(|l| plan.link_number(l));
+        let (a, b) = (a?, b?);
+        let (a, b) = (a.min(b), a.max(b));
+        Ok(if a.max(b) >= 10 {
+            format!("I{a},{b}")
+        } else {
+            format!("I{a}{b}")
+        })
+    }
+}
+
+impl Plan {
+    /// The user's number of a link: its place in the description's `links` list, 0 the first
+    /// written (the plan itself puts the frame first: [`Plan::link_names`]).
+    ///
+    /// # Errors
+    /// As [`Plan::link_id`].
+    ///
+    /// # Examples
+    /// ```
+    /// use tmm::linkage::{bundled, Plan};
+    /// let mut four_bar = bundled::four_bar();
+    /// four_bar.links.rotate_left(1); // crank, coupler, rocker, frame
+    /// let plan = Plan::new(&four_bar)?;
+    /// assert_eq!(plan.link_names()[0], "frame");
+    /// assert_eq!(plan.link_number("frame")?, 3);
+    /// assert_eq!(plan.link_number("crank")?, 0);
+    /// # Ok::<(), tmm::Error>(())
+    /// ```
+    pub fn link_number(&self, link: impl super::LinkRef) -> Result<usize> {
+        Ok(self.chain.link_order[self.chain.link(link)?])
+    }
 }
 
 /// A line through a point along a direction.

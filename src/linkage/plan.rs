@@ -266,6 +266,8 @@ pub(crate) enum LoadPlan {
 #[derive(Debug, Clone, PartialEq)]
 pub(crate) struct Chain {
     pub link_names: Vec<String>,
+    /// The description's index of each planned link (the file's order; the frame is 0 here).
+    pub link_order: Vec<usize>,
     pub joint_names: Vec<String>,
     pub point_names: Vec<String>,
     pub links: Vec<LinkPlan>,

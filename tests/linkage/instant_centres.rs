@@ -4,7 +4,7 @@
 //! infinity). Over every bundled and gallery linkage at many positions, a parallelogram whose
 //! coupler translates, and a slider-crank.
 
-use nalgebra::Vector2;
+use nalgebra::{Point2, Vector2};
 use std::f64::consts::TAU;
 use tmm::kinematics::Motion;
 use tmm::linkage::{
@@ -339,16 +339,225 @@ fn the_scheme_draws_the_centres_on_request() {
             let [x, y] = pic.frame.to_pixel(p);
             let inside =
                 (0.0..=pic.frame.width).contains(&x) && (0.0..=pic.frame.height).contains(&y);
-            let [i, j] = ic.links.map(|l| l.index());
+            let label = ic.label(&plan).unwrap();
             let ring = format!(
                 r#"cx="{}" cy="{}" fill="none""#,
                 (x * 100.0).round() / 100.0,
                 (y * 100.0).round() / 100.0
             );
-            assert_eq!(pic.svg.contains(&ring), inside, "I{i}{j} at {p}");
-            assert_eq!(pic.svg.contains(&format!("\nI{i}{j}\n")), inside, "I{i}{j}");
+            assert_eq!(pic.svg.contains(&ring), inside, "{label} at {p}");
+            assert_eq!(pic.svg.contains(&format!("\n{label}\n")), inside, "{label}");
             drawn += usize::from(inside);
         }
     }
     assert!(drawn > 60, "{drawn}");
+}
+
+/// Where two lines p + t·u and q + s·v meet.
+fn meet(p: Point2<f64>, u: Vector2<f64>, q: Point2<f64>, v: Vector2<f64>) -> Point2<f64> {
+    let cross = |a: Vector2<f64>, b: Vector2<f64>| a.x * b.y - a.y * b.x;
+    p + u * (cross(q - p, v) / cross(u, v))
+}
+
+/// The label of a drawn centre and its pixel: the `<text>` whose `data-links` names the two
+/// links (either order), its x and y.
+#[cfg(feature = "draw")]
+fn drawn_label(svg: &str, a: &str, b: &str) -> Option<(String, [f64; 2])> {
+    let attr = |tag: &str, name: &str| -> f64 {
+        let k = tag.find(&format!(" {name}=\"")).unwrap() + name.len() + 3;
+        tag[k..k + tag[k..].find('"').unwrap()].parse().unwrap()
+    };
+    for links in [format!("{a}|{b}"), format!("{b}|{a}")] {
+        let key = format!("data-links=\"{links}\"");
+        if let Some(k) = svg.find(&key) {
+            let start = svg[..k].rfind("<text").unwrap();
+            let end = k + svg[k..].find("</text>").unwrap();
+            let tag = &svg[start..end];
+            let text = tag[tag.find('>').unwrap() + 1..].trim().to_owned();
+            return Some((text, [attr(tag, "x"), attr(tag, "y")]));
+        }
+    }
+    None
+}
+
+/// The centres carry the user's numbering of the links (their places in the file's `links`,
+/// from 0), whatever order the plan keeps: a four-bar written rocker, coupler, frame, crank
+/// labels its crank–rocker centre I03 and its frame–coupler centre I12, each where the closed
+/// form puts it (the crank–rocker centre on the coupler's line A–B and the frame's O1–O3; the
+/// frame–coupler centre on the crank's line O1–A and the rocker's O3–B), to 1e-9 of the size
+/// at 24 crank angles; the scheme writes those labels at those points and a key of the
+/// numbers. A slider-crank's frame–piston centre, at infinity across the guide, is not drawn;
+/// its crank–piston centre (on A–B and on the normal to the guide through O) and its
+/// frame–rod centre (on O–A and on the normal to the guide through B) are, labelled in the
+/// file's numbering.
+#[test]
+fn centres_are_labelled_in_the_files_numbering_at_their_closed_forms() {
+    let mut four_bar = bundled::four_bar();
+    let order = ["rocker", "coupler", "frame", "crank"];
+    four_bar
+        .links
+        .sort_by_key(|l| order.iter().position(|&n| n == l.name).unwrap());
+    let plan = Plan::new(&four_bar).unwrap();
+    assert_eq!(
+        plan.link_names()[0],
+        "frame",
+        "the plan's own order differs"
+    );
+    for (k, name) in order.iter().enumerate() {
+        assert_eq!(plan.link_number(*name).unwrap(), k);
+    }
+    let id = |n: &str| plan.link_id(n).unwrap();
+    let find = |ics: &[InstantCentre], a: &str, b: &str| -> InstantCentre {
+        *ics.iter()
+            .find(|c| c.links.contains(&id(a)) && c.links.contains(&id(b)))
+            .unwrap()
+    };
+    let size = plan.size();
+    let (mut worst, mut drawn) = (0.0f64, 0);
+    for k in 0..24 {
+        let m = Motion::turning(plan.reference_input() + TAU * f64::from(k) / 24.0, 10.0);
+        let kin = plan.kinematics(m).unwrap();
+        let p = |j: &str| kin.joint(j).unwrap().p;
+        let (o1, a, b, o3) = (p("O1"), p("A"), p("B"), p("O3"));
+        let ics = plan.instant_centres(&kin.pose()).unwrap();
+        for (x, y, label, want) in [
+            ("crank", "rocker", "I03", meet(a, b - a, o1, o3 - o1)),
+            ("frame", "coupler", "I12", meet(o1, a - o1, o3, b - o3)),
+        ] {
+            let ic = find(&ics, x, y);
+            assert_eq!(ic.label(&plan).unwrap(), label);
+            let Centre::At(got) = ic.centre else {
+                panic!("{label} at infinity at {m:?}")
+            };
+            // A far centre (nearly parallel lines) carries its distance.
+            let far = 1.0 + (want - o1).norm() / size;
+            worst = worst.max((got - want).norm() / (size * far));
+        }
+        #[cfg(feature = "draw")]
+        {
+            let pic = tmm::draw::scheme_with_centres(&plan, m, &Default::default()).unwrap();
+            assert!(pic
+                .svg
+                .contains("links: 0 rocker, 1 coupler, 2 frame, 3 crank"));
+            for (x, y, label) in [("crank", "rocker", "I03"), ("frame", "coupler", "I12")] {
+                let Centre::At(c) = find(&ics, x, y).centre else {
+                    unreachable!()
+                };
+                let [px, py] = pic.frame.to_pixel(c);
+                let on =
+                    (0.0..=pic.frame.width).contains(&px) && (0.0..=pic.frame.height).contains(&py);
+                match drawn_label(&pic.svg, x, y) {
+                    Some((text, at)) => {
+                        assert!(on, "{label} drawn off the picture");
+                        assert_eq!(text, label);
+                        // Beside its ring, 0.6 hinge radii up and right.
+                        let r = 0.6 * tmm::draw::Style::default().hinge_radius;
+                        assert!((at[0] - (px + r)).abs() < 0.006, "{label}: {at:?}");
+                        assert!((at[1] - (py - r)).abs() < 0.006, "{label}: {at:?}");
+                        drawn += 1;
+                    }
+                    None => assert!(!on, "{label} on the picture but not drawn"),
+                }
+            }
+        }
+    }
+    assert!(worst < 1e-9, "{worst:e}");
+    #[cfg(feature = "draw")]
+    assert!(drawn >= 24, "labels drawn and checked: {drawn}");
+
+    // The slider-crank, written piston, crank, frame, rod.
+    let mut l = SliderCrank::course_example().linkage().unwrap();
+    let plan0 = Plan::new(&l).unwrap();
+    let crank = plan0.link_names()[plan0.input_links()[0].index()].clone();
+    let frame = plan0.link_names()[0].clone();
+    let slide = (0..plan0.joint_names().len())
+        .find(|&j| plan0.is_prismatic(j).unwrap())
+        .unwrap();
+    let piston_id = plan0
+        .joint_links(slide)
+        .unwrap()
+        .into_iter()
+        .find(|x| x.index() != 0);
+    let piston = plan0.link_names()[piston_id.unwrap().index()].clone();
+    let rod = plan0
+        .link_names()
+        .iter()
+        .find(|n| ![&crank, &frame, &piston].contains(n))
+        .unwrap()
+        .clone();
+    let written = [&piston, &crank, &frame, &rod];
+    l.links
+        .sort_by_key(|x| written.iter().position(|n| **n == x.name).unwrap());
+    let plan = Plan::new(&l).unwrap();
+    let number = |n: &str| plan.link_number(n).unwrap();
+    assert_eq!(
+        [
+            number(&piston),
+            number(&crank),
+            number(&frame),
+            number(&rod)
+        ],
+        [0, 1, 2, 3]
+    );
+    let joint_of = |a: &str, b: &str| {
+        let (a, b) = (plan.link_id(a).unwrap(), plan.link_id(b).unwrap());
+        (0..plan.joint_names().len())
+            .find(|&j| {
+                let l = plan.joint_links(j).unwrap();
+                l.contains(&a) && l.contains(&b)
+            })
+            .unwrap()
+    };
+    let (jo, ja, jb, js) = (
+        joint_of(&crank, &frame),
+        joint_of(&crank, &rod),
+        joint_of(&rod, &piston),
+        joint_of(&piston, &frame),
+    );
+    let mut worst = 0.0f64;
+    for k in 0..24 {
+        let m = Motion::turning(
+            plan.reference_input() + TAU * (f64::from(k) + 0.5) / 24.0,
+            5.0,
+        );
+        let kin = plan.kinematics(m).unwrap();
+        let p = |j: usize| kin.joint(j).unwrap().p;
+        let (o, a, b) = (p(jo), p(ja), p(jb));
+        let guide = kin.guide_direction(js).unwrap();
+        let normal = Vector2::new(-guide.y, guide.x);
+        let ics = plan.instant_centres(&kin.pose()).unwrap();
+        let find = |x: &str, y: &str| -> InstantCentre {
+            let (x, y) = (plan.link_id(x).unwrap(), plan.link_id(y).unwrap());
+            *ics.iter()
+                .find(|c| c.links.contains(&x) && c.links.contains(&y))
+                .unwrap()
+        };
+        let at_infinity = find(&frame, &piston);
+        assert_eq!(at_infinity.label(&plan).unwrap(), "I02");
+        let Centre::Infinite(d) = at_infinity.centre else {
+            panic!("the frame–piston centre is at infinity")
+        };
+        assert!(d.dot(&guide).abs() < 1e-12);
+        for (x, y, label, want) in [
+            (&crank, &piston, "I01", meet(a, b - a, o, normal)),
+            (&frame, &rod, "I23", meet(o, a - o, b, normal)),
+        ] {
+            let ic = find(x, y);
+            assert_eq!(ic.label(&plan).unwrap(), label);
+            let Centre::At(got) = ic.centre else {
+                panic!("{label} at infinity")
+            };
+            let far = 1.0 + (want - o).norm() / plan.size();
+            worst = worst.max((got - want).norm() / (plan.size() * far));
+        }
+        #[cfg(feature = "draw")]
+        {
+            let pic = tmm::draw::scheme_with_centres(&plan, m, &Default::default()).unwrap();
+            assert!(drawn_label(&pic.svg, &frame, &piston).is_none());
+            assert!(pic
+                .svg
+                .contains(&format!("links: 0 {piston}, 1 {crank}, 2 {frame}, 3 {rod}")));
+        }
+    }
+    assert!(worst < 1e-9, "{worst:e}");
 }

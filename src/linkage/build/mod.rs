@@ -101,6 +101,7 @@ impl Plan {
         let chain = Chain {
             mobility: chebyshev(links.names.len() - 1, edges.len()),
             link_names: links.names.clone(),
+            link_order: links.order.clone(),
             joint_names: linkage.joints.iter().map(|j| j.name.clone()).collect(),
             point_names,
             links: link_plans,
