@@ -55,6 +55,10 @@ pub const FILES: &[(&str, &str)] = &[
     ),
     ("shaper", include_str!("../../linkages/shaper.json")),
     (
+        "six-bar-slider-triad",
+        include_str!("../../linkages/six-bar-slider-triad.json"),
+    ),
+    (
         "six-bar-triad",
         include_str!("../../linkages/six-bar-triad.json"),
     ),

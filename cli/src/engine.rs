@@ -40,6 +40,22 @@ pub fn typed_angle(option: &str, degrees: f64) -> Result<f64, Failure> {
 }
 
 /// The library's error as a person reads it: its `Display` text.
+/// The largest input speed accepted, rad/s: far above any machine's, and small enough that
+/// its revolutions per minute and every rate of a position stay finite.
+pub const MAX_SPEED: f64 = 1e9;
+
+/// A speed asked for: finite, within ±[`MAX_SPEED`].
+fn check_speed(speed: f64) -> Result<(), Failure> {
+    if speed.is_finite() && speed.abs() <= MAX_SPEED {
+        Ok(())
+    } else {
+        Err(Failure::new(format!(
+            "the speed must be finite and within ±{MAX_SPEED:e} rad/s, got {speed}"
+        ))
+        .hint("give --speed in rad/s"))
+    }
+}
+
 fn failure(e: &tmm::Error) -> Failure {
     Failure::new(e.to_string())
 }
@@ -123,12 +139,7 @@ impl Machine {
             )
             .hint("without --run-up and --flywheel, its mass matrix over a grid of the inputs"));
         }
-        if !request.speed.is_finite() {
-            return Err(Failure::new(format!(
-                "the speed must be finite, got {}",
-                request.speed
-            )));
-        }
+        check_speed(request.speed)?;
         let mut d = self.mass_matrix_grid(request.grid, request.span, request.rotor, progress)?;
         if let Some(t_end) = request.run {
             d.run = Some(self.run_two(request, t_end, progress)?);
@@ -353,6 +364,7 @@ impl Machine {
         notes: &mut Vec<String>,
     ) -> Result<Vec<Motion>, Failure> {
         self.one_input("a table of positions")?;
+        check_speed(speed)?;
         let plan = &self.plan;
         let crank = plan.input_is_crank();
         let reference = plan.reference_input();
@@ -553,6 +565,7 @@ impl Machine {
         speed: f64,
         notes: &mut Vec<String>,
     ) -> Result<Vec<Vec<Motion>>, Failure> {
+        check_speed(speed)?;
         let values = match positions {
             Positions::At(values) => values,
             Positions::Course(n) | Positions::Uniform(n) => {

@@ -464,12 +464,27 @@ fn the_mass_matrix_of_two_inputs_is_the_links_kinetic_energy() {
         (&["--span", "200"], "at most 180°"),
         (&["--span", "nan"], "span"),
         (&["--speed", "inf"], "speed must be finite"),
+        // RK4's stable step under this damping would need 10⁸ steps: refused before it runs.
+        (&["--run", "1", "--motor", "1,1e6"], "make the run stiff"),
+        (&["--run", "1", "--motor2", "1,1e308"], "make the run stiff"),
     ] {
         let mut all = vec!["dynamics", "five-bar-robot"];
         all.extend_from_slice(args);
         let r = tmm(&all);
         assert_one_line_failure(&r, "five-bar-robot");
         assert!(r.stderr.contains(words), "{all:?}: {}", r.stderr);
+    }
+    // A speed that is not a number is named as such, for one input and for two.
+    for file in ["four-bar", "five-bar-robot"] {
+        for speed in ["NaN", "inf", "1e308"] {
+            let r = tmm(&["analyse", file, "--speed", speed, "--positions", "4"]);
+            assert_one_line_failure(&r, file);
+            assert!(
+                r.stderr.contains("speed must be finite"),
+                "{file} {speed}: {}",
+                r.stderr
+            );
+        }
     }
 }
 

@@ -46,7 +46,8 @@ impl Machine {
             .hint("without --run-up and --flywheel, the reduced quantities over that range"));
         }
         let speed = request.speed;
-        if !(speed.is_finite() && speed != 0.0) {
+        super::check_speed(speed)?;
+        if speed == 0.0 {
             return Err(Failure::new(format!(
                 "the speed must be finite and not zero, got {speed}"
             ))

@@ -12,6 +12,9 @@ use tmm::linkage::dynamics::{LinkageSystem, Motor};
 use tmm::linkage::{Inputs, LinkId, Output, TwoInputCourse, TwoInputShape, WorkspaceOptions};
 
 use super::{failure, Machine};
+
+/// The most RK4 steps a run of two inputs may take (a recorded row each).
+const MAX_RUN_STEPS: f64 = 1e6;
 use crate::model::{
     DiagramKind, DynamicsRequest, Failure, MassRow, Range, TwoInputDynamics, TwoInputRun,
 };
@@ -415,6 +418,18 @@ impl Machine {
         let a0 = sys.inertia(&q0).map_err(f)?;
         let damping = (motors[0].1.abs() / a0[(0, 0)]).max(motors[1].1.abs() / a0[(1, 1)]);
         let h = (t_end / 4000.0).min(0.5 / damping.max(f64::MIN_POSITIVE));
+        // A damping so strong that RK4's stable step is tiny makes the run stiff: refuse it
+        // at once, naming the motor, rather than after a long run that spends its budget.
+        let steps = t_end / h;
+        if !(steps <= MAX_RUN_STEPS) {
+            return Err(Failure::new(format!(
+                "the motors' damping b = {:.3e} and {:.3e} N·m·s/rad make the run stiff: RK4 \
+                 needs steps of {h:.3e} s or shorter, {steps:.3e} steps for {t_end:e} s, above \
+                 the {MAX_RUN_STEPS:e} allowed",
+                motors[0].1, motors[1].1
+            ))
+            .hint("give --motor / --motor2 a smaller b, or a shorter --run T"));
+        }
         let mut opts = RunOptions::until(t_end, h);
         opts.record_every = 1;
         progress(&format!(
