@@ -16,10 +16,7 @@ use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion, Through
 use std::f64::consts::{FRAC_PI_2, FRAC_PI_6};
 use std::hint::black_box;
 use std::time::Duration;
-use tmm::kinematics::batch::{
-    coupler_point, four_bar_positions, CrankAngles, FourBarDims, Positions,
-};
-use tmm::kinematics::{crank, rrr_dyad, Branch, Motion, PointMotion};
+use tmm::kinematics::batch::{four_bar_positions, CrankAngles, Positions};
 use tmm::synthesis::{
     burmester, burmester_points, centre_point_curve, crank_rocker, function_generator,
     path_generator, shaper, slider_crank, CrankRockerRequirement, FrameChoice, FunctionRequirement,
@@ -33,7 +30,10 @@ mod yardstick;
 #[path = "common/four_bar.rs"]
 #[allow(dead_code)] // the hand kernel is not used here
 mod hand_four_bar;
-use hand_four_bar::{C, L1, L2, L3};
+
+#[path = "common/four_bar_setup.rs"]
+mod four_bar_setup;
+use four_bar_setup::{bench_dims, scalar};
 
 fn quick_return(c: &mut Criterion) {
     let loose = Options::default().with_min_transmission_angle(0.0);
@@ -153,19 +153,6 @@ fn function_generation(c: &mut Criterion) {
     g.finish();
 }
 
-/// The bench four-bar with a coupler point.
-fn bench_dims() -> FourBarDims {
-    FourBarDims {
-        o: nalgebra::Point2::origin(),
-        c: C,
-        l_oa: L1,
-        l_ab: L2,
-        l_cb: L3,
-        branch: Branch::Plus,
-        coupler: nalgebra::Vector2::new(0.2, 0.1),
-    }
-}
-
 /// 24 points of the bench four-bar's coupler curve, evenly spaced in crank angle.
 fn closed_curve() -> PathRequirement {
     let turn = CrankAngles::turn(24);
@@ -175,18 +162,6 @@ fn closed_curve() -> PathRequirement {
         points: (0..24).map(|i| [out.p_x[i], out.p_y[i]]).collect(),
         timing: Timing::ClosedCurve,
     }
-}
-
-/// The scalar blocks, one position at a time: B and the coupler point.
-fn scalar(d: &FourBarDims, angles: &[f64]) -> f64 {
-    let uv = d.coupler_uv();
-    let mut acc = 0.0;
-    for &phi in angles {
-        let a = crank(d.o, d.l_oa, Motion::fixed(black_box(phi))).unwrap().a;
-        let r = rrr_dyad(a, PointMotion::fixed(d.c), d.l_ab, d.l_cb, d.branch).unwrap();
-        acc += coupler_point(a.p, r.b.p, uv).y;
-    }
-    acc
 }
 
 fn path_search(c: &mut Criterion) {

@@ -88,7 +88,10 @@ pub use freudenstein::{
     crank_rocker_through, freudenstein_coefficients, function_generator, FunctionGenerator,
     FunctionRequirement, Spacing, StructuralError,
 };
-pub use path::{path_generator, PathDesign, PathOptions, PathRequirement, Progress, Timing};
+pub use path::{
+    path_generator, slider_crank_path_generator, PathDesign, PathOptions, PathRequirement,
+    Progress, Timing,
+};
 pub use quick_return::{
     crank_rocker, shaper, slider_crank, CrankRockerRequirement, FrameChoice, OffsetChoice,
     ShaperRequirement, SliderCrankRequirement,

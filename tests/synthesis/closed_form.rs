@@ -3,21 +3,14 @@
 //! Burmester's standard-form equation against the displacements evaluated directly; and
 //! the count of Burmester's points of five poses (at most four, in pairs).
 
+use super::{gamma_at, xorshift};
 use proptest::prelude::*;
 use std::f64::consts::TAU;
-use tmm::kinematics::Motion;
 use tmm::linkage::Plan;
 use tmm::synthesis::{
     burmester, burmester_points, centre_point, function_generator, FunctionRequirement, Options,
     Pose, Spacing, Synthesis,
 };
-
-/// The engine's transmission angle of the four-bar's one group at the crank angle φ.
-fn gamma_at(plan: &Plan, phi: f64) -> Option<f64> {
-    plan.kinematics(Motion::fixed(phi))
-        .ok()
-        .and_then(|k| k.transmission_angle(0).ok())
-}
 
 /// Checks the report's γ_min against the engine over the crank's arc from `start` through
 /// `span`: the engine's angle where the report puts γ_min equals it, and no sample of the arc
@@ -74,13 +67,7 @@ fn function_generators_keep_the_reported_gamma_over_their_range() {
 
 #[test]
 fn burmester_four_bars_keep_the_reported_gamma() {
-    let mut x: u64 = 0x1234_5678_9ABC_DEF1;
-    let mut next = || {
-        x ^= x << 13;
-        x ^= x >> 7;
-        x ^= x << 17;
-        (x >> 11) as f64 / (1u64 << 53) as f64
-    };
+    let mut next = xorshift(0x1234_5678_9ABC_DEF1);
     let loose = Options::default().with_min_transmission_angle(0.0);
     let (mut cases, mut worst): (usize, f64) = (0, 0.0);
     for _ in 0..300 {
@@ -194,13 +181,7 @@ proptest! {
 fn five_poses_have_at_most_four_burmester_points_in_pairs() {
     // Random five poses (not made by a four-bar): Burmester's points are the real roots of a
     // quartic-like system whose complex roots pair off, so 0, 2 or 4 of them.
-    let mut x: u64 = 0xDEAD_BEEF_0BAD_F00D;
-    let mut next = || {
-        x ^= x << 13;
-        x ^= x >> 7;
-        x ^= x << 17;
-        (x >> 11) as f64 / (1u64 << 53) as f64
-    };
+    let mut next = xorshift(0xDEAD_BEEF_0BAD_F00D);
     let mut counts = [0usize; 5];
     for _ in 0..60 {
         let mut r = |lo: f64, hi: f64| lo + (hi - lo) * next();

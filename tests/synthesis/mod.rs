@@ -21,6 +21,25 @@ fn rel(a: f64, b: f64) -> f64 {
     (a - b).abs() / b.abs().max(1e-300)
 }
 
+/// The engine's smallest transmission angle over the groups with the crank at φ; `None`
+/// where the linkage does not assemble there.
+fn gamma_at(plan: &Plan, phi: f64) -> Option<f64> {
+    let k = plan.kinematics(tmm::kinematics::Motion::fixed(phi)).ok()?;
+    (0..plan.groups().len()).try_fold(f64::INFINITY, |m, g| {
+        k.transmission_angle(g).ok().map(|x| m.min(x))
+    })
+}
+
+/// A seeded xorshift generator of uniform numbers in [0, 1).
+fn xorshift(mut x: u64) -> impl FnMut() -> f64 {
+    move || {
+        x ^= x << 13;
+        x ^= x >> 7;
+        x ^= x << 17;
+        (x >> 11) as f64 / (1u64 << 53) as f64
+    }
+}
+
 fn joint(l: &Linkage, name: &str) -> [f64; 2] {
     l.joints.iter().find(|j| j.name == name).unwrap().at
 }
@@ -67,12 +86,7 @@ fn round_trip(s: &Synthesis, output: &Output, k: f64, stroke: f64) -> f64 {
     let r = &s.report;
     // The engine's transmission angle where the report says γ_min occurs is γ_min.
     let plan = Plan::new(&s.linkage).unwrap();
-    let there = plan
-        .kinematics(tmm::kinematics::Motion::fixed(r.min_transmission_at))
-        .unwrap();
-    let at = (0..plan.groups().len())
-        .map(|g| there.transmission_angle(g).unwrap())
-        .fold(f64::INFINITY, f64::min);
+    let at = gamma_at(&plan, r.min_transmission_at).unwrap();
     let errors = [
         rel(mk, k),
         rel(ms, stroke),

@@ -11,7 +11,9 @@ use std::time::{Duration, Instant};
 use tmm::kinematics::batch::{four_bar_positions, CrankAngles, FourBarDims, Lane, Positions};
 use tmm::kinematics::{Branch, Motion};
 use tmm::linkage::Plan;
-use tmm::synthesis::{path_generator, PathOptions, PathRequirement, Timing};
+use tmm::synthesis::{
+    path_generator, slider_crank_path_generator, PathOptions, PathRequirement, Timing,
+};
 
 struct Rng(u64);
 
@@ -99,9 +101,67 @@ fn target(rng: &mut Rng, phis: &[f64]) -> Vec<[f64; 2]> {
     }
 }
 
+/// The coupler points at `phis` of a random offset slider-crank (seeded) whose rod keeps
+/// γ ≥ 41° over a full turn (crank + |offset| ≤ rod·cos 41°), the rod within 8 cranks,
+/// its pivot and dimensions within 4 path sizes of the points' centroid (inside the search's
+/// default bounds). The positions by hand: the crank pin A = O1 + r(cos φ, sin φ) at the
+/// distance h = r·sin(φ − α) − e from the guide, the slider's pin B = A − h·n ± √(l² − h²)·u.
+fn slider_target(rng: &mut Rng, phis: &[f64]) -> Vec<[f64; 2]> {
+    loop {
+        let o = Vector2::new(rng.range(-0.2, 0.2), rng.range(-0.2, 0.2));
+        let alpha = rng.range(0.0, TAU);
+        let (u, n) = (
+            Vector2::new(alpha.cos(), alpha.sin()),
+            Vector2::new(-alpha.sin(), alpha.cos()),
+        );
+        let (e, r, l) = (
+            rng.range(-0.15, 0.15),
+            rng.range(0.08, 0.25),
+            rng.range(0.3, 0.9),
+        );
+        let sign = if rng.unit() < 0.5 { 1.0 } else { -1.0 };
+        let (along, across) = (rng.range(-0.3, 0.6), rng.range(-0.4, 0.4));
+        if r + e.abs() > l * 41f64.to_radians().cos() || l > 8.0 * r {
+            continue;
+        }
+        let pts: Vec<[f64; 2]> = phis
+            .iter()
+            .map(|phi| {
+                let a = o + r * Vector2::new(phi.cos(), phi.sin());
+                let h = r * (phi - alpha).sin() - e;
+                let b = a - h * n + sign * (l * l - h * h).sqrt() * u;
+                let w = (b - a) / l;
+                let p = a + along * w + across * Vector2::new(-w.y, w.x);
+                [p.x, p.y]
+            })
+            .collect();
+        let (c, size) = centroid_size(&pts);
+        let far = [
+            (o.x - c[0]).hypot(o.y - c[1]),
+            r,
+            l,
+            e.abs(),
+            along.abs(),
+            across.abs(),
+        ]
+        .into_iter()
+        .fold(0.0, f64::max);
+        if far < 4.0 * size {
+            return pts;
+        }
+    }
+}
+
+/// Which synthesis a recovery runs.
+#[derive(Clone, Copy)]
+enum Mechanism {
+    FourBar,
+    SliderCrank,
+}
+
 /// Synthesises `req` and returns the best design's mean miss in path sizes, measured by the
 /// engine on the design's description at its crank angles.
-fn recover(req: &PathRequirement, seed: u64) -> (f64, usize) {
+fn recover(req: &PathRequirement, seed: u64, mechanism: Mechanism) -> (f64, usize) {
     let opts = PathOptions::default()
         .with_seed(seed)
         .with_population(40)
@@ -109,10 +169,14 @@ fn recover(req: &PathRequirement, seed: u64) -> (f64, usize) {
         .with_max_time(Duration::from_secs(600))
         .with_designs(1);
     let mut evaluations = 0;
-    let designs = path_generator(req, &opts, |p| {
+    let count = |p: &tmm::synthesis::Progress| {
         evaluations = p.evaluations;
         true
-    })
+    };
+    let designs = match mechanism {
+        Mechanism::FourBar => path_generator(req, &opts, count),
+        Mechanism::SliderCrank => slider_crank_path_generator(req, &opts, count),
+    }
     .unwrap();
     let (_, size) = centroid_size(&req.points);
     let best = &designs[0];
@@ -139,6 +203,16 @@ fn recover(req: &PathRequirement, seed: u64) -> (f64, usize) {
 /// Runs `cases()` recoveries of requirements drawn by `make`; every one must succeed (the
 /// failures are listed together at the end). The times are printed, never asserted.
 fn recoveries(name: &str, seed: u64, make: impl Fn(&mut Rng) -> PathRequirement) {
+    recoveries_of(name, seed, Mechanism::FourBar, make);
+}
+
+/// [`recoveries`] of the mechanism `mechanism`.
+fn recoveries_of(
+    name: &str,
+    seed: u64,
+    mechanism: Mechanism,
+    make: impl Fn(&mut Rng) -> PathRequirement,
+) {
     let mut rng = Rng(seed);
     let n = cases();
     let (mut worst, mut sum, mut evals) = (0.0f64, 0.0, 0);
@@ -153,7 +227,7 @@ fn recoveries(name: &str, seed: u64, make: impl Fn(&mut Rng) -> PathRequirement)
             continue;
         }
         let clock = Instant::now();
-        let (e, ev) = recover(&req, case as u64);
+        let (e, ev) = recover(&req, case as u64, mechanism);
         let t = clock.elapsed().as_secs_f64();
         println!(
             "{name} case {case}: mean miss {e:.1e} of the path's size, {ev} evaluations, {t:.2} s"
@@ -229,6 +303,59 @@ fn recovers_a_closed_curve() {
     });
 }
 
+#[test]
+fn recovers_slider_cranks_with_prescribed_timing() {
+    recoveries_of(
+        "slider-crank, prescribed timing, 6 points",
+        2310,
+        Mechanism::SliderCrank,
+        |rng| {
+            let theta0 = rng.range(0.0, TAU);
+            let delta: Vec<f64> = (0..6).map(|k| 0.9 * k as f64).collect();
+            let phis: Vec<f64> = delta.iter().map(|d| theta0 + d).collect();
+            PathRequirement {
+                points: slider_target(rng, &phis),
+                timing: Timing::Prescribed(delta),
+            }
+        },
+    );
+}
+
+#[test]
+fn recovers_slider_cranks_with_free_timing() {
+    recoveries_of(
+        "slider-crank, free timing, 10 points",
+        2311,
+        Mechanism::SliderCrank,
+        |rng| {
+            let theta0 = rng.range(0.0, TAU);
+            let phis: Vec<f64> = (0..10)
+                .map(|k| theta0 + 0.55 * k as f64 + rng.range(0.0, 0.2))
+                .collect();
+            PathRequirement {
+                points: slider_target(rng, &phis),
+                timing: Timing::Free,
+            }
+        },
+    );
+}
+
+#[test]
+fn recovers_slider_cranks_on_a_closed_curve() {
+    recoveries_of(
+        "slider-crank, closed curve, 24 points",
+        2312,
+        Mechanism::SliderCrank,
+        |rng| {
+            let phis: Vec<f64> = (0..24).map(|k| TAU * k as f64 / 24.0).collect();
+            PathRequirement {
+                points: slider_target(rng, &phis),
+                timing: Timing::ClosedCurve,
+            }
+        },
+    );
+}
+
 /// A closed-curve requirement of 24 points (a recoverable one).
 fn closed_target() -> PathRequirement {
     let phis: Vec<f64> = (0..24).map(|k| TAU * k as f64 / 24.0).collect();
@@ -251,19 +378,27 @@ fn every_search_keeps_its_evaluation_budget_and_reports_progress() {
         points: target(&mut Rng(9), &[0.0, 0.8, 1.6, 2.4, 3.2, 4.0]),
         timing: Timing::Prescribed(vec![0.0, 0.8, 1.6, 2.4, 3.2, 4.0]),
     };
-    for req in [closed_target(), free, timed] {
+    let kinds = [Mechanism::FourBar, Mechanism::SliderCrank];
+    for (req, mechanism) in [closed_target(), free, timed]
+        .into_iter()
+        .flat_map(|r| kinds.map(|m| (r.clone(), m)))
+    {
         // An impossible tolerance: the search runs until its budget is spent.
         let mut opts = PathOptions::default()
             .with_population(20)
             .with_max_evaluations(3000);
         opts.tolerance = 0.0;
         let (mut calls, mut last) = (0usize, 0usize);
-        let r = path_generator(&req, &opts, |p| {
+        let count = |p: &tmm::synthesis::Progress| {
             assert!(p.evaluations >= last && p.best.is_finite());
             calls += 1;
             last = p.evaluations;
             true
-        });
+        };
+        let r = match mechanism {
+            Mechanism::FourBar => path_generator(&req, &opts, count),
+            Mechanism::SliderCrank => slider_crank_path_generator(&req, &opts, count),
+        };
         assert!(calls > 0, "no progress reported");
         assert!(last <= 3000, "{last} evaluations past a budget of 3000");
         if let Ok(designs) = r {
@@ -271,14 +406,18 @@ fn every_search_keeps_its_evaluation_budget_and_reports_progress() {
         }
         // A callback that says stop is called once, and the search ends there.
         let mut calls = 0;
-        let _ = path_generator(&req, &opts, |_| {
+        let stop = |_: &tmm::synthesis::Progress| {
             calls += 1;
             false
-        });
+        };
+        let _ = match mechanism {
+            Mechanism::FourBar => path_generator(&req, &opts, stop),
+            Mechanism::SliderCrank => slider_crank_path_generator(&req, &opts, stop),
+        };
         assert_eq!(calls, 1);
         // Too little time to evaluate anything: the error says so, with the budget.
         let none = opts.clone().with_max_time(Duration::from_nanos(1));
-        match path_generator(&req, &none, |_| true) {
+        match synthesise(mechanism, &req, &none) {
             Err(tmm::Error::NoMechanism { problem, .. }) => {
                 assert!(
                     problem.contains("in 0 evaluations") && problem.contains("the budget: 3000"),
@@ -290,12 +429,30 @@ fn every_search_keeps_its_evaluation_budget_and_reports_progress() {
     }
 }
 
+/// Runs the synthesis of `mechanism`.
+fn synthesise(
+    mechanism: Mechanism,
+    req: &PathRequirement,
+    opts: &PathOptions,
+) -> tmm::Result<Vec<tmm::synthesis::PathDesign>> {
+    match mechanism {
+        Mechanism::FourBar => path_generator(req, opts, |_| true),
+        Mechanism::SliderCrank => slider_crank_path_generator(req, opts, |_| true),
+    }
+}
+
 #[test]
 fn bad_path_requirements_name_the_parameter() {
+    bad_requirements_of(Mechanism::FourBar, 9);
+    bad_requirements_of(Mechanism::SliderCrank, 8);
+}
+
+/// Every bad requirement and option refused by `mechanism`'s synthesis, naming what is bad;
+/// `free` is the fewest points without timing.
+fn bad_requirements_of(mechanism: Mechanism, free: usize) {
     let good = closed_target();
     let opts = PathOptions::default();
-    let name = |req: &PathRequirement, opts: &PathOptions| match path_generator(req, opts, |_| true)
-    {
+    let name = |req: &PathRequirement, opts: &PathOptions| match synthesise(mechanism, req, opts) {
         Err(tmm::Error::OutOfRange { name, .. } | tmm::Error::NonFinite { name, .. }) => {
             name.to_owned()
         }
@@ -306,13 +463,13 @@ fn bad_path_requirements_name_the_parameter() {
     };
     let with = |points: Vec<[f64; 2]>, timing: Timing| PathRequirement { points, timing };
     let pts = good.points.clone();
-    // Fewer points than unknowns: 9 without timing, 5 with it.
+    // Fewer points than unknowns: 9 (a slider-crank: 8) without timing, 5 with it.
     assert_eq!(
-        name(&with(pts[..8].to_vec(), Timing::ClosedCurve), &opts),
+        name(&with(pts[..free - 1].to_vec(), Timing::ClosedCurve), &opts),
         "points"
     );
     assert_eq!(
-        name(&with(pts[..8].to_vec(), Timing::Free), &opts),
+        name(&with(pts[..free - 1].to_vec(), Timing::Free), &opts),
         "points"
     );
     assert_eq!(
@@ -355,8 +512,10 @@ fn bad_path_requirements_name_the_parameter() {
     same[9] = same[3];
     assert!(name(&with(same, Timing::ClosedCurve), &opts).contains("points 4 and 10 coincide"));
     // Bad options.
-    let bad = PathOptions::default().with_max_link_ratio(1.0);
-    assert_eq!(name(&good, &bad), "max_link_ratio");
+    for ratio in [1.0, 1001.0, f64::INFINITY, f64::NAN] {
+        let bad = PathOptions::default().with_max_link_ratio(ratio);
+        assert_eq!(name(&good, &bad), "max_link_ratio", "{ratio}");
+    }
     let bad = PathOptions::default().with_max_size(f64::NAN);
     assert_eq!(name(&good, &bad), "max_size");
     let bad = PathOptions::default().with_population(3);

@@ -1,5 +1,10 @@
-//! Path generation: a four-bar whose coupler point passes through given points (with or
-//! without prescribed crank angles) or traces a closed curve, by a seeded global search.
+//! Path generation: a four-bar (or an offset slider-crank) whose coupler point passes through
+//! given points (with or without prescribed crank angles) or traces a closed curve, by a
+//! seeded global search.
+//!
+//! The slider-crank ([`slider`]) is searched as the four-bar with prescribed timing is, over
+//! all its dimensions (eight, a gene of the four-bar's nine unused), for every timing: without
+//! timing each candidate's turn is matched to the targets by the nearest positions.
 //!
 //! With prescribed timing the search is differential evolution (DE/current-to-pbest/1/bin
 //! with dithered F) over the nine dimensions of a four-bar with a coupler point, its assembly
@@ -20,9 +25,10 @@
 //! ends as soon as enough distinct designs meet the points to the tolerance.
 
 mod shape;
+mod slider;
 
 use super::four_bar::FourBar;
-use super::{Options, Synthesis};
+use super::{Options, Synthesis, MAX_LINK_RATIO};
 use crate::error::{Error, Result};
 use crate::kinematics::batch::{
     coupler_point, four_bar_positions, CrankAngles, FourBarDims, Lane, Positions,
@@ -67,7 +73,8 @@ pub struct PathRequirement {
 pub struct PathOptions {
     /// \[γ\] and the options common to the synthesis methods.
     pub options: Options,
-    /// The largest ratio of the longest to the shortest of the four links. Default 10.
+    /// The largest ratio of the longest to the shortest of the four links (a slider-crank's
+    /// crank and rod), in (1, [`MAX_LINK_RATIO`](super::MAX_LINK_RATIO)]. Default 10.
     pub max_link_ratio: f64,
     /// The largest link length and distance of a pivot from the points' centroid, in units of
     /// the path's size (the largest distance of a point from the centroid). Default 5.
@@ -229,6 +236,10 @@ const MAX_POPULATION: usize = 100_000;
 const MEMETIC: usize = 5;
 /// Generations without improvement that end a run of the differential evolution.
 const STAGNATION: usize = 40;
+/// The share of the evaluation budget kept for the polish of the shape search's last run:
+/// without it a run that creeps on until the budget is spent leaves no evaluation to turn
+/// its best candidates into designs.
+const POLISH_SHARE: f64 = 0.1;
 
 /// The search's budget, shared by the global stage and the polish, and wall-clock time.
 /// Its unit is a candidate evaluation of the global stage (one candidate over a turn, or
@@ -237,6 +248,8 @@ const STAGNATION: usize = 40;
 struct Budget {
     used: Cell<f64>,
     max: usize,
+    /// The share of `max` the global stage leaves to the polish of its last run.
+    reserve: f64,
     /// What one evaluation of the polish counts.
     polish: f64,
     start: Instant,
@@ -247,6 +260,11 @@ impl Budget {
     /// Whether `n` more evaluations fit, in number and in time.
     fn room(&self, n: usize) -> bool {
         self.used.get() + n as f64 <= self.max as f64 && self.start.elapsed() < self.max_time
+    }
+    /// Whether `n` more evaluations fit in the global stage's share: the polish of the last
+    /// run's best candidates always has [`POLISH_SHARE`] of the budget left.
+    fn room_search(&self, n: usize) -> bool {
+        self.used.get() + n as f64 <= self.max as f64 - self.reserve && self.room(n)
     }
     fn add(&self, n: usize) {
         self.used.set(self.used.get() + n as f64);
@@ -266,7 +284,15 @@ impl Budget {
     }
 }
 
+/// The kind of mechanism a search synthesises.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Kind {
+    FourBar,
+    SliderCrank,
+}
+
 struct Problem {
+    kind: Kind,
     budget: Budget,
     targets: Vec<V>,
     timing: Timing,
@@ -296,6 +322,29 @@ fn dims_of(g: &[f64], sigma: f64) -> FourBarDims {
     }
 }
 
+/// The positions of the mechanism of the genes `g` (mode `sigma`) at `angles`, into `out`
+/// (sized for them): a batch lane each.
+fn fill(kind: Kind, g: &[f64], sigma: f64, angles: &CrankAngles, out: &mut Positions) {
+    match kind {
+        Kind::FourBar => {
+            let _ = four_bar_positions(&dims_of(g, sigma), angles, out.columns_mut());
+        }
+        Kind::SliderCrank => slider::Slider::of(g, sigma).positions(angles, out),
+    }
+}
+
+/// The coupler point of the genes `g` at the crank angle `phi`, exactly as [`fill`] gives
+/// it, with the lane's measure.
+fn point_of(kind: Kind, g: &[f64], sigma: f64, phi: f64) -> Option<(V, f64)> {
+    match kind {
+        Kind::FourBar => point_at(&dims_of(g, sigma), phi),
+        Kind::SliderCrank => slider::Slider::of(g, sigma)
+            .at(phi.cos(), phi.sin())
+            .ok()
+            .map(|(_, _, p, m)| (p, m)),
+    }
+}
+
 /// The coupler point of `d` at the crank angle `phi` by the scalar blocks (exactly a batch
 /// lane), with sin(φ3 − φ2).
 fn point_at(d: &FourBarDims, phi: f64) -> Option<(V, f64)> {
@@ -312,8 +361,17 @@ impl Problem {
     /// Lower and upper bounds of the genes.
     fn bounds(&self) -> (Vec<f64>, Vec<f64>) {
         let s = self.size;
-        let mut lo = vec![-s, -s, 0.0, 0.02, 0.02, 0.02, 0.02, -s, -s, -1.0];
-        let mut hi = vec![s, s, TAU, s, s, s, s, s, s, 1.0];
+        let (mut lo, mut hi) = match self.kind {
+            Kind::FourBar => (
+                vec![-s, -s, 0.0, 0.02, 0.02, 0.02, 0.02, -s, -s, -1.0],
+                vec![s, s, TAU, s, s, s, s, s, s, 1.0],
+            ),
+            // The offset is signed, and gene 6 unused.
+            Kind::SliderCrank => (
+                vec![-s, -s, 0.0, -s, 0.02, 0.02, 0.0, -s, -s, -1.0],
+                vec![s, s, TAU, s, s, s, 0.0, s, s, 1.0],
+            ),
+        };
         if self.genes() > BASE {
             lo.push(0.0);
             hi.push(TAU);
@@ -322,7 +380,13 @@ impl Problem {
     }
 
     fn lengths_ok(&self, g: &[f64]) -> f64 {
-        let l = [g[3], g[4], g[5], g[6]];
+        let l = match self.kind {
+            Kind::FourBar => &g[3..7],
+            Kind::SliderCrank => &g[4..6],
+        };
+        if self.kind == Kind::SliderCrank && !g[3].is_finite() {
+            return INFEASIBLE * 10.0;
+        }
         let (mn, mx) = l
             .iter()
             .fold((f64::INFINITY, 0.0f64), |(a, b), &x| (a.min(x), b.max(x)));
@@ -377,7 +441,6 @@ impl Problem {
             return p;
         }
         let sigma = g[9];
-        let d = dims_of(g, sigma);
         match &self.timing {
             Timing::Prescribed(delta) => {
                 let theta0 = g[10];
@@ -391,7 +454,7 @@ impl Problem {
                 }
                 self.angles.set(&self.phi);
                 self.out.resize(self.phi.len());
-                let _ = four_bar_positions(&d, &self.angles, self.out.columns_mut());
+                fill(self.kind, g, sigma, &self.angles, &mut self.out);
                 let bad = (0..self.phi.len()).filter(|&i| !self.lane_ok(i)).count();
                 if bad > 0 {
                     return self.penalty(0..self.phi.len());
@@ -405,7 +468,7 @@ impl Problem {
             Timing::Free | Timing::ClosedCurve => {
                 let m = self.turn.len();
                 self.out.resize(m);
-                let _ = four_bar_positions(&d, &self.turn, self.out.columns_mut());
+                fill(self.kind, g, sigma, &self.turn, &mut self.out);
                 let ok: Vec<bool> = (0..m).map(|i| self.lane_ok(i)).collect();
                 let closed = matches!(self.timing, Timing::ClosedCurve);
                 let n_ok = ok.iter().filter(|&&b| b).count();
@@ -466,9 +529,8 @@ impl Problem {
         if let Timing::Prescribed(_) = self.timing {
             x.push(g[10]);
         } else {
-            let d = dims_of(g, sigma);
             self.out.resize(self.turn.len());
-            let _ = four_bar_positions(&d, &self.turn, self.out.columns_mut());
+            fill(self.kind, g, sigma, &self.turn, &mut self.out);
             for t in &self.targets {
                 let mut best = (f64::INFINITY, 0.0);
                 for k in 0..self.turn.len() {
@@ -501,7 +563,7 @@ impl Problem {
     fn lm(&self, x: Vec<f64>, sigma: f64, iterations: usize) -> Vec<f64> {
         let res = |x: &[f64]| {
             if self.budget.take_polish() {
-                pb_residuals(&self.targets, &self.timing, x, sigma)
+                pb_residuals(self.kind, &self.targets, &self.timing, x, sigma)
             } else {
                 None
             }
@@ -530,7 +592,6 @@ impl Problem {
         if self.lengths_ok(&g) > 0.0 {
             return false;
         }
-        let d = dims_of(&g, sigma);
         let phis: Vec<f64> = (0..self.targets.len())
             .map(|i| self.angle_of(x, i))
             .collect();
@@ -557,7 +618,7 @@ impl Problem {
             .extend((0..=steps).map(|k| start + span * k as f64 / steps as f64));
         self.angles.set(&self.phi);
         self.out.resize(self.phi.len());
-        let _ = four_bar_positions(&d, &self.angles, self.out.columns_mut());
+        fill(self.kind, &g, sigma, &self.angles, &mut self.out);
         (0..self.phi.len()).all(|i| self.lane_ok(i))
     }
 }
@@ -665,12 +726,19 @@ impl Found {
         only_good: bool,
     ) -> Result<()> {
         let sigma = if g[9] > 0.0 { 1.0 } else { -1.0 };
-        let mut x = g[..9].to_vec();
-        x.extend_from_slice(phis);
-        let x = pb.lm(x, sigma, iterations);
-        if !pb.feasible(&x, sigma) {
+        let mut x0 = g[..9].to_vec();
+        x0.extend_from_slice(phis);
+        let x = pb.lm(x0.clone(), sigma, iterations);
+        // Levenberg–Marquardt keeps the link ratio only: where it steps out of the
+        // constraints (γ, assembly, order), the unpolished start, which met them in the
+        // search, is the design (no search that found a feasible candidate ends empty).
+        let x = if pb.feasible(&x, sigma) {
+            x
+        } else if !only_good && pb.feasible(&x0, sigma) {
+            x0
+        } else {
             return Ok(());
-        }
+        };
         let Some(design) = design_of(pb, &x, sigma, self.centre, self.scale)? else {
             return Ok(());
         };
@@ -865,7 +933,7 @@ fn levenberg_marquardt(
     x
 }
 
-fn check_requirement(req: &PathRequirement, opts: &PathOptions) -> Result<f64> {
+fn check_requirement(kind: Kind, req: &PathRequirement, opts: &PathOptions) -> Result<f64> {
     let gamma = opts.options.check()?;
     for p in &req.points {
         crate::error::finite("points", p[0])?;
@@ -881,9 +949,15 @@ fn check_requirement(req: &PathRequirement, opts: &PathOptions) -> Result<f64> {
             ends: crate::Ends::Closed,
         });
     }
+    // The unknowns without timing: a four-bar's nine dimensions, a slider-crank's eight
+    // (O1, the guide's direction and offset, crank, rod, the coupler point), and an angle a
+    // point, two equations a point.
+    let free = match kind {
+        Kind::FourBar => 9,
+        Kind::SliderCrank => 8,
+    };
     let (min, name) = match &req.timing {
-        Timing::Free => (9, "points"),
-        Timing::ClosedCurve => (9, "points"),
+        Timing::Free | Timing::ClosedCurve => (free, "points"),
         Timing::Prescribed(d) => {
             for &x in d {
                 crate::error::finite("timing", x)?;
@@ -938,17 +1012,22 @@ fn check_requirement(req: &PathRequirement, opts: &PathOptions) -> Result<f64> {
             }
         }
     }
-    for (name, v, lo) in [
-        ("max_link_ratio", opts.max_link_ratio, 1.0),
-        ("max_size", opts.max_size, 0.0),
+    // A ratio above the synthesis' bound could not be checked by the engine to 1e-10.
+    for (name, v, lo, hi) in [
+        ("max_link_ratio", opts.max_link_ratio, 1.0, MAX_LINK_RATIO),
+        ("max_size", opts.max_size, 0.0, f64::INFINITY),
     ] {
-        if v.is_nan() || v <= lo || !v.is_finite() {
+        if v.is_nan() || v <= lo || v > hi || !v.is_finite() {
             return Err(Error::OutOfRange {
                 name,
                 value: v,
                 min: lo,
-                max: f64::INFINITY,
-                ends: crate::Ends::Open,
+                max: hi,
+                ends: if hi.is_finite() {
+                    crate::Ends::OpenBelow
+                } else {
+                    crate::Ends::Open
+                },
             });
         }
     }
@@ -1028,16 +1107,94 @@ fn normalised(points: &[[f64; 2]]) -> (Vec<V>, V, f64) {
 pub fn path_generator(
     req: &PathRequirement,
     opts: &PathOptions,
+    progress: impl FnMut(&Progress) -> bool,
+) -> Result<Vec<PathDesign>> {
+    generate(Kind::FourBar, req, opts, progress)
+}
+
+/// An offset slider-crank whose coupler point — a point of the rod — passes through the
+/// points of `req` (or traces its closed curve): the `opts.designs` best distinct designs
+/// found, best first, each with its misses, as [`path_generator`] finds four-bars.
+///
+/// The design's joints are `O1` (the crank's pivot), `A` (crank–rod), `B` (rod–slider), `S`
+/// (the slider's prismatic joint on the frame's guide, the output its slide), the coupler
+/// point `P` on the rod. The dimensions searched are O1, the guide's direction and its
+/// offset from O1, the crank, the rod and the coupler point (eight; with prescribed timing
+/// also θ0) and the assembly mode, by differential evolution over all of them (no placement
+/// by similarity), each candidate evaluated over a turn or at its prescribed angles; the
+/// transmission angle is the rod's with the guide's normal, sin γ = √(l² − h²)/l for the
+/// crank pin at the distance h from the guide. `max_link_ratio` bounds rod/crank and
+/// crank/rod; `max_size` the crank, the rod, the offset, the coupler point's offsets and the
+/// distance of O1 from the points' centroid.
+///
+/// # Example
+/// Six points of a known slider-crank (crank 50 mm, rod 150 mm, the guide along +x at
+/// 20 mm above the crank's pivot, the coupler point 40 mm along the rod and 30 mm to its
+/// left) at crank angles 0.9 rad apart, by hand: the crank pin A = (r cos φ, r sin φ) lies
+/// h = r sin φ − e from the guide, the slider's pin B = A + (√(l² − h²), −h), and
+/// P = A + 0.04·w + 0.03·w⊥ with w = (B − A)/l. The synthesis finds a slider-crank through
+/// them (this one or another) to 1e-11 m, and the engine, given its
+/// description, puts `P` on them at the crank angles the design reports:
+/// ```
+/// use tmm::kinematics::Motion;
+/// use tmm::linkage::Plan;
+/// use tmm::synthesis::{slider_crank_path_generator, PathOptions, PathRequirement, Timing};
+/// let (r, l, e) = (0.05, 0.15, 0.02);
+/// let delta: Vec<f64> = (0..6).map(|k| 0.9 * k as f64).collect();
+/// let points: Vec<[f64; 2]> = delta
+///     .iter()
+///     .map(|&phi: &f64| {
+///         let a = [r * phi.cos(), r * phi.sin()];
+///         let h = a[1] - e;
+///         let b = [a[0] + (l * l - h * h).sqrt(), e];
+///         let w = [(b[0] - a[0]) / l, (b[1] - a[1]) / l];
+///         [a[0] + 0.04 * w[0] - 0.03 * w[1], a[1] + 0.04 * w[1] + 0.03 * w[0]]
+///     })
+///     .collect();
+/// let req = PathRequirement { points: points.clone(), timing: Timing::Prescribed(delta) };
+/// let opts = PathOptions::default().with_designs(1);
+/// let designs = slider_crank_path_generator(&req, &opts, |_| true)?;
+/// let best = &designs[0];
+/// assert!(best.mean_error < 1e-11);
+/// let plan = Plan::new(&best.synthesis.linkage)?;
+/// for (phi, t) in best.crank_angles.iter().zip(&points) {
+///     let p = plan.kinematics(Motion::fixed(*phi))?.point("P")?.p;
+///     assert!((p.x - t[0]).hypot(p.y - t[1]) < 1e-11);
+/// }
+/// # Ok::<(), tmm::Error>(())
+/// ```
+///
+/// # Errors
+/// As [`path_generator`], with 8 points the fewest without timing.
+pub fn slider_crank_path_generator(
+    req: &PathRequirement,
+    opts: &PathOptions,
+    progress: impl FnMut(&Progress) -> bool,
+) -> Result<Vec<PathDesign>> {
+    generate(Kind::SliderCrank, req, opts, progress)
+}
+
+fn generate(
+    kind: Kind,
+    req: &PathRequirement,
+    opts: &PathOptions,
     mut progress: impl FnMut(&Progress) -> bool,
 ) -> Result<Vec<PathDesign>> {
-    let gamma = check_requirement(req, opts)?;
+    let gamma = check_requirement(kind, req, opts)?;
     let start = Instant::now();
     let (pts, centre, scale) = normalised(&req.points);
     let targets: Vec<V> = pts.iter().map(|p| (p - centre) / scale).collect();
     let mut pb = Problem {
+        kind,
         budget: Budget {
             used: Cell::new(0.0),
             max: opts.max_evaluations,
+            reserve: match (kind, &req.timing) {
+                (Kind::FourBar, Timing::Prescribed(_)) => 0.0,
+                // At least the first population and one generation stay in the search.
+                _ => (POLISH_SHARE * opts.max_evaluations as f64)
+                    .min(opts.max_evaluations.saturating_sub(2 * opts.population) as f64),
+            },
             polish: req.points.len() as f64 / opts.positions as f64,
             start,
             max_time: opts.max_time,
@@ -1059,9 +1216,11 @@ pub fn path_generator(
         centre,
         scale,
     };
-    let evals = match req.timing {
-        Timing::Prescribed(_) => search_timed(&mut pb, opts, &mut found, &mut progress)?,
-        _ => shape::search(&mut pb, opts, &mut found, &mut progress)?,
+    let evals = match (kind, &req.timing) {
+        (Kind::FourBar, Timing::Free | Timing::ClosedCurve) => {
+            shape::search(&mut pb, opts, &mut found, &mut progress)?
+        }
+        _ => search_timed(&mut pb, opts, &mut found, &mut progress)?,
     };
     let mut designs = found.designs;
     let want = opts.designs.max(1);
@@ -1069,7 +1228,11 @@ pub fn path_generator(
         return Err(Error::NoMechanism {
             method: "path generation",
             problem: format!(
-                "no four-bar met the constraints (γ ≥ {:.1}°, link ratio ≤ {}, assembly over the range) in {evals} evaluations and {:.3} s (the budget: {} evaluations, {:.3} s)",
+                "no {} met the constraints (γ ≥ {:.1}°, link ratio ≤ {}, assembly over the range) in {evals} evaluations and {:.3} s (the budget: {} evaluations, {:.3} s)",
+                match kind {
+                    Kind::FourBar => "four-bar",
+                    Kind::SliderCrank => "slider-crank",
+                },
                 gamma.to_degrees(),
                 opts.max_link_ratio,
                 start.elapsed().as_secs_f64(),
@@ -1104,7 +1267,7 @@ fn search_timed(
     // Runs of differential evolution from fresh random populations, each until it stagnates,
     // its best candidates polished; until enough designs meet the points to `tolerance` or
     // the budget is spent.
-    while !stopped && pb.budget.room(2 * np) {
+    while !stopped && pb.budget.room_search(2 * np) {
         let mut pop: Vec<Vec<f64>> = (0..np)
             .map(|_| {
                 (0..dim)
@@ -1115,7 +1278,7 @@ fn search_timed(
         let mut fit: Vec<f64> = pop.iter().map(|g| pb.objective(g)).collect();
         pb.budget.add(np);
         let (mut last_best, mut since) = (f64::INFINITY, 0);
-        while pb.budget.room(np) {
+        while pb.budget.room_search(np) {
             generation += 1;
             let f_scale = 0.5 + 0.5 * rng.unit();
             // DE/current-to-pbest/1/bin: towards one of the best tenth, plus a random difference.
@@ -1213,13 +1376,14 @@ fn search_timed(
             let (x, sigma) = pb.start_of(&pop[i]);
             let step: Vec<f64> = x.iter().map(|v| 0.02 * v.abs().max(0.5)).collect();
             let xn = {
-                let (targets, timing, budget) = (&pb.targets, &pb.timing, &pb.budget);
+                let (kind, targets, timing, budget) =
+                    (pb.kind, &pb.targets, &pb.timing, &pb.budget);
                 let mut f = |x: &[f64]| {
                     if !budget.take_polish() {
                         return None;
                     }
                     Some(
-                        pb_residuals(targets, timing, x, sigma)
+                        pb_residuals(kind, targets, timing, x, sigma)
                             .map_or(f64::INFINITY, |r| r.iter().map(|v| v * v).sum()),
                     )
                 };
@@ -1242,15 +1406,21 @@ fn search_timed(
     Ok(pb.budget.used())
 }
 
-fn pb_residuals(targets: &[V], timing: &Timing, x: &[f64], sigma: f64) -> Option<Vec<f64>> {
-    let d = dims_of(&gene_vec(x, sigma), sigma);
+fn pb_residuals(
+    kind: Kind,
+    targets: &[V],
+    timing: &Timing,
+    x: &[f64],
+    sigma: f64,
+) -> Option<Vec<f64>> {
+    let g = gene_vec(x, sigma);
     let mut r = Vec::with_capacity(2 * targets.len());
     for (i, t) in targets.iter().enumerate() {
         let phi = match timing {
             Timing::Prescribed(delta) => x[9] + delta[i],
             _ => x[9 + i],
         };
-        let (p, _) = point_at(&d, phi)?;
+        let (p, _) = point_of(kind, &g, sigma, phi)?;
         r.push(p.x - t.x);
         r.push(p.y - t.y);
     }
@@ -1265,6 +1435,9 @@ fn design_of(
     centre: V,
     scale: f64,
 ) -> Result<Option<PathDesign>> {
+    if pb.kind == Kind::SliderCrank {
+        return slider::design(pb, x, sigma, centre, scale);
+    }
     let g = gene_vec(x, sigma);
     let mut d = dims_of(&g, sigma);
     d.o = Point2::from(centre + d.o.coords * scale);

@@ -30,7 +30,13 @@ pub(super) const SHAPE: usize = 6;
 
 /// Start positions on the grid of a cut, and spans (open paths) tried per sense.
 const STARTS: usize = 48;
+/// The relative improvement of a run's best that counts as progress: a run that improves
+/// less over [`STAGNATION`](super::STAGNATION) generations creeps along a wall or a flat
+/// valley, and a fresh population is a better use of the budget.
+const PROGRESS: f64 = 1e-3;
 const SPANS: usize = 10;
+/// The shortest span tried, as a fraction of the run.
+const SPAN_RATIO: f64 = 0.08;
 
 /// The best cut of a candidate: where the targets sit on its curve and the similarity.
 #[derive(Debug, Clone, Copy)]
@@ -207,7 +213,7 @@ impl Shapes {
         for forward in [true, false] {
             for k in 0..spans {
                 // Spans from the whole run down to a tenth of it, geometrically.
-                let span = total * 0.08f64.powf(k as f64 / SPANS as f64);
+                let span = total * SPAN_RATIO.powf(k as f64 / SPANS as f64);
                 let room = if self.looped { total } else { total - span };
                 let starts = if self.looped || room > 0.0 { STARTS } else { 1 };
                 for k in 0..starts {
@@ -221,11 +227,20 @@ impl Shapes {
             }
         }
         let mut best = best.ok_or(INFEASIBLE + 2.0)?;
-        // Refine the start (and an open path's span) by halving steps about the best.
+        // Refine the start (and an open path's span) by halving steps about the best; the
+        // span's first step is half the spans' grid ratio (a span between two of the grid's
+        // is reached whatever it is).
         let mut step = total / STARTS as f64;
-        for _ in 0..8 {
+        let mut span_step = best.span * (1.0 - SPAN_RATIO.powf(1.0 / SPANS as f64));
+        for _ in 0..10 {
             step /= 2.0;
-            for (ds, dw) in [(step, 0.0), (-step, 0.0), (0.0, step), (0.0, -step)] {
+            span_step /= 2.0;
+            for (ds, dw) in [
+                (step, 0.0),
+                (-step, 0.0),
+                (0.0, span_step),
+                (0.0, -span_step),
+            ] {
                 if self.closed && dw != 0.0 {
                     continue;
                 }
@@ -465,10 +480,70 @@ fn generation(
     }
 }
 
+/// The shape of the cognate of `h` whose crank turns with its crank (Roberts–Chebyshev), in
+/// both assembly modes: it traces the same coupler curve, turned and scaled, at the same
+/// crank angles (shifted by one constant), so the placement puts it on the same targets.
+///
+/// Why: with complex numbers, the crank a = A − O1, the rocker c = B − O3 and the coupler
+/// point P = A + z(B − A), B − A = (O3 − O1) + c − a gives P = O_C + (1 − z)a + zc with the
+/// third pivot O_C = O1 + z(O3 − O1). So the four-bar with the crank O_C C' = (1 − z)a, the
+/// rocker O3 D = (z − 1)(B − A) and the coupler C'D = (z − 1)c carries P at
+/// C' + zc = C' + z/(z − 1)·(D − C'): its links are |1 − z| times (a, c, b) on the frame
+/// |1 − z|·|O3 − O1| — the same shape with coupler and rocker swapped — and its coupler point
+/// is z/(z − 1). A cognate whose coupler point lies beyond the search's bounds, or in a
+/// broad basin the search prefers, is turned into one (maybe within them) by this map.
+fn cognate(h: &[f64]) -> Option<[[f64; SHAPE]; 2]> {
+    let z = V::new(h[3], h[4]);
+    let w = V::new(z.x - 1.0, z.y);
+    let n = w.norm_squared();
+    if n.is_nan() || n < 1e-12 {
+        return None;
+    }
+    // z/w = z·conj(w)/|w|².
+    let q = mul(z, V::new(w.x, -w.y)) / n;
+    let mode = |s: f64| [h[0], h[2], h[1], q.x, q.y, s];
+    Some([mode(1.0), mode(-1.0)])
+}
+
+/// Places the shape `h` and polishes it into a design (kept if `only_good` it meets the
+/// tolerance); where the result is not yet a design that meets it, the same for its cognate
+/// (the mode that fits better).
+fn adopt_with_cognate(
+    pb: &mut Problem,
+    shapes: &mut Shapes,
+    found: &mut super::Found,
+    h: &[f64],
+    iterations: usize,
+    tolerance: f64,
+    only_good: bool,
+) -> crate::error::Result<()> {
+    let before = found.good(tolerance);
+    if let Some((g, phis)) = shapes.place(pb, h) {
+        found.adopt(pb, &g, &phis, iterations, tolerance, only_good)?;
+    }
+    if found.good(tolerance) > before || !pb.budget.room(5) {
+        return Ok(());
+    }
+    let Some(twins) = cognate(h) else {
+        return Ok(());
+    };
+    pb.budget.add(2);
+    let cost = twins.map(|t| shapes.cost(pb, &t));
+    let t = &twins[usize::from(cost[1] < cost[0])];
+    if cost[0].min(cost[1]) < INFEASIBLE
+        && let Some((g, phis)) = shapes.place(pb, t)
+    {
+        found.adopt(pb, &g, &phis, iterations, tolerance, only_good)?;
+    }
+    Ok(())
+}
+
 /// The search over shapes: runs of differential evolution from fresh random populations,
-/// each until it stagnates, the best member polished every few generations (kept when it
-/// meets the points to the tolerance) and the best few at the end of each run;
-/// until `opts.designs` designs meet the points or the budget is spent.
+/// each until it stagnates (its best improved by less than [`PROGRESS`] in
+/// [`STAGNATION`](super::STAGNATION) generations), the best member polished every few
+/// generations (kept when it meets the points to the tolerance) and the best few at the end
+/// of each run, each with its cognate where it falls short; until `opts.designs` designs meet
+/// the points or the budget is spent (the last run's polish has its reserved share).
 pub(super) fn search(
     pb: &mut Problem,
     opts: &super::PathOptions,
@@ -482,7 +557,7 @@ pub(super) fn search(
     let mut rng = super::Rng(opts.seed);
     let mut generations = 0usize;
     let start = found.start;
-    while pb.budget.room(2 * np) {
+    while pb.budget.room_search(2 * np) {
         let mut pop: Vec<Vec<f64>> = (0..np)
             .map(|_| {
                 (0..SHAPE)
@@ -493,7 +568,7 @@ pub(super) fn search(
         let mut fit: Vec<f64> = pop.iter().map(|h| shapes.cost(pb, h)).collect();
         pb.budget.add(np);
         let (mut last, mut since) = (f64::INFINITY, 0);
-        while pb.budget.room(np) {
+        while pb.budget.room_search(np) {
             generations += 1;
             generation(&mut pop, &mut fit, &lo, &hi, &mut rng, &mut |h| {
                 shapes.cost(pb, h)
@@ -505,10 +580,10 @@ pub(super) fn search(
             let best = fit[best_i];
             if generations.is_multiple_of(super::MEMETIC)
                 && best < INFEASIBLE
-                && pb.budget.room(3)
-                && let Some((g, phis)) = shapes.place(pb, &pop[best_i])
+                && pb.budget.room_search(3)
             {
-                found.adopt(pb, &g, &phis, 60, opts.tolerance, true)?;
+                let h = pop[best_i].clone();
+                adopt_with_cognate(pb, &mut shapes, found, &h, 60, opts.tolerance, true)?;
                 if found.good(opts.tolerance) >= want {
                     return Ok(pb.budget.used());
                 }
@@ -522,7 +597,7 @@ pub(super) fn search(
             if !go_on {
                 return Ok(pb.budget.used());
             }
-            if best < last * (1.0 - 1e-6) {
+            if best < last * (1.0 - PROGRESS) {
                 (last, since) = (best, 0);
             } else {
                 since += 1;
@@ -537,8 +612,10 @@ pub(super) fn search(
             if !pb.budget.room(3) {
                 break;
             }
-            if let Some((g, phis)) = shapes.place(pb, &pop[i]) {
-                found.adopt(pb, &g, &phis, 200, opts.tolerance, false)?;
+            let h = pop[i].clone();
+            adopt_with_cognate(pb, &mut shapes, found, &h, 200, opts.tolerance, false)?;
+            if found.good(opts.tolerance) >= want {
+                break;
             }
         }
         if found.good(opts.tolerance) >= want {
