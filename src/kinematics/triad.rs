@@ -413,7 +413,7 @@ fn track(a: [Point2<f64>; 3], dims: &TriadDims, previous: &TriadPose) -> Option<
     let z0 = C::new(d.x, d.y) / d.norm();
     // Newton's method in the half-angle tangent t about the previous direction, on
     // P(t) = (1 + t²)³·F(θ(t)), a polynomial of degree 6 with the same roots (no division but
-    // the step's). It stops after a step below 1e-9 (quadratic convergence leaves an error of
+    // the step's). It stops after a step below 1e-6 (quadratic convergence leaves an error of
     // the order of its square).
     let (mut t, mut dt) = (0.0, f64::INFINITY);
     let (mut p, mut dp) = (f64::NAN, f64::NAN);
@@ -424,11 +424,11 @@ fn track(a: [Point2<f64>; 3], dims: &TriadDims, previous: &TriadPose) -> Option<
             return None;
         }
         t += dt;
-        if dt.abs() <= 1e-9 {
+        if dt.abs() <= 1e-6 {
             break;
         }
     }
-    if dt.is_nan() || dt.abs() > 1e-9 || e.m2.is_nan() || e.m2 <= 0.0 {
+    if dt.is_nan() || dt.abs() > 1e-6 || e.m2.is_nan() || e.m2 <= 0.0 {
         return None;
     }
     let z = along(z0, t);

@@ -65,31 +65,24 @@ pub const MAX_SLIDER_TRIAD_MODES: usize = 12;
 const SAMPLES: usize = 16;
 /// Fourier coefficients kept (degrees 0 to 6).
 const DEGREE: usize = 6;
-/// e^{2πij/16}, j = 0…15: the sample points of the eliminated equation and the discrete
-/// Fourier transform's factors (cos π/8, sin π/8 and √½ to the nearest f64).
-const UNITS: [(f64, f64); SAMPLES] = {
-    const C1: f64 = 0.923_879_532_511_286_7;
-    const S1: f64 = 0.382_683_432_365_089_8;
-    const R: f64 = std::f64::consts::FRAC_1_SQRT_2;
-    [
-        (1.0, 0.0),
-        (C1, S1),
-        (R, R),
-        (S1, C1),
-        (0.0, 1.0),
-        (-S1, C1),
-        (-R, R),
-        (-C1, S1),
-        (-1.0, 0.0),
-        (-C1, -S1),
-        (-R, -R),
-        (-S1, -C1),
-        (0.0, -1.0),
-        (S1, -C1),
-        (R, -R),
-        (C1, -S1),
-    ]
-};
+/// The sample points e^{2πij/16} of the eliminated equation and the discrete Fourier
+/// transform's factors e^{−2πi·jk/16} (k = 0…6), computed once (as cos and sin of each
+/// angle, so that the coefficients are those of the direct sum).
+struct Units {
+    points: [C; SAMPLES],
+    factors: [[C; DEGREE + 1]; SAMPLES],
+}
+
+static UNITS: std::sync::LazyLock<Units> = std::sync::LazyLock::new(|| {
+    let at = |th: f64| C::new(th.cos(), th.sin());
+    let tau = std::f64::consts::TAU;
+    Units {
+        points: std::array::from_fn(|j| at(tau * j as f64 / SAMPLES as f64)),
+        factors: std::array::from_fn(|j| {
+            std::array::from_fn(|k| at(-tau * (j * k) as f64 / SAMPLES as f64))
+        }),
+    }
+});
 
 /// Where the first binary link's sliding pair is, with the dimension the pair fixes.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -591,8 +584,9 @@ impl Equation {
         };
         // The discrete Fourier transform of 16 values of F.
         let mut values = [0.0; SAMPLES];
-        for (v, &(c, s)) in values.iter_mut().zip(&UNITS) {
-            let (f, size, delta) = e.value(C::new(c, s));
+        let units = &*UNITS;
+        for (v, &z) in values.iter_mut().zip(&units.points) {
+            let (f, size, delta) = e.value(z);
             *v = f;
             e.scale = e.scale.max(size);
             e.dscale = e.dscale.max(delta.abs());
@@ -600,8 +594,7 @@ impl Equation {
         for k in 0..=DEGREE {
             let mut sum = C::new(0.0, 0.0);
             for (j, v) in values.iter().enumerate() {
-                let (c, s) = UNITS[(j * k) % SAMPLES];
-                sum += C::new(c, -s) * *v;
+                sum += units.factors[j][k] * *v;
             }
             e.f[k] = sum / SAMPLES as f64;
         }
