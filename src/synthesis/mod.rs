@@ -245,7 +245,8 @@ pub(crate) fn crank_excess(k: f64) -> Result<f64> {
             ends: crate::Ends::Open,
         });
     }
-    Ok(std::f64::consts::PI * (k - 1.0) / (k + 1.0))
+    // (K − 1)/(K + 1) first: π·(K − 1) overflows for K near f64::MAX, the ratio never does.
+    Ok(std::f64::consts::PI * ((k - 1.0) / (k + 1.0)))
 }
 
 /// K = (π + θ)/(π − θ), the inverse of [`crank_excess`].

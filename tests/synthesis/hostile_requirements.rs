@@ -83,6 +83,17 @@ fn check(what: &str, r: &tmm::Result<Synthesis>) -> bool {
     let s = match r {
         Err(e) => {
             assert!(!e.to_string().is_empty(), "{what}: an empty message");
+            // What an error computes (the nearest reachable value, a bound) is finite; only
+            // the value asked for may echo a hostile input.
+            match e {
+                tmm::Error::Infeasible { reachable, .. } => {
+                    assert!(reachable.is_finite(), "{what}: {e:?}");
+                }
+                tmm::Error::OutOfRange { min, max, .. } => {
+                    assert!(min < max, "{what}: an empty range in {e:?}");
+                }
+                _ => {}
+            }
             return false;
         }
         Ok(s) => s,
@@ -221,6 +232,43 @@ fn quick_return_requirements() {
         "hostile quick-return: {} calls, {ok} answers checked",
         3 * cases()
     );
+}
+
+/// K at the top of f64: θ = π(K − 1)/(K + 1) tends to π, so the quick-return methods name a
+/// finite largest feasible K (crank-rocker) or a finite reachable value (shaper), never
+/// `inf` and never an empty range.
+#[test]
+fn the_largest_time_ratios_give_finite_bounds() {
+    let o = Options::default();
+    for k in [1e308, f64::MAX] {
+        let need = CrankRockerRequirement {
+            rocker: 0.3,
+            swing: 45f64.to_radians(),
+            time_ratio: k,
+            frame: FrameChoice::BestTransmission,
+        };
+        match crank_rocker(&need, &o) {
+            Err(tmm::Error::OutOfRange { name, max, .. }) => {
+                assert_eq!(name, "K");
+                assert!(max.is_finite() && max > 1.0, "K = {k}: largest {max}");
+            }
+            other => panic!("K = {k}: {other:?}"),
+        }
+        let need = ShaperRequirement {
+            stroke: 0.3,
+            time_ratio: k,
+            centre_distance: 0.25,
+        };
+        match shaper(&need, &o) {
+            Err(tmm::Error::Infeasible { reachable, .. }) => {
+                assert!(reachable.is_finite(), "K = {k}: reachable {reachable}");
+            }
+            Err(tmm::Error::OutOfRange { max, .. }) => {
+                assert!(max.is_finite() && max > 1.0, "K = {k}: largest {max}");
+            }
+            other => panic!("K = {k}: {other:?}"),
+        }
+    }
 }
 
 /// A crank-rocker's rocker angle at φ (σ = +1, O1 at the origin, O3 at (d, 0)).
