@@ -1638,6 +1638,38 @@ fn a_budget_used_up_is_an_error_and_the_tolerance_is_honoured() {
     assert!(loose.convergence.residual <= 1e-4 * scale);
 }
 
+/// Options no solve could honour are refused by name before any step: a tolerance that is
+/// not a number, not positive or so loose that an unconverged answer would pass (the review
+/// found 10¹⁰ returning a reaction 0.15 N off on a 100 N load), and a budget of zero.
+#[test]
+fn bad_iteration_options_are_refused_by_name() {
+    let mut rng = Rng(0x5EED_0051);
+    let p = random_rrr(&mut rng, 0.3);
+    for tolerance in [f64::NAN, f64::INFINITY, -1.0, 0.0, 1e10, 2e-3] {
+        let e = p
+            .solve_with(&Iteration::default().with_tolerance(tolerance))
+            .unwrap_err();
+        assert!(
+            matches!(
+                e,
+                Error::OutOfRange {
+                    name: "tolerance",
+                    ..
+                }
+            ),
+            "tolerance {tolerance}: {e}"
+        );
+    }
+    let e = p
+        .solve_with(&Iteration::default().with_budget(0))
+        .unwrap_err();
+    assert!(matches!(e, Error::OutOfRange { name: "budget", .. }), "{e}");
+    // The loosest tolerance accepted still converges.
+    assert!(p
+        .solve_with(&Iteration::default().with_tolerance(1e-3))
+        .is_ok());
+}
+
 // ----- The input link through a gear pair -----
 
 /// A crank driven through a gear pair with pin friction, carrying an RRR dyad: the power

@@ -357,6 +357,7 @@ impl RrrFriction {
     /// - [`Error::In`](crate::Error::In) naming the joint that self-locks (see the
     ///   [module](super)), or the iteration whose budget was used up.
     pub fn solve_with(&self, options: &Iteration) -> Result<RrrFrictionReactions> {
+        let options = &options.checked()?;
         let d = &self.dyad;
         let base = d.solve()?;
         let w = &self.rates;
@@ -608,6 +609,7 @@ impl RrpFriction {
     /// - [`Error::In`](crate::Error::In) naming the joint that self-locks, or the iteration
     ///   whose budget was used up.
     pub fn solve_with(&self, options: &Iteration) -> Result<RrpFrictionReactions> {
+        let options = &options.checked()?;
         let d = &self.dyad;
         let base = d.solve()?;
         let rho_a = self.joints.a.checked("rho_A")?;
@@ -772,6 +774,7 @@ impl RprFriction {
     /// - [`Error::In`](crate::Error::In) naming the joint that self-locks, or the iteration
     ///   whose budget was used up.
     pub fn solve_with(&self, options: &Iteration) -> Result<RprFrictionReactions> {
+        let options = &options.checked()?;
         let d = &self.dyad;
         let base = d.solve()?;
         let rho_a = self.joints.a.checked("rho_A")?;
@@ -932,6 +935,7 @@ impl PrpFriction {
     /// - [`Error::In`](crate::Error::In) naming the joint that self-locks, or the iteration
     ///   whose budget was used up.
     pub fn solve_with(&self, options: &Iteration) -> Result<PrpFrictionReactions> {
+        let options = &options.checked()?;
         let d = &self.dyad;
         let base = d.solve()?;
         let (f2, law2) = self
@@ -1100,6 +1104,7 @@ impl RppFriction {
     /// - [`Error::In`](crate::Error::In) naming the joint that self-locks, or the iteration
     ///   whose budget was used up.
     pub fn solve_with(&self, options: &Iteration) -> Result<RppFrictionReactions> {
+        let options = &options.checked()?;
         let d = &self.dyad;
         let base = d.solve()?;
         let rho_a = self.joints.a.checked("rho_A")?;

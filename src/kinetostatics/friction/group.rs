@@ -215,6 +215,7 @@ impl TriadFriction {
     /// - [`Error::In`](crate::Error::In) naming the hinge that self-locks, or the iteration
     ///   whose budget was used up.
     pub fn solve_with(&self, options: &Iteration) -> Result<TriadFrictionReactions> {
+        let options = &options.checked()?;
         let names = [
             ["rho_A1", "rho_A2", "rho_A3"],
             ["rho_B1", "rho_B2", "rho_B3"],

@@ -222,6 +222,9 @@ impl Slide {
     }
 }
 
+/// The loosest tolerance [`Iteration::checked`] accepts, relative to the load scale.
+pub const MAX_TOLERANCE: f64 = 1e-3;
+
 /// The options of the friction iteration: its tolerance and its budget of Newton steps.
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
@@ -254,6 +257,34 @@ impl Iteration {
     #[must_use]
     pub fn with_budget(self, budget: usize) -> Self {
         Self { budget, ..self }
+    }
+
+    /// The options checked before any solve uses them: a tolerance in (0, 10⁻³] (a looser
+    /// one would accept an unconverged answer as the result, a NaN none at all) and a budget
+    /// of at least one step.
+    ///
+    /// # Errors
+    /// [`Error::OutOfRange`] naming `tolerance` or `budget`.
+    pub fn checked(self) -> Result<Self> {
+        if !(self.tolerance > 0.0 && self.tolerance <= MAX_TOLERANCE) {
+            return Err(Error::OutOfRange {
+                name: "tolerance",
+                value: self.tolerance,
+                min: 0.0,
+                max: MAX_TOLERANCE,
+                ends: Ends::OpenBelow,
+            });
+        }
+        if self.budget == 0 {
+            return Err(Error::OutOfRange {
+                name: "budget",
+                value: 0.0,
+                min: 1.0,
+                max: f64::INFINITY,
+                ends: Ends::Closed,
+            });
+        }
+        Ok(self)
     }
 }
 

@@ -295,6 +295,11 @@ impl Pressures {
                 Err(Stop::Budget) => return Err(budget_error(what, budget, t)),
                 Err(Stop::Short(det, diag)) => {
                     h /= 2.0;
+                    if h < SMALLEST_STEP && !(det.is_nan() || det <= LOCKED_BELOW) {
+                        // The determinant stayed regular: the continuation ran out of steps
+                        // (an iterate overflowed or Newton stalled), which is not a lock.
+                        return Err(budget_error(what, budget, t));
+                    }
                     if h < SMALLEST_STEP {
                         let k = (0..self.n())
                             .filter(|&k| self.active[k])
