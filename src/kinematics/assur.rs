@@ -27,8 +27,13 @@
 //!   the group's link. So the statics needs no second matrix.
 //!
 //! The conditioning of all three is that of K with its angle columns scaled by the group's
-//! size (so that every column is a length): its reciprocal condition number σ_min/σ_max,
-//! which vanishes at a dead point or a branch point of the group.
+//! size (so that every column is a length), which vanishes at a dead point or a branch point
+//! of the group. [`HingedGroup::conditioning`] gives σ_min/σ_max (an SVD, for planning and
+//! the mode search); the rates and reactions report the reciprocal 1-norm condition
+//! 1/(‖K‖₁‖K⁻¹‖₁), ‖K⁻¹‖₁ estimated from the LU they solve with anyway (Hager's method: a
+//! few triangular solves, no SVD per solve). The two agree within a factor of the number of
+//! unknowns 3n (the norms' equivalence), and the estimate is never below the true 1-norm
+//! reciprocal condition (Hager's estimate of ‖K⁻¹‖₁ is a lower bound).
 //!
 //! A [`GroupWork`] keeps the Newton solves' buffers from one solve to the next
 //! ([`HingedGroup::track_in`]): tracking a group along a cycle allocates nothing but the pose
@@ -66,13 +71,13 @@ pub struct GroupPose {
     pub angles: Vec<f64>,
 }
 
-/// A group's motion: every link's motion and the conditioning σ_min/σ_max of the closure
-/// Jacobian (module docs).
+/// A group's motion: every link's motion and the conditioning of the scaled closure Jacobian
+/// (its reciprocal 1-norm condition, module docs).
 #[derive(Debug, Clone, PartialEq)]
 pub struct GroupMotion {
     /// Each link's motion (its frame origin's point motion, angle, ω, ε).
     pub links: Vec<LinkMotion>,
-    /// σ_min/σ_max of the scaled closure Jacobian.
+    /// The reciprocal 1-norm condition of the scaled closure Jacobian (module docs).
     pub conditioning: f64,
 }
 
@@ -84,13 +89,13 @@ pub struct GroupReactions {
     pub inner: Vec<Vector2<f64>>,
     /// Per outer hinge, the force of the known link on the group's link, N.
     pub outer: Vec<Vector2<f64>>,
-    /// σ_min/σ_max of the scaled closure Jacobian.
+    /// The reciprocal 1-norm condition of the scaled closure Jacobian (module docs).
     pub conditioning: f64,
 }
 
 /// The largest number of Newton steps of one solve.
 const MAX_NEWTON: usize = 40;
-/// Below this σ_min/σ_max the closure Jacobian carries no significant digit.
+/// Below this reciprocal condition the closure Jacobian carries no significant digit.
 const SINGULAR_BELOW: f64 = 8.0 * f64::EPSILON;
 
 impl GroupPose {
@@ -181,29 +186,53 @@ impl HingedGroup {
 
     /// The point `l` of link `k` at `q`, with R(θ_k)·l.
     fn point(q: &DVector<f64>, (k, l): HingeEnd) -> (Point2<f64>, Vector2<f64>) {
-        let e = unit(q[3 * k + 2]);
+        Self::point_at(q, unit(q[3 * k + 2]), (k, l))
+    }
+
+    /// [`point`](Self::point) with the unit vector e = (cos θ_k, sin θ_k) given.
+    fn point_at(
+        q: &DVector<f64>,
+        e: Vector2<f64>,
+        (k, l): HingeEnd,
+    ) -> (Point2<f64>, Vector2<f64>) {
         let r = Vector2::new(e.x * l.x - e.y * l.y, e.y * l.x + e.x * l.y);
         (Point2::new(q[3 * k], q[3 * k + 1]) + r, r)
+    }
+
+    /// Each link's unit vector (cos θ_k, sin θ_k) at `q` into `rot`: one `sin_cos` per link
+    /// for a residual and a Jacobian (the same bits as [`point`](Self::point)'s own).
+    fn rotations(&self, q: &DVector<f64>, rot: &mut Vec<Vector2<f64>>) {
+        rot.clear();
+        rot.extend((0..self.links).map(|k| unit(q[3 * k + 2])));
     }
 
     /// The closure residual at `q` (inner hinges first, then outer).
     fn residual_q(&self, q: &DVector<f64>, outer: &[Point2<f64>]) -> DVector<f64> {
         let mut f = DVector::zeros(self.rows());
-        self.residual_into(q, outer, &mut f);
+        let mut rot = Vec::new();
+        self.rotations(q, &mut rot);
+        self.residual_into(q, &rot, outer, &mut f);
         f
     }
 
     /// [`residual_q`](Self::residual_q) into `f` (of the group's number of rows; every entry
-    /// written).
-    fn residual_into(&self, q: &DVector<f64>, outer: &[Point2<f64>], f: &mut DVector<f64>) {
+    /// written), the links' unit vectors `rot` given.
+    fn residual_into(
+        &self,
+        q: &DVector<f64>,
+        rot: &[Vector2<f64>],
+        outer: &[Point2<f64>],
+        f: &mut DVector<f64>,
+    ) {
+        let point = |end: HingeEnd| Self::point_at(q, rot[end.0], end).0;
         for (i, &[a, b]) in self.inner.iter().enumerate() {
-            let d = Self::point(q, a).0 - Self::point(q, b).0;
+            let d = point(a) - point(b);
             f[2 * i] = d.x;
             f[2 * i + 1] = d.y;
         }
         let base = 2 * self.inner.len();
         for (o, (&end, p)) in self.outer.iter().zip(outer).enumerate() {
-            let d = Self::point(q, end).0 - p;
+            let d = point(end) - p;
             f[base + 2 * o] = d.x;
             f[base + 2 * o + 1] = d.y;
         }
@@ -212,15 +241,24 @@ impl HingedGroup {
     /// The closure Jacobian K at `q` (module docs), its angle columns multiplied by `scale`.
     fn jacobian(&self, q: &DVector<f64>, scale: f64) -> DMatrix<f64> {
         let mut k = DMatrix::zeros(self.rows(), 3 * self.links);
-        self.jacobian_into(q, scale, &mut k);
+        let mut rot = Vec::new();
+        self.rotations(q, &mut rot);
+        self.jacobian_into(q, &rot, scale, &mut k);
         k
     }
 
-    /// [`jacobian`](Self::jacobian) into `k` (of the group's shape; zeroed first).
-    fn jacobian_into(&self, q: &DVector<f64>, scale: f64, k: &mut DMatrix<f64>) {
+    /// [`jacobian`](Self::jacobian) into `k` (of the group's shape; zeroed first), the
+    /// links' unit vectors `rot` given.
+    fn jacobian_into(
+        &self,
+        q: &DVector<f64>,
+        rot: &[Vector2<f64>],
+        scale: f64,
+        k: &mut DMatrix<f64>,
+    ) {
         k.fill(0.0);
         let mut put = |row: usize, end: HingeEnd, sign: f64| {
-            let r = Self::point(q, end).1;
+            let r = Self::point_at(q, rot[end.0], end).1;
             let c = 3 * end.0;
             let t = perp(r) * scale;
             k[(row, c)] += sign;
@@ -264,16 +302,18 @@ impl HingedGroup {
     pub fn newton(&self, start: &GroupPose, outer: &[Point2<f64>], size: f64) -> Result<GroupPose> {
         self.check()?;
         let mut q = start.to_q();
-        self.newton_in(
+        if self.newton_in(
             &mut q,
             &mut Linear::default(),
             outer,
             size,
-            MAX_NEWTON,
+            (MAX_NEWTON, size),
             false,
-        )
-        .map(|_| GroupPose::from_q(&q))
-        .ok_or_else(|| no_assembly(self.residual(start, outer)))
+        ) {
+            Ok(GroupPose::from_q(&q))
+        } else {
+            Err(no_assembly(self.residual(start, outer)))
+        }
     }
 
     /// The pose the group reaches from `reference` (closed on `path(0)`) while its known
@@ -326,25 +366,89 @@ impl HingedGroup {
         self.conditioning_q(&pose.to_q(), size)
     }
 
+    /// The reciprocal 1-norm condition of K at `q` with its angle columns scaled by `size`
+    /// (module docs), from K factorised in `lin` (unscaled: the scaling moves no pivot):
+    /// `lin` keeps the factors for the solves that follow, `lin.rot` the links' unit vectors.
+    fn factorise_conditioned(&self, q: &DVector<f64>, size: f64, lin: &mut Linear) -> Result<f64> {
+        lin.size(q.len());
+        self.rotations(q, &mut lin.rot);
+        self.jacobian_into(q, &lin.rot, 1.0, &mut lin.k);
+        // A non-finite K (an overflowing pose) has no conditioning.
+        let finite = lin.k.iter().all(|x| x.is_finite());
+        let scale = |i: usize| if i % 3 == 2 { size } else { 1.0 };
+        // ‖K·D‖₁: the largest column sum.
+        let norm = lin
+            .k
+            .column_iter()
+            .enumerate()
+            .map(|(c, col)| scale(c) * col.iter().map(|x| x.abs()).sum::<f64>())
+            .fold(0.0, f64::max);
+        let c = if finite && norm.is_finite() && size.is_finite() && size > 0.0 {
+            lin.factorise();
+            lin.rcond(&scale, norm)
+        } else {
+            0.0
+        };
+        if !(c > SINGULAR_BELOW) {
+            return Err(Error::Singular {
+                what: "hinged group",
+                measure: "reciprocal 1-norm condition of its closure Jacobian",
+                value: c,
+            });
+        }
+        Ok(c)
+    }
+
+    /// `pose` has one origin and angle per link, and `known` (of `what`, unless empty) one
+    /// entry per outer hinge.
+    fn check_counts(&self, pose: &GroupPose, known: usize, what: &str) -> Result<()> {
+        if pose.origins.len() != self.links || pose.angles.len() != self.links {
+            return Err(self.count_error(pose.origins.len().min(pose.angles.len()), "pose entries"));
+        }
+        if !what.is_empty() && known != self.outer.len() {
+            return Err(Error::Description {
+                item: "hinged group".to_owned(),
+                problem: format!("{known} {what} for {} outer hinges", self.outer.len()),
+            });
+        }
+        Ok(())
+    }
+
+    fn count_error(&self, n: usize, what: &str) -> Error {
+        Error::Description {
+            item: "hinged group".to_owned(),
+            problem: format!("{n} {what} for {} links", self.links),
+        }
+    }
+
     /// The links' velocities and accelerations at `pose` (closed on the positions of
-    /// `outer`), from the known points' motions `outer`.
+    /// `outer`), from the known points' motions `outer`. One factorisation of K serves the
+    /// conditioning and both solves.
     ///
     /// # Errors
-    /// [`Error::Singular`] when K is singular (σ_min/σ_max ≤ 8ε: a dead point or branch
-    /// point of the group); [`Error::NonFinite`] when a rate overflows.
+    /// [`Error::Singular`] when K is singular (its reciprocal condition ≤ 8ε: a dead point or
+    /// branch point of the group); [`Error::NonFinite`] when a rate overflows;
+    /// [`Error::Description`] when `pose` does not have one entry per link or `outer` one
+    /// per outer hinge.
     pub fn rates(&self, pose: &GroupPose, outer: &[PointMotion], size: f64) -> Result<GroupMotion> {
+        self.check_counts(pose, outer.len(), "known point motions")?;
         let q = pose.to_q();
-        let conditioning = self.regular(&q, size)?;
-        let lu = self.jacobian(&q, 1.0).lu();
+        let mut lin = Linear::default();
+        let conditioning = self.factorise_conditioned(&q, size, &mut lin)?;
         let base = 2 * self.inner.len();
-        let mut rhs = DVector::zeros(self.rows());
+        let rhs = &mut lin.f;
+        rhs.fill(0.0);
         for (o, m) in outer.iter().enumerate() {
             rhs[base + 2 * o] = m.v.x;
             rhs[base + 2 * o + 1] = m.v.y;
         }
-        let qd = lu.solve(&rhs).ok_or_else(singular)?;
+        if !lin.solve() {
+            return Err(singular());
+        }
+        let qd = lin.f.clone();
         // The centripetal terms: p̈ = ö + θ̈·J·R l − θ̇²·R l.
         let spin = |end: HingeEnd| Self::point(&q, end).1 * qd[3 * end.0 + 2].powi(2);
+        let rhs = &mut lin.f;
         for (i, &[a, b]) in self.inner.iter().enumerate() {
             let c = spin(a) - spin(b);
             rhs[2 * i] = c.x;
@@ -355,7 +459,10 @@ impl HingedGroup {
             rhs[base + 2 * o] = c.x;
             rhs[base + 2 * o + 1] = c.y;
         }
-        let qdd = lu.solve(&rhs).ok_or_else(singular)?;
+        if !lin.solve() {
+            return Err(singular());
+        }
+        let qdd = &lin.f;
         if !(qd.iter().chain(qdd.iter()).all(|x| x.is_finite())) {
             return Err(Error::NonFinite {
                 name: "a group's velocity or acceleration",
@@ -380,36 +487,36 @@ impl HingedGroup {
         })
     }
 
-    /// The conditioning at `q`, or [`Error::Singular`] at a singular K.
-    fn regular(&self, q: &DVector<f64>, size: f64) -> Result<f64> {
-        let c = self.conditioning_q(q, size);
-        if c.is_nan() || c <= SINGULAR_BELOW {
-            return Err(Error::Singular {
-                what: "hinged group",
-                measure: "sigma_min/sigma_max of its closure Jacobian",
-                value: c,
-            });
-        }
-        Ok(c)
-    }
-
     /// The reactions of the group at `pose` under `loads` (one resultant per link, at any
     /// point), by Kᵀλ + Q = 0 (module docs).
     ///
     /// # Errors
-    /// [`Error::Singular`] at a singular K; [`Error::NonFinite`] when a reaction overflows.
+    /// [`Error::Singular`] at a singular K; [`Error::NonFinite`] when a reaction overflows;
+    /// [`Error::Description`] when `pose` or `loads` do not have one entry per link.
     pub fn reactions(&self, pose: &GroupPose, loads: &[Load], size: f64) -> Result<GroupReactions> {
+        self.check_counts(pose, self.links, "")?;
+        if loads.len() != self.links {
+            return Err(self.count_error(loads.len(), "loads"));
+        }
         let q = pose.to_q();
-        let conditioning = self.regular(&q, size)?;
-        let kt = self.jacobian(&q, 1.0).transpose();
-        let mut rhs = DVector::zeros(3 * self.links);
+        let mut lin = Linear::default();
+        let conditioning = self.factorise_conditioned(&q, size, &mut lin)?;
+        // Kᵀ factorised on its own (the same bits as `Kᵀ.lu().solve`).
+        self.jacobian_into(&q, &lin.rot, 1.0, &mut lin.k);
+        lin.k.transpose_mut();
+        lin.factorise();
+        let rhs = &mut lin.f;
+        rhs.fill(0.0);
         for (k, l) in loads.iter().enumerate() {
             let r = l.point - pose.origins[k];
             rhs[3 * k] = -l.force.x;
             rhs[3 * k + 1] = -l.force.y;
             rhs[3 * k + 2] = -(l.moment + crate::angle::cross(r, l.force));
         }
-        let lambda = kt.lu().solve(&rhs).ok_or_else(singular)?;
+        if !lin.solve() {
+            return Err(singular());
+        }
+        let lambda = &lin.f;
         if !lambda.iter().all(|x| x.is_finite()) {
             return Err(Error::NonFinite {
                 name: "a group's reaction",
@@ -503,8 +610,15 @@ impl HingedGroup {
             if step <= 1e-13 * size {
                 let mut q = q;
                 return self
-                    .newton_in(&mut q, &mut Linear::default(), outer, size, 4, false)
-                    .map(|_| q);
+                    .newton_in(
+                        &mut q,
+                        &mut Linear::default(),
+                        outer,
+                        size,
+                        (4, size),
+                        false,
+                    )
+                    .then_some(q);
             }
         }
         None
@@ -523,44 +637,63 @@ pub struct GroupWork {
 }
 
 impl HingedGroup {
-    /// Newton's method from `q` (in place): the first step's size when it converges (the step
-    /// falls to rounding, 4ε of `size`) within `max` steps, each step no more than `size` and,
-    /// once `contract` is set, each at most half the one before.
+    /// Newton's method from `q` (in place): true when it converges (the step falls to
+    /// rounding, 4ε of `size`) within `max` steps, each step no more than `size`, the first
+    /// no more than `first_max` and, once `contract` is set, each at most half the one
+    /// before. A step beyond a bound ends the solve at once (a caller that would refuse the
+    /// result pays for no further factorisation).
     fn newton_in(
         &self,
         q: &mut DVector<f64>,
         lin: &mut Linear,
         outer: &[Point2<f64>],
         size: f64,
-        max: usize,
+        (max, first_max): (usize, f64),
         contract: bool,
-    ) -> Option<f64> {
+    ) -> bool {
         lin.size(q.len());
-        let mut first = None;
+        let mut rot = std::mem::take(&mut lin.rot);
+        let done = self.newton_steps(q, lin, &mut rot, outer, size, (max, first_max), contract);
+        lin.rot = rot;
+        done
+    }
+
+    /// The steps of [`newton_in`](Self::newton_in), the links' unit vectors in `rot`.
+    #[allow(clippy::too_many_arguments)]
+    fn newton_steps(
+        &self,
+        q: &mut DVector<f64>,
+        lin: &mut Linear,
+        rot: &mut Vec<Vector2<f64>>,
+        outer: &[Point2<f64>],
+        size: f64,
+        (max, first_max): (usize, f64),
+        contract: bool,
+    ) -> bool {
         let mut last = f64::INFINITY;
-        for _ in 0..max {
-            self.residual_into(q, outer, &mut lin.f);
-            self.jacobian_into(q, 1.0, &mut lin.k);
+        for i in 0..max {
+            self.rotations(q, rot);
+            self.residual_into(q, rot, outer, &mut lin.f);
+            self.jacobian_into(q, rot, 1.0, &mut lin.k);
             lin.factorise();
             lin.f.neg_mut();
             if !lin.solve() {
-                return None;
+                return false;
             }
             let step = Self::step_norm(&lin.f, size);
-            if !step.is_finite() || step > size {
-                return None;
+            if !step.is_finite() || step > size || (i == 0 && step > first_max) {
+                return false;
             }
-            first.get_or_insert(step);
             *q += &lin.f;
             if step <= 4.0 * f64::EPSILON * size || (step >= last && step <= 1e-12 * size) {
-                return Some(first.unwrap_or(0.0));
+                return true;
             }
             if contract && step > 1e-11 * size && step > 0.5 * last {
-                return None;
+                return false;
             }
             last = step;
         }
-        None
+        false
     }
 
     /// [`track`](Self::track) in the buffers of `work` (the same steps, the same bits).
@@ -594,7 +727,8 @@ impl HingedGroup {
             let t1 = (t + dt).min(1.0);
             path(t1, pts);
             // Tangent predictor: K·Δq = (0 | ΔP).
-            self.jacobian_into(q, 1.0, &mut lin.k);
+            self.rotations(q, &mut lin.rot);
+            self.jacobian_into(q, &lin.rot, 1.0, &mut lin.k);
             lin.f.fill(0.0);
             for (o, (p1, p0)) in pts.iter().zip(before.iter()).enumerate() {
                 lin.f[base + 2 * o] = p1.x - p0.x;
@@ -604,8 +738,7 @@ impl HingedGroup {
             let corrected = lin.solve() && {
                 guess.clone_from(q);
                 *guess += &lin.f;
-                self.newton_in(guess, lin, pts, size, 12, true)
-                    .is_some_and(|first| first <= 0.1 * size)
+                self.newton_in(guess, lin, pts, size, (12, 0.1 * size), true)
             };
             if corrected {
                 std::mem::swap(q, guess);
@@ -622,10 +755,7 @@ impl HingedGroup {
         // Polish at the end: the corrector stopped at rounding already; one more solve
         // brings every hinge to the last bit the closure allows.
         guess.clone_from(q);
-        if self
-            .newton_in(guess, lin, pts, size, MAX_NEWTON, false)
-            .is_none()
-        {
+        if !self.newton_in(guess, lin, pts, size, (MAX_NEWTON, size), false) {
             return Err(no_assembly(self.residual(&GroupPose::from_q(q), pts)));
         }
         Ok(GroupPose::from_q(guess))
@@ -635,7 +765,7 @@ impl HingedGroup {
 fn singular() -> Error {
     Error::Singular {
         what: "hinged group",
-        measure: "sigma_min/sigma_max of its closure Jacobian",
+        measure: "reciprocal 1-norm condition of its closure Jacobian",
         value: 0.0,
     }
 }

@@ -267,6 +267,15 @@ impl Plan {
             });
         }
         let (region, poles) = fill(&axes, &nodes, &mut at, options.resolution);
+        // Nodes that assemble but no cell of the grid between them (ranges whose angles carry
+        // no digit, 1e133 rad wide): no region to hold, and its box would be infinite.
+        if !(region.origin.x.is_finite() && region.origin.y.is_finite()) {
+            return Err(Error::Description {
+                item: "ranges".to_owned(),
+                problem: "no cell of the workspace's input grid assembles at its corners"
+                    .to_owned(),
+            });
+        }
         let mut singular = singular_curves(&axes, &nodes, &mut at);
         let poles = refine_poles(&axes, &poles, &mut jac);
         let mut at = |q: [f64; 2]| -> Option<(Point2<f64>, f64)> {
