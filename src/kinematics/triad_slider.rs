@@ -255,6 +255,13 @@ pub fn slider_triad_modes(
             gap: e.gap(),
         });
     }
+    // A degenerate ternary link (sides near the underflow) can give finite joints whose
+    // conditioning overflows: that is no mode to hand on.
+    if modes.as_slice().iter().any(|p| !p.det.is_finite()) {
+        return Err(Error::Overflow {
+            what: "triad with a sliding pair: conditioning of a mode",
+        });
+    }
     modes.sort();
     Ok(modes)
 }
@@ -457,7 +464,8 @@ pub fn slider_triad_rates(
         .all(|m| m.v.iter().chain(m.a.iter()).all(|x| x.is_finite()))
         && omega.iter().chain(eps.iter()).all(|x| x.is_finite())
         && omega_t.is_finite()
-        && eps_t.is_finite();
+        && eps_t.is_finite()
+        && det.is_finite();
     if finite {
         Ok(out)
     } else {

@@ -50,20 +50,12 @@ fn hostile_triad_friction(g: &mut Gen) -> (TriadFriction, Iteration) {
             *p = g.p();
         }
     }
-    // A hostile load's finite numbers are kept within 10⁶⁰ (so that every reaction stays
-    // below 10¹⁵⁴): a reaction above that gives `pressure: inf` in an `Ok` though R is
-    // finite, a defect of friction/group.rs (`repro_triad_friction_overflowing_pressure`).
+    // Hostile loads whole: a reaction above 10¹⁵⁴ whose pressure overflows is an
+    // `Overflow` error (`repro_triad_friction_overflowing_pressure`).
     let load = |g: &mut Gen, at: Point2<f64>| {
         if g.next().is_multiple_of(4) {
-            let tame = |x: f64| {
-                if x.is_finite() {
-                    x.clamp(-1e60, 1e60)
-                } else {
-                    x
-                }
-            };
             let l = g.load();
-            Load::new(l.point.map(tame), l.force.map(tame), tame(l.moment))
+            Load::new(l.point, l.force, l.moment)
         } else {
             Load::zero(at)
         }
@@ -85,17 +77,9 @@ fn hostile_triad_friction(g: &mut Gen) -> (TriadFriction, Iteration) {
         a: [pin(), pin(), pin()],
         b: [pin(), pin(), pin()],
     };
-    // A finite rate is kept to |ω| ≤ 1 rad/s: a larger one times a hostile pressure
-    // overflows the lost power, a defect of friction/group.rs shown by
-    // `repro_triad_friction_lost_power_overflows` (ignored until it is fixed there).
-    let mut rate = |ordinary: f64| {
-        let w = or_hostile(g, ordinary);
-        if w.is_finite() {
-            w.clamp(-1.0, 1.0)
-        } else {
-            w
-        }
-    };
+    // Hostile rates too: a lost power that overflows is an `Overflow` error
+    // (`repro_triad_friction_lost_power_overflows`).
+    let mut rate = |ordinary: f64| or_hostile(g, ordinary);
     let rates = TriadRates {
         outer: [rate(0.0), rate(0.0), rate(0.0)],
         binary: [rate(0.0), rate(0.0), rate(0.0)],
@@ -189,16 +173,9 @@ fn hostile_slider_triad(g: &mut Gen) -> (Guide, [PointMotion; 2], SliderTriadDim
     let dims = SliderTriadDims {
         pair,
         l: [or_hostile(g, 1.0), or_hostile(g, 1.0)],
-        // |l_B1B2| ≥ 10⁻⁶ m when finite: a ternary link of 10⁻²⁶¹ m gives modes with
-        // det = ±inf, a defect of triad_slider.rs (`repro_slider_triad_degenerate_ternary`).
-        l_b1b2: {
-            let l = or_hostile(g, 1.0);
-            if l.is_finite() && l.abs() < 1e-6 {
-                1e-6_f64.copysign(l)
-            } else {
-                l
-            }
-        },
+        // Any ternary link: one of 10⁻²⁶¹ m whose modes' conditioning overflows is an
+        // `Overflow` error (`repro_slider_triad_degenerate_ternary`).
+        l_b1b2: or_hostile(g, 1.0),
         b3_along: or_hostile(g, 0.5),
         b3_across: or_hostile(g, 0.8),
     };
@@ -247,10 +224,10 @@ fn sweep_slider_triads() {
     });
 }
 
-/// Defect (src/kinematics/triad_slider.rs, not this helper's file): `slider_triad_rates` at a
+/// Was a defect (fixed): `slider_triad_rates` at a
 /// pose that is not one of the modes, with B1 at x = f64::MAX, returns `Ok` with `det: inf`.
 #[test]
-#[ignore = "defect in src/kinematics/triad_slider.rs: an Ok with det = inf"]
+
 fn repro_slider_triad_rates_at_an_overflowing_pose() {
     let dims = SliderTriadDims {
         pair: SlidingPair::Outer { offset: 0.0 },
@@ -279,10 +256,10 @@ fn repro_slider_triad_rates_at_an_overflowing_pose() {
     });
 }
 
-/// Defect (src/kinetostatics/friction/group.rs, not this helper's file): a finite outer
+/// Was a defect (fixed): a finite outer
 /// rate of −f64::MAX rad/s gives `power_lost: inf` in an `Ok`.
 #[test]
-#[ignore = "defect in src/kinetostatics/friction/group.rs: an Ok with power_lost = inf"]
+
 fn repro_triad_friction_lost_power_overflows() {
     let b = [
         Point2::new(-1.0, 0.0),
@@ -448,10 +425,10 @@ fn sweep_workspaces() {
     assert!(pictures > 0 || cases() < 2000);
 }
 
-/// Defect (src/kinematics/triad_slider.rs): a ternary link of 2.9e-261 m (B3 at 1e-300 m)
+/// Was a defect (fixed): a ternary link of 2.9e-261 m (B3 at 1e-300 m)
 /// gives two modes with `det: inf` and `-inf` in an `Ok`.
 #[test]
-#[ignore = "defect in src/kinematics/triad_slider.rs: modes with det = ±inf"]
+
 fn repro_slider_triad_degenerate_ternary() {
     let dims = SliderTriadDims {
         pair: SlidingPair::Inner {
@@ -470,10 +447,10 @@ fn repro_slider_triad_degenerate_ternary() {
     });
 }
 
-/// Defect (src/kinetostatics/friction/group.rs): a load of 10¹⁵⁵ N on binary link 1 gives
+/// Was a defect (fixed): a load of 10¹⁵⁵ N on binary link 1 gives
 /// R_A1 ≈ 9.7e154 N (finite) but `pressure: inf` in an `Ok` (|R| through R², 10³⁰⁹).
 #[test]
-#[ignore = "defect in src/kinetostatics/friction/group.rs: an Ok with pressure = inf"]
+
 fn repro_triad_friction_overflowing_pressure() {
     let b = [
         Point2::new(-1.0, 0.0),

@@ -11,7 +11,7 @@
 use super::newton::{Pressure, Pressures};
 use super::solver::wider;
 use super::{sign, Convergence, Hinge, Iteration, JointFriction};
-use crate::error::{all_finite, Result};
+use crate::error::{all_finite, Error, Result};
 use crate::kinetostatics::{Conditioning, Triad};
 use crate::Load;
 use nalgebra::Vector2;
@@ -56,12 +56,15 @@ pub(crate) fn hinged_group(
     let c: Vec<f64> = hinges.iter().map(|h| h.rho * sign(h.rate)).collect();
     if c.iter().all(|&c| c == 0.0) {
         // No friction: the frictionless block's results as they are.
-        return Ok(GroupOutcome {
-            joints: v0.iter().map(|r| JointFriction::none(r.norm())).collect(),
-            forces: v0,
-            convergence: Convergence::NONE,
-            conditioning,
-        });
+        return finite_outcome(
+            GroupOutcome {
+                joints: v0.iter().map(|r| JointFriction::none(r.norm())).collect(),
+                forces: v0,
+                convergence: Convergence::NONE,
+                conditioning,
+            },
+            what,
+        );
     }
     let pair = |v: &Vector2<f64>| [v.x, v.y];
     let mut d = Vec::with_capacity(hinges.len());
@@ -91,7 +94,7 @@ pub(crate) fn hinged_group(
     }
     .solve(options, what, name)?;
     let forces: Vec<Vector2<f64>> = s.v.iter().map(|p| Vector2::new(p[0], p[1])).collect();
-    let joints = (0..hinges.len())
+    let joints: Vec<JointFriction> = (0..hinges.len())
         .map(|k| {
             if c[k] == 0.0 {
                 JointFriction::none(forces[k].norm())
@@ -100,12 +103,35 @@ pub(crate) fn hinged_group(
             }
         })
         .collect();
-    Ok(GroupOutcome {
-        forces,
-        joints,
-        convergence: s.convergence,
-        conditioning,
-    })
+    finite_outcome(
+        GroupOutcome {
+            forces,
+            joints,
+            convergence: s.convergence,
+            conditioning,
+        },
+        what,
+    )
+}
+
+/// `out` if every number in it is finite: reactions near the top of f64 can still overflow
+/// a pressure (|R| through R²) or a lost power (ρ·|R|·|ω|), and no such number leaves in an
+/// `Ok`.
+fn finite_outcome(out: GroupOutcome, what: &'static str) -> Result<GroupOutcome> {
+    let finite = out
+        .forces
+        .iter()
+        .all(|f| f.x.is_finite() && f.y.is_finite())
+        && out.joints.iter().all(|j| {
+            [j.load, j.pressure, j.power_lost]
+                .iter()
+                .all(|x| x.is_finite())
+        });
+    if finite {
+        Ok(out)
+    } else {
+        Err(Error::Overflow { what })
+    }
 }
 
 /// The friction data of a triad's hinges.
