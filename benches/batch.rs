@@ -19,8 +19,8 @@ use nalgebra::{Point2, Vector2};
 use std::hint::black_box;
 use std::time::Duration;
 use tmm::kinematics::batch::{
-    coupler_point, four_bar_motions, four_bar_positions, four_bar_scores, four_bars_at,
-    CrankAngles, FourBarColumns, FourBarDims, Positions, Rates,
+    coupler_point, four_bar_motions, four_bar_positions, four_bars_at, CrankAngles, FourBarColumns,
+    FourBarDims, Positions, Rates,
 };
 use tmm::kinematics::{crank, rrr_dyad, Branch, Motion, PointMotion};
 
@@ -274,7 +274,7 @@ fn path_error(_: usize, p: &Positions) -> f64 {
 /// means the cores were busy, not that the work did not split.
 #[cfg(feature = "rayon")]
 fn parallel(c: &mut Criterion) {
-    use tmm::kinematics::batch::{par_four_bar_positions, par_four_bar_scores};
+    use tmm::kinematics::batch::{four_bar_scores, par_four_bar_positions, par_four_bar_scores};
     let n = 1 << 18;
     let d = dims();
     let angles = CrankAngles::new(&seeded_angles(n));

@@ -421,7 +421,7 @@ impl Machine {
         // A damping so strong that RK4's stable step is tiny makes the run stiff: refuse it
         // at once, naming the motor, rather than after a long run that spends its budget.
         let steps = t_end / h;
-        if !(steps <= MAX_RUN_STEPS) {
+        if steps.is_nan() || steps > MAX_RUN_STEPS {
             return Err(Failure::new(format!(
                 "the motors' damping b = {:.3e} and {:.3e} N·m·s/rad make the run stiff: RK4 \
                  needs steps of {h:.3e} s or shorter, {steps:.3e} steps for {t_end:e} s, above \
