@@ -45,7 +45,8 @@ pub(super) struct Isolated {
 }
 
 /// Newton's method on F from `z0` (a step dθ = −F/F′ turns z by 2·atan(dθ/2)); `None` when a
-/// step exceeds 1 rad or 16 steps do not bring one below 1e-6 rad (the error left is of the order of its square; the caller polishes the pose).
+/// step exceeds 1 rad or 16 steps do not bring one below 1e-6 rad (the error left is of the
+/// order of its square; the caller polishes the pose).
 pub(super) fn newton_root(f: &impl Periodic, z0: C) -> Option<Isolated> {
     let (mut z, mut travelled) = (z0, 0.0);
     for _ in 0..16 {

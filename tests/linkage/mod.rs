@@ -22,6 +22,8 @@ mod instant_centres;
 mod planning;
 mod singular;
 #[cfg(feature = "serde")]
+mod spares;
+#[cfg(feature = "serde")]
 mod springs;
 mod strokes;
 #[cfg(feature = "serde")]
