@@ -53,7 +53,9 @@ pub enum Sweep {
     Turn,
     /// The input rocks: from the angle `from` to the angle `to` and back, rad. For an input
     /// that cannot turn fully these are the angles where the linkage locks
-    /// ([`Plan::lock_positions`]); the input stops and reverses there.
+    /// ([`Plan::lock_positions`]); the input stops and reverses there. The course folds
+    /// back on the plan's assembly modes; a linkage carried on through its dead centres by
+    /// its inertia runs the return on [`Plan::through`] the lock instead.
     Rocking {
         /// The angle where the course starts, and the input reverses to come back, rad.
         from: f64,

@@ -85,7 +85,9 @@ pub use indicator::IndicatorDiagram;
 pub use inputs::Inputs;
 pub use instant_centres::{Centre, Found, InstantCentre};
 pub use plan::{Group, GroupKind, Plan, Pose};
-pub use solve::{Analysis, Balance, Kinematics, Position, PowerCheck, Reaction, Solver};
+pub use solve::{
+    Analysis, Balance, Kinematics, Position, PowerCheck, Reaction, Solver, DEAD_CENTRE_DETERMINANT,
+};
 pub use structure::chebyshev;
 pub use table::{Cells, Column, Table, Tabulate};
 pub use workspace::{Region, SingularCurve, Singularity, Workspace, WorkspaceOptions};

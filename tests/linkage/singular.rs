@@ -3,7 +3,7 @@
 //! position (closed to 1e-12 of the size, the joint on the line) and the rates as the
 //! singular measure, while a regular position gives the full kinematics unchanged.
 
-use std::f64::consts::FRAC_PI_2;
+use std::f64::consts::{FRAC_PI_2, PI, TAU};
 use tmm::kinematics::Motion;
 use tmm::linkage::{Joint, Link, Linkage, Plan};
 use tmm::Error;
@@ -142,5 +142,92 @@ fn the_position_of_an_rrp_dyad_across_its_guide_with_the_rates_singular() {
     let k = plan.kinematics(m).unwrap();
     for j in 0..plan.joint_names().len() {
         assert_eq!(r.rates().unwrap().joint(j).unwrap(), k.joint(j).unwrap());
+    }
+}
+
+/// A slider-crank driven by its slider: crank O A of `R` about O, rod A B of `L`, B on the
+/// guide y = `E` of the frame, drawn with the crank at 1 rad (above the guide's line).
+const R: f64 = 0.05;
+const L: f64 = 0.2;
+const E: f64 = 0.02;
+
+fn piston_driven() -> (Linkage, f64) {
+    let (s, c) = 1.0f64.sin_cos();
+    let a = [R * c, R * s];
+    let xb = a[0] + (L * L - (E - a[1]).powi(2)).sqrt();
+    let mut l = Linkage {
+        name: "piston-driven slider-crank".into(),
+        joints: vec![
+            Joint::revolute("O", [0.0, 0.0]),
+            Joint::revolute("A", a),
+            Joint::revolute("B", [xb, E]),
+            Joint::prismatic("P", [xb, E], "frame", [1.0, 0.0]),
+        ],
+        links: vec![
+            Link::new("frame", &["O", "P"]),
+            Link::new("crank", &["O", "A"]),
+            Link::new("rod", &["A", "B"]),
+            Link::new("piston", &["B", "P"]),
+        ],
+        ..Linkage::default()
+    };
+    l.input = tmm::linkage::Input::crank("piston");
+    (l, xb)
+}
+
+/// The slider sweeps its stroke out on the drawn mode and back on `plan.through(end)`, then
+/// `through` the other end again: the crank it drives turns on in one sense, a whole turn
+/// (−2π) over the two sweeps, with no step back or jump; at each dead centre the two modes
+/// give one position. The stroke's ends are exact: B at √((L ± R)² − E²).
+#[test]
+fn a_slider_carries_its_crank_on_through_both_dead_centres() {
+    let (linkage, xb) = piston_driven();
+    let plan = Plan::new(&linkage).unwrap();
+    let lo = ((L - R).powi(2) - E * E).sqrt() - xb;
+    let hi = ((L + R).powi(2) - E * E).sqrt() - xb;
+    let back = plan.through(Motion::fixed(hi)).unwrap();
+    let again = back.through(Motion::fixed(lo)).unwrap();
+    let branches = |p: &Plan| p.groups().iter().map(|g| g.branch).collect::<Vec<_>>();
+    assert_ne!(branches(&back), branches(&plan));
+    assert_eq!(branches(&again), branches(&plan));
+    let crank = |p: &Plan, s: f64| {
+        let at = p.position(Motion::fixed(s)).unwrap();
+        let a = at.pose().joint("A").unwrap().p;
+        (a.y.atan2(a.x), a)
+    };
+    // The dead centres: both modes give one position (a double root: to √ε of the size).
+    for s in [lo, hi] {
+        let (_, a) = crank(&plan, s);
+        let (_, b) = crank(&back, s);
+        assert!((a - b).norm() < 1e-7 * (R + L), "{s}: {a:?} vs {b:?}");
+    }
+    let n = 2000;
+    let out = (0..=n).map(|k| (&plan, lo + (hi - lo) * f64::from(k) / f64::from(n)));
+    let home = (1..=n).map(|k| (&back, hi - (hi - lo) * f64::from(k) / f64::from(n)));
+    let (mut turned, mut last, mut widest) = (0.0f64, None::<f64>, 0.0f64);
+    for (p, s) in out.chain(home) {
+        let (phi, _) = crank(p, s);
+        if let Some(prev) = last {
+            let step = (phi - prev + PI).rem_euclid(TAU) - PI;
+            assert!(step < 0.0, "the crank stepped back at s = {s}: {step:e}");
+            widest = widest.max(-step);
+            turned += step;
+        }
+        last = Some(phi);
+    }
+    println!("through both dead centres: turned {turned:.12} rad, widest step {widest:.3e}");
+    assert!((turned + TAU).abs() < 1e-6, "{turned}");
+    // No jump: the widest step is the slope near a dead centre (√ of the slide's step).
+    assert!(widest < 0.1, "{widest}");
+    // Away from a dead centre there is no mode to change, and the error names the dyad.
+    match plan.through(Motion::fixed(0.5 * (lo + hi))) {
+        Err(Error::Description { item, problem }) => {
+            assert_eq!(item, "inputs");
+            assert!(
+                problem.contains("crank") && problem.contains("determinant"),
+                "{problem}"
+            );
+        }
+        other => panic!("{other:?}"),
     }
 }

@@ -24,5 +24,5 @@ pub use analysis::Analysis;
 pub use checks::PowerCheck;
 pub use kinematics::Kinematics;
 pub use reaction::{Balance, Reaction};
-pub use singular::Position;
+pub use singular::{Position, DEAD_CENTRE_DETERMINANT};
 pub use solver::Solver;

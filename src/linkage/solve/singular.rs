@@ -7,8 +7,14 @@
 //! refuses the position (its determinant vanished, or its closure fails by no more than
 //! rounding: the tangent case) is placed by its position problem alone
 //! ([`solve_contour_position`]), which has the tangent circles' one point (or the circle's
-//! tangent point on a line). The RRR and RRP dyads are covered so; the other kinds report
-//! their error as before.
+//! tangent point on a line). The RRR and RRP dyads are covered so. The other dyads have no
+//! position where their rates fail: an RPR's slider hinge on the pivot of its guide leaves
+//! the guide's direction free, and a PRP's or RPP's parallel guides meet nowhere or all
+//! along a line; they report their error as before. A triad or a general group is placed
+//! only where its equations are regular.
+//!
+//! [`Plan::through`] gives the plan that moves on through a dead centre on the dyad's other
+//! mode, as a mechanism carried by its inertia does.
 
 use super::kinematics::Kinematics;
 use super::state::{within, KinState};
@@ -157,7 +163,9 @@ impl KinState {
         if group.kind != GroupKind::Rrr || group.triad.is_some() || group.general.is_some() {
             return Err(Error::Description {
                 item: group.name.clone(),
-                problem: "no position-only solve".to_owned(),
+                problem: "its rates fail here, and only an RRR or RRP dyad is placed where \
+                          they do (another dyad has no position there)"
+                    .to_owned(),
             });
         }
         let [l2, l3] = group.links;
@@ -231,5 +239,108 @@ impl KinState {
             measure: "cos(phi2 - phi4)",
             value: det,
         }))
+    }
+}
+
+/// The largest |determinant| of a dyad that [`Plan::through`] takes for a dead centre. Near
+/// a dead centre a dyad's determinant grows as the square root of the input's distance
+/// from it, so this admits an input within about 10⁻⁶ (relative) of the dead centre: a
+/// lock angle printed to six digits, or [`Plan::lock_positions`]'s exact one.
+pub const DEAD_CENTRE_DETERMINANT: f64 = 1e-3;
+
+impl Plan {
+    /// The plan that carries the motion on through a dead centre at `at`: every RRR or RRP
+    /// dyad at its dead centre there (|determinant| ≤ [`DEAD_CENTRE_DETERMINANT`]) takes
+    /// its other assembly mode, all else unchanged.
+    ///
+    /// At a dead centre a dyad's two modes meet, and a mechanism that moves on through it
+    /// (the inner joint crossing the line of the outer ones, as a flywheel carries a crank
+    /// past the dead centre of a piston's stroke) leaves on the other mode. So a rocking
+    /// input that reverses at its lock (a slider driving a crank, a rocker driving a
+    /// triple-rocker) runs its return sweep on `plan.through(lock)`, and the motion of the
+    /// links it drives keeps its sense instead of folding back. At the dead centre both plans
+    /// give the same position.
+    ///
+    /// # Errors
+    /// The errors of [`position`](Self::position); [`Error::Description`] (field `inputs`)
+    /// when no RRR or RRP dyad is at a dead centre at `at`, naming the dyad nearest one and
+    /// its determinant.
+    ///
+    /// # Examples
+    /// The four-bar of [`position`](Self::position), stretched straight at φ = 0: on the
+    /// other mode, B is on the other side of the line from the crank pin to the pivot.
+    /// ```
+    /// use tmm::kinematics::Motion;
+    /// use tmm::linkage::{Joint, Link, Linkage, Plan};
+    /// let (s, c) = 0.5f64.sin_cos();
+    /// let (dx, dy) = (-2.0 - c, -s);
+    /// let l = dx.hypot(dy);
+    /// let x = 0.5 * (l + 3.0 / l);
+    /// let h = (4.0 - x * x).sqrt();
+    /// let b = [c + (x * dx - h * dy) / l, s + (x * dy + h * dx) / l];
+    /// let linkage = Linkage {
+    ///     name: "stretched".into(),
+    ///     joints: vec![
+    ///         Joint::revolute("O", [0.0, 0.0]),
+    ///         Joint::revolute("P", [c, s]),
+    ///         Joint::revolute("B", b),
+    ///         Joint::revolute("Q", [-2.0, 0.0]),
+    ///     ],
+    ///     links: vec![
+    ///         Link::new("frame", &["O", "Q"]),
+    ///         Link::new("crank", &["O", "P"]),
+    ///         Link::new("coupler", &["P", "B"]),
+    ///         Link::new("rocker", &["B", "Q"]),
+    ///     ],
+    ///     ..Linkage::default()
+    /// };
+    /// let plan = Plan::new(&linkage)?;
+    /// let on = plan.through(Motion::fixed(0.0))?;
+    /// // Which side of the line from the pin P to the pivot Q the joint B is on.
+    /// let side = |p: &Plan, phi: f64| -> Result<f64, tmm::Error> {
+    ///     let k = p.kinematics(Motion::fixed(phi))?;
+    ///     let (p, b) = (k.joint("P")?.p, k.joint("B")?.p);
+    ///     Ok((-2.0 - p.x) * (b.y - p.y) + p.y * (b.x - p.x))
+    /// };
+    /// assert!(side(&plan, -0.1)? * side(&on, -0.1)? < 0.0);
+    /// assert!(side(&plan, 0.1)? * side(&on, 0.1)? < 0.0);
+    /// assert!(plan.through(Motion::fixed(0.5)).is_err()); // no dead centre there
+    /// # Ok::<(), tmm::Error>(())
+    /// ```
+    pub fn through(&self, at: impl Into<Inputs>) -> Result<Plan> {
+        let position = self.position(at)?;
+        let dets = position.pose().group_determinants();
+        let dyads = || {
+            self.chain.groups.iter().enumerate().filter(|(_, g)| {
+                matches!(g.kind, GroupKind::Rrr | GroupKind::Rrp)
+                    && g.triad.is_none()
+                    && g.general.is_none()
+            })
+        };
+        let mut next = self.clone();
+        let mut flipped = false;
+        for (g, _) in dyads().filter(|(g, _)| dets[*g].abs() <= DEAD_CENTRE_DETERMINANT) {
+            let group = &mut next.chain.groups[g];
+            group.branch = group.branch.flipped();
+            flipped = true;
+        }
+        if flipped {
+            return Ok(next);
+        }
+        let nearest = dyads().min_by(|(a, _), (b, _)| dets[*a].abs().total_cmp(&dets[*b].abs()));
+        Err(Error::Description {
+            item: "inputs".to_owned(),
+            problem: match nearest {
+                Some((g, group)) => format!(
+                    "no dyad is at a dead centre here: the nearest, {}, has |determinant| {:.3e} \
+                     (at most {DEAD_CENTRE_DETERMINANT:e} at a dead centre)",
+                    group.name,
+                    dets[g].abs()
+                ),
+                None => "the linkage has no RRR or RRP dyad, whose mode could change at a \
+                         dead centre"
+                    .to_owned(),
+            },
+        })
     }
 }
