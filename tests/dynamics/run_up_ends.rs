@@ -61,3 +61,40 @@ fn a_run_up_that_runs_away_says_so() {
     let e = sys.run_up(&Rk4, &opts.with_max_turns(5)).unwrap_err();
     assert!(matches!(e, Error::Budget { limit: 5, .. }), "{e}");
 }
+
+/// The bundled four-bar under a constant 10⁴ N·m, against loads whose reduced moment stays
+/// within tens of N·m: ½·J_red·ω² only grows, so the crank never turns back and no regime
+/// repeats. A fixed step chosen for 10 rad/s spans a large part of a turn once the machine
+/// runs fast: that turn is refused, naming the step and the largest one that would resolve
+/// it (a thirty-second of the turn's period), instead of judged. A step that resolves every
+/// turn sees the machine run away, and a smaller one sees the same.
+#[test]
+fn a_turn_the_fixed_step_cannot_resolve_is_refused_naming_the_step() {
+    let sys = LinkageSystem::from_linkage(&bundled::four_bar())
+        .unwrap()
+        .with_motor(0, Motor::Constant(1e4))
+        .unwrap();
+    let coarse = std::f64::consts::TAU / 10.0 / 2000.0;
+    let e = sys
+        .run_up(&Rk4, &RunUpOptions::new(coarse).with_max_turns(30))
+        .unwrap_err();
+    let Error::OutOfRange {
+        name, value, max, ..
+    } = e
+    else {
+        panic!("{e}")
+    };
+    assert!(name.starts_with("step h"), "{name}");
+    assert_eq!(value, coarse);
+    // The refused turn was fast: fewer than 32 steps, so its period is under 32 h.
+    assert!(max < value && max > 0.0, "{max} vs {value}");
+    for h in [1e-5, 5e-6] {
+        let e = sys
+            .run_up(&Rk4, &RunUpOptions::new(h).with_max_turns(30))
+            .unwrap_err();
+        let Error::In { part, .. } = &e else {
+            panic!("h = {h}: {e}")
+        };
+        assert!(part.contains("grew in each of the last"), "h = {h}: {e}");
+    }
+}

@@ -11,6 +11,10 @@ use crate::dynamics::{
 };
 use crate::error::{finite, positive, Error, Result};
 
+/// The fewest steps in which a fixed-step method may make a turn: a turn in fewer is not
+/// resolved (its speeds are the method's error), so [`LinkageSystem::turn`] refuses it.
+pub const MIN_STEPS_PER_TURN: usize = 32;
+
 /// The machine reduced to its crank at one position.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Reduced {
@@ -281,8 +285,9 @@ impl LinkageSystem {
     /// [`Error::Stalled`] naming the driving load and the resistance when the resistances
     /// hold the machine at rest (it stops, or never starts); [`Error::Singular`] when nothing
     /// starts the machine from rest, when it does not complete the turn within
-    /// `opts.max_turn_time` (it turns back), or when the turn takes no time; as
-    /// [`run`](crate::dynamics::run).
+    /// `opts.max_turn_time` (it turns back), or when the turn takes no time;
+    /// [`Error::OutOfRange`] naming the step `h` when a fixed-step method made the turn in
+    /// fewer than [`MIN_STEPS_PER_TURN`] steps; as [`run`](crate::dynamics::run).
     pub fn turn<M: Stepper>(
         &self,
         method: &M,
@@ -349,6 +354,19 @@ impl LinkageSystem {
                 what: "turn",
                 measure: "its duration (the turn ended when it began)",
                 value: period,
+            });
+        }
+        if !method.is_adaptive() && r.steps < MIN_STEPS_PER_TURN {
+            // A fixed step that spans a large part of a turn (a machine run up far faster
+            // than its step was chosen for) samples the method's error, not the motion: its
+            // speeds could turn back, or repeat a regime, where the machine does neither.
+            return Err(Error::OutOfRange {
+                name: "step h of a fixed-step turn (it must take at least 32 steps a turn; \
+                       choose a smaller h, or an adaptive method)",
+                value: opts.h,
+                min: 0.0,
+                max: period / MIN_STEPS_PER_TURN as f64,
+                ends: crate::Ends::OpenBelow,
             });
         }
         let omega_mean = crate::error::computed("mean speed of a turn", TAU / period)?;

@@ -158,7 +158,7 @@ mod stops;
 mod system;
 mod transfer;
 
-pub use cycle::{Reduced, RunUp, RunUpOptions, Turn};
+pub use cycle::{Reduced, RunUp, RunUpOptions, Turn, MIN_STEPS_PER_TURN};
 pub use drive::{Damper, Motor};
 pub use flywheel::Flywheel;
 pub use friction::{FRICTION_BUDGET, FRICTION_TOLERANCE};
