@@ -224,3 +224,45 @@ fn anchors_cited_in_the_code_exist() {
     );
     assert!(bad.is_empty(), "{}", bad.join("\n"));
 }
+
+/// Every repository path a document quotes in code spans (`tests/…`, `src/…`, `benches/…`,
+/// `examples/…`, `cli/…`, `linkages/…`, `docs/…`) names a file or folder that exists: a
+/// renamed or moved file leaves no stale pointer.
+#[test]
+fn every_quoted_repository_path_exists() {
+    let prefixes = [
+        "tests/",
+        "src/",
+        "benches/",
+        "examples/",
+        "cli/",
+        "linkages/",
+        "docs/",
+    ];
+    let mut missing = Vec::new();
+    let mut quoted = 0;
+    for doc in documents() {
+        let text = fs::read_to_string(&doc).unwrap();
+        for (k, span) in text.split('`').enumerate() {
+            // The odd pieces are inside code spans; a path is one word there.
+            if k % 2 == 0 || span.contains(char::is_whitespace) {
+                continue;
+            }
+            let path = span.split(['#', ':']).next().unwrap_or("");
+            if !prefixes.iter().any(|p| path.starts_with(p)) || path.contains(['*', '<', '…', '{'])
+            {
+                continue;
+            }
+            quoted += 1;
+            if !root().join(path).exists() {
+                missing.push(format!("{}: {path}", doc.display()));
+            }
+        }
+    }
+    println!("{quoted} quoted paths checked");
+    assert!(
+        quoted >= 20,
+        "only {quoted} quoted paths found: the scan lost them"
+    );
+    assert!(missing.is_empty(), "{missing:#?}");
+}

@@ -325,7 +325,8 @@ impl HingedGroup {
     /// # Errors
     /// [`Error::NotAssemblable`] with the closure gap of the last pose at the next step of
     /// the path where the path cannot be followed (the group does not assemble beyond it,
-    /// or passes a branch point there).
+    /// or passes a branch point there); [`Error::Budget`] after 100 000 predictor–corrector
+    /// steps (a path that keeps nearly failing).
     ///
     /// Its buffers are allocated for this call; [`track_in`](Self::track_in) reuses a
     /// [`GroupWork`] instead (the same bits).
@@ -723,7 +724,18 @@ impl HingedGroup {
         let (mut t, mut dt) = (0.0f64, 1.0f64);
         path(0.0, before);
         let base = 2 * self.inner.len();
+        let mut steps = 0;
         while t < 1.0 {
+            // Each step at least doubles back to its size after a failure, but a path that
+            // keeps nearly failing at dt ≈ 10⁻⁹ would take 10⁹ steps: a budget ends it.
+            steps += 1;
+            if steps > MAX_TRACK_STEPS {
+                return Err(Error::Budget {
+                    what: "continuation step (path parameter reached in `time`)",
+                    limit: MAX_TRACK_STEPS,
+                    time: t,
+                });
+            }
             let t1 = (t + dt).min(1.0);
             path(t1, pts);
             // Tangent predictor: K·Δq = (0 | ΔP).
@@ -761,6 +773,9 @@ impl HingedGroup {
         Ok(GroupPose::from_q(guess))
     }
 }
+
+/// The most predictor–corrector steps of one [`HingedGroup::track_in`] along its path.
+const MAX_TRACK_STEPS: usize = 100_000;
 
 fn singular() -> Error {
     Error::Singular {

@@ -116,12 +116,12 @@ where
         let root = if f0.rate == 0.0 {
             // A root on a sample: count it once, and only where the sign really changes.
             let prev = values[(k + samples - 1) % samples].rate;
-            if prev * f1.rate < 0.0 {
+            if opposite(prev, f1.rate) {
                 Some((at(k), f0))
             } else {
                 None
             }
-        } else if f0.rate * f1.rate < 0.0 {
+        } else if opposite(f0.rate, f1.rate) {
             Some(refine(&mut transfer, at(k), f0, at(k) + step, f1)?)
         } else {
             None
@@ -141,6 +141,12 @@ where
     Ok(out)
 }
 
+/// Whether `a` and `b` are of opposite signs, each nonzero (a product of two tiny slopes
+/// would underflow to zero and hide the change).
+fn opposite(a: f64, b: f64) -> bool {
+    a != 0.0 && b != 0.0 && (a > 0.0) != (b > 0.0)
+}
+
 /// Safeguarded Newton on the first transfer function inside the bracket [a, b].
 fn refine<F>(
     transfer: &mut F,
@@ -155,6 +161,10 @@ where
     let a_positive = fa.rate > 0.0;
     // Start from the secant point: inside the bracket and good for a simple root.
     let mut x = a - fa.rate * (b - a) / (fb.rate - fa.rate);
+    if !(x > a && x < b) {
+        // Rates whose quotient overflows or underflows: bisect first.
+        x = 0.5 * (a + b);
+    }
     let mut best = if fa.rate.abs() < fb.rate.abs() {
         (a, fa)
     } else {

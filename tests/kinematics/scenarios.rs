@@ -703,3 +703,32 @@ fn contour_unknowns_come_back_in_loop_order_whatever_the_order() {
 fn unit_of(angle: f64) -> Vector2<f64> {
     tmm::angle::unit(angle)
 }
+
+/// The extremes of s·sin(x + 0.3) are at x = π/2 − 0.3 (max) and 3π/2 − 0.3 (min) whatever the
+/// scale s: a slope of 10⁻¹⁷⁰ changes sign as surely as one of 1 (a product of two such slopes
+/// would underflow to zero and lose both extremes).
+#[test]
+fn extremes_do_not_depend_on_the_output_scale() {
+    for s in [1.0, 1e-150, 1e-170, 1e-300, 1e150] {
+        let e = extreme_positions(
+            |x: f64| {
+                let (sn, cs) = (x + 0.3).sin_cos();
+                Ok(Motion::new(s * sn, s * cs, -s * sn))
+            },
+            360,
+        )
+        .unwrap();
+        assert_eq!(e.len(), 2, "scale {s:e}: {e:?}");
+        let max = e.iter().find(|x| x.kind == ExtremeKind::Max).unwrap();
+        let min = e.iter().find(|x| x.kind == ExtremeKind::Min).unwrap();
+        assert!(
+            (max.input - (FRAC_PI_2 - 0.3)).abs() < 1e-12,
+            "{s:e}: {max:?}"
+        );
+        assert!(
+            (min.input - (3.0 * FRAC_PI_2 - 0.3)).abs() < 1e-12,
+            "{s:e}: {min:?}"
+        );
+        assert!((max.output.value / s - 1.0).abs() < 1e-15, "{s:e}: {max:?}");
+    }
+}

@@ -98,8 +98,9 @@ pub(super) fn edges(linkage: &Linkage, names: &Names<'_>, links: &Links) -> Resu
             return Err(bad(
                 item,
                 format!(
-                    "is listed by {} link(s) [{}]; a joint joins exactly two links (use two \
-                     joints at one place for a hinge of three links)",
+                    "is listed by {} link(s) [{}]; list it in each link it joins (a revolute \
+                     joint may join three or more, a hinge of all of them; a prismatic one joins \
+                     exactly two)",
                     owners[j].len(),
                     listed.join(", ")
                 ),
