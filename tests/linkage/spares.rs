@@ -83,3 +83,62 @@ fn interleaved_one_shot_solves_equal_fresh_solvers_bit_for_bit() {
         }
     });
 }
+
+/// A solve that fails half-way (an unassemblable input, a load function that errs, one that
+/// panics and is caught) leaves its box half written; the next one-shot solves of every plan
+/// are still bit for bit a fresh solver's.
+#[test]
+fn failed_and_panicked_solves_leave_no_trace_in_the_next() {
+    let plans = plans();
+    let n = 24;
+    let reference = fresh(&plans, n);
+    let mut failing = Plan::new(&bundled::watt_six_bar()).unwrap();
+    failing
+        .add_load_fn("link 5", |a| {
+            let phi = a.link("crank")?.value;
+            if phi.sin() > 0.5 {
+                panic!("a user's load function panics");
+            }
+            if phi.sin() < -0.5 {
+                return Err(tmm::Error::NonFinite {
+                    name: "a user's load",
+                    value: f64::NAN,
+                });
+            }
+            Ok(tmm::Load::zero(a.joint("F")?.p))
+        })
+        .unwrap();
+    let (mut panicked, mut erred) = (0, 0);
+    for k in 0..n {
+        for j in 0..8 {
+            let m = Motion::new(j as f64 * 0.8, 3.0, 1.0);
+            match std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
+                failing.analyse(m).map(|_| ())
+            })) {
+                Err(_) => panicked += 1,
+                Ok(Err(_)) => erred += 1,
+                Ok(Ok(())) => {}
+            }
+        }
+        for (i, p) in plans.iter().enumerate() {
+            assert_eq!(
+                print(&p.analyse(motion(k)).unwrap()),
+                reference[i][k],
+                "plan {i}, {k}"
+            );
+        }
+    }
+    assert!(
+        panicked > 0 && erred > 0,
+        "{panicked} panics, {erred} errors"
+    );
+    // The failing plan itself, at positions where its load function is quiet, afterwards.
+    for j in 0..8 {
+        let m = Motion::new(j as f64 * 0.8, 3.0, 1.0);
+        if m.value.sin().abs() <= 0.5 {
+            let one = failing.analyse(m).unwrap();
+            let fresh = failing.solver().analyse(m).map(print).unwrap();
+            assert_eq!(print(&one), fresh, "input {}", m.value);
+        }
+    }
+}
