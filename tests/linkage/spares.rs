@@ -88,6 +88,8 @@ fn interleaved_one_shot_solves_equal_fresh_solvers_bit_for_bit() {
 /// panics and is caught) leaves its box half written; the next one-shot solves of every plan
 /// are still bit for bit a fresh solver's.
 #[test]
+// Position k of every plan's reference at once, as in `interleaved`.
+#[allow(clippy::needless_range_loop)]
 fn failed_and_panicked_solves_leave_no_trace_in_the_next() {
     let plans = plans();
     let n = 24;
