@@ -12,8 +12,8 @@ use nalgebra::Vector2;
 use plotters::prelude::*;
 use tmm::dynamics::machines::{CoaxialPropellers, Failure, FiveBar, LandingGear, RpArm};
 use tmm::dynamics::{
-    run, Direction, Dopri5, FiniteIncrement, Outcome, Reach, Rk4, RunOptions, RunResult, State,
-    Steady, Trajectory, Watch,
+    run, Direction, Dopri5, FiniteIncrement, LagrangeSystem, Outcome, Reach, Rk4, RunOptions,
+    RunResult, State, Steady, Stepper, Trajectory, Watch,
 };
 
 type Res<T> = std::result::Result<T, Box<dyn Error>>;
@@ -136,6 +136,17 @@ fn save(
     )
 }
 
+/// [`run`] of a machine given as a trait object: the integrator is then compiled once per
+/// stepper rather than once per machine and stepper (the same motion, bit for bit).
+fn simulate<M: Stepper>(
+    sys: &dyn LagrangeSystem,
+    method: &M,
+    start: State,
+    opts: &RunOptions,
+) -> Res<RunResult> {
+    Ok(run(sys, method, start, opts)?)
+}
+
 fn describe(o: &Outcome) -> String {
     match o {
         Outcome::FinalTime => "ran to the final time".into(),
@@ -159,7 +170,7 @@ fn describe(o: &Outcome) -> String {
 fn five_bar(dir: &Path) -> Res<()> {
     let f = FiveBar::default();
     let s0 = State::at_rest(Vector2::new(120f64.to_radians(), 60f64.to_radians()));
-    let r = run(&f, &Dopri5::new(1e-8)?, s0, &RunOptions::until(1.5, 1e-3))?;
+    let r = simulate(&f, &Dopri5::new(1e-8)?, s0, &RunOptions::until(1.5, 1e-3))?;
     let tr = &r.trajectory;
     let n = tr.len() - 1;
     let worst_sin = tr
@@ -201,9 +212,9 @@ fn rp_arm(dir: &Path) -> Res<()> {
         value: 0.8,
         direction: Direction::Rising,
     });
-    let r = run(&a, &Rk4, s0, &opts)?;
+    let r = simulate(&a, &Rk4, s0, &opts)?;
     let dec = a.decoupled();
-    let rd = run(&dec, &Rk4, s0, &opts)?;
+    let rd = simulate(&dec, &Rk4, s0, &opts)?;
     let exact = dec.closed_form(&s0, rd.last.t)?;
     println!("R–P arm (M_p1 = 2 N·m, F_p2 = 10 N, slide from 0.3 m to 0.8 m; RK4, h = 1 ms):");
     println!(
@@ -272,7 +283,7 @@ fn landing_gear(dir: &Path) -> Res<()> {
                 direction: Direction::Falling,
             });
         }
-        let r = run(&gi, &FiniteIncrement, State::at_rest(Vector2::zeros()), &o)?;
+        let r = simulate(&gi, &FiniteIncrement, State::at_rest(Vector2::zeros()), &o)?;
         let tr = &r.trajectory;
         let phi_h = tr.output("phi_H").unwrap_or(&[]);
         let top = phi_h.iter().fold(0.0f64, |m, v| m.max(*v));
@@ -312,7 +323,7 @@ fn coaxial(dir: &Path) -> Res<()> {
     println!(
         "Coaxial propellers (finite increments, h = 1 ms, steady when |φ̈| < 1e-3 rad/s² for 1 s):"
     );
-    let r = run(&d, &FiniteIncrement, s0, &opts)?;
+    let r = simulate(&d, &FiniteIncrement, s0, &opts)?;
     let n = r.trajectory.len() - 1;
     println!(
         "  loads in the gear ratio: {}; φ̇4 = {:.2}, φ̇H = {:.2}, φ̇1 = {:.2} rad/s",
@@ -334,7 +345,7 @@ fn coaxial(dir: &Path) -> Res<()> {
         m_on4: 6000.0,
         ..d.clone()
     };
-    let r = run(&un, &FiniteIncrement, s0, &opts)?;
+    let r = simulate(&un, &FiniteIncrement, s0, &opts)?;
     println!(
         "  (M_on)4 = 6000 N·m, out of the ratio (docs/errata.md#d41): {}",
         describe(&r.outcome)
@@ -345,7 +356,7 @@ fn coaxial(dir: &Path) -> Res<()> {
         steady: None,
         ..opts.clone()
     };
-    let r = run(&un, &FiniteIncrement, s0, &long)?;
+    let r = simulate(&un, &FiniteIncrement, s0, &long)?;
     save(
         dir,
         "coaxial_propellers_unbalanced",

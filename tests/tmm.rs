@@ -25,4 +25,5 @@ mod mechanism;
 mod synthesis;
 mod triad;
 mod triad_slider;
+mod unit;
 mod work_precision;

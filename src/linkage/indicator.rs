@@ -192,35 +192,3 @@ fn interpolate(table: &[[f64; 2]], x: f64) -> Result<f64> {
     }
     finite("pressure", y0 + (y1 - y0) * (x - x0) / (x1 - x0))
 }
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn interpolation_is_exact_on_a_line_and_rejects_gaps() {
-        let t = [[0.0, 1.0], [0.5, 2.0], [1.0, 3.0]];
-        for k in 0..=20 {
-            let x = f64::from(k) / 20.0;
-            assert!((interpolate(&t, x).unwrap() - (1.0 + 2.0 * x)).abs() < 1e-15);
-        }
-        assert!(interpolate(&t[..2], 0.75).is_err());
-        assert!(interpolate(&[], 0.5).is_err());
-    }
-
-    #[test]
-    fn the_force_pushes_away_from_the_head() {
-        let d = IndicatorDiagram {
-            area: 0.01,
-            outward: vec![[0.0, 1e5], [1.0, 0.0]],
-            inward: vec![[0.0, 1e5], [1.0, 1e5]],
-        };
-        let g = Vector2::new(0.0, 1.0);
-        // Halfway out: 0.5e5 Pa on 0.01 m² = 500 N along −y.
-        let f = d.force(0.25, -1.0, g, 0.3, 0.2).unwrap();
-        assert!((f - Vector2::new(0.0, -500.0)).norm() < 1e-9);
-        let f = d.force(0.25, 1.0, g, 0.3, 0.2).unwrap();
-        assert!((f - Vector2::new(0.0, -1000.0)).norm() < 1e-9);
-        assert!(d.force(0.35, 1.0, g, 0.3, 0.2).is_err());
-    }
-}
