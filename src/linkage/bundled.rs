@@ -166,6 +166,7 @@ pub fn all() -> Vec<Linkage> {
         slotted_rocker(),
         six_bar_triad(),
         double_butterfly(),
+        six_bar_slider_triad(),
     ]
 }
 

@@ -107,7 +107,7 @@ fn sweep_triad_friction() {
     });
 }
 
-/// The bundled linkages with a triad or a general group.
+/// The bundled linkages with a triad (hinged or with a sliding pair) or a general group.
 fn larger_groups() -> Vec<Linkage> {
     bundled::all()
         .into_iter()
@@ -124,7 +124,11 @@ fn larger_groups() -> Vec<Linkage> {
 #[test]
 fn sweep_friction_in_triads_and_general_groups() {
     let all = larger_groups();
-    assert_eq!(all.len(), 2, "the triad six-bar and the double butterfly");
+    assert_eq!(
+        all.len(),
+        3,
+        "the triad six-bar, the double butterfly and the sliding triad six-bar"
+    );
     let mut g = Gen::new(73);
     let mut solved = 0;
     for l in &all {

@@ -9,8 +9,8 @@ use tmm::kinematics::Motion;
 use tmm::linkage::{bundled, Analysis, Course, Friction, GroupKind, Linkage, Plan};
 use tmm::Load;
 
-/// The bundled linkages whose groups are above the 2nd class: the six-bar with a triad and
-/// the double butterfly (one general group of six links).
+/// The bundled linkages whose groups are above the 2nd class: the six-bar with a triad, the
+/// double butterfly (one general group of six links) and the six-bar with a sliding triad.
 fn with_larger_groups() -> Vec<Linkage> {
     let l = bundled::all()
         .into_iter()
@@ -22,7 +22,11 @@ fn with_larger_groups() -> Vec<Linkage> {
             })
         })
         .collect::<Vec<_>>();
-    assert_eq!(l.len(), 2, "the triad six-bar and the double butterfly");
+    assert_eq!(
+        l.len(),
+        3,
+        "the triad six-bar, the double butterfly and the sliding triad six-bar"
+    );
     l
 }
 
@@ -101,27 +105,38 @@ fn independent(plan: &Plan, a: &Analysis<'_>, rho: f64) -> (Vec<Vector2<f64>>, f
     panic!("the independent fixed point did not converge");
 }
 
-/// Friction in the hinges of a triad and of a general group (the six-bar with a triad, the
-/// double butterfly): at 72 positions for f ∈ {0.05, 0.15, 0.3}, every reaction and the
-/// balancing moment agree with the independent whole-linkage solve, every link is in
-/// equilibrium with the friction couples as data, each hinge obeys its friction law and
+/// Friction in the joints of a triad, of a triad with a sliding pair and of a general group
+/// (the six-bar with a triad, the double butterfly, the six-bar with a sliding triad): at 72
+/// positions for f ∈ {0.05, 0.15, 0.3}, every reaction and the balancing moment agree with
+/// the independent whole-linkage solve ([`independent`] for hinges only, [`all_solutions`]
+/// with slides: exactly one sign pattern consistent), every link is in equilibrium with the
+/// friction couples and forces as data, each joint obeys its friction law and
 /// P_drive = P_useful + Σ P_lost.
 #[test]
 fn friction_in_triads_and_general_groups_agrees_with_the_whole_linkage_solve() {
     let mut report = Vec::new();
     for base in with_larger_groups() {
+        let free = Plan::new(&base).unwrap();
+        let slides = free.joint_ids().any(|j| free.is_prismatic(j).unwrap());
         for f in COEFFICIENTS {
             let l = with_friction(&base, f);
             let plan = Plan::new(&l).unwrap();
             let rho = f * 0.02 * plan.size();
-            let mut solver = plan.solver();
+            let (mut solver, mut solver0) = (plan.solver(), free.solver());
             let (mut eq, mut gap, mut energy, mut iterations, mut fixed) =
                 (0.0f64, 0.0f64, 0.0f64, 0, 0);
             for m in inputs(&plan) {
                 let a = solver.analyse(m).unwrap();
                 eq = eq.max(worst_equilibrium(&plan, a));
                 let scale = load_scale(&plan, a);
-                let (forces, moment, its) = independent(&plan, a, rho);
+                let (forces, moment, its) = if slides {
+                    let (found, _) = all_solutions(&free, solver0.analyse(m).unwrap(), rho, f);
+                    assert_eq!(found.len(), 1, "{}: {found:?}", base.name);
+                    let (forces, moment) = found.into_iter().next().unwrap();
+                    (forces, moment, 0)
+                } else {
+                    independent(&plan, a, rho)
+                };
                 fixed += its;
                 for (j, r) in plan.joint_ids().zip(&forces) {
                     gap = gap.max((a.reaction(j).unwrap().force - r).norm() / scale);
@@ -144,14 +159,66 @@ fn friction_in_triads_and_general_groups_agrees_with_the_whole_linkage_solve() {
             assert!(energy <= 1e-12, "{} f = {f}: power {energy:e}", base.name);
             report.push(format!(
                 "{} f={f}: eq {eq:.1e}, against the whole solve {gap:.1e}, power {energy:.1e}, \
-                 {:.1} Newton steps/position (the fixed point: {:.1})",
+                 {:.1} Newton steps/position ({})",
                 base.name,
                 iterations as f64 / POSITIONS as f64,
-                fixed as f64 / POSITIONS as f64
+                if slides {
+                    "the whole solve: every sign pattern of the slide's normal force".to_owned()
+                } else {
+                    format!("the fixed point: {:.1}", fixed as f64 / POSITIONS as f64)
+                }
             ));
         }
     }
     println!("{}", report.join("\n"));
+}
+
+/// Friction in a triad whose sliding pair is on either side of its leg (the six-bar of
+/// `tests/linkage/triad.rs` with a slider on a guide of the frame, outer, or a rocker sliding
+/// along a guide of the ternary link, inner), over 25 inputs of the band where both
+/// assemble, for f ∈ {0.05, 0.15, 0.3}: the reactions and the balancing moment agree with
+/// the whole linkage's solve over every sign pattern of the slide's normal force (exactly one
+/// consistent), every link is in equilibrium, each joint obeys its friction law and
+/// P_drive = P_useful + Σ P_lost.
+#[test]
+fn friction_in_a_triad_sliding_on_either_side_agrees_with_the_whole_linkage_solve() {
+    use super::triad::{slider_inputs, slider_six_bar};
+    for outer in [true, false] {
+        let base = slider_six_bar(outer);
+        let free = Plan::new(&base).unwrap();
+        for f in COEFFICIENTS {
+            let l = with_friction(&base, f);
+            let plan = Plan::new(&l).unwrap();
+            let rho = f * 0.02 * plan.size();
+            let (mut solver, mut solver0) = (plan.solver(), free.solver());
+            let (mut eq, mut gap, mut energy) = (0.0f64, 0.0f64, 0.0f64);
+            for phi in slider_inputs(&plan, 25) {
+                let m = Motion::turning(phi, 10.0);
+                let a = solver.analyse(m).unwrap();
+                eq = eq.max(worst_equilibrium(&plan, a));
+                let scale = load_scale(&plan, a);
+                let (found, _) = all_solutions(&free, solver0.analyse(m).unwrap(), rho, f);
+                assert_eq!(found.len(), 1, "outer {outer}, f = {f}: {found:?}");
+                let (forces, moment) = &found[0];
+                for (j, r) in plan.joint_ids().zip(forces) {
+                    gap = gap.max((a.reaction(j).unwrap().force - r).norm() / scale);
+                }
+                let mb = a.balance(0).unwrap().value;
+                gap = gap.max((mb - moment).abs() / (scale * plan.size()));
+                let lost = losses(&plan, a, rho, f);
+                assert!(lost > 0.0);
+                let (p_loads, abs) = loads_power(a);
+                let e = a.efficiency().unwrap();
+                energy = energy.max((e.drive + p_loads - lost).abs() / abs.max(e.drive.abs()));
+            }
+            println!(
+                "sliding triad ({}) f = {f}: eq {eq:.1e}, against the whole solve {gap:.1e}, \
+                 power {energy:.1e}",
+                if outer { "outer" } else { "inner" }
+            );
+            assert!(eq <= 1e-12 && gap <= 1e-12 && energy <= 1e-12);
+        }
+    }
 }
 
 /// A self-locking hinge in a triad is an error naming the linkage's joint.

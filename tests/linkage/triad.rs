@@ -155,7 +155,7 @@ fn reactions_agree_with_the_whole_system_virtual_power_and_equilibrium() {
 /// The six-bar with its triad given one sliding pair, as a description file: `outer`, the
 /// rocker O2 B2 becomes a slider on a guide of the frame through O2; otherwise the joint B3
 /// becomes a slide of rocker 5 along a guide of the ternary link.
-fn slider_six_bar(outer: bool) -> tmm::linkage::Linkage {
+pub(super) fn slider_six_bar(outer: bool) -> tmm::linkage::Linkage {
     let (o2, b3) = if outer {
         (
             r#"{"name": "O2", "at": [0.47, 0.0], "kind": {"prismatic": {"guide": "frame", "direction": [0.3, 1.0]}}}"#,
@@ -200,7 +200,7 @@ fn slider_six_bar(outer: bool) -> tmm::linkage::Linkage {
 }
 
 /// Inputs where both sliding six-bars assemble: a band around the drawn crank angle.
-fn slider_inputs(plan: &Plan, n: u32) -> Vec<f64> {
+pub(super) fn slider_inputs(plan: &Plan, n: u32) -> Vec<f64> {
     (0..n)
         .map(|k| plan.reference_input() + 0.6 * (f64::from(k) / f64::from(n - 1) - 0.5))
         .collect()

@@ -1,127 +1,216 @@
-//! Friction in the hinges of a group above the 2nd class: the triad ([`TriadFriction`]) and
-//! any rigid group of hinges (the engine's general groups), by one solve.
+//! Friction in the joints of a group above the 2nd class: the triad ([`TriadFriction`]), the
+//! triad with a sliding pair and any rigid group of hinges (the engine's general groups), by
+//! one solve.
 //!
 //! A group's reactions are linear in its links' loads, so, as for a dyad, they are affine in
-//! the hinges' pressures m_k = |R_k|: V(m) = V0 + D·m, with V0 the frictionless solve and
-//! column k of D the group's response to hinge k's friction couple per newton of pressure
-//! (−c_k on the hinge's second link, +c_k on its first when that is one of the group's
-//! links, c_k = ρ_k·sgn(ω_rel,k)). The frictionless block is solved once for V0 and once per
-//! hinge with friction for D, then m = ψ(V(m)) by Newton ([`super::newton`]).
+//! the joints' pressures m_k (|R_k| of a hinge, ψ(N, K) of a slide): V(m) = V0 + D·m, with V0
+//! the frictionless solve and column k of D the group's response to joint k's friction load
+//! per newton of pressure (a hinge's couple, a slide's force along its guide through its
+//! reference point: −c_k on the joint's second link, +c_k on its first when that is one of
+//! the group's links, c_k = ρ_k·sgn(ω_rel,k) or f_k·sgn(v_rel,k)). The frictionless block is
+//! solved once for V0 and once per joint with friction for D, then m = ψ(V(m)) by Newton
+//! ([`super::newton`]).
 
 use super::newton::{Pressure, Pressures};
 use super::solver::wider;
 use super::{sign, Convergence, Hinge, Iteration, JointFriction};
+use crate::angle::perp;
 use crate::error::{all_finite, Error, Result};
-use crate::kinetostatics::{Conditioning, Triad};
+use crate::kinetostatics::{Conditioning, SlideAt, SliderTriad, Triad};
 use crate::Load;
-use nalgebra::Vector2;
+use nalgebra::{Point2, Vector2};
 
-/// One hinge of a group: the links it joins, as indices into the group's loads (`by` is
-/// `None` for a known link outside the group), its friction circle and its relative rate
-/// ω_on − ω_by, rad/s.
+/// How a joint of a group carries its reaction and its friction.
 #[derive(Debug, Clone, Copy)]
-pub(crate) struct GroupHinge {
-    pub by: Option<usize>,
-    pub on: usize,
-    pub rho: f64,
-    pub rate: f64,
+pub(crate) enum GroupPair {
+    /// A hinge: its reaction is the pair (R_x, R_y), its friction a couple ρ·|R|.
+    Hinge,
+    /// A slide along the unit direction `dir` with the reference point `point`: its reaction
+    /// is the pair (N, K), N along `dir` turned +90° and K the normal reaction's moment about
+    /// `point`; its friction a force f·ψ(N, K) along `dir` through `point` (ψ the `law`).
+    Slide {
+        dir: Vector2<f64>,
+        point: Point2<f64>,
+        law: Pressure,
+    },
 }
 
-/// A group's reactions with friction: per hinge the force of `by` on `on`, N, and its
-/// friction (the couple on `on` from `by`).
+/// One joint of a group: the links it joins, as indices into the group's loads (`by` is
+/// `None` for a known link outside the group), its friction coefficient (ρ of a hinge, m;
+/// f of a slide) and its relative rate (a hinge's ω_on − ω_by, rad/s; a slide's velocity
+/// of `on` relative to `by` along `dir`, m/s).
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct GroupJoint {
+    pub by: Option<usize>,
+    pub on: usize,
+    pub coefficient: f64,
+    pub rate: f64,
+    pub pair: GroupPair,
+}
+
+impl GroupJoint {
+    /// A hinge of friction circle `rho`.
+    pub(crate) fn hinge(by: Option<usize>, on: usize, rho: f64, rate: f64) -> Self {
+        Self {
+            by,
+            on,
+            coefficient: rho,
+            rate,
+            pair: GroupPair::Hinge,
+        }
+    }
+
+    fn law(&self) -> Pressure {
+        match self.pair {
+            GroupPair::Hinge => Pressure::Hinge,
+            GroupPair::Slide { law, .. } => law,
+        }
+    }
+}
+
+/// A group's reactions with friction: per joint the whole force of `by` on `on`, N (a
+/// slide's normal force and its friction), with the couple that goes with it (a hinge's
+/// friction couple, a slide's K), N·m, and its friction.
 #[derive(Debug, Clone)]
 pub(crate) struct GroupOutcome {
     pub forces: Vec<Vector2<f64>>,
+    pub couples: Vec<f64>,
     pub joints: Vec<JointFriction>,
     pub convergence: Convergence,
     pub conditioning: Conditioning,
 }
 
-/// The frictionless block of a group: per hinge the force of `by` on `on` under the loads
-/// on the group's links (in the order of [`GroupHinge`]'s indices), and its conditioning.
+/// The frictionless block of a group: per joint its reaction's pair (see [`GroupPair`])
+/// under the loads on the group's links (in the order of [`GroupJoint`]'s indices), and its
+/// conditioning.
 pub(crate) type Frictionless<'a> =
     dyn Fn(&[Load]) -> Result<(Vec<Vector2<f64>>, Conditioning)> + 'a;
 
-/// Solves a group of hinges with friction (module docs). `name(k)` names hinge k in a
-/// self-locking error.
-pub(crate) fn hinged_group(
+/// Solves a group of hinges and slides with friction (module docs). `name(k)` names joint k
+/// in a self-locking error.
+pub(crate) fn group_friction(
     loads: &[Load],
-    hinges: &[GroupHinge],
+    joints: &[GroupJoint],
     solve: &Frictionless<'_>,
     options: &Iteration,
     what: &'static str,
     name: &dyn Fn(usize) -> String,
 ) -> Result<GroupOutcome> {
     let (v0, conditioning) = solve(loads)?;
-    let c: Vec<f64> = hinges.iter().map(|h| h.rho * sign(h.rate)).collect();
+    let c: Vec<f64> = joints
+        .iter()
+        .map(|h| h.coefficient * sign(h.rate))
+        .collect();
+    let pair = |v: &Vector2<f64>| [v.x, v.y];
     if c.iter().all(|&c| c == 0.0) {
         // No friction: the frictionless block's results as they are.
-        return finite_outcome(
-            GroupOutcome {
-                joints: v0.iter().map(|r| JointFriction::none(r.norm())).collect(),
-                forces: v0,
-                convergence: Convergence::NONE,
-                conditioning,
-            },
-            what,
-        );
+        let m: Vec<f64> = joints
+            .iter()
+            .zip(&v0)
+            .map(|(h, v)| h.law().of(v.x, v.y))
+            .collect();
+        let v: Vec<[f64; 2]> = v0.iter().map(pair).collect();
+        return outcome(joints, &c, &m, &v, Convergence::NONE, conditioning, what);
     }
-    let pair = |v: &Vector2<f64>| [v.x, v.y];
-    let mut d = Vec::with_capacity(hinges.len());
-    for (h, &ck) in hinges.iter().zip(&c) {
+    let mut d = Vec::with_capacity(joints.len());
+    for (h, &ck) in joints.iter().zip(&c) {
         if ck == 0.0 {
-            d.push(vec![[0.0; 2]; hinges.len()]);
+            d.push(vec![[0.0; 2]; joints.len()]);
             continue;
         }
+        // The friction load per newton of pressure, on `on` from `by` (and back on `by`).
         let mut unit: Vec<Load> = loads.iter().map(|l| Load::zero(l.point)).collect();
-        unit[h.on].moment -= ck;
-        if let Some(by) = h.by {
-            unit[by].moment += ck;
+        match h.pair {
+            GroupPair::Hinge => {
+                unit[h.on].moment -= ck;
+                if let Some(by) = h.by {
+                    unit[by].moment += ck;
+                }
+            }
+            GroupPair::Slide { dir, point, .. } => {
+                unit[h.on] = Load::force_at(point, -ck * dir);
+                if let Some(by) = h.by {
+                    unit[by] = Load::force_at(point, ck * dir);
+                }
+            }
         }
         d.push(solve(&unit)?.0.iter().map(pair).collect());
     }
+    // The force scale: the loads' forces and the reactions' forces (a slide's N, not its K).
     let scale = loads
         .iter()
         .map(|l| l.force)
-        .chain(v0.iter().copied())
+        .chain(v0.iter().zip(joints).map(|(v, h)| match h.pair {
+            GroupPair::Hinge => *v,
+            GroupPair::Slide { .. } => Vector2::new(v.x, 0.0),
+        }))
         .fold(0.0, |s, f| wider(wider(s, f.x.abs()), f.y.abs()));
     let s = Pressures {
         v0: v0.iter().map(pair).collect(),
         d,
-        laws: vec![Pressure::Hinge; hinges.len()],
+        laws: joints.iter().map(GroupJoint::law).collect(),
         active: c.iter().map(|&c| c != 0.0).collect(),
         scale,
     }
     .solve(options, what, name)?;
-    let forces: Vec<Vector2<f64>> = s.v.iter().map(|p| Vector2::new(p[0], p[1])).collect();
-    let joints: Vec<JointFriction> = (0..hinges.len())
-        .map(|k| {
-            if c[k] == 0.0 {
-                JointFriction::none(forces[k].norm())
-            } else {
-                JointFriction::new(c[k], s.m[k], hinges[k].rate)
+    outcome(joints, &c, &s.m, &s.v, s.convergence, conditioning, what)
+}
+
+/// The outcome from the pressures `m` and the reactions' pairs `v`, if every number in it
+/// is finite: reactions near the top of f64 can still overflow a pressure (|R| through R²)
+/// or a lost power (ρ·|R|·|ω|), and no such number leaves in an `Ok`.
+fn outcome(
+    joints: &[GroupJoint],
+    c: &[f64],
+    m: &[f64],
+    v: &[[f64; 2]],
+    convergence: Convergence,
+    conditioning: Conditioning,
+    what: &'static str,
+) -> Result<GroupOutcome> {
+    let n = joints.len();
+    let (mut forces, mut couples, mut friction) = (
+        Vec::with_capacity(n),
+        Vec::with_capacity(n),
+        Vec::with_capacity(n),
+    );
+    for (k, h) in joints.iter().enumerate() {
+        let fr = if c[k] == 0.0 {
+            JointFriction::none(m[k])
+        } else {
+            JointFriction::new(c[k], m[k], h.rate)
+        };
+        match h.pair {
+            GroupPair::Hinge => {
+                forces.push(Vector2::new(v[k][0], v[k][1]));
+                couples.push(fr.load);
             }
-        })
-        .collect();
+            GroupPair::Slide { dir, .. } => {
+                forces.push(perp(dir) * v[k][0] + dir * fr.load);
+                couples.push(v[k][1]);
+            }
+        }
+        friction.push(fr);
+    }
     finite_outcome(
         GroupOutcome {
             forces,
-            joints,
-            convergence: s.convergence,
+            couples,
+            joints: friction,
+            convergence,
             conditioning,
         },
         what,
     )
 }
 
-/// `out` if every number in it is finite: reactions near the top of f64 can still overflow
-/// a pressure (|R| through R²) or a lost power (ρ·|R|·|ω|), and no such number leaves in an
-/// `Ok`.
+/// `out` if every number in it is finite.
 fn finite_outcome(out: GroupOutcome, what: &'static str) -> Result<GroupOutcome> {
     let finite = out
         .forces
         .iter()
         .all(|f| f.x.is_finite() && f.y.is_finite())
+        && out.couples.iter().all(|c| c.is_finite())
         && out.joints.iter().all(|j| {
             [j.load, j.pressure, j.power_lost]
                 .iter()
@@ -264,21 +353,13 @@ impl TriadFriction {
         let t = &self.triad;
         // The loads in the order binary 1, 2, 3, ternary; the hinges A1, A2, A3, B1, B2, B3.
         let loads = [t.loads[0], t.loads[1], t.loads[2], t.load_ternary];
-        let hinges: Vec<GroupHinge> = (0..3)
-            .map(|i| GroupHinge {
-                by: None,
-                on: i,
-                rho: rho[0][i],
-                rate: w.binary[i] - w.outer[i],
-            })
-            .chain((0..3).map(|i| GroupHinge {
-                by: Some(i),
-                on: 3,
-                rho: rho[1][i],
-                rate: w.ternary - w.binary[i],
-            }))
+        let hinges: Vec<GroupJoint> = (0..3)
+            .map(|i| GroupJoint::hinge(None, i, rho[0][i], w.binary[i] - w.outer[i]))
+            .chain(
+                (0..3).map(|i| GroupJoint::hinge(Some(i), 3, rho[1][i], w.ternary - w.binary[i])),
+            )
             .collect();
-        let out = hinged_group(
+        let out = group_friction(
             &loads,
             &hinges,
             &triad_block(t),
@@ -318,5 +399,29 @@ pub(crate) fn triad_block(
             r.r_a.iter().chain(&r.r_b).copied().collect(),
             r.conditioning,
         ))
+    }
+}
+
+/// The frictionless triad with a sliding pair as a group's block: loads binary 1, 2, 3,
+/// ternary; per joint A1, A2, A3, B1, B2, B3 its pair (see [`GroupPair`]): the sliding
+/// pair's (N, K) — N along `t.normal`, K its couple (outer: of the known link on the slider,
+/// about B1; inner: of the slider on the ternary link, about A1) — the hinges' forces.
+pub(crate) fn slider_triad_block(
+    t: &SliderTriad,
+) -> impl Fn(&[Load]) -> Result<(Vec<Vector2<f64>>, Conditioning)> + '_ {
+    move |loads: &[Load]| {
+        let r = SliderTriad {
+            loads: [loads[0], loads[1], loads[2]],
+            load_ternary: loads[3],
+            ..*t
+        }
+        .solve()?;
+        let slide = Vector2::new(r.normal_force, r.couple);
+        let mut pairs: Vec<Vector2<f64>> = r.r_a.iter().chain(&r.r_b).copied().collect();
+        match t.slide {
+            SlideAt::Outer => pairs[0] = slide,
+            SlideAt::Inner => pairs[3] = slide,
+        }
+        Ok((pairs, r.conditioning))
     }
 }

@@ -74,6 +74,7 @@
 //! | PRP | [`PrpFriction`] | guide 2 (1–2), B (2–3), guide 3 (4–3) |
 //! | RPP | [`RppFriction`] | A (1–2), the slot (3–2), the guide (4–3) |
 //! | triad | [`TriadFriction`] | A1, A2, A3 (outer), B1, B2, B3 (ternary) |
+//! | triad with a sliding pair | the engine's (`group.rs`) | A1, A2, A3, B1, B2, B3 (one of A1, B1 the slide) |
 //! | any group of hinges | the engine's general groups (`group.rs`) | its hinges |
 //! | input link, coupling | [`CrankFriction`] | O1 (0–1) |
 //! | input link, gear pair | [`GearFriction`] | O1 (0–1) |
@@ -93,7 +94,9 @@ pub use dyads::{
     RrrRates,
 };
 pub use efficiency::Efficiency;
-pub(crate) use group::{hinged_group, triad_block, Frictionless, GroupHinge};
+pub(crate) use group::{
+    group_friction, slider_triad_block, triad_block, Frictionless, GroupJoint, GroupPair,
+};
 pub use group::{TriadFriction, TriadFrictionReactions, TriadJoints, TriadRates};
 
 use crate::error::{finite, Ends, Error, Result};

@@ -119,7 +119,7 @@ impl Analysis<'_> {
 
     /// The velocity of link `x` relative to the other link of the prismatic joint `j`,
     /// along the unit direction `u` (parallel to the joint's guide).
-    fn relative_slide(&self, j: usize, x: usize, u: Vector2<f64>) -> f64 {
+    pub(super) fn relative_slide(&self, j: usize, x: usize, u: Vector2<f64>) -> f64 {
         let pose = self.pose();
         let (slider, _, d) = pose.slide_parts(j);
         let v = pose.slide_at(j).rate * d.dot(&u);

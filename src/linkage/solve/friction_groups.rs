@@ -10,23 +10,27 @@
 use super::analysis::{Analysis, Reaction};
 use super::state::within;
 use super::statics::add;
+use crate::angle::perp;
 use crate::error::Result;
+use crate::kinematics::SlidingPair;
 use crate::kinetostatics::friction::{
-    hinged_group, triad_block, Frictionless, GroupHinge, Iteration,
+    group_friction, slider_triad_block, triad_block, Frictionless, GroupJoint, GroupPair, Iteration,
 };
-use crate::kinetostatics::{Conditioning, Triad};
+use crate::kinetostatics::{Conditioning, SlideAt, SliderTriad, Triad};
 use crate::linkage::plan::{FrictionPlan, Group, TriadPlan};
 use crate::linkage::plan_general::GeneralPlan;
+use crate::linkage::plan_triad::SliderLeg;
 use crate::Load;
 use nalgebra::{Point2, Vector2};
 
-/// A hinge of the group being solved: its joint, the plan's links it joins (`by` on `on`)
-/// and where.
+/// A joint of the group being solved: its joint, the plan's links it joins (`by` on `on`),
+/// where, and, for a slide, its unit direction.
 struct Hinged {
     joint: usize,
     by: usize,
     on: usize,
     point: Point2<f64>,
+    slide: Option<Vector2<f64>>,
 }
 
 impl Analysis<'_> {
@@ -50,15 +54,20 @@ impl Analysis<'_> {
                 by: t.known[i],
                 on: binary[i],
                 point: a[i],
+                slide: None,
             })
             .chain((0..3).map(|i| Hinged {
                 joint: t.inner[i],
                 by: binary[i],
                 on: lt,
                 point: b[i],
+                slide: None,
             }))
             .collect();
         let zero = Load::zero(a[0]);
+        if let Some(leg) = &t.slider {
+            return self.friction_slider_triad(g, group, t, leg, hinges, fp);
+        }
         let triad = Triad {
             a,
             b,
@@ -71,6 +80,49 @@ impl Analysis<'_> {
             &[l1, l2, l3, lt],
             &hinges,
             &triad_block(&triad),
+            fp,
+        )
+    }
+
+    /// Triad `g` with a sliding pair in its first leg, with the friction of its hinges and
+    /// its slide: the slide (at A1, outer; at B1, inner) acts through its reference point,
+    /// the sliding link's origin (B1 or A1), along the sliding link's direction.
+    fn friction_slider_triad(
+        &mut self,
+        g: usize,
+        group: &Group,
+        t: &TriadPlan,
+        leg: &SliderLeg,
+        mut hinges: Vec<Hinged>,
+        fp: &[FrictionPlan],
+    ) -> Result<()> {
+        let [lt, l1, l2, l3] = t.links;
+        let kin = &self.k.kin;
+        let dir = kin.units[l1];
+        let (slide, k) = match leg.dims.pair {
+            SlidingPair::Outer { .. } => (SlideAt::Outer, 0),
+            SlidingPair::Inner { .. } => (SlideAt::Inner, 3),
+        };
+        let a = [0, 1, 2].map(|i| hinges[i].point);
+        let b = [3, 4, 5].map(|i| hinges[i].point);
+        // The sliding link's origin: B1 (outer) or A1 (inner), the pair's reference point.
+        hinges[k].point = kin.links[l1].origin.p;
+        hinges[k].slide = Some(dir);
+        let zero = Load::zero(a[0]);
+        let triad = SliderTriad {
+            slide,
+            normal: perp(dir),
+            a,
+            b,
+            loads: [zero; 3],
+            load_ternary: zero,
+        };
+        self.friction_hinged(
+            g,
+            group,
+            &[l1, l2, l3, lt],
+            &hinges,
+            &slider_triad_block(&triad),
             fp,
         )
     }
@@ -94,6 +146,7 @@ impl Analysis<'_> {
                 by: gp.links[b.0],
                 on,
                 point: place.joint_position_on(j, on),
+                slide: None,
             }
         });
         let outer = gp.outer.iter().zip(&gp.block.outer).zip(&gp.known);
@@ -104,6 +157,7 @@ impl Analysis<'_> {
                 by: known,
                 on,
                 point: place.joint_position_on(j, on),
+                slide: None,
             }
         });
         let hinges: Vec<Hinged> = inner.chain(outer).collect();
@@ -118,9 +172,9 @@ impl Analysis<'_> {
         self.friction_hinged(g, group, &gp.links, &hinges, &block, fp)
     }
 
-    /// A group of hinges whose links are `links` (the order of `block`'s loads) with the
-    /// friction of its hinges; `block` gives the frictionless reactions in the order of
-    /// `hinges`.
+    /// A group of hinges and slides whose links are `links` (the order of `block`'s loads)
+    /// with the friction of its joints; `block` gives the frictionless reactions' pairs in
+    /// the order of `hinges`.
     fn friction_hinged(
         &mut self,
         g: usize,
@@ -131,20 +185,35 @@ impl Analysis<'_> {
         fp: &[FrictionPlan],
     ) -> Result<()> {
         let plan = self.k.plan;
-        let kin = &self.k.kin;
         let local = |k: usize| links.iter().position(|&l| l == k);
-        let spec: Vec<GroupHinge> = hinges
-            .iter()
-            .map(|h| GroupHinge {
-                by: local(h.by),
-                on: local(h.on).unwrap_or(0),
-                rho: fp[h.joint].hinge.rho,
-                rate: kin.links[h.on].omega - kin.links[h.by].omega,
-            })
-            .collect();
+        let mut spec = Vec::with_capacity(hinges.len());
+        for h in hinges {
+            let (by, on) = (local(h.by), local(h.on).unwrap_or(0));
+            spec.push(match h.slide {
+                None => {
+                    let w = |k: usize| self.k.kin.links[k].omega;
+                    GroupJoint::hinge(by, on, fp[h.joint].hinge.rho, w(h.on) - w(h.by))
+                }
+                Some(dir) => {
+                    // Checked when the plan was made.
+                    let (f, law) = fp[h.joint].slide.checked(["f", "length", "centre"])?;
+                    GroupJoint {
+                        by,
+                        on,
+                        coefficient: f,
+                        rate: self.relative_slide(h.joint, h.on, dir),
+                        pair: GroupPair::Slide {
+                            dir,
+                            point: h.point,
+                            law,
+                        },
+                    }
+                }
+            });
+        }
         let loads: Vec<Load> = links.iter().map(|&k| self.acc[k]).collect();
         let names = &plan.chain.joint_names;
-        let out = hinged_group(
+        let out = group_friction(
             &loads,
             &spec,
             block,
@@ -155,7 +224,7 @@ impl Analysis<'_> {
         .map_err(within(&group.name))?;
         for (k, h) in hinges.iter().enumerate() {
             let fr = out.joints[k];
-            let r = Reaction::new(h.by, h.on, out.forces[k], h.point, fr.load);
+            let r = Reaction::new(h.by, h.on, out.forces[k], h.point, out.couples[k]);
             if spec[k].by.is_none() {
                 add(&mut self.acc[h.by], &r.load_on_side(h.by));
             }
