@@ -225,7 +225,8 @@ for a machine whose loads average out). The step keeps RK4 well inside its stabi
         #[arg(long)]
         run_up: bool,
         /// Design the flywheel for these coefficients of speed fluctuation δ (0 < δ < 2).
-        #[arg(long, value_name = "δ", num_args = 1.., value_parser = number_after_file)]
+        #[arg(long, value_name = "δ", num_args = 1.., allow_negative_numbers = true,
+              value_parser = number_after_file)]
         flywheel: Vec<f64>,
         /// The crank speed ω, rad/s (negative: clockwise); the file's `speed` by default.
         #[arg(long, value_name = "ω", allow_negative_numbers = true)]
@@ -235,7 +236,12 @@ for a machine whose loads average out). The step keeps RK4 well inside its stabi
         #[arg(long, value_name = "a,b", value_parser = parse_pair, allow_hyphen_values = true)]
         motor: Option<(f64, f64)>,
         /// A rotor or flywheel on the crank, kg·m².
-        #[arg(long, value_name = "J", default_value_t = 0.0)]
+        #[arg(
+            long,
+            value_name = "J",
+            default_value_t = 0.0,
+            allow_negative_numbers = true
+        )]
         rotor: f64,
         /// Positions over a turn (or a rocking crank's range) for the reduced quantities.
         #[arg(long, value_name = "N", default_value_t = 360,
@@ -247,7 +253,7 @@ for a machine whose loads average out). The step keeps RK4 well inside its stabi
         grid: u32,
         /// Two inputs: run from rest in the reference pose for T seconds under the motors
         /// (--motor on input 1, --motor2 on input 2, M = a − b·q̇, signed) and the loads (RK4).
-        #[arg(long, value_name = "T")]
+        #[arg(long, value_name = "T", allow_negative_numbers = true)]
         run: Option<f64>,
         /// Two inputs: the motor of the second input, M = a − b·q̇₂: a in N·m, b in
         /// N·m·s/rad.

@@ -368,6 +368,12 @@ fn huge_and_tiny_numbers_are_echoed_readably() {
             "--scheme",
             "-1e200",
         ),
+        (
+            &["dynamics", "shaper", "--rotor", "-1e300"],
+            "shaper",
+            "moment of inertia",
+            "-1e300",
+        ),
     ] {
         let r = tmm(args);
         assert_one_line_failure(&r, file);
