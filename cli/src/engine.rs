@@ -15,15 +15,16 @@ use tmm::linkage::{
 };
 
 use crate::model::{
-    Column, DiagramKind, DynamicsRequest, Failure, GroupInfo, InputInfo, InputKind, PictureKind,
-    PictureRequest, Positions, Range, StrokeInfo, Structure, TableData, TwoInputDynamics,
+    typed, Column, DiagramKind, DynamicsRequest, Failure, GroupInfo, InputInfo, InputKind,
+    PictureKind, PictureRequest, Positions, Range, StrokeInfo, Structure, TableData,
+    TwoInputDynamics,
 };
 
 /// The largest input angle the program takes, rad. An `f64` near 10⁹ is spaced 1.2·10⁻⁷
 /// apart, so a larger angle (`--at 1e300`) names a crank position no better than to a tenth
 /// of a microradian — at 10¹⁶ not even to a turn: such an angle is refused rather than
 /// silently rounded to some other position.
-pub const MAX_ANGLE: f64 = 1e9;
+pub const MAX_ANGLE: f64 = tmm::linkage::MAX_INPUT_COORDINATE;
 
 /// An input angle typed in degrees after `option`, in rad: a finite number within
 /// ±[`MAX_ANGLE`], or a sentence naming the option.
@@ -33,13 +34,13 @@ pub fn typed_angle(option: &str, degrees: f64) -> Result<f64, Failure> {
         return Ok(rad);
     }
     Err(Failure::new(format!(
-        "{option} {degrees:?}: an input angle must be a finite number within ±10⁹ rad \
-         (±5.7·10¹⁰°), where an f64 still holds it to 10⁻⁷ rad"
+        "{option} {}: an input angle must be a finite number within ±10⁹ rad \
+         (±5.7·10¹⁰°), where an f64 still holds it to 10⁻⁷ rad",
+        typed(degrees)
     ))
     .hint("give the angle in degrees within a few turns of zero"))
 }
 
-/// The library's error as a person reads it: its `Display` text.
 /// The largest input speed accepted, rad/s: far above any machine's, and small enough that
 /// its revolutions per minute and every rate of a position stay finite.
 pub const MAX_SPEED: f64 = 1e9;
@@ -50,12 +51,14 @@ fn check_speed(speed: f64) -> Result<(), Failure> {
         Ok(())
     } else {
         Err(Failure::new(format!(
-            "the speed must be finite and within ±{MAX_SPEED:e} rad/s, got {speed}"
+            "the speed must be finite and within ±{MAX_SPEED:e} rad/s, got {}",
+            typed(speed)
         ))
         .hint("give --speed in rad/s"))
     }
 }
 
+/// The library's error as a person reads it: its `Display` text.
 fn failure(e: &tmm::Error) -> Failure {
     Failure::new(e.to_string())
 }
@@ -608,7 +611,8 @@ impl Machine {
         let plan = &self.plan;
         if speed == 0.0 || !speed.is_finite() {
             return Err(Failure::new(format!(
-                "a picture over the cycle needs an input that moves, and the speed is {speed}"
+                "a picture over the cycle needs an input that moves, and the speed is {}",
+                typed(speed)
             ))
             .hint("give --speed, not zero"));
         }

@@ -66,6 +66,7 @@ Examples:
     /// every column with its unit.
     #[command(
         group(ArgGroup::new("which").args(["positions", "course", "at"])),
+        override_usage = "tmm analyse <FILE> [OPTIONS]",
         after_help = "\
 Examples:
   tmm analyse linkages/shaper.json                   12 positions from the working stroke
@@ -94,7 +95,8 @@ null in JSON."
         course: bool,
         /// The positions at these input angles, degrees (metres for a slider input); for a
         /// linkage with two inputs, pairs φ1 φ2.
-        #[arg(long, value_name = "φ", num_args = 1.., allow_negative_numbers = true)]
+        #[arg(long, value_name = "φ", num_args = 1.., allow_negative_numbers = true,
+              value_parser = number_after_file)]
         at: Vec<f64>,
         /// The input speed ω, rad/s (negative: clockwise); the file's `speed` by default.
         #[arg(long, value_name = "ω", allow_negative_numbers = true)]
@@ -120,6 +122,8 @@ null in JSON."
     #[command(
         group(ArgGroup::new("picture")
             .args(["scheme", "plan", "animate", "forces", "diagram", "workspace"])),
+        override_usage = "tmm draw <FILE> [--scheme [φ..] | --plan | --animate | --forces [φ..] | \
+                          --diagram [KIND] | --workspace POINT] [OPTIONS] [-o OUT.svg]",
         after_help = "\
 Examples:
   tmm draw linkages/shaper.json -o shaper.svg                 the scheme in the reference pose
@@ -146,7 +150,8 @@ animation and diagrams run between its lock angles."
         file: String,
         /// The kinematic scheme at the input angle φ, degrees (metres for a slider input; the
         /// reference pose without one); two values φ1 φ2 for a linkage with two inputs.
-        #[arg(long, value_name = "φ", num_args = 0..=2, allow_negative_numbers = true)]
+        #[arg(long, value_name = "φ", num_args = 0..=2, allow_negative_numbers = true,
+              value_parser = number_after_file)]
         scheme: Option<Vec<f64>>,
         /// The scheme with the instant centres of every pair of links (Aronhold–Kennedy),
         /// labelled by the links' places in the file's `links` (I13: the 1st and 3rd written,
@@ -162,7 +167,8 @@ animation and diagrams run between its lock angles."
         animate: bool,
         /// The reaction in every joint as an arrow, at the input angle φ, degrees (metres for a
         /// slider input; the reference pose without one); φ1 φ2 for two inputs.
-        #[arg(long, value_name = "φ", num_args = 0..=2, allow_negative_numbers = true)]
+        #[arg(long, value_name = "φ", num_args = 0..=2, allow_negative_numbers = true,
+              value_parser = number_after_file)]
         forces: Option<Vec<f64>>,
         /// A diagram over the cycle (balance without a KIND); for two inputs, along their
         /// path (see --along).
@@ -174,7 +180,8 @@ animation and diagrams run between its lock angles."
         workspace: Option<String>,
         /// Two inputs: the plan, the animation and the diagrams along the path through these
         /// pairs of input coordinates φ1 φ2 (degrees; metres for a slider), by straight steps.
-        #[arg(long, value_name = "φ1 φ2", num_args = 1.., allow_negative_numbers = true)]
+        #[arg(long, value_name = "φ1 φ2", num_args = 1.., allow_negative_numbers = true,
+              value_parser = number_after_file)]
         along: Vec<f64>,
         /// The input speed ω, rad/s (negative: clockwise); the file's `speed` by default.
         #[arg(long, value_name = "ω", allow_negative_numbers = true)]
@@ -188,7 +195,9 @@ animation and diagrams run between its lock angles."
     /// over a turn (or a rocking crank's range), the run-up from rest under a motor to the
     /// steady state, and the flywheel for a coefficient of speed fluctuation δ; for two
     /// inputs, the mass matrix over a grid of the inputs.
-    #[command(after_help = "\
+    #[command(
+        override_usage = "tmm dynamics <FILE> [OPTIONS]",
+        after_help = "\
 Examples:
   tmm dynamics linkages/watt-six-bar.json
   tmm dynamics linkages/mechanism-compressor.json --flywheel 0.05 0.02
@@ -207,7 +216,8 @@ and with --run the motion from rest under two motors, with the energy balance.
 
 Without --motor the run-up uses an induction motor chosen from the machine: 4 % slip at the
 speed asked for, and a nominal moment 10 % above the loads' mean (or a tenth of their peak,
-for a machine whose loads average out). The step keeps RK4 well inside its stability limit.")]
+for a machine whose loads average out). The step keeps RK4 well inside its stability limit."
+    )]
     Dynamics {
         /// The description file (JSON), or the name of a bundled one.
         file: String,
@@ -215,7 +225,8 @@ for a machine whose loads average out). The step keeps RK4 well inside its stabi
         #[arg(long)]
         run_up: bool,
         /// Design the flywheel for these coefficients of speed fluctuation δ (0 < δ < 2).
-        #[arg(long, value_name = "δ", num_args = 1..)]
+        #[arg(long, value_name = "δ", num_args = 1.., allow_negative_numbers = true,
+              value_parser = number_after_file)]
         flywheel: Vec<f64>,
         /// The crank speed ω, rad/s (negative: clockwise); the file's `speed` by default.
         #[arg(long, value_name = "ω", allow_negative_numbers = true)]
@@ -225,7 +236,12 @@ for a machine whose loads average out). The step keeps RK4 well inside its stabi
         #[arg(long, value_name = "a,b", value_parser = parse_pair, allow_hyphen_values = true)]
         motor: Option<(f64, f64)>,
         /// A rotor or flywheel on the crank, kg·m².
-        #[arg(long, value_name = "J", default_value_t = 0.0)]
+        #[arg(
+            long,
+            value_name = "J",
+            default_value_t = 0.0,
+            allow_negative_numbers = true
+        )]
         rotor: f64,
         /// Positions over a turn (or a rocking crank's range) for the reduced quantities.
         #[arg(long, value_name = "N", default_value_t = 360,
@@ -237,7 +253,7 @@ for a machine whose loads average out). The step keeps RK4 well inside its stabi
         grid: u32,
         /// Two inputs: run from rest in the reference pose for T seconds under the motors
         /// (--motor on input 1, --motor2 on input 2, M = a − b·q̇, signed) and the loads (RK4).
-        #[arg(long, value_name = "T")]
+        #[arg(long, value_name = "T", allow_negative_numbers = true)]
         run: Option<f64>,
         /// Two inputs: the motor of the second input, M = a − b·q̇₂: a in N·m, b in
         /// N·m·s/rad.
@@ -307,6 +323,29 @@ enum DiagramArg {
     Hodograph,
 }
 
+/// clap's message for a mistake on the command line, on one line: its text before the usage
+/// and the pointer to the help, without the `error:` label.
+fn usage_error_line(text: &str) -> String {
+    let lines: Vec<&str> = text
+        .lines()
+        .take_while(|l| !l.starts_with("Usage:") && !l.starts_with("For more information"))
+        .map(str::trim)
+        .filter(|l| !l.is_empty())
+        .collect();
+    lines.join(" ").trim_start_matches("error: ").to_owned()
+}
+
+/// A number of an option that takes several (`--forces φ`, `--at φ…`): these options come
+/// after the description file, or they would read its name as one of their numbers.
+fn number_after_file(s: &str) -> Result<f64, String> {
+    s.trim().parse::<f64>().map_err(|_| {
+        format!(
+            "\"{s}\" is not a number; the description file comes first, before the options \
+             that take numbers (tmm draw FILE --forces φ -o OUT.svg)"
+        )
+    })
+}
+
 /// "60,2" → (60, 2).
 fn parse_pair(s: &str) -> Result<(f64, f64), String> {
     let (a, b) = s
@@ -336,7 +375,14 @@ impl Fail {
 }
 
 fn main() -> ExitCode {
-    let cli = Cli::parse();
+    let cli = match Cli::try_parse() {
+        Ok(cli) => cli,
+        Err(e) if e.use_stderr() => {
+            eprintln!("tmm: {} (tmm --help)", usage_error_line(&e.to_string()));
+            return ExitCode::from(2);
+        }
+        Err(e) => e.exit(),
+    };
     let result = run(cli.command);
     clear_progress();
     match result {
@@ -464,7 +510,7 @@ fn run(command: Command) -> Result<(), Fail> {
                 table = table.in_degrees();
             }
             if !only.is_empty() {
-                table = table.only(&only);
+                table = table.only(&only).map_err(|f| Fail::on(&file, f))?;
             }
             for (input, e) in &table.failures {
                 eprintln!(

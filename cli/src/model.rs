@@ -28,6 +28,18 @@ impl Failure {
     }
 }
 
+/// A number a person typed, echoed in a message: as typed (the shortest text that reads back
+/// to it) in the range people type, in scientific notation outside it — `1e308`, not its
+/// 309 digits; `5e-324`, not 324 zeros.
+pub fn typed(v: f64) -> String {
+    let a = v.abs();
+    if a == 0.0 || !a.is_finite() || (1e-4..1e9).contains(&a) {
+        format!("{v}")
+    } else {
+        format!("{v:e}")
+    }
+}
+
 /// A text on one line: line breaks and runs of spaces become one space.
 fn one_line(s: &str) -> String {
     s.split_whitespace().collect::<Vec<_>>().join(" ")
@@ -173,14 +185,28 @@ pub struct TableData {
 impl TableData {
     /// The table with the first column (the input) and the columns whose names contain one
     /// of `texts`.
-    #[must_use]
-    pub fn only(mut self, texts: &[String]) -> Self {
+    ///
+    /// # Errors
+    /// A text that no column's name contains (a misspelt `--only`), naming it and listing
+    /// the columns there are.
+    pub fn only(mut self, texts: &[String]) -> Result<Self, Failure> {
+        let names: Vec<&str> = self.columns.iter().map(|c| c.name.as_str()).collect();
+        if let Some(unknown) = texts
+            .iter()
+            .find(|t| !names.iter().any(|n| n.contains(t.as_str())))
+        {
+            return Err(Failure::new(format!(
+                "--only {unknown:?}: no column's name contains it; the columns are {}",
+                names.join(", ")
+            ))
+            .hint("give a part of a column's name, for example --only Mb omega"));
+        }
         let mut k = 0;
         self.columns.retain(|c| {
             k += 1;
             k == 1 || texts.iter().any(|t| c.name.contains(t.as_str()))
         });
-        self
+        Ok(self)
     }
 
     /// The table with every angle (unit `rad`) in degrees (unit `deg`); rates stay in rad/s.

@@ -306,6 +306,144 @@ fn analyse_keeps_only_the_columns_asked_for() {
 }
 
 #[test]
+fn an_unknown_column_is_an_error_naming_it_and_the_columns() {
+    let all = tmm(&["analyse", "shaper", "--format", "csv"]);
+    assert_success(&all, "analyse shaper");
+    let (header, _) = parse_csv(&all.stdout, "shaper, every column");
+    // One text that matches and one that matches nothing: the whole request is refused.
+    let r = tmm(&["analyse", "shaper", "--only", "Mb", "zzz"]);
+    assert_one_line_failure(&r, "shaper");
+    assert!(r.stderr.contains("--only \"zzz\""), "{}", r.stderr);
+    for h in &header {
+        let name = h.split(" [").next().unwrap();
+        assert!(r.stderr.contains(name), "lists {name}: {}", r.stderr);
+    }
+    assert!(r.stdout.is_empty(), "no table: {}", r.stdout);
+}
+
+/// The digits of a number echoed in a message, longest run.
+fn longest_digit_run(text: &str) -> usize {
+    text.split(|c: char| !c.is_ascii_digit())
+        .map(str::len)
+        .max()
+        .unwrap_or(0)
+}
+
+#[test]
+fn huge_and_tiny_numbers_are_echoed_readably() {
+    for (args, file, field, shown) in [
+        (
+            &["dynamics", "five-bar-robot", "--span", "1e308"][..],
+            "five-bar-robot",
+            "span",
+            "1e308°",
+        ),
+        (
+            &["dynamics", "five-bar-robot", "--run", "1e308"],
+            "five-bar-robot",
+            "duration",
+            "1e308 s",
+        ),
+        (
+            &["dynamics", "five-bar-robot", "--run=-1e-300"],
+            "five-bar-robot",
+            "duration",
+            "-1e-300 s",
+        ),
+        (
+            &["analyse", "four-bar", "--speed", "1e300"],
+            "four-bar",
+            "speed",
+            "1e300",
+        ),
+        (
+            &["analyse", "four-bar", "--at", "1e300"],
+            "four-bar",
+            "--at",
+            "1e300",
+        ),
+        (
+            &["draw", "four-bar", "--scheme", "-1e200"],
+            "four-bar",
+            "--scheme",
+            "-1e200",
+        ),
+        (
+            &["dynamics", "shaper", "--rotor", "-1e300"],
+            "shaper",
+            "moment of inertia",
+            "-1e300",
+        ),
+    ] {
+        let r = tmm(args);
+        assert_one_line_failure(&r, file);
+        assert!(
+            r.stderr.contains(field),
+            "{args:?} names {field}: {}",
+            r.stderr
+        );
+        assert!(
+            r.stderr.contains(shown),
+            "{args:?} shows {shown}: {}",
+            r.stderr
+        );
+        // The longest number a message holds otherwise is a limit such as 10000.
+        assert!(longest_digit_run(&r.stderr) < 12, "{args:?}: {}", r.stderr);
+    }
+}
+
+#[test]
+fn options_with_numbers_come_after_the_file() {
+    let dir = std::env::temp_dir().join(format!("tmm-cli-test-{}-order", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let out = dir.join("forces.svg");
+    let out = out.to_str().unwrap();
+    // The order of the usage line and the examples works, with an angle and without one.
+    for args in [
+        &["draw", "four-bar", "--forces", "30", "-o", out][..],
+        &["draw", "four-bar", "--forces", "-o", out],
+    ] {
+        let r = tmm(args);
+        assert_success(&r, &args.join(" "));
+        assert_svg(&std::fs::read_to_string(out).unwrap(), &args.join(" "));
+    }
+    let help = tmm(&["draw", "--help"]);
+    assert!(
+        help.stdout.contains("Usage: tmm draw <FILE> ["),
+        "{}",
+        help.stdout
+    );
+    // The file after an option that takes numbers would be read as one of them: a usage error
+    // (exit 2) on one line that names the file and says where it goes.
+    for args in [
+        &["draw", "--forces", "four-bar", "-o", out][..],
+        &["draw", "--forces", "30", "four-bar", "-o", out],
+        &["analyse", "--at", "30", "four-bar"],
+        &["dynamics", "--flywheel", "0.05", "shaper"],
+    ] {
+        let r = tmm(args);
+        assert_eq!(r.code, 2, "{args:?}: {}", r.stderr);
+        assert_eq!(r.stderr.lines().count(), 1, "{args:?}: {:?}", r.stderr);
+        assert!(r.stderr.starts_with("tmm: "), "{}", r.stderr);
+        let file = args
+            .iter()
+            .find(|a| a.ends_with("bar") || **a == "shaper")
+            .unwrap();
+        assert!(
+            r.stderr.contains(&format!("\"{file}\" is not a number")),
+            "{}",
+            r.stderr
+        );
+        assert!(
+            r.stderr.contains("the description file comes first"),
+            "{}",
+            r.stderr
+        );
+    }
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+#[test]
 fn draw_every_picture_of_every_bundled_file() {
     let pictures: &[&[&str]] = &[
         &[],

@@ -4,6 +4,7 @@
 
 use super::cycle::{course_inputs, uniform_inputs};
 use super::description::Output;
+use super::inputs::check_input_coordinate;
 use super::plan::Plan;
 use crate::error::{Error, Result};
 use crate::kinematics::{Motion, Rotation, MAX_POSITIONS};
@@ -162,7 +163,9 @@ impl Course {
     ///
     /// # Errors
     /// [`Error::OutOfRange`] for `n` outside [1, [`MAX_POSITIONS`]]; [`Error::NonFinite`]
-    /// for a non-finite `from`, `to` or `speed`, [`Error::NonPositive`] for a zero speed or an
+    /// for a non-finite `from`, `to` or `speed`, [`Error::OutOfRange`] (`"from"`, `"to"`) for
+    /// an end beyond ±[`MAX_INPUT_COORDINATE`](super::MAX_INPUT_COORDINATE) rad,
+    /// [`Error::NonPositive`] for a zero speed or an
     /// empty range (`from` = `to`); [`Error::Description`] for a slider input; the linkage's
     /// error at `from`; [`Error::OutOfRange`] (`"end of the rocking range"`) for a `to`
     /// beyond the lock positions.
@@ -184,6 +187,8 @@ impl Course {
     pub fn rocking(plan: &Plan, from: f64, to: f64, n: usize, speed: f64) -> Result<Self> {
         check_count(n)?;
         crate::error::all_finite(&[("from", from), ("to", to), ("speed", speed)])?;
+        check_input_coordinate("from", from)?;
+        check_input_coordinate("to", to)?;
         if speed == 0.0 {
             return Err(Error::NonPositive {
                 name: "|speed| of a course",
@@ -271,11 +276,11 @@ impl Course {
     }
 
     /// Checks the course: at least one position, at most [`MAX_POSITIONS`], every input and
-    /// extreme finite.
+    /// extreme finite, every input within ±[`MAX_INPUT_COORDINATE`](super::MAX_INPUT_COORDINATE).
     ///
     /// # Errors
-    /// [`Error::OutOfRange`] for no positions or too many; [`Error::NonFinite`] naming the
-    /// first non-finite input, rate or acceleration.
+    /// [`Error::OutOfRange`] for no positions or too many, or (`"input"`) an input beyond
+    /// ±10⁹; [`Error::NonFinite`] naming the first non-finite input, rate or acceleration.
     ///
     /// # Examples
     /// ```
@@ -437,7 +442,8 @@ pub(crate) fn check_count(n: usize) -> Result<()> {
     Ok(())
 }
 
-/// Every input, rate and acceleration finite.
+/// Every input, rate and acceleration finite, every input within ±
+/// [`MAX_INPUT_COORDINATE`](super::MAX_INPUT_COORDINATE).
 pub(crate) fn check_finite(inputs: &[Motion]) -> Result<()> {
     for m in inputs {
         crate::error::all_finite(&[
@@ -445,6 +451,7 @@ pub(crate) fn check_finite(inputs: &[Motion]) -> Result<()> {
             ("input rate", m.rate),
             ("input acceleration", m.accel),
         ])?;
+        check_input_coordinate("input", m.value)?;
     }
     Ok(())
 }

@@ -3,7 +3,7 @@
 
 use super::course::{check_count, check_finite, Course};
 use super::description::Output;
-use super::inputs::Inputs;
+use super::inputs::{check_input_coordinate, Inputs};
 use super::plan::{InputPlan, Plan};
 use crate::error::{Error, Result};
 use crate::kinematics::Motion;
@@ -77,7 +77,9 @@ impl TwoInputCourse {
     ///
     /// # Errors
     /// [`Error::NonFinite`] naming the first non-finite range end or rate;
-    /// [`Error::Overflow`] for a range too wide for `f64`; [`Error::OutOfRange`] (`"number of positions"`) for a count of 0 or more than
+    /// [`Error::Overflow`] for a range too wide for `f64`; [`Error::OutOfRange`] naming a range
+    /// end beyond ±[`MAX_INPUT_COORDINATE`](super::MAX_INPUT_COORDINATE) (rad, or m for a slider), or
+    /// (`"number of positions"`) for a count of 0 or more than
     /// [`MAX_POSITIONS`](crate::kinematics::MAX_POSITIONS) positions in all.
     pub fn grid(first: [f64; 2], second: [f64; 2], n: [usize; 2], rates: [f64; 2]) -> Result<Self> {
         crate::error::all_finite(&[
@@ -90,6 +92,14 @@ impl TwoInputCourse {
         ])?;
         for r in [first, second] {
             crate::error::computed("width of an input range", r[1] - r[0])?;
+        }
+        for (name, end) in [
+            ("start of the first input's range", first[0]),
+            ("end of the first input's range", first[1]),
+            ("start of the second input's range", second[0]),
+            ("end of the second input's range", second[1]),
+        ] {
+            check_input_coordinate(name, end)?;
         }
         check_count(n[0])?;
         check_count(n[1])?;
@@ -126,7 +136,8 @@ impl TwoInputCourse {
     /// [`Error::OutOfRange`] (`"number of positions"`) for no times or more than
     /// [`MAX_POSITIONS`](crate::kinematics::MAX_POSITIONS); [`Error::NonFinite`] naming a non-finite time;
     /// [`Error::Description`] (`"times"`) for times that do not increase;
-    /// [`Error::In`] naming the law and the time where it gives a non-finite motion.
+    /// [`Error::In`] naming the law and the time where it gives a non-finite motion or an
+    /// input beyond ±[`MAX_INPUT_COORDINATE`](super::MAX_INPUT_COORDINATE).
     ///
     /// # Examples
     /// Crank 1 of the five-bar turning at 1 rad/s while crank 4 rocks:
@@ -257,7 +268,9 @@ impl TwoInputCourse {
     /// # Errors
     /// [`Error::OutOfRange`] for no positions or too many; [`Error::Description`]
     /// (`"inputs"`) for a position with one motion or a grid whose counts do not match;
-    /// [`Error::NonFinite`] naming the first non-finite input, rate or acceleration.
+    /// [`Error::NonFinite`] naming the first non-finite input, rate or acceleration;
+    /// [`Error::OutOfRange`] (`"input"`) for an input beyond
+    /// ±[`MAX_INPUT_COORDINATE`](super::MAX_INPUT_COORDINATE).
     pub fn check(&self) -> Result<()> {
         check_count(self.inputs.len())?;
         if let TwoInputShape::Grid { n1, n2 } = self.shape

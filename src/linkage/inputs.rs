@@ -97,6 +97,33 @@ impl Inputs {
     }
 }
 
+/// The largest magnitude of an input coordinate a course takes: 10⁹ (rad for a crank, m for a
+/// slider).
+///
+/// An `f64` near 10⁹ is spaced 2⁻²³ ≈ 1.2·10⁻⁷ apart, and the turns a crank angle holds there
+/// are reduced by a 2π that is itself rounded (by up to 2.4·10⁻¹⁶ rad a turn, some 4·10⁻⁸ rad
+/// over 1.6·10⁸ turns): within ±10⁹ rad an angle still names a position of the crank to about
+/// 10⁻⁷ rad. Beyond, it names none — at 10¹⁶ rad neighbouring values are a whole turn apart,
+/// and sin/cos of 10³⁰⁰ rad are rounding noise — so a course refuses it rather than drawing
+/// some other position. A slider's coordinate is held to the same bound in metres: 10⁶ km,
+/// beyond any machine, where its positions too are 1.2·10⁻⁷ m apart.
+pub const MAX_INPUT_COORDINATE: f64 = 1e9;
+
+/// `value`, an input coordinate named `name`, within ±[`MAX_INPUT_COORDINATE`].
+pub(crate) fn check_input_coordinate(name: &'static str, value: f64) -> Result<()> {
+    if value.abs() <= MAX_INPUT_COORDINATE {
+        return Ok(());
+    }
+    crate::error::finite(name, value)?;
+    Err(Error::OutOfRange {
+        name,
+        value,
+        min: -MAX_INPUT_COORDINATE,
+        max: MAX_INPUT_COORDINATE,
+        ends: crate::Ends::Closed,
+    })
+}
+
 impl From<Motion> for Inputs {
     fn from(m: Motion) -> Self {
         Self::one(m)

@@ -82,7 +82,7 @@ pub use description::{
 };
 pub use handle::{JointId, JointRef, LinkId, LinkRef, PointId, PointRef};
 pub use indicator::IndicatorDiagram;
-pub use inputs::Inputs;
+pub use inputs::{Inputs, MAX_INPUT_COORDINATE};
 pub use instant_centres::{Centre, Found, InstantCentre};
 pub use plan::{Group, GroupKind, Plan, Pose};
 pub use solve::{

@@ -32,19 +32,44 @@ fn or_hostile(g: &mut Gen, ordinary: f64) -> f64 {
     }
 }
 
-/// [`Triad`]'s worked example (three binary links on a ternary link loaded by 300 N),
-/// turning, with friction circles of 1 cm: a field or more made hostile.
-fn hostile_triad_friction(g: &mut Gen) -> (TriadFriction, Iteration) {
-    let mut b = [
+/// [`Triad`]'s worked example: three binary links (outer joints `a`, inner joints `b`) on a
+/// ternary link loaded by 300 N, every joint a friction circle of radius `rho`, the ternary
+/// link turning at 1 rad/s and the rest at rest.
+fn worked_triad_friction(rho: f64) -> TriadFriction {
+    let b = [
         Point2::new(-1.0, 0.0),
         Point2::new(1.0, 0.0),
         Point2::new(0.0, 1.0),
     ];
-    let mut a = [
+    let a = [
         Point2::new(-1.0, 1.0),
         Point2::new(1.0, 1.0),
         Point2::new(1.0, 1.0),
     ];
+    let pin = Hinge { rho };
+    TriadFriction {
+        triad: Triad {
+            a,
+            b,
+            loads: [Load::zero(a[0]), Load::zero(a[1]), Load::zero(a[2])],
+            load_ternary: Load::force_at(Point2::new(0.0, 1.0 / 3.0), Vector2::new(0.0, -300.0)),
+        },
+        joints: TriadJoints {
+            a: [pin; 3],
+            b: [pin; 3],
+        },
+        rates: TriadRates {
+            outer: [0.0; 3],
+            binary: [0.0; 3],
+            ternary: 1.0,
+        },
+    }
+}
+
+/// [`worked_triad_friction`] with friction circles of 1 cm: a field or more made hostile.
+fn hostile_triad_friction(g: &mut Gen) -> (TriadFriction, Iteration) {
+    let worked = worked_triad_friction(0.01);
+    let (mut a, mut b) = (worked.triad.a, worked.triad.b);
     for p in a.iter_mut().chain(b.iter_mut()) {
         if g.next().is_multiple_of(8) {
             *p = g.p();
@@ -67,7 +92,7 @@ fn hostile_triad_friction(g: &mut Gen) -> (TriadFriction, Iteration) {
         load_ternary: if g.next().is_multiple_of(4) {
             load(g, Point2::origin())
         } else {
-            Load::force_at(Point2::new(0.0, 1.0 / 3.0), Vector2::new(0.0, -300.0))
+            worked.triad.load_ternary
         },
     };
     let mut pin = || Hinge {
@@ -231,7 +256,6 @@ fn sweep_slider_triads() {
 /// Was a defect (fixed): `slider_triad_rates` at a
 /// pose that is not one of the modes, with B1 at x = f64::MAX, returns `Ok` with `det: inf`.
 #[test]
-
 fn repro_slider_triad_rates_at_an_overflowing_pose() {
     let dims = SliderTriadDims {
         pair: SlidingPair::Outer { offset: 0.0 },
@@ -263,36 +287,10 @@ fn repro_slider_triad_rates_at_an_overflowing_pose() {
 /// Was a defect (fixed): a finite outer
 /// rate of −f64::MAX rad/s gives `power_lost: inf` in an `Ok`.
 #[test]
-
 fn repro_triad_friction_lost_power_overflows() {
-    let b = [
-        Point2::new(-1.0, 0.0),
-        Point2::new(1.0, 0.0),
-        Point2::new(0.0, 1.0),
-    ];
-    let a = [
-        Point2::new(-1.0, 1.0),
-        Point2::new(1.0, 1.0),
-        Point2::new(1.0, 1.0),
-    ];
-    let pin = Hinge { rho: 0.5 };
-    let t = TriadFriction {
-        triad: Triad {
-            a,
-            b,
-            loads: [Load::zero(a[0]), Load::zero(a[1]), Load::zero(a[2])],
-            load_ternary: Load::force_at(Point2::new(0.0, 1.0 / 3.0), Vector2::new(0.0, -300.0)),
-        },
-        joints: TriadJoints {
-            a: [pin; 3],
-            b: [pin; 3],
-        },
-        rates: TriadRates {
-            outer: [0.0, 0.0, -f64::MAX],
-            binary: [0.5, 0.0, 0.0],
-            ternary: 1.0,
-        },
-    };
+    let mut t = worked_triad_friction(0.5);
+    t.rates.outer[2] = -f64::MAX;
+    t.rates.binary[0] = 0.5;
     check("TriadFriction::solve", &t, || t.solve());
 }
 
@@ -432,7 +430,6 @@ fn sweep_workspaces() {
 /// Was a defect (fixed): a ternary link of 2.9e-261 m (B3 at 1e-300 m)
 /// gives two modes with `det: inf` and `-inf` in an `Ok`.
 #[test]
-
 fn repro_slider_triad_degenerate_ternary() {
     let dims = SliderTriadDims {
         pair: SlidingPair::Inner {
@@ -454,49 +451,21 @@ fn repro_slider_triad_degenerate_ternary() {
 /// Was a defect (fixed): a load of 10¹⁵⁵ N on binary link 1 gives
 /// R_A1 ≈ 9.7e154 N (finite) but `pressure: inf` in an `Ok` (|R| through R², 10³⁰⁹).
 #[test]
-
 fn repro_triad_friction_overflowing_pressure() {
-    let b = [
-        Point2::new(-1.0, 0.0),
-        Point2::new(1.0, 0.0),
-        Point2::new(0.0, 1.0),
-    ];
-    let a = [
-        Point2::new(-1.0, 1.0),
-        Point2::new(1.0, 1.0),
-        Point2::new(1.0, 1.0),
-    ];
-    let pin = Hinge { rho: 0.01 };
-    let t = TriadFriction {
-        triad: Triad {
-            a,
-            b,
-            loads: [
-                Load::new(
-                    Point2::new(0.2483104554069141, 0.9505200837930332),
-                    Vector2::new(-1e155, -4.703608630422799e-221),
-                    1e-300,
-                ),
-                Load::zero(a[1]),
-                Load::zero(a[2]),
-            ],
-            load_ternary: Load::force_at(Point2::new(0.0, 1.0 / 3.0), Vector2::new(0.0, -300.0)),
-        },
-        joints: TriadJoints {
-            a: [Hinge { rho: 1000.0 }, pin, pin],
-            b: [
-                Hinge {
-                    rho: 0.3978690523496686,
-                },
-                pin,
-                pin,
-            ],
-        },
-        rates: TriadRates {
-            outer: [0.0; 3],
-            binary: [-0.0, 0.40483659570963054, 0.0],
-            ternary: 0.4592036254460079,
-        },
+    let mut t = worked_triad_friction(0.01);
+    t.triad.loads[0] = Load::new(
+        Point2::new(0.2483104554069141, 0.9505200837930332),
+        Vector2::new(-1e155, -4.703608630422799e-221),
+        1e-300,
+    );
+    t.joints.a[0] = Hinge { rho: 1000.0 };
+    t.joints.b[0] = Hinge {
+        rho: 0.3978690523496686,
+    };
+    t.rates = TriadRates {
+        outer: [0.0; 3],
+        binary: [-0.0, 0.40483659570963054, 0.0],
+        ternary: 0.4592036254460079,
     };
     check("TriadFriction::solve", &t, || t.solve());
 }

@@ -222,11 +222,19 @@ fn hostile_outputs_cycles_and_tables() {
                     if let Ok(m) = plan.transfer(out, q) {
                         assert!(!has_non_finite(&format!("{m:?}")), "{what}: {q} {m:?}");
                     }
-                    if let Ok(Some(lock)) = plan.lock_positions(q) {
-                        assert!(lock.0.is_finite() && lock.1.is_finite(), "{what}: {lock:?}");
-                    }
                 });
             }
+        }
+        // The lock positions depend on the crank angle alone, not on an output: a call scans
+        // the turn (720 solves), so it is swept once per linkage, not once per output.
+        for _ in 0..cases() / 20 {
+            let q = g.f();
+            let what = format!("{} lock_positions({q:?})", l.name);
+            no_panic(&what, || {
+                if let Ok(Some(lock)) = plan.lock_positions(q) {
+                    assert!(lock.0.is_finite() && lock.1.is_finite(), "{what}: {lock:?}");
+                }
+            });
         }
         for n in [0, 1, 2, 7, usize::MAX] {
             let (start, w) = (g.f(), g.f());
@@ -244,6 +252,51 @@ fn hostile_outputs_cycles_and_tables() {
                     }
             );
         }
+    }
+}
+
+/// An input coordinate beyond ±10⁹ (rad, or m for a slider) names no position: a course
+/// refuses it, naming the field; at the bound one still does.
+#[test]
+fn meaningless_input_angles_are_refused() {
+    use tmm::linkage::{Course, TwoInputCourse, MAX_INPUT_COORDINATE};
+    let max = MAX_INPUT_COORDINATE;
+    // The reason for the bound: there neighbouring angles are 2⁻²³ ≈ 1.2·10⁻⁷ rad apart.
+    let next = f64::from_bits(max.to_bits() + 1);
+    assert_eq!(next - max, 2f64.powi(-23));
+    let named = |r: tmm::Result<()>, field: &str| match r {
+        Err(Error::OutOfRange {
+            name, min, max: hi, ..
+        }) => {
+            assert_eq!((name, min, hi), (field, -max, max));
+        }
+        other => panic!("{field}: {other:?}"),
+    };
+    let plan = Plan::new(&bundled::four_bar()).unwrap();
+    // The four-bar's crank turns fully: a rocking course ending at the bound is a course.
+    let course = Course::rocking(&plan, max - 1.0, max, 4, 1.0).unwrap();
+    assert_eq!(course.inputs[2].value, max);
+    assert!(course.check().is_ok());
+    for (from, to, field) in [(1e300, 0.0, "from"), (0.0, -2e9, "to"), (next, 1.0, "from")] {
+        named(Course::rocking(&plan, from, to, 4, 1.0).map(|_| ()), field);
+    }
+    named(Course::given(vec![Motion::fixed(-1e10)]).check(), "input");
+    assert!(Course::given(vec![Motion::fixed(-max)]).check().is_ok());
+    let grid = |first: [f64; 2]| TwoInputCourse::grid(first, [0.0, 1.0], [2, 2], [1.0, 1.0]);
+    named(
+        grid([0.0, 1e12]).map(|_| ()),
+        "end of the first input's range",
+    );
+    assert!(grid([-max, max]).is_ok());
+    // A range too wide for an f64 is still an overflow, before its ends are looked at.
+    assert!(matches!(grid([-1e308, 1e308]), Err(Error::Overflow { .. })));
+    let far = TwoInputCourse::laws(&[0.0], |_| Motion::fixed(0.0), |_| Motion::fixed(1e300));
+    match far {
+        Err(Error::In { part, source }) => {
+            assert!(part.contains("second input's law"), "{part}");
+            named(Err(*source), "input");
+        }
+        other => panic!("{other:?}"),
     }
 }
 

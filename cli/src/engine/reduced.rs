@@ -49,7 +49,8 @@ impl Machine {
         super::check_speed(speed)?;
         if speed == 0.0 {
             return Err(Failure::new(format!(
-                "the speed must be finite and not zero, got {speed}"
+                "the speed must be finite and not zero, got {}",
+                crate::model::typed(speed)
             ))
             .hint("give --speed, rad/s, negative for clockwise"));
         }

@@ -447,7 +447,7 @@ fn path(
     if !(p.time.is_finite() && p.time > 0.0) {
         return Err(Failure::new(format!(
             "the search's time bound must be a positive number of seconds, got {}",
-            p.time
+            crate::model::typed(p.time)
         ))
         .hint("set by --time"));
     }

@@ -16,7 +16,7 @@ use super::{failure, Machine};
 /// The most RK4 steps a run of two inputs may take (a recorded row each).
 const MAX_RUN_STEPS: f64 = 1e6;
 use crate::model::{
-    DiagramKind, DynamicsRequest, Failure, MassRow, Range, TwoInputDynamics, TwoInputRun,
+    typed, DiagramKind, DynamicsRequest, Failure, MassRow, Range, TwoInputDynamics, TwoInputRun,
 };
 use tmm::nalgebra::Vector2;
 
@@ -144,8 +144,9 @@ impl Machine {
         let total: f64 = lengths.iter().sum();
         if !(total.is_finite() && total > 0.0) {
             return Err(Failure::new(format!(
-                "the path given by --along has length {total} in the plane of the inputs; it \
-                 needs two different finite pairs"
+                "the path given by --along has length {} in the plane of the inputs; it \
+                 needs two different finite pairs",
+                typed(total)
             )));
         }
         // Each position at its arc length s along the polyline; the inputs' rates are the
@@ -327,7 +328,8 @@ impl Machine {
         let halves = [half(0), half(1)];
         if let Some(bad) = halves.iter().find(|h| !(h.is_finite() && **h > 0.0)) {
             return Err(Failure::new(format!(
-                "the span of the grid must be positive and finite, and it is {bad}"
+                "the span of the grid must be positive and finite, and it is {}",
+                typed(span.unwrap_or(*bad))
             ))
             .hint("give --span in degrees (metres for a slider input)"));
         }
@@ -336,7 +338,7 @@ impl Machine {
                 "the span of the grid about crank {}'s reference angle is at most 180° (a \
                  whole turn), and it is {}°",
                 k + 1,
-                halves[k].to_degrees()
+                typed(span.unwrap_or_else(|| halves[k].to_degrees()))
             )));
         }
         let ranges = [0, 1].map(|k| [reference[k] - halves[k], reference[k] + halves[k]]);
@@ -395,7 +397,8 @@ impl Machine {
         if !(t_end.is_finite() && t_end > 0.0 && t_end <= 1e4) {
             return Err(Failure::new(format!(
                 "the duration of the run must be positive, finite and at most 10⁴ s, and it \
-                 is {t_end} s"
+                 is {} s",
+                typed(t_end)
             ))
             .hint("give --run T in seconds"));
         }
