@@ -348,6 +348,21 @@ impl<'a> PositionsMut<'a> {
         Ok(n)
     }
 
+    /// The five number columns (B.x, B.y, P.x, P.y, measure) and the status, each a slice
+    /// of its own: the form every lane loop writes through ([`put`]).
+    #[inline(always)]
+    fn columns(&mut self) -> ([&mut [f64]; 5], &mut [Lane]) {
+        let Self {
+            b_x,
+            b_y,
+            p_x,
+            p_y,
+            measure,
+            status,
+        } = self;
+        ([b_x, b_y, p_x, p_y, measure], status)
+    }
+
     /// Splits the columns at `mid` (the first part has lanes `0..mid`).
     ///
     /// # Panics
@@ -399,6 +414,22 @@ pub struct RatesMut<'a> {
 }
 
 impl RatesMut<'_> {
+    /// The twelve columns, each a slice of its own, in [`put_rates`]' order.
+    #[inline(always)]
+    fn columns(&mut self) -> [&mut [f64]; 12] {
+        let Self {
+            v_b: [v_bx, v_by],
+            a_b: [a_bx, a_by],
+            v_p: [v_px, v_py],
+            a_p: [a_px, a_py],
+            omega: [w2, w3],
+            epsilon: [e2, e3],
+        } = self;
+        [
+            v_bx, v_by, a_bx, a_by, v_px, v_py, a_px, a_py, w2, w3, e2, e3,
+        ]
+    }
+
     fn check(&self, n: usize) -> Result<()> {
         let names = ["v_b", "a_b", "v_p", "a_p", "omega", "epsilon"];
         let cols = [
@@ -824,35 +855,14 @@ fn put_rates(
 /// [`put`] into borrowed position columns.
 #[inline(always)]
 fn store(o: &Out, i: usize, out: &mut PositionsMut<'_>) {
-    let PositionsMut {
-        b_x,
-        b_y,
-        p_x,
-        p_y,
-        measure,
-        status,
-    } = out;
-    put(o, i, [b_x, b_y, p_x, p_y, measure], status);
+    let (columns, status) = out.columns();
+    put(o, i, columns, status);
 }
 
 /// [`put_rates`] into borrowed rate columns.
 #[inline(always)]
 fn store_rates(o: &Out, i: usize, r: &mut RatesMut<'_>) {
-    let RatesMut {
-        v_b: [v_bx, v_by],
-        a_b: [a_bx, a_by],
-        v_p: [v_px, v_py],
-        a_p: [a_px, a_py],
-        omega: [w2, w3],
-        epsilon: [e2, e3],
-    } = r;
-    put_rates(
-        o,
-        i,
-        [
-            v_bx, v_by, a_bx, a_by, v_px, v_py, a_px, a_py, w2, w3, e2, e3,
-        ],
-    );
+    put_rates(o, i, r.columns());
 }
 
 /// The scalar blocks at one lane: what a `Pending` lane becomes.
@@ -963,18 +973,11 @@ fn positions_of(
 ) -> usize {
     let phi = &angles.phi[start..end];
     {
-        let PositionsMut {
-            b_x,
-            b_y,
-            p_x,
-            p_y,
-            measure,
-            status,
-        } = &mut out;
+        let (columns, status) = out.columns();
         position_lanes(
             d,
             [phi, &angles.cos[start..end], &angles.sin[start..end]],
-            [b_x, b_y, p_x, p_y, measure],
+            columns,
             status,
         );
     }
@@ -1028,22 +1031,7 @@ pub fn four_bar_motions(
     let rate = [omega1, epsilon1];
     let (phi, cos, sin) = (&angles.phi[..n], &angles.cos[..n], &angles.sin[..n]);
     {
-        let PositionsMut {
-            b_x,
-            b_y,
-            p_x,
-            p_y,
-            measure,
-            status,
-        } = &mut out;
-        let RatesMut {
-            v_b: [v_bx, v_by],
-            a_b: [a_bx, a_by],
-            v_p: [v_px, v_py],
-            a_p: [a_px, a_py],
-            omega: [w2, w3],
-            epsilon: [e2, e3],
-        } = &mut rates;
+        let ([b_x, b_y, p_x, p_y, measure], status) = out.columns();
         motion_lanes(
             d,
             rate,
@@ -1054,9 +1042,7 @@ pub fn four_bar_motions(
             p_y,
             measure,
             status,
-            [
-                v_bx, v_by, a_bx, a_by, v_px, v_py, a_px, a_py, w2, w3, e2, e3,
-            ],
+            rates.columns(),
         );
     }
     Ok(settle(&mut out, Some(&mut rates), |i| (d, phi[i]), rate))

@@ -12,6 +12,8 @@ mod files;
 #[cfg(feature = "serde")]
 mod friction;
 #[cfg(feature = "serde")]
+mod friction_stops;
+#[cfg(feature = "serde")]
 mod gallery;
 #[cfg(feature = "serde")]
 mod general;

@@ -69,6 +69,14 @@ pub const FRICTION_TOLERANCE: f64 = 1e-12;
 /// The evaluations of the friction statics allowed for one q̈.
 pub const FRICTION_BUDGET: usize = 60;
 
+/// Whether joint `j` of `plan` has friction (a nonzero ρ or f).
+pub(super) fn has_friction(plan: &Plan, j: usize) -> bool {
+    plan.friction
+        .as_ref()
+        .and_then(|fp| fp.get(j))
+        .is_some_and(|f| f.hinge.rho != 0.0 || f.slide.f != 0.0)
+}
+
 /// One joint with friction: a hinge between two links, or a slide.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub(super) enum FrictionJoint {
@@ -84,10 +92,9 @@ impl FrictionJoint {
         let Some(fp) = &plan.friction else {
             return Vec::new();
         };
-        fp.iter()
-            .enumerate()
-            .filter(|(_, f)| f.hinge.rho != 0.0 || f.slide.f != 0.0)
-            .map(|(j, _)| {
+        (0..fp.len())
+            .filter(|&j| has_friction(plan, j))
+            .map(|j| {
                 let jp = &plan.chain.joints[j];
                 if jp.prismatic.is_some() {
                     Self::Slide { joint: j }

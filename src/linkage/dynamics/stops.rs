@@ -17,16 +17,35 @@
 //! resistance holds it the run ends ([`Outcome::Stuck`](crate::dynamics::Outcome::Stuck)):
 //! the resisted link stops turning (or the slide stops sliding) while the machine may still
 //! move with its other freedom, a motion with that rate held that is not modelled. Otherwise
-//! the motion goes on with σ of the drive's sign. The joints' friction of a machine with two
-//! inputs is not a switch: its reversals are located as kinks.
+//! the motion goes on with σ of the drive's sign.
+//!
+//! # An input's joint friction with two inputs
+//! The friction in an input's own joint (a crank's pivot on the frame, an input slider's
+//! slide) is a switch too, after the resistances: its rate is the input's, σ = cₖ·q̇ₖ
+//! (cₖ = ±1 for a direct crank). Where q̇ₖ reaches zero (that input stops while the other
+//! may move on), the friction couple there is anything within ±L, L = ρ·|R| (f·|N| for a
+//! slide), and the run weighs it as a resistance: held, q̈ₖ = 0 and the couple μ holding
+//! it follows from A·q̈ = b + Q_f(q̈) + μ·eₖ with b = Q − Γ − B·q̇ at q̇ₖ = 0. The other
+//! joints' friction Q_f depends on the reactions and so on q̈: the pair (q̈, μ) is the fixed
+//! point q̈ = A⁻¹·(b + Q_f(q̈) + μ·eₖ), μ = −[A⁻¹·(b + Q_f)]ₖ / (A⁻¹)ₖₖ, iterated to
+//! [`FRICTION_TOLERANCE`](super::FRICTION_TOLERANCE) like the free motion's. The limits L±
+//! are the generalized friction along σ that sets in when σ = ±10⁻²⁰⁰ at the held motion
+//! (Q_f of the friction statics there less Q_f at σ = 0): with the other input moving, only
+//! the input's own joint starts to slide, L = ρ·|R| of its reaction; at a whole rest
+//! (q̇ = 0) every joint the input moves starts with it, and L± is their friction reduced to
+//! the input at the static reactions, as for one input. The machine sticks when
+//! −L₋ ≤ drive ≤ L₊ (drive = −μ/cₖ, along σ); else it breaks away with q̇ₖ of the drive's
+//! sign. The other joints' reversals are located as kinks. A machine at a whole rest is
+//! weighed at its first such switch, the other input left free.
 
 use nalgebra::Vector2;
 
+use super::friction::{has_friction, FRICTION_BUDGET, FRICTION_TOLERANCE};
 use super::system::LinkageSystem;
 use super::transfer::Transfer;
-use crate::dynamics::{accelerations, kink_slots, LagrangeSystem, SwitchLoads};
+use crate::dynamics::{accelerations, christoffel_terms, kink_slots, LagrangeSystem, SwitchLoads};
 use crate::error::{computed, Error, Result};
-use crate::linkage::plan::LoadPlan;
+use crate::linkage::plan::{InputPlan, LoadPlan};
 
 /// A resistance of a machine with two inputs: its rate σ = c·q̇ and what it opposes.
 struct Resisted {
@@ -50,38 +69,56 @@ impl Resisted {
                 link,
                 forward,
                 backward,
-            } => Some(Self {
-                c: Vector2::new(tr.omega(0, link), tr.omega(1, link)),
-                second: [0, 1, 2].map(|s| tr.link(s, link).epsilon),
-                forward,
-                backward,
-                what: "resisted link",
-                unit: "N·m",
-            }),
+            } => Some(Self::turning(
+                tr,
+                link,
+                [forward, backward],
+                "resisted link",
+            )),
             LoadPlan::Sliding {
                 joint,
                 forward,
                 backward,
                 ..
-            } => {
-                let (_, guide, d) = tr.slide_parts(joint);
-                // σ = (v_on − v_guide)·d with d turning with the guide at its ω:
-                // σ̇ = (a_on − a_guide)·d + ω_guide·(v_on − v_guide)·d⊥.
-                let across = Vector2::new(-d.y, d.x);
-                let second = [0, 1, 2].map(|s| {
-                    let [on, g] = tr.slide_points(s, joint);
-                    (on.a - g.a).dot(&d) + tr.omega(s, guide) * (on.v - g.v).dot(&across)
-                });
-                Some(Self {
-                    c: Vector2::new(tr.slide_rate(0, joint, d), tr.slide_rate(1, joint, d)),
-                    second,
-                    forward,
-                    backward,
-                    what: "resisted slide",
-                    unit: "N",
-                })
-            }
+            } => Some(Self::sliding(
+                tr,
+                joint,
+                [forward, backward],
+                "resisted slide",
+            )),
             _ => None,
+        }
+    }
+
+    /// The rate ω of `link` resisted by `[forward, backward]` N·m.
+    fn turning(tr: &Transfer<'_>, link: usize, limits: [f64; 2], what: &'static str) -> Self {
+        Self {
+            c: Vector2::new(tr.omega(0, link), tr.omega(1, link)),
+            second: [0, 1, 2].map(|s| tr.link(s, link).epsilon),
+            forward: limits[0],
+            backward: limits[1],
+            what,
+            unit: "N·m",
+        }
+    }
+
+    /// The sliding rate of the prismatic `joint` resisted by `[forward, backward]` N.
+    fn sliding(tr: &Transfer<'_>, joint: usize, limits: [f64; 2], what: &'static str) -> Self {
+        let (_, guide, d) = tr.slide_parts(joint);
+        // σ = (v_on − v_guide)·d with d turning with the guide at its ω:
+        // σ̇ = (a_on − a_guide)·d + ω_guide·(v_on − v_guide)·d⊥.
+        let across = Vector2::new(-d.y, d.x);
+        let second = [0, 1, 2].map(|s| {
+            let [on, g] = tr.slide_points(s, joint);
+            (on.a - g.a).dot(&d) + tr.omega(s, guide) * (on.v - g.v).dot(&across)
+        });
+        Self {
+            c: Vector2::new(tr.slide_rate(0, joint, d), tr.slide_rate(1, joint, d)),
+            second,
+            forward: limits[0],
+            backward: limits[1],
+            what,
+            unit: "N",
         }
     }
 
@@ -116,21 +153,56 @@ impl LinkageSystem {
     /// The machine's velocity-sign switches ([`LagrangeSystem::switches`](
     /// crate::dynamics::LagrangeSystem::switches)): with one input, one (the input's rate
     /// q̇₁) when a resistance is among its loads or a joint has friction, none otherwise;
-    /// with two inputs, one per resistance (see the [module docs](self)).
+    /// with two inputs, one per resistance and then one per input whose own joint has
+    /// friction (see the [module docs](self)).
     pub(super) fn input_switches(&self) -> usize {
         if self.dof() == 1 {
             usize::from(self.resistances().next().is_some() || self.has_joint_friction())
         } else {
-            self.resistances().count()
+            self.resistances().count() + self.held_inputs().count()
         }
     }
 
+    /// The inputs of a machine with two inputs whose own joint (a crank's pivot, an input
+    /// slider's slide) has friction: (the input, its link, its joint).
+    fn held_inputs(&self) -> impl Iterator<Item = (usize, usize, usize)> + '_ {
+        let plan = self.plan();
+        plan.chain
+            .inputs()
+            .enumerate()
+            .filter(move |_| plan.input_count() == 2)
+            .map(|(k, ip)| match *ip {
+                InputPlan::Crank { link, joint, .. } | InputPlan::Slider { link, joint, .. } => {
+                    (k, link, joint)
+                }
+            })
+            .filter(move |&(_, _, j)| has_friction(plan, j))
+    }
+
     /// Switch `i`'s resistance for a machine with two inputs, at the position of `tr`.
-    fn resisted(&self, tr: &Transfer<'_>, i: usize) -> Result<Resisted> {
-        self.resistances()
-            .nth(i)
-            .and_then(|lp| Resisted::new(tr, lp))
-            .ok_or_else(|| self.no_switch(i))
+    /// For an input's joint friction (limits zero: see
+    /// [`joint_stop_loads`](Self::joint_stop_loads)), also the input and the joint.
+    fn resisted(&self, tr: &Transfer<'_>, i: usize) -> Result<(Resisted, Option<[usize; 2]>)> {
+        let n = self.resistances().count();
+        if i < n {
+            return self
+                .resistances()
+                .nth(i)
+                .and_then(|lp| Resisted::new(tr, lp))
+                .map(|r| (r, None))
+                .ok_or_else(|| self.no_switch(i));
+        }
+        let (k, link, joint) = self
+            .held_inputs()
+            .nth(i - n)
+            .ok_or_else(|| self.no_switch(i))?;
+        let what = "input joint with friction";
+        let r = if self.plan().is_prismatic_at(joint) {
+            Resisted::sliding(tr, joint, [0.0; 2], what)
+        } else {
+            Resisted::turning(tr, link, [0.0; 2], what)
+        };
+        Ok((r, Some([k, joint])))
     }
 
     fn no_switch(&self, i: usize) -> Error {
@@ -163,10 +235,8 @@ impl LinkageSystem {
             return Ok(());
         }
         let tr = Transfer::new(self.plan(), 2, q)?;
-        for (o, lp) in out.iter_mut().zip(self.resistances()) {
-            if let Some(r) = Resisted::new(&tr, lp) {
-                *o = r.c.dot(qd);
-            }
+        for (i, o) in out.iter_mut().enumerate() {
+            *o = self.resisted(&tr, i)?.0.c.dot(qd);
         }
         Ok(())
     }
@@ -224,7 +294,10 @@ impl LinkageSystem {
         q: &Vector2<f64>,
         qd: &Vector2<f64>,
     ) -> Result<SwitchLoads> {
-        let r = self.resisted(&Transfer::new(self.plan(), 2, q)?, i)?;
+        let (r, held) = self.resisted(&Transfer::new(self.plan(), 2, q)?, i)?;
+        if let Some([k, joint]) = held {
+            return self.joint_stop_loads(&r, k, joint, t, q, qd);
+        }
         let singular = |value: f64| Error::Singular {
             what: "a resistance's stop",
             measure: "c·A⁻¹·c, the mobility of the resisted rate (it does not move with the \
@@ -272,7 +345,16 @@ impl LinkageSystem {
             if i >= self.input_switches() {
                 return Err(self.no_switch(i));
             }
-            let r = self.resisted(&Transfer::new(self.plan(), 2, q)?, i)?;
+            let (r, held) = self.resisted(&Transfer::new(self.plan(), 2, q)?, i)?;
+            if let Some([k, joint]) = held {
+                let l = self.joint_stop_loads(&r, k, joint, t, q, qd)?;
+                return Ok(Resisted {
+                    forward: l.forward,
+                    backward: l.backward,
+                    ..r
+                }
+                .force(direction));
+            }
             return Ok(r.force(direction));
         }
         let l = self.input_switch_loads(i, t, q, qd)?;
@@ -284,5 +366,97 @@ impl LinkageSystem {
             0.0
         };
         Ok(Vector2::new(f, 0.0))
+    }
+
+    /// The loads along the friction switch of input `k`'s own joint `joint` (rate σ = c·q̇,
+    /// c along input k alone) at the state (t, q, q̇) with σ taken as zero: see the
+    /// [module docs](self). The held motion solves A·q̈ = b + Q_f(q̈) + μ·c with c·q̈ = 0 (σ̇
+    /// = c·q̈: the input link's rate is q̇ₖ times a constant); the drive is −μ, the limits
+    /// the generalized friction along σ that sets in at that motion with σ = ±10⁻²⁰⁰.
+    ///
+    /// # Errors
+    /// [`Error::Singular`] when A is not positive-definite; [`Error::Budget`] (within
+    /// [`Error::In`]) when the held motion is not found within
+    /// [`FRICTION_BUDGET`](super::FRICTION_BUDGET) evaluations; the friction statics' and
+    /// the terms' errors.
+    fn joint_stop_loads(
+        &self,
+        r: &Resisted,
+        k: usize,
+        _joint: usize,
+        t: f64,
+        q: &Vector2<f64>,
+        qd: &Vector2<f64>,
+    ) -> Result<SwitchLoads> {
+        const TINY: f64 = 1e-200;
+        let singular = |value: f64| Error::Singular {
+            what: "an input joint's friction at its stop",
+            measure: "the input's diagonal of A⁻¹ (its mobility)",
+            value,
+        };
+        let ck = r.c[k];
+        let mut rest = *qd;
+        rest[k] = 0.0;
+        let a = self.inertia(q)?.cholesky().ok_or_else(|| singular(0.0))?;
+        let e = if k == 0 { Vector2::x() } else { Vector2::y() };
+        let a_inv_e = a.solve(&e);
+        let mobility = a_inv_e[k];
+        if !(mobility > 0.0 && mobility.is_finite() && ck != 0.0) {
+            return Err(singular(mobility));
+        }
+        // The fixed point q̈ = P(q̈) + μ·A⁻¹·eₖ, P = A⁻¹·(b + Q_f(q̈)), μ such that q̈ₖ = 0
+        // (μ along eₖ: the held force μ·c/cₖ).
+        let (mut qdd, mut mu, mut scale) = (Vector2::zeros(), 0.0, None);
+        let mut converged = false;
+        for _ in 0..FRICTION_BUDGET {
+            let terms = self.evaluate(q, &rest, true, None, Some(&qdd))?;
+            let b = terms.forces()
+                - christoffel_terms(&terms.inertia_derivatives, &rest)?
+                - terms.damping * rest;
+            let p = a.solve(&b);
+            mu = -p[k] / mobility;
+            let mut next = p + a_inv_e * mu;
+            next[k] = 0.0;
+            let step = (next - qdd).norm();
+            let s = *scale.get_or_insert(next.norm() + step);
+            qdd = next;
+            if step <= FRICTION_TOLERANCE * s {
+                converged = true;
+                break;
+            }
+        }
+        if !converged {
+            return Err(Error::In {
+                part: format!(
+                    "an input joint's friction at its stop at q = ({}, {}): the held motion \
+                     not found",
+                    q[0], q[1]
+                ),
+                source: Box::new(Error::Budget {
+                    what: "friction evaluation",
+                    limit: FRICTION_BUDGET,
+                    time: t,
+                }),
+            });
+        }
+        // The friction that sets in with σ = ±10⁻²⁰⁰ at the held motion: the joints that
+        // were moving keep their friction, those whose rate vanishes with σ (the input's own
+        // joint; at a whole rest, every joint the input moves) add theirs, along σ.
+        let held = self.evaluate(q, &rest, true, None, Some(&qdd))?.friction;
+        let limit = |s: f64| -> Result<f64> {
+            let mut v = rest;
+            v[k] = s * TINY / ck;
+            let f = self.evaluate(q, &v, true, None, Some(&qdd))?.friction;
+            Ok((-s * (f[k] - held[k]) / ck).max(0.0))
+        };
+        let (forward, backward) = (limit(1.0)?, limit(-1.0)?);
+        Ok(SwitchLoads {
+            what: r.what,
+            unit: r.unit,
+            // μ·eₖ = (μ/cₖ)·c: the held load along σ is μ/cₖ.
+            drive: computed("drive along an input joint with friction", -mu / ck)?,
+            forward,
+            backward,
+        })
     }
 }

@@ -336,7 +336,7 @@ impl LinkageSystem {
     /// also checked positive-definite (the error naming t) before the loads are evaluated:
     /// the order in which [`crate::dynamics::accelerations`] reports the first failure. The
     /// joints' friction is solved with q̈, or taken at `qdd` when given.
-    fn evaluate(
+    pub(super) fn evaluate(
         &self,
         q: &Vector2<f64>,
         qd: &Vector2<f64>,

@@ -1,0 +1,230 @@
+//! Stops of a machine with two inputs and joint friction (the bundled five-bar robot with
+//! pins in every joint): where an input's rate reaches zero, the friction in its pivot holds
+//! it (the run ends, stuck) or the drive breaks it away. Checked against the friction
+//! kinetostatics solved independently: the balancing moments of the held motion and the
+//! pivot's friction circle ρ·|R|.
+
+use nalgebra::Vector2;
+use tmm::dynamics::{run, Dopri5, LagrangeSystem, Outcome, Rk4, RunOptions, State};
+use tmm::kinematics::Motion;
+use tmm::linkage::dynamics::{LinkageSystem, Motor};
+use tmm::linkage::{bundled, Friction, Inputs, Linkage, Plan};
+
+const F: f64 = 0.15;
+
+/// The five-bar robot (its couple of −0.3 N·m on coupler 3), with pins of radius 2 %
+/// of its size and the coefficient `f` in every joint; and ρ = f·r.
+fn five_bar(f: f64) -> (Linkage, f64) {
+    let mut l = bundled::five_bar_robot();
+    let r = 0.02 * Plan::new(&l).unwrap().size();
+    if f > 0.0 {
+        l.friction = Some(Friction::pin(f, r));
+    }
+    (l, f * r)
+}
+
+/// The joint between input `k`'s link and the frame.
+fn pivot(plan: &Plan, k: usize) -> usize {
+    let link = plan.input_links()[k].index();
+    (0..plan.joint_names().len())
+        .find(|&j| {
+            let [a, b] = plan.joint_links(j).unwrap().map(|l| l.index());
+            (a, b) == (0, link) || (a, b) == (link, 0)
+        })
+        .expect("the input's pivot")
+}
+
+fn inputs(q: &Vector2<f64>, qd: &Vector2<f64>, qdd: &Vector2<f64>) -> Inputs {
+    let m = |i: usize| Motion::new(q[i], qd[i], qdd[i]);
+    Inputs::two(m(0), m(1))
+}
+
+fn machine(l: &Linkage, tau: [f64; 2]) -> LinkageSystem {
+    LinkageSystem::from_linkage(l)
+        .unwrap()
+        .with_motor(0, Motor::Constant(tau[0]))
+        .unwrap()
+        .with_motor(1, Motor::Constant(tau[1]))
+        .unwrap()
+}
+
+/// At rest nothing slides, so the static balancing moments are the frictionless ones:
+/// crank 2's motor balances its share (M_b2), crank 1's exceeds M_b1 by δ. Held, q̈ = 0
+/// solves both equations (crank 2 balanced), so the couple that holds crank 1 is −δ. The
+/// limit each way is the friction that sets in when crank 1 starts (crank 2 held): every
+/// joint it moves (O1, A, B, C) slides, and the friction kinetostatics at q̇₁ = ±10⁻²⁰⁰,
+/// q̈ = 0 needs the balancing moment M_b1± = M_b1 ± L±. For δ within [−L₋, L₊] the run ends
+/// stuck at once, reporting δ and L±; beyond, crank 1 breaks away the way δ pushes. δ at
+/// ±0.9, ±0.999, ±1.001 and ±1.1 of the limit that way, and 0. O1's friction circle alone,
+/// ρ·|R_O1|, is a part of L.
+#[test]
+fn a_five_bar_at_rest_sticks_exactly_while_the_drive_is_within_the_pivots_friction_circle() {
+    let (l, rho) = five_bar(F);
+    let (bare, _) = five_bar(0.0);
+    let plan = Plan::new(&bare).unwrap();
+    let q = Vector2::from_vec(plan.reference_inputs());
+    let z = Vector2::zeros();
+    let a = plan.analyse(inputs(&q, &z, &z)).unwrap();
+    let mb = [0, 1].map(|k| a.balance(k).unwrap().value);
+    let r = a.reaction(pivot(&plan, 0)).unwrap().force.norm();
+    let with = Plan::new(&l).unwrap();
+    let starting = |s: f64| {
+        let a = with
+            .analyse(inputs(&q, &Vector2::new(s * 1e-200, 0.0), &z))
+            .unwrap();
+        s * (a.balance(0).unwrap().value - mb[0])
+    };
+    let (fwd, bwd) = (starting(1.0), starting(-1.0));
+    assert!(
+        fwd > rho * r && bwd > rho * r,
+        "L± = {fwd}, {bwd}; ρ|R_O1| = {}",
+        rho * r
+    );
+    let limit = fwd.max(bwd);
+    let mut worst = 0.0f64;
+    for x in [-1.1, -1.001, -0.999, -0.9, 0.0, 0.9, 0.999, 1.001, 1.1] {
+        let delta = x * if x > 0.0 { fwd } else { bwd };
+        let sys = machine(&l, [mb[0] + delta, mb[1]]);
+        assert_eq!(sys.switches(), 2);
+        let loads = sys.switch_loads(0, 0.0, &q, &z).unwrap();
+        let scale = limit.max(mb[0].abs());
+        worst = worst
+            .max((loads.drive - delta).abs() / scale)
+            .max((loads.forward - fwd).abs() / scale)
+            .max((loads.backward - bwd).abs() / scale);
+        // Two steps of RK4: enough to see the verdict and the way it breaks away.
+        let r = run(
+            &sys,
+            &Rk4,
+            State::at_rest(q),
+            &RunOptions::until(2e-4, 1e-4),
+        )
+        .unwrap_or_else(|e| panic!("δ = {x} L: {e}"));
+        if x.abs() < 1.0 {
+            let Outcome::Stuck { t, switch, loads } = r.outcome else {
+                panic!("δ = {x} L: {:?}", r.outcome)
+            };
+            assert_eq!((t, switch, loads.unit), (0.0, 0, "N·m"), "δ = {x} L");
+            assert!(loads.holds());
+        } else {
+            assert!(
+                matches!(r.outcome, Outcome::FinalTime),
+                "δ = {x} L: {:?}",
+                r.outcome
+            );
+            let w1 = r.last.qd[0];
+            assert!(w1 * delta > 0.0, "δ = {x} L: q̇₁ = {w1}");
+        }
+    }
+    println!(
+        "five-bar at rest: L± = {fwd:.6e}, {bwd:.6e} N·m (ρ|R_O1| = {:.6e}), M_b = {mb:?}; \
+         worst {worst:.1e}",
+        rho * r
+    );
+    assert!(worst <= 1e-12, "{worst:e}");
+}
+
+/// Crank 1 thrown forward against its motor while crank 2 turns on: where q̇₁ reaches zero
+/// the run weighs its pivot's friction with crank 2 still moving, so every other joint's
+/// friction acts and depends on the held motion's reactions. Independently: q̈₂ of the held
+/// motion (q̈₁ = 0) solves M_b2(q̈₂) = τ₂ in the friction kinetostatics (secant), the couple
+/// that holds crank 1 is M_b1 − τ₁ there, and the limit is ρ·|R_O1| of that solve. The run
+/// must end stuck at the stop exactly when the drive τ₁ − M_b1 is within ±L, and reverse
+/// crank 1 there otherwise; the loads it weighs equal the independent ones. (These motors
+/// all reverse it: the held side of the threshold is the test above.)
+#[test]
+fn a_five_bar_input_stopping_while_the_other_moves_sticks_or_reverses_by_its_friction() {
+    // Large pins (10 % of the size) and f = 0.3: a friction circle the motors can fall in.
+    let mut l = bundled::five_bar_robot();
+    let size = Plan::new(&l).unwrap().size();
+    let rho = 0.3 * 0.1 * size;
+    l.friction = Some(Friction::pin(0.3, 0.1 * size));
+    let plan = Plan::new(&l).unwrap();
+    let o1 = pivot(&plan, 0);
+    let r0 = plan.reference_inputs();
+    let start = State::new(0.0, Vector2::new(r0[0], r0[1]), Vector2::new(3.0, 1.0));
+    let tau2 = 0.05;
+    let (mut stuck, mut reversed) = (0, 0);
+    let mut worst = 0.0f64;
+    for tau1 in [-0.02, -0.05, -0.1, -0.2, -0.6] {
+        let sys = machine(&l, [tau1, tau2]);
+        let r = run(
+            &sys,
+            &Dopri5::new(1e-10).unwrap(),
+            start,
+            &RunOptions::until(0.5, 1e-3),
+        )
+        .unwrap_or_else(|e| panic!("τ₁ = {tau1}: {e}"));
+        let tr = &r.trajectory;
+        // The stop: the run's end when stuck, else the first row where q̇₁ lands on zero.
+        let (s, held) = match r.outcome {
+            Outcome::Stuck { switch: 0, .. } => (r.last, true),
+            Outcome::FinalTime => {
+                let w = tr.qd()[0];
+                let Some(i) = (1..tr.len() - 1).find(|&i| w[i].abs() <= 1e-9 * 3.0) else {
+                    println!("τ₁ = {tau1}: no stop within the run");
+                    continue;
+                };
+                assert!(w[i - 1] > 0.0 && w[i + 1] < 0.0, "τ₁ = {tau1}");
+                let s = State::new(
+                    tr.t()[i],
+                    Vector2::new(tr.q()[0][i], tr.q()[1][i]),
+                    Vector2::new(w[i], tr.qd()[1][i]),
+                );
+                (s, false)
+            }
+            o => panic!("τ₁ = {tau1}: {o:?}"),
+        };
+        assert!(s.qd[0].abs() <= 1e-9 * 3.0 && s.qd[1] != 0.0, "{s:?}");
+        let mut qd = s.qd;
+        qd[0] = 0.0;
+        let mb = |x: f64| {
+            let a = plan
+                .analyse(inputs(&s.q, &qd, &Vector2::new(0.0, x)))
+                .unwrap();
+            (a.balance(0).unwrap().value, a.balance(1).unwrap().value)
+        };
+        let (mut x0, mut x1) = (0.0, 1.0);
+        let (mut g0, mut g1) = (mb(x0).1 - tau2, mb(x1).1 - tau2);
+        for _ in 0..50 {
+            if g1 == g0 || g1.abs() <= 1e-15 {
+                break;
+            }
+            let x2 = x1 - g1 * (x1 - x0) / (g1 - g0);
+            (x0, g0) = (x1, g1);
+            x1 = x2;
+            g1 = mb(x1).1 - tau2;
+        }
+        let drive = tau1 - mb(x1).0;
+        let mut tiny = qd;
+        tiny[0] = 1e-200;
+        let a = plan
+            .analyse(inputs(&s.q, &tiny, &Vector2::new(0.0, x1)))
+            .unwrap();
+        let limit = rho * a.reaction(o1).unwrap().force.norm();
+        let loads = sys.switch_loads(0, s.t, &s.q, &s.qd).unwrap();
+        let scale = limit.max(tau1.abs());
+        worst = worst
+            .max((loads.drive - drive).abs() / scale)
+            .max((loads.forward - limit).abs() / scale)
+            .max((loads.backward - limit).abs() / scale);
+        println!(
+            "τ₁ = {tau1}: stop at t = {:.6} s, drive {drive:.6e}, L {limit:.6e}: {}",
+            s.t,
+            if held { "stuck" } else { "reversed" }
+        );
+        assert_eq!(
+            held,
+            drive.abs() <= limit,
+            "τ₁ = {tau1}: {drive} vs {limit}"
+        );
+        if held {
+            stuck += 1;
+        } else {
+            reversed += 1;
+        }
+    }
+    println!("five-bar stops: {stuck} stuck, {reversed} reversed, worst {worst:.1e}");
+    assert!(reversed >= 3, "{stuck} stuck, {reversed} reversed");
+    assert!(worst <= 1e-9, "{worst:e}");
+}
