@@ -49,7 +49,7 @@ use super::link::LinkMotion;
 use super::motion::PointMotion;
 use super::rrp::Guide;
 use super::triad::{AssemblyModes, TriadDims, TriadPose, TriadState, SINGULAR_TRIAD};
-use super::trig_roots::{bracket_all, newton_root, unit as unit_c, Periodic, Roots};
+use super::trig_roots::{checked_roots, newton_root, unit as unit_c, Periodic};
 use crate::angle::{cross, direction, perp, unit};
 use crate::error::{finite, finite2, positive, Error, Result};
 use nalgebra::{Complex, Matrix3, Point2, Vector2, Vector3};
@@ -237,20 +237,8 @@ pub fn slider_triad_modes(
     finite("guide angle", first.angle.value)?;
     dims.validate()?;
     let e = Equation::new(first, a, dims);
-    if !e.scale.is_finite() || !e.f.iter().all(|c| c.re.is_finite() && c.im.is_finite()) {
-        return Err(Error::Overflow {
-            what: "triad with a sliding pair: eliminated equation",
-        });
-    }
-    if e.s <= 1024.0 * f64::EPSILON * e.scale {
-        return Err(Error::Singular {
-            what: GROUP,
-            measure: "eliminated equation F(theta)",
-            value: e.s / e.scale,
-        });
-    }
-    let mut roots = Roots::default();
-    bracket_all(&e, &mut roots);
+    let overflow = "triad with a sliding pair: eliminated equation";
+    let roots = checked_roots(&e, &e.f, e.s, e.scale, GROUP, overflow)?;
     let mut modes = SliderTriadModes::empty();
     let tol = 1e-9 * e.length;
     for r in 0..roots.n {
