@@ -55,7 +55,7 @@
 
 use super::link::LinkMotion;
 use super::motion::PointMotion;
-use super::trig_roots::{along, bracket_all, unit, Periodic, Roots};
+use super::trig_roots::{along, checked_roots, unit, Periodic};
 use crate::angle::{cross, direction, perp};
 use crate::error::{finite, finite2, positive, Error, Result};
 use nalgebra::{Complex, Matrix3, Point2, Vector2, Vector3};
@@ -322,20 +322,8 @@ pub fn triad_modes(a: [Point2<f64>; 3], dims: &TriadDims) -> Result<TriadModes> 
     validate_points(a)?;
     dims.validate()?;
     let e = Eliminated::new(a, dims);
-    if !e.scale.is_finite() || !e.f.iter().all(|c| c.re.is_finite() && c.im.is_finite()) {
-        return Err(Error::Overflow {
-            what: "triad: eliminated equation",
-        });
-    }
-    if e.s <= 1024.0 * f64::EPSILON * e.scale {
-        return Err(Error::Singular {
-            what: GROUP,
-            measure: "eliminated equation F(theta)",
-            value: e.s / e.scale,
-        });
-    }
-    let mut roots = Roots::default();
-    bracket_all(&e, &mut roots);
+    let overflow = "triad: eliminated equation";
+    let roots = checked_roots(&e, &e.f, e.s, e.scale, GROUP, overflow)?;
     let mut modes = TriadModes::empty();
     let tol = 1e-9 * e.length();
     for r in 0..roots.n {

@@ -22,8 +22,8 @@
 //!
 //! a real trigonometric polynomial of degree 4 (outer: Δ and X of degree 1, c_2 of degree 1)
 //! or 6 (inner: n turns with θ, so Δ and X are of degree 2). Its Fourier coefficients are
-//! read exactly (to rounding) off 16 equally spaced values — a polynomial of degree below 8
-//! does not alias on 16 points — and every root is bracketed by the certified scan of the
+//! read exactly (to rounding) off 16 equally spaced values (10 for the outer pair) — a
+//! polynomial of degree below N/2 does not alias on N points — and every root is bracketed by the certified scan of the
 //! RRR triad ([`trig_roots`](super::trig_roots)): no mode is missed or found twice. Each
 //! root's pose follows from the linear equations (or, where Δ vanishes, from the line and the
 //! second circle) and is polished by Newton's method on the three closures in (O, θ), whose
@@ -49,7 +49,7 @@ use super::link::LinkMotion;
 use super::motion::PointMotion;
 use super::rrp::Guide;
 use super::triad::{AssemblyModes, TriadDims, TriadPose, TriadState, SINGULAR_TRIAD};
-use super::trig_roots::{bracket_all, newton_root, unit as unit_c, Periodic, Roots};
+use super::trig_roots::{checked_roots, newton_root, unit as unit_c, Periodic};
 use crate::angle::{cross, direction, perp, unit};
 use crate::error::{finite, finite2, positive, Error, Result};
 use nalgebra::{Complex, Matrix3, Point2, Vector2, Vector3};
@@ -61,28 +61,37 @@ const MEASURE: &str = "det(velocity system)/L_T";
 /// The most assembly modes a triad with a sliding pair can have: the roots of its eliminated
 /// equation (of degree 6 in the inner case).
 pub const MAX_SLIDER_TRIAD_MODES: usize = 12;
-/// Samples of the eliminated equation for its Fourier coefficients.
+/// Samples of the eliminated equation for its Fourier coefficients: 16 for the inner pair
+/// (degree 6), 10 for the outer one (degree 4: no aliasing below degree 5 on 10 points).
 const SAMPLES: usize = 16;
-/// Fourier coefficients kept (degrees 0 to 6).
+const SAMPLES_OUTER: usize = 10;
+/// Fourier coefficients kept (degrees 0 to 6; the outer pair's above 4 are zero).
 const DEGREE: usize = 6;
-/// The sample points e^{2πij/16} of the eliminated equation and the discrete Fourier
-/// transform's factors e^{−2πi·jk/16} (k = 0…6), computed once (as cos and sin of each
+const DEGREE_OUTER: usize = 4;
+/// The sample points e^{2πij/N} of the eliminated equation and the discrete Fourier
+/// transform's factors e^{−2πi·jk/N} (k = 0…6), computed once (as cos and sin of each
 /// angle, so that the coefficients are those of the direct sum).
-struct Units {
-    points: [C; SAMPLES],
-    factors: [[C; DEGREE + 1]; SAMPLES],
+struct Units<const N: usize> {
+    points: [C; N],
+    factors: [[C; DEGREE + 1]; N],
 }
 
-static UNITS: std::sync::LazyLock<Units> = std::sync::LazyLock::new(|| {
-    let at = |th: f64| C::new(th.cos(), th.sin());
-    let tau = std::f64::consts::TAU;
-    Units {
-        points: std::array::from_fn(|j| at(tau * j as f64 / SAMPLES as f64)),
-        factors: std::array::from_fn(|j| {
-            std::array::from_fn(|k| at(-tau * (j * k) as f64 / SAMPLES as f64))
-        }),
+impl<const N: usize> Units<N> {
+    fn new() -> Self {
+        let at = |th: f64| C::new(th.cos(), th.sin());
+        let tau = std::f64::consts::TAU;
+        Self {
+            points: std::array::from_fn(|j| at(tau * j as f64 / N as f64)),
+            factors: std::array::from_fn(|j| {
+                std::array::from_fn(|k| at(-tau * (j * k) as f64 / N as f64))
+            }),
+        }
     }
-});
+}
+
+static UNITS: std::sync::LazyLock<Units<SAMPLES>> = std::sync::LazyLock::new(Units::new);
+static UNITS_OUTER: std::sync::LazyLock<Units<SAMPLES_OUTER>> =
+    std::sync::LazyLock::new(Units::new);
 
 /// Where the first binary link's sliding pair is, with the dimension the pair fixes.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -228,20 +237,8 @@ pub fn slider_triad_modes(
     finite("guide angle", first.angle.value)?;
     dims.validate()?;
     let e = Equation::new(first, a, dims);
-    if !e.scale.is_finite() || !e.f.iter().all(|c| c.re.is_finite() && c.im.is_finite()) {
-        return Err(Error::Overflow {
-            what: "triad with a sliding pair: eliminated equation",
-        });
-    }
-    if e.s <= 1024.0 * f64::EPSILON * e.scale {
-        return Err(Error::Singular {
-            what: GROUP,
-            measure: "eliminated equation F(theta)",
-            value: e.s / e.scale,
-        });
-    }
-    let mut roots = Roots::default();
-    bracket_all(&e, &mut roots);
+    let overflow = "triad with a sliding pair: eliminated equation";
+    let roots = checked_roots(&e, &e.f, e.s, e.scale, GROUP, overflow)?;
     let mut modes = SliderTriadModes::empty();
     let tol = 1e-9 * e.length;
     for r in 0..roots.n {
@@ -512,6 +509,8 @@ struct Equation {
     l: [f64; 2],
     /// F's Fourier coefficients: F = f[0] + 2·Re(Σ_{k=1..6} f[k]·z^k).
     f: [C; DEGREE + 1],
+    /// F's degree: 4 (outer pair) or 6 (inner); the coefficients above it are zero.
+    degree: usize,
     m2: f64,
     m3: f64,
     /// Σ|F_k| (F_0 once, the others twice): a bound of |F|.
@@ -528,7 +527,7 @@ impl Periodic for Equation {
     #[inline]
     fn eval(&self, z: C) -> (f64, f64) {
         let (mut p, mut dp, mut zk) = (C::new(0.0, 0.0), C::new(0.0, 0.0), z);
-        for k in 1..=DEGREE {
+        for k in 1..=self.degree {
             let t = self.f[k] * zk;
             p += t;
             dp += t * k as f64;
@@ -539,7 +538,7 @@ impl Periodic for Equation {
 
     fn second(&self, z: C) -> f64 {
         let (mut p, mut zk) = (C::new(0.0, 0.0), z);
-        for k in 1..=DEGREE {
+        for k in 1..=self.degree {
             p += self.f[k] * zk * (k * k) as f64;
             zk *= z;
         }
@@ -582,6 +581,7 @@ impl Equation {
             beta,
             l: dims.l,
             f: [C::new(0.0, 0.0); DEGREE + 1],
+            degree: if inner { DEGREE } else { DEGREE_OUTER },
             m2: 0.0,
             m3: 0.0,
             s: 0.0,
@@ -590,21 +590,11 @@ impl Equation {
             dscale: 0.0,
             length: 0.0,
         };
-        // The discrete Fourier transform of 16 values of F.
-        let mut values = [0.0; SAMPLES];
-        let units = &*UNITS;
-        for (v, &z) in values.iter_mut().zip(&units.points) {
-            let (f, size, delta) = e.value(z);
-            *v = f;
-            e.scale = e.scale.max(size);
-            e.dscale = e.dscale.max(delta.abs());
-        }
-        for k in 0..=DEGREE {
-            let mut sum = C::new(0.0, 0.0);
-            for (j, v) in values.iter().enumerate() {
-                sum += units.factors[j][k] * *v;
-            }
-            e.f[k] = sum / SAMPLES as f64;
+        // The discrete Fourier transform of the samples of F.
+        if inner {
+            e.transform(&UNITS);
+        } else {
+            e.transform(&UNITS_OUTER);
         }
         e.f[0] = C::new(e.f[0].re, 0.0);
         let n1 = |c: C| c.re.abs() + c.im.abs();
@@ -628,6 +618,25 @@ impl Equation {
         }
         e.length = length.max((a[1] - a[0]).norm());
         e
+    }
+
+    /// F's Fourier coefficients up to its degree (the others zero) from its values at the
+    /// `units`' N points (N > 2·degree: no aliasing), with the scales over the samples.
+    fn transform<const N: usize>(&mut self, units: &Units<N>) {
+        let mut values = [0.0; N];
+        for (v, &z) in values.iter_mut().zip(&units.points) {
+            let (f, size, delta) = self.value(z);
+            *v = f;
+            self.scale = self.scale.max(size);
+            self.dscale = self.dscale.max(delta.abs());
+        }
+        for k in 0..=self.degree {
+            let mut sum = C::new(0.0, 0.0);
+            for (j, v) in values.iter().enumerate() {
+                sum += units.factors[j][k] * *v;
+            }
+            self.f[k] = sum / N as f64;
+        }
     }
 
     /// The line of leg 1 at z: n·O = h, n a unit vector.
@@ -721,8 +730,8 @@ impl Equation {
     ///
     /// The steps go on to the rounding floor of the residuals, not to a set tolerance: a
     /// pose left at 1e-15 of the size scatters its angles by several ulps from position to
-    /// position (5e-15 rad on the bundled six-bar), which the rates do not have and which an
-    /// 8th-order second difference of positions amplifies by 6.5/h².
+    /// position (8.6e-15 rad on the bundled six-bar), which the rates do not have and which
+    /// an 8th-order second difference of positions amplifies by 6.5/h².
     fn polish(&self, o: Vector2<f64>, z: C) -> Option<TriadPose> {
         let (mut o, mut z) = (o, z);
         let (mut g, mut k) = self.residual(o, z);

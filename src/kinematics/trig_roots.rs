@@ -7,6 +7,7 @@
 //! centre, z = z_c·(1 + i·t)²/(1 + t²), so that no trigonometric function is evaluated in the
 //! scan or in Brent's iterations.
 
+use crate::error::{Error, Result};
 use nalgebra::Complex;
 
 type C = Complex<f64>;
@@ -97,6 +98,35 @@ impl Isolated {
             accept(2.0 * ga / (b2 + (b2 * b2 + 4.0 * m3 * ga).sqrt()))
         }
     }
+}
+
+/// Every root of a group's eliminated equation F, bracketed ([`bracket_all`]), once F is
+/// known to be usable: its Fourier coefficients `f` and the size `scale` of the terms that
+/// make it finite ([`Error::Overflow`] naming `overflow` otherwise), and its bound
+/// `bound` = Σ|F_k| above the rounding of those terms ([`Error::Singular`] for `group` with
+/// the measure `eliminated equation F(theta)` otherwise: F vanishes identically, the group
+/// moves and its modes form a continuum).
+pub(super) fn checked_roots(
+    e: &impl Periodic,
+    f: &[C],
+    bound: f64,
+    scale: f64,
+    group: &'static str,
+    overflow: &'static str,
+) -> Result<Roots> {
+    if !scale.is_finite() || !f.iter().all(|c| c.re.is_finite() && c.im.is_finite()) {
+        return Err(Error::Overflow { what: overflow });
+    }
+    if bound <= 1024.0 * f64::EPSILON * scale {
+        return Err(Error::Singular {
+            what: group,
+            measure: "eliminated equation F(theta)",
+            value: bound / scale,
+        });
+    }
+    let mut roots = Roots::default();
+    bracket_all(e, &mut roots);
+    Ok(roots)
 }
 
 /// Brackets every root of F on the circle (module docs) into `roots`.

@@ -40,23 +40,15 @@ pub(super) fn plan_triad(
     }
     let known = known_links(t, edges);
     let name = triad_name(t, link_names, "triad");
-    let at = |j: usize| Point2::new(linkage.joints[j].at[0], linkage.joints[j].at[1]);
-    let a = t.outer.map(at);
-    let b = t.inner.map(at);
-    let l = [0, 1, 2].map(|i| (b[i] - a[i]).norm());
-    let side = (b[1] - b[0]).norm();
-    if !(l.iter().all(|&x| x > 0.0) && side > 0.0) {
-        return Err(bad(
-            name,
-            "has a link of zero length in the reference pose (A_i = B_i, or B1 = B2)",
-        ));
-    }
-    let theta = direction(b[1] - b[0]);
-    let ternary = Frame {
-        origin: b[0],
-        angle: theta,
-    };
-    let b3 = ternary.local(b[2]);
+    let Drawn {
+        a,
+        b,
+        l,
+        side,
+        ternary,
+        b3,
+    } = drawn(t, linkage, &name, 0)?;
+    let theta = ternary.angle;
     let dims = TriadDims::new(l, side, b3.x, b3.y);
     let phi = [0, 1, 2].map(|i| direction(b[i] - a[i]));
     let drawn = TriadPose {
@@ -81,30 +73,17 @@ pub(super) fn plan_triad(
         };
     }
     let a_local = [0, 1, 2].map(|i| frames[known[i]].local(a[i]));
-    Ok(Group {
-        kind: GroupKind::Triad,
-        name,
-        links: [t.ternary, t.ternary],
-        joints: t.inner,
-        known: [known[0], known[2]],
-        branch: Branch::Plus,
-        a_local: a_local[0],
-        c_local: a_local[2],
-        lengths: [l[0], l[2]],
-        guide_offsets: [0.0; 2],
-        slide_angle: 0.0,
-        triad: Some(Box::new(TriadPlan {
-            links: [t.ternary, t.binary[0], t.binary[1], t.binary[2]],
-            outer: t.outer,
-            inner: t.inner,
-            known,
-            a_local,
-            dims,
-            reference,
-            slider: None,
-        })),
-        general: None,
-    })
+    let plan = TriadPlan {
+        links: [t.ternary, t.binary[0], t.binary[1], t.binary[2]],
+        outer: t.outer,
+        inner: t.inner,
+        known,
+        a_local,
+        dims,
+        reference,
+        slider: None,
+    };
+    Ok(triad_group(name, t, plan, [l[0], l[2]], 0.0))
 }
 
 /// Plans a triad whose first leg `t` slides (at its outer joint or at its inner one): the
@@ -120,9 +99,16 @@ fn plan_slider_triad(
 ) -> Result<Group> {
     let known = known_links(t, edges);
     let name = triad_name(t, link_names, "triad with a sliding pair");
-    let at = |j: usize| Point2::new(linkage.joints[j].at[0], linkage.joints[j].at[1]);
-    let a = t.outer.map(at);
-    let b = t.inner.map(at);
+    let Drawn {
+        a,
+        b,
+        l: [_, l1, l2],
+        side,
+        ternary,
+        b3,
+    } = drawn(t, linkage, &name, 1)?;
+    let l = [l1, l2];
+    let theta = ternary.angle;
     let outer_slides = edges[t.outer[0]].pair == Pair::Prismatic;
     let slide = if outer_slides { t.outer[0] } else { t.inner[0] };
     let d = match &linkage.joints[slide].kind {
@@ -137,20 +123,6 @@ fn plan_slider_triad(
         ));
     }
     let d = d / dn;
-    let l = [1, 2].map(|i| (b[i] - a[i]).norm());
-    let side = (b[1] - b[0]).norm();
-    if !(l.iter().all(|&x| x > 0.0) && side > 0.0) {
-        return Err(bad(
-            name,
-            "has a link of zero length in the reference pose (A_i = B_i, or B1 = B2)",
-        ));
-    }
-    let theta = direction(b[1] - b[0]);
-    let ternary = Frame {
-        origin: b[0],
-        angle: theta,
-    };
-    let b3 = ternary.local(b[2]);
     let slide_angle = direction(d);
     let pair = if outer_slides {
         SlidingPair::Outer {
@@ -201,29 +173,85 @@ fn plan_slider_triad(
     } else {
         0.0
     };
-    Ok(Group {
+    let plan = TriadPlan {
+        links: [t.ternary, t.binary[0], t.binary[1], t.binary[2]],
+        outer: t.outer,
+        inner: t.inner,
+        known,
+        a_local,
+        dims: TriadDims::new([1.0, l[0], l[1]], side, b3.x, b3.y),
+        reference,
+        slider: Some(SliderLeg { dims, guide_offset }),
+    };
+    Ok(triad_group(name, t, plan, l, guide_offset))
+}
+
+/// The plan's group of triad `t` with its triad `plan`: the fields every group carries
+/// filled from the first and last legs (known links, outer joints' local points), the legs'
+/// `lengths` and the first leg's guide offset.
+fn triad_group(
+    name: String,
+    t: &TriadFound,
+    plan: TriadPlan,
+    lengths: [f64; 2],
+    guide_offset: f64,
+) -> Group {
+    Group {
         kind: GroupKind::Triad,
         name,
         links: [t.ternary, t.ternary],
         joints: t.inner,
-        known: [known[0], known[2]],
+        known: [plan.known[0], plan.known[2]],
         branch: Branch::Plus,
-        a_local: a_local[0],
-        c_local: a_local[2],
-        lengths: l,
+        a_local: plan.a_local[0],
+        c_local: plan.a_local[2],
+        lengths,
         guide_offsets: [guide_offset, 0.0],
         slide_angle: 0.0,
-        triad: Some(Box::new(TriadPlan {
-            links: [t.ternary, t.binary[0], t.binary[1], t.binary[2]],
-            outer: t.outer,
-            inner: t.inner,
-            known,
-            a_local,
-            dims: TriadDims::new([1.0, l[0], l[1]], side, b3.x, b3.y),
-            reference,
-            slider: Some(SliderLeg { dims, guide_offset }),
-        })),
+        triad: Some(Box::new(plan)),
         general: None,
+    }
+}
+
+/// A triad as drawn: the outer joints A_i, the ternary link's joints B_i, the legs'
+/// lengths |B_i − A_i|, l_B1B2, and the ternary link's frame (at B1, along B1 → B2) with B3
+/// in it.
+struct Drawn {
+    a: [Point2<f64>; 3],
+    b: [Point2<f64>; 3],
+    l: [f64; 3],
+    side: f64,
+    ternary: Frame,
+    b3: Vector2<f64>,
+}
+
+/// Reads triad `t` off the description; the legs from `first_hinged` on are hinged at both
+/// ends, and neither they nor B1 B2 may have zero length (a sliding leg's A1 may lie on
+/// its guide through B1, or be B1 itself: its offset is then 0, not a length).
+fn drawn(t: &TriadFound, linkage: &Linkage, name: &str, first_hinged: usize) -> Result<Drawn> {
+    let at = |j: usize| Point2::new(linkage.joints[j].at[0], linkage.joints[j].at[1]);
+    let a = t.outer.map(at);
+    let b = t.inner.map(at);
+    let l = [0, 1, 2].map(|i| (b[i] - a[i]).norm());
+    let side = (b[1] - b[0]).norm();
+    if !(l[first_hinged..].iter().all(|&x| x > 0.0) && side > 0.0) {
+        return Err(bad(
+            name,
+            "has a link of zero length in the reference pose (A_i = B_i, or B1 = B2)",
+        ));
+    }
+    let ternary = Frame {
+        origin: b[0],
+        angle: direction(b[1] - b[0]),
+    };
+    let b3 = ternary.local(b[2]);
+    Ok(Drawn {
+        a,
+        b,
+        l,
+        side,
+        ternary,
+        b3,
     })
 }
 

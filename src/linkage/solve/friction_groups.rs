@@ -1,9 +1,11 @@
-//! Friction in the hinges of a triad or a general group in one position's solve: the
-//! group's frictionless block (the [`Triad`] closed form, or the general group's linear
-//! equations) as the block of [`kinetostatics::friction`]'s solve for any group of hinges,
-//! the relative rates from the solved kinematics. Each hinge's reaction keeps its friction
-//! couple (on its `on` link from its `by` link), and the outer hinges' reactions are added
-//! to the known links, as in the frictionless solve.
+//! Friction in the joints of a triad (hinged, or with a sliding pair) or a general group in
+//! one position's solve: the group's frictionless block (the [`Triad`] or [`SliderTriad`]
+//! closed form, or the general group's linear equations) as the block of
+//! [`kinetostatics::friction`]'s solve for any group of hinges and slides, the relative
+//! rates from the solved kinematics. Each hinge's reaction keeps its friction couple (on its
+//! `on` link from its `by` link), each slide's its couple K with the friction force in its
+//! force, and the outer joints' reactions are added to the known links, as in the
+//! frictionless solve.
 //!
 //! [`kinetostatics::friction`]: crate::kinetostatics::friction
 
