@@ -89,16 +89,8 @@ fn independent(plan: &Plan, a: &Analysis<'_>, rho: f64) -> (Vec<Vector2<f64>>, f
         let forces: Vec<_> = (0..joints.len())
             .map(|j| Vector2::new(x[2 * j], x[2 * j + 1]))
             .collect();
-        let next: Vec<f64> = forces.iter().map(|f| f.norm()).collect();
-        let change = next
-            .iter()
-            .zip(&pressure)
-            .map(|(p, q)| (p - q).abs())
-            .fold(0.0, f64::max);
-        let scale = next.iter().copied().fold(0.0, f64::max);
-        pressure = next;
         // With a contraction k ≪ 1, the error left is about k·change.
-        if change <= 1e-14 * scale && it > 0 {
+        if settled(&mut pressure, &forces) && it > 0 {
             return (forces, x[n - 1], it);
         }
     }
@@ -356,15 +348,7 @@ fn all_solutions(plan: &Plan, a: &Analysis<'_>, rho: f64, f: f64) -> (Vec<Whole>
                     None => Vector2::new(x[2 * j], x[2 * j + 1]),
                 })
                 .collect();
-            let next: Vec<f64> = forces.iter().map(|f| f.norm()).collect();
-            let change = next
-                .iter()
-                .zip(&pressure)
-                .map(|(p, q)| (p - q).abs())
-                .fold(0.0, f64::max);
-            let scale = next.iter().copied().fold(0.0, f64::max);
-            pressure = next;
-            if change <= 1e-14 * scale && it > 0 {
+            if settled(&mut pressure, &forces) && it > 0 {
                 let consistent = slide_ids
                     .iter()
                     .zip(&sigma)
@@ -454,6 +438,20 @@ const POSITIONS: usize = 72;
 
 /// Every bundled linkage of one input, with every joint's friction `f` (pins of radius
 /// 2 % of the linkage's size, ρ = f·r).
+/// One step of the fixed-point iterations on the joints' pressures: the new pressures |R_j|
+/// of `forces` replace `pressure`; whether they moved by at most 1e-14 of the largest.
+fn settled(pressure: &mut Vec<f64>, forces: &[Vector2<f64>]) -> bool {
+    let next: Vec<f64> = forces.iter().map(|f| f.norm()).collect();
+    let change = next
+        .iter()
+        .zip(pressure.iter())
+        .map(|(p, q)| (p - q).abs())
+        .fold(0.0, f64::max);
+    let scale = next.iter().copied().fold(0.0, f64::max);
+    *pressure = next;
+    change <= 1e-14 * scale
+}
+
 fn with_friction(l: &Linkage, f: f64) -> Linkage {
     let size = Plan::new(l).unwrap().size();
     let mut l = l.clone();
