@@ -288,6 +288,21 @@ fn meaningless_input_angles_are_refused() {
         "end of the first input's range",
     );
     assert!(grid([-max, max]).is_ok());
+    // A single solve too: the one-shot, a reused solver, the position and a two-input plan.
+    named(plan.analyse(Motion::fixed(1e300)).map(|_| ()), "input");
+    named(
+        plan.solver().kinematics(Motion::fixed(-next)).map(|_| ()),
+        "input",
+    );
+    named(plan.position(Motion::fixed(2e9)).map(|_| ()), "input");
+    assert!(plan.analyse(Motion::fixed(max)).is_ok());
+    let five = Plan::new(&bundled::five_bar_robot()).unwrap();
+    let two = |a: f64, b: f64| {
+        five.kinematics([Motion::fixed(a), Motion::fixed(b)])
+            .map(|_| ())
+    };
+    named(two(1.0, 1e200), "second input");
+    named(two(-1e200, 1.0), "input");
     // A range too wide for an f64 is still an overflow, before its ends are looked at.
     assert!(matches!(grid([-1e308, 1e308]), Err(Error::Overflow { .. })));
     let far = TwoInputCourse::laws(&[0.0], |_| Motion::fixed(0.0), |_| Motion::fixed(1e300));

@@ -9,6 +9,7 @@ use crate::error::{Error, Result};
 use crate::kinematics::{
     prp_dyad, rpp_dyad, rpr_dyad, rrp_dyad, rrr_dyad, LinkMotion, Motion, PointMotion,
 };
+use crate::linkage::inputs::check_input_coordinate;
 use crate::linkage::plan::{Chain, Group, GroupKind, InputPlan};
 use nalgebra::Vector2;
 
@@ -80,6 +81,8 @@ impl KinState {
             }
         };
         input.validate(["input", "input rate", "input acceleration"])?;
+        // Beyond ±10⁹ an input coordinate names no position (module `inputs`).
+        check_input_coordinate("input", input.value)?;
         // The input's ω² and ε times the linkage's size bound its points' accelerations: past
         // f64's range the motion overflows whatever the groups do.
         let bound = |m: &Motion| {
@@ -100,6 +103,7 @@ impl KinState {
                 "second input rate",
                 "second input acceleration",
             ])?;
+            check_input_coordinate("second input", m.value)?;
             bound(&m)?;
             let motion = input_motion(ip, m)?;
             self.set_link(ip.link(), motion);
