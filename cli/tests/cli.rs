@@ -596,6 +596,25 @@ fn dynamics_runs_a_machine_up_to_its_steady_state() {
     );
 }
 
+/// A motor of 10⁴ N·m against loads of tens of N·m runs the four-bar away from the 10 rad/s its
+/// step was sized for: the run-up is refused naming the step, with what to change, never
+/// judged from turns the step cannot resolve ("turns back", "a regime that repeats").
+/// A damped motor's idle speed a/b sizes the step: 300 − 0.3·|ω| (idle 1000 rad/s) runs up.
+#[test]
+fn a_run_up_far_faster_than_its_step_says_what_to_change() {
+    let r = tmm(&["dynamics", "four-bar", "--run-up", "--motor", "1e4,0"]);
+    assert_one_line_failure(&r, "four-bar");
+    assert!(
+        r.stderr.contains("step h") && r.stderr.contains("--speed"),
+        "{}",
+        r.stderr
+    );
+    assert!(!r.stderr.contains("turns back") && !r.stderr.contains("repeats"));
+    let r = tmm(&["dynamics", "four-bar", "--run-up", "--motor", "300,0.3"]);
+    assert_success(&r, "dynamics --motor 300,0.3");
+    assert!(r.stdout.contains("steady after"), "{}", r.stdout);
+}
+
 #[test]
 fn dynamics_writes_the_reduced_quantities_as_csv() {
     let out = std::env::temp_dir().join(format!("tmm-cli-test-{}-reduced.csv", std::process::id()));

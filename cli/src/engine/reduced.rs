@@ -183,14 +183,25 @@ impl Machine {
             .clone()
             .with_motor(0, Motor::Linear(LinearMotor { a: sense * a, b }))
             .map_err(f)?;
-        // 2000 steps a turn, and RK4 well inside its stability limit (hλ ≈ −2.785) for
-        // the motor's damping b/J_red.
+        // 2000 steps a turn at the speed the machine may reach: the speed asked, or a damped
+        // motor's idle speed a/b if that is higher (up to 100 times the speed asked, so that
+        // a run stays within its step budget), and RK4 well inside its stability limit
+        // (hλ ≈ −2.785) for the motor's damping b/J_red.
+        let idle = if b > 0.0 { a.abs() / b } else { 0.0 };
+        let top = speed.abs().max(idle.min(100.0 * speed.abs()));
         let j_min = rows.iter().map(|r| r.inertia).fold(f64::INFINITY, f64::min);
-        let h = (TAU / speed.abs() / 2000.0).min(0.5 * j_min / b.abs().max(f64::MIN_POSITIVE));
+        let h = (TAU / top / 2000.0).min(0.5 * j_min / b.abs().max(f64::MIN_POSITIVE));
         let mut opts = RunUpOptions::new(h);
         opts.record_every = 1;
         progress("run-up from rest (RK4)");
-        let r = machine.run_up(&Rk4, &opts).map_err(f)?;
+        let r = machine.run_up(&Rk4, &opts).map_err(|e| match e {
+            // A turn the step cannot resolve: the machine runs far faster than it was sized for.
+            tmm::Error::OutOfRange { name, .. } if name.starts_with("step h") => failure(&e).hint(
+                "the machine ran far faster than --speed: give --speed near the speed it runs \
+                 at, or a motor whose moment falls with speed (--motor a,b with b > 0)",
+            ),
+            e => f(e),
+        })?;
         Ok(RunUpReport {
             motor: (a, b),
             default_motor,
