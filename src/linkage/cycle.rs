@@ -132,11 +132,19 @@ impl Plan {
     /// when the crank turns fully, otherwise the two angles where it locks.
     ///
     /// # Errors
-    /// A slider input; the linkage's error at `phi` itself.
+    /// A slider input; [`Error::OutOfRange`] for |φ| beyond
+    /// [`MAX_INPUT_COORDINATE`](crate::linkage::MAX_INPUT_COORDINATE) (where the search's
+    /// steps would be lost in φ's rounding); the linkage's error at `phi` itself.
     pub fn lock_positions(&self, phi: f64) -> Result<Option<(f64, f64)>> {
         self.need_crank("lock positions")?;
+        crate::linkage::inputs::check_input_coordinate("phi", phi)?;
         let mut a = Kinematics::new(self);
-        assembly_range(phi, |x| a.solve(&[Motion::fixed(x)]))
+        // Searched about φ brought into (−π, π]: far out (φ ~ 10⁹ rad, where neighbouring
+        // angles are 10⁻⁷ apart) the bisections to 10⁻¹² rad could not be made about φ itself.
+        let base = crate::angle::normalize(phi);
+        let turns = phi - base;
+        let range = assembly_range(base, |x| a.solve(&[Motion::fixed(x)]))?;
+        Ok(range.map(|(lo, hi)| (lo + turns, hi + turns)))
     }
 
     /// The smallest transmission angle of group `g` over a turn of the crank, and the crank

@@ -732,3 +732,17 @@ fn extremes_do_not_depend_on_the_output_scale() {
         assert!((max.output.value / s - 1.0).abs() < 1e-15, "{s:e}: {max:?}");
     }
 }
+
+/// Equally spaced angles from any finite start: 10¹⁷ rad or f64::MAX as well as 0.3 give n
+/// distinct angles a step of 2π/n apart (the start's rounding used to swallow the steps).
+#[test]
+fn cycle_angles_from_a_huge_start_are_equally_spaced() {
+    for start in [0.3, 1e17, f64::MAX, -f64::MAX] {
+        let a = cycle_angles(4, start);
+        assert_eq!(a.len(), 4);
+        for k in 0..4 {
+            let d = normalize(a[(k + 1) % 4] - a[k]);
+            assert!((d - FRAC_PI_2).abs() < 1e-12, "{start:e}: {a:?}");
+        }
+    }
+}

@@ -288,6 +288,20 @@ fn meaningless_input_angles_are_refused() {
         "end of the first input's range",
     );
     assert!(grid([-max, max]).is_ok());
+    // The lock search too (its 720 steps would vanish in the rounding of 10¹⁷ rad and every
+    // sample "assemble"): the Peaucellier crank rocks, at its reference angle and at the bound.
+    let peaucellier = Plan::new(&bundled::peaucellier_lipkin()).unwrap();
+    let r = peaucellier.reference_input();
+    let (lo, hi) = peaucellier.lock_positions(r).unwrap().unwrap();
+    named(peaucellier.lock_positions(1e17).map(|_| ()), "phi");
+    let turns = ((max - r) / std::f64::consts::TAU).floor() * std::f64::consts::TAU;
+    let (lo2, hi2) = peaucellier.lock_positions(r + turns).unwrap().unwrap();
+    assert!(
+        (lo2 - turns - lo).abs() < 1e-6 && (hi2 - turns - hi).abs() < 1e-6,
+        "{lo} {hi} vs {} {}",
+        lo2 - turns,
+        hi2 - turns
+    );
     // A single solve too: the one-shot, a reused solver, the position and a two-input plan.
     named(plan.analyse(Motion::fixed(1e300)).map(|_| ()), "input");
     named(
