@@ -430,4 +430,7 @@ pub struct TwoInputRun {
     pub rows: Vec<[f64; 7]>,
     /// The work ∫ P dt by the trapezoidal rule, J.
     pub work: f64,
+    /// Why the run ended before its time, if it did: a resistance or a joint's friction that
+    /// holds the motion for good (the rows end there).
+    pub stopped: Option<String>,
 }

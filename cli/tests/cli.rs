@@ -1023,3 +1023,43 @@ fn long_runs_are_quiet_when_piped() {
         );
     }
 }
+
+/// The five-bar robot with friction in every joint (f = 0.3 on pins of 5 cm), crank 1 driven
+/// by 1 mN·m from rest: the joints' friction holds it, and the run says that it stopped and
+/// why (its drive against the friction), with the energy balance of the rows it made, instead
+/// of printing fewer rows than asked. Without friction the same drive runs to the end.
+#[test]
+fn a_two_input_run_that_friction_stops_says_so() {
+    let text = std::fs::read_to_string("../linkages/five-bar-robot.json")
+        .or_else(|_| std::fs::read_to_string("linkages/five-bar-robot.json"))
+        .expect("the bundled five-bar");
+    let text = text.replacen('{', "{\"friction\": {\"f\": 0.3, \"pin_radius\": 0.05},", 1);
+    let path =
+        std::env::temp_dir().join(format!("tmm-cli-test-{}-fb-fric.json", std::process::id()));
+    std::fs::write(&path, text).unwrap();
+    let p = path.to_string_lossy().into_owned();
+    let r = tmm(&[
+        "dynamics", &p, "--run", "0.5", "--motor", "0.001,0", "--motor2", "0,0",
+    ]);
+    assert_success(&r, "a run stopped by friction");
+    assert!(
+        r.stdout.contains("the motion stopped for good")
+            && r.stdout.contains("is below the resistance"),
+        "{}",
+        r.stdout
+    );
+    let r = tmm(&[
+        "dynamics",
+        "five-bar-robot",
+        "--run",
+        "0.5",
+        "--motor",
+        "0.001,0",
+        "--motor2",
+        "0,0",
+    ]);
+    assert_success(&r, "a run without friction");
+    assert!(!r.stdout.contains("stopped for good"), "{}", r.stdout);
+    assert!(r.stdout.contains("for 0.5000 s"), "{}", r.stdout);
+    std::fs::remove_file(&path).ok();
+}

@@ -6,7 +6,7 @@ use std::f64::consts::PI;
 
 use tmm::draw::{self, Diagram, Style};
 use tmm::dynamics::machines::LinearMotor;
-use tmm::dynamics::{run, LagrangeSystem as _, Rk4, RunOptions, State};
+use tmm::dynamics::{run, LagrangeSystem as _, Outcome, Rk4, RunOptions, State};
 use tmm::kinematics::{assembly_range, Motion};
 use tmm::linkage::dynamics::{LinkageSystem, Motor};
 use tmm::linkage::{Inputs, LinkId, Output, TwoInputCourse, TwoInputShape, WorkspaceOptions};
@@ -439,6 +439,11 @@ impl Machine {
             "a run of {t_end} s from rest (RK4, h = {h:.3e} s)"
         ));
         let r = run(&sys, &Rk4, State::at_rest(q0), &opts).map_err(f)?;
+        // A stop that holds for good ends the rows early: say so, not just print fewer rows.
+        let stopped = match &r.outcome {
+            Outcome::Stuck { t, loads, .. } => Some(loads.stalled(*t).to_string()),
+            _ => None,
+        };
         let tr = &r.trajectory;
         let (t, q, qd) = (tr.t(), tr.q(), tr.qd());
         let (kinetic, power, lost) = (tr.kinetic(), tr.power_applied(), tr.power_dissipated());
@@ -462,6 +467,7 @@ impl Machine {
             evaluations: r.evaluations,
             rows,
             work,
+            stopped,
         })
     }
 }

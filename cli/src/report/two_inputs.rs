@@ -114,6 +114,9 @@ fn run_text(o: &mut String, run: &TwoInputRun, units: [&str; 2]) {
         run.steps,
         run.evaluations
     );
+    if let Some(why) = &run.stopped {
+        let _ = writeln!(o, "the motion stopped for good: {why}");
+    }
     let _ = writeln!(
         o,
         "energy: kinetic energy gained {} J, work of the loads and motors {} J (trapezoids \
@@ -233,6 +236,12 @@ fn run_json(run: &TwoInputRun) -> String {
         ("steps", run.steps.to_string()),
         ("evaluations", run.evaluations.to_string()),
         ("work", json_number(run.work)),
+        (
+            "stopped",
+            run.stopped
+                .as_deref()
+                .map_or_else(|| "null".to_owned(), json_string),
+        ),
         ("t", column(0)),
         ("q1", column(1)),
         ("q2", column(2)),
