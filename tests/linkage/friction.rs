@@ -130,16 +130,8 @@ fn friction_in_triads_and_general_groups_agrees_with_the_whole_linkage_solve() {
                     independent(&plan, a, rho)
                 };
                 fixed += its;
-                for (j, r) in plan.joint_ids().zip(&forces) {
-                    gap = gap.max((a.reaction(j).unwrap().force - r).norm() / scale);
-                }
-                let mb = a.balance(0).unwrap().value;
-                gap = gap.max((mb - moment).abs() / (scale * plan.size()));
-                let lost = losses(&plan, a, rho, f);
-                assert!(lost > 0.0);
-                let (p_loads, abs) = loads_power(a);
-                let e = a.efficiency().unwrap();
-                energy = energy.max((e.drive + p_loads - lost).abs() / abs.max(e.drive.abs()));
+                let (g, e) = against(&plan, a, (&forces, moment), scale, (rho, f));
+                (gap, energy) = (gap.max(g), energy.max(e));
                 iterations += a.friction_iterations();
             }
             assert!(eq <= 1e-12, "{} f = {f}: equilibrium {eq:e}", base.name);
@@ -192,16 +184,8 @@ fn friction_in_a_triad_sliding_on_either_side_agrees_with_the_whole_linkage_solv
                 let (found, _) = all_solutions(&free, solver0.analyse(m).unwrap(), rho, f);
                 assert_eq!(found.len(), 1, "outer {outer}, f = {f}: {found:?}");
                 let (forces, moment) = &found[0];
-                for (j, r) in plan.joint_ids().zip(forces) {
-                    gap = gap.max((a.reaction(j).unwrap().force - r).norm() / scale);
-                }
-                let mb = a.balance(0).unwrap().value;
-                gap = gap.max((mb - moment).abs() / (scale * plan.size()));
-                let lost = losses(&plan, a, rho, f);
-                assert!(lost > 0.0);
-                let (p_loads, abs) = loads_power(a);
-                let e = a.efficiency().unwrap();
-                energy = energy.max((e.drive + p_loads - lost).abs() / abs.max(e.drive.abs()));
+                let (g, e) = against(&plan, a, (forces, *moment), scale, (rho, f));
+                (gap, energy) = (gap.max(g), energy.max(e));
             }
             println!(
                 "sliding triad ({}) f = {f}: eq {eq:.1e}, against the whole solve {gap:.1e}, \
@@ -471,6 +455,33 @@ fn inputs(plan: &Plan) -> Vec<Motion> {
 }
 
 /// The largest force among the applied loads, the reactions and the drive: the load scale.
+/// One position against an independent solve's reactions and balancing moment `reference`:
+/// the largest gap (of `scale`, and of scale·size for M_b), and the power balance's error,
+/// drive + loads − the joints' losses (which must be positive), relative to the largest power.
+fn against(
+    plan: &Plan,
+    a: &Analysis<'_>,
+    reference: (&[Vector2<f64>], f64),
+    scale: f64,
+    (rho, f): (f64, f64),
+) -> (f64, f64) {
+    let (forces, moment) = reference;
+    let mut gap = 0.0f64;
+    for (j, r) in plan.joint_ids().zip(forces) {
+        gap = gap.max((a.reaction(j).unwrap().force - r).norm() / scale);
+    }
+    let mb = a.balance(0).unwrap().value;
+    gap = gap.max((mb - moment).abs() / (scale * plan.size()));
+    let lost = losses(plan, a, rho, f);
+    assert!(lost > 0.0);
+    let (p_loads, abs) = loads_power(a);
+    let e = a.efficiency().unwrap();
+    (
+        gap,
+        (e.drive + p_loads - lost).abs() / abs.max(e.drive.abs()),
+    )
+}
+
 fn load_scale(plan: &Plan, a: &Analysis<'_>) -> f64 {
     let mut s = a.balance(0).unwrap().force.norm();
     for &(_, l) in a.applied_loads() {
