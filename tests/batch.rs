@@ -303,6 +303,53 @@ fn columns_of_the_wrong_length_are_an_error_naming_the_column() {
     ));
 }
 
+#[test]
+fn split_columns_solved_in_parts_equal_the_whole_batch_and_a_bad_mid_is_an_error() {
+    let mut rng = Rng(27);
+    let d = random_dims(&mut rng);
+    let phi = random_angles(&mut rng, 301);
+    let n = phi.len();
+    let mut whole = Positions::new(n);
+    four_bar_positions(&d, &CrankAngles::new(&phi), whole.columns_mut()).unwrap();
+    // Every mid from 0 to the length, the ends included (an empty part is a batch of none).
+    for mid in [0, 1, 150, 300, 301] {
+        let mut parts = Positions::new(n);
+        let (lo, hi) = parts.columns_mut().split_at(mid).unwrap();
+        assert_eq!((lo.b_x.len(), hi.status.len()), (mid, n - mid));
+        four_bar_positions(&d, &CrankAngles::new(&phi[..mid]), lo).unwrap();
+        four_bar_positions(&d, &CrankAngles::new(&phi[mid..]), hi).unwrap();
+        assert_eq!(parts.status, whole.status);
+        for (a, b) in [
+            (&parts.b_x, &whole.b_x),
+            (&parts.b_y, &whole.b_y),
+            (&parts.p_x, &whole.p_x),
+            (&parts.p_y, &whole.p_y),
+            (&parts.measure, &whole.measure),
+        ] {
+            assert!(a.iter().zip(b).all(|(x, y)| same(*x, *y)), "mid {mid}");
+        }
+    }
+    // Beyond the length: an error naming `mid` and its admissible range, not a panic.
+    let mut cols = Positions::new(n);
+    for mid in [302, usize::MAX] {
+        match cols.columns_mut().split_at(mid) {
+            Err(Error::OutOfRange {
+                name: "mid", max, ..
+            }) => assert_eq!(max, n as f64),
+            other => panic!("mid {mid}: {other:?}"),
+        }
+    }
+    // Columns of unequal lengths, which no mid splits alike: the short column is named.
+    cols.measure.truncate(100);
+    assert!(matches!(
+        cols.columns_mut().split_at(50),
+        Err(Error::OutOfRange {
+            name: "measure",
+            ..
+        })
+    ));
+}
+
 #[cfg(feature = "rayon")]
 #[test]
 fn the_parallel_batch_equals_the_serial_one() {

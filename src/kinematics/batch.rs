@@ -363,12 +363,40 @@ impl<'a> PositionsMut<'a> {
         ([b_x, b_y, p_x, p_y, measure], status)
     }
 
-    /// Splits the columns at `mid` (the first part has lanes `0..mid`).
+    /// Splits the columns at `mid` (the first part has lanes `0..mid`, the second the rest),
+    /// as [`slice::split_at_mut`] does each column; `mid` equal to the length gives an empty
+    /// second part.
     ///
-    /// # Panics
-    /// When `mid` exceeds a column's length.
-    #[must_use]
-    pub fn split_at(self, mid: usize) -> (PositionsMut<'a>, PositionsMut<'a>) {
+    /// # Errors
+    /// [`Error::OutOfRange`] naming the column whose length differs from `b_x`'s, or `"mid"`
+    /// (admissible `[0, len]`) for a `mid` beyond the columns' length: the columns come back
+    /// unsplit only through the error's absence, never by a panic.
+    ///
+    /// # Examples
+    /// ```
+    /// use tmm::kinematics::batch::Positions;
+    /// let mut cols = Positions::new(10);
+    /// let (lo, hi) = cols.columns_mut().split_at(4)?;
+    /// assert_eq!((lo.b_x.len(), hi.status.len()), (4, 6));
+    /// assert!(cols.columns_mut().split_at(11).is_err());
+    /// # Ok::<(), tmm::Error>(())
+    /// ```
+    pub fn split_at(self, mid: usize) -> Result<(PositionsMut<'a>, PositionsMut<'a>)> {
+        let n = self.len()?;
+        if mid > n {
+            return Err(Error::OutOfRange {
+                name: "mid",
+                value: mid as f64,
+                min: 0.0,
+                max: n as f64,
+                ends: crate::Ends::Closed,
+            });
+        }
+        Ok(self.split(mid))
+    }
+
+    /// [`split_at`](Self::split_at) at a `mid` known to be within every column.
+    fn split(self, mid: usize) -> (PositionsMut<'a>, PositionsMut<'a>) {
         let (b_x, b_x2) = self.b_x.split_at_mut(mid);
         let (b_y, b_y2) = self.b_y.split_at_mut(mid);
         let (p_x, p_x2) = self.p_x.split_at_mut(mid);
@@ -1250,7 +1278,8 @@ fn par_range(
         return positions_of(d, angles, start, end, out);
     }
     let mid = n / 2;
-    let (lo, hi) = out.split_at(mid);
+    // Within every column: the caller checked them all to be `n` long, and mid < n.
+    let (lo, hi) = out.split(mid);
     let (a, b) = rayon::join(
         || par_range(d, angles, start, start + mid, lo),
         || par_range(d, angles, start + mid, end, hi),
