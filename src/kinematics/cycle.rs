@@ -44,7 +44,7 @@ pub fn try_cycle_angles(n: usize, start: f64) -> Result<Vec<f64>> {
     finite("start angle", start)?;
     check_positions(n)?;
     let step = TAU / n as f64;
-    // From the start brought into (−π, π] first: at a start of 10¹⁷ rad and beyond, the
+    // From the start brought into [0, 2π) first: at a start of 10¹⁷ rad and beyond, the
     // steps would be lost in the start's rounding and every angle the same.
     let start = normalize(start);
     Ok((0..n).map(|k| normalize(start + k as f64 * step)).collect())

@@ -139,7 +139,7 @@ impl Plan {
         self.need_crank("lock positions")?;
         crate::linkage::inputs::check_input_coordinate("phi", phi)?;
         let mut a = Kinematics::new(self);
-        // Searched about φ brought into (−π, π]: far out (φ ~ 10⁹ rad, where neighbouring
+        // Searched about φ brought into [0, 2π): far out (φ ~ 10⁹ rad, where neighbouring
         // angles are 10⁻⁷ apart) the bisections to 10⁻¹² rad could not be made about φ itself.
         let base = crate::angle::normalize(phi);
         let turns = phi - base;
