@@ -500,50 +500,100 @@ fn inverse3(k: &Matrix3<f64>) -> (Matrix3<f64>, f64) {
     (adj * (1.0 / det), det)
 }
 
+/// The rates of a tracked mode, before they are laid out as a [`TriadState`].
+struct FastRates {
+    v1: Vector2<f64>,
+    omega_t: f64,
+    a1: Vector2<f64>,
+    eps_t: f64,
+    vb: [Vector2<f64>; 3],
+    ab: [Vector2<f64>; 3],
+    omega: [f64; 3],
+    eps: [f64; 3],
+    det: f64,
+}
+
 /// The velocities and accelerations of a tracked mode, with every check folded into one
 /// test at the end (`None` wherever [`triad_rates`] could fail, and near its threshold).
+/// Small on purpose: the caller lays the state out in its return value (no copy of it).
 #[inline]
-fn rates_fast(a: &[PointMotion; 3], dims: &TriadDims, t: &Tracked) -> Option<TriadState> {
+fn rates_fast(a: &[PointMotion; 3], dims: &TriadDims, t: &Tracked) -> Option<FastRates> {
     let b = t.b;
     let r = [Vector2::zeros(), b[1] - b[0], b[2] - b[0]];
-    let i_len = t.len.map(|l| 1.0 / l);
-    let u = [0, 1, 2].map(|i| t.leg[i] * i_len[i]);
+    let i_len = [1.0 / t.len[0], 1.0 / t.len[1], 1.0 / t.len[2]];
+    let u = [
+        t.leg[0] * i_len[0],
+        t.leg[1] * i_len[1],
+        t.leg[2] * i_len[2],
+    ];
     let (k_inv, det_k) = inverse3(&velocity_matrix(u, r));
     let det = det_k / dims.ternary_size();
     let vel = k_inv * Vector3::new(u[0].dot(&a[0].v), u[1].dot(&a[1].v), u[2].dot(&a[2].v));
     let (v1, omega_t) = (Vector2::new(vel.x, vel.y), vel.z);
     let vb = [v1, v1 + omega_t * perp(r[1]), v1 + omega_t * perp(r[2])];
-    let omega = [0, 1, 2].map(|i| perp(u[i]).dot(&(vb[i] - a[i].v)) * i_len[i]);
+    let omega = [
+        perp(u[0]).dot(&(vb[0] - a[0].v)) * i_len[0],
+        perp(u[1]).dot(&(vb[1] - a[1].v)) * i_len[1],
+        perp(u[2]).dot(&(vb[2] - a[2].v)) * i_len[2],
+    ];
     let w2 = omega_t * omega_t;
-    let acc = k_inv
-        * Vector3::from_fn(|i, _| {
-            u[i].dot(&a[i].a) - t.len[i] * omega[i] * omega[i] + w2 * r[i].dot(&u[i])
-        });
+    let centripetal =
+        |i: usize| u[i].dot(&a[i].a) - t.len[i] * omega[i] * omega[i] + w2 * r[i].dot(&u[i]);
+    let acc = k_inv * Vector3::new(centripetal(0), centripetal(1), centripetal(2));
     let (a1, eps_t) = (Vector2::new(acc.x, acc.y), acc.z);
-    let ab = [0, 1, 2].map(|i| a1 + eps_t * perp(r[i]) - w2 * r[i]);
-    let eps = [0, 1, 2].map(|i| perp(u[i]).dot(&(ab[i] - a[i].a)) * i_len[i]);
+    let ab = [
+        a1,
+        a1 + eps_t * perp(r[1]) - w2 * r[1],
+        a1 + eps_t * perp(r[2]) - w2 * r[2],
+    ];
+    let eps = [
+        perp(u[0]).dot(&(ab[0] - a[0].a)) * i_len[0],
+        perp(u[1]).dot(&(ab[1] - a[1].a)) * i_len[1],
+        perp(u[2]).dot(&(ab[2] - a[2].a)) * i_len[2],
+    ];
     let ok = super::rrr::all_finite([
         a[0].v.x, a[0].v.y, a[1].v.x, a[1].v.y, a[2].v.x, a[2].v.y, a[0].a.x, a[0].a.y, a[1].a.x,
         a[1].a.y, a[2].a.x, a[2].a.y, vel.x, vel.y, vel.z, acc.x, acc.y, acc.z, omega[0], omega[1],
         omega[2], eps[0], eps[1], eps[2], det,
     ]) & (det.abs() > 2.0 * SINGULAR_TRIAD);
-    let ternary = LinkMotion {
-        origin: PointMotion::new(b[0], v1, a1),
-        angle: direction(Vector2::new(t.z.re, t.z.im)),
-        omega: omega_t,
-        epsilon: eps_t,
-    };
-    ok.then(|| TriadState {
-        b: [0, 1, 2].map(|i| PointMotion::new(b[i], vb[i], ab[i])),
-        ternary,
-        binary: [0, 1, 2].map(|i| LinkMotion {
-            origin: a[i],
-            angle: direction(t.leg[i]),
-            omega: omega[i],
-            epsilon: eps[i],
-        }),
+    ok.then_some(FastRates {
+        v1,
+        omega_t,
+        a1,
+        eps_t,
+        vb,
+        ab,
+        omega,
+        eps,
         det,
     })
+}
+
+/// The state of a tracked mode from its rates, written out field by field so that it is
+/// built where it is returned.
+#[inline(always)]
+fn fast_state(a: &[PointMotion; 3], t: &Tracked, q: &FastRates) -> TriadState {
+    let binary = |i: usize| LinkMotion {
+        origin: a[i],
+        angle: direction(t.leg[i]),
+        omega: q.omega[i],
+        epsilon: q.eps[i],
+    };
+    TriadState {
+        b: [
+            PointMotion::new(t.b[0], q.vb[0], q.ab[0]),
+            PointMotion::new(t.b[1], q.vb[1], q.ab[1]),
+            PointMotion::new(t.b[2], q.vb[2], q.ab[2]),
+        ],
+        ternary: LinkMotion {
+            origin: PointMotion::new(t.b[0], q.v1, q.a1),
+            angle: direction(Vector2::new(t.z.re, t.z.im)),
+            omega: q.omega_t,
+            epsilon: q.eps_t,
+        },
+        binary: [binary(0), binary(1), binary(2)],
+        det: q.det,
+    }
 }
 
 /// Positions, velocities and accelerations of a triad, in the mode nearest `previous`.
@@ -597,12 +647,11 @@ pub fn triad(a: [PointMotion; 3], dims: &TriadDims, previous: &TriadPose) -> Res
         & (dims.l[2] > 0.0)
         & (dims.l_b1b2 > 0.0)
         & super::rrr::all_finite([dims.l[0], dims.l[1], dims.l[2], dims.l_b1b2]);
-    if let Some(s) = valid
-        .then(|| track(p, dims, previous))
-        .flatten()
-        .and_then(|t| rates_fast(&a, dims, &t))
+    if valid
+        && let Some(t) = track(p, dims, previous)
+        && let Some(q) = rates_fast(&a, dims, &t)
     {
-        return Ok(s);
+        return Ok(fast_state(&a, &t, &q));
     }
     triad_checked(a, dims, previous)
 }
@@ -755,7 +804,7 @@ struct Eliminated {
     /// D = e0 + 2·Re(e1·z).
     e0: f64,
     e1: C,
-    /// F's Fourier coefficients: F = f[0] + 2·Re(Σ_{k=1..3} f[k]·z^k), f[0] real.
+    /// F's Fourier coefficients: F = `f[0] + 2·Re(Σ_{k=1..3} f[k]·z^k)`, `f[0]` real.
     f: [C; 4],
     /// |e0| + 2|e1|, the size of D.
     dscale: f64,

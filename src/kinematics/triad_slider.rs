@@ -3,7 +3,7 @@
 //! pair: link 1 is a slider on a guide of the known link, hinged to the ternary link at B1) or
 //! to the ternary link (the *inner* pair: link 1 is hinged to the known link at A1 and slides
 //! along a guide of the ternary link through B1). The other two binary links are hinged at
-//! both ends, as in the [`triad`](super::triad).
+//! both ends, as in the [`triad`](mod@super::triad).
 //!
 //! # Positions: one equation in one angle, every root bracketed
 //! With the ternary link's angle θ fixed (z = e^{iθ}; the ternary link's frame has its origin
@@ -507,7 +507,7 @@ struct Equation {
     a: [Point2<f64>; 2],
     beta: [Vector2<f64>; 3],
     l: [f64; 2],
-    /// F's Fourier coefficients: F = f[0] + 2·Re(Σ_{k=1..6} f[k]·z^k).
+    /// F's Fourier coefficients: F = `f[0] + 2·Re(Σ_{k=1..6} f[k]·z^k)`.
     f: [C; DEGREE + 1],
     /// F's degree: 4 (outer pair) or 6 (inner); the coefficients above it are zero.
     degree: usize,

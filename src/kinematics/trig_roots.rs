@@ -1,6 +1,6 @@
 //! Every root of a real trigonometric polynomial on the circle, bracketed with a certificate:
 //! the scan shared by the groups of the 3rd class, whose positions reduce to one such
-//! equation F(θ) = 0 in the ternary link's angle (see [`triad`](super::triad) for the rule of
+//! equation F(θ) = 0 in the ternary link's angle (see [`triad`](mod@super::triad) for the rule of
 //! the cells: excluded, monotone, halved, or a near-tangency below a width of 2⁻²⁴ rad).
 //!
 //! Inside a cell the angle is parametrised by the half-angle tangent t about the cell's

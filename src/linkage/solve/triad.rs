@@ -4,7 +4,7 @@
 //! # Which assembly mode
 //! A triad has up to six assembly modes and no sign that tells them apart. Every solve takes
 //! the mode nearest the plan's reference mode (the drawn pose's), by
-//! [`triad`](crate::kinematics::triad) started from it: Newton's method from the reference
+//! [`triad`] started from it: Newton's method from the reference
 //! angle, accepted when certified to reach the mode nearest the reference, else the full
 //! bracket of every mode and the nearest. So a solve is a pure function of the inputs — the
 //! same position gives the same bits whatever was solved before, on any thread, by a
