@@ -231,3 +231,108 @@ fn a_slider_carries_its_crank_on_through_both_dead_centres() {
         other => panic!("{other:?}"),
     }
 }
+
+/// A six-bar with a triad whose first leg's outer joint A1 rides a crank (r = 0.3 about
+/// O = A1* + (0, 0.3)), drawn at φ = −π/2 − 0.05, built so that at φ = −π/2 (A1 = A1*) the
+/// triad sits exactly at a branch point: the pose B1 = (0, 0), B2 = (1, 0), B3 = (0.4, 0.8)
+/// with each leg A_i B_i along the line from B_i through P = (0.5, 2), so the three legs'
+/// lines meet at P (det K = 0) and two of its modes merge there. The drawn pose is the mode
+/// nearest that branch pose at the drawn angle (found by `triad_modes`).
+fn triad_at_a_branch_point() -> (Linkage, [nalgebra::Point2<f64>; 3]) {
+    use nalgebra::Point2;
+    use tmm::kinematics::{triad_modes, TriadDims, TriadPose};
+    let b = [
+        Point2::new(0.0, 0.0),
+        Point2::new(1.0, 0.0),
+        Point2::new(0.4, 0.8),
+    ];
+    let p = Point2::new(0.5, 2.0);
+    let l = [1.1, 0.9, 0.7];
+    let a: [Point2<f64>; 3] = std::array::from_fn(|i| b[i] - l[i] * (b[i] - p).normalize());
+    let (r, o) = (0.3, a[0] + nalgebra::Vector2::new(0.0, 0.3));
+    let phi = -FRAC_PI_2 - 0.05;
+    let a1 = o + r * nalgebra::Vector2::new(phi.cos(), phi.sin());
+    let dims = TriadDims::new(l, 1.0, 0.4, 0.8);
+    let branch = TriadPose {
+        b,
+        theta: 0.0,
+        phi: [0.0; 3],
+        det: 0.0,
+    };
+    let drawn = *triad_modes([a1, a[1], a[2]], &dims)
+        .unwrap()
+        .nearest(&branch);
+    let at = |q: Point2<f64>| [q.x, q.y];
+    let linkage = Linkage {
+        name: "triad at a branch point".into(),
+        joints: vec![
+            Joint::revolute("O", at(o)),
+            Joint::revolute("A1", at(a1)),
+            Joint::revolute("A2", at(a[1])),
+            Joint::revolute("A3", at(a[2])),
+            Joint::revolute("B1", at(drawn.b[0])),
+            Joint::revolute("B2", at(drawn.b[1])),
+            Joint::revolute("B3", at(drawn.b[2])),
+        ],
+        links: vec![
+            Link::new("frame", &["O", "A2", "A3"]),
+            Link::new("crank", &["O", "A1"]),
+            Link::new("leg 1", &["A1", "B1"]),
+            Link::new("leg 2", &["A2", "B2"]),
+            Link::new("leg 3", &["A3", "B3"]),
+            Link::new("ternary", &["B1", "B2", "B3"]),
+        ],
+        ..Linkage::default()
+    };
+    (linkage, b)
+}
+
+/// At the triad's branch point the full kinematics fail, `Plan::position` places the triad
+/// (every joint closed to 1e-12 of the size, the joints at the constructed branch pose to
+/// the accuracy of a double root, √ε of the size) and returns its rates as the vanished
+/// measure det(velocity system)/L_T; just before it, where the two merging modes are still
+/// apart, the full kinematics hold and the determinant shrinks as the square root of the
+/// distance to the branch point (a double root: det ∝ √Δφ).
+#[test]
+fn the_position_of_a_triad_at_a_branch_point_with_the_rates_singular() {
+    let (linkage, b) = triad_at_a_branch_point();
+    let plan = Plan::new(&linkage).unwrap();
+    let size = plan.size();
+    let input = Motion::new(-FRAC_PI_2, 1.0, 0.0);
+    assert!(plan.kinematics(input).is_err());
+    let at = plan.position(input).unwrap();
+    let k = at.pose();
+    let closure = (0..plan.joint_names().len())
+        .map(|j| {
+            let [l0, l1] = plan.joint_links(j).unwrap();
+            (k.joint_on(j, l0).unwrap().p - k.joint_on(j, l1).unwrap().p).norm()
+        })
+        .fold(0.0, f64::max);
+    let off = ["B1", "B2", "B3"]
+        .iter()
+        .zip(b)
+        .map(|(name, q)| (k.joint(*name).unwrap().p - q).norm())
+        .fold(0.0, f64::max);
+    println!("triad branch point: closure {closure:.1e}, off the branch pose {off:.1e}");
+    assert!(closure <= 1e-12 * size, "{closure:e}");
+    assert!(off <= 1e-7 * size, "{off:e}");
+    let Err(Error::In { source, .. }) = at.rates() else {
+        panic!("rates at a branch point: {:?}", at.rates().map(|_| ()))
+    };
+    let Error::Singular { measure, value, .. } = *source else {
+        panic!("{source:?}")
+    };
+    assert_eq!(measure, "det(velocity system)/L_T");
+    assert!(value.abs() <= 1e-12, "{value:e}");
+    // Approaching the branch point: det ∝ √Δφ (a quadrupled distance doubles it).
+    let det = |d: f64| {
+        plan.kinematics(Motion::new(-FRAC_PI_2 - d, 1.0, 0.0))
+            .unwrap()
+            .group_determinants()[0]
+            .abs()
+    };
+    for d in [1e-5, 1e-7] {
+        let ratio = det(4.0 * d) / det(d);
+        assert!((ratio - 2.0).abs() < 0.01, "Δφ {d:e}: ratio {ratio}");
+    }
+}

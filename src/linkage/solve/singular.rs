@@ -10,8 +10,11 @@
 //! tangent point on a line). The RRR and RRP dyads are covered so. The other dyads have no
 //! position where their rates fail: an RPR's slider hinge on the pivot of its guide leaves
 //! the guide's direction free, and a PRP's or RPP's parallel guides meet nowhere or all
-//! along a line; they report their error as before. A triad or a general group is placed
-//! only where its equations are regular.
+//! along a line; they report their error as before. A triad (revolute joints) at a branch
+//! point, where two of its modes merge and the lines of its binary links meet at one point,
+//! is placed by every mode of its certified bracket (which finds the double root of its
+//! eliminated equation as one mode) and the one nearest its reference mode. A triad with a
+//! sliding pair or a general group is placed only where its equations are regular.
 //!
 //! [`Plan::through`] gives the plan that moves on through a dead centre on the dyad's other
 //! mode, as a mechanism carried by its inertia does.
@@ -64,7 +67,7 @@ impl Plan {
     /// # Errors
     /// As [`kinematics`](Self::kinematics), for a position that does not exist (a group that
     /// cannot be assembled by more than rounding) or whose group is neither an RRR nor an RRP
-    /// dyad.
+    /// dyad nor a triad with revolute joints.
     ///
     /// # Examples
     /// A four-bar stretched straight: at φ = 0 its coupler (2 m) and rocker (1 m) lie along
@@ -157,15 +160,19 @@ impl KinState {
     /// Group `g` placed by its position problem alone, at rest; `Ok` with the error its rates
     /// have there (a vanished determinant).
     fn position_only(&mut self, g: usize, group: &Group) -> Result<Error> {
+        if let (Some(t), None) = (&group.triad, &group.general) {
+            return self.triad_position_only(g, group, t);
+        }
         if group.kind == GroupKind::Rrp && group.triad.is_none() && group.general.is_none() {
             return self.rrp_position_only(g, group);
         }
         if group.kind != GroupKind::Rrr || group.triad.is_some() || group.general.is_some() {
             return Err(Error::Description {
                 item: group.name.clone(),
-                problem: "its rates fail here, and only an RRR or RRP dyad is placed where \
+                problem:
+                    "its rates fail here, and only an RRR or RRP dyad or a triad is placed where \
                           they do (another dyad has no position there)"
-                    .to_owned(),
+                        .to_owned(),
             });
         }
         let [l2, l3] = group.links;

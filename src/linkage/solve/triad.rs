@@ -21,7 +21,7 @@ use crate::angle::cross;
 use crate::angle::perp;
 use crate::error::Result;
 use crate::kinematics::{slider_triad, slider_triad_rates, Guide, Motion, SlidingPair};
-use crate::kinematics::{triad, triad_rates, LinkMotion, TriadState};
+use crate::kinematics::{triad, triad_modes, triad_rates, LinkMotion, PointMotion, TriadState};
 use crate::kinetostatics::{SlideAt, SliderTriad, Triad};
 use crate::linkage::plan::{Group, TriadPlan};
 use crate::linkage::plan_triad::SliderLeg;
@@ -87,6 +87,59 @@ impl KinState {
 }
 
 impl KinState {
+    /// Triad `g` placed where its rates fail (a branch point: two modes merge, and the lines
+    /// of its three binary links meet at one point), at rest: every mode by the certified
+    /// bracket, which finds a double root of the eliminated equation as one mode, and the
+    /// one nearest the reference mode (the rule of every solve); `Ok` with the error its
+    /// rates have there. `Err` when the rates do not fail there (the failure was another) or
+    /// for a triad with a sliding pair (not placed so).
+    pub(super) fn triad_position_only(
+        &mut self,
+        g: usize,
+        group: &Group,
+        t: &TriadPlan,
+    ) -> Result<crate::Error> {
+        if t.slider.is_some() {
+            return Err(crate::Error::Description {
+                item: group.name.clone(),
+                problem: "its rates fail here, and a triad with a sliding pair is placed only \
+                          where they do not"
+                    .to_owned(),
+            });
+        }
+        let a = [0, 1, 2].map(|i| self.at(t.known[i], t.a_local[i]));
+        let modes = triad_modes(a.map(|m| m.p), &t.dims).map_err(within(&group.name))?;
+        let pose = *modes.nearest(&t.reference);
+        let at_rest = a.map(|m| PointMotion::fixed(m.p));
+        let singular = match triad_rates(at_rest, &t.dims, &pose) {
+            Err(e @ crate::Error::Singular { .. }) => e,
+            _ => {
+                return Err(crate::Error::Description {
+                    item: group.name.clone(),
+                    problem: "its rates do not vanish here".to_owned(),
+                })
+            }
+        };
+        let link = |origin: Point2<f64>, angle: f64| LinkMotion {
+            origin: PointMotion::fixed(origin),
+            angle,
+            omega: 0.0,
+            epsilon: 0.0,
+        };
+        let s = TriadState {
+            b: pose.b.map(PointMotion::fixed),
+            ternary: link(pose.b[0], pose.theta),
+            binary: [0, 1, 2].map(|i| link(at_rest[i].p, pose.phi[i])),
+            det: pose.det,
+        };
+        for (k, m) in triad_links(t, &s) {
+            self.set_link(k, m);
+        }
+        self.dets[g] = pose.det;
+        self.triads[g] = Some(pose);
+        Ok(within(&group.name)(singular))
+    }
+
     /// The sliding leg's known part: the known link's guide (outer pair), or A1 (inner pair,
     /// the guide's angle unused).
     fn first_leg(&self, t: &TriadPlan, leg: &SliderLeg) -> Guide {
