@@ -15,51 +15,29 @@
 //!   `TMM_BATCH=rayon cargo bench -p tmm-bench --bench batch --features rayon -- batch_rayon`.
 
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion, Throughput};
-use nalgebra::{Point2, Vector2};
 use std::hint::black_box;
 use std::time::Duration;
 use tmm::kinematics::batch::{
-    coupler_point, four_bar_motions, four_bar_positions, four_bars_at, CrankAngles, FourBarColumns,
-    FourBarDims, Positions, Rates,
+    four_bar_motions, four_bar_positions, four_bars_at, CrankAngles, FourBarColumns, Positions,
+    Rates,
 };
-use tmm::kinematics::{crank, rrr_dyad, Branch, Motion, PointMotion};
 
 #[path = "common/yardstick.rs"]
 mod yardstick;
 
 #[path = "common/four_bar.rs"]
 mod hand_four_bar;
-use hand_four_bar::{four_bar_by_hand, seeded_angles, C, L1, L2, L3};
+use hand_four_bar::{four_bar_by_hand, seeded_angles};
 
-fn dims() -> FourBarDims {
-    FourBarDims {
-        o: Point2::origin(),
-        c: C,
-        l_oa: L1,
-        l_ab: L2,
-        l_cb: L3,
-        branch: Branch::Plus,
-        coupler: Vector2::new(0.2, 0.1),
-    }
-}
+#[path = "common/four_bar_setup.rs"]
+mod four_bar_setup;
+use four_bar_setup::{bench_dims as dims, scalar};
 
 /// The hand kernel over `angles`, every one of its numbers consumed.
 fn hand(angles: &[f64]) -> f64 {
     let mut acc = 0.0;
     for &phi in angles {
         acc += hand_four_bar::fold(four_bar_by_hand(black_box(phi), 10.0, 1.0));
-    }
-    acc
-}
-
-/// The scalar blocks, one position at a time: B and the coupler point.
-fn scalar(d: &FourBarDims, angles: &[f64]) -> f64 {
-    let uv = d.coupler_uv();
-    let mut acc = 0.0;
-    for &phi in angles {
-        let a = crank(d.o, d.l_oa, Motion::fixed(black_box(phi))).unwrap().a;
-        let r = rrr_dyad(a, PointMotion::fixed(d.c), d.l_ab, d.l_cb, d.branch).unwrap();
-        acc += coupler_point(a.p, r.b.p, uv).y;
     }
     acc
 }
@@ -229,7 +207,7 @@ fn speed_up<A, B>(
 /// A population of `count` candidate four-bars near `dims()` (some that cannot be assembled
 /// over the whole turn), seeded.
 #[cfg(feature = "rayon")]
-fn population(count: usize) -> Vec<FourBarDims> {
+fn population(count: usize) -> Vec<tmm::kinematics::batch::FourBarDims> {
     seeded_angles(count)
         .iter()
         .enumerate()

@@ -89,8 +89,8 @@ pub use freudenstein::{
     FunctionRequirement, Spacing, StructuralError,
 };
 pub use path::{
-    path_generator, slider_crank_path_generator, PathDesign, PathOptions, PathRequirement,
-    Progress, Timing,
+    path_generator, six_bar_path_generator, slider_crank_path_generator, PathDesign, PathOptions,
+    PathRequirement, Progress, Timing,
 };
 pub use quick_return::{
     crank_rocker, shaper, slider_crank, CrankRockerRequirement, FrameChoice, OffsetChoice,

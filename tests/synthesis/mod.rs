@@ -16,6 +16,7 @@ mod closed_form;
 mod hostile_requirements;
 mod path;
 mod pictures;
+mod six_bar;
 
 fn rel(a: f64, b: f64) -> f64 {
     (a - b).abs() / b.abs().max(1e-300)

@@ -25,7 +25,10 @@
 //! ends as soon as enough distinct designs meet the points to the tolerance.
 
 mod shape;
+mod six_bar;
 mod slider;
+
+pub use six_bar::six_bar_path_generator;
 
 use super::four_bar::FourBar;
 use super::{Options, Synthesis, MAX_LINK_RATIO};
