@@ -1,5 +1,5 @@
 //! One-shot solves hand their buffers on from a dropped result to the next solve
-//! (`solve/spare.rs`: the thread's last box, or the plan's spares). Whatever the order in which
+//! (`solve/spare.rs`: the plan's spares). Whatever the order in which
 //! plans of different sizes (and a clone of one) are solved, with results kept alive or
 //! dropped, on one thread or several, each result is bit for bit that of a fresh solver.
 

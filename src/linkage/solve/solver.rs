@@ -79,12 +79,14 @@ impl Plan {
         }
     }
 
-    /// Analyses one position, the one-shot convenience. Its buffers are one box, the one a
-    /// dropped analysis of this plan gave back (allocated when there is none), so a loop of
-    /// `plan.analyse` allocates nothing after its first call, and the result moves a pointer
-    /// to its buffers, not the buffers. A reused [`solver`](Self::solver) or
-    /// [`cycle`](Self::cycle) does the same work without giving the box back at every
-    /// position.
+    /// Analyses one position, the one-shot convenience. Its buffers are one box, taken from
+    /// the plan's spares: the plan keeps up to eight boxes that dropped results of it gave
+    /// back (a box is allocated when none is free), held by the plan alone (no thread, nothing
+    /// global, keeps one; a clone of the plan starts with none) and reset when taken, so the
+    /// result is bit for bit that of fresh buffers. A loop of `plan.analyse` thus allocates
+    /// nothing after its first call, and the result moves a pointer to its buffers, not the
+    /// buffers. A reused [`solver`](Self::solver) or [`cycle`](Self::cycle) does the same
+    /// work with one box and no exchange at every position: the fast path.
     ///
     /// # Errors
     /// As [`Solver::analyse`].

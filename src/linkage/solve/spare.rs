@@ -11,18 +11,16 @@
 //! loop of them allocates nothing after its first call, a result that is dropped gives its
 //! box back to its plan ([`Spares`]) and the next one-shot solve of that plan takes it. The
 //! design, and what it does not do:
-//! - each thread keeps the box it gave back last, with the plan's number (every plan, and
-//!   every clone of one, gets its own number when it is made): a loop of one-shot solves on
-//!   one thread hands one box from each call to the next with no lock and no atomic
-//!   operation. A box given back while the thread holds one of the same plan goes to the
-//!   plan's own spares, under a lock that is tried once and never waited on (a thread that
-//!   finds it taken allocates, or frees, as if there were no spares), so threads sharing a
-//!   plan never block each other;
-//! - it keeps little: at most [`KEEP`] boxes per plan, freed with the plan, and one box per
-//!   thread (freed when the thread gives back a box of another plan, or ends);
+//! - the spares are the plan's own, and nothing else's: no thread keeps a box, nothing is
+//!   global. Taking and giving back try the plan's lock once and never wait on it (a thread
+//!   that finds it taken allocates, or frees, as if there were no spares), and no other code
+//!   runs under it (no user's load function can panic there), so threads sharing a plan
+//!   never block each other and the lock is never poisoned;
+//! - it keeps little: at most [`KEEP`] boxes per plan, freed with the plan;
 //! - it changes no result: every solve writes whatever it reads (a triad's last pose and the
 //!   inputs, the only state a solve reads back, are reset when a box is taken), so a solve
-//!   is a pure function of its inputs, as with a reused [`Solver`](super::Solver);
+//!   is a pure function of its inputs, as with a reused [`Solver`](super::Solver). A result
+//!   dropped by a panic's unwinding gives back a box like any other, to be reset alike;
 //! - it is no part of what a plan is: a clone of a plan starts with no spares, two plans
 //!   compare equal whatever they hold, and a plan's `Debug` does not list them.
 //!
@@ -34,12 +32,10 @@ use crate::kinematics::Motion;
 use crate::kinetostatics::Conditioning;
 use crate::linkage::plan::Chain;
 use crate::Load;
-use std::cell::Cell;
 use std::ops::{Deref, DerefMut};
-use std::sync::atomic::{AtomicU64, Ordering};
 use std::sync::Mutex;
 
-/// The most boxes a plan keeps (a few per thread that makes one-shot solves).
+/// The most boxes a plan keeps (one per result alive at once, for a few threads).
 pub(crate) const KEEP: usize = 8;
 
 /// The buffers an analysis adds to the kinematics': loads, reactions, conditioning and
@@ -142,31 +138,16 @@ impl Held {
     }
 }
 
-/// The number of the next plan made (see [`Spares`]).
-static NEXT_PLAN: AtomicU64 = AtomicU64::new(0);
-
-thread_local! {
-    /// The box this thread gave back last, with its plan's number.
-    static LAST: Cell<Option<(u64, Box<Parts>)>> = const { Cell::new(None) };
-}
-
-/// A plan's spare boxes (see the module docs), under the plan's number. Not part of what a
-/// plan is: a clone starts with none (and a number of its own), two plans compare equal
-/// whatever they hold, and a plan's `Debug` does not list them.
+/// A plan's spare boxes (see the module docs). Not part of what a plan is: a clone starts
+/// with none, two plans compare equal whatever they hold, and a plan's `Debug` does not list
+/// them. Aligned to a cache line pair of its own: threads that make one-shot solves of one
+/// plan write its lock, which must not share a line with the plan data every solve reads.
+#[derive(Default)]
+#[repr(align(128))]
 pub(crate) struct Spares {
-    plan: u64,
     // Boxes, not the parts themselves: a box is handed on whole, its pointer moved.
     #[allow(clippy::vec_box)]
     pool: Mutex<Vec<Box<Parts>>>,
-}
-
-impl Default for Spares {
-    fn default() -> Self {
-        Self {
-            plan: NEXT_PLAN.fetch_add(1, Ordering::Relaxed),
-            pool: Mutex::default(),
-        }
-    }
 }
 
 impl std::fmt::Debug for Spares {
@@ -188,37 +169,20 @@ impl PartialEq for Spares {
 }
 
 impl Spares {
-    /// A spare box: this thread's last if it is of this plan, else one of the plan's if one
-    /// is free.
+    /// A spare box of the plan's, if one is free (the lock tried once).
     #[inline]
     pub fn take(&self) -> Option<Box<Parts>> {
-        let mine = LAST
-            .try_with(|c| match c.take() {
-                Some((plan, p)) if plan == self.plan => Some(p),
-                other => {
-                    c.set(other);
-                    None
-                }
-            })
-            .ok()
-            .flatten();
-        mine.or_else(|| self.pool.try_lock().ok()?.pop())
+        self.pool.try_lock().ok()?.pop()
     }
 
-    /// Gives back a box: it becomes this thread's last, and the one that was (if of this
-    /// plan) goes to the plan's spares, dropped if they are full or busy.
+    /// Gives back a box to the plan's spares; freed (after the lock is let go) if they are
+    /// full or busy.
     #[inline]
     pub fn give(&self, p: Box<Parts>) {
-        let before = match LAST.try_with(|c| c.replace(Some((self.plan, p)))) {
-            Ok(Some((plan, old))) if plan == self.plan => old,
-            // Another plan's box (freed here), none, or the thread is ending.
-            Ok(_) => return,
-            Err(_) => return,
-        };
         if let Ok(mut v) = self.pool.try_lock()
             && v.len() < KEEP
         {
-            v.push(before);
+            v.push(p);
         }
     }
 }
