@@ -23,7 +23,12 @@
 //! field hostile; every `Ok` plan is checked finite whole (link data, joints, points, loads).
 //! Planning is linear: `Plan::decomposition_work` on random descriptions of up to 10⁴ joints
 //! in random and last-first order, its exponent fitted over the sizes.
-//! `TMM_HOSTILE_CASES` cases per sweep (default 200).
+//!
+//! `TMM_HOSTILE_CASES` (default 200) is the number of calls each entry point gets in its
+//! sweep, whatever the number of linkages it is spread over ([`shares`]): CI's run at 10⁵
+//! calls each entry point 10⁵ times with hostile arguments. Where a case is a whole
+//! linkage's work (its plan, its pictures, its cycle scans), the calls are shared among the
+//! linkages by the cost of one of their solves, so that the cheap linkages take most of them.
 
 use std::panic::{catch_unwind, AssertUnwindSafe};
 use tmm::kinematics::{Motion, Rotation};
@@ -48,6 +53,40 @@ fn linkages() -> Vec<Linkage> {
         RockingCylinder::course_example().linkage().unwrap(),
     ]);
     all
+}
+
+/// How many of `total` calls of an entry point fall to each of `linkages`: shared in
+/// proportion to the inverse cost of one of its solves (a linkage of dyads 1, one with a
+/// triad 1/10, one with a group above the 3rd class, solved by Newton's method, 1/100), each
+/// rounded up, so that together they make at least `total` and each linkage gets at least
+/// one.
+fn shares(total: usize, linkages: &[Linkage]) -> Vec<usize> {
+    use tmm::linkage::GroupKind;
+    let weight = |l: &Linkage| {
+        let plan = Plan::new(l).unwrap();
+        let kinds: Vec<GroupKind> = plan.groups().iter().map(|g| g.kind).collect();
+        if kinds.contains(&GroupKind::General) {
+            0.01
+        } else if kinds.contains(&GroupKind::Triad) {
+            0.1
+        } else {
+            1.0
+        }
+    };
+    let weights: Vec<f64> = linkages.iter().map(weight).collect();
+    let sum: f64 = weights.iter().sum();
+    #[allow(clippy::cast_precision_loss)]
+    let shares = weights
+        .iter()
+        .map(|w| ((total as f64 * w / sum).ceil() as usize).max(1))
+        .collect();
+    shares
+}
+
+/// The linkages with each one's share of `cases()` calls.
+fn shared(linkages: Vec<Linkage>) -> impl Iterator<Item = (Linkage, usize)> {
+    let n = shares(cases(), &linkages);
+    linkages.into_iter().zip(n)
 }
 
 /// Runs `f`, failing the test on a panic, with `what` to replay it.
@@ -82,9 +121,9 @@ fn check_position(plan: &Plan, input: Motion, what: &str) {
 #[test]
 fn hostile_inputs_at_a_position() {
     let mut g = Gen::new(11);
-    for l in linkages() {
+    for (l, n) in shared(linkages()) {
         let plan = Plan::new(&l).unwrap();
-        for _ in 0..cases() {
+        for _ in 0..n {
             let input = g.motion();
             let what = format!("{} at {input:?}", l.name);
             no_panic(&what, || check_position(&plan, input, &what));
@@ -158,8 +197,9 @@ fn corrupt(l: &mut Linkage, g: &mut Gen) {
 #[test]
 fn hostile_descriptions_plan_or_err_and_then_solve_or_err() {
     let mut g = Gen::new(23);
-    for base in linkages() {
-        for case in 0..cases() {
+    let mut scanned = 0;
+    for (base, n) in shared(linkages()) {
+        for case in 0..n {
             let mut l = base.clone();
             corrupt(&mut l, &mut g);
             let what = format!("{} case {case}", base.name);
@@ -171,14 +211,43 @@ fn hostile_descriptions_plan_or_err_and_then_solve_or_err() {
                 let input = Motion::new(plan.reference_input() + 1.3 * f64::from(k), 5.0, 1.0);
                 no_panic(&what, || check_position(&plan, input, &what));
             }
+            // The scans of a cycle on the hostile description: its output's extremes and
+            // strokes, and the input's lock positions.
+            scanned += 1;
+            no_panic(&what, || scans(&plan, l.output.as_ref(), g.f(), &what));
         }
+    }
+    assert!(scanned > 0);
+}
+
+/// The scans over a cycle of `plan` (`Plan::extremes` and `Plan::strokes` of `output`, a
+/// crank's `Plan::lock_positions` from `phi`): an error or finite numbers.
+fn scans(plan: &Plan, output: Option<&Output>, phi: f64, what: &str) {
+    if let Some(out) = output {
+        if let Ok(e) = plan.extremes(out) {
+            assert!(!has_non_finite(&format!("{e:?}")), "{what}: {e:?}");
+        }
+        let rotation = if phi.is_sign_negative() {
+            Rotation::Cw
+        } else {
+            Rotation::Ccw
+        };
+        if let Ok(s) = plan.strokes(out, rotation) {
+            assert!(!has_non_finite(&format!("{s:?}")), "{what}: {s:?}");
+        }
+    }
+    if let Ok(Some(lock)) = plan.lock_positions(phi) {
+        assert!(
+            lock.0.is_finite() && lock.1.is_finite(),
+            "{what}: {phi} {lock:?}"
+        );
     }
 }
 
 #[test]
 fn hostile_outputs_cycles_and_tables() {
     let mut g = Gen::new(37);
-    for l in linkages() {
+    for (l, share) in shared(linkages()) {
         let plan = Plan::new(&l).unwrap();
         let mut outputs = vec![
             Output::Angle("no such link".into()),
@@ -187,7 +256,7 @@ fn hostile_outputs_cycles_and_tables() {
         ];
         outputs.extend(plan.link_names().iter().map(|n| Output::Angle(n.clone())));
         outputs.extend(plan.joint_names().iter().map(|n| Output::Y(n.clone())));
-        // Below 10³ cases (the default run) every sixth real output, from a different first
+        // Below 10³ calls (the default run) every sixth real output, from a different first
         // one per linkage (angles and coordinates both among them over the linkages); CI's run
         // covers them all.
         let stride = if cases() < 1000 { 6 } else { 1 };
@@ -198,42 +267,26 @@ fn hostile_outputs_cycles_and_tables() {
             .filter(|(i, _)| *i < 3 || (i - 3) % stride == skip)
             .map(|(_, o)| o)
             .collect();
-        for out in &outputs {
+        // The linkage's share of the calls: `output` and `transfer` at hostile inputs, the
+        // outputs taken in turn, and the lock search from a hostile angle; each output's
+        // extremes and strokes once (they depend on the output alone: on hostile
+        // descriptions they are swept in `hostile_descriptions_plan_or_err_…`).
+        for case in 0..share.max(outputs.len()) {
+            let out = &outputs[case % outputs.len()];
+            let (input, q, phi) = (g.motion(), g.f(), g.f());
             let what = format!("{} {out:?}", l.name);
             no_panic(&what, || {
-                if let Ok(e) = plan.extremes(out) {
-                    assert!(!has_non_finite(&format!("{e:?}")), "{what}: {e:?}");
+                if let Ok(m) = plan.output(out, input) {
+                    assert!(
+                        !has_non_finite(&format!("{m:?}")),
+                        "{what}: {input:?} {m:?}"
+                    );
                 }
-                for rotation in [Rotation::Ccw, Rotation::Cw] {
-                    if let Ok(s) = plan.strokes(out, rotation) {
-                        assert!(!has_non_finite(&format!("{s:?}")), "{what}: {s:?}");
-                    }
+                if let Ok(m) = plan.transfer(out, q) {
+                    assert!(!has_non_finite(&format!("{m:?}")), "{what}: {q} {m:?}");
                 }
-            });
-            for _ in 0..cases() / 20 {
-                let (input, q) = (g.motion(), g.f());
-                no_panic(&what, || {
-                    if let Ok(m) = plan.output(out, input) {
-                        assert!(
-                            !has_non_finite(&format!("{m:?}")),
-                            "{what}: {input:?} {m:?}"
-                        );
-                    }
-                    if let Ok(m) = plan.transfer(out, q) {
-                        assert!(!has_non_finite(&format!("{m:?}")), "{what}: {q} {m:?}");
-                    }
-                });
-            }
-        }
-        // The lock positions depend on the crank angle alone, not on an output: a call scans
-        // the turn (720 solves), so it is swept once per linkage, not once per output.
-        for _ in 0..cases() / 20 {
-            let q = g.f();
-            let what = format!("{} lock_positions({q:?})", l.name);
-            no_panic(&what, || {
-                if let Ok(Some(lock)) = plan.lock_positions(q) {
-                    assert!(lock.0.is_finite() && lock.1.is_finite(), "{what}: {lock:?}");
-                }
+                let first = case < outputs.len();
+                scans(&plan, Some(out).filter(|_| first), phi, &what);
             });
         }
         for n in [0, 1, 2, 7, usize::MAX] {
@@ -375,11 +428,13 @@ use tmm::linkage::dynamics::{Damper, LinkageSystem, Motor};
 #[test]
 fn hostile_dynamics_of_linkages() {
     let mut g = Gen::new(53);
-    for l in linkages() {
-        let Ok(sys) = LinkageSystem::from_linkage(&l) else {
-            continue;
-        };
-        for case in 0..cases() / 4 {
+    let with_systems: Vec<Linkage> = linkages()
+        .into_iter()
+        .filter(|l| LinkageSystem::from_linkage(l).is_ok())
+        .collect();
+    for (l, n) in shared(with_systems) {
+        let sys = LinkageSystem::from_linkage(&l).unwrap();
+        for case in 0..n {
             let (q, qd, qdd) = (g.v(), g.v(), g.v());
             let what = format!("{} case {case}: q {q:?} q' {qd:?} q'' {qdd:?}", l.name);
             no_panic(&what, || {
@@ -433,139 +488,149 @@ fn check_turn(t: &tmm::linkage::dynamics::Turn, what: &str) {
 
 /// The bundled four-bar and the Scotch yoke (one crank, resistances that flip with its speed)
 /// thrown at random speeds from random angles under random constant motors, each run by
-/// Dormand–Prince (random tolerance) or RK4 (random step) as in issue 27's
+/// Dormand–Prince (a random tolerance in [10⁻⁸, 10⁻⁴]) or RK4 (a random step in
+/// [10^-3.5, 10⁻²] s: a smaller one costs more and finds nothing new) as in issue 27's
 /// `turn(&Dopri5 { rtol: 1e-6, atol: 1e-6 }, (0, 17.25), max_turn_time 0.95)`, which chattered
 /// about ω = 0 until ten million steps ran out: every `turn` ends with a turn (finite,
 /// consistent) or an error naming why (stalled with both loads, turned back, …), never an
 /// exhausted step budget; `run_up_from` never returns a turn of no duration or an infinite
 /// mean speed; `run` ends within a budget of 10⁵ steps. `cases()` calls of `turn`,
-/// `run_up`, `run_up_from` and `run` per suite.
+/// `run_up`, `run_up_from` and `run` over the two (one test each, so that they run side by
+/// side).
 #[test]
-fn turns_and_run_ups_end_with_a_reason() {
+fn turns_and_run_ups_of_the_four_bar_end_with_a_reason() {
+    turns_and_run_ups_end_with_a_reason(&bundled::four_bar(), 67);
+}
+
+/// See [`turns_and_run_ups_of_the_four_bar_end_with_a_reason`].
+#[test]
+fn turns_and_run_ups_of_the_scotch_yoke_end_with_a_reason() {
+    turns_and_run_ups_end_with_a_reason(&bundled::scotch_yoke(), 68);
+}
+
+fn turns_and_run_ups_end_with_a_reason(l: &Linkage, seed: u64) {
     use nalgebra::Vector2;
     use tmm::dynamics::{run, Dopri5, Rk4, RunOptions, State};
     use tmm::linkage::dynamics::RunUpOptions;
-    let mut g = Gen::new(67);
+    let mut g = Gen::new(seed);
     let (mut turned, mut stalled) = (0, 0);
-    for l in [bundled::four_bar(), bundled::scotch_yoke()] {
-        let base = LinkageSystem::from_linkage(&l).unwrap();
-        for case in 0..cases().div_ceil(2) {
-            let moment = match g.next() % 4 {
-                0 => 0.0,
-                1 => g.f(),
-                _ => 80.0 * (g.unit() - 0.3),
-            };
-            let Ok(sys) = base.clone().with_motor(0, Motor::Constant(moment)) else {
-                continue;
-            };
-            let (phi, omega) = match g.next() % 4 {
-                0 => (0.0, 17.25),
-                1 => (g.f(), g.f()),
-                _ => (10.0 * (g.unit() - 0.5), 60.0 * (g.unit() - 0.5)),
-            };
-            let start = State::new(0.0, Vector2::new(phi, 0.0), Vector2::new(omega, 0.0));
-            let tol = 10f64.powf(-9.0 + 5.0 * g.unit());
-            let h = 10f64.powf(-4.0 + 2.0 * g.unit());
-            let opts = RunUpOptions::new(h)
-                .with_max_turns(3)
-                .with_max_turn_time(0.95);
-            let dp = Dopri5 {
-                rtol: tol,
-                atol: tol,
-            };
-            let what = format!(
-                "{} case {case}: M {moment}, start {start:?}, h {h}, tol {tol}",
-                l.name
-            );
-            let use_dp = g.next().is_multiple_of(2);
-            let r = no_panic(&what, || {
-                if use_dp {
-                    sys.turn(&dp, start, &opts)
-                } else {
-                    sys.turn(&Rk4, start, &opts)
-                }
-            });
-            match r {
-                Ok((t, _)) => {
-                    turned += 1;
-                    check_turn(&t, &what);
-                }
-                Err(Error::Stalled {
-                    drive, resistance, ..
-                }) => {
-                    stalled += 1;
-                    assert!(drive <= resistance, "{what}: {drive} vs {resistance}");
-                }
-                Err(e @ Error::Budget { .. }) => panic!("{what}: {e}"),
-                Err(_) => {}
+    let base = LinkageSystem::from_linkage(l).unwrap();
+    for case in 0..cases().div_ceil(2) {
+        let moment = match g.next() % 4 {
+            0 => 0.0,
+            1 => g.f(),
+            _ => 80.0 * (g.unit() - 0.3),
+        };
+        let Ok(sys) = base.clone().with_motor(0, Motor::Constant(moment)) else {
+            continue;
+        };
+        let (phi, omega) = match g.next() % 4 {
+            0 => (0.0, 17.25),
+            1 => (g.f(), g.f()),
+            _ => (10.0 * (g.unit() - 0.5), 60.0 * (g.unit() - 0.5)),
+        };
+        let start = State::new(0.0, Vector2::new(phi, 0.0), Vector2::new(omega, 0.0));
+        let tol = 10f64.powf(-8.0 + 4.0 * g.unit());
+        let h = 10f64.powf(-3.5 + 1.5 * g.unit());
+        let opts = RunUpOptions::new(h)
+            .with_max_turns(3)
+            .with_max_turn_time(0.95);
+        let dp = Dopri5 {
+            rtol: tol,
+            atol: tol,
+        };
+        let what = format!(
+            "{} case {case}: M {moment}, start {start:?}, h {h}, tol {tol}",
+            l.name
+        );
+        let use_dp = g.next().is_multiple_of(2);
+        let r = no_panic(&what, || {
+            if use_dp {
+                sys.turn(&dp, start, &opts)
+            } else {
+                sys.turn(&Rk4, start, &opts)
             }
-            let r = no_panic(&what, || {
-                if use_dp {
-                    sys.run_up_from(&dp, start, &opts)
-                } else {
-                    sys.run_up_from(&Rk4, start, &opts)
-                }
-            });
-            match r {
-                Ok(up) => up.turns.iter().for_each(|t| check_turn(t, &what)),
-                Err(Error::Budget { what: budget, .. }) => assert_eq!(budget, "turn", "{what}"),
-                Err(_) => {}
+        });
+        match r {
+            Ok((t, _)) => {
+                turned += 1;
+                check_turn(&t, &what);
             }
-            // The same machine from rest in its reference pose, and a bare run of 0.3 s:
-            // each ends (stuck, at its final time or with a named error) well within a
-            // budget of 10⁵ steps.
-            let r = no_panic(&what, || {
-                if use_dp {
-                    sys.run_up(&dp, &opts)
-                } else {
-                    sys.run_up(&Rk4, &opts)
-                }
-            });
-            match r {
-                Ok(up) => up.turns.iter().for_each(|t| check_turn(t, &what)),
-                Err(Error::Budget { what: budget, .. }) => assert_eq!(budget, "turn", "{what}"),
-                Err(_) => {}
+            Err(Error::Stalled {
+                drive, resistance, ..
+            }) => {
+                stalled += 1;
+                assert!(drive <= resistance, "{what}: {drive} vs {resistance}");
             }
-            let mut ro = RunOptions::until(0.3, h);
-            ro.max_steps = 100_000;
-            let r = no_panic(&what, || {
-                if use_dp {
-                    run(&sys, &dp, start, &ro)
-                } else {
-                    run(&sys, &Rk4, start, &ro)
-                }
-            });
-            match r {
-                Ok(r) => {
-                    let shown = format!("{:?} {:?}", r.outcome, r.last);
-                    assert!(!has_non_finite(&shown), "{what}: {shown}");
-                }
-                // A run that turns more than 10⁵ steps can resolve (over 100 turns, at under
-                // 1000 steps a turn: a fast start, or a huge motor that spins the crank up
-                // ever faster) may use its budget on motion; any other run must not (that
-                // is chattering at a stop). The turns made are measured by the same run up
-                // to where the budget ran out, with room to get there.
-                Err(e @ Error::Budget { limit, time, .. }) => {
-                    let mut again = RunOptions::until(time, h);
-                    again.max_steps = 10 * limit;
-                    let r = if use_dp {
-                        run(&sys, &dp, start, &again)
-                    } else {
-                        run(&sys, &Rk4, start, &again)
-                    }
-                    .unwrap_or_else(|e2| panic!("{what}: {e}, then {e2}"));
-                    let turns = (r.last.q[0] - start.q[0]).abs() / std::f64::consts::TAU;
-                    assert!(
-                        turns > limit as f64 / 1000.0,
-                        "{what}: {e} after {turns} turns"
-                    );
-                }
-                Err(_) => {}
+            Err(e @ Error::Budget { .. }) => panic!("{what}: {e}"),
+            Err(_) => {}
+        }
+        let r = no_panic(&what, || {
+            if use_dp {
+                sys.run_up_from(&dp, start, &opts)
+            } else {
+                sys.run_up_from(&Rk4, start, &opts)
             }
+        });
+        match r {
+            Ok(up) => up.turns.iter().for_each(|t| check_turn(t, &what)),
+            Err(Error::Budget { what: budget, .. }) => assert_eq!(budget, "turn", "{what}"),
+            Err(_) => {}
+        }
+        // The same machine from rest in its reference pose, and a bare run of 0.3 s:
+        // each ends (stuck, at its final time or with a named error) well within a
+        // budget of 10⁵ steps.
+        let r = no_panic(&what, || {
+            if use_dp {
+                sys.run_up(&dp, &opts)
+            } else {
+                sys.run_up(&Rk4, &opts)
+            }
+        });
+        match r {
+            Ok(up) => up.turns.iter().for_each(|t| check_turn(t, &what)),
+            Err(Error::Budget { what: budget, .. }) => assert_eq!(budget, "turn", "{what}"),
+            Err(_) => {}
+        }
+        let mut ro = RunOptions::until(0.3, h);
+        ro.max_steps = 100_000;
+        let r = no_panic(&what, || {
+            if use_dp {
+                run(&sys, &dp, start, &ro)
+            } else {
+                run(&sys, &Rk4, start, &ro)
+            }
+        });
+        match r {
+            Ok(r) => {
+                let shown = format!("{:?} {:?}", r.outcome, r.last);
+                assert!(!has_non_finite(&shown), "{what}: {shown}");
+            }
+            // A run that turns more than 10⁵ steps can resolve (over 100 turns, at under
+            // 1000 steps a turn: a fast start, or a huge motor that spins the crank up
+            // ever faster) may use its budget on motion; any other run must not (that
+            // is chattering at a stop). The turns made are measured by the same run up
+            // to where the budget ran out, with room to get there.
+            Err(e @ Error::Budget { limit, time, .. }) => {
+                let mut again = RunOptions::until(time, h);
+                again.max_steps = 10 * limit;
+                let r = if use_dp {
+                    run(&sys, &dp, start, &again)
+                } else {
+                    run(&sys, &Rk4, start, &again)
+                }
+                .unwrap_or_else(|e2| panic!("{what}: {e}, then {e2}"));
+                let turns = (r.last.q[0] - start.q[0]).abs() / std::f64::consts::TAU;
+                assert!(
+                    turns > limit as f64 / 1000.0,
+                    "{what}: {e} after {turns} turns"
+                );
+            }
+            Err(_) => {}
         }
     }
-    println!("turns: {turned} completed, {stalled} stalled");
-    assert!(turned > 0 && stalled > 0);
+    println!("{}: turns {turned} completed, {stalled} stalled", l.name);
+    assert!(turned > 0 && stalled > 0, "{}", l.name);
 }
 
 #[cfg(feature = "draw")]
@@ -574,9 +639,9 @@ fn hostile_pictures() {
     use crate::common::svg_scan::assert_finite_svg;
     let mut g = Gen::new(59);
     let mut svgs = 0;
-    for l in bundled::all() {
+    for (l, n) in shared(bundled::all()) {
         let plan = Plan::new(&l).unwrap();
-        for case in 0..cases() / 10 {
+        for case in 0..n {
             let input = g.motion();
             let mut style = Style::default();
             match g.next() % 4 {
@@ -668,9 +733,7 @@ fn sweep_mechanism<M: std::fmt::Debug + Clone>(
     run: impl Fn(&M, &str, &mut Gen),
 ) {
     let mut g = Gen::new(seed);
-    // Each case scans a cycle for the strokes: half the sweep's count keeps the default run
-    // short.
-    for case in 0..cases().div_ceil(2) {
+    for case in 0..cases() {
         let mut m = base.clone();
         // One field most of the time, sometimes two.
         for _ in 0..1 + usize::from(g.next().is_multiple_of(4)) {
@@ -694,10 +757,14 @@ fn mechanism_checks(
     what: &str,
     g: &mut Gen,
 ) {
-    for rot in [Rotation::Ccw, Rotation::Cw] {
-        if let Ok(s) = strokes(rot) {
-            assert!(!has_non_finite(&format!("{s:?}")), "{what}: {s:?}");
-        }
+    // One sense of rotation a case (a scan of the cycle each): both over the sweep.
+    let rot = if g.next().is_multiple_of(2) {
+        Rotation::Ccw
+    } else {
+        Rotation::Cw
+    };
+    if let Ok(s) = strokes(rot) {
+        assert!(!has_non_finite(&format!("{s:?}")), "{what}: {s:?}");
     }
     if let Ok(plan) = plan {
         check_plan(&plan, what);
@@ -707,30 +774,37 @@ fn mechanism_checks(
     }
 }
 
+/// A hostile number `v` in one of the mass data of a ready mechanism's links (chosen by `k`).
+fn mass<const N: usize>(m: &mut [tmm::mechanism::LinkMass; N], k: usize, v: f64) {
+    let lm = &mut m[k % N];
+    match k / N % 4 {
+        0 => lm.mass = v,
+        1 => lm.inertia = v,
+        2 => lm.along = v,
+        _ => lm.across = v,
+    }
+}
+
+/// A gear drive with the hostile number `v` in one of its data (chosen by `k`).
+fn gear(d: &mut tmm::linkage::Drive, k: usize, v: f64) {
+    let (mut r, mut a, mut p) = (0.1, 3.0, 0.35);
+    match k % 3 {
+        0 => r = v,
+        1 => a = v,
+        _ => p = v,
+    }
+    *d = tmm::linkage::Drive::Gear {
+        pitch_radius: r,
+        pitch_angle: a,
+        pressure_angle: p,
+    };
+}
+
+// The ready mechanisms, one test each (so that they run side by side): `cases()` hostile
+// variants of each.
+
 #[test]
-fn hostile_ready_mechanisms() {
-    fn mass<const N: usize>(m: &mut [tmm::mechanism::LinkMass; N], k: usize, v: f64) {
-        let lm = &mut m[k % N];
-        match k / N % 4 {
-            0 => lm.mass = v,
-            1 => lm.inertia = v,
-            2 => lm.along = v,
-            _ => lm.across = v,
-        }
-    }
-    fn gear(d: &mut tmm::linkage::Drive, k: usize, v: f64) {
-        let (mut r, mut a, mut p) = (0.1, 3.0, 0.35);
-        match k % 3 {
-            0 => r = v,
-            1 => a = v,
-            _ => p = v,
-        }
-        *d = tmm::linkage::Drive::Gear {
-            pitch_radius: r,
-            pitch_angle: a,
-            pressure_angle: p,
-        };
-    }
+fn hostile_four_bars() {
     sweep_mechanism(
         "FourBar",
         &FourBar::course_example(),
@@ -754,6 +828,10 @@ fn hostile_ready_mechanisms() {
             mechanism_checks(m.plan(), |r| m.strokes(r), what, g);
         },
     );
+}
+
+#[test]
+fn hostile_slider_cranks() {
     sweep_mechanism(
         "SliderCrank",
         &SliderCrank::course_example(),
@@ -785,6 +863,10 @@ fn hostile_ready_mechanisms() {
             mechanism_checks(m.plan(), |r| m.strokes(r), what, g);
         },
     );
+}
+
+#[test]
+fn hostile_compressors() {
     sweep_mechanism(
         "Compressor",
         &Compressor::course_example(),
@@ -813,6 +895,10 @@ fn hostile_ready_mechanisms() {
             mechanism_checks(m.plan(), |r| m.strokes(r), what, g);
         },
     );
+}
+
+#[test]
+fn hostile_six_bars() {
     sweep_mechanism(
         "SixBar",
         &SixBar::course_example(),
@@ -839,6 +925,10 @@ fn hostile_ready_mechanisms() {
             mechanism_checks(m.plan(), |r| m.strokes(r), what, g);
         },
     );
+}
+
+#[test]
+fn hostile_rocking_cylinders() {
     sweep_mechanism(
         "RockingCylinder",
         &RockingCylinder::course_example(),
