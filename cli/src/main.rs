@@ -243,9 +243,10 @@ for a machine whose loads average out). The step keeps RK4 well inside its stabi
             allow_negative_numbers = true
         )]
         rotor: f64,
-        /// Positions over a turn (or a rocking crank's range) for the reduced quantities.
+        /// Positions over a turn (or a rocking crank's range) for the reduced quantities; at
+        /// least 12, so that their means over the turn are means, not one or two samples.
         #[arg(long, value_name = "N", default_value_t = 360,
-              value_parser = clap::value_parser!(u32).range(1..=100_000))]
+              value_parser = clap::value_parser!(u32).range(12..=100_000))]
         positions: u32,
         /// Two inputs: the nodes of the grid along each input.
         #[arg(long, value_name = "N", default_value_t = 13,

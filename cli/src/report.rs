@@ -268,8 +268,14 @@ pub fn json_string(s: &str) -> String {
 /// A JSON number (`null` where not available).
 fn json_number(v: f64) -> String {
     if v.is_finite() {
-        // The shortest text that reads back as the same f64, as JSON writes numbers.
-        format!("{v}")
+        // The shortest text that reads back as the same f64, as JSON writes numbers; with an
+        // exponent outside [10⁻⁵, 10¹⁶), where the plain form would run to hundreds of digits.
+        let a = v.abs();
+        if a != 0.0 && !(1e-5..1e16).contains(&a) {
+            format!("{v:e}")
+        } else {
+            format!("{v}")
+        }
     } else {
         "null".to_owned()
     }

@@ -545,6 +545,7 @@ fn a_linkage_with_two_inputs_runs_from_rest_under_two_motors() {
     for (args, words) in [
         (&["--run", "0"][..], "duration"),
         (&["--run", "nan"], "duration"),
+        (&["--run", "1e-300"], "10⁻⁶ s"),
         (&["--run", "1", "--motor2", "1,nan"], "finite"),
     ] {
         let mut all = vec!["dynamics", "five-bar-robot"];
@@ -556,6 +557,10 @@ fn a_linkage_with_two_inputs_runs_from_rest_under_two_motors() {
     let r = tmm(&["dynamics", "four-bar", "--run", "1"]);
     assert_one_line_failure(&r, "four-bar");
     assert!(r.stderr.contains("--run-up"), "{}", r.stderr);
+    // The means of the reduced quantities over a turn need more than a sample or two.
+    let r = tmm(&["dynamics", "four-bar", "--positions", "1"]);
+    assert_ne!(r.code, 0, "{}", r.stdout);
+    assert!(r.stderr.contains("--positions"), "{}", r.stderr);
 }
 
 /// `tmm dynamics … --format json`'s reduced column `name`.

@@ -386,7 +386,7 @@ impl Machine {
     /// its loads, by RK4 with every step recorded.
     ///
     /// # Errors
-    /// A duration that is not positive and finite (or above 10⁴ s); the run's error (a
+    /// A duration outside [10⁻⁶, 10⁴] s; the run's error (a
     /// position that does not assemble or is singular, named with its time; the budget).
     pub(super) fn run_two(
         &self,
@@ -394,10 +394,11 @@ impl Machine {
         t_end: f64,
         progress: &mut dyn FnMut(&str),
     ) -> Result<TwoInputRun, Failure> {
-        if !(t_end.is_finite() && t_end > 0.0 && t_end <= 1e4) {
+        // Below a microsecond nothing a linkage does can be seen in the rows (and the steps
+        // would be far below the integrator's resolution of the time).
+        if !(t_end.is_finite() && (1e-6..=1e4).contains(&t_end)) {
             return Err(Failure::new(format!(
-                "the duration of the run must be positive, finite and at most 10⁴ s, and it \
-                 is {} s",
+                "the duration of the run must be between 10⁻⁶ s and 10⁴ s, and it is {} s",
                 typed(t_end)
             ))
             .hint("give --run T in seconds"));
