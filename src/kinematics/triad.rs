@@ -328,7 +328,7 @@ pub fn triad_modes(a: [Point2<f64>; 3], dims: &TriadDims) -> Result<TriadModes> 
     let tol = 1e-9 * e.length();
     for r in 0..roots.n {
         for pose in e
-            .poses(roots.z[r], roots.multiple[r], dims)
+            .poses(roots.z[r], roots.multiple[r], roots.double[r], dims)
             .into_iter()
             .flatten()
         {
@@ -958,8 +958,22 @@ impl Eliminated {
     /// `multiple`, two modes can share (nearly) one θ with different B1: then both
     /// intersections of two of the circles are polished, and every candidate that closes is
     /// returned.
-    fn poses(&self, z: C, multiple: bool, dims: &TriadDims) -> [Option<TriadPose>; 2] {
+    /// A `double` root (two merged within rounding) keeps its pose from the radical axes
+    /// unpolished where that closes to 1e-12 of the size.
+    fn poses(
+        &self,
+        z: C,
+        multiple: bool,
+        double: bool,
+        dims: &TriadDims,
+    ) -> [Option<TriadPose>; 2] {
         let (wz, d) = self.w_d(z);
+        if double && d.abs() > 1e-3 * self.dscale {
+            let p = C::new(0.0, 1.0) * wz / d;
+            if let Some(pose) = self.polish_steps(Vector2::new(p.re, p.im), z, dims, 0, 1e-12) {
+                return [Some(pose), None];
+            }
+        }
         if d.abs() > 1e-3 * self.dscale && !multiple {
             let p = C::new(0.0, 1.0) * wz / d;
             [self.polish(Vector2::new(p.re, p.im), z, dims), None]
@@ -975,11 +989,24 @@ impl Eliminated {
     /// while it reduces the closure error); `None` when it does not close to 1e-9 of the
     /// size.
     fn polish(&self, p: Vector2<f64>, z: C, dims: &TriadDims) -> Option<TriadPose> {
+        self.polish_steps(p, z, dims, 8, 1e-9)
+    }
+
+    /// [`polish`](Self::polish) with at most `steps` Newton steps, `None` unless the pose
+    /// closes to `within` of the size.
+    fn polish_steps(
+        &self,
+        p: Vector2<f64>,
+        z: C,
+        dims: &TriadDims,
+        steps: usize,
+        within: f64,
+    ) -> Option<TriadPose> {
         let mut b1 = self.a1 + p;
         let mut z = z;
         let length = self.length();
         let mut err = self.closure(b1, z);
-        for _ in 0..8 {
+        for _ in 0..steps {
             if err <= 1e-15 * length {
                 break;
             }
@@ -997,7 +1024,7 @@ impl Eliminated {
                 break;
             }
         }
-        if err.is_nan() || err > 1e-9 * length {
+        if err.is_nan() || err > within * length {
             return None;
         }
         let (u, r, _) = self.legs(b1, z);

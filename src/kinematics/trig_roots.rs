@@ -126,7 +126,70 @@ pub(super) fn checked_roots(
     }
     let mut roots = Roots::default();
     bracket_all(e, &mut roots);
+    merge_double(e, &mut roots);
     Ok(roots)
+}
+
+/// Roots that rounding alone set apart, merged into the double root they are. A group built
+/// at a branch point (two modes merged: a double root of F, where the group's velocity
+/// system is singular) has its data rounded, which shifts F by about its rounding level and
+/// splits the double root into two roots about √(tol/|F″|) apart (or leaves none): as two
+/// modes they would be regular, with rates of the order of 1/√ε and meaningless. So two
+/// neighbouring roots between which F dips by no more than its rounding (|F″|·Δ²/8 ≤ tol,
+/// Δ their distance), and a cluster (`multiple`) whose extremum of F is within the rounding
+/// of zero, become one root at that extremum of F, where the group's determinant vanishes.
+fn merge_double(f: &impl Periodic, roots: &mut Roots) {
+    let n = roots.n;
+    let mut gone = [false; 12];
+    for j in 0..n {
+        if roots.multiple[j] {
+            let (ze, fe) = extremum(f, roots.z[j], 1e-3);
+            if fe.abs() <= f.tol() {
+                roots.z[j] = ze;
+                roots.multiple[j] = false;
+                roots.double[j] = true;
+            }
+        }
+    }
+    for j in 0..n {
+        let k = (j + 1) % n;
+        if n < 2 || (n == 2 && j == 1) || gone[j] || gone[k] {
+            continue;
+        }
+        let r = roots.z[j].conj() * roots.z[k];
+        let delta = r.im.atan2(r.re).abs();
+        let zm = unit(roots.z[j] + roots.z[k]);
+        if f.second(zm).abs() * delta * delta / 8.0 <= f.tol() {
+            let (ze, _) = extremum(f, zm, 0.5 * delta);
+            roots.z[j] = ze;
+            roots.multiple[j] = false;
+            roots.double[j] = true;
+            gone[k] = true;
+        }
+    }
+    let mut kept = 0;
+    for (j, &gone) in gone.iter().enumerate().take(n) {
+        if !gone {
+            roots.z[kept] = roots.z[j];
+            roots.multiple[kept] = roots.multiple[j];
+            roots.double[kept] = roots.double[j];
+            kept += 1;
+        }
+    }
+    roots.n = kept;
+}
+
+/// The extremum of F near `zm` (one Newton step on F′, at most `reach` rad) and F there.
+fn extremum(f: &impl Periodic, zm: C, reach: f64) -> (C, f64) {
+    let (_, g) = f.eval(zm);
+    let h = f.second(zm);
+    let u = if h != 0.0 {
+        (-g / h).clamp(-reach, reach)
+    } else {
+        0.0
+    };
+    let ze = along(zm, (0.5 * u).tan());
+    (ze, f.eval(ze).0)
 }
 
 /// Brackets every root of F on the circle (module docs) into `roots`.
@@ -208,7 +271,11 @@ fn tangent(
         roots.push(along(zm, brent(&g, -tau, te, fa, fe, tau)));
         roots.push(along(zm, brent(&g, te, tau, fe, fb, tau)));
     } else if fe.abs() <= f.tol() {
+        let n = roots.n;
         roots.push(ze);
+        if roots.n > n {
+            roots.double[n] = true;
+        }
     }
 }
 
@@ -229,6 +296,10 @@ pub(super) struct Roots {
     pub n: usize,
     pub z: [C; 12],
     pub multiple: [bool; 12],
+    /// A double root within rounding (two roots merged at F's extremum, [`merge_double`]):
+    /// its pose is taken there unpolished if it closes (Newton's method on the closures
+    /// would walk to one of the two roots that rounding set apart).
+    pub double: [bool; 12],
 }
 
 /// Roots of F closer than this (rad) are one cluster.

@@ -15,6 +15,20 @@
 //! fully relative to each other over the course shows a twist of a whole turn. The positions
 //! are read by [`Plan::position`], so a lock or dead position itself is read (where the rates
 //! do not exist). Two inputs are sampled on a grid.
+//!
+//! # Why a grid for two inputs, and its error
+//! The exact extreme of a twist over a two-input workspace lies at a stationary point of the
+//! twist inside the workspace (both partial derivatives zero: two equations in the two inputs
+//! through the linkage's whole position solve), on a boundary curve of the workspace (where
+//! some group stops assembling) or at a corner; no closed form gives these for a general
+//! linkage, and a solve of them would need every branch of the boundary. The grid bounds it
+//! instead: every position of the workspace is within h·√2/2 of a grid point (h the grid's
+//! step: 2π/96 ≈ 0.065 rad for a crank, 8 sizes/96 for a slider), so the twist read on the
+//! grid misses its extreme by at most h·√2/2·G, G the largest rate of the twist per unit
+//! input (the ratio of the links' relative angular velocity to the inputs'). The refusal's
+//! margin [`TWIST_MARGIN`] = 0.1 rad covers that for G up to about 2.2 (crank inputs); a
+//! spring closer than the grid can see to ±π near a singular position of the linkage (where G
+//! grows without bound) is not caught by this check.
 
 use super::inputs::Inputs;
 use super::plan::{InputPlan, LoadPlan, Plan};
