@@ -12,20 +12,21 @@ use tmm::kinematics::batch::{four_bar_positions, CrankAngles, FourBarDims, Lane,
 use tmm::kinematics::{Branch, Motion};
 use tmm::linkage::Plan;
 use tmm::synthesis::{
-    path_generator, slider_crank_path_generator, PathOptions, PathRequirement, Timing,
+    path_generator, six_bar_path_generator, slider_crank_path_generator, PathOptions,
+    PathRequirement, Timing,
 };
 
-struct Rng(u64);
+pub(super) struct Rng(pub(super) u64);
 
 impl Rng {
-    fn unit(&mut self) -> f64 {
+    pub(super) fn unit(&mut self) -> f64 {
         self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
         let mut z = self.0;
         z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
         z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
         ((z ^ (z >> 31)) >> 11) as f64 / (1u64 << 53) as f64
     }
-    fn range(&mut self, lo: f64, hi: f64) -> f64 {
+    pub(super) fn range(&mut self, lo: f64, hi: f64) -> f64 {
         lo + (hi - lo) * self.unit()
     }
 }
@@ -41,7 +42,7 @@ fn env_or(name: &str, default: usize) -> usize {
         .unwrap_or(default)
 }
 
-fn centroid_size(pts: &[[f64; 2]]) -> ([f64; 2], f64) {
+pub(super) fn centroid_size(pts: &[[f64; 2]]) -> ([f64; 2], f64) {
     let n = pts.len() as f64;
     let c = pts
         .iter()
@@ -154,9 +155,11 @@ fn slider_target(rng: &mut Rng, phis: &[f64]) -> Vec<[f64; 2]> {
 
 /// Which synthesis a recovery runs.
 #[derive(Clone, Copy)]
-enum Mechanism {
+pub(super) enum Mechanism {
     FourBar,
     SliderCrank,
+    /// The Stephenson III six-bar (prescribed timing only).
+    SixBar,
 }
 
 /// Synthesises `req` and returns the best design's mean miss in path sizes, measured by the
@@ -164,7 +167,10 @@ enum Mechanism {
 fn recover(req: &PathRequirement, seed: u64, mechanism: Mechanism) -> (f64, usize) {
     let opts = PathOptions::default()
         .with_seed(seed)
-        .with_population(40)
+        .with_population(match mechanism {
+            Mechanism::SixBar => 60,
+            _ => 40,
+        })
         .with_max_evaluations(400_000)
         .with_max_time(Duration::from_secs(600))
         .with_designs(1);
@@ -176,6 +182,7 @@ fn recover(req: &PathRequirement, seed: u64, mechanism: Mechanism) -> (f64, usiz
     let designs = match mechanism {
         Mechanism::FourBar => path_generator(req, &opts, count),
         Mechanism::SliderCrank => slider_crank_path_generator(req, &opts, count),
+        Mechanism::SixBar => six_bar_path_generator(req, &opts, count),
     }
     .unwrap();
     let (_, size) = centroid_size(&req.points);
@@ -197,6 +204,11 @@ fn recover(req: &PathRequirement, seed: u64, mechanism: Mechanism) -> (f64, usiz
         "engine {engine:e} vs reported {:e}",
         best.mean_error
     );
+    if let Mechanism::SixBar = mechanism {
+        // γ_min as reported keeps the default [γ] = 40°.
+        let gamma = best.synthesis.report.min_transmission_angle;
+        assert!(gamma >= 40f64.to_radians() - 1e-12, "γ_min {gamma}");
+    }
     (engine / size, evaluations)
 }
 
@@ -207,7 +219,7 @@ fn recoveries(name: &str, seed: u64, make: impl Fn(&mut Rng) -> PathRequirement)
 }
 
 /// [`recoveries`] of the mechanism `mechanism`.
-fn recoveries_of(
+pub(super) fn recoveries_of(
     name: &str,
     seed: u64,
     mechanism: Mechanism,
@@ -398,6 +410,7 @@ fn every_search_keeps_its_evaluation_budget_and_reports_progress() {
         let r = match mechanism {
             Mechanism::FourBar => path_generator(&req, &opts, count),
             Mechanism::SliderCrank => slider_crank_path_generator(&req, &opts, count),
+            Mechanism::SixBar => six_bar_path_generator(&req, &opts, count),
         };
         assert!(calls > 0, "no progress reported");
         assert!(last <= 3000, "{last} evaluations past a budget of 3000");
@@ -413,6 +426,7 @@ fn every_search_keeps_its_evaluation_budget_and_reports_progress() {
         let _ = match mechanism {
             Mechanism::FourBar => path_generator(&req, &opts, stop),
             Mechanism::SliderCrank => slider_crank_path_generator(&req, &opts, stop),
+            Mechanism::SixBar => six_bar_path_generator(&req, &opts, stop),
         };
         assert_eq!(calls, 1);
         // Too little time to evaluate anything: the error says so, with the budget.
@@ -438,6 +452,7 @@ fn synthesise(
     match mechanism {
         Mechanism::FourBar => path_generator(req, opts, |_| true),
         Mechanism::SliderCrank => slider_crank_path_generator(req, opts, |_| true),
+        Mechanism::SixBar => six_bar_path_generator(req, opts, |_| true),
     }
 }
 

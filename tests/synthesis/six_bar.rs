@@ -4,54 +4,20 @@
 //! path's size as the engine analyses its description (any six-bar through the points
 //! passes). `TMM_SYNTH_CASES` sets the number of cases (1 by default; CI runs more).
 
+use super::path::{centroid_size, recoveries_of, Mechanism, Rng};
 use nalgebra::Point2;
 use std::f64::consts::TAU;
-use std::time::{Duration, Instant};
 use tmm::kinematics::batch::coupler_point;
 use tmm::kinematics::{crank, rrr_dyad, Branch, Motion, PointMotion};
-use tmm::linkage::Plan;
 use tmm::synthesis::{six_bar_path_generator, PathOptions, PathRequirement, Progress, Timing};
 use tmm::Error;
 
-struct Rng(u64);
-
-impl Rng {
-    fn unit(&mut self) -> f64 {
-        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        ((z ^ (z >> 31)) >> 11) as f64 / (1u64 << 53) as f64
+fn mode(rng: &mut Rng) -> Branch {
+    if rng.unit() < 0.5 {
+        Branch::Plus
+    } else {
+        Branch::Minus
     }
-    fn range(&mut self, lo: f64, hi: f64) -> f64 {
-        lo + (hi - lo) * self.unit()
-    }
-    fn mode(&mut self) -> Branch {
-        if self.unit() < 0.5 {
-            Branch::Plus
-        } else {
-            Branch::Minus
-        }
-    }
-}
-
-fn env_or(name: &str, default: usize) -> usize {
-    std::env::var(name)
-        .ok()
-        .and_then(|s| s.parse().ok())
-        .unwrap_or(default)
-}
-
-fn centroid_size(pts: &[[f64; 2]]) -> ([f64; 2], f64) {
-    let n = pts.len() as f64;
-    let c = pts
-        .iter()
-        .fold([0.0, 0.0], |a, p| [a[0] + p[0] / n, a[1] + p[1] / n]);
-    let size = pts
-        .iter()
-        .map(|p| (p[0] - c[0]).hypot(p[1] - c[1]))
-        .fold(0.0, f64::max);
-    (c, size)
 }
 
 /// The tracer point of a six-bar at `phi` and the smaller |sin γ| of its two dyads: the
@@ -104,7 +70,7 @@ fn target(rng: &mut Rng, phis: &[f64]) -> Vec<[f64; 2]> {
             [rng.range(-0.3, 1.0), rng.range(-0.6, 0.6)],
             [rng.range(-0.3, 1.0), rng.range(-0.6, 0.6)],
         ];
-        let modes = [rng.mode(), rng.mode()];
+        let modes = [mode(rng), mode(rng)];
         let frame = (o3 - o1).norm();
         let all = [frame, l[0], l[1], l[2], l[3], l[4]];
         let (mn, mx) = all
@@ -163,82 +129,9 @@ fn requirement(rng: &mut Rng) -> PathRequirement {
     }
 }
 
-/// The best design's mean miss in path sizes, measured by the engine on its description at
-/// its crank angles (checked against the reported miss), and the evaluations spent.
-fn recover(req: &PathRequirement, seed: u64) -> (f64, usize) {
-    let opts = PathOptions::default()
-        .with_seed(seed)
-        .with_population(60)
-        .with_max_evaluations(400_000)
-        .with_max_time(Duration::from_secs(600))
-        .with_designs(1);
-    let mut evaluations = 0;
-    let designs = six_bar_path_generator(req, &opts, |p| {
-        evaluations = p.evaluations;
-        true
-    })
-    .unwrap();
-    let (_, size) = centroid_size(&req.points);
-    let best = &designs[0];
-    let plan = Plan::new(&best.synthesis.linkage).unwrap();
-    let mut sum = 0.0;
-    for (phi, t) in best.crank_angles.iter().zip(&req.points) {
-        let q = plan
-            .kinematics(Motion::fixed(*phi))
-            .unwrap()
-            .point("P")
-            .unwrap()
-            .p;
-        sum += (q.x - t[0]).hypot(q.y - t[1]);
-    }
-    let engine = sum / req.points.len() as f64;
-    assert!(
-        (engine - best.mean_error).abs() <= 1e-10 * size,
-        "engine {engine:e} vs reported {:e}",
-        best.mean_error
-    );
-    // γ_min as reported: the engine's dyads at the crank angles keep it.
-    let gamma = best.synthesis.report.min_transmission_angle;
-    assert!(gamma >= 40f64.to_radians() - 1e-12, "γ_min {gamma}");
-    (engine / size, evaluations)
-}
-
 #[test]
 fn recovers_six_bars_with_prescribed_timing() {
-    let mut rng = Rng(2310);
-    let n = env_or("TMM_SYNTH_CASES", 1);
-    let only = std::env::var("TMM_SYNTH_CASE")
-        .ok()
-        .and_then(|s| s.parse::<usize>().ok());
-    let (mut worst, mut failed, mut times) = (0.0f64, Vec::new(), Vec::new());
-    for case in 0..n {
-        let req = requirement(&mut rng);
-        if only.is_some_and(|k| k != case) {
-            continue;
-        }
-        let clock = Instant::now();
-        let (e, ev) = recover(&req, case as u64);
-        let t = clock.elapsed().as_secs_f64();
-        println!(
-            "six-bar case {case}: mean miss {e:.1e} of the path's size, {ev} evaluations, {t:.2} s"
-        );
-        if e.is_nan() || e > 1e-6 {
-            failed.push((case, e));
-        }
-        worst = worst.max(e);
-        times.push(t);
-    }
-    times.sort_by(f64::total_cmp);
-    println!(
-        "six-bar, 8 points: {} cases; worst mean miss {worst:.1e}; time a case: median {:.2} s, worst {:.2} s",
-        times.len(),
-        times.get(times.len() / 2).unwrap_or(&0.0),
-        times.last().unwrap_or(&0.0)
-    );
-    assert!(
-        failed.is_empty(),
-        "six-bar: cases missed (case, mean miss): {failed:?}"
-    );
+    recoveries_of("six-bar, 8 points", 2310, Mechanism::SixBar, requirement);
 }
 
 #[test]
