@@ -228,3 +228,71 @@ fn a_five_bar_input_stopping_while_the_other_moves_sticks_or_reverses_by_its_fri
     assert!(reversed >= 3, "{stuck} stuck, {reversed} reversed");
     assert!(worst <= 1e-9, "{worst:e}");
 }
+
+/// The five-bar robot with f = 0.3 on pins of 5 cm in every joint (the CLI's
+/// `--run 0.5 --motor 5,0 --motor2 0,0` on the bundled file with a `friction` object), 5 N·m
+/// on crank 1. The plain fixed-point iteration for q̈ spent its 60 friction solves at
+/// t ≈ 0.278 s (its factor ‖A⁻¹·∂Q_f/∂q̈‖ reached 0.64, and more further on); Newton's method
+/// runs to 0.285 s. Energy, independently of the run's Q_f: the kinetic energy gained equals
+/// the motor's work τ·q̇ and the couple's −0.3·ω₃ less the joints' lost power Σ P_lost of the
+/// friction kinetostatics at the run's (q, q̇, q̈), integrated by trapezoids over the steps
+/// (error O(h²)). The friction's work is a sizeable part of the balance, so that the check
+/// could fail. Shortly after (t < 0.3 s) the couplers fold (the dyad's angle at B about 7°)
+/// and the dyad self-locks under the friction: the run ends with the error that says that
+/// the linkage jams, the time and the joint.
+#[test]
+fn a_five_bar_with_large_pins_runs_with_the_energy_balance_of_its_friction_and_then_jams() {
+    let mut l = bundled::five_bar_robot();
+    l.friction = Some(Friction::pin(0.3, 0.05));
+    let tau = [5.0, 0.0];
+    let sys = machine(&l, tau);
+    let plan = sys.plan();
+    let r0 = plan.reference_inputs();
+    let q0 = Vector2::new(r0[0], r0[1]);
+    let mut opts = RunOptions::until(0.285, 1e-4);
+    opts.record_every = 1;
+    let r = run(&sys, &Rk4, State::at_rest(q0), &opts).unwrap();
+    assert!(matches!(r.outcome, Outcome::FinalTime), "{:?}", r.outcome);
+    let tr = &r.trajectory;
+    let (t, q, qd, kin) = (tr.t(), tr.q(), tr.qd(), tr.kinetic());
+    let mut power = Vec::with_capacity(tr.len());
+    let mut lost = 0.0;
+    for i in 0..tr.len() {
+        let (qi, qdi) = (
+            Vector2::new(q[0][i], q[1][i]),
+            Vector2::new(qd[0][i], qd[1][i]),
+        );
+        let qdd = tmm::dynamics::accelerations(&sys, t[i], &qi, &qdi).unwrap();
+        let a = plan.analyse(inputs(&qi, &qdi, &qdd)).unwrap();
+        let w3 = a.link("coupler 3").unwrap().rate;
+        power.push((tau[0] * qdi[0] + tau[1] * qdi[1] - 0.3 * w3, a.lost_power()));
+    }
+    let mut work = 0.0;
+    for i in 1..tr.len() {
+        let h = t[i] - t[i - 1];
+        work += 0.5 * h * (power[i - 1].0 + power[i].0 - power[i - 1].1 - power[i].1);
+        lost += 0.5 * h * (power[i - 1].1 + power[i].1);
+    }
+    let gained = kin[tr.len() - 1] - kin[0];
+    let err = (gained - work).abs() / (gained + lost);
+    println!(
+        "five-bar, 5 N·m, large pins: T gained {gained:.9} J, drive and load work less \
+         friction {work:.9} J, friction work {lost:.6} J; relative error {err:.1e} over {} \
+         steps",
+        r.steps
+    );
+    assert!(lost > 0.05 * gained, "{lost} vs {gained}");
+    assert!(err <= 1e-6, "{err:e}");
+    let e = run(
+        &sys,
+        &Rk4,
+        State::at_rest(q0),
+        &RunOptions::until(0.3, 1e-4),
+    )
+    .expect_err("the couplers jam before 0.3 s")
+    .to_string();
+    assert!(
+        e.contains("jams") && e.contains("at t = 0.28") && e.contains("self-locks"),
+        "{e}"
+    );
+}

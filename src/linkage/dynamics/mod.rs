@@ -41,7 +41,7 @@
 //! (R = R₀ + R₁·q̈ for one input without friction; with friction, the friction statics at
 //! (q, q̇, q̈)), so the equation of motion A·q̈ = b + Q_f(q̈), b = Q − c − B·q̇, is solved for
 //! q̈ at every evaluation: the fixed point q̈ = A⁻¹(b + Q_f(q̈)) from the frictionless q̈, by
-//! the secant method for one input and plain iteration for two, until the fixed-point
+//! the secant method for one input and Newton's method (Broyden's update) for two, until the fixed-point
 //! residual is at most [`FRICTION_TOLERANCE`] of the acceleration scale, within
 //! [`FRICTION_BUDGET`] friction solves (else an error: the friction's feedback on q̈ reaches
 //! the inertia, the motion self-locks). The Q_f of the solution is the one returned, so
