@@ -454,7 +454,6 @@ fn inputs(plan: &Plan) -> Vec<Motion> {
         .collect()
 }
 
-/// The largest force among the applied loads, the reactions and the drive: the load scale.
 /// One position against an independent solve's reactions and balancing moment `reference`:
 /// the largest gap (of `scale`, and of scale·size for M_b), and the power balance's error,
 /// drive + loads − the joints' losses (which must be positive), relative to the largest power.
@@ -482,6 +481,7 @@ fn against(
     )
 }
 
+/// The largest force among the applied loads, the reactions and the drive: the load scale.
 fn load_scale(plan: &Plan, a: &Analysis<'_>) -> f64 {
     let mut s = a.balance(0).unwrap().force.norm();
     for &(_, l) in a.applied_loads() {
