@@ -268,31 +268,46 @@ pub(super) fn recoveries_of(
     );
 }
 
+/// `n` points of the mechanism `points` draws, `step` rad of the crank apart from a random
+/// θ0: prescribed timing.
+pub(super) fn prescribed(
+    rng: &mut Rng,
+    n: usize,
+    step: f64,
+    points: impl Fn(&mut Rng, &[f64]) -> Vec<[f64; 2]>,
+) -> PathRequirement {
+    let theta0 = rng.range(0.0, TAU);
+    let delta: Vec<f64> = (0..n).map(|k| step * k as f64).collect();
+    let phis: Vec<f64> = delta.iter().map(|d| theta0 + d).collect();
+    PathRequirement {
+        points: points(rng, &phis),
+        timing: Timing::Prescribed(delta),
+    }
+}
+
+/// Ten points of the mechanism `points` draws, about 0.55–0.75 rad of the crank apart from
+/// a random θ0, without timing.
+fn free(rng: &mut Rng, points: impl Fn(&mut Rng, &[f64]) -> Vec<[f64; 2]>) -> PathRequirement {
+    let theta0 = rng.range(0.0, TAU);
+    let phis: Vec<f64> = (0..10)
+        .map(|k| theta0 + 0.55 * k as f64 + rng.range(0.0, 0.2))
+        .collect();
+    PathRequirement {
+        points: points(rng, &phis),
+        timing: Timing::Free,
+    }
+}
+
 #[test]
 fn recovers_prescribed_timing() {
     recoveries("prescribed timing, 6 points", 2300, |rng| {
-        let theta0 = rng.range(0.0, TAU);
-        let delta: Vec<f64> = (0..6).map(|k| 0.9 * k as f64).collect();
-        let phis: Vec<f64> = delta.iter().map(|d| theta0 + d).collect();
-        PathRequirement {
-            points: target(rng, &phis),
-            timing: Timing::Prescribed(delta),
-        }
+        prescribed(rng, 6, 0.9, target)
     });
 }
 
 #[test]
 fn recovers_free_timing() {
-    recoveries("free timing, 10 points", 2301, |rng| {
-        let theta0 = rng.range(0.0, TAU);
-        let phis: Vec<f64> = (0..10)
-            .map(|k| theta0 + 0.55 * k as f64 + rng.range(0.0, 0.2))
-            .collect();
-        PathRequirement {
-            points: target(rng, &phis),
-            timing: Timing::Free,
-        }
-    });
+    recoveries("free timing, 10 points", 2301, |rng| free(rng, target));
 }
 
 #[test]
@@ -321,15 +336,7 @@ fn recovers_slider_cranks_with_prescribed_timing() {
         "slider-crank, prescribed timing, 6 points",
         2310,
         Mechanism::SliderCrank,
-        |rng| {
-            let theta0 = rng.range(0.0, TAU);
-            let delta: Vec<f64> = (0..6).map(|k| 0.9 * k as f64).collect();
-            let phis: Vec<f64> = delta.iter().map(|d| theta0 + d).collect();
-            PathRequirement {
-                points: slider_target(rng, &phis),
-                timing: Timing::Prescribed(delta),
-            }
-        },
+        |rng| prescribed(rng, 6, 0.9, slider_target),
     );
 }
 
@@ -339,16 +346,7 @@ fn recovers_slider_cranks_with_free_timing() {
         "slider-crank, free timing, 10 points",
         2311,
         Mechanism::SliderCrank,
-        |rng| {
-            let theta0 = rng.range(0.0, TAU);
-            let phis: Vec<f64> = (0..10)
-                .map(|k| theta0 + 0.55 * k as f64 + rng.range(0.0, 0.2))
-                .collect();
-            PathRequirement {
-                points: slider_target(rng, &phis),
-                timing: Timing::Free,
-            }
-        },
+        |rng| free(rng, slider_target),
     );
 }
 

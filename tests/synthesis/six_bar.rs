@@ -4,9 +4,8 @@
 //! path's size as the engine analyses its description (any six-bar through the points
 //! passes). `TMM_SYNTH_CASES` sets the number of cases (1 by default; CI runs more).
 
-use super::path::{centroid_size, recoveries_of, Mechanism, Rng};
+use super::path::{centroid_size, prescribed, recoveries_of, Mechanism, Rng};
 use nalgebra::Point2;
-use std::f64::consts::TAU;
 use tmm::kinematics::batch::coupler_point;
 use tmm::kinematics::{crank, rrr_dyad, Branch, Motion, PointMotion};
 use tmm::synthesis::{six_bar_path_generator, PathOptions, PathRequirement, Progress, Timing};
@@ -120,13 +119,7 @@ fn target(rng: &mut Rng, phis: &[f64]) -> Vec<[f64; 2]> {
 /// Eight points (as many as the six-bar's 16 unknowns allow: precision points) over 2.25 rad
 /// of the crank from a random θ0.
 fn requirement(rng: &mut Rng) -> PathRequirement {
-    let theta0 = rng.range(0.0, TAU);
-    let delta: Vec<f64> = (0..8).map(|k| 2.25 / 7.0 * k as f64).collect();
-    let phis: Vec<f64> = delta.iter().map(|d| theta0 + d).collect();
-    PathRequirement {
-        points: target(rng, &phis),
-        timing: Timing::Prescribed(delta),
-    }
+    prescribed(rng, 8, 2.25 / 7.0, target)
 }
 
 #[test]
