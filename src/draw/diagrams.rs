@@ -201,20 +201,7 @@ pub fn diagram(plan: &Plan, course: &Course, diagram: &Diagram, style: &Style) -
     let eval = |a: &mut Solver<'_>, m: Motion| -> Result<Values> {
         specs_values(plan, diagram, a, Inputs::one(m))
     };
-    let mut data: Vec<Option<Values>> = Vec::with_capacity(samples.len());
-    let mut first_error = None;
-    for &m in &samples {
-        match eval(&mut a, m) {
-            Ok(v) => data.push(Some(v)),
-            Err(e) => {
-                first_error.get_or_insert(e);
-                data.push(None);
-            }
-        }
-    }
-    if data.iter().all(Option::is_none) {
-        return Err(first_error.unwrap_or_else(|| drawing("a diagram", "no position")));
-    }
+    let data = sampled(samples.iter().map(|&m| eval(&mut a, m)))?;
     let marks_data: Vec<(usize, f64, Option<Values>)> =
         thin(course.inputs.len(), MAX_PLAN_POSITIONS)
             .map(|k| {
@@ -222,25 +209,25 @@ pub fn diagram(plan: &Plan, course: &Course, diagram: &Diagram, style: &Style) -
                 (k, axis.x(m), eval(&mut a, m).ok())
             })
             .collect();
+    Curves::new(diagram, &xs, &data, &marks_data, x_range, &x_label).chart(&specs, style)
+}
 
-    let hodograph = matches!(diagram, Diagram::Hodograph(_));
-    let curves = Curves {
-        xs: &xs,
-        data: &data,
-        marks: &marks_data,
-        x_range,
-        x_label: &x_label,
-        hodograph,
-        reactions: matches!(diagram, Diagram::Reactions),
-    };
-    let mut panels: Vec<Panel> = specs
-        .iter()
-        .enumerate()
-        .map(|(p, spec)| curves.panel(p, spec))
+/// The values of every sample (`None` where its position failed), or the first error when
+/// no position could be solved.
+pub(super) fn sampled(values: impl Iterator<Item = Result<Values>>) -> Result<Vec<Option<Values>>> {
+    let mut first_error = None;
+    let data: Vec<Option<Values>> = values
+        .map(|v| {
+            v.map_err(|e| {
+                first_error.get_or_insert(e);
+            })
+            .ok()
+        })
         .collect();
-    let svg = render(&mut panels, style, hodograph)?;
-    super::primitives::finite_numbers(&svg)?;
-    Ok(Chart { svg, panels })
+    if data.iter().all(Option::is_none) {
+        return Err(first_error.unwrap_or_else(|| drawing("a diagram", "no position")));
+    }
+    Ok(data)
 }
 
 /// The abscissa of a diagram: what the input has done since the course's first position.
@@ -376,7 +363,41 @@ pub(super) struct Curves<'a> {
     pub reactions: bool,
 }
 
-impl Curves<'_> {
+impl<'a> Curves<'a> {
+    /// The curves of `diagram`: the samples' abscissae `xs` and values `data`, the course
+    /// positions `marks`, the abscissa's range and label.
+    pub(super) fn new(
+        diagram: &Diagram,
+        xs: &'a [f64],
+        data: &'a [Option<Values>],
+        marks: &'a [(usize, f64, Option<Values>)],
+        x_range: [f64; 2],
+        x_label: &'a str,
+    ) -> Self {
+        Self {
+            xs,
+            data,
+            marks,
+            x_range,
+            x_label,
+            hodograph: matches!(diagram, Diagram::Hodograph(_)),
+            reactions: matches!(diagram, Diagram::Reactions),
+        }
+    }
+
+    /// The chart of the panels `specs`, drawn in `style`, its SVG checked for a non-finite
+    /// number.
+    pub(super) fn chart(&self, specs: &[Spec], style: &Style) -> Result<Chart> {
+        let mut panels: Vec<Panel> = specs
+            .iter()
+            .enumerate()
+            .map(|(p, spec)| self.panel(p, spec))
+            .collect();
+        let svg = render(&mut panels, style, self.hodograph)?;
+        super::primitives::finite_numbers(&svg)?;
+        Ok(Chart { svg, panels })
+    }
+
     /// Panel `p` of `spec`: its curves, its marks and the ranges that cover them.
     pub(super) fn panel(&self, p: usize, spec: &Spec) -> Panel {
         let (xs, data, marks_data, x_range, hodograph) =

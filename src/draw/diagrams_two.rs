@@ -1,9 +1,8 @@
 //! The diagrams of a linkage with two inputs, along a path of its inputs.
 
-use super::diagrams::{check, pad, panel_specs, render, specs_values, Curves, Values};
-use super::frame::drawing;
+use super::diagrams::{check, pad, panel_specs, sampled, specs_values, Curves, Values};
 use super::plan_view::{thin, MAX_PLAN_POSITIONS};
-use super::{Chart, Diagram, Panel, Style};
+use super::{Chart, Diagram, Style};
 use crate::error::{Error, Result};
 use crate::linkage::{LinkId, Plan, TwoInputCourse, TwoInputShape};
 
@@ -107,50 +106,21 @@ pub fn diagram_two(
     let mut solver = plan.solver();
     let mut eval = |k: usize| specs_values(plan, diagram, &mut solver, course.inputs[k]);
     let n = course.inputs.len();
-    let sampled: Vec<usize> = thin(n, style.samples).collect();
-    let mut first_error = None;
-    let data: Vec<Option<Values>> = sampled
-        .iter()
-        .map(|&k| {
-            eval(k)
-                .map_err(|e| {
-                    first_error.get_or_insert(e);
-                })
-                .ok()
-        })
-        .collect();
-    if data.iter().all(Option::is_none) {
-        return Err(first_error.unwrap_or_else(|| drawing("a diagram", "no position")));
-    }
+    let sampled_at: Vec<usize> = thin(n, style.samples).collect();
+    let data = sampled(sampled_at.iter().map(|&k| eval(k)))?;
     // The marks reuse the analysed positions where they coincide.
     let marks: Vec<(usize, f64, Option<Values>)> = thin(n, MAX_PLAN_POSITIONS)
         .map(|k| {
-            let v = match sampled.binary_search(&k) {
+            let v = match sampled_at.binary_search(&k) {
                 Ok(i) => data[i].clone(),
                 Err(_) => eval(k).ok(),
             };
             (k, xs[k], v)
         })
         .collect();
-    let sample_xs: Vec<f64> = sampled.iter().map(|&k| xs[k]).collect();
-    let hodograph = matches!(diagram, Diagram::Hodograph(_));
-    let curves = Curves {
-        xs: &sample_xs,
-        data: &data,
-        marks: &marks,
-        x_range: pad(xs[0], xs[n - 1], 0.0),
-        x_label: &label,
-        hodograph,
-        reactions: matches!(diagram, Diagram::Reactions),
-    };
-    let mut panels: Vec<Panel> = specs
-        .iter()
-        .enumerate()
-        .map(|(p, spec)| curves.panel(p, spec))
-        .collect();
-    let svg = render(&mut panels, style, hodograph)?;
-    super::primitives::finite_numbers(&svg)?;
-    Ok(Chart { svg, panels })
+    let sample_xs: Vec<f64> = sampled_at.iter().map(|&k| xs[k]).collect();
+    let x_range = pad(xs[0], xs[n - 1], 0.0);
+    Curves::new(diagram, &sample_xs, &data, &marks, x_range, &label).chart(&specs, style)
 }
 
 /// The abscissa of every position of a path and its unit: the length along the path in the
