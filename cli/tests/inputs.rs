@@ -657,7 +657,7 @@ fn a_rocking_crank_has_its_reduced_quantities_between_its_lock_angles() {
         "dynamics",
         &path,
         "--positions",
-        "8",
+        "12",
         "--speed",
         "3",
         "--format",
@@ -722,9 +722,10 @@ fn a_rocking_crank_has_its_reduced_quantities_between_its_lock_angles() {
         "J_red vs the kinetic energy: {worst_j} relative"
     );
     assert!(worst_mb < 1e-9, "Mb vs ½J′ω² − M_red: {worst_mb}");
-    // Towards a lock the rocker's transfer function, and with it J_red, grows.
-    let mid = jr[3].min(jr[4]);
-    assert!(jr[0] > mid && jr[7] > mid, "J_red {jr:?}");
+    // Towards a lock the rocker's transfer function, and with it J_red, grows: each end
+    // position's J_red is above its neighbour's.
+    let n = jr.len();
+    assert!(jr[0] > jr[1] && jr[n - 1] > jr[n - 2], "J_red {jr:?}");
 }
 
 #[test]
