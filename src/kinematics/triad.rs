@@ -985,11 +985,11 @@ impl Eliminated {
         }
     }
 
-    /// The pose from B1 − A1 = `p` at z, polished by Newton's method on the closures (kept
-    /// while it reduces the closure error); `None` when it does not close to 1e-9 of the
-    /// size.
+    /// The pose from B1 − A1 = `p` at z, polished by Newton's method on the closures (each
+    /// step halved until it reduces the closure error, kept while one does); `None` when it
+    /// does not close to 1e-9 of the size.
     fn polish(&self, p: Vector2<f64>, z: C, dims: &TriadDims) -> Option<TriadPose> {
-        self.polish_steps(p, z, dims, 8, 1e-9)
+        self.polish_steps(p, z, dims, 48, 1e-9)
     }
 
     /// [`polish`](Self::polish) with at most `steps` Newton steps, `None` unless the pose
@@ -1014,14 +1014,24 @@ impl Eliminated {
             let Some(k_inv) = velocity_matrix(u, r).try_inverse() else {
                 break;
             };
-            let step = k_inv * (-h);
-            let b1n = b1 + Vector2::new(step.x, step.y);
-            let zn = unit(z * C::new(1.0, step.z));
-            let errn = self.closure(b1n, zn);
-            if errn < err {
-                (b1, z, err) = (b1n, zn, errn);
-            } else {
-                break;
+            // Near a branch point K is nearly singular: Newton's step along its null direction
+            // overshoots (and at a double root it only halves the error), so the step is halved
+            // until the closure error falls, as a damped Newton method.
+            let mut step = k_inv * (-h);
+            let mut better = None;
+            for _ in 0..6 {
+                let b1n = b1 + Vector2::new(step.x, step.y);
+                let zn = unit(z * C::new(1.0, step.z));
+                let errn = self.closure(b1n, zn);
+                if errn < err {
+                    better = Some((b1n, zn, errn));
+                    break;
+                }
+                step *= 0.5;
+            }
+            match better {
+                Some(next) => (b1, z, err) = next,
+                None => break,
             }
         }
         if err.is_nan() || err > within * length {
