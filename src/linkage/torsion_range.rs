@@ -24,11 +24,13 @@
 //! linkage, and a solve of them would need every branch of the boundary. The grid bounds it
 //! instead: every position of the workspace is within h·√2/2 of a grid point (h the grid's
 //! step: 2π/96 ≈ 0.065 rad for a crank, 8 sizes/96 for a slider), so the twist read on the
-//! grid misses its extreme by at most h·√2/2·G, G the largest rate of the twist per unit
-//! input (the ratio of the links' relative angular velocity to the inputs'). The refusal's
-//! margin [`TWIST_MARGIN`] = 0.1 rad covers that for G up to about 2.2 (crank inputs); a
-//! spring closer than the grid can see to ±π near a singular position of the linkage (where G
-//! grows without bound) is not caught by this check.
+//! grid misses its extreme by at most h·√2/2·G, G the largest norm of the twist's gradient
+//! over the two inputs (|∇τ| = √((∂τ/∂q₁)² + (∂τ/∂q₂)²), rad per rad). The refusal's margin
+//! [`TWIST_MARGIN`] = 0.1 rad covers that for G up to about 2.2 (crank inputs). The bound
+//! assumes the nearest grid point assembles: near the boundary of the workspace the nearest
+//! grid point that does can be farther than h·√2/2, and a spring closer than the grid can see
+//! to ±π there, or near a singular position of the linkage (where G grows without bound), is
+//! not caught by this check.
 
 use super::inputs::Inputs;
 use super::plan::{InputPlan, LoadPlan, Plan};

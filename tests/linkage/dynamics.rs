@@ -1152,3 +1152,48 @@ fn motors_and_added_inertia_by_input_index() {
         }
     }
 }
+
+/// The five-bar robot with a motor on its first input only (1 N·m) and none on the second
+/// runs from rest into a dead centre of its coupler dyad, where its two inputs no longer
+/// describe the motion (the reduced inertia grows as 1/det²). A fixed-step run used to step
+/// across it and return Ok with the kinetic energy 10⁸ times the work done; the run must
+/// stop there with the dyad's determinant named, and every state it passed before must
+/// balance the energy (the kinetic energy gained equals the motor's work, to RK4's error).
+#[test]
+fn a_run_into_a_dead_centre_of_two_inputs_is_an_error_naming_the_dyad() {
+    let sys = LinkageSystem::from_linkage(&bundled::five_bar_robot())
+        .unwrap()
+        .with_motor(0, Motor::Linear(LinearMotor { a: 1.0, b: 0.0 }))
+        .unwrap();
+    let reference = sys.plan().reference_inputs();
+    let q0 = Vector2::new(reference[0], reference[1]);
+    let h = 0.65 / 4000.0;
+    let err = run(&sys, &Rk4, State::at_rest(q0), &RunOptions::until(0.65, h)).unwrap_err();
+    let text = err.to_string();
+    assert!(text.contains("dead centre"), "{text}");
+    let mut inner = &err;
+    while let Error::In { source, .. } = inner {
+        inner = source;
+    }
+    assert!(
+        matches!(inner, Error::Singular { value, .. } if value.abs() <= 1e-3),
+        "{err:?}"
+    );
+    // Up to shortly before the dead centre, the energy balances: the kinetic energy gained
+    // equals the work of the applied loads less the losses (trapezoids over the steps).
+    let mut opts = RunOptions::until(0.5, h);
+    opts.record_every = 1;
+    let r = run(&sys, &Rk4, State::at_rest(q0), &opts).unwrap();
+    let tr = &r.trajectory;
+    let (t, kinetic) = (tr.t(), tr.kinetic());
+    let (applied, lost) = (tr.power_applied(), tr.power_dissipated());
+    let p = |i: usize| applied[i] - lost[i];
+    let work: f64 = (1..tr.len())
+        .map(|i| 0.5 * (p(i - 1) + p(i)) * (t[i] - t[i - 1]))
+        .sum();
+    let gained = kinetic[tr.len() - 1] - kinetic[0];
+    assert!(
+        (gained - work).abs() <= 1e-6 * work.abs(),
+        "kinetic energy {gained} against the work {work}"
+    );
+}

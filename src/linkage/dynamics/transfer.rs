@@ -3,11 +3,11 @@
 
 use nalgebra::{Point2, Vector2};
 
-use crate::error::Result;
+use crate::error::{Error, Result};
 use crate::kinematics::{LinkMotion, Motion, PointMotion};
-use crate::linkage::plan::Chain;
-use crate::linkage::solve::state::KinState;
-use crate::linkage::Plan;
+use crate::linkage::plan::{Chain, GroupKind};
+use crate::linkage::solve::state::{within, KinState};
+use crate::linkage::{Plan, DEAD_CENTRE_DETERMINANT};
 
 /// The rates of one link in one solve: its origin's velocity and acceleration, ω and ε (the
 /// positions are the same in every solve and stay in the buffers).
@@ -54,6 +54,7 @@ impl<'p> Transfer<'p> {
             let m = [Motion::new(q[0], r[0], 0.0), Motion::new(q[1], r[1], 0.0)];
             if i == 0 {
                 kin.solve(chain, &m[..n])?;
+                at_no_dead_centre(chain, &kin.dets)?;
             } else {
                 // The same positions: only the (linear) rate problems again.
                 kin.solve_rates(chain, &m[..n])?;
@@ -140,4 +141,26 @@ impl<'p> Transfer<'p> {
     pub(super) fn rate(&self, qd: &Vector2<f64>, f: impl Fn(usize) -> f64) -> f64 {
         (0..self.n).map(|k| f(k) * qd[k]).sum()
     }
+}
+
+/// Refuses a state at (or within [`DEAD_CENTRE_DETERMINANT`] of) a dead centre of an RRR or
+/// RRP dyad. There the dyad's links move at rates of order q̇/det, so the reduced inertia
+/// grows as 1/det²: the inputs no longer describe the motion (a one-input linkage is at a
+/// lock of its input; a two-input one can leave the dyad's assembly mode, which the plan
+/// holds fixed). A fixed-step run that stepped into this region would otherwise go on with
+/// an energy error of any size (the five-bar robot with one motor gained 10⁸ J in one step).
+fn at_no_dead_centre(chain: &Chain, dets: &[f64]) -> Result<()> {
+    for (group, det) in chain.groups.iter().zip(dets) {
+        let dyad = matches!(group.kind, GroupKind::Rrr | GroupKind::Rrp)
+            && group.triad.is_none()
+            && group.general.is_none();
+        if dyad && det.abs() <= DEAD_CENTRE_DETERMINANT {
+            return Err(within(&group.name)(Error::Singular {
+                what: "the dyad at a dead centre, where the inputs do not describe the motion",
+                measure: "its determinant (at most 1e-3 at a dead centre)",
+                value: *det,
+            }));
+        }
+    }
+    Ok(())
 }
