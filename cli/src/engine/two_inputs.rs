@@ -9,7 +9,7 @@ use tmm::dynamics::machines::LinearMotor;
 use tmm::dynamics::{run, LagrangeSystem as _, Outcome, Rk4, RunOptions, State};
 use tmm::kinematics::{assembly_range, Motion};
 use tmm::linkage::dynamics::{LinkageSystem, Motor};
-use tmm::linkage::{Inputs, LinkId, Output, TwoInputCourse, TwoInputShape, WorkspaceOptions};
+use tmm::linkage::{Inputs, Output, TwoInputCourse, TwoInputShape, WorkspaceOptions};
 
 use super::{failure, Machine};
 
@@ -252,18 +252,9 @@ impl Machine {
         if let Some(o) = &self.linkage.output {
             return o.clone();
         }
-        let plan = &self.plan;
-        let inputs = plan.input_links();
-        let free = (0..plan.joint_names().len()).find(|&j| {
-            plan.joint_links(j)
-                .is_ok_and(|l| !l.contains(&LinkId::FRAME) && l.iter().all(|k| !inputs.contains(k)))
-        });
-        match free {
-            Some(j) => Output::X(plan.joint_names()[j].clone()),
-            None => {
-                let names = plan.link_names();
-                Output::Angle(names[names.len() - 1].clone())
-            }
+        match self.plan.end_joint() {
+            Some(j) => Output::X(j.to_owned()),
+            None => self.plan.output_or_last(None),
         }
     }
 
