@@ -57,6 +57,32 @@ fn check_speed(speed: f64) -> Result<(), Failure> {
     }
 }
 
+/// The rotor and the motors of a dynamics request, each named by its option: a rotor finite
+/// and not negative, every motor's a and b finite.
+fn check_machine(request: &DynamicsRequest) -> Result<(), Failure> {
+    let rotor = request.rotor;
+    if !(rotor.is_finite() && rotor >= 0.0) {
+        return Err(Failure::new(format!(
+            "--rotor {}: a rotor's moment of inertia must be finite and not negative",
+            typed(rotor)
+        ))
+        .hint("give --rotor J in kg·m², 0 for none"));
+    }
+    for (option, motor) in [("--motor", request.motor), ("--motor2", request.motor2)] {
+        if let Some((a, b)) = motor
+            && !(a.is_finite() && b.is_finite())
+        {
+            return Err(Failure::new(format!(
+                "{option} {},{}: a motor's a and b must be finite numbers",
+                typed(a),
+                typed(b)
+            ))
+            .hint("give a in N·m and b in N·m·s/rad, for example --motor 60,2"));
+        }
+    }
+    Ok(())
+}
+
 /// The library's error as a person reads it: its `Display` text.
 fn failure(e: &tmm::Error) -> Failure {
     Failure::new(e.to_string())
@@ -142,6 +168,7 @@ impl Machine {
             .hint("without --run-up and --flywheel, its mass matrix over a grid of the inputs"));
         }
         check_speed(request.speed)?;
+        check_machine(request)?;
         let mut d = self.mass_matrix_grid(request.grid, request.span, request.rotor, progress)?;
         if let Some(t_end) = request.run {
             d.run = Some(self.run_two(request, t_end, progress)?);

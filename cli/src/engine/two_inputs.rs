@@ -430,7 +430,14 @@ impl Machine {
         progress(&format!(
             "a run of {t_end} s from rest (RK4, h = {h:.3e} s)"
         ));
-        let r = run(&sys, &Rk4, State::at_rest(q0), &opts).map_err(f)?;
+        // The run's own error (a pose beyond reach, a state that overflows) says what
+        // happened; the options that set the run are what to change.
+        let r = run(&sys, &Rk4, State::at_rest(q0), &opts).map_err(|e| {
+            failure(&e).hint(
+                "the run from rest under --motor and --motor2: give a shorter --run T, or \
+                 motors that hold the linkage within its reach",
+            )
+        })?;
         // A stop that holds for good ends the rows early: say so, not just print fewer rows.
         let stopped = match &r.outcome {
             Outcome::Stuck { t, loads, .. } => Some(loads.stalled(*t).to_string()),
