@@ -48,7 +48,7 @@ pub fn run(text: &str, source: &str, dir: &Path) -> Result<Table, Box<dyn std::e
             .collect::<Vec<_>>()
             .join(", ")
     );
-    let speed = linkage.speed.unwrap_or(10.0);
+    let speed = linkage.input_speed();
     let course = plan.default_course(linkage.output.as_ref(), 12, speed)?;
     match &course {
         AnyCourse::One(c) => match (c.sweep, &linkage.output) {
@@ -69,7 +69,7 @@ pub fn run(text: &str, source: &str, dir: &Path) -> Result<Table, Box<dyn std::e
         ),
     }
     let inputs = course.inputs();
-    let positions: Vec<_> = inputs.iter().map(|&i| plan.analyse(i)).collect();
+    let positions = plan.analyse_each(&inputs, &mut |_| {});
     for (k, p) in positions.iter().enumerate() {
         let a = match p {
             Ok(a) => a,
@@ -112,7 +112,7 @@ pub fn run(text: &str, source: &str, dir: &Path) -> Result<Table, Box<dyn std::e
             a.worst_residual()
         );
     }
-    let table = Table::of(&positions);
+    let table = plan.course_table(&positions);
     println!("\n{}", table.to_text(4));
     fs::create_dir_all(dir)?;
     let file = dir.join(format!("{}.csv", linkage.name.replace([' ', '/'], "_")));
@@ -133,9 +133,8 @@ mod pictures {
     use std::path::Path;
     use tmm::draw::{self, Diagram, Style};
     use tmm::kinematics::Motion;
-    use tmm::linkage::LinkId;
     use tmm::linkage::{
-        uniform_inputs, Course, Linkage, Output, Plan, Sweep, TwoInputCourse, WorkspaceOptions,
+        uniform_inputs, Course, Linkage, Plan, Sweep, TwoInputCourse, WorkspaceOptions,
     };
 
     /// The pictures of a linkage with two inputs: the scheme and the reactions at the first
@@ -159,28 +158,24 @@ mod pictures {
         let first = course.inputs[0];
         save("scheme", &draw::scheme(plan, first, &style)?.svg)?;
         save("forces", &draw::forces(plan, first, &style)?.svg)?;
-        let inputs = plan.input_links();
-        let free = |l: &LinkId| *l != LinkId::FRAME && !inputs.contains(l);
-        let point = plan.point_names().first().cloned().or_else(|| {
-            plan.joint_names()
-                .iter()
-                .enumerate()
-                .find(|&(j, _)| plan.joint_links(j).is_ok_and(|l| l.iter().all(free)))
-                .map(|(_, n)| n.clone())
-        });
-        let paths: Vec<&str> = point.iter().map(String::as_str).collect();
+        let point = plan
+            .point_names()
+            .first()
+            .map(String::as_str)
+            .or_else(|| plan.end_joint());
+        let paths: Vec<&str> = point.into_iter().collect();
         save(
             "plan",
             &draw::plan_view_two(plan, course, &paths, &style)?.svg,
         )?;
-        let speed = linkage.speed.unwrap_or(10.0);
+        let speed = linkage.input_speed();
         let round = TwoInputCourse::around_reference(plan, 360, speed)?;
         save(
             "animation",
             &draw::animation_path(plan, &round.inputs, 4.0, &style)?.svg,
         )?;
         if let Some(point) = point {
-            let ws = plan.workspace(&point, &WorkspaceOptions::default())?;
+            let ws = plan.workspace(point, &WorkspaceOptions::default())?;
             println!(
                 "workspace of {point}: {:.4} m², {} outline(s), {} singular curve(s)",
                 ws.region.area(),
@@ -223,20 +218,9 @@ mod pictures {
             )?;
             return Ok(());
         }
-        let speed = linkage.speed.unwrap_or(10.0);
+        let speed = linkage.input_speed();
         let course = Course::new(plan, linkage.output.as_ref(), 12, speed)?;
-        // The paths of every joint off the frame and of every named point.
-        let paths: Vec<&str> = plan
-            .joint_names()
-            .iter()
-            .enumerate()
-            .filter(|&(j, _)| {
-                plan.joint_links(j)
-                    .is_ok_and(|l| !l.contains(&LinkId::FRAME))
-            })
-            .map(|(_, n)| n.as_str())
-            .chain(plan.point_names().iter().map(String::as_str))
-            .collect();
+        let paths = plan.traced_points();
         save("plan", &draw::plan_view(plan, &course, &paths, &style)?.svg)?;
         let turn = match course.sweep {
             Sweep::Rocking { .. } => Course::new(plan, None, 360, speed)?.inputs,
@@ -247,9 +231,7 @@ mod pictures {
             height: 900,
             ..Style::default()
         };
-        let output = linkage.output.clone().unwrap_or_else(|| {
-            Output::Angle(plan.link_names()[plan.link_names().len() - 1].clone())
-        });
+        let output = plan.output_or_last(linkage.output.as_ref());
         save(
             "kinematics",
             &draw::diagram(plan, &course, &Diagram::Kinematics(output.clone()), &tall)?.svg,
@@ -266,16 +248,11 @@ mod pictures {
             "reactions",
             &draw::diagram(plan, &course, &Diagram::Reactions, &style)?.svg,
         )?;
-        // The hodograph of the crank pin's reaction: the input link's joint off the frame.
-        let input = plan.input_links()[0];
-        if let Some(j) = (0..plan.joint_names().len()).find(|&j| {
-            plan.joint_links(j)
-                .is_ok_and(|l| l.contains(&input) && !l.contains(&LinkId::FRAME))
-        }) {
-            let joint = plan.joint_names()[j].clone();
+        // The hodograph of the crank pin's reaction.
+        if let Some(pin) = plan.crank_pin() {
             save(
                 "hodograph",
-                &draw::diagram(plan, &course, &Diagram::Hodograph(joint), &style)?.svg,
+                &draw::diagram(plan, &course, &Diagram::Hodograph(pin.to_owned()), &style)?.svg,
             )?;
         }
         Ok(())

@@ -10,8 +10,7 @@ mod two_inputs;
 use tmm::draw::{self, Course, Diagram, Style};
 use tmm::kinematics::{grashof, Grashof, Motion, Rotation};
 use tmm::linkage::{
-    course_inputs, uniform_inputs, Drive, Inputs, LinkId, Linkage, Output, Plan, Table,
-    TwoInputCourse,
+    course_inputs, uniform_inputs, Drive, Inputs, LinkId, Linkage, Output, Plan, TwoInputCourse,
 };
 
 use crate::model::{
@@ -56,6 +55,32 @@ fn check_speed(speed: f64) -> Result<(), Failure> {
         ))
         .hint("give --speed in rad/s"))
     }
+}
+
+/// The rotor and the motors of a dynamics request, each named by its option: a rotor finite
+/// and not negative, every motor's a and b finite.
+fn check_machine(request: &DynamicsRequest) -> Result<(), Failure> {
+    let rotor = request.rotor;
+    if !(rotor.is_finite() && rotor >= 0.0) {
+        return Err(Failure::new(format!(
+            "--rotor {}: a rotor's moment of inertia must be finite and not negative",
+            typed(rotor)
+        ))
+        .hint("give --rotor J in kg·m², 0 for none"));
+    }
+    for (option, motor) in [("--motor", request.motor), ("--motor2", request.motor2)] {
+        if let Some((a, b)) = motor
+            && !(a.is_finite() && b.is_finite())
+        {
+            return Err(Failure::new(format!(
+                "{option} {},{}: a motor's a and b must be finite numbers",
+                typed(a),
+                typed(b)
+            ))
+            .hint("give a in N·m and b in N·m·s/rad, for example --motor 60,2"));
+        }
+    }
+    Ok(())
 }
 
 /// The library's error as a person reads it: its `Display` text.
@@ -143,6 +168,7 @@ impl Machine {
             .hint("without --run-up and --flywheel, its mass matrix over a grid of the inputs"));
         }
         check_speed(request.speed)?;
+        check_machine(request)?;
         let mut d = self.mass_matrix_grid(request.grid, request.span, request.rotor, progress)?;
         if let Some(t_end) = request.run {
             d.run = Some(self.run_two(request, t_end, progress)?);
@@ -152,7 +178,7 @@ impl Machine {
 
     /// The input speed of the file (10 rad/s when it gives none).
     pub fn default_speed(&self) -> f64 {
-        self.linkage.speed.unwrap_or(10.0)
+        self.linkage.input_speed()
     }
 
     fn input_kind(&self) -> InputKind {
@@ -468,20 +494,20 @@ impl Machine {
             return Err(Failure::new("no positions were asked for"));
         }
         let n = inputs.len();
-        let results: Vec<_> = inputs
+        let inputs: Vec<Inputs> = inputs
             .iter()
-            .enumerate()
-            .map(|(k, i)| {
-                if k % 5000 == 0 && n > 5000 {
-                    progress(&format!("position {} of {n}", k + 1));
-                }
-                Inputs::from_slice(i).and_then(|i| self.plan.analyse(i))
-            })
-            .collect();
+            .map(|i| Inputs::from_slice(i))
+            .collect::<tmm::Result<_>>()
+            .map_err(|e| failure(&e))?;
+        let results = self.plan.analyse_each(&inputs, &mut |k| {
+            if k % 5000 == 0 && n > 5000 {
+                progress(&format!("position {} of {n}", k + 1));
+            }
+        });
         let mut failures = Vec::new();
         for (i, r) in inputs.iter().zip(&results) {
             if let Err(e) = r {
-                failures.push((i[0].value, e.to_string()));
+                failures.push((i.as_slice()[0].value, e.to_string()));
             }
         }
         if failures.len() == results.len() {
@@ -492,8 +518,7 @@ impl Machine {
         }
         // With two inputs the library's row holds both inputs, both balances and the drives'
         // power beside its value by virtual power (W).
-        let mut table = Table::of(&results);
-        self.add_named_points(&mut table, &results);
+        let table = self.plan.course_table(&results);
         let columns = table
             .columns
             .into_iter()
@@ -514,42 +539,6 @@ impl Machine {
             notes,
             speed,
         })
-    }
-
-    /// The named points' columns (a coupler point's path), after the joints' (the library's
-    /// table holds joints only): x, y, |v|, |a| of each, from the positions that solved.
-    fn add_named_points(
-        &self,
-        table: &mut Table,
-        results: &[tmm::Result<tmm::linkage::Analysis<'_>>],
-    ) {
-        let at = table
-            .columns
-            .iter()
-            .position(|c| c.name.starts_with("mu(") || c.name.starts_with("R("))
-            .unwrap_or(table.columns.len());
-        let mut added = Vec::new();
-        for name in self.plan.point_names() {
-            let motion: Vec<_> = results
-                .iter()
-                .flatten()
-                .map(|a| a.kinematics().point(name.as_str()).ok())
-                .collect();
-            let column = |label: String, f: &dyn Fn(&tmm::kinematics::PointMotion) -> f64| {
-                tmm::linkage::Column {
-                    name: label,
-                    values: motion
-                        .iter()
-                        .map(|m| m.as_ref().map_or(f64::NAN, f))
-                        .collect(),
-                }
-            };
-            added.push(column(format!("x({name}) [m]"), &|m| m.p.x));
-            added.push(column(format!("y({name}) [m]"), &|m| m.p.y));
-            added.push(column(format!("|v({name})| [m/s]"), &|m| m.v.norm()));
-            added.push(column(format!("|a({name})| [m/s^2]"), &|m| m.a.norm()));
-        }
-        table.columns.splice(at..at, added);
     }
 
     fn second_is_crank(&self) -> bool {
@@ -632,10 +621,7 @@ impl Machine {
 
     /// The output of the diagrams: the described one, or the last link's angle.
     fn output(&self) -> Output {
-        self.linkage.output.clone().unwrap_or_else(|| {
-            let names = self.plan.link_names();
-            Output::Angle(names[names.len() - 1].clone())
-        })
+        self.plan.output_or_last(self.linkage.output.as_ref())
     }
 
     /// A picture as SVG text.
@@ -668,17 +654,7 @@ impl Machine {
                 "--along gives the path of --plan, --animate and --diagram, and none was asked for",
             ));
         }
-        let paths: Vec<&str> = plan
-            .joint_names()
-            .iter()
-            .enumerate()
-            .filter(|&(j, _)| {
-                plan.joint_links(j)
-                    .is_ok_and(|l| !l.contains(&LinkId::FRAME))
-            })
-            .map(|(_, n)| n.as_str())
-            .chain(plan.point_names().iter().map(String::as_str))
-            .collect();
+        let paths = plan.traced_points();
         let svg = match &request.kind {
             PictureKind::Scheme(at) if request.centres => {
                 draw::scheme_with_centres(plan, self.inputs_at("--scheme", at, speed)?, &style)
@@ -728,16 +704,10 @@ impl Machine {
 
     /// The (first) input link's joint off the frame, whose reaction the hodograph draws.
     fn crank_pin(&self) -> Result<String, Failure> {
-        let plan = &self.plan;
-        let input = plan.input_links()[0].index();
-        let pin = (0..plan.joint_names().len())
-            .find(|&j| {
-                plan.joint_links(j).is_ok_and(|l| {
-                    l.iter().any(|k| k.index() == input) && !l.contains(&LinkId::FRAME)
-                })
-            })
-            .ok_or_else(|| Failure::new("the input link has no joint off the frame"))?;
-        Ok(plan.joint_names()[pin].clone())
+        self.plan
+            .crank_pin()
+            .map(str::to_owned)
+            .ok_or_else(|| Failure::new("the input link has no joint off the frame"))
     }
 
     /// A diagram over the cycle of a linkage with one input.

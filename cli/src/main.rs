@@ -418,7 +418,19 @@ fn io_text(e: &std::io::Error) -> String {
 
 /// The description's text: the file, or a bundled description of that name.
 fn read(file: &str) -> Result<String, Fail> {
+    if file.is_empty() {
+        return Err(Fail {
+            file: None,
+            failure: Failure::new("the description file's name is empty")
+                .hint("give a path to a JSON file, or a name from `tmm bundled`"),
+        });
+    }
     match std::fs::read_to_string(file) {
+        Ok(text) if text.trim().is_empty() => Err(Fail::on(
+            file,
+            Failure::new("the file is empty, and a description is a JSON object")
+                .hint("`tmm bundled shaper > my.json` writes one to start from"),
+        )),
         Ok(text) => Ok(text),
         Err(e) if !Path::new(file).exists() => {
             bundled::find(file).map(str::to_owned).ok_or_else(|| {

@@ -53,6 +53,7 @@ mod contour;
 mod course;
 mod course_two;
 mod cycle;
+mod defaults;
 mod description;
 pub mod dynamics;
 mod handle;
@@ -76,6 +77,7 @@ pub use course_two::{AnyCourse, Assembly, AssemblyFailure, TwoInputCourse, TwoIn
 #[cfg(feature = "rayon")]
 pub use cycle::run_cycle_parallel;
 pub use cycle::{course_inputs, run_cycle, try_course_inputs, try_uniform_inputs, uniform_inputs};
+pub use defaults::DEFAULT_SPEED;
 pub use description::{
     Anchor, At, Drive, Friction, Input, Joint, JointKind, Link, Linkage, LoadSpec, Mass, Mode,
     NamedPoint, Output,

@@ -12,6 +12,10 @@ use crate::model::{
     DynamicsReport, DynamicsRequest, Failure, FlywheelRow, Range, ReducedRow, RunUpReport, TurnRow,
 };
 
+/// The most RK4 steps a run-up may be expected to need, before it is refused: a turn at the
+/// speed asked for, or the spin-up to that speed.
+const MAX_RUN_UP_STEPS: f64 = 1e6;
+
 impl Machine {
     /// The machine's dynamics: reduced quantities, run-up and flywheels.
     ///
@@ -47,6 +51,7 @@ impl Machine {
         }
         let speed = request.speed;
         super::check_speed(speed)?;
+        super::check_machine(request)?;
         if speed == 0.0 {
             return Err(Failure::new(format!(
                 "the speed must be finite and not zero, got {}",
@@ -178,6 +183,16 @@ impl Machine {
                 (m.a, m.b, true)
             }
         };
+        if !(a > 0.0 && b >= 0.0) {
+            return Err(Failure::new(format!(
+                "the motor M = a − b·|ω| needs a starting moment a > 0 (in the sense of \
+                 --speed) and a slope b ≥ 0 (a moment that grows with speed runs away), and \
+                 it is a = {} N·m, b = {} N·m·s/rad",
+                crate::model::typed(a),
+                crate::model::typed(b)
+            ))
+            .hint("give --motor a,b with a > 0 and b ≥ 0; a negative --speed turns it clockwise"));
+        }
         let sense = speed.signum();
         let machine = bare
             .clone()
@@ -191,8 +206,11 @@ impl Machine {
         let top = speed.abs().max(idle.min(100.0 * speed.abs()));
         let j_min = rows.iter().map(|r| r.inertia).fold(f64::INFINITY, f64::min);
         let h = (TAU / top / 2000.0).min(0.5 * j_min / b.abs().max(f64::MIN_POSITIVE));
+        Self::within_budget(rows, speed, (a, b), h)?;
         let mut opts = RunUpOptions::new(h);
         opts.record_every = 1;
+        // No one turn may spend more than the whole budget of steps.
+        opts.max_turn_time = opts.max_turn_time.min(MAX_RUN_UP_STEPS * h);
         progress("run-up from rest (RK4)");
         let r = machine.run_up(&Rk4, &opts).map_err(|e| match e {
             // A turn the step cannot resolve: the machine runs far faster than it was sized for.
@@ -221,5 +239,45 @@ impl Machine {
             steps: r.steps,
             evaluations: r.evaluations,
         })
+    }
+
+    /// Refuses a run-up that the step `h` cannot finish within [`MAX_RUN_UP_STEPS`]: a turn
+    /// at `speed` that needs more steps (the motor's damping b forces a step far below the
+    /// turn's), or a spin-up from rest that does. The spin-up takes at least J·|ω|/a — the
+    /// motor's full starting moment a on the mean reduced moment of inertia J, with no load
+    /// and no fall of the moment with speed — so a larger estimate is certainly too long.
+    fn within_budget(
+        rows: &[ReducedRow],
+        speed: f64,
+        (a, b): (f64, f64),
+        h: f64,
+    ) -> Result<(), Failure> {
+        let turn = TAU / speed.abs() / h;
+        if turn.is_nan() || turn > MAX_RUN_UP_STEPS {
+            return Err(Failure::new(format!(
+                "a turn at {} rad/s takes {turn:.3e} steps of h = {h:.3e} s (the step RK4 needs \
+                 for the motor's slope b = {} N·m·s/rad), above the {MAX_RUN_UP_STEPS:e} a \
+                 run-up may take",
+                crate::model::typed(speed),
+                crate::model::typed(b)
+            ))
+            .hint("give --motor a,b with a smaller b, a larger --speed, or a --rotor"));
+        }
+        #[allow(clippy::cast_precision_loss)]
+        let j = rows.iter().map(|r| r.inertia).sum::<f64>() / rows.len() as f64;
+        let spin_up = j * speed.abs() / a;
+        let steps = spin_up / h;
+        if steps.is_nan() || steps > MAX_RUN_UP_STEPS {
+            return Err(Failure::new(format!(
+                "the motor's starting moment a = {} N·m needs at least {} s to bring the crank \
+                 (J_red ≈ {j:.4e} kg·m²) to {} rad/s: {steps:.3e} steps of h = {h:.3e} s, above \
+                 the {MAX_RUN_UP_STEPS:e} a run-up may take",
+                crate::model::typed(a),
+                crate::model::typed(spin_up),
+                crate::model::typed(speed)
+            ))
+            .hint("give --motor a,b with a larger a, a smaller --rotor, or a lower --speed"));
+        }
+        Ok(())
     }
 }

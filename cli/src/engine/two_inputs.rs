@@ -9,7 +9,7 @@ use tmm::dynamics::machines::LinearMotor;
 use tmm::dynamics::{run, LagrangeSystem as _, Outcome, Rk4, RunOptions, State};
 use tmm::kinematics::{assembly_range, Motion};
 use tmm::linkage::dynamics::{LinkageSystem, Motor};
-use tmm::linkage::{Inputs, LinkId, Output, TwoInputCourse, TwoInputShape, WorkspaceOptions};
+use tmm::linkage::{Inputs, Output, TwoInputCourse, TwoInputShape, WorkspaceOptions};
 
 use super::{failure, Machine};
 
@@ -252,18 +252,9 @@ impl Machine {
         if let Some(o) = &self.linkage.output {
             return o.clone();
         }
-        let plan = &self.plan;
-        let inputs = plan.input_links();
-        let free = (0..plan.joint_names().len()).find(|&j| {
-            plan.joint_links(j)
-                .is_ok_and(|l| !l.contains(&LinkId::FRAME) && l.iter().all(|k| !inputs.contains(k)))
-        });
-        match free {
-            Some(j) => Output::X(plan.joint_names()[j].clone()),
-            None => {
-                let names = plan.link_names();
-                Output::Angle(names[names.len() - 1].clone())
-            }
+        match self.plan.end_joint() {
+            Some(j) => Output::X(j.to_owned()),
+            None => self.plan.output_or_last(None),
         }
     }
 
@@ -439,7 +430,14 @@ impl Machine {
         progress(&format!(
             "a run of {t_end} s from rest (RK4, h = {h:.3e} s)"
         ));
-        let r = run(&sys, &Rk4, State::at_rest(q0), &opts).map_err(f)?;
+        // The run's own error (a pose beyond reach, a state that overflows) says what
+        // happened; the options that set the run are what to change.
+        let r = run(&sys, &Rk4, State::at_rest(q0), &opts).map_err(|e| {
+            failure(&e).hint(
+                "the run from rest under --motor and --motor2: give a shorter --run T, or \
+                 motors that hold the linkage within its reach",
+            )
+        })?;
         // A stop that holds for good ends the rows early: say so, not just print fewer rows.
         let stopped = match &r.outcome {
             Outcome::Stuck { t, loads, .. } => Some(loads.stalled(*t).to_string()),

@@ -1,0 +1,141 @@
+//! Hostile options, one test per class of failure found by sweeping every subcommand over the
+//! bundled files: a run that would take hours is refused at once with the budget it breaks
+//! and the option to change; a machine option out of its domain names that option; an empty
+//! file or file name is said to be one. Every failure is one line on stderr, exit code 1.
+
+mod common;
+
+use common::{assert_one_line_failure, tmm};
+
+/// The number after `key` in `text` (up to the next space, comma or unit).
+fn number_after(text: &str, key: &str) -> f64 {
+    let at = text
+        .find(key)
+        .unwrap_or_else(|| panic!("{key:?} in {text}"))
+        + key.len();
+    let num: String = text[at..]
+        .chars()
+        .take_while(|c| c.is_ascii_digit() || matches!(c, '.' | 'e' | '-' | '+'))
+        .collect();
+    num.parse()
+        .unwrap_or_else(|_| panic!("a number after {key:?} in {text}"))
+}
+
+/// A run-up whose step cannot finish it within the step budget is refused before it starts:
+/// a spin-up from rest to 10⁹ rad/s, a rotor of 10³⁰⁰ kg·m², a motor of 10⁻³⁰⁰ N·m (each
+/// needing far more steps than allowed), or a speed of 10⁻⁹ rad/s, whose default motor is so
+/// steep that RK4's stable step makes a turn take 10²³ steps. The spin-up's stated least time
+/// is J·|ω|/a of the stated J, ω and a: the motor's full starting moment on the crank alone.
+#[test]
+fn a_run_up_beyond_its_step_budget_is_refused_at_once() {
+    let cases: [(&[&str], &str); 4] = [
+        (&["--speed", "1e9"], "--speed"),
+        (&["--rotor", "1e300"], "--rotor"),
+        (&["--motor", "1e-300,0"], "--motor"),
+        (&["--speed", "1e-9"], "larger --speed"),
+    ];
+    for (file, omega) in [("four-bar", 10.0), ("mechanism-compressor", 10.0)] {
+        for (extra, option) in cases {
+            let mut args = vec!["dynamics", file, "--run-up"];
+            args.extend_from_slice(extra);
+            let r = tmm(&args);
+            assert_one_line_failure(&r, file);
+            assert!(r.stderr.contains("above the 1e6"), "{}", r.stderr);
+            assert!(r.stderr.contains(option), "names {option}: {}", r.stderr);
+            if r.stderr.contains("needs at least") {
+                let a = number_after(&r.stderr, "a = ");
+                let j = number_after(&r.stderr, "J_red ≈ ");
+                let w = if extra[0] == "--speed" {
+                    extra[1].parse().unwrap()
+                } else {
+                    omega
+                };
+                let t = number_after(&r.stderr, "at least ");
+                // J is printed to 5 significant digits.
+                assert!(
+                    (t - j * w / a).abs() <= 1e-4 * t,
+                    "{t} s against J·ω/a = {}: {}",
+                    j * w / a,
+                    r.stderr
+                );
+            }
+        }
+    }
+    // The budget refuses nothing a machine really does: the default run-up still runs.
+    let r = tmm(&["dynamics", "four-bar", "--run-up"]);
+    assert_eq!(r.code, 0, "{}", r.stderr);
+    assert!(r.stdout.contains("steady after"), "{}", r.stdout);
+}
+
+/// A motor that cannot drive the crank in the sense asked (a ≤ 0) or whose moment grows with
+/// speed (b < 0, a run-away) is refused naming --motor, not run until the budget is spent.
+#[test]
+fn a_motor_that_cannot_drive_or_runs_away_is_refused() {
+    for motor in ["-1,-1", "0,5", "10,-1", "nan,0"] {
+        let r = tmm(&["dynamics", "four-bar", "--run-up", "--motor", motor]);
+        assert_one_line_failure(&r, "four-bar");
+        assert!(r.stderr.contains("--motor"), "{motor}: {}", r.stderr);
+    }
+}
+
+/// Each machine option out of its domain is named in the one line: a negative or NaN rotor,
+/// a motor of a linkage with two inputs that is not finite, and a run of two inputs that
+/// leaves the linkage's reach (the robot, undriven, falls and spins for 10⁴ s).
+#[test]
+fn a_machine_option_out_of_its_domain_is_named() {
+    for (args, option) in [
+        (&["dynamics", "four-bar", "--rotor", "-1"][..], "--rotor"),
+        (&["dynamics", "four-bar", "--rotor", "nan"][..], "--rotor"),
+        (
+            &["dynamics", "five-bar-robot", "--rotor", "-1"][..],
+            "--rotor",
+        ),
+        (
+            &[
+                "dynamics",
+                "five-bar-robot",
+                "--run",
+                "1",
+                "--motor2",
+                "nan,0",
+            ][..],
+            "--motor2",
+        ),
+        (
+            &[
+                "dynamics",
+                "five-bar-robot",
+                "--run",
+                "1",
+                "--motor",
+                "1e300,0",
+            ][..],
+            "--run",
+        ),
+    ] {
+        let r = tmm(args);
+        assert_one_line_failure(&r, args[1]);
+        assert!(
+            r.stderr.contains(option),
+            "{args:?} names {option}: {}",
+            r.stderr
+        );
+    }
+}
+
+/// An empty description file, or an empty name for one, is said to be that, with what to do.
+#[test]
+fn an_empty_file_or_file_name_is_said_so() {
+    let empty = std::env::temp_dir().join(format!("tmm-cli-empty-{}.json", std::process::id()));
+    std::fs::write(&empty, "  \n").unwrap();
+    let path = empty.to_string_lossy().into_owned();
+    for command in ["check", "analyse", "draw", "dynamics"] {
+        let r = tmm(&[command, &path]);
+        assert_one_line_failure(&r, &path);
+        assert!(r.stderr.contains("the file is empty"), "{}", r.stderr);
+        let r = tmm(&[command, ""]);
+        assert_one_line_failure(&r, "");
+        assert!(r.stderr.contains("name is empty"), "{}", r.stderr);
+    }
+    let _ = std::fs::remove_file(&empty);
+}
