@@ -24,6 +24,7 @@
 //! points can be met exactly; every few generations the best one is polished, and the search
 //! ends as soon as enough distinct designs meet the points to the tolerance.
 
+mod evolve;
 mod shape;
 mod six_bar;
 mod slider;
@@ -1260,7 +1261,6 @@ fn search_timed(
     progress: &mut dyn FnMut(&Progress) -> bool,
 ) -> Result<usize> {
     let (lo, hi) = pb.bounds();
-    let dim = lo.len();
     let np = opts.population;
     let mut rng = Rng(opts.seed);
     let start = found.start;
@@ -1271,60 +1271,16 @@ fn search_timed(
     // its best candidates polished; until enough designs meet the points to `tolerance` or
     // the budget is spent.
     while !stopped && pb.budget.room_search(2 * np) {
-        let mut pop: Vec<Vec<f64>> = (0..np)
-            .map(|_| {
-                (0..dim)
-                    .map(|k| lo[k] + (hi[k] - lo[k]) * rng.unit())
-                    .collect()
-            })
-            .collect();
+        let mut pop = evolve::population(np, &lo, &hi, &mut rng);
         let mut fit: Vec<f64> = pop.iter().map(|g| pb.objective(g)).collect();
         pb.budget.add(np);
-        let (mut last_best, mut since) = (f64::INFINITY, 0);
+        let mut stagnation = evolve::Stagnation::new(1e-6);
         while pb.budget.room_search(np) {
             generation += 1;
-            let f_scale = 0.5 + 0.5 * rng.unit();
-            // DE/current-to-pbest/1/bin: towards one of the best tenth, plus a random difference.
-            let mut ranked: Vec<usize> = (0..np).collect();
-            ranked.sort_by(|&a, &b| fit[a].total_cmp(&fit[b]));
-            let top = (np / 10).max(2);
-            for i in 0..np {
-                let p = ranked[rng.below(top)];
-                let (mut b, mut c) = (i, i);
-                while b == i {
-                    b = rng.below(np);
-                }
-                while c == i || c == b {
-                    c = rng.below(np);
-                }
-                let jr = rng.below(dim);
-                let trial: Vec<f64> = (0..dim)
-                    .map(|k| {
-                        if k == jr || rng.unit() < 0.9 {
-                            let x = pop[i][k];
-                            let v =
-                                x + f_scale * (pop[p][k] - x) + f_scale * (pop[b][k] - pop[c][k]);
-                            if k == 2 || k == 10 {
-                                v.rem_euclid(TAU)
-                            } else if v < lo[k] {
-                                lo[k] + (x - lo[k]) * rng.unit()
-                            } else if v > hi[k] {
-                                hi[k] - (hi[k] - x) * rng.unit()
-                            } else {
-                                v
-                            }
-                        } else {
-                            pop[i][k]
-                        }
-                    })
-                    .collect();
-                let ft = pb.objective(&trial);
+            evolve::generation(&mut pop, &mut fit, &lo, &hi, &[2, 10], &mut rng, &mut |g| {
                 pb.budget.add(1);
-                if ft <= fit[i] {
-                    pop[i] = trial;
-                    fit[i] = ft;
-                }
-            }
+                pb.objective(g)
+            });
             if generation % MEMETIC == 0 {
                 // Lamarckian local search: the best member and a random one, polished by
                 // Levenberg–Marquardt, replace themselves where that is better.
@@ -1357,13 +1313,8 @@ fn search_timed(
                 stopped = true;
                 break;
             }
-            if best < last_best * (1.0 - 1e-6) {
-                (last_best, since) = (best, 0);
-            } else {
-                since += 1;
-                if since >= STAGNATION {
-                    break;
-                }
+            if stagnation.after(best) {
+                break;
             }
         }
         // Polish the best candidates, best first, until enough distinct designs are found.

@@ -530,56 +530,6 @@ impl Shapes {
     }
 }
 
-/// One generation of DE/current-to-pbest/1/bin with dithered F over `pop` (fitness `fit`),
-/// the trial of each member kept where it is no worse; gene 5 (the mode) is free in [−1, 1].
-fn generation(
-    pop: &mut [Vec<f64>],
-    fit: &mut [f64],
-    lo: &[f64],
-    hi: &[f64],
-    rng: &mut super::Rng,
-    f: &mut dyn FnMut(&[f64]) -> f64,
-) {
-    let np = pop.len();
-    let dim = lo.len();
-    let f_scale = 0.5 + 0.5 * rng.unit();
-    let mut ranked: Vec<usize> = (0..np).collect();
-    ranked.sort_by(|&a, &b| fit[a].total_cmp(&fit[b]));
-    let top = (np / 10).max(2);
-    for i in 0..np {
-        let p = ranked[rng.below(top)];
-        let (mut b, mut c) = (i, i);
-        while b == i {
-            b = rng.below(np);
-        }
-        while c == i || c == b {
-            c = rng.below(np);
-        }
-        let jr = rng.below(dim);
-        let trial: Vec<f64> = (0..dim)
-            .map(|k| {
-                let x = pop[i][k];
-                if k != jr && rng.unit() >= 0.9 {
-                    return x;
-                }
-                let v = x + f_scale * (pop[p][k] - x) + f_scale * (pop[b][k] - pop[c][k]);
-                if v < lo[k] {
-                    lo[k] + (x - lo[k]) * rng.unit()
-                } else if v > hi[k] {
-                    hi[k] - (hi[k] - x) * rng.unit()
-                } else {
-                    v
-                }
-            })
-            .collect();
-        let ft = f(&trial);
-        if ft <= fit[i] {
-            pop[i] = trial;
-            fit[i] = ft;
-        }
-    }
-}
-
 /// The shape of the cognate of `h` whose crank turns with its crank (Roberts–Chebyshev), in
 /// both assembly modes: it traces the same coupler curve, turned and scaled, at the same
 /// crank angles (shifted by one constant), so the placement puts it on the same targets.
@@ -681,10 +631,10 @@ pub(super) fn search(
             .collect();
         let mut fit: Vec<f64> = pop.iter().map(|h| shapes.cost(pb, h)).collect();
         pb.budget.add(np);
-        let (mut last, mut since) = (f64::INFINITY, 0);
+        let mut stagnation = super::evolve::Stagnation::new(PROGRESS);
         while pb.budget.room_search(np) {
             generations += 1;
-            generation(&mut pop, &mut fit, &lo, &hi, &mut rng, &mut |h| {
+            super::evolve::generation(&mut pop, &mut fit, &lo, &hi, &[], &mut rng, &mut |h| {
                 shapes.cost(pb, h)
             });
             pb.budget.add(np);
@@ -711,13 +661,8 @@ pub(super) fn search(
             if !go_on {
                 return Ok(pb.budget.used());
             }
-            if best < last * (1.0 - PROGRESS) {
-                (last, since) = (best, 0);
-            } else {
-                since += 1;
-                if since >= super::STAGNATION {
-                    break;
-                }
+            if stagnation.after(best) {
+                break;
             }
         }
         let mut order: Vec<usize> = (0..np).filter(|&i| fit[i] < INFEASIBLE).collect();

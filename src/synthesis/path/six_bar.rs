@@ -22,8 +22,8 @@
 //! Levenberg–Marquardt and checked whole (every 1° of the range).
 
 use super::{
-    levenberg_marquardt, min_max, normalised, normalize_angle, Budget, PathDesign, PathOptions,
-    PathRequirement, Progress, Rng, Timing, INFEASIBLE, POLISHED, STAGNATION, V,
+    evolve, levenberg_marquardt, min_max, normalised, normalize_angle, Budget, PathDesign,
+    PathOptions, PathRequirement, Progress, Rng, Timing, INFEASIBLE, POLISHED, V,
 };
 use crate::error::{Error, Result};
 use crate::kinematics::batch::coupler_point;
@@ -38,6 +38,8 @@ use std::time::Instant;
 /// The dimensions (15), then the two modes' genes and θ0.
 const DIMS: usize = 15;
 const GENES: usize = DIMS + 3;
+/// The genes that are angles: the frame's, θ0.
+const WRAP: [usize; 2] = [2, GENES - 1];
 /// Random members polished (Lamarckian) every generation, besides the best: a polish at the
 /// n points costs n/`positions` of an evaluation a residual, so that where the search alone
 /// stalls in sixteen dimensions, many short polishes are cheap.
@@ -444,55 +446,14 @@ fn search(
     let mut generation = 0;
     let mut stopped = false;
     while !stopped && pb.budget.room(2 * np) {
-        let mut pop: Vec<Vec<f64>> = (0..np)
-            .map(|_| {
-                (0..GENES)
-                    .map(|k| lo[k] + (hi[k] - lo[k]) * rng.unit())
-                    .collect()
-            })
-            .collect();
+        let mut pop = evolve::population(np, &lo, &hi, &mut rng);
         let mut fit: Vec<f64> = pop.iter().map(|g| pb.objective(g)).collect();
-        let (mut last_best, mut since) = (f64::INFINITY, 0);
+        let mut stagnation = evolve::Stagnation::new(1e-6);
         while pb.budget.room(np) {
             generation += 1;
-            let f_scale = 0.5 + 0.5 * rng.unit();
-            let mut ranked: Vec<usize> = (0..np).collect();
-            ranked.sort_by(|&a, &b| fit[a].total_cmp(&fit[b]));
-            let top = (np / 10).max(2);
-            for i in 0..np {
-                let p = ranked[rng.below(top)];
-                let (mut b, mut c) = (i, i);
-                while b == i {
-                    b = rng.below(np);
-                }
-                while c == i || c == b {
-                    c = rng.below(np);
-                }
-                let jr = rng.below(GENES);
-                let trial: Vec<f64> = (0..GENES)
-                    .map(|k| {
-                        let x = pop[i][k];
-                        if k != jr && rng.unit() >= 0.9 {
-                            return x;
-                        }
-                        let v = x + f_scale * (pop[p][k] - x) + f_scale * (pop[b][k] - pop[c][k]);
-                        if k == 2 || k == GENES - 1 {
-                            v.rem_euclid(TAU)
-                        } else if v < lo[k] {
-                            lo[k] + (x - lo[k]) * rng.unit()
-                        } else if v > hi[k] {
-                            hi[k] - (hi[k] - x) * rng.unit()
-                        } else {
-                            v
-                        }
-                    })
-                    .collect();
-                let ft = pb.objective(&trial);
-                if ft <= fit[i] {
-                    pop[i] = trial;
-                    fit[i] = ft;
-                }
-            }
+            evolve::generation(&mut pop, &mut fit, &lo, &hi, &WRAP, &mut rng, &mut |g| {
+                pb.objective(g)
+            });
             {
                 // Lamarckian: the best member and a random one polished, where that is better.
                 let best_i = (0..np)
@@ -522,13 +483,8 @@ fn search(
                 stopped = true;
                 break;
             }
-            if best < last_best * (1.0 - 1e-6) {
-                (last_best, since) = (best, 0);
-            } else {
-                since += 1;
-                if since >= STAGNATION {
-                    break;
-                }
+            if stagnation.after(best) {
+                break;
             }
         }
         let mut order: Vec<usize> = (0..np).filter(|&i| fit[i] < INFEASIBLE).collect();
