@@ -178,6 +178,28 @@ pub enum Error {
         unit: &'static str,
     },
 
+    /// A motion with friction in the joints jams: at `time` the friction statics has no
+    /// solution under the motion's loads (joint `joint` self-locks: the friction's feedback
+    /// reached the loads), so no finite reactions carry the motion on. A run ends there with
+    /// [`Outcome::Jammed`](crate::dynamics::Outcome::Jammed).
+    #[error(
+        "the linkage jams at t = {} s: joint {joint} self-locks, {measure} = {}",
+        sig(*.time),
+        sig(*.value)
+    )]
+    Jammed {
+        /// When (the time of the evaluation that found it), s.
+        time: f64,
+        /// The joint that self-locks, by its index in the description.
+        index: usize,
+        /// Its name.
+        joint: String,
+        /// The measure that vanished (`"det(I - J)"`, the friction's feedback).
+        measure: &'static str,
+        /// Its value there.
+        value: f64,
+    },
+
     /// An error inside one named part of a larger analysis (for example one group of a
     /// mechanism at one position).
     #[error("{part}: {source}")]
@@ -187,6 +209,20 @@ pub enum Error {
         /// What went wrong in it.
         source: Box<Error>,
     },
+}
+
+impl Error {
+    /// The jam this error is or holds within named parts ([`Error::Jammed`]): its time, its
+    /// joint's index and its measure's value.
+    pub(crate) fn jam(&self) -> Option<(f64, usize, f64)> {
+        match self {
+            Self::Jammed {
+                time, index, value, ..
+            } => Some((*time, *index, *value)),
+            Self::In { source, .. } => source.jam(),
+            _ => None,
+        }
+    }
 }
 
 /// Which ends of an [`Error::OutOfRange`] interval are admissible values themselves. An infinite

@@ -54,6 +54,20 @@ pub enum Outcome {
         /// The loads along it there.
         loads: SwitchLoads,
     },
+    /// The motion jams ([`Error::Jammed`](crate::Error::Jammed)): at time `t`, an
+    /// evaluation within the step after the run's last state, a joint with friction
+    /// self-locks under the motion's loads and no finite reactions carry it on. The rows up
+    /// to the last state are kept.
+    Jammed {
+        /// The time of the evaluation that found it, s.
+        t: f64,
+        /// The joint that self-locks, by its index in the system's description (a
+        /// linkage's [`Plan::joint_names`](crate::linkage::Plan::joint_names)).
+        joint: usize,
+        /// The friction's feedback det(I − J) there (at or below the threshold of
+        /// self-locking).
+        value: f64,
+    },
     /// A steady state was asked for and the final time came first.
     NotSteady {
         /// The accelerations at the final time.

@@ -92,8 +92,6 @@ impl<'a, S: LagrangeSystem + ?Sized, M: Stepper> Runner<'a, S, M> {
 
     /// Steps until a stop condition, and the result.
     pub(super) fn finish(mut self) -> Result<RunResult> {
-        let (sys, method, opts) = (self.sys, self.method, self.opts);
-        let t_tol = self.sched.t_tol;
         // The end of the step under way, one place for the run (the continuous extension it
         // holds is some hundreds of bytes: written there, not moved from step to step).
         let mut end = StepEnd {
@@ -110,49 +108,70 @@ impl<'a, S: LagrangeSystem + ?Sized, M: Stepper> Runner<'a, S, M> {
             return Ok(result);
         }
         loop {
-            // A run with nothing to stop at or watch on the way takes its interior steps in
-            // `lean_steps`; the step that reaches the end, and every step of any other run,
-            // is this loop's.
-            if self.sched.plain && self.sched.grid_end.is_none() {
-                let p = &mut self.progress;
-                lean_steps(
-                    sys,
-                    method,
-                    opts,
-                    t_tol,
-                    self.takes_rows,
-                    p,
-                    &mut self.traj,
-                    &mut self.buf,
-                )?;
-            }
-            if opts.t_end - self.progress.s.t <= t_tol {
-                return self.at_final_time();
-            }
-            let p = &self.progress;
-            budgets(opts, p.steps, p.evaluations, p.s.t)?;
-            self.hold_switches();
-            self.take_step(&mut end)?;
-            if self.sched.kinks.any() {
-                let p = &mut self.progress;
-                self.sched.kinks.land(
-                    sys,
-                    method,
-                    opts,
-                    (&p.s, p.hand),
-                    &mut end,
-                    (self.sched.adaptive, t_tol),
-                    &mut self.sched.grid_end,
-                    &mut p.evaluations,
-                )?;
-            }
-            if let Some(hn) = end.h_next {
-                self.progress.h = hn;
-            }
-            if let Some(result) = self.look_at(&end)? {
-                return Ok(result);
+            match self.advance(&mut end) {
+                Ok(Some(result)) => return Ok(result),
+                Ok(None) => {}
+                Err(e) => return self.jammed(e),
             }
         }
+    }
+
+    /// The run's result when `e` is a jam ([`Outcome::Jammed`]): the motion ends at the
+    /// last accepted state; any other error as it is.
+    fn jammed(&mut self, e: crate::Error) -> Result<RunResult> {
+        let Some((t, joint, value)) = e.jam() else {
+            return Err(e);
+        };
+        let s = self.progress.s;
+        let recorded = self.traj.t().last() == Some(&s.t);
+        self.result(s, recorded, Outcome::Jammed { t, joint, value })
+    }
+
+    /// The next step (or the lean steps and the step that reaches the end), and the result
+    /// when the run ends there.
+    fn advance(&mut self, end: &mut StepEnd<M::Dense>) -> Result<Option<RunResult>> {
+        let (sys, method, opts) = (self.sys, self.method, self.opts);
+        let t_tol = self.sched.t_tol;
+        // A run with nothing to stop at or watch on the way takes its interior steps in
+        // `lean_steps`; the step that reaches the end, and every step of any other run,
+        // is this loop's.
+        if self.sched.plain && self.sched.grid_end.is_none() {
+            let p = &mut self.progress;
+            lean_steps(
+                sys,
+                method,
+                opts,
+                t_tol,
+                self.takes_rows,
+                p,
+                &mut self.traj,
+                &mut self.buf,
+            )?;
+        }
+        if opts.t_end - self.progress.s.t <= t_tol {
+            return self.at_final_time().map(Some);
+        }
+        let p = &self.progress;
+        budgets(opts, p.steps, p.evaluations, p.s.t)?;
+        self.hold_switches();
+        self.take_step(end)?;
+        if self.sched.kinks.any() {
+            let p = &mut self.progress;
+            self.sched.kinks.land(
+                sys,
+                method,
+                opts,
+                (&p.s, p.hand),
+                end,
+                (self.sched.adaptive, t_tol),
+                &mut self.sched.grid_end,
+                &mut p.evaluations,
+            )?;
+        }
+        if let Some(hn) = end.h_next {
+            self.progress.h = hn;
+        }
+        self.look_at(end)
     }
 
     /// The result at the final time: [`Outcome::NotSteady`] when a steady state was asked

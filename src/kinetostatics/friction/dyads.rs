@@ -1,12 +1,17 @@
 //! The five dyads with Coulomb friction in their joints.
 //!
-//! Each solver takes the frictionless dyad as it is (its geometry and loads), the friction
-//! data of its three joints and the links' rates, solves the frictionless closed form, its
-//! response to each joint's friction load (the closed forms are linear in the loads), and the
-//! friction equations on the three joint pressures (see the [module](super)).
+//! Each solver checks the friction data of its three joints and the links' rates, describes
+//! its joints as a group's (which links each joins, a hinge or a slide) and solves by the
+//! dyads' one friction solve ([`super::dyad`]): the frictionless closed form, its response to
+//! each joint's friction load (the closed forms are linear in the loads), and the friction
+//! equations on the three joint pressures (see the [module](super)). The RRR dyad, the
+//! engine's most frequent group, first tries its responses in closed form with Newton
+//! written out.
 
+use super::dyad::{dyad_friction, DyadBase, DyadSolved};
+use super::group::GroupJoint;
 use super::newton::DIRECT_STEPS;
-use super::solver::{three_hinges, wider, Pressure, Problem, Solved};
+use super::solver::{three_hinges, wider, Solved};
 use super::{sign, Convergence, Hinge, Iteration, JointFriction, Slide, SlideContact};
 use crate::angle::{cross, perp};
 use crate::error::{unit_direction, Result};
@@ -17,10 +22,17 @@ use crate::kinetostatics::{
 use crate::Load;
 use nalgebra::{Point2, Vector2};
 
-/// A friction block's `solve` with the default [`Iteration`], and its reactions' power lost
-/// in the joints `$joint`.
+/// A dyad's reactions by joint, as the whole linkage's solve reads them: per joint the
+/// whole force of its first link on its second, the couple that goes with it (a hinge's
+/// friction couple, a slide's K, the normal force's moment about its reference point) and
+/// its friction.
+pub(crate) type ByJoint = ([Vector2<f64>; 3], [f64; 3], [JointFriction; 3]);
+
+/// A friction block's `solve` with the default [`Iteration`], its reactions' power lost in
+/// the joints `$joint` and its reactions by joint (forces `$force`, couples `$couple`).
 macro_rules! block_api {
-    ($block:ident, $reactions:ident, [$($joint:ident),+]) => {
+    ($block:ident, $reactions:ident, [$($joint:ident),+], [$($force:ident),+],
+     [$($c1:ident . $c2:ident),+]) => {
         impl $block {
             /// Solves the dyad with friction, with the default [`Iteration`].
             ///
@@ -37,103 +49,17 @@ macro_rules! block_api {
             pub fn power_lost(&self) -> f64 {
                 [$(self.$joint.power_lost),+].iter().sum()
             }
+
+            /// The reactions by joint ([`ByJoint`]).
+            pub(crate) fn by_joint(&self) -> ByJoint {
+                (
+                    [$(self.$force),+],
+                    [$(self.$c1.$c2),+],
+                    [$(self.$joint),+],
+                )
+            }
         }
     };
-}
-
-/// The numbers shared by every dyad's friction solve.
-struct Setup {
-    v0: [f64; 6],
-    laws: [Pressure; 3],
-    /// ρ or f times the sign of the joint's relative rate.
-    c: [f64; 3],
-    rate: [f64; 3],
-}
-
-/// The solution, or `None` without friction.
-struct Outcome {
-    v: [f64; 6],
-    joints: [JointFriction; 3],
-    convergence: Convergence,
-}
-
-impl Setup {
-    /// The setup of a dyad whose frictionless reactions are `v0`, its joints' pressure laws,
-    /// coefficients (ρ or f) and relative rates.
-    fn new(v0: [f64; 6], laws: [Pressure; 3], coefficient: [f64; 3], rate: [f64; 3]) -> Self {
-        Self {
-            v0,
-            laws,
-            c: [0, 1, 2].map(|k| coefficient[k] * sign(rate[k])),
-            rate,
-        }
-    }
-
-    /// The frictionless solution when no joint has friction, else the friction equations
-    /// solved with the reactions' responses `unit()` (as [`Setup::solve`]) and the load
-    /// scale of the frictionless reactions' force numbers `forces` and the loads.
-    #[inline(always)]
-    fn run(
-        &self,
-        unit: impl FnOnce() -> Result<[[f64; 6]; 3]>,
-        forces: &[f64],
-        loads: [&Load; 2],
-        options: &Iteration,
-        what: &'static str,
-        joints: [&'static str; 3],
-    ) -> Result<Outcome> {
-        if self.frictionless() {
-            return Ok(self.none());
-        }
-        self.solve(unit()?, scale(forces, loads), options, what, joints)
-    }
-
-    fn frictionless(&self) -> bool {
-        self.c.iter().all(|&c| c == 0.0)
-    }
-
-    /// The pressures and friction of the frictionless solution.
-    fn none(&self) -> Outcome {
-        let v = self.v0;
-        Outcome {
-            v,
-            joints: [0, 1, 2].map(|k| JointFriction::none(self.laws[k].of(v[2 * k], v[2 * k + 1]))),
-            convergence: Convergence::NONE,
-        }
-    }
-
-    /// Solves the friction equations with `unit[k]` the reactions' response to joint k's
-    /// friction load of one unit on its second link (and minus one on its first).
-    #[inline(always)]
-    fn solve(
-        &self,
-        unit: [[f64; 6]; 3],
-        scale: f64,
-        options: &Iteration,
-        what: &'static str,
-        joints: [&'static str; 3],
-    ) -> Result<Outcome> {
-        let d = [0, 1, 2].map(|k| unit[k].map(|x| -self.c[k] * x));
-        let problem = Problem {
-            v0: self.v0,
-            d,
-            laws: self.laws,
-            active: self.c.map(|c| c != 0.0),
-            scale,
-        };
-        let Solved { m, v, convergence } = problem.solve(options, what, joints)?;
-        Ok(Outcome {
-            v,
-            joints: [0, 1, 2].map(|k| {
-                if problem.active[k] {
-                    JointFriction::new(self.c[k], m[k], self.rate[k])
-                } else {
-                    JointFriction::none(self.laws[k].of(v[2 * k], v[2 * k + 1]))
-                }
-            }),
-            convergence,
-        })
-    }
 }
 
 /// Checks that every named rate is finite; the error names the first that is not.
@@ -161,20 +87,6 @@ fn vec(v: &[f64; 6], k: usize) -> Vector2<f64> {
     Vector2::new(v[2 * k], v[2 * k + 1])
 }
 
-fn sub(a: [f64; 6], b: [f64; 6]) -> [f64; 6] {
-    [0, 1, 2, 3, 4, 5].map(|i| a[i] - b[i])
-}
-
-/// The largest force component among the frictionless reactions' force numbers and the
-/// loads: the load scale of the tolerance.
-fn scale(forces: &[f64], loads: [&Load; 2]) -> f64 {
-    forces
-        .iter()
-        .fold(max_abs(&[loads[0].force, loads[1].force]), |s, x| {
-            wider(s, x.abs())
-        })
-}
-
 /// The largest component of some vectors, in magnitude.
 #[inline(always)]
 fn max_abs(v: &[Vector2<f64>; 2]) -> f64 {
@@ -184,21 +96,27 @@ fn max_abs(v: &[Vector2<f64>; 2]) -> f64 {
     )
 }
 
-/// A slide's whole force on its second link: the normal force across the unit direction
-/// `dir` (turned +90°) and the friction along it.
-#[inline(always)]
-fn slide_force(
-    dir: Vector2<f64>,
-    contact: &SlideContact,
-    friction: &JointFriction,
-) -> Vector2<f64> {
-    perp(dir) * contact.normal + dir * friction.load
+/// Solves a dyad of `joints` with friction by [`dyad_friction`]: `values` and `forces` read
+/// its frictionless reactions' pairs and whole forces, `solve` is its frictionless closed
+/// form under the loads on links 2 and 3.
+#[allow(clippy::too_many_arguments)]
+fn solved<R>(
+    base: &R,
+    values: impl Fn(&R) -> [f64; 6],
+    forces: [Vector2<f64>; 3],
+    joints: &[GroupJoint; 3],
+    loads: [&Load; 2],
+    solve: impl Fn(Load, Load) -> Result<R>,
+    options: &Iteration,
+    (what, names): (&'static str, [&'static str; 3]),
+) -> Result<DyadSolved> {
+    let base = DyadBase {
+        pairs: values(base),
+        forces,
+    };
+    let block = |l: &[Load; 2]| solve(l[0], l[1]).map(|r| values(&r));
+    dyad_friction(&base, joints, loads, block, options, what, names)
 }
-
-fn couple(at: Point2<f64>) -> Load {
-    Load::new(at, Vector2::zeros(), 1.0)
-}
-
 // ----- RRR -----
 
 /// The friction data of an RRR dyad's hinges.
@@ -308,7 +226,13 @@ impl RrrFrictionReactions {
     }
 }
 
-block_api!(RrrFriction, RrrFrictionReactions, [a, b, c]);
+block_api!(
+    RrrFriction,
+    RrrFrictionReactions,
+    [a, b, c],
+    [r12, r23, r43],
+    [a.load, b.load, c.load]
+);
 
 fn rrr_values(r: &RrrReactions) -> [f64; 6] {
     [r.r12.x, r.r12.y, r.r23.x, r.r23.y, r.r43.x, r.r43.y]
@@ -421,53 +345,45 @@ impl RrrFriction {
                 convergence: Convergence::NONE,
             });
         }
-        self.general(&base, c, rate, options)
+        self.general(&base, rho, rate, options)
     }
 
     /// Every other case: friction in some hinges only, or the direct Newton not converging
-    /// (the general solve decides).
+    /// (the dyads' one solve decides).
     #[cold]
     #[inline(never)]
     fn general(
         &self,
         base: &RrrReactions,
-        c: [f64; 3],
+        rho: [f64; 3],
         rate: [f64; 3],
         options: &Iteration,
     ) -> Result<RrrFrictionReactions> {
         let d = &self.dyad;
-        let v0 = rrr_values(base);
-        let norm = |v: &[f64; 6], k: usize| Pressure::Hinge.of(v[2 * k], v[2 * k + 1]);
-        let (r12, r23, r43, [a, b, c], convergence) = if c == [0.0; 3] {
-            let joints = [0, 1, 2].map(|k| JointFriction::none(norm(&v0, k)));
-            (base.r12, base.r23, base.r43, joints, Convergence::NONE)
-        } else {
-            let f = [d.load2.force, d.load3.force];
-            let Solved { m, v, convergence } = Problem {
-                v0,
-                d: rrr_friction_columns(d, c),
-                laws: [Pressure::Hinge; 3],
-                active: c.map(|c| c != 0.0),
-                scale: v0.iter().fold(max_abs(&f), |s, x| wider(s, x.abs())),
-            }
-            .solve(
-                options,
+        let joints = [
+            GroupJoint::hinge(None, 0, rho[0], rate[0]),
+            GroupJoint::hinge(Some(0), 1, rho[1], rate[1]),
+            GroupJoint::hinge(None, 1, rho[2], rate[2]),
+        ];
+        let out = solved(
+            base,
+            rrr_values,
+            [base.r12, base.r23, base.r43],
+            &joints,
+            [&d.load2, &d.load3],
+            |load2, load3| RrrDyad { load2, load3, ..*d }.solve(),
+            options,
+            (
                 "RRR dyad with friction",
                 [
                     "joint A (links 1 and 2)",
                     "joint B (links 2 and 3)",
                     "joint C (links 3 and 4)",
                 ],
-            )?;
-            let joints = [0, 1, 2].map(|k| {
-                if c[k] == 0.0 {
-                    JointFriction::none(norm(&v, k))
-                } else {
-                    JointFriction::new(c[k], m[k], rate[k])
-                }
-            });
-            (vec(&v, 0), vec(&v, 1), vec(&v, 2), joints, convergence)
-        };
+            ),
+        )?;
+        let [r12, r23, r43] = out.forces;
+        let [a, b, c] = out.joints;
         Ok(RrrFrictionReactions {
             r12,
             r23,
@@ -476,7 +392,7 @@ impl RrrFriction {
             b,
             c,
             conditioning: base.conditioning,
-            convergence,
+            convergence: out.convergence,
         })
     }
 }
@@ -591,7 +507,13 @@ impl RrpFrictionReactions {
     }
 }
 
-block_api!(RrpFriction, RrpFrictionReactions, [a, b, guide]);
+block_api!(
+    RrpFriction,
+    RrpFrictionReactions,
+    [a, b, guide],
+    [r12, r23, r43],
+    [a.load, b.load, contact43.moment]
+);
 
 fn rrp_values(r: &RrpReactions) -> [f64; 6] {
     [r.r12.x, r.r12.y, r.r23.x, r.r23.y, r.r43_n, r.guide_moment]
@@ -625,42 +547,31 @@ impl RrpFriction {
             ("omega4", w.omega4),
             ("slide", w.slide),
         ])?;
-        let rate = [w.omega2 - w.omega1, w.omega4 - w.omega2, w.slide];
-        let laws = [Pressure::Hinge, Pressure::Hinge, law];
-        let setup = Setup::new(rrp_values(&base), laws, [rho_a, rho_b, f], rate);
         let g = unit_direction("|guide|", d.guide)?;
-        let solve = |load2, load3| {
-            RrpDyad { load2, load3, ..*d }
-                .solve()
-                .map(|r| rrp_values(&r))
-        };
-        let zero = Load::zero(d.b);
-        let unit = || {
-            let e2 = solve(couple(d.b), zero)?;
-            let e3 = solve(zero, couple(d.b))?;
-            Ok([e2, sub(e3, e2), solve(zero, Load::force_at(d.b, g))?])
-        };
-        let v = &setup.v0;
-        let out = setup.run(
-            unit,
-            &[v[0], v[1], v[2], v[3], v[4]],
+        let joints = [
+            GroupJoint::hinge(None, 0, rho_a, w.omega2 - w.omega1),
+            GroupJoint::hinge(Some(0), 1, rho_b, w.omega4 - w.omega2),
+            GroupJoint::slide(None, 1, f, w.slide, g, d.b, law),
+        ];
+        let out = solved(
+            &base,
+            rrp_values,
+            [base.r12, base.r23, base.r43],
+            &joints,
             [&d.load2, &d.load3],
+            |load2, load3| RrpDyad { load2, load3, ..*d }.solve(),
             options,
-            "RRP dyad with friction",
-            [
-                "joint A (links 1 and 2)",
-                "joint B (links 2 and 3)",
-                "the guide (links 4 and 3)",
-            ],
+            (
+                "RRP dyad with friction",
+                [
+                    "joint A (links 1 and 2)",
+                    "joint B (links 2 and 3)",
+                    "the guide (links 4 and 3)",
+                ],
+            ),
         )?;
+        let [r12, r23, r43] = out.forces;
         let [a, b, guide] = out.joints;
-        let contact43 = SlideContact::new(out.v[4], out.v[5], law);
-        let (r12, r23, r43) = if setup.frictionless() {
-            (base.r12, base.r23, base.r43)
-        } else {
-            let r43 = slide_force(g, &contact43, &guide);
-            (vec(&out.v, 0), vec(&out.v, 1), r43)
-        };
         Ok(RrpFrictionReactions {
             r12,
             r23,
@@ -668,7 +579,7 @@ impl RrpFriction {
             a,
             b,
             guide,
-            contact43,
+            contact43: SlideContact::new(out.pairs[4], out.pairs[5], law),
             conditioning: base.conditioning,
             convergence: out.convergence,
         })
@@ -756,7 +667,13 @@ impl RprFrictionReactions {
     }
 }
 
-block_api!(RprFriction, RprFrictionReactions, [a, slide, e]);
+block_api!(
+    RprFriction,
+    RprFrictionReactions,
+    [a, slide, e],
+    [r12, r32, r43],
+    [a.load, contact32.moment, e.load]
+);
 
 fn rpr_values(r: &RprReactions) -> [f64; 6] {
     [r.r12.x, r.r12.y, r.r32_n, r.couple, r.r43.x, r.r43.y]
@@ -790,41 +707,31 @@ impl RprFriction {
             ("omega4", w.omega4),
             ("slide", w.slide),
         ])?;
-        let rate = [w.omega - w.omega1, w.slide, w.omega - w.omega4];
-        let laws = [Pressure::Hinge, law, Pressure::Hinge];
-        let setup = Setup::new(rpr_values(&base), laws, [rho_a, f, rho_e], rate);
         let u = unit_direction("|axis|", d.axis)?;
-        let solve = |load2, load3| {
-            RprDyad { load2, load3, ..*d }
-                .solve()
-                .map(|r| rpr_values(&r))
-        };
-        let zero = Load::zero(d.a);
-        let unit = || {
-            let slide = solve(Load::force_at(d.a, u), Load::force_at(d.a, -u))?;
-            Ok([solve(couple(d.a), zero)?, slide, solve(zero, couple(d.a))?])
-        };
-        let v = &setup.v0;
-        let out = setup.run(
-            unit,
-            &[v[0], v[1], v[2], v[4], v[5]],
+        let joints = [
+            GroupJoint::hinge(None, 0, rho_a, w.omega - w.omega1),
+            GroupJoint::slide(Some(1), 0, f, w.slide, u, d.a, law),
+            GroupJoint::hinge(None, 1, rho_e, w.omega - w.omega4),
+        ];
+        let out = solved(
+            &base,
+            rpr_values,
+            [base.r12, base.r32, base.r43],
+            &joints,
             [&d.load2, &d.load3],
+            |load2, load3| RprDyad { load2, load3, ..*d }.solve(),
             options,
-            "RPR dyad with friction",
-            [
-                "joint A (links 1 and 2)",
-                "the slide (links 3 and 2)",
-                "joint E (links 4 and 3)",
-            ],
+            (
+                "RPR dyad with friction",
+                [
+                    "joint A (links 1 and 2)",
+                    "the slide (links 3 and 2)",
+                    "joint E (links 4 and 3)",
+                ],
+            ),
         )?;
+        let [r12, r32, r43] = out.forces;
         let [a, slide, e] = out.joints;
-        let contact32 = SlideContact::new(out.v[2], out.v[3], law);
-        let (r12, r32, r43) = if setup.frictionless() {
-            (base.r12, base.r32, base.r43)
-        } else {
-            let r32 = slide_force(u, &contact32, &slide);
-            (vec(&out.v, 0), r32, vec(&out.v, 2))
-        };
         Ok(RprFrictionReactions {
             r12,
             r32,
@@ -832,7 +739,7 @@ impl RprFriction {
             a,
             slide,
             e,
-            contact32,
+            contact32: SlideContact::new(out.pairs[2], out.pairs[3], law),
             conditioning: base.conditioning,
             convergence: out.convergence,
         })
@@ -919,7 +826,13 @@ impl PrpFrictionReactions {
     }
 }
 
-block_api!(PrpFriction, PrpFrictionReactions, [guide2, b, guide3]);
+block_api!(
+    PrpFriction,
+    PrpFrictionReactions,
+    [guide2, b, guide3],
+    [r12, r23, r43],
+    [contact12.moment, b.load, contact43.moment]
+);
 
 fn prp_values(r: &PrpReactions) -> [f64; 6] {
     [r.r12_n, r.moment12, r.r23.x, r.r23.y, r.r43_n, r.moment43]
@@ -954,45 +867,32 @@ impl PrpFriction {
             ("slide2", w.slide2),
             ("slide3", w.slide3),
         ])?;
-        let rate = [w.slide2, w.omega4 - w.omega1, w.slide3];
-        let laws = [law2, Pressure::Hinge, law3];
-        let setup = Setup::new(prp_values(&base), laws, [f2, rho_b, f3], rate);
         let g2 = unit_direction("|guide2|", d.guide2)?;
         let g3 = unit_direction("|guide3|", d.guide3)?;
-        let solve = |load2, load3| {
-            PrpDyad { load2, load3, ..*d }
-                .solve()
-                .map(|r| prp_values(&r))
-        };
-        let zero = Load::zero(d.b);
-        let unit = || {
-            let e2 = solve(couple(d.b), zero)?;
-            let e3 = solve(zero, couple(d.b))?;
-            let s2 = solve(Load::force_at(d.b, g2), zero)?;
-            Ok([s2, sub(e3, e2), solve(zero, Load::force_at(d.b, g3))?])
-        };
-        let v = &setup.v0;
-        let out = setup.run(
-            unit,
-            &[v[0], v[2], v[3], v[4]],
+        let joints = [
+            GroupJoint::slide(None, 0, f2, w.slide2, g2, d.b, law2),
+            GroupJoint::hinge(Some(0), 1, rho_b, w.omega4 - w.omega1),
+            GroupJoint::slide(None, 1, f3, w.slide3, g3, d.b, law3),
+        ];
+        let out = solved(
+            &base,
+            prp_values,
+            [base.r12, base.r23, base.r43],
+            &joints,
             [&d.load2, &d.load3],
+            |load2, load3| PrpDyad { load2, load3, ..*d }.solve(),
             options,
-            "PRP dyad with friction",
-            [
-                "guide 2 (links 1 and 2)",
-                "joint B (links 2 and 3)",
-                "guide 3 (links 4 and 3)",
-            ],
+            (
+                "PRP dyad with friction",
+                [
+                    "guide 2 (links 1 and 2)",
+                    "joint B (links 2 and 3)",
+                    "guide 3 (links 4 and 3)",
+                ],
+            ),
         )?;
+        let [r12, r23, r43] = out.forces;
         let [guide2, b, guide3] = out.joints;
-        let contact12 = SlideContact::new(out.v[0], out.v[1], law2);
-        let contact43 = SlideContact::new(out.v[4], out.v[5], law3);
-        let (r12, r23, r43) = if setup.frictionless() {
-            (base.r12, base.r23, base.r43)
-        } else {
-            let r12 = slide_force(g2, &contact12, &guide2);
-            (r12, vec(&out.v, 1), slide_force(g3, &contact43, &guide3))
-        };
         Ok(PrpFrictionReactions {
             r12,
             r23,
@@ -1000,8 +900,8 @@ impl PrpFriction {
             guide2,
             b,
             guide3,
-            contact12,
-            contact43,
+            contact12: SlideContact::new(out.pairs[0], out.pairs[1], law2),
+            contact43: SlideContact::new(out.pairs[4], out.pairs[5], law3),
             conditioning: base.conditioning,
             convergence: out.convergence,
         })
@@ -1088,7 +988,13 @@ impl RppFrictionReactions {
     }
 }
 
-block_api!(RppFriction, RppFrictionReactions, [a, slot, guide]);
+block_api!(
+    RppFriction,
+    RppFrictionReactions,
+    [a, slot, guide],
+    [r12, r32, r43],
+    [a.load, contact32.moment, contact43.moment]
+);
 
 fn rpp_values(r: &RppReactions) -> [f64; 6] {
     [r.r12.x, r.r12.y, r.r32_n, r.moment32, r.r43_n, r.moment43]
@@ -1123,44 +1029,32 @@ impl RppFriction {
             ("slot", w.slot),
             ("slide", w.slide),
         ])?;
-        let rate = [w.omega4 - w.omega1, w.slot, w.slide];
-        let laws = [Pressure::Hinge, law_s, law_g];
-        let setup = Setup::new(rpp_values(&base), laws, [rho_a, fs, fg], rate);
         let u = unit_direction("|guide|", d.guide)?;
         let v_dir = unit_direction("|slot|", d.slot)?;
-        let solve = |load2, load3| {
-            RppDyad { load2, load3, ..*d }
-                .solve()
-                .map(|r| rpp_values(&r))
-        };
-        let zero = Load::zero(d.a);
-        let unit = || {
-            let e2 = solve(couple(d.a), zero)?;
-            let slot = solve(Load::force_at(d.a, v_dir), Load::force_at(d.a, -v_dir))?;
-            Ok([e2, slot, solve(zero, Load::force_at(d.b, u))?])
-        };
-        let v = &setup.v0;
-        let out = setup.run(
-            unit,
-            &[v[0], v[1], v[2], v[4]],
+        let joints = [
+            GroupJoint::hinge(None, 0, rho_a, w.omega4 - w.omega1),
+            GroupJoint::slide(Some(1), 0, fs, w.slot, v_dir, d.a, law_s),
+            GroupJoint::slide(None, 1, fg, w.slide, u, d.b, law_g),
+        ];
+        let out = solved(
+            &base,
+            rpp_values,
+            [base.r12, base.r32, base.r43],
+            &joints,
             [&d.load2, &d.load3],
+            |load2, load3| RppDyad { load2, load3, ..*d }.solve(),
             options,
-            "RPP dyad with friction",
-            [
-                "joint A (links 1 and 2)",
-                "the slot (links 3 and 2)",
-                "the guide (links 4 and 3)",
-            ],
+            (
+                "RPP dyad with friction",
+                [
+                    "joint A (links 1 and 2)",
+                    "the slot (links 3 and 2)",
+                    "the guide (links 4 and 3)",
+                ],
+            ),
         )?;
+        let [r12, r32, r43] = out.forces;
         let [a, slot, guide] = out.joints;
-        let contact32 = SlideContact::new(out.v[2], out.v[3], law_s);
-        let contact43 = SlideContact::new(out.v[4], out.v[5], law_g);
-        let (r12, r32, r43) = if setup.frictionless() {
-            (base.r12, base.r32, base.r43)
-        } else {
-            let r32 = slide_force(v_dir, &contact32, &slot);
-            (vec(&out.v, 0), r32, slide_force(u, &contact43, &guide))
-        };
         Ok(RppFrictionReactions {
             r12,
             r32,
@@ -1168,8 +1062,8 @@ impl RppFriction {
             a,
             slot,
             guide,
-            contact32,
-            contact43,
+            contact32: SlideContact::new(out.pairs[2], out.pairs[3], law_s),
+            contact43: SlideContact::new(out.pairs[4], out.pairs[5], law_g),
             conditioning: base.conditioning,
             convergence: out.convergence,
         })

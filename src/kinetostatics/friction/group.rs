@@ -60,10 +60,71 @@ impl GroupJoint {
         }
     }
 
-    fn law(&self) -> Pressure {
+    /// A slide of coefficient `f` along the unit direction `dir` through `point`, whose
+    /// pressure follows `law`.
+    #[allow(clippy::too_many_arguments)]
+    pub(crate) fn slide(
+        by: Option<usize>,
+        on: usize,
+        f: f64,
+        rate: f64,
+        dir: Vector2<f64>,
+        point: Point2<f64>,
+        law: Pressure,
+    ) -> Self {
+        Self {
+            by,
+            on,
+            coefficient: f,
+            rate,
+            pair: GroupPair::Slide { dir, point, law },
+        }
+    }
+
+    pub(super) fn law(&self) -> Pressure {
         match self.pair {
             GroupPair::Hinge => Pressure::Hinge,
             GroupPair::Slide { law, .. } => law,
+        }
+    }
+
+    /// Puts the joint's friction load per newton of pressure into `unit` (the group's
+    /// links' loads, zero before): −c on `on` from `by`, +c back on `by` when it is one of
+    /// the group's links (c = ρ or f times the sign of the rate): a couple in a hinge, a
+    /// force along the slide through its reference point in a slide.
+    pub(super) fn put_unit_load(&self, c: f64, unit: &mut [Load]) {
+        match self.pair {
+            GroupPair::Hinge => {
+                unit[self.on].moment -= c;
+                if let Some(by) = self.by {
+                    unit[by].moment += c;
+                }
+            }
+            GroupPair::Slide { dir, point, .. } => {
+                unit[self.on] = Load::force_at(point, -c * dir);
+                if let Some(by) = self.by {
+                    unit[by] = Load::force_at(point, c * dir);
+                }
+            }
+        }
+    }
+
+    /// The joint's whole force of `by` on `on` and the couple that goes with it, from its
+    /// pair `v` and its friction `fr`: a hinge's force and its friction couple; a slide's
+    /// normal force with the friction along it, and its K.
+    pub(super) fn reaction(&self, v: [f64; 2], fr: &JointFriction) -> (Vector2<f64>, f64) {
+        match self.pair {
+            GroupPair::Hinge => (Vector2::new(v[0], v[1]), fr.load),
+            GroupPair::Slide { dir, .. } => (perp(dir) * v[0] + dir * fr.load, v[1]),
+        }
+    }
+
+    /// The largest force number of the pair `v` (a hinge's two components, a slide's N; not
+    /// its K, a moment): its share of the load scale.
+    pub(super) fn force_of(&self, v: [f64; 2]) -> f64 {
+        match self.pair {
+            GroupPair::Hinge => wider(v[0].abs(), v[1].abs()),
+            GroupPair::Slide { .. } => v[0].abs(),
         }
     }
 }
@@ -118,33 +179,14 @@ pub(crate) fn group_friction(
             d.push(vec![[0.0; 2]; joints.len()]);
             continue;
         }
-        // The friction load per newton of pressure, on `on` from `by` (and back on `by`).
         let mut unit: Vec<Load> = loads.iter().map(|l| Load::zero(l.point)).collect();
-        match h.pair {
-            GroupPair::Hinge => {
-                unit[h.on].moment -= ck;
-                if let Some(by) = h.by {
-                    unit[by].moment += ck;
-                }
-            }
-            GroupPair::Slide { dir, point, .. } => {
-                unit[h.on] = Load::force_at(point, -ck * dir);
-                if let Some(by) = h.by {
-                    unit[by] = Load::force_at(point, ck * dir);
-                }
-            }
-        }
+        h.put_unit_load(ck, &mut unit);
         d.push(solve(&unit)?.0.iter().map(pair).collect());
     }
-    // The force scale: the loads' forces and the reactions' forces (a slide's N, not its K).
-    let scale = loads
-        .iter()
-        .map(|l| l.force)
-        .chain(v0.iter().zip(joints).map(|(v, h)| match h.pair {
-            GroupPair::Hinge => *v,
-            GroupPair::Slide { .. } => Vector2::new(v.x, 0.0),
-        }))
-        .fold(0.0, |s, f| wider(wider(s, f.x.abs()), f.y.abs()));
+    let scale = load_scale(
+        loads.iter().map(|l| l.force),
+        joints.iter().zip(&v0).map(|(h, v)| h.force_of([v.x, v.y])),
+    );
     let s = Pressures {
         v0: v0.iter().map(pair).collect(),
         d,
@@ -154,6 +196,17 @@ pub(crate) fn group_friction(
     }
     .solve(options, what, name)?;
     outcome(joints, &c, &s.m, &s.v, s.convergence, conditioning, what)
+}
+
+/// The load scale of a friction solve: the largest force component among the loads' forces
+/// and the frictionless reactions' force numbers (`reactions`, see
+/// [`GroupJoint::force_of`]).
+pub(super) fn load_scale(
+    loads: impl Iterator<Item = Vector2<f64>>,
+    reactions: impl Iterator<Item = f64>,
+) -> f64 {
+    let s = loads.fold(0.0, |s, f| wider(wider(s, f.x.abs()), f.y.abs()));
+    reactions.fold(s, wider)
 }
 
 /// The outcome from the pressures `m` and the reactions' pairs `v`, if every number in it
@@ -180,16 +233,9 @@ fn outcome(
         } else {
             JointFriction::new(c[k], m[k], h.rate)
         };
-        match h.pair {
-            GroupPair::Hinge => {
-                forces.push(Vector2::new(v[k][0], v[k][1]));
-                couples.push(fr.load);
-            }
-            GroupPair::Slide { dir, .. } => {
-                forces.push(perp(dir) * v[k][0] + dir * fr.load);
-                couples.push(v[k][1]);
-            }
-        }
+        let (force, couple) = h.reaction(v[k], &fr);
+        forces.push(force);
+        couples.push(couple);
         friction.push(fr);
     }
     finite_outcome(

@@ -80,6 +80,7 @@
 //! | input link, gear pair | [`GearFriction`] | O1 (0–1) |
 
 mod drive;
+mod dyad;
 mod dyads;
 mod efficiency;
 mod group;

@@ -337,6 +337,9 @@ impl LinkageSystem {
             // The resistances hold the machine at rest: no turn will ever end.
             return Err(loads.stalled(t));
         }
+        if let Outcome::Jammed { t, joint, value } = r.outcome {
+            return Err(super::friction::jam_error(self.plan(), t, joint, value));
+        }
         if !matches!(r.outcome, Outcome::Reached { .. }) {
             return Err(Error::Singular {
                 what: "run-up",

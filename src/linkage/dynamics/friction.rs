@@ -42,8 +42,10 @@
 //! Near a group's dead point (a dyad's links nearly in line) the friction statics itself has
 //! no solution for the inertia loads of the frictionless q̈₀: the group self-locks under
 //! them (its friction feedback det(I − J) has crossed zero). Then the motion jams (Painlevé's
-//! case of Coulomb friction: no finite reactions carry it on), and the error says so with
-//! the time, the state and the group's joint that self-locks.
+//! case of Coulomb friction: no finite reactions carry it on): the evaluation is an
+//! [`Error::Jammed`] with the time, the joint that self-locks and its det(I − J), within the
+//! state, and a run ends there with the rows up to its last state
+//! ([`Outcome::Jammed`](crate::dynamics::Outcome::Jammed)).
 //!
 //! At rest (every ṙ_j = 0) there is no friction (the convention of
 //! [`kinetostatics::friction`](crate::kinetostatics::friction)); whether the machine stays
@@ -146,6 +148,7 @@ impl FrictionJoint {
 /// statics to evaluate Q_f(q̈).
 pub(super) struct StateFriction<'p> {
     joints: Vec<(usize, [f64; 2], f64)>,
+    plan: &'p Plan,
     solver: crate::linkage::Solver<'p>,
     n: usize,
     q: Vector2<f64>,
@@ -174,6 +177,7 @@ impl<'p> StateFriction<'p> {
             .collect();
         (!joints.is_empty()).then(|| Self {
             joints,
+            plan,
             solver: plan.solver(),
             n: tr.n,
             q: *q,
@@ -227,7 +231,7 @@ impl<'p> StateFriction<'p> {
         }
         let fixed = |qf: &Vector2<f64>| inv * (b + qf);
         let mut x = fixed(&Vector2::zeros());
-        let mut qf = self.force(&x)?;
+        let mut qf = self.force(&x).map_err(|e| self.jammed(e, time, &x))?;
         let mut fx = fixed(&qf);
         let scale = x.norm() + (fx - x).norm();
         let tol = FRICTION_TOLERANCE * scale;
@@ -358,12 +362,18 @@ impl<'p> StateFriction<'p> {
     }
 
     /// The error of a motion that jams: the friction statics has no solution at the
-    /// frictionless q̈ (`source` names the group and joint that self-lock).
+    /// frictionless q̈ (`source` names the group and joint that self-lock): an
+    /// [`Error::Jammed`] (a run's stop, [`Outcome::Jammed`](crate::dynamics::Outcome::Jammed))
+    /// naming the joint, within the state; any other error of the statics as it is, within
+    /// the state.
     fn jammed(&self, source: Error, time: f64, qdd: &Vector2<f64>) -> Error {
+        let source = match self_locking(&source, self.plan.joint_names()) {
+            Some((index, value)) => jam_error(self.plan, time, index, value),
+            None => source,
+        };
         Error::In {
             part: format!(
-                "{} at t = {time} s: the linkage jams, no finite reactions hold the motion \
-                 with the frictionless accelerations ({}, {})",
+                "{} with the frictionless accelerations ({}, {})",
                 self.state_text(),
                 qdd[0],
                 qdd[1]
@@ -386,6 +396,36 @@ impl<'p> StateFriction<'p> {
             }),
         }
     }
+}
+
+/// The jam of `plan`'s joint `joint` at time `t` with the friction's feedback det(I − J) =
+/// `value` ([`Error::Jammed`]).
+pub(super) fn jam_error(plan: &Plan, t: f64, joint: usize, value: f64) -> Error {
+    Error::Jammed {
+        time: t,
+        index: joint,
+        joint: plan.joint_names().get(joint).cloned().unwrap_or_default(),
+        measure: "det(I - J)",
+        value,
+    }
+}
+
+/// The joint (its index among `names`) whose self-locking `e` reports (a part "… joint
+/// <name> self-locks …" around det(I − J), the measure that vanished), with that value.
+fn self_locking(e: &Error, names: &[String]) -> Option<(usize, f64)> {
+    let Error::In { part, source } = e else {
+        return None;
+    };
+    if let (true, Error::Singular { value, .. }) = (part.contains(" self-locks"), source.as_ref()) {
+        // The longest name that fits (a name may hold another).
+        return names
+            .iter()
+            .enumerate()
+            .filter(|(_, n)| part.contains(&format!("joint {n} self-locks")))
+            .max_by_key(|(_, n)| n.len())
+            .map(|(j, _)| (j, *value));
+    }
+    self_locking(source, names)
 }
 
 /// One point of the two-input solve: q̈, its Q_f and the residual g = q̈ − A⁻¹·(b + Q_f).

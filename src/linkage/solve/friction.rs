@@ -147,7 +147,7 @@ impl Analysis<'_> {
         let a = kin.links[l2].origin.p;
         let (load2, load3) = (self.acc[l2], self.acc[l3]);
         let named = name_joint(&plan.chain.joint_names, group.joints, &group.name);
-        let (ra, rb, rc, fr, cond, conv) = match group.kind {
+        let ((forces, couples, fr), at, cond, conv) = match group.kind {
             // A plan's triad and general group always carry their plans (solved above).
             GroupKind::Triad | GroupKind::General => {
                 return Err(crate::Error::Description {
@@ -182,10 +182,8 @@ impl Analysis<'_> {
                 .solve()
                 .map_err(named)?;
                 (
-                    Reaction::new(ka, l2, r.r12, a, r.a.load),
-                    Reaction::new(l2, l3, r.r23, b, r.b.load),
-                    Reaction::new(kc, l3, r.r43, c, r.c.load),
-                    [r.a, r.b, r.c],
+                    r.by_joint(),
+                    [(ka, l2, a), (l2, l3, b), (kc, l3, c)],
                     r.conditioning,
                     r.convergence,
                 )
@@ -218,10 +216,8 @@ impl Analysis<'_> {
                 .solve()
                 .map_err(named)?;
                 (
-                    Reaction::new(ka, l2, r.r12, a, r.a.load),
-                    Reaction::new(l2, l3, r.r23, b, r.b.load),
-                    Reaction::new(kc, l3, r.r43, b, r.contact43.moment),
-                    [r.a, r.b, r.guide],
+                    r.by_joint(),
+                    [(ka, l2, a), (l2, l3, b), (kc, l3, b)],
                     r.conditioning,
                     r.convergence,
                 )
@@ -254,10 +250,8 @@ impl Analysis<'_> {
                 .solve()
                 .map_err(named)?;
                 (
-                    Reaction::new(ka, l2, r.r12, a, r.a.load),
-                    Reaction::new(l3, l2, r.r32, a, r.contact32.moment),
-                    Reaction::new(kc, l3, r.r43, c, r.e.load),
-                    [r.a, r.slide, r.e],
+                    r.by_joint(),
+                    [(ka, l2, a), (l3, l2, a), (kc, l3, c)],
                     r.conditioning,
                     r.convergence,
                 )
@@ -291,10 +285,8 @@ impl Analysis<'_> {
                 .solve()
                 .map_err(named)?;
                 (
-                    Reaction::new(ka, l2, r.r12, b, r.contact12.moment),
-                    Reaction::new(l2, l3, r.r23, b, r.b.load),
-                    Reaction::new(kc, l3, r.r43, b, r.contact43.moment),
-                    [r.guide2, r.b, r.guide3],
+                    r.by_joint(),
+                    [(ka, l2, b), (l2, l3, b), (kc, l3, b)],
                     r.conditioning,
                     r.convergence,
                 )
@@ -329,15 +321,18 @@ impl Analysis<'_> {
                 .solve()
                 .map_err(named)?;
                 (
-                    Reaction::new(ka, l2, r.r12, a, r.a.load),
-                    Reaction::new(l3, l2, r.r32, a, r.contact32.moment),
-                    Reaction::new(kc, l3, r.r43, b, r.contact43.moment),
-                    [r.a, r.slot, r.guide],
+                    r.by_joint(),
+                    [(ka, l2, a), (l3, l2, a), (kc, l3, b)],
                     r.conditioning,
                     r.convergence,
                 )
             }
         };
+        // Each reaction of its first link on its second (as the block gives it) at its point.
+        let [ra, rb, rc] = [0, 1, 2].map(|k| {
+            let (by, on, point) = at[k];
+            Reaction::new(by, on, forces[k], point, couples[k])
+        });
         add(&mut self.acc[ka], &ra.load_on_side(ka));
         add(&mut self.acc[kc], &rc.load_on_side(kc));
         self.reactions[ja] = ra;
