@@ -79,6 +79,7 @@ fn a_motor_that_cannot_drive_or_runs_away_is_refused() {
 }
 
 /// Each machine option out of its domain is named in the one line: a negative or NaN rotor,
+/// a coefficient of speed fluctuation outside (0, 2) or so small that the flywheel overflows,
 /// a motor of a linkage with two inputs that is not finite, and a run of two inputs that
 /// leaves the linkage's reach (the robot, undriven, falls and spins for 10⁴ s).
 #[test]
@@ -86,6 +87,18 @@ fn a_machine_option_out_of_its_domain_is_named() {
     for (args, option) in [
         (&["dynamics", "four-bar", "--rotor", "-1"][..], "--rotor"),
         (&["dynamics", "four-bar", "--rotor", "nan"][..], "--rotor"),
+        (
+            &["dynamics", "four-bar", "--flywheel", "0"][..],
+            "--flywheel 0",
+        ),
+        (
+            &["dynamics", "four-bar", "--flywheel", "nan"][..],
+            "--flywheel NaN",
+        ),
+        (
+            &["dynamics", "shaper", "--flywheel", "1e-300"][..],
+            "--flywheel 1e-300",
+        ),
         (
             &["dynamics", "five-bar-robot", "--rotor", "-1"][..],
             "--rotor",
