@@ -152,3 +152,33 @@ fn an_empty_file_or_file_name_is_said_so() {
     }
     let _ = std::fs::remove_file(&empty);
 }
+
+/// A picture at a position that does not assemble (the Peaucellier cell's crank rocks between
+/// ±96.4°, so 120° is beyond its lock) names the option and the value asked for, the gap by
+/// which the group fails to close (positive), and where to see the range; a single value
+/// where a linkage with two inputs needs a pair names the option given in its hint.
+#[test]
+fn a_position_that_does_not_assemble_names_the_option() {
+    for option in ["--scheme", "--forces"] {
+        let r = tmm(&["draw", "peaucellier-lipkin", option, "120"]);
+        assert_one_line_failure(&r, "peaucellier-lipkin");
+        assert!(
+            r.stderr.contains(&format!("{option} 120: ")),
+            "{}",
+            r.stderr
+        );
+        assert!(
+            number_after(&r.stderr, "closure fails by ") > 0.0,
+            "{}",
+            r.stderr
+        );
+        assert!(r.stderr.contains("tmm check"), "{}", r.stderr);
+        let r = tmm(&["draw", "five-bar-robot", option, "100"]);
+        assert_one_line_failure(&r, "five-bar-robot");
+        assert!(
+            r.stderr.contains(&format!("{option} 120 60")),
+            "{}",
+            r.stderr
+        );
+    }
+}

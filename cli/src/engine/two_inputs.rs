@@ -69,9 +69,9 @@ impl Machine {
                 if typed.len() == 1 { "was" } else { "were" }
             ))
             .hint(if n == 2 {
-                "give both inputs, for example --scheme 120 60 (degrees for a crank)"
+                format!("give both inputs, for example {option} 120 60 (degrees for a crank)")
             } else {
-                "give the input's angle in degrees (metres for a slider)"
+                "give the input's angle in degrees (metres for a slider)".to_owned()
             }));
         }
         let one = |k: usize| Ok::<_, Failure>(Motion::new(value(k)?, speed, 0.0));
