@@ -173,6 +173,13 @@ fn a_position_that_does_not_assemble_names_the_option() {
             r.stderr
         );
         assert!(r.stderr.contains("tmm check"), "{}", r.stderr);
+        let r = tmm(&["draw", "five-bar-robot", "--workspace", "X"]);
+        assert_one_line_failure(&r, "five-bar-robot");
+        assert!(
+            r.stderr.contains("--workspace takes a joint"),
+            "{}",
+            r.stderr
+        );
         let r = tmm(&["draw", "five-bar-robot", option, "100"]);
         assert_one_line_failure(&r, "five-bar-robot");
         assert!(

@@ -284,10 +284,19 @@ impl Machine {
             "the workspace of {point} ({WORKSPACE_SAMPLES} × {WORKSPACE_SAMPLES} input pairs)"
         ));
         let options = WorkspaceOptions::default().with_samples(WORKSPACE_SAMPLES);
-        let ws = self
-            .plan
-            .workspace(point, &options)
-            .map_err(|e| failure(&e))?;
+        let ws = self.plan.workspace(point, &options).map_err(|e| {
+            let plan = &self.plan;
+            let names: Vec<&str> = plan
+                .joint_names()
+                .iter()
+                .chain(plan.point_names())
+                .map(String::as_str)
+                .collect();
+            failure(&e).hint(format!(
+                "--workspace takes a joint or a named point: {}",
+                names.join(", ")
+            ))
+        })?;
         draw::workspace(&self.plan, &ws, style)
             .map(|p| p.svg)
             .map_err(|e| failure(&e))
