@@ -115,7 +115,7 @@ pub fn run(text: &str, source: &str, dir: &Path) -> Result<Table, Box<dyn std::e
     let table = plan.course_table(&positions);
     println!("\n{}", table.to_text(4));
     fs::create_dir_all(dir)?;
-    let file = dir.join(format!("{}.csv", linkage.name.replace([' ', '/'], "_")));
+    let file = dir.join(format!("{}.csv", stem(&linkage)));
     table.write_csv(fs::File::create(&file)?)?;
     println!("course table written to {}", file.display());
     #[cfg(feature = "draw")]
@@ -124,6 +124,11 @@ pub fn run(text: &str, source: &str, dir: &Path) -> Result<Table, Box<dyn std::e
         AnyCourse::Two(c) => pictures::write_two(&linkage, &plan, c, dir)?,
     }
     Ok(table)
+}
+
+/// The stem of the files written for `linkage`: its name with spaces and slashes as `_`.
+fn stem(linkage: &Linkage) -> String {
+    linkage.name.replace([' ', '/'], "_")
 }
 
 /// The pictures of the linkage (feature `draw`), each an SVG file in `dir`.
@@ -137,6 +142,20 @@ mod pictures {
         uniform_inputs, Course, Linkage, Plan, Sweep, TwoInputCourse, WorkspaceOptions,
     };
 
+    /// Writes the picture `what` of `linkage` as `dir/STEM_what.svg` and says so.
+    fn saver<'a>(
+        linkage: &Linkage,
+        dir: &'a Path,
+    ) -> impl Fn(&str, &str) -> std::io::Result<()> + 'a {
+        let stem = super::stem(linkage);
+        move |what, svg| {
+            let file = dir.join(format!("{stem}_{what}.svg"));
+            fs::write(&file, svg)?;
+            println!("{what} drawn in {}", file.display());
+            Ok(())
+        }
+    }
+
     /// The pictures of a linkage with two inputs: the scheme and the reactions at the first
     /// position, the plan along the course, an animation round it, and the workspace of the
     /// first named point (or the first joint between two links that are neither the frame
@@ -147,14 +166,8 @@ mod pictures {
         course: &TwoInputCourse,
         dir: &Path,
     ) -> Result<(), Box<dyn std::error::Error>> {
-        let stem = linkage.name.replace([' ', '/'], "_");
         let style = Style::default();
-        let save = |what: &str, svg: &str| -> std::io::Result<()> {
-            let file = dir.join(format!("{stem}_{what}.svg"));
-            fs::write(&file, svg)?;
-            println!("{what} drawn in {}", file.display());
-            Ok(())
-        };
+        let save = saver(linkage, dir);
         let first = course.inputs[0];
         save("scheme", &draw::scheme(plan, first, &style)?.svg)?;
         save("forces", &draw::forces(plan, first, &style)?.svg)?;
@@ -193,14 +206,8 @@ mod pictures {
         inputs: &[Motion],
         dir: &Path,
     ) -> Result<(), Box<dyn std::error::Error>> {
-        let stem = linkage.name.replace([' ', '/'], "_");
         let style = Style::default();
-        let save = |what: &str, svg: &str| -> std::io::Result<()> {
-            let file = dir.join(format!("{stem}_{what}.svg"));
-            fs::write(&file, svg)?;
-            println!("{what} drawn in {}", file.display());
-            Ok(())
-        };
+        let save = saver(linkage, dir);
         let first = inputs[0];
         save("scheme", &draw::scheme(plan, first, &style)?.svg)?;
         save("forces", &draw::forces(plan, first, &style)?.svg)?;

@@ -655,16 +655,32 @@ impl Machine {
             ));
         }
         let paths = plan.traced_points();
+        // A picture at one position: a pose that does not assemble is said with the option
+        // and the value that asked for it.
+        let at_position = |option: &str, at: &[f64], e: &tmm::Error| {
+            let typed: Vec<String> = at.iter().map(|v| typed(*v)).collect();
+            let asked = if typed.is_empty() {
+                "the reference pose".to_owned()
+            } else {
+                format!("{option} {}", typed.join(" "))
+            };
+            Failure::new(format!("{asked}: {e}")).hint("`tmm check FILE` shows the input's range")
+        };
         let svg = match &request.kind {
-            PictureKind::Scheme(at) if request.centres => {
-                draw::scheme_with_centres(plan, self.inputs_at("--scheme", at, speed)?, &style)
-                    .map(|p| p.svg)
-            }
-            PictureKind::Scheme(at) => {
-                draw::scheme(plan, self.inputs_at("--scheme", at, speed)?, &style).map(|p| p.svg)
-            }
-            PictureKind::Forces(at) => {
-                draw::forces(plan, self.inputs_at("--forces", at, speed)?, &style).map(|p| p.svg)
+            PictureKind::Scheme(at) | PictureKind::Forces(at) => {
+                let option = if matches!(request.kind, PictureKind::Forces(_)) {
+                    "--forces"
+                } else {
+                    "--scheme"
+                };
+                let inputs = self.inputs_at(option, at, speed)?;
+                return match request.kind {
+                    PictureKind::Forces(_) => draw::forces(plan, inputs, &style),
+                    _ if request.centres => draw::scheme_with_centres(plan, inputs, &style),
+                    _ => draw::scheme(plan, inputs, &style),
+                }
+                .map(|p| p.svg)
+                .map_err(|e| at_position(option, at, &e));
             }
             PictureKind::Workspace(point) => return self.workspace(point, &style, progress),
             PictureKind::Plan if two => {

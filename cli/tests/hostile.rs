@@ -79,6 +79,7 @@ fn a_motor_that_cannot_drive_or_runs_away_is_refused() {
 }
 
 /// Each machine option out of its domain is named in the one line: a negative or NaN rotor,
+/// a coefficient of speed fluctuation outside (0, 2) or so small that the flywheel overflows,
 /// a motor of a linkage with two inputs that is not finite, and a run of two inputs that
 /// leaves the linkage's reach (the robot, undriven, falls and spins for 10⁴ s).
 #[test]
@@ -86,6 +87,18 @@ fn a_machine_option_out_of_its_domain_is_named() {
     for (args, option) in [
         (&["dynamics", "four-bar", "--rotor", "-1"][..], "--rotor"),
         (&["dynamics", "four-bar", "--rotor", "nan"][..], "--rotor"),
+        (
+            &["dynamics", "four-bar", "--flywheel", "0"][..],
+            "--flywheel 0",
+        ),
+        (
+            &["dynamics", "four-bar", "--flywheel", "nan"][..],
+            "--flywheel NaN",
+        ),
+        (
+            &["dynamics", "shaper", "--flywheel", "1e-300"][..],
+            "--flywheel 1e-300",
+        ),
         (
             &["dynamics", "five-bar-robot", "--rotor", "-1"][..],
             "--rotor",
@@ -138,4 +151,41 @@ fn an_empty_file_or_file_name_is_said_so() {
         assert!(r.stderr.contains("name is empty"), "{}", r.stderr);
     }
     let _ = std::fs::remove_file(&empty);
+}
+
+/// A picture at a position that does not assemble (the Peaucellier cell's crank rocks between
+/// ±96.4°, so 120° is beyond its lock) names the option and the value asked for, the gap by
+/// which the group fails to close (positive), and where to see the range; a single value
+/// where a linkage with two inputs needs a pair names the option given in its hint.
+#[test]
+fn a_position_that_does_not_assemble_names_the_option() {
+    for option in ["--scheme", "--forces"] {
+        let r = tmm(&["draw", "peaucellier-lipkin", option, "120"]);
+        assert_one_line_failure(&r, "peaucellier-lipkin");
+        assert!(
+            r.stderr.contains(&format!("{option} 120: ")),
+            "{}",
+            r.stderr
+        );
+        assert!(
+            number_after(&r.stderr, "closure fails by ") > 0.0,
+            "{}",
+            r.stderr
+        );
+        assert!(r.stderr.contains("tmm check"), "{}", r.stderr);
+        let r = tmm(&["draw", "five-bar-robot", "--workspace", "X"]);
+        assert_one_line_failure(&r, "five-bar-robot");
+        assert!(
+            r.stderr.contains("--workspace takes a joint"),
+            "{}",
+            r.stderr
+        );
+        let r = tmm(&["draw", "five-bar-robot", option, "100"]);
+        assert_one_line_failure(&r, "five-bar-robot");
+        assert!(
+            r.stderr.contains(&format!("{option} 120 60")),
+            "{}",
+            r.stderr
+        );
+    }
 }

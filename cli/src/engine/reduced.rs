@@ -68,7 +68,13 @@ impl Machine {
         let mut flywheels = Vec::new();
         for &delta in &request.flywheel {
             progress(&format!("flywheel for δ = {delta}"));
-            let fw = bare.flywheel(delta, speed, 3600).map_err(f)?;
+            let fw = bare.flywheel(delta, speed, 3600).map_err(|e| {
+                failure(&e).hint(format!(
+                    "--flywheel {}: give each δ between 0 and 2, for example 0.05 (a machine's \
+                     usual 0.01 to 0.1)",
+                    crate::model::typed(delta)
+                ))
+            })?;
             flywheels.push(FlywheelRow {
                 delta,
                 inertia: fw.moment_of_inertia,

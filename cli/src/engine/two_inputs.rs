@@ -69,9 +69,9 @@ impl Machine {
                 if typed.len() == 1 { "was" } else { "were" }
             ))
             .hint(if n == 2 {
-                "give both inputs, for example --scheme 120 60 (degrees for a crank)"
+                format!("give both inputs, for example {option} 120 60 (degrees for a crank)")
             } else {
-                "give the input's angle in degrees (metres for a slider)"
+                "give the input's angle in degrees (metres for a slider)".to_owned()
             }));
         }
         let one = |k: usize| Ok::<_, Failure>(Motion::new(value(k)?, speed, 0.0));
@@ -284,10 +284,19 @@ impl Machine {
             "the workspace of {point} ({WORKSPACE_SAMPLES} × {WORKSPACE_SAMPLES} input pairs)"
         ));
         let options = WorkspaceOptions::default().with_samples(WORKSPACE_SAMPLES);
-        let ws = self
-            .plan
-            .workspace(point, &options)
-            .map_err(|e| failure(&e))?;
+        let ws = self.plan.workspace(point, &options).map_err(|e| {
+            let plan = &self.plan;
+            let names: Vec<&str> = plan
+                .joint_names()
+                .iter()
+                .chain(plan.point_names())
+                .map(String::as_str)
+                .collect();
+            failure(&e).hint(format!(
+                "--workspace takes a joint or a named point: {}",
+                names.join(", ")
+            ))
+        })?;
         draw::workspace(&self.plan, &ws, style)
             .map(|p| p.svg)
             .map_err(|e| failure(&e))
