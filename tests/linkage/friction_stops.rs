@@ -124,29 +124,155 @@ fn a_five_bar_at_rest_sticks_exactly_while_the_drive_is_within_the_pivots_fricti
     assert!(worst <= 1e-12, "{worst:e}");
 }
 
-/// Crank 1 thrown forward against its motor while crank 2 turns on: where q̇₁ reaches zero
-/// the run weighs its pivot's friction with crank 2 still moving, so every other joint's
-/// friction acts and depends on the held motion's reactions. Independently: q̈₂ of the held
-/// motion (q̈₁ = 0) solves M_b2(q̈₂) = τ₂ in the friction kinetostatics (secant), the couple
-/// that holds crank 1 is M_b1 − τ₁ there, and the limit is ρ·|R_O1| of that solve. The run
-/// must end stuck at the stop exactly when the drive τ₁ − M_b1 is within ±L, and reverse
-/// crank 1 there otherwise; the loads it weighs equal the independent ones. (These motors
-/// all reverse it: the held side of the threshold is the test above.)
+/// At a whole rest both cranks' pivots are switches, and each is weighed with the other
+/// crank free. Crank 1's motor balances it (its drive zero: it holds), crank 2's motor is
+/// y times crank 2's own limit off its balance. Independently, from the kinetostatics at rest
+/// (nothing slides, so the balances are the frictionless ones; each balance is affine in
+/// the free crank's q̈, one secant step solves it): weighing crank k, the other crank's q̈
+/// solves M_b,other(q̈) = τ_other with q̈ₖ = 0, the drive is τₖ − M_bk there, and the limits
+/// L± are the friction that sets in when crank k starts (q̇ₖ = ±10⁻²⁰⁰) at that motion,
+/// M_bk± − M_bk. Where crank 2's drive is within its limits too the machine stays at rest
+/// (stuck at once, at switch 0); beyond them it runs with crank 2 moving the way its drive
+/// pushes (it used to end stuck at switch 0, weighed alone).
 #[test]
-fn a_five_bar_input_stopping_while_the_other_moves_sticks_or_reverses_by_its_friction() {
-    // Large pins (10 % of the size) and f = 0.3: a friction circle the motors can fall in.
+fn a_five_bar_at_rest_weighs_both_inputs_and_runs_when_one_breaks_away() {
+    let (l, _) = five_bar(F);
+    let plan = Plan::new(&l).unwrap();
+    let q = Vector2::from_vec(plan.reference_inputs());
+    let z = Vector2::zeros();
+    let balance = |qd: &Vector2<f64>, qdd: &Vector2<f64>| {
+        let a = plan.analyse(inputs(&q, qd, qdd)).unwrap();
+        [a.balance(0).unwrap().value, a.balance(1).unwrap().value]
+    };
+    let e = |k: usize, x: f64| {
+        let mut v = Vector2::zeros();
+        v[k] = x;
+        v
+    };
+    // Weighing crank k with the motors τ: (its drive, L+, L−).
+    let weigh = |k: usize, tau: [f64; 2]| {
+        let o = 1 - k;
+        let m = |x: f64| balance(&z, &e(o, x))[o] - tau[o];
+        let (g0, g1) = (m(0.0), m(1.0));
+        let held = e(o, -g0 / (g1 - g0));
+        let mb = balance(&z, &held)[k];
+        let fwd = balance(&e(k, 1e-200), &held)[k] - mb;
+        let bwd = mb - balance(&e(k, -1e-200), &held)[k];
+        (tau[k] - mb, fwd, bwd)
+    };
+    let mb = balance(&z, &z);
+    let limit2 = balance(&e(1, 1e-200), &z)[1] - mb[1];
+    assert!(limit2 > 0.0);
+    let (mut stuck, mut ran, mut worst) = (0, 0, 0.0f64);
+    for y in [-3.0, -0.5, 0.0, 0.5, 3.0] {
+        let tau2 = mb[1] + y * limit2;
+        // Crank 1's motor: its balance with crank 2 free under τ₂ (drive zero).
+        let tau1 = -weigh(0, [0.0, tau2]).0;
+        let tau = [tau1, tau2];
+        let sys = machine(&l, tau);
+        let mut holds = [false; 2];
+        for k in 0..2 {
+            let (drive, fwd, bwd) = weigh(k, tau);
+            let loads = sys.switch_loads(k, 0.0, &q, &z).unwrap();
+            let scale = fwd.max(bwd).max(tau[k].abs());
+            worst = worst
+                .max((loads.drive - drive).abs() / scale)
+                .max((loads.forward - fwd).abs() / scale)
+                .max((loads.backward - bwd).abs() / scale);
+            holds[k] = -bwd <= drive && drive <= fwd;
+        }
+        assert!(holds[0], "y = {y}");
+        let r = run(
+            &sys,
+            &Rk4,
+            State::at_rest(q),
+            &RunOptions::until(2e-4, 1e-4),
+        )
+        .unwrap_or_else(|err| panic!("y = {y}: {err}"));
+        if holds[1] {
+            let Outcome::Stuck { t, switch, .. } = r.outcome else {
+                panic!("y = {y}: {:?}", r.outcome)
+            };
+            assert_eq!((t, switch), (0.0, 0), "y = {y}");
+            stuck += 1;
+        } else {
+            assert!(
+                matches!(r.outcome, Outcome::FinalTime),
+                "y = {y}: {:?}",
+                r.outcome
+            );
+            let drive2 = weigh(1, tau).0;
+            assert!(r.last.qd[1] * drive2 > 0.0, "y = {y}: {:?}", r.last.qd);
+            ran += 1;
+        }
+    }
+    println!(
+        "five-bar at a whole rest, crank 1 balanced: {stuck} stuck, {ran} ran with crank 2 \
+         broken away; worst {worst:.1e}"
+    );
+    assert!(stuck >= 1 && ran >= 2, "{stuck} stuck, {ran} ran");
+    assert!(worst <= 1e-12, "{worst:e}");
+}
+
+/// Crank 1 held at the state `s` (q̇₁ = 0, q̈₁ = 0) while crank 2 moves under τ₂ in the
+/// friction kinetostatics of `plan`: q̈₂ solves M_b2(q̈₂) = τ₂ (secant), and the couple that
+/// holds crank 1 is M_b1 there; its pivot's friction circle ρ·|R_O1| is the limit.
+fn held_at(plan: &Plan, o1: usize, rho: f64, s: &State, tau2: f64) -> (f64, f64) {
+    let mut qd = s.qd;
+    qd[0] = 0.0;
+    let mb = |x: f64| {
+        let a = plan
+            .analyse(inputs(&s.q, &qd, &Vector2::new(0.0, x)))
+            .unwrap();
+        (a.balance(0).unwrap().value, a.balance(1).unwrap().value)
+    };
+    let (mut x0, mut x1) = (0.0, 1.0);
+    let (mut g0, mut g1) = (mb(x0).1 - tau2, mb(x1).1 - tau2);
+    for _ in 0..50 {
+        if g1 == g0 || g1.abs() <= 1e-15 {
+            break;
+        }
+        let x2 = x1 - g1 * (x1 - x0) / (g1 - g0);
+        (x0, g0) = (x1, g1);
+        x1 = x2;
+        g1 = mb(x1).1 - tau2;
+    }
+    let mut tiny = qd;
+    tiny[0] = 1e-200;
+    let a = plan
+        .analyse(inputs(&s.q, &tiny, &Vector2::new(0.0, x1)))
+        .unwrap();
+    (mb(x1).0, rho * a.reaction(o1).unwrap().force.norm())
+}
+
+/// The five-bar robot with f = 0.3 on pins of 10 % of its size (a friction circle the
+/// motors can fall in), its plan, its ρ, and crank 1's pivot.
+fn large_pins() -> (Linkage, Plan, f64, usize) {
     let mut l = bundled::five_bar_robot();
     let size = Plan::new(&l).unwrap().size();
-    let rho = 0.3 * 0.1 * size;
     l.friction = Some(Friction::pin(0.3, 0.1 * size));
     let plan = Plan::new(&l).unwrap();
     let o1 = pivot(&plan, 0);
+    (l, plan, 0.3 * 0.1 * size, o1)
+}
+
+/// Crank 1 thrown at `w1` rad/s against (or with) its motor τ₁ (each of `taus`) while crank
+/// 2 turns on under 0.05 N·m: where q̇₁ reaches zero the run weighs its pivot's friction
+/// with crank 2 still moving, so every other joint's friction acts and depends on the held
+/// motion's reactions. Independently: q̈₂ of the held motion (q̈₁ = 0) solves M_b2(q̈₂) = τ₂
+/// in the friction kinetostatics (secant), the couple that holds crank 1 is M_b1 − τ₁ there,
+/// and the limit is ρ·|R_O1| of that solve. The run must end stuck at the stop exactly when
+/// the drive τ₁ − M_b1 is within ±L, and reverse crank 1 there otherwise; the loads it
+/// weighs must equal the independent ones. Returns the stops stuck, reversed, and the
+/// largest difference of the loads relative to the larger of L and |τ₁|.
+fn stops_while_the_other_moves(w1: f64, taus: &[f64]) -> (usize, usize, f64) {
+    let (l, plan, rho, o1) = large_pins();
     let r0 = plan.reference_inputs();
-    let start = State::new(0.0, Vector2::new(r0[0], r0[1]), Vector2::new(3.0, 1.0));
+    let start = State::new(0.0, Vector2::new(r0[0], r0[1]), Vector2::new(w1, 1.0));
     let tau2 = 0.05;
     let (mut stuck, mut reversed) = (0, 0);
     let mut worst = 0.0f64;
-    for tau1 in [-0.02, -0.05, -0.1, -0.2, -0.6] {
+    for &tau1 in taus {
         let sys = machine(&l, [tau1, tau2]);
         let r = run(
             &sys,
@@ -162,10 +288,10 @@ fn a_five_bar_input_stopping_while_the_other_moves_sticks_or_reverses_by_its_fri
             Outcome::FinalTime => {
                 let w = tr.qd()[0];
                 let Some(i) = (1..tr.len() - 1).find(|&i| w[i].abs() <= 1e-9 * 3.0) else {
-                    println!("τ₁ = {tau1}: no stop within the run");
+                    println!("w₁ = {w1}, τ₁ = {tau1}: no stop within the run");
                     continue;
                 };
-                assert!(w[i - 1] > 0.0 && w[i + 1] < 0.0, "τ₁ = {tau1}");
+                assert!(w[i - 1] * w1 > 0.0 && w[i + 1] * w1 < 0.0, "τ₁ = {tau1}");
                 let s = State::new(
                     tr.t()[i],
                     Vector2::new(tr.q()[0][i], tr.q()[1][i]),
@@ -176,32 +302,8 @@ fn a_five_bar_input_stopping_while_the_other_moves_sticks_or_reverses_by_its_fri
             o => panic!("τ₁ = {tau1}: {o:?}"),
         };
         assert!(s.qd[0].abs() <= 1e-9 * 3.0 && s.qd[1] != 0.0, "{s:?}");
-        let mut qd = s.qd;
-        qd[0] = 0.0;
-        let mb = |x: f64| {
-            let a = plan
-                .analyse(inputs(&s.q, &qd, &Vector2::new(0.0, x)))
-                .unwrap();
-            (a.balance(0).unwrap().value, a.balance(1).unwrap().value)
-        };
-        let (mut x0, mut x1) = (0.0, 1.0);
-        let (mut g0, mut g1) = (mb(x0).1 - tau2, mb(x1).1 - tau2);
-        for _ in 0..50 {
-            if g1 == g0 || g1.abs() <= 1e-15 {
-                break;
-            }
-            let x2 = x1 - g1 * (x1 - x0) / (g1 - g0);
-            (x0, g0) = (x1, g1);
-            x1 = x2;
-            g1 = mb(x1).1 - tau2;
-        }
-        let drive = tau1 - mb(x1).0;
-        let mut tiny = qd;
-        tiny[0] = 1e-200;
-        let a = plan
-            .analyse(inputs(&s.q, &tiny, &Vector2::new(0.0, x1)))
-            .unwrap();
-        let limit = rho * a.reaction(o1).unwrap().force.norm();
+        let (held_couple, limit) = held_at(&plan, o1, rho, &s, tau2);
+        let drive = tau1 - held_couple;
         let loads = sys.switch_loads(0, s.t, &s.q, &s.qd).unwrap();
         let scale = limit.max(tau1.abs());
         worst = worst
@@ -209,7 +311,7 @@ fn a_five_bar_input_stopping_while_the_other_moves_sticks_or_reverses_by_its_fri
             .max((loads.forward - limit).abs() / scale)
             .max((loads.backward - limit).abs() / scale);
         println!(
-            "τ₁ = {tau1}: stop at t = {:.6} s, drive {drive:.6e}, L {limit:.6e}: {}",
+            "w₁ = {w1}, τ₁ = {tau1}: stop at t = {:.6} s, drive {drive:.6e}, L {limit:.6e}: {}",
             s.t,
             if held { "stuck" } else { "reversed" }
         );
@@ -224,9 +326,49 @@ fn a_five_bar_input_stopping_while_the_other_moves_sticks_or_reverses_by_its_fri
             reversed += 1;
         }
     }
+    (stuck, reversed, worst)
+}
+
+/// Crank 1 thrown forward (3 rad/s) against its motor: every motor reverses it at its stop.
+#[test]
+fn a_five_bar_input_stopping_while_the_other_moves_sticks_or_reverses_by_its_friction() {
+    let (stuck, reversed, worst) =
+        stops_while_the_other_moves(3.0, &[-0.02, -0.05, -0.1, -0.2, -0.6]);
     println!("five-bar stops: {stuck} stuck, {reversed} reversed, worst {worst:.1e}");
     assert!(reversed >= 3, "{stuck} stuck, {reversed} reversed");
     assert!(worst <= 1e-9, "{worst:e}");
+}
+
+/// Crank 1 nudged (±0.02 rad/s) while crank 2 turns on, with its motor y times its pivot's
+/// friction circle off the couple that holds it at the start (the independent solve of
+/// [`held_at`]): friction stops it at once, and at the stop it sticks (|y| < 1) or is driven
+/// back (y = ∓3 against the nudge), each way: both sides of the breakaway threshold, both
+/// directions of the stop (the stops above all reverse crank 1 from forward).
+#[test]
+fn a_five_bar_input_nudged_either_way_sticks_or_goes_back_by_its_friction() {
+    let (_, plan, rho, o1) = large_pins();
+    let r0 = plan.reference_inputs();
+    let at_rest = State::new(0.0, Vector2::new(r0[0], r0[1]), Vector2::new(0.0, 1.0));
+    let (couple, limit) = held_at(&plan, o1, rho, &at_rest, 0.05);
+    let mut all = (0, 0);
+    for w1 in [0.02_f64, -0.02] {
+        let taus: Vec<f64> = [-0.5, 0.0, 0.5, -3.0 * w1.signum()]
+            .iter()
+            .map(|y| couple + y * limit)
+            .collect();
+        let (stuck, reversed, worst) = stops_while_the_other_moves(w1, &taus);
+        println!("five-bar, w₁ = {w1}: {stuck} stuck, {reversed} reversed, worst {worst:.1e}");
+        assert!(
+            stuck >= 2 && reversed >= 1,
+            "{stuck} stuck, {reversed} reversed"
+        );
+        assert!(worst <= 1e-9, "{worst:e}");
+        all = (all.0 + stuck, all.1 + reversed);
+    }
+    println!(
+        "five-bar nudged stops: {} stuck, {} reversed (held couple {couple:.6e}, L {limit:.6e})",
+        all.0, all.1
+    );
 }
 
 /// The five-bar robot with f = 0.3 on pins of 5 cm in every joint (the CLI's
@@ -290,7 +432,12 @@ fn a_five_bar_with_large_pins_runs_with_the_energy_balance_of_its_friction_and_t
     let mut opts = RunOptions::until(0.3, h);
     opts.record_every = 1;
     let j = run(&sys, &Rk4, State::at_rest(q0), &opts).expect("a jam is a stop");
-    let Outcome::Jammed { t: tj, joint, value } = j.outcome else {
+    let Outcome::Jammed {
+        t: tj,
+        joint,
+        value,
+    } = j.outcome
+    else {
         panic!("the couplers jam before 0.3 s: {:?}", j.outcome)
     };
     let last = j.last.t;
@@ -300,7 +447,10 @@ fn a_five_bar_with_large_pins_runs_with_the_energy_balance_of_its_friction_and_t
          det(I - J) = {value:.3e}",
         j.trajectory.len()
     );
-    assert!(tj > 0.285 && tj < 0.3 && tj > last && tj <= last + h, "{tj} vs {last}");
+    assert!(
+        tj > 0.285 && tj < 0.3 && tj > last && tj <= last + h,
+        "{tj} vs {last}"
+    );
     assert!(value <= 1.5e-8, "{value:e}");
     assert_eq!(j.trajectory.t().last(), Some(&last));
     // (The run above ends on 0.285 s exactly: its last step is cut to reach it.)

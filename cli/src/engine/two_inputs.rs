@@ -448,15 +448,18 @@ impl Machine {
             )
         })?;
         // A stop that holds for good ends the rows early: say so, not just print fewer rows.
-        let stopped =
-            match &r.outcome {
-                Outcome::Stuck { t, loads, .. } => Some(loads.stalled(*t).to_string()),
-                Outcome::Jammed { t, joint, value } => Some(format!(
-                "the linkage jams at t = {t:.6} s: joint {} self-locks, det(I - J) = {value:.3e}",
-                self.plan.joint_names().get(*joint).map_or("?", String::as_str)
-            )),
-                _ => None,
-            };
+        let stopped = match &r.outcome {
+            Outcome::Stuck { t, loads, .. } => Some(loads.stalled(*t).to_string()),
+            Outcome::Jammed { t, joint, value } => {
+                let name = self.plan.joint_names().get(*joint);
+                Some(format!(
+                    "the linkage jams at t = {t:.6} s: joint {} self-locks, \
+                     det(I - J) = {value:.3e}",
+                    name.map_or("?", String::as_str)
+                ))
+            }
+            _ => None,
+        };
         let tr = &r.trajectory;
         let (t, q, qd) = (tr.t(), tr.q(), tr.qd());
         let (kinetic, power, lost) = (tr.kinetic(), tr.power_applied(), tr.power_dissipated());

@@ -12,6 +12,7 @@ use std::cell::Cell;
 
 use super::frozen::sign;
 use crate::dynamics::stepper::{ContinuousExtension, Handover, Stepper};
+use crate::dynamics::switch::SwitchLoads;
 use crate::dynamics::system::{accelerations, LagrangeSystem, State};
 use crate::dynamics::trajectory::Trajectory;
 use crate::error::Result;
@@ -100,12 +101,28 @@ impl<'a, S: LagrangeSystem + ?Sized, M: Stepper> Runner<'a, S, M> {
             hand: Handover::default(),
             h_next: None,
         };
-        // A start exactly at a switch: weighed before the first step.
-        let at_zero: Option<usize> = self.sched.kinks.switches_at_zero().next();
-        if let Some(i) = at_zero
-            && let Some(result) = self.stuck(i, self.progress.s, true)?
+        // A start exactly at switches (a whole rest stops every one): each weighed before
+        // the first step. Those that break away are held the way they go; the run ends
+        // stuck (at the first) only when every one holds, for then nothing moves.
+        let at_zero: Vec<usize> = self.sched.kinks.switches_at_zero().collect();
+        let mut held = None;
+        let mut holding = 0;
+        for &i in &at_zero {
+            if let Some(loads) = self.weigh(i, self.progress.s)? {
+                held.get_or_insert((i, loads));
+                holding += 1;
+            }
+        }
+        if let Some((switch, loads)) = held
+            && holding == at_zero.len()
         {
-            return Ok(result);
+            let s = self.progress.s;
+            let outcome = Outcome::Stuck {
+                t: s.t,
+                switch,
+                loads,
+            };
+            return self.result(s, true, outcome);
         }
         loop {
             match self.advance(&mut end) {
@@ -222,19 +239,29 @@ impl<'a, S: LagrangeSystem + ?Sized, M: Stepper> Runner<'a, S, M> {
     /// Else the motion breaks away in the drive's direction, where the next step holds the
     /// resistance.
     fn stuck(&mut self, i: usize, s: State, recorded: bool) -> Result<Option<RunResult>> {
-        let loads = self.sys.switch_loads(i, s.t, &s.q, &s.qd)?.checked()?;
-        if !loads.holds() {
-            if let Some(away) = self.breakaway.get_mut(i) {
-                *away = sign(loads.drive);
-            }
+        let Some(loads) = self.weigh(i, s)? else {
             return Ok(None);
-        }
+        };
         let outcome = Outcome::Stuck {
             t: s.t,
             switch: i,
             loads,
         };
         self.result(s, recorded, outcome).map(Some)
+    }
+
+    /// Switch `i`'s loads at `s` (its speed zero there) when its resistance holds the
+    /// motion; else `None`, the motion breaking away in the drive's direction (held so
+    /// through the next step).
+    fn weigh(&mut self, i: usize, s: State) -> Result<Option<SwitchLoads>> {
+        let loads = self.sys.switch_loads(i, s.t, &s.q, &s.qd)?.checked()?;
+        if loads.holds() {
+            return Ok(Some(loads));
+        }
+        if let Some(away) = self.breakaway.get_mut(i) {
+            *away = sign(loads.drive);
+        }
+        Ok(None)
     }
 
     /// The run's result, ending at `last`.

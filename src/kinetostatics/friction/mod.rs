@@ -61,8 +61,9 @@
 //! One frictionless closed form, its responses to the three friction loads, and a few Newton
 //! steps of a 3×3 system (two, plus the check, for the usual f ≤ 0.3). The RRR dyad, the
 //! engine's most frequent group, has its responses in closed form and its Newton written out
-//! (`benches/friction.rs`: about 6× its frictionless closed form, side by side); the
-//! other groups call their closed form once per joint for the responses (15–50× theirs).
+//! (`benches/friction.rs`: about 6× its frictionless closed form, side by side, and a whole
+//! four-bar position 1.6× the frictionless one); the other dyads call their closed form once
+//! per joint for the responses (10–21× theirs), all five by one solve (`dyad.rs`).
 //! A triad or a general group calls its block once per hinge with friction and takes Newton
 //! steps of an n×n LU ([`TriadFriction`]; the continuation of every group is that solve's).
 //!

@@ -36,7 +36,10 @@
 //! the input at the static reactions, as for one input. The machine sticks when
 //! −L₋ ≤ drive ≤ L₊ (drive = −μ/cₖ, along σ); else it breaks away with q̇ₖ of the drive's
 //! sign. The other joints' reversals are located as kinks. A machine at a whole rest is
-//! weighed at its first such switch, the other input left free.
+//! weighed at every such switch, each with the other input left free: it stays at rest (the
+//! run ends stuck) when every one holds; else those that break away go their drive's way and
+//! the motion goes on (an input whose friction holds it starts without friction, its rate
+//! zero).
 
 use nalgebra::Vector2;
 
