@@ -1,7 +1,6 @@
 //! One analysed position of a planned linkage: its kinematics, the loads, the reaction in
 //! every joint and each drive's balancing moment or force, and the readings of them.
 
-use super::friction::FrictionState;
 use super::kinematics::Kinematics;
 pub use super::reaction::{Balance, Reaction};
 use super::spare::StaticBuffers;
@@ -41,9 +40,9 @@ fn new_statics(plan: &Plan) -> StaticBuffers {
         conditioning: vec![ONE; c.groups.len()].into(),
         balances: vec![balance; 2].into(),
         friction: if plan.friction.is_some() {
-            FrictionState::new(c.joints.len())
+            super::friction::FrictionState::new(c.joints.len())
         } else {
-            FrictionState::default()
+            super::friction::FrictionState::default()
         },
     }
 }
@@ -64,7 +63,7 @@ pub struct Analysis<'p> {
     /// One per input (two; the first `plan.input_count()` are meaningful).
     pub(crate) balances: Box<[Balance]>,
     /// The joints' friction (empty buffers for a frictionless plan).
-    pub(crate) friction: FrictionState,
+    pub(crate) friction: super::friction::FrictionState,
 }
 
 impl<'p> Deref for Analysis<'p> {
