@@ -19,6 +19,9 @@ use tmm::Load;
 #[path = "common/yardstick.rs"]
 mod yardstick;
 
+#[path = "common/cpu_ratio.rs"]
+mod cpu_ratio;
+
 fn inputs(n: usize) -> Vec<Motion> {
     (0..n)
         .map(|k| Motion::new(k as f64 * 0.7371, 10.0, 2.0))
@@ -717,6 +720,17 @@ fn four_bar_over_n(c: &mut Criterion) {
     let only: Option<Vec<usize>> = std::env::var("TMM_OVER_N")
         .ok()
         .map(|v| v.split(',').filter_map(|x| x.trim().parse().ok()).collect());
+    // `TMM_ROUNDS=40`: more alternating rounds of CPU time per ratio (20 by default).
+    let rounds = std::env::var("TMM_ROUNDS")
+        .ok()
+        .and_then(|v| v.parse().ok())
+        .unwrap_or(20);
+    if let Ok(load) = std::fs::read_to_string("/proc/loadavg") {
+        println!(
+            "four_bar_over_n | load average (1, 5, 15 min): {}",
+            load.trim()
+        );
+    }
     for n in [36usize, 360, 3_600, 36_000, 1_000_000] {
         if only.as_ref().is_some_and(|o| !o.contains(&n)) {
             continue;
@@ -749,6 +763,13 @@ fn four_bar_over_n(c: &mut Criterion) {
                 cycle,
                 &mut loop_,
             );
+            cpu_ratio::print_cpu_ratio(
+                &name("plan.cycle / solver loop"),
+                n as u32,
+                rounds,
+                cycle,
+                &mut loop_,
+            );
             let one_shot = || {
                 ins.iter()
                     .map(|&i| Whole::<3, 4>::of(&plan.analyse(black_box(i)).unwrap()).fold())
@@ -760,8 +781,15 @@ fn four_bar_over_n(c: &mut Criterion) {
                 one_shot,
                 &mut loop_,
             );
+            cpu_ratio::print_cpu_ratio(
+                &name("plan.analyse per position / solver loop"),
+                n as u32,
+                rounds,
+                one_shot,
+                &mut loop_,
+            );
             let mut cells_solver = plan.solver();
-            let summed = || {
+            let mut summed = || {
                 let mut sum = SumCells(0.0);
                 for &i in &ins {
                     cells_solver.analyse(black_box(i)).unwrap().cells(&mut sum);
@@ -772,6 +800,13 @@ fn four_bar_over_n(c: &mut Criterion) {
             yardstick::print_ratio(
                 &name("plan.table / its cells summed by a solver loop"),
                 n as u32,
+                table,
+                &mut summed,
+            );
+            cpu_ratio::print_cpu_ratio(
+                &name("plan.table / its cells summed by a solver loop"),
+                n as u32,
+                rounds,
                 table,
                 summed,
             );

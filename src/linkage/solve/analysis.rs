@@ -39,6 +39,11 @@ fn new_statics(plan: &Plan) -> StaticBuffers {
             .into(),
         conditioning: vec![ONE; c.groups.len()].into(),
         balances: vec![balance; 2].into(),
+        friction: if plan.friction.is_some() {
+            super::friction::FrictionState::new(c.joints.len())
+        } else {
+            super::friction::FrictionState::default()
+        },
     }
 }
 
@@ -64,24 +69,28 @@ pub struct Analysis<'p> {
 impl<'p> Deref for Analysis<'p> {
     type Target = Kinematics<'p>;
 
+    #[inline]
     fn deref(&self) -> &Kinematics<'p> {
         &self.k
     }
 }
 
-/// The static buffers go back into the position's box, which goes back to the plan for its
-/// next one-shot solve when the kinematics are dropped (see `spare`).
+/// The static buffers go back into the position's box, and the box to the plan for its next
+/// one-shot solve (see `spare`).
 impl Drop for Analysis<'_> {
     #[inline]
     fn drop(&mut self) {
-        let statics = StaticBuffers {
-            applied: take(&mut self.applied),
-            acc: take(&mut self.acc),
-            reactions: take(&mut self.reactions),
-            conditioning: take(&mut self.conditioning),
-            balances: take(&mut self.balances),
-        };
-        self.k.kin.park(statics);
+        if let Some(mut p) = self.k.kin.0.take() {
+            p.statics = Some(StaticBuffers {
+                applied: take(&mut self.applied),
+                acc: take(&mut self.acc),
+                reactions: take(&mut self.reactions),
+                conditioning: take(&mut self.conditioning),
+                balances: take(&mut self.balances),
+                friction: take(&mut self.friction),
+            });
+            self.k.plan.spare.give(p);
+        }
     }
 }
 
@@ -91,10 +100,7 @@ impl<'p> Analysis<'p> {
     #[inline]
     pub(crate) fn new(plan: &'p Plan) -> Self {
         let mut k = Kinematics::new(plan);
-        let mut s = k.kin.unpark();
-        if s.acc.is_empty() {
-            s = new_statics(plan);
-        }
+        let s = k.kin.unpark().unwrap_or_else(|| new_statics(plan));
         Self {
             k,
             applied: s.applied,
@@ -102,11 +108,7 @@ impl<'p> Analysis<'p> {
             reactions: s.reactions,
             conditioning: s.conditioning,
             balances: s.balances,
-            friction: if plan.friction.is_some() {
-                super::friction::FrictionState::new(plan.chain.joints.len())
-            } else {
-                super::friction::FrictionState::default()
-            },
+            friction: s.friction,
         }
     }
 
@@ -124,6 +126,7 @@ impl<'p> Analysis<'p> {
 
     /// The kinematics of this position (also every kinematic reading of `self` directly).
     #[must_use]
+    #[inline]
     pub fn kinematics(&self) -> &Kinematics<'p> {
         &self.k
     }

@@ -38,10 +38,11 @@ use std::sync::Mutex;
 /// The most boxes a plan keeps (one per result alive at once, for a few threads).
 pub(crate) const KEEP: usize = 8;
 
-/// The buffers an analysis adds to the kinematics': loads, reactions, conditioning and
-/// balances (each a pointer and a length where its length is fixed, so that an
-/// analysis that holds them is small to move). Parked here, in the box, while no [`Analysis`](super::Analysis) holds
-/// them (empty until the first analysis of the box).
+/// The buffers an analysis adds to the kinematics': loads, reactions, conditioning,
+/// balances and the joints' friction (each a pointer and a length where its length is fixed,
+/// so that an analysis that holds them is small to move). Parked in the box ([`Parts`])
+/// while no [`Analysis`](super::Analysis) holds them, so that neither a one-shot analysis
+/// nor one of a plan with friction allocates after its first.
 #[derive(Debug, Clone, Default)]
 pub(crate) struct StaticBuffers {
     pub applied: Vec<(usize, Load)>,
@@ -50,13 +51,17 @@ pub(crate) struct StaticBuffers {
     pub conditioning: Box<[Conditioning]>,
     /// One per input (two at most).
     pub balances: Box<[Balance]>,
+    /// The joints' friction (empty for a frictionless plan).
+    pub friction: super::friction::FrictionState,
 }
 
 /// All the buffers of one position: one heap block.
 #[derive(Debug, Clone, Default)]
 pub(crate) struct Parts {
     pub kin: KinState,
-    pub statics: StaticBuffers,
+    /// `None` while an analysis holds them, or before the box's first analysis (taking
+    /// them out, or putting them back, writes one word besides the buffers themselves).
+    pub statics: Option<StaticBuffers>,
 }
 
 /// One position's buffers (a box of [`Parts`]), read as its `KinState`. The box is taken out
@@ -113,28 +118,24 @@ impl Held {
                 k.triads.fill(None);
                 Self(Some(p))
             }
-            None => Self(Some(Box::new(Parts {
-                kin: KinState::new(chain),
-                statics: StaticBuffers::default(),
-            }))),
+            None => Self::fresh(chain),
         }
     }
 
-    /// The parked static buffers (empty if there are none), taken out.
-    #[inline]
-    pub fn unpark(&mut self) -> StaticBuffers {
-        match &mut self.0 {
-            Some(p) => std::mem::take(&mut p.statics),
-            None => StaticBuffers::default(),
-        }
+    /// New buffers for `chain` (kept out of line: a loop of one-shot solves makes them once).
+    #[cold]
+    #[inline(never)]
+    pub fn fresh(chain: &Chain) -> Self {
+        Self(Some(Box::new(Parts {
+            kin: KinState::new(chain),
+            statics: None,
+        })))
     }
 
-    /// Parks static buffers in the box.
+    /// The parked static buffers, taken out (`None` if the box has none yet).
     #[inline]
-    pub fn park(&mut self, s: StaticBuffers) {
-        if let Some(p) = &mut self.0 {
-            p.statics = s;
-        }
+    pub fn unpark(&mut self) -> Option<StaticBuffers> {
+        self.0.as_mut()?.statics.take()
     }
 }
 
