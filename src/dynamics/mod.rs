@@ -49,6 +49,7 @@ mod trajectory;
 pub use dopri::{DenseOutput, Dopri5};
 pub use finite_increment::FiniteIncrement;
 pub use rk4::Rk4;
+pub(crate) use run::run_to_reversal;
 pub use run::{run, Direction, Outcome, Reach, RunOptions, RunResult, Steady, Watch};
 pub use stepper::{Advance, ContinuousExtension, Handover, NoExtension, Stepper};
 pub use switch::SwitchLoads;

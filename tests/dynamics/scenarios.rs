@@ -12,7 +12,7 @@ use tmm::dynamics::{
 use tmm::Error;
 
 /// Composite Simpson's rule over uniform samples (an even number of intervals).
-fn simpson(t: &[f64], y: &[f64]) -> f64 {
+pub(crate) fn simpson(t: &[f64], y: &[f64]) -> f64 {
     assert!(t.len() % 2 == 1 && t.len() >= 3);
     let h = (t[t.len() - 1] - t[0]) / (t.len() - 1) as f64;
     let mut s = y[0] + y[y.len() - 1];

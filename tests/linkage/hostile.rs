@@ -13,9 +13,10 @@
 //! `Plan::lock_positions`, `uniform_inputs`, `Table::to_text`, `Analysis::transmission_angle`,
 //! `Plan::min_transmission_angle`, `kinematics::grashof`; `linkage::dynamics::LinkageSystem`
 //! (`from_linkage`, `with_motor`, `with_inertia`, `with_damper`, `terms`, `inverse_dynamics`,
-//! `reduced`, `flywheel`, `turn`, `run_up`, `run_up_from` and `dynamics::run` on the
-//! four-bar and the Scotch yoke thrown at random speeds under random motors: each ends with a
-//! finite turn or a named reason); `draw::{scheme, forces, animation, plan_view, diagram}`
+//! `reduced`, `flywheel`, `turn`, `run_up`, `run_up_from` and `dynamics::run` by each
+//! method on the four-bar and the Scotch yoke thrown at random speeds under random motors,
+//! half of them stopping, sticking or turning back: each ends with a finite turn or a named
+//! reason); `draw::{scheme, forces, animation, plan_view, diagram}`
 //! and `Course::new` with hostile inputs and styles, every SVG written scanned for a
 //! non-finite number; on every bundled linkage and on every ready
 //! mechanism's description; and the ready mechanisms (`FourBar`, `SliderCrank`, `Compressor`,
@@ -488,15 +489,21 @@ fn check_turn(t: &tmm::linkage::dynamics::Turn, what: &str) {
 
 /// The bundled four-bar and the Scotch yoke (one crank, resistances that flip with its speed)
 /// thrown at random speeds from random angles under random constant motors, each run by
-/// Dormand–Prince (a random tolerance in [10⁻⁸, 10⁻⁴]) or RK4 (a random step in
-/// [10^-3.5, 10⁻²] s: a smaller one costs more and finds nothing new) as in issue 27's
-/// `turn(&Dopri5 { rtol: 1e-6, atol: 1e-6 }, (0, 17.25), max_turn_time 0.95)`, which chattered
-/// about ω = 0 until ten million steps ran out: every `turn` ends with a turn (finite,
-/// consistent) or an error naming why (stalled with both loads, turned back, …), never an
-/// exhausted step budget; `run_up_from` never returns a turn of no duration or an infinite
-/// mean speed; `run` ends within a budget of 10⁵ steps. `cases()` calls of `turn`,
-/// `run_up`, `run_up_from` and `run` over the two (one test each, so that they run side by
-/// side).
+/// Dormand–Prince (a random tolerance in [10⁻⁸, 10⁻⁴]), RK4 or finite increments (a random
+/// step in [10^-3.5, 10⁻²] s: a smaller one costs more and finds nothing new). Half the cases
+/// are the class of stops, sticks and reversals: a motor of up to ±55 N·m (either side of the
+/// breakaway) and a throw of up to ±30 rad/s either way, so that the machine runs on, stops
+/// and sticks, or stops and turns back (issue 27: thrown backwards against a forward motor,
+/// Dormand–Prince integrated the runaway motion after the reversal until its step fell to
+/// 10⁻¹²·t; before that, `turn(&Dopri5 { rtol: 1e-6, atol: 1e-6 }, (0, 17.25), max_turn_time
+/// 0.95)` chattered about ω = 0 until ten million steps ran out). The rest are the issue's
+/// throw and hostile numbers. Every `turn` ends with a turn (finite, consistent), stalled
+/// (both loads named), turned back (at a finite time, within the turn) or another named
+/// error, never an exhausted step budget nor, in the class, a step that falls to nothing;
+/// `run_up_from` and `run_up` never return a turn of no duration or an infinite mean speed;
+/// `run` ends within a budget of 10⁵ steps unless the machine turned that much. `cases()`
+/// calls of each of `turn`, `run_up`, `run_up_from` and `run` over the two (one test each,
+/// so that they run side by side), a third each method.
 #[test]
 fn turns_and_run_ups_of_the_four_bar_end_with_a_reason() {
     turns_and_run_ups_end_with_a_reason(&bundled::four_bar(), 67);
@@ -508,15 +515,81 @@ fn turns_and_run_ups_of_the_scotch_yoke_end_with_a_reason() {
     turns_and_run_ups_end_with_a_reason(&bundled::scotch_yoke(), 68);
 }
 
+/// Calls `$e` with `$m` bound to the method `$k` picks: Dormand–Prince `$dp`, RK4 or finite
+/// increments.
+macro_rules! by_method {
+    ($k:expr, $dp:expr, $m:ident => $e:expr) => {
+        match $k {
+            0 => {
+                let $m = &$dp;
+                $e
+            }
+            1 => {
+                let $m = &tmm::dynamics::Rk4;
+                $e
+            }
+            _ => {
+                let $m = &tmm::dynamics::FiniteIncrement;
+                $e
+            }
+        }
+    };
+}
+
+/// What the sweep of [`turns_and_run_ups_end_with_a_reason`] saw of `turn`.
+#[derive(Default, Debug)]
+struct TurnCounts {
+    turned: usize,
+    stalled: usize,
+    back: usize,
+}
+
+/// Checks what `turn` returned in a case of the sweep (`class`: in the class of stops and
+/// reversals).
+fn check_turn_end(
+    r: Result<(tmm::linkage::dynamics::Turn, tmm::dynamics::RunResult), Error>,
+    class: bool,
+    counts: &mut TurnCounts,
+    what: &str,
+) {
+    match r {
+        Ok((t, _)) => {
+            counts.turned += 1;
+            check_turn(&t, what);
+        }
+        Err(Error::Stalled {
+            drive, resistance, ..
+        }) => {
+            counts.stalled += 1;
+            assert!(drive <= resistance, "{what}: {drive} vs {resistance}");
+        }
+        Err(Error::In { part, source }) if part.starts_with("the crank turned back at t = ") => {
+            counts.back += 1;
+            let Error::Singular { value, .. } = *source else {
+                panic!("{what}: {part}: {source}")
+            };
+            assert!((0.0..1.0).contains(&value), "{what}: {part}: {value}");
+            assert!(!has_non_finite(&part), "{what}: {part}");
+        }
+        Err(e @ Error::Budget { .. }) => panic!("{what}: {e}"),
+        Err(e @ Error::Singular { what: step, .. }) if class && step.starts_with("adaptive") => {
+            panic!("{what}: {e}")
+        }
+        Err(_) => {}
+    }
+}
+
 fn turns_and_run_ups_end_with_a_reason(l: &Linkage, seed: u64) {
     use nalgebra::Vector2;
-    use tmm::dynamics::{run, Dopri5, Rk4, RunOptions, State};
+    use tmm::dynamics::{run, Dopri5, RunOptions, State};
     use tmm::linkage::dynamics::RunUpOptions;
     let mut g = Gen::new(seed);
-    let (mut turned, mut stalled) = (0, 0);
+    let mut counts = TurnCounts::default();
     let base = LinkageSystem::from_linkage(l).unwrap();
     for case in 0..cases().div_ceil(2) {
+        let class = g.next().is_multiple_of(2);
         let moment = match g.next() % 4 {
+            _ if class => 110.0 * (g.unit() - 0.5),
             0 => 0.0,
             1 => g.f(),
             _ => 80.0 * (g.unit() - 0.3),
@@ -525,6 +598,7 @@ fn turns_and_run_ups_end_with_a_reason(l: &Linkage, seed: u64) {
             continue;
         };
         let (phi, omega) = match g.next() % 4 {
+            _ if class => (10.0 * (g.unit() - 0.5), 60.0 * (g.unit() - 0.5)),
             0 => (0.0, 17.25),
             1 => (g.f(), g.f()),
             _ => (10.0 * (g.unit() - 0.5), 60.0 * (g.unit() - 0.5)),
@@ -539,68 +613,37 @@ fn turns_and_run_ups_end_with_a_reason(l: &Linkage, seed: u64) {
             rtol: tol,
             atol: tol,
         };
+        let k = g.next() % 3;
         let what = format!(
-            "{} case {case}: M {moment}, start {start:?}, h {h}, tol {tol}",
+            "{} case {case}: method {k}, M {moment}, start {start:?}, h {h}, tol {tol}",
             l.name
         );
-        let use_dp = g.next().is_multiple_of(2);
-        let r = no_panic(&what, || {
-            if use_dp {
-                sys.turn(&dp, start, &opts)
-            } else {
-                sys.turn(&Rk4, start, &opts)
+        let r = no_panic(&what, || by_method!(k, dp, m => sys.turn(m, start, &opts)));
+        check_turn_end(r, class, &mut counts, &what);
+        for from_rest in [false, true] {
+            let r = no_panic(&what, || {
+                if from_rest {
+                    by_method!(k, dp, m => sys.run_up(m, &opts))
+                } else {
+                    by_method!(k, dp, m => sys.run_up_from(m, start, &opts))
+                }
+            });
+            match r {
+                Ok(up) => up.turns.iter().for_each(|t| check_turn(t, &what)),
+                Err(Error::Budget { what: budget, .. }) => assert_eq!(budget, "turn", "{what}"),
+                Err(e @ Error::Singular { what: step, .. })
+                    if class && step.starts_with("adaptive") =>
+                {
+                    panic!("{what}: {e}")
+                }
+                Err(_) => {}
             }
-        });
-        match r {
-            Ok((t, _)) => {
-                turned += 1;
-                check_turn(&t, &what);
-            }
-            Err(Error::Stalled {
-                drive, resistance, ..
-            }) => {
-                stalled += 1;
-                assert!(drive <= resistance, "{what}: {drive} vs {resistance}");
-            }
-            Err(e @ Error::Budget { .. }) => panic!("{what}: {e}"),
-            Err(_) => {}
         }
-        let r = no_panic(&what, || {
-            if use_dp {
-                sys.run_up_from(&dp, start, &opts)
-            } else {
-                sys.run_up_from(&Rk4, start, &opts)
-            }
-        });
-        match r {
-            Ok(up) => up.turns.iter().for_each(|t| check_turn(t, &what)),
-            Err(Error::Budget { what: budget, .. }) => assert_eq!(budget, "turn", "{what}"),
-            Err(_) => {}
-        }
-        // The same machine from rest in its reference pose, and a bare run of 0.3 s:
-        // each ends (stuck, at its final time or with a named error) well within a
-        // budget of 10⁵ steps.
-        let r = no_panic(&what, || {
-            if use_dp {
-                sys.run_up(&dp, &opts)
-            } else {
-                sys.run_up(&Rk4, &opts)
-            }
-        });
-        match r {
-            Ok(up) => up.turns.iter().for_each(|t| check_turn(t, &what)),
-            Err(Error::Budget { what: budget, .. }) => assert_eq!(budget, "turn", "{what}"),
-            Err(_) => {}
-        }
+        // A bare run of 0.3 s ends (stuck, at its final time or with a named error) well
+        // within a budget of 10⁵ steps.
         let mut ro = RunOptions::until(0.3, h);
         ro.max_steps = 100_000;
-        let r = no_panic(&what, || {
-            if use_dp {
-                run(&sys, &dp, start, &ro)
-            } else {
-                run(&sys, &Rk4, start, &ro)
-            }
-        });
+        let r = no_panic(&what, || by_method!(k, dp, m => run(&sys, m, start, &ro)));
         match r {
             Ok(r) => {
                 let shown = format!("{:?} {:?}", r.outcome, r.last);
@@ -614,12 +657,8 @@ fn turns_and_run_ups_end_with_a_reason(l: &Linkage, seed: u64) {
             Err(e @ Error::Budget { limit, time, .. }) => {
                 let mut again = RunOptions::until(time, h);
                 again.max_steps = 10 * limit;
-                let r = if use_dp {
-                    run(&sys, &dp, start, &again)
-                } else {
-                    run(&sys, &Rk4, start, &again)
-                }
-                .unwrap_or_else(|e2| panic!("{what}: {e}, then {e2}"));
+                let r = by_method!(k, dp, m => run(&sys, m, start, &again))
+                    .unwrap_or_else(|e2| panic!("{what}: {e}, then {e2}"));
                 let turns = (r.last.q[0] - start.q[0]).abs() / std::f64::consts::TAU;
                 assert!(
                     turns > limit as f64 / 1000.0,
@@ -629,8 +668,12 @@ fn turns_and_run_ups_end_with_a_reason(l: &Linkage, seed: u64) {
             Err(_) => {}
         }
     }
-    println!("{}: turns {turned} completed, {stalled} stalled", l.name);
-    assert!(turned > 0 && stalled > 0, "{}", l.name);
+    println!("{}: {counts:?}", l.name);
+    assert!(
+        counts.turned > 0 && counts.stalled > 0 && counts.back > 0,
+        "{}: {counts:?}",
+        l.name
+    );
 }
 
 #[cfg(feature = "draw")]

@@ -103,3 +103,33 @@ pub fn run<S: LagrangeSystem + ?Sized, M: Stepper>(
     let held = Frozen::new(sys, &modes);
     Runner::start(&held, method, opts, start, sched, Some(&modes))?.finish()
 }
+
+/// [`run`], also ending where coordinate `i`'s speed, moving in the direction `d` (±1; from
+/// rest, the direction it starts in), passes zero to the other side: the motion turns back
+/// (located inside the step, to the method's own state; at a switch whose resistance holds
+/// the motion the run ends [`Outcome::Stuck`] instead). Returns the result, its outcome
+/// [`Outcome::Reached`] at the turning time when the motion turned back, and whether it did.
+///
+/// # Errors
+/// As [`run`].
+pub(crate) fn run_to_reversal<S: LagrangeSystem + ?Sized, M: Stepper>(
+    sys: &S,
+    method: &M,
+    start: State,
+    opts: &RunOptions,
+    (i, d): (usize, f64),
+) -> Result<(RunResult, bool)> {
+    validate::check(sys, &start, opts)?;
+    let sched = Schedule::new(sys, method, start.t, opts)?;
+    let switches = sys.switches();
+    if switches == 0 {
+        return Runner::start(sys, method, opts, start, sched, None)?
+            .ending_at_reversal((i, d))
+            .finish_or_reversal();
+    }
+    let modes = vec![Cell::new(0.0); switches];
+    let held = Frozen::new(sys, &modes);
+    Runner::start(&held, method, opts, start, sched, Some(&modes))?
+        .ending_at_reversal((i, d))
+        .finish_or_reversal()
+}

@@ -7,7 +7,7 @@ use super::options::RunOptions;
 use super::outcome::{Outcome, RunResult};
 use super::progress::{accept, budgets, record_end, snap_to_end, Progress, StepEnd};
 use super::schedule::Schedule;
-use super::stop_conditions::{ReachWatch, SteadyWatch};
+use super::stop_conditions::{ReachWatch, ReversalWatch, SteadyWatch};
 use std::cell::Cell;
 
 use super::frozen::sign;
@@ -39,6 +39,10 @@ pub(super) struct Runner<'a, S: ?Sized, M> {
     /// The direction a motion broke away in from a switch it was weighed at (0: none), for
     /// the step that starts there.
     breakaway: Vec<f64>,
+    /// The watch for the motion turning back, when the run ends there.
+    reversal: Option<ReversalWatch>,
+    /// Whether the run ended where the motion turned back.
+    reversed: bool,
 }
 
 impl<'a, S: LagrangeSystem + ?Sized, M: Stepper> Runner<'a, S, M> {
@@ -88,11 +92,33 @@ impl<'a, S: LagrangeSystem + ?Sized, M: Stepper> Runner<'a, S, M> {
             buf,
             modes,
             breakaway: vec![0.0; modes.map_or(0, <[_]>::len)],
+            reversal: None,
+            reversed: false,
         })
+    }
+
+    /// The run also ends where coordinate `i`'s speed, moving in the direction `d` (±1),
+    /// turns back (see [`ReversalWatch`]).
+    pub(super) fn ending_at_reversal(mut self, (i, d): (usize, f64)) -> Self {
+        self.reversal = Some(ReversalWatch::start((i, d), &self.progress.s));
+        self.sched.plain = false;
+        self
+    }
+
+    /// Steps until a stop condition, and the result with whether the motion turned back
+    /// there (the outcome then [`Outcome::Reached`] at the located time).
+    pub(super) fn finish_or_reversal(mut self) -> Result<(RunResult, bool)> {
+        let r = self.steps()?;
+        Ok((r, self.reversed))
     }
 
     /// Steps until a stop condition, and the result.
     pub(super) fn finish(mut self) -> Result<RunResult> {
+        self.steps()
+    }
+
+    /// Steps until a stop condition, and the result.
+    fn steps(&mut self) -> Result<RunResult> {
         // The end of the step under way, one place for the run (the continuous extension it
         // holds is some hundreds of bytes: written there, not moved from step to step).
         let mut end = StepEnd {
@@ -351,17 +377,23 @@ impl<'a, S: LagrangeSystem + ?Sized, M: Stepper> Runner<'a, S, M> {
             )?,
             None => None,
         };
+        let turned = match self.reversal.as_mut() {
+            Some(w) => w.check(sys, method, opts, (&s, &s1), &mut self.progress.evaluations)?,
+            None => None,
+        };
+        // The earlier of the two ends the run (the value reached, on a tie).
+        let reach_first = hit.is_some_and(|h| turned.is_none_or(|r| h.t <= r.t));
         let at_end = self.sched.record_times(
             sys,
             method,
             opts,
             (&s, &s1),
-            hit,
+            if reach_first { hit } else { turned.or(hit) },
             dense,
             &mut self.traj,
             &mut self.buf,
         )?;
-        if let Some(located) = hit {
+        if let Some(located) = hit.filter(|_| reach_first) {
             return self
                 .result(located, false, Outcome::Reached { t: located.t })
                 .map(Some);
@@ -370,6 +402,14 @@ impl<'a, S: LagrangeSystem + ?Sized, M: Stepper> Runner<'a, S, M> {
             && let Some(result) = self.stuck(i, s1, false)?
         {
             return Ok(Some(result));
+        }
+        if let Some(back) = turned {
+            // A motion that stuck at a switch landed on has not turned back (weighed above).
+            self.reversed = true;
+            let recorded = self.traj.t().last() == Some(&back.t);
+            return self
+                .result(back, recorded, Outcome::Reached { t: back.t })
+                .map(Some);
         }
         // Steps cut short on the grid of a fixed-step method count once, with their rest.
         let p = &mut self.progress;

@@ -150,3 +150,57 @@ impl SteadyWatch {
         Ok(None)
     }
 }
+
+/// A watch for the motion turning back: coordinate `i`'s speed, which moves in the direction
+/// `d` (±1), passing zero to the other side. A speed exactly zero at a step's end (a switch
+/// landed on) turns back only when the next step leaves it the other way.
+pub(super) struct ReversalWatch {
+    i: usize,
+    d: f64,
+    g_prev: f64,
+}
+
+impl ReversalWatch {
+    /// The watch from the start `s`.
+    pub(super) fn start((i, d): (usize, f64), s: &State) -> Self {
+        Self {
+            i,
+            d,
+            g_prev: d * s.qd[i],
+        }
+    }
+
+    /// The state at which the step `s` → `s1` turns back, located inside it (re-stepping from
+    /// `s`, counted into `evaluations`; the step's start when it leaves a zero speed the
+    /// other way), or `None`.
+    pub(super) fn check<S: LagrangeSystem + ?Sized, M: Stepper>(
+        &mut self,
+        sys: &S,
+        method: &M,
+        opts: &RunOptions,
+        (s, s1): (&State, &State),
+        evaluations: &mut usize,
+    ) -> Result<Option<State>> {
+        let (i, d) = (self.i, self.d);
+        let (g0, g1) = (self.g_prev, d * s1.qd[i]);
+        self.g_prev = g1;
+        if !(g0 >= 0.0 && g1 < 0.0) {
+            return Ok(None);
+        }
+        if g0 == 0.0 {
+            return Ok(Some(*s));
+        }
+        let (located, resteps) = locate(
+            sys,
+            method,
+            (s, g0),
+            (s1, g1),
+            None,
+            Allowance::after(opts, *evaluations),
+            |st| Ok(d * st.qd[i]),
+        )?;
+        *evaluations =
+            evaluations.saturating_add(resteps.saturating_mul(method.evaluations_per_step()));
+        Ok(Some(located))
+    }
+}

@@ -7,7 +7,8 @@ use nalgebra::Vector2;
 
 use super::system::LinkageSystem;
 use crate::dynamics::{
-    accelerations, run, Direction, Outcome, Reach, RunOptions, RunResult, State, Stepper, Watch,
+    accelerations, run_to_reversal, Direction, Outcome, Reach, RunOptions, RunResult, State,
+    Stepper, Watch,
 };
 use crate::error::{finite, positive, Error, Result};
 
@@ -153,6 +154,29 @@ pub struct RunUp {
     pub evaluations: usize,
 }
 
+/// How a turn ended: completed, or turned back (the run up to the turning state).
+enum TurnEnd {
+    Turned(Turn, RunResult),
+    Back(RunResult),
+}
+
+/// The error of a turn from `start` whose crank turned back where the run `r` ended.
+fn turned_back(start: &State, r: &RunResult) -> Error {
+    let made = (r.last.q[0] - start.q[0]).abs() / TAU;
+    Error::In {
+        part: format!(
+            "the crank turned back at t = {} s, at φ = {} rad, from {} rad/s at t = {} s (its \
+             speed reached zero and the drive turned it the other way)",
+            r.last.t, r.last.q[0], start.qd[0], start.t
+        ),
+        source: Box::new(Error::Singular {
+            what: "turn",
+            measure: "fraction of the turn made before the crank turned back",
+            value: made,
+        }),
+    }
+}
+
 /// The vertex of the parabola through three points (t, s), the middle one the extreme;
 /// the middle value when the points are collinear.
 fn vertex(t: [f64; 3], s: [f64; 3]) -> f64 {
@@ -283,9 +307,12 @@ impl LinkageSystem {
     ///
     /// # Errors
     /// [`Error::Stalled`] naming the driving load and the resistance when the resistances
-    /// hold the machine at rest (it stops, or never starts); [`Error::Singular`] when nothing
-    /// starts the machine from rest, when it does not complete the turn within
-    /// `opts.max_turn_time` (it turns back), or when the turn takes no time;
+    /// hold the machine at rest (it stops, or never starts); [`Error::In`] naming the time
+    /// when the crank turns back (its speed passes zero against the turn's direction, or
+    /// leaves zero the other way: located to the method's own state), around an
+    /// [`Error::Singular`] with the fraction of the turn made; [`Error::Singular`] when
+    /// nothing starts the machine from rest, when it does not complete the turn within
+    /// `opts.max_turn_time`, or when the turn takes no time;
     /// [`Error::OutOfRange`] naming the step `h` when a fixed-step method made the turn in
     /// fewer than [`MIN_STEPS_PER_TURN`] steps; as [`run`](crate::dynamics::run).
     pub fn turn<M: Stepper>(
@@ -294,6 +321,20 @@ impl LinkageSystem {
         start: State,
         opts: &RunUpOptions,
     ) -> Result<(Turn, RunResult)> {
+        match self.turn_or_back(method, start, opts)? {
+            TurnEnd::Turned(turn, r) => Ok((turn, r)),
+            TurnEnd::Back(r) => Err(turned_back(&start, &r)),
+        }
+    }
+
+    /// [`turn`](Self::turn), or the run up to where the crank turned back (its speed passed
+    /// zero against the turn's direction and the drive moves it the other way).
+    fn turn_or_back<M: Stepper>(
+        &self,
+        method: &M,
+        start: State,
+        opts: &RunUpOptions,
+    ) -> Result<TurnEnd> {
         self.one_crank("turns and run-ups")?;
         positive("max_turn_time", opts.max_turn_time)?;
         let direction = if start.qd[0] != 0.0 {
@@ -320,7 +361,7 @@ impl LinkageSystem {
                 Direction::Falling
             },
         });
-        let r = match run(self, method, start, &ro) {
+        let r = match run_to_reversal(self, method, start, &ro, (0, direction)) {
             // A machine driven backwards spins the other way ever faster and fills its
             // budget before max_turn_time: that is a turn that never comes, said as one.
             Err(Error::Budget { time, .. }) => {
@@ -331,7 +372,10 @@ impl LinkageSystem {
                     value: time - start.t,
                 });
             }
-            r => r?,
+            r => match r? {
+                (r, true) => return Ok(TurnEnd::Back(r)),
+                (r, false) => r,
+            },
         };
         if let Outcome::Stuck { t, loads, .. } = r.outcome {
             // The resistances hold the machine at rest: no turn will ever end.
@@ -397,7 +441,7 @@ impl LinkageSystem {
             delta,
             direction,
         };
-        Ok((turn, r))
+        Ok(TurnEnd::Turned(turn, r))
     }
 
     /// The run-up from rest in the reference pose to the steady state (see
@@ -413,7 +457,13 @@ impl LinkageSystem {
     /// Integrates turn after turn from `start` until a turn's mean speed changes from the
     /// previous turn's by at most `opts.tol` (relative): the steady state.
     ///
-    /// The cost is bounded: at most `opts.max_turns` turns, each at most
+    /// Where the crank turns back (a machine thrown against its drive stops and the drive,
+    /// above the resistances' breakaway load, turns it the other way), the run-up goes on
+    /// from that state at rest, with turns in the new direction; the part of a turn before
+    /// it is in the recorded motion but not in [`RunUp::turns`].
+    ///
+    /// The cost is bounded: at most `opts.max_turns` turns (a turning back counts as one),
+    /// each at most
     /// `opts.max_turn_time` of motion and the run's step budget
     /// ([`RunOptions`](crate::dynamics::RunOptions)).
     ///
@@ -448,8 +498,12 @@ impl LinkageSystem {
             evaluations: 0,
         };
         let mut s = start;
+        let mut back: Option<(usize, f64, usize)> = None;
         for k in 0..opts.max_turns {
-            let (turn, r) = self.turn(method, s, opts)?;
+            let end = self.turn_or_back(method, s, opts)?;
+            let r = match &end {
+                TurnEnd::Turned(_, r) | TurnEnd::Back(r) => r,
+            };
             let skip = usize::from(k > 0);
             let tr = &r.trajectory;
             out.t.extend(&tr.t()[skip..]);
@@ -458,7 +512,19 @@ impl LinkageSystem {
             out.steps += r.steps;
             out.evaluations += r.evaluations;
             s = r.last;
-            let steady = out.turns.last().is_some_and(|p| {
+            let (turn, r) = match end {
+                TurnEnd::Turned(turn, r) => (turn, r),
+                TurnEnd::Back(_) => {
+                    // The speed located at zero (to rounding): the next turn starts from rest
+                    // in the direction the drive moves it.
+                    s.qd[0] = 0.0;
+                    back = Some((back.map_or(0, |b| b.0) + 1, s.t, out.turns.len()));
+                    continue;
+                }
+            };
+            // A turn before a turning back went the other way: not compared.
+            let fresh = back.map_or(0, |b| b.2);
+            let steady = out.turns[fresh..].last().is_some_and(|p| {
                 (turn.omega_mean - p.omega_mean).abs() <= opts.tol * turn.omega_mean
             });
             out.turns.push(turn);
@@ -472,7 +538,13 @@ impl LinkageSystem {
             limit: opts.max_turns,
             time: s.t,
         };
-        Err(match no_steady_state(&out.turns, opts.tol) {
+        let why = match back.filter(|_| out.turns.is_empty()) {
+            Some((n, t, _)) => Some(format!(
+                "run-up without a turn: the crank turned back {n} times, the last at t = {t} s"
+            )),
+            None => no_steady_state(&out.turns, opts.tol),
+        };
+        Err(match why {
             Some(why) => Error::In {
                 part: why,
                 source: Box::new(budget),
