@@ -105,7 +105,7 @@ pub use rrr::{rrr_dyad, RrrState};
 pub use transfer::transfer_functions;
 pub use triad::{
     triad, triad_modes, triad_rates, triad_tracked, AssemblyModes, TriadDims, TriadModes,
-    TriadPose, TriadState, MAX_TRIAD_MODES, SINGULAR_TRIAD,
+    TriadPose, TriadState, MAX_TRIAD_MODES, SINGULAR_BRANCH, SINGULAR_TRIAD,
 };
 pub use triad_slider::{
     slider_triad, slider_triad_modes, slider_triad_rates, slider_triad_tracked, SliderTriadDims,

@@ -45,7 +45,9 @@
 //! u_i·a_Ai − l_i·ω_i² + ω_T²·(r_i · u_i); then ω_i and ε_i follow from the components across
 //! each binary link. The reported `det` is det K divided by the ternary link's size L_T (the
 //! root-mean-square distance of its joints from their centroid), a dimensionless measure that
-//! is independent of the reference point.
+//! is independent of the reference point. The rates are refused ([`Error::Singular`]) when the
+//! data lie within rounding of a branch point: the measure is the data's distance from it,
+//! estimated from the fold's normal form ([`SINGULAR_BRANCH`] derives the rule).
 //!
 //! # Tracking a mode along a cycle
 //! [`TriadModes::nearest`] picks the mode nearest a reference pose, by the distance
@@ -65,11 +67,46 @@ type C = Complex<f64>;
 const GROUP: &str = "triad";
 /// The name of the triad's conditioning measure in [`Error::Singular`].
 const MEASURE: &str = "det(velocity system)/L_T";
+/// The name of the revolute triad's branch-point measure η in [`Error::Singular`]
+/// (see [`SINGULAR_BRANCH`]).
+const BRANCH_MEASURE: &str = "distance from a branch point/size";
 /// The most assembly modes a triad can have: the degree of the eliminated equation's sextic.
 pub const MAX_TRIAD_MODES: usize = 6;
-/// Below this |det K|/L_T the triad's velocity system is treated as singular (as the dyads'
-/// [`SINGULAR_DETERMINANT`](super::SINGULAR_DETERMINANT)).
-pub const SINGULAR_TRIAD: f64 = 1e-12;
+/// At or below this μ = |det K|/L_T a group of the 3rd class with a sliding pair
+/// ([`slider_triad_rates`](super::slider_triad_rates)) is at a branch or dead point: its
+/// position is returned, its rates are [`Error::Singular`]. μ is dimensionless and of the
+/// order of K's smallest singular value σ. A pose solved in floating point is known only to
+/// ≈ ε·s/σ along K's near-null direction, so its rates carry a relative error ≈ ε/σ²; at a
+/// branch point computed in floating point σ ≈ c·√ε, never 0 (the rounding of the data moves
+/// the pose by √ε·s along the fold). √(ε/τ) with τ = 1e-4 (rates to fewer than four digits)
+/// gives 1.5e-6. The revolute triad uses the sharper [`SINGULAR_BRANCH`], which also knows
+/// the fold's curvature c.
+pub const SINGULAR_TRIAD: f64 = 1.5e-6;
+/// At or below this η, the estimated distance of the data from the nearest branch (or dead)
+/// point relative to the triad's size, a revolute triad's rates are [`Error::Singular`]
+/// ([`triad_rates`]; its position is still returned).
+///
+/// Why a distance of the data, and why ε/(2τ) with τ = 1e-4 (ε the unit roundoff). K is the
+/// Jacobian G′ of the three closures G(x) = (|B_i − A_i| − l_i) in x = (B1, L_T·θ) (scaled
+/// so that its columns are dimensionless: K′ = K·diag(1, 1, 1/L_T), det K′ = μ). Near a
+/// branch point the closures have the normal form of a fold: along the right singular
+/// vector n of K′'s smallest singular value σ, with m the left one and κ = |m · G″(n, n)|,
+/// - the fold (σ = 0) is ≈ σ/κ away in the pose, and the data are d ≈ σ²/(2κ) from it;
+/// - a pose solved in floating point closes to ρ ≈ ε·s (s the size; the data themselves are
+///   rounded by as much), so it is known only to δ ≈ ρ/σ along n; K changes by ≈ κ·δ over
+///   that, and the rates K⁻¹·b, amplified by 1/σ, carry a relative error ≈ κ·ρ/σ² = ε·s/(2d).
+///
+/// So η = d/s = σ²/(2κs) ≤ ε/(2τ) means "the rates carry fewer than four digits". It holds
+/// at every branch point computed in floating point, whatever its curvature: rounding puts
+/// its data ≈ ε·s from the fold, η ≈ ε (≤ 11·ε seen over 2000 seeded branch points, 1e4
+/// times below the threshold), where an absolute threshold on μ or σ (≈ c·√ε there, c the
+/// fold's curvature ratio, spread over decades) cannot separate a branch point from a
+/// regular pose near one. A regular pose whose data lie 1e-8 of the size off a branch point
+/// (across the branch set) has η ≈ 1e-8 ≫ 1.1e-12 and keeps its rates (accurate to
+/// ≈ ε/(2η) ≈ 1e-8). κ gains σ·|G″(n, n)| (the rates' part off n), which only makes η smaller
+/// and keeps the rule where the fold degenerates (m · G″ = 0); near no fold it reduces to
+/// σ ≤ ε/τ·s·|G″|, the absolute threshold of an ordinary ill-conditioned solve.
+pub const SINGULAR_BRANCH: f64 = 1.1e-12;
 
 /// The dimensions of a triad: the lengths of the three binary links and the ternary link's
 /// triangle.
@@ -526,8 +563,10 @@ fn rates_fast(a: &[PointMotion; 3], dims: &TriadDims, t: &Tracked) -> Option<Fas
         t.leg[1] * i_len[1],
         t.leg[2] * i_len[2],
     ];
-    let (k_inv, det_k) = inverse3(&velocity_matrix(u, r));
-    let det = det_k / dims.ternary_size();
+    let k = velocity_matrix(u, r);
+    let (k_inv, det_k) = inverse3(&k);
+    let lt = dims.ternary_size();
+    let det = det_k / lt;
     let vel = k_inv * Vector3::new(u[0].dot(&a[0].v), u[1].dot(&a[1].v), u[2].dot(&a[2].v));
     let (v1, omega_t) = (Vector2::new(vel.x, vel.y), vel.z);
     let vb = [v1, v1 + omega_t * perp(r[1]), v1 + omega_t * perp(r[2])];
@@ -555,7 +594,7 @@ fn rates_fast(a: &[PointMotion; 3], dims: &TriadDims, t: &Tracked) -> Option<Fas
         a[0].v.x, a[0].v.y, a[1].v.x, a[1].v.y, a[2].v.x, a[2].v.y, a[0].a.x, a[0].a.y, a[1].a.x,
         a[1].a.y, a[2].a.x, a[2].a.y, vel.x, vel.y, vel.z, acc.x, acc.y, acc.z, omega[0], omega[1],
         omega[2], eps[0], eps[1], eps[2], det,
-    ]) & (det.abs() > 2.0 * SINGULAR_TRIAD);
+    ]) && surely_regular(&k, det, r, i_len, t.len, lt);
     ok.then_some(FastRates {
         v1,
         omega_t,
@@ -677,9 +716,10 @@ fn triad_checked(
 ///
 /// # Errors
 /// - [`Error::NonFinite`] for bad input;
-/// - [`Error::Singular`] with `measure = "det(velocity system)/L_T"` when |det K|/L_T ≤
-///   [`SINGULAR_TRIAD`]: the lines of the three binary links meet at one point (a dead point
-///   of the group, or two modes merging);
+/// - [`Error::Singular`] with `measure = "distance from a branch point/size"` when that
+///   distance η ≤ [`SINGULAR_BRANCH`]: the lines of the three binary links meet at one point
+///   (a dead point of the group, or two modes merging), to within what rounding can tell
+///   (the rates would carry fewer than four digits);
 /// - [`Error::Overflow`] when a rate overflows.
 pub fn triad_rates(a: [PointMotion; 3], dims: &TriadDims, pose: &TriadPose) -> Result<TriadState> {
     for m in &a {
@@ -695,12 +735,14 @@ pub fn triad_rates(a: [PointMotion; 3], dims: &TriadDims, pose: &TriadPose) -> R
     let len = [leg[0].norm(), leg[1].norm(), leg[2].norm()];
     let u = [leg[0] / len[0], leg[1] / len[1], leg[2] / len[2]];
     let k = velocity_matrix(u, r);
-    let det = k.determinant() / dims.ternary_size();
-    if det.is_nan() || det.abs() <= SINGULAR_TRIAD {
+    let lt = dims.ternary_size();
+    let det = k.determinant() / lt;
+    let eta = branch_distance(&k, u, r, len, lt);
+    if eta.is_nan() || eta <= SINGULAR_BRANCH {
         return Err(Error::Singular {
             what: GROUP,
-            measure: MEASURE,
-            value: det,
+            measure: BRANCH_MEASURE,
+            value: eta,
         });
     }
     let k_inv = k.try_inverse().ok_or(Error::Singular {
@@ -750,6 +792,82 @@ pub fn triad_rates(a: [PointMotion; 3], dims: &TriadDims, pose: &TriadPose) -> R
             what: "triad: rates",
         })
     }
+}
+
+/// η, the data's distance from the nearest branch point relative to the size, from the
+/// fold's normal form ([`SINGULAR_BRANCH`]): σ²/(2κs) with σ, n, m the smallest singular
+/// value of K′ = K·diag(1, 1, 1/L_T) and its right and left singular vectors, and
+/// κ = |m · G″(n, n)| + σ·|G″(n, n)|. G″ of a leg
+/// along x(t) = (B1 + t·δB1, θ + t·δθ): B_i moves by δB_i = δB1 + δθ·J·r_i and turns back by
+/// −δθ²·r_i, so (|B_i − A_i|)″ = (u_i⊥ · δB_i)²/l_i − δθ²·(u_i · r_i). NaN for non-finite
+/// input.
+fn branch_distance(
+    k: &Matrix3<f64>,
+    u: [Vector2<f64>; 3],
+    r: [Vector2<f64>; 3],
+    len: [f64; 3],
+    lt: f64,
+) -> f64 {
+    if !(k.iter().all(|x| x.is_finite()) && lt > 0.0) {
+        return f64::NAN;
+    }
+    let scaled = Matrix3::from_fn(|i, j| if j == 2 { k[(i, j)] / lt } else { k[(i, j)] });
+    let svd = scaled.svd(true, true);
+    let (Some(u_l), Some(v_t)) = (svd.u, svd.v_t) else {
+        return f64::NAN;
+    };
+    let (j, sigma) = svd
+        .singular_values
+        .iter()
+        .copied()
+        .enumerate()
+        .min_by(|a, b| a.1.total_cmp(&b.1))
+        .unwrap_or((0, f64::NAN));
+    let (db1, dth) = (Vector2::new(v_t[(j, 0)], v_t[(j, 1)]), v_t[(j, 2)] / lt);
+    let curvature = Vector3::from_fn(|i, _| {
+        let c = perp(u[i]).dot(&(db1 + dth * perp(r[i])));
+        c * c / len[i] - dth * dth * u[i].dot(&r[i])
+    });
+    // κ: the fold's curvature across it (the left singular vector m), plus σ·|G″(n, n)| for
+    // the part of the rates off n (which the error ρ/σ along n still turns by G″): the
+    // rates' relative error is ≈ ρ·(|m·G″| + σ·|G″|)/σ², also where m·G″ vanishes.
+    let kappa = u_l.column(j).dot(&curvature).abs() + sigma * curvature.norm();
+    sigma * sigma / (2.0 * kappa * triad_size(r, len))
+}
+
+/// The size s of a posed triad: its longest leg or ternary arm, m.
+#[inline]
+fn triad_size(r: [Vector2<f64>; 3], len: [f64; 3]) -> f64 {
+    len[0]
+        .max(len[1])
+        .max(len[2])
+        .max(r[1].norm())
+        .max(r[2].norm())
+}
+
+/// Whether η ([`branch_distance`]) is certainly above [`SINGULAR_BRANCH`], from cheap bounds
+/// (the fast path's test; the full rule decides otherwise): σ ≥ |det K′|/(σ₁σ₂) ≥
+/// 2μ/‖K′‖_F², and for a unit n, |δB_i|² ≤ 1 + |r_i|²/L_T² and δθ² ≤ 1/L_T², so
+/// |G″(n, n)| ≤ Σ_i (1 + |r_i|²/L_T²)/l_i + |r_i|/L_T².
+#[inline]
+fn surely_regular(
+    k: &Matrix3<f64>,
+    mu: f64,
+    r: [Vector2<f64>; 3],
+    i_len: [f64; 3],
+    len: [f64; 3],
+    lt: f64,
+) -> bool {
+    let il2 = 1.0 / (lt * lt);
+    let f2 = 3.0 + (k[(0, 2)] * k[(0, 2)] + k[(1, 2)] * k[(1, 2)] + k[(2, 2)] * k[(2, 2)]) * il2;
+    let r2 = [0.0, r[1].norm_squared(), r[2].norm_squared()];
+    let kappa = i_len[0]
+        + (1.0 + r2[1] * il2) * i_len[1]
+        + (1.0 + r2[2] * il2) * i_len[2]
+        + (r2[1].sqrt() + r2[2].sqrt()) * il2;
+    let sigma = 2.0 * mu.abs() / f2;
+    // κ ≤ |G″|·(1 + σ) and σ ≤ ‖K′‖_F.
+    sigma * sigma > 2.0 * SINGULAR_BRANCH * kappa * (1.0 + f2.sqrt()) * triad_size(r, len)
 }
 
 /// The velocity system K of a triad: row i is (u_i, r_i × u_i).
