@@ -96,27 +96,55 @@ fn max_abs(v: &[Vector2<f64>; 2]) -> f64 {
     )
 }
 
-/// Solves a dyad of `joints` with friction by [`dyad_friction`]: `values` and `forces` read
-/// its frictionless reactions' pairs and whole forces, `solve` is its frictionless closed
-/// form under the loads on links 2 and 3.
-#[allow(clippy::too_many_arguments)]
-fn solved<R>(
-    base: &R,
-    values: impl Fn(&R) -> [f64; 6],
-    forces: [Vector2<f64>; 3],
+/// A frictionless dyad as its friction solve reads it: its loads, the same dyad under
+/// other loads, and its reactions' pairs (see [`DyadBase`]) and whole forces.
+trait Block: Sized {
+    type Reactions;
+    fn loads(&self) -> [&Load; 2];
+    fn solve_under(&self, loads: &[Load; 2]) -> Result<Self::Reactions>;
+    fn pairs(r: &Self::Reactions) -> [f64; 6];
+    fn forces(r: &Self::Reactions) -> [Vector2<f64>; 3];
+}
+
+/// [`Block`] for a dyad whose reactions' pairs `$values` gives, its whole forces `$force`.
+macro_rules! block {
+    ($dyad:ident, $reactions:ident, $values:ident, [$($force:ident),+]) => {
+        impl Block for $dyad {
+            type Reactions = $reactions;
+            fn loads(&self) -> [&Load; 2] {
+                [&self.load2, &self.load3]
+            }
+            fn solve_under(&self, loads: &[Load; 2]) -> Result<$reactions> {
+                let [load2, load3] = *loads;
+                $dyad { load2, load3, ..*self }.solve()
+            }
+            fn pairs(r: &$reactions) -> [f64; 6] {
+                $values(r)
+            }
+            fn forces(r: &$reactions) -> [Vector2<f64>; 3] {
+                [$(r.$force),+]
+            }
+        }
+    };
+}
+
+/// Solves the dyad `d`, whose frictionless reactions are `base`, with the friction of its
+/// `joints` by [`dyad_friction`], `names` its own and its joints' in the errors.
+fn solved<D: Block>(
+    d: &D,
+    base: &D::Reactions,
     joints: &[GroupJoint; 3],
-    loads: [&Load; 2],
-    solve: impl Fn(Load, Load) -> Result<R>,
     options: &Iteration,
     (what, names): (&'static str, [&'static str; 3]),
 ) -> Result<DyadSolved> {
-    let base = DyadBase {
-        pairs: values(base),
-        forces,
+    let start = DyadBase {
+        pairs: D::pairs(base),
+        forces: D::forces(base),
     };
-    let block = |l: &[Load; 2]| solve(l[0], l[1]).map(|r| values(&r));
-    dyad_friction(&base, joints, loads, block, options, what, names)
+    let block = |l: &[Load; 2]| d.solve_under(l).map(|r| D::pairs(&r));
+    dyad_friction(&start, joints, d.loads(), block, options, what, names)
 }
+
 // ----- RRR -----
 
 /// The friction data of an RRR dyad's hinges.
@@ -237,6 +265,8 @@ block_api!(
 fn rrr_values(r: &RrrReactions) -> [f64; 6] {
     [r.r12.x, r.r12.y, r.r23.x, r.r23.y, r.r43.x, r.r43.y]
 }
+
+block!(RrrDyad, RrrReactions, rrr_values, [r12, r23, r43]);
 
 /// The columns of D for an RRR dyad: the reactions' response to each hinge's friction
 /// couple per newton of pressure, −c_k times the response to a unit couple on the joint's
@@ -366,12 +396,9 @@ impl RrrFriction {
             GroupJoint::hinge(None, 1, rho[2], rate[2]),
         ];
         let out = solved(
+            d,
             base,
-            rrr_values,
-            [base.r12, base.r23, base.r43],
             &joints,
-            [&d.load2, &d.load3],
-            |load2, load3| RrrDyad { load2, load3, ..*d }.solve(),
             options,
             (
                 "RRR dyad with friction",
@@ -519,6 +546,8 @@ fn rrp_values(r: &RrpReactions) -> [f64; 6] {
     [r.r12.x, r.r12.y, r.r23.x, r.r23.y, r.r43_n, r.guide_moment]
 }
 
+block!(RrpDyad, RrpReactions, rrp_values, [r12, r23, r43]);
+
 impl RrpFriction {
     /// Solves the dyad with friction.
     ///
@@ -554,12 +583,9 @@ impl RrpFriction {
             GroupJoint::slide(None, 1, f, w.slide, g, d.b, law),
         ];
         let out = solved(
+            d,
             &base,
-            rrp_values,
-            [base.r12, base.r23, base.r43],
             &joints,
-            [&d.load2, &d.load3],
-            |load2, load3| RrpDyad { load2, load3, ..*d }.solve(),
             options,
             (
                 "RRP dyad with friction",
@@ -679,6 +705,8 @@ fn rpr_values(r: &RprReactions) -> [f64; 6] {
     [r.r12.x, r.r12.y, r.r32_n, r.couple, r.r43.x, r.r43.y]
 }
 
+block!(RprDyad, RprReactions, rpr_values, [r12, r32, r43]);
+
 impl RprFriction {
     /// Solves the dyad with friction.
     ///
@@ -714,12 +742,9 @@ impl RprFriction {
             GroupJoint::hinge(None, 1, rho_e, w.omega - w.omega4),
         ];
         let out = solved(
+            d,
             &base,
-            rpr_values,
-            [base.r12, base.r32, base.r43],
             &joints,
-            [&d.load2, &d.load3],
-            |load2, load3| RprDyad { load2, load3, ..*d }.solve(),
             options,
             (
                 "RPR dyad with friction",
@@ -838,6 +863,8 @@ fn prp_values(r: &PrpReactions) -> [f64; 6] {
     [r.r12_n, r.moment12, r.r23.x, r.r23.y, r.r43_n, r.moment43]
 }
 
+block!(PrpDyad, PrpReactions, prp_values, [r12, r23, r43]);
+
 impl PrpFriction {
     /// Solves the dyad with friction.
     ///
@@ -875,12 +902,9 @@ impl PrpFriction {
             GroupJoint::slide(None, 1, f3, w.slide3, g3, d.b, law3),
         ];
         let out = solved(
+            d,
             &base,
-            prp_values,
-            [base.r12, base.r23, base.r43],
             &joints,
-            [&d.load2, &d.load3],
-            |load2, load3| PrpDyad { load2, load3, ..*d }.solve(),
             options,
             (
                 "PRP dyad with friction",
@@ -1000,6 +1024,8 @@ fn rpp_values(r: &RppReactions) -> [f64; 6] {
     [r.r12.x, r.r12.y, r.r32_n, r.moment32, r.r43_n, r.moment43]
 }
 
+block!(RppDyad, RppReactions, rpp_values, [r12, r32, r43]);
+
 impl RppFriction {
     /// Solves the dyad with friction.
     ///
@@ -1037,12 +1063,9 @@ impl RppFriction {
             GroupJoint::slide(None, 1, fg, w.slide, u, d.b, law_g),
         ];
         let out = solved(
+            d,
             &base,
-            rpp_values,
-            [base.r12, base.r32, base.r43],
             &joints,
-            [&d.load2, &d.load3],
-            |load2, load3| RppDyad { load2, load3, ..*d }.solve(),
             options,
             (
                 "RPP dyad with friction",
