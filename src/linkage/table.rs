@@ -57,6 +57,12 @@ pub trait Tabulate {
     }
 }
 
+/// A column's name from its pieces: one allocation of the exact length (a name is made once
+/// per table, but a table of a short course is mostly its fixed cost).
+fn cat(parts: &[&str]) -> String {
+    parts.concat()
+}
+
 /// Writes a vector's x, y and magnitude as three cells `"{name}_x [unit]"`, `"{name}_y
 /// [unit]"`, `"|{name}| [unit]"`.
 pub(crate) fn cell_vector(
@@ -65,9 +71,9 @@ pub(crate) fn cell_vector(
     unit: &str,
     v: Vector2<f64>,
 ) {
-    out.cell(|| format!("{}_x [{unit}]", name()), v.x);
-    out.cell(|| format!("{}_y [{unit}]", name()), v.y);
-    out.cell(|| format!("|{}| [{unit}]", name()), v.norm());
+    out.cell(|| cat(&[&name(), "_x [", unit, "]"]), v.x);
+    out.cell(|| cat(&[&name(), "_y [", unit, "]"]), v.y);
+    out.cell(|| cat(&["|", &name(), "| [", unit, "]"]), v.norm());
 }
 
 impl Tabulate for Kinematics<'_> {
@@ -84,27 +90,27 @@ impl Tabulate for Kinematics<'_> {
             ("s_in", "m", "m/s", "m/s^2")
         };
         let i = self.inputs().first();
-        out.cell(|| format!("{q} [{unit}]"), i.value);
-        out.cell(|| format!("{q}' [{rate}]"), i.rate);
-        out.cell(|| format!("{q}'' [{accel}]"), i.accel);
+        out.cell(|| cat(&[q, " [", unit, "]"]), i.value);
+        out.cell(|| cat(&[q, "' [", rate, "]"]), i.rate);
+        out.cell(|| cat(&[q, "'' [", accel, "]"]), i.accel);
         second_input_cells(out, self);
         for (k, name) in links.iter().enumerate().skip(1) {
             let m = pose.link_angle_at(k);
-            out.cell(|| format!("phi({name}) [rad]"), m.value);
-            out.cell(|| format!("omega({name}) [rad/s]"), m.rate);
-            out.cell(|| format!("eps({name}) [rad/s^2]"), m.accel);
+            out.cell(|| cat(&["phi(", name, ") [rad]"]), m.value);
+            out.cell(|| cat(&["omega(", name, ") [rad/s]"]), m.rate);
+            out.cell(|| cat(&["eps(", name, ") [rad/s^2]"]), m.accel);
         }
         for (j, name) in plan.joint_names().iter().enumerate() {
             let p = pose.joint_motion_at(j);
-            out.cell(|| format!("x({name}) [m]"), p.p.x);
-            out.cell(|| format!("y({name}) [m]"), p.p.y);
-            out.cell(|| format!("|v({name})| [m/s]"), p.v.norm());
-            out.cell(|| format!("|a({name})| [m/s^2]"), p.a.norm());
+            out.cell(|| cat(&["x(", name, ") [m]"]), p.p.x);
+            out.cell(|| cat(&["y(", name, ") [m]"]), p.p.y);
+            out.cell(|| cat(&["|v(", name, ")| [m/s]"]), p.v.norm());
+            out.cell(|| cat(&["|a(", name, ")| [m/s^2]"]), p.a.norm());
             if plan.is_prismatic_at(j) {
                 let s = pose.slide_at(j);
-                out.cell(|| format!("s({name}) [m]"), s.value);
-                out.cell(|| format!("v_rel({name}) [m/s]"), s.rate);
-                out.cell(|| format!("a_rel({name}) [m/s^2]"), s.accel);
+                out.cell(|| cat(&["s(", name, ") [m]"]), s.value);
+                out.cell(|| cat(&["v_rel(", name, ") [m/s]"]), s.rate);
+                out.cell(|| cat(&["a_rel(", name, ") [m/s^2]"]), s.accel);
             }
         }
         for (g, group) in plan.groups().iter().enumerate() {
@@ -113,7 +119,7 @@ impl Tabulate for Kinematics<'_> {
                 continue;
             }
             let mu = self.transmission_angle(g).unwrap_or(f64::NAN);
-            out.cell(|| format!("mu({}) [rad]", group.name), mu);
+            out.cell(|| cat(&["mu(", &group.name, ") [rad]"]), mu);
         }
     }
 }
@@ -135,15 +141,18 @@ impl Tabulate for Analysis<'_> {
         for (j, name) in plan.joint_names().iter().enumerate() {
             let re = self.reactions[j];
             let (by, on) = (&links[re.by], &links[re.on]);
-            cell_vector(out, || format!("R({by},{on})@{name}"), "N", re.force);
+            cell_vector(out, || cat(&["R(", by, ",", on, ")@", name]), "N", re.force);
             if plan.is_prismatic_at(j) {
-                out.cell(|| format!("M({by},{on})@{name} [N·m]"), re.moment);
+                out.cell(
+                    || cat(&["M(", by, ",", on, ")@", name, " [N·m]"]),
+                    re.moment,
+                );
             }
         }
         if plan.has_friction() {
             for (j, name) in plan.joint_names().iter().enumerate() {
                 let lost = self.friction(j).map_or(f64::NAN, |f| f.power_lost);
-                out.cell(|| format!("P_lost({name}) [W]"), lost);
+                out.cell(|| cat(&["P_lost(", name, ") [W]"]), lost);
             }
             out.cell(|| "P_lost [W]".to_owned(), self.lost_power());
             let eta = self.efficiency().ok().and_then(|e| e.eta);
@@ -161,11 +170,11 @@ impl Tabulate for Analysis<'_> {
         } else {
             ("Fb", "N, + along the guide")
         };
-        out.cell(|| format!("{name} [{unit}]"), b.value);
+        out.cell(|| cat(&[name, " [", unit, "]"]), b.value);
         // At rest the virtual power has no rate to divide by: the cell is NaN ("not
         // available"), as `Table` documents.
         let vp = self.power_check().map_or(f64::NAN, |c| c.virtual_power);
-        out.cell(|| format!("{name} by virtual power [{unit}]"), vp);
+        out.cell(|| cat(&[name, " by virtual power [", unit, "]"]), vp);
     }
 }
 
@@ -234,9 +243,9 @@ fn input_units(plan: &super::plan::Plan, i: usize) -> [&'static str; 6] {
 fn second_input_cells(out: &mut impl Cells, k: &Kinematics<'_>) {
     if let Some(m) = k.inputs().get(1) {
         let [q, unit, rate, accel, ..] = input_units(k.plan(), 1);
-        out.cell(|| format!("{q} [{unit}]"), m.value);
-        out.cell(|| format!("{q}' [{rate}]"), m.rate);
-        out.cell(|| format!("{q}'' [{accel}]"), m.accel);
+        out.cell(|| cat(&[q, " [", unit, "]"]), m.value);
+        out.cell(|| cat(&[q, "' [", rate, "]"]), m.rate);
+        out.cell(|| cat(&[q, "'' [", accel, "]"]), m.accel);
     }
 }
 
@@ -246,7 +255,7 @@ fn second_input_cells(out: &mut impl Cells, k: &Kinematics<'_>) {
 fn two_input_balances(out: &mut impl Cells, a: &Analysis<'_>) {
     for (i, b) in a.balances().iter().enumerate() {
         let [.., name, unit] = input_units(a.plan(), i);
-        out.cell(|| format!("{name} [{unit}]"), b.value);
+        out.cell(|| cat(&[name, " [", unit, "]"]), b.value);
     }
     let (chain, vp) = a
         .power_check()
@@ -267,8 +276,9 @@ impl Cells for Flat<'_> {
 
 /// A table filled many rows at a time: the rows gather in a block, row after row in one
 /// buffer, and each column takes the block's values in one pass, so a cell is one push onto
-/// one buffer (each row of a four-bar's analysis has 43). Measured against pushing each cell
-/// straight into its column, the two cost the same within the noise (docs/performance.md).
+/// one buffer (each row of a four-bar's analysis has 43), and each column is written in one
+/// stream (pushing each cell straight into its column writes 43 streams at once, and took
+/// 1.1–1.5× the CPU time at 3600 and 36 000 rows; docs/performance.md).
 struct Rows {
     table: Table,
     block: Vec<f64>,
@@ -290,7 +300,12 @@ impl Rows {
 
     /// Appends one position's row, as [`Table::push`] does.
     fn push<P: Tabulate + ?Sized>(&mut self, position: &P) {
-        self.table.lay_out(position, self.reserve);
+        if self.table.columns.is_empty() {
+            self.table.lay_out(position, self.reserve);
+            // Room for a whole block: one allocation per table, never grown.
+            self.block
+                .reserve_exact(Self::BLOCK * self.table.columns.len());
+        }
         let width = self.table.columns.len();
         let start = self.block.len();
         position.cells(&mut Flat(&mut self.block));
@@ -306,17 +321,12 @@ impl Rows {
         if width == 0 {
             return;
         }
-        let rows = self.block.len() / width;
         for (k, c) in self.table.columns.iter_mut().enumerate() {
-            // One resize, then a plain strided copy: no capacity test per value.
-            let start = c.values.len();
-            c.values.resize(start + rows, 0.0);
-            for (v, row) in c.values[start..]
-                .iter_mut()
-                .zip(self.block.chunks_exact(width))
-            {
-                *v = row[k];
-            }
+            // A strided copy of known length: the column grows once (if at all: it was
+            // reserved for the whole table when its length was known), and each value is
+            // written once, with no capacity test and no zero fill before it.
+            c.values
+                .extend(self.block.chunks_exact(width).map(|row| row[k]));
         }
         self.block.clear();
     }
@@ -383,6 +393,11 @@ impl Table {
     /// ```
     pub fn push<P: Tabulate + ?Sized>(&mut self, position: &P) {
         self.lay_out(position, 0);
+        self.push_values(position);
+    }
+
+    /// Appends `position`'s values to the columns laid out, NaN in any it does not give.
+    fn push_values<P: Tabulate + ?Sized>(&mut self, position: &P) {
         let len = self.len();
         let mut values = Values {
             columns: &mut self.columns,
