@@ -59,7 +59,7 @@ pub mod dynamics;
 mod handle;
 mod hinges;
 mod indicator;
-mod inputs;
+pub(crate) mod inputs;
 mod instant_centres;
 mod plan;
 mod plan_general;

@@ -1596,21 +1596,6 @@ fn a_two_input_linkage_reverses_an_input_against_friction_at_a_located_switch() 
         .sum();
     let cut: Vec<bool> = (0..t.len()).map(|k| landed.contains(&k)).collect();
     let fine = piecewise_quadratic(t, &power, &cut);
-    for i in 2..t.len() {
-        if i % 2 == 0 {
-            let w = piecewise_quadratic(&t[i - 2..=i], &power[i - 2..=i], &[false, false, false]);
-            let d = tr.kinetic()[i] - tr.kinetic()[i - 2] - w;
-            if d.abs() > 1e-10 {
-                println!(
-                    "row {i} t {:.6} h {:.2e} d {d:.2e} w1 {:.3e} w2 {:.3e}",
-                    t[i],
-                    t[i] - t[i - 1],
-                    tr.qd()[0][i],
-                    tr.qd()[1][i]
-                );
-            }
-        }
-    }
     let e = tr.kinetic();
     let (e0, e1) = (e[0], e[tr.len() - 1]);
     let gap = (e1 - e0 - work).abs() / e0;

@@ -161,6 +161,27 @@ fn bad_six_bar_requirements_name_the_parameter() {
     assert!(name_of(&short, &opts).starts_with("timing"));
     let tiny = PathOptions::default().with_max_evaluations(10);
     assert!(name_of(&good, &tiny).starts_with("max_evaluations"));
+    // A crank angle beyond ±10⁹ rad names no crank position (the design would be posed at
+    // another angle than the one searched): refused, not answered with a wrong linkage.
+    let mut far = good.clone();
+    if let Timing::Prescribed(d) = &mut far.timing {
+        d.iter_mut().for_each(|x| *x += 1e17);
+    }
+    assert!(name_of(&far, &opts).starts_with("timing"));
+    // Two distinct points at one crank angle: no tracer is at two places at once.
+    let mut twice = good.clone();
+    if let Timing::Prescribed(d) = &mut twice.timing {
+        d[5] = d[1];
+    }
+    match six_bar_path_generator(&twice, &opts, |_| true) {
+        Err(Error::Description { item, problem }) => {
+            assert!(
+                item == "timing" && problem.contains("points 1 and 5"),
+                "{problem}"
+            )
+        }
+        other => panic!("expected the timing named, got {other:?}"),
+    }
     let mut same = good.clone();
     same.points[4] = same.points[2];
     assert!(matches!(

@@ -356,7 +356,7 @@ impl<'p> StateFriction<'p> {
     /// The state, for the errors.
     fn state_text(&self) -> String {
         format!(
-            "joint friction in the equation of motion at q = ({}, {}), q̇ = ({}, {})",
+            "joint friction in the equation of motion at q = ({:e}, {:e}), q̇ = ({:e}, {:e})",
             self.q[0], self.q[1], self.qd[0], self.qd[1]
         )
     }
@@ -373,7 +373,7 @@ impl<'p> StateFriction<'p> {
         };
         Error::In {
             part: format!(
-                "{} with the frictionless accelerations ({}, {})",
+                "{} with the frictionless accelerations ({:e}, {:e})",
                 self.state_text(),
                 qdd[0],
                 qdd[1]

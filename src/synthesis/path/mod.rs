@@ -964,7 +964,9 @@ fn check_requirement(kind: Kind, req: &PathRequirement, opts: &PathOptions) -> R
         Timing::Free | Timing::ClosedCurve => (free, "points"),
         Timing::Prescribed(d) => {
             for &x in d {
-                crate::error::finite("timing", x)?;
+                // Beyond ±10⁹ rad an angle no longer names one crank position (the design
+                // would be re-posed at another crank angle than the one searched).
+                crate::linkage::inputs::check_input_coordinate("timing", x)?;
             }
             if d.len() != n {
                 return Err(Error::OutOfRange {
@@ -983,6 +985,22 @@ fn check_requirement(kind: Kind, req: &PathRequirement, opts: &PathOptions) -> R
                     min: 0.0,
                     max: TAU,
                     ends: crate::Ends::OpenAbove,
+                });
+            }
+            // Two distinct points at one crank angle: no linkage's tracer is at two places
+            // at once, and the search would only split the difference.
+            let ends = (0..n).flat_map(|i| (i + 1..n).map(move |j| (i, j)));
+            if let Some((i, j)) = ends
+                .into_iter()
+                .find(|&(i, j)| d[i] == d[j] && req.points[i] != req.points[j])
+            {
+                return Err(Error::Description {
+                    item: "timing".to_owned(),
+                    problem: format!(
+                        "points {i} and {j} are at one crank angle {} rad but at distinct places: \
+                         give each point its own crank angle",
+                        d[i]
+                    ),
                 });
             }
             (5, "points")
