@@ -189,3 +189,27 @@ fn a_position_that_does_not_assemble_names_the_option() {
         );
     }
 }
+
+/// A two-input picture at a speed beyond ±10⁹ rad/s names `--speed`, not an acceleration
+/// deep in the library (the five-bar's balance diagram at 10²⁰⁰ rad/s reported "input
+/// acceleration must be finite, got -inf").
+#[test]
+fn a_two_input_picture_at_a_hostile_speed_names_the_speed() {
+    for (extra, speed) in [
+        (&["--diagram", "balance"][..], "1e200"),
+        (&["--scheme", "100", "60"][..], "-1e300"),
+        (&["--plan"][..], "1e10"),
+    ] {
+        let out = std::env::temp_dir().join("tmm-hostile-speed.svg");
+        let mut args = vec!["draw", "five-bar-robot"];
+        args.extend_from_slice(extra);
+        args.extend_from_slice(&["--speed", speed, "-o", out.to_str().unwrap()]);
+        let r = tmm(&args);
+        assert_one_line_failure(&r, "five-bar-robot");
+        assert!(
+            r.stderr.contains("the speed must be finite"),
+            "{}",
+            r.stderr
+        );
+    }
+}

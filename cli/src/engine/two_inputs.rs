@@ -51,6 +51,7 @@ impl Machine {
         typed: &[f64],
         speed: f64,
     ) -> Result<Inputs, Failure> {
+        super::check_speed(speed)?;
         let n = self.plan.input_count();
         let reference = self.plan.reference_inputs();
         let value = |k: usize| match typed.get(k) {
@@ -118,6 +119,7 @@ impl Machine {
         n: usize,
         speed: f64,
     ) -> Result<TwoInputCourse, Failure> {
+        super::check_speed(speed)?;
         if along.is_empty() {
             return TwoInputCourse::around_reference(&self.plan, n, speed).map_err(|e| failure(&e));
         }
