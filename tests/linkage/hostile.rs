@@ -221,10 +221,12 @@ fn hostile_descriptions_plan_or_err_and_then_solve_or_err() {
     assert!(scanned > 0);
 }
 
-/// The scans over a cycle of `plan` (`Plan::extremes` and `Plan::strokes` of `output`, a
+/// The scans over a cycle of `plan` (`Plan::extremes` and `Plan::strokes` of `output`, or of
+/// the last link's angle where the description names none, so that every case calls them; a
 /// crank's `Plan::lock_positions` from `phi`): an error or finite numbers.
 fn scans(plan: &Plan, output: Option<&Output>, phi: f64, what: &str) {
-    if let Some(out) = output {
+    {
+        let out = &plan.output_or_last(output);
         if let Ok(e) = plan.extremes(out) {
             assert!(!has_non_finite(&format!("{e:?}")), "{what}: {e:?}");
         }
