@@ -208,6 +208,33 @@ fn recover(req: &PathRequirement, seed: u64, mechanism: Mechanism) -> (f64, usiz
         // γ_min as reported keeps the default [γ] = 40°.
         let gamma = best.synthesis.report.min_transmission_angle;
         assert!(gamma >= 40f64.to_radians() - 1e-12, "γ_min {gamma}");
+        // And through the engine, not the search's own pose: each RRR dyad's |sin(φ3 − φ2)|
+        // (the sine of its transmission angle) over the crank angles the points span, every
+        // 0.1°. The search samples every 1°, so the engine's finer minimum may lie a little
+        // lower, never far.
+        if let Timing::Prescribed(d) = &req.timing {
+            let theta0 = best.crank_angles[0] - d[0];
+            let (lo, hi) = d
+                .iter()
+                .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &x| {
+                    (a.min(x), b.max(x))
+                });
+            let steps = ((hi - lo) / 0.1f64.to_radians()).ceil() as usize;
+            let mut sine = f64::INFINITY;
+            for k in 0..=steps {
+                let phi = theta0 + lo + (hi - lo) * k as f64 / steps as f64;
+                let kin = plan.kinematics(Motion::fixed(phi)).unwrap();
+                for det in kin.group_determinants() {
+                    sine = sine.min(det.abs());
+                }
+            }
+            let engine = sine.min(1.0).asin();
+            let slack = 0.5f64.to_radians();
+            assert!(
+                engine >= 40f64.to_radians() - slack && (engine - gamma).abs() <= slack,
+                "γ_min by the engine {engine} against the reported {gamma}"
+            );
+        }
     }
     (engine / size, evaluations)
 }
