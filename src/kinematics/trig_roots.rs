@@ -159,8 +159,14 @@ fn merge_double(f: &impl Periodic, roots: &mut Roots) {
         let r = roots.z[j].conj() * roots.z[k];
         let delta = r.im.atan2(r.re).abs();
         let zm = unit(roots.z[j] + roots.z[k]);
-        if f.second(zm).abs() * delta * delta / 8.0 <= f.tol() {
-            let (ze, _) = extremum(f, zm, 0.5 * delta);
+        if f.second(zm).abs() * delta * delta / 8.0 > f.tol() {
+            continue;
+        }
+        // The estimate by F″ at the midpoint alone would also merge two genuine roots around
+        // an inflection of F (F″ ≈ 0 there, at any distance): F itself at the extremum
+        // between them must be within its rounding of zero, as for a cluster.
+        let (ze, fe) = extremum(f, zm, 0.5 * delta);
+        if fe.abs() <= f.tol() {
             roots.z[j] = ze;
             roots.multiple[j] = false;
             roots.double[j] = true;
