@@ -299,8 +299,9 @@ fn genes_of(x: &[f64], s: [f64; 2]) -> Vec<f64> {
 /// # Example
 /// Eight points (as many as the unknowns allow: a precision-point synthesis) of a known
 /// six-bar, made with the engine's own blocks (the crank, an RRR dyad, a coupler point,
-/// another RRR dyad, a point of its link) at crank angles 0.3 rad apart: the synthesis finds a six-bar through them (this one or another) to 1e-9 of the
-/// path's size, and the engine, given its description, puts `P` on them.
+/// another RRR dyad, a point of its link) at crank angles 0.3 rad apart: the synthesis finds
+/// a six-bar through them (this one or another) to 1e-9 of the path's size, and the engine,
+/// given its description, puts `P` on them.
 /// ```
 /// use nalgebra::Point2;
 /// use tmm::kinematics::batch::coupler_point;
