@@ -276,7 +276,9 @@ fn sig(x: f64) -> String {
 
 /// "= value lies outside [min, max)", the interval written as it is checked, with as many
 /// digits as it takes to tell the value from the bound it crossed (a value just past a bound
-/// would otherwise print equal to it); "must be min, got value" when min = max.
+/// would otherwise print equal to it), to write the value closer to itself than to the nearer
+/// bound, and not as a whole number when it is not one; "must be min, got value"
+/// when min = max.
 fn outside(value: f64, min: f64, max: f64, ends: Ends) -> String {
     let mut digits = 4;
     loop {
@@ -289,7 +291,17 @@ fn outside(value: f64, min: f64, max: f64, ends: Ends) -> String {
         if min == max && ends == Ends::Closed {
             return format!("must be {lo}, got {v}");
         }
-        if (v != lo && v != hi) || digits >= 17 {
+        // The value written closer to itself than to the bounds: K = 1.0001 outside [1.03, 3]
+        // must not read "K = 1".
+        let gap = [min, max]
+            .into_iter()
+            .filter(|b| b.is_finite())
+            .map(|b| (value - b).abs())
+            .fold(f64::INFINITY, f64::min);
+        let faithful = v.parse::<f64>().map_or(true, |p| {
+            (p - value).abs() < 0.5 * gap && (p.fract() != 0.0 || value.fract() == 0.0)
+        });
+        if (v != lo && v != hi && faithful) || digits >= 17 {
             let open_below = matches!(ends, Ends::OpenBelow | Ends::Open) || min.is_infinite();
             let open_above = matches!(ends, Ends::OpenAbove | Ends::Open) || max.is_infinite();
             let (l, r) = (

@@ -6,6 +6,7 @@ use super::four_bar::FourBar;
 use super::search::maximise;
 use super::{
     check, crank_excess, length, require_transmission, time_ratio_of, Options, Report, Synthesis,
+    MAX_LINK_RATIO,
 };
 use crate::angle::{cross, normalize};
 use crate::error::{finite, positive, Ends, Error, Result};
@@ -164,6 +165,89 @@ fn largest_feasible(theta: f64, feasible: impl Fn(f64) -> bool) -> f64 {
 }
 
 const SCAN: usize = 2048;
+
+/// The interval of θ in (0, `top`) around `theta` where the longest-to-shortest link ratio
+/// `ratio(θ)` (None where no design exists) stays within [`MAX_LINK_RATIO`]: the feasible run
+/// of a scan nearest to `theta`, its ends refined by bisection, and whether it reaches `top`.
+/// None if no θ of the scan is feasible. As K → 1 the quick-return designs stretch without bound (a slider-crank's rod
+/// grows as 1/θ, a shaper's lever as 1/θ²), so a K near 1 has a lower bound here; a large
+/// offset makes the slider-crank's rod long at both ends of the range, so it can have an
+/// upper bound too.
+fn ratio_interval(
+    theta: f64,
+    top: f64,
+    ratio: impl Fn(f64) -> Option<f64>,
+) -> Option<(f64, f64, bool)> {
+    let ok = |t: f64| ratio(t).is_some_and(|r| r <= MAX_LINK_RATIO);
+    let grid: Vec<f64> = (1..RATIO_SCAN)
+        .map(|i| top * i as f64 / RATIO_SCAN as f64)
+        .collect();
+    let nearest = grid
+        .iter()
+        .copied()
+        .filter(|&t| ok(t))
+        .min_by(|x, y| (x - theta).abs().total_cmp(&(y - theta).abs()))?;
+    let edge = |inside: f64, outside: f64| {
+        let (mut inside, mut outside) = (inside, outside);
+        for _ in 0..60 {
+            let mid = 0.5 * (inside + outside);
+            if ok(mid) {
+                inside = mid;
+            } else {
+                outside = mid;
+            }
+        }
+        inside
+    };
+    let step = top / RATIO_SCAN as f64;
+    let mut lo = nearest;
+    while lo - step > 0.0 && ok(lo - step) {
+        lo -= step;
+    }
+    let mut hi = nearest;
+    while hi + step < top && ok(hi + step) {
+        hi += step;
+    }
+    let reaches_top = hi + step >= top;
+    let hi = if reaches_top {
+        top
+    } else {
+        edge(hi, hi + step)
+    };
+    Some((edge(lo, (lo - step).max(0.0)), hi, reaches_top))
+}
+
+const RATIO_SCAN: usize = 512;
+
+/// [`Error::OutOfRange`] for K when the design at `theta` breaks [`MAX_LINK_RATIO`]
+/// (`ratio_now`), with the interval of K that keeps it; [`Error::NoMechanism`] naming
+/// `culprit` when no K does.
+fn link_ratio_error(
+    method: &'static str,
+    k: f64,
+    ratio_now: f64,
+    interval: Option<(f64, f64, bool)>,
+    culprit: &str,
+) -> Error {
+    match interval {
+        Some((lo, hi, top)) => Error::OutOfRange {
+            name: "K (the longest link within 10³ of the shortest)",
+            value: k,
+            min: time_ratio_of(lo),
+            max: time_ratio_of(hi),
+            // The top of the range is where no design exists any more (K = 3 for a
+            // slider-crank); an edge the ratio sets is a design.
+            ends: if top { Ends::OpenAbove } else { Ends::Closed },
+        },
+        None => Error::NoMechanism {
+            method,
+            problem: format!(
+                "its longest link is {ratio_now:.4e} times its shortest (at most \
+                 {MAX_LINK_RATIO:e}), and no K keeps it within that for this {culprit}"
+            ),
+        },
+    }
+}
 
 /// A crank-rocker four-bar whose rocker swings through `swing` with the time ratio K, the
 /// crank's pivot on its locus circle at a given frame length or where the smallest
@@ -391,27 +475,56 @@ pub fn slider_crank(need: &SliderCrankRequirement, options: &Options) -> Result<
         return Err(out_of_range(3.0));
     }
     // Similar in scale: solved for H = 1 (the offset e/H), scaled by H at the end.
-    let e = match need.offset {
-        OffsetChoice::Given(e) => {
-            let e = length("offset", e)? / h;
-            if slider_design(1.0, theta, e).is_none() {
-                return Err(out_of_range(time_ratio_of(e.recip().atan())));
+    let given = match need.offset {
+        OffsetChoice::Given(e) => Some(length("offset", e)? / h),
+        OffsetChoice::BestTransmission => None,
+    };
+    if let Some(e) = given
+        && slider_design(1.0, theta, e).is_none()
+    {
+        let k_max = time_ratio_of(e.recip().atan());
+        // An offset so large that even K → 1 needs a smaller one: it is the offset to change.
+        return Err(if k_max - 1.0 > 1e-9 {
+            out_of_range(k_max)
+        } else {
+            Error::OutOfRange {
+                name: "offset",
+                value: e * h,
+                min: 0.0,
+                max: h / theta.tan(),
+                ends: Ends::Open,
             }
-            e
-        }
-        OffsetChoice::BestTransmission => {
-            let top = 1.0 / theta.tan();
-            let f = |e: f64| slider_design(1.0, theta, e).map(|(a, b, _)| slider_gamma(a, b, e));
-            maximise(f, 1e-9 * top, top * (1.0 - 1e-9), SCAN)
-                .map(|(e, _)| e)
-                .ok_or(Error::Overflow {
-                    what: "the offset's search",
-                })?
+        });
+    }
+    let offset_at = |t: f64| match given {
+        Some(e) => Some(e),
+        None => {
+            let top = 1.0 / t.tan();
+            let f = |e: f64| slider_design(1.0, t, e).map(|(a, b, _)| slider_gamma(a, b, e));
+            maximise(f, 1e-9 * top, top * (1.0 - 1e-9), SCAN).map(|(e, _)| e)
         }
     };
+    let e = offset_at(theta).ok_or(Error::Overflow {
+        what: "the offset's search",
+    })?;
     let (a, b, x1) = slider_design(1.0, theta, e).ok_or(Error::Overflow {
         what: "the slider-crank's dimensions",
     })?;
+    if !(b / a <= MAX_LINK_RATIO) {
+        let top = given.map_or(FRAC_PI_2, |e| e.recip().atan());
+        let interval = ratio_interval(theta, top, |t| {
+            let e = offset_at(t)?;
+            slider_design(1.0, t, e).map(|(a, b, _)| b / a)
+        });
+        let culprit = if given.is_some() { "offset" } else { "stroke" };
+        return Err(link_ratio_error(
+            "offset slider-crank",
+            need.time_ratio,
+            b / a,
+            interval,
+            culprit,
+        ));
+    }
     let (a, b, x1, e) = (a * h, b * h, x1 * h, e * h);
     for x in [a, b, x1, e] {
         positive(
@@ -537,6 +650,20 @@ pub fn shaper(need: &ShaperRequirement, options: &Options) -> Result<Synthesis> 
         });
     }
     let lever = h / co;
+    // The lever over the crank, H/(2·d·sin²(θ/2)): the crank is the shortest link (r < d) and
+    // the lever the longest (lever > h > d + r).
+    let ratio = |t: f64| Some(0.5 * stroke / (d * (0.5 * t).sin().powi(2)));
+    if !(lever / r <= MAX_LINK_RATIO) {
+        let interval = ratio_interval(theta, PI, ratio);
+        let k = need.time_ratio;
+        return Err(link_ratio_error(
+            "shaper",
+            k,
+            lever / r,
+            interval,
+            "centre distance",
+        ));
+    }
     crate::error::computed("the shaper's dimensions", lever + h + r)?;
     // The report from the dimensions alone.
     let psi = 2.0 * (r / d).asin();

@@ -14,6 +14,7 @@ use tmm::Error;
 
 mod closed_form;
 mod hostile_requirements;
+mod link_ratio;
 mod path;
 mod pictures;
 mod six_bar;

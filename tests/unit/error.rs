@@ -111,6 +111,16 @@ fn messages_round_numbers_and_keep_exact_fields() {
         "x = 1 lies outside [2, ∞)"
     );
     assert_eq!(range(3.0, 2.0, 2.0, Ends::Closed), "x must be 2, got 3");
+    // A value near a whole number is not written as one, and is written closer to itself than
+    // to the bound it missed.
+    assert_eq!(
+        range(1.0001, 1.0317, f64::INFINITY, Ends::Closed),
+        "x = 1.0001 lies outside [1.0317, ∞)"
+    );
+    assert_eq!(
+        range(1.0 + 1e-13, 1.03, 3.0, Ends::Closed),
+        "x = 1.0000000000001 lies outside [1.03, 3]"
+    );
     // Four significant digits, plain from 10⁻³ to 10⁶ and scientific outside, as every
     // message that rounds prints them (here the singular measure's value).
     for (x, s) in [

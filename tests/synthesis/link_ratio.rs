@@ -1,0 +1,92 @@
+//! The quick-return designs near K = 1 stretch without bound: the slider-crank's rod grows as
+//! 1/θ, the shaper's lever as 1/θ². Beyond [`MAX_LINK_RATIO`] between the longest and the
+//! shortest link the answer is refused, with the interval of K that keeps the ratio, and a
+//! K just inside that interval gives a design the engine checks.
+
+use tmm::kinematics::Rotation;
+use tmm::linkage::{Output, Plan};
+use tmm::synthesis::{
+    shaper, slider_crank, OffsetChoice, Options, ShaperRequirement, SliderCrankRequirement,
+    MAX_LINK_RATIO,
+};
+use tmm::Error;
+
+fn k_interval(e: Error) -> (f64, f64) {
+    match e {
+        Error::OutOfRange { name, min, max, .. } if name.starts_with("K") => (min, max),
+        other => panic!("expected K's interval, got {other}"),
+    }
+}
+
+#[test]
+fn a_shaper_near_k_one_names_the_least_k_in_closed_form() {
+    let (h, d) = (0.3, 0.25);
+    let need = |k: f64| ShaperRequirement {
+        stroke: h,
+        time_ratio: k,
+        centre_distance: d,
+    };
+    let (lo, hi) = k_interval(shaper(&need(1.0 + 1e-13), &Options::default()).unwrap_err());
+    assert!(hi.is_infinite());
+    // lever/crank = H/(2·d·sin²(θ/2)), so the least θ has sin²(θ/2) = H/(2·d·10³).
+    let theta = 2.0 * (h / (2.0 * d * MAX_LINK_RATIO)).sqrt().asin();
+    let k = (std::f64::consts::PI + theta) / (std::f64::consts::PI - theta);
+    assert!((lo - k).abs() < 1e-12 * k, "{lo} against {k}");
+    // Just inside: a design, with the lever 10³ times the crank to the bisection's precision.
+    let s = shaper(&need(lo * (1.0 + 1e-9)), &Options::default()).unwrap();
+    let ratio = s.report.dimension("lever").unwrap() / s.report.dimension("crank").unwrap();
+    assert!(
+        ratio <= MAX_LINK_RATIO && ratio > 0.999 * MAX_LINK_RATIO,
+        "{ratio}"
+    );
+    assert!(shaper(&need(lo * (1.0 - 1e-9)), &Options::default()).is_err());
+}
+
+#[test]
+fn a_slider_crank_near_k_one_names_the_least_k_and_meets_it() {
+    for offset in [OffsetChoice::BestTransmission, OffsetChoice::Given(0.002)] {
+        let need = |k: f64| SliderCrankRequirement {
+            stroke: 0.1,
+            time_ratio: k,
+            offset,
+        };
+        let err = slider_crank(&need(1.0 + 1e-10), &Options::default()).unwrap_err();
+        let (lo, hi) = k_interval(err);
+        assert!(lo > 1.0 + 1e-10 && lo < hi, "{lo} {hi}");
+        let s = slider_crank(&need(lo * (1.0 + 1e-9)), &Options::default()).unwrap();
+        let (a, b) = (
+            s.report.dimension("crank").unwrap(),
+            s.report.dimension("rod").unwrap(),
+        );
+        assert!(
+            b / a <= MAX_LINK_RATIO && b / a > 0.99 * MAX_LINK_RATIO,
+            "{}",
+            b / a
+        );
+        // The engine finds the stroke and K of the description.
+        let strokes = Plan::new(&s.linkage)
+            .unwrap()
+            .strokes(&Output::Slide("P".into()), Rotation::Ccw)
+            .unwrap();
+        assert!((strokes.stroke - 0.1).abs() < 1e-10, "{}", strokes.stroke);
+        assert!((strokes.time_ratio - lo * (1.0 + 1e-9)).abs() < 1e-9);
+    }
+}
+
+#[test]
+fn an_offset_too_large_for_any_k_is_named() {
+    // K = 1.5: θ = π/5, so the offset must be below H·cot θ.
+    let need = SliderCrankRequirement {
+        stroke: 0.1,
+        time_ratio: 1.5,
+        offset: OffsetChoice::Given(1e10),
+    };
+    match slider_crank(&need, &Options::default()).unwrap_err() {
+        Error::OutOfRange { name, max, .. } => {
+            assert_eq!(name, "offset");
+            let cot = 1.0 / (std::f64::consts::PI / 5.0).tan();
+            assert!((max - 0.1 * cot).abs() < 1e-15, "{max}");
+        }
+        other => panic!("{other}"),
+    }
+}
