@@ -682,18 +682,20 @@ mod freudenstein {
         let (we, wl) = (worst(&exact), worst(&ls));
         // Both small against the range of y (log10 2 ≈ 0.3).
         assert!(we < 0.01 && wl < 0.01, "{we} {wl}");
-        // The least-squares residual of Freudenstein's equation is smaller at its own points
-        // than that of the exact three-point answer.
-        let resid = |k: [f64; 3], g: &tmm::synthesis::FunctionGenerator| {
-            g.precision_x
-                .iter()
-                .map(|&x| {
-                    let (phi, psi) = (g.crank_angle(x), g.rocker_angle(x.log10()));
-                    (k[0] * psi.cos() - k[1] * phi.cos() + k[2] - (phi - psi).cos()).powi(2)
-                })
-                .sum::<f64>()
+        // Fitting 25 points instead of passing through three lowers the worst structural
+        // error over the range (3.56e-3 against 3.64e-3 when written).
+        assert!(wl < we, "least squares {wl:e}, three exact points {we:e}");
+        // It spreads the error: the fitted curve crosses the wanted one (the error changes
+        // sign) at least as often as the three-point one, which crosses at its three points
+        // (on a grid of 500, which misses them: at a grid point the error is rounding).
+        let crossings = |g: &tmm::synthesis::FunctionGenerator| {
+            let e = g.structural_error(f64::log10, 500).unwrap();
+            e.windows(2)
+                .filter(|w| w[0].error * w[1].error < 0.0)
+                .count()
         };
-        assert!(resid(ls.coefficients, &ls) <= resid(exact.coefficients, &ls) * (1.0 + 1e-12));
+        let (ce, cl) = (crossings(&exact), crossings(&ls));
+        assert!(ce == 3 && cl >= 3, "{ce} {cl}");
     }
 
     #[test]
