@@ -15,12 +15,10 @@
 //! Stephenson III six-bar to a design that meets them.
 
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion, Throughput};
-use nalgebra::Point2;
 use std::f64::consts::{FRAC_PI_2, FRAC_PI_6};
 use std::hint::black_box;
 use std::time::Duration;
-use tmm::kinematics::batch::{coupler_point, four_bar_positions, CrankAngles, Positions};
-use tmm::kinematics::{crank, rrr_dyad, Branch, Motion, PointMotion};
+use tmm::kinematics::batch::{four_bar_positions, CrankAngles, Positions};
 use tmm::synthesis::{
     burmester, burmester_points, centre_point_curve, crank_rocker, function_generator,
     path_generator, shaper, six_bar_path_generator, slider_crank, CrankRockerRequirement,
@@ -221,45 +219,9 @@ fn path_search(c: &mut Criterion) {
     );
 }
 
-/// Eight points of a known Stephenson III six-bar (the doc example of
-/// `six_bar_path_generator`) at crank angles 0.3 rad apart: a precision-point synthesis.
-fn six_bar_points() -> PathRequirement {
-    let fixed = |x, y| PointMotion::fixed(Point2::new(x, y));
-    let delta: Vec<f64> = (0..8).map(|k| 0.3 * k as f64).collect();
-    let points = delta
-        .iter()
-        .map(|d| {
-            let a = crank(Point2::origin(), 0.1, Motion::fixed(0.3 + d))
-                .unwrap()
-                .a;
-            let b = rrr_dyad(a, fixed(0.35, 0.0), 0.3, 0.25, Branch::Plus)
-                .unwrap()
-                .b
-                .p;
-            let c = coupler_point(a.p, b, [0.5, 0.4]);
-            let e = rrr_dyad(
-                PointMotion::fixed(c),
-                fixed(0.3, 0.35),
-                0.25,
-                0.2,
-                Branch::Minus,
-            )
-            .unwrap()
-            .b
-            .p;
-            let p = coupler_point(c, e, [0.6, -0.3]);
-            [p.x, p.y]
-        })
-        .collect();
-    PathRequirement {
-        points,
-        timing: Timing::Prescribed(delta),
-    }
-}
-
 /// One whole six-bar search, from the eight points to a design that meets them.
 fn six_bar_search(c: &mut Criterion) {
-    let req = six_bar_points();
+    let req = PathRequirement::six_bar_example().unwrap();
     let opts = PathOptions::default()
         .with_designs(1)
         .with_min_transmission_angle(0.3);

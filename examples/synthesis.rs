@@ -11,13 +11,11 @@
 //! cargo run --release --example synthesis
 //! ```
 
-use nalgebra::Point2;
 use std::f64::consts::{FRAC_PI_2, PI, TAU};
 use std::fs;
 use std::path::Path;
 use tmm::draw::{structural_error, synthesis_scheme, Style, Targets};
-use tmm::kinematics::batch::coupler_point;
-use tmm::kinematics::{self as kin, rrr_dyad, Branch, Motion, PointMotion, Rotation};
+use tmm::kinematics::{Motion, Rotation};
 use tmm::linkage::{Output, Plan};
 use tmm::synthesis::{
     burmester, burmester_curves, burmester_points, centre_point, centre_point_curve, crank_rocker,
@@ -345,29 +343,8 @@ fn run_example() -> tmm::Result<()> {
     println!("== path generation: a Stephenson III six-bar through 8 points, timed ==");
     // The points: the tracer of a known six-bar (a crank, an RRR dyad, C on its coupler,
     // a second RRR dyad from C, P on its link CE) at crank angles 0.3 rad apart.
-    let delta: Vec<f64> = (0..8).map(|k| 0.3 * k as f64).collect();
-    let fixed = |x, y| PointMotion::fixed(Point2::new(x, y));
-    let mut traced = Vec::new();
-    for d in &delta {
-        let a = kin::crank(Point2::origin(), 0.1, Motion::fixed(0.3 + d))?.a;
-        let b = rrr_dyad(a, fixed(0.35, 0.0), 0.3, 0.25, Branch::Plus)?.b.p;
-        let c = coupler_point(a.p, b, [0.5, 0.4]);
-        let e = rrr_dyad(
-            PointMotion::fixed(c),
-            fixed(0.3, 0.35),
-            0.25,
-            0.2,
-            Branch::Minus,
-        )?
-        .b
-        .p;
-        let p = coupler_point(c, e, [0.6, -0.3]);
-        traced.push([p.x, p.y]);
-    }
-    let req = PathRequirement {
-        points: traced.clone(),
-        timing: Timing::Prescribed(delta),
-    };
+    let req = PathRequirement::six_bar_example()?;
+    let traced = req.points.clone();
     let opts = PathOptions::default()
         .with_designs(1)
         .with_min_transmission_angle(0.3);

@@ -55,7 +55,8 @@ pub enum Kind {
     },
     /// A four-bar function generator (Freudenstein) for y = f(x).
     Function(FunctionRequest),
-    /// A four-bar whose coupler point passes through target points (a seeded search).
+    /// A four-bar (or a six-bar) whose point P passes through target points (a seeded
+    /// search).
     Path(PathRequest),
 }
 
@@ -80,6 +81,8 @@ pub struct FunctionRequest {
 /// A path-generation requirement and the search's bounds.
 #[derive(Debug, Clone, PartialEq)]
 pub struct PathRequest {
+    /// The mechanism searched.
+    pub mechanism: PathMechanism,
     /// The target points, m.
     pub points: Vec<[f64; 2]>,
     /// The crank's angles at the points.
@@ -92,6 +95,16 @@ pub struct PathRequest {
     pub time: f64,
     /// How many distinct designs to look for.
     pub designs: usize,
+}
+
+/// The mechanisms of path generation.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum PathMechanism {
+    /// A four-bar, P on its coupler.
+    FourBar,
+    /// A Stephenson III six-bar (a four-bar and a dyad hung from its coupler), P on the
+    /// dyad's link CE; prescribed timing only.
+    SixBar,
 }
 
 /// How the crank's angles at the target points are given.

@@ -5,7 +5,7 @@ use std::path::{Path, PathBuf};
 
 use clap::{Args, Subcommand};
 
-use crate::design::{Function, FunctionRequest, Kind, PathRequest, Request, Timing};
+use crate::design::{Function, FunctionRequest, Kind, PathMechanism, PathRequest, Request, Timing};
 use crate::model::Failure;
 use crate::{clear_progress, engine, print, progress, report, write_file, Fail};
 
@@ -17,6 +17,7 @@ Examples:
   tmm synth through --frame 0.4 --at 40,101.4 100,112.8 160,131.8 --min-transmission 0 -o through.json
   tmm synth function --function log10 --x 1,2 --crank -30,30 --rocker 0,90 --frame 0.1 -o log.json
   tmm synth path points.csv --seed 7 --budget 20000 -o path.json
+  tmm synth six-bar timed.csv --min-transmission 17 -o six-bar.json
   tmm check crank-rocker.json                    the engine's check of a design
 
 Each kind writes the synthesised description (JSON, -o FILE) and prints its report: the
@@ -209,33 +210,99 @@ sample a closed curve, traced once per turn); at most 500 points. The search sto
 --time seconds, whichever comes first; the same --seed gives the same design (unless the
 time bound cuts the search). Progress shows on a terminal, nothing when piped.")]
     Path {
-        /// The target points (CSV or JSON, m).
-        points: PathBuf,
         /// The points sample a closed curve: the crank turns fully and P runs around it once.
         #[arg(long)]
         closed: bool,
-        /// The search's seed (a fixed one without it: the same run gives the same design).
-        #[arg(long, value_name = "S")]
-        seed: Option<u64>,
-        /// Candidate evaluations of the global search.
-        #[arg(long, value_name = "N", default_value_t = 200_000,
-              value_parser = clap::value_parser!(u64).range(1..=100_000_000))]
-        budget: u64,
-        /// Wall-clock bound of the global search, s.
-        #[arg(
-            long,
-            value_name = "SECONDS",
-            default_value_t = 60.0,
-            allow_negative_numbers = true
-        )]
-        time: f64,
-        /// Distinct designs to look for (the best is written, the others reported).
-        #[arg(long, value_name = "K", default_value_t = 3,
-              value_parser = clap::value_parser!(u64).range(1..=20))]
-        designs: u64,
+        #[command(flatten)]
+        search: Search,
         #[command(flatten)]
         common: Common,
     },
+
+    /// A Stephenson III six-bar whose point P passes through target points at given crank
+    /// angles (prescribed timing), by a seeded global search (differential evolution, then
+    /// local polishes).
+    #[command(after_help = "\
+Examples:
+  tmm synth six-bar timed.csv --min-transmission 17 -o six-bar.json
+  tmm analyse six-bar.json --positions 72 --format csv > path.csv   x(P), y(P): P's path
+
+The six-bar: a four-bar O1–A–B–O3 (the crank O1A driven), a hinge C on its coupler AB, a dyad
+C–E–O5 to a third frame pivot O5, and P on the dyad's link CE: a crank and two RRR dyads,
+which the engine analyses in closed form. The points file as for `tmm synth path`, with the
+crank's turn from the first point in degrees (a third CSV column, or \"crank\" in JSON) and
+at least 8 points: 15 dimensions and the crank's angle at the first point are unknown, two
+equations a point. Both dyads keep the transmission angle at or above --min-transmission over
+the crank's range between the points. The report lists the crank angles found at the points.")]
+    SixBar {
+        #[command(flatten)]
+        search: Search,
+        #[command(flatten)]
+        common: Common,
+    },
+}
+
+/// The options of the path searches.
+#[derive(Args)]
+pub struct Search {
+    /// The target points (CSV or JSON, m).
+    points: PathBuf,
+    /// The search's seed (a fixed one without it: the same run gives the same design).
+    #[arg(long, value_name = "S")]
+    seed: Option<u64>,
+    /// Candidate evaluations of the global search.
+    #[arg(long, value_name = "N", default_value_t = 200_000,
+          value_parser = clap::value_parser!(u64).range(1..=100_000_000))]
+    budget: u64,
+    /// Wall-clock bound of the global search, s.
+    #[arg(
+        long,
+        value_name = "SECONDS",
+        default_value_t = 60.0,
+        allow_negative_numbers = true
+    )]
+    time: f64,
+    /// Distinct designs to look for (the best is written, the others reported).
+    #[arg(long, value_name = "K", default_value_t = 3,
+          value_parser = clap::value_parser!(u64).range(1..=20))]
+    designs: u64,
+}
+
+impl Search {
+    /// The path request of `mechanism` with the points file read (named in a failure).
+    fn request(
+        self,
+        mechanism: PathMechanism,
+        closed: bool,
+    ) -> Result<(String, PathRequest), Fail> {
+        let label = self.points.display().to_string();
+        let (targets, crank) = read_points(&self.points).map_err(|f| Fail::on(&label, f))?;
+        let timing = match (closed, crank) {
+            (true, Some(_)) => {
+                return Err(Fail::on(
+                    &label,
+                    Failure::new(
+                        "the points file gives crank angles, and --closed asks for a \
+                         closed curve whose crank angles the search chooses",
+                    )
+                    .hint("drop --closed or the third column"),
+                ));
+            }
+            (true, None) => Timing::Closed,
+            (false, Some(c)) => Timing::Prescribed(c),
+            (false, None) => Timing::Free,
+        };
+        let request = PathRequest {
+            mechanism,
+            points: targets,
+            timing,
+            seed: self.seed,
+            budget: self.budget as usize,
+            time: self.time,
+            designs: self.designs as usize,
+        };
+        Ok((label, request))
+    }
 }
 
 /// Runs one kind of synthesis.
@@ -350,43 +417,16 @@ fn request_of(kind: SynthKind) -> Result<(String, Request, Common), Fail> {
             common,
         ),
         SynthKind::Path {
-            points,
             closed,
-            seed,
-            budget,
-            time,
-            designs,
+            search,
             common,
         } => {
-            let label = points.display().to_string();
-            let (targets, crank) = read_points(&points).map_err(|f| Fail::on(&label, f))?;
-            let timing = match (closed, crank) {
-                (true, Some(_)) => {
-                    return Err(Fail::on(
-                        &label,
-                        Failure::new(
-                            "the points file gives crank angles, and --closed asks for a \
-                             closed curve whose crank angles the search chooses",
-                        )
-                        .hint("drop --closed or the third column"),
-                    ));
-                }
-                (true, None) => Timing::Closed,
-                (false, Some(c)) => Timing::Prescribed(c),
-                (false, None) => Timing::Free,
-            };
-            (
-                label,
-                Kind::Path(PathRequest {
-                    points: targets,
-                    timing,
-                    seed,
-                    budget: budget as usize,
-                    time,
-                    designs: designs as usize,
-                }),
-                common,
-            )
+            let (label, request) = search.request(PathMechanism::FourBar, closed)?;
+            (label, Kind::Path(request), common)
+        }
+        SynthKind::SixBar { search, common } => {
+            let (label, request) = search.request(PathMechanism::SixBar, false)?;
+            (label, Kind::Path(request), common)
         }
     };
     let request = Request {

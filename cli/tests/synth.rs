@@ -427,6 +427,82 @@ fn prescribed_timing_is_kept_and_json_points_read() {
     }
 }
 
+#[test]
+fn a_six_bar_passes_its_point_p_through_the_targets_at_their_crank_angles() {
+    // The eight points of the library's example six-bar, 0.3 rad of crank apart.
+    let req = tmm::synthesis::PathRequirement::six_bar_example().unwrap();
+    let tmm::synthesis::Timing::Prescribed(delta) = &req.timing else {
+        panic!("the example is timed")
+    };
+    let mut csv = String::from("x,y,crank\n");
+    for (p, d) in req.points.iter().zip(delta) {
+        csv.push_str(&format!(
+            "{:.15},{:.15},{:.15}\n",
+            p[0],
+            p[1],
+            d.to_degrees()
+        ));
+    }
+    let points = Broken::with_extension("six-bar-points", "csv", &csv);
+    let (report, file) = synth(
+        "six-bar",
+        &[
+            "six-bar",
+            &points.path(),
+            "--min-transmission",
+            "17",
+            "--designs",
+            "1",
+            "--time",
+            "100000",
+        ],
+    );
+    assert!(
+        report.stdout.contains("Stephenson III"),
+        "{}",
+        report.stdout
+    );
+    let angles: Vec<String> = report
+        .stdout
+        .lines()
+        .filter_map(|l| l.trim().strip_prefix("φ = "))
+        .map(|l| l.split('°').next().unwrap().to_owned())
+        .collect();
+    assert_eq!(angles.len(), 8, "{}", report.stdout);
+    // The timing kept: the crank turns 0.3 rad from each point to the next.
+    let first: f64 = angles[0].parse().unwrap();
+    for (k, a) in angles.iter().enumerate() {
+        let turned = (a.parse::<f64>().unwrap() - first).rem_euclid(360.0);
+        assert!(
+            (turned - delta[k].to_degrees()).abs() < 2e-6,
+            "point {k}: the crank turned {turned}°"
+        );
+    }
+    // The description written, analysed by the engine at those angles: P on the targets.
+    let mut args = vec!["--at"];
+    args.extend(angles.iter().map(String::as_str));
+    let (header, rows) = analyse(&file.path(), &args);
+    let (x, y) = (column(&header, "x(P) [m]"), column(&header, "y(P) [m]"));
+    assert_eq!(rows.len(), 8);
+    for (k, (row, want)) in rows.iter().zip(&req.points).enumerate() {
+        let miss = (row[x] - want[0]).hypot(row[y] - want[1]);
+        // The angles are printed to 1e-6°: P moves less than 1 m/rad, so 2e-8 m.
+        assert!(miss < 1e-7, "target {k}: the engine's P misses by {miss} m");
+    }
+    // Without crank angles there is no six-bar synthesis: one line naming the timing.
+    let untimed: String = req
+        .points
+        .iter()
+        .map(|p| format!("{},{}\n", p[0], p[1]))
+        .collect();
+    let untimed = Broken::with_extension("six-bar-untimed", "csv", &untimed);
+    assert_refused(&["six-bar", &untimed.path()], &["timing", "crank angles"]);
+    // Seven timed points are fewer than the unknowns: named, with the count needed.
+    let seven: String = csv.lines().take(8).map(|l| format!("{l}\n")).collect();
+    let seven = Broken::with_extension("six-bar-seven", "csv", &seven);
+    assert_refused(&["six-bar", &seven.path()], &["points", "at least 8"]);
+}
+
 /// A failure of `tmm synth`: exit code 1, one line on stderr that names `words`, and no
 /// description on stdout or in the file.
 fn assert_refused(args: &[&str], words: &[&str]) {

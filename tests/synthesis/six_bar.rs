@@ -229,3 +229,36 @@ fn the_six_bar_search_keeps_its_budget() {
     });
     assert_eq!(gens, 1);
 }
+
+/// The example requirement is the tracer of the six-bar its documentation names (made here
+/// with the engine's public blocks), at crank angles 0.3 rad apart from 0.3 rad, and that
+/// six-bar keeps γ above the 0.3 rad its worked example asks for over the points' span.
+#[test]
+fn the_six_bar_example_is_the_six_bar_it_names() {
+    let req = PathRequirement::six_bar_example().unwrap();
+    let Timing::Prescribed(delta) = &req.timing else {
+        panic!("the example's timing is prescribed")
+    };
+    assert_eq!((delta.len(), req.points.len()), (8, 8));
+    let at = |phi| {
+        tracer(
+            Point2::origin(),
+            Point2::new(0.35, 0.0),
+            Point2::new(0.3, 0.35),
+            [0.1, 0.3, 0.25, 0.25, 0.2],
+            [[0.5, 0.4], [0.6, -0.3]],
+            [Branch::Plus, Branch::Minus],
+            phi,
+        )
+        .unwrap()
+    };
+    for (k, (d, t)) in delta.iter().zip(&req.points).enumerate() {
+        assert!((d - 0.3 * k as f64).abs() < 1e-15);
+        let p = at(0.3 + d).0;
+        assert!((p.x - t[0]).hypot(p.y - t[1]) < 1e-15, "point {k}");
+    }
+    let lowest = (0..=210)
+        .map(|k| at(0.3 + 0.01 * k as f64).1)
+        .fold(f64::INFINITY, f64::min);
+    assert!(lowest > 0.3f64.sin(), "{lowest}");
+}

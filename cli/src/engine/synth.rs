@@ -9,16 +9,16 @@ use std::time::Duration;
 use tmm::kinematics::Motion;
 use tmm::linkage::Output;
 use tmm::synthesis::{
-    crank_rocker, crank_rocker_through, function_generator, path_generator, shaper, slider_crank,
-    CrankRockerRequirement, FrameChoice, FunctionRequirement, OffsetChoice, Options, PathOptions,
-    PathRequirement, ShaperRequirement, SliderCrankRequirement, Spacing, Synthesis,
-    Timing as PathTiming,
+    crank_rocker, crank_rocker_through, function_generator, path_generator, shaper,
+    six_bar_path_generator, slider_crank, CrankRockerRequirement, FrameChoice, FunctionRequirement,
+    OffsetChoice, Options, PathOptions, PathRequirement, ShaperRequirement, SliderCrankRequirement,
+    Spacing, Synthesis, Timing as PathTiming,
 };
 
 use super::{failure, grashof_text, load, Machine};
 use crate::design::{
-    DesignReport, Designed, Dimension, FunctionRequest, Kind, MissRow, Misses, PathRequest,
-    Request, Timing,
+    DesignReport, Designed, Dimension, FunctionRequest, Kind, MissRow, Misses, PathMechanism,
+    PathRequest, Request, Timing,
 };
 use crate::model::Failure;
 
@@ -143,6 +143,20 @@ fn flags_of(kind: &Kind) -> Vec<(&'static str, &'static str)> {
             ("frame", "--frame"),
             ("N", "--least-squares"),
             ("f(x", "--function and --x"),
+        ],
+        Kind::Path(PathRequest {
+            mechanism: PathMechanism::SixBar,
+            ..
+        }) => &[
+            (
+                "points",
+                "the points file (at least 8 points, with crank angles)",
+            ),
+            (
+                "timing",
+                "the points file's crank angles (its third CSV column, or \"crank\" in JSON)",
+            ),
+            ("population", "--budget"),
         ],
         Kind::Path(_) => &[
             (
@@ -459,13 +473,17 @@ fn path(
     if let Some(seed) = p.seed {
         opts = opts.with_seed(seed);
     }
-    let designs = path_generator(&req, &opts, |pr| {
+    let report = |pr: &tmm::synthesis::Progress| {
         progress(&format!(
             "path search: generation {}, {} of {} evaluations, best mean miss {:.3e} path sizes",
             pr.generation, pr.evaluations, p.budget, pr.best
         ));
         true
-    })
+    };
+    let designs = match p.mechanism {
+        PathMechanism::FourBar => path_generator(&req, &opts, report),
+        PathMechanism::SixBar => six_bar_path_generator(&req, &opts, report),
+    }
     .map_err(|e| {
         let failure = f(e);
         // The search ran out of its budget without a design that meets the constraints.
