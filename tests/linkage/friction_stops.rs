@@ -447,12 +447,70 @@ fn a_five_bar_with_large_pins_runs_with_the_energy_balance_of_its_friction_and_t
          det(I - J) = {value:.3e}",
         j.trajectory.len()
     );
-    assert!(
-        tj > 0.285 && tj < 0.3 && tj > last && tj <= last + h,
-        "{tj} vs {last}"
-    );
+    // Located: the last state is the end of the longest step that carries, within the
+    // run's time tolerance (10⁻¹² of 0.3 s) of the shortest that jams.
+    assert!(tj > 0.285 && tj < 0.3 && tj > last, "{tj} vs {last}");
+    assert!(tj - last <= 1e-12 * 0.3 + 1e-16, "{tj} vs {last}");
     assert!(value <= 1.5e-8, "{value:e}");
     assert_eq!(j.trajectory.t().last(), Some(&last));
+    // Independently: plain RK4 steps of 10⁻⁶ s (no location) from the run's row 5 ms
+    // before the jam, until a step (a stage or its end's q̈) fails: the jam lies inside
+    // that step. The located time must fall into it (the two trajectories differ by
+    // RK4's error at 10⁻⁴ s over 5 ms, far below 10⁻⁶ s in time).
+    let rows = j.trajectory.len();
+    let k = (0..rows)
+        .rev()
+        .find(|&i| j.trajectory.t()[i] <= tj - 5e-3)
+        .unwrap();
+    let (jq, jqd) = (j.trajectory.q(), j.trajectory.qd());
+    let mut s = State::new(
+        j.trajectory.t()[k],
+        Vector2::new(jq[0][k], jq[1][k]),
+        Vector2::new(jqd[0][k], jqd[1][k]),
+    );
+    let fine = 1e-6;
+    let bracket = loop {
+        use tmm::dynamics::Stepper;
+        let carried = Rk4
+            .step(&sys, &s, fine)
+            .and_then(|s1| tmm::dynamics::accelerations(&sys, s1.t, &s1.q, &s1.qd).map(|_| s1));
+        match carried {
+            Ok(s1) => s = s1,
+            Err(e) => {
+                // The jam, or the q̈ iteration failing just before it where the friction's
+                // feedback reaches the inertia: the run locates the first failure.
+                assert!(e.to_string().contains("self-lock"), "{e}");
+                break (s.t, s.t + fine);
+            }
+        }
+        assert!(s.t < 0.3, "the fine steps do not jam");
+    };
+    println!(
+        "located jam {tj:.9} s; fine RK4 steps jam inside [{:.9}, {:.9}] s",
+        bracket.0, bracket.1
+    );
+    assert!(
+        tj >= bracket.0 - 1e-9 && tj <= bracket.1 + 1e-9,
+        "{tj} vs {bracket:?}"
+    );
+    // Dopri5 at 10⁻¹⁰ locates the same jam, on its own trajectory: the two differ by RK4's
+    // error at 10⁻⁴ s where the couplers fold fast (1.4·10⁻⁷ s in the jam's time).
+    let d = run(
+        &sys,
+        &Dopri5::new(1e-10).unwrap(),
+        State::at_rest(q0),
+        &opts,
+    )
+    .unwrap();
+    let Outcome::Jammed {
+        t: td, joint: jd, ..
+    } = d.outcome
+    else {
+        panic!("Dopri5: {:?}", d.outcome)
+    };
+    println!("Dopri5 locates the jam at {td:.9} s (RK4 {tj:.9} s)");
+    assert_eq!(jd, joint);
+    assert!((td - tj).abs() <= 1e-6, "{td} vs {tj}");
     // (The run above ends on 0.285 s exactly: its last step is cut to reach it.)
     let n = tr.len() - 1;
     let same = |a: &[f64], b: &[f64]| a[..n] == b[..n];

@@ -20,6 +20,8 @@ mod general;
 #[cfg(feature = "serde")]
 mod hostile;
 #[cfg(feature = "serde")]
+mod hostile_friction;
+#[cfg(feature = "serde")]
 mod instant_centres;
 mod planning;
 mod singular;

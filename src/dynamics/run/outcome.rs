@@ -54,12 +54,13 @@ pub enum Outcome {
         /// The loads along it there.
         loads: SwitchLoads,
     },
-    /// The motion jams ([`Error::Jammed`](crate::Error::Jammed)): at time `t`, an
-    /// evaluation within the step after the run's last state, a joint with friction
-    /// self-locks under the motion's loads and no finite reactions carry it on. The rows up
-    /// to the last state are kept.
+    /// The motion jams ([`Error::Jammed`](crate::Error::Jammed)): at time `t` a joint with
+    /// friction self-locks under the motion's loads and no finite reactions carry it on. The
+    /// rows up to the last state (located just before `t`) are kept.
     Jammed {
-        /// The time of the evaluation that found it, s.
+        /// Its time, s: the end of the shortest step of the method from the last accepted
+        /// state that jams, located by bisection to the run's time tolerance (10⁻¹² of the
+        /// final time); the run's last state is the end of the longest that carries.
         t: f64,
         /// The joint that self-locks, by its index in the system's description (a
         /// linkage's [`Plan::joint_names`](crate::linkage::Plan::joint_names)).

@@ -17,6 +17,9 @@ use crate::dynamics::system::{accelerations, LagrangeSystem, State};
 use crate::dynamics::trajectory::Trajectory;
 use crate::error::Result;
 
+/// A jam: its time, the joint that self-locks and det(I − J) there.
+type Jam = (f64, usize, f64);
+
 /// A run under way: what it was given, its schedule and stop conditions, what it carries
 /// from step to step, and what it has recorded.
 pub(super) struct Runner<'a, S: ?Sized, M> {
@@ -160,14 +163,84 @@ impl<'a, S: LagrangeSystem + ?Sized, M: Stepper> Runner<'a, S, M> {
     }
 
     /// The run's result when `e` is a jam ([`Outcome::Jammed`]): the motion ends at the
-    /// last accepted state; any other error as it is.
+    /// located jam ([`locate_jam`](Self::locate_jam)), or at the last accepted state when it
+    /// is not found inside the step; any other error as it is.
     fn jammed(&mut self, e: crate::Error) -> Result<RunResult> {
-        let Some((t, joint, value)) = e.jam() else {
+        let Some(jam) = e.jam() else {
             return Err(e);
         };
         let s = self.progress.s;
-        let recorded = self.traj.t().last() == Some(&s.t);
-        self.result(s, recorded, Outcome::Jammed { t, joint, value })
+        let ((t, joint, value), last) = match self.locate_jam(&s, jam) {
+            Some((jam, last)) => (jam, Some(last)),
+            None => (jam, None),
+        };
+        let outcome = Outcome::Jammed { t, joint, value };
+        match last {
+            Some(last) if last.t > s.t => self.result(last, false, outcome),
+            _ => {
+                let recorded = self.traj.t().last() == Some(&s.t);
+                self.result(s, recorded, outcome)
+            }
+        }
+    }
+
+    /// The jam `jam` (its time, joint, measure) found in the step from `s`, located: the
+    /// shortest step of the method from `s` that fails (in a stage, or in the accelerations
+    /// of its end) found by bisection on the step's length, between a length that carries
+    /// (0) and one that jams (the evaluation's time less `s.t`, else the step tried, doubled
+    /// up to four times), to the run's time tolerance. A step that fails otherwise on the
+    /// way counts as failing: next to a jam the motion's own equation loses its solution
+    /// too (the friction's feedback reaching the inertia spends the q̈ iteration's budget).
+    /// Returns the jam at the end time of the shortest length that fails (the joint and
+    /// measure of the nearest length that jams), and the state at the end of the longest
+    /// that carries; `None` when no length that jams is found (the first jam stands).
+    fn locate_jam(&mut self, s: &State, jam: Jam) -> Option<(Jam, State)> {
+        let (sys, method) = (self.sys, self.method);
+        let per_step = method.evaluations_per_step() + 1;
+        let spent = &mut self.progress.evaluations;
+        // A step of length h from s: its end state when it carries, else the jam it meets
+        // (none for another failure).
+        let mut try_step = |h: f64| -> std::result::Result<State, Option<(usize, f64)>> {
+            *spent += per_step;
+            let e = match method.step(sys, s, h) {
+                Ok(s1) => match accelerations(sys, s1.t, &s1.q, &s1.qd) {
+                    Ok(_) => return Ok(s1),
+                    Err(e) => e,
+                },
+                Err(e) => e,
+            };
+            Err(e.jam().map(|(_, joint, value)| (joint, value)))
+        };
+        let mut hi = if jam.0 > s.t {
+            jam.0 - s.t
+        } else {
+            self.progress.h
+        };
+        let mut hi_jam = None;
+        for _ in 0..5 {
+            if !(hi > 0.0 && hi.is_finite()) {
+                return None;
+            }
+            if let Err(Some(j)) = try_step(hi) {
+                hi_jam = Some(j);
+                break;
+            }
+            hi *= 2.0;
+        }
+        let mut hi_jam = hi_jam?;
+        let (mut lo, mut lo_state) = (0.0, *s);
+        // Each halving costs one step: some forty from a step of 10⁻⁴ s to 10⁻¹² of the run.
+        while hi - lo > self.sched.t_tol && lo < 0.5 * (lo + hi) && 0.5 * (lo + hi) < hi {
+            let mid = 0.5 * (lo + hi);
+            match try_step(mid) {
+                Ok(s1) => (lo, lo_state) = (mid, s1),
+                Err(j) => {
+                    hi = mid;
+                    hi_jam = j.unwrap_or(hi_jam);
+                }
+            }
+        }
+        Some(((s.t + hi, hi_jam.0, hi_jam.1), lo_state))
     }
 
     /// The next step (or the lean steps and the step that reaches the end), and the result

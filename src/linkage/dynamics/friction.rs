@@ -45,7 +45,8 @@
 //! case of Coulomb friction: no finite reactions carry it on): the evaluation is an
 //! [`Error::Jammed`] with the time, the joint that self-locks and its det(I − J), within the
 //! state, and a run ends there with the rows up to its last state
-//! ([`Outcome::Jammed`](crate::dynamics::Outcome::Jammed)).
+//! ([`Outcome::Jammed`](crate::dynamics::Outcome::Jammed)), the jam located by bisection on
+//! the length of the step that met it (the shortest that jams, to the run's time tolerance).
 //!
 //! At rest (every ṙ_j = 0) there is no friction (the convention of
 //! [`kinetostatics::friction`](crate::kinetostatics::friction)); whether the machine stays
