@@ -200,6 +200,25 @@ pub enum Error {
         value: f64,
     },
 
+    /// A described machine's state at (or within
+    /// [`DEAD_CENTRE_DETERMINANT`](crate::linkage::DEAD_CENTRE_DETERMINANT) of) a dead centre
+    /// of one of its RRR or RRP dyads, where its inputs no longer describe the motion. A run
+    /// ends there with [`Outcome::DeadCentre`](crate::dynamics::Outcome::DeadCentre).
+    #[error(
+        "{group} is at a dead centre, where the inputs do not describe the motion: its \
+         determinant is {} (at most 1e-3 at a dead centre)",
+        sig(*.value)
+    )]
+    DeadCentre {
+        /// The dyad, by its index among the plan's groups
+        /// ([`Plan::groups`](crate::linkage::Plan::groups)).
+        index: usize,
+        /// Its name.
+        group: String,
+        /// Its determinant there.
+        value: f64,
+    },
+
     /// An error inside one named part of a larger analysis (for example one group of a
     /// mechanism at one position).
     #[error("{part}: {source}")]
@@ -221,6 +240,28 @@ impl Error {
             } => Some((*time, *index, *value)),
             Self::In { source, .. } => source.jam(),
             _ => None,
+        }
+    }
+}
+
+impl Error {
+    /// The dead centre this error is or holds within named parts ([`Error::DeadCentre`]):
+    /// the dyad's index and its determinant.
+    pub(crate) fn dead_centre(&self) -> Option<(usize, f64)> {
+        match self {
+            Self::DeadCentre { index, value, .. } => Some((*index, *value)),
+            Self::In { source, .. } => source.dead_centre(),
+            _ => None,
+        }
+    }
+
+    /// Whether this error is, or holds within named parts, a position that cannot be
+    /// assembled ([`Error::NotAssemblable`]).
+    pub(crate) fn not_assemblable(&self) -> bool {
+        match self {
+            Self::NotAssemblable { .. } => true,
+            Self::In { source, .. } => source.not_assemblable(),
+            _ => false,
         }
     }
 }

@@ -218,6 +218,19 @@ const FAC_MAX: f64 = 10.0;
 /// step, err = 0, would otherwise make the next proposal zero).
 const ERR_FLOOR: f64 = 1e-4;
 
+/// The size a coordinate's relative tolerance is taken of, for a coordinate of magnitude
+/// `size` (the larger at the step's two ends): `size`, but no more than one turn, 2π.
+///
+/// Relative to |q| itself, the tolerance on a crank that runs away would grow with the turns
+/// it has made (10⁻⁸ of 10⁶ rad is 10⁻² rad a step): the motion within a turn, which the
+/// machine's forces follow, would go unresolved. Capped, the control is the same for q and
+/// q + 2πk beyond one turn (`tests/dynamics/runaway.rs`: the same steps from 7 rad and from
+/// 10⁶ rad), and every coordinate within ±2π is weighed as it was.
+#[inline]
+fn coordinate_size(size: f64) -> f64 {
+    size.min(std::f64::consts::TAU)
+}
+
 /// The factor h′/h after an accepted step with error norm `err` (in [0, 1]), given the error
 /// norm of the previous accepted step when there is one (see [`Dopri5`]'s docs).
 #[inline]
@@ -262,8 +275,10 @@ fn rejected_factor(h: f64, err: f64, before: Option<(f64, f64)>) -> f64 {
 /// for an accuracy instead of a step size.
 ///
 /// Each step is accepted when the weighted RMS norm of the local error estimate,
-/// err = √(mean((eᵢ / (atol + rtol·max(|yᵢ|, |ŷᵢ|)))²)) over y = (q, q̇), is at most 1. The
-/// solution carried on is the fifth-order one. The global error is usually of the order of the
+/// err = √(mean((eᵢ / (atol + rtol·max(|yᵢ|, |ŷᵢ|)))²)) over y = (q, q̇), is at most 1,
+/// where a coordinate's size max(|qᵢ|, |q̂ᵢ|) counts no more than one turn, 2π (the
+/// accuracy of a machine's motion does not loosen with the turns it has made; the speeds are
+/// weighed by their full size). The solution carried on is the fifth-order one. The global error is usually of the order of the
 /// tolerance (the tests check it against exact solutions).
 ///
 /// # Step-size control
@@ -386,12 +401,18 @@ impl Dopri5 {
     /// docs). A component whose scale is zero (atol = 0 and yᵢ = ŷᵢ = 0) counts only if its
     /// error is not zero: 0/0 would otherwise reject every step of a machine with a
     /// coordinate at rest.
+    ///
+    /// A coordinate's size is taken no larger than one turn, 2π ([`coordinate_size`]): a
+    /// machine's motion does not depend on how far it has turned, so neither may the
+    /// accuracy asked of it.
     #[inline]
     fn error_norm(&self, y: &Vector4<f64>, y5: &Vector4<f64>, err: &Vector4<f64>) -> f64 {
         let mut sum = 0.0;
         for i in 0..4 {
             if err[i] != 0.0 {
-                let sc = self.atol + self.rtol * y[i].abs().max(y5[i].abs());
+                let size = y[i].abs().max(y5[i].abs());
+                let size = if i < 2 { coordinate_size(size) } else { size };
+                let sc = self.atol + self.rtol * size;
                 sum += (err[i] / sc).powi(2);
             }
         }

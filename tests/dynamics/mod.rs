@@ -9,6 +9,7 @@ mod kinks;
 mod reversals;
 #[cfg(feature = "serde")] // it reads a bundled linkage
 mod run_up_ends;
+mod runaway;
 pub(crate) mod scenarios;
 mod stability;
 #[cfg(feature = "serde")] // it reads a bundled linkage

@@ -6,7 +6,7 @@ use std::f64::consts::{PI, TAU};
 
 use nalgebra::{Matrix2, Point2, Vector2};
 use tmm::dynamics::machines::{FiveBar, LinearMotor};
-use tmm::dynamics::{run, LagrangeSystem, Rk4, RunOptions, State, Trajectory};
+use tmm::dynamics::{run, LagrangeSystem, Outcome, Rk4, RunOptions, State, Trajectory};
 use tmm::kinematics::Motion;
 use tmm::linkage::dynamics::{Damper, LinkageSystem, Motor, RunUpOptions};
 use tmm::linkage::{bundled, At, Inputs, Linkage, LoadSpec, Mass, Plan};
@@ -1157,10 +1157,12 @@ fn motors_and_added_inertia_by_input_index() {
 /// runs from rest into a dead centre of its coupler dyad, where its two inputs no longer
 /// describe the motion (the reduced inertia grows as 1/det²). A fixed-step run used to step
 /// across it and return Ok with the kinetic energy 10⁸ times the work done; the run must
-/// stop there with the dyad's determinant named, and every state it passed before must
+/// stop there ([`Outcome::DeadCentre`]), naming the dyad and its determinant, with its
+/// rows kept; the stop is located to the integrator's accuracy (RK4 at h and h/4 and
+/// Dormand–Prince at 10⁻¹⁰ agree on its time), and every state it passed before must
 /// balance the energy (the kinetic energy gained equals the motor's work, to RK4's error).
 #[test]
-fn a_run_into_a_dead_centre_of_two_inputs_is_an_error_naming_the_dyad() {
+fn a_run_into_a_dead_centre_of_two_inputs_stops_there_naming_the_dyad() {
     let sys = LinkageSystem::from_linkage(&bundled::five_bar_robot())
         .unwrap()
         .with_motor(0, Motor::Linear(LinearMotor { a: 1.0, b: 0.0 }))
@@ -1168,17 +1170,49 @@ fn a_run_into_a_dead_centre_of_two_inputs_is_an_error_naming_the_dyad() {
     let reference = sys.plan().reference_inputs();
     let q0 = Vector2::new(reference[0], reference[1]);
     let h = 0.65 / 4000.0;
-    let err = run(&sys, &Rk4, State::at_rest(q0), &RunOptions::until(0.65, h)).unwrap_err();
-    let text = err.to_string();
-    assert!(text.contains("dead centre"), "{text}");
-    let mut inner = &err;
-    while let Error::In { source, .. } = inner {
-        inner = source;
-    }
-    assert!(
-        matches!(inner, Error::Singular { value, .. } if value.abs() <= 1e-3),
-        "{err:?}"
+    let stop = |r: &tmm::dynamics::RunResult| {
+        let Outcome::DeadCentre { t, dyad, value } = r.outcome else {
+            panic!("{:?}", r.outcome)
+        };
+        assert_eq!(r.last.t, t);
+        assert_eq!(r.trajectory.t().last(), Some(&t));
+        assert!(value.abs() <= 1e-3, "{value}");
+        // The located state is the last the system accepts: its dyad just outside the band.
+        let k = sys
+            .plan()
+            .kinematics([Motion::fixed(r.last.q[0]), Motion::fixed(r.last.q[1])])
+            .unwrap();
+        let det = k.group_determinants()[dyad];
+        assert!(det.abs() > 1e-3 && det.abs() < 1.001e-3, "{det}");
+        (t, dyad)
+    };
+    let coarse = run(&sys, &Rk4, State::at_rest(q0), &RunOptions::until(0.65, h)).unwrap();
+    let (t, dyad) = stop(&coarse);
+    let name = &sys.plan().groups()[dyad].name;
+    assert!(name.contains("coupler") || name.contains("RRR"), "{name}");
+    let fine = run(
+        &sys,
+        &Rk4,
+        State::at_rest(q0),
+        &RunOptions::until(0.65, h / 4.0),
+    )
+    .unwrap();
+    let dp = run(
+        &sys,
+        &tmm::dynamics::Dopri5::new(1e-10).unwrap(),
+        State::at_rest(q0),
+        &RunOptions::until(0.65, h),
+    )
+    .unwrap();
+    let (t_fine, t_dp) = (stop(&fine).0, stop(&dp).0);
+    println!(
+        "dead centre of {name} at t = {t} (RK4 h), {t_fine} (h/4), {t_dp} (Dormand-Prince \
+         1e-10): {:.1e}, {:.1e}",
+        t - t_dp,
+        t_fine - t_dp
     );
+    assert!((t - t_dp).abs() < 1e-6 && (t_fine - t_dp).abs() < 1e-8);
+    assert!(coarse.trajectory.len() > 3000);
     // Up to shortly before the dead centre, the energy balances: the kinetic energy gained
     // equals the work of the applied loads less the losses (trapezoids over the steps).
     let mut opts = RunOptions::until(0.5, h);
@@ -1196,4 +1230,145 @@ fn a_run_into_a_dead_centre_of_two_inputs_is_an_error_naming_the_dyad() {
         (gained - work).abs() <= 1e-6 * work.abs(),
         "kinetic energy {gained} against the work {work}"
     );
+}
+
+/// The bundled four-bar driven from its rocker (its resistance taken off; gravity and the
+/// coupler's load kept), thrown at 3 rad/s under a constant moment of 30 N·m towards the
+/// rocker's upper lock, where the crank and the coupler stretch into one line: the rocker
+/// slows to rest there (the reduced inertia grows as 1/det², det ∝ √(φ_L − φ)) in a finite
+/// time. The run stops where the dyad's |det| reaches 10⁻³ ([`Outcome::DeadCentre`]), rows
+/// kept. Independently of any integrator: the lock φ_L from the closed-form lock positions;
+/// the angle φ_s where |det| = 10⁻³ by bisection on the plan's kinematics; the time to reach
+/// it from the energy equation ½J(φ)ω² = ½J(φ₀)ω₀² + ∫(M + M_red)dφ, t = ∫dφ/ω, in
+/// u = √(φ_L − φ) (where dt/du is smooth) by Simpson's rule.
+#[test]
+fn a_rocker_driven_four_bar_stops_at_its_lock_when_the_energy_equation_says() {
+    let mut l = bundled::four_bar();
+    l.input = tmm::linkage::Input::crank("rocker");
+    l.groups.clear();
+    l.modes.clear();
+    l.loads
+        .retain(|x| !matches!(x, LoadSpec::Resistance { .. }));
+    let (m, w0) = (30.0, 3.0);
+    let sys = LinkageSystem::from_linkage(&l)
+        .unwrap()
+        .with_motor(0, Motor::Constant(m))
+        .unwrap();
+    let plan = sys.plan().clone();
+    let phi0 = plan.reference_input();
+    let (_, lock) = plan
+        .lock_positions(phi0)
+        .unwrap()
+        .expect("the rocker rocks");
+    assert!(lock > phi0);
+    let det = |phi: f64| {
+        plan.kinematics(Motion::fixed(phi))
+            .map(|k| k.group_determinants()[0].abs())
+            .unwrap_or(0.0)
+    };
+    // φ_s: |det| = 10⁻³ between the start and the lock, on the side that is accepted.
+    let (mut a, mut b) = (phi0, lock);
+    for _ in 0..200 {
+        let mid = 0.5 * (a + b);
+        if det(mid) > 1e-3 {
+            a = mid;
+        } else {
+            b = mid;
+        }
+    }
+    let phi_s = a;
+    // The energy equation in u = √(φ_L − φ): Simpson's rule for W at the even nodes, then
+    // for t over them.
+    let n: u32 = 4000;
+    let (u0, us) = ((lock - phi0).sqrt(), (lock - phi_s).sqrt());
+    let du = (us - u0) / f64::from(n);
+    let nodes: Vec<(f64, f64, f64)> = (0..=n)
+        .map(|i| {
+            let u = u0 + du * f64::from(i);
+            let r = sys.reduced(lock - u * u, 1.0).unwrap();
+            // dφ/du = −2u.
+            (u, r.inertia, (m + r.loads) * (-2.0 * u))
+        })
+        .collect();
+    let e0 = 0.5 * nodes[0].1 * w0 * w0;
+    let mut work = 0.0;
+    let mut dt_du = Vec::new();
+    for k in (0..nodes.len()).step_by(2) {
+        if k > 0 {
+            work += du / 3.0 * (nodes[k - 2].2 + 4.0 * nodes[k - 1].2 + nodes[k].2);
+        }
+        let (u, j, _) = nodes[k];
+        let energy = e0 + work;
+        assert!(energy > 0.0, "the rocker must reach its lock");
+        dt_du.push(-2.0 * u / (2.0 * energy / j).sqrt());
+    }
+    let t_s: f64 = (2..dt_du.len())
+        .step_by(2)
+        .map(|i| 2.0 * du / 3.0 * (dt_du[i - 2] + 4.0 * dt_du[i - 1] + dt_du[i]))
+        .sum();
+    let start = State::new(0.0, Vector2::new(phi0, 0.0), Vector2::new(w0, 0.0));
+    let cases: [(&str, tmm::dynamics::RunResult, f64); 4] = [
+        (
+            "Dormand-Prince 1e-10",
+            run(
+                &sys,
+                &tmm::dynamics::Dopri5::new(1e-10).unwrap(),
+                start,
+                &RunOptions::until(5.0, 1e-3),
+            )
+            .unwrap(),
+            1e-9,
+        ),
+        (
+            "RK4 1e-4",
+            run(&sys, &Rk4, start, &RunOptions::until(5.0, 1e-4)).unwrap(),
+            1e-5,
+        ),
+        (
+            "RK4 1e-5",
+            run(&sys, &Rk4, start, &RunOptions::until(5.0, 1e-5)).unwrap(),
+            1e-6,
+        ),
+        (
+            "finite increments 1e-5",
+            run(
+                &sys,
+                &tmm::dynamics::FiniteIncrement,
+                start,
+                &RunOptions::until(5.0, 1e-5),
+            )
+            .unwrap(),
+            1e-3,
+        ),
+    ];
+    for (name, r, _) in &cases {
+        println!(
+            "{name}: {:?} at {:?}, {} rows",
+            r.outcome,
+            r.last,
+            r.trajectory.len()
+        );
+    }
+    for (name, r, tol) in cases {
+        let Outcome::DeadCentre { t, dyad, value } = r.outcome else {
+            panic!("{name}: {:?}", r.outcome)
+        };
+        println!(
+            "{name}: stopped at t = {t} (energy {t_s}: {:.1e}), φ = {} (φ_s {phi_s}: {:.1e}, \
+             lock {lock}), |det| {value:e}, {} rows",
+            t - t_s,
+            r.last.q[0],
+            r.last.q[0] - phi_s,
+            r.trajectory.len()
+        );
+        assert_eq!(dyad, 0, "{name}");
+        assert!(value.abs() <= 1e-3, "{name}: {value}");
+        assert!((t - t_s).abs() <= tol, "{name}: t {t} vs {t_s}");
+        assert!(
+            (r.last.q[0] - phi_s).abs() <= tol,
+            "{name}: φ {}",
+            r.last.q[0]
+        );
+        assert!(r.trajectory.len() > 10, "{name}");
+    }
 }

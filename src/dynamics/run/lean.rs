@@ -31,6 +31,7 @@ pub(super) fn lean_steps<S: LagrangeSystem + ?Sized, M: Stepper>(
 ) -> Result<()> {
     let Progress {
         mut s,
+        mut prev,
         mut h,
         mut hand,
         mut steps,
@@ -38,27 +39,48 @@ pub(super) fn lean_steps<S: LagrangeSystem + ?Sized, M: Stepper>(
         mut until_record,
         mut row_handed,
     } = *progress;
-    loop {
+    // An error ends the loop with the last accepted state written back, for the run to end
+    // there (a jam, a dead centre) or to say where it failed.
+    macro_rules! or_break {
+        ($e:expr) => {
+            match $e {
+                Ok(v) => v,
+                Err(e) => break Err(e),
+            }
+        };
+    }
+    let result = loop {
         let remaining = opts.t_end - s.t;
         // The end, or the step clamped onto it: the full loop's.
         if remaining <= t_tol || h >= remaining {
-            break;
+            break Ok(());
         }
-        budgets(opts, steps, evaluations, s.t)?;
-        let adv = method.advance_from(sys, &s, h, Some(hand))?;
-        let (mut s1, mut hand1) = accept(&s, &adv, &mut steps, &mut evaluations, &mut row_handed)?;
+        or_break!(budgets(opts, steps, evaluations, s.t));
+        let adv = or_break!(method.advance_from(sys, &s, h, Some(hand)));
+        let (mut s1, mut hand1) = or_break!(accept(
+            &s,
+            &adv,
+            &mut steps,
+            &mut evaluations,
+            &mut row_handed
+        ));
         snap_to_end(opts, t_tol, &mut s1, &mut hand1);
-        h = adv.h_next;
+        let h_next = adv.h_next;
         until_record -= 1;
         if until_record == 0 {
             until_record = opts.record_every;
-            row_handed = record_end(sys, opts, t_tol, takes_rows, &s1, &mut hand1, traj, buf)?;
+            row_handed = or_break!(record_end(
+                sys, opts, t_tol, takes_rows, &s1, &mut hand1, traj, buf
+            ));
         }
+        h = h_next;
         hand = hand1;
+        prev = s;
         s = s1;
-    }
+    };
     *progress = Progress {
         s,
+        prev,
         h,
         hand,
         steps,
@@ -66,5 +88,5 @@ pub(super) fn lean_steps<S: LagrangeSystem + ?Sized, M: Stepper>(
         until_record,
         row_handed,
     };
-    Ok(())
+    result
 }

@@ -7,9 +7,11 @@
 //! method) with [`kinks`] (the nodes a step lands on) and [`stop_conditions`] (a watched
 //! value reached, a steady state or a drift); the step loop, [`step_loop`], with its lean
 //! variant [`lean`] for runs with nothing on the way, the bookkeeping of a step in
-//! [`progress`], [`locate`] (a state inside a step, by re-stepping) and [`left_of`] (the
-//! system seen from the left of a breakpoint).
+//! [`progress`], [`locate`] (a state inside a step, by re-stepping), [`left_of`] (the
+//! system seen from the left of a breakpoint) and [`dead_centre`] (the last state the system
+//! accepts before a dead centre).
 
+mod dead_centre;
 mod frozen;
 mod kinks;
 mod lean;
@@ -50,6 +52,12 @@ use step_loop::Runner;
 /// control for an adaptive method); the next step, starting on that node, finds the next
 /// crossing. A fixed-step method then finishes the grid step it was taking, so its grid
 /// t₀ + n·h stays. The states at [`RunOptions::times`] are recorded as that field says.
+///
+/// A system that refuses a state at a dead centre ([`Error::DeadCentre`]: a described
+/// linkage whose dyad reaches it) ends the run with [`Outcome::DeadCentre`] at the last state
+/// it accepts, located inside the step that met it (see there), its rows kept; so does one
+/// whose step jumped past the dead centre to where the position no longer assembles, when
+/// the location meets the dead centre on the way.
 ///
 /// # Errors
 /// [`Error::NonPositive`]/[`Error::NonFinite`] for a bad step, final time, steady tolerance

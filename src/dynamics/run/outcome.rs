@@ -69,6 +69,22 @@ pub enum Outcome {
         /// self-locking).
         value: f64,
     },
+    /// The machine reaches a dead centre of one of its dyads
+    /// ([`Error::DeadCentre`](crate::Error::DeadCentre)), where its coordinates no longer
+    /// describe the motion (a rocking input at its lock): `t` is the last state the system
+    /// accepts, located inside the step that met the dead centre by halving steps of the
+    /// method towards it until the accepted and the refused times are within 10⁻¹² of each
+    /// other (relative to max(1, |t|)). The rows up to there are kept.
+    DeadCentre {
+        /// The time of the located last state, s.
+        t: f64,
+        /// The dyad, by its index among the plan's groups
+        /// ([`Plan::groups`](crate::linkage::Plan::groups)).
+        dyad: usize,
+        /// Its determinant at the refused state next to it (at most
+        /// [`DEAD_CENTRE_DETERMINANT`](crate::linkage::DEAD_CENTRE_DETERMINANT) in size).
+        value: f64,
+    },
     /// A steady state was asked for and the final time came first.
     NotSteady {
         /// The accelerations at the final time.

@@ -12,6 +12,10 @@ use crate::error::{Error, Result};
 pub(super) struct Progress {
     /// The state the next step starts from.
     pub(super) s: State,
+    /// The state the step to `s` started from (`s` itself at the start): where a run goes
+    /// back to when the system refuses `s` itself (see
+    /// [`Runner`](super::step_loop::Runner)'s location of a dead centre).
+    pub(super) prev: State,
     /// The step size the method takes (or proposed) next.
     pub(super) h: f64,
     /// What the last step handed on for the next one: q̈ at `s` when it gave them

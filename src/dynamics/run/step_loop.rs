@@ -1,6 +1,7 @@
 //! The step loop of a run: each step planned by the schedule, taken, landed on the earliest
 //! kink inside it, checked against the stop conditions, and recorded.
 
+use super::dead_centre;
 use super::lean::lean_steps;
 use super::left_of::LeftOf;
 use super::options::RunOptions;
@@ -46,6 +47,8 @@ pub(super) struct Runner<'a, S: ?Sized, M> {
     reversal: Option<ReversalWatch>,
     /// Whether the run ended where the motion turned back.
     reversed: bool,
+    /// The step last asked of the method, s: where a dead centre met in it is looked for.
+    tried: f64,
 }
 
 impl<'a, S: LagrangeSystem + ?Sized, M: Stepper> Runner<'a, S, M> {
@@ -83,6 +86,7 @@ impl<'a, S: LagrangeSystem + ?Sized, M: Stepper> Runner<'a, S, M> {
             steady: opts.steady.map(SteadyWatch::new),
             progress: Progress {
                 s: start,
+                prev: start,
                 h: opts.h,
                 hand,
                 steps: 0,
@@ -97,6 +101,7 @@ impl<'a, S: LagrangeSystem + ?Sized, M: Stepper> Runner<'a, S, M> {
             breakaway: vec![0.0; modes.map_or(0, <[_]>::len)],
             reversal: None,
             reversed: false,
+            tried: opts.h,
         })
     }
 
@@ -157,15 +162,32 @@ impl<'a, S: LagrangeSystem + ?Sized, M: Stepper> Runner<'a, S, M> {
             match self.advance(&mut end) {
                 Ok(Some(result)) => return Ok(result),
                 Ok(None) => {}
-                Err(e) => return self.jammed(e),
+                Err(e) => return self.stopped_by(e),
             }
         }
     }
 
-    /// The run's result when `e` is a jam ([`Outcome::Jammed`]): the motion ends at the
-    /// located jam ([`locate_jam`](Self::locate_jam)), or at the last accepted state when it
-    /// is not found inside the step; any other error as it is.
-    fn jammed(&mut self, e: crate::Error) -> Result<RunResult> {
+    /// The run's result when `e` is a stop: a jam ([`Outcome::Jammed`]), the motion ending at
+    /// the located jam ([`locate_jam`](Self::locate_jam)), or at the last accepted state when
+    /// it is not found inside the step; a dead centre ([`Outcome::DeadCentre`]), located
+    /// inside the step that met it. Any other error as it is.
+    fn stopped_by(&mut self, e: crate::Error) -> Result<RunResult> {
+        if let Some(d) = dead_centre::locate(
+            self.sys,
+            self.method,
+            self.opts,
+            &mut self.progress,
+            self.tried,
+            &e,
+        )? {
+            let outcome = Outcome::DeadCentre {
+                t: d.last.t,
+                dyad: d.dyad,
+                value: d.value,
+            };
+            let recorded = self.traj.t().last() == Some(&d.last.t);
+            return self.result(d.last, recorded, outcome);
+        }
         let Some(jam) = e.jam() else {
             return Err(e);
         };
@@ -253,7 +275,7 @@ impl<'a, S: LagrangeSystem + ?Sized, M: Stepper> Runner<'a, S, M> {
         // is this loop's.
         if self.sched.plain && self.sched.grid_end.is_none() {
             let p = &mut self.progress;
-            lean_steps(
+            let lean = lean_steps(
                 sys,
                 method,
                 opts,
@@ -262,7 +284,11 @@ impl<'a, S: LagrangeSystem + ?Sized, M: Stepper> Runner<'a, S, M> {
                 p,
                 &mut self.traj,
                 &mut self.buf,
-            )?;
+            );
+            if lean.is_err() {
+                self.tried = self.progress.h;
+            }
+            lean?;
         }
         if opts.t_end - self.progress.s.t <= t_tol {
             return self.at_final_time().map(Some);
@@ -384,6 +410,7 @@ impl<'a, S: LagrangeSystem + ?Sized, M: Stepper> Runner<'a, S, M> {
         let p = &mut self.progress;
         let plan = self.sched.next_step(p.s.t, p.h, opts.t_end);
         let (s, hand_s, h_try, stop) = (p.s, p.hand, plan.h_try, plan.stop);
+        self.tried = h_try;
         // A step that ends on a stop integrates up to it from the left: a force that jumps
         // there (written `if t < t_b`) is evaluated at its value before the jump in the
         // step's last stages, and at its new value from the next step on.
@@ -515,6 +542,7 @@ impl<'a, S: LagrangeSystem + ?Sized, M: Stepper> Runner<'a, S, M> {
         {
             return self.result(s1, recorded, outcome).map(Some);
         }
+        self.progress.prev = s;
         self.progress.s = s1;
         Ok(None)
     }

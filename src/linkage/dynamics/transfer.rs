@@ -6,7 +6,7 @@ use nalgebra::{Point2, Vector2};
 use crate::error::{Error, Result};
 use crate::kinematics::{LinkMotion, Motion, PointMotion};
 use crate::linkage::plan::{Chain, GroupKind};
-use crate::linkage::solve::state::{within, KinState};
+use crate::linkage::solve::state::KinState;
 use crate::linkage::{Plan, DEAD_CENTRE_DETERMINANT};
 
 /// The rates of one link in one solve: its origin's velocity and acceleration, ω and ε (the
@@ -149,17 +149,20 @@ impl<'p> Transfer<'p> {
 /// lock of its input; a two-input one can leave the dyad's assembly mode, which the plan
 /// holds fixed). A fixed-step run that stepped into this region would otherwise go on with
 /// an energy error of any size (the five-bar robot with one motor gained 10⁸ J in one step).
+///
+/// The error is [`Error::DeadCentre`], which a run turns into its stop
+/// [`Outcome::DeadCentre`](crate::dynamics::Outcome::DeadCentre).
 fn at_no_dead_centre(chain: &Chain, dets: &[f64]) -> Result<()> {
-    for (group, det) in chain.groups.iter().zip(dets) {
+    for (index, (group, det)) in chain.groups.iter().zip(dets).enumerate() {
         let dyad = matches!(group.kind, GroupKind::Rrr | GroupKind::Rrp)
             && group.triad.is_none()
             && group.general.is_none();
         if dyad && det.abs() <= DEAD_CENTRE_DETERMINANT {
-            return Err(within(&group.name)(Error::Singular {
-                what: "the dyad at a dead centre, where the inputs do not describe the motion",
-                measure: "its determinant (at most 1e-3 at a dead centre)",
+            return Err(Error::DeadCentre {
+                index,
+                group: group.name.clone(),
                 value: *det,
-            }));
+            });
         }
     }
     Ok(())
