@@ -737,14 +737,7 @@ pub fn triad_rates(a: [PointMotion; 3], dims: &TriadDims, pose: &TriadPose) -> R
     let k = velocity_matrix(u, r);
     let lt = dims.ternary_size();
     let det = k.determinant() / lt;
-    let eta = branch_distance(&k, u, r, len, lt);
-    if eta.is_nan() || eta <= SINGULAR_BRANCH {
-        return Err(Error::Singular {
-            what: GROUP,
-            measure: BRANCH_MEASURE,
-            value: eta,
-        });
-    }
+    ensure_off_branch(u, r, len, lt)?;
     let k_inv = k.try_inverse().ok_or(Error::Singular {
         what: GROUP,
         measure: MEASURE,
@@ -792,6 +785,35 @@ pub fn triad_rates(a: [PointMotion; 3], dims: &TriadDims, pose: &TriadPose) -> R
             what: "triad: rates",
         })
     }
+}
+
+/// The branch-point test of a posed revolute triad, one rule for its rates
+/// ([`triad_rates`]) and its reactions
+/// ([`kinetostatics::Triad::solve`](crate::kinetostatics::Triad::solve)), which solve K and
+/// Kᵀ and lose their digits alike: [`Error::Singular`] naming
+/// `distance from a branch point/size` when η ≤ [`SINGULAR_BRANCH`] (or is NaN). `u` are the
+/// legs' unit vectors A_i → B_i, `r` the arms B_i − B1, `len` the legs' lengths and `lt` the
+/// ternary link's size L_T.
+pub(crate) fn ensure_off_branch(
+    u: [Vector2<f64>; 3],
+    r: [Vector2<f64>; 3],
+    len: [f64; 3],
+    lt: f64,
+) -> Result<()> {
+    let k = velocity_matrix(u, r);
+    let i_len = [1.0 / len[0], 1.0 / len[1], 1.0 / len[2]];
+    if surely_regular(&k, k.determinant() / lt, r, i_len, len, lt) {
+        return Ok(());
+    }
+    let eta = branch_distance(&k, u, r, len, lt);
+    if eta.is_nan() || eta <= SINGULAR_BRANCH {
+        return Err(Error::Singular {
+            what: GROUP,
+            measure: BRANCH_MEASURE,
+            value: eta,
+        });
+    }
+    Ok(())
 }
 
 /// η, the data's distance from the nearest branch point relative to the size, from the
