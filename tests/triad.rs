@@ -589,6 +589,15 @@ fn triad_names_bad_input_and_singular_groups() {
     ));
 }
 
+/// A random load (force up to 100 N, moment up to 20 N·m) at a point within 0.5 m of `p`.
+fn random_load(rng: &mut Rng, p: Point2<f64>) -> Load {
+    Load::new(
+        p + rng.vector(0.5),
+        rng.vector(100.0),
+        rng.range(-20.0, 20.0),
+    )
+}
+
 /// Whether `found` modes agree with both independent counts (at 2¹⁴ points, then 2¹⁸).
 fn counts_agree(a: &[Point2<f64>; 3], dims: &TriadDims, found: usize) -> bool {
     [1 << 14, 1 << 18]
@@ -637,6 +646,9 @@ fn triads_at_and_near_a_branch_point() {
     let mut worst_growth = 0.0f64;
     let mut near_fd = NearFold::default();
     let mut worst_eta = 0.0f64;
+    let mut reactions_singular = 0;
+    // The loads from their own stream (the groups' stream stays as it was).
+    let mut loads_rng = Rng(0x10AD_B4A2);
     while cases < n_cases() / 5 {
         let dims = random_dims(&mut rng);
         let Some((b, a)) = at_branch_point(&mut rng, &dims) else {
@@ -682,6 +694,21 @@ fn triads_at_and_near_a_branch_point() {
                 "case {cases}: rates at the branch pose (|det| {:e}) gave {other:?}",
                 m.det.abs()
             ),
+        }
+        // The reactions by the same rule (one measure): refused, naming it.
+        let loaded = Triad {
+            a,
+            b: m.b,
+            loads: [0, 1, 2].map(|i| random_load(&mut loads_rng, a[i] + 0.5 * (m.b[i] - a[i]))),
+            load_ternary: random_load(&mut loads_rng, m.b[0]),
+        };
+        match loaded.solve() {
+            Err(Error::Singular {
+                what: "triad",
+                measure: "distance from a branch point/size",
+                value,
+            }) if value <= SINGULAR_BRANCH => reactions_singular += 1,
+            other => panic!("case {cases}: reactions at the branch pose gave {other:?}"),
         }
         regular_near_a_branch_point(a, b, &dims, &mut rng, cases, &mut near_fd);
         // Off the branch point: A1 moved along its leg (as if the leg were longer or shorter).
@@ -783,6 +810,10 @@ fn triads_at_and_near_a_branch_point() {
         near_fd.jumped
     );
     assert_eq!(singular, cases, "rates at every branch pose are Singular");
+    assert_eq!(
+        reactions_singular, cases,
+        "reactions at every branch pose are Singular"
+    );
     assert!(
         near_fd.jumped * 200 <= near_fd.checked,
         "{} of {} regular modes near a branch point off the differences",
@@ -867,6 +898,24 @@ fn regular_near_a_branch_point(
         seen.least_det = seen.least_det.min(base.det.abs());
         let s0 = triad_rates(motion, dims, base)
             .unwrap_or_else(|e| panic!("case {case}: a regular pose 1e-8 off a branch point: {e}"));
+        // Its reactions too (the same rule), balancing the ternary link.
+        let mut loads_rng = Rng(0x10AD_0000 + case as u64);
+        let t = Triad {
+            a: p,
+            b: base.b,
+            loads: [0, 1, 2].map(|i| random_load(&mut loads_rng, p[i])),
+            load_ternary: random_load(&mut loads_rng, base.b[0]),
+        };
+        let r = t
+            .solve()
+            .unwrap_or_else(|e| panic!("case {case}: reactions 1e-8 off a branch point: {e}"));
+        let sum = r.r_b.iter().sum::<Vector2<f64>>() + t.load_ternary.force;
+        let big = r.r_b.iter().map(|v| v.norm()).fold(100.0, f64::max);
+        assert!(
+            sum.norm() <= 1e-12 * big,
+            "case {case}: ternary link off balance by {:e} of {big:e} N",
+            sum.norm()
+        );
         let vmax = s0.b.iter().map(|m| m.v.norm()).fold(1e-300, f64::max);
         let h = 1e-2 * apart / vmax;
         let st: [_; 9] = std::array::from_fn(|k| {

@@ -103,6 +103,7 @@ pub use rrp::{rrp_dyad, Guide, RrpState};
 pub(crate) use rrr::rrr_rates;
 pub use rrr::{rrr_dyad, RrrState};
 pub use transfer::transfer_functions;
+pub(crate) use triad::ensure_off_branch;
 pub use triad::{
     triad, triad_modes, triad_rates, triad_tracked, AssemblyModes, TriadDims, TriadModes,
     TriadPose, TriadState, MAX_TRIAD_MODES, SINGULAR_BRANCH, SINGULAR_TRIAD,

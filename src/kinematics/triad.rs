@@ -57,7 +57,7 @@
 
 use super::link::LinkMotion;
 use super::motion::PointMotion;
-use super::trig_roots::{along, checked_roots, unit, Periodic};
+use super::trig_roots::{along, checked_roots, unit, Periodic, CLOSES, SAME_MODE};
 use crate::angle::{cross, direction, perp};
 use crate::error::{finite, finite2, positive, Error, Result};
 use nalgebra::{Complex, Matrix3, Point2, Vector2, Vector3};
@@ -362,7 +362,7 @@ pub fn triad_modes(a: [Point2<f64>; 3], dims: &TriadDims) -> Result<TriadModes> 
     let overflow = "triad: eliminated equation";
     let roots = checked_roots(&e, &e.f, e.s, e.scale, GROUP, overflow)?;
     let mut modes = TriadModes::empty();
-    let tol = 1e-9 * e.length();
+    let tol = SAME_MODE * e.length();
     for r in 0..roots.n {
         for pose in e
             .poses(roots.z[r], roots.multiple[r], roots.double[r], dims)
@@ -737,14 +737,7 @@ pub fn triad_rates(a: [PointMotion; 3], dims: &TriadDims, pose: &TriadPose) -> R
     let k = velocity_matrix(u, r);
     let lt = dims.ternary_size();
     let det = k.determinant() / lt;
-    let eta = branch_distance(&k, u, r, len, lt);
-    if eta.is_nan() || eta <= SINGULAR_BRANCH {
-        return Err(Error::Singular {
-            what: GROUP,
-            measure: BRANCH_MEASURE,
-            value: eta,
-        });
-    }
+    ensure_off_branch(u, r, len, lt)?;
     let k_inv = k.try_inverse().ok_or(Error::Singular {
         what: GROUP,
         measure: MEASURE,
@@ -792,6 +785,35 @@ pub fn triad_rates(a: [PointMotion; 3], dims: &TriadDims, pose: &TriadPose) -> R
             what: "triad: rates",
         })
     }
+}
+
+/// The branch-point test of a posed revolute triad, one rule for its rates
+/// ([`triad_rates`]) and its reactions
+/// ([`kinetostatics::Triad::solve`](crate::kinetostatics::Triad::solve)), which solve K and
+/// Kᵀ and lose their digits alike: [`Error::Singular`] naming
+/// `distance from a branch point/size` when η ≤ [`SINGULAR_BRANCH`] (or is NaN). `u` are the
+/// legs' unit vectors A_i → B_i, `r` the arms B_i − B1, `len` the legs' lengths and `lt` the
+/// ternary link's size L_T.
+pub(crate) fn ensure_off_branch(
+    u: [Vector2<f64>; 3],
+    r: [Vector2<f64>; 3],
+    len: [f64; 3],
+    lt: f64,
+) -> Result<()> {
+    let k = velocity_matrix(u, r);
+    let i_len = [1.0 / len[0], 1.0 / len[1], 1.0 / len[2]];
+    if surely_regular(&k, k.determinant() / lt, r, i_len, len, lt) {
+        return Ok(());
+    }
+    let eta = branch_distance(&k, u, r, len, lt);
+    if eta.is_nan() || eta <= SINGULAR_BRANCH {
+        return Err(Error::Singular {
+            what: GROUP,
+            measure: BRANCH_MEASURE,
+            value: eta,
+        });
+    }
+    Ok(())
 }
 
 /// η, the data's distance from the nearest branch point relative to the size, from the
@@ -1077,7 +1099,7 @@ impl Eliminated {
     /// intersections of two of the circles are polished, and every candidate that closes is
     /// returned.
     /// A `double` root (two merged within rounding) keeps its pose from the radical axes
-    /// unpolished where that closes to 1e-12 of the size.
+    /// unpolished where that closes to [`CLOSES`] of the size.
     fn poses(
         &self,
         z: C,
@@ -1088,7 +1110,7 @@ impl Eliminated {
         let (wz, d) = self.w_d(z);
         if double && d.abs() > 1e-3 * self.dscale {
             let p = C::new(0.0, 1.0) * wz / d;
-            if let Some(pose) = self.polish_steps(Vector2::new(p.re, p.im), z, dims, 0, 1e-12) {
+            if let Some(pose) = self.polish_steps(Vector2::new(p.re, p.im), z, dims, 0, CLOSES) {
                 return [Some(pose), None];
             }
         }
@@ -1104,10 +1126,10 @@ impl Eliminated {
     }
 
     /// The pose from B1 − A1 = `p` at z, polished by Newton's method on the closures (each
-    /// step halved until it reduces the closure error, kept while one does); `None` when it
-    /// does not close to 1e-9 of the size.
+    /// step halved until it reduces the closure error, kept while one does); `None` (no
+    /// mode: [`CLOSES`] gives the reasons) when it does not close to [`CLOSES`] of the size.
     fn polish(&self, p: Vector2<f64>, z: C, dims: &TriadDims) -> Option<TriadPose> {
-        self.polish_steps(p, z, dims, 48, 1e-9)
+        self.polish_steps(p, z, dims, 48, CLOSES)
     }
 
     /// [`polish`](Self::polish) with at most `steps` Newton steps, `None` unless the pose

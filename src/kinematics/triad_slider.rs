@@ -49,7 +49,7 @@ use super::link::LinkMotion;
 use super::motion::PointMotion;
 use super::rrp::Guide;
 use super::triad::{AssemblyModes, TriadDims, TriadPose, TriadState, SINGULAR_TRIAD};
-use super::trig_roots::{checked_roots, newton_root, unit as unit_c, Periodic};
+use super::trig_roots::{checked_roots, newton_root, unit as unit_c, Periodic, CLOSES, SAME_MODE};
 use crate::angle::{cross, direction, perp, unit};
 use crate::error::{finite, finite2, positive, Error, Result};
 use nalgebra::{Complex, Matrix3, Point2, Vector2, Vector3};
@@ -240,7 +240,7 @@ pub fn slider_triad_modes(
     let overflow = "triad with a sliding pair: eliminated equation";
     let roots = checked_roots(&e, &e.f, e.s, e.scale, GROUP, overflow)?;
     let mut modes = SliderTriadModes::empty();
-    let tol = 1e-9 * e.length;
+    let tol = SAME_MODE * e.length;
     for r in 0..roots.n {
         for pose in e.poses(roots.z[r], roots.multiple[r]).into_iter().flatten() {
             modes.push_distinct(pose, tol);
@@ -726,34 +726,48 @@ impl Equation {
     }
 
     /// The pose from O = `o` at z, polished by Newton's method on the closures (kept while
-    /// it reduces the closure error); `None` when it does not close to 1e-9 of the size.
+    /// it reduces the closure error); `None` (no mode: [`CLOSES`] gives the reasons) when it
+    /// does not close to [`CLOSES`] of the size.
     ///
     /// The steps go on to the rounding floor of the residuals, not to a set tolerance: a
     /// pose left at 1e-15 of the size scatters its angles by several ulps from position to
     /// position (8.6e-15 rad on the bundled six-bar), which the rates do not have and which
     /// an 8th-order second difference of positions amplifies by 6.5/h².
+    /// While the pose does not yet close to [`CLOSES`], a step that does not reduce the
+    /// error is halved (up to 6 times) before giving up: near a branch point K is nearly
+    /// singular, the full step overshoots along its null direction, and at a double root
+    /// Newton's method only halves the error per step (hence up to 48 steps).
     fn polish(&self, o: Vector2<f64>, z: C) -> Option<TriadPose> {
         let (mut o, mut z) = (o, z);
         let (mut g, mut k) = self.residual(o, z);
         let mut err = g.amax();
-        for _ in 0..8 {
+        let closes = CLOSES * self.length;
+        for _ in 0..48 {
             if err == 0.0 {
                 break;
             }
             let Some(k_inv) = k.try_inverse() else {
                 break;
             };
-            let step = k_inv * (-g);
-            let on = o + Vector2::new(step.x, step.y);
-            let zn = unit_c(z * C::new(1.0, step.z));
-            let (gn, kn) = self.residual(on, zn);
-            if gn.amax() < err {
-                (o, z, g, k, err) = (on, zn, gn, kn, gn.amax());
-            } else {
-                break;
+            let mut step = k_inv * (-g);
+            let halvings = if err > closes { 6 } else { 0 };
+            let mut better = None;
+            for _ in 0..=halvings {
+                let on = o + Vector2::new(step.x, step.y);
+                let zn = unit_c(z * C::new(1.0, step.z));
+                let (gn, kn) = self.residual(on, zn);
+                if gn.amax() < err {
+                    better = Some((on, zn, gn, kn));
+                    break;
+                }
+                step *= 0.5;
+            }
+            match better {
+                Some((on, zn, gn, kn)) => (o, z, g, k, err) = (on, zn, gn, kn, gn.amax()),
+                None => break,
             }
         }
-        if err.is_nan() || err > 1e-9 * self.length {
+        if err.is_nan() || err > closes {
             return None;
         }
         let size =

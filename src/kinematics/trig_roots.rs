@@ -12,6 +12,18 @@ use nalgebra::Complex;
 
 type C = Complex<f64>;
 
+/// Every mode of a group of the 3rd class closes its three legs to this fraction of the
+/// group's size. A root of F whose pose, polished by damped Newton steps on the closures,
+/// does not close this well is not a mode and is dropped: F vanishes there only within its
+/// rounding (a near-tangency of F whose closures have no common real point) or the pose's
+/// linear equations are degenerate there and the other candidate of the root is the mode.
+pub(super) const CLOSES: f64 = 1e-12;
+/// Two polished poses of one group closer than this fraction of its size (by D, the distance
+/// of the ternary link's joints) are one mode reached from two brackets. Each is known to
+/// ≈ ε/σ of the size (σ the velocity system's least singular value), so below this only the
+/// two modes of a fold within ≈ 1e-18 of the size of their branch point are merged — a double
+/// root to rounding, which the scan of F cannot split either.
+pub(super) const SAME_MODE: f64 = 1e-9;
 /// Cells of the first scan of the circle.
 const CELLS: usize = 32;
 /// The width (rad) below which a cell that is neither excluded nor monotone is taken to hold a

@@ -100,9 +100,13 @@ impl Triad {
     /// - [`Error::NonFinite`](crate::Error::NonFinite) for a non-finite coordinate or load;
     /// - [`Error::NonPositive`](crate::Error::NonPositive) when A_i = B_i (`l_AiBi`) or the
     ///   ternary link's joints coincide (`L_T`);
-    /// - [`Error::Singular`](crate::Error::Singular) with `det(velocity system)/L_T` when the
-    ///   lines of the three binary links meet at one point or are parallel, to working
-    ///   precision.
+    /// - [`Error::Singular`](crate::Error::Singular) with `distance from a branch point/size`
+    ///   when the pose lies within rounding of a branch point of the group (that distance η
+    ///   ≤ [`SINGULAR_BRANCH`](crate::kinematics::SINGULAR_BRANCH): the lines of the three
+    ///   binary links meet at one point, and the normal forces would carry fewer than four
+    ///   digits), the same rule as the rates'
+    ///   ([`triad_rates`](crate::kinematics::triad_rates)); with `det(velocity system)/L_T`
+    ///   when that determinant vanishes to working precision.
     pub fn solve(&self) -> Result<TriadReactions> {
         validate(&self.a, &self.b, &self.loads, &self.load_ternary)?;
         let names = ["l_A1B1", "l_A2B2", "l_A3B3"];
@@ -114,6 +118,11 @@ impl Triad {
             u[i] = leg / l[i];
         }
         let r = [0, 1, 2].map(|i| self.b[i] - self.b[0]);
+        let size = ternary_size(&self.b);
+        if size > 0.0 {
+            // (A zero L_T is named by LegLines.)
+            crate::kinematics::ensure_off_branch(u, r, l, size)?;
+        }
         let lines = LegLines::new(WHAT, &self.b, u, r)?;
 
         let t = [0, 1, 2].map(|i| self.loads[i].moment_about(self.b[i]) / l[i]);
@@ -157,6 +166,13 @@ pub(super) fn validate(
     load_ternary.validate()
 }
 
+/// L_T, the root-mean-square distance of the ternary link's joints `b` from their centroid.
+fn ternary_size(b: &[Point2<f64>; 3]) -> f64 {
+    let g = (b[0].coords + b[1].coords + b[2].coords) / 3.0;
+    let moment: f64 = b.iter().map(|p| (p.coords - g).norm_squared()).sum();
+    (moment / 3.0).sqrt()
+}
+
 /// The ternary link's equilibrium under the legs' forces, shared by the triads: leg i pushes
 /// it with s_i along the unit vector u_i on a line through B1 + r_i, so the equilibrium of
 /// forces and of moments about B1 is Kᵀ·s = (f, m), Kᵀ's column i being (u_i, r_i × u_i):
@@ -176,9 +192,7 @@ impl LegLines {
         u: [Vector2<f64>; 3],
         r: [Vector2<f64>; 3],
     ) -> Result<Self> {
-        let g = (b[0].coords + b[1].coords + b[2].coords) / 3.0;
-        let moment: f64 = b.iter().map(|p| (p.coords - g).norm_squared()).sum();
-        let size = length("L_T", Vector2::new((moment / 3.0).sqrt(), 0.0))?;
+        let size = length("L_T", Vector2::new(ternary_size(b), 0.0))?;
         let kt = Matrix3::from_fn(|row, i| match row {
             0 => u[i].x,
             1 => u[i].y,
