@@ -40,6 +40,23 @@ pub fn typed_angle(option: &str, degrees: f64) -> Result<f64, Failure> {
     .hint("give the angle in degrees within a few turns of zero"))
 }
 
+/// An input coordinate typed after `option`, in the input's unit: an angle in degrees (a
+/// crank's, see [`typed_angle`]) in rad, or a slide in metres, finite and within ±10⁹ m.
+pub fn typed_coordinate(option: &str, crank: bool, typed: f64) -> Result<f64, Failure> {
+    if crank {
+        return typed_angle(option, typed);
+    }
+    if typed.abs() <= tmm::linkage::MAX_INPUT_COORDINATE {
+        return Ok(typed);
+    }
+    Err(Failure::new(format!(
+        "{option} {}: a slider's input coordinate must be a finite number of metres within \
+         ±10⁹ m",
+        crate::model::typed(typed)
+    ))
+    .hint("give the slide in metres, within the slider's travel (`tmm check` shows it)"))
+}
+
 /// The largest input speed accepted, rad/s: far above any machine's, and small enough that
 /// its revolutions per minute and every rate of a position stay finite.
 pub const MAX_SPEED: f64 = 1e9;
@@ -431,10 +448,7 @@ impl Machine {
         match positions {
             Positions::At(values) => values
                 .iter()
-                .map(|&v| {
-                    let q = if crank { typed_angle("--at", v)? } else { v };
-                    Ok(Motion::new(q, speed, 0.0))
-                })
+                .map(|&v| Ok(Motion::new(typed_coordinate("--at", crank, v)?, speed, 0.0)))
                 .collect(),
             Positions::Uniform(n) => Ok(spread(*n, notes)),
             Positions::Course(n) => match (&self.linkage.output, crank, &range) {
@@ -581,13 +595,8 @@ impl Machine {
                 values.len()
             )));
         }
-        let convert = |v: f64, crank: bool| {
-            Ok(Motion::new(
-                if crank { typed_angle("--at", v)? } else { v },
-                speed,
-                0.0,
-            ))
-        };
+        let convert =
+            |v: f64, crank: bool| Ok(Motion::new(typed_coordinate("--at", crank, v)?, speed, 0.0));
         let (first, second) = (self.plan.input_is_crank(), self.second_is_crank());
         values
             .chunks(2)

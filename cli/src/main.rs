@@ -183,7 +183,8 @@ animation and diagrams run between its lock angles."
         #[arg(long, value_name = "φ1 φ2", num_args = 1.., allow_negative_numbers = true,
               value_parser = number_after_file)]
         along: Vec<f64>,
-        /// The input speed ω, rad/s (negative: clockwise); the file's `speed` by default.
+        /// The input speed ω, rad/s (negative: clockwise); the file's `speed` by default. Not
+        /// with --workspace, which is the region of positions.
         #[arg(long, value_name = "ω", allow_negative_numbers = true)]
         speed: Option<f64>,
         /// The SVG file to write (standard output without one).
@@ -228,11 +229,12 @@ for a machine whose loads average out). The step keeps RK4 well inside its stabi
         #[arg(long, value_name = "δ", num_args = 1.., allow_negative_numbers = true,
               value_parser = number_after_file)]
         flywheel: Vec<f64>,
-        /// The crank speed ω, rad/s (negative: clockwise); the file's `speed` by default.
+        /// One input: the crank speed ω, rad/s (negative: clockwise); the file's `speed` by
+        /// default.
         #[arg(long, value_name = "ω", allow_negative_numbers = true)]
         speed: Option<f64>,
-        /// The motor of the run-up, M = a − b·|ω| in the sense of rotation: a in N·m, b in
-        /// N·m·s/rad.
+        /// The motor of the run-up (with --run-up; for two inputs, of the first input with
+        /// --run), M = a − b·|ω| in the sense of rotation: a in N·m, b in N·m·s/rad.
         #[arg(long, value_name = "a,b", value_parser = parse_pair, allow_hyphen_values = true)]
         motor: Option<(f64, f64)>,
         /// A rotor or flywheel on the crank, kg·m².
@@ -243,15 +245,16 @@ for a machine whose loads average out). The step keeps RK4 well inside its stabi
             allow_negative_numbers = true
         )]
         rotor: f64,
-        /// Positions over a turn (or a rocking crank's range) for the reduced quantities; at
-        /// least 12, so that their means over the turn are means, not one or two samples.
-        #[arg(long, value_name = "N", default_value_t = 360,
+        /// One input: positions over a turn (or a rocking crank's range) for the reduced
+        /// quantities, 360 by default; at least 12, so that their means over the turn are
+        /// means, not one or two samples.
+        #[arg(long, value_name = "N",
               value_parser = clap::value_parser!(u32).range(12..=100_000))]
-        positions: u32,
-        /// Two inputs: the nodes of the grid along each input.
-        #[arg(long, value_name = "N", default_value_t = 13,
+        positions: Option<u32>,
+        /// Two inputs: the nodes of the grid along each input, 13 by default.
+        #[arg(long, value_name = "N",
               value_parser = clap::value_parser!(u32).range(2..=401))]
-        grid: u32,
+        grid: Option<u32>,
         /// Two inputs: run from rest in the reference pose for T seconds under the motors
         /// (--motor on input 1, --motor2 on input 2, M = a − b·q̇, signed) and the loads (RK4).
         #[arg(long, value_name = "T", allow_negative_numbers = true)]
@@ -416,8 +419,28 @@ fn io_text(e: &std::io::Error) -> String {
     }
 }
 
-/// The description's text: the file, or a bundled description of that name.
+/// The largest description file read, bytes. A description of a thousand links is about
+/// 300 kB; a larger file is not a description, and is refused before it is read.
+const MAX_FILE_BYTES: u64 = 16 * 1024 * 1024;
+
+/// A size in bytes for a person: "50.0 MB", "812 kB", "312 bytes".
+fn size_text(bytes: u64) -> String {
+    #[allow(clippy::cast_precision_loss)]
+    let b = bytes as f64;
+    if bytes >= 1024 * 1024 {
+        format!("{:.1} MB", b / (1024.0 * 1024.0))
+    } else if bytes >= 1024 {
+        format!("{:.0} kB", b / 1024.0)
+    } else {
+        format!("{bytes} bytes")
+    }
+}
+
+/// The description's text: the file, or a bundled description of that name. A directory, a
+/// device or a socket is refused, and so is a file above [`MAX_FILE_BYTES`] — by its size
+/// before it is read, or (a pipe) once that many bytes have come.
 fn read(file: &str) -> Result<String, Fail> {
+    use std::io::Read as _;
     if file.is_empty() {
         return Err(Fail {
             file: None,
@@ -425,27 +448,86 @@ fn read(file: &str) -> Result<String, Fail> {
                 .hint("give a path to a JSON file, or a name from `tmm bundled`"),
         });
     }
-    match std::fs::read_to_string(file) {
-        Ok(text) if text.trim().is_empty() => Err(Fail::on(
-            file,
-            Failure::new("the file is empty, and a description is a JSON object")
-                .hint("`tmm bundled shaper > my.json` writes one to start from"),
-        )),
-        Ok(text) => Ok(text),
-        Err(e) if !Path::new(file).exists() => {
-            bundled::find(file).map(str::to_owned).ok_or_else(|| {
-                Fail::on(
+    let fail = |message: String| Fail::on(file, Failure::new(message));
+    let meta = match std::fs::metadata(file) {
+        Ok(meta) => meta,
+        Err(e) => {
+            return match bundled::find(file) {
+                Some(text) if !Path::new(file).exists() => Ok(text.to_owned()),
+                _ => Err(Fail::on(
                     file,
                     Failure::new(format!("cannot read the file: {}", io_text(&e)))
                         .hint("`tmm bundled` lists the descriptions built into tmm"),
-                )
-            })
+                )),
+            };
         }
-        Err(e) => Err(Fail::on(
+    };
+    if meta.is_dir() {
+        return Err(Fail::on(
             file,
-            Failure::new(format!("cannot read the file: {}", io_text(&e))),
-        )),
+            Failure::new("it is a directory, and a description is a JSON file")
+                .hint("give a file in it, or a name from `tmm bundled`"),
+        ));
     }
+    if !meta.is_file() && !is_pipe(&meta) {
+        return Err(fail(
+            "it is not a file but a device or a socket, and a description is a JSON file"
+                .to_owned(),
+        ));
+    }
+    let too_large = |size: &str| {
+        Fail::on(
+            file,
+            Failure::new(format!(
+                "the file is {size}, above the {} a description may have",
+                size_text(MAX_FILE_BYTES)
+            ))
+            .hint("a description is a JSON object of links and joints: a few kB"),
+        )
+    };
+    if meta.len() > MAX_FILE_BYTES {
+        return Err(too_large(&format!(
+            "{} ({} bytes)",
+            size_text(meta.len()),
+            meta.len()
+        )));
+    }
+    let mut bytes = Vec::new();
+    std::fs::File::open(file)
+        .and_then(|f| f.take(MAX_FILE_BYTES + 1).read_to_end(&mut bytes))
+        .map_err(|e| fail(format!("cannot read the file: {}", io_text(&e))))?;
+    if bytes.len() as u64 > MAX_FILE_BYTES {
+        return Err(too_large(&format!(
+            "more than {}",
+            size_text(MAX_FILE_BYTES)
+        )));
+    }
+    let text = String::from_utf8(bytes).map_err(|e| {
+        fail(format!(
+            "the file is not UTF-8 text (byte {} is not), and a description is JSON",
+            e.utf8_error().valid_up_to()
+        ))
+    })?;
+    if text.trim().is_empty() {
+        return Err(Fail::on(
+            file,
+            Failure::new("the file is empty, and a description is a JSON object")
+                .hint("`tmm bundled shaper > my.json` writes one to start from"),
+        ));
+    }
+    Ok(text)
+}
+
+/// Whether `meta` is a pipe (`tmm check /dev/stdin < my.json`, a process substitution).
+#[cfg(unix)]
+fn is_pipe(meta: &std::fs::Metadata) -> bool {
+    use std::os::unix::fs::FileTypeExt as _;
+    meta.file_type().is_fifo()
+}
+
+#[cfg(not(unix))]
+fn is_pipe(_: &std::fs::Metadata) -> bool {
+    false
 }
 
 fn load(file: &str) -> Result<engine::Machine, Fail> {
@@ -462,6 +544,32 @@ fn print(text: &str) {
         .is_err()
     {
         std::process::exit(0);
+    }
+}
+
+/// Refuses, before any work, a file to write that cannot be: a directory, or a file in a
+/// directory that does not exist.
+fn check_output(path: Option<&Path>) -> Result<(), Fail> {
+    let Some(path) = path else { return Ok(()) };
+    let fail = |message: String, hint: &str| Fail {
+        file: Some(path.display().to_string()),
+        failure: Failure::new(message).hint(hint),
+    };
+    if path.is_dir() {
+        return Err(fail(
+            "cannot write the file: it is a directory".to_owned(),
+            "give a file's name in it, for example DIR/out.svg",
+        ));
+    }
+    match path.parent() {
+        Some(dir) if !dir.as_os_str().is_empty() && !dir.is_dir() => Err(fail(
+            format!(
+                "cannot write the file: the directory {} does not exist",
+                dir.display()
+            ),
+            "make the directory first, or write into one that exists",
+        )),
+        _ => Ok(()),
     }
 }
 
@@ -509,6 +617,7 @@ fn run(command: Command) -> Result<(), Fail> {
             degrees,
             format,
         } => {
+            check_output(csv.as_deref())?;
             let m = load(&file)?;
             let which = match positions {
                 Some(n) => Positions::Uniform(n as usize),
@@ -553,7 +662,17 @@ fn run(command: Command) -> Result<(), Fail> {
             speed,
             output,
         } => {
+            check_output(output.as_deref())?;
             let m = load(&file)?;
+            refuse_unused(
+                &file,
+                &[(
+                    "--speed",
+                    workspace.is_some() && speed.is_some(),
+                    "does not change a workspace, the region of positions a point reaches",
+                    "leave --speed out",
+                )],
+            )?;
             let picture = picture_kind(scheme, plan, animate, forces, diagram, workspace);
             let request = PictureRequest {
                 kind: picture,
@@ -584,6 +703,7 @@ fn run(command: Command) -> Result<(), Fail> {
             format,
             csv,
         } => {
+            check_output(csv.as_deref())?;
             let m = load(&file)?;
             let request = DynamicsRequest {
                 speed: speed.unwrap_or_else(|| m.default_speed()),
@@ -591,12 +711,77 @@ fn run(command: Command) -> Result<(), Fail> {
                 motor,
                 rotor,
                 flywheel,
-                positions: positions as usize,
-                grid: grid as usize,
+                positions: positions.unwrap_or(360) as usize,
+                grid: grid.unwrap_or(13) as usize,
                 span,
                 run,
                 motor2,
             };
+            let (one, two) = (m.input_count() == 1, m.input_count() == 2);
+            refuse_unused(
+                &file,
+                &[
+                    (
+                        "--positions",
+                        two && positions.is_some(),
+                        "sets the positions over a turn of a linkage with one input, and this \
+                         one has two inputs",
+                        "--grid N sets the nodes of its grid",
+                    ),
+                    (
+                        "--speed",
+                        two && speed.is_some(),
+                        "is the speed of a linkage with one input, and this one has two inputs, \
+                         whose mass matrix is the same at every speed and whose run (--run) \
+                         starts from rest",
+                        "leave --speed out",
+                    ),
+                    (
+                        "--motor",
+                        two && motor.is_some() && run.is_none(),
+                        "drives the first input during --run T, and no run was asked for",
+                        "add --run T, in seconds",
+                    ),
+                    (
+                        "--motor2",
+                        two && motor2.is_some() && run.is_none(),
+                        "drives the second input during --run T, and no run was asked for",
+                        "add --run T, in seconds",
+                    ),
+                    (
+                        "--motor",
+                        one && motor.is_some() && !run_up,
+                        "is the motor of the run-up, and no run-up was asked for",
+                        "add --run-up",
+                    ),
+                    (
+                        "--grid",
+                        one && grid.is_some(),
+                        "applies to a linkage with two inputs (the grid of its mass matrix), and \
+                         this one has one input",
+                        "--positions N sets the positions over its turn",
+                    ),
+                    (
+                        "--span",
+                        one && span.is_some(),
+                        "applies to a linkage with two inputs (the half-width of its grid), and \
+                         this one has one input",
+                        "leave --span out",
+                    ),
+                    (
+                        "--run",
+                        one && run.is_some(),
+                        "applies to a linkage with two inputs, and this one has one input",
+                        "a machine with one input runs from rest with --run-up",
+                    ),
+                    (
+                        "--motor2",
+                        one && motor2.is_some(),
+                        "drives the second input, and this linkage has one input",
+                        "a machine with one input runs from rest with --run-up and --motor",
+                    ),
+                ],
+            )?;
             dynamics(&file, &m, &request, format, csv.as_deref())?;
         }
         Command::Synth { kind } => synth::run(kind)?,
@@ -655,16 +840,6 @@ fn dynamics(
         });
         return Ok(());
     }
-    if request.run.is_some() || request.motor2.is_some() {
-        return Err(Fail::on(
-            file,
-            Failure::new(
-                "--run and --motor2 are for a linkage with two inputs, and this one has \
-                 one",
-            )
-            .hint("a machine with one input runs from rest with --run-up"),
-        ));
-    }
     let d = m.dynamics(request, &mut progress);
     clear_progress();
     let d = d.map_err(|f| Fail::on(file, f))?;
@@ -676,6 +851,19 @@ fn dynamics(
         Report::Json => report::dynamics_json(&d),
     });
     Ok(())
+}
+
+/// Refuses the first option given where it would change nothing (it would be silently
+/// ignored, its value unchecked): each entry is the option, whether it is given in vain, why
+/// it changes nothing, and what to do instead.
+fn refuse_unused(file: &str, options: &[(&str, bool, &str, &str)]) -> Result<(), Fail> {
+    match options.iter().find(|o| o.1) {
+        Some(&(option, _, why, fix)) => Err(Fail::on(
+            file,
+            Failure::new(format!("{option} {why}")).hint(fix),
+        )),
+        None => Ok(()),
+    }
 }
 
 /// The picture the options of `tmm draw` ask for (clap lets one at most through).

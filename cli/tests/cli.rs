@@ -18,7 +18,7 @@ mod common;
 
 use common::{
     assert_one_line_failure, assert_success, assert_svg, parse_csv, rocking_four_bar, root, tmm,
-    tmm_in, Broken,
+    tmm_in, Broken, PISTON_DRIVEN,
 };
 
 /// Every bundled description, as a path relative to the root.
@@ -512,7 +512,13 @@ fn draw_writes_the_file_named_by_o() {
 #[test]
 fn dynamics_of_every_bundled_file() {
     for file in bundled() {
-        let r = tmm(&["dynamics", &file, "--flywheel", "0.05", "--positions", "72"]);
+        // A linkage with two inputs has a grid where one with one has positions over a turn.
+        let size = if two_inputs(&file) {
+            ["--grid", "5"]
+        } else {
+            ["--positions", "72"]
+        };
+        let r = tmm(&["dynamics", &file, "--flywheel", "0.05", size[0], size[1]]);
         if two_inputs(&file) || rocking(&file) {
             assert_one_line_failure(&r, &file);
             let why = if two_inputs(&file) {
@@ -526,7 +532,7 @@ fn dynamics_of_every_bundled_file() {
                 r.stderr
             );
             // Without a flywheel: what is meaningful for them.
-            let r = tmm(&["dynamics", &file, "--positions", "72", "--grid", "5"]);
+            let r = tmm(&["dynamics", &file, size[0], size[1]]);
             assert_success(&r, &format!("dynamics {file}"));
             let what = if two_inputs(&file) { "A11" } else { "J_red" };
             assert!(r.stdout.contains(what), "{file}: {}", r.stdout);
@@ -550,16 +556,12 @@ fn dynamics_of_every_bundled_file_as_csv_with_units() {
     let out = std::env::temp_dir().join(format!("tmm-cli-test-{}-dyn.csv", std::process::id()));
     let out_s = out.to_string_lossy().into_owned();
     for file in bundled() {
-        let r = tmm(&[
-            "dynamics",
-            &file,
-            "--positions",
-            "24",
-            "--grid",
-            "4",
-            "--csv",
-            &out_s,
-        ]);
+        let size = if two_inputs(&file) {
+            ["--grid", "4"]
+        } else {
+            ["--positions", "24"]
+        };
+        let r = tmm(&["dynamics", &file, size[0], size[1], "--csv", &out_s]);
         assert_success(&r, &format!("dynamics --csv {file}"));
         let text = std::fs::read_to_string(&out).expect("the CSV file is written");
         let (header, rows) = parse_csv(&text, &file);
@@ -692,26 +694,6 @@ fn a_rocking_crank_is_tabulated_and_drawn_inside_its_lock_angles() {
     assert!(r.stderr.contains("turns fully"), "{}", r.stderr);
     assert!(r.stderr.contains("lock angles"), "{}", r.stderr);
 }
-
-/// A slider-crank driven by its piston (a slider input), the crank loaded by a couple.
-const PISTON_DRIVEN: &str = r#"{
-  "name": "piston-driven slider-crank",
-  "joints": [
-    {"name": "O1", "at": [0.0, 0.0]},
-    {"name": "A", "at": [0.03, 0.04]},
-    {"name": "B", "at": [0.22, 0.0]},
-    {"name": "P", "at": [0.22, 0.0], "kind": {"prismatic": {"guide": "frame", "direction": [1.0, 0.0]}}}
-  ],
-  "links": [
-    {"name": "frame", "joints": ["O1", "P"]},
-    {"name": "piston", "joints": ["B", "P"], "mass": {"m": 0.8, "j": 0.0, "centre": "B"}},
-    {"name": "rod", "joints": ["A", "B"], "mass": {"m": 1.2, "j": 0.004, "centre": [0.125, 0.02]}},
-    {"name": "crank", "joints": ["O1", "A"], "mass": {"m": 2.5, "j": 0.004, "centre": [0.0, 0.0]}}
-  ],
-  "input": {"link": "piston"},
-  "loads": [{"moment": {"link": "crank", "moment": -5.0}}],
-  "speed": 0.5
-}"#;
 
 #[test]
 fn a_slider_input_travels_between_its_dead_points() {
@@ -977,10 +959,15 @@ fn mistakes_in_a_description_never_panic() {
                 &["draw", "--plan"],
                 &["draw", "--animate"],
                 &["draw", "--workspace", "B"],
-                &["dynamics", "--positions", "36", "--grid", "5"],
+                &["dynamics", "--positions", "36"],
             ] {
                 let mut all = vec![args[0], broken.0.to_str().unwrap()];
-                all.extend_from_slice(&args[1..]);
+                // A linkage with two inputs has a grid where one with one has positions.
+                if args[0] == "dynamics" && file == "five-bar-robot" {
+                    all.extend_from_slice(&["--grid", "5"]);
+                } else {
+                    all.extend_from_slice(&args[1..]);
+                }
                 let r = tmm(&all);
                 let context = format!("{file} with {what}: tmm {}", all.join(" "));
                 runs += 1;

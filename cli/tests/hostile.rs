@@ -5,7 +5,7 @@
 
 mod common;
 
-use common::{assert_one_line_failure, tmm};
+use common::{assert_one_line_failure, assert_success, tmm, Broken, PISTON_DRIVEN};
 
 /// The number after `key` in `text` (up to the next space, comma or unit).
 fn number_after(text: &str, key: &str) -> f64 {
@@ -21,11 +21,24 @@ fn number_after(text: &str, key: &str) -> f64 {
         .unwrap_or_else(|_| panic!("a number after {key:?} in {text}"))
 }
 
+/// The number that ends just before `key` in `text`.
+fn number_before(text: &str, key: &str) -> f64 {
+    let end = text
+        .find(key)
+        .unwrap_or_else(|| panic!("{key:?} in {text}"));
+    let start = text[..end].rfind(' ').map_or(0, |k| k + 1);
+    text[start..end]
+        .parse()
+        .unwrap_or_else(|_| panic!("a number before {key:?} in {text}"))
+}
+
 /// A run-up whose step cannot finish it within the step budget is refused before it starts:
 /// a spin-up from rest to 10⁹ rad/s, a rotor of 10³⁰⁰ kg·m², a motor of 10⁻³⁰⁰ N·m (each
 /// needing far more steps than allowed), or a speed of 10⁻⁹ rad/s, whose default motor is so
-/// steep that RK4's stable step makes a turn take 10²³ steps. The spin-up's stated least time
-/// is J·|ω|/a of the stated J, ω and a: the motor's full starting moment on the crank alone.
+/// steep that RK4's stable step makes a turn take 10²³ steps. The budget is at most 10⁶
+/// steps (fewer where the linkage's solve is slow: the double butterfly's general group), and
+/// the steps stated exceed it. The spin-up's stated least time is J·|ω|/a of the stated J, ω
+/// and a: the motor's full starting moment on the crank alone.
 #[test]
 fn a_run_up_beyond_its_step_budget_is_refused_at_once() {
     let cases: [(&[&str], &str); 4] = [
@@ -34,13 +47,23 @@ fn a_run_up_beyond_its_step_budget_is_refused_at_once() {
         (&["--motor", "1e-300,0"], "--motor"),
         (&["--speed", "1e-9"], "larger --speed"),
     ];
-    for (file, omega) in [("four-bar", 10.0), ("mechanism-compressor", 10.0)] {
+    for (file, omega) in [
+        ("four-bar", 10.0),
+        ("mechanism-compressor", 10.0),
+        ("double-butterfly", 10.0),
+    ] {
         for (extra, option) in cases {
-            let mut args = vec!["dynamics", file, "--run-up"];
+            let mut args = vec!["dynamics", file, "--run-up", "--positions", "36"];
             args.extend_from_slice(extra);
             let r = tmm(&args);
             assert_one_line_failure(&r, file);
-            assert!(r.stderr.contains("above the 1e6"), "{}", r.stderr);
+            let budget = number_after(&r.stderr, "above the ");
+            let steps = number_before(&r.stderr, " steps of h");
+            assert!(
+                (1.0..=1e6).contains(&budget) && steps > budget,
+                "{steps} steps against a budget of {budget}: {}",
+                r.stderr
+            );
             assert!(r.stderr.contains(option), "names {option}: {}", r.stderr);
             if r.stderr.contains("needs at least") {
                 let a = number_after(&r.stderr, "a = ");
@@ -212,4 +235,248 @@ fn a_two_input_picture_at_a_hostile_speed_names_the_speed() {
             r.stderr
         );
     }
+}
+
+/// An option given where it would change nothing is refused, naming the option and why,
+/// whatever its value (NaN included), rather than silently ignored: the grid, span, run and
+/// second motor of two inputs on a linkage with one; the positions over a turn and the speed
+/// on one with two; a motor without the run it drives; a speed with a workspace. Without the
+/// option the same command runs.
+#[test]
+fn an_option_that_changes_nothing_is_refused_naming_it() {
+    let cases: [(&[&str], &str, &str); 12] = [
+        (
+            &["dynamics", "four-bar", "--span", "nan"],
+            "--span",
+            "has one input",
+        ),
+        (
+            &["dynamics", "four-bar", "--span", "10"],
+            "--span",
+            "has one input",
+        ),
+        (
+            &["dynamics", "four-bar", "--grid", "5"],
+            "--grid",
+            "has one input",
+        ),
+        (
+            &["dynamics", "four-bar", "--run", "1"],
+            "--run",
+            "has one input",
+        ),
+        (
+            &["dynamics", "four-bar", "--motor2", "1,0"],
+            "--motor2",
+            "one input",
+        ),
+        (
+            &["dynamics", "four-bar", "--motor", "60,2"],
+            "--motor",
+            "no run-up",
+        ),
+        (
+            &["dynamics", "five-bar-robot", "--positions", "36"],
+            "--positions",
+            "two inputs",
+        ),
+        (
+            &["dynamics", "five-bar-robot", "--speed", "nan"],
+            "--speed",
+            "two inputs",
+        ),
+        (
+            &["dynamics", "five-bar-robot", "--speed", "5"],
+            "--speed",
+            "two inputs",
+        ),
+        (
+            &["dynamics", "five-bar-robot", "--motor", "1,0"],
+            "--motor",
+            "no run",
+        ),
+        (
+            &["dynamics", "five-bar-robot", "--motor2", "nan,0"],
+            "--motor2",
+            "no run",
+        ),
+        (
+            &[
+                "draw",
+                "five-bar-robot",
+                "--workspace",
+                "B",
+                "--speed",
+                "nan",
+            ],
+            "--speed",
+            "workspace",
+        ),
+    ];
+    for (args, option, why) in cases {
+        let r = tmm(args);
+        assert_one_line_failure(&r, args[1]);
+        assert!(
+            r.stderr.contains(&format!("{option} ")) && r.stderr.contains(why),
+            "{args:?} names {option} and says {why:?}: {}",
+            r.stderr
+        );
+    }
+    // The refusal is the option's: without it (and its value) the command runs.
+    for args in [
+        &["dynamics", "four-bar"][..],
+        &["dynamics", "five-bar-robot", "--grid", "3"],
+    ] {
+        assert_success(&tmm(args), &args.join(" "));
+    }
+}
+
+/// A slider input's coordinate that is not a finite number of metres within ±10⁹ m names the
+/// option it came from (it read "no position could be analysed: input must be finite").
+#[test]
+fn a_slider_coordinate_out_of_its_domain_names_the_option() {
+    let file = Broken::new("hostile-slider", PISTON_DRIVEN);
+    for value in ["nan", "inf", "-1e300"] {
+        for (args, option) in [
+            (&["analyse", &file.path(), "--at", value][..], "--at"),
+            (&["draw", &file.path(), "--scheme", value], "--scheme"),
+            (&["draw", &file.path(), "--forces", value], "--forces"),
+        ] {
+            let r = tmm(args);
+            assert_one_line_failure(&r, &file.path());
+            assert!(
+                r.stderr.contains(&format!("{option} ")) && r.stderr.contains("metres"),
+                "{args:?}: {}",
+                r.stderr
+            );
+        }
+    }
+}
+
+/// A file that is not a description is refused before it is read, naming it and why: a
+/// directory, a device, a file of 50 MB (its size and the 16 MB limit, in its words), a file
+/// that is not UTF-8 text.
+#[test]
+fn a_file_that_is_not_a_description_is_refused_before_it_is_read() {
+    let big = Broken::new("hostile-big", "");
+    std::fs::File::options()
+        .write(true)
+        .open(&big.0)
+        .and_then(|f| f.set_len(50 * 1024 * 1024))
+        .expect("a sparse file of 50 MB");
+    let binary = Broken::new("hostile-binary", "");
+    std::fs::write(&binary.0, [b'{', 0xff, 0xfe, b'}']).unwrap();
+    let dir = common::root().join("linkages");
+    let dir = dir.to_str().unwrap();
+    let mut cases = vec![
+        (
+            big.path(),
+            "the file is 50.0 MB (52428800 bytes), above the 16.0 MB",
+        ),
+        (binary.path(), "not UTF-8"),
+        (dir.to_owned(), "it is a directory"),
+    ];
+    if cfg!(unix) {
+        cases.push(("/dev/zero".to_owned(), "not a file but a device"));
+    }
+    for (path, why) in cases {
+        for command in ["check", "analyse", "draw", "dynamics"] {
+            let r = tmm(&[command, &path]);
+            assert_one_line_failure(&r, &path);
+            assert!(r.stderr.contains(why), "{command} {path}: {}", r.stderr);
+        }
+    }
+}
+
+/// A file to write that cannot be written — in a directory that does not exist, or a
+/// directory itself — is refused before the work, naming the path and why.
+#[test]
+fn an_output_that_cannot_be_written_is_refused_before_the_work() {
+    let missing = std::env::temp_dir().join(format!("tmm-no-such-dir-{}", std::process::id()));
+    let into_missing = missing.join("out.svg");
+    let into_missing = into_missing.to_str().unwrap();
+    let dir = std::env::temp_dir();
+    let dir = dir.to_str().unwrap();
+    for (args, path, why) in [
+        (
+            &["draw", "shaper", "--plan", "-o", into_missing][..],
+            into_missing,
+            "does not exist",
+        ),
+        (
+            &["analyse", "shaper", "--csv", into_missing],
+            into_missing,
+            "does not exist",
+        ),
+        (
+            &["dynamics", "shaper", "--csv", into_missing],
+            into_missing,
+            "does not exist",
+        ),
+        (&["draw", "shaper", "-o", dir], dir, "it is a directory"),
+    ] {
+        let r = tmm(args);
+        assert_eq!(r.code, 1, "{args:?}: {}", r.stderr);
+        assert_eq!(r.stderr.lines().count(), 1, "{}", r.stderr);
+        assert!(
+            r.stderr.contains(path) && r.stderr.contains(why),
+            "{args:?}: {}",
+            r.stderr
+        );
+        assert!(r.stdout.is_empty(), "{args:?}");
+    }
+    assert!(!missing.exists());
+}
+
+/// A machine whose links carry no mass (Jansen's leg as bundled) has no run-up to integrate:
+/// refused naming J_red and the fix; with a flywheel on the crank (--rotor) it runs up to a
+/// steady turn that balances energy. Over a steady turn the kinetic energy returns, so
+/// ∮(a − b·ω) dφ + ∮ M_red dφ = 0: a − b·ω_φ + M̄_red = 0 with ω_φ the mean of ω over the
+/// angle, which exceeds the turn's mean over time ω̄ = 2π/T by var(ω)/ω̄ ≤ (δ/2)²·ω̄. So
+/// 0 ≤ a − b·ω̄ + M̄_red ≤ b·ω̄·δ²/4.
+#[test]
+fn a_run_up_without_inertia_is_refused_and_runs_with_a_rotor() {
+    let r = tmm(&["dynamics", "jansen-leg", "--run-up"]);
+    assert_one_line_failure(&r, "jansen-leg");
+    assert!(
+        r.stderr.contains("J_red is 0 kg·m²") && r.stderr.contains("--rotor"),
+        "{}",
+        r.stderr
+    );
+    let r = tmm(&[
+        "dynamics",
+        "jansen-leg",
+        "--run-up",
+        "--rotor",
+        "0.5",
+        "--format",
+        "json",
+    ]);
+    assert_success(&r, "jansen-leg --run-up --rotor 0.5");
+    let v: serde_json::Value = serde_json::from_str(&r.stdout).expect("JSON");
+    let loads: Vec<f64> = v["reduced"]["M_red"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|x| x.as_f64().unwrap())
+        .collect();
+    #[allow(clippy::cast_precision_loss)]
+    let mean_load = loads.iter().sum::<f64>() / loads.len() as f64;
+    let (a, b) = (
+        v["run_up"]["motor"]["a"].as_f64().unwrap(),
+        v["run_up"]["motor"]["b"].as_f64().unwrap(),
+    );
+    let last = v["run_up"]["turns"].as_array().unwrap().last().unwrap();
+    let (w, delta) = (
+        last["omega_mean"].as_f64().unwrap(),
+        last["delta"].as_f64().unwrap(),
+    );
+    let gap = a - b * w + mean_load;
+    // The mean load over 360 positions is the integral's to ~10⁻⁵ of the loads' scale.
+    let slack = 1e-4 * loads.iter().fold(0.0_f64, |m, x| m.max(x.abs()));
+    assert!(
+        gap >= -slack && gap <= b * w * delta * delta / 4.0 + slack,
+        "a − b·ω̄ + M̄ = {gap} outside [0, {}]",
+        b * w * delta * delta / 4.0
+    );
 }

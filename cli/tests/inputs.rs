@@ -463,7 +463,10 @@ fn the_mass_matrix_of_two_inputs_is_the_links_kinetic_energy() {
         (&["--span", "-5"], "span"),
         (&["--span", "200"], "at most 180°"),
         (&["--span", "nan"], "span"),
-        (&["--speed", "inf"], "speed must be finite"),
+        (
+            &["--speed", "inf"],
+            "--speed is the speed of a linkage with one input",
+        ),
         // RK4's stable step under this damping would need 10⁸ steps: refused before it runs.
         (&["--run", "1", "--motor", "1,1e6"], "make the run stiff"),
         (&["--run", "1", "--motor2", "1,1e308"], "make the run stiff"),

@@ -12,9 +12,21 @@ use crate::model::{
     DynamicsReport, DynamicsRequest, Failure, FlywheelRow, Range, ReducedRow, RunUpReport, TurnRow,
 };
 
-/// The most RK4 steps a run-up may be expected to need, before it is refused: a turn at the
-/// speed asked for, or the spin-up to that speed.
+/// The most RK4 steps a run-up may take (a turn under way is finished); one expected to need
+/// more — a turn at the speed asked for, or the spin-up to that speed — is refused before it
+/// starts.
 const MAX_RUN_UP_STEPS: f64 = 1e6;
+
+/// The longest a run-up may be expected to take, s. Its steps' cost is the cost of the
+/// reduced quantities at one position (one solve of the positions and the transfer
+/// functions: 4 of them a step of RK4), measured on the turn before it: a few µs for a
+/// four-bar, a hundred for a general group, solved by continuation at every position.
+const RUN_UP_SECONDS: f64 = 60.0;
+
+/// RK4's steps a turn at the top speed: 1° a step. The steady turns' speeds and δ agree to
+/// the 5 digits printed with those at 2 000 steps a turn (the error of RK4 falls as h⁴; the
+/// double butterfly, whose step this sets, was measured at 125, 250, 500 and 2 000).
+const STEPS_PER_TURN: f64 = 360.0;
 
 impl Machine {
     /// The machine's dynamics: reduced quantities, run-up and flywheels.
@@ -64,7 +76,10 @@ impl Machine {
         if request.rotor != 0.0 {
             bare = bare.with_inertia(0, request.rotor).map_err(f)?;
         }
+        let clock = std::time::Instant::now();
         let rows = Self::reduced_rows(&bare, rocking, request, progress)?;
+        #[allow(clippy::cast_precision_loss)]
+        let evaluation = clock.elapsed().as_secs_f64() / rows.len().max(1) as f64;
         let mut flywheels = Vec::new();
         for &delta in &request.flywheel {
             progress(&format!("flywheel for δ = {delta}"));
@@ -84,7 +99,7 @@ impl Machine {
             });
         }
         let run_up = if request.run_up {
-            Some(Self::run_up(&bare, &rows, request, progress)?)
+            Some(Self::run_up(&bare, &rows, request, evaluation, progress)?)
         } else {
             None
         };
@@ -160,11 +175,14 @@ impl Machine {
     }
 
     /// The run-up from rest under the motor of `request` (or one sized from the loads of
-    /// `rows`) to the steady state, by RK4.
+    /// `rows`) to the steady state, by RK4, within a budget of steps: [`MAX_RUN_UP_STEPS`],
+    /// or fewer where a step, of 4 evaluations of `evaluation` seconds each, would make it
+    /// longer than [`RUN_UP_SECONDS`].
     fn run_up(
         bare: &LinkageSystem,
         rows: &[ReducedRow],
         request: &DynamicsRequest,
+        evaluation: f64,
         progress: &mut dyn FnMut(&str),
     ) -> Result<RunUpReport, Failure> {
         let f = |e: tmm::Error| failure(&e);
@@ -204,21 +222,51 @@ impl Machine {
             .clone()
             .with_motor(0, Motor::Linear(LinearMotor { a: sense * a, b }))
             .map_err(f)?;
-        // 2000 steps a turn at the speed the machine may reach: the speed asked, or a damped
-        // motor's idle speed a/b if that is higher (up to 100 times the speed asked, so that
-        // a run stays within its step budget), and RK4 well inside its stability limit
-        // (hλ ≈ −2.785) for the motor's damping b/J_red.
+        // STEPS_PER_TURN a turn at the speed the machine may reach: the speed asked, or a
+        // damped motor's idle speed a/b if that is higher (up to 100 times the speed asked,
+        // so that a run stays within its step budget), and RK4 well inside its stability
+        // limit (hλ ≈ −2.785) for the motor's damping b/J_red.
         let idle = if b > 0.0 { a.abs() / b } else { 0.0 };
         let top = speed.abs().max(idle.min(100.0 * speed.abs()));
-        let j_min = rows.iter().map(|r| r.inertia).fold(f64::INFINITY, f64::min);
-        let h = (TAU / top / 2000.0).min(0.5 * j_min / b.abs().max(f64::MIN_POSITIVE));
-        Self::within_budget(rows, speed, (a, b), h)?;
-        let mut opts = RunUpOptions::new(h);
-        opts.record_every = 1;
-        // No one turn may spend more than the whole budget of steps.
-        opts.max_turn_time = opts.max_turn_time.min(MAX_RUN_UP_STEPS * h);
-        progress("run-up from rest (RK4)");
+        let (j_min, phi_min) = rows
+            .iter()
+            .map(|r| (r.inertia, r.phi))
+            .fold((f64::INFINITY, 0.0), |m, r| if r.0 < m.0 { r } else { m });
+        if j_min.is_nan() || j_min <= 0.0 {
+            // Without inertia the motion has no acceleration to integrate: ω jumps to where
+            // the motor balances the loads.
+            return Err(Failure::new(format!(
+                "a run-up needs the machine's inertia, and its reduced moment of inertia \
+                 J_red is {} kg·m² at φ = {:.4}° (its links carry no mass there)",
+                crate::model::typed(j_min),
+                phi_min.to_degrees()
+            ))
+            .hint("give the links masses in the file, or a flywheel on the crank with --rotor J"));
+        }
+        let h = (TAU / top / STEPS_PER_TURN).min(0.5 * j_min / b.abs().max(f64::MIN_POSITIVE));
+        let budget = MAX_RUN_UP_STEPS
+            .min(RUN_UP_SECONDS / (4.0 * evaluation.max(1e-9)))
+            .floor();
+        Self::within_budget(rows, speed, (a, b), h, budget)?;
+        // No one turn may spend more than the whole budget of steps; no turn begins after it.
+        #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
+        let opts = RunUpOptions::new(h)
+            .with_record_every(1)
+            .with_max_turn_time(60.0_f64.min(budget * h))
+            .with_max_steps(budget as usize);
+        progress(&format!(
+            "run-up from rest (RK4, at most {budget:.0} steps, about {:.0} s)",
+            budget * 4.0 * evaluation
+        ));
         let r = machine.run_up(&Rk4, &opts).map_err(|e| match e {
+            tmm::Error::Budget {
+                what: "run-up step",
+                ..
+            } => failure(&e).hint(format!(
+                "a run-up may take {budget:.0} steps (about {RUN_UP_SECONDS} s here); give a \
+                 --motor a,b whose moment falls faster with speed (a larger b), or a smaller \
+                 --rotor"
+            )),
             // A turn the step cannot resolve: the machine runs far faster than it was sized for.
             tmm::Error::OutOfRange { name, .. } if name.starts_with("step h") => failure(&e).hint(
                 "the machine ran far faster than --speed: give --speed near the speed it runs \
@@ -247,43 +295,61 @@ impl Machine {
         })
     }
 
-    /// Refuses a run-up that the step `h` cannot finish within [`MAX_RUN_UP_STEPS`]: a turn
-    /// at `speed` that needs more steps (the motor's damping b forces a step far below the
-    /// turn's), or a spin-up from rest that does. The spin-up takes at least J·|ω|/a — the
-    /// motor's full starting moment a on the mean reduced moment of inertia J, with no load
-    /// and no fall of the moment with speed — so a larger estimate is certainly too long.
+    /// Refuses a run-up that the step `h` cannot finish within `budget` steps: a turn at
+    /// `speed` that needs more (the motor's damping b forces a step far below the turn's),
+    /// or a spin-up from rest and two turns at speed that do. The spin-up takes at least
+    /// J·|ω|/a — the motor's full starting moment a on the mean reduced moment of inertia J,
+    /// with no load and no fall of the moment with speed — so a larger estimate is certainly
+    /// too long.
     fn within_budget(
         rows: &[ReducedRow],
         speed: f64,
         (a, b): (f64, f64),
         h: f64,
+        budget: f64,
     ) -> Result<(), Failure> {
         let turn = TAU / speed.abs() / h;
-        if turn.is_nan() || turn > MAX_RUN_UP_STEPS {
+        if turn.is_nan() || turn > budget {
             return Err(Failure::new(format!(
                 "a turn at {} rad/s takes {turn:.3e} steps of h = {h:.3e} s (the step RK4 needs \
-                 for the motor's slope b = {} N·m·s/rad), above the {MAX_RUN_UP_STEPS:e} a \
-                 run-up may take",
+                 for the motor's slope b = {} N·m·s/rad), above the {budget:e} a \
+                 run-up may take{}",
                 crate::model::typed(speed),
-                crate::model::typed(b)
+                crate::model::typed(b),
+                Self::budget_note(budget)
             ))
             .hint("give --motor a,b with a smaller b, a larger --speed, or a --rotor"));
         }
         #[allow(clippy::cast_precision_loss)]
         let j = rows.iter().map(|r| r.inertia).sum::<f64>() / rows.len() as f64;
         let spin_up = j * speed.abs() / a;
-        let steps = spin_up / h;
-        if steps.is_nan() || steps > MAX_RUN_UP_STEPS {
+        // Two turns at speed besides: a steady state is one turn's mean speed against the
+        // previous turn's.
+        let steps = spin_up / h + 2.0 * turn;
+        if steps.is_nan() || steps > budget {
             return Err(Failure::new(format!(
                 "the motor's starting moment a = {} N·m needs at least {} s to bring the crank \
-                 (J_red ≈ {j:.4e} kg·m²) to {} rad/s: {steps:.3e} steps of h = {h:.3e} s, above \
-                 the {MAX_RUN_UP_STEPS:e} a run-up may take",
+                 (J_red ≈ {j:.4e} kg·m²) to {} rad/s, and two turns more to see it steady: \
+                 {steps:.3e} steps of h = {h:.3e} s, above the {budget:e} a run-up may take{}",
                 crate::model::typed(a),
                 crate::model::typed(spin_up),
-                crate::model::typed(speed)
+                crate::model::typed(speed),
+                Self::budget_note(budget)
             ))
             .hint("give --motor a,b with a larger a, a smaller --rotor, or a lower --speed"));
         }
         Ok(())
+    }
+
+    /// Why a budget below [`MAX_RUN_UP_STEPS`] is what it is.
+    fn budget_note(budget: f64) -> String {
+        if budget < MAX_RUN_UP_STEPS {
+            format!(
+                " (the steps {RUN_UP_SECONDS} s allows at the cost of this linkage's solve, \
+                 measured here)"
+            )
+        } else {
+            String::new()
+        }
     }
 }

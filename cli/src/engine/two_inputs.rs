@@ -36,11 +36,7 @@ impl Machine {
     /// A coordinate of input `k` as typed after `option` (degrees for a crank, m for a
     /// slider) in rad or m; an angle beyond ±[`MAX_ANGLE`](super::MAX_ANGLE) is refused.
     fn coordinate(&self, option: &str, k: usize, typed: f64) -> Result<f64, Failure> {
-        if self.is_crank(k) {
-            super::typed_angle(option, typed)
-        } else {
-            Ok(typed)
-        }
+        super::typed_coordinate(option, self.is_crank(k), typed)
     }
 
     /// The inputs of a picture at one position: one coordinate per input as typed, or the

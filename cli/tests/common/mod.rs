@@ -205,6 +205,26 @@ impl Drop for Broken {
     }
 }
 
+/// A slider-crank driven by its piston (a slider input), the crank loaded by a couple.
+pub const PISTON_DRIVEN: &str = r#"{
+  "name": "piston-driven slider-crank",
+  "joints": [
+    {"name": "O1", "at": [0.0, 0.0]},
+    {"name": "A", "at": [0.03, 0.04]},
+    {"name": "B", "at": [0.22, 0.0]},
+    {"name": "P", "at": [0.22, 0.0], "kind": {"prismatic": {"guide": "frame", "direction": [1.0, 0.0]}}}
+  ],
+  "links": [
+    {"name": "frame", "joints": ["O1", "P"]},
+    {"name": "piston", "joints": ["B", "P"], "mass": {"m": 0.8, "j": 0.0, "centre": "B"}},
+    {"name": "rod", "joints": ["A", "B"], "mass": {"m": 1.2, "j": 0.004, "centre": [0.125, 0.02]}},
+    {"name": "crank", "joints": ["O1", "A"], "mass": {"m": 2.5, "j": 0.004, "centre": [0.0, 0.0]}}
+  ],
+  "input": {"link": "piston"},
+  "loads": [{"moment": {"link": "crank", "moment": -5.0}}],
+  "speed": 0.5
+}"#;
+
 /// The bundled four-bar with a crank too long to turn: it rocks between two lock angles
 /// (s + l > p + q, a triple rocker).
 pub fn rocking_four_bar() -> Broken {

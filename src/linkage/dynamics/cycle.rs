@@ -55,6 +55,10 @@ pub struct RunUpOptions {
     /// The longest one turn may take, s: a machine that stalls or turns back fails with an
     /// error, not a run without end.
     pub max_turn_time: f64,
+    /// The most steps the whole run-up may take ([`Error::Budget`] beyond), checked after
+    /// each turn: the turn under way is finished, so a run-up ends within this plus one
+    /// turn's steps. No limit but each turn's own by default.
+    pub max_steps: usize,
     /// Record every n-th step of each turn (the turn's ends always). A turn's ω_max and ω_min
     /// (and so δ) are read off the recorded steps, refined by a parabola through the peak and
     /// its neighbours: thinning the record coarsens them, so keep 1 where δ matters.
@@ -71,6 +75,7 @@ impl RunUpOptions {
             tol: 1e-6,
             max_turns: 2000,
             max_turn_time: 60.0,
+            max_steps: usize::MAX,
             record_every: 1,
         }
     }
@@ -100,6 +105,25 @@ impl RunUpOptions {
     #[must_use]
     pub fn with_max_turn_time(mut self, max_turn_time: f64) -> Self {
         self.max_turn_time = max_turn_time;
+        self
+    }
+
+    /// The same options with at most `max_steps` steps in all (checked after each turn).
+    ///
+    /// ```
+    /// use tmm::dynamics::Rk4;
+    /// use tmm::linkage::dynamics::{LinkageSystem, Motor, RunUpOptions};
+    /// use tmm::linkage::bundled;
+    /// let sys = LinkageSystem::from_linkage(&bundled::four_bar())?
+    ///     .with_motor(0, Motor::Linear(tmm::dynamics::machines::LinearMotor { a: 60.0, b: 2.0 }))?;
+    /// // 100 steps of 1 ms do not reach a steady state: the budget ends the run-up.
+    /// let e = sys.run_up(&Rk4, &RunUpOptions::new(1e-3).with_max_steps(100)).unwrap_err();
+    /// assert!(matches!(e, tmm::Error::Budget { what: "run-up step", limit: 100, .. }), "{e}");
+    /// # Ok::<(), tmm::Error>(())
+    /// ```
+    #[must_use]
+    pub fn with_max_steps(mut self, max_steps: usize) -> Self {
+        self.max_steps = max_steps;
         self
     }
 
@@ -465,10 +489,12 @@ impl LinkageSystem {
     /// The cost is bounded: at most `opts.max_turns` turns (a turning back counts as one),
     /// each at most
     /// `opts.max_turn_time` of motion and the run's step budget
-    /// ([`RunOptions`](crate::dynamics::RunOptions)).
+    /// ([`RunOptions`](crate::dynamics::RunOptions)), and no turn begun after
+    /// `opts.max_steps` steps in all.
     ///
     /// # Errors
-    /// [`Error::Budget`] when `opts.max_turns` turns pass without a steady state, wrapped
+    /// [`Error::Budget`] when `opts.max_turns` turns or `opts.max_steps` steps pass without
+    /// a steady state, wrapped
     /// in [`Error::In`] saying why when at least 8 turns were run: the mean speed grew in
     /// each of the last turns (the machine runs away), fell in each, or went up and down
     /// without settling;
@@ -519,6 +545,9 @@ impl LinkageSystem {
                     // in the direction the drive moves it.
                     s.qd[0] = 0.0;
                     back = Some((back.map_or(0, |b| b.0) + 1, s.t, out.turns.len()));
+                    if out.steps >= opts.max_steps {
+                        break;
+                    }
                     continue;
                 }
             };
@@ -532,11 +561,22 @@ impl LinkageSystem {
             if steady {
                 return Ok(out);
             }
+            if out.steps >= opts.max_steps {
+                break;
+            }
         }
-        let budget = Error::Budget {
-            what: "turn",
-            limit: opts.max_turns,
-            time: s.t,
+        let budget = if out.steps >= opts.max_steps {
+            Error::Budget {
+                what: "run-up step",
+                limit: opts.max_steps,
+                time: s.t,
+            }
+        } else {
+            Error::Budget {
+                what: "turn",
+                limit: opts.max_turns,
+                time: s.t,
+            }
         };
         let why = match back.filter(|_| out.turns.is_empty()) {
             Some((n, t, _)) => Some(format!(
