@@ -843,13 +843,14 @@ fn help_has_examples() {
     }
 }
 
-const SYNTH_KINDS: [&str; 6] = [
+const SYNTH_KINDS: [&str; 7] = [
     "crank-rocker",
     "slider-crank",
     "shaper",
     "through",
     "function",
     "path",
+    "six-bar",
 ];
 
 #[test]
@@ -860,6 +861,8 @@ fn every_example_in_the_help_runs() {
     std::fs::create_dir_all(&dir).unwrap();
     // The points file of the path-generation examples.
     std::fs::write(dir.join("points.csv"), common::coupler_curve_csv(12)).unwrap();
+    // The timed points of the six-bar's examples.
+    std::fs::write(dir.join("timed.csv"), common::six_bar_example_csv()).unwrap();
     let mut examples = Vec::new();
     let synth: Vec<String> = SYNTH_KINDS.iter().map(|k| format!("synth {k}")).collect();
     let helps = [

@@ -86,12 +86,18 @@ impl Plan {
     }
 
     /// The output of the diagrams: `described` (the description's `output`), or the angle of
-    /// the last link written.
+    /// the last link written that is neither the frame nor an input link (the last link
+    /// written when every link is one of those).
     #[must_use]
     pub fn output_or_last(&self, described: Option<&Output>) -> Output {
         described.cloned().unwrap_or_else(|| {
             let names = self.link_names();
-            Output::Angle(names[names.len() - 1].clone())
+            let inputs = self.input_links();
+            let last = (1..names.len())
+                .rev()
+                .find(|&k| !inputs.contains(&LinkId(k)))
+                .unwrap_or(names.len() - 1);
+            Output::Angle(names[last].clone())
         })
     }
 

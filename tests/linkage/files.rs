@@ -200,3 +200,56 @@ fn the_watt_file_is_at_most_40_lines() {
     let text = include_str!("../../linkages/watt-six-bar.json");
     assert!(text.lines().count() <= 40, "{} lines", text.lines().count());
 }
+
+/// The diagrams' default output is the angle of the last link written that is neither the
+/// frame nor the input, in whatever order the links are written (the frame last moved the
+/// crank to the end once, and the diagram showed the input itself).
+#[test]
+fn the_default_output_is_the_last_link_written_that_is_not_frame_or_input() {
+    let base = bundled::four_bar();
+    let n = base.links.len();
+    let base_plan = Plan::new(&base).unwrap();
+    let base_kin = base_plan.kinematics(Motion::fixed(0.7)).unwrap();
+    let mut orders = 0;
+    // Every rotation and its reverse of the links' order.
+    for shift in 0..n {
+        for reverse in [false, true] {
+            let mut l = base.clone();
+            l.links.rotate_left(shift);
+            if reverse {
+                l.links.reverse();
+            }
+            l.output = None;
+            let expected = l
+                .links
+                .iter()
+                .rev()
+                .find(|k| k.name != l.frame && k.name != l.input.link)
+                .map(|k| k.name.clone())
+                .unwrap();
+            let plan = Plan::new(&l).unwrap();
+            match plan.output_or_last(None) {
+                tmm::linkage::Output::Angle(name) => {
+                    assert_eq!(name, expected, "{shift} {reverse}")
+                }
+                other => panic!("{other:?}"),
+            }
+            // The engine's motion of every link does not depend on the order written.
+            let (a, b) = (plan.kinematics(Motion::fixed(0.7)).unwrap(), &base_kin);
+            for link in &base.links {
+                let (x, y) = (
+                    a.link(link.name.as_str()).unwrap(),
+                    b.link(link.name.as_str()).unwrap(),
+                );
+                assert_eq!(
+                    (x.value, x.rate, x.accel),
+                    (y.value, y.rate, y.accel),
+                    "{}",
+                    link.name
+                );
+            }
+            orders += 1;
+        }
+    }
+    assert_eq!(orders, 2 * n);
+}

@@ -493,8 +493,11 @@ fn a_five_bar_with_large_pins_runs_with_the_energy_balance_of_its_friction_and_t
         tj >= bracket.0 - 1e-9 && tj <= bracket.1 + 1e-9,
         "{tj} vs {bracket:?}"
     );
-    // Dopri5 at 10⁻¹⁰ locates the same jam, on its own trajectory: the two differ by RK4's
-    // error at 10⁻⁴ s where the couplers fold fast (1.4·10⁻⁷ s in the jam's time).
+    // Dopri5 at 10⁻¹⁰ locates the same jam, on its own trajectory. Its location is the end of
+    // one trial step from its last accepted state, a step as long as the error control let
+    // the accepted ones be, whose own error is not controlled where the couplers fold fast:
+    // 9·10⁻⁷ s past the fine steps' bracket when written (1.4·10⁻⁷ s before Dormand–Prince
+    // capped an angle's relative tolerance at 2π), so it is held to 2·10⁻⁶ s of the bracket.
     let d = run(
         &sys,
         &Dopri5::new(1e-10).unwrap(),
@@ -510,7 +513,10 @@ fn a_five_bar_with_large_pins_runs_with_the_energy_balance_of_its_friction_and_t
     };
     println!("Dopri5 locates the jam at {td:.9} s (RK4 {tj:.9} s)");
     assert_eq!(jd, joint);
-    assert!((td - tj).abs() <= 1e-6, "{td} vs {tj}");
+    assert!(
+        td >= bracket.0 - 2e-6 && td <= bracket.1 + 2e-6,
+        "{td} vs {bracket:?}"
+    );
     // (The run above ends on 0.285 s exactly: its last step is cut to reach it.)
     let n = tr.len() - 1;
     let same = |a: &[f64], b: &[f64]| a[..n] == b[..n];

@@ -267,3 +267,23 @@ pub fn coupler_curve_csv(n: usize) -> String {
     }
     text
 }
+
+/// The eight timed points of the library's example six-bar
+/// ([`tmm::synthesis::PathRequirement::six_bar_example`]), 0.3 rad of crank apart, as the
+/// program reads them: x, y and the crank's turn in degrees.
+pub fn six_bar_example_csv() -> String {
+    let req = tmm::synthesis::PathRequirement::six_bar_example().unwrap();
+    let tmm::synthesis::Timing::Prescribed(delta) = &req.timing else {
+        panic!("the example is timed")
+    };
+    let mut csv = String::from("x,y,crank\n");
+    for (p, d) in req.points.iter().zip(delta) {
+        csv.push_str(&format!(
+            "{:.15},{:.15},{:.15}\n",
+            p[0],
+            p[1],
+            d.to_degrees()
+        ));
+    }
+    csv
+}

@@ -24,11 +24,13 @@ pub(super) struct Links {
 }
 
 impl Links {
-    /// Link 0 is the frame: the description's links reordered so that it comes first.
+    /// Link 0 is the frame: the description's links reordered so that it comes first, the
+    /// others in the order written (so that "the last link written" is the last planned).
     pub fn new(linkage: &Linkage, names: &Names<'_>) -> Result<Self> {
         let frame = names.link(&linkage.frame, "field frame")?;
-        let mut order: Vec<usize> = (0..linkage.links.len()).collect();
-        order.swap(0, frame);
+        let order: Vec<usize> = std::iter::once(frame)
+            .chain((0..linkage.links.len()).filter(|&k| k != frame))
+            .collect();
         let mut index = vec![0; order.len()];
         for (new, &old) in order.iter().enumerate() {
             index[old] = new;
