@@ -21,7 +21,8 @@
 //! best member and a few random ones every generation, and the best candidates of each run
 //! polished by Levenberg–Marquardt, a near miss then followed to the points by continuation
 //! (Levenberg–Marquardt alone stalls there: eight precision points make the misses'
-//! Jacobian ill-conditioned, its smallest singular value about 1e-6 of its largest), and
+//! Jacobian ill-conditioned, its smallest singular value about 1e-6 of its largest; in the
+//! budget's second half the run's best near miss is also followed within the run), and
 //! checked whole (every 1° of the range).
 
 use super::{
@@ -47,6 +48,9 @@ const WRAP: [usize; 2] = [2, GENES - 1];
 /// n points costs n/`positions` of an evaluation a residual, so that where the search alone
 /// stalls in sixteen dimensions, many short polishes are cheap.
 const LUCKY: usize = 5;
+/// The mean miss (path sizes) below which the run's best member is a near miss, followed
+/// to the points by continuation within the run.
+const NEAR: f64 = 1e-3;
 /// The fewest points: 16 unknowns, two equations a point.
 const MIN_POINTS: usize = 8;
 /// Samples of the range between the prescribed angles in the search, rad apart.
@@ -493,6 +497,7 @@ fn search(
         let mut pop = evolve::population(np, &lo, &hi, &mut rng);
         let mut fit: Vec<f64> = pop.iter().map(|g| pb.objective(g)).collect();
         let mut stagnation = evolve::Stagnation::new(1e-6);
+        let mut followed = f64::INFINITY;
         while pb.budget.room(np) {
             generation += 1;
             evolve::generation(&mut pop, &mut fit, &lo, &hi, &WRAP, &mut rng, &mut |g| {
@@ -504,11 +509,24 @@ fn search(
                     .min_by(|&a, &b| fit[a].total_cmp(&fit[b]))
                     .unwrap_or(0);
                 let lucky: Vec<usize> = (0..LUCKY).map(|_| rng.below(np)).collect();
-                for i in std::iter::once(best_i).chain(lucky) {
+                for (k, i) in std::iter::once(best_i).chain(lucky).enumerate() {
                     if fit[i] >= INFEASIBLE || !pb.budget.room(2) {
                         continue;
                     }
                     let (x, sg) = split(&pop[i]);
+                    // In the budget's second half (the end-of-run continuation alone has
+                    // not closed a near miss): the best member, a near miss half the last
+                    // one followed, followed to the points before its polish.
+                    let follow = k == 0
+                        && pb.budget.used.get() > 0.5 * pb.budget.max as f64
+                        && fit[i] < NEAR
+                        && fit[i] < 0.5 * followed;
+                    let x = if follow {
+                        followed = fit[i];
+                        pb.follow(x, sg)
+                    } else {
+                        x
+                    };
                     let g = genes_of(&pb.lm(x, sg, 30, false), sg);
                     let f = pb.objective(&g);
                     if f < fit[i] {
