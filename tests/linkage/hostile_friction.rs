@@ -153,12 +153,14 @@ fn hostile_runs_of_linkages_with_friction_end_with_a_reason() {
                 qd[n - 1] = g.f();
             }
             let mut sys = sys;
-            for k in 0..n {
+            let mut motors = [0.0; 2];
+            for (k, motor) in motors.iter_mut().enumerate().take(n) {
                 let m = if g.next().is_multiple_of(9) {
                     g.f()
                 } else {
                     50.0 * size * (2.0 * g.unit() - 1.0)
                 };
+                *motor = m;
                 sys = match sys.with_motor(k, Motor::Constant(m)) {
                     Ok(s) => s,
                     Err(_) => return "refused",
@@ -167,7 +169,10 @@ fn hostile_runs_of_linkages_with_friction_end_with_a_reason() {
             let opts = options(&mut g);
             let start = State::new(0.0, q, qd);
             let m = g.next();
-            let what = format!("{what}, q {q:?}, q' {qd:?}, method {}", m % 3);
+            let what = format!(
+                "{what}, q {q:?}, q' {qd:?}, motors {motors:?}, method {}",
+                m % 3
+            );
             check(&run_with(&sys, m, start, &opts), &opts, &what)
         }))
         .unwrap_or_else(|_| panic!("panicked: {what}"));

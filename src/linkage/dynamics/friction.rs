@@ -412,12 +412,17 @@ pub(super) fn jam_error(plan: &Plan, t: f64, joint: usize, value: f64) -> Error 
 }
 
 /// The joint (its index among `names`) whose self-locking `e` reports (a part "… joint
-/// <name> self-locks …" around det(I − J), the measure that vanished), with that value.
+/// <name> self-locks …" around det(I − J), the measure that vanished), with that value. A
+/// det(I − J) that is not a number (the reactions overflowed in the Newton step) is no
+/// measured jam: the statics' error stands (a run's error, not a stop with a NaN in it).
 fn self_locking(e: &Error, names: &[String]) -> Option<(usize, f64)> {
     let Error::In { part, source } = e else {
         return None;
     };
     if let (true, Error::Singular { value, .. }) = (part.contains(" self-locks"), source.as_ref()) {
+        if !value.is_finite() {
+            return None;
+        }
         // The longest name that fits (a name may hold another).
         return names
             .iter()
