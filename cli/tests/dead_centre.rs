@@ -25,7 +25,7 @@ fn a_two_input_run_into_a_dead_centre_prints_its_rows_and_the_stop() {
         .stdout
         .lines()
         .filter_map(|l| l.split_whitespace().next()?.parse::<f64>().ok())
-        .last()
+        .next_back()
         .expect("rows");
     assert!((last - 0.6498).abs() < 1e-4, "{last}: {}", r.stdout);
     assert!(
