@@ -683,6 +683,85 @@ fn turns_and_run_ups_end_with_a_reason(l: &Linkage, seed: u64) {
     );
 }
 
+/// The bundled four-bar driven from its rocker (a rocking input), thrown from random angles
+/// within its rocking range at random speeds under random constant moments, by each method
+/// with a random step or tolerance, for up to 0.3 s: a run that reaches a lock ends `Ok`
+/// with [`Outcome::DeadCentre`](tmm::dynamics::Outcome::DeadCentre) at the last state the
+/// linkage accepts (its dyad's |det| above 10⁻³, just above in most runs; the refused
+/// one's at most 10⁻³, finite), or stuck, or at its final time; any other end is a named error, never an
+/// exhausted budget. A tenth of `cases()` runs (each is up to 3000 steps), a third each
+/// method; both locks are met.
+#[test]
+fn runs_of_a_rocking_input_stop_at_its_locks() {
+    use tmm::dynamics::{run, Dopri5, Outcome, RunOptions, State};
+    let mut l = bundled::four_bar();
+    l.input = tmm::linkage::Input::crank("rocker");
+    l.groups.clear();
+    l.modes.clear();
+    let base = LinkageSystem::from_linkage(&l).unwrap();
+    let plan = base.plan().clone();
+    let (lo, hi) = plan
+        .lock_positions(plan.reference_input())
+        .unwrap()
+        .unwrap();
+    let mut g = Gen::new(71);
+    let (mut locks, mut stuck, mut other, mut near) = ([0usize; 2], 0, 0, 0);
+    for case in 0..cases().div_ceil(10) {
+        let moment = 80.0 * (g.unit() - 0.5);
+        let sys = base.clone().with_motor(0, Motor::Constant(moment)).unwrap();
+        let phi = lo + (hi - lo) * (0.02 + 0.96 * g.unit());
+        let start = State::new(
+            0.0,
+            Vector2::new(phi, 0.0),
+            Vector2::new(20.0 * (g.unit() - 0.5), 0.0),
+        );
+        let tol = 10f64.powf(-10.0 + 5.0 * g.unit());
+        let h = 10f64.powf(-4.0 + 2.0 * g.unit());
+        let dp = Dopri5 {
+            rtol: tol,
+            atol: tol,
+        };
+        let k = g.next() % 3;
+        let what =
+            format!("case {case}: method {k}, M {moment}, start {start:?}, h {h}, tol {tol}");
+        let mut ro = RunOptions::until(0.3, h);
+        ro.max_steps = 100_000;
+        let r = no_panic(&what, || by_method!(k, dp, m => run(&sys, m, start, &ro)));
+        match r {
+            Ok(r) => {
+                let shown = format!("{:?} {:?}", r.outcome, r.last);
+                assert!(!has_non_finite(&shown), "{what}: {shown}");
+                match r.outcome {
+                    Outcome::DeadCentre { t, dyad, value } => {
+                        assert_eq!((t, dyad), (r.last.t, 0), "{what}");
+                        assert!(value.abs() <= 1e-3, "{what}: {value}");
+                        let det = plan
+                            .kinematics(Motion::fixed(r.last.q[0]))
+                            .unwrap()
+                            .group_determinants()[0];
+                        // Accepted; at the band's edge, unless a coarse fixed step left
+                        // the motion near the lock (det ∝ √(φ_L − φ), where the equation
+                        // is singular) on a path of its own.
+                        assert!(det.abs() > 1e-3, "{what}: {det}");
+                        near += usize::from(det.abs() < 1.01e-3);
+                        locks[usize::from(r.last.q[0] > 0.5 * (lo + hi))] += 1;
+                    }
+                    Outcome::Stuck { .. } => stuck += 1,
+                    _ => other += 1,
+                }
+            }
+            Err(e @ Error::Budget { .. }) => panic!("{what}: {e}"),
+            Err(e) => assert!(!has_non_finite(&e.to_string()), "{what}: {e}"),
+        }
+    }
+    println!(
+        "rocking input: locks {locks:?} ({near} within 1 % of the band's edge), stuck {stuck}, \
+         other {other}"
+    );
+    assert!(locks[0] > 0 && locks[1] > 0, "{locks:?}");
+    assert!(2 * near >= locks[0] + locks[1], "{near} of {locks:?}");
+}
+
 #[cfg(feature = "draw")]
 #[test]
 fn hostile_pictures() {
