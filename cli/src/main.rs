@@ -504,8 +504,9 @@ fn read(file: &str) -> Result<String, Fail> {
     }
     let text = String::from_utf8(bytes).map_err(|e| {
         fail(format!(
-            "the file is not UTF-8 text (byte {} is not), and a description is JSON",
-            e.utf8_error().valid_up_to()
+            "the file is not UTF-8 text (its byte {}, counting from 1, is not), and a \
+             description is JSON",
+            e.utf8_error().valid_up_to() + 1
         ))
     })?;
     if text.trim().is_empty() {
@@ -558,7 +559,7 @@ fn check_output(path: Option<&Path>) -> Result<(), Fail> {
     if path.is_dir() {
         return Err(fail(
             "cannot write the file: it is a directory".to_owned(),
-            "give a file's name in it, for example DIR/out.svg",
+            "give the name of a file in it",
         ));
     }
     match path.parent() {
