@@ -11,7 +11,6 @@ use crate::linkage::handle::JointRef;
 use crate::linkage::plan::Plan;
 use crate::Load;
 use nalgebra::{Point2, Vector2};
-use std::mem::take;
 use std::ops::Deref;
 
 /// A closed form that divides by nothing.
@@ -78,17 +77,11 @@ impl<'p> Deref for Analysis<'p> {
 /// The static buffers go back into the position's box, and the box to the plan for its next
 /// one-shot solve (see `spare`).
 impl Drop for Analysis<'_> {
-    #[inline]
+    #[inline(always)]
     fn drop(&mut self) {
         if let Some(mut p) = self.k.kin.0.take() {
-            p.statics = Some(StaticBuffers {
-                applied: take(&mut self.applied),
-                acc: take(&mut self.acc),
-                reactions: take(&mut self.reactions),
-                conditioning: take(&mut self.conditioning),
-                balances: take(&mut self.balances),
-                friction: take(&mut self.friction),
-            });
+            self.swap_statics(&mut p.statics);
+            p.parked = true;
             self.k.plan.spare.give(p);
         }
     }
@@ -97,19 +90,41 @@ impl Drop for Analysis<'_> {
 impl<'p> Analysis<'p> {
     /// Buffers for analysing positions of `plan`: a dropped solve's box, or allocated here
     /// (the static buffers when the box has none yet).
-    #[inline]
+    #[inline(always)]
     pub(crate) fn new(plan: &'p Plan) -> Self {
-        let mut k = Kinematics::new(plan);
-        let s = k.kin.unpark().unwrap_or_else(|| new_statics(plan));
-        Self {
-            k,
-            applied: s.applied,
-            acc: s.acc,
-            reactions: s.reactions,
-            conditioning: s.conditioning,
-            balances: s.balances,
-            friction: s.friction,
+        let mut a = Self {
+            k: Kinematics::new(plan),
+            applied: Vec::new(),
+            acc: Box::default(),
+            reactions: Box::default(),
+            conditioning: Box::default(),
+            balances: Box::default(),
+            friction: super::friction::FrictionState::default(),
+        };
+        // The box is taken out for the exchange (one pointer), put back after it.
+        if let Some(mut p) = a.k.kin.0.take() {
+            if p.parked {
+                p.parked = false;
+                a.swap_statics(&mut p.statics);
+            } else {
+                a.swap_statics(&mut new_statics(plan));
+            }
+            a.k.kin.0 = Some(p);
         }
+        a
+    }
+
+    /// Exchanges this analysis's static buffers with `s`'s, field by field: a pointer and a
+    /// length each, nothing copied and no struct built on the way (see `Parts::statics`).
+    #[inline]
+    fn swap_statics(&mut self, s: &mut StaticBuffers) {
+        use std::mem::swap;
+        swap(&mut self.applied, &mut s.applied);
+        swap(&mut self.acc, &mut s.acc);
+        swap(&mut self.reactions, &mut s.reactions);
+        swap(&mut self.conditioning, &mut s.conditioning);
+        swap(&mut self.balances, &mut s.balances);
+        swap(&mut self.friction, &mut s.friction);
     }
 
     /// Kinematics, loads, the reactions from the last group back to the input links, and the

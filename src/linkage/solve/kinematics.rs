@@ -37,7 +37,7 @@ pub struct Kinematics<'p> {
 
 /// The buffers go back to the plan for its next one-shot solve (see `spare`).
 impl Drop for Kinematics<'_> {
-    #[inline]
+    #[inline(always)]
     fn drop(&mut self) {
         if let Some(p) = self.kin.0.take() {
             self.plan.spare.give(p);
@@ -47,7 +47,7 @@ impl Drop for Kinematics<'_> {
 
 impl<'p> Kinematics<'p> {
     /// Buffers for the kinematics of `plan` (a dropped solve's, or allocated here).
-    #[inline]
+    #[inline(always)]
     pub(crate) fn new(plan: &'p Plan) -> Self {
         Self {
             plan,

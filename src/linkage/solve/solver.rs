@@ -101,7 +101,10 @@ impl Plan {
     /// assert!(a.reaction("B")?.force.norm() > 0.0);
     /// # Ok::<(), tmm::Error>(())
     /// ```
-    #[inline]
+    // Always inlined: in the caller's loop the 136-byte result is built where the caller
+    // keeps it; called, it was built, copied into the `Result` and copied out again (two
+    // `memcpy` calls that waited on the stores just made).
+    #[inline(always)]
     pub fn analyse(&self, inputs: impl Into<Inputs>) -> Result<Analysis<'_>> {
         // Built where it is returned (one value returned on every path), not moved there.
         let mut r = Ok(Analysis::new(self));
@@ -118,7 +121,7 @@ impl Plan {
     ///
     /// # Errors
     /// As [`Solver::kinematics`].
-    #[inline]
+    #[inline(always)]
     pub fn kinematics(&self, inputs: impl Into<Inputs>) -> Result<Kinematics<'_>> {
         let mut r = Ok(Kinematics::new(self));
         if let Ok(k) = &mut r

@@ -12,10 +12,10 @@
 //! box back to its plan ([`Spares`]) and the next one-shot solve of that plan takes it. The
 //! design, and what it does not do:
 //! - the spares are the plan's own, and nothing else's: no thread keeps a box, nothing is
-//!   global. Taking and giving back try the plan's lock once and never wait on it (a thread
-//!   that finds it taken allocates, or frees, as if there were no spares), and no other code
-//!   runs under it (no user's load function can panic there), so threads sharing a plan
-//!   never block each other and the lock is never poisoned;
+//!   global. Taking and giving back try the plan's lock (see [`Spares`]) once and
+//!   never wait on it (a thread that finds it held allocates, or frees, as if there were no
+//!   spares), and no other code runs under it (no user's load function can panic there), so
+//!   threads sharing a plan never block each other;
 //! - it keeps little: at most [`KEEP`] boxes per plan, freed with the plan;
 //! - it changes no result: every solve writes whatever it reads (a triad's last pose and the
 //!   inputs, the only state a solve reads back, are reset when a box is taken), so a solve
@@ -59,9 +59,14 @@ pub(crate) struct StaticBuffers {
 #[derive(Debug, Clone, Default)]
 pub(crate) struct Parts {
     pub kin: KinState,
-    /// `None` while an analysis holds them, or before the box's first analysis (taking
-    /// them out, or putting them back, writes one word besides the buffers themselves).
-    pub statics: Option<StaticBuffers>,
+    /// The static buffers while no analysis holds them (empty while one does, or before the
+    /// box's first analysis). An analysis swaps them with its own fields one by one, a
+    /// pointer and a length each: moved as one struct through the stack, they were read back
+    /// in wider words than they were written, and each such read waited for the writes to
+    /// reach the cache (a stalled store forwarding, perf: half of the one-shot's own time).
+    pub statics: StaticBuffers,
+    /// Whether `statics` holds an analysis's buffers.
+    pub parked: bool,
 }
 
 /// One position's buffers (a box of [`Parts`]), read as its `KinState`. The box is taken out
@@ -108,7 +113,7 @@ impl DerefMut for Held {
 impl Held {
     /// The buffers of a position of `chain`: a spare box of `spares` (reset, see the module
     /// docs) or a new one.
-    #[inline]
+    #[inline(always)]
     pub fn of(chain: &Chain, spares: &Spares) -> Self {
         match spares.take() {
             Some(mut p) => {
@@ -128,14 +133,9 @@ impl Held {
     pub fn fresh(chain: &Chain) -> Self {
         Self(Some(Box::new(Parts {
             kin: KinState::new(chain),
-            statics: None,
+            statics: StaticBuffers::default(),
+            parked: false,
         })))
-    }
-
-    /// The parked static buffers, taken out (`None` if the box has none yet).
-    #[inline]
-    pub fn unpark(&mut self) -> Option<StaticBuffers> {
-        self.0.as_mut()?.statics.take()
     }
 }
 
@@ -143,12 +143,23 @@ impl Held {
 /// with none, two plans compare equal whatever they hold, and a plan's `Debug` does not list
 /// them. Aligned to a cache line pair of its own: threads that make one-shot solves of one
 /// plan write its lock, which must not share a line with the plan data every solve reads.
+///
+/// **The lock.** A `Mutex` tried once (`try_lock`) and never waited on: two locked
+/// read-modify-writes to hold and let go, four per one-shot solve. A flag and an unsafe cell
+/// would halve them (measured: 0.03–0.06 of a four-bar position), but the crate forbids
+/// `unsafe` code.
 #[derive(Default)]
 #[repr(align(128))]
 pub(crate) struct Spares {
-    // Boxes, not the parts themselves: a box is handed on whole, its pointer moved.
-    #[allow(clippy::vec_box)]
-    pool: Mutex<Vec<Box<Parts>>>,
+    pool: Mutex<Pool>,
+}
+
+/// The boxes, a stack of at most [`KEEP`] (a fixed array: nothing is allocated, nothing can
+/// fail, while the lock is held).
+#[derive(Default)]
+struct Pool {
+    boxes: [Option<Box<Parts>>; KEEP],
+    len: usize,
 }
 
 impl std::fmt::Debug for Spares {
@@ -170,20 +181,95 @@ impl PartialEq for Spares {
 }
 
 impl Spares {
-    /// A spare box of the plan's, if one is free (the lock tried once).
-    #[inline]
+    /// Runs `f` on the pool if no other thread holds it (tried once, never waited on);
+    /// `None` if one does.
+    #[inline(always)]
+    fn with<R>(&self, f: impl FnOnce(&mut Pool) -> R) -> Option<R> {
+        // A poisoned lock cannot happen (nothing that can panic runs under it), and would
+        // only leave the spares unused.
+        self.pool.try_lock().ok().map(|mut pool| f(&mut pool))
+    }
+
+    /// A spare box of the plan's, if one is free and no other thread holds the spares.
+    #[inline(always)]
     pub fn take(&self) -> Option<Box<Parts>> {
-        self.pool.try_lock().ok()?.pop()
+        self.with(|p| {
+            let last = p.len.checked_sub(1)?;
+            p.len = last;
+            p.boxes.get_mut(last)?.take()
+        })
+        .flatten()
     }
 
     /// Gives back a box to the plan's spares; freed (after the lock is let go) if they are
     /// full or busy.
-    #[inline]
-    pub fn give(&self, p: Box<Parts>) {
-        if let Ok(mut v) = self.pool.try_lock()
-            && v.len() < KEEP
-        {
-            v.push(p);
+    #[inline(always)]
+    pub fn give(&self, b: Box<Parts>) {
+        let mut b = Some(b);
+        self.with(|p| {
+            if let Some(slot) = p.boxes.get_mut(p.len) {
+                *slot = b.take();
+                p.len += 1;
+            }
+        });
+        drop(b);
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::{Parts, Spares, KEEP};
+
+    /// Threads taking and giving back boxes of one plan's spares never hold one box at
+    /// once: each marks the box it took with its own number, yields, and finds its mark
+    /// unchanged before giving the box back. A lock that let two threads in would let one
+    /// overwrite the other's mark (or both pop the same slot, one box held twice).
+    #[test]
+    fn a_box_is_held_by_one_thread_at_a_time() {
+        let spares = Spares::default();
+        for _ in 0..KEEP {
+            spares.give(Box::default());
         }
+        let threads = 4;
+        let (taken, missed) = std::thread::scope(|s| {
+            let handles: Vec<_> = (0..threads)
+                .map(|t| {
+                    let spares = &spares;
+                    s.spawn(move || {
+                        let (mut taken, mut missed) = (0u32, 0u32);
+                        for k in 0..20_000u32 {
+                            let Some(mut b) = spares.take() else {
+                                missed += 1;
+                                std::hint::spin_loop();
+                                continue;
+                            };
+                            let mark = f64::from(t * 1_000_000 + k % 1_000_000);
+                            b.kin.input.value = mark;
+                            if k % 64 == 0 {
+                                std::thread::yield_now();
+                            }
+                            assert_eq!(b.kin.input.value, mark, "thread {t}: box shared");
+                            spares.give(b);
+                            taken += 1;
+                        }
+                        (taken, missed)
+                    })
+                })
+                .collect();
+            handles
+                .into_iter()
+                .map(|h| h.join().unwrap())
+                .fold((0, 0), |(a, b), (c, d)| (a + c, b + d))
+        });
+        assert!(
+            taken > 0,
+            "no box was ever taken ({missed} tries found the spares held)"
+        );
+        // Every box came back: none lost, none duplicated.
+        let mut back: Vec<Box<Parts>> = std::iter::from_fn(|| spares.take()).collect();
+        assert_eq!(back.len(), KEEP);
+        back.sort_by_key(|b| std::ptr::from_ref::<Parts>(b) as usize);
+        back.dedup_by_key(|b| std::ptr::from_ref::<Parts>(b) as usize);
+        assert_eq!(back.len(), KEEP, "a box was held twice");
     }
 }
