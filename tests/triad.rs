@@ -935,9 +935,10 @@ fn regular_near_a_branch_point(
         // error (SINGULAR_BRANCH): ≈ 1e2·ε/μ², allowed with a factor of 100.
         let tol = 1e-8 + 1e4 * f64::EPSILON / (base.det * base.det);
         if !(rv <= tol && ra <= tol) {
-            // Seen (5 of 3980 modes at 10⁴): errors of order 1, the nine samples leaving the
-            // mode (the step is set from the joints' speed, not from the time to the fold);
-            // counted, printed and bounded by the caller.
+            // Seen (1 of 3979 modes at 10⁴; 7 of 3980 before the solver split the folds F's
+            // rounding had merged): errors of order 1, the samples leaving the mode (near a
+            // cusp, the mode's own fold nearer than the pair's distance says); counted,
+            // printed and bounded by the caller.
             seen.jumped += 1;
             println!(
                 "case {case}: 1e-8 off a branch point (|det| {:e}) the rates are off finite \

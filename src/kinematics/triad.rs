@@ -1099,22 +1099,24 @@ impl Eliminated {
     /// intersections of two of the circles are polished, and every candidate that closes is
     /// returned.
     /// A `double` root (two merged within rounding) keeps its pose from the radical axes
-    /// unpolished where that closes to [`CLOSES`] of the size.
+    /// unpolished where that closes to [`CLOSES`] of the size; otherwise, and at a cluster,
+    /// the mode found's partner across the fold ([`split_fold`](Self::split_fold)) is added.
     fn poses(
         &self,
         z: C,
         multiple: bool,
         double: bool,
         dims: &TriadDims,
-    ) -> [Option<TriadPose>; 2] {
+    ) -> [Option<TriadPose>; 4] {
         let (wz, d) = self.w_d(z);
         if double && d.abs() > 1e-3 * self.dscale {
             let p = C::new(0.0, 1.0) * wz / d;
-            if let Some(pose) = self.polish_steps(Vector2::new(p.re, p.im), z, dims, 0, CLOSES) {
-                return [Some(pose), None];
+            let p = Vector2::new(p.re, p.im);
+            if let Some(pose) = self.polish_steps(p, z, dims, 0, CLOSES) {
+                return [Some(pose), None, None, None];
             }
         }
-        if d.abs() > 1e-3 * self.dscale && !multiple {
+        let found = if d.abs() > 1e-3 * self.dscale && !multiple {
             let p = C::new(0.0, 1.0) * wz / d;
             [self.polish(Vector2::new(p.re, p.im), z, dims), None]
         } else {
@@ -1122,7 +1124,70 @@ impl Eliminated {
                 Some([p, q]) => [self.polish(p, z, dims), self.polish(q, z, dims)],
                 None => [None, None],
             }
+        };
+        // Two modes of one fold that F's rounding could not split (a cluster of roots, or a
+        // double root whose pose at F's extremum does not close): the partner of the mode
+        // found, from the fold's normal form.
+        let partners = match found.iter().flatten().next() {
+            Some(pose) if multiple || double => {
+                let side = pose.b[1] - pose.b[0];
+                let zp = C::new(side.x, side.y) / side.norm();
+                self.split_fold(pose.b[0] - self.a1, zp, dims)
+                    .unwrap_or([None, None])
+            }
+            _ => [None, None],
+        };
+        [found[0], found[1], partners[0], partners[1]]
+    }
+
+    /// The two modes of a fold whose roots of F were merged within F's rounding (a cluster,
+    /// or a double root) although the closures tell them apart: F's rounding scales with its
+    /// terms, the closures' with the size, and near a fold with F's terms cancelling, F's
+    /// dip between the two roots can be below the one while the two poses are far apart by
+    /// the other (seen: two modes 1e-4 of the size apart whose angles differ by less than
+    /// 1e-6 rad). From a pose B1 − A1 = `p` at z near the fold and the fold's normal form along the least singular
+    /// direction n of K′ = K·diag(1, 1, 1/L_T) (left vector m, value σ; G″ as in
+    /// [`branch_distance`]), the closures G(x + t·n) ≈ G + σ·t·m + G″(n, n)·t²/2 vanish
+    /// across m at t± = (−σ ± √(σ² − 2·q·(m·G)))/q, q = m·G″(n, n): each is polished.
+    /// `None` when the model has no two real roots (the fold's other side: no pair).
+    fn split_fold(
+        &self,
+        p: Vector2<f64>,
+        z: C,
+        dims: &TriadDims,
+    ) -> Option<[Option<TriadPose>; 2]> {
+        let b1 = self.a1 + p;
+        let (u, r, h) = self.legs(b1, z);
+        let lt = dims.ternary_size();
+        let k = velocity_matrix(u, r);
+        let scaled = Matrix3::from_fn(|i, j| if j == 2 { k[(i, j)] / lt } else { k[(i, j)] });
+        let svd = scaled.svd(true, true);
+        let (u_l, v_t) = (svd.u?, svd.v_t?);
+        let (j, sigma) = svd
+            .singular_values
+            .iter()
+            .copied()
+            .enumerate()
+            .min_by(|a, b| a.1.total_cmp(&b.1))?;
+        let (db1, dth) = (Vector2::new(v_t[(j, 0)], v_t[(j, 1)]), v_t[(j, 2)] / lt);
+        let m = u_l.column(j);
+        let q: f64 = (0..3)
+            .map(|i| {
+                let c = perp(u[i]).dot(&(db1 + dth * perp(r[i])));
+                m[i] * (c * c / self.l[i] - dth * dth * u[i].dot(&r[i]))
+            })
+            .sum();
+        let g = m.dot(&h);
+        let disc = sigma * sigma - 2.0 * q * g;
+        if !(disc > 0.0 && q != 0.0) {
+            return None;
         }
+        let t = [-1.0, 1.0].map(|sign| (-sigma + sign * disc.sqrt()) / q);
+        let at = |t: f64| {
+            let zt = unit(z * C::new(1.0, t * dth));
+            self.polish(p + t * db1, zt, dims)
+        };
+        Some([at(t[0]), at(t[1])])
     }
 
     /// The pose from B1 − A1 = `p` at z, polished by Newton's method on the closures (each
