@@ -1033,8 +1033,7 @@ fn a_two_input_run_that_friction_stops_says_so() {
     ]);
     assert_success(&r, "a run stopped by friction");
     assert!(
-        r.stdout.contains("the motion stopped for good")
-            && r.stdout.contains("is below the resistance"),
+        r.stdout.contains("the run stopped") && r.stdout.contains("is below the resistance"),
         "{}",
         r.stdout
     );
@@ -1049,7 +1048,51 @@ fn a_two_input_run_that_friction_stops_says_so() {
         "0,0",
     ]);
     assert_success(&r, "a run without friction");
-    assert!(!r.stdout.contains("stopped for good"), "{}", r.stdout);
+    assert!(!r.stdout.contains("the run stopped"), "{}", r.stdout);
     assert!(r.stdout.contains("for 0.5000 s"), "{}", r.stdout);
+    // One input held by its friction while the other still turns: the run ends there, and
+    // says that the other input is moving (its last row's rate), not that the machine rests.
+    let small =
+        std::env::temp_dir().join(format!("tmm-cli-test-{}-fb-fric2.json", std::process::id()));
+    let text = std::fs::read_to_string(&path).unwrap().replacen(
+        "\"pin_radius\": 0.05",
+        "\"pin_radius\": 0.02",
+        1,
+    );
+    std::fs::write(&small, text).unwrap();
+    let s = small.to_string_lossy().into_owned();
+    let r = tmm(&[
+        "dynamics",
+        &s,
+        "--run",
+        "0.5",
+        "--motor",
+        "0.2,0.05",
+        "--motor2",
+        "-0.1,0.05",
+    ]);
+    assert_success(&r, "a run with one input held");
+    let last_rate2 = r
+        .stdout
+        .lines()
+        .filter_map(|l| {
+            let v: Vec<f64> = l
+                .split_whitespace()
+                .map(str::parse)
+                .collect::<Result<_, _>>()
+                .ok()?;
+            (v.len() >= 5).then(|| v[4])
+        })
+        .next_back()
+        .expect("rows");
+    assert!(last_rate2.abs() > 1e-3, "{last_rate2}: {}", r.stdout);
+    assert!(
+        r.stdout.contains("the run stopped")
+            && r.stdout.contains("input 2 at")
+            && r.stdout.contains("still moving"),
+        "{}",
+        r.stdout
+    );
+    std::fs::remove_file(&small).ok();
     std::fs::remove_file(&path).ok();
 }

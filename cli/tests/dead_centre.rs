@@ -10,7 +10,6 @@ use common::{assert_success, tmm};
 /// program prints the rows up to there, the last at that time, and a line naming the dyad
 /// and its determinant, where it printed an error.
 #[test]
-#[ignore = "needs the stop line for Outcome::DeadCentre in cli/src/engine/two_inputs.rs (coordinator)"]
 fn a_two_input_run_into_a_dead_centre_prints_its_rows_and_the_stop() {
     let r = tmm(&[
         "dynamics",

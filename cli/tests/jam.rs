@@ -56,7 +56,7 @@ fn a_run_that_jams_prints_its_rows_and_then_the_jam() {
         .find(|l| l.contains("jams"))
         .unwrap_or_else(|| panic!("the jam's line in {}", r.stdout));
     assert!(
-        line.starts_with("the motion stopped for good: the linkage jams at t = "),
+        line.starts_with("the run stopped: the linkage jams at t = "),
         "{line}"
     );
     let t = number_after(line, "jams at t = ");

@@ -430,6 +430,10 @@ fn prescribed_timing_is_kept_and_json_points_read() {
 #[test]
 fn a_six_bar_passes_its_point_p_through_the_targets_at_their_crank_angles() {
     // The eight points of the library's example six-bar, 0.3 rad of crank apart.
+    let req = tmm::synthesis::PathRequirement::six_bar_example().unwrap();
+    let tmm::synthesis::Timing::Prescribed(delta) = &req.timing else {
+        panic!("the example is timed")
+    };
     let csv = common::six_bar_example_csv();
     let points = Broken::with_extension("six-bar-points", "csv", &csv);
     let (report, file) = synth(

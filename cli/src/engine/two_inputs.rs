@@ -447,7 +447,32 @@ impl Machine {
         })?;
         // A stop that holds for good ends the rows early: say so, not just print fewer rows.
         let stopped = match &r.outcome {
-            Outcome::Stuck { t, loads, .. } => Some(loads.stalled(*t).to_string()),
+            // One input held while the other still moves is where the run ends, not a rest.
+            Outcome::Stuck { t, loads, switch } => {
+                let moving: Vec<String> = (0..2)
+                    .filter(|&k| r.last.qd[k] != 0.0)
+                    .map(|k| format!("input {} at {:.4e} rad/s", k + 1, r.last.qd[k]))
+                    .collect();
+                Some(if moving.is_empty() {
+                    loads.stalled(*t).to_string()
+                } else {
+                    format!(
+                        "{}; the run ends there (switch {switch} held), with {} still moving: \
+                         a motion with one input held is not modelled",
+                        loads.stalled(*t),
+                        moving.join(" and ")
+                    )
+                })
+            }
+            Outcome::DeadCentre { t, dyad, value } => Some(format!(
+                "the linkage reaches a dead centre at t = {t:.6} s: {} has |det| = {:.3e} (at \
+                 most 1e-3), where its inputs no longer describe the motion",
+                self.plan
+                    .groups()
+                    .get(*dyad)
+                    .map_or("?", |g| g.name.as_str()),
+                value.abs()
+            )),
             Outcome::Jammed { t, joint, value } => {
                 let name = self.plan.joint_names().get(*joint);
                 Some(format!(

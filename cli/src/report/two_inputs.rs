@@ -115,7 +115,7 @@ fn run_text(o: &mut String, run: &TwoInputRun, units: [&str; 2]) {
         run.evaluations
     );
     if let Some(why) = &run.stopped {
-        let _ = writeln!(o, "the motion stopped for good: {why}");
+        let _ = writeln!(o, "the run stopped: {why}");
     }
     let _ = writeln!(
         o,

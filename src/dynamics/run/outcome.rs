@@ -43,9 +43,12 @@ pub enum Outcome {
     },
     /// A resistance that opposes the motion holds it: at time `t` the speed of switch
     /// `switch` ([`LagrangeSystem::switches`]) reached zero (located inside the step) and
-    /// the drive along it was within the resistance's breakaway loads, so the motion stops
-    /// there for good (for loads that do not change with time). [`SwitchLoads::stalled`]
-    /// turns it into the error of a motion that had to go on.
+    /// the drive along it was within the resistance's breakaway loads, so the motion along
+    /// that switch stops there for good (for loads that do not change with time). With one
+    /// freedom the machine is at rest; with more, the others may still be moving in the
+    /// run's last state (`qd` of the result): the run ends there, since it does not model a
+    /// motion with one freedom held. [`SwitchLoads::stalled`] turns it into the error of a
+    /// motion that had to go on.
     Stuck {
         /// The time the motion stopped, s.
         t: f64,

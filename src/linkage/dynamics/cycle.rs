@@ -408,6 +408,19 @@ impl LinkageSystem {
         if let Outcome::Jammed { t, joint, value } = r.outcome {
             return Err(super::friction::jam_error(self.plan(), t, joint, value));
         }
+        if let Outcome::DeadCentre { dyad, value, .. } = r.outcome {
+            // A turn cannot pass a dead centre of a dyad: name it, as a state there is named.
+            let group = self
+                .plan()
+                .groups()
+                .get(dyad)
+                .map_or_else(String::new, |g| g.name.clone());
+            return Err(Error::DeadCentre {
+                index: dyad,
+                group,
+                value,
+            });
+        }
         if !matches!(r.outcome, Outcome::Reached { .. }) {
             return Err(Error::Singular {
                 what: "run-up",
