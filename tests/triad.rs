@@ -820,11 +820,21 @@ fn triads_at_and_near_a_branch_point() {
         near_fd.jumped,
         near_fd.checked
     );
+    // The check ran: two modes a case, but for the cases that are not a simple fold along
+    // the move (counted) — at least one mode a case is checked against the differences.
+    assert!(
+        near_fd.checked >= cases && near_fd.skipped * 10 <= cases,
+        "{} modes checked, {} cases skipped, of {cases}",
+        near_fd.checked,
+        near_fd.skipped
+    );
 }
 
 /// What [`regular_near_a_branch_point`] saw.
 struct NearFold {
     checked: usize,
+    /// Cases with no pair of modes to check (no modes on either side, or as many on both).
+    skipped: usize,
     least_det: f64,
     worst_v: f64,
     worst_a: f64,
@@ -836,6 +846,7 @@ impl Default for NearFold {
     fn default() -> Self {
         Self {
             checked: 0,
+            skipped: 0,
             least_det: f64::INFINITY,
             worst_v: 0.0,
             worst_a: 0.0,
@@ -882,10 +893,12 @@ fn regular_near_a_branch_point(
     } else {
         sides[1]
     }) else {
+        seen.skipped += 1;
         return;
     };
     if count(&sides[0].1) == count(&sides[1].1) {
-        return; // not a simple fold along this move (counted by the caller)
+        seen.skipped += 1; // not a simple fold along this move
+        return;
     }
     let mut pair: Vec<&TriadPose> = modes.as_slice().iter().collect();
     pair.sort_by(|x, y| {

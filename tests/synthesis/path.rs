@@ -154,7 +154,7 @@ fn slider_target(rng: &mut Rng, phis: &[f64]) -> Vec<[f64; 2]> {
 }
 
 /// Which synthesis a recovery runs.
-#[derive(Clone, Copy)]
+#[derive(Clone, Copy, Debug)]
 pub(super) enum Mechanism {
     FourBar,
     SliderCrank,
@@ -593,4 +593,78 @@ fn bad_requirements_of(mechanism: Mechanism, free: usize) {
     }
     let bad = PathOptions::default().with_min_transmission_angle(2.0);
     assert_eq!(name(&good, &bad), "min_transmission_angle");
+}
+
+/// Review: `max_size` below the lengths' former floor (2 % of the path) was not kept, points
+/// far from the origin were matched to rounding, and `designs = 0` returned one design.
+#[test]
+fn a_small_max_size_is_kept_far_points_and_no_designs_are_named() {
+    let phis = [0.0, 0.8, 1.6, 2.4, 3.2, 4.0];
+    let timed = PathRequirement {
+        points: target(&mut Rng(9), &phis),
+        timing: Timing::Prescribed(phis.to_vec()),
+    };
+    let size = {
+        let n = timed.points.len() as f64;
+        let c = timed
+            .points
+            .iter()
+            .fold([0.0, 0.0], |c, p| [c[0] + p[0] / n, c[1] + p[1] / n]);
+        timed
+            .points
+            .iter()
+            .map(|p| (p[0] - c[0]).hypot(p[1] - c[1]))
+            .fold(0.0, f64::max)
+    };
+    let opts = PathOptions::default()
+        .with_population(20)
+        .with_max_evaluations(3000)
+        .with_designs(1)
+        .with_max_size(0.01);
+    for mechanism in [Mechanism::FourBar, Mechanism::SliderCrank] {
+        // Whatever the search finds (or fails to), every moving link is within 0.01 sizes.
+        if let Ok(designs) = synthesise(mechanism, &timed, &opts) {
+            for d in &designs {
+                let l = &d.synthesis.linkage;
+                let at = |name: &str| l.joints.iter().find(|j| j.name == name).unwrap().at;
+                for link in l.links.iter().filter(|k| k.name != l.frame) {
+                    for (i, a) in link.joints.iter().enumerate() {
+                        for b in &link.joints[i + 1..] {
+                            let (p, q) = (at(a), at(b));
+                            let length = (p[0] - q[0]).hypot(p[1] - q[1]);
+                            assert!(
+                                length <= 0.01 * size * (1.0 + 1e-9),
+                                "{mechanism:?} {} {a}{b}: {length} > {}",
+                                link.name,
+                                0.01 * size
+                            );
+                        }
+                    }
+                }
+            }
+        }
+    }
+    // Ten million path sizes from the origin f64 cannot resolve the tolerance of 1e-9.
+    let far = PathRequirement {
+        points: timed
+            .points
+            .iter()
+            .map(|p| [p[0] + 1e7 * size, p[1]])
+            .collect(),
+        ..timed.clone()
+    };
+    match synthesise(Mechanism::FourBar, &far, &PathOptions::default()) {
+        Err(tmm::Error::NoMechanism { problem, .. }) => {
+            assert!(problem.contains("centroid"), "{problem}");
+        }
+        other => panic!("expected the centroid named, got {other:?}"),
+    }
+    let none = PathOptions::default().with_designs(0);
+    assert!(matches!(
+        synthesise(Mechanism::FourBar, &timed, &none),
+        Err(tmm::Error::OutOfRange {
+            name: "designs",
+            ..
+        })
+    ));
 }

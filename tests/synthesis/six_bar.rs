@@ -178,7 +178,7 @@ fn bad_six_bar_requirements_name_the_parameter() {
     match six_bar_path_generator(&twice, &opts, |_| true) {
         Err(Error::Description { item, problem }) => {
             assert!(
-                item == "timing" && problem.contains("points 1 and 5"),
+                item == "timing" && problem.contains("points 2 and 6"),
                 "{problem}"
             )
         }

@@ -97,7 +97,7 @@ pub struct PathOptions {
     /// (a polish that reaches it ends where it is, and its result is still checked whole).
     /// Default 60 s.
     pub max_time: Duration,
-    /// How many distinct designs to return, best first. Default 3.
+    /// How many distinct designs to return, best first, at least 1. Default 3.
     pub designs: usize,
     /// Crank positions per turn in the global stage. Default 360.
     pub positions: usize,
@@ -357,6 +357,12 @@ fn point_at(d: &FourBarDims, phi: f64) -> Option<(V, f64)> {
     Some((coupler_point(a.p, r.b.p, d.coupler_uv()).coords, r.det))
 }
 
+/// The shortest link a search tries, in path sizes: 2 % of the path, or a tenth of the
+/// largest (`max_size`, `s`) when that is smaller, so that every link stays within `s`.
+pub(super) fn shortest_link(s: f64) -> f64 {
+    0.02_f64.min(0.1 * s)
+}
+
 impl Problem {
     fn genes(&self) -> usize {
         BASE + usize::from(matches!(self.timing, Timing::Prescribed(_)))
@@ -365,14 +371,15 @@ impl Problem {
     /// Lower and upper bounds of the genes.
     fn bounds(&self) -> (Vec<f64>, Vec<f64>) {
         let s = self.size;
+        let l = shortest_link(s);
         let (mut lo, mut hi) = match self.kind {
             Kind::FourBar => (
-                vec![-s, -s, 0.0, 0.02, 0.02, 0.02, 0.02, -s, -s, -1.0],
+                vec![-s, -s, 0.0, l, l, l, l, -s, -s, -1.0],
                 vec![s, s, TAU, s, s, s, s, s, s, 1.0],
             ),
             // The offset is signed, and gene 6 unused.
             Kind::SliderCrank => (
-                vec![-s, -s, 0.0, -s, 0.02, 0.02, 0.0, -s, -s, -1.0],
+                vec![-s, -s, 0.0, -s, l, l, 0.0, -s, -s, -1.0],
                 vec![s, s, TAU, s, s, s, 0.0, s, s, 1.0],
             ),
         };
@@ -399,7 +406,17 @@ impl Problem {
         }
         let excess = mx / mn / self.ratio - 1.0;
         if excess > 0.0 {
-            INFEASIBLE + excess
+            return INFEASIBLE + excess;
+        }
+        // Within `max_size` (the search's box; a polish may leave it): the pivot, the frame
+        // or the slider's offset, the links and the coupler point's offsets.
+        let extent = [g[0], g[1], g[3], g[7], g[8]]
+            .iter()
+            .chain(l)
+            .fold(0.0f64, |m, x| m.max(x.abs()));
+        let outside = extent / self.size - 1.0;
+        if outside > 0.0 {
+            INFEASIBLE + outside
         } else {
             0.0
         }
@@ -1067,8 +1084,10 @@ fn check_requirement(kind: Kind, req: &PathRequirement, opts: &PathOptions) -> R
                 return Err(Error::Description {
                     item: "timing".to_owned(),
                     problem: format!(
-                        "points {i} and {j} are at one crank angle {} rad but at distinct places: \
+                        "points {} and {} are at one crank angle {} rad but at distinct places: \
                          give each point its own crank angle",
+                        i + 1,
+                        j + 1,
                         d[i]
                     ),
                 });
@@ -1085,7 +1104,7 @@ fn check_requirement(kind: Kind, req: &PathRequirement, opts: &PathOptions) -> R
             ends: crate::Ends::Closed,
         });
     }
-    let (pts, _, size) = normalised(&req.points);
+    let (pts, centre, size) = normalised(&req.points);
     // The engine squares lengths and coordinates: a path too large (or too small) for that
     // is no path of `f64` four-bars. A size of 0 is coinciding points, named below.
     let far = pts.iter().map(|p| p.norm()).fold(0.0, f64::max);
@@ -1103,6 +1122,22 @@ fn check_requirement(kind: Kind, req: &PathRequirement, opts: &PathOptions) -> R
                 });
             }
         }
+    }
+    // Far from the origin, f64 cannot hold the points (nor the design's pivots) to the
+    // tolerance: the misses reported would be rounding, not the design's.
+    let resolution = centre.norm() * f64::EPSILON;
+    if resolution > opts.tolerance.max(1e-12) * size {
+        return Err(Error::NoMechanism {
+            method: "path generation",
+            problem: format!(
+                "the points' centroid is {:e} m from the origin, {:.3e} path sizes: f64 \
+                 resolves {resolution:.3e} m there, more than the tolerance ({:e} of the path's \
+                 size {size:.3e} m); give the points in coordinates with the origin near them",
+                centre.norm(),
+                centre.norm() / size,
+                opts.tolerance,
+            ),
+        });
     }
     // A ratio above the synthesis' bound could not be checked by the engine to 1e-10.
     for (name, v, lo, hi) in [
@@ -1122,6 +1157,15 @@ fn check_requirement(kind: Kind, req: &PathRequirement, opts: &PathOptions) -> R
                 },
             });
         }
+    }
+    if opts.designs == 0 {
+        return Err(Error::OutOfRange {
+            name: "designs",
+            value: 0.0,
+            min: 1.0,
+            max: f64::INFINITY,
+            ends: crate::Ends::Closed,
+        });
     }
     for (name, v) in [
         ("population", opts.population),

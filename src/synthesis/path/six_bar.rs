@@ -164,7 +164,8 @@ struct Problem<'a> {
 }
 
 impl Problem<'_> {
-    /// 0 where the six links keep the ratio bound, else a penalty above [`INFEASIBLE`].
+    /// 0 where the six links keep the ratio bound and every dimension `max_size`, else a
+    /// penalty above [`INFEASIBLE`].
     fn lengths_ok(&self, x: &[f64]) -> f64 {
         let l = [x[3], x[4], x[5], x[6], x[11], x[12]];
         if !x[..DIMS].iter().all(|v| v.is_finite()) || l.iter().any(|&v| v.is_nan() || v <= 0.0) {
@@ -173,7 +174,18 @@ impl Problem<'_> {
         let (mn, mx) = min_max(&l);
         let excess = mx / mn / self.ratio - 1.0;
         if excess > 0.0 {
-            INFEASIBLE + excess
+            return INFEASIBLE + excess;
+        }
+        // Within `max_size` (the search's box; a polish may leave it): every dimension but
+        // the frame's direction (gene 2).
+        let extent = x[..DIMS]
+            .iter()
+            .enumerate()
+            .filter(|&(i, _)| i != 2)
+            .fold(0.0f64, |m, (_, v)| m.max(v.abs()));
+        let outside = extent / self.size - 1.0;
+        if outside > 0.0 {
+            INFEASIBLE + outside
         } else {
             0.0
         }
@@ -479,9 +491,8 @@ fn search(
     progress: &mut dyn FnMut(&Progress) -> bool,
 ) {
     let s = pb.size;
-    let mut lo = vec![
-        -s, -s, 0.0, 0.02, 0.02, 0.02, 0.02, -s, -s, -s, -s, 0.02, 0.02, -s, -s,
-    ];
+    let l = super::shortest_link(s);
+    let mut lo = vec![-s, -s, 0.0, l, l, l, l, -s, -s, -s, -s, l, l, -s, -s];
     let mut hi = vec![s, s, TAU, s, s, s, s, s, s, s, s, s, s, s, s];
     lo.extend([-1.0, -1.0, 0.0]);
     hi.extend([1.0, 1.0, TAU]);
