@@ -10,7 +10,7 @@
 //! `shared/tools/import-cycles`, which this test follows (it also reads `use a::b as c;`).
 //!
 //! The test also lists, without asserting anything about them, the functions longer than
-//! [`LONG_FUNCTION`] lines: `cargo test --test blocks architecture -- --nocapture` prints them.
+//! [`LONG_FUNCTION`] lines: `cargo test --test tmm architecture -- --nocapture` prints them.
 
 use std::collections::{BTreeMap, BTreeSet};
 use std::fs;

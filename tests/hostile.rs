@@ -31,7 +31,7 @@
 //!
 //! 61 entry points. The number of generated cases per sweep is `TMM_HOSTILE_CASES`
 //! (default 200; run with a larger number in release, for example
-//! `TMM_HOSTILE_CASES=100000 cargo test --release --test blocks hostile::`).
+//! `TMM_HOSTILE_CASES=100000 cargo test --release --test tmm hostile::`).
 
 #![allow(clippy::field_reassign_with_default)]
 
