@@ -406,20 +406,25 @@ impl Problem {
         }
         let excess = mx / mn / self.ratio - 1.0;
         if excess > 0.0 {
-            return INFEASIBLE + excess;
-        }
-        // Within `max_size` (the search's box; a polish may leave it): the pivot, the frame
-        // or the slider's offset, the links and the coupler point's offsets.
-        let extent = [g[0], g[1], g[3], g[7], g[8]]
-            .iter()
-            .chain(l)
-            .fold(0.0f64, |m, x| m.max(x.abs()));
-        let outside = extent / self.size - 1.0;
-        if outside > 0.0 {
-            INFEASIBLE + outside
+            INFEASIBLE + excess
         } else {
             0.0
         }
+    }
+
+    /// Whether the genes `g` are within `max_size` (the search's box): the pivot, the frame or
+    /// the slider's offset, the links and the coupler point's offsets. A polish may pass
+    /// outside on its way (its path is not constrained, so that it converges as fast as it
+    /// can); the design it ends on must be inside.
+    fn within_size(&self, g: &[f64]) -> bool {
+        let l = match self.kind {
+            Kind::FourBar => &g[3..7],
+            Kind::SliderCrank => &g[4..6],
+        };
+        [g[0], g[1], g[3], g[7], g[8]]
+            .iter()
+            .chain(l)
+            .all(|x| x.abs() <= self.size)
     }
 
     fn lane_ok(&self, i: usize) -> bool {
@@ -610,7 +615,7 @@ impl Problem {
     fn feasible(&mut self, x: &[f64], sigma: f64) -> bool {
         self.budget.add(1);
         let g = gene_vec(x, sigma);
-        if self.lengths_ok(&g) > 0.0 {
+        if self.lengths_ok(&g) > 0.0 || !self.within_size(&g) {
             return false;
         }
         let phis: Vec<f64> = (0..self.targets.len())

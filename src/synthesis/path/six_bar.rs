@@ -164,8 +164,7 @@ struct Problem<'a> {
 }
 
 impl Problem<'_> {
-    /// 0 where the six links keep the ratio bound and every dimension `max_size`, else a
-    /// penalty above [`INFEASIBLE`].
+    /// 0 where the six links keep the ratio bound, else a penalty above [`INFEASIBLE`].
     fn lengths_ok(&self, x: &[f64]) -> f64 {
         let l = [x[3], x[4], x[5], x[6], x[11], x[12]];
         if !x[..DIMS].iter().all(|v| v.is_finite()) || l.iter().any(|&v| v.is_nan() || v <= 0.0) {
@@ -174,18 +173,7 @@ impl Problem<'_> {
         let (mn, mx) = min_max(&l);
         let excess = mx / mn / self.ratio - 1.0;
         if excess > 0.0 {
-            return INFEASIBLE + excess;
-        }
-        // Within `max_size` (the search's box; a polish may leave it): every dimension but
-        // the frame's direction (gene 2).
-        let extent = x[..DIMS]
-            .iter()
-            .enumerate()
-            .filter(|&(i, _)| i != 2)
-            .fold(0.0f64, |m, (_, v)| m.max(v.abs()));
-        let outside = extent / self.size - 1.0;
-        if outside > 0.0 {
-            INFEASIBLE + outside
+            INFEASIBLE + excess
         } else {
             0.0
         }
@@ -280,9 +268,15 @@ impl Problem<'_> {
         continuation(&res, &mut accept, x, n, 400)
     }
 
-    /// The whole check: the ratio, assembly with γ ≥ \[γ\] every 1° of the range.
+    /// The whole check: the ratio, every dimension within `max_size` but the frame's
+    /// direction (gene 2; a polish may pass outside on its way), assembly with γ ≥ \[γ\]
+    /// every 1° of the range.
     fn feasible(&self, x: &[f64], s: [f64; 2]) -> bool {
-        if !self.budget.room(1) {
+        let inside = x[..DIMS]
+            .iter()
+            .enumerate()
+            .all(|(i, v)| i == 2 || v.abs() <= self.size);
+        if !inside || !self.budget.room(1) {
             return false;
         }
         self.budget.add(1);
