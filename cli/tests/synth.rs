@@ -406,7 +406,7 @@ fn prescribed_timing_is_kept_and_json_points_read() {
             "--seed",
             "3",
             "--budget",
-            "3000",
+            "20000",
             "--time",
             "100000",
         ],
