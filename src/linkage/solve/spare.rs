@@ -265,11 +265,13 @@ mod tests {
             taken > 0,
             "no box was ever taken ({missed} tries found the spares held)"
         );
-        // Every box came back: none lost, none duplicated.
+        // The boxes kept are distinct (a give that finds the lock held frees its box, so
+        // fewer than KEEP may be left, never one twice).
         let mut back: Vec<Box<Parts>> = std::iter::from_fn(|| spares.take()).collect();
-        assert_eq!(back.len(), KEEP);
+        let kept = back.len();
+        assert!(kept <= KEEP, "{kept} boxes kept");
         back.sort_by_key(|b| std::ptr::from_ref::<Parts>(b) as usize);
         back.dedup_by_key(|b| std::ptr::from_ref::<Parts>(b) as usize);
-        assert_eq!(back.len(), KEEP, "a box was held twice");
+        assert_eq!(back.len(), kept, "a box was held twice");
     }
 }
