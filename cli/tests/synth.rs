@@ -363,12 +363,7 @@ fn a_path_generator_passes_its_coupler_point_through_the_targets() {
         report.stderr
     );
     // The report's rows: "φ = …°", the targets, the reached points and the miss.
-    let angles: Vec<String> = report
-        .stdout
-        .lines()
-        .filter_map(|l| l.trim().strip_prefix("φ = "))
-        .map(|l| l.split('°').next().unwrap().to_owned())
-        .collect();
+    let angles = report_angles(&report.stdout);
     assert_eq!(angles.len(), 12, "{}", report.stdout);
     let mut args = vec!["--at"];
     args.extend(angles.iter().map(String::as_str));
@@ -454,12 +449,7 @@ fn a_six_bar_passes_its_point_p_through_the_targets_at_their_crank_angles() {
         "{}",
         report.stdout
     );
-    let angles: Vec<String> = report
-        .stdout
-        .lines()
-        .filter_map(|l| l.trim().strip_prefix("φ = "))
-        .map(|l| l.split('°').next().unwrap().to_owned())
-        .collect();
+    let angles = report_angles(&report.stdout);
     assert_eq!(angles.len(), 8, "{}", report.stdout);
     // The timing kept: the crank turns 0.3 rad from each point to the next.
     let first: f64 = angles[0].parse().unwrap();
@@ -752,4 +742,13 @@ fn without_o_the_description_goes_to_stdout_and_the_report_to_stderr() {
     let saved = Broken::new("saved-shaper", &r.stdout);
     let (k, stroke, _) = checked(&saved.path());
     assert!((k - 1.6).abs() < 1e-9 && (stroke - 0.3).abs() < 1e-10);
+}
+
+/// The crank angles of a path report's rows ("φ = …°"), as printed.
+fn report_angles(stdout: &str) -> Vec<String> {
+    stdout
+        .lines()
+        .filter_map(|l| l.trim().strip_prefix("φ = "))
+        .map(|l| l.split('°').next().unwrap().to_owned())
+        .collect()
 }
