@@ -342,7 +342,15 @@ fn outside(value: f64, min: f64, max: f64, ends: Ends) -> String {
         let faithful = v.parse::<f64>().map_or(true, |p| {
             (p - value).abs() < 0.5 * gap && (p.fract() != 0.0 || value.fract() == 0.0)
         });
-        if (v != lo && v != hi && faithful) || digits >= 17 {
+        // The bounds told apart from each other, and a bound that is not a whole number not
+        // written as one: K outside (1, 1.0000011) must not read "(1, 1)".
+        let whole = |x: f64, w: &str| {
+            !x.is_finite()
+                || x.fract() == 0.0
+                || w.parse::<f64>().map_or(true, |p| p.fract() != 0.0)
+        };
+        let bounds = (lo != hi || min == max) && whole(min, &lo) && whole(max, &hi);
+        if (v != lo && v != hi && faithful && bounds) || digits >= 17 {
             let open_below = matches!(ends, Ends::OpenBelow | Ends::Open) || min.is_infinite();
             let open_above = matches!(ends, Ends::OpenAbove | Ends::Open) || max.is_infinite();
             let (l, r) = (

@@ -160,42 +160,50 @@ impl Plan {
         self.check_group(g)?;
         self.need_crank("transmission angles over a turn")?;
         let mut a = Kinematics::new(self);
-        let mut mu = |phi: f64| -> Result<f64> {
-            a.solve(&[Motion::fixed(phi)])?;
-            a.transmission_angle(g)
-        };
-        let n = 720;
-        let h = std::f64::consts::TAU / f64::from(n);
         let (mut best, mut at) = (f64::INFINITY, 0.0);
-        for k in 0..n {
-            let phi = h * f64::from(k);
-            let m = mu(phi)?;
+        for k in 0..TRANSMISSION_SWEEP {
+            let phi = transmission_sweep_angle(k);
+            a.solve(&[Motion::fixed(phi)])?;
+            let m = a.transmission_angle(g)?;
             if m < best {
                 (best, at) = (m, phi);
             }
         }
-        // Golden-section search on [at − h, at + h], where μ has its one minimum.
-        let r = (5f64.sqrt() - 1.0) / 2.0;
-        let (mut lo, mut hi) = (at - h, at + h);
-        let (mut x1, mut x2) = (hi - r * (hi - lo), lo + r * (hi - lo));
-        let (mut f1, mut f2) = (mu(x1)?, mu(x2)?);
-        while hi - lo > 1e-12 {
-            if f1 <= f2 {
-                (hi, x2, f2) = (x2, x1, f1);
-                x1 = hi - r * (hi - lo);
-                f1 = mu(x1)?;
-            } else {
-                (lo, x1, f1) = (x1, x2, f2);
-                x2 = lo + r * (hi - lo);
-                f2 = mu(x2)?;
+        refine_transmission(&mut a, g, (best, at))
+    }
+
+    /// [`min_transmission_angle`](Self::min_transmission_angle) of every group at once, in
+    /// the plan's group order: one sweep of the turn for all groups (720 solves), then each
+    /// group's refinement (about 60 solves a group), where a loop over the groups would
+    /// solve the whole turn once per group. A group without a transmission angle (a general
+    /// group) has its error in its place.
+    ///
+    /// # Errors
+    /// A slider input; any position's error (a crank that cannot turn fully has no cycle to
+    /// search).
+    pub fn min_transmission_angles(&self) -> Result<Vec<Result<(f64, f64)>>> {
+        self.need_crank("transmission angles over a turn")?;
+        let groups = self.groups().len();
+        let mut a = Kinematics::new(self);
+        let mut best: Vec<Result<(f64, f64)>> = vec![Ok((f64::INFINITY, 0.0)); groups];
+        for k in 0..TRANSMISSION_SWEEP {
+            let phi = transmission_sweep_angle(k);
+            a.solve(&[Motion::fixed(phi)])?;
+            for (g, b) in best.iter_mut().enumerate() {
+                if let Ok((m0, at)) = b {
+                    match a.transmission_angle(g) {
+                        Ok(m) if m < *m0 => (*m0, *at) = (m, phi),
+                        Ok(_) => {}
+                        Err(e) => *b = Err(e),
+                    }
+                }
             }
         }
-        let (m, x) = if f1 <= f2 { (f1, x1) } else { (f2, x2) };
-        Ok(if m < best {
-            (m, crate::angle::normalize(x))
-        } else {
-            (best, at)
-        })
+        Ok(best
+            .into_iter()
+            .enumerate()
+            .map(|(g, b)| b.and_then(|found| refine_transmission(&mut a, g, found)))
+            .collect())
     }
 
     fn need_crank(&self, what: &str) -> Result<()> {
@@ -374,4 +382,48 @@ where
 {
     use rayon::prelude::*;
     inputs.par_iter().map(|&i| analyse(i)).collect()
+}
+
+/// The positions of a turn on which transmission angles are first searched.
+const TRANSMISSION_SWEEP: u32 = 720;
+
+/// The crank angle of the sweep's k-th position.
+fn transmission_sweep_angle(k: u32) -> f64 {
+    std::f64::consts::TAU / f64::from(TRANSMISSION_SWEEP) * f64::from(k)
+}
+
+/// Group `g`'s smallest transmission angle refined from the sweep's best `(μ, φ)` by
+/// golden-section search on [φ − h, φ + h] (h the sweep's step), where μ has its one
+/// minimum, to 1e-12 rad of φ.
+fn refine_transmission(
+    a: &mut Kinematics<'_>,
+    g: usize,
+    (best, at): (f64, f64),
+) -> Result<(f64, f64)> {
+    let mut mu = |phi: f64| -> Result<f64> {
+        a.solve(&[Motion::fixed(phi)])?;
+        a.transmission_angle(g)
+    };
+    let h = std::f64::consts::TAU / f64::from(TRANSMISSION_SWEEP);
+    let r = (5f64.sqrt() - 1.0) / 2.0;
+    let (mut lo, mut hi) = (at - h, at + h);
+    let (mut x1, mut x2) = (hi - r * (hi - lo), lo + r * (hi - lo));
+    let (mut f1, mut f2) = (mu(x1)?, mu(x2)?);
+    while hi - lo > 1e-12 {
+        if f1 <= f2 {
+            (hi, x2, f2) = (x2, x1, f1);
+            x1 = hi - r * (hi - lo);
+            f1 = mu(x1)?;
+        } else {
+            (lo, x1, f1) = (x1, x2, f2);
+            x2 = lo + r * (hi - lo);
+            f2 = mu(x2)?;
+        }
+    }
+    let (m, x) = if f1 <= f2 { (f1, x1) } else { (f2, x2) };
+    Ok(if m < best {
+        (m, crate::angle::normalize(x))
+    } else {
+        (best, at)
+    })
 }

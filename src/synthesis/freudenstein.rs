@@ -22,6 +22,10 @@ use crate::linkage::Output;
 use nalgebra::{DMatrix, DVector, Matrix3, Vector2, Vector3};
 use std::f64::consts::PI;
 
+/// The intervals the crank's range is swept in: where the four-bar must assemble, and along
+/// which the rocker's angle is followed by continuity for the structural error.
+const SWEEP: u32 = 1024;
+
 /// Freudenstein's coefficients (K1, K2, K3) = (d/a, d/c, (a² − b² + c² + d²)/(2ac)) of the
 /// four-bar with the frame d, the crank a, the coupler b and the rocker c (m): every position
 /// (φ, ψ) of it satisfies K1·cos ψ − K2·cos φ + K3 = cos(φ − ψ) (angles from the frame line
@@ -393,10 +397,13 @@ impl FunctionGenerator {
     }
 
     /// The structural error at the given x (for example the precision points, where it
-    /// vanishes): the engine's rocker angle at φ(x), mapped back to y, against f(x).
+    /// vanishes): the engine's rocker angle at φ(x), mapped back to y, against f(x). The
+    /// rocker's angle is followed by continuity from x0 over the range (not compared mod 2π),
+    /// so an f the four-bar cannot follow, a pole in the range say, shows its whole error.
     ///
     /// # Errors
-    /// [`Error::OutOfRange`] (`"x"`) for more than [`MAX_POINTS`] of them; [`Error::NonFinite`]
+    /// [`Error::OutOfRange`] (`"x"`) for more than [`MAX_POINTS`] of them or an x outside the
+    /// range; [`Error::NonFinite`]
     /// for a non-finite x or where f is not finite; the engine's error at a position where
     /// the four-bar does not assemble.
     pub fn structural_error_at<F: Fn(f64) -> f64>(
@@ -413,10 +420,38 @@ impl FunctionGenerator {
                 ends: Ends::Closed,
             });
         }
+        let [x0, x1] = self.requirement.x_range;
+        let (lo, hi) = (x0.min(x1), x0.max(x1));
         for &x in xs {
             finite("x", x)?;
+            if !(lo..=hi).contains(&x) {
+                return Err(Error::OutOfRange {
+                    name: "x",
+                    value: x,
+                    min: lo,
+                    max: hi,
+                    ends: Ends::Closed,
+                });
+            }
         }
-        let phis: Vec<f64> = xs.iter().map(|&x| self.crank_angle(x)).collect();
+        // The rocker's angle by continuity from x0: the engine gives it in [0, 2π), and a
+        // comparison mod 2π would cap every error at half a turn (a wanted f with a pole in
+        // the range would read as a bounded error). So the angle is followed over a sweep of
+        // the range fine enough that it moves less than half a turn between neighbours (the
+        // four-bar assembles in one mode over the whole range, checked when it was made),
+        // and anchored at x0, where the wanted angle is ψ0.
+        let mut sweep: Vec<(f64, Option<usize>)> = (0..=SWEEP)
+            .map(|i| (x0 + (x1 - x0) * f64::from(i) / f64::from(SWEEP), None))
+            .chain(xs.iter().enumerate().map(|(k, &x)| (x, Some(k))))
+            .collect();
+        // From x0 to x1, whichever way the range runs; x0 (the first grid point) first.
+        let toward = (x1 - x0).signum();
+        sweep.sort_by(|a, b| {
+            ((a.0 - x0) * toward)
+                .total_cmp(&((b.0 - x0) * toward))
+                .then(a.1.is_some().cmp(&b.1.is_some()))
+        });
+        let phis: Vec<f64> = sweep.iter().map(|&(x, _)| self.crank_angle(x)).collect();
         crate::error::computed_all("the crank angles φ(x)", &phis)?;
         let psis = check::output_values(
             &self.synthesis.linkage,
@@ -424,13 +459,26 @@ impl FunctionGenerator {
             &phis,
         )?;
         let r = &self.requirement;
+        let mut unwrapped = Vec::with_capacity(psis.len());
+        let mut last = r.rocker_range[0] + normalize(psis[0] - r.rocker_range[0] + PI) - PI;
+        for (i, &psi) in psis.iter().enumerate() {
+            if i > 0 {
+                last += normalize(psi - psis[i - 1] + PI) - PI;
+            }
+            unwrapped.push(last);
+        }
+        let mut at = vec![0.0; xs.len()];
+        for (&(_, k), &u) in sweep.iter().zip(&unwrapped) {
+            if let Some(k) = k {
+                at[k] = u;
+            }
+        }
         let scale = (self.y_range[1] - self.y_range[0]) / (r.rocker_range[1] - r.rocker_range[0]);
         xs.iter()
-            .zip(psis)
+            .zip(at)
             .map(|(&x, psi)| {
                 let wanted = finite("f(x)", f(x))?;
-                // The engine's angle is in [0, 2π); the wanted one anywhere: compare mod 2π.
-                let diff = normalize(psi - self.rocker_angle(wanted) + PI) - PI;
+                let diff = psi - self.rocker_angle(wanted);
                 let generated = wanted + diff * scale;
                 crate::error::computed("the generated y", generated)?;
                 Ok(StructuralError {
@@ -487,8 +535,9 @@ impl FunctionGenerator {
 /// [`Error::NonFinite`] for a non-finite number in the requirement or f;
 /// [`Error::NonPositive`] for the frame; [`Error::OutOfRange`] (`"N"`) for fewer than three
 /// least-squares points or more than [`MAX_POINTS`]; [`Error::NoMechanism`] for x0 = x1, f(x0) = f(x1), a zero crank or
-/// rocker range, a negative length, a branch defect, or a four-bar that does not assemble
-/// over the range; [`Error::Singular`] for a degenerate system; [`Error::Infeasible`] for
+/// rocker range, a negative length, a branch defect, a four-bar that does not assemble
+/// over the range, or one that meets a precision point only a whole rocker turn away (f not
+/// generated continuously: a pole or a jump in the range); [`Error::Singular`] for a degenerate system; [`Error::Infeasible`] for
 /// γ_min below \[γ\].
 pub fn function_generator<F: Fn(f64) -> f64>(
     f: F,
@@ -594,8 +643,8 @@ pub fn function_generator<F: Fn(f64) -> f64>(
     let fb = FourBar::local(d, a, b, c, sigma);
     fb.proportions(METHOD)?;
     let start = p0.min(p1);
-    for i in 0..=1024 {
-        let phi = start + span * f64::from(i) / 1024.0;
+    for i in 0..=SWEEP {
+        let phi = start + span * f64::from(i) / f64::from(SWEEP);
         if fb.local_pose(phi).is_none() {
             return Err(Error::NoMechanism {
                 method: METHOD,
@@ -611,11 +660,33 @@ pub fn function_generator<F: Fn(f64) -> f64>(
     require_transmission(report.min_transmission_angle, required)?;
     let linkage = fb.linkage("four-bar function generator", p0, Vec::new(), None)?;
     check::accepted(&linkage)?;
-    Ok(FunctionGenerator {
+    let made = FunctionGenerator {
         synthesis: Synthesis { linkage, report },
         requirement: *need,
         y_range: [y0, y1],
         coefficients: k,
         precision_x,
-    })
+    };
+    // Freudenstein's equation holds the rocker's angle only mod 2π: a wanted f that the
+    // rocker cannot follow continuously from x0 (a pole or a jump in the range, or a y far
+    // outside [y0, y1]) is met at a precision point only a whole turn away. Followed by
+    // continuity, such a point misses by at least a turn; a true one by rounding (a
+    // least-squares point by the fit's residual, far below half a turn).
+    let scale = (y1 - y0) / (q1 - q0);
+    for p in made.structural_error_at(&f, &made.precision_x)? {
+        let turns = p.error / scale / (2.0 * PI);
+        if turns.abs() > 0.5 {
+            return Err(Error::NoMechanism {
+                method: METHOD,
+                problem: format!(
+                    "the four-bar meets the point x = {} only {:.0} rocker turn(s) away: f is \
+                     not generated continuously from x0 (a pole or a jump in the range, or f \
+                     far outside [f(x0), f(x1)])",
+                    p.x,
+                    turns.round()
+                ),
+            });
+        }
+    }
+    Ok(made)
 }

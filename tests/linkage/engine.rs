@@ -656,6 +656,31 @@ fn transmission_angles_match_the_law_of_cosines_and_their_classical_minimum() {
     assert!(ra.transmission_angle(2).is_err());
 }
 
+/// Every group's smallest transmission angle in one sweep equals the group-by-group search
+/// bit for bit (the same positions, the same refinement), on every bundled crank linkage;
+/// a group without one (a general group) keeps its error in its place.
+#[test]
+fn all_groups_transmission_minima_equal_each_groups_search() {
+    let mut groups = 0;
+    for l in bundled::all() {
+        let plan = Plan::new(&l).unwrap();
+        let Ok(all) = plan.min_transmission_angles() else {
+            assert!(plan.min_transmission_angle(0).is_err(), "{}", l.name);
+            continue;
+        };
+        assert_eq!(all.len(), plan.groups().len());
+        for (g, got) in all.iter().enumerate() {
+            match (got, plan.min_transmission_angle(g)) {
+                (Ok(a), Ok(b)) => assert_eq!(*a, b, "{} group {g}", l.name),
+                (Err(a), Err(b)) => assert_eq!(a.to_string(), b.to_string()),
+                (a, b) => panic!("{} group {g}: {a:?} against {b:?}", l.name),
+            }
+            groups += 1;
+        }
+    }
+    assert!(groups >= 14, "{groups} groups compared");
+}
+
 /// A bad gear drive is named by the input it belongs to.
 #[test]
 fn a_bad_gear_drive_names_its_input() {

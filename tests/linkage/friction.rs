@@ -583,6 +583,7 @@ fn every_bundled_linkage_with_friction_is_in_equilibrium_and_balances_its_power(
             let rho = f * 0.02 * plan.size();
             let mut solver = plan.solver();
             let (mut eq, mut energy, mut iterations, mut lost_share) = (0.0f64, 0.0f64, 0, 0.0f64);
+            let mut virtual_power = 0.0f64;
             let mut locked = Vec::new();
             for m in inputs(&plan) {
                 let a = match solver.analyse(m) {
@@ -605,6 +606,10 @@ fn every_bundled_linkage_with_friction_is_in_equilibrium_and_balances_its_power(
                 let err = (e.drive - useful - lost).abs() / scale;
                 energy = energy.max(err);
                 assert!((e.useful - (e.drive - lost)).abs() <= 1e-12 * scale);
+                // The balancing moment by virtual power counts the joints' lost power: the
+                // chain's M_b and (P_lost − Σ P_loads)/ω agree to the chain's rounding.
+                let check = a.power_check().unwrap();
+                virtual_power = virtual_power.max(check.relative_error());
                 iterations += a.friction_iterations();
                 lost_share = lost_share.max(lost / scale);
             }
@@ -624,8 +629,13 @@ fn every_bundled_linkage_with_friction_is_in_equilibrium_and_balances_its_power(
                 base.name
             );
             assert!(lost_share > 0.0, "{} f = {f}: no power lost", base.name);
+            assert!(
+                virtual_power <= 1e-9,
+                "{} f = {f}: M_b by virtual power off by {virtual_power:e}",
+                base.name
+            );
             report.push(format!(
-                "{} f={f}: eq {eq:.1e}, power {energy:.1e}, lost ≤ {:.1}% of the power scale, {:.1} steps/position, {} self-locked: {}",
+                "{} f={f}: eq {eq:.1e}, power {energy:.1e}, M_b by virtual power {virtual_power:.1e}, lost ≤ {:.1}% of the power scale, {:.1} steps/position, {} self-locked: {}",
                 base.name,
                 100.0 * lost_share,
                 iterations as f64 / POSITIONS as f64,

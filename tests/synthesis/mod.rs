@@ -698,6 +698,50 @@ mod freudenstein {
         assert!(ce == 3 && cl >= 3, "{ce} {cl}");
     }
 
+    /// The generated y at x is the engine's rocker angle followed by continuity from x0,
+    /// mapped to y, whatever f is: so the structural error of f + c/(x − π/2) (a pole in the
+    /// range) is that of f minus c/(x − π/2), exactly, at every sample, however large. Compared
+    /// mod 2π it was capped at half a rocker turn (−π·dy/dψ). A design asked of tan on [1, 2]
+    /// itself is refused: Freudenstein's equation meets its middle point a whole rocker turn
+    /// away (tan 1.5 = 14.1, far outside [tan 1, tan 2]).
+    #[test]
+    fn a_pole_in_the_range_shows_its_whole_structural_error() {
+        use tmm::synthesis::{function_generator, FunctionRequirement, Options, Spacing};
+        let need = FunctionRequirement {
+            x_range: [1.0, 2.0],
+            crank_range: [(-30f64).to_radians(), 30f64.to_radians()],
+            rocker_range: [0.0, 90f64.to_radians()],
+            frame: 0.1,
+            spacing: Spacing::Chebyshev,
+        };
+        let loose = Options::default().with_min_transmission_angle(0.0);
+        let g = function_generator(f64::log10, &need, &loose).unwrap();
+        let c = 1e-3;
+        let pole = |x: f64| c / (x - PI / 2.0);
+        let plain = g.structural_error(f64::log10, 1000).unwrap();
+        let with_pole = g.structural_error(|x| x.log10() + pole(x), 1000).unwrap();
+        let half_turn = PI * 2f64.log10() / (PI / 2.0);
+        let mut largest = 0.0f64;
+        for (p, q) in plain.iter().zip(&with_pole) {
+            let expected = p.error - pole(p.x);
+            assert!(
+                (q.error - expected).abs() <= 1e-9 * expected.abs().max(1.0),
+                "at x = {}: {} against {expected}",
+                p.x,
+                q.error
+            );
+            largest = largest.max(q.error.abs());
+        }
+        assert!(largest > 4.0 * half_turn, "{largest} against {half_turn}");
+        let e = function_generator(f64::tan, &need, &loose)
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("rocker turn") && e.contains("x = 1.5"), "{e}");
+        // Refused outside the range, where the continuity is not followed.
+        let outside = g.structural_error_at(f64::log10, &[2.5]).unwrap_err();
+        assert!(outside.to_string().contains("x = 2.5"), "{outside}");
+    }
+
     #[test]
     fn bad_function_requirements_name_the_parameter() {
         let o = Options::default().with_min_transmission_angle(0.0);

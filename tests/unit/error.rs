@@ -121,6 +121,16 @@ fn messages_round_numbers_and_keep_exact_fields() {
         range(1.0 + 1e-13, 1.03, 3.0, Ends::Closed),
         "x = 1.0000000000001 lies outside [1.03, 3]"
     );
+    // Bounds that round to one number are written apart, and a bound that is not whole is
+    // not written as one (a swing near 180° leaves K the interval (1, 1.0000011)).
+    assert_eq!(
+        range(1.25, 1.0, 1.0000011, Ends::Open),
+        "x = 1.25 lies outside (1, 1.000001)"
+    );
+    assert_eq!(
+        range(0.5, 0.99999, 3.0, Ends::Closed),
+        "x = 0.5 lies outside [0.99999, 3]"
+    );
     // Four significant digits, plain from 10⁻³ to 10⁶ and scientific outside, as every
     // message that rounds prints them (here the singular measure's value).
     for (x, s) in [

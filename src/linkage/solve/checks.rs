@@ -12,9 +12,10 @@ use crate::Load;
 pub struct PowerCheck {
     /// From the group-by-group chain.
     pub chain: f64,
-    /// From the principle of virtual power: −Σ P_i / q̇ over every applied load.
+    /// From the principle of virtual power: (P_lost − Σ P_i) / q̇ over every applied load,
+    /// P_lost the power the joints' friction dissipates (0 without friction).
     pub virtual_power: f64,
-    /// The scale of the comparison: the largest of |chain| and Σ|P_i|/|q̇|.
+    /// The scale of the comparison: the largest of |chain| and (Σ|P_i| + P_lost)/|q̇|.
     pub scale: f64,
 }
 
@@ -102,7 +103,10 @@ impl Analysis<'_> {
 
     /// The balancing value by the chain and by the principle of virtual power. For a linkage
     /// with two inputs the comparison is of powers, W: the drives' Σ B_k·q̇_k against
-    /// −Σ P_i of every applied load.
+    /// P_lost − Σ P_i of every applied load. With friction the drives also supply the power
+    /// the joints dissipate, P_lost = Σ [`JointFriction::power_lost`](crate::kinetostatics::friction::JointFriction)
+    /// (the friction loads are internal to the linkage, so they enter here by their lost
+    /// power and not as applied loads).
     ///
     /// # Errors
     /// [`Error::Singular`] when the input does not move (q̇ = 0).
@@ -110,17 +114,19 @@ impl Analysis<'_> {
         if let (Some(m), [_, b]) = (self.k.kin.second_input, self.balances()) {
             // Two inputs: the drives' power against the loads' power, W.
             let (sum, abs) = self.powers();
+            let lost = self.lost_power();
             let chain = self.balances[0].value * self.k.kin.input.rate + b.value * m.rate;
-            if !(chain.is_finite() && sum.is_finite()) {
+            let vp = lost - sum;
+            if !(chain.is_finite() && vp.is_finite()) {
                 return Err(Error::NonFinite {
                     name: "virtual power",
-                    value: sum,
+                    value: vp,
                 });
             }
             return Ok(PowerCheck {
                 chain,
-                virtual_power: -sum,
-                scale: abs.max(chain.abs()),
+                virtual_power: vp,
+                scale: (abs + lost).max(chain.abs()),
             });
         }
         let q = self.k.kin.input.rate;
@@ -132,7 +138,8 @@ impl Analysis<'_> {
             });
         }
         let (sum, abs) = self.powers();
-        let (vp, scale) = (-sum / q, abs / q.abs());
+        let lost = self.lost_power();
+        let (vp, scale) = ((lost - sum) / q, (abs + lost) / q.abs());
         if !(vp.is_finite() && scale.is_finite()) {
             return Err(Error::NonFinite {
                 name: "virtual power",
