@@ -91,8 +91,9 @@ pub struct PathRequest {
     pub seed: Option<u64>,
     /// Candidate evaluations of the global stage.
     pub budget: usize,
-    /// Wall-clock bound of the global stage, s.
-    pub time: f64,
+    /// A wall-clock bound of the search, s, when the user asks for one (`None`: the
+    /// evaluations alone bound it, and the same request gives the same design anywhere).
+    pub time: Option<f64>,
     /// How many distinct designs to look for.
     pub designs: usize,
 }
