@@ -201,6 +201,14 @@ impl Function {
             Self::Power(p) => format!("x^{p}"),
         }
     }
+
+    /// f(x) written out: `log10(x)`, but `1/x` and `x^2` as they are.
+    pub fn formula(self) -> String {
+        match self {
+            Self::Reciprocal | Self::Power(_) => self.name(),
+            _ => format!("{}(x)", self.name()),
+        }
+    }
 }
 
 /// A synthesised mechanism: its description as JSON and what it achieves.

@@ -143,7 +143,22 @@ pub struct Machine {
 /// # Errors
 /// The library's message for a malformed description.
 pub fn load(text: &str) -> Result<Machine, Failure> {
-    let linkage = Linkage::from_json(text).map_err(|e| description_failure(&e))?;
+    let linkage = Linkage::from_json(text).map_err(|e| match &e {
+        // JSON's reader names the line and column: name the field there too.
+        tmm::Error::Description { item, problem } if item == "description file" => {
+            let path = serde_json::from_str::<Linkage>(text)
+                .err()
+                .map(|j| crate::json_path::path_at(text, j.line(), j.column()))
+                .unwrap_or_default();
+            if path.is_empty() {
+                description_failure(&e)
+            } else {
+                Failure::new(format!("{item}, field {path}: {problem}"))
+                    .hint("the file format is described in docs/linkage-format.md")
+            }
+        }
+        _ => description_failure(&e),
+    })?;
     let plan = Plan::new(&linkage).map_err(|e| description_failure(&e))?;
     Ok(Machine {
         linkage,

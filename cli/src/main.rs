@@ -10,6 +10,7 @@ mod budget;
 mod bundled;
 mod design;
 mod engine;
+mod json_path;
 mod model;
 mod report;
 mod synth;
@@ -525,6 +526,11 @@ fn read(file: &str) -> Result<String, Fail> {
             e.utf8_error().valid_up_to() + 1
         ))
     })?;
+    // A byte-order mark (an editor's on Windows) is no part of the JSON.
+    let text = match text.strip_prefix('\u{feff}') {
+        Some(rest) => rest.to_owned(),
+        None => text,
+    };
     if text.trim().is_empty() {
         return Err(Fail::on(
             file,
@@ -549,6 +555,20 @@ fn is_pipe(_: &std::fs::Metadata) -> bool {
 
 fn load(file: &str) -> Result<engine::Machine, Fail> {
     let text = read(file)?;
+    // JSON's reader takes an array for an object (its fields in order), and would say that
+    // `[1, 2]` lacks a string where the name goes: say what a description is instead.
+    if let Some(first) = text.trim_start().chars().next()
+        && first != '{'
+    {
+        return Err(Fail::on(
+            file,
+            Failure::new(format!(
+                "the file begins with `{first}`, and a description is a JSON object, \
+                 {{\"name\": …, \"joints\": […], \"links\": […], \"input\": {{…}}}}"
+            ))
+            .hint("`tmm bundled shaper > my.json` writes one to start from; the format is in docs/linkage-format.md"),
+        ));
+    }
     engine::load(&text).map_err(|f| Fail::on(file, f))
 }
 

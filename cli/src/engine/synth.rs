@@ -299,8 +299,8 @@ fn function(
     let func = |v: f64| function.eval(v);
     let g = function_generator(func, &need, options).map_err(&f)?;
     notes.push(format!(
-        "y = {}(x), x from {} to {}: {}",
-        function.name(),
+        "y = {}, x from {} to {}: {}",
+        function.formula(),
         x[0],
         x[1],
         match least_squares {
