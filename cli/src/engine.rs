@@ -919,7 +919,7 @@ fn output_text(out: &Output) -> String {
     }
 }
 
-/// "R12_x [N]" → ("R12_x", "N").
+/// `"R12_x [N]"` → `("R12_x", "N")`.
 fn split_unit(name: &str) -> (String, String) {
     match name.rfind(" [") {
         Some(k) if name.ends_with(']') => {
