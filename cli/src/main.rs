@@ -637,7 +637,11 @@ fn run(command: Command) -> Result<(), Fail> {
     match command {
         Command::Check { file, format } => {
             let m = load(&file)?;
+            // The range's search and the transmission angles' scans: seconds for a large
+            // linkage (within the budget of crate::budget).
+            progress("the input's range, transmission angles and strokes");
             let s = m.structure();
+            clear_progress();
             print(&match format {
                 Report::Text => report::structure(&s),
                 Report::Json => report::structure_json(&s),
