@@ -91,8 +91,9 @@ pub struct PathRequest {
     pub seed: Option<u64>,
     /// Candidate evaluations of the global stage.
     pub budget: usize,
-    /// Wall-clock bound of the global stage, s.
-    pub time: f64,
+    /// A wall-clock bound of the search, s, when the user asks for one (`None`: the
+    /// evaluations alone bound it, and the same request gives the same design anywhere).
+    pub time: Option<f64>,
     /// How many distinct designs to look for.
     pub designs: usize,
 }
@@ -198,6 +199,14 @@ impl Function {
             Self::Tan => "tan".to_owned(),
             Self::Reciprocal => "1/x".to_owned(),
             Self::Power(p) => format!("x^{p}"),
+        }
+    }
+
+    /// f(x) written out: `log10(x)`, but `1/x` and `x^2` as they are.
+    pub fn formula(self) -> String {
+        match self {
+            Self::Reciprocal | Self::Power(_) => self.name(),
+            _ => format!("{}(x)", self.name()),
         }
     }
 }

@@ -13,6 +13,7 @@ use tmm::linkage::{
     course_inputs, uniform_inputs, Drive, Inputs, LinkId, Linkage, Output, Plan, TwoInputCourse,
 };
 
+use crate::budget;
 use crate::model::{
     typed, Column, DiagramKind, DynamicsRequest, Failure, GroupInfo, InputInfo, InputKind,
     PictureKind, PictureRequest, Positions, Range, StrokeInfo, Structure, TableData,
@@ -116,6 +117,20 @@ fn description_failure(e: &tmm::Error) -> Failure {
     }
 }
 
+/// The positions a picture over the cycle solves, at most about: the course's search for
+/// the output's extremes on 360 positions and their refinement, then an animation's 360
+/// frames or the plan's and the diagram's positions and paths.
+const PICTURE_POSITIONS: f64 = 1000.0;
+
+/// The solves of the search of a crank's range (720 positions over a turn, then the
+/// bisections to its lock angles) or a slider's travel (steps of 1/200 of the linkage's
+/// size out to 4 sizes either way, then bisections), at most about.
+const RANGE_SOLVES: f64 = 2000.0;
+
+/// The solves of the library's scan of one group's transmission angle over a turn: 720
+/// positions, then a golden-section search to 10⁻¹² rad (about 60).
+const TRANSMISSION_SOLVES: f64 = 800.0;
+
 /// A planned linkage, ready for every subcommand.
 pub struct Machine {
     linkage: Linkage,
@@ -128,7 +143,22 @@ pub struct Machine {
 /// # Errors
 /// The library's message for a malformed description.
 pub fn load(text: &str) -> Result<Machine, Failure> {
-    let linkage = Linkage::from_json(text).map_err(|e| description_failure(&e))?;
+    let linkage = Linkage::from_json(text).map_err(|e| match &e {
+        // JSON's reader names the line and column: name the field there too.
+        tmm::Error::Description { item, problem } if item == "description file" => {
+            let path = serde_json::from_str::<Linkage>(text)
+                .err()
+                .map(|j| crate::json_path::path_at(text, j.line(), j.column()))
+                .unwrap_or_default();
+            if path.is_empty() {
+                description_failure(&e)
+            } else {
+                Failure::new(format!("{item}, field {path}: {problem}"))
+                    .hint("the file format is described in docs/linkage-format.md")
+            }
+        }
+        _ => description_failure(&e),
+    })?;
     let plan = Plan::new(&linkage).map_err(|e| description_failure(&e))?;
     Ok(Machine {
         linkage,
@@ -138,6 +168,28 @@ pub fn load(text: &str) -> Result<Machine, Failure> {
 }
 
 impl Machine {
+    /// The work of one solve of the linkage's positions, in solves of a dyad (see
+    /// [`crate::budget`]): each input, each dyad, each triad and each general group by its
+    /// inner joints.
+    pub fn solve_weight(&self) -> f64 {
+        use tmm::linkage::GroupKind;
+        #[allow(clippy::cast_precision_loss)]
+        let inputs = self.plan.input_count() as f64 * budget::INPUT_WEIGHT;
+        let groups: f64 = self
+            .plan
+            .groups()
+            .iter()
+            .map(|g| match g.kind {
+                GroupKind::Triad => budget::TRIAD_WEIGHT,
+                GroupKind::General => {
+                    budget::general_weight(g.general_links().map_or(0, |(_, inner, _)| inner.len()))
+                }
+                _ => 1.0,
+            })
+            .sum();
+        inputs + groups
+    }
+
     /// The linkage's name.
     pub fn name(&self) -> &str {
         self.plan.name()
@@ -280,6 +332,18 @@ impl Machine {
             .collect();
         let range = self.range();
         let full = matches!(range, Range::FullTurn);
+        #[allow(clippy::cast_precision_loss)]
+        let scanned = plan
+            .groups()
+            .iter()
+            .filter(|g| g.kind != tmm::linkage::GroupKind::General)
+            .count() as f64;
+        let scans = budget::check(
+            scanned * TRANSMISSION_SOLVES,
+            self.solve_weight(),
+            &format!("the scans of {scanned} groups' transmission angles"),
+            "",
+        );
         // A general group (above the 3rd class) has no transmission angle: no line.
         let transmission = plan
             .groups()
@@ -287,7 +351,9 @@ impl Machine {
             .enumerate()
             .filter(|(_, group)| group.kind != tmm::linkage::GroupKind::General)
             .map(|(g, group)| {
-                let value = if full {
+                let value = if let Err(f) = &scans {
+                    Err(format!("not computed: {}", f.message))
+                } else if full {
                     plan.min_transmission_angle(g).map_err(|e| e.to_string())
                 } else {
                     Err(match &range {
@@ -347,6 +413,14 @@ impl Machine {
             return Range::Unknown(
                 "two inputs move over a 2-D region of input pairs, with no single turn".to_owned(),
             );
+        }
+        if let Err(f) = budget::check(
+            RANGE_SOLVES,
+            self.solve_weight(),
+            "the search of the input's range",
+            "",
+        ) {
+            return Range::Unknown(f.message);
         }
         if !plan.input_is_crank() {
             return self.slider_travel();
@@ -508,6 +582,21 @@ impl Machine {
             return Err(Failure::new("no positions were asked for"));
         }
         let n = inputs.len();
+        let weight = self.solve_weight();
+        let (asked, fix) = match positions {
+            Positions::At(_) => ("--at", "give fewer positions to --at"),
+            _ => ("--positions", "give a smaller --positions N"),
+        };
+        #[allow(clippy::cast_precision_loss)]
+        budget::check(
+            n as f64,
+            weight,
+            &format!("{asked} with {n} positions"),
+            &format!(
+                "{fix}, at most {:.0} for this linkage",
+                budget::most_solves(weight)
+            ),
+        )?;
         let inputs: Vec<Inputs> = inputs
             .iter()
             .map(|i| Inputs::from_slice(i))
@@ -662,6 +751,18 @@ impl Machine {
             return Err(Failure::new(
                 "--along gives the path of --plan, --animate and --diagram, and none was asked for",
             ));
+        }
+        if !matches!(
+            request.kind,
+            PictureKind::Scheme(_) | PictureKind::Forces(_) | PictureKind::Workspace(_)
+        ) {
+            // A plan, an animation or a diagram: at most PICTURE_POSITIONS positions.
+            budget::check(
+                PICTURE_POSITIONS,
+                self.solve_weight(),
+                "a picture over the cycle",
+                "draw the linkage at one position with --scheme φ instead",
+            )?;
         }
         let paths = plan.traced_points();
         // A picture at one position: a pose that does not assemble is said with the option
@@ -818,7 +919,7 @@ fn output_text(out: &Output) -> String {
     }
 }
 
-/// "R12_x [N]" → ("R12_x", "N").
+/// `"R12_x [N]"` → `("R12_x", "N")`.
 fn split_unit(name: &str) -> (String, String) {
     match name.rfind(" [") {
         Some(k) if name.ends_with(']') => {

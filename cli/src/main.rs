@@ -6,9 +6,11 @@
 //! the program's own plain data (`model.rs`), and the one adapter to the library
 //! (`engine.rs`), which alone names the library's types.
 
+mod budget;
 mod bundled;
 mod design;
 mod engine;
+mod json_path;
 mod model;
 mod report;
 mod synth;
@@ -33,7 +35,11 @@ Examples:
   tmm synth shaper --stroke 0.3 -K 1.6 --centre-distance 0.25 -o my-shaper.json
 
 A FILE that does not exist is looked up among the bundled descriptions (`tmm bundled`).
-Units are SI (m, kg, s, N, N·m, rad) except where an option says degrees.";
+Units are SI (m, kg, s, N, N·m, rad) except where an option says degrees. A long run shows
+its progress on a terminal (nothing when piped). Every run is bounded by counts taken from
+the command and the file, never by the clock, so a command gives the same output on any
+machine; one above its bound is refused before it starts, naming the option
+(`tmm dynamics --help` states the bounds).";
 
 /// The theory of machines and mechanisms at the command line: check, analyse, draw and run a
 /// planar linkage described as a JSON file (format: docs/linkage-format.md).
@@ -86,7 +92,8 @@ null in JSON."
         /// The description file (JSON), or the name of a bundled one.
         file: String,
         /// N positions equally spaced over the crank's turn (or its rocking range) from the
-        /// reference pose.
+        /// reference pose; at most 100 000 (and 4·10⁸ / w for a linkage whose solve weighs
+        /// w dyad solves: see `tmm dynamics --help`).
         #[arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(1..=100_000))]
         positions: Option<u32>,
         /// The 12 positions of a course project, from the start of the output's working
@@ -217,7 +224,17 @@ and with --run the motion from rest under two motors, with the energy balance.
 
 Without --motor the run-up uses an induction motor chosen from the machine: 4 % slip at the
 speed asked for, and a nominal moment 10 % above the loads' mean (or a tenth of their peak,
-for a machine whose loads average out). The step keeps RK4 well inside its stability limit."
+for a machine whose loads average out). The step keeps RK4 well inside its stability limit.
+
+Bounds, counted from the command and the file (never the clock, so the output is the same
+on a quiet machine and a loaded one): a run-up takes RK4 steps of 1° of a turn at its top
+speed (shorter where the motor's damping needs) and at most min(10⁶, 10⁸ / w) of them,
+where w is the work of one solve of the linkage in solves of a dyad — 1 for each input and
+each dyad, 16 for a triad, (2n)³/4 for a general group of n inner joints: 10⁶ for a
+four-bar, 230 946 for the double butterfly (w = 433). A run of two inputs has the same
+bound. Every other stage (the reduced quantities, each flywheel's 3 600 positions, the
+grid) makes at most 4·10⁸ / w solves. A run or a stage that would need more is refused
+before it starts, naming the option to change and the bound."
     )]
     Dynamics {
         /// The description file (JSON), or the name of a bundled one.
@@ -509,6 +526,11 @@ fn read(file: &str) -> Result<String, Fail> {
             e.utf8_error().valid_up_to() + 1
         ))
     })?;
+    // A byte-order mark (an editor's on Windows) is no part of the JSON.
+    let text = match text.strip_prefix('\u{feff}') {
+        Some(rest) => rest.to_owned(),
+        None => text,
+    };
     if text.trim().is_empty() {
         return Err(Fail::on(
             file,
@@ -533,6 +555,20 @@ fn is_pipe(_: &std::fs::Metadata) -> bool {
 
 fn load(file: &str) -> Result<engine::Machine, Fail> {
     let text = read(file)?;
+    // JSON's reader takes an array for an object (its fields in order), and would say that
+    // `[1, 2]` lacks a string where the name goes: say what a description is instead.
+    if let Some(first) = text.trim_start().chars().next()
+        && first != '{'
+    {
+        return Err(Fail::on(
+            file,
+            Failure::new(format!(
+                "the file begins with `{first}`, and a description is a JSON object, \
+                 {{\"name\": …, \"joints\": […], \"links\": […], \"input\": {{…}}}}"
+            ))
+            .hint("`tmm bundled shaper > my.json` writes one to start from; the format is in docs/linkage-format.md"),
+        ));
+    }
     engine::load(&text).map_err(|f| Fail::on(file, f))
 }
 
@@ -601,7 +637,11 @@ fn run(command: Command) -> Result<(), Fail> {
     match command {
         Command::Check { file, format } => {
             let m = load(&file)?;
+            // The range's search and the transmission angles' scans: seconds for a large
+            // linkage (within the budget of crate::budget).
+            progress("the input's range, transmission angles and strokes");
             let s = m.structure();
+            clear_progress();
             print(&match format {
                 Report::Text => report::structure(&s),
                 Report::Json => report::structure_json(&s),

@@ -347,6 +347,8 @@ pub struct RunUpReport {
     pub steps: usize,
     /// Evaluations.
     pub evaluations: usize,
+    /// The most steps the run-up could take (a count from the description alone).
+    pub budget: usize,
 }
 
 /// A flywheel for a coefficient of speed fluctuation.

@@ -407,10 +407,11 @@ pub fn dynamics(d: &DynamicsReport) -> String {
         );
         let _ = writeln!(
             o,
-            "RK4, h = {} s: steady after {} turns ({} steps, {} evaluations)",
+            "RK4, h = {} s: steady after {} turns ({} steps of the {} allowed, {} evaluations)",
             number(r.step),
             r.turns.len(),
             r.steps,
+            r.budget,
             r.evaluations
         );
         let _ = writeln!(
@@ -581,6 +582,7 @@ pub fn dynamics_json(d: &DynamicsReport) -> String {
             ("step", json_number(r.step)),
             ("steps", r.steps.to_string()),
             ("evaluations", r.evaluations.to_string()),
+            ("step_budget", r.budget.to_string()),
             (
                 "turns",
                 array(r.turns.iter().map(|t| {

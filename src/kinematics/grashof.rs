@@ -37,6 +37,21 @@ pub enum Grashof {
     TripleRocker,
 }
 
+/// The class in words, as the module's table names it: "crank-rocker", "rocker-crank",
+/// "double crank", "double rocker", "change point" or "triple rocker".
+impl std::fmt::Display for Grashof {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(match self {
+            Self::CrankRocker => "crank-rocker",
+            Self::RockerCrank => "rocker-crank",
+            Self::DoubleCrank => "double crank",
+            Self::DoubleRocker => "double rocker",
+            Self::ChangePoint => "change point",
+            Self::TripleRocker => "triple rocker",
+        })
+    }
+}
+
 impl Grashof {
     /// Whether the input link turns fully in one assembly mode (the crank of a course
     /// project's mechanism). `false` for a change point: its shortest link may turn fully, but

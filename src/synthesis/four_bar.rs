@@ -220,7 +220,7 @@ impl FourBar {
             None => {
                 return Err(Error::NoMechanism {
                     method: kind,
-                    problem: format!("the crank does not turn fully (Grashof class {class:?})"),
+                    problem: format!("the crank does not turn fully (Grashof class: {class})"),
                 })
             }
         };

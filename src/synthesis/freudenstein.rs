@@ -243,7 +243,7 @@ pub fn crank_rocker_through(
             return Err(Error::NoMechanism {
                 method: METHOD,
                 problem: format!(
-                    "the four-bar (d, a, b, c) = ({d:.4e}, {a:.4e}, {b:.4e}, {c:.4e}) m is a {class:?}, not a crank-rocker"
+                    "the four-bar (d, a, b, c) = ({d:.4e}, {a:.4e}, {b:.4e}, {c:.4e}) m is a {class}, not a crank-rocker"
                 ),
             });
         }

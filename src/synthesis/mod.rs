@@ -226,7 +226,7 @@ impl fmt::Display for Report {
             self.min_transmission_at.to_degrees()
         )?;
         if let Some(g) = self.grashof {
-            writeln!(f, "  Grashof class                {g:?}")?;
+            writeln!(f, "  Grashof class                {g}")?;
         }
         Ok(())
     }

@@ -8,20 +8,31 @@ use tmm::dynamics::Rk4;
 use tmm::linkage::dynamics::{LinkageSystem, Motor, RunUpOptions};
 
 use super::{failure, Machine};
+use crate::budget;
 use crate::model::{
     DynamicsReport, DynamicsRequest, Failure, FlywheelRow, Range, ReducedRow, RunUpReport, TurnRow,
 };
 
 /// The most RK4 steps a run-up may take (a turn under way is finished); one expected to need
 /// more — a turn at the speed asked for, or the spin-up to that speed — is refused before it
-/// starts.
+/// starts. A linkage whose solve weighs more has fewer: see [`run_up_budget`].
 const MAX_RUN_UP_STEPS: f64 = 1e6;
 
-/// The longest a run-up may be expected to take, s. Its steps' cost is the cost of the
-/// reduced quantities at one position (one solve of the positions and the transfer
-/// functions: 4 of them a step of RK4), measured on the turn before it: a few µs for a
-/// four-bar, a hundred for a general group, solved by continuation at every position.
-const RUN_UP_SECONDS: f64 = 60.0;
+/// The positions at which a flywheel's energy–mass diagram is taken over a turn.
+const FLYWHEEL_POSITIONS: usize = 3600;
+
+/// Reduced quantities between two progress reports.
+const PROGRESS_EVERY: usize = 5000;
+
+/// The RK4 steps a run-up of a linkage whose one solve weighs `weight` dyad solves may take:
+/// [`MAX_RUN_UP_STEPS`], or fewer where a step's 4 evaluations of the reduced quantities
+/// would take the run-up above [`budget::MAX_WORK`] — ⌊min(10⁶, 4·10⁸ / (4·weight))⌋, a
+/// count that depends on the description alone (the double butterfly's: 230 946).
+pub fn run_up_budget(weight: f64) -> f64 {
+    MAX_RUN_UP_STEPS
+        .min(budget::most_solves(weight) / 4.0)
+        .floor()
+}
 
 /// RK4's steps a turn at the top speed: 1° a step. The steady turns' speeds and δ agree to
 /// the 5 digits printed with those at 2 000 steps a turn (the error of RK4 falls as h⁴; the
@@ -76,20 +87,32 @@ impl Machine {
         if request.rotor != 0.0 {
             bare = bare.with_inertia(0, request.rotor).map_err(f)?;
         }
-        let clock = std::time::Instant::now();
-        let rows = Self::reduced_rows(&bare, rocking, request, progress)?;
+        let weight = self.solve_weight();
         #[allow(clippy::cast_precision_loss)]
-        let evaluation = clock.elapsed().as_secs_f64() / rows.len().max(1) as f64;
+        let flywheel_solves = (request.flywheel.len() * FLYWHEEL_POSITIONS) as f64;
+        budget::check(
+            flywheel_solves,
+            weight,
+            &format!(
+                "--flywheel with {} values of δ ({FLYWHEEL_POSITIONS} positions each)",
+                request.flywheel.len()
+            ),
+            "give fewer values of δ to --flywheel",
+        )?;
+        let rows = Self::reduced_rows(&bare, rocking, request, weight, progress)?;
         let mut flywheels = Vec::new();
-        for &delta in &request.flywheel {
-            progress(&format!("flywheel for δ = {delta}"));
-            let fw = bare.flywheel(delta, speed, 3600).map_err(|e| {
-                failure(&e).hint(format!(
+        let count = request.flywheel.len();
+        for (k, &delta) in request.flywheel.iter().enumerate() {
+            progress(&format!("flywheel {} of {count}, for δ = {delta}", k + 1));
+            let fw = bare
+                .flywheel(delta, speed, FLYWHEEL_POSITIONS)
+                .map_err(|e| {
+                    failure(&e).hint(format!(
                     "--flywheel {}: give each δ between 0 and 2, for example 0.05 (a machine's \
                      usual 0.01 to 0.1)",
                     crate::model::typed(delta)
                 ))
-            })?;
+                })?;
             flywheels.push(FlywheelRow {
                 delta,
                 inertia: fw.moment_of_inertia,
@@ -99,7 +122,7 @@ impl Machine {
             });
         }
         let run_up = if request.run_up {
-            Some(Self::run_up(&bare, &rows, request, evaluation, progress)?)
+            Some(Self::run_up(&bare, &rows, request, weight, progress)?)
         } else {
             None
         };
@@ -115,27 +138,43 @@ impl Machine {
     }
 
     /// The reduced quantities at `request.positions` crank angles: over a turn from the
-    /// reference pose, or between the lock angles of a rocking crank.
+    /// reference pose, or between the lock angles of a rocking crank; refused before the
+    /// work when it is above the budget for a linkage whose solve weighs `weight`.
     fn reduced_rows(
         bare: &LinkageSystem,
         rocking: Option<(f64, f64)>,
         request: &DynamicsRequest,
+        weight: f64,
         progress: &mut dyn FnMut(&str),
     ) -> Result<Vec<ReducedRow>, Failure> {
-        let f = |e: tmm::Error| failure(&e);
         let speed = request.speed;
-        let reduced = match rocking {
+        let n = request.positions;
+        #[allow(clippy::cast_precision_loss)]
+        budget::check(
+            n as f64,
+            weight,
+            &format!("--positions {n}"),
+            &format!(
+                "give --positions N with N at most {:.0}",
+                budget::most_solves(weight)
+            ),
+        )?;
+        let phis: Vec<f64> = match rocking {
             None => {
-                progress("reduced moment of inertia and moment over a turn");
-                bare.reduced_cycle(request.positions, speed).map_err(f)?
+                // The angles of the library's `reduced_cycle`: n equal steps over a turn from
+                // the reference pose in the sense of `speed`, taken here one by one so that
+                // a long table reports its progress.
+                let phi0 = bare.plan().reference_input();
+                #[allow(clippy::cast_precision_loss)]
+                let step = speed.signum() * TAU / n as f64;
+                #[allow(clippy::cast_precision_loss)]
+                (0..n).map(|i| phi0 + step * i as f64).collect()
             }
             Some((lo, hi)) => {
-                progress("reduced moment of inertia and moment over the rocking range");
                 // At a lock the linkage is at a dead point: the crank's rate moves no
                 // dead-pointed group, whose links' transfer functions and so J_red grow
                 // without bound. The positions are the middles of equal steps between the
                 // locks, in the order the crank meets them at `speed`.
-                let n = request.positions;
                 #[allow(clippy::cast_precision_loss)]
                 let h = (hi - lo) / n as f64;
                 let mut phis: Vec<f64> = (0..n)
@@ -148,15 +187,31 @@ impl Machine {
                 if speed < 0.0 {
                     phis.reverse();
                 }
-                phis.iter()
-                    .map(|&phi| {
-                        bare.reduced(phi, speed).map_err(|e| {
-                            Failure::new(format!("at φ = {:.6}°: {e}", phi.to_degrees()))
-                        })
-                    })
-                    .collect::<Result<Vec<_>, _>>()?
+                phis
             }
         };
+        let over = if rocking.is_some() {
+            "the rocking range"
+        } else {
+            "a turn"
+        };
+        progress(&format!("reduced moment of inertia and moment over {over}"));
+        let reduced = phis
+            .iter()
+            .enumerate()
+            .map(|(k, &phi)| {
+                if k % PROGRESS_EVERY == 0 && n > PROGRESS_EVERY {
+                    progress(&format!(
+                        "reduced moment of inertia and moment, position {} of {n}",
+                        k + 1
+                    ));
+                }
+                bare.reduced(phi, speed).map_err(|e| match rocking {
+                    Some(_) => Failure::new(format!("at φ = {:.6}°: {e}", phi.to_degrees())),
+                    None => failure(&e),
+                })
+            })
+            .collect::<Result<Vec<_>, _>>()?;
         let phi0 = match rocking {
             Some((_, hi)) if speed < 0.0 => hi,
             Some((lo, _)) => lo,
@@ -175,14 +230,13 @@ impl Machine {
     }
 
     /// The run-up from rest under the motor of `request` (or one sized from the loads of
-    /// `rows`) to the steady state, by RK4, within a budget of steps: [`MAX_RUN_UP_STEPS`],
-    /// or fewer where a step, of 4 evaluations of `evaluation` seconds each, would make it
-    /// longer than [`RUN_UP_SECONDS`].
+    /// `rows`) to the steady state, by RK4, within the budget of steps of [`run_up_budget`]
+    /// for a linkage whose solve weighs `weight`.
     fn run_up(
         bare: &LinkageSystem,
         rows: &[ReducedRow],
         request: &DynamicsRequest,
-        evaluation: f64,
+        weight: f64,
         progress: &mut dyn FnMut(&str),
     ) -> Result<RunUpReport, Failure> {
         let f = |e: tmm::Error| failure(&e);
@@ -244,9 +298,7 @@ impl Machine {
             .hint("give the links masses in the file, or a flywheel on the crank with --rotor J"));
         }
         let h = (TAU / top / STEPS_PER_TURN).min(0.5 * j_min / b.abs().max(f64::MIN_POSITIVE));
-        let budget = MAX_RUN_UP_STEPS
-            .min(RUN_UP_SECONDS / (4.0 * evaluation.max(1e-9)))
-            .floor();
+        let budget = run_up_budget(weight);
         Self::within_budget(rows, speed, (a, b), h, budget)?;
         // No one turn may spend more than the whole budget of steps; no turn begins after it.
         #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
@@ -255,17 +307,16 @@ impl Machine {
             .with_max_turn_time(60.0_f64.min(budget * h))
             .with_max_steps(budget as usize);
         progress(&format!(
-            "run-up from rest (RK4, at most {budget:.0} steps, about {:.0} s)",
-            budget * 4.0 * evaluation
+            "run-up from rest (RK4, h = {h:.3e} s, at most {budget:.0} steps)"
         ));
         let r = machine.run_up(&Rk4, &opts).map_err(|e| match e {
             tmm::Error::Budget {
                 what: "run-up step",
                 ..
             } => failure(&e).hint(format!(
-                "a run-up may take {budget:.0} steps (about {RUN_UP_SECONDS} s here); give a \
-                 --motor a,b whose moment falls faster with speed (a larger b), or a smaller \
-                 --rotor"
+                "a run-up may take {budget:.0} steps{}; give a --motor a,b whose moment falls \
+                 faster with speed (a larger b), or a smaller --rotor",
+                Self::budget_note(budget)
             )),
             // A turn the step cannot resolve: the machine runs far faster than it was sized for.
             tmm::Error::OutOfRange { name, .. } if name.starts_with("step h") => failure(&e).hint(
@@ -292,6 +343,8 @@ impl Machine {
                 .collect(),
             steps: r.steps,
             evaluations: r.evaluations,
+            #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
+            budget: budget as usize,
         })
     }
 
@@ -345,8 +398,9 @@ impl Machine {
     fn budget_note(budget: f64) -> String {
         if budget < MAX_RUN_UP_STEPS {
             format!(
-                " (the steps {RUN_UP_SECONDS} s allows at the cost of this linkage's solve, \
-                 measured here)"
+                " (fewer than {MAX_RUN_UP_STEPS:e} because this linkage's solve is slow: \
+                 4 solves a step within a budget of {:e} dyad solves)",
+                budget::MAX_WORK
             )
         } else {
             String::new()

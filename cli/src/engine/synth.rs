@@ -299,8 +299,8 @@ fn function(
     let func = |v: f64| function.eval(v);
     let g = function_generator(func, &need, options).map_err(&f)?;
     notes.push(format!(
-        "y = {}(x), x from {} to {}: {}",
-        function.name(),
+        "y = {}, x from {} to {}: {}",
+        function.formula(),
         x[0],
         x[1],
         match least_squares {
@@ -441,6 +441,25 @@ fn coupler_misses(m: &Machine, targets: &[[f64; 2]], angles: &[f64]) -> Misses {
     }
 }
 
+/// A path search that found no design within its budget, said by its budget as asked: the
+/// library's sentence up to what it spent, without the seconds it took, which differ from
+/// one run to the next (the same command gives the same sentence).
+fn no_design(method: &str, problem: &str, p: &PathRequest) -> Failure {
+    let what = problem.find(") in ").map_or(problem, |k| &problem[..=k]);
+    let time = p
+        .time
+        .map_or_else(String::new, |t| format!(" or the {t} s of --time"));
+    Failure::new(format!(
+        "{method}: {what}, within the {} candidate evaluations of --budget{time}",
+        p.budget
+    ))
+    .hint(if p.time.is_some() {
+        "raise --budget or --time, try another --seed, or lower --min-transmission"
+    } else {
+        "raise --budget, try another --seed, or lower --min-transmission"
+    })
+}
+
 /// The path search: the best design, and the targets with its crank angles at them.
 fn path(
     p: &PathRequest,
@@ -458,17 +477,24 @@ fn path(
             Timing::Closed => PathTiming::ClosedCurve,
         },
     };
-    if !(p.time.is_finite() && p.time > 0.0) {
+    if let Some(t) = p.time
+        && !(t.is_finite() && t > 0.0)
+    {
         return Err(Failure::new(format!(
             "the search's time bound must be a positive number of seconds, got {}",
-            crate::model::typed(p.time)
+            crate::model::typed(t)
         ))
         .hint("set by --time"));
     }
+    // Without --time the evaluations alone bound the search (the library's default bound
+    // of 60 s of wall clock lifted), so that its design does not depend on the machine.
+    let max_time = p
+        .time
+        .map_or(Duration::MAX, |t| Duration::from_secs_f64(t.min(1e6)));
     let mut opts = PathOptions::default()
         .with_min_transmission_angle(gamma)
         .with_max_evaluations(p.budget)
-        .with_max_time(Duration::from_secs_f64(p.time.min(1e6)))
+        .with_max_time(max_time)
         .with_designs(p.designs);
     if let Some(seed) = p.seed {
         opts = opts.with_seed(seed);
@@ -484,19 +510,22 @@ fn path(
         PathMechanism::FourBar => path_generator(&req, &opts, report),
         PathMechanism::SixBar => six_bar_path_generator(&req, &opts, report),
     }
-    .map_err(|e| {
-        let failure = f(e);
+    .map_err(|e| match e {
         // The search ran out of its budget without a design that meets the constraints.
-        if failure.message.contains("evaluations") && failure.hint.is_none() {
-            failure
-                .hint("raise --budget or --time, try another --seed, or lower --min-transmission")
-        } else {
-            failure
+        tmm::Error::NoMechanism { method, problem } => no_design(method, &problem, p),
+        e => {
+            let failure = f(e);
+            // A budget below what the search needs to start (its first generation).
+            if failure.message.contains("evaluations") && failure.hint.is_none() {
+                failure.hint("raise --budget")
+            } else {
+                failure
+            }
         }
     })?;
     let Some(best) = designs.first() else {
         return Err(Failure::new("the path search returned no design")
-            .hint("raise --budget or --time, or try another --seed"));
+            .hint("raise --budget, or try another --seed"));
     };
     notes.push(format!(
         "seed {}, budget {} evaluations: {} design{} found, the best written",

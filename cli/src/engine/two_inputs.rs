@@ -13,8 +13,10 @@ use tmm::linkage::{Inputs, Output, TwoInputCourse, TwoInputShape, WorkspaceOptio
 
 use super::{failure, Machine};
 
-/// The most RK4 steps a run of two inputs may take (a recorded row each).
+/// The most RK4 steps a run of two inputs may take (a recorded row each); fewer for a
+/// linkage whose solve weighs more (see [`Machine::run_steps_budget`]).
 const MAX_RUN_STEPS: f64 = 1e6;
+use crate::budget;
 use crate::model::{
     typed, DiagramKind, DynamicsRequest, Failure, MassRow, Range, TwoInputDynamics, TwoInputRun,
 };
@@ -278,6 +280,13 @@ impl Machine {
                  which the command line does not take yet; both inputs must be cranks",
             ));
         }
+        #[allow(clippy::cast_precision_loss)]
+        budget::check(
+            (WORKSPACE_SAMPLES * WORKSPACE_SAMPLES) as f64,
+            self.solve_weight(),
+            &format!("the workspace ({WORKSPACE_SAMPLES} × {WORKSPACE_SAMPLES} input pairs)"),
+            "draw the linkage at chosen input pairs with --scheme φ1 φ2 instead",
+        )?;
         progress(&format!(
             "the workspace of {point} ({WORKSPACE_SAMPLES} × {WORKSPACE_SAMPLES} input pairs)"
         ));
@@ -298,6 +307,15 @@ impl Machine {
         draw::workspace(&self.plan, &ws, style)
             .map(|p| p.svg)
             .map_err(|e| failure(&e))
+    }
+
+    /// The most RK4 steps a run of two inputs may take: [`MAX_RUN_STEPS`], or fewer where a
+    /// step's 4 evaluations would take the run above [`budget::MAX_WORK`] — a count from
+    /// the description alone.
+    fn run_steps_budget(&self) -> f64 {
+        MAX_RUN_STEPS
+            .min(budget::most_solves(self.solve_weight()) / 4.0)
+            .floor()
     }
 
     /// The mass matrix A(q) and the loads' generalized forces at rest Q(q) of a linkage with
@@ -343,12 +361,26 @@ impl Machine {
         let sys = LinkageSystem::new(self.plan.clone())
             .and_then(|s| s.with_inertia(0, rotor))
             .map_err(|e| failure(&e))?;
-        progress(&format!("the mass matrix over {n} × {n} input pairs"));
+        let weight = self.solve_weight();
+        #[allow(clippy::cast_precision_loss)]
+        budget::check(
+            (n * n) as f64,
+            weight,
+            &format!("--grid {n} ({n} × {n} input pairs)"),
+            &format!(
+                "give --grid N with N² at most {:.0}",
+                budget::most_solves(weight)
+            ),
+        )?;
         let mut rows = Vec::with_capacity(n * n);
         let mut skipped = 0;
         #[allow(clippy::cast_precision_loss)]
         let at = |r: [f64; 2], i: usize| r[0] + (r[1] - r[0]) * i as f64 / (n - 1) as f64;
         for i in 0..n {
+            progress(&format!(
+                "the mass matrix over {n} × {n} input pairs, row {} of {n}",
+                i + 1
+            ));
             for j in 0..n {
                 let q = Vector2::new(at(ranges[0], i), at(ranges[1], j));
                 match sys.split_terms(&q, &Vector2::zeros()) {
@@ -423,11 +455,12 @@ impl Machine {
         // A damping so strong that RK4's stable step is tiny makes the run stiff: refuse it
         // at once, naming the motor, rather than after a long run that spends its budget.
         let steps = t_end / h;
-        if steps.is_nan() || steps > MAX_RUN_STEPS {
+        let allowed = self.run_steps_budget();
+        if steps.is_nan() || steps > allowed {
             return Err(Failure::new(format!(
                 "the motors' damping b = {:.3e} and {:.3e} N·m·s/rad make the run stiff: RK4 \
                  needs steps of {h:.3e} s or shorter, {steps:.3e} steps for {t_end:e} s, above \
-                 the {MAX_RUN_STEPS:e} allowed",
+                 the {allowed:e} allowed",
                 motors[0].1, motors[1].1
             ))
             .hint("give --motor / --motor2 a smaller b, or a shorter --run T"));

@@ -1,0 +1,282 @@
+//! Every budget of the program is a count derived from the input, never from the clock: the
+//! budgets printed are asserted against their closed forms (the weight of one solve of the
+//! linkage in dyad solves: 1 an input, 1 a dyad, 16 a triad, (2n)³/4 a general group of n
+//! inner joints; a stage at most 4·10⁸ of them), the same command gives the same output
+//! twice, a size above its budget is refused naming the option and the bound, and progress
+//! shows on a terminal (a pseudo-terminal made by `script`, where there is one).
+
+mod common;
+
+use common::{assert_one_line_failure, assert_success, tmm, Broken};
+
+/// The work budget of one stage, in dyad solves.
+const MAX_WORK: f64 = 4e8;
+
+/// The number after `key` in `text`.
+fn number_after(text: &str, key: &str) -> f64 {
+    let at = text
+        .find(key)
+        .unwrap_or_else(|| panic!("{key:?} in {text}"))
+        + key.len();
+    let num: String = text[at..]
+        .chars()
+        .take_while(|c| c.is_ascii_digit() || matches!(c, '.' | 'e' | '-' | '+'))
+        .collect();
+    num.trim_end_matches('.')
+        .parse()
+        .unwrap_or_else(|_| panic!("a number after {key:?} in {text}"))
+}
+
+/// The run-up's step budget of a linkage whose solve weighs `weight`: at most 10⁶ steps,
+/// each of 4 solves.
+fn run_up_budget(weight: f64) -> f64 {
+    1e6_f64.min(MAX_WORK / (4.0 * weight)).floor()
+}
+
+/// A general group of 4·`n` links and 2·`n` inner joints: a ring of `n` ternary links, each
+/// held by a leg to the frame (the first leg to the crank). No dyad or triad can be split off
+/// it, so the program solves it by its closure equations, of weight (4n)³/4.
+fn ring(n: usize) -> String {
+    use std::f64::consts::TAU;
+    let mut joints = vec![r#"{"name": "O", "at": [0, 0]}"#.to_owned()];
+    let mut links = Vec::new();
+    let mut frame = vec!["\"O\"".to_owned()];
+    for k in 0..n {
+        let t = TAU * k as f64 / n as f64;
+        let m = TAU * (k as f64 + 0.5) / n as f64;
+        joints.push(format!(
+            r#"{{"name": "R{k}", "at": [{}, {}]}}"#,
+            t.cos(),
+            t.sin()
+        ));
+        joints.push(format!(
+            r#"{{"name": "M{k}", "at": [{}, {}]}}"#,
+            0.95 * m.cos(),
+            0.95 * m.sin()
+        ));
+        joints.push(format!(
+            r#"{{"name": "G{k}", "at": [{}, {}]}}"#,
+            2.0 * (m + 0.3).cos(),
+            2.0 * (m + 0.3).sin()
+        ));
+        if k > 0 {
+            frame.push(format!("\"G{k}\""));
+        }
+        links.push(format!(
+            r#"{{"name": "ring{k}", "joints": ["R{k}", "R{}", "M{k}"], "mass": {{"m": 1, "j": 0.1, "centre": "M{k}"}}}}"#,
+            (k + 1) % n
+        ));
+        links.push(format!(
+            r#"{{"name": "leg{k}", "joints": ["M{k}", "G{k}"]}}"#
+        ));
+    }
+    links.insert(0, r#"{"name": "crank", "joints": ["O", "G0"]}"#.to_owned());
+    links.insert(
+        0,
+        format!(r#"{{"name": "frame", "joints": [{}]}}"#, frame.join(", ")),
+    );
+    format!(
+        r#"{{"name": "ring of {n}", "joints": [{}], "links": [{}], "input": {{"link": "crank"}}}}"#,
+        joints.join(", "),
+        links.join(", ")
+    )
+}
+
+/// The bundled linkages' run-up budgets: the four-bar (weight 2) and the triad (1 + 16) keep
+/// 10⁶ steps; the double butterfly, one general group of 6 inner joints (weight
+/// 1 + 12³/4 = 433), ⌊4·10⁸ / (4·433)⌋ = 230 946 — whatever the machine's load.
+#[test]
+fn the_run_up_budget_is_a_count_from_the_description() {
+    for (file, weight) in [
+        ("four-bar", 2.0),
+        ("six-bar-triad", 17.0),
+        ("double-butterfly", 1.0 + 12f64.powi(3) / 4.0),
+    ] {
+        let r = tmm(&[
+            "dynamics",
+            file,
+            "--run-up",
+            "--positions",
+            "36",
+            "--rotor",
+            "1e300",
+        ]);
+        assert_one_line_failure(&r, file);
+        let budget = number_after(&r.stderr, "above the ");
+        assert_eq!(budget, run_up_budget(weight), "{file}: {}", r.stderr);
+        assert!(r.stderr.contains("--rotor"), "{}", r.stderr);
+    }
+    assert_eq!(run_up_budget(433.0), 230_946.0);
+    // A run-up that finishes says how many steps it could have taken, as text and as JSON.
+    let r = tmm(&["dynamics", "four-bar", "--run-up", "--positions", "36"]);
+    assert_success(&r, "four-bar --run-up");
+    assert!(
+        r.stdout.contains("steps of the 1000000 allowed"),
+        "{}",
+        r.stdout
+    );
+    let r = tmm(&[
+        "dynamics",
+        "four-bar",
+        "--run-up",
+        "--positions",
+        "36",
+        "--format",
+        "json",
+    ]);
+    assert_success(&r, "four-bar --run-up --format json");
+    let v: serde_json::Value = serde_json::from_str(&r.stdout).unwrap();
+    assert_eq!(v["run_up"]["step_budget"], 1_000_000, "{}", r.stdout);
+    let steps = v["run_up"]["steps"].as_u64().unwrap();
+    assert!(steps > 0 && steps <= 1_000_000, "{steps}");
+}
+
+/// The same command, the same output: a run-up, and a path search without --time (bounded
+/// by its evaluations alone), whose failure names the budget of evaluations and no seconds.
+#[test]
+fn the_same_command_gives_the_same_output_twice() {
+    let args = [
+        "dynamics",
+        "mechanism-compressor",
+        "--run-up",
+        "--flywheel",
+        "0.05",
+    ];
+    let (a, b) = (tmm(&args), tmm(&args));
+    assert_success(&a, "run-up");
+    assert_eq!(a.stdout, b.stdout);
+    let points = Broken::with_extension("budget-points", "csv", &common::coupler_curve_csv(12));
+    let args = [
+        "synth",
+        "path",
+        &points.path(),
+        "--budget",
+        "240",
+        "--min-transmission",
+        "60",
+    ];
+    let (a, b) = (tmm(&args), tmm(&args));
+    assert_one_line_failure(&a, &points.path());
+    assert_eq!(a.stderr, b.stderr);
+    assert!(
+        a.stderr.contains("240 candidate evaluations of --budget"),
+        "{}",
+        a.stderr
+    );
+    // No duration in it: "… 0.071 s" would differ from run to run.
+    assert!(
+        !a.stderr.contains(" s ") && !a.stderr.contains(" s)") && !a.stderr.contains("--time"),
+        "{}",
+        a.stderr
+    );
+    // With --time the bound is the user's, and said.
+    let mut timed = args.to_vec();
+    timed.extend(["--time", "1000"]);
+    let r = tmm(&timed);
+    assert_one_line_failure(&r, &points.path());
+    assert!(r.stderr.contains("the 1000 s of --time"), "{}", r.stderr);
+    // The budget of evaluations has a stated upper bound.
+    let r = tmm(&["synth", "path", &points.path(), "--budget", "2000001"]);
+    assert_eq!(r.code, 2, "{}", r.stderr);
+    assert!(
+        r.stderr.contains("--budget") && r.stderr.contains("2000000"),
+        "{}",
+        r.stderr
+    );
+}
+
+/// A stage whose work is above the budget is refused before it starts, naming the option and
+/// the most it may ask: a ring of 30 (60 inner joints, weight 1 + 120³/4 = 432 001) may make
+/// ⌊4·10⁸ / 432 001⌋ = 925 solves a stage — its range is not searched (about 2 000 solves),
+/// and 1 000 positions are refused; 257 flywheels of 3 600 positions on the double butterfly
+/// are above its ⌊4·10⁸ / 433⌋ = 923 787 solves, 256 are not.
+#[test]
+fn a_size_above_its_budget_is_refused_naming_the_option_and_the_bound() {
+    let ring = Broken::new("ring-30", &ring(30));
+    let file = ring.path();
+    let weight = 1.0 + 120f64.powi(3) / 4.0;
+    let most = (MAX_WORK / weight).floor();
+    assert_eq!(most, 925.0);
+    let r = tmm(&["check", &file]);
+    assert_success(&r, "check ring of 30");
+    assert!(
+        r.stdout
+            .contains("range: not determined: the search of the input's range: 2000 solves"),
+        "{}",
+        r.stdout
+    );
+    assert_eq!(number_after(&r.stdout, "above the "), most, "{}", r.stdout);
+    for (args, option) in [
+        (
+            &["analyse", &file, "--positions", "1000"][..],
+            "--positions",
+        ),
+        (
+            &["dynamics", &file, "--positions", "1000"][..],
+            "--positions",
+        ),
+        (&["draw", &file, "--plan"][..], "--scheme"),
+    ] {
+        let r = tmm(args);
+        assert_one_line_failure(&r, &file);
+        assert_eq!(number_after(&r.stderr, "above the "), most, "{}", r.stderr);
+        assert!(r.stderr.contains(option), "{args:?}: {}", r.stderr);
+    }
+    let r = tmm(&["analyse", &file, "--positions", "1000"]);
+    assert!(r.stderr.contains("at most 925"), "{}", r.stderr);
+    // The flywheels: 256 values of δ are within the budget, 257 are not.
+    let deltas = |n: usize| vec!["0.05"; n];
+    let mut args = vec![
+        "dynamics",
+        "double-butterfly",
+        "--positions",
+        "12",
+        "--flywheel",
+    ];
+    args.extend(deltas(257));
+    let r = tmm(&args);
+    assert_one_line_failure(&r, "double-butterfly");
+    assert!(
+        r.stderr.contains("--flywheel with 257 values") && r.stderr.contains("923787"),
+        "{}",
+        r.stderr
+    );
+    let most = (MAX_WORK / 433.0).floor();
+    assert_eq!(most, 923_787.0);
+    // The most flywheels of 3 600 positions each within it: 256, so 257 are refused.
+    assert_eq!((most / 3600.0).floor(), 256.0);
+}
+
+/// On a terminal a long table reports its progress on stderr, one line overwritten; piped,
+/// nothing. Run through `script`, which gives the program a pseudo-terminal (skipped where
+/// there is no `script`).
+#[test]
+fn a_long_run_reports_progress_on_a_terminal() {
+    let script = std::path::Path::new("/usr/bin/script");
+    if !script.exists() {
+        eprintln!("no /usr/bin/script: the terminal's progress is not checked here");
+        return;
+    }
+    let bin = env!("CARGO_BIN_EXE_tmm");
+    for (args, says) in [
+        (
+            "dynamics four-bar --positions 20000",
+            "position 15001 of 20000",
+        ),
+        (
+            "analyse four-bar --positions 20000 --format csv",
+            "position 15001 of 20000",
+        ),
+        ("dynamics five-bar-robot --grid 30", "row 30 of 30"),
+    ] {
+        let out = std::process::Command::new(script)
+            .args(["-qec", &format!("'{bin}' {args} > /dev/null"), "/dev/null"])
+            .output()
+            .expect("script runs");
+        let text = String::from_utf8_lossy(&out.stdout);
+        assert!(out.status.success(), "{args}: {text}");
+        assert!(text.contains(says), "{args}: {text:?}");
+        // The line is cleared at the end, so that the terminal is left as it was.
+        assert!(text.ends_with("\r\x1b[K"), "{args}: {text:?}");
+    }
+}
