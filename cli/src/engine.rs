@@ -127,9 +127,11 @@ const PICTURE_POSITIONS: f64 = 1000.0;
 /// size out to 4 sizes either way, then bisections), at most about.
 const RANGE_SOLVES: f64 = 2000.0;
 
-/// The solves of the library's scan of one group's transmission angle over a turn: 720
-/// positions, then a golden-section search to 10⁻¹² rad (about 60).
-const TRANSMISSION_SOLVES: f64 = 800.0;
+/// The solves of the library's scan of every group's transmission angle over a turn
+/// (`Plan::min_transmission_angles`): one sweep of 720 positions for all groups, then each
+/// group's golden-section search to 10⁻¹² rad (about 60 solves, counted as 80).
+const TRANSMISSION_SWEEP_SOLVES: f64 = 720.0;
+const TRANSMISSION_REFINE_SOLVES: f64 = 80.0;
 
 /// A planned linkage, ready for every subcommand.
 pub struct Machine {
@@ -339,11 +341,17 @@ impl Machine {
             .filter(|g| g.kind != tmm::linkage::GroupKind::General)
             .count() as f64;
         let scans = budget::check(
-            scanned * TRANSMISSION_SOLVES,
+            TRANSMISSION_SWEEP_SOLVES + scanned * TRANSMISSION_REFINE_SOLVES,
             self.solve_weight(),
             &format!("the scans of {scanned} groups' transmission angles"),
             "",
         );
+        // Every group's minimum in one sweep of the turn (a loop over the groups would solve
+        // the turn once per group: quadratic in their number).
+        let minima = match (&scans, full) {
+            (Ok(_), true) => Some(plan.min_transmission_angles().map_err(|e| e.to_string())),
+            _ => None,
+        };
         // A general group (above the 3rd class) has no transmission angle: no line.
         let transmission = plan
             .groups()
@@ -353,8 +361,11 @@ impl Machine {
             .map(|(g, group)| {
                 let value = if let Err(f) = &scans {
                     Err(format!("not computed: {}", f.message))
-                } else if full {
-                    plan.min_transmission_angle(g).map_err(|e| e.to_string())
+                } else if let Some(minima) = &minima {
+                    match minima {
+                        Ok(all) => all[g].as_ref().map(|m| *m).map_err(ToString::to_string),
+                        Err(e) => Err(e.clone()),
+                    }
                 } else {
                     Err(match &range {
                         Range::Rocking(..) => "the crank does not turn fully".to_owned(),
