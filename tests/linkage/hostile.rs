@@ -1565,3 +1565,6 @@ fn a_load_function_that_returns_nan_or_huge_loads() {
         }
     }
 }
+
+// The sweeps of what the last sessions added (springs, joint friction, triads, two inputs).
+mod added;
