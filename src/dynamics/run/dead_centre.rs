@@ -31,7 +31,7 @@ pub(super) struct DeadCentre {
 /// sooner, by its error control), its end checked by an evaluation unless the step
 /// evaluated it; an accepted end becomes the new start (and d doubles again, up to the
 /// first half interval), a refused step (or end) halves d; until d is within 10⁻¹² of
-/// max(1, |t|), never past the first refused time. `p` advances to the located state, its
+/// max(1, |t|), never past the run's final time. `p` advances to the located state, its
 /// steps and evaluations counted. Should `p.s` itself be refused (a method whose step ends
 /// on a state it does not evaluate, met by the next step's first stage), the location
 /// starts from the step before. Where every refusal on the way was a position that does
@@ -78,12 +78,13 @@ pub(super) fn locate<S: LagrangeSystem + ?Sized, M: Stepper>(
     let tol = 1e-12 * lo.t.abs().max(1.0);
     // The walk: steps of the method from the last accepted state, of length d, halved where
     // a step (or its end) is refused and doubled again (up to the first interval) where it
-    // is accepted, never past the first refused time `end`. A refusal of a longer step from
-    // an earlier state (one of its stages overshooting into the band) does not bound the
-    // path of the shorter ones: bisecting on it stopped short of the band (by some per cent
-    // of the threshold at a coarse step); the walk follows the shorter steps to where they
-    // too are refused.
-    let end = hi;
+    // is accepted, up to the run's final time. A refusal of a longer step from an earlier
+    // state (one of its stages overshooting into the band) does not bound the path of the
+    // shorter ones: bisecting on it stopped short of the band (by some per cent of the
+    // threshold at a coarse step), or failed where the shorter steps pass the refused time
+    // still short of the lock; the walk follows the shorter steps to where they too are
+    // refused.
+    let end = opts.t_end;
     let span = hi - lo.t;
     let mut d = 0.5 * span;
     while d > tol && end - lo.t > tol {
