@@ -200,6 +200,35 @@ pub enum Error {
         value: f64,
     },
 
+    /// A crank turned back within a turn ([`LinkageSystem::turn`]): its speed reached zero
+    /// against the turn's direction and the drive, above the resistances' breakaway load,
+    /// turned it the other way (located to the method's own state). Not a singularity: the
+    /// motion goes on the other way, as [`LinkageSystem::run_up_from`] does.
+    ///
+    /// [`LinkageSystem::turn`]: crate::linkage::dynamics::LinkageSystem::turn
+    /// [`LinkageSystem::run_up_from`]: crate::linkage::dynamics::LinkageSystem::run_up_from
+    #[error(
+        "the crank turned back at t = {} s, at φ = {} rad, from {} rad/s at t = {} s (its \
+         speed reached zero and the drive turned it the other way), {} of the turn made",
+        sig(*.time),
+        sig(*.angle),
+        sig(*.from_speed),
+        sig(*.from_time),
+        sig(*.fraction)
+    )]
+    TurnedBack {
+        /// When the crank's speed reached zero, s.
+        time: f64,
+        /// The crank angle there, rad.
+        angle: f64,
+        /// The fraction of a turn made from the turn's start before it turned back (≥ 0).
+        fraction: f64,
+        /// The crank speed at the turn's start, rad/s.
+        from_speed: f64,
+        /// When the turn started, s.
+        from_time: f64,
+    },
+
     /// A described machine's state at (or within
     /// [`DEAD_CENTRE_DETERMINANT`](crate::linkage::DEAD_CENTRE_DETERMINANT) of) a dead centre
     /// of one of its RRR or RRP dyads, where its inputs no longer describe the motion. A run

@@ -1419,4 +1419,5 @@ fn repro_switch_loads_are_checked() {
 }
 
 // The entry points the sweeps above leave out.
+mod synthesis;
 mod uncovered;

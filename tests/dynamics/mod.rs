@@ -6,6 +6,8 @@ mod five_bar_servo;
 #[cfg(feature = "serde")] // it reads a bundled linkage
 mod kinks;
 #[cfg(feature = "serde")] // it reads a bundled linkage
+mod lock_events;
+#[cfg(feature = "serde")] // it reads a bundled linkage
 mod reversals;
 #[cfg(feature = "serde")] // it reads a bundled linkage
 mod run_up_ends;

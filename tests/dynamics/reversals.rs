@@ -42,22 +42,28 @@ fn energy_rest_angle(sys: &LinkageSystem, m: f64, phi0: f64, w0: f64) -> f64 {
     0.5 * (lo + hi)
 }
 
-/// The time and angle at which `turn` said the crank turned back.
+/// The time and angle at which `turn` said the crank turned back (its typed report, whose
+/// fraction of the turn made agrees with the angle).
 fn turned_back<M: Stepper>(sys: &LinkageSystem, method: &M, start: State, h: f64) -> (f64, f64) {
     let opts = RunUpOptions::new(h).with_max_turn_time(0.95);
     let e = sys.turn(method, start, &opts).unwrap_err();
-    let Error::In { part, source } = &e else {
+    let Error::TurnedBack {
+        time,
+        angle,
+        fraction,
+        from_speed,
+        from_time,
+    } = e
+    else {
         panic!("{e}")
     };
-    let Error::Singular { value: made, .. } = **source else {
-        panic!("{e}")
-    };
-    let t: f64 = part
-        .strip_prefix("the crank turned back at t = ")
-        .and_then(|p| p.split(' ').next())
-        .and_then(|p| p.parse().ok())
-        .unwrap_or_else(|| panic!("{e}"));
-    (t, start.q[0] - made * TAU)
+    assert_eq!((from_speed, from_time), (start.qd[0], start.t), "{e}");
+    assert_eq!(fraction, (angle - start.q[0]).abs() / TAU, "{e}");
+    assert!(
+        e.to_string().starts_with("the crank turned back at t = "),
+        "{e}"
+    );
+    (time, angle)
 }
 
 /// The bundled four-bar thrown backwards at 17 rad/s against a forward motor of 35 or 55 N·m

@@ -186,18 +186,12 @@ enum TurnEnd {
 
 /// The error of a turn from `start` whose crank turned back where the run `r` ended.
 fn turned_back(start: &State, r: &RunResult) -> Error {
-    let made = (r.last.q[0] - start.q[0]).abs() / TAU;
-    Error::In {
-        part: format!(
-            "the crank turned back at t = {} s, at φ = {} rad, from {} rad/s at t = {} s (its \
-             speed reached zero and the drive turned it the other way)",
-            r.last.t, r.last.q[0], start.qd[0], start.t
-        ),
-        source: Box::new(Error::Singular {
-            what: "turn",
-            measure: "fraction of the turn made before the crank turned back",
-            value: made,
-        }),
+    Error::TurnedBack {
+        time: r.last.t,
+        angle: r.last.q[0],
+        fraction: (r.last.q[0] - start.q[0]).abs() / TAU,
+        from_speed: start.qd[0],
+        from_time: start.t,
     }
 }
 
@@ -331,10 +325,10 @@ impl LinkageSystem {
     ///
     /// # Errors
     /// [`Error::Stalled`] naming the driving load and the resistance when the resistances
-    /// hold the machine at rest (it stops, or never starts); [`Error::In`] naming the time
-    /// when the crank turns back (its speed passes zero against the turn's direction, or
-    /// leaves zero the other way: located to the method's own state), around an
-    /// [`Error::Singular`] with the fraction of the turn made; [`Error::Singular`] when
+    /// hold the machine at rest (it stops, or never starts); [`Error::TurnedBack`] with the
+    /// time, the angle and the fraction of the turn made when the crank turns back (its
+    /// speed passes zero against the turn's direction, or leaves zero the other way: located
+    /// to the method's own state); [`Error::Singular`] when
     /// nothing starts the machine from rest, when it does not complete the turn within
     /// `opts.max_turn_time`, or when the turn takes no time;
     /// [`Error::OutOfRange`] naming the step `h` when a fixed-step method made the turn in
