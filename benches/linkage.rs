@@ -13,7 +13,7 @@ use std::hint::black_box;
 use std::time::Duration;
 use tmm::kinematics::{crank, rrr_dyad, Branch, LinkMotion, Motion, PointMotion};
 use tmm::kinetostatics::{CouplingDrive, RrrDyad};
-use tmm::linkage::{bundled, run_cycle, Analysis, Cells, Plan, Table, Tabulate};
+use tmm::linkage::{bundled, run_cycle, Analysis, Cells, Column, Plan, Table, Tabulate};
 use tmm::Load;
 
 #[path = "common/yardstick.rs"]
@@ -702,14 +702,89 @@ impl Cells for SumCells {
     }
 }
 
+/// A sink that writes each cell straight into its column (the hand-written table below).
+struct IntoColumns<'a> {
+    columns: &'a mut [Vec<f64>],
+    next: usize,
+}
+
+impl Cells for IntoColumns<'_> {
+    #[inline]
+    fn cell(&mut self, _: impl FnOnce() -> String, value: f64) {
+        self.columns[self.next].push(value);
+        self.next += 1;
+    }
+}
+
+/// The fastest path to a course table written by hand: the column names known beforehand
+/// (cloned into the table, as a caller writing them as literals would), every column
+/// allocated once at its full length, and a solver loop pushing each position's cells
+/// straight into their columns (no block, no names made, no check of the row's width):
+/// the same `Table`, the same layout, freshly allocated per call, as `plan.table` makes.
+fn table_by_hand(plan: &Plan, ins: &[Motion], names: &[String]) -> Table {
+    let mut solver = plan.solver();
+    let mut values: Vec<Vec<f64>> = names
+        .iter()
+        .map(|_| Vec::with_capacity(ins.len()))
+        .collect();
+    for &i in ins {
+        if let Ok(a) = solver.analyse(i) {
+            a.cells(&mut IntoColumns {
+                columns: &mut values,
+                next: 0,
+            });
+        }
+    }
+    Table {
+        columns: names
+            .iter()
+            .zip(values)
+            .map(|(name, values)| Column {
+                name: name.clone(),
+                values,
+            })
+            .collect(),
+    }
+}
+
+/// Which of `four_bar_over_n`'s ratios to print (`TMM_OVER_N_JOBS`, all when unset).
+struct Jobs(Option<String>);
+
+impl Jobs {
+    fn wants(&self, job: &str) -> bool {
+        self.0
+            .as_ref()
+            .is_none_or(|v| v.split(',').any(|j| j.trim() == job))
+    }
+}
+
+/// Prints the ratio `tmm / yardstick` side by side: in thread CPU time (`cpu | …`) and, if
+/// `wall`, in wall time (`yardstick | …`).
+fn both_ratios<A, B>(
+    label: &str,
+    n: usize,
+    rounds: usize,
+    wall: bool,
+    mut tmm: impl FnMut() -> A,
+    mut yardstick: impl FnMut() -> B,
+) {
+    if wall {
+        yardstick::print_ratio(label, n as u32, &mut tmm, &mut yardstick);
+    }
+    cpu_ratio::print_cpu_ratio(label, n as u32, rounds, tmm, yardstick);
+}
+
 /// The obvious calls against the fastest path, per position, over N = 36 … 10⁶ positions of
 /// the four-bar (group `four_bar_over_n`, throughput per position, so a flat rate is linear
 /// cost): the README's `plan.cycle` against a solver loop by hand (the same job: every
 /// quantity of each position folded into one number); the one-shot `plan.analyse` per
 /// position (its buffers the plan's spares, nothing kept); the course table by
-/// `plan.table` (columns filled in place) against the same cells summed by a solver loop
-/// with nothing stored, and against the old way, `Table::of(&run_cycle(&inputs, |i|
-/// plan.analyse(i)))`, which keeps an analysis per position (up to 36 000 positions).
+/// `plan.table` against the fastest path to the same table by hand ([`table_by_hand`]: a
+/// solver loop writing the cells into new columns of the same layout), and against the same
+/// cells summed by a solver loop with nothing stored (not a table: what the cells cost
+/// without the memory a table fills); in criterion also the old way,
+/// `Table::of(&run_cycle(&inputs, |i| plan.analyse(i)))`, which keeps an analysis per
+/// position (up to 36 000 positions).
 fn four_bar_over_n(c: &mut Criterion) {
     let plan = Plan::new(&bundled::four_bar()).unwrap();
     let mut g = c.benchmark_group("four_bar_over_n");
@@ -725,6 +800,10 @@ fn four_bar_over_n(c: &mut Criterion) {
         .ok()
         .and_then(|v| v.parse().ok())
         .unwrap_or(20);
+    // `TMM_OVER_N_JOBS=analyse,table`: only those ratios (of cycle, analyse, table, summed).
+    let jobs = Jobs(std::env::var("TMM_OVER_N_JOBS").ok());
+    // `TMM_WALL=0`: the CPU-time lines only (no wall-time `yardstick | …` lines).
+    let wall = std::env::var("TMM_WALL").map_or(true, |v| v != "0");
     if let Ok(load) = std::fs::read_to_string("/proc/loadavg") {
         println!(
             "four_bar_over_n | load average (1, 5, 15 min): {}",
@@ -757,59 +836,73 @@ fn four_bar_over_n(c: &mut Criterion) {
                     .sum::<f64>()
             };
             let name = |what: &str| format!("four-bar N = {n}: {what}");
-            yardstick::print_ratio(
-                &name("plan.cycle / solver loop"),
-                n as u32,
-                cycle,
-                &mut loop_,
-            );
-            cpu_ratio::print_cpu_ratio(
-                &name("plan.cycle / solver loop"),
-                n as u32,
-                rounds,
-                cycle,
-                &mut loop_,
-            );
+            if jobs.wants("cycle") {
+                both_ratios(
+                    &name("plan.cycle / solver loop"),
+                    n,
+                    rounds,
+                    wall,
+                    cycle,
+                    &mut loop_,
+                );
+            }
             let one_shot = || {
                 ins.iter()
                     .map(|&i| Whole::<3, 4>::of(&plan.analyse(black_box(i)).unwrap()).fold())
                     .sum::<f64>()
             };
-            yardstick::print_ratio(
-                &name("plan.analyse per position / solver loop"),
-                n as u32,
-                one_shot,
-                &mut loop_,
-            );
-            cpu_ratio::print_cpu_ratio(
-                &name("plan.analyse per position / solver loop"),
-                n as u32,
-                rounds,
-                one_shot,
-                &mut loop_,
-            );
-            let mut cells_solver = plan.solver();
-            let mut summed = || {
-                let mut sum = SumCells(0.0);
-                for &i in &ins {
-                    cells_solver.analyse(black_box(i)).unwrap().cells(&mut sum);
-                }
-                sum.0
-            };
+            if jobs.wants("analyse") {
+                both_ratios(
+                    &name("plan.analyse per position / solver loop"),
+                    n,
+                    rounds,
+                    wall,
+                    one_shot,
+                    &mut loop_,
+                );
+            }
+            // The fastest path to the same table, by hand (checked equal first).
+            let names: Vec<String> = plan
+                .table(&ins[..1])
+                .columns
+                .into_iter()
+                .map(|c| c.name)
+                .collect();
+            if n <= 3_600 {
+                assert_eq!(table_by_hand(&plan, &ins, &names), plan.table(&ins));
+            }
             let table = || plan.table(black_box(&ins)).len();
-            yardstick::print_ratio(
-                &name("plan.table / its cells summed by a solver loop"),
-                n as u32,
-                table,
-                &mut summed,
-            );
-            cpu_ratio::print_cpu_ratio(
-                &name("plan.table / its cells summed by a solver loop"),
-                n as u32,
-                rounds,
-                table,
-                summed,
-            );
+            if jobs.wants("table") {
+                let by_hand = || table_by_hand(&plan, black_box(&ins), &names).len();
+                both_ratios(
+                    &name("plan.table / the same table by hand (solver loop into new columns)"),
+                    n,
+                    rounds,
+                    wall,
+                    table,
+                    by_hand,
+                );
+            }
+            if jobs.wants("summed") {
+                // Not a table: the cells computed and summed, nothing stored (what a table
+                // costs beyond the memory it fills).
+                let mut cells_solver = plan.solver();
+                let summed = || {
+                    let mut sum = SumCells(0.0);
+                    for &i in &ins {
+                        cells_solver.analyse(black_box(i)).unwrap().cells(&mut sum);
+                    }
+                    sum.0
+                };
+                both_ratios(
+                    &name("plan.table / its cells summed by a solver loop, nothing stored"),
+                    n,
+                    rounds,
+                    wall,
+                    table,
+                    summed,
+                );
+            }
         }
         g.throughput(Throughput::Elements(n as u64));
         g.bench_function(BenchmarkId::new("solver_loop", n), |b| {

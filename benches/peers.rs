@@ -10,6 +10,9 @@
 //! tolerance alone can be lucky or unlucky for either). ode_solvers stores every step it takes
 //! (it has no "final state only" mode); tmm's run is told to record nothing on the way.
 //!
+//! The ratios are printed twice: in wall time (`yardstick | …`, the fastest of alternating
+//! rounds) and in this thread's CPU time (`cpu | …`, which a loaded machine inflates less).
+//!
 //! With `TMM_PEERS_BARE=1` the RK4 runs are also timed against a bare loop of `Rk4::step`
 //! calls (and a run of one step against one step): what `run` costs beyond the stepping, a
 //! fixed part per call (recording the start and the end, checking the options) and a part per
@@ -26,6 +29,9 @@ use tmm::dynamics::{accelerations, run, Dopri5, LagrangeSystem, Rk4, RunOptions,
 
 #[path = "common/yardstick.rs"]
 mod yardstick;
+
+#[path = "common/cpu_ratio.rs"]
+mod cpu_ratio;
 
 type Y = ode_solvers::Vector4<f64>;
 
@@ -218,6 +224,21 @@ fn side_by_side<S: LagrangeSystem>(
     yardstick::print_ratio(
         &format!("{machine}, Dormand-Prince (ode_solvers as the yardstick)"),
         1,
+        || tmm_dopri(black_box(sys), black_box(s0), t_end, tol),
+        || peer_dopri(black_box(sys), black_box(s0), t_end, tol),
+    );
+    // The same two ratios in this thread's CPU time (what a loaded machine does not inflate).
+    cpu_ratio::print_cpu_ratio(
+        &format!("{machine}, RK4 (ode_solvers as the yardstick)"),
+        1,
+        20,
+        || tmm_rk4(black_box(sys), black_box(s0), t_end, h),
+        || peer_rk4(black_box(sys), black_box(s0), t_end, h),
+    );
+    cpu_ratio::print_cpu_ratio(
+        &format!("{machine}, Dormand-Prince (ode_solvers as the yardstick)"),
+        1,
+        20,
         || tmm_dopri(black_box(sys), black_box(s0), t_end, tol),
         || peer_dopri(black_box(sys), black_box(s0), t_end, tol),
     );

@@ -63,17 +63,27 @@ fn cat(parts: &[&str]) -> String {
     parts.concat()
 }
 
+/// A column's name from three runs of pieces, in one allocation of the exact length.
+fn cat3(a: &[&str], b: &[&str], c: &[&str]) -> String {
+    let len = [a, b, c]
+        .iter()
+        .flat_map(|p| p.iter())
+        .map(|s| s.len())
+        .sum();
+    let mut s = String::with_capacity(len);
+    for piece in [a, b, c].iter().flat_map(|p| p.iter()) {
+        s.push_str(piece);
+    }
+    s
+}
+
 /// Writes a vector's x, y and magnitude as three cells `"{name}_x [unit]"`, `"{name}_y
-/// [unit]"`, `"|{name}| [unit]"`.
-pub(crate) fn cell_vector(
-    out: &mut impl Cells,
-    name: impl Fn() -> String,
-    unit: &str,
-    v: Vector2<f64>,
-) {
-    out.cell(|| cat(&[&name(), "_x [", unit, "]"]), v.x);
-    out.cell(|| cat(&[&name(), "_y [", unit, "]"]), v.y);
-    out.cell(|| cat(&["|", &name(), "| [", unit, "]"]), v.norm());
+/// [unit]"`, `"|{name}| [unit]"`, `name` given as its pieces (each name made in one
+/// allocation, and only when the table is laid out).
+pub(crate) fn cell_vector(out: &mut impl Cells, name: &[&str], unit: &str, v: Vector2<f64>) {
+    out.cell(|| cat3(name, &["_x [", unit, "]"], &[]), v.x);
+    out.cell(|| cat3(name, &["_y [", unit, "]"], &[]), v.y);
+    out.cell(|| cat3(&["|"], name, &["| [", unit, "]"]), v.norm());
 }
 
 impl Tabulate for Kinematics<'_> {
@@ -141,7 +151,7 @@ impl Tabulate for Analysis<'_> {
         for (j, name) in plan.joint_names().iter().enumerate() {
             let re = self.reactions[j];
             let (by, on) = (&links[re.by], &links[re.on]);
-            cell_vector(out, || cat(&["R(", by, ",", on, ")@", name]), "N", re.force);
+            cell_vector(out, &["R(", by, ",", on, ")@", name], "N", re.force);
             if plan.is_prismatic_at(j) {
                 out.cell(
                     || cat(&["M(", by, ",", on, ")@", name, " [N·m]"]),

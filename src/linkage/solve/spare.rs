@@ -12,10 +12,12 @@
 //! box back to its plan ([`Spares`]) and the next one-shot solve of that plan takes it. The
 //! design, and what it does not do:
 //! - the spares are the plan's own, and nothing else's: no thread keeps a box, nothing is
-//!   global. Taking and giving back try the plan's lock (see [`Spares`]) once and
-//!   never wait on it (a thread that finds it held allocates, or frees, as if there were no
-//!   spares), and no other code runs under it (no user's load function can panic there), so
-//!   threads sharing a plan never block each other;
+//!   global. The box given back last is taken and given back by one atomic exchange each
+//!   (a loop of one-shot solves needs no more); the others wait in a pool behind a lock
+//!   (see [`Spares`]) tried once and never waited on (a thread that finds it held
+//!   allocates, or frees, as if there were no spares), and no other code runs under it (no
+//!   user's load function can panic there), so threads sharing a plan never block each
+//!   other;
 //! - it keeps little: at most [`KEEP`] boxes per plan, freed with the plan;
 //! - it changes no result: every solve writes whatever it reads (a triad's last pose and the
 //!   inputs, the only state a solve reads back, are reset when a box is taken), so a solve
@@ -32,6 +34,7 @@ use crate::kinematics::Motion;
 use crate::kinetostatics::Conditioning;
 use crate::linkage::plan::Chain;
 use crate::Load;
+use crossbeam_utils::atomic::AtomicCell;
 use std::ops::{Deref, DerefMut};
 use std::sync::Mutex;
 
@@ -142,23 +145,34 @@ impl Held {
 /// A plan's spare boxes (see the module docs). Not part of what a plan is: a clone starts
 /// with none, two plans compare equal whatever they hold, and a plan's `Debug` does not list
 /// them. Aligned to a cache line pair of its own: threads that make one-shot solves of one
-/// plan write its lock, which must not share a line with the plan data every solve reads.
+/// plan write its cell and lock, which must not share a line with the plan data every solve
+/// reads.
 ///
-/// **The lock.** A `Mutex` tried once (`try_lock`) and never waited on: two locked
-/// read-modify-writes to hold and let go, four per one-shot solve. A flag and an unsafe cell
-/// would halve them (measured: 0.03–0.06 of a four-bar position), but the crate forbids
-/// `unsafe` code.
+/// **No lock on the way of a loop.** The box given back last sits in an `AtomicCell`
+/// (crossbeam-utils: safe code here, one `xchg` to take it and one to give it back), and a
+/// loop of one-shot solves, one result alive at a time, never goes further. Only a box given
+/// back while that cell is full (several results alive at once) goes to the pool, a `Mutex`
+/// tried once (`try_lock`) and never waited on. With the `Mutex` alone a one-shot solve made
+/// four locked read-modify-writes (two to take, two to give back) and two checks of the
+/// thread's panic state: 0.07–0.13 of a four-bar position (docs/performance.md).
 #[derive(Default)]
 #[repr(align(128))]
 pub(crate) struct Spares {
+    /// The box given back last, taken and given back by one atomic exchange each (no lock):
+    /// a loop of one-shot solves, one result alive at a time, never reaches the pool.
+    last: AtomicCell<Option<Box<Parts>>>,
     pool: Mutex<Pool>,
 }
 
-/// The boxes, a stack of at most [`KEEP`] (a fixed array: nothing is allocated, nothing can
-/// fail, while the lock is held).
+// The cell holds a pointer (`None` is null), exchanged by one atomic instruction: never
+// through crossbeam's fallback of global locks.
+const _: () = assert!(AtomicCell::<Option<Box<Parts>>>::is_lock_free());
+
+/// The boxes beyond `last`, a stack of at most [`KEEP`] − 1 (a fixed array: nothing is
+/// allocated, nothing can fail, while the lock is held).
 #[derive(Default)]
 struct Pool {
-    boxes: [Option<Box<Parts>>; KEEP],
+    boxes: [Option<Box<Parts>>; KEEP - 1],
     len: usize,
 }
 
@@ -190,9 +204,20 @@ impl Spares {
         self.pool.try_lock().ok().map(|mut pool| f(&mut pool))
     }
 
-    /// A spare box of the plan's, if one is free and no other thread holds the spares.
+    /// A spare box of the plan's: the one given back last (one atomic exchange), else one
+    /// of the pool if one is free and no other thread holds it.
     #[inline(always)]
     pub fn take(&self) -> Option<Box<Parts>> {
+        match self.last.take() {
+            Some(b) => Some(b),
+            None => self.take_pooled(),
+        }
+    }
+
+    /// A box of the pool (kept out of line: a loop of one-shot solves never comes here).
+    #[cold]
+    #[inline(never)]
+    fn take_pooled(&self) -> Option<Box<Parts>> {
         self.with(|p| {
             let last = p.len.checked_sub(1)?;
             p.len = last;
@@ -201,10 +226,20 @@ impl Spares {
         .flatten()
     }
 
-    /// Gives back a box to the plan's spares; freed (after the lock is let go) if they are
-    /// full or busy.
+    /// Gives back a box to the plan's spares: it becomes the one given back last (one atomic
+    /// exchange), and the box that was there, if any, goes to the pool; freed (after the
+    /// lock is let go) if the pool is full or busy.
     #[inline(always)]
     pub fn give(&self, b: Box<Parts>) {
+        if let Some(older) = self.last.swap(Some(b)) {
+            self.pool_or_free(older);
+        }
+    }
+
+    /// Puts `b` in the pool, or frees it if the pool is full or busy.
+    #[cold]
+    #[inline(never)]
+    fn pool_or_free(&self, b: Box<Parts>) {
         let mut b = Some(b);
         self.with(|p| {
             if let Some(slot) = p.boxes.get_mut(p.len) {
