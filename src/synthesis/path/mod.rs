@@ -737,29 +737,6 @@ impl Problem {
         (0..phi.len()).all(|i| self.lane_ok_in(out, i))
     }
 
-    /// Levenberg–Marquardt from the feasible `x`, every step kept within the whole check
-    /// ([`Problem::feasible`]), while the budget has room for the check.
-    ///
-    /// Why: the free polish ([`Problem::lm`]) keeps only the link ratio, so that it converges
-    /// as fast as it can; where it ends outside the constraints (a point met past a dead
-    /// point, out of order, outside `max_size`, γ below \[γ\]) the start alone was the design,
-    /// though a design through the points may lie within them, reached by steps that stay
-    /// there.
-    fn lm_within(&self, x: Vec<f64>, sigma: f64, iterations: usize) -> Vec<f64> {
-        let res = |x: &[f64]| {
-            if self.budget.take_polish() {
-                pb_residuals(self.kind, &self.targets, &self.timing, x, sigma)
-            } else {
-                None
-            }
-        };
-        let mut scratch = (Vec::new(), CrankAngles::default(), Positions::default());
-        let mut accept = |x: &[f64]| {
-            self.budget.fits(self.budget.check) && self.feasible_in(x, sigma, &mut scratch)
-        };
-        levenberg_marquardt(&res, &mut accept, x, self.separable(), iterations)
-    }
-
     /// The unknowns of the polish whose residuals each move every residual: the nine
     /// dimensions and θ0; the crank angle at each point (free timing) moves its own two.
     fn separable(&self) -> usize {
@@ -882,9 +859,6 @@ impl Found {
         // search, is the design (no search that found a feasible candidate ends empty).
         let x = if pb.feasible(&x, sigma) {
             x
-        } else if iterations > 0 && pb.feasible(&x0, sigma) {
-            // Every step of this polish is checked whole: its result is feasible.
-            pb.lm_within(x0.clone(), sigma, iterations)
         } else if !only_good && pb.feasible(&x0, sigma) {
             x0
         } else {
@@ -1616,15 +1590,10 @@ fn search_timed(
                 nelder_mead(&mut f, &x, &step, 200 * x.len())
             };
             let x = if pb.feasible(&xn, sigma) { xn } else { x };
-            let y = pb.lm(x.clone(), sigma, 200);
-            let x = if pb.feasible(&y, sigma) {
-                y
-            } else if pb.feasible(&x, sigma) {
-                // Every step of this polish is checked whole: its result is feasible.
-                pb.lm_within(x, sigma, 200)
-            } else {
+            let x = pb.lm(x, sigma, 200);
+            if !pb.feasible(&x, sigma) {
                 continue;
-            };
+            }
             let mut g = x[..9].to_vec();
             g.push(sigma);
             found.adopt(pb, &g, &x[9..], 0, opts.tolerance, false)?;
