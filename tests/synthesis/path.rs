@@ -171,7 +171,20 @@ fn recover(req: &PathRequirement, seed: u64, mechanism: Mechanism) -> (f64, usiz
             Mechanism::SixBar => 60,
             _ => 40,
         })
-        .with_max_evaluations(400_000)
+        // The six-bar's polish (16 unknowns, its Jacobian's 32 residuals an iteration, the
+        // continuation) is most of its search, and counted in full since session 8 (a
+        // residual at the 8 points counted 8/360 of an evaluation, where an evaluation
+        // solves 73 positions: 8/73). With 2 million the first six seeded cases recover in
+        // release (case 3 spends 1.84 million; case 5, which missed at the former 400 000,
+        // 1.5 million).
+        // The four-bar's and slider-crank's polish with prescribed timing is counted in full
+        // since session 8 too (2.7× what it was): 1.1 million buys the work 400 000 did
+        // (four-bar prescribed-timing case 97 spends its whole budget at 400 000 counted in
+        // full, and recovers with 1.1 million).
+        .with_max_evaluations(match mechanism {
+            Mechanism::SixBar => 2_000_000,
+            _ => 1_100_000,
+        })
         .with_max_time(Duration::from_secs(600))
         .with_designs(1);
     let mut evaluations = 0;
@@ -604,50 +617,30 @@ fn a_small_max_size_is_kept_far_points_and_no_designs_are_named() {
         points: target(&mut Rng(9), &phis),
         timing: Timing::Prescribed(phis.to_vec()),
     };
-    let size = {
-        let n = timed.points.len() as f64;
-        let c = timed
-            .points
-            .iter()
-            .fold([0.0, 0.0], |c, p| [c[0] + p[0] / n, c[1] + p[1] / n]);
-        timed
-            .points
-            .iter()
-            .map(|p| (p[0] - c[0]).hypot(p[1] - c[1]))
-            .fold(0.0, f64::max)
-    };
+    let (centre, size) = centroid_size(&timed.points);
+    let box_size = 0.01 * size;
+    // A budget and seed with which the four-bar's search returns a design (a feasible
+    // candidate inside the box): the bound is checked on what it returns, never skipped.
+    // The slider-crank's search finds none in this box within the budget (session 8: not yet
+    // understood); only "no design" may end it without one, and a design it returns is
+    // checked the same way.
     let opts = PathOptions::default()
         .with_population(20)
-        .with_max_evaluations(3000)
+        .with_max_evaluations(20_000)
+        .with_seed(23)
         .with_designs(1)
         .with_max_size(0.01);
     for mechanism in [Mechanism::FourBar, Mechanism::SliderCrank] {
-        // Whatever the search finds (or fails to), every moving link is within 0.01 sizes.
         let designs = match synthesise(mechanism, &timed, &opts) {
             Ok(designs) => designs,
-            // No design inside the box within the budget is an answer too, said as such.
-            Err(tmm::Error::NoMechanism { .. }) => Vec::new(),
-            Err(other) => panic!("{mechanism:?}: {other}"),
-        };
-        {
-            for d in &designs {
-                let l = &d.synthesis.linkage;
-                let at = |name: &str| l.joints.iter().find(|j| j.name == name).unwrap().at;
-                for link in l.links.iter().filter(|k| k.name != l.frame) {
-                    for (i, a) in link.joints.iter().enumerate() {
-                        for b in &link.joints[i + 1..] {
-                            let (p, q) = (at(a), at(b));
-                            let length = (p[0] - q[0]).hypot(p[1] - q[1]);
-                            assert!(
-                                length <= 0.01 * size * (1.0 + 1e-9),
-                                "{mechanism:?} {} {a}{b}: {length} > {}",
-                                link.name,
-                                0.01 * size
-                            );
-                        }
-                    }
-                }
+            Err(tmm::Error::NoMechanism { .. }) if matches!(mechanism, Mechanism::SliderCrank) => {
+                Vec::new()
             }
+            Err(e) => panic!("{mechanism:?}: no design in the box: {e}"),
+        };
+        assert!(matches!(mechanism, Mechanism::SliderCrank) || !designs.is_empty());
+        for d in &designs {
+            within_box(mechanism, d, centre, box_size);
         }
     }
     // Ten million path sizes from the origin f64 cannot resolve the tolerance of 1e-9.
@@ -673,4 +666,46 @@ fn a_small_max_size_is_kept_far_points_and_no_designs_are_named() {
             ..
         })
     ));
+}
+
+/// Every dimension `max_size` bounds, of the design `d` as the engine poses it at each of
+/// its crank angles, within `s` m: the distance between any two joints of a moving link (the
+/// crank, the coupler or rod, the rocker, the slider block) and, for a four-bar, the frame's
+/// O1O3; each coordinate of the crank's pivot O1 from the points' centroid `centre`; the
+/// coupler point P from A, whose offsets along and across AB are each within `s` (so within
+/// √2·s of A).
+fn within_box(mechanism: Mechanism, d: &tmm::synthesis::PathDesign, centre: [f64; 2], s: f64) {
+    let l = &d.synthesis.linkage;
+    let plan = Plan::new(l).unwrap();
+    let slack = 1.0 + 1e-9;
+    for &phi in &d.crank_angles {
+        let k = plan.kinematics(Motion::fixed(phi)).unwrap();
+        let at = |name: &str| k.joint(name).unwrap().p;
+        for link in &l.links {
+            if link.name == l.frame && !matches!(mechanism, Mechanism::FourBar) {
+                continue;
+            }
+            for (i, a) in link.joints.iter().enumerate() {
+                for b in &link.joints[i + 1..] {
+                    let length = (at(a) - at(b)).norm();
+                    assert!(
+                        length <= s * slack,
+                        "{mechanism:?} at {phi}: {} {a}{b} = {length} > {s}",
+                        link.name
+                    );
+                }
+            }
+        }
+        let o1 = at("O1");
+        assert!(
+            (o1.x - centre[0]).abs() <= s * slack && (o1.y - centre[1]).abs() <= s * slack,
+            "{mechanism:?}: O1 {o1} from the centroid {centre:?}"
+        );
+        let p = k.point("P").unwrap().p;
+        let ap = (p - at("A")).norm();
+        assert!(
+            ap <= std::f64::consts::SQRT_2 * s * slack,
+            "{mechanism:?} at {phi}: AP = {ap} > √2·{s}"
+        );
+    }
 }

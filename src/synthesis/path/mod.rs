@@ -91,9 +91,12 @@ pub struct PathOptions {
     /// The population of the differential evolution. Default 120.
     pub population: usize,
     /// The budget of candidate evaluations, at least twice the population: a candidate over
-    /// a turn (or at its prescribed angles) in the global stage; in the polish, a candidate
-    /// at the n target points counts as n/`positions` of one (the positions it solves).
-    /// Default 200 000.
+    /// a turn of `positions` (with prescribed timing: at its prescribed angles and the range
+    /// between them sampled every 0.035 rad) in the global stage. Every other solve counts by
+    /// the positions it solves in that unit: in the polish (its Jacobian's columns and the
+    /// six-bar's continuation included) a candidate at the n target points counts as n of
+    /// them, a whole check of a design as the points and its range every 1°. Default
+    /// 200 000.
     pub max_evaluations: usize,
     /// The budget of wall-clock time, positive, of the global stage and the polish alike
     /// (a polish that reaches it ends where it is, and its result is still checked whole).
@@ -248,24 +251,35 @@ const STAGNATION: usize = 40;
 const POLISH_SHARE: f64 = 0.1;
 
 /// The search's budget, shared by the global stage and the polish, and wall-clock time.
-/// Its unit is a candidate evaluation of the global stage (one candidate over a turn, or
-/// at its prescribed angles); the polish's evaluation of a candidate at the n target points
-/// solves n positions instead of a turn's, and counts as n/positions of one.
+/// Its unit is a candidate evaluation of the global stage: the positions it solves (a turn
+/// of `positions` without prescribed timing; with it, the points and the samples of the
+/// range between them). Everything else is counted by the positions it solves in that
+/// unit: the polish's evaluation of a candidate at the n target points counts as n of them,
+/// a whole check of a design as the points and the range sampled every 1°.
 struct Budget {
     used: Cell<f64>,
     max: usize,
     /// The share of `max` the global stage leaves to the polish of its last run.
     reserve: f64,
+    /// The positions one evaluation solves ([`positions_per_evaluation`]).
+    per_eval: f64,
     /// What one evaluation of the polish counts.
     polish: f64,
+    /// What the whole check of a polished design counts (at most): the polish always leaves
+    /// that much for it.
+    check: f64,
     start: Instant,
     max_time: Duration,
 }
 
 impl Budget {
+    /// Whether `k` more evaluations fit, in number and in time.
+    fn fits(&self, k: f64) -> bool {
+        self.used.get() + k <= self.max as f64 && self.start.elapsed() < self.max_time
+    }
     /// Whether `n` more evaluations fit, in number and in time.
     fn room(&self, n: usize) -> bool {
-        self.used.get() + n as f64 <= self.max as f64 && self.start.elapsed() < self.max_time
+        self.fits(n as f64)
     }
     /// Whether `n` more evaluations fit in the global stage's share: the polish of the last
     /// run's best candidates always has [`POLISH_SHARE`] of the budget left.
@@ -275,19 +289,80 @@ impl Budget {
     fn add(&self, n: usize) {
         self.used.set(self.used.get() + n as f64);
     }
+    /// Takes `k` evaluations if they fit: `false` (nothing taken) when they do not.
+    fn charge(&self, k: f64) -> bool {
+        let ok = self.fits(k);
+        if ok {
+            self.used.set(self.used.get() + k);
+        }
+        ok
+    }
+    /// Counts `k` positions solved (a whole check: taken even past the budget, whose
+    /// polish left room for it).
+    fn add_positions(&self, k: usize) {
+        self.used.set(self.used.get() + k as f64 / self.per_eval);
+    }
     /// The evaluations spent, rounded up.
     fn used(&self) -> usize {
         self.used.get().ceil() as usize
     }
-    /// Takes one evaluation of the polish, leaving one for the check of its result: `false`
-    /// when the budget (of evaluations or time) is spent.
+    /// Takes one evaluation of the polish, leaving room for the whole check of its result:
+    /// `false` when the budget (of evaluations or time) is spent.
     fn take_polish(&self) -> bool {
-        let ok = self.room(2);
+        let ok = self.fits(self.polish + self.check);
         if ok {
             self.used.set(self.used.get() + self.polish);
         }
         ok
     }
+}
+
+/// The search's samples of the range between prescribed crank angles, rad apart.
+const SEARCH_STEP: f64 = 0.035;
+/// The whole check's samples of a design's range, rad apart (1°).
+const CHECK_STEP: f64 = 0.0175;
+
+impl Budget {
+    /// The budget of `max` evaluations and `max_time` from `start`, of a search whose global
+    /// stage solves `per_eval` positions an evaluation, whose polish solves `points` and
+    /// whose whole check `check` at most.
+    fn new(
+        max: usize,
+        max_time: Duration,
+        start: Instant,
+        per_eval: usize,
+        points: usize,
+        check: usize,
+    ) -> Self {
+        let per_eval = per_eval.max(1) as f64;
+        Self {
+            used: Cell::new(0.0),
+            max,
+            reserve: 0.0,
+            per_eval,
+            polish: points as f64 / per_eval,
+            check: check as f64 / per_eval,
+            start,
+            max_time,
+        }
+    }
+}
+
+/// The positions one evaluation of the global stage solves: a turn of `positions` without
+/// prescribed timing; with it, the points and the range between them sampled every `step`
+/// rad (as [`Problem::objective`] and the six-bar's search sample it).
+fn positions_per_evaluation(timing: &Timing, n: usize, positions: usize, step: f64) -> usize {
+    match timing {
+        Timing::Prescribed(delta) => n + range_samples(delta, step),
+        _ => positions,
+    }
+}
+
+/// How many samples, `step` rad apart at most, cover the range of the crank angles `delta`,
+/// both ends included.
+fn range_samples(delta: &[f64], step: f64) -> usize {
+    let (mn, mx) = min_max(delta);
+    ((mx - mn) / step).ceil().max(1.0) as usize + 1
 }
 
 /// The kind of mechanism a search synthesises.
@@ -475,7 +550,7 @@ impl Problem {
                 self.phi.clear();
                 self.phi.extend(delta.iter().map(|&x| theta0 + x));
                 let (mn, mx) = min_max(delta);
-                let steps = ((mx - mn) / 0.035).ceil().max(1.0) as usize;
+                let steps = range_samples(delta, SEARCH_STEP) - 1;
                 for k in 0..=steps {
                     self.phi
                         .push(theta0 + mn + (mx - mn) * k as f64 / steps as f64);
@@ -558,6 +633,7 @@ impl Problem {
             x.push(g[10]);
         } else {
             self.out.resize(self.turn.len());
+            self.budget.add(1);
             fill(self.kind, g, sigma, &self.turn, &mut self.out);
             for t in &self.targets {
                 let mut best = (f64::INFINITY, 0.0);
@@ -597,12 +673,7 @@ impl Problem {
             }
         };
         let mut accept = |x: &[f64]| self.lengths_ok(&gene_vec(x, sigma)) == 0.0;
-        let separable = if let Timing::Prescribed(_) = self.timing {
-            x.len()
-        } else {
-            9
-        };
-        levenberg_marquardt(&res, &mut accept, x, separable, iterations)
+        levenberg_marquardt(&res, &mut accept, x, self.separable(), iterations)
     }
 
     fn angle_of(&self, x: &[f64], i: usize) -> f64 {
@@ -615,7 +686,23 @@ impl Problem {
     /// The whole check of a polished point: link ratio, and assembly with γ ≥ \[γ\] over the
     /// input range it needs (sampled every 1°, and at each target's angle).
     fn feasible(&mut self, x: &[f64], sigma: f64) -> bool {
-        self.budget.add(1);
+        let mut scratch = (
+            std::mem::take(&mut self.phi),
+            std::mem::take(&mut self.angles),
+            std::mem::take(&mut self.out),
+        );
+        let ok = self.feasible_in(x, sigma, &mut scratch);
+        (self.phi, self.angles, self.out) = scratch;
+        ok
+    }
+
+    /// [`Problem::feasible`] in the scratch space `phi`, `angles`, `out`.
+    fn feasible_in(
+        &self,
+        x: &[f64],
+        sigma: f64,
+        (phi, angles, out): &mut (Vec<f64>, CrankAngles, Positions),
+    ) -> bool {
         let g = gene_vec(x, sigma);
         if self.lengths_ok(&g) > 0.0 || !self.within_size(&g) {
             return false;
@@ -639,15 +726,25 @@ impl Problem {
                 None => return false,
             },
         };
-        let steps = (span / 0.0175).ceil().max(1.0) as usize;
-        self.phi.clear();
-        self.phi.extend_from_slice(&phis);
-        self.phi
-            .extend((0..=steps).map(|k| start + span * k as f64 / steps as f64));
-        self.angles.set(&self.phi);
-        self.out.resize(self.phi.len());
-        fill(self.kind, &g, sigma, &self.angles, &mut self.out);
-        (0..self.phi.len()).all(|i| self.lane_ok(i))
+        let steps = (span / CHECK_STEP).ceil().max(1.0) as usize;
+        phi.clear();
+        phi.extend_from_slice(&phis);
+        phi.extend((0..=steps).map(|k| start + span * k as f64 / steps as f64));
+        angles.set(phi);
+        out.resize(phi.len());
+        self.budget.add_positions(phi.len());
+        fill(self.kind, &g, sigma, angles, out);
+        (0..phi.len()).all(|i| self.lane_ok_in(out, i))
+    }
+
+    /// The unknowns of the polish whose residuals each move every residual: the nine
+    /// dimensions and θ0; the crank angle at each point (free timing) moves its own two.
+    fn separable(&self) -> usize {
+        if let Timing::Prescribed(_) = self.timing {
+            10
+        } else {
+            9
+        }
     }
 }
 
@@ -1327,20 +1424,27 @@ fn generate(
     let start = Instant::now();
     let (pts, centre, scale) = normalised(&req.points);
     let targets: Vec<V> = pts.iter().map(|p| (p - centre) / scale).collect();
+    let n = targets.len();
     let mut pb = Problem {
         kind,
         budget: Budget {
-            used: Cell::new(0.0),
-            max: opts.max_evaluations,
+            // At least the first population and one generation stay in the search.
             reserve: match (kind, &req.timing) {
                 (Kind::FourBar, Timing::Prescribed(_)) => 0.0,
-                // At least the first population and one generation stay in the search.
                 _ => (POLISH_SHARE * opts.max_evaluations as f64)
                     .min(opts.max_evaluations.saturating_sub(2 * opts.population) as f64),
             },
-            polish: req.points.len() as f64 / opts.positions as f64,
-            start,
-            max_time: opts.max_time,
+            ..Budget::new(
+                opts.max_evaluations,
+                opts.max_time,
+                start,
+                positions_per_evaluation(&req.timing, n, opts.positions, SEARCH_STEP),
+                n,
+                n + match &req.timing {
+                    Timing::Prescribed(delta) => range_samples(delta, CHECK_STEP),
+                    _ => (TAU / CHECK_STEP).ceil() as usize + 1,
+                },
+            )
         },
         targets,
         timing: req.timing.clone(),
@@ -1435,7 +1539,10 @@ fn search_timed(
                     let g = pb.genes_of(&x, sigma);
                     let f = pb.objective(&g);
                     pb.budget.add(1);
-                    if f < fit[i] {
+                    // Only within the search's box: a member the polish took outside
+                    // `max_size` would lead the population out of it, where no design is
+                    // kept (with `max_size` 0.01 no design was found at all).
+                    if f < fit[i] && pb.within_size(&g) {
                         pop[i] = g;
                         fit[i] = f;
                     }

@@ -26,8 +26,9 @@
 //! checked whole (every 1° of the range).
 
 use super::{
-    continuation, evolve, levenberg_marquardt, min_max, normalised, normalize_angle, Budget,
-    PathDesign, PathOptions, PathRequirement, Progress, Rng, Timing, INFEASIBLE, POLISHED, V,
+    continuation, evolve, levenberg_marquardt, min_max, normalised, normalize_angle, range_samples,
+    Budget, PathDesign, PathOptions, PathRequirement, Progress, Rng, Timing, CHECK_STEP,
+    INFEASIBLE, POLISHED, SEARCH_STEP, V,
 };
 use crate::error::{Error, Result};
 use crate::kinematics::batch::coupler_point;
@@ -53,10 +54,6 @@ const LUCKY: usize = 5;
 const NEAR: f64 = 1e-3;
 /// The fewest points: 16 unknowns, two equations a point.
 const MIN_POINTS: usize = 8;
-/// Samples of the range between the prescribed angles in the search, rad apart.
-const SEARCH_STEP: f64 = 0.035;
-/// The whole check's samples, rad apart (1°).
-const CHECK_STEP: f64 = 0.0175;
 
 /// One Stephenson III six-bar (any units).
 #[derive(Debug, Clone, Copy)]
@@ -156,6 +153,8 @@ impl SixBar {
 
 struct Problem<'a> {
     budget: Budget,
+    /// The positions the engine's blocks solved for the search (each counted in `budget`).
+    solved: Cell<usize>,
     targets: Vec<V>,
     delta: &'a [f64],
     sin_gamma: f64,
@@ -182,7 +181,7 @@ impl Problem<'_> {
     /// The crank angles of the points and `step`-spaced samples of the range between them.
     fn angles(&self, theta0: f64, step: f64) -> Vec<f64> {
         let (mn, mx) = min_max(self.delta);
-        let steps = ((mx - mn) / step).ceil().max(1.0) as usize;
+        let steps = range_samples(self.delta, step) - 1;
         self.delta
             .iter()
             .map(|d| theta0 + d)
@@ -199,6 +198,7 @@ impl Problem<'_> {
         }
         let m = SixBar::of(x, s[0], s[1]);
         let phis = self.angles(x[DIMS], step);
+        self.solved.set(self.solved.get() + phis.len());
         let (mut miss, mut short, mut bad) = (0.0, 0.0, false);
         for (i, &phi) in phis.iter().enumerate() {
             match m.at(phi) {
@@ -235,6 +235,7 @@ impl Problem<'_> {
         let m = SixBar::of(x, s[0], s[1]);
         let mut r = Vec::with_capacity(2 * self.targets.len());
         for (t, d) in self.targets.iter().zip(self.delta) {
+            self.solved.set(self.solved.get() + 1);
             let (pose, _) = m.at(x[DIMS] + d).ok()?;
             r.push(pose.p.x - t.x);
             r.push(pose.p.y - t.y);
@@ -268,15 +269,16 @@ impl Problem<'_> {
         continuation(&res, &mut accept, x, n, 400)
     }
 
-    /// The whole check: the ratio, assembly with γ ≥ \[γ\] every 1° of the range. Unlike
-    /// the four-bar's, it does not hold the polished design within `max_size`: held there,
-    /// seeded case 2 of the recovery test no longer recovers (its polish ends outside).
-    fn feasible(&self, x: &[f64], s: [f64; 2]) -> bool {
-        if !self.budget.room(1) {
-            return false;
+    /// The whole check: the ratio, assembly with γ ≥ \[γ\] every 1° of the range; the mean
+    /// miss where it passes, `None` where it does not (or the budget has no room for it).
+    /// Unlike the four-bar's, it does not hold the polished design within `max_size`: held
+    /// there, seeded case 2 of the recovery test no longer recovers (its polish ends
+    /// outside).
+    fn check(&self, x: &[f64], s: [f64; 2]) -> Option<f64> {
+        if !self.budget.charge(self.budget.check) {
+            return None;
         }
-        self.budget.add(1);
-        self.cost(x, s, CHECK_STEP) < INFEASIBLE
+        Some(self.cost(x, s, CHECK_STEP)).filter(|&c| c < INFEASIBLE)
     }
 }
 
@@ -409,15 +411,17 @@ pub fn six_bar_path_generator(
     }
     let start = Instant::now();
     let (pts, centre, scale) = normalised(&req.points);
+    let n = req.points.len();
     let pb = Problem {
-        budget: Budget {
-            used: Cell::new(0.0),
-            max: opts.max_evaluations,
-            reserve: 0.0,
-            polish: req.points.len() as f64 / opts.positions as f64,
+        budget: Budget::new(
+            opts.max_evaluations,
+            opts.max_time,
             start,
-            max_time: opts.max_time,
-        },
+            n + range_samples(delta, SEARCH_STEP),
+            n,
+            n + range_samples(delta, CHECK_STEP),
+        ),
+        solved: Cell::new(0),
         targets: pts.iter().map(|p| (p - centre) / scale).collect(),
         delta,
         sin_gamma: gamma.sin(),
@@ -558,30 +562,27 @@ fn search(
             }
             let (x0, sg) = split(&pop[i]);
             let x = pb.lm(x0.clone(), sg, 200, false);
-            let mut x = if pb.feasible(&x, sg) {
-                x
-            } else if pb.feasible(&x0, sg) {
+            let (mut x, mut miss) = if let Some(m) = pb.check(&x, sg) {
+                (x, m)
+            } else if let Some(m0) = pb.check(&x0, sg) {
                 // The constrained polish samples the range as the search does: the whole
                 // check may still refuse it, and the start is the design then.
                 let y = pb.lm(x0.clone(), sg, 200, true);
-                if pb.feasible(&y, sg) {
-                    y
-                } else {
-                    x0
+                match pb.check(&y, sg) {
+                    Some(m) => (y, m),
+                    None => (x0, m0),
                 }
             } else {
                 continue;
             };
-            let mut miss = pb.cost(&x, sg, CHECK_STEP);
             if miss > opts.tolerance {
                 // A near miss where Levenberg–Marquardt stalled in a curved valley of the
                 // ill-conditioned misses: followed down to the points by continuation.
                 let y = pb.lm(pb.follow(x.clone(), sg), sg, 200, false);
-                if pb.feasible(&y, sg) {
-                    let m = pb.cost(&y, sg, CHECK_STEP);
-                    if m < miss {
-                        (x, miss) = (y, m);
-                    }
+                if let Some(m) = pb.check(&y, sg)
+                    && m < miss
+                {
+                    (x, miss) = (y, m);
                 }
             }
             keep(found, x, sg, miss);
@@ -695,4 +696,64 @@ fn design(pb: &Problem, x: &[f64], s: [f64; 2], centre: V, scale: f64) -> Result
         crank_angles: phis,
         coupler_points: points,
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Every position the engine's blocks solve in the search — the global stage, the
+    /// polishes' residuals and Jacobian columns, the continuation, the whole checks — is
+    /// counted against the budget in its unit (the positions of one evaluation of the
+    /// global stage), and the count never passes the budget: run with a tolerance of 0, the
+    /// search spends its budget whole.
+    #[test]
+    fn every_position_solved_is_counted_against_the_budget() {
+        let req = PathRequirement::six_bar_example().unwrap();
+        let Timing::Prescribed(delta) = &req.timing else {
+            unreachable!()
+        };
+        let mut opts = PathOptions::default()
+            .with_population(20)
+            .with_max_evaluations(20_000)
+            .with_min_transmission_angle(0.3);
+        opts.tolerance = 0.0;
+        let (pts, centre, scale) = normalised(&req.points);
+        let n = pts.len();
+        let per_eval = n + range_samples(delta, SEARCH_STEP);
+        let pb = Problem {
+            budget: Budget::new(
+                opts.max_evaluations,
+                opts.max_time,
+                Instant::now(),
+                per_eval,
+                n,
+                n + range_samples(delta, CHECK_STEP),
+            ),
+            solved: Cell::new(0),
+            targets: pts.iter().map(|p| (p - centre) / scale).collect(),
+            delta,
+            sin_gamma: 0.3f64.sin(),
+            ratio: opts.max_link_ratio,
+            size: opts.max_size,
+        };
+        let mut found = Vec::new();
+        let mut last = 0;
+        search(&pb, &opts, &mut found, &mut |p| {
+            last = p.evaluations;
+            true
+        });
+        let used = pb.budget.used.get();
+        let solved = pb.solved.get() as f64 / per_eval as f64;
+        assert!(used <= opts.max_evaluations as f64 && last <= opts.max_evaluations);
+        assert!(
+            solved <= used * (1.0 + 1e-12),
+            "{solved} evaluations' positions solved, {used} counted"
+        );
+        // Spent: less than one generation's worth left.
+        assert!(
+            used > (opts.max_evaluations - 2 * opts.population) as f64,
+            "{used}"
+        );
+    }
 }
