@@ -38,78 +38,8 @@ pub(super) trait Periodic {
     fn second(&self, z: C) -> f64;
     /// M₂ ≥ |F″| everywhere.
     fn m2(&self) -> f64;
-    /// M₃ ≥ |F‴| everywhere.
-    fn m3(&self) -> f64;
     /// The rounding level of an evaluation of F.
     fn tol(&self) -> f64;
-}
-
-/// A root of F reached by Newton's method from a previous angle, with what its isolation
-/// certificate needs (the rule of [`triad_tracked`](super::triad_tracked), condition 1).
-pub(super) struct Isolated {
-    /// The root.
-    pub z: C,
-    /// The last point of evaluation, F and F′ there.
-    zl: C,
-    f: f64,
-    g: f64,
-    /// An upper bound of the angle from the start to `zl`.
-    travelled: f64,
-}
-
-/// Newton's method on F from `z0` (a step dθ = −F/F′ turns z by 2·atan(dθ/2)); `None` when a
-/// step exceeds 1 rad or 16 steps do not bring one below 1e-6 rad (the error left is of the
-/// order of its square; the caller polishes the pose).
-pub(super) fn newton_root(f: &impl Periodic, z0: C) -> Option<Isolated> {
-    let (mut z, mut travelled) = (z0, 0.0);
-    for _ in 0..16 {
-        let (v, g) = f.eval(z);
-        let dth = -v / g;
-        if dth.is_nan() || dth.abs() > 1.0 {
-            return None;
-        }
-        if dth.abs() <= 1e-6 {
-            return Some(Isolated {
-                z: along(z, 0.5 * dth),
-                zl: z,
-                f: v,
-                g,
-                travelled,
-            });
-        }
-        travelled += dth.abs();
-        z = along(z, 0.5 * dth);
-    }
-    None
-}
-
-impl Isolated {
-    /// Whether the root is certified to be the mode nearest the previous pose, `moved`
-    /// (D*²) away from it, for a rigid body whose joints have the polar moment `moment` about
-    /// their centroid. Condition 1: no other root within ρ of the root, ρ the larger of
-    /// 2|F′|/M₂ and the positive root of |F′| = |F″|·ρ/2 + M₃·ρ²/6 (Taylor's theorem; ρ shrunk
-    /// by 0.1 % and by 4|F|/|F′| for rounding), so every other mode's angle is at least
-    /// δ = ρ − |θ* − θ_prev| from the previous one; condition 2: a mode turned by Δθ is at least
-    /// 4·I·sin²(Δθ/2) from the previous pose, so D*² < 4·I·sin²(min(δ, π)/2) settles it.
-    pub fn certifies(&self, f: &impl Periodic, moved: f64, moment: f64) -> bool {
-        let ga = self.g.abs();
-        let m2 = f.m2();
-        if !(ga > 0.0 && m2 > 0.0 && moved.is_finite()) {
-            return false;
-        }
-        let accept = |rho: f64| {
-            let delta =
-                (0.999 * rho - 4.0 * self.f.abs() / ga - self.travelled).min(std::f64::consts::PI);
-            let x = 0.5 * delta;
-            // sin x ≥ x − x³/6 for x ≥ 0 (positive up to √6 > π/2).
-            let s = x - x * x * x / 6.0;
-            delta > 0.0 && moved < 0.99 * 4.0 * moment * s * s
-        };
-        accept(2.0 * ga / m2) || {
-            let (b2, m3) = (0.5 * f.second(self.zl).abs(), f.m3() / 6.0);
-            accept(2.0 * ga / (b2 + (b2 * b2 + 4.0 * m3 * ga).sqrt()))
-        }
-    }
 }
 
 /// Every root of a group's eliminated equation F, bracketed ([`bracket_all`]), once F is
