@@ -341,6 +341,13 @@ pub fn triad_modes(a: [Point2<f64>; 3], dims: &TriadDims) -> Result<TriadModes> 
         {
             modes.push_distinct(pose, tol);
         }
+        // A plateau of F within its rounding of zero (the three circles nearly coaxal: D and
+        // W vanish together): the closures sort its modes out from samples across it.
+        for z in roots.plateau(r) {
+            for pose in e.poses(z, true, false, dims).into_iter().flatten() {
+                modes.push_distinct(pose, tol);
+            }
+        }
     }
     if modes.is_empty() {
         return Err(Error::NotAssemblable {

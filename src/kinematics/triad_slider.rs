@@ -224,6 +224,12 @@ pub fn slider_triad_modes(
         {
             modes.push_distinct(pose, tol);
         }
+        // A plateau of F within its rounding of zero (as the triad's): samples across it.
+        for z in roots.plateau(r) {
+            for pose in e.poses(z, true, false).into_iter().flatten() {
+                modes.push_distinct(pose, tol);
+            }
+        }
     }
     if modes.is_empty() {
         return Err(Error::NotAssemblable {

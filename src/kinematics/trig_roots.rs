@@ -119,6 +119,7 @@ fn merge_double(f: &impl Periodic, roots: &mut Roots) {
     for (j, &gone) in gone.iter().enumerate().take(n) {
         if !gone {
             roots.z[kept] = roots.z[j];
+            roots.end[kept] = roots.end[j];
             roots.multiple[kept] = roots.multiple[j];
             roots.double[kept] = roots.double[j];
             kept += 1;
@@ -248,22 +249,51 @@ pub(super) struct Roots {
     /// its pose is taken there unpolished if it closes (Newton's method on the closures
     /// would walk to one of the two roots that rounding set apart).
     pub double: [bool; 12],
+    /// The last root pushed to each cluster (the root itself when it is alone).
+    pub end: [C; 12],
 }
 
 /// Roots of F closer than this (rad) are one cluster.
 const CLUSTER: f64 = 1e-6;
 
 impl Roots {
+    /// Adds a root, or extends the cluster it continues: a root within [`CLUSTER`] of the
+    /// last one pushed to the latest cluster (so that a stretch where F stays within its
+    /// rounding of zero, pushed a root a tangent cell at a time, is one cluster however long)
+    /// or of the first root (the circle closing).
     pub fn push(&mut self, z: C) {
         let near = |w: C| (z - w).norm() < CLUSTER;
-        if self.n > 0 && near(self.z[self.n - 1]) {
+        if self.n > 0 && near(self.end[self.n - 1]) {
             self.multiple[self.n - 1] = true;
+            self.end[self.n - 1] = z;
         } else if self.n > 0 && near(self.z[0]) {
             self.multiple[0] = true;
         } else if self.n < self.z.len() {
             self.z[self.n] = z;
+            self.end[self.n] = z;
             self.n += 1;
         }
+    }
+
+    /// The angles at which a cluster's poses are sought besides its first root: none for a
+    /// cluster narrower than 2·[`CLUSTER`]; across a longer one (a plateau of F within its
+    /// rounding of zero, where the three legs' circles are nearly coaxal and F cannot tell
+    /// its roots apart, though the closures can), every 1e-5 rad up to its end (at most
+    /// 256 samples).
+    pub fn plateau(&self, r: usize) -> impl Iterator<Item = C> {
+        let (z0, z1) = (self.z[r], self.end[r]);
+        let turn = z0.conj() * z1;
+        let span = turn.im.atan2(turn.re).abs();
+        let steps = if span > 2.0 * CLUSTER {
+            ((span / 1e-5).ceil() as usize).clamp(1, 256)
+        } else {
+            0
+        };
+        let sign = if turn.im < 0.0 { -1.0 } else { 1.0 };
+        (1..=steps).map(move |k| {
+            let phi = sign * span * k as f64 / steps as f64;
+            z0 * C::new(phi.cos(), phi.sin())
+        })
     }
 }
 
