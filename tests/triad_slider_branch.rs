@@ -233,15 +233,10 @@ fn slider_triads_at_and_near_a_branch_point() {
             seen.reactions_singular, seen.cases,
             "reactions at every branch pose Singular"
         );
-        // Open (printed above): a group with four modes within 4e-4 rad of one another
-        // (the sliding leg's line nearly the radical axis of the hinged legs' circles) can
-        // lose one of them (5 of 2000 outer groups at 10⁴, none inner).
-        assert!(
-            seen.off_scan * 100 <= seen.cases,
-            "{} of {} counts off the independent scan",
-            seen.off_scan,
-            seen.cases
-        );
+        // None at 10⁴ (outer) since a plateau of F within its rounding of zero is one
+        // cluster sampled by the closures (before: 5 of 2000 outer groups, four modes within
+        // 4e-4 rad of one another, lost one).
+        assert_eq!(seen.off_scan, 0, "counts off the independent scan");
         assert!(
             seen.level * 10 <= seen.cases,
             "{} of {} cases not a simple fold",

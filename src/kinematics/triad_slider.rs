@@ -343,7 +343,9 @@ fn track(
         let on = o + Vector2::new(step.x, step.y);
         let zn = z * C::new(1.0, step.z);
         let (gn, kn) = e.residual(on, zn);
-        if !(gn.amax() < g.amax()) {
+        // (NaN is no improvement.)
+        let better = gn.amax() < g.amax();
+        if !better {
             break;
         }
         (o, z, g, k) = (on, zn, gn, kn);
