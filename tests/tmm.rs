@@ -25,5 +25,6 @@ mod mechanism;
 mod synthesis;
 mod triad;
 mod triad_slider;
+mod triad_slider_branch;
 mod unit;
 mod work_precision;

@@ -30,11 +30,12 @@ fn rotate(v: Vector2<f64>, theta: f64) -> Vector2<f64> {
 /// One random group: its dimensions, the first leg's known part (the guide, or A1) and
 /// A2, A3; built from a random pose when `from_pose` (so at least that mode exists), else
 /// with random outer joints.
-struct Case {
-    dims: SliderTriadDims,
-    first: Guide,
-    a: [Point2<f64>; 2],
-    generating: Option<[Point2<f64>; 3]>,
+#[derive(Clone, Copy)]
+pub(crate) struct Case {
+    pub dims: SliderTriadDims,
+    pub first: Guide,
+    pub a: [Point2<f64>; 2],
+    pub generating: Option<[Point2<f64>; 3]>,
 }
 
 fn beta(dims: &SliderTriadDims) -> [Vector2<f64>; 3] {
@@ -45,7 +46,7 @@ fn beta(dims: &SliderTriadDims) -> [Vector2<f64>; 3] {
     ]
 }
 
-fn random_case(rng: &mut Rng, inner: bool, from_pose: bool) -> Case {
+pub(crate) fn random_case(rng: &mut Rng, inner: bool, from_pose: bool) -> Case {
     let offset = rng.range(-0.5, 0.5);
     let pair = if inner {
         SlidingPair::Inner {
@@ -111,7 +112,7 @@ fn line(c: &Case, theta: f64) -> (Vector2<f64>, f64) {
     }
 }
 
-fn size(c: &Case) -> f64 {
+pub(crate) fn size(c: &Case) -> f64 {
     let b = beta(&c.dims);
     let mut s = c.dims.l[0]
         .max(c.dims.l[1])
@@ -129,7 +130,7 @@ fn size(c: &Case) -> f64 {
 /// sliding leg's line with the second leg's circle, g = |B3 − A3| − l3; roots are the sign
 /// changes along each branch, plus one where the branches meet at the end of a run of
 /// assemblable angles with opposite signs.
-fn count_by_branches(c: &Case, n: usize) -> usize {
+pub(crate) fn count_by_branches(c: &Case, n: usize) -> usize {
     let be = beta(&c.dims);
     let g = |theta: f64, sigma: f64| -> Option<f64> {
         let (nv, h) = line(c, theta);

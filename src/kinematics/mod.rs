@@ -62,6 +62,7 @@ mod contour;
 mod crank;
 mod cycle;
 mod extreme;
+mod fold;
 mod grashof;
 mod link;
 mod lu_work;
@@ -75,6 +76,7 @@ mod rrr;
 mod transfer;
 mod triad;
 mod triad_slider;
+mod trig_cubic;
 mod trig_roots;
 
 pub use assur::{GroupMotion, GroupPose, GroupReactions, GroupWork, HingeEnd, HingedGroup};
@@ -89,6 +91,8 @@ pub use cycle::{
     MAX_POSITIONS,
 };
 pub use extreme::{extreme_positions, Extreme, ExtremeKind, Rotation, Strokes};
+pub use fold::SINGULAR_BRANCH;
+pub(crate) use fold::{Leg, Legs};
 pub use grashof::{grashof, Grashof};
 pub(crate) use link::frame_offset;
 pub use link::LinkMotion;
@@ -106,7 +110,7 @@ pub use transfer::transfer_functions;
 pub(crate) use triad::ensure_off_branch;
 pub use triad::{
     triad, triad_modes, triad_rates, triad_tracked, AssemblyModes, TriadDims, TriadModes,
-    TriadPose, TriadState, MAX_TRIAD_MODES, SINGULAR_BRANCH, SINGULAR_TRIAD,
+    TriadPose, TriadState, MAX_TRIAD_MODES, SINGULAR_TRIAD,
 };
 pub use triad_slider::{
     slider_triad, slider_triad_modes, slider_triad_rates, slider_triad_tracked, SliderTriadDims,

@@ -47,7 +47,7 @@
 //! root-mean-square distance of its joints from their centroid), a dimensionless measure that
 //! is independent of the reference point. The rates are refused ([`Error::Singular`]) when the
 //! data lie within rounding of a branch point: the measure is the data's distance from it,
-//! estimated from the fold's normal form ([`SINGULAR_BRANCH`] derives the rule).
+//! estimated from the fold's normal form ([`SINGULAR_BRANCH`](super::SINGULAR_BRANCH) derives the rule).
 //!
 //! # Tracking a mode along a cycle
 //! [`TriadModes::nearest`] picks the mode nearest a reference pose, by the distance
@@ -55,9 +55,11 @@
 //! previous pose's angle, accepted only when a certificate proves that the root it reached is
 //! the mode the full bracket would pick (see its documentation for the rule).
 
+use super::fold::{split_steps, Leg, Legs};
 use super::link::LinkMotion;
 use super::motion::PointMotion;
-use super::trig_roots::{along, checked_roots, unit, Periodic, CLOSES, SAME_MODE};
+use super::trig_cubic::{n1, Cubic};
+use super::trig_roots::{checked_roots, unit, CLOSES, SAME_MODE};
 use crate::angle::{cross, direction, perp};
 use crate::error::{finite, finite2, positive, Error, Result};
 use nalgebra::{Complex, Matrix3, Point2, Vector2, Vector3};
@@ -67,47 +69,15 @@ type C = Complex<f64>;
 const GROUP: &str = "triad";
 /// The name of the triad's conditioning measure in [`Error::Singular`].
 const MEASURE: &str = "det(velocity system)/L_T";
-/// The name of the revolute triad's branch-point measure η in [`Error::Singular`]
-/// (see [`SINGULAR_BRANCH`]).
-const BRANCH_MEASURE: &str = "distance from a branch point/size";
 /// The most assembly modes a triad can have: the degree of the eliminated equation's sextic.
 pub const MAX_TRIAD_MODES: usize = 6;
-/// At or below this μ = |det K|/L_T a group of the 3rd class with a sliding pair
-/// ([`slider_triad_rates`](super::slider_triad_rates)) is at a branch or dead point: its
-/// position is returned, its rates are [`Error::Singular`]. μ is dimensionless and of the
-/// order of K's smallest singular value σ. A pose solved in floating point is known only to
-/// ≈ ε·s/σ along K's near-null direction, so its rates carry a relative error ≈ ε/σ²; at a
-/// branch point computed in floating point σ ≈ c·√ε, never 0 (the rounding of the data moves
-/// the pose by √ε·s along the fold). √(ε/τ) with τ = 1e-4 (rates to fewer than four digits)
-/// gives 1.5e-6. The revolute triad uses the sharper [`SINGULAR_BRANCH`], which also knows
-/// the fold's curvature c.
+/// The former threshold on μ = |det K|/L_T of a group of the 3rd class with a sliding pair,
+/// kept for callers that name it: no solver of the crate reads it any more. μ ≈ c·√ε at a
+/// branch point computed in floating point (c the fold's curvature ratio, spread over
+/// decades), so no absolute threshold on it separates a branch point from a regular pose
+/// near one; both kinds of triad now refuse their rates and reactions by the data's
+/// distance from the branch point, [`SINGULAR_BRANCH`](super::SINGULAR_BRANCH).
 pub const SINGULAR_TRIAD: f64 = 1.5e-6;
-/// At or below this η, the estimated distance of the data from the nearest branch (or dead)
-/// point relative to the triad's size, a revolute triad's rates are [`Error::Singular`]
-/// ([`triad_rates`]; its position is still returned).
-///
-/// Why a distance of the data, and why ε/(2τ) with τ = 1e-4 (ε the unit roundoff). K is the
-/// Jacobian G′ of the three closures G(x) = (|B_i − A_i| − l_i) in x = (B1, L_T·θ) (scaled
-/// so that its columns are dimensionless: K′ = K·diag(1, 1, 1/L_T), det K′ = μ). Near a
-/// branch point the closures have the normal form of a fold: along the right singular
-/// vector n of K′'s smallest singular value σ, with m the left one and κ = |m · G″(n, n)|,
-/// - the fold (σ = 0) is ≈ σ/κ away in the pose, and the data are d ≈ σ²/(2κ) from it;
-/// - a pose solved in floating point closes to ρ ≈ ε·s (s the size; the data themselves are
-///   rounded by as much), so it is known only to δ ≈ ρ/σ along n; K changes by ≈ κ·δ over
-///   that, and the rates K⁻¹·b, amplified by 1/σ, carry a relative error ≈ κ·ρ/σ² = ε·s/(2d).
-///
-/// So η = d/s = σ²/(2κs) ≤ ε/(2τ) means "the rates carry fewer than four digits". It holds
-/// at every branch point computed in floating point, whatever its curvature: rounding puts
-/// its data ≈ ε·s from the fold, η ≈ ε (≤ 11·ε seen over 2000 seeded branch points, 1e4
-/// times below the threshold), where an absolute threshold on μ or σ (≈ c·√ε there, c the
-/// fold's curvature ratio, spread over decades) cannot separate a branch point from a
-/// regular pose near one. A regular pose whose data lie 1e-8 of the size off a branch point
-/// (across the branch set) has η ≈ 1e-8 ≫ 1.1e-12 and keeps its rates (accurate to
-/// ≈ ε/(2η) ≈ 1e-8). κ gains σ·|G″(n, n)| (the rates' part off n), which only makes η smaller
-/// and keeps the rule where the fold degenerates (m · G″ = 0); near no fold it reduces to
-/// σ ≤ ε/τ·s·|G″|, the absolute threshold of an ordinary ill-conditioned solve.
-pub const SINGULAR_BRANCH: f64 = 1.1e-12;
-
 /// The dimensions of a triad: the lengths of the three binary links and the ternary link's
 /// triangle.
 ///
@@ -360,7 +330,7 @@ pub fn triad_modes(a: [Point2<f64>; 3], dims: &TriadDims) -> Result<TriadModes> 
     dims.validate()?;
     let e = Eliminated::new(a, dims);
     let overflow = "triad: eliminated equation";
-    let roots = checked_roots(&e, &e.f, e.s, e.scale, GROUP, overflow)?;
+    let roots = checked_roots(&e.cubic, &e.cubic.f, e.cubic.s, e.scale, GROUP, overflow)?;
     let mut modes = TriadModes::empty();
     let tol = SAME_MODE * e.length();
     for r in 0..roots.n {
@@ -370,6 +340,13 @@ pub fn triad_modes(a: [Point2<f64>; 3], dims: &TriadDims) -> Result<TriadModes> 
             .flatten()
         {
             modes.push_distinct(pose, tol);
+        }
+        // A plateau of F within its rounding of zero (the three circles nearly coaxal: D and
+        // W vanish together): the closures sort its modes out from samples across it.
+        for z in roots.plateau(r) {
+            for pose in e.poses(z, true, false, dims).into_iter().flatten() {
+                modes.push_distinct(pose, tol);
+            }
         }
     }
     if modes.is_empty() {
@@ -436,27 +413,8 @@ fn track(a: [Point2<f64>; 3], dims: &TriadDims, previous: &TriadPose) -> Option<
     let e = Eliminated::new(a, dims);
     let d = previous.b[1] - previous.b[0];
     let z0 = C::new(d.x, d.y) / d.norm();
-    // Newton's method in the half-angle tangent t about the previous direction, on
-    // P(t) = (1 + t²)³·F(θ(t)), a polynomial of degree 6 with the same roots (no division but
-    // the step's). It stops after a step below 1e-6 (quadratic convergence leaves an error of
-    // the order of its square).
-    let (mut t, mut dt) = (0.0, f64::INFINITY);
-    let (mut p, mut dp) = (f64::NAN, f64::NAN);
-    for _ in 0..12 {
-        (p, dp) = e.tangent_poly(z0, t);
-        dt = -p / dp;
-        if dt.is_nan() || dt.abs() > 1.0 {
-            return None;
-        }
-        t += dt;
-        if dt.abs() <= 1e-6 {
-            break;
-        }
-    }
-    if dt.is_nan() || dt.abs() > 1e-6 || e.m2.is_nan() || e.m2 <= 0.0 {
-        return None;
-    }
-    let z = along(z0, t);
+    let root = e.cubic.tangent_root(z0)?;
+    let z = root.z;
     let (wz, dz) = e.w_d(z);
     if dz.is_nan() || dz.abs() <= 1e-3 * e.dscale {
         return None;
@@ -485,40 +443,17 @@ fn track(a: [Point2<f64>; 3], dims: &TriadDims, previous: &TriadPose) -> Option<
     if !closes {
         return None;
     }
-    // 2. Nearer the previous pose than any other mode can be: a mode turned by Δθ is at
-    //    least 4·I·sin²(Δθ/2) away.
+    // The certificate: no other root of F near, and no other mode as near the previous pose.
     let moved = (b[0] - previous.b[0]).norm_squared()
         + (b[1] - previous.b[1]).norm_squared()
         + (b[2] - previous.b[2]).norm_squared();
-    let moment = dims.ternary_moment();
-    // 1. No other root of F within ρ of the last evaluation θ_l = θ(t_l) (the root is within
-    //    4|F|/|F′| of it): F and F′ there from P and P′ (P = s³F, P′ = 3s²s′F + 2s²F′ with
-    //    s = 1 + t_l²), so every other mode's angle is at least δ = ρ − |θ_l − θ_prev| from the
-    //    previous one, |θ_l − θ_prev| = 2·|atan t_l| ≤ 2|t_l|.
-    let tl = t - dt;
-    let sl = 1.0 + tl * tl;
-    let f = p / (sl * sl * sl);
-    let g = (dp - 6.0 * sl * sl * tl * f) / (2.0 * sl * sl);
-    let ga = g.abs();
-    let accept = |rho: f64| {
-        let delta = (0.999 * rho - 4.0 * f.abs() / ga - 2.0 * tl.abs()).min(std::f64::consts::PI);
-        let x = 0.5 * delta;
-        // sin x ≥ x − x³/6 for x ≥ 0 (positive up to √6 > π/2).
-        let s = x - x * x * x / 6.0;
-        delta > 0.0 && moved < 0.99 * 4.0 * moment * s * s
-    };
-    // ρ = 2|F′|/M₂ first; then, if that is too short, the root of
-    // |F′| = |F″(θ_l)|·ρ/2 + M₃·ρ²/6 (Taylor with M₃ ≥ |F‴|), often much longer.
-    let certified = accept(2.0 * ga / e.m2) || {
-        let (b2, m3) = (0.5 * e.second(along(z0, tl)).abs(), e.m3 / 6.0);
-        accept(2.0 * ga / (b2 + (b2 * b2 + 4.0 * m3 * ga).sqrt()))
-    };
+    let certified = e.cubic.certifies(&root, z0, moved, dims.ternary_moment());
     certified.then_some(Tracked { z, b, leg, len })
 }
 
 /// The inverse of a 3×3 matrix by its adjugate, and the determinant.
 #[inline]
-fn inverse3(k: &Matrix3<f64>) -> (Matrix3<f64>, f64) {
+pub(super) fn inverse3(k: &Matrix3<f64>) -> (Matrix3<f64>, f64) {
     let c00 = k[(1, 1)] * k[(2, 2)] - k[(1, 2)] * k[(2, 1)];
     let c01 = k[(1, 2)] * k[(2, 0)] - k[(1, 0)] * k[(2, 2)];
     let c02 = k[(1, 0)] * k[(2, 1)] - k[(1, 1)] * k[(2, 0)];
@@ -594,7 +529,7 @@ fn rates_fast(a: &[PointMotion; 3], dims: &TriadDims, t: &Tracked) -> Option<Fas
         a[0].v.x, a[0].v.y, a[1].v.x, a[1].v.y, a[2].v.x, a[2].v.y, a[0].a.x, a[0].a.y, a[1].a.x,
         a[1].a.y, a[2].a.x, a[2].a.y, vel.x, vel.y, vel.z, acc.x, acc.y, acc.z, omega[0], omega[1],
         omega[2], eps[0], eps[1], eps[2], det,
-    ]) && surely_regular(&k, det, r, i_len, t.len, lt);
+    ]) && hinged_legs(u, r, t.len, lt).surely_regular(&k, det);
     ok.then_some(FastRates {
         v1,
         omega_t,
@@ -717,7 +652,7 @@ fn triad_checked(
 /// # Errors
 /// - [`Error::NonFinite`] for bad input;
 /// - [`Error::Singular`] with `measure = "distance from a branch point/size"` when that
-///   distance η ≤ [`SINGULAR_BRANCH`]: the lines of the three binary links meet at one point
+///   distance η ≤ [`SINGULAR_BRANCH`](super::SINGULAR_BRANCH): the lines of the three binary links meet at one point
 ///   (a dead point of the group, or two modes merging), to within what rounding can tell
 ///   (the rates would carry fewer than four digits);
 /// - [`Error::Overflow`] when a rate overflows.
@@ -789,107 +724,28 @@ pub fn triad_rates(a: [PointMotion; 3], dims: &TriadDims, pose: &TriadPose) -> R
 
 /// The branch-point test of a posed revolute triad, one rule for its rates
 /// ([`triad_rates`]) and its reactions
-/// ([`kinetostatics::Triad::solve`](crate::kinetostatics::Triad::solve)), which solve K and
-/// Kᵀ and lose their digits alike: [`Error::Singular`] naming
-/// `distance from a branch point/size` when η ≤ [`SINGULAR_BRANCH`] (or is NaN). `u` are the
-/// legs' unit vectors A_i → B_i, `r` the arms B_i − B1, `len` the legs' lengths and `lt` the
-/// ternary link's size L_T.
+/// ([`kinetostatics::Triad::solve`](crate::kinetostatics::Triad::solve)):
+/// [`Error::Singular`] naming `distance from a branch point/size` when η ≤
+/// [`SINGULAR_BRANCH`](super::SINGULAR_BRANCH) (or is NaN). `u` are the legs' unit vectors A_i → B_i, `r` the arms
+/// B_i − B1, `len` the legs' lengths and `lt` the ternary link's size L_T.
 pub(crate) fn ensure_off_branch(
     u: [Vector2<f64>; 3],
     r: [Vector2<f64>; 3],
     len: [f64; 3],
     lt: f64,
 ) -> Result<()> {
-    let k = velocity_matrix(u, r);
-    let i_len = [1.0 / len[0], 1.0 / len[1], 1.0 / len[2]];
-    if surely_regular(&k, k.determinant() / lt, r, i_len, len, lt) {
-        return Ok(());
-    }
-    let eta = branch_distance(&k, u, r, len, lt);
-    if eta.is_nan() || eta <= SINGULAR_BRANCH {
-        return Err(Error::Singular {
-            what: GROUP,
-            measure: BRANCH_MEASURE,
-            value: eta,
-        });
-    }
-    Ok(())
+    hinged_legs(u, r, len, lt).ensure_off_branch(GROUP)
 }
 
-/// η, the data's distance from the nearest branch point relative to the size, from the
-/// fold's normal form ([`SINGULAR_BRANCH`]): σ²/(2κs) with σ, n, m the smallest singular
-/// value of K′ = K·diag(1, 1, 1/L_T) and its right and left singular vectors, and
-/// κ = |m · G″(n, n)| + σ·|G″(n, n)|. G″ of a leg
-/// along x(t) = (B1 + t·δB1, θ + t·δθ): B_i moves by δB_i = δB1 + δθ·J·r_i and turns back by
-/// −δθ²·r_i, so (|B_i − A_i|)″ = (u_i⊥ · δB_i)²/l_i − δθ²·(u_i · r_i). NaN for non-finite
-/// input.
-fn branch_distance(
-    k: &Matrix3<f64>,
-    u: [Vector2<f64>; 3],
-    r: [Vector2<f64>; 3],
-    len: [f64; 3],
-    lt: f64,
-) -> f64 {
-    if !(k.iter().all(|x| x.is_finite()) && lt > 0.0) {
-        return f64::NAN;
-    }
-    let scaled = Matrix3::from_fn(|i, j| if j == 2 { k[(i, j)] / lt } else { k[(i, j)] });
-    let svd = scaled.svd(true, true);
-    let (Some(u_l), Some(v_t)) = (svd.u, svd.v_t) else {
-        return f64::NAN;
-    };
-    let (j, sigma) = svd
-        .singular_values
-        .iter()
-        .copied()
-        .enumerate()
-        .min_by(|a, b| a.1.total_cmp(&b.1))
-        .unwrap_or((0, f64::NAN));
-    let (db1, dth) = (Vector2::new(v_t[(j, 0)], v_t[(j, 1)]), v_t[(j, 2)] / lt);
-    let curvature = Vector3::from_fn(|i, _| {
-        let c = perp(u[i]).dot(&(db1 + dth * perp(r[i])));
-        c * c / len[i] - dth * dth * u[i].dot(&r[i])
-    });
-    // κ: the fold's curvature across it (the left singular vector m), plus σ·|G″(n, n)| for
-    // the part of the rates off n (which the error ρ/σ along n still turns by G″): the
-    // rates' relative error is ≈ ρ·(|m·G″| + σ·|G″|)/σ², also where m·G″ vanishes.
-    let kappa = u_l.column(j).dot(&curvature).abs() + sigma * curvature.norm();
-    sigma * sigma / (2.0 * kappa * triad_size(r, len))
-}
-
-/// The size s of a posed triad: its longest leg or ternary arm, m.
+/// The legs of a posed revolute triad for the fold's normal form.
 #[inline]
-fn triad_size(r: [Vector2<f64>; 3], len: [f64; 3]) -> f64 {
-    len[0]
-        .max(len[1])
-        .max(len[2])
-        .max(r[1].norm())
-        .max(r[2].norm())
-}
-
-/// Whether η ([`branch_distance`]) is certainly above [`SINGULAR_BRANCH`], from cheap bounds
-/// (the fast path's test; the full rule decides otherwise): σ ≥ |det K′|/(σ₁σ₂) ≥
-/// 2μ/‖K′‖_F², and for a unit n, |δB_i|² ≤ 1 + |r_i|²/L_T² and δθ² ≤ 1/L_T², so
-/// |G″(n, n)| ≤ Σ_i (1 + |r_i|²/L_T²)/l_i + |r_i|/L_T².
-#[inline]
-fn surely_regular(
-    k: &Matrix3<f64>,
-    mu: f64,
-    r: [Vector2<f64>; 3],
-    i_len: [f64; 3],
-    len: [f64; 3],
-    lt: f64,
-) -> bool {
-    let il2 = 1.0 / (lt * lt);
-    let f2 = 3.0 + (k[(0, 2)] * k[(0, 2)] + k[(1, 2)] * k[(1, 2)] + k[(2, 2)] * k[(2, 2)]) * il2;
-    let r2 = [0.0, r[1].norm_squared(), r[2].norm_squared()];
-    let kappa = i_len[0]
-        + (1.0 + r2[1] * il2) * i_len[1]
-        + (1.0 + r2[2] * il2) * i_len[2]
-        + (r2[1].sqrt() + r2[2].sqrt()) * il2;
-    let sigma = 2.0 * mu.abs() / f2;
-    // κ ≤ |G″|·(1 + σ) and σ ≤ ‖K′‖_F.
-    sigma * sigma > 2.0 * SINGULAR_BRANCH * kappa * (1.0 + f2.sqrt()) * triad_size(r, len)
+fn hinged_legs(u: [Vector2<f64>; 3], r: [Vector2<f64>; 3], len: [f64; 3], lt: f64) -> Legs {
+    Legs {
+        w: u,
+        r,
+        kind: len.map(Leg::Hinged),
+        lt,
+    }
 }
 
 /// The velocity system K of a triad: row i is (u_i, r_i × u_i).
@@ -912,25 +768,6 @@ fn valid_points(a: [Point2<f64>; 3]) -> bool {
     a.iter().all(|p| p.x.is_finite() && p.y.is_finite())
 }
 
-impl Periodic for Eliminated {
-    #[inline]
-    fn eval(&self, z: C) -> (f64, f64) {
-        Eliminated::eval(self, z)
-    }
-    fn second(&self, z: C) -> f64 {
-        Eliminated::second(self, z)
-    }
-    fn m2(&self) -> f64 {
-        self.m2
-    }
-    fn m3(&self) -> f64 {
-        self.m3
-    }
-    fn tol(&self) -> f64 {
-        self.tol
-    }
-}
-
 /// The eliminated equation of one triad at one position, origin at A1.
 struct Eliminated {
     /// A_1 (the origin of the complex plane below).
@@ -944,20 +781,12 @@ struct Eliminated {
     /// D = e0 + 2·Re(e1·z).
     e0: f64,
     e1: C,
-    /// F's Fourier coefficients: F = `f[0] + 2·Re(Σ_{k=1..3} f[k]·z^k)`, `f[0]` real.
-    f: [C; 4],
+    /// F = |W|² − l1²·D².
+    cubic: Cubic,
     /// |e0| + 2|e1|, the size of D.
     dscale: f64,
-    /// M₂ = 2·Σ k²|F_k|, a bound of |F″|.
-    m2: f64,
-    /// M₃ = 2·Σ k³|F_k|, a bound of |F‴|.
-    m3: f64,
-    /// Σ|F_k| with F_0 once and the others twice: a bound of |F|.
-    s: f64,
     /// The size of the terms that make F (for the rounding tolerance).
     scale: f64,
-    /// The rounding level of an evaluation of F.
-    tol: f64,
 }
 
 impl Eliminated {
@@ -989,31 +818,6 @@ impl Eliminated {
         let e0 = (av[1].conj() * av[2] + beta[1].conj() * beta[2]).im;
         let mu = beta[1] * av[2].conj() - av[1].conj() * beta[2];
         let e1 = C::new(0.0, -0.5) * mu;
-        // |W|²_k = Σ_j w_j·conj(w_{j−k}); (D²)_k from e_{−1} = conj(e1), e_0, e_1.
-        let wc = [w[0].conj(), w[1].conj(), w[2].conj(), w[3].conj()];
-        let ww = [
-            C::new(
-                w[0].norm_sqr() + w[1].norm_sqr() + w[2].norm_sqr() + w[3].norm_sqr(),
-                0.0,
-            ),
-            w[1] * wc[0] + w[2] * wc[1] + w[3] * wc[2],
-            w[2] * wc[0] + w[3] * wc[1],
-            w[3] * wc[0],
-        ];
-        let dd = [
-            C::new(e0 * e0 + 2.0 * e1.norm_sqr(), 0.0),
-            2.0 * e0 * e1,
-            e1 * e1,
-            C::new(0.0, 0.0),
-        ];
-        let f = [0, 1, 2, 3].map(|k| ww[k] - l1s * dd[k]);
-        let f = [C::new(f[0].re, 0.0), f[1], f[2], f[3]];
-        // Bounds need no square root: |c| ≤ |Re c| + |Im c|.
-        let n1 = |c: C| c.re.abs() + c.im.abs();
-        let (g1, g2, g3) = (n1(f[1]), n1(f[2]), n1(f[3]));
-        let m2 = 2.0 * (g1 + 4.0 * g2 + 9.0 * g3);
-        let m3 = 2.0 * (g1 + 8.0 * g2 + 27.0 * g3);
-        let s = f[0].re.abs() + 2.0 * (g1 + g2 + g3);
         let wsum = n1(w[0]) + n1(w[1]) + n1(w[2]) + n1(w[3]);
         let dscale = e0.abs() + 2.0 * n1(e1);
         let scale = wsum * wsum + l1s * dscale * dscale;
@@ -1025,13 +829,9 @@ impl Eliminated {
             w,
             e0,
             e1,
-            f,
+            cubic: Cubic::new(&w, e0, e1, l1s, scale),
             dscale,
-            m2,
-            m3,
-            s,
             scale,
-            tol: 64.0 * f64::EPSILON * scale,
         }
     }
 
@@ -1043,46 +843,6 @@ impl Eliminated {
             .map(|c| c.norm())
             .chain(self.l)
             .fold(0.0, f64::max)
-    }
-
-    /// F and F′ = dF/dθ at z = e^{iθ}.
-    #[inline]
-    fn eval(&self, z: C) -> (f64, f64) {
-        let f = &self.f;
-        let z2 = z * z;
-        let z3 = z2 * z;
-        let (p1, p2, p3) = (f[1] * z, f[2] * z2, f[3] * z3);
-        let p = p1 + p2 + p3;
-        let dp = p1 + 2.0 * p2 + 3.0 * p3;
-        (f[0].re + 2.0 * p.re, -2.0 * dp.im)
-    }
-
-    /// P(t) = (1 + t²)³·F(θ) and dP/dt at z = z0·(1 + i·t)²/(1 + t²).
-    #[inline]
-    fn tangent_poly(&self, z0: C, t: f64) -> (f64, f64) {
-        let f = &self.f;
-        let (s, ds) = (1.0 + t * t, 2.0 * t);
-        let q = C::new(1.0, t);
-        let zeta = z0 * q * q;
-        let dzeta = C::new(0.0, 2.0) * z0 * q;
-        let (s2, zeta2) = (s * s, zeta * zeta);
-        let p =
-            f[0].re * s2 * s + 2.0 * (f[1] * zeta * s2 + f[2] * zeta2 * s + f[3] * zeta2 * zeta).re;
-        let dp = 3.0 * f[0].re * s2 * ds
-            + 2.0
-                * (f[1] * (dzeta * s2 + 2.0 * zeta * s * ds)
-                    + f[2] * (2.0 * zeta * dzeta * s + zeta2 * ds)
-                    + 3.0 * f[3] * zeta2 * dzeta)
-                    .re;
-        (p, dp)
-    }
-
-    /// F″ at z.
-    fn second(&self, z: C) -> f64 {
-        let f = &self.f;
-        let z2 = z * z;
-        let p = f[1] * z + 4.0 * f[2] * z2 + 9.0 * f[3] * z2 * z;
-        -2.0 * p.re
     }
 
     /// W(z) and D(z).
@@ -1145,11 +905,9 @@ impl Eliminated {
     /// terms, the closures' with the size, and near a fold with F's terms cancelling, F's
     /// dip between the two roots can be below the one while the two poses are far apart by
     /// the other (seen: two modes 1e-4 of the size apart whose angles differ by less than
-    /// 1e-6 rad). From a pose B1 − A1 = `p` at z near the fold and the fold's normal form along the least singular
-    /// direction n of K′ = K·diag(1, 1, 1/L_T) (left vector m, value σ; G″ as in
-    /// [`branch_distance`]), the closures G(x + t·n) ≈ G + σ·t·m + G″(n, n)·t²/2 vanish
-    /// across m at t± = (−σ ± √(σ² − 2·q·(m·G)))/q, q = m·G″(n, n): each is polished.
-    /// `None` when the model has no two real roots (the fold's other side: no pair).
+    /// 1e-6 rad). From a pose B1 − A1 = `p` at z near the fold, the steps across it of the
+    /// fold's normal form ([`split_steps`]) along the least singular direction of K′, each
+    /// polished. `None` when the model has no two real roots (the fold's other side: no pair).
     fn split_fold(
         &self,
         p: Vector2<f64>,
@@ -1158,34 +916,12 @@ impl Eliminated {
     ) -> Option<[Option<TriadPose>; 2]> {
         let b1 = self.a1 + p;
         let (u, r, h) = self.legs(b1, z);
-        let lt = dims.ternary_size();
-        let k = velocity_matrix(u, r);
-        let scaled = Matrix3::from_fn(|i, j| if j == 2 { k[(i, j)] / lt } else { k[(i, j)] });
-        let svd = scaled.svd(true, true);
-        let (u_l, v_t) = (svd.u?, svd.v_t?);
-        let (j, sigma) = svd
-            .singular_values
-            .iter()
-            .copied()
-            .enumerate()
-            .min_by(|a, b| a.1.total_cmp(&b.1))?;
-        let (db1, dth) = (Vector2::new(v_t[(j, 0)], v_t[(j, 1)]), v_t[(j, 2)] / lt);
-        let m = u_l.column(j);
-        let q: f64 = (0..3)
-            .map(|i| {
-                let c = perp(u[i]).dot(&(db1 + dth * perp(r[i])));
-                m[i] * (c * c / self.l[i] - dth * dth * u[i].dot(&r[i]))
-            })
-            .sum();
-        let g = m.dot(&h);
-        let disc = sigma * sigma - 2.0 * q * g;
-        if !(disc > 0.0 && q != 0.0) {
-            return None;
-        }
-        let t = [-1.0, 1.0].map(|sign| (-sigma + sign * disc.sqrt()) / q);
+        let legs = hinged_legs(u, r, self.l, dims.ternary_size());
+        let fold = legs.fold(&velocity_matrix(u, r))?;
+        let t = split_steps(&fold, &h)?;
         let at = |t: f64| {
-            let zt = unit(z * C::new(1.0, t * dth));
-            self.polish(p + t * db1, zt, dims)
+            let zt = unit(z * C::new(1.0, t * fold.d_theta));
+            self.polish(p + t * fold.d_o, zt, dims)
         };
         Some([at(t[0]), at(t[1])])
     }
@@ -1367,12 +1103,12 @@ mod tests {
             let (wz, dz) = e.w_d(z);
             assert!((wz - w).norm() < 1e-12);
             assert_relative_eq!(dz, d, epsilon = 1e-12);
-            assert_relative_eq!(e.eval(z).0, f, epsilon = 1e-11);
+            assert_relative_eq!(e.cubic.eval(z).0, f, epsilon = 1e-11);
             // F′ against a central difference.
             let hh = 1e-6;
-            let fp = e.eval(C::new((th + hh).cos(), (th + hh).sin())).0;
-            let fm = e.eval(C::new((th - hh).cos(), (th - hh).sin())).0;
-            assert_relative_eq!(e.eval(z).1, (fp - fm) / (2.0 * hh), epsilon = 1e-6);
+            let fp = e.cubic.eval(C::new((th + hh).cos(), (th + hh).sin())).0;
+            let fm = e.cubic.eval(C::new((th - hh).cos(), (th - hh).sin())).0;
+            assert_relative_eq!(e.cubic.eval(z).1, (fp - fm) / (2.0 * hh), epsilon = 1e-6);
         }
     }
 }

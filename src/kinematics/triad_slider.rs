@@ -20,14 +20,18 @@
 //!
 //! F(θ) = |X − Δ·c_2|² − l_2²·Δ² = 0,
 //!
-//! a real trigonometric polynomial of degree 4 (outer: Δ and X of degree 1, c_2 of degree 1)
-//! or 6 (inner: n turns with θ, so Δ and X are of degree 2). Its Fourier coefficients are
-//! read exactly (to rounding) off 16 equally spaced values (10 for the outer pair) — a
-//! polynomial of degree below N/2 does not alias on N points — and every root is bracketed by the certified scan of the
-//! RRR triad ([`trig_roots`](super::trig_roots)): no mode is missed or found twice. Each
-//! root's pose follows from the linear equations (or, where Δ vanishes, from the line and the
-//! second circle) and is polished by Newton's method on the three closures in (O, θ), whose
-//! matrix is the velocity system below.
+//! Placing the complex plane's origin at A1 (inner) or A2 (outer) makes h constant; then Δ
+//! is a real trigonometric polynomial of degree 1 and W = X − Δ·c_2 a Laurent polynomial in
+//! z of degrees −1…2 (n = ν·z for the inner pair, ν for the outer one): F is of degree 3
+//! ([`trig_cubic`](super::trig_cubic), the RRR triad's form), its Fourier coefficients are
+//! formed exactly from the dimensions (a few dozen complex products, no trigonometric
+//! function), and it has at most six real roots. Every root is bracketed by the certified
+//! scan of the RRR triad ([`trig_roots`](super::trig_roots)): no mode is missed or found
+//! twice. Each root's pose follows from the linear equations (or, where Δ vanishes, from the
+//! line and the second circle) and is polished by Newton's method on the three closures in
+//! (O, θ), whose matrix is the velocity system below; where F's rounding merged the two
+//! modes of a fold, the partner of the mode found is recovered from the fold's normal form
+//! ([`fold`](super::fold)), as for the triad.
 //!
 //! # Rates: the velocity system
 //! Each leg can push the ternary link only along one line (its Plücker row (w, (p − O) × w)):
@@ -38,18 +42,21 @@
 //! w·v_O + ((p − O) × w)·ω_T = w·v_known(p),
 //!
 //! the point p's velocity as a point of the known link; a 3×3 system K whose determinant
-//! vanishes when the three lines meet at one point (the group's dead point). The
-//! accelerations solve the same K; besides the hinged legs' centripetal terms
+//! vanishes when the three lines meet at one point (the group's dead point); the rates are
+//! refused within rounding of a branch point by the triad's rule ([`SINGULAR_BRANCH`]: the
+//! data's distance η from the fold). The accelerations solve the same K; besides the hinged legs' centripetal terms
 //! (−l_k·ω_k² + ω_T²·(r_k·u_k)), a slider adds its Coriolis term: outer
 //! n·a_O = n·a_K(O) + 2·ω_K·ṡ, inner n·a_O + ((A1 − O) × n)·ε_T = n·a_A1 − 2·ω_T·ṡ +
 //! ω_T²·n·(A1 − O), with ṡ the slide's rate along the guide. The sliding link turns with the
 //! link that carries its guide.
 
+use super::fold::{split_steps, Leg, Legs, BRANCH_MEASURE, SINGULAR_BRANCH};
 use super::link::LinkMotion;
 use super::motion::PointMotion;
 use super::rrp::Guide;
-use super::triad::{AssemblyModes, TriadDims, TriadPose, TriadState, SINGULAR_TRIAD};
-use super::trig_roots::{checked_roots, newton_root, unit as unit_c, Periodic, CLOSES, SAME_MODE};
+use super::triad::{inverse3, AssemblyModes, TriadDims, TriadPose, TriadState};
+use super::trig_cubic::{n1, Cubic};
+use super::trig_roots::{checked_roots, unit as unit_c, CLOSES, SAME_MODE};
 use crate::angle::{cross, direction, perp, unit};
 use crate::error::{finite, finite2, positive, Error, Result};
 use nalgebra::{Complex, Matrix3, Point2, Vector2, Vector3};
@@ -59,40 +66,8 @@ type C = Complex<f64>;
 const GROUP: &str = "triad with a sliding pair";
 const MEASURE: &str = "det(velocity system)/L_T";
 /// The most assembly modes a triad with a sliding pair can have: the roots of its eliminated
-/// equation (of degree 6 in the inner case).
-pub const MAX_SLIDER_TRIAD_MODES: usize = 12;
-/// Samples of the eliminated equation for its Fourier coefficients: 16 for the inner pair
-/// (degree 6), 10 for the outer one (degree 4: no aliasing below degree 5 on 10 points).
-const SAMPLES: usize = 16;
-const SAMPLES_OUTER: usize = 10;
-/// Fourier coefficients kept (degrees 0 to 6; the outer pair's above 4 are zero).
-const DEGREE: usize = 6;
-const DEGREE_OUTER: usize = 4;
-/// The sample points e^{2πij/N} of the eliminated equation and the discrete Fourier
-/// transform's factors e^{−2πi·jk/N} (k = 0…6), computed once (as cos and sin of each
-/// angle, so that the coefficients are those of the direct sum).
-struct Units<const N: usize> {
-    points: [C; N],
-    factors: [[C; DEGREE + 1]; N],
-}
-
-impl<const N: usize> Units<N> {
-    fn new() -> Self {
-        let at = |th: f64| C::new(th.cos(), th.sin());
-        let tau = std::f64::consts::TAU;
-        Self {
-            points: std::array::from_fn(|j| at(tau * j as f64 / N as f64)),
-            factors: std::array::from_fn(|j| {
-                std::array::from_fn(|k| at(-tau * (j * k) as f64 / N as f64))
-            }),
-        }
-    }
-}
-
-static UNITS: std::sync::LazyLock<Units<SAMPLES>> = std::sync::LazyLock::new(Units::new);
-static UNITS_OUTER: std::sync::LazyLock<Units<SAMPLES_OUTER>> =
-    std::sync::LazyLock::new(Units::new);
-
+/// equation, a trigonometric polynomial of degree 3 (module docs).
+pub const MAX_SLIDER_TRIAD_MODES: usize = 6;
 /// Where the first binary link's sliding pair is, with the dimension the pair fixes.
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
@@ -238,12 +213,22 @@ pub fn slider_triad_modes(
     dims.validate()?;
     let e = Equation::new(first, a, dims);
     let overflow = "triad with a sliding pair: eliminated equation";
-    let roots = checked_roots(&e, &e.f, e.s, e.scale, GROUP, overflow)?;
+    let roots = checked_roots(&e.cubic, &e.cubic.f, e.cubic.s, e.scale, GROUP, overflow)?;
     let mut modes = SliderTriadModes::empty();
     let tol = SAME_MODE * e.length;
     for r in 0..roots.n {
-        for pose in e.poses(roots.z[r], roots.multiple[r]).into_iter().flatten() {
+        for pose in e
+            .poses(roots.z[r], roots.multiple[r], roots.double[r])
+            .into_iter()
+            .flatten()
+        {
             modes.push_distinct(pose, tol);
+        }
+        // A plateau of F within its rounding of zero (as the triad's): samples across it.
+        for z in roots.plateau(r) {
+            for pose in e.poses(z, true, false).into_iter().flatten() {
+                modes.push_distinct(pose, tol);
+            }
         }
     }
     if modes.is_empty() {
@@ -287,9 +272,52 @@ pub fn slider_triad_tracked(
     if !valid || dims.validate().is_err() {
         return None;
     }
+    let t = track(first, a, dims, previous)?;
+    let (_, k) = t.e.residual(t.o, C::new(t.z.x, t.z.y));
+    Some(t.e.pose(t.o, t.z, &k))
+}
+
+/// Whether the positions of the fast path's input are finite and the dimensions valid.
+#[inline]
+fn valid_input(
+    first: &Guide,
+    a: [Point2<f64>; 2],
+    dims: &SliderTriadDims,
+    previous: &TriadPose,
+) -> bool {
+    let finite = |p: &Point2<f64>| p.x.is_finite() && p.y.is_finite();
+    finite(&first.point.p)
+        && finite(&a[0])
+        && finite(&a[1])
+        && first.angle.value.is_finite()
+        && previous.b.iter().all(finite)
+        && dims.validate().is_ok()
+}
+
+/// A mode reached by the fast path: the ternary link's origin O and direction z, with its
+/// equation (for the pose and the rates).
+struct Tracked {
+    e: Equation,
+    o: Vector2<f64>,
+    z: Vector2<f64>,
+}
+
+/// The fast path on valid input: Newton's method on F in the half-angle tangent from the
+/// previous direction, O from the linear equations, one Newton step of the three closures
+/// with the velocity system K (the root of F carries the rounding of F's coefficients, the
+/// closures that of the geometry), then the certificate of
+/// [`Cubic::certifies`](super::trig_cubic::Cubic::certifies).
+#[inline]
+fn track(
+    first: &Guide,
+    a: [Point2<f64>; 2],
+    dims: &SliderTriadDims,
+    previous: &TriadPose,
+) -> Option<Tracked> {
     let e = Equation::new(first, a, dims);
     let d = previous.b[1] - previous.b[0];
-    let root = newton_root(&e, C::new(d.x, d.y) / d.norm())?;
+    let z0 = C::new(d.x, d.y) / d.norm();
+    let root = e.cubic.tangent_root(z0)?;
     let zv = vec(root.z);
     let (n, h) = e.line(zv);
     let c = e.centres(zv);
@@ -299,15 +327,42 @@ pub fn slider_triad_tracked(
     if delta.is_nan() || delta.abs() <= 1e-3 * e.dscale {
         return None;
     }
-    let pose = e.polish((s * perp(n) - h * perp(b)) / delta, root.z)?;
-    // The polish must not have left the root's angle (it stays on this mode's branch).
-    let side = pose.b[1] - pose.b[0];
-    let zp = side / side.norm();
-    let moved = pose.distance_squared(previous);
-    (cross(zv, zp).abs() <= 1e-8 && e.closure(&pose, zp) <= 1e-13 * e.length)
-        .then_some(())
-        .filter(|()| root.certifies(&e, moved, dims.triangle().ternary_moment()))
-        .map(|()| pose)
+    let mut o = (s * perp(n) - h * perp(b)) / delta;
+    let mut z = root.z;
+    let (mut g, mut k) = e.residual(o, z);
+    // Newton steps of the closures to their rounding floor, as the bracket's polish: a pose
+    // left at 1e-13 of the size is off by 1e-13/σ along K's near-null direction, where the
+    // bracket's is not (seen: 4e-12 at |det| = 0.055).
+    let mut first = f64::NAN;
+    for _ in 0..4 {
+        let (k_inv, _) = inverse3(&k);
+        let step = k_inv * (-g);
+        if first.is_nan() {
+            first = step.z;
+        }
+        let on = o + Vector2::new(step.x, step.y);
+        let zn = z * C::new(1.0, step.z);
+        let (gn, kn) = e.residual(on, zn);
+        // (NaN is no improvement.)
+        let better = gn.amax() < g.amax();
+        if !better {
+            break;
+        }
+        (o, z, g, k) = (on, zn, gn, kn);
+        if g.amax() <= 4.0 * f64::EPSILON * e.length {
+            break;
+        }
+    }
+    let zv = vec(z);
+    if !(g.amax() <= 1e-13 * e.length && first.abs() <= 1e-8) {
+        return None;
+    }
+    let moved = (0..3)
+        .map(|i| (o + rotate(zv, e.beta[i]) - previous.b[i].coords).norm_squared())
+        .sum::<f64>();
+    e.cubic
+        .certifies(&root, z0, moved, dims.triangle().ternary_moment())
+        .then_some(Tracked { e, o, z: zv })
 }
 
 /// Positions, velocities and accelerations of a triad with a sliding pair, in the mode
@@ -318,6 +373,33 @@ pub fn slider_triad_tracked(
 /// # Errors
 /// As [`slider_triad_modes`] and [`slider_triad_rates`].
 pub fn slider_triad(
+    first: &Guide,
+    a: [PointMotion; 2],
+    dims: &SliderTriadDims,
+    previous: &TriadPose,
+) -> Result<TriadState> {
+    let p = [a[0].p, a[1].p];
+    if valid_input(first, p, dims, previous)
+        && let Some(t) = track(first, p, dims, previous)
+        && let Ok(state) = rates(
+            first,
+            &a,
+            dims,
+            t.e.joints(t.o, t.z),
+            t.z,
+            direction(t.z),
+            true,
+        )
+    {
+        return Ok(state);
+    }
+    slider_triad_checked(first, a, dims, previous)
+}
+
+/// [`slider_triad`] step by step, naming what fails.
+#[cold]
+#[inline(never)]
+fn slider_triad_checked(
     first: &Guide,
     a: [PointMotion; 2],
     dims: &SliderTriadDims,
@@ -339,8 +421,11 @@ pub fn slider_triad(
 ///
 /// # Errors
 /// - [`Error::NonFinite`] for bad input;
-/// - [`Error::Singular`] with `measure = "det(velocity system)/L_T"` when |det K|/L_T ≤
-///   [`SINGULAR_TRIAD`]: the three legs' lines of action meet at one point;
+/// - [`Error::Singular`] with `measure = "distance from a branch point/size"` when that
+///   distance η ≤ [`SINGULAR_BRANCH`]: the three legs' lines of action meet at one point (a
+///   dead point of the group, or two modes merging), to within what rounding can tell (the
+///   rates would carry fewer than four digits); with `det(velocity system)/L_T` when K
+///   cannot be inverted;
 /// - [`Error::Overflow`] when a rate overflows.
 pub fn slider_triad_rates(
     first: &Guide,
@@ -362,34 +447,59 @@ pub fn slider_triad_rates(
     }
     finite("theta", pose.theta)?;
     dims.validate()?;
-    let b = pose.b;
+    rates(first, &a, dims, pose.b, unit(pose.theta), pose.theta, false)
+}
+
+/// The rates of a posed group (the joints `b`, the ternary link's direction `zt` at the angle
+/// `theta`), on valid input. On the `fast` path (where the caller falls back to the checked
+/// one) a pose that cheap bounds cannot prove off a branch point is an error at once.
+fn rates(
+    first: &Guide,
+    a: &[PointMotion; 2],
+    dims: &SliderTriadDims,
+    b: [Point2<f64>; 3],
+    zt: Vector2<f64>,
+    theta: f64,
+    fast: bool,
+) -> Result<TriadState> {
     let o = b[0];
-    let zt = unit(pose.theta);
     let r = [Vector2::zeros(), b[1] - o, b[2] - o];
     let leg = [b[1] - a[0].p, b[2] - a[1].p];
     let len = [leg[0].norm(), leg[1].norm()];
     let u = [leg[0] / len[0], leg[1] / len[1]];
-    let (n, p, d, slide_angle) = match dims.pair {
+    let (n, p, d, slide_angle, slide) = match dims.pair {
         SlidingPair::Outer { .. } => {
             let d = unit(first.angle.value);
-            (perp(d), o, d, first.angle.value)
+            (perp(d), o, d, first.angle.value, Leg::FixedLine)
         }
         SlidingPair::Inner { angle, .. } => {
             let d = rotate(zt, unit(angle));
-            (perp(d), first.point.p, d, direction(d))
+            (perp(d), first.point.p, d, direction(d), Leg::TurningLine)
         }
     };
-    let k = matrix(n, cross(p - o, n), u, [r[1], r[2]]);
-    let det = k.determinant() / dims.triangle().ternary_size();
-    let singular = Error::Singular {
+    let legs = Legs {
+        w: [n, u[0], u[1]],
+        r: [p - o, r[1], r[2]],
+        kind: [slide, Leg::Hinged(len[0]), Leg::Hinged(len[1])],
+        lt: dims.triangle().ternary_size(),
+    };
+    let k = legs.matrix();
+    let det = k.determinant() / legs.lt;
+    if !legs.surely_regular(&k, det) {
+        let eta = if fast { f64::NAN } else { legs.eta(&k) };
+        if eta.is_nan() || eta <= SINGULAR_BRANCH {
+            return Err(Error::Singular {
+                what: GROUP,
+                measure: BRANCH_MEASURE,
+                value: eta,
+            });
+        }
+    }
+    let k_inv = k.try_inverse().ok_or(Error::Singular {
         what: GROUP,
         measure: MEASURE,
         value: det,
-    };
-    if det.is_nan() || det.abs() <= SINGULAR_TRIAD {
-        return Err(singular);
-    }
-    let k_inv = k.try_inverse().ok_or(singular)?;
+    })?;
     let (wk, ek) = (first.angle.rate, first.angle.accel);
     // The known point at p: the guide's point of the known link (outer) or A1 (inner).
     let (vk, ak) = match dims.pair {
@@ -424,7 +534,7 @@ pub fn slider_triad_rates(
     let (a_o, eps_t) = (Vector2::new(acc.x, acc.y), acc.z);
     let ternary = LinkMotion {
         origin: PointMotion::new(o, v_o, a_o),
-        angle: pose.theta,
+        angle: theta,
         omega: omega_t,
         epsilon: eps_t,
     };
@@ -472,19 +582,55 @@ pub fn slider_triad_rates(
     }
 }
 
-/// The velocity system K: row 0 the sliding leg's line (n, m), rows 1 and 2 (u_k, r_k × u_k).
-fn matrix(n: Vector2<f64>, m: f64, u: [Vector2<f64>; 2], r: [Vector2<f64>; 2]) -> Matrix3<f64> {
-    Matrix3::new(
-        n.x,
-        n.y,
-        m,
-        u[0].x,
-        u[0].y,
-        cross(r[0], u[0]),
-        u[1].x,
-        u[1].y,
-        cross(r[1], u[1]),
-    )
+/// W's Laurent coefficients (of z^−1 … z^2) and Δ = e0 + 2·Re(e1·z), in the complex plane
+/// with its origin at `origin`, for the sliding leg's line n·O = h with n = ν·z^m (m = 1 for
+/// the `inner` pair, whose guide turns with the ternary link; m = 0 for the outer one) and
+/// h constant.
+///
+/// With c_k = a_k − β_k·z (k = 2, 3; a_k = A_k − origin): the radical axis b·O = s has
+/// b = 2(c_3 − c_2) = b0 + b1·z and s = |c_3|² − |c_2|² + l_2² − l_3² = s0 + 2·Re(s1·z), since
+/// |c_k|² = |a_k|² + |β_k|² − 2·Re(conj(a_k)·β_k·z); Δ = n × b = Im(conj(n)·b) and
+/// X = i·(s·n − h·b) (Δ·O = X), so that W = X − Δ·c_2 and F = |W|² − l_2²·Δ².
+#[allow(clippy::too_many_arguments)]
+fn laurent(
+    origin: Point2<f64>,
+    nu: C,
+    inner: bool,
+    h: f64,
+    a: [Point2<f64>; 2],
+    beta: &[Vector2<f64>; 3],
+    l: [f64; 2],
+) -> ([C; 4], f64, C) {
+    let rel = |p: Point2<f64>| C::new(p.x - origin.x, p.y - origin.y);
+    let (a2, a3) = (rel(a[0]), rel(a[1]));
+    let (be2, be3) = (C::new(beta[1].x, beta[1].y), C::new(beta[2].x, beta[2].y));
+    let (b0, b1) = (2.0 * (a3 - a2), -2.0 * (be3 - be2));
+    let s0 =
+        a3.norm_sqr() + be3.norm_sqr() - a2.norm_sqr() - be2.norm_sqr() + l[0] * l[0] - l[1] * l[1];
+    let s1 = -(a3.conj() * be3 - a2.conj() * be2);
+    // Im(c·z) = (c·z − conj(c)/z)/(2i): e1 is the coefficient of z.
+    let half_i = C::new(0.0, -0.5); // 1/(2i)
+    let (e0, e1) = if inner {
+        ((nu.conj() * b1).im, -nu * b0.conj() * half_i)
+    } else {
+        ((nu.conj() * b0).im, nu.conj() * b1 * half_i)
+    };
+    let zero = C::new(0.0, 0.0);
+    let sn = if inner {
+        [zero, s1.conj() * nu, s0 * nu, s1 * nu]
+    } else {
+        [s1.conj() * nu, s0 * nu, s1 * nu, zero]
+    };
+    let hb = [zero, h * b0, h * b1, zero];
+    let dc = [
+        e1.conj() * a2,
+        e0 * a2 - e1.conj() * be2,
+        e1 * a2 - e0 * be2,
+        -e1 * be2,
+    ];
+    let i = C::new(0.0, 1.0);
+    let w = [0, 1, 2, 3].map(|k| i * (sn[k] - hb[k]) - dc[k]);
+    (w, e0, e1)
 }
 
 /// v turned by the unit complex number z.
@@ -507,55 +653,16 @@ struct Equation {
     a: [Point2<f64>; 2],
     beta: [Vector2<f64>; 3],
     l: [f64; 2],
-    /// F's Fourier coefficients: F = `f[0] + 2·Re(Σ_{k=1..6} f[k]·z^k)`.
-    f: [C; DEGREE + 1],
-    /// F's degree: 4 (outer pair) or 6 (inner); the coefficients above it are zero.
-    degree: usize,
-    m2: f64,
-    m3: f64,
-    /// Σ|F_k| (F_0 once, the others twice): a bound of |F|.
-    s: f64,
+    /// F = |W|² − l_2²·Δ².
+    cubic: Cubic,
+    /// The size of the terms that make F.
     scale: f64,
-    tol: f64,
-    /// The largest |Δ| over the samples.
+    /// |e0| + 2|e1| ≥ |Δ|.
     dscale: f64,
+    /// L_T, the ternary link's size.
+    lt: f64,
     /// The group's largest dimension, m.
     length: f64,
-}
-
-impl Periodic for Equation {
-    #[inline]
-    fn eval(&self, z: C) -> (f64, f64) {
-        let (mut p, mut dp, mut zk) = (C::new(0.0, 0.0), C::new(0.0, 0.0), z);
-        for k in 1..=self.degree {
-            let t = self.f[k] * zk;
-            p += t;
-            dp += t * k as f64;
-            zk *= z;
-        }
-        (self.f[0].re + 2.0 * p.re, -2.0 * dp.im)
-    }
-
-    fn second(&self, z: C) -> f64 {
-        let (mut p, mut zk) = (C::new(0.0, 0.0), z);
-        for k in 1..=self.degree {
-            p += self.f[k] * zk * (k * k) as f64;
-            zk *= z;
-        }
-        -2.0 * p.re
-    }
-
-    fn m2(&self) -> f64 {
-        self.m2
-    }
-
-    fn m3(&self) -> f64 {
-        self.m3
-    }
-
-    fn tol(&self) -> f64 {
-        self.tol
-    }
 }
 
 impl Equation {
@@ -569,45 +676,37 @@ impl Equation {
             Vector2::new(dims.l_b1b2, 0.0),
             Vector2::new(dims.b3_along, dims.b3_across),
         ];
+        let first = First {
+            p: first.point.p,
+            d: unit(first.angle.value),
+        };
+        // The origin: A1 (inner) or A2 (outer), so that the line's h is constant and the
+        // coefficients are of the group's size.
+        let (origin, nu, h) = if inner {
+            (first.p, C::new(-delta.y, delta.x), -offset)
+        } else {
+            let n = perp(first.d);
+            (a[0], C::new(n.x, n.y), n.dot(&(first.p - a[0])) + offset)
+        };
+        let (w, e0, e1) = laurent(origin, nu, inner, h, a, &beta, dims.l);
+        let wsum = n1(w[0]) + n1(w[1]) + n1(w[2]) + n1(w[3]);
+        let dscale = e0.abs() + 2.0 * n1(e1);
+        let l2 = dims.l[0] * dims.l[0];
+        let scale = wsum * wsum + l2 * dscale * dscale;
         let mut e = Self {
-            first: First {
-                p: first.point.p,
-                d: unit(first.angle.value),
-            },
+            first,
             inner,
             offset,
             delta,
             a,
             beta,
             l: dims.l,
-            f: [C::new(0.0, 0.0); DEGREE + 1],
-            degree: if inner { DEGREE } else { DEGREE_OUTER },
-            m2: 0.0,
-            m3: 0.0,
-            s: 0.0,
-            scale: 0.0,
-            tol: 0.0,
-            dscale: 0.0,
+            cubic: Cubic::new(&w, e0, e1, l2, scale),
+            scale,
+            dscale,
+            lt: dims.triangle().ternary_size(),
             length: 0.0,
         };
-        // The discrete Fourier transform of the samples of F.
-        if inner {
-            e.transform(&UNITS);
-        } else {
-            e.transform(&UNITS_OUTER);
-        }
-        e.f[0] = C::new(e.f[0].re, 0.0);
-        let n1 = |c: C| c.re.abs() + c.im.abs();
-        e.m2 = 2.0
-            * (1..=DEGREE)
-                .map(|k| (k * k) as f64 * n1(e.f[k]))
-                .sum::<f64>();
-        e.m3 = 2.0
-            * (1..=DEGREE)
-                .map(|k| (k * k * k) as f64 * n1(e.f[k]))
-                .sum::<f64>();
-        e.s = e.f[0].re.abs() + 2.0 * (1..=DEGREE).map(|k| n1(e.f[k])).sum::<f64>();
-        e.tol = 256.0 * f64::EPSILON * e.scale;
         let mut length = dims.l[0]
             .max(dims.l[1])
             .max(beta[1].norm())
@@ -618,25 +717,6 @@ impl Equation {
         }
         e.length = length.max((a[1] - a[0]).norm());
         e
-    }
-
-    /// F's Fourier coefficients up to its degree (the others zero) from its values at the
-    /// `units`' N points (N > 2·degree: no aliasing), with the scales over the samples.
-    fn transform<const N: usize>(&mut self, units: &Units<N>) {
-        let mut values = [0.0; N];
-        for (v, &z) in values.iter_mut().zip(&units.points) {
-            let (f, size, delta) = self.value(z);
-            *v = f;
-            self.scale = self.scale.max(size);
-            self.dscale = self.dscale.max(delta.abs());
-        }
-        for k in 0..=self.degree {
-            let mut sum = C::new(0.0, 0.0);
-            for (j, v) in values.iter().enumerate() {
-                sum += units.factors[j][k] * *v;
-            }
-            self.f[k] = sum / N as f64;
-        }
     }
 
     /// The line of leg 1 at z: n·O = h, n a unit vector.
@@ -674,7 +754,7 @@ impl Equation {
     /// The poses at a root z: O from the linear equations, or, where Δ nearly vanishes or
     /// the root is `multiple`, both intersections of the line with the second circle; each
     /// polished (module docs).
-    fn poses(&self, z: C, multiple: bool) -> [Option<TriadPose>; 2] {
+    fn poses(&self, z: C, multiple: bool, double: bool) -> [Option<TriadPose>; 4] {
         let zv = vec(z);
         let (n, h) = self.line(zv);
         let c = self.centres(zv);
@@ -682,47 +762,88 @@ impl Equation {
         let s = c[1].norm_squared() - c[0].norm_squared() + self.l[0] * self.l[0]
             - self.l[1] * self.l[1];
         let delta = cross(n, b);
-        if delta.abs() > 1e-3 * self.dscale && !multiple {
+        let regular = delta.abs() > 1e-3 * self.dscale;
+        if double && regular {
             let o = (s * perp(n) - h * perp(b)) / delta;
-            return [self.polish(o, z), None];
+            if let Some(pose) = self.polish_steps(o, z, 0) {
+                return [Some(pose), None, None, None];
+            }
         }
-        // The line n·O = h against the circle |O − c_2| = l_2.
-        let dist = h - n.dot(&c[0]);
-        let foot = c[0] + dist * n;
-        let half = (self.l[0] * self.l[0] - dist * dist).max(0.0).sqrt();
-        let t = perp(n);
-        [
-            self.polish(foot + half * t, z),
-            self.polish(foot - half * t, z),
-        ]
+        let found = if regular && !multiple {
+            let o = (s * perp(n) - h * perp(b)) / delta;
+            [self.polish(o, z), None]
+        } else {
+            // The line n·O = h against the circle |O − c_2| = l_2.
+            let dist = h - n.dot(&c[0]);
+            let foot = c[0] + dist * n;
+            let half = (self.l[0] * self.l[0] - dist * dist).max(0.0).sqrt();
+            let t = perp(n);
+            [
+                self.polish(foot + half * t, z),
+                self.polish(foot - half * t, z),
+            ]
+        };
+        // Two modes of one fold that F's rounding could not split (a cluster of roots, or a
+        // double root whose pose at F's extremum does not close): the partner of the mode
+        // found, from the fold's normal form.
+        let partners = match found.iter().flatten().next() {
+            Some(pose) if multiple || double => {
+                let side = pose.b[1] - pose.b[0];
+                let zp = C::new(side.x, side.y) / side.norm();
+                self.split_fold(pose.b[0].coords, zp)
+                    .unwrap_or([None, None])
+            }
+            _ => [None, None],
+        };
+        [found[0], found[1], partners[0], partners[1]]
     }
 
-    /// The residuals of the three closures at (O, z), with the velocity system there.
-    fn residual(&self, o: Vector2<f64>, z: C) -> (Vector3<f64>, Matrix3<f64>) {
+    /// The two modes of a fold whose roots of F were merged within F's rounding, although
+    /// the closures tell them apart (as the triad's: F's rounding scales with its terms, the
+    /// closures' with the size): from a pose O = `o` at z near the fold, the steps across it
+    /// of the fold's normal form ([`split_steps`]) along the least singular direction of
+    /// K′, each polished. `None` when the model has no two real roots.
+    fn split_fold(&self, o: Vector2<f64>, z: C) -> Option<[Option<TriadPose>; 2]> {
+        let (g, legs) = self.legs(o, z);
+        let fold = legs.fold(&legs.matrix())?;
+        let t = split_steps(&fold, &g)?;
+        let at = |t: f64| {
+            let zt = unit_c(z * C::new(1.0, t * fold.d_theta));
+            self.polish(o + t * fold.d_o, zt)
+        };
+        Some([at(t[0]), at(t[1])])
+    }
+
+    /// The residuals of the three closures at (O, z) (the slide's n·O − h, then
+    /// |B_k − A_k| − l_k), with the legs' lines there.
+    fn legs(&self, o: Vector2<f64>, z: C) -> (Vector3<f64>, Legs) {
         let zv = vec(z);
         let r = [rotate(zv, self.beta[1]), rotate(zv, self.beta[2])];
         let leg = [0, 1].map(|k| o + r[k] - self.a[k].coords);
         let len = leg.map(|v| v.norm());
         let u = [leg[0] / len[0], leg[1] / len[1]];
         let (n, h) = self.line(zv);
-        let m = if self.inner {
-            cross(self.first.p.coords - o, n)
+        let (r0, slide) = if self.inner {
+            (self.first.p.coords - o, Leg::TurningLine)
         } else {
-            0.0
+            (Vector2::zeros(), Leg::FixedLine)
         };
         (
             Vector3::new(n.dot(&o) - h, len[0] - self.l[0], len[1] - self.l[1]),
-            matrix(n, m, u, r),
+            Legs {
+                w: [n, u[0], u[1]],
+                r: [r0, r[0], r[1]],
+                kind: [slide, Leg::Hinged(len[0]), Leg::Hinged(len[1])],
+                lt: self.lt,
+            },
         )
     }
 
-    /// The largest closure error of a pose, m.
-    fn closure(&self, pose: &TriadPose, z: Vector2<f64>) -> f64 {
-        let (n, h) = self.line(z);
-        (n.dot(&pose.b[0].coords) - h)
-            .abs()
-            .max(((pose.b[1] - self.a[0]).norm() - self.l[0]).abs())
-            .max(((pose.b[2] - self.a[1]).norm() - self.l[1]).abs())
+    /// The residuals of the three closures at (O, z), with the velocity system there.
+    #[inline]
+    fn residual(&self, o: Vector2<f64>, z: C) -> (Vector3<f64>, Matrix3<f64>) {
+        let (g, legs) = self.legs(o, z);
+        (g, legs.matrix())
     }
 
     /// The pose from O = `o` at z, polished by Newton's method on the closures (kept while
@@ -738,11 +859,16 @@ impl Equation {
     /// singular, the full step overshoots along its null direction, and at a double root
     /// Newton's method only halves the error per step (hence up to 48 steps).
     fn polish(&self, o: Vector2<f64>, z: C) -> Option<TriadPose> {
+        self.polish_steps(o, z, 48)
+    }
+
+    /// [`polish`](Self::polish) with at most `steps` Newton steps.
+    fn polish_steps(&self, o: Vector2<f64>, z: C, steps: usize) -> Option<TriadPose> {
         let (mut o, mut z) = (o, z);
         let (mut g, mut k) = self.residual(o, z);
         let mut err = g.amax();
         let closes = CLOSES * self.length;
-        for _ in 0..48 {
+        for _ in 0..steps {
             if err == 0.0 {
                 break;
             }
@@ -770,25 +896,33 @@ impl Equation {
         if err.is_nan() || err > closes {
             return None;
         }
-        let size =
-            TriadDims::new([1.0; 3], self.beta[1].x, self.beta[2].x, self.beta[2].y).ternary_size();
-        let zv = vec(z);
-        let b = [0, 1, 2].map(|i| Point2::from(o + rotate(zv, self.beta[i])));
+        Some(self.pose(o, vec(z), &k))
+    }
+
+    /// The joints of the ternary link with its origin at `o` and its direction `z`.
+    #[inline]
+    fn joints(&self, o: Vector2<f64>, z: Vector2<f64>) -> [Point2<f64>; 3] {
+        [0, 1, 2].map(|i| Point2::from(o + rotate(z, self.beta[i])))
+    }
+
+    /// The pose with its origin at `o` and its direction `z`, K being its velocity system.
+    fn pose(&self, o: Vector2<f64>, z: Vector2<f64>, k: &Matrix3<f64>) -> TriadPose {
+        let b = self.joints(o, z);
         let slide = if self.inner {
-            direction(rotate(zv, self.delta))
+            direction(rotate(z, self.delta))
         } else {
             direction(self.first.d)
         };
-        Some(TriadPose {
+        TriadPose {
             b,
-            theta: direction(zv),
+            theta: direction(z),
             phi: [
                 slide,
                 direction(b[1] - self.a[0]),
                 direction(b[2] - self.a[1]),
             ],
-            det: k.determinant() / size,
-        })
+            det: k.determinant() / self.lt,
+        }
     }
 
     /// The least miss of the second circle by the linear equations' O, at the best of 1024

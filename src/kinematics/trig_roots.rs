@@ -38,78 +38,8 @@ pub(super) trait Periodic {
     fn second(&self, z: C) -> f64;
     /// M₂ ≥ |F″| everywhere.
     fn m2(&self) -> f64;
-    /// M₃ ≥ |F‴| everywhere.
-    fn m3(&self) -> f64;
     /// The rounding level of an evaluation of F.
     fn tol(&self) -> f64;
-}
-
-/// A root of F reached by Newton's method from a previous angle, with what its isolation
-/// certificate needs (the rule of [`triad_tracked`](super::triad_tracked), condition 1).
-pub(super) struct Isolated {
-    /// The root.
-    pub z: C,
-    /// The last point of evaluation, F and F′ there.
-    zl: C,
-    f: f64,
-    g: f64,
-    /// An upper bound of the angle from the start to `zl`.
-    travelled: f64,
-}
-
-/// Newton's method on F from `z0` (a step dθ = −F/F′ turns z by 2·atan(dθ/2)); `None` when a
-/// step exceeds 1 rad or 16 steps do not bring one below 1e-6 rad (the error left is of the
-/// order of its square; the caller polishes the pose).
-pub(super) fn newton_root(f: &impl Periodic, z0: C) -> Option<Isolated> {
-    let (mut z, mut travelled) = (z0, 0.0);
-    for _ in 0..16 {
-        let (v, g) = f.eval(z);
-        let dth = -v / g;
-        if dth.is_nan() || dth.abs() > 1.0 {
-            return None;
-        }
-        if dth.abs() <= 1e-6 {
-            return Some(Isolated {
-                z: along(z, 0.5 * dth),
-                zl: z,
-                f: v,
-                g,
-                travelled,
-            });
-        }
-        travelled += dth.abs();
-        z = along(z, 0.5 * dth);
-    }
-    None
-}
-
-impl Isolated {
-    /// Whether the root is certified to be the mode nearest the previous pose, `moved`
-    /// (D*²) away from it, for a rigid body whose joints have the polar moment `moment` about
-    /// their centroid. Condition 1: no other root within ρ of the root, ρ the larger of
-    /// 2|F′|/M₂ and the positive root of |F′| = |F″|·ρ/2 + M₃·ρ²/6 (Taylor's theorem; ρ shrunk
-    /// by 0.1 % and by 4|F|/|F′| for rounding), so every other mode's angle is at least
-    /// δ = ρ − |θ* − θ_prev| from the previous one; condition 2: a mode turned by Δθ is at least
-    /// 4·I·sin²(Δθ/2) from the previous pose, so D*² < 4·I·sin²(min(δ, π)/2) settles it.
-    pub fn certifies(&self, f: &impl Periodic, moved: f64, moment: f64) -> bool {
-        let ga = self.g.abs();
-        let m2 = f.m2();
-        if !(ga > 0.0 && m2 > 0.0 && moved.is_finite()) {
-            return false;
-        }
-        let accept = |rho: f64| {
-            let delta =
-                (0.999 * rho - 4.0 * self.f.abs() / ga - self.travelled).min(std::f64::consts::PI);
-            let x = 0.5 * delta;
-            // sin x ≥ x − x³/6 for x ≥ 0 (positive up to √6 > π/2).
-            let s = x - x * x * x / 6.0;
-            delta > 0.0 && moved < 0.99 * 4.0 * moment * s * s
-        };
-        accept(2.0 * ga / m2) || {
-            let (b2, m3) = (0.5 * f.second(self.zl).abs(), f.m3() / 6.0);
-            accept(2.0 * ga / (b2 + (b2 * b2 + 4.0 * m3 * ga).sqrt()))
-        }
-    }
 }
 
 /// Every root of a group's eliminated equation F, bracketed ([`bracket_all`]), once F is
@@ -189,6 +119,7 @@ fn merge_double(f: &impl Periodic, roots: &mut Roots) {
     for (j, &gone) in gone.iter().enumerate().take(n) {
         if !gone {
             roots.z[kept] = roots.z[j];
+            roots.end[kept] = roots.end[j];
             roots.multiple[kept] = roots.multiple[j];
             roots.double[kept] = roots.double[j];
             kept += 1;
@@ -318,22 +249,51 @@ pub(super) struct Roots {
     /// its pose is taken there unpolished if it closes (Newton's method on the closures
     /// would walk to one of the two roots that rounding set apart).
     pub double: [bool; 12],
+    /// The last root pushed to each cluster (the root itself when it is alone).
+    pub end: [C; 12],
 }
 
 /// Roots of F closer than this (rad) are one cluster.
 const CLUSTER: f64 = 1e-6;
 
 impl Roots {
+    /// Adds a root, or extends the cluster it continues: a root within [`CLUSTER`] of the
+    /// last one pushed to the latest cluster (so that a stretch where F stays within its
+    /// rounding of zero, pushed a root a tangent cell at a time, is one cluster however long)
+    /// or of the first root (the circle closing).
     pub fn push(&mut self, z: C) {
         let near = |w: C| (z - w).norm() < CLUSTER;
-        if self.n > 0 && near(self.z[self.n - 1]) {
+        if self.n > 0 && near(self.end[self.n - 1]) {
             self.multiple[self.n - 1] = true;
+            self.end[self.n - 1] = z;
         } else if self.n > 0 && near(self.z[0]) {
             self.multiple[0] = true;
         } else if self.n < self.z.len() {
             self.z[self.n] = z;
+            self.end[self.n] = z;
             self.n += 1;
         }
+    }
+
+    /// The angles at which a cluster's poses are sought besides its first root: none for a
+    /// cluster narrower than 2·[`CLUSTER`]; across a longer one (a plateau of F within its
+    /// rounding of zero, where the three legs' circles are nearly coaxal and F cannot tell
+    /// its roots apart, though the closures can), every 1e-5 rad up to its end (at most
+    /// 256 samples).
+    pub fn plateau(&self, r: usize) -> impl Iterator<Item = C> {
+        let (z0, z1) = (self.z[r], self.end[r]);
+        let turn = z0.conj() * z1;
+        let span = turn.im.atan2(turn.re).abs();
+        let steps = if span > 2.0 * CLUSTER {
+            ((span / 1e-5).ceil() as usize).clamp(1, 256)
+        } else {
+            0
+        };
+        let sign = if turn.im < 0.0 { -1.0 } else { 1.0 };
+        (1..=steps).map(move |k| {
+            let phi = sign * span * k as f64 / steps as f64;
+            z0 * C::new(phi.cos(), phi.sin())
+        })
     }
 }
 

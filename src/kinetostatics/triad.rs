@@ -167,7 +167,7 @@ pub(super) fn validate(
 }
 
 /// L_T, the root-mean-square distance of the ternary link's joints `b` from their centroid.
-fn ternary_size(b: &[Point2<f64>; 3]) -> f64 {
+pub(super) fn ternary_size(b: &[Point2<f64>; 3]) -> f64 {
     let g = (b[0].coords + b[1].coords + b[2].coords) / 3.0;
     let moment: f64 = b.iter().map(|p| (p.coords - g).norm_squared()).sum();
     (moment / 3.0).sqrt()

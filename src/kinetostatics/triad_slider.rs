@@ -19,9 +19,10 @@
 //! where the three lines of action meet at one point.
 
 use super::conditioning::{ensure_finite, Conditioning};
-use super::triad::{validate, LegLines};
+use super::triad::{ternary_size, validate, LegLines};
 use crate::angle::{cross, perp};
 use crate::error::{finite2, length, Result};
+use crate::kinematics::{Leg, Legs};
 use crate::Load;
 use nalgebra::{Point2, Vector2};
 
@@ -111,8 +112,12 @@ impl SliderTriad {
     /// - [`Error::NonFinite`](crate::Error::NonFinite) for a non-finite coordinate or load;
     /// - [`Error::NonPositive`](crate::Error::NonPositive) when a hinged leg or the normal has
     ///   zero length, or the ternary link's joints coincide (`L_T`);
-    /// - [`Error::Singular`](crate::Error::Singular) with `det(velocity system)/L_T` when the
-    ///   three lines of action meet at one point or are parallel.
+    /// - [`Error::Singular`](crate::Error::Singular) with `distance from a branch point/size`
+    ///   when the pose lies within rounding of a branch point of the group (that distance η
+    ///   ≤ [`SINGULAR_BRANCH`](crate::kinematics::SINGULAR_BRANCH): the three lines of action
+    ///   meet at one point, and the forces would carry fewer than four digits), the rule of
+    ///   the rates ([`slider_triad_rates`](crate::kinematics::slider_triad_rates)); with
+    ///   `det(velocity system)/L_T` when that determinant vanishes to working precision.
     pub fn solve(&self) -> Result<SliderTriadReactions> {
         validate(&self.a, &self.b, &self.loads, &self.load_ternary)?;
         finite2(["normal.x", "normal.y"], self.normal)?;
@@ -133,6 +138,22 @@ impl SliderTriad {
             SlideAt::Inner => self.a[0],
         };
         let r = [p0 - o, self.b[1] - o, self.b[2] - o];
+        let size = ternary_size(&self.b);
+        if size > 0.0 {
+            // (A zero L_T is named by LegLines.) The rule of the rates: refused within
+            // rounding of a branch point.
+            let slide = match self.slide {
+                SlideAt::Outer => Leg::FixedLine,
+                SlideAt::Inner => Leg::TurningLine,
+            };
+            Legs {
+                w: u,
+                r,
+                kind: [slide, Leg::Hinged(l[1]), Leg::Hinged(l[2])],
+                lt: size,
+            }
+            .ensure_off_branch(WHAT)?;
+        }
         let lines = LegLines::new(WHAT, &self.b, u, r)?;
         let t = [
             0.0,

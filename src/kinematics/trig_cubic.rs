@@ -1,0 +1,209 @@
+//! The eliminated equation shared by the groups of the 3rd class, F(θ) = |W(θ)|² − l²·D(θ)²,
+//! as a real trigonometric polynomial of degree 3 in the ternary link's angle θ (z = e^{iθ}),
+//! and the fast path of tracking one of its roots.
+//!
+//! Both the [`triad`](mod@super::triad) and the triad with a sliding pair
+//! ([`triad_slider`](mod@super::triad_slider)) reduce to it: two of the legs' equations are
+//! linear in the ternary link's reference point O once θ is fixed (the radical axes of two
+//! circles, or a radical axis and the sliding leg's line), so D·O = i·W (complex notation)
+//! with D their determinant, a real trigonometric polynomial of degree 1
+//! (D = e0 + 2·Re(e1·z)), and W a Laurent polynomial in z of degrees −1…2; the remaining
+//! circle |O − c| = l then reads |W − D·c|² = l²·D², which is F once W absorbs D·c.
+//! |W|² = Σ_{j,k} w_j·conj(w_k)·z^{j−k} has degree 3 and D² degree 2, so F has at most six
+//! real roots: the group's assembly modes.
+
+use super::trig_roots::{along, Periodic};
+use nalgebra::Complex;
+
+type C = Complex<f64>;
+
+/// F = F_0 + 2·Re(Σ_{k=1..3} F_k·z^k) with the bounds its scan and its certificates need.
+#[derive(Debug, Clone, Copy)]
+pub(super) struct Cubic {
+    /// F's Fourier coefficients F_0 (real) … F_3.
+    pub f: [C; 4],
+    /// M₂ = 2·Σ k²|F_k|, a bound of |F″|.
+    pub m2: f64,
+    /// M₃ = 2·Σ k³|F_k|, a bound of |F‴|.
+    pub m3: f64,
+    /// Σ|F_k| with F_0 once and the others twice: a bound of |F|.
+    pub s: f64,
+    /// The rounding level of an evaluation of F.
+    pub tol: f64,
+}
+
+impl Cubic {
+    /// F = |W|² − `l2`·D² from W's Laurent coefficients `w` (of z^−1, z^0, z^1, z^2) and
+    /// D = `e0` + 2·Re(`e1`·z); `scale` is the size of the terms that make F (its rounding
+    /// level is 64·ε·scale).
+    pub fn new(w: &[C; 4], e0: f64, e1: C, l2: f64, scale: f64) -> Self {
+        // |W|²_k = Σ_j w_j·conj(w_{j−k}); (D²)_k from e_{−1} = conj(e1), e_0, e_1.
+        let wc = [w[0].conj(), w[1].conj(), w[2].conj(), w[3].conj()];
+        let ww = [
+            C::new(
+                w[0].norm_sqr() + w[1].norm_sqr() + w[2].norm_sqr() + w[3].norm_sqr(),
+                0.0,
+            ),
+            w[1] * wc[0] + w[2] * wc[1] + w[3] * wc[2],
+            w[2] * wc[0] + w[3] * wc[1],
+            w[3] * wc[0],
+        ];
+        let dd = [
+            C::new(e0 * e0 + 2.0 * e1.norm_sqr(), 0.0),
+            2.0 * e0 * e1,
+            e1 * e1,
+            C::new(0.0, 0.0),
+        ];
+        let f = [0, 1, 2, 3].map(|k| ww[k] - l2 * dd[k]);
+        let f = [C::new(f[0].re, 0.0), f[1], f[2], f[3]];
+        // Bounds need no square root: |c| ≤ |Re c| + |Im c|.
+        let (g1, g2, g3) = (n1(f[1]), n1(f[2]), n1(f[3]));
+        Self {
+            f,
+            m2: 2.0 * (g1 + 4.0 * g2 + 9.0 * g3),
+            m3: 2.0 * (g1 + 8.0 * g2 + 27.0 * g3),
+            s: f[0].re.abs() + 2.0 * (g1 + g2 + g3),
+            tol: 64.0 * f64::EPSILON * scale,
+        }
+    }
+
+    /// F and F′ = dF/dθ at z = e^{iθ}.
+    #[inline]
+    pub fn eval(&self, z: C) -> (f64, f64) {
+        let f = &self.f;
+        let z2 = z * z;
+        let z3 = z2 * z;
+        let (p1, p2, p3) = (f[1] * z, f[2] * z2, f[3] * z3);
+        let p = p1 + p2 + p3;
+        let dp = p1 + 2.0 * p2 + 3.0 * p3;
+        (f[0].re + 2.0 * p.re, -2.0 * dp.im)
+    }
+
+    /// P(t) = (1 + t²)³·F(θ) and dP/dt at z = z0·(1 + i·t)²/(1 + t²): a polynomial of degree
+    /// 6 in t with F's roots, evaluated without a trigonometric function or a division.
+    #[inline]
+    pub fn tangent_poly(&self, z0: C, t: f64) -> (f64, f64) {
+        let f = &self.f;
+        let (s, ds) = (1.0 + t * t, 2.0 * t);
+        let q = C::new(1.0, t);
+        let zeta = z0 * q * q;
+        let dzeta = C::new(0.0, 2.0) * z0 * q;
+        let (s2, zeta2) = (s * s, zeta * zeta);
+        let p =
+            f[0].re * s2 * s + 2.0 * (f[1] * zeta * s2 + f[2] * zeta2 * s + f[3] * zeta2 * zeta).re;
+        let dp = 3.0 * f[0].re * s2 * ds
+            + 2.0
+                * (f[1] * (dzeta * s2 + 2.0 * zeta * s * ds)
+                    + f[2] * (2.0 * zeta * dzeta * s + zeta2 * ds)
+                    + 3.0 * f[3] * zeta2 * dzeta)
+                    .re;
+        (p, dp)
+    }
+
+    /// F″ at z.
+    pub fn second(&self, z: C) -> f64 {
+        let f = &self.f;
+        let z2 = z * z;
+        let p = f[1] * z + 4.0 * f[2] * z2 + 9.0 * f[3] * z2 * z;
+        -2.0 * p.re
+    }
+}
+
+/// |Re c| + |Im c| ≥ |c|.
+#[inline]
+pub(super) fn n1(c: C) -> f64 {
+    c.re.abs() + c.im.abs()
+}
+
+impl Periodic for Cubic {
+    #[inline]
+    fn eval(&self, z: C) -> (f64, f64) {
+        Cubic::eval(self, z)
+    }
+    fn second(&self, z: C) -> f64 {
+        Cubic::second(self, z)
+    }
+    fn m2(&self) -> f64 {
+        self.m2
+    }
+    fn tol(&self) -> f64 {
+        self.tol
+    }
+}
+
+/// A root of F reached by Newton's method in the half-angle tangent t about a previous
+/// direction z0, with what its isolation certificate needs.
+pub(super) struct TangentRoot {
+    /// The root, z0 turned by 2·atan(t).
+    pub z: C,
+    /// The last point of evaluation t_l and P, P′ there.
+    tl: f64,
+    p: f64,
+    dp: f64,
+}
+
+impl Cubic {
+    /// Newton's method on P(t) = (1 + t²)³·F(θ(t)) from t = 0 (θ(0) the direction `z0`),
+    /// a polynomial of degree 6 with F's roots (no division but the step's). It stops after a
+    /// step below 1e-6 (quadratic convergence leaves an error of the order of its square;
+    /// the caller polishes the pose); `None` when a step exceeds 1 or 12 steps do not get
+    /// there.
+    #[inline]
+    pub fn tangent_root(&self, z0: C) -> Option<TangentRoot> {
+        let (mut t, mut dt) = (0.0, f64::INFINITY);
+        let (mut p, mut dp) = (f64::NAN, f64::NAN);
+        for _ in 0..12 {
+            (p, dp) = self.tangent_poly(z0, t);
+            dt = -p / dp;
+            if dt.is_nan() || dt.abs() > 1.0 {
+                return None;
+            }
+            t += dt;
+            if dt.abs() <= 1e-6 {
+                break;
+            }
+        }
+        if dt.is_nan() || dt.abs() > 1e-6 || self.m2.is_nan() || self.m2 <= 0.0 {
+            return None;
+        }
+        Some(TangentRoot {
+            z: along(z0, t),
+            tl: t - dt,
+            p,
+            dp,
+        })
+    }
+
+    /// Whether the root `root` reached from `z0` is certified to be the mode nearest the
+    /// previous pose, `moved` (D*² = Σ|B_i − B_i′|²) away from it, for a ternary link whose
+    /// joints have the polar moment `moment` (I = Σ|β_i − β̄|²) about their centroid.
+    ///
+    /// 1. No other root of F within ρ of the last evaluation θ_l = θ(t_l) (the root is within
+    ///    4|F|/|F′| of it), ρ the larger of 2|F′|/M₂ and the positive root of
+    ///    |F′| = |F″(θ_l)|·ρ/2 + M₃·ρ²/6 (Taylor's theorem with M₂ ≥ |F″|, M₃ ≥ |F‴|; ρ shrunk
+    ///    by 0.1 %): F and F′ there from P and P′ (P = s³F, P′ = 3s²s′F + 2s²F′ with
+    ///    s = 1 + t_l²), so every other mode's angle is at least δ = ρ − |θ_l − θ_prev| from
+    ///    the previous one, |θ_l − θ_prev| = 2·|atan t_l| ≤ 2|t_l|;
+    /// 2. a mode turned by Δθ from the previous pose is at least 4·I·sin²(Δθ/2) from it, so
+    ///    D*² < 4·I·sin²(min(δ, π)/2) proves the root the nearest.
+    #[inline]
+    pub fn certifies(&self, root: &TangentRoot, z0: C, moved: f64, moment: f64) -> bool {
+        let tl = root.tl;
+        let sl = 1.0 + tl * tl;
+        let f = root.p / (sl * sl * sl);
+        let g = (root.dp - 6.0 * sl * sl * tl * f) / (2.0 * sl * sl);
+        let ga = g.abs();
+        let accept = |rho: f64| {
+            let delta =
+                (0.999 * rho - 4.0 * f.abs() / ga - 2.0 * tl.abs()).min(std::f64::consts::PI);
+            let x = 0.5 * delta;
+            // sin x ≥ x − x³/6 for x ≥ 0 (positive up to √6 > π/2).
+            let s = x - x * x * x / 6.0;
+            delta > 0.0 && moved < 0.99 * 4.0 * moment * s * s
+        };
+        accept(2.0 * ga / self.m2) || {
+            let (b2, m3) = (0.5 * self.second(along(z0, tl)).abs(), self.m3 / 6.0);
+            accept(2.0 * ga / (b2 + (b2 * b2 + 4.0 * m3 * ga).sqrt()))
+        }
+    }
+}
