@@ -362,20 +362,38 @@ fn one_branch_case(
             sum.norm()
         );
         let vmax = s0.b.iter().map(|m| m.v.norm()).fold(1e-300, f64::max);
-        let h = 1e-2 * apart / vmax;
-        let st: [_; 9] = std::array::from_fn(|k| {
-            let (g, am) = moved(&first, &motion, (k as f64 - 4.0) * h);
-            slider_triad(&g, am, &side.dims, base)
-                .unwrap_or_else(|e| panic!("case {case}: step {k}: {e}"))
-        });
-        let (mut ev, mut ea, mut vs, mut as_): (f64, f64, f64, f64) = (0.0, 0.0, 1.0, 1.0);
-        for i in 0..3 {
-            ev = ev.max((fd2(&st.map(|x| x.b[i].p.coords), h) - s0.b[i].v).norm());
-            vs = vs.max(s0.b[i].v.norm());
-            ea = ea.max((fd2(&st.map(|x| x.b[i].v), h) - s0.b[i].a).norm());
-            as_ = as_.max(s0.b[i].a.norm());
+        let h0 = 1e-2 * apart / vmax;
+        // The differences' error against the rates at a step h: (velocities, accelerations).
+        let off = |h: f64| {
+            let st: [_; 9] = std::array::from_fn(|k| {
+                let (g, am) = moved(&first, &motion, (k as f64 - 4.0) * h);
+                slider_triad(&g, am, &side.dims, base)
+                    .unwrap_or_else(|e| panic!("case {case}: step {k}: {e}"))
+            });
+            let (mut ev, mut ea, mut vs, mut as_): (f64, f64, f64, f64) = (0.0, 0.0, 1.0, 1.0);
+            for i in 0..3 {
+                ev = ev.max((fd2(&st.map(|x| x.b[i].p.coords), h) - s0.b[i].v).norm());
+                vs = vs.max(s0.b[i].v.norm());
+                ea = ea.max((fd2(&st.map(|x| x.b[i].v), h) - s0.b[i].a).norm());
+                as_ = as_.max(s0.b[i].a.norm());
+            }
+            (ev / vs, ea / as_)
+        };
+        // So close to a fold the difference step is a compromise between the stencil's
+        // truncation (the pose curves sharply over a step of 1e-2 of the pair's distance)
+        // and rounding: where the first step misses, it is redone at a tenth and a
+        // hundredth, and the best of them is held to the allowance (session 8: inner case
+        // 106 was 1.17 of it at the first step).
+        let (mut rv, mut ra) = off(h0);
+        for shrink in [0.1, 0.01] {
+            if rv.max(ra) <= 1e-8 + 1e4 * f64::EPSILON / (base.det * base.det) {
+                break;
+            }
+            let (v, a) = off(h0 * shrink);
+            if v.max(a) < rv.max(ra) {
+                (rv, ra) = (v, a);
+            }
         }
-        let (rv, ra) = (ev / vs, ea / as_);
         let tol = 1e-8 + 1e4 * f64::EPSILON / (base.det * base.det);
         assert!(
             rv <= tol && ra <= tol,
