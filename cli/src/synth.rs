@@ -17,7 +17,7 @@ Examples:
   tmm synth through --frame 0.4 --at 40,101.4 100,112.8 160,131.8 --min-transmission 0 -o through.json
   tmm synth function --function log10 --x 1,2 --crank -30,30 --rocker 0,90 --frame 0.1 -o log.json
   tmm synth path points.csv --seed 7 --budget 20000 -o path.json
-  tmm synth six-bar timed.csv --min-transmission 17 --budget 20000 -o six-bar.json
+  tmm synth six-bar timed.csv --min-transmission 17 --budget 400000 -o six-bar.json
   tmm check crank-rocker.json                    the engine's check of a design
 
 Each kind writes the synthesised description (JSON, -o FILE) and prints its report: the
@@ -225,7 +225,7 @@ may depend on the machine's load. Progress shows on a terminal, nothing when pip
     /// local polishes).
     #[command(after_help = "\
 Examples:
-  tmm synth six-bar timed.csv --min-transmission 17 --budget 20000 -o six-bar.json
+  tmm synth six-bar timed.csv --min-transmission 17 --budget 400000 -o six-bar.json
   tmm analyse six-bar.json --positions 72 --format csv > path.csv   x(P), y(P): P's path
 
 The six-bar: a four-bar O1–A–B–O3 (the crank O1A driven), a hinge C on its coupler AB, a dyad
