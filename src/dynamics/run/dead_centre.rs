@@ -87,7 +87,14 @@ pub(super) fn locate<S: LagrangeSystem + ?Sized, M: Stepper>(
     let end = opts.t_end;
     let span = hi - lo.t;
     let mut d = 0.5 * span;
-    while d > tol && end - lo.t > tol {
+    // A walk that approaches the band ever more slowly (the motion grazing a lock, its speed
+    // going to zero there) could creep on at tiny steps until the run's whole budget is
+    // spent (seen at 10⁵ hostile rocking-input runs). Halving the distance takes two steps
+    // (one accepted, one refused), so 2·log2(span/tol) + 2 suffice for a walk that closes in;
+    // past four times that, the last accepted state is the located one.
+    let mut walk = 8 * (span / tol).log2().max(1.0) as usize + 8;
+    while d > tol && end - lo.t > tol && walk > 0 {
+        walk -= 1;
         budgets(opts, p.steps, p.evaluations, lo.t)?;
         let h = d.min(end - lo.t);
         match method.advance_from(sys, &lo, h, Some(hand)) {

@@ -218,10 +218,21 @@ impl Slide {
         let centre = finite(names[2], self.centre)?;
         let law = match self.length {
             None => solver::Pressure::Normal,
-            Some(l) => solver::Pressure::Ends {
-                centre,
-                half: crate::error::positive(names[1], l)? / 2.0,
-            },
+            Some(l) => {
+                let half = crate::error::positive(names[1], l)? / 2.0;
+                // The end pressures divide by the half length: a subnormal one overflows
+                // them (a length of 5e-324 m gave an infinite end force inside an `Ok`).
+                if half < f64::MIN_POSITIVE {
+                    return Err(Error::OutOfRange {
+                        name: names[1],
+                        value: l,
+                        min: 2.0 * f64::MIN_POSITIVE,
+                        max: f64::INFINITY,
+                        ends: crate::error::Ends::Closed,
+                    });
+                }
+                solver::Pressure::Ends { centre, half }
+            }
         };
         Ok((f, law))
     }

@@ -86,9 +86,19 @@ fn check_numbers(fr: &Friction, item: &str) -> Result<()> {
     ];
     for (name, value) in fields {
         if let Some(v) = value {
-            let ok = v.is_finite() && if name == "length" { v > 0.0 } else { v >= 0.0 };
+            // A length's half must be a normal number: the end pressures divide by it.
+            let ok = v.is_finite()
+                && if name == "length" {
+                    v >= 2.0 * f64::MIN_POSITIVE
+                } else {
+                    v >= 0.0
+                };
             if !ok {
-                let want = if name == "length" { "> 0" } else { "≥ 0" };
+                let want = if name == "length" {
+                    "≥ 4.5e-308 (a normal number's double)"
+                } else {
+                    "≥ 0"
+                };
                 return Err(bad(
                     item,
                     format!("{name} must be finite and {want}, got {v}"),
