@@ -244,7 +244,7 @@ fn slider_triad_modes_match_an_independent_count_and_close() {
 }
 
 /// The known parts moving along known paths: x(t) = x + v·t + a·t²/2 (the guide's angle too).
-fn moved(first: &Guide, a: &[PointMotion; 2], t: f64) -> (Guide, [PointMotion; 2]) {
+pub(crate) fn moved(first: &Guide, a: &[PointMotion; 2], t: f64) -> (Guide, [PointMotion; 2]) {
     let go =
         |m: &PointMotion| PointMotion::new(m.p + m.v * t + 0.5 * m.a * t * t, m.v + m.a * t, m.a);
     let g = first.angle;

@@ -6,7 +6,7 @@
 //! (against eighth-order differences) and their reactions (balancing the ternary link).
 
 use crate::common::fd::{cases, fd2, Rng};
-use crate::triad_slider::{count_by_branches, random_case, size, Case};
+use crate::triad_slider::{count_by_branches, moved, random_case, size, Case};
 use nalgebra::{Matrix3, Point2, Vector2};
 use tmm::angle::{cross, perp, unit};
 use tmm::kinematics::{
@@ -138,24 +138,6 @@ fn loaded(c: &Case, pose: &TriadPose, rng: &mut Rng) -> SliderTriad {
         loads: [load(a0), load(c.a[0]), load(c.a[1])],
         load_ternary: load(pose.b[0]),
     }
-}
-
-/// The known parts moving: x(t) = x + v·t + a·t²/2.
-fn moved(first: &Guide, a: &[PointMotion; 2], t: f64) -> (Guide, [PointMotion; 2]) {
-    let go =
-        |m: &PointMotion| PointMotion::new(m.p + m.v * t + 0.5 * m.a * t * t, m.v + m.a * t, m.a);
-    let g = first.angle;
-    (
-        Guide {
-            point: go(&first.point),
-            angle: Motion::new(
-                g.value + g.rate * t + 0.5 * g.accel * t * t,
-                g.rate + g.accel * t,
-                g.accel,
-            ),
-        },
-        a.map(|m| go(&m)),
-    )
 }
 
 /// What the sweep saw, for its summary and its bounds.

@@ -7,25 +7,10 @@
 
 mod common;
 
-use common::{assert_one_line_failure, assert_success, tmm, Broken};
+use common::{assert_one_line_failure, assert_success, number_after, tmm, Broken};
 
 /// The work budget of one stage, in dyad solves.
 const MAX_WORK: f64 = 4e8;
-
-/// The number after `key` in `text`.
-fn number_after(text: &str, key: &str) -> f64 {
-    let at = text
-        .find(key)
-        .unwrap_or_else(|| panic!("{key:?} in {text}"))
-        + key.len();
-    let num: String = text[at..]
-        .chars()
-        .take_while(|c| c.is_ascii_digit() || matches!(c, '.' | 'e' | '-' | '+'))
-        .collect();
-    num.trim_end_matches('.')
-        .parse()
-        .unwrap_or_else(|_| panic!("a number after {key:?} in {text}"))
-}
 
 /// The run-up's step budget of a linkage whose solve weighs `weight`: at most 10⁶ steps,
 /// each of 4 solves.

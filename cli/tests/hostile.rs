@@ -5,21 +5,7 @@
 
 mod common;
 
-use common::{assert_one_line_failure, assert_success, tmm, Broken, PISTON_DRIVEN};
-
-/// The number after `key` in `text` (up to the next space, comma or unit).
-fn number_after(text: &str, key: &str) -> f64 {
-    let at = text
-        .find(key)
-        .unwrap_or_else(|| panic!("{key:?} in {text}"))
-        + key.len();
-    let num: String = text[at..]
-        .chars()
-        .take_while(|c| c.is_ascii_digit() || matches!(c, '.' | 'e' | '-' | '+'))
-        .collect();
-    num.parse()
-        .unwrap_or_else(|_| panic!("a number after {key:?} in {text}"))
-}
+use common::{assert_one_line_failure, assert_success, number_after, tmm, Broken, PISTON_DRIVEN};
 
 /// The number that ends just before `key` in `text`.
 fn number_before(text: &str, key: &str) -> f64 {

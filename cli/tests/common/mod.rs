@@ -287,3 +287,19 @@ pub fn six_bar_example_csv() -> String {
     }
     csv
 }
+
+/// The number after `key` in `text`: its digits, sign, point and exponent, a sentence's
+/// final full stop dropped.
+pub fn number_after(text: &str, key: &str) -> f64 {
+    let at = text
+        .find(key)
+        .unwrap_or_else(|| panic!("{key:?} in {text}"))
+        + key.len();
+    let num: String = text[at..]
+        .chars()
+        .take_while(|c| c.is_ascii_digit() || matches!(c, '.' | 'e' | '-' | '+'))
+        .collect();
+    num.trim_end_matches('.')
+        .parse()
+        .unwrap_or_else(|_| panic!("a number after {key:?} in {text}"))
+}

@@ -109,13 +109,7 @@ fn sweep_springs_and_dampers() {
         let Ok(sys) = LinkageSystem::from_linkage(&l) else {
             continue;
         };
-        let (q, qd) = (
-            Vector2::new(or_hostile(&mut g, 0.7), 0.0),
-            Vector2::new(or_hostile(&mut g, 10.0), 0.0),
-        );
-        finite(&no_panic(&what, || sys.terms(0.0, &q, &qd)), &what);
-        let k = g.next();
-        short_run(&sys, k, State::new(0.0, q, qd), 1e-3, &what);
+        terms_and_a_short_run(&sys, &mut g, &what);
     }
 }
 
@@ -183,13 +177,7 @@ fn sweep_joint_friction_data() {
                 }),
             )
             .unwrap_or_else(|_| LinkageSystem::from_linkage(&l).unwrap());
-        let (q, qd) = (
-            Vector2::new(or_hostile(&mut g, 0.7), 0.0),
-            Vector2::new(or_hostile(&mut g, 10.0), 0.0),
-        );
-        finite(&no_panic(&what, || sys.terms(0.0, &q, &qd)), &what);
-        let k = g.next();
-        short_run(&sys, k, State::new(0.0, q, qd), 1e-3, &what);
+        terms_and_a_short_run(&sys, &mut g, &what);
     }
 }
 
@@ -306,4 +294,16 @@ fn sweep_two_input_runs() {
         }
     }
     println!("two-input runs: dead centre {dead}, other ends {fin}, errors {err}");
+}
+
+/// The system's terms at a hostile state (a crank angle and speed about 0.7 rad, 10 rad/s),
+/// and a short run from it: finite or an error, never a panic.
+fn terms_and_a_short_run(sys: &LinkageSystem, g: &mut Gen, what: &str) {
+    let (q, qd) = (
+        Vector2::new(or_hostile(g, 0.7), 0.0),
+        Vector2::new(or_hostile(g, 10.0), 0.0),
+    );
+    finite(&no_panic(what, || sys.terms(0.0, &q, &qd)), what);
+    let k = g.next();
+    short_run(sys, k, State::new(0.0, q, qd), 1e-3, what);
 }
