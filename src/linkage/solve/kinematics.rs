@@ -61,6 +61,13 @@ impl<'p> Kinematics<'p> {
         self.kin.solve(&self.plan.chain, inputs)
     }
 
+    /// Solves only `groups` at `inputs` (see `KinState::solve_groups`): what a search over
+    /// one group's motion needs.
+    #[inline]
+    pub(crate) fn solve_groups(&mut self, inputs: &[Motion], groups: &[usize]) -> Result<()> {
+        self.kin.solve_groups(&self.plan.chain, inputs, groups)
+    }
+
     /// The read-only view of this position (what a user's load function sees).
     #[must_use]
     #[inline]

@@ -66,6 +66,51 @@ impl KinState {
     /// naming the group that cannot be assembled or is at a dead point, or a named point whose
     /// motion overflows.
     pub fn solve(&mut self, plan: &Chain, inputs: &[Motion]) -> Result<()> {
+        self.place_inputs(plan, inputs)?;
+        for (g, group) in plan.groups.iter().enumerate() {
+            self.solve_group_kinematics(g, group)?;
+        }
+        // A named point may lie farther out on its link than any joint (beyond the bound
+        // checked on the inputs): its motion is computed on demand, so it is checked here,
+        // once.
+        for k in 0..plan.points.len() {
+            let m = self.pose(plan).point_motion_at(k);
+            if !(m.p.coords.iter().chain(m.v.iter()).chain(m.a.iter())).all(|x| x.is_finite()) {
+                return Err(Error::In {
+                    part: format!("point {}", plan.point_names[k]),
+                    source: Box::new(Error::Overflow {
+                        what: "its position, velocity or acceleration",
+                    }),
+                });
+            }
+        }
+        Ok(())
+    }
+
+    /// Only the groups `groups` (indices in attachment order, each listed after every group
+    /// whose links it reads, as `Plan::group_ancestry` gives them) at one motion per
+    /// input: each listed group's motion to the bit of [`solve`](Self::solve)'s, because a
+    /// group's closed form reads nothing but the input links and the links of the groups
+    /// before it that it hangs on. The other groups keep whatever they held; named points
+    /// are not checked.
+    ///
+    /// # Errors
+    /// As [`solve`](Self::solve), for the inputs and the listed groups.
+    pub(crate) fn solve_groups(
+        &mut self,
+        plan: &Chain,
+        inputs: &[Motion],
+        groups: &[usize],
+    ) -> Result<()> {
+        self.place_inputs(plan, inputs)?;
+        for &g in groups {
+            self.solve_group_kinematics(g, &plan.groups[g])?;
+        }
+        Ok(())
+    }
+
+    /// The input links' motions checked and stored (the first step of every solve).
+    fn place_inputs(&mut self, plan: &Chain, inputs: &[Motion]) -> Result<()> {
         let (input, second) = match (inputs, &plan.second_input) {
             ([i], None) => (*i, None),
             ([i, j], Some((ip, _))) => (*i, Some((*j, ip))),
@@ -108,22 +153,6 @@ impl KinState {
             let motion = input_motion(ip, m)?;
             self.set_link(ip.link(), motion);
             self.second_input = Some(m);
-        }
-        for (g, group) in plan.groups.iter().enumerate() {
-            self.solve_group_kinematics(g, group)?;
-        }
-        // A named point may lie farther out on its link than any joint (beyond the bound
-        // above): its motion is computed on demand, so it is checked here, once.
-        for k in 0..plan.points.len() {
-            let m = self.pose(plan).point_motion_at(k);
-            if !(m.p.coords.iter().chain(m.v.iter()).chain(m.a.iter())).all(|x| x.is_finite()) {
-                return Err(Error::In {
-                    part: format!("point {}", plan.point_names[k]),
-                    source: Box::new(Error::Overflow {
-                        what: "its position, velocity or acceleration",
-                    }),
-                });
-            }
         }
         Ok(())
     }
