@@ -335,7 +335,14 @@ pub(super) fn reference_size(linkage: &Linkage) -> Result<f64> {
         hull_diameter(&at)
     };
     if !size.is_finite() {
-        return Err(bad("linkage", format!("its size overflows ({size} m)")));
+        // The largest distance between two joints is past f64's range (not "inf m").
+        return Err(bad(
+            "linkage",
+            format!(
+                "its size overflows (two joints are more than {:.1e} m apart)",
+                f64::MAX
+            ),
+        ));
     }
     Ok(size)
 }

@@ -101,7 +101,10 @@ fn check_numbers(fr: &Friction, item: &str) -> Result<()> {
                 };
                 return Err(bad(
                     item,
-                    format!("{name} must be finite and {want}, got {v}"),
+                    format!(
+                        "{name} must be finite and {want}, got {}",
+                        super::reference::shown(v)
+                    ),
                 ));
             }
         }

@@ -167,7 +167,10 @@ pub(super) fn plan_load(
             if !(diagram.area.is_finite() && diagram.area > 0.0) {
                 return Err(bad(
                     &item,
-                    format!("diagram.area must be > 0, got {}", diagram.area),
+                    format!(
+                        "diagram.area must be > 0, got {}",
+                        super::reference::shown(diagram.area)
+                    ),
                 ));
             }
             if let Some(problem) = diagram.non_finite_point() {

@@ -33,7 +33,18 @@ pub(super) fn non_negative(item: &str, field: &str, v: f64) -> Result<f64> {
     if finite_num(item, field, v)? >= 0.0 {
         Ok(v)
     } else {
-        Err(bad(item, format!("{field} must be ≥ 0, got {v}")))
+        Err(bad(item, format!("{field} must be ≥ 0, got {}", shown(v))))
+    }
+}
+
+/// A description's number echoed in a message as its file may write it: the shortest text
+/// that reads back to it, in scientific notation outside [10⁻⁴, 10⁹) (`-1e308`, not its 309
+/// digits).
+pub(super) fn shown(v: f64) -> String {
+    if v == 0.0 || !v.is_finite() || (1e-4..1e9).contains(&v.abs()) {
+        format!("{v}")
+    } else {
+        format!("{v:e}")
     }
 }
 

@@ -110,6 +110,7 @@ impl KinState {
     }
 
     /// The input links' motions checked and stored (the first step of every solve).
+    #[inline]
     fn place_inputs(&mut self, plan: &Chain, inputs: &[Motion]) -> Result<()> {
         let (input, second) = match (inputs, &plan.second_input) {
             ([i], None) => (*i, None),
