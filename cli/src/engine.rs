@@ -129,9 +129,22 @@ const RANGE_SOLVES: f64 = 2000.0;
 
 /// The solves of the library's scan of every group's transmission angle over a turn
 /// (`Plan::min_transmission_angles`): one sweep of 720 positions for all groups, then each
-/// group's golden-section search to 10⁻¹² rad (about 60 solves, counted as 80).
+/// group's golden-section search to 10⁻¹² rad (52 positions, counted as 80) of the groups it
+/// hangs on alone.
 const TRANSMISSION_SWEEP_SOLVES: f64 = 720.0;
 const TRANSMISSION_REFINE_SOLVES: f64 = 80.0;
+
+/// The work of one group's solve, in solves of a dyad (see [`crate::budget`]).
+fn group_weight(g: &tmm::linkage::Group) -> f64 {
+    use tmm::linkage::GroupKind;
+    match g.kind {
+        GroupKind::Triad => budget::TRIAD_WEIGHT,
+        GroupKind::General => {
+            budget::general_weight(g.general_links().map_or(0, |(_, inner, _)| inner.len()))
+        }
+        _ => 1.0,
+    }
+}
 
 /// A planned linkage, ready for every subcommand.
 pub struct Machine {
@@ -174,22 +187,28 @@ impl Machine {
     /// [`crate::budget`]): each input, each dyad, each triad and each general group by its
     /// inner joints.
     pub fn solve_weight(&self) -> f64 {
-        use tmm::linkage::GroupKind;
         #[allow(clippy::cast_precision_loss)]
         let inputs = self.plan.input_count() as f64 * budget::INPUT_WEIGHT;
-        let groups: f64 = self
-            .plan
-            .groups()
-            .iter()
-            .map(|g| match g.kind {
-                GroupKind::Triad => budget::TRIAD_WEIGHT,
-                GroupKind::General => {
-                    budget::general_weight(g.general_links().map_or(0, |(_, inner, _)| inner.len()))
-                }
-                _ => 1.0,
+        let groups: f64 = self.plan.groups().iter().map(group_weight).sum();
+        inputs + groups
+    }
+
+    /// The work of the library's scan of every group's transmission angle, in solves of
+    /// the whole linkage: the sweep's 720 solves of it, then each group's refinement, which
+    /// solves the group's ancestry alone (`Plan::group_ancestry`: the input and the groups it
+    /// hangs on) [`TRANSMISSION_REFINE_SOLVES`] times. A general group is not refined.
+    fn transmission_scan_solves(&self) -> f64 {
+        let weights: Vec<f64> = self.plan.groups().iter().map(group_weight).collect();
+        #[allow(clippy::cast_precision_loss)]
+        let inputs = self.plan.input_count() as f64 * budget::INPUT_WEIGHT;
+        let refined: f64 = (0..weights.len())
+            .filter(|&g| self.plan.groups()[g].kind != tmm::linkage::GroupKind::General)
+            .map(|g| {
+                let chain = self.plan.group_ancestry(g).unwrap_or_default();
+                inputs + chain.iter().map(|&h| weights[h]).sum::<f64>()
             })
             .sum();
-        inputs + groups
+        TRANSMISSION_SWEEP_SOLVES + TRANSMISSION_REFINE_SOLVES * refined / self.solve_weight()
     }
 
     /// The linkage's name.
@@ -341,7 +360,7 @@ impl Machine {
             .filter(|g| g.kind != tmm::linkage::GroupKind::General)
             .count() as f64;
         let scans = budget::check(
-            TRANSMISSION_SWEEP_SOLVES + scanned * TRANSMISSION_REFINE_SOLVES,
+            self.transmission_scan_solves(),
             self.solve_weight(),
             &format!("the scans of {scanned} groups' transmission angles"),
             "",

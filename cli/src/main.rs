@@ -194,7 +194,8 @@ animation and diagrams run between its lock angles."
         /// with --workspace, which is the region of positions.
         #[arg(long, value_name = "ω", allow_negative_numbers = true)]
         speed: Option<f64>,
-        /// The SVG file to write (standard output without one).
+        /// The SVG file to write (without it, standard output when that is a pipe or a
+        /// file; refused on a terminal).
         #[arg(short, long, value_name = "OUT.svg")]
         output: Option<PathBuf>,
     },
@@ -704,6 +705,15 @@ fn run(command: Command) -> Result<(), Fail> {
             output,
         } => {
             check_output(output.as_deref())?;
+            // Some hundred kilobytes of SVG are no use on a terminal (and can upset it): a
+            // picture goes to a file, or to a pipe or redirection that asked for it.
+            if output.is_none() && std::io::stdout().is_terminal() {
+                return Err(Fail::on(
+                    &file,
+                    Failure::new("an SVG picture is not written to the terminal")
+                        .hint("give -o OUT.svg to write it to a file, or redirect: > out.svg"),
+                ));
+            }
             let m = load(&file)?;
             refuse_unused(
                 &file,

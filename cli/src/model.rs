@@ -40,6 +40,27 @@ pub fn typed(v: f64) -> String {
     }
 }
 
+/// `v` rounded to 5 significant digits: a value the program chooses (a default motor) as a
+/// person would write it, so that the text echoed is the value used, and typing it back
+/// (`--motor a,b`) repeats the run to the bit.
+pub fn as_written(v: f64) -> f64 {
+    if v.is_finite() {
+        format!("{v:.4e}").parse().unwrap_or(v)
+    } else {
+        v
+    }
+}
+
+/// A count (of steps) for a message, 4 significant digits; past f64's range, its bound
+/// (never `inf`).
+pub fn many(n: f64) -> String {
+    if n.is_finite() {
+        format!("{n:.3e}")
+    } else {
+        format!("more than {:.1e}", f64::MAX)
+    }
+}
+
 /// A text on one line: line breaks and runs of spaces become one space.
 fn one_line(s: &str) -> String {
     s.split_whitespace().collect::<Vec<_>>().join(" ")

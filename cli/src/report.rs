@@ -361,8 +361,10 @@ pub fn dynamics(d: &DynamicsReport) -> String {
         );
     }
     let n = d.reduced.len().max(1);
-    let mean = d.reduced.iter().map(|r| r.loads).sum::<f64>() / n as f64;
-    let j_mean = d.reduced.iter().map(|r| r.inertia).sum::<f64>() / n as f64;
+    // Each term divided first: 360 rows of a rotor of 10³⁰⁸ kg·m² summed overflow.
+    let n = n as f64;
+    let mean = d.reduced.iter().map(|r| r.loads / n).sum::<f64>();
+    let j_mean = d.reduced.iter().map(|r| r.inertia / n).sum::<f64>();
     let _ = writeln!(
         o,
         "mean reduced moment of the loads {} N·m, mean J_red {} kg·m² ({} positions)",
@@ -394,8 +396,8 @@ pub fn dynamics(d: &DynamicsReport) -> String {
     }
     if let Some(r) = &d.run_up {
         let chosen = if r.default_motor {
-            " (chosen by tmm: 4 % slip at the speed asked for, 10 % above the loads' mean; \
-             --motor a,b to give your own)"
+            " (chosen by tmm: 4 % slip at the speed asked for, 10 % above the loads' mean, to 5 \
+             significant digits; --motor a,b to give your own)"
         } else {
             ""
         };

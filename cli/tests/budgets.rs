@@ -265,3 +265,69 @@ fn a_long_run_reports_progress_on_a_terminal() {
         assert!(text.ends_with("\r\x1b[K"), "{args}: {text:?}");
     }
 }
+
+/// `n` crank-rockers hung on one crank: dyad k's coupler (0.4 m) is hinged to the crank
+/// 0.1 m from its pivot and its rocker (0.3 m) to the frame 0.35 m away, at 2πk/n. Each
+/// dyad hangs on the crank alone.
+fn fan(n: usize) -> String {
+    use std::f64::consts::TAU;
+    let (r, c, rocker, d) = (0.1_f64, 0.4_f64, 0.3_f64, 0.35_f64);
+    let mut joints = vec![r#"{"name": "O", "at": [0, 0]}"#.to_owned()];
+    let (mut crank, mut frame) = (vec!["\"O\"".to_owned()], vec!["\"O\"".to_owned()]);
+    let mut links = Vec::new();
+    for k in 0..n {
+        #[allow(clippy::cast_precision_loss)]
+        let b = TAU * k as f64 / n as f64;
+        let a = [r * (b + 0.3).cos(), r * (b + 0.3).sin()];
+        let o = [d * b.cos(), d * b.sin()];
+        // B on the circles about A (c) and O (rocker), to the left of A→O.
+        let (dx, dy) = (o[0] - a[0], o[1] - a[1]);
+        let l = dx.hypot(dy);
+        let x = (c * c - rocker * rocker + l * l) / (2.0 * l);
+        let h = (c * c - x * x).sqrt();
+        let p = [a[0] + (x * dx - h * dy) / l, a[1] + (x * dy + h * dx) / l];
+        for (name, at) in [("A", a), ("B", p), ("C", o)] {
+            joints.push(format!(
+                r#"{{"name": "{name}{k}", "at": [{}, {}]}}"#,
+                at[0], at[1]
+            ));
+        }
+        crank.push(format!("\"A{k}\""));
+        frame.push(format!("\"C{k}\""));
+        links.push(format!(
+            r#"{{"name": "coupler{k}", "joints": ["A{k}", "B{k}"]}}, {{"name": "rocker{k}", "joints": ["C{k}", "B{k}"]}}"#
+        ));
+    }
+    format!(
+        r#"{{"name": "fan of {n}", "joints": [{}], "links": [{{"name": "frame", "joints": [{}]}}, {{"name": "crank", "joints": [{}]}}, {}], "input": {{"link": "crank", "drive": "coupling"}}}}"#,
+        joints.join(", "),
+        frame.join(", "),
+        crank.join(", "),
+        links.join(", ")
+    )
+}
+
+/// `tmm check`'s scan of every group's transmission angle is budgeted by what it solves: the
+/// sweep's 720 solves of the linkage, then each group's refinement on the groups it hangs on
+/// alone. 2500 dyads hung on one crank are scanned (counted as whole-linkage refinements, 80
+/// solves of 2501 dyads for each of 2500 groups, they were 5·10⁸ dyad solves, above the
+/// budget of 4·10⁸, and refused), and each group's γ_min is the crank-rocker's closed form:
+/// the coupler and rocker of the dyad k are at their most acute when the crank points at its
+/// pivot, |AC| = d − r, cos γ = (c² + l² − (d − r)²)/(2cl) = (0.25 − 0.0625)/0.24.
+#[test]
+fn the_transmission_scan_is_budgeted_by_each_groups_ancestry() {
+    let n = 2500;
+    let file = Broken::new("fan", &fan(n));
+    let r = tmm(&["check", &file.path(), "--format", "json"]);
+    assert_success(&r, "check of the fan");
+    let v: serde_json::Value = serde_json::from_str(&r.stdout).expect("JSON");
+    let rows = v["transmission"].as_array().unwrap();
+    assert_eq!(rows.len(), n);
+    let exact = (0.1875_f64 / 0.24).acos();
+    for row in rows {
+        let min = row["min"]
+            .as_f64()
+            .unwrap_or_else(|| panic!("not computed: {row}"));
+        assert!((min - exact).abs() < 1e-9, "{min} against {exact}: {row}");
+    }
+}

@@ -466,3 +466,642 @@ fn a_run_up_without_inertia_is_refused_and_runs_with_a_rotor() {
         b * w * delta * delta / 4.0
     );
 }
+
+/// Whether `text` holds a non-finite number as Rust, JSON readers or a person would read one:
+/// a word `NaN`, `nan`, `inf`, `Infinity` (`infinite` in a sentence is not one).
+fn non_finite_word(text: &str) -> Option<&str> {
+    text.split(|c: char| !c.is_ascii_alphanumeric())
+        .find(|w| matches!(*w, "NaN" | "nan" | "inf" | "Inf" | "Infinity" | "infinity"))
+}
+
+/// One hostile run judged: it ends (no signal) with exit code 0, 1 or 2; a failure is one
+/// line on stderr beginning `tmm: `, never a panic; a success holds no non-finite number on
+/// standard output or in the file it wrote.
+fn judge(args: &[&str], out: &std::path::Path) -> i32 {
+    let _ = std::fs::remove_file(out);
+    let r = tmm(args);
+    assert!(
+        matches!(r.code, 0..=2),
+        "{args:?}: exit code {}: {}",
+        r.code,
+        r.stderr
+    );
+    assert!(!r.stderr.contains("panicked"), "{args:?}: {}", r.stderr);
+    if r.code == 0 {
+        let written = std::fs::read_to_string(out).unwrap_or_default();
+        for text in [&r.stdout, &written] {
+            if let Some(w) = non_finite_word(text) {
+                panic!(
+                    "{args:?}: {w} in the result: {}",
+                    &text[..text.len().min(2000)]
+                );
+            }
+        }
+    } else {
+        assert_eq!(r.stderr.lines().count(), 1, "{args:?}: {}", r.stderr);
+        assert!(r.stderr.starts_with("tmm: "), "{args:?}: {}", r.stderr);
+        // The message writes numbers as a person reads them: no `inf` or `NaN` the user did
+        // not type, no run of 20 digits (10³⁰⁸ in full) the user did not type.
+        // (A value the library names as not finite, "got NaN", is what it says.)
+        let typed = args.join(" ");
+        let told = ["got NaN", "got -inf", "got inf"]
+            .iter()
+            .fold(r.stderr.clone(), |t, said| t.replace(said, ""));
+        if non_finite_word(&typed).is_none() {
+            assert!(non_finite_word(&told).is_none(), "{args:?}: {}", r.stderr);
+        }
+        if longest_digit_run(&typed) < 20 {
+            assert!(longest_digit_run(&r.stderr) < 20, "{args:?}: {}", r.stderr);
+        }
+    }
+    r.code
+}
+
+/// The most digits in a row in `text`.
+fn longest_digit_run(text: &str) -> usize {
+    text.split(|c: char| !c.is_ascii_digit())
+        .map(str::len)
+        .max()
+        .unwrap_or(0)
+}
+
+/// The hostile numbers every numeric option is given: NaN, the infinities, the largest and
+/// the least (subnormal) doubles, zero of both signs, negatives, huge counts (beyond `u32`
+/// and beyond `u64`), an empty and a garbage word. `TMM_HOSTILE_CASES` at 1000 or more
+/// (the CI's release sweeps) adds more.
+fn hostile_values() -> Vec<&'static str> {
+    let mut v = vec![
+        "nan",
+        "inf",
+        "-inf",
+        "1e308",
+        "-1e308",
+        "5e-324",
+        "0",
+        "-0",
+        "-1",
+        "",
+        "x",
+        "99999999999999999999",
+    ];
+    if std::env::var("TMM_HOSTILE_CASES")
+        .ok()
+        .and_then(|s| s.parse::<u64>().ok())
+        .is_some_and(|n| n >= 1000)
+    {
+        v.extend([
+            "-5e-324",
+            "1e-300",
+            "1e20",
+            "4294967296",
+            "1e154",
+            "-1e154",
+            "2.5",
+        ]);
+    }
+    v
+}
+
+/// Every option of every subcommand taking a number, with each hostile value, on a linkage
+/// with one input and on one with two, and each pair option with hostile pairs: every run
+/// ends with a one-line error (exit 1, or 2 for a value clap refuses) or a finite result, in
+/// the budgets of the counts (no run here may spend its budget: each is refused up front, or
+/// small). The classes this sweep found are fixed: a degree echoed in 309 digits (`--swing
+/// 1e308`), a synthesised length of 10²³ mm in 24 digits, a run-up at 5e-324 rad/s refused
+/// by a library parameter the user never typed (`omega_nom`), a spin-up time in 17 digits.
+#[test]
+fn every_option_of_every_subcommand_survives_hostile_values() {
+    let dir = std::env::temp_dir().join(format!("tmm-cli-hostile-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let svg = dir.join("o.svg");
+    let svg = svg.to_str().unwrap();
+    let json = dir.join("o.json");
+    let json = json.to_str().unwrap();
+    let points = dir.join("points.csv");
+    std::fs::write(&points, common::coupler_curve_csv(12)).unwrap();
+    let points = points.to_str().unwrap();
+    let (one, two) = ("four-bar", "five-bar-robot");
+    let mut runs = 0;
+    let mut codes = [0; 3];
+    for v in hostile_values() {
+        let x = format!("1,{v}");
+        let crank = format!("-30,{v}");
+        let at = format!("{v},101.4");
+        let power = format!("x^{v}");
+        let cases: Vec<(Vec<&str>, &str)> = vec![
+            (vec!["analyse", one, "--positions", v], ""),
+            (vec!["analyse", one, "--at", v], ""),
+            (vec!["analyse", one, "--speed", v], ""),
+            (vec!["analyse", two, "--at", v, v], ""),
+            (vec!["analyse", "shaper", "--at", v, "--speed", "2"], ""),
+            (vec!["draw", one, "--scheme", v, "-o", svg], svg),
+            (vec!["draw", one, "--forces", v, "-o", svg], svg),
+            (vec!["draw", one, "--plan", "--speed", v, "-o", svg], svg),
+            (vec!["draw", one, "--animate", "--speed", v, "-o", svg], svg),
+            (
+                vec!["draw", one, "--diagram", "balance", "--speed", v, "-o", svg],
+                svg,
+            ),
+            (vec!["draw", two, "--scheme", v, "60", "-o", svg], svg),
+            (
+                vec![
+                    "draw",
+                    two,
+                    "--animate",
+                    "--along",
+                    "120",
+                    "60",
+                    v,
+                    "90",
+                    "-o",
+                    svg,
+                ],
+                svg,
+            ),
+            (vec!["dynamics", one, "--speed", v], ""),
+            (vec!["dynamics", one, "--run-up", "--speed", v], ""),
+            (vec!["dynamics", one, "--flywheel", v], ""),
+            (vec!["dynamics", one, "--run-up", "--rotor", v], ""),
+            (vec!["dynamics", one, "--positions", v], ""),
+            (vec!["dynamics", two, "--grid", v], ""),
+            (vec!["dynamics", two, "--span", v], ""),
+            (vec!["dynamics", two, "--run", v], ""),
+            (
+                vec![
+                    "synth",
+                    "crank-rocker",
+                    "-K",
+                    v,
+                    "--swing",
+                    "45",
+                    "--rocker",
+                    "0.3",
+                    "-o",
+                    json,
+                ],
+                json,
+            ),
+            (
+                vec![
+                    "synth",
+                    "crank-rocker",
+                    "-K",
+                    "1.2",
+                    "--swing",
+                    v,
+                    "--rocker",
+                    "0.3",
+                    "-o",
+                    json,
+                ],
+                json,
+            ),
+            (
+                vec![
+                    "synth",
+                    "crank-rocker",
+                    "-K",
+                    "1.2",
+                    "--swing",
+                    "45",
+                    "--rocker",
+                    v,
+                    "-o",
+                    json,
+                ],
+                json,
+            ),
+            (
+                vec![
+                    "synth",
+                    "crank-rocker",
+                    "-K",
+                    "1.2",
+                    "--swing",
+                    "45",
+                    "--rocker",
+                    "0.3",
+                    "--frame",
+                    v,
+                    "-o",
+                    json,
+                ],
+                json,
+            ),
+            (
+                vec![
+                    "synth",
+                    "crank-rocker",
+                    "-K",
+                    "1.2",
+                    "--swing",
+                    "45",
+                    "--rocker",
+                    "0.3",
+                    "--min-transmission",
+                    v,
+                    "-o",
+                    json,
+                ],
+                json,
+            ),
+            (
+                vec![
+                    "synth",
+                    "slider-crank",
+                    "--stroke",
+                    v,
+                    "-K",
+                    "1.2",
+                    "-o",
+                    json,
+                ],
+                json,
+            ),
+            (
+                vec![
+                    "synth",
+                    "slider-crank",
+                    "--stroke",
+                    "0.2",
+                    "-K",
+                    "1.2",
+                    "--offset",
+                    v,
+                    "-o",
+                    json,
+                ],
+                json,
+            ),
+            (
+                vec![
+                    "synth",
+                    "shaper",
+                    "--stroke",
+                    "0.3",
+                    "-K",
+                    v,
+                    "--centre-distance",
+                    "0.25",
+                    "-o",
+                    json,
+                ],
+                json,
+            ),
+            (
+                vec![
+                    "synth",
+                    "shaper",
+                    "--stroke",
+                    "0.3",
+                    "-K",
+                    "1.6",
+                    "--centre-distance",
+                    v,
+                    "-o",
+                    json,
+                ],
+                json,
+            ),
+            (
+                vec![
+                    "synth",
+                    "through",
+                    "--frame",
+                    v,
+                    "--at",
+                    "40,101.4",
+                    "100,112.8",
+                    "160,131.8",
+                    "--min-transmission",
+                    "0",
+                    "-o",
+                    json,
+                ],
+                json,
+            ),
+            (
+                vec![
+                    "synth",
+                    "through",
+                    "--frame",
+                    "0.4",
+                    "--at",
+                    &at,
+                    "100,112.8",
+                    "160,131.8",
+                    "--min-transmission",
+                    "0",
+                    "-o",
+                    json,
+                ],
+                json,
+            ),
+            (
+                vec![
+                    "synth",
+                    "function",
+                    "--function",
+                    "log10",
+                    "--x",
+                    &x,
+                    "--crank",
+                    "-30,30",
+                    "--rocker",
+                    "0,90",
+                    "--frame",
+                    "0.1",
+                    "-o",
+                    json,
+                ],
+                json,
+            ),
+            (
+                vec![
+                    "synth",
+                    "function",
+                    "--function",
+                    "log10",
+                    "--x",
+                    "1,2",
+                    "--crank",
+                    &crank,
+                    "--rocker",
+                    "0,90",
+                    "--frame",
+                    "0.1",
+                    "-o",
+                    json,
+                ],
+                json,
+            ),
+            (
+                vec![
+                    "synth",
+                    "function",
+                    "--function",
+                    &power,
+                    "--x",
+                    "1,2",
+                    "--crank",
+                    "-30,30",
+                    "--rocker",
+                    "0,90",
+                    "--frame",
+                    v,
+                    "-o",
+                    json,
+                ],
+                json,
+            ),
+            (
+                vec![
+                    "synth",
+                    "function",
+                    "--function",
+                    "log10",
+                    "--x",
+                    "1,2",
+                    "--crank",
+                    "-30,30",
+                    "--rocker",
+                    "0,90",
+                    "--frame",
+                    "0.1",
+                    "--least-squares",
+                    v,
+                    "-o",
+                    json,
+                ],
+                json,
+            ),
+            (
+                vec!["synth", "path", points, "--budget", v, "-o", json],
+                json,
+            ),
+            (
+                vec![
+                    "synth", "path", points, "--budget", "500", "--seed", v, "-o", json,
+                ],
+                json,
+            ),
+            (
+                vec![
+                    "synth",
+                    "path",
+                    points,
+                    "--budget",
+                    "500",
+                    "--designs",
+                    v,
+                    "-o",
+                    json,
+                ],
+                json,
+            ),
+            (
+                vec![
+                    "synth", "path", points, "--budget", "500", "--time", v, "-o", json,
+                ],
+                json,
+            ),
+        ];
+        for (args, out) in cases {
+            let code = judge(&args, std::path::Path::new(out));
+            codes[usize::try_from(code).unwrap()] += 1;
+            runs += 1;
+        }
+    }
+    for pair in [
+        "nan,0",
+        "1e308,1e308",
+        "5e-324,0",
+        "1,",
+        ",",
+        "1,2,3",
+        "0,0",
+        "-1,-1",
+        "inf,1",
+    ] {
+        for args in [
+            vec!["dynamics", one, "--run-up", "--motor", pair],
+            vec!["dynamics", two, "--run", "0.2", "--motor", pair],
+            vec!["dynamics", two, "--run", "0.2", "--motor2", pair],
+            vec![
+                "synth",
+                "function",
+                "--function",
+                "sqrt",
+                "--x",
+                pair,
+                "--crank",
+                "-30,30",
+                "--rocker",
+                "0,90",
+                "--frame",
+                "0.1",
+                "-o",
+                json,
+            ],
+            vec![
+                "synth",
+                "through",
+                "--frame",
+                "0.4",
+                "--at",
+                pair,
+                "100,112.8",
+                "160,131.8",
+                "-o",
+                json,
+            ],
+        ] {
+            let code = judge(&args, std::path::Path::new(json));
+            codes[usize::try_from(code).unwrap()] += 1;
+            runs += 1;
+        }
+    }
+    // Options given twice, or together where they exclude each other: clap's usage error.
+    for args in [
+        &["analyse", one, "--speed", "1", "--speed", "2"][..],
+        &["draw", one, "-o", svg, "-o", svg],
+        &["check", one, "--format", "json", "--format", "text"],
+        &["analyse", one, "--positions", "3", "--at", "1"],
+        &["draw", one, "--plan", "--animate", "-o", svg],
+        &[
+            "synth",
+            "shaper",
+            "--stroke",
+            "0.3",
+            "--stroke",
+            "0.2",
+            "-K",
+            "1.6",
+            "--centre-distance",
+            "0.25",
+        ],
+    ] {
+        assert_eq!(judge(args, std::path::Path::new("")), 2, "{args:?}");
+        runs += 1;
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+    println!("{runs} hostile runs: exit codes 0/1/2 {codes:?}");
+    // Each class answered: results, one-line errors, and clap's refusals.
+    assert!(codes.iter().all(|&c| c > 20), "{codes:?}");
+}
+
+/// A small seeded generator (xorshift64*): the same mutations on every run.
+struct Seeded(u64);
+
+impl Seeded {
+    fn below(&mut self, n: usize) -> usize {
+        self.0 ^= self.0 >> 12;
+        self.0 ^= self.0 << 25;
+        self.0 ^= self.0 >> 27;
+        let r = self.0.wrapping_mul(0x2545_f491_4f6c_dd1d) >> 11;
+        usize::try_from(r % n.max(1) as u64).unwrap()
+    }
+}
+
+/// `text` mutated once by `rng`: a number replaced by a hostile one (the largest, the least
+/// subnormal, zero, negative, 10¹⁵⁴ whose square overflows, a count of 10⁶), the text cut
+/// short, a span of it deleted, or a name duplicated.
+fn mutate(text: &str, rng: &mut Seeded) -> String {
+    let numbers: Vec<(usize, usize)> = {
+        let b = text.as_bytes();
+        let mut v = Vec::new();
+        let mut k = 0;
+        while k < b.len() {
+            if b[k].is_ascii_digit() && (k == 0 || !b[k - 1].is_ascii_alphabetic()) {
+                let start = if k > 0 && b[k - 1] == b'-' { k - 1 } else { k };
+                let mut end = k;
+                while end < b.len() && (b[end].is_ascii_digit() || b".eE-+".contains(&b[end])) {
+                    end += 1;
+                }
+                v.push((start, end));
+                k = end;
+            } else {
+                k += 1;
+            }
+        }
+        v
+    };
+    let at = |n: usize, rng: &mut Seeded| {
+        let mut k = rng.below(n);
+        while !text.is_char_boundary(k) {
+            k -= 1;
+        }
+        k
+    };
+    match rng.below(5) {
+        0 | 1 if !numbers.is_empty() => {
+            let (s, e) = numbers[rng.below(numbers.len())];
+            let hostile = [
+                "1e308", "-1e308", "5e-324", "0", "-1", "1e154", "1e-154", "1000000", "-0.0",
+            ];
+            format!(
+                "{}{}{}",
+                &text[..s],
+                hostile[rng.below(hostile.len())],
+                &text[e..]
+            )
+        }
+        2 => text[..at(text.len(), rng)].to_owned(),
+        3 => {
+            let a = at(text.len(), rng);
+            let mut b = (a + 1 + rng.below(40)).min(text.len());
+            while !text.is_char_boundary(b) {
+                b += 1;
+            }
+            format!("{}{}", &text[..a], &text[b..])
+        }
+        _ => text.replacen("\"name\": \"A\"", "\"name\": \"B\"", 1),
+    }
+}
+
+/// Every bundled description mutated (hostile numbers in every field, cut short, bytes
+/// deleted, names duplicated): `check`, `analyse`, `draw` and `dynamics` on each end with a
+/// one-line error or a finite result. Two mutations per file by default;
+/// `TMM_HOSTILE_CASES` / 100 per file when it is set above 200 (the CI's release sweep).
+#[test]
+fn mutated_descriptions_fail_in_one_line_or_give_finite_results() {
+    let per_file = std::env::var("TMM_HOSTILE_CASES")
+        .ok()
+        .and_then(|s| s.parse::<usize>().ok())
+        .map_or(2, |n| (n / 100).max(2));
+    let dir = std::env::temp_dir().join(format!("tmm-cli-mutated-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let svg = dir.join("o.svg");
+    let mut rng = Seeded(0x9e37_79b9_7f4a_7c15);
+    let mut files: Vec<_> = std::fs::read_dir(common::root().join("linkages"))
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .collect();
+    files.sort();
+    let (mut runs, mut ok) = (0, 0);
+    for file in &files {
+        let text = std::fs::read_to_string(file).unwrap();
+        for k in 0..per_file {
+            let path = dir.join(format!(
+                "{}-{k}.json",
+                file.file_stem().unwrap().to_string_lossy()
+            ));
+            std::fs::write(&path, mutate(&text, &mut rng)).unwrap();
+            let p = path.to_str().unwrap();
+            for args in [
+                &["check", p][..],
+                &["analyse", p],
+                &["draw", p, "--animate", "-o", svg.to_str().unwrap()],
+                &["dynamics", p],
+            ] {
+                let code = judge(args, &svg);
+                assert_ne!(code, 2, "{args:?}: a file's fault is not a usage error");
+                ok += usize::from(code == 0);
+                runs += 1;
+            }
+        }
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+    println!("{runs} runs on mutated descriptions, {ok} results");
+    assert!(runs >= 4 * 2 * 20 && ok > 0 && ok < runs, "{ok} of {runs}");
+}

@@ -256,9 +256,27 @@ impl Machine {
                             .hint("give the motor with --motor a,b (M = a − b·|ω|, N·m)"),
                     );
                 }
+                // A speed so small (5e-324 rad/s) that 4 % above it rounds to itself has
+                // no slip to size the motor by: the speed is at fault, named as typed.
                 let m = LinearMotor::from_nominal(nominal, speed.abs() / 0.96, speed.abs())
-                    .map_err(f)?;
-                (m.a, m.b, true)
+                    .map_err(|e| {
+                        if speed.abs() / 0.96 > speed.abs() {
+                            return f(e);
+                        }
+                        Failure::new(format!(
+                            "--speed {} rad/s is too slow to size a motor for: its idle speed \
+                             4 % above it rounds to the speed itself",
+                            crate::model::typed(speed)
+                        ))
+                        .hint("give a larger --speed, or the motor with --motor a,b")
+                    })?;
+                // Rounded as a person writes a motor's data: the values echoed are the
+                // values run, and `--motor a,b` with them repeats the run.
+                (
+                    crate::model::as_written(m.a),
+                    crate::model::as_written(m.b),
+                    true,
+                )
             }
         };
         if !(a > 0.0 && b >= 0.0) {
@@ -364,29 +382,41 @@ impl Machine {
         let turn = TAU / speed.abs() / h;
         if turn.is_nan() || turn > budget {
             return Err(Failure::new(format!(
-                "a turn at {} rad/s takes {turn:.3e} steps of h = {h:.3e} s (the step RK4 needs \
+                "a turn at {} rad/s takes {} steps of h = {h:.3e} s (the step RK4 needs \
                  for the motor's slope b = {} N·m·s/rad), above the {budget:e} a \
                  run-up may take{}",
                 crate::model::typed(speed),
+                crate::model::many(turn),
                 crate::model::typed(b),
                 Self::budget_note(budget)
             ))
             .hint("give --motor a,b with a smaller b, a larger --speed, or a --rotor"));
         }
+        // The mean of J_red, each term divided first: 360 rows of a rotor of 10³⁰⁸ kg·m²
+        // summed overflow.
         #[allow(clippy::cast_precision_loss)]
-        let j = rows.iter().map(|r| r.inertia).sum::<f64>() / rows.len() as f64;
+        let n = rows.len() as f64;
+        let j = rows.iter().map(|r| r.inertia / n).sum::<f64>();
         let spin_up = j * speed.abs() / a;
         // Two turns at speed besides: a steady state is one turn's mean speed against the
         // previous turn's.
         let steps = spin_up / h + 2.0 * turn;
         if steps.is_nan() || steps > budget {
+            // Six significant digits: a computed time, not one to type back; past f64's
+            // range (a rotor of 10³⁰⁰ kg·m²), its bound.
+            let needs = if spin_up.is_finite() {
+                let t: f64 = format!("{spin_up:.5e}").parse().unwrap_or(spin_up);
+                format!("at least {} s", crate::model::typed(t))
+            } else {
+                format!("more than {:.1e} s", f64::MAX)
+            };
             return Err(Failure::new(format!(
-                "the motor's starting moment a = {} N·m needs at least {} s to bring the crank \
+                "the motor's starting moment a = {} N·m needs {needs} to bring the crank \
                  (J_red ≈ {j:.4e} kg·m²) to {} rad/s, and two turns more to see it steady: \
-                 {steps:.3e} steps of h = {h:.3e} s, above the {budget:e} a run-up may take{}",
+                 {} steps of h = {h:.3e} s, above the {budget:e} a run-up may take{}",
                 crate::model::typed(a),
-                crate::model::typed(spin_up),
                 crate::model::typed(speed),
+                crate::model::many(steps),
                 Self::budget_note(budget)
             ))
             .hint("give --motor a,b with a larger a, a smaller --rotor, or a lower --speed"));

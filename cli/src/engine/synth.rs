@@ -92,8 +92,15 @@ fn angle_name(name: &str) -> bool {
         || name.starts_with("rocker angle")
 }
 
+/// An angle in degrees, four decimals; in scientific notation from 10⁶° (an option of
+/// 1e308° read back in degrees was 309 digits).
 fn deg(rad: f64) -> String {
-    format!("{:.4}°", rad.to_degrees())
+    let d = rad.to_degrees();
+    if d.abs() >= 1e6 {
+        format!("{d:.4e}°")
+    } else {
+        format!("{d:.4}°")
+    }
 }
 
 fn deg_bound(rad: f64) -> String {
@@ -272,6 +279,58 @@ pub fn synthesise(request: &Request, progress: &mut dyn FnMut(&str)) -> Result<D
     })
 }
 
+/// The most precision points listed one by one; a longer list shows its first and last
+/// [`LISTED_POINTS`]` / 2` and its count.
+const LISTED_POINTS: usize = 8;
+
+/// The precision points as a line of the report: each with the fewest decimals (at least 6)
+/// that tell the listed points apart — a least-squares fit over 10⁶ points at Chebyshev
+/// spacing crowds its first points within 10⁻¹² of x0, where 6 decimals read them all
+/// alike; a long list is its first and last few and its count.
+fn precision_points(xs: &[f64]) -> String {
+    let half = LISTED_POINTS / 2;
+    let shown: Vec<f64> = if xs.len() > LISTED_POINTS {
+        xs[..half]
+            .iter()
+            .chain(&xs[xs.len() - half..])
+            .copied()
+            .collect()
+    } else {
+        xs.to_vec()
+    };
+    let texts = distinct_texts(&shown);
+    if xs.len() > LISTED_POINTS {
+        format!(
+            "precision points x = {}, …, {} ({} points)",
+            texts[..half].join(", "),
+            texts[half..].join(", "),
+            xs.len()
+        )
+    } else {
+        format!("precision points x = {}", texts.join(", "))
+    }
+}
+
+/// `xs` with the fewest decimals, from 6 up, at which no two distinct values read the same;
+/// values so close that no fixed number of decimals parts them (or values far from 1) are
+/// written in full, the shortest text that reads back to each.
+fn distinct_texts(xs: &[f64]) -> Vec<String> {
+    let apart = |texts: &[String]| {
+        xs.iter().zip(texts).all(|(x, t)| {
+            xs.iter()
+                .zip(texts)
+                .all(|(y, u)| x.to_bits() == y.to_bits() || t != u)
+        })
+    };
+    for decimals in 6..=17 {
+        let texts: Vec<String> = xs.iter().map(|x| format!("{x:.decimals$}")).collect();
+        if apart(&texts) {
+            return texts;
+        }
+    }
+    xs.iter().map(|x| format!("{x}")).collect()
+}
+
 /// The function generator, its notes (precision points, coefficients, the largest structural
 /// error) and the structural error across the range as the misses.
 fn function(
@@ -308,17 +367,7 @@ fn function(
             Some(n) => format!("least squares over {n} points at Chebyshev spacing"),
         }
     ));
-    let xs: Vec<String> = g
-        .precision_x
-        .iter()
-        .take(8)
-        .map(|x| format!("{x:.6}"))
-        .collect();
-    notes.push(format!(
-        "precision points x = {}{}",
-        xs.join(", "),
-        if g.precision_x.len() > 8 { ", …" } else { "" }
-    ));
+    notes.push(precision_points(&g.precision_x));
     notes.push(format!(
         "Freudenstein's coefficients K1 = {:.6}, K2 = {:.6}, K3 = {:.6}",
         g.coefficients[0], g.coefficients[1], g.coefficients[2]

@@ -457,11 +457,18 @@ impl Machine {
         let steps = t_end / h;
         let allowed = self.run_steps_budget();
         if steps.is_nan() || steps > allowed {
+            // A damping of 10³⁰⁸ makes the stable step underflow: no `0e0 s`, no `inf steps`.
+            let step = if h > 0.0 {
+                format!("steps of {h:.3e} s or shorter")
+            } else {
+                "steps shorter than the least double".to_owned()
+            };
             return Err(Failure::new(format!(
-                "the motors' damping b = {:.3e} and {:.3e} N·m·s/rad make the run stiff: RK4 \
-                 needs steps of {h:.3e} s or shorter, {steps:.3e} steps for {t_end:e} s, above \
-                 the {allowed:e} allowed",
-                motors[0].1, motors[1].1
+                "the motors' damping b = {} and {} N·m·s/rad make the run stiff: RK4 needs \
+                 {step}, {} steps for {t_end:e} s, above the {allowed:e} allowed",
+                crate::model::typed(motors[0].1),
+                crate::model::typed(motors[1].1),
+                crate::model::many(steps)
             ))
             .hint("give --motor / --motor2 a smaller b, or a shorter --run T"));
         }

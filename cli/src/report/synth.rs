@@ -7,9 +7,15 @@ use super::{deg, direction, number};
 use crate::design::{DesignReport, Misses};
 use crate::model::Range;
 
-/// A length in m as mm, four decimals.
+/// A length in m as mm, four decimals; in scientific notation from 10⁹ mm and below
+/// 10⁻⁴ mm (a design scaled from a stroke of 10²⁰ m printed 24 digits).
 fn mm(m: f64) -> String {
-    format!("{:.4} mm", m * 1e3)
+    let v = m * 1e3;
+    if v != 0.0 && !(1e-4..1e9).contains(&v.abs()) {
+        format!("{v:.4e} mm")
+    } else {
+        format!("{v:.4} mm")
+    }
 }
 
 /// The report of a synthesised mechanism.
