@@ -507,11 +507,11 @@ impl<'p> Ancestry<'p> {
             self.found.push(h);
             let group = &self.plan.groups()[h];
             for_each_known_link(group, |l| {
-                if let Some(p) = self.placed_by[l] {
-                    if self.mark[p] != self.walk {
-                        self.mark[p] = self.walk;
-                        self.stack.push(p);
-                    }
+                if let Some(p) = self.placed_by[l]
+                    && self.mark[p] != self.walk
+                {
+                    self.mark[p] = self.walk;
+                    self.stack.push(p);
                 }
             });
         }
