@@ -1208,6 +1208,33 @@ fn a_two_input_run_that_friction_stops_says_so() {
     for row in &rows[1..] {
         assert!(row[2] == 60.0 && row[4] == 0.0 && row[3] < 0.0, "{row:?}");
     }
+    // The same in JSON: one hold, of input 2, from 0 to the end, with the loads by hand.
+    let r = tmm(&[
+        "dynamics", &p, "--run", "0.5", "--motor", "0.001,0", "--motor2", "0,0", "--format", "json",
+    ]);
+    assert_success(&r, "a run with crank 4 held, in JSON");
+    let v: serde_json::Value = serde_json::from_str(&r.stdout).unwrap();
+    let held = v["run"]["held"].as_array().expect("run.held");
+    assert_eq!(held.len(), 1, "{held:?}");
+    let h = &held[0];
+    assert_eq!(
+        (
+            h["input"].as_u64(),
+            h["released"].as_bool(),
+            h["from"].as_f64()
+        ),
+        (Some(2), Some(false), Some(0.0)),
+        "{h}"
+    );
+    assert!((h["until"].as_f64().unwrap() - 0.5).abs() <= 1e-12, "{h}");
+    let (d0, b0) = (
+        h["drive"][0].as_f64().unwrap(),
+        h["breakaway"][0].as_f64().unwrap(),
+    );
+    assert!(
+        (d0 - couple).abs() <= 1e-5 * limit && (b0 - limit).abs() <= 1e-5 * limit,
+        "{h}"
+    );
     // The first printed row after the start (0.05 s): q̇₁/t is q̈₁ within 10⁻³ (the rates'
     // squares, the change of the pose and the printed digits).
     let (t1, w1) = (rows[1][0], rows[1][3]);

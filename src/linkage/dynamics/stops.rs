@@ -35,11 +35,16 @@
 //! (q̇ = 0) every joint the input moves starts with it, and L± is their friction reduced to
 //! the input at the static reactions, as for one input. The machine sticks when
 //! −L₋ ≤ drive ≤ L₊ (drive = −μ/cₖ, along σ); else it breaks away with q̇ₖ of the drive's
-//! sign. The other joints' reversals are located as kinks. A machine at a whole rest is
+//! sign. Where it sticks while the other input moves, the run goes on with input k held
+//! (q̇ₖ = 0, q̈ₖ = 0, this switch's coordinate: [`LagrangeSystem::switch_holds`]; the held
+//! motion's terms, the other joints' friction solved with q̈ₖ = 0, are
+//! [`LagrangeSystem::held_terms`]) and releases it where the drive reaches ±L, a located
+//! event. The other joints' reversals are located as kinks. A machine at a whole rest is
 //! weighed at every such switch, each with the other input left free: it stays at rest (the
-//! run ends stuck) when every one holds; else those that break away go their drive's way and
-//! the motion goes on (an input whose friction holds it starts without friction, its rate
-//! zero).
+//! run ends stuck: its loads do not change with time) when every one holds; else those that
+//! break away go their drive's way and the motion goes on, an input whose friction holds it
+//! held, weighed again as the others start to move (their rates a vanishing amount their
+//! way, so that the joints they set sliding have their friction).
 
 use nalgebra::Vector2;
 

@@ -682,6 +682,15 @@ impl LagrangeSystem for LinkageSystem {
         self.input_switch_holds(i)
     }
 
+    /// No: a described linkage's loads are constant and its motors laws of (q, q̇)
+    /// ([`Motor`](super::Motor)), so a whole rest its friction holds is held for good (the
+    /// run ends [`Outcome::Stuck`](crate::dynamics::Outcome::Stuck)). A rest that breaks away
+    /// later under a load changing with time needs a system of one's own whose forces depend
+    /// on t (`tests/dynamics/held_rest.rs`).
+    fn forces_depend_on_time(&self) -> bool {
+        false
+    }
+
     /// The terms with the inputs `held` at rest: the joints' friction of the held motion.
     fn held_terms(
         &self,
