@@ -635,12 +635,12 @@ fn a_five_bar_input_held_by_its_friction_is_released_at_the_same_time_by_every_m
         a.0, a.1, b.0, b.1, c.0, c.1
     );
     assert!(c.1 > c.0 + 0.1 && c.1 < t_end - 0.01, "{c:?}");
-    // The releases of all three, the holds of RK4 at h and Dormand–Prince. (RK4 at h/4 holds
-    // crank 1 first 0.9 ms later: not yet understood, see the session's report.)
-    for (x, y) in [(a.0, c.0), (a.1, c.1), (b.1, c.1)] {
+    // The holds and the releases of all three. (The pivot's rate is both a kink argument and
+    // the switch speed: a run that landed on the kink first, without weighing the switch,
+    // held crank 1 0.9 ms late at h/4.)
+    for (x, y) in [(a.0, c.0), (a.1, c.1), (b.0, c.0), (b.1, c.1)] {
         assert!((x - y).abs() <= 1e-6, "{x} vs {y}");
     }
-    assert!(b.0 >= c.0 && b.0 < c.0 + 1e-3, "{b:?} vs {c:?}");
     // Energy over RK4 at h/4.
     let tr = &rk4.trajectory;
     let (t, q, qd, qdd, kin) = (tr.t(), tr.q(), tr.qd(), tr.qdd(), tr.kinetic());
