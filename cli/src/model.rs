@@ -455,8 +455,16 @@ pub struct HeldInput {
     pub until: f64,
     /// Whether it broke away at `until` (else the run ended with it held).
     pub released: bool,
-    /// The times at which the loads below were weighed (the first and last rows of the
-    /// hold where the other input moves), s.
+    /// The loads that held it, where the system could weigh them (`None` where weighing a
+    /// row of the hold failed: the hold is reported without them).
+    pub loads: Option<HeldLoads>,
+}
+
+/// The loads on a held input at the first and last rows of its hold where the other input
+/// moves.
+#[derive(Debug, Clone, PartialEq)]
+pub struct HeldLoads {
+    /// The times of those rows, s.
     pub weighed: [f64; 2],
     /// The load that would move the input there, along its rate (N·m or N).
     pub drive: [f64; 2],

@@ -1228,8 +1228,8 @@ fn a_two_input_run_that_friction_stops_says_so() {
     );
     assert!((h["until"].as_f64().unwrap() - 0.5).abs() <= 1e-12, "{h}");
     let (d0, b0) = (
-        h["drive"][0].as_f64().unwrap(),
-        h["breakaway"][0].as_f64().unwrap(),
+        h["loads"]["drive"][0].as_f64().unwrap(),
+        h["loads"]["breakaway"][0].as_f64().unwrap(),
     );
     assert!(
         (d0 - couple).abs() <= 1e-5 * limit && (b0 - limit).abs() <= 1e-5 * limit,

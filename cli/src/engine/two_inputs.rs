@@ -18,8 +18,8 @@ use super::{failure, Machine};
 const MAX_RUN_STEPS: f64 = 1e6;
 use crate::budget;
 use crate::model::{
-    typed, DiagramKind, DynamicsRequest, Failure, HeldInput, MassRow, Range, TwoInputDynamics,
-    TwoInputRun,
+    typed, DiagramKind, DynamicsRequest, Failure, HeldInput, HeldLoads, MassRow, Range,
+    TwoInputDynamics, TwoInputRun,
 };
 use tmm::nalgebra::Vector2;
 
@@ -519,7 +519,7 @@ impl Machine {
             }
             _ => None,
         };
-        let held = held_inputs(&sys, &r).map_err(f)?;
+        let held = held_inputs(&sys, &r);
         let tr = &r.trajectory;
         let (t, q, qd) = (tr.t(), tr.q(), tr.qd());
         let (kinetic, power, lost) = (tr.kinetic(), tr.power_applied(), tr.power_dissipated());
@@ -557,7 +557,7 @@ impl Machine {
 /// friction its joint can hold) at the first and last of its rows where the other input
 /// moves; a hold whose other input never moves is left out (the run then ends stuck, and
 /// says so).
-fn held_inputs(sys: &LinkageSystem, r: &RunResult) -> tmm::Result<Vec<HeldInput>> {
+fn held_inputs(sys: &LinkageSystem, r: &RunResult) -> Vec<HeldInput> {
     let tr = &r.trajectory;
     let (t, q, qd) = (tr.t(), tr.q(), tr.qd());
     let n = t.len();
@@ -585,22 +585,29 @@ fn held_inputs(sys: &LinkageSystem, r: &RunResult) -> tmm::Result<Vec<HeldInput>
                     );
                     sys.switch_loads(i, t[j], &qj, &qdj)
                 };
-                let (l0, l1) = (weigh(first)?, weigh(last)?);
+                // The run went through these rows, so their loads are there to weigh; should
+                // one fail, the hold is still reported, without them.
+                let loads = match (weigh(first), weigh(last)) {
+                    (Ok(l0), Ok(l1)) => Some(HeldLoads {
+                        weighed: [t[first], t[last]],
+                        drive: [l0.drive, l1.drive],
+                        breakaway: [l0.breakaway(), l1.breakaway()],
+                        unit: l0.unit,
+                    }),
+                    _ => None,
+                };
                 held.push(HeldInput {
                     input: k + 1,
                     at: q[k][a],
                     from: t[a],
                     until: t[b],
                     released: b + 1 < n,
-                    weighed: [t[first], t[last]],
-                    drive: [l0.drive, l1.drive],
-                    breakaway: [l0.breakaway(), l1.breakaway()],
-                    unit: l0.unit,
+                    loads,
                 });
             }
             a = b + 1;
         }
     }
     held.sort_by(|x, y| x.from.total_cmp(&y.from));
-    Ok(held)
+    held
 }

@@ -185,24 +185,31 @@ fn held_text(h: &HeldInput, unit: &str) -> String {
     } else {
         "to the end of the run".to_owned()
     };
+    let why = h.loads.as_ref().map_or_else(
+        || " (its loads could not be weighed)".to_owned(),
+        |l| {
+            format!(
+                ": the load that would move it, {} {u} at t = {} s and {} {u} at t = {} s, is \
+                 within the friction its joint can hold, {} and {} {u}{}",
+                number(l.drive[0]),
+                number(l.weighed[0]),
+                number(l.drive[1]),
+                number(l.weighed[1]),
+                number(l.breakaway[0]),
+                number(l.breakaway[1]),
+                if h.released {
+                    " (it reaches it at the release)"
+                } else {
+                    ""
+                },
+                u = l.unit,
+            )
+        },
+    );
     format!(
-        "input {} held at {at} by the friction in its own joint from t = {} s {until}: the load \
-         that would move it, {} {u} at t = {} s and {} {u} at t = {} s, is within the friction \
-         its joint can hold, {} and {} {u}{}",
+        "input {} held at {at} by the friction in its own joint from t = {} s {until}{why}",
         h.input,
         number(h.from),
-        number(h.drive[0]),
-        number(h.weighed[0]),
-        number(h.drive[1]),
-        number(h.weighed[1]),
-        number(h.breakaway[0]),
-        number(h.breakaway[1]),
-        if h.released {
-            " (it reaches it at the release)"
-        } else {
-            ""
-        },
-        u = h.unit,
     )
 }
 
@@ -289,13 +296,21 @@ fn run_json(run: &TwoInputRun) -> String {
                     ("from", json_number(h.from)),
                     ("until", json_number(h.until)),
                     ("released", h.released.to_string()),
-                    ("weighed", array(h.weighed.iter().map(|&v| json_number(v)))),
-                    ("drive", array(h.drive.iter().map(|&v| json_number(v)))),
                     (
-                        "breakaway",
-                        array(h.breakaway.iter().map(|&v| json_number(v))),
+                        "loads",
+                        h.loads.as_ref().map_or_else(
+                            || "null".to_owned(),
+                            |l| {
+                                let pair = |v: [f64; 2]| array(v.map(json_number));
+                                object(&[
+                                    ("weighed", pair(l.weighed)),
+                                    ("drive", pair(l.drive)),
+                                    ("breakaway", pair(l.breakaway)),
+                                    ("unit", json_string(l.unit)),
+                                ])
+                            },
+                        ),
                     ),
-                    ("unit", json_string(h.unit)),
                 ])
             })),
         ),
