@@ -52,10 +52,7 @@ pub(super) const NOT_HELD: f64 = -1.0;
 /// rest (see the [module docs](self)): the held rows of Q, ∇Π, B and of the Christoffel
 /// symbols zeroed, A's off-diagonal entries zeroed.
 pub(super) fn decoupled(mut t: LagrangeTerms, held: [bool; 2]) -> LagrangeTerms {
-    for k in 0..2 {
-        if !held[k] {
-            continue;
-        }
+    for (k, _) in held.iter().enumerate().filter(|&(_, &h)| h) {
         let j = 1 - k;
         t.inertia[(k, j)] = 0.0;
         t.inertia[(j, k)] = 0.0;

@@ -196,7 +196,7 @@ impl Kinks {
             // Nodes crossed at the same time as the one chosen (a switch speed that is also a
             // kink argument's rate) are landed on with it: not located again, nor taken for a
             // crossing at the start of the next step.
-            skip.extend(self.coincident.drain(..));
+            skip.append(&mut self.coincident);
             skip.push((k, i));
             let hk = hit.t - s.t;
             if hk <= t_tol {
