@@ -456,4 +456,41 @@ pub struct TwoInputRun {
     /// Why the run ended before its time, if it did: a resistance or a joint's friction that
     /// holds the motion for good (the rows end there).
     pub stopped: Option<String>,
+    /// Each stretch of the run where an input's own joint friction held it at rest while
+    /// the other moved (in order of time).
+    pub held: Vec<HeldInput>,
+}
+
+/// An input of a two-input run held at rest by the friction in its own joint (its pivot or
+/// its slide) while the other input moves, and what held it: the load the held motion puts
+/// on it, within the friction its joint can hold, where the hold begins and where it ends.
+#[derive(Debug, Clone, PartialEq)]
+pub struct HeldInput {
+    /// The input, 1 or 2.
+    pub input: usize,
+    /// Where it is held: rad for a crank, m for a slider.
+    pub at: f64,
+    /// When the hold begins and ends, s.
+    pub from: f64,
+    /// See [`from`](Self::from).
+    pub until: f64,
+    /// Whether it broke away at `until` (else the run ended with it held).
+    pub released: bool,
+    /// The loads that held it, where the system could weigh them (`None` where weighing a
+    /// row of the hold failed: the hold is reported without them).
+    pub loads: Option<HeldLoads>,
+}
+
+/// The loads on a held input at the first and last rows of its hold where the other input
+/// moves.
+#[derive(Debug, Clone, PartialEq)]
+pub struct HeldLoads {
+    /// The times of those rows, s.
+    pub weighed: [f64; 2],
+    /// The load that would move the input there, along its rate (N·m or N).
+    pub drive: [f64; 2],
+    /// The friction its joint can hold against that load there (same unit, ≥ 0).
+    pub breakaway: [f64; 2],
+    /// The unit of the loads: "N·m" or "N".
+    pub unit: &'static str,
 }

@@ -17,8 +17,8 @@
 mod common;
 
 use common::{
-    assert_one_line_failure, assert_success, assert_svg, parse_csv, rocking_four_bar, root, tmm,
-    tmm_in, Broken, PISTON_DRIVEN,
+    assert_one_line_failure, assert_success, assert_svg, number_after, parse_csv, rocking_four_bar,
+    root, tmm, tmm_in, Broken, PISTON_DRIVEN,
 };
 
 /// Every bundled description, as a path relative to the root.
@@ -1014,10 +1014,142 @@ fn long_runs_are_quiet_when_piped() {
     }
 }
 
-/// The five-bar robot with friction in every joint (f = 0.3 on pins of 5 cm), crank 1 driven
-/// by 1 mN·m from rest: the joints' friction holds it, and the run says that it stopped and
-/// why (its drive against the friction), with the energy balance of the rows it made, instead
-/// of printing fewer rows than asked. Without friction the same drive runs to the end.
+/// The five-bar robot (`linkages/five-bar-robot.json`) started from rest in its reference
+/// pose with friction circles of ρ in every hinge, crank 4 held and crank 1 moving the way
+/// `dir` says (±1): the Newton–Euler equations of crank 1 (pivot O, I = 0.02 kg·m²) and the
+/// couplers 2 (A–B) and 3 (C–B, the tool's −0.3 N·m on it), 0.6 kg and 0.009375 kg·m² each,
+/// with C fixed, written out here. Unknowns: the hinge forces R_O (frame on 1), R_A (1 on 2),
+/// R_B (2 on 3), R_C (4 on 3) and q̈₁; at rest every rate is q̇₁ times its ratio to it
+/// (ω₂/ω₁, ω₃/ω₁ of the four-bar O–A–B–C) and every acceleration q̈₁ times the same ratios
+/// (no velocity terms), so the nine equations are linear once each hinge's friction couple
+/// −ρ·|R|·sgn(ω_on − ω_by) is data: iterated from no friction to its fixed point. Crank 4
+/// (massless, I·0) is held: the couple on it of R_C's reaction at C and of C's friction,
+/// plus the motor `tau2`, must be carried by D's static friction, at most ρ·|R_D| = ρ·|R_C|.
+/// Returns (q̈₁, the couple that would turn crank 4 (along q̇₂), |R_D|).
+fn five_bar_crank_4_held(rho: f64, tau1: f64, tau2: f64, dir: f64) -> (f64, f64, f64) {
+    use tmm::nalgebra::{SMatrix, SVector, Vector2};
+    type V = Vector2<f64>;
+    let cross = |a: V, b: V| a.x * b.y - a.y * b.x;
+    let wx = |w: f64, r: V| V::new(-w * r.y, w * r.x);
+    let (o, a, b) = (
+        V::new(0.0, 0.0),
+        V::new(-0.075, 0.129_903_810_567_665_8),
+        V::new(0.1, 0.308_439_521_281_237_1),
+    );
+    let (c, d) = (V::new(0.275, 0.129_903_810_567_665_8), V::new(0.2, 0.0));
+    let (g2, g3) = (
+        V::new(0.0125, 0.219_171_665_924_451_45),
+        V::new(0.1875, 0.219_171_665_924_451_4),
+    );
+    let (m, j, j1, tool) = (0.6, 0.009_375, 0.02, -0.3);
+    // ω₂, ω₃ per unit ω₁: v_A + ω₂ × (B − A) = ω₃ × (B − C).
+    let (ba, bc, va) = (b - a, b - c, wx(1.0, a - o));
+    let k = SMatrix::<f64, 2, 2>::new(-ba.y, bc.y, ba.x, -bc.x)
+        .lu()
+        .solve(&(-va))
+        .expect("the four-bar O-A-B-C moves");
+    let (k2, k3) = (k.x, k.y);
+    let a2 = wx(1.0, a - o) + wx(k2, g2 - a);
+    let a3 = wx(k3, g3 - c);
+    let mut mat = SMatrix::<f64, 9, 9>::zeros();
+    let rows: [[f64; 9]; 9] = [
+        [1.0, 0.0, -1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0],
+        [0.0, 1.0, 0.0, -1.0, 0.0, 0.0, 0.0, 0.0, 0.0],
+        [0.0, 0.0, a.y, -a.x, 0.0, 0.0, 0.0, 0.0, -j1],
+        [0.0, 0.0, 1.0, 0.0, -1.0, 0.0, 0.0, 0.0, -m * a2.x],
+        [0.0, 0.0, 0.0, 1.0, 0.0, -1.0, 0.0, 0.0, -m * a2.y],
+        [
+            0.0,
+            0.0,
+            -(a - g2).y,
+            (a - g2).x,
+            (b - g2).y,
+            -(b - g2).x,
+            0.0,
+            0.0,
+            -j * k2,
+        ],
+        [0.0, 0.0, 0.0, 0.0, 1.0, 0.0, 1.0, 0.0, -m * a3.x],
+        [0.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0, 1.0, -m * a3.y],
+        [
+            0.0,
+            0.0,
+            0.0,
+            0.0,
+            -(b - g3).y,
+            (b - g3).x,
+            -(c - g3).y,
+            (c - g3).x,
+            -j * k3,
+        ],
+    ];
+    for (i, r) in rows.iter().enumerate() {
+        for (l, &v) in r.iter().enumerate() {
+            mat[(i, l)] = v;
+        }
+    }
+    let lu = mat.lu();
+    let sgn = |x: f64| {
+        if x > 0.0 {
+            1.0
+        } else if x < 0.0 {
+            -1.0
+        } else {
+            0.0
+        }
+    };
+    let mut x = SVector::<f64, 9>::zeros();
+    for _ in 0..200 {
+        let norm = |i: usize| V::new(x[2 * i], x[2 * i + 1]).norm();
+        // Each hinge's friction couple on its `on` link (O: 1 on the frame's; A: 2 on 1's;
+        // B: 3 on 2's; C: 3 on 4's, ω₄ = 0).
+        let (fo, fa) = (
+            -rho * norm(0) * sgn(dir),
+            -rho * norm(1) * sgn(dir * (k2 - 1.0)),
+        );
+        let (fb, fc) = (
+            -rho * norm(2) * sgn(dir * (k3 - k2)),
+            -rho * norm(3) * sgn(dir * k3),
+        );
+        let rhs = SVector::<f64, 9>::from_column_slice(&[
+            0.0,
+            0.0,
+            -(tau1 + fo - fa),
+            0.0,
+            0.0,
+            -(fa - fb),
+            0.0,
+            0.0,
+            -(tool + fb + fc),
+        ]);
+        let next = lu.solve(&rhs).expect("the equations of motion solve");
+        let done = (next - x).amax() <= 1e-15;
+        x = next;
+        if done {
+            break;
+        }
+    }
+    let r_c = V::new(x[6], x[7]);
+    let fc = -rho * r_c.norm() * sgn(dir * k3);
+    // On crank 4: −R_C at C, C's couple reversed, the motor.
+    let couple = cross(c - d, -r_c) - fc + tau2;
+    (x[8], couple, r_c.norm())
+}
+
+/// The five-bar robot with friction in every joint (f = 0.3 on pins of 5 cm, ρ = 15 mm),
+/// from rest in its reference pose. Crank 1 driven by 1 mN·m (the tool's −0.3 N·m on coupler
+/// 3 drives it the other way with 0.17 N·m): crank 1 turns back, and the friction in crank
+/// 4's pivot holds crank 4 for the whole run. By hand ([`five_bar_crank_4_held`]): with crank
+/// 4 held and crank 1 starting backwards, q̈₁ = −3.35 rad/s² (its sign the one assumed; the
+/// other assumption is inconsistent), and the couple that would turn crank 4 is 0.0110 N·m,
+/// within its pivot's 0.0163 N·m (without the joints' friction it would be 0.046 N·m against
+/// 0.018: the friction of the moving joints is what lets the pivot hold). The program must say
+/// which input is held, from when, to the end, with those two loads where the hold begins,
+/// and run to the end. A drive the friction holds at rest for good (motors 0.17 and −0.045
+/// N·m against the loads' 0.1734 and −0.0449 at rest) stops the run at t = 0, and says so.
+/// Without friction the first run goes to the end with nothing held. With pins of 2 cm and
+/// motors on both cranks, crank 1 stops while crank 2 still turns and is held from there on,
+/// its load within its pivot's friction at both ends of the hold.
 #[test]
 fn a_two_input_run_that_friction_stops_says_so() {
     let text = std::fs::read_to_string("../linkages/five-bar-robot.json")
@@ -1028,15 +1160,103 @@ fn a_two_input_run_that_friction_stops_says_so() {
         std::env::temp_dir().join(format!("tmm-cli-test-{}-fb-fric.json", std::process::id()));
     std::fs::write(&path, text).unwrap();
     let p = path.to_string_lossy().into_owned();
+    let rho = 0.3 * 0.05;
+    let (qdd1, couple, pressure) = five_bar_crank_4_held(rho, 0.001, 0.0, -1.0);
+    let limit = rho * pressure;
+    let (qdd1_up, _, _) = five_bar_crank_4_held(rho, 0.001, 0.0, 1.0);
+    println!(
+        "by hand: q̈₁ = {qdd1:.6} rad/s², crank 4's couple {couple:.6} N·m, limit {limit:.6} N·m"
+    );
+    assert!(
+        qdd1 < 0.0 && qdd1_up < 0.0,
+        "crank 1 goes backwards: {qdd1} {qdd1_up}"
+    );
+    assert!(couple.abs() < limit, "held by hand: {couple} vs {limit}");
+    let (_, free_couple, free_pressure) = five_bar_crank_4_held(0.0, 0.001, 0.0, -1.0);
+    assert!(
+        free_couple.abs() > rho * free_pressure,
+        "{free_couple} {free_pressure}"
+    );
     let r = tmm(&[
         "dynamics", &p, "--run", "0.5", "--motor", "0.001,0", "--motor2", "0,0",
     ]);
+    assert_success(&r, "a run with crank 4 held");
+    let line = r
+        .stdout
+        .lines()
+        .find(|l| l.starts_with("input 2 held at 60.000° by the friction in its own joint"))
+        .unwrap_or_else(|| panic!("{}", r.stdout));
+    assert!(
+        line.contains("from t = 0.0000 s to the end of the run"),
+        "{line}"
+    );
+    // Printed to 3 significant digits, at the first step (q̇₁ = 4·10⁻⁴ rad/s: its squares
+    // move the loads by far less).
+    let (drive, held) = (
+        number_after(line, "would move it, "),
+        number_after(line, "joint can hold, "),
+    );
+    assert!(
+        (drive - couple).abs() <= 6e-5,
+        "{drive} vs {couple}: {line}"
+    );
+    assert!((held - limit).abs() <= 6e-5, "{held} vs {limit}: {line}");
+    assert!(!r.stdout.contains("the run stopped"), "{}", r.stdout);
+    assert!(r.stdout.contains("for 0.5000 s"), "{}", r.stdout);
+    let rows = run_rows(&r.stdout);
+    assert!(rows.len() >= 10, "{}", r.stdout);
+    for row in &rows[1..] {
+        assert!(row[2] == 60.0 && row[4] == 0.0 && row[3] < 0.0, "{row:?}");
+    }
+    // The same in JSON: one hold, of input 2, from 0 to the end, with the loads by hand.
+    let r = tmm(&[
+        "dynamics", &p, "--run", "0.5", "--motor", "0.001,0", "--motor2", "0,0", "--format", "json",
+    ]);
+    assert_success(&r, "a run with crank 4 held, in JSON");
+    let v: serde_json::Value = serde_json::from_str(&r.stdout).unwrap();
+    let held = v["run"]["held"].as_array().expect("run.held");
+    assert_eq!(held.len(), 1, "{held:?}");
+    let h = &held[0];
+    assert_eq!(
+        (
+            h["input"].as_u64(),
+            h["released"].as_bool(),
+            h["from"].as_f64()
+        ),
+        (Some(2), Some(false), Some(0.0)),
+        "{h}"
+    );
+    assert!((h["until"].as_f64().unwrap() - 0.5).abs() <= 1e-12, "{h}");
+    let (d0, b0) = (
+        h["loads"]["drive"][0].as_f64().unwrap(),
+        h["loads"]["breakaway"][0].as_f64().unwrap(),
+    );
+    assert!(
+        (d0 - couple).abs() <= 1e-5 * limit && (b0 - limit).abs() <= 1e-5 * limit,
+        "{h}"
+    );
+    // The first printed row after the start (0.05 s): q̇₁/t is q̈₁ within 10⁻³ (the rates'
+    // squares, the change of the pose and the printed digits).
+    let (t1, w1) = (rows[1][0], rows[1][3]);
+    assert!(
+        (w1 / t1 - qdd1).abs() <= 1e-3 * qdd1.abs(),
+        "{w1} at {t1}: {qdd1}"
+    );
+    // Held for good: both inputs' drives within their friction at rest.
+    let r = tmm(&[
+        "dynamics", &p, "--run", "0.5", "--motor", "0.17,0", "--motor2", "-0.045,0",
+    ]);
     assert_success(&r, "a run stopped by friction");
     assert!(
-        r.stdout.contains("the run stopped") && r.stdout.contains("is below the resistance"),
+        r.stdout.contains("the run stopped: stopped at t = 0 s")
+            && r.stdout.contains("is below the resistance")
+            && r.stdout.contains("(0 steps"),
         "{}",
         r.stdout
     );
+    let drive = number_after(&r.stdout, "the driving load ");
+    let resistance = number_after(&r.stdout, "is below the resistance ");
+    assert!(drive < resistance, "{drive} vs {resistance}");
     let r = tmm(&[
         "dynamics",
         "five-bar-robot",
@@ -1049,9 +1269,10 @@ fn a_two_input_run_that_friction_stops_says_so() {
     ]);
     assert_success(&r, "a run without friction");
     assert!(!r.stdout.contains("the run stopped"), "{}", r.stdout);
+    assert!(!r.stdout.contains(" held at "), "{}", r.stdout);
     assert!(r.stdout.contains("for 0.5000 s"), "{}", r.stdout);
-    // One input held by its friction while the other still turns: the run ends there, and
-    // says that the other input is moving (its last row's rate), not that the machine rests.
+    // One input held by its friction while the other still turns: the run goes on with it
+    // held, and says from when and with which loads.
     let small =
         std::env::temp_dir().join(format!("tmm-cli-test-{}-fb-fric2.json", std::process::id()));
     let text = std::fs::read_to_string(&path).unwrap().replacen(
@@ -1072,27 +1293,47 @@ fn a_two_input_run_that_friction_stops_says_so() {
         "-0.1,0.05",
     ]);
     assert_success(&r, "a run with one input held");
-    let last_rate2 = r
+    let rows = run_rows(&r.stdout);
+    let last = rows.last().expect("rows");
+    assert!(
+        last[4].abs() > 1e-3 && last[3] == 0.0,
+        "{last:?}: {}",
+        r.stdout
+    );
+    let line = r
         .stdout
         .lines()
+        .find(|l| l.starts_with("input 1 held at "))
+        .unwrap_or_else(|| panic!("{}", r.stdout));
+    assert!(line.contains("to the end of the run"), "{line}");
+    let from = number_after(line, "from t = ");
+    assert!(from > 0.1 && from < 0.45, "{line}");
+    let drive = number_after(line, "would move it, ");
+    let held = number_after(line, "joint can hold, ");
+    assert!(drive.abs() < held, "{line}");
+    // Rows from the hold on: crank 1 where it stopped.
+    let q1 = rows
+        .iter()
+        .filter(|r| r[0] >= from)
+        .map(|r| r[1])
+        .collect::<Vec<_>>();
+    assert!(q1.len() >= 2 && q1.iter().all(|&v| v == q1[0]), "{q1:?}");
+    assert!(!r.stdout.contains("the run stopped"), "{}", r.stdout);
+    std::fs::remove_file(&small).ok();
+    std::fs::remove_file(&path).ok();
+}
+
+/// The rows of a two-input run's text: t, q₁, q₂, q̇₁, q̇₂, T.
+fn run_rows(out: &str) -> Vec<Vec<f64>> {
+    let run = &out[out.find("run from rest").expect("a run")..];
+    run.lines()
         .filter_map(|l| {
             let v: Vec<f64> = l
                 .split_whitespace()
                 .map(str::parse)
                 .collect::<Result<_, _>>()
                 .ok()?;
-            (v.len() >= 5).then(|| v[4])
+            (v.len() == 6).then_some(v)
         })
-        .next_back()
-        .expect("rows");
-    assert!(last_rate2.abs() > 1e-3, "{last_rate2}: {}", r.stdout);
-    assert!(
-        r.stdout.contains("the run stopped")
-            && r.stdout.contains("input 2 at")
-            && r.stdout.contains("still moving"),
-        "{}",
-        r.stdout
-    );
-    std::fs::remove_file(&small).ok();
-    std::fs::remove_file(&path).ok();
+        .collect()
 }

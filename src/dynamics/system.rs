@@ -516,6 +516,55 @@ pub trait LagrangeSystem {
         })
     }
 
+    /// The coordinate that switch `i` stops when its resistance holds it, where the run may
+    /// go on with that coordinate held at rest: `Some(k)` when σᵢ is coordinate k's rate
+    /// times a factor that does not vanish (σᵢ = cₖ(q)·q̇ₖ, an input's own bearing), so that
+    /// σᵢ = 0 is q̇ₖ = 0 and holding it is q̈ₖ = 0. Then where σᵢ reaches zero and the
+    /// resistance holds ([`SwitchLoads::holds`]) [`run`](super::run) sets q̇ₖ = 0 and goes on
+    /// with row k of the equations replaced by q̈ₖ = 0 ([`held_terms`](Self::held_terms)), its
+    /// generalized force a reaction, and releases the coordinate where the drive along σᵢ
+    /// ([`switch_loads`](Self::switch_loads), evaluated with the coordinate held) leaves the
+    /// breakaway loads: a kink located inside the step, after which the motion goes the
+    /// drive's way. A hold that leaves the whole machine at rest goes on only when the loads
+    /// change with time ([`forces_depend_on_time`](Self::forces_depend_on_time)); else the run
+    /// ends [`Outcome::Stuck`](super::Outcome::Stuck) there, as it does for a switch without
+    /// a coordinate. Default: `None` for every switch (a stick ends the run).
+    fn switch_holds(&self, i: usize) -> Option<usize> {
+        let _ = i;
+        None
+    }
+
+    /// The terms of the equations for the motion with the coordinates `held[k]` at rest
+    /// (q̇ₖ = 0 and q̈ₖ = 0): A, ∂A/∂q, ∇Π and B as [`terms`](Self::terms), and the applied
+    /// forces Q *of that motion*. The held coordinates' rows are replaced by q̈ₖ = 0 in the
+    /// run; the generalized force that holds coordinate k is the reaction
+    /// μₖ = (A·q̈ + c + ∇Π + B·q̇ − Q)ₖ. Forces that depend on the accelerations (a linkage's
+    /// joint friction, which the reactions carry) must be solved with q̈ₖ = 0 held here.
+    /// Default: [`terms`](Self::terms), right for forces that depend on (t, q, q̇) only.
+    ///
+    /// # Errors
+    /// As [`terms`](Self::terms).
+    fn held_terms(
+        &self,
+        t: f64,
+        q: &Vector2<f64>,
+        qd: &Vector2<f64>,
+        held: [bool; 2],
+    ) -> Result<LagrangeTerms> {
+        let _ = held;
+        self.terms(t, q, qd)
+    }
+
+    /// Whether the generalized forces at rest may change with time alone (a load or motor
+    /// law of t): then a machine that comes to a whole rest held by its resistances
+    /// ([`switch_holds`](Self::switch_holds)) is kept at rest and watched, and breaks away
+    /// where the drive first leaves the breakaway loads; else nothing changes at rest and the
+    /// run ends [`Outcome::Stuck`](super::Outcome::Stuck) (no chattering, bounded cost).
+    /// Default: `false`.
+    fn forces_depend_on_time(&self) -> bool {
+        false
+    }
+
     /// Extra outputs at a state, appended to `out` in the order of
     /// [`output_names`](Self::output_names).
     ///

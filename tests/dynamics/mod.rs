@@ -3,6 +3,7 @@
 
 mod breakpoints;
 mod five_bar_servo;
+mod held_rest;
 #[cfg(feature = "serde")] // it reads a bundled linkage
 mod kinks;
 #[cfg(feature = "serde")] // it reads a bundled linkage

@@ -6,7 +6,7 @@ use std::f64::consts::PI;
 
 use tmm::draw::{self, Diagram, Style};
 use tmm::dynamics::machines::LinearMotor;
-use tmm::dynamics::{run, LagrangeSystem as _, Outcome, Rk4, RunOptions, State};
+use tmm::dynamics::{run, LagrangeSystem, Outcome, Rk4, RunOptions, RunResult, State};
 use tmm::kinematics::{assembly_range, Motion};
 use tmm::linkage::dynamics::{LinkageSystem, Motor};
 use tmm::linkage::{Inputs, Output, TwoInputCourse, TwoInputShape, WorkspaceOptions};
@@ -18,7 +18,8 @@ use super::{failure, Machine};
 const MAX_RUN_STEPS: f64 = 1e6;
 use crate::budget;
 use crate::model::{
-    typed, DiagramKind, DynamicsRequest, Failure, MassRow, Range, TwoInputDynamics, TwoInputRun,
+    typed, DiagramKind, DynamicsRequest, Failure, HeldInput, HeldLoads, MassRow, Range,
+    TwoInputDynamics, TwoInputRun,
 };
 use tmm::nalgebra::Vector2;
 
@@ -487,7 +488,9 @@ impl Machine {
         })?;
         // A stop that holds for good ends the rows early: say so, not just print fewer rows.
         let stopped = match &r.outcome {
-            // One input held while the other still moves is where the run ends, not a rest.
+            // A resistance (on a link or a slide: it stops with both inputs' rates) held
+            // while an input still moves is where the run ends, not a rest. (An input held by
+            // its own joint's friction is not an end: the run goes on, see `held_inputs`.)
             Outcome::Stuck { t, loads, switch } => {
                 let moving: Vec<String> = (0..2)
                     .filter(|&k| r.last.qd[k] != 0.0)
@@ -498,7 +501,7 @@ impl Machine {
                 } else {
                     format!(
                         "{}; the run ends there (switch {switch} held), with {} still moving: \
-                         a motion with one input held is not modelled",
+                         a motion with that resistance held is not modelled",
                         loads.stalled(*t),
                         moving.join(" and ")
                     )
@@ -523,6 +526,7 @@ impl Machine {
             }
             _ => None,
         };
+        let held = held_inputs(&sys, &r);
         let tr = &r.trajectory;
         let (t, q, qd) = (tr.t(), tr.q(), tr.qd());
         let (kinetic, power, lost) = (tr.kinetic(), tr.power_applied(), tr.power_dissipated());
@@ -547,6 +551,70 @@ impl Machine {
             rows,
             work,
             stopped,
+            held,
         })
     }
+}
+
+/// The stretches of a two-input run where an input's own joint friction held it at rest
+/// while the other moved ([`LagrangeSystem::switch_holds`]): the run sets a held input's rate
+/// to an exact zero, so a hold is two or more rows running with that rate 0.0 (a start from
+/// rest has one such row for an input that breaks away). Each is weighed by the system's own
+/// [`LagrangeSystem::switch_loads`] (the load the held motion puts on the input against the
+/// friction its joint can hold) at the first and last of its rows where the other input
+/// moves; a hold whose other input never moves is left out (the run then ends stuck, and
+/// says so).
+fn held_inputs(sys: &LinkageSystem, r: &RunResult) -> Vec<HeldInput> {
+    let tr = &r.trajectory;
+    let (t, q, qd) = (tr.t(), tr.q(), tr.qd());
+    let n = t.len();
+    let mut held = Vec::new();
+    for i in 0..sys.switches() {
+        let Some(k) = sys.switch_holds(i).filter(|&k| k < 2) else {
+            continue;
+        };
+        let mut a = 0;
+        while a < n {
+            if qd[k][a] != 0.0 {
+                a += 1;
+                continue;
+            }
+            let mut b = a;
+            while b + 1 < n && qd[k][b + 1] == 0.0 {
+                b += 1;
+            }
+            let moving: Vec<usize> = (a..=b).filter(|&j| qd[1 - k][j] != 0.0).collect();
+            if let (true, Some(&first), Some(&last)) = (b > a, moving.first(), moving.last()) {
+                let weigh = |j: usize| {
+                    let (qj, qdj) = (
+                        Vector2::new(q[0][j], q[1][j]),
+                        Vector2::new(qd[0][j], qd[1][j]),
+                    );
+                    sys.switch_loads(i, t[j], &qj, &qdj)
+                };
+                // The run went through these rows, so their loads are there to weigh; should
+                // one fail, the hold is still reported, without them.
+                let loads = match (weigh(first), weigh(last)) {
+                    (Ok(l0), Ok(l1)) => Some(HeldLoads {
+                        weighed: [t[first], t[last]],
+                        drive: [l0.drive, l1.drive],
+                        breakaway: [l0.breakaway(), l1.breakaway()],
+                        unit: l0.unit,
+                    }),
+                    _ => None,
+                };
+                held.push(HeldInput {
+                    input: k + 1,
+                    at: q[k][a],
+                    from: t[a],
+                    until: t[b],
+                    released: b + 1 < n,
+                    loads,
+                });
+            }
+            a = b + 1;
+        }
+    }
+    held.sort_by(|x, y| x.from.total_cmp(&y.from));
+    held
 }

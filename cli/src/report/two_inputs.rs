@@ -3,7 +3,7 @@
 use std::fmt::Write as _;
 
 use super::{array, json_number, json_string, number, object};
-use crate::model::{MassRow, TwoInputDynamics, TwoInputRun};
+use crate::model::{HeldInput, MassRow, TwoInputDynamics, TwoInputRun};
 
 /// The units of A₁₁, A₁₂, A₂₂ and of Q₁, Q₂ for inputs of the units `u` ("rad" or "m").
 fn mass_units(u: [&str; 2]) -> ([&'static str; 3], [&'static str; 2]) {
@@ -114,6 +114,9 @@ fn run_text(o: &mut String, run: &TwoInputRun, units: [&str; 2]) {
         run.steps,
         run.evaluations
     );
+    for h in &run.held {
+        let _ = writeln!(o, "{}", held_text(h, units[h.input - 1]));
+    }
     if let Some(why) = &run.stopped {
         let _ = writeln!(o, "the run stopped: {why}");
     }
@@ -166,6 +169,48 @@ fn run_text(o: &mut String, run: &TwoInputRun, units: [&str; 2]) {
             number(r[5])
         );
     }
+}
+
+/// One input held by its joint's friction, as a sentence: which, where, from when until when
+/// (or to the end), and why: the load that would move it against the friction its joint can
+/// hold, where the hold begins and where it ends.
+fn held_text(h: &HeldInput, unit: &str) -> String {
+    let at = if unit == "rad" {
+        format!("{:.3}°", h.at.to_degrees())
+    } else {
+        format!("{} m", number(h.at))
+    };
+    let until = if h.released {
+        format!("until t = {} s, where it breaks away", number(h.until))
+    } else {
+        "to the end of the run".to_owned()
+    };
+    let why = h.loads.as_ref().map_or_else(
+        || " (its loads could not be weighed)".to_owned(),
+        |l| {
+            format!(
+                ": the load that would move it, {} {u} at t = {} s and {} {u} at t = {} s, is \
+                 within the friction its joint can hold, {} and {} {u}{}",
+                number(l.drive[0]),
+                number(l.weighed[0]),
+                number(l.drive[1]),
+                number(l.weighed[1]),
+                number(l.breakaway[0]),
+                number(l.breakaway[1]),
+                if h.released {
+                    " (it reaches it at the release)"
+                } else {
+                    ""
+                },
+                u = l.unit,
+            )
+        },
+    );
+    format!(
+        "input {} held at {at} by the friction in its own joint from t = {} s {until}{why}",
+        h.input,
+        number(h.from),
+    )
 }
 
 /// `tmm dynamics --csv` of a linkage with two inputs: one line per pair of the grid.
@@ -241,6 +286,33 @@ fn run_json(run: &TwoInputRun) -> String {
             run.stopped
                 .as_deref()
                 .map_or_else(|| "null".to_owned(), json_string),
+        ),
+        (
+            "held",
+            array(run.held.iter().map(|h| {
+                object(&[
+                    ("input", h.input.to_string()),
+                    ("at", json_number(h.at)),
+                    ("from", json_number(h.from)),
+                    ("until", json_number(h.until)),
+                    ("released", h.released.to_string()),
+                    (
+                        "loads",
+                        h.loads.as_ref().map_or_else(
+                            || "null".to_owned(),
+                            |l| {
+                                let pair = |v: [f64; 2]| array(v.map(json_number));
+                                object(&[
+                                    ("weighed", pair(l.weighed)),
+                                    ("drive", pair(l.drive)),
+                                    ("breakaway", pair(l.breakaway)),
+                                    ("unit", json_string(l.unit)),
+                                ])
+                            },
+                        ),
+                    ),
+                ])
+            })),
         ),
         ("t", column(0)),
         ("q1", column(1)),

@@ -6,8 +6,9 @@ use std::cell::{Cell, RefCell};
 
 use nalgebra::{Matrix2, Vector2};
 
+use super::held::{decoupled, excess, Hold, NOT_HELD};
 use crate::dynamics::switch::SwitchLoads;
-use crate::dynamics::system::{LagrangeSystem, LagrangeTerms};
+use crate::dynamics::system::{kink_slots, LagrangeSystem, LagrangeTerms};
 use crate::error::{Error, Result};
 
 /// The sign of `x` as −1, 0 or +1.
@@ -25,20 +26,50 @@ pub(super) fn sign(x: f64) -> f64 {
 /// system's own): where a state's switch speed has another sign, the system's force for that
 /// sign is replaced by the one for the mode ([`LagrangeSystem::switch_force`]). The run sets
 /// the modes before each step.
+///
+/// With `hold` (a system some of whose switches can hold a coordinate, see
+/// [`held`](super::held)), the coordinates it holds have their rows replaced by q̈ₖ = 0, and
+/// each holdable switch has a release argument after the system's switch speeds (its
+/// [`excess`] while it holds, [`NOT_HELD`] otherwise).
 pub(super) struct Frozen<'a, S: ?Sized> {
     sys: &'a S,
     modes: &'a [Cell<f64>],
     speeds: RefCell<Vec<f64>>,
+    hold: Option<&'a Hold>,
 }
 
 impl<'a, S: LagrangeSystem + ?Sized> Frozen<'a, S> {
-    /// `sys` with one mode for each of its switches.
-    pub(super) fn new(sys: &'a S, modes: &'a [Cell<f64>]) -> Self {
+    /// `sys` with one mode for each of its switches, and the coordinates `hold` holds.
+    pub(super) fn new(sys: &'a S, modes: &'a [Cell<f64>], hold: Option<&'a Hold>) -> Self {
         Self {
             sys,
             modes,
             speeds: RefCell::new(vec![0.0; modes.len()]),
+            hold,
         }
+    }
+
+    /// The coordinates held now (none without holds).
+    fn held_now(&self) -> Option<[bool; 2]> {
+        self.hold.map(Hold::held).filter(|h| h.iter().any(|&x| x))
+    }
+
+    /// One part of the terms as the held motion sees it: `part` of the terms made of the
+    /// system's `set` alone (the others zero), decoupled.
+    fn held_part<T>(
+        held: [bool; 2],
+        set: impl FnOnce(&mut LagrangeTerms),
+        part: impl FnOnce(LagrangeTerms) -> T,
+    ) -> T {
+        let mut t = LagrangeTerms {
+            inertia: Matrix2::identity(),
+            inertia_derivatives: [Matrix2::zeros(); 2],
+            forces: Vector2::zeros(),
+            potential_gradient: Vector2::zeros(),
+            damping: Matrix2::zeros(),
+        };
+        set(&mut t);
+        part(decoupled(t, held))
     }
 
     /// What to add to the system's forces at a state for the held directions.
@@ -70,12 +101,23 @@ impl<S: LagrangeSystem + ?Sized> LagrangeSystem for Frozen<'_, S> {
         self.sys.coordinate_names()
     }
     fn inertia(&self, q: &Vector2<f64>) -> Result<Matrix2<f64>> {
-        self.sys.inertia(q)
+        let a = self.sys.inertia(q)?;
+        Ok(match self.held_now() {
+            Some(h) => Self::held_part(h, |t| t.inertia = a, |t| t.inertia),
+            None => a,
+        })
     }
     fn inertia_derivatives(&self, q: &Vector2<f64>) -> Result<[Matrix2<f64>; 2]> {
-        self.sys.inertia_derivatives(q)
+        let d = self.sys.inertia_derivatives(q)?;
+        Ok(match self.held_now() {
+            Some(h) => Self::held_part(h, |t| t.inertia_derivatives = d, |t| t.inertia_derivatives),
+            None => d,
+        })
     }
     fn forces(&self, t: f64, q: &Vector2<f64>, qd: &Vector2<f64>) -> Result<Vector2<f64>> {
+        if self.held_now().is_some() {
+            return Ok(self.terms(t, q, qd)?.forces);
+        }
         let f = self.sys.forces(t, q, qd)?;
         Ok(match self.held(t, q, qd)? {
             Some(d) => f + d,
@@ -86,12 +128,27 @@ impl<S: LagrangeSystem + ?Sized> LagrangeSystem for Frozen<'_, S> {
         self.sys.potential(q)
     }
     fn potential_gradient(&self, q: &Vector2<f64>) -> Result<Vector2<f64>> {
-        self.sys.potential_gradient(q)
+        let g = self.sys.potential_gradient(q)?;
+        Ok(match self.held_now() {
+            Some(h) => Self::held_part(h, |t| t.potential_gradient = g, |t| t.potential_gradient),
+            None => g,
+        })
     }
     fn damping(&self, q: &Vector2<f64>) -> Result<Matrix2<f64>> {
-        self.sys.damping(q)
+        let b = self.sys.damping(q)?;
+        Ok(match self.held_now() {
+            Some(h) => Self::held_part(h, |t| t.damping = b, |t| t.damping),
+            None => b,
+        })
     }
     fn terms(&self, t: f64, q: &Vector2<f64>, qd: &Vector2<f64>) -> Result<LagrangeTerms> {
+        if let Some(h) = self.held_now() {
+            let mut terms = self.sys.held_terms(t, q, qd, h)?;
+            if let Some(d) = self.held(t, q, qd)? {
+                terms.forces += d;
+            }
+            return Ok(decoupled(terms, h));
+        }
         let mut terms = self.sys.terms(t, q, qd)?;
         if let Some(d) = self.held(t, q, qd)? {
             terms.forces += d;
@@ -116,8 +173,10 @@ impl<S: LagrangeSystem + ?Sized> LagrangeSystem for Frozen<'_, S> {
     ) -> Result<()> {
         self.sys.kink_arguments(t, q, qd, out)
     }
+    /// The system's switches, then one release argument per switch that can hold a
+    /// coordinate.
     fn switches(&self) -> usize {
-        self.sys.switches()
+        self.modes.len() + self.hold.map_or(0, |h| h.holdable.len())
     }
     fn switch_speeds(
         &self,
@@ -126,7 +185,30 @@ impl<S: LagrangeSystem + ?Sized> LagrangeSystem for Frozen<'_, S> {
         qd: &Vector2<f64>,
         out: &mut [f64],
     ) -> Result<()> {
-        self.sys.switch_speeds(t, q, qd, out)
+        let Some(hold) = self.hold else {
+            return self.sys.switch_speeds(t, q, qd, out);
+        };
+        kink_slots(out, self.switches())?;
+        let (speeds, releases) = out.split_at_mut(self.modes.len());
+        self.sys.switch_speeds(t, q, qd, speeds)?;
+        for (o, &(i, k)) in releases.iter_mut().zip(&hold.holdable) {
+            *o = if hold.holds(i, k) {
+                excess(&self.sys.switch_loads(i, t, q, qd)?.checked()?)
+            } else {
+                NOT_HELD
+            };
+        }
+        Ok(())
+    }
+    fn switch_holds(&self, i: usize) -> Option<usize> {
+        if i < self.modes.len() {
+            self.sys.switch_holds(i)
+        } else {
+            None
+        }
+    }
+    fn forces_depend_on_time(&self) -> bool {
+        self.sys.forces_depend_on_time()
     }
     fn switch_force(
         &self,

@@ -70,6 +70,9 @@ pub(super) struct Kinks {
     crossed: Vec<Node>,
     /// The nodes the last step landed on (the next step starts there: no crossing).
     on_kink: Vec<Node>,
+    /// Nodes crossed at the time of the earliest one located (within the time's rounding),
+    /// other than the one chosen to land on.
+    coincident: Vec<Node>,
 }
 
 impl Kinks {
@@ -88,6 +91,7 @@ impl Kinks {
             probe: vec![0.0; n],
             crossed: Vec::new(),
             on_kink: Vec::new(),
+            coincident: Vec::new(),
         }
     }
 
@@ -180,7 +184,7 @@ impl Kinks {
                         method,
                         opts,
                         (s, &end.s1),
-                        *evaluations,
+                        (*evaluations, t_tol),
                     )? {
                         Some(found) => found,
                         None => break, // not reached: `crossed` is not empty
@@ -189,6 +193,10 @@ impl Kinks {
             };
             *evaluations =
                 evaluations.saturating_add(resteps.saturating_mul(method.evaluations_per_step()));
+            // Nodes crossed at the same time as the one chosen (a switch speed that is also a
+            // kink argument's rate) are landed on with it: not located again, nor taken for a
+            // crossing at the start of the next step.
+            skip.append(&mut self.coincident);
             skip.push((k, i));
             let hk = hit.t - s.t;
             if hk <= t_tol {
@@ -262,6 +270,27 @@ impl Kinks {
                 None => lo = mid,
             }
         }
+        // Every crossing passed at `hi` but not at `lo` lies where `first` does (within 2⁻⁶⁰
+        // of the step): a switch among them is the one to land on (its zero is where the run
+        // weighs its loads), the others coincide with it.
+        kink_args(
+            sys,
+            &d.at(s.t + hi * (s1.t - s.t))?,
+            &mut self.probe,
+            self.n_args,
+        )?;
+        let together: Vec<Node> = self
+            .crossed
+            .iter()
+            .copied()
+            .filter(|&c| self.passed(&self.probe, c))
+            .collect();
+        if first.0 < self.n_args
+            && let Some(&switch) = together.iter().find(|c| c.0 >= self.n_args)
+        {
+            first = switch;
+        }
+        self.coincident = together.into_iter().filter(|&c| c != first).collect();
         let node = self.nodes[first.0][first.1];
         let (f0, f1) = (self.sigma[first.0] - node, self.sigma1[first.0] - node);
         let (probe, n_args) = (&mut self.probe, self.n_args);
@@ -281,17 +310,21 @@ impl Kinks {
     }
 
     /// Without an extension: each crossing of the step `s` → `s1` located by re-stepping,
-    /// the earliest kept (`evaluations` spent before). Returns the node, the located state and
-    /// the re-steps spent on all of them (`None` when nothing was crossed).
+    /// the earliest kept (`evaluations` spent before); of crossings located within `t_tol`
+    /// of each other a switch is kept (its zero is where the run weighs its loads: an input's
+    /// own joint friction has its rate as a kink argument and as a switch speed), the others
+    /// noted as coincident. Returns the node, the located state and the re-steps spent on all
+    /// of them (`None` when nothing was crossed).
     fn earliest_by_locating<S: LagrangeSystem + ?Sized, M: Stepper>(
         &mut self,
         sys: &S,
         method: &M,
         opts: &RunOptions,
         (s, s1): (&State, &State),
-        evaluations: usize,
+        (evaluations, t_tol): (usize, f64),
     ) -> Result<Option<(Node, State, usize)>> {
         let mut earliest: Option<(Node, State)> = None;
+        let mut hits: Vec<(Node, f64)> = Vec::with_capacity(self.crossed.len());
         let mut resteps: usize = 0;
         for &(k, i) in &self.crossed {
             let node = self.nodes[k][i];
@@ -313,9 +346,20 @@ impl Kinks {
                 },
             )?;
             resteps += n;
-            if earliest.is_none_or(|(_, e)| hit.t < e.t) {
+            hits.push(((k, i), hit.t));
+            let n_args = self.n_args;
+            if earliest.is_none_or(|(c, e)| {
+                hit.t < e.t - t_tol || (hit.t <= e.t + t_tol && k >= n_args && c.0 < n_args)
+            }) {
                 earliest = Some(((k, i), hit));
             }
+        }
+        if let Some((c, e)) = &earliest {
+            self.coincident = hits
+                .into_iter()
+                .filter(|&(h, t)| h != *c && (t - e.t).abs() <= t_tol)
+                .map(|(h, _)| h)
+                .collect();
         }
         Ok(earliest.map(|(c, hit)| (c, hit, resteps)))
     }

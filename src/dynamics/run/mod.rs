@@ -13,6 +13,7 @@
 
 mod dead_centre;
 mod frozen;
+mod held;
 mod kinks;
 mod lean;
 mod left_of;
@@ -36,6 +37,7 @@ use crate::error::Result;
 use std::cell::Cell;
 
 use frozen::Frozen;
+use held::Hold;
 use schedule::Schedule;
 use step_loop::Runner;
 
@@ -101,15 +103,20 @@ pub fn run<S: LagrangeSystem + ?Sized, M: Stepper>(
     opts: &RunOptions,
 ) -> Result<RunResult> {
     validate::check(sys, &start, opts)?;
-    let sched = Schedule::new(sys, method, start.t, opts)?;
     let switches = sys.switches();
     if switches == 0 {
+        let sched = Schedule::new(sys, method, start.t, opts)?;
         return Runner::start(sys, method, opts, start, sched, None)?.finish();
     }
-    // Each switch's resistance held in one direction through a step.
+    // Each switch's resistance held in one direction through a step; the coordinates its
+    // switches hold at rest, with their release arguments.
     let modes = vec![Cell::new(0.0); switches];
-    let held = Frozen::new(sys, &modes);
-    Runner::start(&held, method, opts, start, sched, Some(&modes))?.finish()
+    let hold = Hold::of(sys);
+    let held = Frozen::new(sys, &modes, hold.as_ref());
+    let sched = Schedule::new(&held, method, start.t, opts)?;
+    Runner::start(&held, method, opts, start, sched, Some(&modes))?
+        .holding(hold.as_ref())
+        .finish()
 }
 
 /// [`run`], also ending where coordinate `i`'s speed, moving in the direction `d` (±1; from
@@ -128,16 +135,19 @@ pub(crate) fn run_to_reversal<S: LagrangeSystem + ?Sized, M: Stepper>(
     (i, d): (usize, f64),
 ) -> Result<(RunResult, bool)> {
     validate::check(sys, &start, opts)?;
-    let sched = Schedule::new(sys, method, start.t, opts)?;
     let switches = sys.switches();
     if switches == 0 {
+        let sched = Schedule::new(sys, method, start.t, opts)?;
         return Runner::start(sys, method, opts, start, sched, None)?
             .ending_at_reversal((i, d))
             .finish_or_reversal();
     }
     let modes = vec![Cell::new(0.0); switches];
-    let held = Frozen::new(sys, &modes);
+    let hold = Hold::of(sys);
+    let held = Frozen::new(sys, &modes, hold.as_ref());
+    let sched = Schedule::new(&held, method, start.t, opts)?;
     Runner::start(&held, method, opts, start, sched, Some(&modes))?
+        .holding(hold.as_ref())
         .ending_at_reversal((i, d))
         .finish_or_reversal()
 }

@@ -12,6 +12,7 @@ use super::stop_conditions::{ReachWatch, ReversalWatch, SteadyWatch};
 use std::cell::Cell;
 
 use super::frozen::sign;
+use super::held::Hold;
 use crate::dynamics::stepper::{ContinuousExtension, Handover, Stepper};
 use crate::dynamics::switch::SwitchLoads;
 use crate::dynamics::system::{accelerations, LagrangeSystem, State};
@@ -20,6 +21,18 @@ use crate::error::Result;
 
 /// A jam: its time, the joint that self-locks and det(I − J) there.
 type Jam = (f64, usize, f64);
+
+/// What a landing on a switch's zero leads to.
+enum Landing {
+    /// The run ends there (stuck).
+    Ends(RunResult),
+    /// A coordinate is held from there: the state with its rate set to zero.
+    Held(State),
+    /// A held coordinate was released.
+    Released,
+    /// The motion goes on as it was (it breaks away, or nothing changed).
+    Goes,
+}
 
 /// A run under way: what it was given, its schedule and stop conditions, what it carries
 /// from step to step, and what it has recorded.
@@ -49,6 +62,9 @@ pub(super) struct Runner<'a, S: ?Sized, M> {
     reversed: bool,
     /// The step last asked of the method, s: where a dead centre met in it is looked for.
     tried: f64,
+    /// The coordinates held at rest by switches that can hold them (see
+    /// [`held`](super::held)), for a system with such switches.
+    hold: Option<&'a Hold>,
 }
 
 impl<'a, S: LagrangeSystem + ?Sized, M: Stepper> Runner<'a, S, M> {
@@ -102,7 +118,15 @@ impl<'a, S: LagrangeSystem + ?Sized, M: Stepper> Runner<'a, S, M> {
             reversal: None,
             reversed: false,
             tried: opts.h,
+            hold: None,
         })
+    }
+
+    /// The run holds coordinates at rest where `hold`'s switches stick (see
+    /// [`held`](super::held)).
+    pub(super) fn holding(mut self, hold: Option<&'a Hold>) -> Self {
+        self.hold = hold;
+        self
     }
 
     /// The run also ends where coordinate `i`'s speed, moving in the direction `d` (±1),
@@ -138,25 +162,64 @@ impl<'a, S: LagrangeSystem + ?Sized, M: Stepper> Runner<'a, S, M> {
         // A start exactly at switches (a whole rest stops every one): each weighed before
         // the first step. Those that break away are held the way they go; the run ends
         // stuck (at the first) only when every one holds, for then nothing moves.
-        let at_zero: Vec<usize> = self.sched.kinks.switches_at_zero().collect();
+        let n = self.modes.map_or(0, <[_]>::len);
+        let at_zero: Vec<usize> = self
+            .sched
+            .kinks
+            .switches_at_zero()
+            .filter(|&i| i < n)
+            .collect();
         let mut held = None;
         let mut holding = 0;
+        let mut holds: Vec<(usize, usize)> = Vec::new();
         for &i in &at_zero {
             if let Some(loads) = self.weigh(i, self.progress.s)? {
                 held.get_or_insert((i, loads));
                 holding += 1;
+                holds.extend(self.hold.and_then(|h| h.coordinate(i)).map(|k| (i, k)));
             }
         }
+        let s = self.progress.s;
+        // Every switch that holds holds a coordinate: they are held, unless that leaves the
+        // machine at a whole rest whose loads do not change with time.
+        let all = holding == at_zero.len() && holds.len() == holding;
+        let moving = (0..2).any(|k| s.qd[k] != 0.0 && !holds.iter().any(|h| h.1 == k));
+        let keep = !all || moving || self.sys.forces_depend_on_time();
         if let Some((switch, loads)) = held
             && holding == at_zero.len()
+            && !(all && keep)
         {
-            let s = self.progress.s;
             let outcome = Outcome::Stuck {
                 t: s.t,
                 switch,
                 loads,
             };
             return self.result(s, true, outcome);
+        }
+        // Those that hold while others break away are weighed again as the others start to
+        // move (their rates a vanishing amount the way they go): the joints those moves
+        // set sliding no longer hold with them.
+        let starting: Vec<(usize, usize, f64)> = at_zero
+            .iter()
+            .filter_map(|&i| {
+                let away = *self.breakaway.get(i)?;
+                let k = self.hold?.coordinate(i)?;
+                (away != 0.0).then_some((i, k, away))
+            })
+            .collect();
+        if !starting.is_empty() {
+            holds = self.still_holding(&s, &starting, holds)?;
+        }
+        if !holds.is_empty()
+            && let Some(hold) = self.hold
+        {
+            for &(i, k) in &holds {
+                hold.set(k, Some(i));
+            }
+            // The start's row and its accelerations were the free motion's.
+            self.held_changed(&s)?;
+            self.traj.truncate(0);
+            self.traj.push_with(self.sys, &s, &mut self.buf)?;
         }
         loop {
             match self.advance(&mut end) {
@@ -359,20 +422,143 @@ impl<'a, S: LagrangeSystem + ?Sized, M: Stepper> Runner<'a, S, M> {
         }
     }
 
-    /// The run's result when switch `i`'s resistance holds the motion at `s` (its speed
-    /// zero there; `recorded` when `s` is the trajectory's last row): [`Outcome::Stuck`].
-    /// Else the motion breaks away in the drive's direction, where the next step holds the
-    /// resistance.
-    fn stuck(&mut self, i: usize, s: State, recorded: bool) -> Result<Option<RunResult>> {
+    /// What happens where the step landed on switch `i`'s zero at `s`: a release argument
+    /// (after the system's switches) frees its coordinate, which breaks away in the drive's
+    /// direction. A switch of the system is weighed: where its resistance does not hold, the
+    /// motion breaks away in the drive's direction (the next step holds the resistance so);
+    /// where it holds and it can hold its coordinate, the coordinate is held at rest (its
+    /// rate set to an exact zero) unless that leaves a whole rest whose loads do not change
+    /// with time; otherwise the run ends [`Outcome::Stuck`] at `s`.
+    fn at_switch(&mut self, i: usize, s: State) -> Result<Landing> {
+        let n = self.modes.map_or(0, <[_]>::len);
+        if i >= n {
+            return match self.hold.and_then(|h| h.holdable.get(i - n).copied()) {
+                Some((switch, k)) => {
+                    self.release(switch, k, &s)?;
+                    Ok(Landing::Released)
+                }
+                None => Ok(Landing::Goes),
+            };
+        }
         let Some(loads) = self.weigh(i, s)? else {
-            return Ok(None);
+            return Ok(Landing::Goes);
         };
+        if let Some(hold) = self.hold
+            && let Some(k) = hold.coordinate(i)
+        {
+            let mut held = s;
+            held.qd[k] = 0.0;
+            let whole = held.qd == nalgebra::Vector2::zeros();
+            if !whole || self.sys.forces_depend_on_time() {
+                hold.set(k, Some(i));
+                self.held_changed(&held)?;
+                return Ok(Landing::Held(held));
+            }
+        }
         let outcome = Outcome::Stuck {
             t: s.t,
             switch: i,
             loads,
         };
-        self.result(s, recorded, outcome).map(Some)
+        self.result(s, false, outcome).map(Landing::Ends)
+    }
+
+    /// Frees coordinate `k`, held by `switch`, at `s`: it breaks away in the direction of
+    /// the drive along the switch (held so through the next step).
+    fn release(&mut self, switch: usize, k: usize, s: &State) -> Result<()> {
+        let Some(hold) = self.hold else {
+            return Ok(());
+        };
+        let loads = self.sys.switch_loads(switch, s.t, &s.q, &s.qd)?.checked()?;
+        hold.set(k, None);
+        let away = sign(loads.drive);
+        if let Some(a) = self.breakaway.get_mut(switch) {
+            *a = away;
+        }
+        // The other coordinates held, weighed again as this one starts to move.
+        let others: Vec<(usize, usize)> = hold
+            .holdable
+            .iter()
+            .copied()
+            .filter(|&(i, k)| hold.holds(i, k))
+            .collect();
+        if !others.is_empty() {
+            let keep = self.still_holding(s, &[(switch, k, away)], others.clone())?;
+            for (i, k) in others {
+                if !keep.contains(&(i, k)) {
+                    hold.set(k, None);
+                }
+            }
+        }
+        self.held_changed(s)
+    }
+
+    /// Of the switches `holds` that hold their coordinates at `s`, those that still hold
+    /// when the coordinates of `starting` (switch, coordinate, direction of its switch
+    /// speed) start to move: each weighed at `s` with those rates a vanishing amount
+    /// (10⁻²⁰⁰) the way they go, where the joints they set sliding have their friction. A
+    /// switch that no longer holds breaks away in its drive's direction there.
+    fn still_holding(
+        &mut self,
+        s: &State,
+        starting: &[(usize, usize, f64)],
+        holds: Vec<(usize, usize)>,
+    ) -> Result<Vec<(usize, usize)>> {
+        const TINY: f64 = 1e-200;
+        let mut nudged = *s;
+        let mut speeds = vec![0.0; self.sys.switches()];
+        for &(i, k, dir) in starting {
+            nudged.qd[k] = TINY;
+            speeds.fill(f64::NAN);
+            self.sys
+                .switch_speeds(s.t, &nudged.q, &nudged.qd, &mut speeds)?;
+            if sign(speeds.get(i).copied().unwrap_or(0.0)) != dir {
+                nudged.qd[k] = -TINY;
+            }
+        }
+        let mut keep = Vec::with_capacity(holds.len());
+        for (i, k) in holds {
+            let loads = self
+                .sys
+                .switch_loads(i, s.t, &nudged.q, &nudged.qd)?
+                .checked()?;
+            if loads.holds() {
+                keep.push((i, k));
+            } else if let Some(away) = self.breakaway.get_mut(i) {
+                *away = sign(loads.drive);
+            }
+        }
+        Ok(keep)
+    }
+
+    /// A held coordinate whose release argument is above zero at the step's end `s1`
+    /// without a crossing located (it started the step exactly on zero: a drive exactly at
+    /// the breakaway load when the hold began) is released there. Returns whether one was.
+    fn released_late(&mut self, s1: &State) -> Result<bool> {
+        let (Some(hold), Some(modes)) = (self.hold, self.modes) else {
+            return Ok(false);
+        };
+        let n = modes.len();
+        let late: Vec<(usize, usize)> = hold
+            .holdable
+            .iter()
+            .enumerate()
+            .filter(|&(r, &(i, k))| hold.holds(i, k) && self.sched.kinks.switch_speed(n + r) > 0.0)
+            .map(|(_, &h)| h)
+            .collect();
+        for &(i, k) in &late {
+            self.release(i, k, s1)?;
+        }
+        Ok(!late.is_empty())
+    }
+
+    /// After the held coordinates changed at `s`: the release arguments evaluated afresh
+    /// there, and the accelerations handed on (those of the other motion) dropped.
+    fn held_changed(&mut self, s: &State) -> Result<()> {
+        self.sched.kinks.start(self.sys, s)?;
+        self.progress.hand = Handover::default();
+        self.progress.row_handed = false;
+        Ok(())
     }
 
     /// Switch `i`'s loads at `s` (its speed zero there) when its resistance holds the
@@ -498,10 +684,27 @@ impl<'a, S: LagrangeSystem + ?Sized, M: Stepper> Runner<'a, S, M> {
                 .result(located, false, Outcome::Reached { t: located.t })
                 .map(Some);
         }
-        if let Some(i) = self.sched.kinks.landed_switch()
-            && let Some(result) = self.stuck(i, s1, false)?
-        {
-            return Ok(Some(result));
+        let mut s1 = s1;
+        // A hold or a release is recorded where it happens, on any method's grid.
+        let mut event = false;
+        if let Some(i) = self.sched.kinks.landed_switch() {
+            match self.at_switch(i, s1)? {
+                Landing::Ends(result) => return Ok(Some(result)),
+                Landing::Held(s_held) => {
+                    s1 = s_held;
+                    hand1 = Handover::default();
+                    event = true;
+                }
+                Landing::Released => {
+                    hand1 = Handover::default();
+                    event = true;
+                }
+                Landing::Goes => {}
+            }
+        }
+        if self.released_late(&s1)? {
+            hand1 = Handover::default();
+            event = true;
         }
         if let Some(back) = turned {
             // A motion that stuck at a switch landed on has not turned back (weighed above).
@@ -522,7 +725,7 @@ impl<'a, S: LagrangeSystem + ?Sized, M: Stepper> Runner<'a, S, M> {
             }
         }
         let mut recorded = false;
-        if at_end || on_grid_record {
+        if at_end || on_grid_record || (event && self.traj.t().last() != Some(&s1.t)) {
             // One row stays free for the end.
             p.row_handed = record_end(
                 sys,

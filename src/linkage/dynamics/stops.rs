@@ -35,18 +35,25 @@
 //! (q̇ = 0) every joint the input moves starts with it, and L± is their friction reduced to
 //! the input at the static reactions, as for one input. The machine sticks when
 //! −L₋ ≤ drive ≤ L₊ (drive = −μ/cₖ, along σ); else it breaks away with q̇ₖ of the drive's
-//! sign. The other joints' reversals are located as kinks. A machine at a whole rest is
+//! sign. Where it sticks while the other input moves, the run goes on with input k held
+//! (q̇ₖ = 0, q̈ₖ = 0, this switch's coordinate: [`LagrangeSystem::switch_holds`]; the held
+//! motion's terms, the other joints' friction solved with q̈ₖ = 0, are
+//! [`LagrangeSystem::held_terms`]) and releases it where the drive reaches ±L, a located
+//! event. The other joints' reversals are located as kinks. A machine at a whole rest is
 //! weighed at every such switch, each with the other input left free: it stays at rest (the
-//! run ends stuck) when every one holds; else those that break away go their drive's way and
-//! the motion goes on (an input whose friction holds it starts without friction, its rate
-//! zero).
+//! run ends stuck: its loads do not change with time) when every one holds; else those that
+//! break away go their drive's way and the motion goes on, an input whose friction holds it
+//! held, weighed again as the others start to move (their rates a vanishing amount their
+//! way, so that the joints they set sliding have their friction).
 
 use nalgebra::Vector2;
 
 use super::friction::{has_friction, FRICTION_BUDGET, FRICTION_TOLERANCE};
 use super::system::LinkageSystem;
 use super::transfer::Transfer;
-use crate::dynamics::{accelerations, christoffel_terms, kink_slots, LagrangeSystem, SwitchLoads};
+use crate::dynamics::{
+    accelerations, christoffel_terms, kink_slots, LagrangeSystem, LagrangeTerms, SwitchLoads,
+};
 use crate::error::{computed, Error, Result};
 use crate::linkage::plan::{InputPlan, LoadPlan};
 
@@ -392,56 +399,17 @@ impl LinkageSystem {
         qd: &Vector2<f64>,
     ) -> Result<SwitchLoads> {
         const TINY: f64 = 1e-200;
-        let singular = |value: f64| Error::Singular {
-            what: "an input joint's friction at its stop",
-            measure: "the input's diagonal of A⁻¹ (its mobility)",
-            value,
-        };
         let ck = r.c[k];
-        let mut rest = *qd;
-        rest[k] = 0.0;
-        let a = self.inertia(q)?.cholesky().ok_or_else(|| singular(0.0))?;
-        let e = if k == 0 { Vector2::x() } else { Vector2::y() };
-        let a_inv_e = a.solve(&e);
-        let mobility = a_inv_e[k];
-        if !(mobility > 0.0 && mobility.is_finite() && ck != 0.0) {
-            return Err(singular(mobility));
-        }
-        // The fixed point q̈ = P(q̈) + μ·A⁻¹·eₖ, P = A⁻¹·(b + Q_f(q̈)), μ such that q̈ₖ = 0
-        // (μ along eₖ: the held force μ·c/cₖ).
-        let (mut qdd, mut mu, mut scale) = (Vector2::zeros(), 0.0, None);
-        let mut converged = false;
-        for _ in 0..FRICTION_BUDGET {
-            let terms = self.evaluate(q, &rest, true, None, Some(&qdd))?;
-            let b = terms.forces()
-                - christoffel_terms(&terms.inertia_derivatives, &rest)?
-                - terms.damping * rest;
-            let p = a.solve(&b);
-            mu = -p[k] / mobility;
-            let mut next = p + a_inv_e * mu;
-            next[k] = 0.0;
-            let step = (next - qdd).norm();
-            let s = *scale.get_or_insert(next.norm() + step);
-            qdd = next;
-            if step <= FRICTION_TOLERANCE * s {
-                converged = true;
-                break;
-            }
-        }
-        if !converged {
-            return Err(Error::In {
-                part: format!(
-                    "an input joint's friction at its stop at q = ({}, {}): the held motion \
-                     not found",
-                    q[0], q[1]
-                ),
-                source: Box::new(Error::Budget {
-                    what: "friction evaluation",
-                    limit: FRICTION_BUDGET,
-                    time: t,
-                }),
+        if ck == 0.0 {
+            return Err(Error::Singular {
+                what: "an input joint's friction at its stop",
+                measure: "the input joint's rate per unit input rate",
+                value: ck,
             });
         }
+        let mut rest = *qd;
+        rest[k] = 0.0;
+        let (qdd, mu) = self.held_motion(k, t, q, qd)?;
         // The friction that sets in with σ = ±10⁻²⁰⁰ at the held motion: the joints that
         // were moving keep their friction, those whose rate vanishes with σ (the input's own
         // joint; at a whole rest, every joint the input moves) add theirs, along σ.
@@ -460,6 +428,124 @@ impl LinkageSystem {
             drive: computed("drive along an input joint with friction", -mu / ck)?,
             forward,
             backward,
+        })
+    }
+}
+
+impl LinkageSystem {
+    /// The motion with input `k` held at rest (q̇ₖ taken as 0, q̈ₖ = 0) at the state
+    /// (t, q, q̇), the other input free: its accelerations and the generalized force μ along
+    /// eₖ that holds input k. A·q̈ = b + Q_f(q̈) + μ·eₖ with b = Q − Γ − B·q̇ at q̇ₖ = 0, and
+    /// the other joints' friction Q_f depends on the reactions and so on q̈: the pair is the
+    /// fixed point q̈ = A⁻¹·(b + Q_f(q̈)) + μ·A⁻¹·eₖ, μ = −[A⁻¹·(b + Q_f)]ₖ / (A⁻¹)ₖₖ (the
+    /// multiple of A⁻¹·eₖ that cancels q̈ₖ), iterated to
+    /// [`FRICTION_TOLERANCE`](super::FRICTION_TOLERANCE) of the accelerations.
+    ///
+    /// # Errors
+    /// [`Error::Singular`] when A is not positive-definite; [`Error::Budget`] (within
+    /// [`Error::In`]) when the held motion is not found within
+    /// [`FRICTION_BUDGET`](super::FRICTION_BUDGET) evaluations; the friction statics' and
+    /// the terms' errors.
+    pub(super) fn held_motion(
+        &self,
+        k: usize,
+        t: f64,
+        q: &Vector2<f64>,
+        qd: &Vector2<f64>,
+    ) -> Result<(Vector2<f64>, f64)> {
+        let singular = |value: f64| Error::Singular {
+            what: "an input joint's friction at its stop",
+            measure: "the input's diagonal of A⁻¹ (its mobility)",
+            value,
+        };
+        let mut rest = *qd;
+        rest[k] = 0.0;
+        let a = self.inertia(q)?.cholesky().ok_or_else(|| singular(0.0))?;
+        let e = if k == 0 { Vector2::x() } else { Vector2::y() };
+        let a_inv_e = a.solve(&e);
+        let mobility = a_inv_e[k];
+        if !(mobility > 0.0 && mobility.is_finite()) {
+            return Err(singular(mobility));
+        }
+        let (mut qdd, mut scale) = (Vector2::zeros(), None);
+        for _ in 0..FRICTION_BUDGET {
+            let terms = self.evaluate(q, &rest, true, None, Some(&qdd))?;
+            let b = terms.forces()
+                - christoffel_terms(&terms.inertia_derivatives, &rest)?
+                - terms.damping * rest;
+            let p = a.solve(&b);
+            let mu = -p[k] / mobility;
+            let mut next = p + a_inv_e * mu;
+            next[k] = 0.0;
+            let step = (next - qdd).norm();
+            let s = *scale.get_or_insert(next.norm() + step);
+            qdd = next;
+            if step <= FRICTION_TOLERANCE * s {
+                return Ok((qdd, mu));
+            }
+        }
+        Err(Error::In {
+            part: format!(
+                "an input joint's friction at its stop at q = ({}, {}): the held motion \
+                 not found",
+                q[0], q[1]
+            ),
+            source: Box::new(Error::Budget {
+                what: "friction evaluation",
+                limit: FRICTION_BUDGET,
+                time: t,
+            }),
+        })
+    }
+
+    /// The coordinate switch `i` holds ([`LagrangeSystem::switch_holds`]): with one input
+    /// its one switch, the input's rate; with two, the switch of an input's own joint
+    /// friction (its rate is cₖ·q̇ₖ). A resistance on a link or a slide moves with both
+    /// inputs: none.
+    pub(super) fn input_switch_holds(&self, i: usize) -> Option<usize> {
+        if i >= self.input_switches() {
+            return None;
+        }
+        if self.dof() == 1 {
+            return Some(0);
+        }
+        let n = self.resistances().count();
+        i.checked_sub(n)
+            .and_then(|h| self.held_inputs().nth(h))
+            .map(|(k, _, _)| k)
+    }
+
+    /// The terms of the motion with the inputs `held` at rest
+    /// ([`LagrangeSystem::held_terms`]): with one input of two held and joint friction, the
+    /// friction of the held motion ([`held_motion`](Self::held_motion)); otherwise the terms
+    /// at the state (a whole rest has no friction).
+    pub(super) fn input_held_terms(
+        &self,
+        t: f64,
+        q: &Vector2<f64>,
+        qd: &Vector2<f64>,
+        held: [bool; 2],
+    ) -> Result<LagrangeTerms> {
+        let one = match held {
+            [true, false] => Some(0),
+            [false, true] => Some(1),
+            _ => None,
+        };
+        let all = match one {
+            Some(k) if self.dof() == 2 && self.has_joint_friction() => {
+                let (qdd, _) = self.held_motion(k, t, q, qd)?;
+                let mut rest = *qd;
+                rest[k] = 0.0;
+                self.evaluate(q, &rest, true, Some(t), Some(&qdd))?
+            }
+            _ => return self.terms(t, q, qd),
+        };
+        Ok(LagrangeTerms {
+            inertia: all.inertia,
+            inertia_derivatives: all.inertia_derivatives,
+            forces: all.forces(),
+            potential_gradient: Vector2::zeros(),
+            damping: all.damping,
         })
     }
 }

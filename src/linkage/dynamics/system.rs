@@ -676,6 +676,32 @@ impl LagrangeSystem for LinkageSystem {
         self.input_switch_force(i, t, q, qd, direction)
     }
 
+    /// With one input its one switch holds the input; with two, an input's own joint
+    /// friction holds that input (see the module `stops`).
+    fn switch_holds(&self, i: usize) -> Option<usize> {
+        self.input_switch_holds(i)
+    }
+
+    /// No: a described linkage's loads are constant and its motors laws of (q, q̇)
+    /// ([`Motor`](super::Motor)), so a whole rest its friction holds is held for good (the
+    /// run ends [`Outcome::Stuck`](crate::dynamics::Outcome::Stuck)). A rest that breaks away
+    /// later under a load changing with time needs a system of one's own whose forces depend
+    /// on t (`tests/dynamics/held_rest.rs`).
+    fn forces_depend_on_time(&self) -> bool {
+        false
+    }
+
+    /// The terms with the inputs `held` at rest: the joints' friction of the held motion.
+    fn held_terms(
+        &self,
+        t: f64,
+        q: &Vector2<f64>,
+        qd: &Vector2<f64>,
+        held: [bool; 2],
+    ) -> Result<LagrangeTerms> {
+        self.input_held_terms(t, q, qd, held)
+    }
+
     /// With one input, the drive on the input at rest and the resistances reduced to it;
     /// with two, the load that drives a resisted rate and the resistance.
     fn switch_loads(
