@@ -371,7 +371,8 @@ fn track(
         let zn = z * C::new(1.0, step.z);
         let (gn, legs_n) = e.legs(on, zn);
         // (NaN is no improvement.)
-        if !(gn.amax() < g.amax()) {
+        let better = gn.amax() < g.amax();
+        if !better {
             break;
         }
         (o, z, g, legs, k) = (on, zn, gn, legs_n, legs_n.matrix());
