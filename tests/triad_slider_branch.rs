@@ -76,6 +76,25 @@ fn velocity_rows(c: &Case, b: &[Point2<f64>; 3]) -> Matrix3<f64> {
     )
 }
 
+/// σ, the least singular value of K′ = K·diag(1, 1, 1/L_T) at a pose (L_T the ternary
+/// link's size: the root-mean-square distance of its joints from their centroid), the
+/// velocity system with dimensionless columns whose null direction is the fold's.
+fn least_singular(c: &Case, pose: &TriadPose) -> f64 {
+    let b = pose.b;
+    let centroid = (b[0].coords + b[1].coords + b[2].coords) / 3.0;
+    let lt = (b
+        .iter()
+        .map(|p| (p.coords - centroid).norm_squared())
+        .sum::<f64>()
+        / 3.0)
+        .sqrt();
+    let mut k = velocity_rows(c, &b);
+    for i in 0..3 {
+        k[(i, 2)] /= lt;
+    }
+    k.singular_values().min()
+}
+
 /// The group moved `eps`·size across the branch set: each leg's closure changed by
 /// eps·s·m_i, m the self-stress of the legs at the branch pose (K's left null vector, the
 /// branch set's normal in the space of the closures) — a hinged leg's outer joint moved back
@@ -158,8 +177,11 @@ struct Seen {
     worst_v: f64,
     worst_a: f64,
     worst_ratio: f64,
-    /// Modes whose differences missed the allowance (within twice it).
-    over_allowance: usize,
+    /// The largest errors of the differences over the fold's noise model ε·s/(σ·D_pair)
+    /// (velocities, accelerations), and the least σ seen.
+    worst_noise_v: f64,
+    worst_noise_a: f64,
+    least_sigma: f64,
 }
 
 /// Over seeded groups of each kind built at a branch point: the mode at the constructed pose
@@ -179,6 +201,7 @@ fn slider_triads_at_and_near_a_branch_point() {
         let mut loads_rng = Rng(0x10AD_5128);
         let mut seen = Seen {
             least_det: f64::INFINITY,
+            least_sigma: f64::INFINITY,
             ..Seen::default()
         };
         while seen.cases < n {
@@ -193,9 +216,10 @@ fn slider_triads_at_and_near_a_branch_point() {
             "triad with a sliding pair ({kind}) at a branch point: {} cases, branch pose \
              found to {:.1e} of the size, rates Singular in {} and reactions in {} (distance \
              from a branch point ≤ {:.1}·ε); 1e-8 off it: {} not a simple fold along the \
-             move, {} counts off the scan; {} modes with |det| ≥ {:.1e} keep their rates, \
-             against differences to {:.1e} (velocities), {:.1e} (accelerations), at most {:.2} \
-             of the allowance",
+             move, {} counts off the scan; {} modes with |det| ≥ {:.1e} (σ ≥ {:.1e}) keep \
+             their rates, against differences to {:.1e} (velocities), {:.1e} \
+             (accelerations), at most {:.2} of the allowance; the largest errors over the \
+             fold's noise ε·s/(σ·D_pair): {:.1} (velocities), {:.1} (accelerations)",
             seen.cases,
             seen.worst_off,
             seen.singular,
@@ -205,9 +229,12 @@ fn slider_triads_at_and_near_a_branch_point() {
             seen.off_scan,
             seen.checked,
             seen.least_det,
+            seen.least_sigma,
             seen.worst_v,
             seen.worst_a,
-            seen.worst_ratio
+            seen.worst_ratio,
+            seen.worst_noise_v,
+            seen.worst_noise_a,
         );
         assert_eq!(
             seen.singular, seen.cases,
@@ -228,12 +255,6 @@ fn slider_triads_at_and_near_a_branch_point() {
             seen.cases
         );
         assert!(seen.checked >= seen.cases, "{} modes checked", seen.checked);
-        assert!(
-            seen.over_allowance * 100 <= seen.checked,
-            "{} of {} modes off the differences beyond the allowance",
-            seen.over_allowance,
-            seen.checked
-        );
     }
 }
 
@@ -369,14 +390,34 @@ fn one_branch_case(
             }
             (ev / vs, ea / as_)
         };
+        // The sliding triad's own allowance, from the fold's normal form at `base` (σ the
+        // least singular value of K′ = K·diag(1, 1, 1/L_T), its right singular vector n the
+        // direction along which the pair of modes lies, D_pair apart). The solver leaves each
+        // sample's closures at their rounding floor ρ ≤ 4ε·s (a few roundings of terms of
+        // size s), so its pose is off by δ ≤ ρ/σ along n. The eighth-order stencil
+        // (Σ|c_k| = 2.08) turns δ into 2.08·δ/h in a derivative, and h·v_max = 1e-2·D_pair,
+        // so the velocities are off the differences by ≤ 208·ρ/(σ·D_pair) of v_max:
+        // N = 832·ε·s/(σ·D_pair). The accelerations difference the solver's velocities, each
+        // off by its pose's error, δ·|∂v/∂x| ≈ δ·q·|v|/σ (q the fold's curvature), while
+        // near the fold |a| ≈ q·|v|²/σ: relative to |a|, the same N. The rates at `base`
+        // carry their own ε·s·q/σ² = ε/(2η) ≈ 1.1e-8 per ε·s of ρ (η = 1e-8, the data's
+        // distance from the branch set; [`SINGULAR_BRANCH`]'s derivation): 4.4e-8.
+        // Allowance 4.4e-8 + N, every mode held to it. The revolute triad's
+        // 1e-8 + 1e4·ε/det² reads σ from det = det K/L_T, which for the inner slide (its row
+        // (n, (A1 − O) × n/L_T) long when A1 is far from O) overstates σ by the other two
+        // singular values' product: the inner cases 106, 192, 232 and 757 exceeded it at
+        // 10⁴, by up to 1.5 times (2.5 for case 232 once the fast path's Newton steps on F
+        // changed its samples' rounding).
+        let sigma = least_singular(side, base);
+        let noise = f64::EPSILON * s / (sigma * apart);
+        let tol = 4.4e-8 + 832.0 * noise;
+        let (mut rv, mut ra) = off(h0);
         // So close to a fold the difference step is a compromise between the stencil's
         // truncation (the pose curves sharply over a step of 1e-2 of the pair's distance)
         // and rounding: where the first step misses, it is redone at a tenth and a
-        // hundredth, and the best of them is held to the allowance (session 8: inner case
-        // 106 was 1.17 of it at the first step).
-        let (mut rv, mut ra) = off(h0);
+        // hundredth, and the best of them is held to the allowance.
         for shrink in [0.1, 0.01] {
-            if rv.max(ra) <= 1e-8 + 1e4 * f64::EPSILON / (base.det * base.det) {
+            if rv.max(ra) <= tol {
                 break;
             }
             let (v, a) = off(h0 * shrink);
@@ -384,26 +425,15 @@ fn one_branch_case(
                 (rv, ra) = (v, a);
             }
         }
-        let tol = 1e-8 + 1e4 * f64::EPSILON / (base.det * base.det);
-        // The allowance was derived for the revolute triad; the inner sliding triad exceeds
-        // it at 10⁴ (inner case 106: 1.17 of it at |det| 3.9e-3, the differences no better
-        // at smaller steps; cases 192, 232, 757 within 1.5 of it): such modes are printed,
-        // counted and bounded (1 in 100, and never beyond twice the allowance), the rest held
-        // to it. The inner kind's own allowance is still to be derived.
         assert!(
-            rv <= 2.0 * tol && ra <= 2.0 * tol,
-            "case {case}: 1e-8 off a branch point (|det| {:e}) the rates are off the \
-             differences by {rv:e} (velocities), {ra:e} (accelerations), allowed {tol:e}",
+            rv <= tol && ra <= tol,
+            "case {case}: 1e-8 off a branch point (|det| {:e}, σ {sigma:e}) the rates are off \
+             the differences by {rv:e} (velocities), {ra:e} (accelerations), allowed {tol:e}",
             base.det
         );
-        if rv > tol || ra > tol {
-            println!(
-                "case {case}: 1e-8 off a branch point (|det| {:e}) the rates are off the \
-                 differences by {rv:e} (velocities), {ra:e} (accelerations), allowed {tol:e}",
-                base.det
-            );
-            seen.over_allowance += 1;
-        }
+        seen.worst_noise_v = seen.worst_noise_v.max(rv / noise);
+        seen.worst_noise_a = seen.worst_noise_a.max(ra / noise);
+        seen.least_sigma = seen.least_sigma.min(sigma);
         seen.worst_ratio = seen.worst_ratio.max(rv.max(ra) / tol);
         seen.worst_v = seen.worst_v.max(rv);
         seen.worst_a = seen.worst_a.max(ra);

@@ -160,13 +160,20 @@ impl Legs {
     /// σ ≤ ‖K′‖_F.
     #[inline]
     pub fn surely_regular(&self, k: &Matrix3<f64>, mu: f64) -> bool {
+        self.surely_regular_arms(k, mu, self.r.map(|r| r.norm()))
+    }
+
+    /// [`surely_regular`](Self::surely_regular) with the arms' lengths |r_i| given (a fast
+    /// path knows them from the dimensions).
+    #[inline]
+    pub fn surely_regular_arms(&self, k: &Matrix3<f64>, mu: f64, arms: [f64; 3]) -> bool {
         let il2 = 1.0 / (self.lt * self.lt);
         let mut f2 = (k[(0, 2)] * k[(0, 2)] + k[(1, 2)] * k[(1, 2)] + k[(2, 2)] * k[(2, 2)]) * il2;
         for i in 0..3 {
             f2 += k[(i, 0)] * k[(i, 0)] + k[(i, 1)] * k[(i, 1)];
         }
         let sigma = 2.0 * mu.abs() / f2;
-        let (bound, size) = self.curvature_bound_and_size(self.r.map(|r| r.norm()));
+        let (bound, size) = self.curvature_bound_and_size(arms);
         sigma * sigma > 2.0 * SINGULAR_BRANCH * bound * (1.0 + f2.sqrt()) * size
     }
 

@@ -416,11 +416,21 @@ fn track(a: [Point2<f64>; 3], dims: &TriadDims, previous: &TriadPose) -> Option<
     let root = e.cubic.tangent_root(z0)?;
     let z = root.z;
     let (wz, dz) = e.w_d(z);
-    if dz.is_nan() || dz.abs() <= 1e-3 * e.dscale {
-        return None;
-    }
-    let pc = C::new(0.0, 1.0) * wz / dz;
-    let b1 = e.a1 + Vector2::new(pc.re, pc.im);
+    let b1 = if dz.abs() > 1e-3 * e.dscale {
+        let pc = C::new(0.0, 1.0) * wz / dz;
+        e.a1 + Vector2::new(pc.re, pc.im)
+    } else {
+        // The radical axes nearly parallel (the circles' centres nearly collinear): B1 from
+        // two of the circles, the intersection nearer the previous B1 (the closures and the
+        // certificate below decide whether it is the mode).
+        let [p, q] = e.two_circles(z)?;
+        let back = previous.b[0] - e.a1;
+        e.a1 + if (p - back).norm_squared() <= (q - back).norm_squared() {
+            p
+        } else {
+            q
+        }
+    };
     let b = e.joints(b1, z);
     let leg = [b[0] - a[0], b[1] - a[1], b[2] - a[2]];
     let len = [leg[0].norm(), leg[1].norm(), leg[2].norm()];
@@ -447,7 +457,7 @@ fn track(a: [Point2<f64>; 3], dims: &TriadDims, previous: &TriadPose) -> Option<
     let moved = (b[0] - previous.b[0]).norm_squared()
         + (b[1] - previous.b[1]).norm_squared()
         + (b[2] - previous.b[2]).norm_squared();
-    let certified = e.cubic.certifies(&root, z0, moved, dims.ternary_moment());
+    let certified = e.cubic.certifies(&root, moved, dims.ternary_moment());
     certified.then_some(Tracked { z, b, leg, len })
 }
 
@@ -525,11 +535,18 @@ fn rates_fast(a: &[PointMotion; 3], dims: &TriadDims, t: &Tracked) -> Option<Fas
         perp(u[1]).dot(&(ab[1] - a[1].a)) * i_len[1],
         perp(u[2]).dot(&(ab[2] - a[2].a)) * i_len[2],
     ];
+    // The inputs' rates need no test of their own: K⁻¹ has no zero column, so a non-finite
+    // component of a velocity or an acceleration of A_i makes the solved vector non-finite
+    // (and ω_i, ε_i, which read it directly). The arms' lengths are the ternary link's.
+    let arms = [
+        0.0,
+        dims.l_b1b2,
+        (dims.b3_along * dims.b3_along + dims.b3_across * dims.b3_across).sqrt(),
+    ];
     let ok = super::rrr::all_finite([
-        a[0].v.x, a[0].v.y, a[1].v.x, a[1].v.y, a[2].v.x, a[2].v.y, a[0].a.x, a[0].a.y, a[1].a.x,
-        a[1].a.y, a[2].a.x, a[2].a.y, vel.x, vel.y, vel.z, acc.x, acc.y, acc.z, omega[0], omega[1],
-        omega[2], eps[0], eps[1], eps[2], det,
-    ]) && hinged_legs(u, r, t.len, lt).surely_regular(&k, det);
+        vel.x, vel.y, vel.z, acc.x, acc.y, acc.z, omega[0], omega[1], omega[2], eps[0], eps[1],
+        eps[2], det,
+    ]) && hinged_legs(u, r, t.len, lt).surely_regular_arms(&k, det, arms);
     ok.then_some(FastRates {
         v1,
         omega_t,

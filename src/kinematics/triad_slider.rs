@@ -273,8 +273,15 @@ pub fn slider_triad_tracked(
         return None;
     }
     let t = track(first, a, dims, previous)?;
-    let (_, k) = t.e.residual(t.o, C::new(t.z.x, t.z.y));
-    Some(t.e.pose(t.o, t.z, &k))
+    let n = t.legs.w[0];
+    Some(pose_at(
+        t.o,
+        t.z,
+        &dims.triangle().local_joints(),
+        &a,
+        Vector2::new(n.y, -n.x),
+        t.k.determinant() / t.legs.lt,
+    ))
 }
 
 /// Whether the positions of the fast path's input are finite and the dimensions valid.
@@ -294,19 +301,29 @@ fn valid_input(
         && dims.validate().is_ok()
 }
 
-/// A mode reached by the fast path: the ternary link's origin O and direction z, with its
-/// equation (for the pose and the rates).
+/// A mode reached by the fast path: the ternary link's origin O and direction z, with the
+/// legs' lines there and the velocity system K they make (for the pose and the rates).
 struct Tracked {
-    e: Equation,
     o: Vector2<f64>,
     z: Vector2<f64>,
+    legs: Legs,
+    k: Matrix3<f64>,
 }
 
 /// The fast path on valid input: Newton's method on F in the half-angle tangent from the
-/// previous direction, O from the linear equations, one Newton step of the three closures
-/// with the velocity system K (the root of F carries the rounding of F's coefficients, the
-/// closures that of the geometry), then the certificate of
+/// previous direction, O from the linear equations (or, where they are nearly parallel,
+/// the line's intersection with the second circle nearer the previous O), Newton steps of
+/// the three closures with the velocity system K (the root of F carries the rounding of F's
+/// coefficients, the closures that of the geometry), then the certificate of
 /// [`Cubic::certifies`](super::trig_cubic::Cubic::certifies).
+///
+/// The closures' steps go to their rounding floor, as the bracket's polish does: a pose left
+/// at 1e-13 of the size is off by 1e-13/σ along K's near-null direction, where the
+/// bracket's is not (seen: 4e-12 at |det| = 0.055). After each step the next one is bounded
+/// by ‖K⁻¹‖_∞·‖G‖_∞ with the step's K⁻¹ (K moves by the step's relative size, 1e-8 at most
+/// on an accepted pose, so twice that bound holds); below 1e-14 of the size no step can
+/// move the pose by what the bracket's polish would, and the steps stop — usually after
+/// the first, since F's root is already good to its rounding.
 #[inline]
 fn track(
     first: &Guide,
@@ -324,15 +341,25 @@ fn track(
     let b = 2.0 * (c[1] - c[0]);
     let s = c[1].norm_squared() - c[0].norm_squared() + e.l[0] * e.l[0] - e.l[1] * e.l[1];
     let delta = cross(n, b);
-    if delta.is_nan() || delta.abs() <= 1e-3 * e.dscale {
-        return None;
-    }
-    let mut o = (s * perp(n) - h * perp(b)) / delta;
+    let mut o = if delta.abs() > 1e-3 * e.dscale {
+        (s * perp(n) - h * perp(b)) / delta
+    } else {
+        // The line against the second circle: of its two intersections, the one nearer the
+        // previous O (the closures and the certificate decide whether it is the mode).
+        let dist = h - n.dot(&c[0]);
+        let foot = c[0] + dist * n;
+        let half = ((e.l[0] - dist) * (e.l[0] + dist)).max(0.0).sqrt() * perp(n);
+        let back = previous.b[0].coords - foot;
+        if (back - half).norm_squared() <= (back + half).norm_squared() {
+            foot + half
+        } else {
+            foot - half
+        }
+    };
     let mut z = root.z;
-    let (mut g, mut k) = e.residual(o, z);
-    // Newton steps of the closures to their rounding floor, as the bracket's polish: a pose
-    // left at 1e-13 of the size is off by 1e-13/σ along K's near-null direction, where the
-    // bracket's is not (seen: 4e-12 at |det| = 0.055).
+    let (mut g, mut legs) = e.legs(o, z);
+    let mut k = legs.matrix();
+    let floor = 1e-14 * e.length;
     let mut first = f64::NAN;
     for _ in 0..4 {
         let (k_inv, _) = inverse3(&k);
@@ -342,14 +369,17 @@ fn track(
         }
         let on = o + Vector2::new(step.x, step.y);
         let zn = z * C::new(1.0, step.z);
-        let (gn, kn) = e.residual(on, zn);
+        let (gn, legs_n) = e.legs(on, zn);
         // (NaN is no improvement.)
         let better = gn.amax() < g.amax();
         if !better {
             break;
         }
-        (o, z, g, k) = (on, zn, gn, kn);
-        if g.amax() <= 4.0 * f64::EPSILON * e.length {
+        (o, z, g, legs, k) = (on, zn, gn, legs_n, legs_n.matrix());
+        let bound = (0..3)
+            .map(|i| k_inv[(i, 0)].abs() + k_inv[(i, 1)].abs() + k_inv[(i, 2)].abs())
+            .fold(0.0, f64::max);
+        if 2.0 * bound * g.amax() <= floor {
             break;
         }
     }
@@ -361,8 +391,8 @@ fn track(
         .map(|i| (o + rotate(zv, e.beta[i]) - previous.b[i].coords).norm_squared())
         .sum::<f64>();
     e.cubic
-        .certifies(&root, z0, moved, dims.triangle().ternary_moment())
-        .then_some(Tracked { e, o, z: zv })
+        .certifies(&root, moved, dims.triangle().ternary_moment())
+        .then_some(Tracked { o, z: zv, legs, k })
 }
 
 /// Positions, velocities and accelerations of a triad with a sliding pair, in the mode
@@ -381,13 +411,14 @@ pub fn slider_triad(
     let p = [a[0].p, a[1].p];
     if valid_input(first, p, dims, previous)
         && let Some(t) = track(first, p, dims, previous)
-        && let Ok(state) = rates(
+        && let Ok(state) = rates_of(
             first,
             &a,
             dims,
-            t.e.joints(t.o, t.z),
-            t.z,
+            joints_at(t.o, t.z, &dims.triangle().local_joints()),
             direction(t.z),
+            &t.legs,
+            &t.k,
             true,
         )
     {
@@ -447,12 +478,11 @@ pub fn slider_triad_rates(
     }
     finite("theta", pose.theta)?;
     dims.validate()?;
-    rates(first, &a, dims, pose.b, unit(pose.theta), pose.theta, false)
+    rates(first, &a, dims, pose.b, unit(pose.theta), pose.theta)
 }
 
 /// The rates of a posed group (the joints `b`, the ternary link's direction `zt` at the angle
-/// `theta`), on valid input. On the `fast` path (where the caller falls back to the checked
-/// one) a pose that cheap bounds cannot prove off a branch point is an error at once.
+/// `theta`), on valid input: its legs' lines, then [`rates_of`].
 fn rates(
     first: &Guide,
     a: &[PointMotion; 2],
@@ -460,33 +490,56 @@ fn rates(
     b: [Point2<f64>; 3],
     zt: Vector2<f64>,
     theta: f64,
-    fast: bool,
 ) -> Result<TriadState> {
     let o = b[0];
-    let r = [Vector2::zeros(), b[1] - o, b[2] - o];
     let leg = [b[1] - a[0].p, b[2] - a[1].p];
     let len = [leg[0].norm(), leg[1].norm()];
-    let u = [leg[0] / len[0], leg[1] / len[1]];
-    let (n, p, d, slide_angle, slide) = match dims.pair {
-        SlidingPair::Outer { .. } => {
-            let d = unit(first.angle.value);
-            (perp(d), o, d, first.angle.value, Leg::FixedLine)
-        }
-        SlidingPair::Inner { angle, .. } => {
-            let d = rotate(zt, unit(angle));
-            (perp(d), first.point.p, d, direction(d), Leg::TurningLine)
-        }
+    let (n, p, slide) = match dims.pair {
+        SlidingPair::Outer { .. } => (perp(unit(first.angle.value)), o, Leg::FixedLine),
+        SlidingPair::Inner { angle, .. } => (
+            perp(rotate(zt, unit(angle))),
+            first.point.p,
+            Leg::TurningLine,
+        ),
     };
     let legs = Legs {
-        w: [n, u[0], u[1]],
-        r: [p - o, r[1], r[2]],
+        w: [n, leg[0] / len[0], leg[1] / len[1]],
+        r: [p - o, b[1] - o, b[2] - o],
         kind: [slide, Leg::Hinged(len[0]), Leg::Hinged(len[1])],
         lt: dims.triangle().ternary_size(),
     };
-    let k = legs.matrix();
+    rates_of(first, a, dims, b, theta, &legs, &legs.matrix(), false)
+}
+
+/// The rates of a posed group from its legs' lines `legs` (the slide's normal n, then the
+/// hinged legs' unit vectors; the arms from O = B1) and their velocity system `k`. The
+/// slide's direction is d with n = d⊥. On the `fast` path (where the caller falls back to
+/// the checked one) a pose that cheap bounds cannot prove off a branch point is an error at
+/// once.
+#[allow(clippy::too_many_arguments)]
+#[inline(always)]
+fn rates_of(
+    first: &Guide,
+    a: &[PointMotion; 2],
+    dims: &SliderTriadDims,
+    b: [Point2<f64>; 3],
+    theta: f64,
+    legs: &Legs,
+    k: &Matrix3<f64>,
+    fast: bool,
+) -> Result<TriadState> {
+    let o = b[0];
+    let r = [Vector2::zeros(), legs.r[1], legs.r[2]];
+    let len = [hinged_length(legs.kind[1]), hinged_length(legs.kind[2])];
+    let (n, u) = (legs.w[0], [legs.w[1], legs.w[2]]);
+    let d = Vector2::new(n.y, -n.x);
+    let slide_angle = match dims.pair {
+        SlidingPair::Outer { .. } => first.angle.value,
+        SlidingPair::Inner { .. } => direction(d),
+    };
     let det = k.determinant() / legs.lt;
-    if !legs.surely_regular(&k, det) {
-        let eta = if fast { f64::NAN } else { legs.eta(&k) };
+    if !legs.surely_regular(k, det) {
+        let eta = if fast { f64::NAN } else { legs.eta(k) };
         if eta.is_nan() || eta <= SINGULAR_BRANCH {
             return Err(Error::Singular {
                 what: GROUP,
@@ -520,7 +573,7 @@ fn rates(
     let first_acc = match dims.pair {
         SlidingPair::Outer { .. } => n.dot(&ak) + 2.0 * wk * d.dot(&(v_o - vk)),
         SlidingPair::Inner { .. } => {
-            let q = p - o;
+            let q = legs.r[0];
             let s_dot = d.dot(&(vk - v_o - omega_t * perp(q)));
             n.dot(&ak) - 2.0 * omega_t * s_dot + w2 * n.dot(&q)
         }
@@ -556,7 +609,7 @@ fn rates(
     };
     let hinged = |k: usize| LinkMotion {
         origin: a[k],
-        angle: direction(leg[k]),
+        angle: direction(b[k + 1] - a[k].p),
         omega: omega[k],
         epsilon: eps[k],
     };
@@ -579,6 +632,45 @@ fn rates(
         Err(Error::Overflow {
             what: "triad with a sliding pair: rates",
         })
+    }
+}
+
+/// The length of a hinged leg (NaN for a slide, which has none).
+fn hinged_length(leg: Leg) -> f64 {
+    match leg {
+        Leg::Hinged(len) => len,
+        Leg::FixedLine | Leg::TurningLine => f64::NAN,
+    }
+}
+
+/// The joints of a ternary link whose joints are `beta` in its own frame, with its origin
+/// at `o` and its direction `z`.
+#[inline]
+fn joints_at(o: Vector2<f64>, z: Vector2<f64>, beta: &[Vector2<f64>; 3]) -> [Point2<f64>; 3] {
+    [0, 1, 2].map(|i| Point2::from(o + rotate(z, beta[i])))
+}
+
+/// The pose with its origin at `o` and its direction `z` (the ternary link's joints `beta`
+/// in its frame), the hinged legs' outer joints `a`, the slide's direction `slide` and the
+/// conditioning `det`.
+fn pose_at(
+    o: Vector2<f64>,
+    z: Vector2<f64>,
+    beta: &[Vector2<f64>; 3],
+    a: &[Point2<f64>; 2],
+    slide: Vector2<f64>,
+    det: f64,
+) -> TriadPose {
+    let b = joints_at(o, z, beta);
+    TriadPose {
+        b,
+        theta: direction(z),
+        phi: [
+            direction(slide),
+            direction(b[1] - a[0]),
+            direction(b[2] - a[1]),
+        ],
+        det,
     }
 }
 
@@ -707,15 +799,15 @@ impl Equation {
             lt: dims.triangle().ternary_size(),
             length: 0.0,
         };
-        let mut length = dims.l[0]
-            .max(dims.l[1])
-            .max(beta[1].norm())
-            .max(beta[2].norm());
-        length = length.max(offset.abs());
-        for p in [a[0], a[1]] {
-            length = length.max((p - e.first.p).norm());
-        }
-        e.length = length.max((a[1] - a[0]).norm());
+        // The largest of the lengths (the distances compared squared: one square root).
+        let square = beta[2]
+            .norm_squared()
+            .max((a[0] - e.first.p).norm_squared())
+            .max((a[1] - e.first.p).norm_squared())
+            .max((a[1] - a[0]).norm_squared());
+        e.length = (dims.l[0].max(dims.l[1]).max(dims.l_b1b2))
+            .max(offset.abs())
+            .max(square.sqrt());
         e
     }
 
@@ -899,30 +991,14 @@ impl Equation {
         Some(self.pose(o, vec(z), &k))
     }
 
-    /// The joints of the ternary link with its origin at `o` and its direction `z`.
-    #[inline]
-    fn joints(&self, o: Vector2<f64>, z: Vector2<f64>) -> [Point2<f64>; 3] {
-        [0, 1, 2].map(|i| Point2::from(o + rotate(z, self.beta[i])))
-    }
-
     /// The pose with its origin at `o` and its direction `z`, K being its velocity system.
     fn pose(&self, o: Vector2<f64>, z: Vector2<f64>, k: &Matrix3<f64>) -> TriadPose {
-        let b = self.joints(o, z);
         let slide = if self.inner {
-            direction(rotate(z, self.delta))
+            rotate(z, self.delta)
         } else {
-            direction(self.first.d)
+            self.first.d
         };
-        TriadPose {
-            b,
-            theta: direction(z),
-            phi: [
-                slide,
-                direction(b[1] - self.a[0]),
-                direction(b[2] - self.a[1]),
-            ],
-            det: k.determinant() / self.lt,
-        }
+        pose_at(o, z, &self.beta, &self.a, slide, k.determinant() / self.lt)
     }
 
     /// The least miss of the second circle by the linear equations' O, at the best of 1024

@@ -79,27 +79,6 @@ impl Cubic {
         (f[0].re + 2.0 * p.re, -2.0 * dp.im)
     }
 
-    /// P(t) = (1 + t²)³·F(θ) and dP/dt at z = z0·(1 + i·t)²/(1 + t²): a polynomial of degree
-    /// 6 in t with F's roots, evaluated without a trigonometric function or a division.
-    #[inline]
-    pub fn tangent_poly(&self, z0: C, t: f64) -> (f64, f64) {
-        let f = &self.f;
-        let (s, ds) = (1.0 + t * t, 2.0 * t);
-        let q = C::new(1.0, t);
-        let zeta = z0 * q * q;
-        let dzeta = C::new(0.0, 2.0) * z0 * q;
-        let (s2, zeta2) = (s * s, zeta * zeta);
-        let p =
-            f[0].re * s2 * s + 2.0 * (f[1] * zeta * s2 + f[2] * zeta2 * s + f[3] * zeta2 * zeta).re;
-        let dp = 3.0 * f[0].re * s2 * ds
-            + 2.0
-                * (f[1] * (dzeta * s2 + 2.0 * zeta * s * ds)
-                    + f[2] * (2.0 * zeta * dzeta * s + zeta2 * ds)
-                    + 3.0 * f[3] * zeta2 * dzeta)
-                    .re;
-        (p, dp)
-    }
-
     /// F″ at z.
     pub fn second(&self, z: C) -> f64 {
         let f = &self.f;
@@ -131,78 +110,77 @@ impl Periodic for Cubic {
     }
 }
 
-/// A root of F reached by Newton's method in the half-angle tangent t about a previous
-/// direction z0, with what its isolation certificate needs.
+/// A root of F reached by Newton's method from a previous direction z0, with what its
+/// isolation certificate needs.
 pub(super) struct TangentRoot {
-    /// The root, z0 turned by 2·atan(t).
+    /// The root: the last point of evaluation turned by Newton's last step.
     pub z: C,
-    /// The last point of evaluation t_l and P, P′ there.
-    tl: f64,
-    p: f64,
-    dp: f64,
+    /// The last point of evaluation z_l, and F, F′ there.
+    zl: C,
+    f: f64,
+    g: f64,
+    /// A bound of |θ_l − θ_0|, the turn from z0 to z_l.
+    off: f64,
 }
 
 impl Cubic {
-    /// Newton's method on P(t) = (1 + t²)³·F(θ(t)) from t = 0 (θ(0) the direction `z0`),
-    /// a polynomial of degree 6 with F's roots (no division but the step's). It stops after a
-    /// step below 1e-6 (quadratic convergence leaves an error of the order of its square;
-    /// the caller polishes the pose); `None` when a step exceeds 1 or 12 steps do not get
-    /// there.
+    /// Newton's method on F from z0, each step taken in the half-angle tangent about the
+    /// current point: θ(t) = θ_k + 2·atan(t) has dF/dt = 2F′ at t = 0, so Newton's step is
+    /// t = −F/(2F′) and the next point z_k·(1 + i·t)²/(1 + t²) ([`along`]: no trigonometric
+    /// function; F and F′ from [`eval`](Self::eval), five complex products). It stops after
+    /// a step below 1e-6 in t (quadratic convergence leaves an error of the order of its
+    /// square; the caller polishes the pose); `None` when a step exceeds 1 or 12 steps do
+    /// not get there. |θ_l − θ_0| ≤ Σ 2|t_k| since |2·atan t| ≤ 2|t|.
     #[inline]
     pub fn tangent_root(&self, z0: C) -> Option<TangentRoot> {
-        let (mut t, mut dt) = (0.0, f64::INFINITY);
-        let (mut p, mut dp) = (f64::NAN, f64::NAN);
+        let (mut z, mut off) = (z0, 0.0);
         for _ in 0..12 {
-            (p, dp) = self.tangent_poly(z0, t);
-            dt = -p / dp;
-            if dt.is_nan() || dt.abs() > 1.0 {
+            let (f, g) = self.eval(z);
+            let t = -0.5 * f / g;
+            if t.is_nan() || t.abs() > 1.0 {
                 return None;
             }
-            t += dt;
-            if dt.abs() <= 1e-6 {
-                break;
+            if t.abs() <= 1e-6 {
+                if self.m2.is_nan() || self.m2 <= 0.0 {
+                    return None;
+                }
+                return Some(TangentRoot {
+                    z: along(z, t),
+                    zl: z,
+                    f,
+                    g,
+                    off,
+                });
             }
+            z = along(z, t);
+            off += 2.0 * t.abs();
         }
-        if dt.is_nan() || dt.abs() > 1e-6 || self.m2.is_nan() || self.m2 <= 0.0 {
-            return None;
-        }
-        Some(TangentRoot {
-            z: along(z0, t),
-            tl: t - dt,
-            p,
-            dp,
-        })
+        None
     }
 
-    /// Whether the root `root` reached from `z0` is certified to be the mode nearest the
-    /// previous pose, `moved` (D*² = Σ|B_i − B_i′|²) away from it, for a ternary link whose
-    /// joints have the polar moment `moment` (I = Σ|β_i − β̄|²) about their centroid.
+    /// Whether the root `root` is certified to be the mode nearest the previous pose,
+    /// `moved` (D*² = Σ|B_i − B_i′|²) away from it, for a ternary link whose joints have the
+    /// polar moment `moment` (I = Σ|β_i − β̄|²) about their centroid.
     ///
-    /// 1. No other root of F within ρ of the last evaluation θ_l = θ(t_l) (the root is within
+    /// 1. No other root of F within ρ of the last evaluation θ_l (the root is within
     ///    4|F|/|F′| of it), ρ the larger of 2|F′|/M₂ and the positive root of
     ///    |F′| = |F″(θ_l)|·ρ/2 + M₃·ρ²/6 (Taylor's theorem with M₂ ≥ |F″|, M₃ ≥ |F‴|; ρ shrunk
-    ///    by 0.1 %): F and F′ there from P and P′ (P = s³F, P′ = 3s²s′F + 2s²F′ with
-    ///    s = 1 + t_l²), so every other mode's angle is at least δ = ρ − |θ_l − θ_prev| from
-    ///    the previous one, |θ_l − θ_prev| = 2·|atan t_l| ≤ 2|t_l|;
+    ///    by 0.1 %), so every other mode's angle is at least δ = ρ − |θ_l − θ_prev| from
+    ///    the previous one, |θ_l − θ_prev| bounded by the Newton steps' turns;
     /// 2. a mode turned by Δθ from the previous pose is at least 4·I·sin²(Δθ/2) from it, so
     ///    D*² < 4·I·sin²(min(δ, π)/2) proves the root the nearest.
     #[inline]
-    pub fn certifies(&self, root: &TangentRoot, z0: C, moved: f64, moment: f64) -> bool {
-        let tl = root.tl;
-        let sl = 1.0 + tl * tl;
-        let f = root.p / (sl * sl * sl);
-        let g = (root.dp - 6.0 * sl * sl * tl * f) / (2.0 * sl * sl);
-        let ga = g.abs();
+    pub fn certifies(&self, root: &TangentRoot, moved: f64, moment: f64) -> bool {
+        let (f, ga) = (root.f, root.g.abs());
         let accept = |rho: f64| {
-            let delta =
-                (0.999 * rho - 4.0 * f.abs() / ga - 2.0 * tl.abs()).min(std::f64::consts::PI);
+            let delta = (0.999 * rho - 4.0 * f.abs() / ga - root.off).min(std::f64::consts::PI);
             let x = 0.5 * delta;
             // sin x ≥ x − x³/6 for x ≥ 0 (positive up to √6 > π/2).
             let s = x - x * x * x / 6.0;
             delta > 0.0 && moved < 0.99 * 4.0 * moment * s * s
         };
         accept(2.0 * ga / self.m2) || {
-            let (b2, m3) = (0.5 * self.second(along(z0, tl)).abs(), self.m3 / 6.0);
+            let (b2, m3) = (0.5 * self.second(root.zl).abs(), self.m3 / 6.0);
             accept(2.0 * ga / (b2 + (b2 * b2 + 4.0 * m3 * ga).sqrt()))
         }
     }
