@@ -198,10 +198,12 @@ impl<S: LagrangeSystem + ?Sized, M: Stepper> Walk<'_, S, M> {
                 return Ok(None);
             };
             let hn = next.t - cur.t;
-            if depth < MAX_DEPTH && hn > tol && dips(&at_cur, &at_next, hn) {
-                if let Some(r) = self.refusal(p, &cur, &at_cur, hn, depth + 1)? {
-                    return Ok(Some(r));
-                }
+            if depth < MAX_DEPTH
+                && hn > tol
+                && dips(&at_cur, &at_next, hn)
+                && let Some(r) = self.refusal(p, &cur, &at_cur, hn, depth + 1)?
+            {
+                return Ok(Some(r));
             }
             (cur, at_cur) = (next, at_next);
         }
