@@ -432,8 +432,8 @@ fn sweep_dynamics_core() {
         let mut tr = Trajectory::for_system(&sys);
         check("Trajectory::push", &(sys, s), || tr.push(&sys, &s));
         assert!(tr.q()[0].len() == tr.len() && tr.outputs()[0].len() == tr.len());
-        let _ = tr.to_csv();
-        let _ = tr.last_state();
+        check_plain("Trajectory::to_csv", &(sys, s), || tr.to_csv());
+        check_plain("Trajectory::last_state", &(sys, s), || tr.last_state());
     });
 }
 

@@ -580,6 +580,34 @@ pub trait LagrangeSystem {
         let _ = (t, q, qd, out);
         Ok(())
     }
+
+    /// The number of the system's lock measures (see
+    /// [`lock_measures`](Self::lock_measures)). Default: none, and [`run`](super::run)
+    /// never asks for them (a run of such a system takes exactly the steps it took before
+    /// the measures existed).
+    fn locks(&self) -> usize {
+        0
+    }
+
+    /// The lock measures at the position `q` into `out` (exactly [`locks`](Self::locks)
+    /// entries, each NaN before the call): one number per lock (a described linkage's RRR or
+    /// RRP dyad), positive away from it and at most zero in the band where the system
+    /// refuses a state ([`Error::DeadCentre`]; for a linkage |det| − 10⁻³). A coarse step
+    /// can carry the motion across a narrow band without any of its stages landing in it:
+    /// a two-input linkage passes its dyad's dead centre where the measure, |det|, falls to
+    /// zero and rises again in a V. [`run`](super::run) reads the measures at each step's
+    /// ends with their rates along the motion; where a measure falls at the step's start
+    /// and rises at its end, its lower end within the rates' difference times the step of
+    /// zero (a V whose tip the step jumped), or a measure changes sign, it takes the step again in halves, down to where a step or state is refused, and
+    /// locates the stop there as at any dead centre; where none is, the step stands as it
+    /// was. Default: sets nothing.
+    ///
+    /// # Errors
+    /// When the position cannot be evaluated, or `out` has the wrong length.
+    fn lock_measures(&self, q: &Vector2<f64>, out: &mut [f64]) -> Result<()> {
+        let _ = (q, out);
+        Ok(())
+    }
 }
 
 /// Checks that `out` has room for exactly the `n` kink arguments of a system (see

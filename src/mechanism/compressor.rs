@@ -160,7 +160,7 @@ impl Mechanism for Compressor {
             }
         }
         let m = &self.mass;
-        Ok(Linkage {
+        super::ready::planned(Linkage {
             name: "two-cylinder compressor".to_owned(),
             joints: vec![
                 Joint::revolute("O1", xy(self.o1)),

@@ -84,8 +84,8 @@ impl FourBar {
 
 impl Mechanism for FourBar {
     /// The description for the engine, in a reference pose where the four-bar assembles
-    /// (B as `branch` puts it). If it assembles nowhere, B is not finite and
-    /// [`Plan::new`](crate::linkage::Plan::new) rejects it naming the joint.
+    /// (B as `branch` puts it). If it assembles nowhere, B is not finite and the error, that
+    /// of [`Plan::new`](crate::linkage::Plan::new), names the joint.
     fn linkage(&self) -> Result<Linkage> {
         let pose = reference_pose(|phi| {
             let c = crank(self.o1, self.l1, Motion::new(phi, 0.0, 0.0))?;
@@ -104,7 +104,7 @@ impl Mechanism for FourBar {
         });
         let (o1, o3) = (self.o1, self.o3);
         let dir = |p: Point2<f64>, q: Point2<f64>| crate::angle::direction(q - p);
-        Ok(Linkage {
+        super::ready::planned(Linkage {
             name: "four-bar".to_owned(),
             joints: vec![
                 Joint::revolute("O1", xy(o1)),

@@ -27,11 +27,13 @@ use crate::linkage::{Linkage, Output, Plan};
 pub trait Mechanism {
     /// The description for the engine, in a reference pose computed from the parameters (a
     /// crank angle where the mechanism assembles in the assembly modes its `branch` fields
-    /// give). If it assembles nowhere, the pose's joints are not finite and
-    /// [`Plan::new`] rejects the description naming the joint.
+    /// give). A description the engine would refuse is an error, never an `Ok` holding a
+    /// NaN or an infinity: if the mechanism assembles nowhere, the pose's joints are not
+    /// finite and the error (that of [`Plan::new`]) names the joint.
     ///
     /// # Errors
-    /// A parameter that no description can state (each implementation names its own).
+    /// A parameter that no description can state (each implementation names its own); any
+    /// error of [`Plan::new`] on the description.
     fn linkage(&self) -> Result<Linkage>;
 
     /// The output whose strokes [`Mechanism::strokes`] finds: the rocker's angle, a piston's
@@ -56,4 +58,12 @@ pub trait Mechanism {
     fn strokes(&self, rotation: Rotation) -> Result<Strokes> {
         self.plan()?.strokes(&self.output(), rotation)
     }
+}
+
+/// `l` when the engine plans it, else the plan's error: what every ready mechanism's
+/// [`Mechanism::linkage`] returns, so that a description with a non-finite number (a pose
+/// that assembles nowhere, a parameter that overflows) is an error, not an `Ok`.
+pub(crate) fn planned(l: Linkage) -> Result<Linkage> {
+    Plan::new(&l)?;
+    Ok(l)
 }

@@ -87,7 +87,7 @@ impl Mechanism for RockingCylinder {
         let c = self.c;
         let (to_c, out) = (c - a, a - c);
         let p = a + self.l_piston * to_c / to_c.norm();
-        Ok(Linkage {
+        super::ready::planned(Linkage {
             name: "rocking cylinder".to_owned(),
             joints: vec![
                 Joint::revolute("O1", xy(self.o1)),

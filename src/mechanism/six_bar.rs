@@ -140,7 +140,7 @@ impl Mechanism for SixBar {
             (0.0, self.resistance)
         };
         let m = &self.mass;
-        Ok(Linkage {
+        super::ready::planned(Linkage {
             name: "six-bar".to_owned(),
             joints: vec![
                 Joint::revolute("O1", xy(self.o1)),

@@ -112,7 +112,7 @@ impl Mechanism for SliderCrank {
                 head: self.branch.sign(),
             });
         }
-        Ok(Linkage {
+        super::ready::planned(Linkage {
             name: "slider-crank".to_owned(),
             joints: vec![
                 Joint::revolute("O1", xy(self.o1)),

@@ -103,3 +103,16 @@ pub fn has_non_finite(s: &str) -> bool {
     s.split(|c: char| !(c.is_ascii_alphanumeric() || c == '_'))
         .any(|t| t == "NaN" || t == "inf")
 }
+
+/// A result that is `Ok` holds only finite numbers (its `Debug` rendering scanned for `NaN`
+/// and `inf`); an error renders its message. The success check of every hostile call whose
+/// value is not otherwise looked at.
+pub fn ok_finite<T: std::fmt::Debug>(r: &tmm::Result<T>, what: &str) {
+    match r {
+        Ok(v) => {
+            let s = format!("{v:?}");
+            assert!(!has_non_finite(&s), "{what}: an Ok holds {s}");
+        }
+        Err(e) => assert!(!e.to_string().is_empty(), "{what}: an empty message"),
+    }
+}

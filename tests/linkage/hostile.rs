@@ -42,7 +42,7 @@ use tmm::{Ends, Error};
 
 use crate::common::chains::{fitted_exponent, random_linkage};
 use crate::common::hostile_gen;
-use hostile_gen::{cases, has_non_finite, Gen};
+use hostile_gen::{cases, has_non_finite, ok_finite, Gen};
 
 fn linkages() -> Vec<Linkage> {
     let mut all = bundled::all();
@@ -809,7 +809,8 @@ fn hostile_pictures() {
                         assert!(!has_non_finite(&numbers), "{what}: {numbers}");
                     }
                 }
-                let _ = Course::new(&plan, l.output.as_ref(), (g.next() % 30) as usize, g.f());
+                let course = Course::new(&plan, l.output.as_ref(), (g.next() % 30) as usize, g.f());
+                ok_finite(&course, &format!("Course::new of {what}"));
             });
         }
     }
@@ -823,7 +824,7 @@ fn hostile_grashof_and_transmission_angles() {
     for case in 0..cases() * 10 {
         let (a, b, c, d) = (g.len(), g.len(), g.len(), g.len());
         no_panic(&format!("grashof case {case}"), || {
-            let _ = grashof(a, b, c, d);
+            ok_finite(&grashof(a, b, c, d), &format!("grashof case {case}"));
         });
     }
     for l in linkages() {
@@ -947,7 +948,7 @@ fn hostile_four_bars() {
         ],
         71,
         |m, what, g| {
-            let _ = m.linkage();
+            ok_finite(&m.linkage(), what);
             if let Ok(gr) = m.grashof() {
                 assert!(!has_non_finite(&format!("{gr:?}")), "{what}: {gr:?}");
             }
@@ -985,7 +986,7 @@ fn hostile_slider_cranks() {
         ],
         72,
         |m, what, g| {
-            let _ = m.linkage();
+            ok_finite(&m.linkage(), what);
             mechanism_checks(m.plan(), |r| m.strokes(r), what, g);
         },
     );
@@ -1017,7 +1018,7 @@ fn hostile_compressors() {
         ],
         73,
         |m, what, g| {
-            let _ = m.linkage();
+            ok_finite(&m.linkage(), what);
             mechanism_checks(m.plan(), |r| m.strokes(r), what, g);
         },
     );
@@ -1047,7 +1048,7 @@ fn hostile_six_bars() {
         ],
         74,
         |m, what, g| {
-            let _ = m.linkage();
+            ok_finite(&m.linkage(), what);
             mechanism_checks(m.plan(), |r| m.strokes(r), what, g);
         },
     );
@@ -1071,7 +1072,7 @@ fn hostile_rocking_cylinders() {
         ],
         75,
         |m, what, g| {
-            let _ = m.linkage();
+            ok_finite(&m.linkage(), what);
             mechanism_checks(m.plan(), |r| m.strokes(r), what, g);
         },
     );

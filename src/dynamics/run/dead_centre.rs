@@ -10,7 +10,7 @@ use crate::error::{Error, Result};
 /// Whether the system refused a state at or beyond a dead centre: at it
 /// ([`Error::DeadCentre`]), or past a lock where the position no longer assembles
 /// ([`Error::NotAssemblable`]: a step that jumped the narrow band around the dead centre).
-fn refused(e: &Error) -> bool {
+pub(super) fn refused(e: &Error) -> bool {
     e.dead_centre().is_some() || e.not_assemblable()
 }
 

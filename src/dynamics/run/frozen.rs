@@ -238,4 +238,10 @@ impl<S: LagrangeSystem + ?Sized> LagrangeSystem for Frozen<'_, S> {
     ) -> Result<()> {
         self.sys.outputs(t, q, qd, out)
     }
+    fn locks(&self) -> usize {
+        self.sys.locks()
+    }
+    fn lock_measures(&self, q: &Vector2<f64>, out: &mut [f64]) -> Result<()> {
+        self.sys.lock_measures(q, out)
+    }
 }

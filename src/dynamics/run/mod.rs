@@ -8,9 +8,11 @@
 //! value reached, a steady state or a drift); the step loop, [`step_loop`], with its lean
 //! variant [`lean`] for runs with nothing on the way, the bookkeeping of a step in
 //! [`progress`], [`locate`] (a state inside a step, by re-stepping), [`left_of`] (the
-//! system seen from the left of a breakpoint) and [`dead_centre`] (the last state the system
-//! accepts before a dead centre).
+//! system seen from the left of a breakpoint), [`dead_centre`] (the last state the system
+//! accepts before a dead centre) and [`band`] (a lock's band a step carried the motion
+//! across unseen).
 
+mod band;
 mod dead_centre;
 mod frozen;
 mod held;
@@ -59,7 +61,11 @@ use step_loop::Runner;
 /// linkage whose dyad reaches it) ends the run with [`Outcome::DeadCentre`] at the last state
 /// it accepts, located inside the step that met it (see there), its rows kept; so does one
 /// whose step jumped past the dead centre to where the position no longer assembles, when
-/// the location meets the dead centre on the way.
+/// the location meets the dead centre on the way. A system with
+/// [`LagrangeSystem::lock_measures`] has them read at the ends of every step: a step that
+/// carried the motion across a band unseen (a measure's V between its ends) is walked again
+/// in halves until a sub-step is refused, and the run ends there the same way; a step
+/// whose finer walk meets no refusal stands.
 ///
 /// # Errors
 /// [`Error::NonPositive`]/[`Error::NonFinite`] for a bad step, final time, steady tolerance

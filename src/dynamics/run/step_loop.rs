@@ -1,6 +1,7 @@
 //! The step loop of a run: each step planned by the schedule, taken, landed on the earliest
 //! kink inside it, checked against the stop conditions, and recorded.
 
+use super::band::BandWatch;
 use super::dead_centre;
 use super::lean::lean_steps;
 use super::left_of::LeftOf;
@@ -65,6 +66,8 @@ pub(super) struct Runner<'a, S: ?Sized, M> {
     /// The coordinates held at rest by switches that can hold them (see
     /// [`held`](super::held)), for a system with such switches.
     hold: Option<&'a Hold>,
+    /// The lock measures at the step ends, for a system that has them.
+    band: Option<BandWatch>,
 }
 
 impl<'a, S: LagrangeSystem + ?Sized, M: Stepper> Runner<'a, S, M> {
@@ -93,6 +96,9 @@ impl<'a, S: LagrangeSystem + ?Sized, M: Stepper> Runner<'a, S, M> {
         if sched.kinks.any() {
             sched.kinks.start(sys, &start)?;
         }
+        let band = BandWatch::start(sys, &start);
+        // A band is looked for after every step: the lean loop does not.
+        sched.plain &= band.is_none();
         Ok(Self {
             sys,
             method,
@@ -119,6 +125,7 @@ impl<'a, S: LagrangeSystem + ?Sized, M: Stepper> Runner<'a, S, M> {
             reversed: false,
             tried: opts.h,
             hold: None,
+            band,
         })
     }
 
@@ -373,10 +380,49 @@ impl<'a, S: LagrangeSystem + ?Sized, M: Stepper> Runner<'a, S, M> {
                 &mut p.evaluations,
             )?;
         }
+        if let Some(result) = self.band_in_step(end)? {
+            return Ok(Some(result));
+        }
         if let Some(hn) = end.h_next {
             self.progress.h = hn;
         }
         self.look_at(end)
+    }
+
+    /// A lock's band the step to `end.s1` carried the motion across unseen (see
+    /// [`BandWatch`]): located as a dead centre met inside a step
+    /// ([`dead_centre::locate`]), from the last state the finer walk accepted, and the run's
+    /// result there. `None` when the step met no band: the run goes on from `end.s1` as
+    /// before, only the evaluations of the finer walk counted.
+    fn band_in_step(&mut self, end: &StepEnd<M::Dense>) -> Result<Option<RunResult>> {
+        let Some(watch) = self.band.as_mut() else {
+            return Ok(None);
+        };
+        let s = self.progress.s;
+        let (sys, method, opts) = (self.sys, self.method, self.opts);
+        let Some(r) = watch.check(sys, method, opts, &mut self.progress, (&s, &end.s1))? else {
+            return Ok(None);
+        };
+        let kept = self.progress;
+        let p = &mut self.progress;
+        (p.s, p.prev, p.hand) = (r.from, r.from, Handover::default());
+        match dead_centre::locate(sys, method, opts, p, r.h, &r.error)? {
+            Some(d) => {
+                let outcome = Outcome::DeadCentre {
+                    t: d.last.t,
+                    dyad: d.dyad,
+                    value: d.value,
+                };
+                let recorded = self.traj.t().last() == Some(&d.last.t);
+                self.result(d.last, recorded, outcome).map(Some)
+            }
+            None => {
+                let spent = self.progress.evaluations;
+                self.progress = kept;
+                self.progress.evaluations = spent;
+                Ok(None)
+            }
+        }
     }
 
     /// The result at the final time: [`Outcome::NotSteady`] when a steady state was asked

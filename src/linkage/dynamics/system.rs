@@ -5,7 +5,7 @@ use nalgebra::{Matrix2, Point2, Vector2};
 
 use super::drive::{Damper, DamperPlan, Motor};
 use super::friction::{FrictionJoint, StateFriction};
-use super::transfer::Transfer;
+use super::transfer::{self, Transfer};
 use crate::dynamics::{
     checked_inertia, christoffel_terms, kink_slots, LagrangeSystem, LagrangeTerms,
 };
@@ -649,6 +649,18 @@ impl LagrangeSystem for LinkageSystem {
     /// otherwise.
     fn switches(&self) -> usize {
         self.input_switches()
+    }
+
+    /// One per RRR or RRP dyad: where a run checks that no step carried the motion across
+    /// a dyad's dead centre unseen.
+    fn locks(&self) -> usize {
+        transfer::dyad_count(&self.plan)
+    }
+
+    /// |det| − [`DEAD_CENTRE_DETERMINANT`](crate::linkage::DEAD_CENTRE_DETERMINANT) of each
+    /// RRR or RRP dyad, in attachment order (one solve of the positions).
+    fn lock_measures(&self, q: &Vector2<f64>, out: &mut [f64]) -> Result<()> {
+        transfer::lock_measures(&self.plan, self.dof(), q, out)
     }
 
     /// The input's rate q̇₁, or with two inputs each resistance's rate (after checking that

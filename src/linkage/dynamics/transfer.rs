@@ -5,7 +5,7 @@ use nalgebra::{Point2, Vector2};
 
 use crate::error::{Error, Result};
 use crate::kinematics::{LinkMotion, Motion, PointMotion};
-use crate::linkage::plan::{Chain, GroupKind};
+use crate::linkage::plan::{Chain, Group, GroupKind};
 use crate::linkage::solve::state::KinState;
 use crate::linkage::{Plan, DEAD_CENTRE_DETERMINANT};
 
@@ -154,16 +154,64 @@ impl<'p> Transfer<'p> {
 /// [`Outcome::DeadCentre`](crate::dynamics::Outcome::DeadCentre).
 fn at_no_dead_centre(chain: &Chain, dets: &[f64]) -> Result<()> {
     for (index, (group, det)) in chain.groups.iter().zip(dets).enumerate() {
-        let dyad = matches!(group.kind, GroupKind::Rrr | GroupKind::Rrp)
-            && group.triad.is_none()
-            && group.general.is_none();
-        if dyad && det.abs() <= DEAD_CENTRE_DETERMINANT {
+        if is_dyad(group) && det.abs() <= DEAD_CENTRE_DETERMINANT {
             return Err(Error::DeadCentre {
                 index,
                 group: group.name.clone(),
                 value: *det,
             });
         }
+    }
+    Ok(())
+}
+
+/// Whether `group` is an RRR or RRP dyad, whose dead centre a state is refused at (see
+/// [`at_no_dead_centre`]).
+fn is_dyad(group: &Group) -> bool {
+    matches!(group.kind, GroupKind::Rrr | GroupKind::Rrp)
+        && group.triad.is_none()
+        && group.general.is_none()
+}
+
+/// The number of RRR and RRP dyads of `plan`: its lock measures (see [`lock_measures`]).
+pub(super) fn dyad_count(plan: &Plan) -> usize {
+    plan.chain.groups.iter().filter(|g| is_dyad(g)).count()
+}
+
+/// The lock measures of `plan` at the positions `q` of its `n` inputs: |det| −
+/// [`DEAD_CENTRE_DETERMINANT`] of each RRR and RRP dyad in attachment order, positive away
+/// from its dead centre and at most zero in the band [`at_no_dead_centre`] refuses (one
+/// solve of the positions).
+///
+/// # Errors
+/// `out` not one entry per dyad ([`Error::OutOfRange`]); a position that does not assemble.
+pub(super) fn lock_measures(
+    plan: &Plan,
+    n: usize,
+    q: &Vector2<f64>,
+    out: &mut [f64],
+) -> Result<()> {
+    let count = dyad_count(plan);
+    if out.len() != count {
+        return Err(Error::OutOfRange {
+            name: "number of lock measures",
+            value: out.len() as f64,
+            min: count as f64,
+            max: count as f64,
+            ends: crate::Ends::Closed,
+        });
+    }
+    let chain = &plan.chain;
+    let mut kin = KinState::new(chain);
+    let m = [Motion::fixed(q[0]), Motion::fixed(q[1])];
+    kin.solve(chain, &m[..n])?;
+    let dets = chain
+        .groups
+        .iter()
+        .zip(&kin.dets)
+        .filter(|(g, _)| is_dyad(g));
+    for (o, (_, det)) in out.iter_mut().zip(dets) {
+        *o = det.abs() - DEAD_CENTRE_DETERMINANT;
     }
     Ok(())
 }
