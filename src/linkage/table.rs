@@ -411,6 +411,10 @@ impl Rows {
 
     fn finish(mut self) -> Table {
         self.flush();
+        if self.table.is_empty() {
+            // No row held: no columns either, as for a table of no positions.
+            return Table::default();
+        }
         self.table
     }
 }
@@ -453,7 +457,8 @@ impl Table {
     /// beyond the columns' growth.
     ///
     /// A table holds only finite numbers: a row is held when it gives a finite value for
-    /// every column laid out (cells past the last column are cut). A row that gives fewer
+    /// every column laid out (cells past the last column are cut). A table with no row held
+    /// has no columns. A row that gives fewer
     /// cells than the table has columns (a position of another type or plan), or a value
     /// that is not finite (an overflow, or a `NaN` a user's [`Tabulate`] wrote for "no
     /// value"), is left out whole and `false` returned: the table stays rectangular, and its
@@ -497,8 +502,14 @@ impl Table {
     /// assert_eq!(t.column("a/b [-]"), Some(&[0.5][..]));
     /// ```
     pub fn push<P: Tabulate + ?Sized>(&mut self, position: &P) -> bool {
+        let fresh = self.columns.is_empty();
         self.lay_out(position, 0);
-        self.push_values(position)
+        let held = self.push_values(position);
+        if fresh && !held {
+            // A row not held leaves the table as it was: no columns of no rows.
+            self.columns.clear();
+        }
+        held
     }
 
     /// Appends `position`'s values to the columns laid out if it gives a finite value for

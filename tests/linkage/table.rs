@@ -198,6 +198,11 @@ fn a_table_stays_rectangular_and_finite() {
     ];
     let of = Table::of(&rows);
     assert_eq!(of.len(), 2);
+    // A table with no row held has no columns, as a table of no positions.
+    let mut none = Table::default();
+    assert!(!none.push(&Filled(f64::NAN)));
+    assert!(none.columns.is_empty() && none.to_text(3).is_empty());
+    assert!(Table::of(&[Ok(Filled(f64::NAN))]).columns.is_empty());
     assert!(of.columns.iter().all(|c| c.values == [c.values[0]; 2]));
 }
 

@@ -121,7 +121,7 @@ impl Analysis<'_> {
     /// transfer functions) are such velocities at every position, moving or at rest. The
     /// kinematics' rate problems are linear in q̇ (the input's acceleration enters only the
     /// accelerations), so where the input moves v' = v/q̇ and Σ P'_i = (Σ P_i)/q̇: the sums
-    /// are the position's own powers over q̇, as before this check was defined at rest. At rest
+    /// are the position's own powers over q̇, with no second solve. At rest
     /// (q̇ = 0) the analogues come from a kinematic solve of the same position at q̇ = 1 (its
     /// accelerations are not read).
     ///
