@@ -332,8 +332,11 @@ fn two_input_balances(out: &mut impl Cells, a: &Analysis<'_>) {
 /// (the extra ones are cut) and every one is finite. A row not held is taken off `block`.
 #[inline]
 fn held(block: &mut Vec<f64>, start: usize, width: usize) -> bool {
-    let ok =
-        block.len() >= start + width && block[start..start + width].iter().all(|v| v.is_finite());
+    // A fold with no early exit: one vectorised pass (a row is almost always held).
+    let ok = block.len() >= start + width
+        && block[start..start + width]
+            .iter()
+            .fold(true, |ok, v| ok & v.is_finite());
     block.truncate(if ok { start + width } else { start });
     ok
 }
