@@ -1372,3 +1372,48 @@ fn a_two_input_diagram_plots_the_analysis_along_the_path() {
         "field second_input",
     );
 }
+
+/// The friction diagram of a machine whose drive gives no power over part of its turn (the
+/// four-bar with friction and no external loads, its inertia driving it back): the
+/// efficiency's curve leaves a gap there, where η has no value, and the lost powers are
+/// drawn at every sample.
+#[test]
+fn the_efficiency_curve_leaves_a_gap_where_the_drive_gives_no_power() {
+    let mut l = bundled::four_bar();
+    l.loads.clear();
+    l.friction = Some(tmm::linkage::Friction::pin(0.15, 0.01));
+    let plan = Plan::new(&l).unwrap();
+    let course = Course::new(&plan, None, 12, 30.0).unwrap();
+    let style = Style {
+        samples: 90,
+        ..Style::default()
+    };
+    // Where the drive gives no power, by the analyses themselves.
+    let idle = (0..360)
+        .filter(|&k| {
+            let a = plan
+                .analyse(Motion::turning(f64::from(k) * TAU / 360.0, 30.0))
+                .unwrap();
+            a.efficiency().unwrap().eta.is_none()
+        })
+        .count();
+    assert!(idle > 0 && idle < 360, "{idle} of 360 positions idle");
+    let chart = diagram(&plan, &course, &Diagram::Friction, &style).unwrap();
+    assert_finite_svg(&chart.svg, "the friction diagram");
+    let eta = &chart.panels[0].series[0].1;
+    let lost = &chart.panels[1].series;
+    // Every sample's lost powers are drawn (the samples cover the turn), η only at some.
+    let n = lost[0].1.len();
+    assert!(
+        n + 1 >= style.samples && lost.iter().all(|(_, s)| s.len() == n),
+        "lost powers drawn at {:?} of {} samples",
+        lost.iter().map(|(_, s)| s.len()).collect::<Vec<_>>(),
+        style.samples
+    );
+    assert!(
+        !eta.is_empty() && eta.len() < n,
+        "{} η points of {n}",
+        eta.len()
+    );
+    assert!(eta.iter().all(|p| p[1].is_finite() && p[1] <= 1.0));
+}

@@ -9,6 +9,7 @@ mod two_inputs;
 
 use tmm::draw::{self, Course, Diagram, Style};
 use tmm::kinematics::{grashof, Grashof, Motion, Rotation};
+use tmm::kinetostatics::friction::Efficiency;
 use tmm::linkage::{
     course_inputs, uniform_inputs, Drive, Inputs, LinkId, Linkage, Output, Plan, TwoInputCourse,
 };
@@ -652,7 +653,7 @@ impl Machine {
         // With two inputs the library's row holds both inputs, both balances and the drives'
         // power beside its value by virtual power (W).
         let table = self.plan.course_table(&results);
-        let columns = table
+        let mut columns: Vec<Column> = table
             .columns
             .into_iter()
             .map(|c| {
@@ -664,6 +665,7 @@ impl Machine {
                 }
             })
             .collect();
+        with_efficiency(&mut columns);
         Ok(TableData {
             name: self.name().to_owned(),
             columns,
@@ -950,6 +952,37 @@ fn output_text(out: &Output) -> String {
 }
 
 /// `"R12_x [N]"` → `("R12_x", "N")`.
+/// Adds the instantaneous efficiency `eta` after the library's `P_drive [W]` column (a plan
+/// with friction): η = (P_drive − P_lost)/P_drive as [`Efficiency`] gives it, where the drive
+/// gives power, and NaN (printed as a dash, an empty CSV cell, JSON null) where it does not:
+/// the library's table holds only the quantities defined at every position.
+fn with_efficiency(columns: &mut Vec<Column>) {
+    let find = |name: &str| columns.iter().position(|c| c.name == name && c.unit == "W");
+    let (Some(d), Some(l)) = (find("P_drive"), find("P_lost")) else {
+        return;
+    };
+    let values = columns[d]
+        .values
+        .iter()
+        .zip(&columns[l].values)
+        .map(|(&drive, &lost)| {
+            Efficiency::new(drive, lost)
+                .ok()
+                .and_then(|e| e.eta)
+                .filter(|eta| eta.is_finite())
+                .unwrap_or(f64::NAN)
+        })
+        .collect();
+    columns.insert(
+        d + 1,
+        Column {
+            name: "eta".to_owned(),
+            unit: "-".to_owned(),
+            values,
+        },
+    );
+}
+
 fn split_unit(name: &str) -> (String, String) {
     match name.rfind(" [") {
         Some(k) if name.ends_with(']') => {

@@ -85,8 +85,9 @@ Examples:
 
 Rows of the text table are quantities, columns positions. A position where the linkage cannot
 be solved (a dead point, a pose that does not assemble) is left out with a warning on stderr.
-A value that is not available (the virtual power at rest) is a dash, an empty CSV cell, or
-null in JSON."
+With friction in the joints the table adds the power lost in each joint, their sum, the
+drive's power and the instantaneous efficiency eta; eta has no value where the drive gives no
+power (a dash, an empty CSV cell, null in JSON). Every other value is a number."
     )]
     Analyse {
         /// The description file (JSON), or the name of a bundled one.

@@ -182,7 +182,8 @@ pub struct Column {
     pub name: String,
     /// Its unit, for example `rad`; empty when the library gave none.
     pub unit: String,
-    /// One value per row; NaN where not available.
+    /// One value per row; NaN where not available (only the efficiency `eta`, where the
+    /// drive gives no power).
     pub values: Vec<f64>,
 }
 

@@ -1337,3 +1337,53 @@ fn run_rows(out: &str) -> Vec<Vec<f64>> {
         })
         .collect()
 }
+
+/// `tmm analyse` of a machine with friction and no external loads at 30 rad/s, whose inertia
+/// drives it back over part of its turn: the table has the drive's power beside the power
+/// lost and the efficiency η = (P_drive − P_lost)/P_drive where the drive gives power, an
+/// empty cell (and only there) where it does not; every other cell is a number.
+#[test]
+fn analyse_prints_the_efficiency_where_it_has_a_value_and_a_blank_where_not() {
+    let mut l = tmm::linkage::bundled::four_bar();
+    l.loads.clear();
+    l.friction = Some(tmm::linkage::Friction::pin(0.15, 0.01));
+    l.speed = Some(30.0);
+    let path = std::env::temp_dir().join(format!("tmm-cli-test-{}-eta.json", std::process::id()));
+    std::fs::write(&path, l.to_json().unwrap()).unwrap();
+    let p = path.to_string_lossy().into_owned();
+    let r = tmm(&["analyse", &p, "--positions", "72", "--format", "csv"]);
+    let text = tmm(&["analyse", &p, "--positions", "72"]);
+    let _ = std::fs::remove_file(&path);
+    assert_success(&r, "analyse with friction");
+    assert_success(&text, "analyse with friction, as text");
+    // The text table's eta line shows a dash where η has no value.
+    let line = text
+        .stdout
+        .lines()
+        .find(|l| l.starts_with("eta "))
+        .expect("an eta line");
+    assert!(line.contains('—'), "{line}");
+    // `parse_csv` admits an empty cell only in eta and only where P_drive ≤ 0.
+    let (header, rows) = parse_csv(&r.stdout, "four-bar with friction, no loads");
+    let col = |name: &str| header.iter().position(|h| h == name).expect(name);
+    let (drive, lost, eta) = (col("P_drive [W]"), col("P_lost [W]"), col("eta [-]"));
+    assert_eq!(eta, drive + 1);
+    let mut blanks = 0;
+    for row in &rows {
+        if row[drive] > 0.0 {
+            let expected = (row[drive] - row[lost]) / row[drive];
+            assert!(
+                (row[eta] - expected).abs() <= 1e-12 * expected.abs().max(1.0),
+                "{row:?}"
+            );
+        } else {
+            assert!(row[eta].is_nan(), "{row:?}");
+            blanks += 1;
+        }
+    }
+    assert!(
+        blanks > 0 && blanks < rows.len(),
+        "{blanks} of {} rows idle",
+        rows.len()
+    );
+}

@@ -50,7 +50,8 @@ pub enum Diagram {
     /// The friction over the cycle (two panels): the instantaneous efficiency
     /// η = P_useful / P_drive ([`Analysis::efficiency`](crate::linkage::Analysis::efficiency)),
     /// dimensionless, and the power lost in each joint, W, one line per joint. A position
-    /// where the drive takes no power (η undefined: the loads drive the machine) leaves a gap.
+    /// where the drive takes no power (η undefined: the loads drive the machine) leaves a gap
+    /// in the efficiency's curve, and the lost powers are drawn there.
     /// Without friction η = 1 and nothing is lost.
     Friction,
 }
@@ -772,16 +773,17 @@ pub(super) fn specs_values(
         }
         Diagram::Friction => {
             let a = solver.analyse(inputs)?;
-            let eta = a.efficiency()?.eta.ok_or(Error::Singular {
-                what: "instantaneous efficiency",
-                measure: "drive power",
-                value: a.drive_power(),
-            })?;
+            let e = a.efficiency()?;
             let lost = plan
                 .joint_ids()
                 .map(|j| Ok(a.friction(j)?.power_lost))
                 .collect::<Result<_>>()?;
-            vec![vec![eta], lost]
+            let mut v = finite(vec![lost])?;
+            // η has no value where the drive gives no power: the efficiency's curve leaves a
+            // gap there (a NaN is no point of a curve, and no mark), the lost powers drawn.
+            let eta = e.eta.filter(|x| x.is_finite()).unwrap_or(f64::NAN);
+            v.insert(0, vec![eta]);
+            return Ok(v);
         }
         Diagram::Hodograph(j) => {
             let r = solver.analyse(inputs)?.reaction(j)?;

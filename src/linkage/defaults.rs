@@ -4,8 +4,7 @@
 //! linkage with two inputs, and the table of a course with the named points' paths. The
 //! `tmm` program and the `linkage` example both take these, so that the two agree.
 
-use super::{Analysis, Column, LinkId, Linkage, Output, Plan, Table};
-use crate::kinematics::PointMotion;
+use super::{Analysis, LinkId, Linkage, Output, Plan, Table};
 use crate::Result;
 
 /// The input speed of a description that gives none, rad/s (m/s for a slider).
@@ -142,9 +141,10 @@ impl Plan {
             .collect()
     }
 
-    /// The course table of `analyses` ([`Table::of`]: the failed positions left out) with the
-    /// named points' paths: x, y, |v|, |a| of each named point, placed after the joints'
-    /// columns and before the transmission angles and the reactions.
+    /// The course table of `analyses` ([`Table::of`]: the failed positions left out, and any
+    /// row with a value that is not finite) with the named points' paths: x, y, |v|, |a| of
+    /// each named point (of the analyses' plan), placed after the joints' columns and before
+    /// the transmission angles and the reactions.
     ///
     /// # Examples
     /// Jansen's leg has a named foot; its path is in the table, on the linkage:
@@ -162,32 +162,8 @@ impl Plan {
     /// ```
     #[must_use]
     pub fn course_table(&self, analyses: &[Result<Analysis<'_>>]) -> Table {
-        let mut table = Table::of(analyses);
-        let at = table
-            .columns
-            .iter()
-            .position(|c| c.name.starts_with("mu(") || c.name.starts_with("R("))
-            .unwrap_or(table.columns.len());
-        let mut added = Vec::new();
-        for name in self.point_names() {
-            let motion: Vec<Option<PointMotion>> = analyses
-                .iter()
-                .flatten()
-                .map(|a| a.kinematics().point(name.as_str()).ok())
-                .collect();
-            let column = |label: String, f: &dyn Fn(&PointMotion) -> f64| Column {
-                name: label,
-                values: motion
-                    .iter()
-                    .map(|m| m.as_ref().map_or(f64::NAN, f))
-                    .collect(),
-            };
-            added.push(column(format!("x({name}) [m]"), &|m| m.p.x));
-            added.push(column(format!("y({name}) [m]"), &|m| m.p.y));
-            added.push(column(format!("|v({name})| [m/s]"), &|m| m.v.norm()));
-            added.push(column(format!("|a({name})| [m/s^2]"), &|m| m.a.norm()));
-        }
-        table.columns.splice(at..at, added);
-        table
+        // One row per analysis, the points written with the rest, so that a row left out
+        // (a value that is not finite, see `Table::push`) leaves out its points too.
+        super::table::course_table(analyses)
     }
 }

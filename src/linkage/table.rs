@@ -89,103 +89,154 @@ pub(crate) fn cell_vector(out: &mut impl Cells, name: &[&str], unit: &str, v: Ve
 impl Tabulate for Kinematics<'_> {
     /// The course table's kinematic columns: the input, every moving link's angle, ω and ε,
     /// every joint's position, velocity and acceleration magnitudes, every prismatic joint's
-    /// slide, and every group's transmission angle.
+    /// slide, and every group's transmission angle (no column for a group above the 3rd
+    /// class, where it is not defined).
     fn cells(&self, out: &mut impl Cells) {
-        let plan = self.plan();
-        let links = plan.link_names();
-        let pose = self.pose();
-        let (q, unit, rate, accel) = if plan.input_is_crank() {
-            ("phi_in", "rad", "rad/s", "rad/s^2")
-        } else {
-            ("s_in", "m", "m/s", "m/s^2")
-        };
-        let i = self.inputs().first();
-        out.cell(|| cat(&[q, " [", unit, "]"]), i.value);
-        out.cell(|| cat(&[q, "' [", rate, "]"]), i.rate);
-        out.cell(|| cat(&[q, "'' [", accel, "]"]), i.accel);
-        second_input_cells(out, self);
-        for (k, name) in links.iter().enumerate().skip(1) {
-            let m = pose.link_angle_at(k);
-            out.cell(|| cat(&["phi(", name, ") [rad]"]), m.value);
-            out.cell(|| cat(&["omega(", name, ") [rad/s]"]), m.rate);
-            out.cell(|| cat(&["eps(", name, ") [rad/s^2]"]), m.accel);
-        }
-        for (j, name) in plan.joint_names().iter().enumerate() {
-            let p = pose.joint_motion_at(j);
-            out.cell(|| cat(&["x(", name, ") [m]"]), p.p.x);
-            out.cell(|| cat(&["y(", name, ") [m]"]), p.p.y);
-            out.cell(|| cat(&["|v(", name, ")| [m/s]"]), p.v.norm());
-            out.cell(|| cat(&["|a(", name, ")| [m/s^2]"]), p.a.norm());
-            if plan.is_prismatic_at(j) {
-                let s = pose.slide_at(j);
-                out.cell(|| cat(&["s(", name, ") [m]"]), s.value);
-                out.cell(|| cat(&["v_rel(", name, ") [m/s]"]), s.rate);
-                out.cell(|| cat(&["a_rel(", name, ") [m/s^2]"]), s.accel);
-            }
-        }
-        for (g, group) in plan.groups().iter().enumerate() {
-            if group.kind == crate::linkage::GroupKind::General {
-                // Not defined above the 3rd class: no column.
-                continue;
-            }
-            let mu = self.transmission_angle(g).unwrap_or(f64::NAN);
-            out.cell(|| cat(&["mu(", &group.name, ") [rad]"]), mu);
+        kinematic_cells(out, self, false);
+    }
+}
+
+/// The kinematic columns of [`Tabulate for Kinematics`](Tabulate), with every named point's
+/// x, y, |v| and |a| after the joints' when `points` (the course table of
+/// [`Plan::course_table`](super::Plan::course_table)).
+fn kinematic_cells(out: &mut impl Cells, k: &Kinematics<'_>, points: bool) {
+    let plan = k.plan();
+    let links = plan.link_names();
+    let pose = k.pose();
+    let (q, unit, rate, accel) = if plan.input_is_crank() {
+        ("phi_in", "rad", "rad/s", "rad/s^2")
+    } else {
+        ("s_in", "m", "m/s", "m/s^2")
+    };
+    let i = k.inputs().first();
+    out.cell(|| cat(&[q, " [", unit, "]"]), i.value);
+    out.cell(|| cat(&[q, "' [", rate, "]"]), i.rate);
+    out.cell(|| cat(&[q, "'' [", accel, "]"]), i.accel);
+    second_input_cells(out, k);
+    for (l, name) in links.iter().enumerate().skip(1) {
+        let m = pose.link_angle_at(l);
+        out.cell(|| cat(&["phi(", name, ") [rad]"]), m.value);
+        out.cell(|| cat(&["omega(", name, ") [rad/s]"]), m.rate);
+        out.cell(|| cat(&["eps(", name, ") [rad/s^2]"]), m.accel);
+    }
+    for (j, name) in plan.joint_names().iter().enumerate() {
+        point_cells(out, name, pose.joint_motion_at(j));
+        if plan.is_prismatic_at(j) {
+            let s = pose.slide_at(j);
+            out.cell(|| cat(&["s(", name, ") [m]"]), s.value);
+            out.cell(|| cat(&["v_rel(", name, ") [m/s]"]), s.rate);
+            out.cell(|| cat(&["a_rel(", name, ") [m/s^2]"]), s.accel);
         }
     }
+    if points {
+        for (p, name) in plan.point_names().iter().enumerate() {
+            point_cells(out, name, pose.point_motion_at(p));
+        }
+    }
+    for (g, group) in plan.groups().iter().enumerate() {
+        if group.kind == crate::linkage::GroupKind::General {
+            // Not defined above the 3rd class: no column.
+            continue;
+        }
+        // Defined for every group below the 4th class (`g` is in range): the fallback is
+        // never taken, and a non-finite cell would leave the row out of a table.
+        let mu = k.transmission_angle(g).unwrap_or(f64::NAN);
+        out.cell(|| cat(&["mu(", &group.name, ") [rad]"]), mu);
+    }
+}
+
+/// A point's x, y, |v| and |a|, named after it.
+fn point_cells(out: &mut impl Cells, name: &str, p: crate::kinematics::PointMotion) {
+    out.cell(|| cat(&["x(", name, ") [m]"]), p.p.x);
+    out.cell(|| cat(&["y(", name, ") [m]"]), p.p.y);
+    out.cell(|| cat(&["|v(", name, ")| [m/s]"]), p.v.norm());
+    out.cell(|| cat(&["|a(", name, ")| [m/s^2]"]), p.a.norm());
 }
 
 impl Tabulate for Analysis<'_> {
     /// The course table's row: the kinematic columns of [`Kinematics`], the reaction in every
     /// joint (R_by,on: x, y, magnitude), and the balancing moment `Mb [N·m, + counter-clockwise]`
-    /// (or force `Fb [N, + along the guide]`) beside its value by virtual power (`NaN` when the
-    /// input is at rest: the virtual power then has no rate). A plan with friction adds, after
-    /// the reactions, the power lost in every joint `P_lost(J) [W]`, their sum `P_lost [W]` and
-    /// the instantaneous efficiency `eta [-]` (`NaN` where the drive gives no power); a
+    /// (or force `Fb [N, + along the guide]`) beside its value by virtual power (by the
+    /// velocity analogues, [`Analysis::power_check`]: defined at rest as well). A plan with
+    /// friction adds, after the reactions, the power lost in every joint `P_lost(J) [W]`,
+    /// their sum `P_lost [W]` and the drives' power `P_drive [W]` (the instantaneous
+    /// efficiency is η = (P_drive − P_lost)/P_drive where P_drive > 0, and has no value where
+    /// the drive gives no power, so it is not a column: [`Analysis::efficiency`]); a
     /// frictionless plan has none of these columns. With two inputs: each input's balancing
-    /// value (`Mb`, `Mb2`, or `Fb`, `Fb2` for sliders), then the drives' power `drive power [W]`
-    /// beside `drive power by virtual power [W]`.
+    /// value (`Mb`, `Mb2`, or `Fb`, `Fb2` for sliders), then the drives' power
+    /// `drive power [W]` beside `drive power by virtual power [W]`.
+    ///
+    /// Every cell is a number defined at every position; one that overflows (a magnitude
+    /// beyond `f64::MAX`, a power check whose sums overflow) is not finite, and a [`Table`]
+    /// leaves that position's row out.
     fn cells(&self, out: &mut impl Cells) {
-        self.kinematics().cells(out);
-        let plan = self.plan();
-        let links = plan.link_names();
-        for (j, name) in plan.joint_names().iter().enumerate() {
-            let re = self.reactions[j];
-            let (by, on) = (&links[re.by], &links[re.on]);
-            cell_vector(out, &["R(", by, ",", on, ")@", name], "N", re.force);
-            if plan.is_prismatic_at(j) {
-                out.cell(
-                    || cat(&["M(", by, ",", on, ")@", name, " [N·m]"]),
-                    re.moment,
-                );
-            }
-        }
-        if plan.has_friction() {
-            for (j, name) in plan.joint_names().iter().enumerate() {
-                let lost = self.friction(j).map_or(f64::NAN, |f| f.power_lost);
-                out.cell(|| cat(&["P_lost(", name, ") [W]"]), lost);
-            }
-            out.cell(|| "P_lost [W]".to_owned(), self.lost_power());
-            let eta = self.efficiency().ok().and_then(|e| e.eta);
-            out.cell(|| "eta [-]".to_owned(), eta.unwrap_or(f64::NAN));
-        }
-        if plan.input_count() == 2 {
-            two_input_balances(out, self);
-            return;
-        }
-        let b = self.balances[0];
-        // The sign convention rides in the header: a clockwise machine's driving moment is
-        // negative, and its reader should not have to guess why.
-        let (name, unit) = if plan.input_is_crank() {
-            ("Mb", "N·m, + counter-clockwise")
-        } else {
-            ("Fb", "N, + along the guide")
-        };
-        out.cell(|| cat(&[name, " [", unit, "]"]), b.value);
-        // At rest the virtual power has no rate to divide by: the cell is NaN ("not
-        // available"), as `Table` documents.
-        let vp = self.power_check().map_or(f64::NAN, |c| c.virtual_power);
-        out.cell(|| cat(&[name, " by virtual power [", unit, "]"]), vp);
+        analysis_cells(out, self, false);
     }
+}
+
+/// The columns of [`Tabulate for Analysis`](Tabulate), with the named points' after the
+/// joints' when `points` (see [`kinematic_cells`]).
+fn analysis_cells(out: &mut impl Cells, a: &Analysis<'_>, points: bool) {
+    kinematic_cells(out, a.kinematics(), points);
+    let plan = a.plan();
+    let links = plan.link_names();
+    for (j, name) in plan.joint_names().iter().enumerate() {
+        let re = a.reactions[j];
+        let (by, on) = (&links[re.by], &links[re.on]);
+        cell_vector(out, &["R(", by, ",", on, ")@", name], "N", re.force);
+        if plan.is_prismatic_at(j) {
+            out.cell(
+                || cat(&["M(", by, ",", on, ")@", name, " [N·m]"]),
+                re.moment,
+            );
+        }
+    }
+    if plan.has_friction() {
+        for (j, name) in plan.joint_names().iter().enumerate() {
+            // A plan with friction holds every joint's (zero in a frictionless joint).
+            let lost = a.friction.joints.get(j).map_or(0.0, |f| f.power_lost);
+            out.cell(|| cat(&["P_lost(", name, ") [W]"]), lost);
+        }
+        out.cell(|| "P_lost [W]".to_owned(), a.lost_power());
+        out.cell(|| "P_drive [W]".to_owned(), a.drive_power());
+    }
+    if plan.input_count() == 2 {
+        two_input_balances(out, a);
+        return;
+    }
+    let b = a.balances[0];
+    // The sign convention rides in the header: a clockwise machine's driving moment is
+    // negative, and its reader should not have to guess why.
+    let (name, unit) = if plan.input_is_crank() {
+        ("Mb", "N·m, + counter-clockwise")
+    } else {
+        ("Fb", "N, + along the guide")
+    };
+    out.cell(|| cat(&[name, " [", unit, "]"]), b.value);
+    // Defined at rest too (the velocity analogues); it fails only where its sums overflow,
+    // and the non-finite cell then leaves the row out of a table.
+    let vp = a.power_check().map_or(f64::NAN, |c| c.virtual_power);
+    out.cell(|| cat(&[name, " by virtual power [", unit, "]"]), vp);
+}
+
+/// One analysis as a row of the course table with the named points' columns
+/// ([`Plan::course_table`](super::Plan::course_table)).
+struct CourseRow<'a, 'p>(&'a Analysis<'p>);
+
+impl Tabulate for CourseRow<'_, '_> {
+    fn cells(&self, out: &mut impl Cells) {
+        analysis_cells(out, self.0, true);
+    }
+}
+
+/// The course table of `analyses`: as [`Table::of`], with every named point's x, y, |v| and
+/// |a| after the joints' columns.
+pub(crate) fn course_table(analyses: &[Result<Analysis<'_>>]) -> Table {
+    let mut rows = Rows::new(analyses.iter().filter(|p| p.is_ok()).count());
+    for a in analyses.iter().flatten() {
+        rows.push(&CourseRow(a));
+    }
+    rows.finish()
 }
 
 /// The header sink: every column's name, no values.
@@ -201,10 +252,12 @@ impl Cells for Names<'_> {
 }
 
 /// The value sink: one value into each column in turn; cells past the last column are
-/// dropped (a position of another type or plan cannot make the table ragged).
+/// dropped (a position of another type or plan cannot make the table ragged), and whether
+/// every value taken was finite is noted.
 struct Values<'a> {
     columns: &'a mut [Column],
     next: usize,
+    finite: bool,
 }
 
 impl Cells for Values<'_> {
@@ -212,6 +265,7 @@ impl Cells for Values<'_> {
     fn cell(&mut self, _: impl FnOnce() -> String, value: f64) {
         if let Some(c) = self.columns.get_mut(self.next) {
             c.values.push(value);
+            self.finite &= value.is_finite();
         }
         self.next += 1;
     }
@@ -267,11 +321,24 @@ fn two_input_balances(out: &mut impl Cells, a: &Analysis<'_>) {
         let [.., name, unit] = input_units(a.plan(), i);
         out.cell(|| cat(&[name, " [", unit, "]"]), b.value);
     }
-    let (chain, vp) = a
-        .power_check()
-        .map_or((f64::NAN, f64::NAN), |c| (c.chain, c.virtual_power));
-    out.cell(|| "drive power [W]".to_owned(), chain);
+    // The check fails only where its sums overflow: the non-finite cell then leaves the row
+    // out of a table.
+    let vp = a.power_check().map_or(f64::NAN, |c| c.virtual_power);
+    out.cell(|| "drive power [W]".to_owned(), a.drive_power());
     out.cell(|| "drive power by virtual power [W]".to_owned(), vp);
+}
+
+/// Whether the row written at `start..` of `block` is held: it gives at least `width` cells
+/// (the extra ones are cut) and every one is finite. A row not held is taken off `block`.
+#[inline]
+fn held(block: &mut Vec<f64>, start: usize, width: usize) -> bool {
+    // A fold with no early exit: one vectorised pass (a row is almost always held).
+    let ok = block.len() >= start + width
+        && block[start..start + width]
+            .iter()
+            .fold(true, |ok, v| ok & v.is_finite());
+    block.truncate(if ok { start + width } else { start });
+    ok
 }
 
 /// The value sink of a block of rows: every cell one push onto one buffer.
@@ -308,7 +375,8 @@ impl Rows {
         }
     }
 
-    /// Appends one position's row, as [`Table::push`] does.
+    /// Appends one position's row, as [`Table::push`] does: held only when it gives a finite
+    /// value for every column.
     fn push<P: Tabulate + ?Sized>(&mut self, position: &P) {
         if self.table.columns.is_empty() {
             self.table.lay_out(position, self.reserve);
@@ -319,8 +387,11 @@ impl Rows {
         let width = self.table.columns.len();
         let start = self.block.len();
         position.cells(&mut Flat(&mut self.block));
-        // Rectangular: a short row is padded with NaN, a long one cut.
-        self.block.resize(start + width, f64::NAN);
+        // Rectangular and finite: a long row is cut; a short one, or one with a value that
+        // is not finite, is left out ([`Table::push`]).
+        if !held(&mut self.block, start, width) {
+            return;
+        }
         if self.block.len() >= Self::BLOCK * width {
             self.flush();
         }
@@ -343,15 +414,21 @@ impl Rows {
 
     fn finish(mut self) -> Table {
         self.flush();
+        if self.table.is_empty() {
+            // No row held: no columns either, as for a table of no positions.
+            return Table::default();
+        }
         self.table
     }
 }
 
 impl Table {
     /// The table of the positions that were analysed; failed positions (their `Err`) are left
-    /// out, so a table's input-angle column tells which positions it holds. For a plan's
-    /// cycle, [`Plan::table`](super::Plan::table) solves and tabulates in one pass, with no
-    /// analysis kept per position.
+    /// out, and so are rows not held by the rule of [`push`](Self::push) (a value that is not
+    /// finite, or too few cells), so every number the table holds is finite and its
+    /// input-angle column tells which positions it holds. For a plan's cycle,
+    /// [`Plan::table`](super::Plan::table) solves and tabulates in one pass, with no analysis
+    /// kept per position.
     ///
     /// # Examples
     /// ```
@@ -377,11 +454,21 @@ impl Table {
         rows.finish()
     }
 
-    /// Appends one position as a row. The first position pushed onto a table without
-    /// columns lays them out (its names); every later one gives its values alone, into the
-    /// same columns in the same order: no allocation per row beyond the columns' growth. A
-    /// row with fewer cells than columns leaves `NaN` in the rest, one with more drops the
-    /// extra cells, so the table stays rectangular.
+    /// Appends one position as a row, and says whether it was held. The first position
+    /// pushed onto a table without columns lays them out (its names); every later one gives
+    /// its values alone, into the same columns in the same order: no allocation per row
+    /// beyond the columns' growth.
+    ///
+    /// A table holds only finite numbers: a row is held when it gives a finite value for
+    /// every column laid out (cells past the last column are cut). A table with no row held
+    /// has no columns. A row that gives fewer
+    /// cells than the table has columns (a position of another type or plan), or a value
+    /// that is not finite (an overflow, or a `NaN` a user's [`Tabulate`] wrote for "no
+    /// value"), is left out whole and `false` returned: the table stays rectangular, and its
+    /// input column tells which positions it holds. A quantity that has no value at some
+    /// positions belongs in a column of what it is made from (the table of an [`Analysis`]
+    /// has `P_drive [W]` and `P_lost [W]`, not the efficiency, which has no value where the
+    /// drive gives no power).
     ///
     /// # Examples
     /// A table of the four-bar's turn, solved and tabulated position by position:
@@ -392,7 +479,7 @@ impl Table {
     /// let mut solver = plan.solver();
     /// let mut table = Table::default();
     /// for k in 0..36 {
-    ///     table.push(solver.analyse(Motion::turning(f64::from(k) * 0.1745, 10.0))?);
+    ///     assert!(table.push(solver.analyse(Motion::turning(f64::from(k) * 0.1745, 10.0))?));
     /// }
     /// assert_eq!(table.len(), 36);
     /// // The chain's balancing moment equals its value by virtual power at every position.
@@ -401,25 +488,51 @@ impl Table {
     /// assert!(mb.iter().zip(vp).all(|(a, b)| (a - b).abs() <= 1e-9 * a.abs().max(1.0)));
     /// # Ok::<(), tmm::Error>(())
     /// ```
-    pub fn push<P: Tabulate + ?Sized>(&mut self, position: &P) {
+    ///
+    /// A row with no value in a column is not held:
+    /// ```
+    /// use tmm::linkage::{Cells, Table, Tabulate};
+    /// struct Ratio(f64, f64);
+    /// impl Tabulate for Ratio {
+    ///     fn cells(&self, out: &mut impl Cells) {
+    ///         out.cell(|| "a [-]".into(), self.0);
+    ///         out.cell(|| "a/b [-]".into(), self.0 / self.1);
+    ///     }
+    /// }
+    /// let mut t = Table::default();
+    /// assert!(t.push(&Ratio(1.0, 2.0)));
+    /// assert!(!t.push(&Ratio(0.0, 0.0))); // 0/0
+    /// assert_eq!(t.column("a/b [-]"), Some(&[0.5][..]));
+    /// ```
+    pub fn push<P: Tabulate + ?Sized>(&mut self, position: &P) -> bool {
+        let fresh = self.columns.is_empty();
         self.lay_out(position, 0);
-        self.push_values(position);
+        let held = self.push_values(position);
+        if fresh && !held {
+            // A row not held leaves the table as it was: no columns of no rows.
+            self.columns.clear();
+        }
+        held
     }
 
-    /// Appends `position`'s values to the columns laid out, NaN in any it does not give.
-    fn push_values<P: Tabulate + ?Sized>(&mut self, position: &P) {
-        let len = self.len();
+    /// Appends `position`'s values to the columns laid out if it gives a finite value for
+    /// every one ([`push`](Self::push)); otherwise takes back what it wrote.
+    fn push_values<P: Tabulate + ?Sized>(&mut self, position: &P) -> bool {
         let mut values = Values {
             columns: &mut self.columns,
             next: 0,
+            finite: true,
         };
         position.cells(&mut values);
-        let given = values.next;
-        for c in self.columns.iter_mut().skip(given) {
-            if c.values.len() == len {
-                c.values.push(f64::NAN);
-            }
+        let (given, finite) = (values.next, values.finite);
+        if given >= self.columns.len() && finite {
+            return true;
         }
+        // Each column before `given` took exactly one value.
+        for c in self.columns.iter_mut().take(given) {
+            c.values.pop();
+        }
+        false
     }
 
     /// Lays the columns out from `position`'s names (with room for `rows` values each) if
@@ -543,7 +656,9 @@ impl Plan {
     /// analysed by one [`Solver`](super::Solver) and written straight into the table's
     /// columns (the columns of [`Tabulate for Analysis`](Tabulate)), with nothing kept or
     /// allocated per position. Positions that fail are left out, as in [`Table::of`]; a
-    /// [`cycle`](Self::cycle) gives their errors.
+    /// [`cycle`](Self::cycle) gives their errors. Every cell of an analysis is defined at every
+    /// position (at rest as well as moving, with no loads at all); a row is left out only
+    /// where a value overflows (see [`Table::push`]).
     ///
     /// # Examples
     /// ```

@@ -61,9 +61,8 @@ pub fn assert_success(r: &Run, what: &str) {
 
 /// Parses CSV text (no quoted cells with commas in the numbers): the header's cells and the
 /// rows of numbers, every cell a finite number; checks each row has the header's count. The
-/// one value the program leaves empty, the balance by virtual power where the input is at rest
-/// (a rocking crank at its locks: the power is zero there and gives no moment), reads as NaN
-/// and only in a row whose input rate is zero.
+/// one value the program leaves empty, the efficiency `eta [-]` where the drive gives no
+/// power, reads as NaN and only in a row whose `P_drive [W]` is not positive.
 pub fn parse_csv(text: &str, what: &str) -> (Vec<String>, Vec<Vec<f64>>) {
     let mut lines = text.lines();
     let header = split_csv_line(lines.next().expect("a header"));
@@ -79,11 +78,11 @@ pub fn parse_csv(text: &str, what: &str) -> (Vec<String>, Vec<Vec<f64>>) {
                 .iter()
                 .zip(&header)
                 .map(|(c, h)| {
-                    if c.is_empty() && h.contains("by virtual power") {
-                        let rate = header.iter().position(|h| h.starts_with("phi_in' "));
+                    if c.is_empty() && h == "eta [-]" {
+                        let drive = header.iter().position(|h| h == "P_drive [W]");
                         assert!(
-                            rate.is_some_and(|k| cells[k] == "0"),
-                            "{what}: {h} is empty only where the input rests: {line}"
+                            drive.is_some_and(|k| cells[k].parse::<f64>().is_ok_and(|p| p <= 0.0)),
+                            "{what}: {h} is empty only where the drive gives no power: {line}"
                         );
                         return f64::NAN;
                     }

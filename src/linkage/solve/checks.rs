@@ -12,10 +12,13 @@ use crate::Load;
 pub struct PowerCheck {
     /// From the group-by-group chain.
     pub chain: f64,
-    /// From the principle of virtual power: (P_lost − Σ P_i) / q̇ over every applied load,
-    /// P_lost the power the joints' friction dissipates (0 without friction).
+    /// From the principle of virtual power: P'_lost − Σ P'_i over every applied load, each
+    /// P'_i = F·v' + M·ω' the load's power per unit input rate (v', ω' the velocity
+    /// analogues), P'_lost the power the joints' friction dissipates per unit rate (0
+    /// without friction, and at rest). With two inputs, powers: P_lost − Σ P_i, W.
     pub virtual_power: f64,
-    /// The scale of the comparison: the largest of |chain| and (Σ|P_i| + P_lost)/|q̇|.
+    /// The scale of the comparison: the largest of |chain| and Σ|P'_i| + |P'_lost| (with two
+    /// inputs Σ|P_i| + P_lost, W).
     pub scale: f64,
 }
 
@@ -92,24 +95,89 @@ impl Analysis<'_> {
             .fold(0.0, f64::max)
     }
 
-    /// The power of every applied load, W: Σ F·v + M·ω.
-    fn powers(&self) -> (f64, f64) {
+    /// The power of every applied load at the link motions `links`, W: (Σ F·v + M·ω, Σ |F·v +
+    /// M·ω|). With the position's own motions these are the loads' powers; with the motions of
+    /// a solve at unit input rate, their powers per unit rate (the velocity analogues).
+    fn powers_with(&self, links: &[crate::kinematics::LinkMotion]) -> (f64, f64) {
         self.applied.iter().fold((0.0, 0.0), |(s, a), (k, l)| {
-            let link = &self.k.kin.links[*k];
+            let link = &links[*k];
             let p = l.force.dot(&link.motion_of(l.point).v) + l.moment * link.omega;
             (s + p, a + p.abs())
         })
     }
 
+    /// The power of every applied load, W: Σ F·v + M·ω.
+    fn powers(&self) -> (f64, f64) {
+        self.powers_with(&self.k.kin.links)
+    }
+
+    /// The balancing value by virtual power of a linkage of one input, P'_lost − Σ P'_i (the
+    /// loads' powers and the joints' lost power per unit input rate), with its scale
+    /// Σ |P'_i| + |P'_lost|: the statics virtual-work check, defined whether the input moves
+    /// or not.
+    ///
+    /// The principle of virtual power holds for any virtual velocities the joints admit; the
+    /// velocity analogues (every velocity per unit input rate, v' = ∂v/∂q̇, the first-order
+    /// transfer functions) are such velocities at every position, moving or at rest. The
+    /// kinematics' rate problems are linear in q̇ (the input's acceleration enters only the
+    /// accelerations), so where the input moves v' = v/q̇ and Σ P'_i = (Σ P_i)/q̇: the sums
+    /// are the position's own powers over q̇, with no second solve. At rest
+    /// (q̇ = 0) the analogues come from a kinematic solve of the same position at q̇ = 1 (its
+    /// accelerations are not read).
+    ///
+    /// Friction: each joint's friction load L_j (a couple or a force along the slide, on one
+    /// link from the other) does the virtual power −L_j·r'_j on the joint's relative rate per
+    /// unit input rate r'_j = ṙ_j/q̇, so P'_lost = Σ −L_j·r'_j. Moving, that is Σ P_lost/q̇
+    /// (each P_lost = −L_j·ṙ_j). At rest every relative rate is r'_j·0 = 0, and the friction
+    /// solve's rest convention gives a joint whose relative rate is exactly zero no friction
+    /// (L_j = −c·sgn(0)·pressure = 0, see [`kinetostatics::friction`]), so P'_lost = 0: the
+    /// balancing value at rest is the frictionless statics', and so is its check.
+    ///
+    /// # Errors
+    /// The kinematic solve at unit rate's error (at rest only: a rate the plan's size
+    /// overflows).
+    ///
+    /// [`kinetostatics::friction`]: crate::kinetostatics::friction
+    fn by_unit_rate(&self) -> Result<(f64, f64)> {
+        let q = self.k.kin.input.rate;
+        if q != 0.0 {
+            // q̇ is finite (the solve checked it); P_lost ≥ 0, so |P'_lost| = P_lost/|q̇|.
+            let (sum, abs) = self.powers();
+            let lost = self.lost_power();
+            return Ok(((lost - sum) / q, (abs + lost) / q.abs()));
+        }
+        let plan = self.k.plan;
+        let mut unit = super::kinematics::Kinematics::new(plan);
+        let m = self.k.kin.input;
+        unit.solve(&[crate::kinematics::Motion::new(m.value, 1.0, 0.0)])?;
+        let (sum, abs) = self.powers_with(&unit.kin.links);
+        Ok((-sum, abs))
+    }
+
     /// The balancing value by the chain and by the principle of virtual power. For a linkage
+    /// with one input, B = P'_lost − Σ P'_i over every applied load with the velocity
+    /// analogues (each load's power per unit input rate, [`PowerCheck::virtual_power`]): the
+    /// statics virtual-work check, defined at rest as well as moving. For a linkage
     /// with two inputs the comparison is of powers, W: the drives' Σ B_k·q̇_k against
     /// P_lost − Σ P_i of every applied load. With friction the drives also supply the power
     /// the joints dissipate, P_lost = Σ [`JointFriction::power_lost`](crate::kinetostatics::friction::JointFriction)
     /// (the friction loads are internal to the linkage, so they enter here by their lost
-    /// power and not as applied loads).
+    /// power and not as applied loads); at rest a joint has no friction (no relative motion).
     ///
     /// # Errors
-    /// [`Error::Singular`] when the input does not move (q̇ = 0).
+    /// [`Error::NonFinite`] (`"virtual power"`) where a sum overflows; at rest, the error of
+    /// the kinematic solve at unit rate that gives the velocity analogues.
+    ///
+    /// # Examples
+    /// At rest the check is the statics' virtual work, by the velocity analogues:
+    /// ```
+    /// use tmm::kinematics::Motion;
+    /// use tmm::linkage::{bundled, Plan};
+    /// let plan = Plan::new(&bundled::four_bar())?;
+    /// let c = plan.analyse(Motion::turning(1.0, 0.0))?.power_check()?;
+    /// assert!(c.relative_error() < 1e-12);
+    /// # Ok::<(), tmm::Error>(())
+    /// ```
     pub fn power_check(&self) -> Result<PowerCheck> {
         if let (Some(m), [_, b]) = (self.k.kin.second_input, self.balances()) {
             // Two inputs: the drives' power against the loads' power, W.
@@ -129,17 +197,7 @@ impl Analysis<'_> {
                 scale: (abs + lost).max(chain.abs()),
             });
         }
-        let q = self.k.kin.input.rate;
-        if q == 0.0 || !q.is_finite() {
-            return Err(Error::Singular {
-                what: "virtual power balance",
-                measure: "input rate",
-                value: q,
-            });
-        }
-        let (sum, abs) = self.powers();
-        let lost = self.lost_power();
-        let (vp, scale) = ((lost - sum) / q, (abs + lost) / q.abs());
+        let (vp, scale) = self.by_unit_rate()?;
         if !(vp.is_finite() && scale.is_finite()) {
             return Err(Error::NonFinite {
                 name: "virtual power",
