@@ -264,3 +264,54 @@ fn the_six_bar_example_is_the_six_bar_it_names() {
         .fold(f64::INFINITY, f64::min);
     assert!(lowest > 0.3f64.sin(), "{lowest}");
 }
+
+/// `max_size` holds for the six-bar's designs as for the four-bar's (session 9: its polish
+/// could end outside). The example's own six-bar, which meets its points exactly, has
+/// dimensions up to 3.6 path sizes: in a box of 1.5 the free polish heads for it, and every
+/// design returned must still be inside, as the engine poses it at each of its crank
+/// angles: the six lengths O1O3, O1A, AB, O3B, CE, O5E within `s`, each coordinate of O1 and
+/// O5 within `s` of the points' centroid, C from A and P from C within √2·s (their offsets
+/// along and across, each within `s`).
+#[test]
+fn the_six_bars_designs_keep_max_size() {
+    let req = PathRequirement::six_bar_example().unwrap();
+    let (centre, size) = centroid_size(&req.points);
+    let s = 1.5 * size;
+    let opts = PathOptions::default()
+        .with_min_transmission_angle(0.3)
+        .with_max_size(1.5)
+        .with_max_evaluations(50_000);
+    let designs = six_bar_path_generator(&req, &opts, |_| true).unwrap();
+    assert!(!designs.is_empty());
+    let slack = 1.0 + 1e-9;
+    for d in &designs {
+        // Not the example's own six-bar (outside the box): it would meet the points.
+        assert!(d.mean_error > 1e-6 * size, "{:e}", d.mean_error);
+        let plan = tmm::linkage::Plan::new(&d.synthesis.linkage).unwrap();
+        for &phi in &d.crank_angles {
+            let k = plan.kinematics(Motion::fixed(phi)).unwrap();
+            let at = |name: &str| k.joint(name).unwrap().p;
+            for (a, b, most) in [
+                ("O1", "O3", s),
+                ("O1", "A", s),
+                ("A", "B", s),
+                ("O3", "B", s),
+                ("C", "E", s),
+                ("O5", "E", s),
+                ("A", "C", std::f64::consts::SQRT_2 * s),
+            ] {
+                let l = (at(a) - at(b)).norm();
+                assert!(l <= most * slack, "{a}{b} = {l} > {most} at {phi}");
+            }
+            let cp = (k.point("P").unwrap().p - at("C")).norm();
+            assert!(cp <= std::f64::consts::SQRT_2 * s * slack, "CP = {cp}");
+            for pivot in ["O1", "O5"] {
+                let p = at(pivot);
+                assert!(
+                    (p.x - centre[0]).abs() <= s * slack && (p.y - centre[1]).abs() <= s * slack,
+                    "{pivot} {p} from the centroid {centre:?}"
+                );
+            }
+        }
+    }
+}

@@ -81,9 +81,8 @@ pub struct PathOptions {
     /// crank and rod), in (1, [`MAX_LINK_RATIO`](super::MAX_LINK_RATIO)]. Default 10.
     pub max_link_ratio: f64,
     /// The largest link length and distance of a pivot from the points' centroid, in units of
-    /// the path's size (the largest distance of a point from the centroid). Default 5. The
-    /// four-bar's and slider-crank's designs keep it; the six-bar's search keeps it, but its
-    /// polish may end outside it.
+    /// the path's size (the largest distance of a point from the centroid). Default 5. Every
+    /// design returned keeps it (a polish may pass outside on its way).
     pub max_size: f64,
     /// The seed of the search (the same seed gives the same designs unless `max_time` cuts
     /// the search short).
@@ -673,6 +672,22 @@ impl Problem {
             }
         };
         let mut accept = |x: &[f64]| self.lengths_ok(&gene_vec(x, sigma)) == 0.0;
+        levenberg_marquardt(&res, &mut accept, x, self.separable(), iterations)
+    }
+
+    /// [`Problem::lm`] with every step also kept within `max_size` (the search's box).
+    fn lm_within(&self, x: Vec<f64>, sigma: f64, iterations: usize) -> Vec<f64> {
+        let res = |x: &[f64]| {
+            if self.budget.take_polish() {
+                pb_residuals(self.kind, &self.targets, &self.timing, x, sigma)
+            } else {
+                None
+            }
+        };
+        let mut accept = |x: &[f64]| {
+            let g = gene_vec(x, sigma);
+            self.lengths_ok(&g) == 0.0 && self.within_size(&g)
+        };
         levenberg_marquardt(&res, &mut accept, x, self.separable(), iterations)
     }
 
@@ -1589,11 +1604,29 @@ fn search_timed(
                 };
                 nelder_mead(&mut f, &x, &step, 200 * x.len())
             };
+            let x0 = x.clone();
             let x = if pb.feasible(&xn, sigma) { xn } else { x };
             let x = pb.lm(x, sigma, 200);
-            if !pb.feasible(&x, sigma) {
+            // Where the free polish ends outside the constraints (in a box too small to
+            // reach the points it grows the links past `max_size`) and no design is found
+            // yet, the polish again from the member, every step kept within the box; and the
+            // member itself (feasible in the search) when that is refused too: a search that
+            // found a feasible candidate leaves a design (with `max_size` 0.01 the
+            // slider-crank's left none).
+            let x = if pb.feasible(&x, sigma) {
+                x
+            } else if !found.designs.is_empty() {
                 continue;
-            }
+            } else {
+                let y = pb.lm_within(x0.clone(), sigma, 200);
+                if pb.feasible(&y, sigma) {
+                    y
+                } else if pb.feasible(&x0, sigma) {
+                    x0
+                } else {
+                    continue;
+                }
+            };
             let mut g = x[..9].to_vec();
             g.push(sigma);
             found.adopt(pb, &g, &x[9..], 0, opts.tolerance, false)?;

@@ -252,7 +252,7 @@ impl Problem<'_> {
         let mut accept = |x: &[f64]| {
             self.lengths_ok(x) == 0.0
                 && (!within
-                    || self.budget.room(1) && {
+                    || self.within_size(x) && self.budget.room(1) && {
                         self.budget.add(1);
                         self.cost(x, s, SEARCH_STEP) < INFEASIBLE
                     })
@@ -261,21 +261,30 @@ impl Problem<'_> {
         levenberg_marquardt(&res, &mut accept, x, n, iterations)
     }
 
-    /// [`continuation`] from the near miss `x` to the points, the link ratio kept.
+    /// [`continuation`] from the near miss `x` to the points, the link ratio and the box
+    /// (`max_size`) kept.
     fn follow(&self, x: Vec<f64>, s: [f64; 2]) -> Vec<f64> {
         let res = |x: &[f64]| self.residuals(x, s);
-        let mut accept = |x: &[f64]| self.lengths_ok(x) == 0.0;
+        let mut accept = |x: &[f64]| self.lengths_ok(x) == 0.0 && self.within_size(x);
         let n = x.len();
         continuation(&res, &mut accept, x, n, 400)
     }
 
-    /// The whole check: the ratio, assembly with γ ≥ \[γ\] every 1° of the range; the mean
-    /// miss where it passes, `None` where it does not (or the budget has no room for it).
-    /// Unlike the four-bar's, it does not hold the polished design within `max_size`: held
-    /// there, seeded case 2 of the recovery test no longer recovers (its polish ends
-    /// outside).
+    /// Whether the dimensions `x` are within `max_size` (the search's box): the pivots O1
+    /// and O5 from the centroid, the frame O1O3 and the five links, the offsets of C and P.
+    fn within_size(&self, x: &[f64]) -> bool {
+        x[..DIMS]
+            .iter()
+            .enumerate()
+            .all(|(k, v)| k == 2 || v.abs() <= self.size)
+    }
+
+    /// The whole check: the ratio, the size (`max_size`, as the four-bar's), assembly with
+    /// γ ≥ \[γ\] every 1° of the range; the mean miss where it passes, `None` where it does
+    /// not (or the budget has no room for it). A free polish may pass outside the box on its
+    /// way; where it ends outside, the polish is done again with every step kept inside.
     fn check(&self, x: &[f64], s: [f64; 2]) -> Option<f64> {
-        if !self.budget.charge(self.budget.check) {
+        if !self.within_size(x) || !self.budget.charge(self.budget.check) {
             return None;
         }
         Some(self.cost(x, s, CHECK_STEP)).filter(|&c| c < INFEASIBLE)
@@ -534,7 +543,9 @@ fn search(
                     };
                     let g = genes_of(&pb.lm(x, sg, 30, false), sg);
                     let f = pb.objective(&g);
-                    if f < fit[i] {
+                    // Only within the box, as the four-bar's: a member polished outside
+                    // would lead the population where no design is kept.
+                    if f < fit[i] && pb.within_size(&g) {
                         pop[i] = g;
                         fit[i] = f;
                     }
@@ -578,7 +589,14 @@ fn search(
             if miss > opts.tolerance {
                 // A near miss where Levenberg–Marquardt stalled in a curved valley of the
                 // ill-conditioned misses: followed down to the points by continuation.
-                let y = pb.lm(pb.follow(x.clone(), sg), sg, 200, false);
+                let z = pb.follow(x.clone(), sg);
+                let y = pb.lm(z.clone(), sg, 200, false);
+                // A free polish that ends outside the box: again with its steps inside.
+                let y = if pb.within_size(&y) {
+                    y
+                } else {
+                    pb.lm(z, sg, 200, true)
+                };
                 if let Some(m) = pb.check(&y, sg)
                     && m < miss
                 {
