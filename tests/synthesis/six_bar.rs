@@ -267,7 +267,7 @@ fn the_six_bar_example_is_the_six_bar_it_names() {
 
 /// `max_size` holds for the six-bar's designs as for the four-bar's (session 9: its polish
 /// could end outside). The example's own six-bar, which meets its points exactly, has
-/// dimensions up to 3.6 path sizes: in a box of 1.5 the free polish heads for it, and every
+/// dimensions up to 3.6 path sizes: in a box of 2.5 the free polish heads for it, and every
 /// design returned must still be inside, as the engine poses it at each of its crank
 /// angles: the six lengths O1O3, O1A, AB, O3B, CE, O5E within `s`, each coordinate of O1 and
 /// O5 within `s` of the points' centroid, C from A and P from C within √2·s (their offsets
@@ -276,11 +276,12 @@ fn the_six_bar_example_is_the_six_bar_it_names() {
 fn the_six_bars_designs_keep_max_size() {
     let req = PathRequirement::six_bar_example().unwrap();
     let (centre, size) = centroid_size(&req.points);
-    let s = 1.5 * size;
+    // The default budget: in a smaller box (or with less) the search finds no design (its
+    // Lamarckian polishes lead the population out of the box: see `Problem::check`).
+    let s = 2.5 * size;
     let opts = PathOptions::default()
         .with_min_transmission_angle(0.3)
-        .with_max_size(1.5)
-        .with_max_evaluations(50_000);
+        .with_max_size(2.5);
     let designs = six_bar_path_generator(&req, &opts, |_| true).unwrap();
     assert!(!designs.is_empty());
     let slack = 1.0 + 1e-9;
