@@ -53,6 +53,8 @@ fn a_slider_crank_near_k_one_names_the_least_k_and_meets_it() {
         let err = slider_crank(&need(1.0 + 1e-10), &Options::default()).unwrap_err();
         let (lo, hi) = k_interval(err);
         assert!(lo > 1.0 + 1e-10 && lo < hi, "{lo} {hi}");
+        // The bound is sharp: just below it, refused.
+        assert!(slider_crank(&need(lo * (1.0 - 1e-9)), &Options::default()).is_err());
         let s = slider_crank(&need(lo * (1.0 + 1e-9)), &Options::default()).unwrap();
         let (a, b) = (
             s.report.dimension("crank").unwrap(),
@@ -89,4 +91,42 @@ fn an_offset_too_large_for_any_k_is_named() {
         }
         other => panic!("{other}"),
     }
+}
+
+/// The best-transmission offset near K = 1 is the best: at K = 1 + 10⁻⁵ (θ ≈ 1.6·10⁻⁵, the
+/// offset's bound H·cot θ ≈ 6000·H while the best is near H/2) a design, whose γ_min no
+/// offset 1 % either side of it beats (each solved as a given offset), whose rod keeps the
+/// ratio, and whose stroke and K the engine finds.
+#[test]
+fn the_best_offset_near_k_one_is_the_best() {
+    let (h, k) = (0.1, 1.0 + 1e-5);
+    let need = |offset| SliderCrankRequirement {
+        stroke: h,
+        time_ratio: k,
+        offset,
+    };
+    let best = slider_crank(&need(OffsetChoice::BestTransmission), &Options::default()).unwrap();
+    let e = best.report.dimension("offset").unwrap();
+    let gamma = best.report.min_transmission_angle;
+    let (a, b) = (
+        best.report.dimension("crank").unwrap(),
+        best.report.dimension("rod").unwrap(),
+    );
+    assert!(b / a <= MAX_LINK_RATIO, "{}", b / a);
+    for f in [0.99, 1.01] {
+        let other = slider_crank(&need(OffsetChoice::Given(e * f)), &Options::default())
+            .unwrap()
+            .report
+            .min_transmission_angle;
+        assert!(
+            other <= gamma + 1e-12,
+            "offset ×{f}: γ_min {other} > {gamma}"
+        );
+    }
+    let strokes = Plan::new(&best.linkage)
+        .unwrap()
+        .strokes(&Output::Slide("P".into()), Rotation::Ccw)
+        .unwrap();
+    assert!((strokes.stroke - h).abs() < 1e-10, "{}", strokes.stroke);
+    assert!((strokes.time_ratio - k).abs() < 1e-9);
 }

@@ -676,6 +676,22 @@ impl Problem {
         levenberg_marquardt(&res, &mut accept, x, self.separable(), iterations)
     }
 
+    /// [`Problem::lm`] with every step also kept within `max_size` (the search's box).
+    fn lm_within(&self, x: Vec<f64>, sigma: f64, iterations: usize) -> Vec<f64> {
+        let res = |x: &[f64]| {
+            if self.budget.take_polish() {
+                pb_residuals(self.kind, &self.targets, &self.timing, x, sigma)
+            } else {
+                None
+            }
+        };
+        let mut accept = |x: &[f64]| {
+            let g = gene_vec(x, sigma);
+            self.lengths_ok(&g) == 0.0 && self.within_size(&g)
+        };
+        levenberg_marquardt(&res, &mut accept, x, self.separable(), iterations)
+    }
+
     fn angle_of(&self, x: &[f64], i: usize) -> f64 {
         match &self.timing {
             Timing::Prescribed(delta) => x[9] + delta[i],
@@ -1589,11 +1605,29 @@ fn search_timed(
                 };
                 nelder_mead(&mut f, &x, &step, 200 * x.len())
             };
+            let x0 = x.clone();
             let x = if pb.feasible(&xn, sigma) { xn } else { x };
             let x = pb.lm(x, sigma, 200);
-            if !pb.feasible(&x, sigma) {
+            // Where the free polish ends outside the constraints (in a box too small to
+            // reach the points it grows the links past `max_size`) and no design is found
+            // yet, the polish again from the member, every step kept within the box; and the
+            // member itself (feasible in the search) when that is refused too: a search that
+            // found a feasible candidate leaves a design (with `max_size` 0.01 the
+            // slider-crank's left none).
+            let x = if pb.feasible(&x, sigma) {
+                x
+            } else if !found.designs.is_empty() {
                 continue;
-            }
+            } else {
+                let y = pb.lm_within(x0.clone(), sigma, 200);
+                if pb.feasible(&y, sigma) {
+                    y
+                } else if pb.feasible(&x0, sigma) {
+                    x0
+                } else {
+                    continue;
+                }
+            };
             let mut g = x[..9].to_vec();
             g.push(sigma);
             found.adopt(pb, &g, &x[9..], 0, opts.tolerance, false)?;
