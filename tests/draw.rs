@@ -1177,7 +1177,18 @@ fn a_rocking_input_is_drawn_over_its_sweep() {
         assert_eq!(p.marks.len(), 12);
         assert_eq!(p.marks[6].1[0], (to - from).abs()); // the turning point, half way
         let pts = &p.series[0].1;
-        assert_eq!(pts.len(), style.samples, "no position failed");
+        if matches!(d, Diagram::Balance) {
+            // At the locks (both ends, and the turning point when a sample lands on it) the
+            // driven group is at its dead point: no balance there, every other sample has one.
+            assert!(
+                style.samples - pts.len() <= 3,
+                "{} of {}",
+                pts.len(),
+                style.samples
+            );
+        } else {
+            assert_eq!(pts.len(), style.samples, "no position failed");
+        }
         if matches!(d, Diagram::Kinematics(_)) {
             let (y0, y1) = (pts[0][1], pts[pts.len() - 1][1]);
             assert!((y0 - y1).abs() < 1e-2, "{y0} {y1}");

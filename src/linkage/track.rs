@@ -19,6 +19,10 @@ use crate::kinematics::Motion;
 /// minimum of its dyad's |determinant| between neighbouring steps.
 const STEP: f64 = std::f64::consts::TAU / 720.0;
 
+/// The most positions a walk solves besides the inputs (about 0.1 s of kinematics): a run
+/// whose inputs turn the crank through more than this many steps walks in longer ones.
+const MAX_SAMPLES: usize = 200_000;
+
 /// Below this |determinant| a minimum is a dead centre. At a change point the determinant
 /// falls linearly to zero and the refinement gets it to about 10⁻¹²; a crank-rocker's
 /// smallest transmission angle (a minimum that is no dead centre) is degrees, not 10⁻⁶ rad.
@@ -163,7 +167,8 @@ fn is_dyad(plan: &Plan, g: usize) -> bool {
 impl Plan {
     /// The plans `inputs` (a crank's, in the order the input reaches them) are solved on
     /// when the mechanism tracks its branch through dead centres, as one carried on by its
-    /// inertia does: the inputs are walked in steps of at most 0.5°, each dyad's
+    /// inertia does: the inputs are walked in steps of at most 0.5° (longer where they turn
+    /// the crank through more than 2·10⁵ such steps in all), each dyad's
     /// |determinant| watched; at a minimum that reaches zero (below 10⁻⁶ once refined: a
     /// dead centre the input runs through), the mode whose velocity analogues 10⁻⁴ rad past it
     /// continue those 10⁻⁴ rad before it is kept, the plan's or the other one. A run with no
@@ -220,6 +225,11 @@ impl Plan {
             return Ok(track);
         };
         self.kinematics(Motion::fixed(first.value))?;
+        // The walk's budget: its step widens past 0.5° where the inputs turn the crank
+        // through more than MAX_SAMPLES half-degrees in all (inputs far apart, given by hand).
+        let total: f64 = inputs.windows(2).map(|p| advance(p[0], p[1]).abs()).sum();
+        #[allow(clippy::cast_precision_loss)]
+        let step = STEP.max(total / MAX_SAMPLES as f64);
         // The last two samples' |determinants| (per group) on the current plan.
         let mut prev: Option<(f64, Vec<f64>)> = None;
         let mut before: Option<(f64, Vec<f64>)> = None;
@@ -227,7 +237,7 @@ impl Plan {
         for (k, pair) in inputs.windows(2).enumerate() {
             let (q0, q1) = (pair[0].value, pair[0].value + advance(pair[0], pair[1]));
             #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
-            let steps = ((q1 - q0).abs() / STEP).ceil().max(1.0).min(1e6) as usize;
+            let steps = ((q1 - q0).abs() / step).ceil().clamp(1.0, 1e6) as usize;
             // The first sample of a pair is the last of the one before.
             for j in usize::from(k > 0)..=steps {
                 #[allow(clippy::cast_precision_loss)]

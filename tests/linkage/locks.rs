@@ -6,7 +6,7 @@
 
 use tmm::kinematics::Motion;
 use tmm::linkage::{
-    bundled, Course, Joint, Link, Linkage, LoadSpec, Plan, DEAD_POINT_RELATIVE_ERROR,
+    bundled, Course, Input, Joint, Link, Linkage, LoadSpec, Plan, DEAD_POINT_RELATIVE_ERROR,
 };
 use tmm::Error;
 

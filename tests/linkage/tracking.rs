@@ -153,3 +153,35 @@ fn a_crank_rockers_course_is_its_plans_bit_for_bit() {
     let course = Course::new(&plan, None, 24, 10.0).unwrap();
     assert!(course.track(&plan).unwrap().crossings.is_empty());
 }
+
+#[cfg(feature = "draw")]
+#[test]
+fn the_scheme_is_drawn_at_a_dead_centre_and_at_a_lock() {
+    use tmm::draw::{scheme, Style};
+    use tmm::kinematics::Motion;
+    let plan = Plan::new(&four_bar(0.1, 0.3, 0.1, 0.3, PI / 3.0, 1.0)).unwrap();
+    let at = Motion::new(PI, 1.0, 0.0);
+    assert!(
+        plan.kinematics(at).is_err(),
+        "the rates do not exist at 180°"
+    );
+    let pic = scheme(&plan, at, &Style::default()).unwrap();
+    // B drawn where the position-only solve puts it: (0.2, 0), on the line of the frame.
+    let b = plan.position(at).unwrap().pose().joint("B").unwrap().p;
+    assert!(
+        (b - nalgebra::Point2::new(0.2, 0.0)).norm() < 1e-7 * plan.size(),
+        "{b:?}"
+    );
+    let [x, y] = pic.frame.to_pixel(b);
+    assert!(pic
+        .svg
+        .contains(&format!(r#"cx="{}""#, (x * 100.0).round() / 100.0)));
+    assert!(pic
+        .svg
+        .contains(&format!(r#"cy="{}""#, (y * 100.0).round() / 100.0)));
+    let plan = Plan::new(&bundled::chebyshev_straight_line()).unwrap();
+    let (lo, hi) = plan.lock_positions(1.0).unwrap().unwrap();
+    for q in [lo, hi] {
+        assert!(scheme(&plan, Motion::fixed(q), &Style::default()).is_ok());
+    }
+}

@@ -16,10 +16,15 @@
 //! Bound of δ: x carries a few ε of l + |l_AB² − l_CB²|/l, and l the rounding of A's and C's
 //! coordinates (ε of their magnitudes, summed over the groups before); h² = (l_AB − x)(l_AB
 //! + x) turns an error Δx into 2·l_AB·Δx. So δ = 4ε·(l_AB + l_CB)·(l + |l_AB² − l_CB²|/l
-//! + |A|₁ + |C|₁) for the RRR dyad, δ = 4ε·l·(l + |A|₁ + |B|₁) for the RRP's reach
-//! (d⊥ from A and a point of the guide). The analysis refuses the position when
-//! δ/(2h²) exceeds [`DEAD_POINT_RELATIVE_ERROR`]: its forces would carry fewer than six
-//! significant digits, and within about 10⁻⁸ rad of a lock none at all.
+//! + |A|₁ + |C|₁) for the RRR dyad. An assembled dyad has |l_AB − l_CB| ≤ l ≤ l_AB + l_CB = s,
+//! so δ ≤ 4ε·s·(2s + |A|₁ + |C|₁) and h² ≥ det²·l_AB²·l_CB²/s²: the test below uses these
+//! bounds, which need neither a square root nor a division by the position's numbers (it
+//! runs at every analysed position), and refuses a little more than the exact δ/(2h²) would
+//! (by at most (s/l)², where l is nearest |l_AB − l_CB|: the dyad folded). The RRP dyad's
+//! reach: δ = 4ε·l·(l + |A|₁ + |B|₁) (d⊥ from A and a point of the guide), h = |det|·l. The
+//! analysis refuses the position when δ/(2h²) exceeds [`DEAD_POINT_RELATIVE_ERROR`]: its
+//! forces would carry fewer than six significant digits, and within about 10⁻⁸ rad of a lock
+//! none at all.
 
 use super::state::{within, KinState};
 use crate::error::{Error, Result};
@@ -56,18 +61,17 @@ impl KinState {
             let [l2, l3] = group.links;
             // A is link 2's origin in both dyads; C (RRR) and B (RRP) link 3's.
             let (a, c) = (self.links[l2].origin.p, self.links[l3].origin.p);
-            let (what, measure, delta, h) = match group.kind {
+            // δ and h² as in the module's derivation (their bounds for the RRR dyad).
+            let (what, measure, delta, h2) = match group.kind {
                 GroupKind::Rrr => {
                     let [lab, lcb] = group.lengths;
-                    let l = (c - a).norm();
-                    let delta = EPS4
-                        * (lab + lcb)
-                        * (l + ((lab - lcb) * (lab + lcb)).abs() / l + l1(a) + l1(c));
+                    let s = lab + lcb;
+                    let r = lab * lcb / s;
                     (
                         "RRR dyad at its dead point (within its position's rounding)",
                         "sin(phi3 - phi2)",
-                        delta,
-                        det * lab * lcb / l,
+                        EPS4 * s * (2.0 * s + l1(a) + l1(c)),
+                        det * det * r * r,
                     )
                 }
                 GroupKind::Rrp => {
@@ -76,12 +80,12 @@ impl KinState {
                         "RRP dyad at its dead point (within its position's rounding)",
                         "cos(phi2 - phi4)",
                         EPS4 * l * (l + l1(a) + l1(c)),
-                        det * l,
+                        det * det * l * l,
                     )
                 }
                 _ => continue,
             };
-            if delta > 2.0 * DEAD_POINT_RELATIVE_ERROR * h * h {
+            if delta > 2.0 * DEAD_POINT_RELATIVE_ERROR * h2 {
                 return Err(within(&group.name)(Error::Singular {
                     what,
                     measure,
