@@ -146,7 +146,15 @@ fn analyse_every_bundled_file_as_csv() {
         let r = tmm(&["analyse", &file, "--format", "csv"]);
         assert_success(&r, &format!("analyse {file}"));
         let (header, rows) = parse_csv(&r.stdout, &file);
-        assert_eq!(rows.len(), 12, "{file}: the 12 course positions");
+        // A rocking crank's two locks, where the driven group is at its dead point, are left
+        // out saying why.
+        let locks = if rocking(&file) { 2 } else { 0 };
+        assert_eq!(
+            r.stderr.matches("at its dead point").count(),
+            locks,
+            "{file}"
+        );
+        assert_eq!(rows.len(), 12 - locks, "{file}: the 12 course positions");
         assert!(
             header.iter().all(|h| h.ends_with(']') && h.contains(" [")),
             "{file}: every column has its unit: {header:?}"

@@ -14,17 +14,17 @@
 //! B = F + σ·h·g on the foot F of A on the guide, h² = l² − d⊥², cos(φ2 − φ4) = h/l.
 //!
 //! Bound of δ: x carries a few ε of l + |l_AB² − l_CB²|/l, and l the rounding of A's and C's
-//! coordinates (ε of their magnitudes, summed over the groups before); h² = (l_AB − x)(l_AB
-//! + x) turns an error Δx into 2·l_AB·Δx. So δ = 4ε·(l_AB + l_CB)·(l + |l_AB² − l_CB²|/l
-//! + |A|₁ + |C|₁) for the RRR dyad. An assembled dyad has |l_AB − l_CB| ≤ l ≤ l_AB + l_CB = s,
-//! so δ ≤ 4ε·s·(2s + |A|₁ + |C|₁) and h² ≥ det²·l_AB²·l_CB²/s²: the test below uses these
-//! bounds, which need neither a square root nor a division by the position's numbers (it
-//! runs at every analysed position), and refuses a little more than the exact δ/(2h²) would
-//! (by at most (s/l)², where l is nearest |l_AB − l_CB|: the dyad folded). The RRP dyad's
-//! reach: δ = 4ε·l·(l + |A|₁ + |B|₁) (d⊥ from A and a point of the guide), h = |det|·l. The
-//! analysis refuses the position when δ/(2h²) exceeds [`DEAD_POINT_RELATIVE_ERROR`]: its
-//! forces would carry fewer than six significant digits, and within about 10⁻⁸ rad of a lock
-//! none at all.
+//! coordinates (ε of their magnitudes, summed over the groups before); h² = (l_AB − x)·
+//! (l_AB + x) turns an error Δx into 2·l_AB·Δx. So for the RRR dyad
+//! δ = 4ε·(l_AB + l_CB)·(l + |l_AB² − l_CB²|/l + |A|₁ + |C|₁). An assembled dyad has
+//! |l_AB − l_CB| ≤ l ≤ l_AB + l_CB = s, so δ ≤ 4ε·s·(2s + |A|₁ + |C|₁) and
+//! h² ≥ det²·l_AB²·l_CB²/s²: the test below uses these bounds, which need neither a square
+//! root nor a division by the position's numbers (it runs at every analysed position), and
+//! refuses a little more than the exact δ/(2h²) would (by at most (s/l)², where l is nearest
+//! |l_AB − l_CB|: the dyad folded). The RRP dyad's reach: δ = 4ε·l·(l + |A|₁ + |B|₁) (d⊥ from
+//! A and a point of the guide), h = |det|·l. The analysis refuses the position when δ/(2h²)
+//! exceeds [`DEAD_POINT_RELATIVE_ERROR`]: its forces would carry fewer than six significant
+//! digits, and within about 10⁻⁸ rad of a lock none at all.
 
 use super::state::{within, KinState};
 use crate::error::{Error, Result};
