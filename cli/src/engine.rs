@@ -632,7 +632,7 @@ impl Machine {
             .collect::<tmm::Result<_>>()
             .map_err(|e| failure(&e))?;
         let mut report = |k: usize| {
-            if k % 5000 == 0 && n > 5000 {
+            if k.is_multiple_of(5000) && n > 5000 {
                 progress(&format!("position {} of {n}", k + 1));
             }
         };

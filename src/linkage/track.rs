@@ -205,7 +205,7 @@ impl Plan {
     /// let track = plan.track(&inputs)?;
     /// assert_eq!(track.crossings.len(), 2);
     /// let w = track.cycle(&inputs, |a| Ok(a.link_motion("rocker")?.omega));
-    /// assert!(w.iter().all(|w| (w.as_ref().unwrap() - 1.0).abs() < 1e-12));
+    /// assert!(w.iter().all(|w| (w.as_ref().unwrap() - 1.0).abs() < 1e-9));
     /// # Ok::<(), tmm::Error>(())
     /// ```
     pub fn track(&self, inputs: &[Motion]) -> Result<Track> {

@@ -773,7 +773,7 @@ fn a_rocking_input_sweeps_exactly_between_its_lock_angles() {
                 if m.rate == 0.0 {
                     // A lock: the driven dyad at its dead point, the forces refused, the
                     // position there.
-                    let e = plan.analyse(*m).err().expect("refused at a lock");
+                    let e = plan.analyse(*m).expect_err("refused at a lock");
                     assert!(e.to_string().contains("at its dead point"), "{k}: {e}");
                     assert!(plan.kinematics(*m).is_ok());
                 } else {

@@ -229,7 +229,7 @@ fn a_rocking_course_shows_its_locks_with_their_kinematics_and_no_forces() {
             if m.rate == 0.0 {
                 // A lock: the position and its (zero) rates, the forces refused.
                 assert!(plan.kinematics(*m).is_ok());
-                let e = r.as_ref().err().expect("refused at a lock");
+                let e = r.as_ref().expect_err("refused at a lock");
                 assert!(refused_at_dead_point(e), "{e}");
             } else {
                 assert!(r.as_ref().is_ok_and(|mb| mb.is_finite()), "{r:?}");
