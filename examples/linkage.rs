@@ -210,7 +210,14 @@ mod pictures {
         let save = saver(linkage, dir);
         let first = inputs[0];
         save("scheme", &draw::scheme(plan, first, &style)?.svg)?;
-        save("forces", &draw::forces(plan, first, &style)?.svg)?;
+        // The forces at the first position that has them (a rocking input's course starts at
+        // its lock, where the driven group is at its dead point).
+        let loaded = inputs
+            .iter()
+            .copied()
+            .find(|&m| plan.analyse(m).is_ok())
+            .unwrap_or(first);
+        save("forces", &draw::forces(plan, loaded, &style)?.svg)?;
         if !plan.input_is_crank() {
             // A slider has no turn: the course is the table's positions.
             let course = Course::given(inputs.to_vec());

@@ -522,6 +522,24 @@ impl Machine {
         let range = self.range();
         let spread = |n: usize, notes: &mut Vec<String>| -> Vec<Motion> {
             match range {
+                // A rocking crank runs from lock to lock and back, as the mechanism does.
+                Range::Rocking(lo, hi) if crank => match Course::new(plan, None, n, speed) {
+                    Ok(course) => {
+                        notes.push(format!(
+                            "{n} positions of the crank rocking as the mechanism runs, from the \
+                             lock angle {:.4}° to {:.4}° and back (at the locks it stops and \
+                             reverses: rate 0 there, and the driven group at its dead point \
+                             has no forces)",
+                            if speed < 0.0 { hi } else { lo }.to_degrees(),
+                            if speed < 0.0 { lo } else { hi }.to_degrees(),
+                        ));
+                        course.inputs
+                    }
+                    Err(e) => {
+                        notes.push(format!("no rocking course ({e}): none tabulated"));
+                        Vec::new()
+                    }
+                },
                 Range::Rocking(lo, hi) | Range::Travel(lo, hi) => {
                     notes.push(format!(
                         "{n} positions equally spaced inside the {}",
@@ -633,11 +651,27 @@ impl Machine {
             .map(|i| Inputs::from_slice(i))
             .collect::<tmm::Result<_>>()
             .map_err(|e| failure(&e))?;
-        let results = self.plan.analyse_each(&inputs, &mut |k| {
-            if k % 5000 == 0 && n > 5000 {
+        let mut report = |k: usize| {
+            if k.is_multiple_of(5000) && n > 5000 {
                 progress(&format!("position {} of {n}", k + 1));
             }
-        });
+        };
+        // A crank turning through a dead centre (a change point) runs on along the branch
+        // that continues smoothly: the positions past it are solved on that branch.
+        let one: Vec<Motion> = inputs.iter().map(|i| i.as_slice()[0]).collect();
+        let track = (self.plan.input_count() == 1
+            && self.plan.input_is_crank()
+            && matches!(self.range(), Range::FullTurn))
+        .then(|| self.plan.track(&one).ok())
+        .flatten()
+        .filter(|t| !t.crossings.is_empty());
+        let results = match &track {
+            Some(t) => {
+                notes.extend(t.notes());
+                t.analyse_each(&one, &mut report)
+            }
+            None => self.plan.analyse_each(&inputs, &mut report),
+        };
         let mut failures = Vec::new();
         for (i, r) in inputs.iter().zip(&results) {
             if let Err(e) = r {

@@ -92,8 +92,9 @@ power (a dash, an empty CSV cell, null in JSON). Every other value is a number."
     Analyse {
         /// The description file (JSON), or the name of a bundled one.
         file: String,
-        /// N positions equally spaced over the crank's turn (or its rocking range) from the
-        /// reference pose; at most 100 000 (and 4·10⁸ / w for a linkage whose solve weighs
+        /// N positions equally spaced over the crank's turn from the reference pose (a crank
+        /// that rocks: from lock to lock and back, the locks included; a slider: inside its
+        /// travel); at most 100 000 (and 4·10⁸ / w for a linkage whose solve weighs
         /// w dyad solves: see `tmm dynamics --help`).
         #[arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(1..=100_000))]
         positions: Option<u32>,

@@ -636,11 +636,26 @@ fn a_rocking_crank_has_its_reduced_quantities_between_its_lock_angles() {
             assert_success(&r, &format!("analyse {file}"));
             let (header, rows) = parse_csv(&r.stdout, file);
             let q: Vec<f64> = rows.iter().map(|r| r[col(&header, "phi_in")]).collect();
-            assert_eq!(q.len(), 12);
-            assert!(
-                (q[0] - ends[0]).abs() <= 1e-12 && (q[6] - ends[1]).abs() <= 1e-12,
-                "{file} at {speed} rad/s: the course turns at the locks {ends:?}: {q:?}"
-            );
+            // At the two locks the driven group is at its dead point: those positions are left
+            // out, each with a warning that says why; the other ten are tabulated.
+            assert_eq!(q.len(), 10);
+            for end in ends {
+                let warning = format!(
+                    "position at φ = {:.1}° left out",
+                    end.to_degrees().rem_euclid(360.0)
+                );
+                assert!(
+                    r.stderr
+                        .lines()
+                        .any(|l| l.contains(&warning) && l.contains("dead point")),
+                    "{file} at {speed} rad/s: the course turns at the locks {ends:?}: {}",
+                    r.stderr
+                );
+            }
+            // Out from the first lock and back: the input moves away from it, then returns.
+            let s = (ends[1] - ends[0]).signum();
+            assert!(q[..5].windows(2).all(|w| (w[1] - w[0]) * s > 0.0), "{q:?}");
+            assert!(q[5..].windows(2).all(|w| (w[1] - w[0]) * s < 0.0), "{q:?}");
             assert!(q.iter().all(|&x| x >= lock[0] && x <= lock[1]), "{q:?}");
         }
         let r = tmm(&["dynamics", file, "--run-up"]);

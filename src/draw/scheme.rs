@@ -17,8 +17,9 @@ use svg::Node;
 ///
 /// # Errors
 /// [`Error::OutOfRange`](crate::Error::OutOfRange) or [`Error::NonFinite`](crate::Error::NonFinite)
-/// naming the field of a bad style ([`Style::check`]); the kinematics' errors at this
-/// input (non-finite, cannot be assembled).
+/// naming the field of a bad style ([`Style::check`]); the errors of [`Plan::position`] at
+/// this input (non-finite, cannot be assembled). At a dead centre or a lock, where the rates
+/// do not exist, the position is drawn all the same ([`Plan::position`]), at rest.
 ///
 /// # Examples
 /// The hinge B of the four-bar lands on the picture where its frame says:
@@ -74,9 +75,12 @@ pub fn scheme_with_centres(
 
 fn draw(plan: &Plan, input: Inputs, style: &Style, with_centres: bool) -> Result<Picture> {
     style.check()?;
-    let a = plan.kinematics(input)?;
+    // A scheme needs positions only: at a dead centre or a lock, where the rates do not
+    // exist, the position-only solve still places every link (drawn at rest).
+    let position = plan.position(input)?;
+    let a = position.pose();
     let topo = Topo::new(plan);
-    let pose = Pose::of(&a)?;
+    let pose = Pose::of(a)?;
     let mut ext = Extents::new(&topo);
     ext.add(&topo, &pose);
     let mut cover = Vec::new();
@@ -101,7 +105,7 @@ fn draw(plan: &Plan, input: Inputs, style: &Style, with_centres: bool) -> Result
         doc.append(arrow);
     }
     if with_centres {
-        doc.append(centres(plan, &a, &frame, style)?);
+        doc.append(centres(plan, a, &frame, style)?);
     }
     if style.labels {
         doc.append(parts::labels(

@@ -275,6 +275,20 @@ impl Course {
         }
     }
 
+    /// The plans this course's positions are solved on when the mechanism runs on through
+    /// its dead centres along the branch that continues smoothly ([`Plan::track`]): a
+    /// parallelogram four-bar stays a parallelogram through 0 and 180°, where the plan's own
+    /// modes would fold it into an antiparallelogram. A course that meets no dead centre
+    /// (a crank-rocker's, a rocking input's, which reverses at its locks) has the plan
+    /// itself for every position. [`Track::cycle`](super::Track::cycle) analyses the
+    /// positions on them, [`Track::notes`](super::Track::notes) says where they changed.
+    ///
+    /// # Errors
+    /// As [`Plan::track`].
+    pub fn track(&self, plan: &Plan) -> Result<super::Track> {
+        plan.track(&self.inputs)
+    }
+
     /// Checks the course: at least one position, at most [`MAX_POSITIONS`], every input and
     /// extreme finite, every input within ±[`MAX_INPUT_COORDINATE`](super::MAX_INPUT_COORDINATE).
     ///

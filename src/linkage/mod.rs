@@ -70,6 +70,7 @@ mod structure;
 mod structure_triad;
 mod table;
 mod torsion_range;
+mod track;
 mod workspace;
 
 pub use course::{Course, Sweep};
@@ -89,7 +90,9 @@ pub use instant_centres::{Centre, Found, InstantCentre};
 pub use plan::{Group, GroupKind, Plan, Pose};
 pub use solve::{
     Analysis, Balance, Kinematics, Position, PowerCheck, Reaction, Solver, DEAD_CENTRE_DETERMINANT,
+    DEAD_POINT_RELATIVE_ERROR,
 };
 pub use structure::chebyshev;
 pub use table::{Cells, Column, Table, Tabulate};
+pub use track::{Crossing, Track};
 pub use workspace::{Region, SingularCurve, Singularity, Workspace, WorkspaceOptions};

@@ -23,6 +23,7 @@ mod hostile;
 mod hostile_friction;
 #[cfg(feature = "serde")]
 mod instant_centres;
+mod locks;
 mod planning;
 mod singular;
 #[cfg(feature = "serde")]
@@ -32,6 +33,7 @@ mod springs;
 mod strokes;
 #[cfg(feature = "serde")]
 mod table;
+mod tracking;
 #[cfg(feature = "serde")]
 mod triad;
 #[cfg(feature = "serde")]

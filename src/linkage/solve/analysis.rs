@@ -131,6 +131,8 @@ impl<'p> Analysis<'p> {
     /// balancing moments or forces, at one motion per input.
     pub(crate) fn solve(&mut self, inputs: &[Motion]) -> Result<()> {
         self.k.solve(inputs)?;
+        // A dyad within its position's rounding of its dead point has no forces to give.
+        self.k.kin.refuse_dead_points(&self.k.plan.chain)?;
         self.apply_loads()?;
         let plan = self.k.plan;
         match &plan.friction {

@@ -5,6 +5,7 @@
 
 pub(crate) mod analysis;
 mod checks;
+mod dead_point;
 mod friction;
 mod friction_groups;
 mod general;
@@ -22,6 +23,7 @@ pub(crate) mod triad;
 
 pub use analysis::Analysis;
 pub use checks::PowerCheck;
+pub use dead_point::DEAD_POINT_RELATIVE_ERROR;
 pub use kinematics::Kinematics;
 pub use reaction::{Balance, Reaction};
 pub use singular::{Position, DEAD_CENTRE_DETERMINANT};
