@@ -82,12 +82,21 @@ fn name_joint<'a>(
             } else {
                 2
             };
-            let label = part.trim_end_matches(" self-locks");
+            // The block's own labels ("joint B (links 2 and 3)") name the dyad's places, not
+            // the user's joints: say the place in words, beside the user's joint name.
+            let place = if part.starts_with("the slide") || part.starts_with("the slot") {
+                "the dyad's slide"
+            } else if part.starts_with("guide 2") {
+                "the dyad's guide"
+            } else {
+                [
+                    "the dyad's first outer joint",
+                    "the dyad's middle joint",
+                    "the dyad's second outer joint",
+                ][k]
+            };
             Error::In {
-                part: format!(
-                    "{group}: joint {} self-locks ({label} of the dyad)",
-                    names[joints[k]]
-                ),
+                part: format!("{group}: joint {} self-locks ({place})", names[joints[k]]),
                 source,
             }
         }
