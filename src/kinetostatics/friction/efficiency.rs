@@ -24,6 +24,9 @@ use crate::error::{finite, Result};
 /// // Over a cycle sampled at equal time steps: the works' ratio.
 /// let c = Efficiency::cycle(&[e, Efficiency::new(90.0, 10.0)?]).unwrap();
 /// assert!((c - 580.0 / 600.0).abs() < 1e-15);
+/// // A subnormal drive power: η = −1/5e-324 leaves f64, so it has no value (never −inf).
+/// assert_eq!(Efficiency::new(5e-324, 1.0)?.eta, None);
+/// assert!(Efficiency::new(-1.7e308, 1.7e308).is_err()); // P_useful overflows
 /// # Ok::<(), tmm::Error>(())
 /// ```
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -36,7 +39,8 @@ pub struct Efficiency {
     /// P_useful = P_drive − Σ P_lost, W.
     pub useful: f64,
     /// η = P_useful / P_drive, or `None` where the drive gives no power (P_drive ≤ 0: the
-    /// loads drive the machine, and the motor brakes it or idles).
+    /// loads drive the machine, and the motor brakes it or idles) or so little that the
+    /// ratio leaves the range of `f64` (a subnormal P_drive).
     pub eta: Option<f64>,
 }
 
@@ -46,16 +50,25 @@ impl Efficiency {
     ///
     /// # Errors
     /// [`Error::NonFinite`](crate::Error::NonFinite) naming `P_drive` or `P_lost`;
-    /// [`Error::OutOfRange`](crate::Error::OutOfRange) for a negative `P_lost`.
+    /// [`Error::OutOfRange`](crate::Error::OutOfRange) for a negative `P_lost`;
+    /// [`Error::Overflow`](crate::Error::Overflow) where P_drive − P_lost leaves the range of
+    /// `f64`.
     pub fn new(drive: f64, lost: f64) -> Result<Self> {
         let drive = finite("P_drive", drive)?;
         let lost = non_negative("P_lost", lost)?;
         let useful = drive - lost;
+        if !useful.is_finite() {
+            return Err(crate::Error::Overflow {
+                what: "P_useful = P_drive − P_lost",
+            });
+        }
         Ok(Self {
             drive,
             lost,
             useful,
-            eta: (drive > 0.0).then(|| useful / drive),
+            eta: (drive > 0.0)
+                .then(|| useful / drive)
+                .filter(|eta| eta.is_finite()),
         })
     }
 
