@@ -129,7 +129,10 @@ impl Track {
 /// (ω at unit input rate), or `None` where the position cannot be solved with its rates (a
 /// dead centre hit exactly, or closure failing by rounding).
 fn sample(plan: &Plan, q: f64) -> Option<(Vec<f64>, Vec<f64>)> {
-    let k = plan.kinematics(Motion::new(q, 1.0, 0.0)).ok()?;
+    // Unchecked: the walk reads the analogues up to the dead centre itself, where a user's
+    // `Plan::kinematics` with a rate refuses them; it compares their signs and sizes only.
+    let mut k = super::solve::Kinematics::new(plan);
+    k.solve(&[Motion::new(q, 1.0, 0.0)]).ok()?;
     let dets = k.group_determinants().iter().map(|d| d.abs()).collect();
     let omegas = k.link_motions().iter().map(|m| m.omega).collect();
     Some((dets, omegas))

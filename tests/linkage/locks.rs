@@ -237,3 +237,44 @@ fn a_rocking_course_shows_its_locks_with_their_kinematics_and_no_forces() {
         }
     }
 }
+
+#[test]
+fn the_kinematics_of_a_moving_input_at_its_lock_is_refused_and_its_position_given() {
+    // At a lock the driven dyad's analogues are rounding over a determinant of rounding: a
+    // moving input there has no rates to give (they grow as 1/√δ towards the lock), while
+    // the position itself is exact and is given at rest.
+    for plan in [
+        Plan::new(&bundled::chebyshev_straight_line()).unwrap(),
+        Plan::new(&bundled::peaucellier_lipkin()).unwrap(),
+        Plan::new(&rocker_driven()).unwrap(),
+    ] {
+        for m in near_locks(&plan, 0.0) {
+            let at_rest = plan.kinematics(m);
+            assert!(at_rest.is_ok(), "{at_rest:?}");
+            for moving in [
+                Motion::new(m.value, 1.0, 0.0),
+                Motion::new(m.value, 0.0, 1.0),
+            ] {
+                let e = plan.kinematics(moving).unwrap_err();
+                assert!(refused_at_dead_point(&e), "{e}");
+                let e = plan.solver().kinematics(moving).map(|_| ()).unwrap_err();
+                assert!(refused_at_dead_point(&e), "{e}");
+            }
+        }
+        // 10⁻⁶ rad inside the rates are answered, and grow like 1/√δ towards the lock:
+        // from 10⁻⁴ to 10⁻⁶ rad the fastest link's ω grows by about 10 (√100).
+        let fastest = |d: f64| {
+            let m = near_locks(&plan, d)[0];
+            let k = plan.kinematics(Motion::new(m.value, 1.0, 0.0)).unwrap();
+            k.link_motions()
+                .iter()
+                .map(|l| l.omega.abs())
+                .fold(0.0, f64::max)
+        };
+        let growth = fastest(1e-6) / fastest(1e-4);
+        assert!(
+            (5.0..20.0).contains(&growth),
+            "ω grew {growth} for δ 100× smaller"
+        );
+    }
+}

@@ -61,6 +61,20 @@ impl<'p> Kinematics<'p> {
         self.kin.solve(&self.plan.chain, inputs)
     }
 
+    /// As [`solve`](Self::solve), for a user's call: where an input moves (a nonzero rate
+    /// or acceleration), a dyad within its position's rounding of a dead point is refused,
+    /// as the force analysis refuses it — its rates there would be rounding divided by a
+    /// determinant of rounding (a rocking input at its lock moving). A position alone
+    /// (every input at rest) is still given there.
+    #[inline]
+    pub(crate) fn solve_checked(&mut self, inputs: &[Motion]) -> Result<()> {
+        self.kin.solve(&self.plan.chain, inputs)?;
+        if inputs.iter().any(|m| m.rate != 0.0 || m.accel != 0.0) {
+            self.kin.refuse_dead_points(&self.plan.chain)?;
+        }
+        Ok(())
+    }
+
     /// Solves only `groups` at `inputs` (see `KinState::solve_groups`): what a search over
     /// one group's motion needs.
     #[inline]

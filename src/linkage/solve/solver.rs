@@ -61,10 +61,12 @@ impl<'p> Solver<'p> {
     /// The kinematics alone at one motion per input: no loads, no reactions.
     ///
     /// # Errors
-    /// As [`analyse`](Self::analyse), the kinematics' errors only.
+    /// As [`analyse`](Self::analyse), the kinematics' errors only: where an input moves, a
+    /// dyad within its position's rounding of a dead point is [`Error::Singular`](crate::Error::Singular)
+    /// (its rates would be rounding); a position alone (every input at rest) is given there.
     #[inline]
     pub fn kinematics(&mut self, inputs: impl Into<Inputs>) -> Result<&Kinematics<'p>> {
-        self.a.k.solve(inputs.into().as_slice())?;
+        self.a.k.solve_checked(inputs.into().as_slice())?;
         Ok(&self.a.k)
     }
 }
@@ -125,7 +127,7 @@ impl Plan {
     pub fn kinematics(&self, inputs: impl Into<Inputs>) -> Result<Kinematics<'_>> {
         let mut r = Ok(Kinematics::new(self));
         if let Ok(k) = &mut r
-            && let Err(e) = k.solve(inputs.into().as_slice())
+            && let Err(e) = k.solve_checked(inputs.into().as_slice())
         {
             r = Err(e);
         }
