@@ -196,8 +196,16 @@ fn recover(req: &PathRequirement, seed: u64, mechanism: Mechanism) -> (f64, usiz
         Mechanism::FourBar => path_generator(req, &opts, count),
         Mechanism::SliderCrank => slider_crank_path_generator(req, &opts, count),
         Mechanism::SixBar => six_bar_path_generator(req, &opts, count),
-    }
-    .unwrap();
+    };
+    // A search that returns no design at all is a missed case, counted with the others (it
+    // used to end the sweep there, leaving the later cases unrun).
+    let designs = match designs {
+        Ok(d) => d,
+        Err(e) => {
+            println!("no design: {e}");
+            return (f64::INFINITY, evaluations);
+        }
+    };
     let (_, size) = centroid_size(&req.points);
     let best = &designs[0];
     let plan = Plan::new(&best.synthesis.linkage).unwrap();
