@@ -11,7 +11,8 @@ use tmm::draw::{self, Course, Diagram, Style};
 use tmm::kinematics::{grashof, Grashof, Motion, Rotation};
 use tmm::kinetostatics::friction::Efficiency;
 use tmm::linkage::{
-    course_inputs, uniform_inputs, Drive, Inputs, LinkId, Linkage, Output, Plan, TwoInputCourse,
+    course_inputs, uniform_inputs, Drive, Inputs, LinkId, Linkage, Output, Plan, Tabulate,
+    TwoInputCourse,
 };
 
 use crate::budget;
@@ -672,21 +673,48 @@ impl Machine {
             }
             None => self.plan.analyse_each(&inputs, &mut report),
         };
+        // With two inputs the library's row holds both inputs, both balances and the drives'
+        // power beside its value by virtual power (W).
+        let table = self.plan.course_table(&results);
+        // The table leaves out a row holding a value that is not finite (a reaction or a
+        // power that overflows under a huge load): such a position failed too, and says so.
+        let kept = table.columns.first().map_or(0, |c| c.values.len());
+        let analysed = results.iter().filter(|r| r.is_ok()).count();
+        let second = self.second_is_crank();
         let mut failures = Vec::new();
         for (i, r) in inputs.iter().zip(&results) {
-            if let Err(e) = r {
-                failures.push((i.as_slice()[0].value, e.to_string()));
-            }
+            let why = match r {
+                Err(e) => e.to_string(),
+                Ok(a) if kept < analysed => match a.row().into_iter().find(|(_, v)| !v.is_finite())
+                {
+                    Some((column, _)) => format!("its {column} is not finite (it overflows)"),
+                    None => continue,
+                },
+                Ok(_) => continue,
+            };
+            let why = match i.as_slice().get(1) {
+                // A position of two inputs is named by both.
+                Some(m) => {
+                    let kind = if second {
+                        InputKind::Crank
+                    } else {
+                        InputKind::Slider
+                    };
+                    format!(
+                        "with the second input at {}: {why}",
+                        crate::report::input_text(kind, m.value)
+                    )
+                }
+                None => why,
+            };
+            failures.push((i.as_slice()[0].value, why));
         }
-        if failures.len() == results.len() {
-            let (_, first) = failures.swap_remove(0);
+        if kept == 0 {
+            let first = failures.first().map_or("no row was kept", |f| f.1.as_str());
             return Err(Failure::new(format!(
                 "no position could be analysed: {first}"
             )));
         }
-        // With two inputs the library's row holds both inputs, both balances and the drives'
-        // power beside its value by virtual power (W).
-        let table = self.plan.course_table(&results);
         let mut columns: Vec<Column> = table
             .columns
             .into_iter()

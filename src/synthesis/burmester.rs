@@ -82,7 +82,7 @@ fn xy(p: V) -> [f64; 2] {
 }
 
 /// D_j(z): the coupler point at z in `first` carried to `pose`.
-fn displace(first: &Pose, pose: &Pose, z: V) -> V {
+pub(super) fn displace(first: &Pose, pose: &Pose, z: V) -> V {
     let (s, c) = (pose.angle - first.angle).sin_cos();
     let r = z - first.p();
     pose.p() + V::new(c * r.x - s * r.y, s * r.x + c * r.y)

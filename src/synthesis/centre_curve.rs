@@ -4,6 +4,7 @@
 //! dyad's standard form and the compatibility condition.
 
 use super::burmester::{check_poses, v, Dyad, Pose};
+use super::pose_order;
 use crate::error::{Error, Result};
 use std::f64::consts::TAU;
 
@@ -303,11 +304,16 @@ impl Loop {
 /// ```
 ///
 /// # Errors
-/// [`Error::NonFinite`] for a non-finite number; [`Error::NoMechanism`] for coinciding poses
-/// and for degenerate poses that more than four dyads fit (a continuum of them);
+/// [`Error::NonFinite`] for a non-finite number; [`Error::NoMechanism`] for coinciding poses,
+/// for poses that all turn about one point (every coupler point then keeps its distance
+/// from it: a continuum of dyads) and for other degenerate poses that more than four dyads
+/// fit. A dyad more than 10⁶ times longer than the poses' extent (from the first pose) is
+/// not returned: the curves approach their points at infinity (a slider's) and meet there
+/// only to rounding.
 /// [`Error::OutOfRange`] (`"n"`) for n below 8 or above [`MAX_POINTS`](super::MAX_POINTS).
 pub fn burmester_points(poses: &[Pose; 5], n: usize) -> Result<Vec<Dyad>> {
     check_poses(poses)?;
+    pose_order::not_about_one_point(poses)?;
     if !(8..=super::MAX_POINTS).contains(&n) {
         return Err(Error::OutOfRange {
             name: "n",
@@ -317,6 +323,16 @@ pub fn burmester_points(poses: &[Pose; 5], n: usize) -> Result<Vec<Dyad>> {
             ends: crate::Ends::Closed,
         });
     }
+    // Searched in the order that spreads the poses best (see `pose_order`), each point
+    // named and checked in the given order.
+    let order = pose_order::spread_order(poses);
+    let given = poses;
+    let poses = &order.map(|i| given[i]);
+    // The poses' extent from the first given one (the scale of the fit and of duplicates).
+    let extent = given
+        .iter()
+        .map(|p| (v(p.at) - v(given[0].at)).norm())
+        .fold(0.0, f64::max);
     let compat = Compatibility::new(&poses[..4]);
     let a5 = rotation_minus_one(poses[4].angle - poses[0].angle);
     let d5 = C::new(poses[4].at[0], poses[4].at[1]) - compat.p1;
@@ -426,12 +442,19 @@ pub fn burmester_points(poses: &[Pose; 5], n: usize) -> Result<Vec<Dyad>> {
         let Some(dyad) = compat.dyad_with(beta2, sign, fold) else {
             continue;
         };
-        let scale = compat.size + dyad.length();
+        let dyad = pose_order::polished(pose_order::renamed(dyad, &poses[0], given), given);
+        let scale = extent + dyad.length();
+        // The same point reached from two roots of the scan: with two poses close together
+        // the five poses are nearly four, and a point is fixed only to about ε over their
+        // gap, so points within 10⁻⁶ of the scale are taken as one.
         let duplicate = out.iter().any(|o| {
-            (v(o.centre) - v(dyad.centre)).norm() < 1e-8 * scale
-                && (v(o.circle) - v(dyad.circle)).norm() < 1e-8 * scale
+            (v(o.centre) - v(dyad.centre)).norm() < 1e-6 * scale
+                && (v(o.circle) - v(dyad.circle)).norm() < 1e-6 * scale
         });
-        if dyad.misfit(poses) <= 1e-9 * scale && !duplicate {
+        // A dyad a million times longer than the poses' extent is the curve running out to
+        // its points at infinity (a slider's), found there only to rounding: not kept.
+        let finite_dyad = dyad.length() <= 1e6 * extent;
+        if dyad.misfit(given) <= 1e-9 * scale && !duplicate && finite_dyad {
             out.push(dyad);
         }
     }

@@ -13,7 +13,7 @@
 //! positions (no branch defect).
 
 use super::four_bar::FourBar;
-use super::search::maximise;
+use super::search::{maximise, narrow_stretches};
 use super::{check, length, require_transmission, Options, Synthesis, MAX_POINTS};
 use crate::angle::normalize;
 use crate::error::{finite, positive, Ends, Error, Result};
@@ -273,7 +273,18 @@ pub fn crank_rocker_through(
             [k1, k2, k3]
         };
         let gamma = |t: f64| design(k_of(t)).ok().map(|f| f.gamma_full().0);
-        let (t, _) = maximise(gamma, 1e-6, 1.0 - 1e-6, 4096).ok_or_else(|| Error::NoMechanism {
+        let (lo, hi) = (1e-6, 1.0 - 1e-6);
+        let best = maximise(gamma, lo, hi, SCAN).or_else(|| {
+            // Crank-rockers may exist on a stretch of a/d narrower than the scan's step:
+            // found where the margin of the conditions peaks between samples.
+            let margin = |t: f64| two_pair_margin(d, t, k_of(t), positions);
+            let ok = |t: f64| design(k_of(t)).is_ok();
+            narrow_stretches(margin, ok, lo, hi, SCAN)
+                .into_iter()
+                .filter_map(|(a, b)| maximise(gamma, a.min(b), a.max(b), 64))
+                .max_by(|x, y| x.1.total_cmp(&y.1))
+        });
+        let (t, _) = best.ok_or_else(|| Error::NoMechanism {
             method: METHOD,
             problem: "no crank-rocker (one assembly mode, crank the shortest) passes through these two positions".to_owned(),
         })?;
@@ -289,6 +300,54 @@ pub fn crank_rocker_through(
     )?;
     check::accepted(&linkage)?;
     Ok(Synthesis { linkage, report })
+}
+
+/// The samples of a/d in the two-position crank-rocker's scan.
+const SCAN: usize = 4096;
+
+/// How far the two-position four-bar with a = t·d and Freudenstein's coefficients `k` is from
+/// a crank-rocker in one assembly mode, in units of d (positive when it is one; continuous in
+/// t where the lengths exist): the least of the rocker's and the coupler's existence, the
+/// crank's being the shortest, Grashof's inequality, the two positions' modes agreeing and
+/// the link ratio.
+fn two_pair_margin(d: f64, t: f64, k: [f64; 3], at: &[(f64, f64)]) -> f64 {
+    let a = t * d;
+    if !(k[1] > 0.0) {
+        return k[1] - 1.0;
+    }
+    let c = d / k[1];
+    let b2 = a * a + c * c + d * d - 2.0 * a * c * k[2];
+    if !(b2 > 0.0) {
+        return b2 / (a * a + c * c + d * d) - 1.0;
+    }
+    let b = b2.sqrt();
+    let longest = b.max(c).max(d);
+    let shortest_other = b.min(c).min(d);
+    let grashof = (b + c + d - longest) - (a + longest);
+    let ratio = super::MAX_LINK_RATIO * a.min(shortest_other) - longest.max(a);
+    let sides: Vec<f64> = at
+        .iter()
+        .map(|&(phi, psi)| {
+            let pa = a * Vector2::new(phi.cos(), phi.sin());
+            let pb = Vector2::new(d + c * psi.cos(), c * psi.sin());
+            let (u, w) = (Vector2::new(d, 0.0) - pa, pb - pa);
+            (u.x * w.y - u.y * w.x) / (u.norm() * w.norm()).max(f64::MIN_POSITIVE)
+        })
+        .collect();
+    let least = sides.iter().fold(f64::INFINITY, |m, s| m.min(s.abs()));
+    let mode = if sides.iter().all(|&s| s > 0.0) || sides.iter().all(|&s| s < 0.0) {
+        least
+    } else {
+        -least
+    };
+    [
+        (shortest_other - a) / d,
+        grashof / d,
+        ratio / (super::MAX_LINK_RATIO * d),
+        mode,
+    ]
+    .into_iter()
+    .fold(f64::INFINITY, f64::min)
 }
 
 /// Where the precision points of a [`function_generator`] lie.

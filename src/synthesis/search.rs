@@ -26,8 +26,16 @@ where
     let (mut a, mut b) = (at(k.saturating_sub(1)), at((k + 1).min(n - 1)));
     let (mut x1, mut x2) = (b - r * (b - a), a + r * (b - a));
     let (mut f1, mut f2) = (value(x1), value(x2));
-    let tol = 1e-13 * (hi - lo).abs().max(f64::MIN_POSITIVE);
-    while (b - a).abs() > tol {
+    // Relative to the interval, but never below the arguments' own spacing: a narrow
+    // interval far from zero would otherwise be split for ever.
+    let spacing = 4.0 * f64::EPSILON * lo.abs().max(hi.abs());
+    let tol = (1e-13 * (hi - lo).abs())
+        .max(spacing)
+        .max(f64::MIN_POSITIVE);
+    for _ in 0..400 {
+        if !((b - a).abs() > tol) {
+            break;
+        }
         if f1 >= f2 {
             (b, x2, f2) = (x2, x1, f1);
             x1 = b - r * (b - a);
@@ -40,6 +48,89 @@ where
     }
     let (x, fx) = if f1 >= f2 { (x1, f1) } else { (x2, f2) };
     Some(if fx > v { (x, fx) } else { (at(k), v) })
+}
+
+/// Feasible stretches of [`lo`, `hi`] narrower than a scan's step: `margin` is a continuous
+/// measure that is positive where a design exists (`ok`). Where its `n` samples peak below
+/// zero, the peak is sought by golden section between the peak's neighbours; a peak where
+/// `ok` holds is widened by bisection (on `ok`) to the stretch's two ends. Each stretch is
+/// returned as (start, end). Stretches the scan itself sees are not looked for.
+pub(crate) fn narrow_stretches<M, K>(
+    margin: M,
+    ok: K,
+    lo: f64,
+    hi: f64,
+    n: usize,
+) -> Vec<(f64, f64)>
+where
+    M: Fn(f64) -> f64,
+    K: Fn(f64) -> bool,
+{
+    let n = n.max(3);
+    let h = (hi - lo) / (n - 1) as f64;
+    let at = |k: usize| if k + 1 == n { hi } else { lo + h * k as f64 };
+    let value = |x: f64| {
+        let m = margin(x);
+        if m.is_nan() {
+            f64::NEG_INFINITY
+        } else {
+            m
+        }
+    };
+    let m: Vec<f64> = (0..n).map(|k| value(at(k))).collect();
+    let r = (5f64.sqrt() - 1.0) / 2.0;
+    let mut out = Vec::new();
+    for k in 1..n - 1 {
+        // A peak (a plateau counts at its first sample) below zero.
+        if !(m[k] <= 0.0 && m[k] > m[k - 1] && m[k] >= m[k + 1]) {
+            continue;
+        }
+        let (mut a, mut b) = (at(k - 1), at(k + 1));
+        let (mut x1, mut x2) = (b - r * (b - a), a + r * (b - a));
+        let (mut f1, mut f2) = (value(x1), value(x2));
+        let mut found = None;
+        for _ in 0..200 {
+            // The margin is cheap and `ok` is not: `ok` is asked only where the margin says yes.
+            if f1 > 0.0 && ok(x1) {
+                found = Some(x1);
+                break;
+            }
+            if f2 > 0.0 && ok(x2) {
+                found = Some(x2);
+                break;
+            }
+            if !(b - a > 1e-15 * (hi - lo).abs()) {
+                break;
+            }
+            if f1 >= f2 {
+                (b, x2, f2) = (x2, x1, f1);
+                x1 = b - r * (b - a);
+                f1 = value(x1);
+            } else {
+                (a, x1, f1) = (x1, x2, f2);
+                x2 = a + r * (b - a);
+                f2 = value(x2);
+            }
+        }
+        let Some(inside) = found else { continue };
+        // The stretch's ends, each between a feasible and an infeasible argument.
+        let edge = |mut yes: f64, mut no: f64| {
+            for _ in 0..200 {
+                let mid = 0.5 * (yes + no);
+                if mid == yes || mid == no {
+                    break;
+                }
+                if ok(mid) {
+                    yes = mid;
+                } else {
+                    no = mid;
+                }
+            }
+            yes
+        };
+        out.push((edge(inside, at(k - 1)), edge(inside, at(k + 1))));
+    }
+    out
 }
 
 #[cfg(test)]

@@ -12,6 +12,7 @@ use tmm::synthesis::{
 };
 use tmm::Error;
 
+mod burmester_close;
 mod closed_form;
 mod hostile_requirements;
 mod link_ratio;
@@ -567,6 +568,37 @@ mod freudenstein {
         ];
         let s = crank_rocker_through(d, &pairs, &o).unwrap();
         assert!(rel(s.report.dimension("coupler").unwrap(), b) < 1e-12);
+    }
+
+    /// Two positions of a known crank-rocker always give a crank-rocker through them, even
+    /// where the crank ratios a/d that do so form a stretch narrower than the search's scan
+    /// step (this one: about 5e-5 wide, the step 2.4e-4; it was refused).
+    #[test]
+    fn two_positions_on_a_narrow_stretch_of_the_crank_ratio_are_found() {
+        let (d, a, b, c) = (
+            1.0,
+            0.207_130_318_904_277_74,
+            1.415_638_452_260_869_4,
+            0.815_487_492_197_035_6,
+        );
+        let pairs = [93.183_703_779_192_f64, 266.825_609_644_362_15].map(|deg| {
+            let phi = deg.to_radians();
+            (phi, rocker_angle(d, a, b, c, 1.0, phi).unwrap())
+        });
+        // The rocker angles the report that found it gave (69.11074167595777°, 92.21931443964895°).
+        assert!((pairs[0].1.to_degrees() - 69.110_741_675_957_77).abs() < 1e-9);
+        assert!((pairs[1].1.to_degrees() - 92.219_314_439_648_95).abs() < 1e-9);
+        let loose = Options::default().with_min_transmission_angle(0.0);
+        let s = crank_rocker_through(d, &pairs, &loose).unwrap();
+        let plan = Plan::new(&s.linkage).unwrap();
+        for &(phi, psi) in &pairs {
+            let got = plan
+                .output(&Output::Angle("rocker".into()), Motion::fixed(phi))
+                .unwrap()
+                .value;
+            assert!((got - psi).sin().abs() < 1e-10, "{got} vs {psi}");
+        }
+        assert!(s.report.min_transmission_angle > 0.0);
     }
 
     #[test]
