@@ -62,6 +62,7 @@ mod contour;
 mod crank;
 mod cycle;
 mod extreme;
+mod fast_angle;
 mod fold;
 mod grashof;
 mod link;

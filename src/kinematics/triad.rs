@@ -55,6 +55,7 @@
 //! previous pose's angle, accepted only when a certificate proves that the root it reached is
 //! the mode the full bracket would pick (see its documentation for the rule).
 
+use super::fast_angle::direction_of;
 use super::fold::{split_steps, Leg, Legs};
 use super::link::LinkMotion;
 use super::motion::PointMotion;
@@ -392,8 +393,8 @@ pub fn triad_tracked(
     let det = velocity_matrix(u, r).determinant() / dims.ternary_size();
     Some(TriadPose {
         b: t.b,
-        theta: direction(Vector2::new(t.z.re, t.z.im)),
-        phi: t.leg.map(direction),
+        theta: direction_of(t.z.re, t.z.im),
+        phi: t.leg.map(|v| direction_of(v.x, v.y)),
         det,
     })
 }
@@ -564,12 +565,13 @@ fn rates_fast(a: &[PointMotion; 3], dims: &TriadDims, t: &Tracked) -> Option<Fas
 /// built where it is returned.
 #[inline(always)]
 fn fast_state(a: &[PointMotion; 3], t: &Tracked, q: &FastRates) -> TriadState {
-    let binary = |i: usize| LinkMotion {
-        origin: a[i],
-        angle: direction(t.leg[i]),
-        omega: q.omega[i],
-        epsilon: q.eps[i],
-    };
+    // The four angles first (independent of each other: the processor overlaps them).
+    let theta = direction_of(t.z.re, t.z.im);
+    let phi = [
+        direction_of(t.leg[0].x, t.leg[0].y),
+        direction_of(t.leg[1].x, t.leg[1].y),
+        direction_of(t.leg[2].x, t.leg[2].y),
+    ];
     TriadState {
         b: [
             PointMotion::new(t.b[0], q.vb[0], q.ab[0]),
@@ -578,11 +580,30 @@ fn fast_state(a: &[PointMotion; 3], t: &Tracked, q: &FastRates) -> TriadState {
         ],
         ternary: LinkMotion {
             origin: PointMotion::new(t.b[0], q.v1, q.a1),
-            angle: direction(Vector2::new(t.z.re, t.z.im)),
+            angle: theta,
             omega: q.omega_t,
             epsilon: q.eps_t,
         },
-        binary: [binary(0), binary(1), binary(2)],
+        binary: [
+            LinkMotion {
+                origin: a[0],
+                angle: phi[0],
+                omega: q.omega[0],
+                epsilon: q.eps[0],
+            },
+            LinkMotion {
+                origin: a[1],
+                angle: phi[1],
+                omega: q.omega[1],
+                epsilon: q.eps[1],
+            },
+            LinkMotion {
+                origin: a[2],
+                angle: phi[2],
+                omega: q.omega[2],
+                epsilon: q.eps[2],
+            },
+        ],
         det: q.det,
     }
 }

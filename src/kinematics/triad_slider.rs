@@ -50,6 +50,7 @@
 //! ω_T²·n·(A1 − O), with ṡ the slide's rate along the guide. The sliding link turns with the
 //! link that carries its guide.
 
+use super::fast_angle::direction_of;
 use super::fold::{split_steps, Leg, Legs, BRANCH_MEASURE, SINGULAR_BRANCH};
 use super::link::LinkMotion;
 use super::motion::PointMotion;
@@ -57,7 +58,7 @@ use super::rrp::Guide;
 use super::triad::{inverse3, AssemblyModes, TriadDims, TriadPose, TriadState};
 use super::trig_cubic::{n1, Cubic};
 use super::trig_roots::{checked_roots, unit as unit_c, CLOSES, SAME_MODE};
-use crate::angle::{cross, direction, perp, unit};
+use crate::angle::{cross, perp, unit};
 use crate::error::{finite, finite2, positive, Error, Result};
 use nalgebra::{Complex, Matrix3, Point2, Vector2, Vector3};
 
@@ -416,7 +417,7 @@ pub fn slider_triad(
             &a,
             dims,
             joints_at(t.o, t.z, &dims.triangle().local_joints()),
-            direction(t.z),
+            direction_of(t.z.x, t.z.y),
             &t.legs,
             &t.k,
             true,
@@ -535,7 +536,7 @@ fn rates_of(
     let d = Vector2::new(n.y, -n.x);
     let slide_angle = match dims.pair {
         SlidingPair::Outer { .. } => first.angle.value,
-        SlidingPair::Inner { .. } => direction(d),
+        SlidingPair::Inner { .. } => direction_of(d.x, d.y),
     };
     let det = k.determinant() / legs.lt;
     if !legs.surely_regular(k, det) {
@@ -609,7 +610,7 @@ fn rates_of(
     };
     let hinged = |k: usize| LinkMotion {
         origin: a[k],
-        angle: direction(b[k + 1] - a[k].p),
+        angle: direction_of(b[k + 1].x - a[k].p.x, b[k + 1].y - a[k].p.y),
         omega: omega[k],
         epsilon: eps[k],
     };
@@ -664,11 +665,11 @@ fn pose_at(
     let b = joints_at(o, z, beta);
     TriadPose {
         b,
-        theta: direction(z),
+        theta: direction_of(z.x, z.y),
         phi: [
-            direction(slide),
-            direction(b[1] - a[0]),
-            direction(b[2] - a[1]),
+            direction_of(slide.x, slide.y),
+            direction_of(b[1].x - a[0].x, b[1].y - a[0].y),
+            direction_of(b[2].x - a[1].x, b[2].y - a[1].y),
         ],
         det,
     }
