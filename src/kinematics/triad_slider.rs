@@ -412,20 +412,180 @@ pub fn slider_triad(
     let p = [a[0].p, a[1].p];
     if valid_input(first, p, dims, previous)
         && let Some(t) = track(first, p, dims, previous)
-        && let Ok(state) = rates_of(
-            first,
-            &a,
-            dims,
-            joints_at(t.o, t.z, &dims.triangle().local_joints()),
-            direction_of(t.z.x, t.z.y),
-            &t.legs,
-            &t.k,
-            true,
-        )
+        && let Some(q) = rates_fast(first, &a, dims, &t)
     {
-        return Ok(state);
+        return Ok(fast_state(first, &a, dims, &t, &q));
     }
     slider_triad_checked(first, a, dims, previous)
+}
+
+/// The rates of a tracked mode, before they are laid out as a [`TriadState`].
+struct FastRates {
+    /// The ternary link's joints B1 (= O), B2, B3 with their velocities and accelerations.
+    b: [Point2<f64>; 3],
+    vb: [Vector2<f64>; 3],
+    ab: [Vector2<f64>; 3],
+    omega_t: f64,
+    eps_t: f64,
+    /// The hinged legs' ω and ε.
+    omega: [f64; 2],
+    eps: [f64; 2],
+    det: f64,
+}
+
+/// The velocities and accelerations of a tracked mode (the equations of [`rates_of`]), with
+/// every check folded into one test at the end: `None` wherever [`rates_of`] could fail,
+/// and where the cheap bounds cannot prove the pose off a branch point (the checked path
+/// decides). Small on purpose: the caller lays the state out in its return value.
+#[inline]
+fn rates_fast(
+    first: &Guide,
+    a: &[PointMotion; 2],
+    dims: &SliderTriadDims,
+    t: &Tracked,
+) -> Option<FastRates> {
+    let legs = &t.legs;
+    let o = Point2::from(t.o);
+    let r = [Vector2::zeros(), legs.r[1], legs.r[2]];
+    let b = [o, o + r[1], o + r[2]];
+    let len = [hinged_length(legs.kind[1]), hinged_length(legs.kind[2])];
+    let i_len = [1.0 / len[0], 1.0 / len[1]];
+    let (n, u) = (legs.w[0], [legs.w[1], legs.w[2]]);
+    let d = Vector2::new(n.y, -n.x);
+    let (k_inv, det_k) = inverse3(&t.k);
+    let det = det_k / legs.lt;
+    let (wk, ek) = (first.angle.rate, first.angle.accel);
+    let inner = matches!(dims.pair, SlidingPair::Inner { .. });
+    // The known point at the slide's line: the guide's point of the known link under O
+    // (outer) or A1 (inner).
+    let (vk, ak) = if inner {
+        (first.point.v, first.point.a)
+    } else {
+        let q = t.o - first.point.p.coords;
+        (
+            first.point.v + wk * perp(q),
+            first.point.a + ek * perp(q) - wk * wk * q,
+        )
+    };
+    let vel = k_inv * Vector3::new(n.dot(&vk), u[0].dot(&a[0].v), u[1].dot(&a[1].v));
+    let (v_o, omega_t) = (Vector2::new(vel.x, vel.y), vel.z);
+    let vb = [v_o, v_o + omega_t * perp(r[1]), v_o + omega_t * perp(r[2])];
+    let omega = [
+        perp(u[0]).dot(&(vb[1] - a[0].v)) * i_len[0],
+        perp(u[1]).dot(&(vb[2] - a[1].v)) * i_len[1],
+    ];
+    let w2 = omega_t * omega_t;
+    let first_acc = if inner {
+        let q = legs.r[0];
+        let s_dot = d.dot(&(vk - v_o - omega_t * perp(q)));
+        n.dot(&ak) - 2.0 * omega_t * s_dot + w2 * n.dot(&q)
+    } else {
+        n.dot(&ak) + 2.0 * wk * d.dot(&(v_o - vk))
+    };
+    let acc = k_inv
+        * Vector3::new(
+            first_acc,
+            u[0].dot(&a[0].a) - len[0] * omega[0] * omega[0] + w2 * r[1].dot(&u[0]),
+            u[1].dot(&a[1].a) - len[1] * omega[1] * omega[1] + w2 * r[2].dot(&u[1]),
+        );
+    let (a_o, eps_t) = (Vector2::new(acc.x, acc.y), acc.z);
+    let ab = [
+        a_o,
+        a_o + eps_t * perp(r[1]) - w2 * r[1],
+        a_o + eps_t * perp(r[2]) - w2 * r[2],
+    ];
+    let eps = [
+        perp(u[0]).dot(&(ab[1] - a[0].a)) * i_len[0],
+        perp(u[1]).dot(&(ab[2] - a[1].a)) * i_len[1],
+    ];
+    // The arms' lengths: the ternary link's sides from B1, and for the inner pair the
+    // distance of A1 from O (the slide's line of action passes through A1).
+    let arms = [
+        if inner { legs.r[0].norm() } else { 0.0 },
+        dims.l_b1b2,
+        (dims.b3_along * dims.b3_along + dims.b3_across * dims.b3_across).sqrt(),
+    ];
+    // Non-finite inputs' rates make the solved vectors non-finite (K⁻¹ has no zero column),
+    // and ω_k, ε_k read them directly; the guide's ω, ε enter through vk, ak.
+    let ok = super::rrr::all_finite([
+        vel.x, vel.y, vel.z, acc.x, acc.y, acc.z, omega[0], omega[1], eps[0], eps[1], det, wk, ek,
+    ]) && legs.surely_regular_arms(&t.k, det, arms);
+    ok.then_some(FastRates {
+        b,
+        vb,
+        ab,
+        omega_t,
+        eps_t,
+        omega,
+        eps,
+        det,
+    })
+}
+
+/// The state of a tracked mode from its rates, written out field by field so that it is
+/// built where it is returned.
+#[inline(always)]
+fn fast_state(
+    first: &Guide,
+    a: &[PointMotion; 2],
+    dims: &SliderTriadDims,
+    t: &Tracked,
+    q: &FastRates,
+) -> TriadState {
+    let b = q.b;
+    // The angles first (independent of each other: the processor overlaps them).
+    let theta = direction_of(t.z.x, t.z.y);
+    let phi = [
+        direction_of(b[1].x - a[0].p.x, b[1].y - a[0].p.y),
+        direction_of(b[2].x - a[1].p.x, b[2].y - a[1].p.y),
+    ];
+    let o = PointMotion::new(b[0], q.vb[0], q.ab[0]);
+    let sliding = match dims.pair {
+        SlidingPair::Outer { .. } => LinkMotion {
+            origin: o,
+            angle: first.angle.value,
+            omega: first.angle.rate,
+            epsilon: first.angle.accel,
+        },
+        SlidingPair::Inner { .. } => {
+            let n = t.legs.w[0];
+            LinkMotion {
+                origin: first.point,
+                angle: direction_of(n.y, -n.x),
+                omega: q.omega_t,
+                epsilon: q.eps_t,
+            }
+        }
+    };
+    TriadState {
+        b: [
+            o,
+            PointMotion::new(b[1], q.vb[1], q.ab[1]),
+            PointMotion::new(b[2], q.vb[2], q.ab[2]),
+        ],
+        ternary: LinkMotion {
+            origin: o,
+            angle: theta,
+            omega: q.omega_t,
+            epsilon: q.eps_t,
+        },
+        binary: [
+            sliding,
+            LinkMotion {
+                origin: a[0],
+                angle: phi[0],
+                omega: q.omega[0],
+                epsilon: q.eps[0],
+            },
+            LinkMotion {
+                origin: a[1],
+                angle: phi[1],
+                omega: q.omega[1],
+                epsilon: q.eps[1],
+            },
+        ],
+        det: q.det,
+    }
 }
 
 /// [`slider_triad`] step by step, naming what fails.
