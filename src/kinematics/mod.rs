@@ -78,6 +78,7 @@ mod transfer;
 mod triad;
 mod triad_slider;
 mod trig_cubic;
+mod trig_local;
 mod trig_roots;
 
 pub use assur::{GroupMotion, GroupPose, GroupReactions, GroupWork, HingeEnd, HingedGroup};

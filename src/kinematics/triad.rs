@@ -60,6 +60,7 @@ use super::fold::{split_steps, Leg, Legs};
 use super::link::LinkMotion;
 use super::motion::PointMotion;
 use super::trig_cubic::{n1, Cubic};
+use super::trig_local::nearest_on_arc;
 use super::trig_roots::{checked_roots, unit, CLOSES, SAME_MODE};
 use crate::angle::{cross, direction, perp};
 use crate::error::{finite, finite2, positive, Error, Result};
@@ -376,8 +377,12 @@ pub fn triad_modes(a: [Point2<f64>; 3], dims: &TriadDims) -> Result<TriadModes> 
 ///    polar moment of the ternary link's joints about their centroid), so the rule asks
 ///    D*² < 4·I·sin²(min(δ, π)/2).
 ///
-/// Both hold for small steps along a cycle away from a merger of modes; near one the bracket
-/// decides. `None` also for invalid input (the full path names the error).
+/// Both hold for small steps along a cycle away from a merger of modes. Where they cannot
+/// tell (F flat at the root, as where the radical axes turn parallel and two modes lie close
+/// in θ but far apart in the pose), a second certificate brackets every root of F on the arc
+/// of angles where a mode could be as near the previous pose and compares their poses; where
+/// neither settles it the bracket decides. `None` also for invalid input (the full path
+/// names the error).
 #[must_use]
 pub fn triad_tracked(
     a: [Point2<f64>; 3],
@@ -458,7 +463,17 @@ fn track(a: [Point2<f64>; 3], dims: &TriadDims, previous: &TriadPose) -> Option<
     let moved = (b[0] - previous.b[0]).norm_squared()
         + (b[1] - previous.b[1]).norm_squared()
         + (b[2] - previous.b[2]).norm_squared();
-    let certified = e.cubic.certifies(&root, moved, dims.ternary_moment());
+    let moment = dims.ternary_moment();
+    let certified = e.cubic.certifies(&root, moved, moment)
+        || nearest_on_arc(
+            &e.cubic,
+            &previous.b,
+            &b,
+            z,
+            moment,
+            SAME_MODE * e.length(),
+            |zr| e.poses(zr, false, false, dims).map(|p| p.map(|p| p.b)),
+        );
     certified.then_some(Tracked { z, b, leg, len })
 }
 

@@ -57,7 +57,8 @@ use super::motion::PointMotion;
 use super::rrp::Guide;
 use super::triad::{inverse3, AssemblyModes, TriadDims, TriadPose, TriadState};
 use super::trig_cubic::{n1, Cubic};
-use super::trig_roots::{checked_roots, unit as unit_c, CLOSES, SAME_MODE};
+use super::trig_local::nearest_on_arc;
+use super::trig_roots::{along, checked_roots, unit as unit_c, CLOSES, SAME_MODE};
 use crate::angle::{cross, perp, unit};
 use crate::error::{finite, finite2, positive, Error, Result};
 use nalgebra::{Complex, Matrix3, Point2, Vector2, Vector3};
@@ -254,7 +255,9 @@ pub fn slider_triad_modes(
 /// cannot be certified to be the mode that
 /// [`slider_triad_modes`]`(first, a, dims)?.`[`nearest`](SliderTriadModes::nearest)`(previous)`
 /// returns (the same two conditions: no other root of F near, and no other mode can be as
-/// near `previous`). `None` also for invalid input (the full path names the error).
+/// near `previous`; or the triad's second certificate, every root of F on the arc where a
+/// mode could be as near, bracketed, and their poses compared). `None` also for invalid
+/// input (the full path names the error).
 #[must_use]
 pub fn slider_triad_tracked(
     first: &Guide,
@@ -316,7 +319,9 @@ struct Tracked {
 /// the line's intersection with the second circle nearer the previous O), Newton steps of
 /// the three closures with the velocity system K (the root of F carries the rounding of F's
 /// coefficients, the closures that of the geometry), then the certificate of
-/// [`Cubic::certifies`](super::trig_cubic::Cubic::certifies).
+/// [`Cubic::certifies`](super::trig_cubic::Cubic::certifies), or where it cannot tell (or
+/// the closures' first step turned θ by more than 1e-8: F's root is poor where F is flat)
+/// the second one, [`nearest_on_arc`].
 ///
 /// The closures' steps go to their rounding floor, as the bracket's polish does: a pose left
 /// at 1e-13 of the size is off by 1e-13/σ along K's near-null direction, where the
@@ -369,7 +374,13 @@ fn track(
             first = step.z;
         }
         let on = o + Vector2::new(step.x, step.y);
-        let zn = z * C::new(1.0, step.z);
+        // z·(1 + i·s) is a unit to rounding for |s| ≤ 1e-8 (|1 + i·s| − 1 ≤ s²/2); a longer
+        // turn (F's root poor where F is flat) is taken as the exact rotation by 2·atan(s/2).
+        let zn = if step.z.abs() <= 1e-8 {
+            z * C::new(1.0, step.z)
+        } else {
+            along(z, 0.5 * step.z)
+        };
         let (gn, legs_n) = e.legs(on, zn);
         // (NaN is no improvement.)
         let better = gn.amax() < g.amax();
@@ -385,15 +396,27 @@ fn track(
         }
     }
     let zv = vec(z);
-    if !(g.amax() <= 1e-13 * e.length && first.abs() <= 1e-8) {
+    if !(g.amax() <= 1e-13 * e.length) {
         return None;
     }
+    let ours = joints_at(o, zv, &e.beta);
     let moved = (0..3)
-        .map(|i| (o + rotate(zv, e.beta[i]) - previous.b[i].coords).norm_squared())
+        .map(|i| (ours[i] - previous.b[i]).norm_squared())
         .sum::<f64>();
-    e.cubic
-        .certifies(&root, moved, dims.triangle().ternary_moment())
-        .then_some(Tracked { o, z: zv, legs, k })
+    let moment = dims.triangle().ternary_moment();
+    // The first certificate asks the closures' first step to turn θ by little (the root of F
+    // is the mode's angle); the second reads the mode's own angle.
+    let certified = (first.abs() <= 1e-8 && e.cubic.certifies(&root, moved, moment))
+        || nearest_on_arc(
+            &e.cubic,
+            &previous.b,
+            &ours,
+            z,
+            moment,
+            SAME_MODE * e.length,
+            |zr| e.poses(zr, false, false).map(|p| p.map(|p| p.b)),
+        );
+    certified.then_some(Tracked { o, z: zv, legs, k })
 }
 
 /// Positions, velocities and accelerations of a triad with a sliding pair, in the mode
