@@ -72,7 +72,7 @@ pub(super) fn direction_of(x: f64, y: f64) -> f64 {
     } else {
         (n, d, 0.0)
     };
-    if !(den <= f64::MAX) {
+    if den.is_nan() || den > f64::MAX {
         // Infinite components or a sum that overflows (and NaN): the library's angle.
         return crate::angle::direction(nalgebra::Vector2::new(x, y));
     }

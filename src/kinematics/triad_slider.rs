@@ -396,7 +396,8 @@ fn track(
         }
     }
     let zv = vec(z);
-    if !(g.amax() <= 1e-13 * e.length) {
+    let residual = g.amax();
+    if residual.is_nan() || residual > 1e-13 * e.length {
         return None;
     }
     let ours = joints_at(o, zv, &e.beta);

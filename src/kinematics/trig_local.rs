@@ -166,7 +166,8 @@ pub(super) fn nearest_on_arc(
             if d2(&pose, ours) <= same * same {
                 continue;
             }
-            if !(d2(&pose, previous) > moved * (1.0 + 1e-9)) {
+            let d = d2(&pose, previous);
+            if d.is_nan() || d <= moved * (1.0 + 1e-9) {
                 return false;
             }
         }
