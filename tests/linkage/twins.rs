@@ -175,7 +175,7 @@ fn a_scaled_turned_moved_peaucellier_is_straight_too() {
 /// range; each cell scaled, turned and moved at random.
 #[test]
 fn peaucellier_cells_of_other_proportions_are_straight() {
-    let mut rng = Rng(0x7e1e_28);
+    let mut rng = Rng(0x007e_1e28);
     let n = cases("TMM_TWIN_CASES", 12);
     let mut worst_all = [0.0f64; 3];
     for case in 0..n {

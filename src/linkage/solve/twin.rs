@@ -1,3 +1,4 @@
+#![allow(clippy::neg_cmp_op_on_partial_ord)] // `!(x > 0.0)` rejects NaN too, on purpose.
 //! An RRR dyad hung on the inner joints of two twin dyads, solved in the twins' frame (see
 //! [`TwinPlan`]).
 //!
