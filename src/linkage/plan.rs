@@ -93,6 +93,10 @@ pub struct Group {
     pub(crate) triad: Option<Box<TriadPlan>>,
     /// A general group's plan (`None` for a dyad or a triad).
     pub(crate) general: Option<Box<super::plan_general::GeneralPlan>>,
+    /// An RRR dyad hung on the inner joints of two twin dyads (a rhombus's or a kite's two
+    /// sides, mirror images of each other): solved in the twins' own frame (`None` for every
+    /// other group; see [`TwinPlan`]).
+    pub(crate) twin: Option<Box<TwinPlan>>,
     /// The assembly mode (read off the reference pose unless overridden).
     pub branch: Branch,
     pub(crate) a_local: Vector2<f64>,
@@ -126,6 +130,28 @@ pub(crate) struct TriadPlan {
     pub reference: TriadPose,
     /// The sliding leg (the first) of a triad with a sliding pair; `None` for revolute joints.
     pub slider: Option<super::plan_triad::SliderLeg>,
+}
+
+/// An RRR dyad whose two known joints are the inner joints of two *twin* RRR dyads: the
+/// twins hang on the same two known joints K1, K2 with the same lengths in opposite modes, so
+/// their inner joints are mirror images about the line K1K2 (the axis), M ± h·n with n the
+/// axis's unit normal. Near the twins' fold (h → 0: a Peaucellier cell at its lock) the
+/// difference of their absolute coordinates no longer gives this dyad's base direction, which
+/// is ±n exactly; the solve (`solve/twin.rs`) takes it from the axis. Found by
+/// `build/twins.rs`.
+#[derive(Debug, Clone, PartialEq)]
+pub(crate) struct TwinPlan {
+    /// The twin groups (indices in attachment order) whose inner joints are this dyad's
+    /// first and second known joints.
+    pub twins: [usize; 2],
+    /// The axis: the first twin's known points (known link, point in its frame), in that
+    /// twin's order.
+    pub axis: [(usize, Vector2<f64>); 2],
+    /// Whether the second twin lists the two known points in the other order (then the
+    /// twins are mirror images in the same mode, otherwise in opposite modes).
+    pub swapped: bool,
+    /// Whether this dyad's two lengths are equal (then its inner joint lies on the axis).
+    pub equal: bool,
 }
 
 impl Group {

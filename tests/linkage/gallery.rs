@@ -152,10 +152,11 @@ fn peaucellier_draws_an_exact_straight_line_over_its_range() {
          at the locks (the rhombus folded: C = D)"
     );
     assert!(inside < 1e-12, "{inside:e}");
-    // At the locks C and D (each 10⁻⁸ m from the fold) fix P's side dyad by their difference:
-    // its direction carries the rounding of their coordinates over |CD|, 1.6e-10 of the size
-    // reached (issue 28 asks 1e-12: not yet, see CHANGELOG).
-    assert!(at_locks < 1e-9, "{at_locks:e}");
+    // At the locks C and D are 10⁻⁸ m from the fold: their difference's direction carries
+    // their coordinates' rounding over |CD| (1.6e-10 of the size off the line when P's dyad
+    // took it from there); P's dyad is solved in the twin sides' frame, its base direction
+    // the normal of O A (tests/linkage/twins.rs).
+    assert!(at_locks < 1e-12, "{at_locks:e}");
 }
 
 /// The independent Chebyshev linkage: frame A0B0, crossed cranks, P the coupler's middle.

@@ -37,6 +37,8 @@ mod tracking;
 #[cfg(feature = "serde")]
 mod triad;
 #[cfg(feature = "serde")]
+mod twins;
+#[cfg(feature = "serde")]
 mod two_inputs;
 #[cfg(feature = "serde")]
 mod workspace;

@@ -108,6 +108,7 @@ pub(super) fn plan_general(
         lengths: [0.0; 2],
         guide_offsets: [0.0; 2],
         slide_angle: 0.0,
+        twin: None,
         triad: None,
         general: Some(Box::new(GeneralPlan {
             links: g.links.clone(),

@@ -316,5 +316,6 @@ pub(super) fn plan_group(
         name,
         triad: None,
         general: None,
+        twin: None,
     })
 }

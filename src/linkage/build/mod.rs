@@ -13,6 +13,7 @@ mod groups;
 mod loads;
 mod reference;
 mod triad;
+mod twins;
 
 use chain::{
     edges, input_links, input_specs, joint_at, plan_inputs, plan_joints, plan_links, plan_points,
@@ -80,7 +81,7 @@ impl Plan {
         for m in &linkage.modes {
             modes.entry(m.joint.as_str()).or_insert(m.branch);
         }
-        let groups = dyads
+        let mut groups = dyads
             .iter()
             .map(|g| match g {
                 Assur::Dyad(d) => {
@@ -96,6 +97,7 @@ impl Plan {
         let joints = plan_joints(linkage, &edges, (&names, &links), &frames);
         let (point_names, points) = plan_points(linkage, &links, &frames)?;
         let size = reference_size(linkage)?;
+        twins::mark(&mut groups, linkage, size);
         let link_plans = plan_links(linkage, &edges, (&names, &links), &frames)?;
         let gravity = finite_pair("field gravity", "gravity", linkage.gravity)?;
         let chain = Chain {

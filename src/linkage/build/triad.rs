@@ -210,6 +210,7 @@ fn triad_group(
         slide_angle: 0.0,
         triad: Some(Box::new(plan)),
         general: None,
+        twin: None,
     }
 }
 

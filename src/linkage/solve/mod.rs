@@ -1,6 +1,7 @@
 //! One position of a plan, one concept a file: the kinematic buffers (`state`), the
 //! position pass (`position`), the rates-only pass (`rates`), the loads (`loads`), the
-//! kinetostatics (`statics`) and the two checks (`checks`); the results `kinematics` and
+//! kinetostatics (`statics`) and the two checks (`checks`); a dyad on twin dyads' inner
+//! joints in their frame (`twin`); the results `kinematics` and
 //! `analysis`, and the entry points (`solver`).
 
 pub(crate) mod analysis;
@@ -20,6 +21,7 @@ pub(crate) mod spare;
 pub(crate) mod state;
 mod statics;
 pub(crate) mod triad;
+mod twin;
 
 pub use analysis::Analysis;
 pub use checks::PowerCheck;

@@ -169,6 +169,13 @@ impl KinState {
         if let Some(gp) = &group.general {
             return self.solve_general_kinematics(g, group, gp);
         }
+        // An RRR dyad on twins' inner joints, in their frame where it has a clean answer
+        // (`twin.rs`); the plain closed form below otherwise.
+        if let Some(t) = &group.twin
+            && self.solve_twin(g, group, t)
+        {
+            return Ok(());
+        }
         let [l2, l3] = group.links;
         let [ka, kc] = group.known;
         let a = self.at(ka, group.a_local);

@@ -92,6 +92,7 @@ static NONE: KinState = KinState {
     dets: Vec::new(),
     triads: Vec::new(),
     general_work: Vec::new(),
+    twin_sides: Vec::new(),
 };
 
 impl Deref for Held {

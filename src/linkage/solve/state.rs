@@ -26,6 +26,11 @@ pub(crate) struct KinState {
     pub triads: Vec<Option<crate::kinematics::TriadPose>>,
     /// Per group, a general group's Newton buffers (empty for the other kinds).
     pub general_work: Vec<crate::kinematics::GroupWork>,
+    /// Per group, for an RRR dyad hung on twins ([`TwinPlan`](crate::linkage::plan::TwinPlan)),
+    /// ±1: its base direction (from its first known joint to its second) is this times the
+    /// axis's left normal; 0 where the twins' modes (as the plan now has them: a mode may be
+    /// flipped after planning) are no mirror pair. Empty when no group has twins.
+    pub twin_sides: Vec<f64>,
 }
 
 /// The frame's link motion (at rest at the origin).
@@ -44,6 +49,33 @@ pub(crate) fn within(part: &str) -> impl Fn(Error) -> Error + '_ {
         part: part.to_owned(),
         source: Box::new(e),
     }
+}
+
+/// Each group's twin side (see [`KinState::twin_sides`]): the first twin's inner joint is
+/// M + σ·h·n (σ its mode's sign, n the left normal of the axis from its first known point to
+/// its second), its mirror image M − σ·h·n, so the direction from the first to the second is
+/// −σ·n.
+fn twin_sides(chain: &Chain) -> Vec<f64> {
+    if chain.groups.iter().all(|g| g.twin.is_none()) {
+        return Vec::new();
+    }
+    chain
+        .groups
+        .iter()
+        .map(|g| match &g.twin {
+            Some(t) => {
+                let [f, s] = t.twins.map(|i| chain.groups[i].branch);
+                // Mirror images: opposite modes on the same order of the known points, the
+                // same mode on the other order.
+                if (f == s) == t.swapped {
+                    -f.sign()
+                } else {
+                    0.0
+                }
+            }
+            None => 0.0,
+        })
+        .collect()
 }
 
 impl KinState {
@@ -70,6 +102,7 @@ impl KinState {
             dets: vec![0.0; chain.groups.len()],
             triads: vec![None; chain.groups.len()],
             general_work: vec![Default::default(); chain.groups.len()],
+            twin_sides: twin_sides(chain),
         }
     }
 
