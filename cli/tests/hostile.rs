@@ -5,6 +5,7 @@
 
 mod common;
 
+use common::synth_function::SynthFunction;
 use common::{assert_one_line_failure, assert_success, number_after, tmm, Broken, PISTON_DRIVEN};
 
 /// The number that ends just before `key` in `text`.
@@ -798,81 +799,32 @@ fn every_option_of_every_subcommand_survives_hostile_values() {
                 json,
             ),
             (
-                vec![
-                    "synth",
-                    "function",
-                    "--function",
-                    "log10",
-                    "--x",
-                    &x,
-                    "--crank",
-                    "-30,30",
-                    "--rocker",
-                    "0,90",
-                    "--frame",
-                    "0.1",
-                    "-o",
-                    json,
-                ],
+                SynthFunction {
+                    x: &x,
+                    ..Default::default()
+                }
+                .command(&["-o", json]),
                 json,
             ),
             (
-                vec![
-                    "synth",
-                    "function",
-                    "--function",
-                    "log10",
-                    "--x",
-                    "1,2",
-                    "--crank",
-                    &crank,
-                    "--rocker",
-                    "0,90",
-                    "--frame",
-                    "0.1",
-                    "-o",
-                    json,
-                ],
+                SynthFunction {
+                    crank: &crank,
+                    ..Default::default()
+                }
+                .command(&["-o", json]),
                 json,
             ),
             (
-                vec![
-                    "synth",
-                    "function",
-                    "--function",
-                    &power,
-                    "--x",
-                    "1,2",
-                    "--crank",
-                    "-30,30",
-                    "--rocker",
-                    "0,90",
-                    "--frame",
-                    v,
-                    "-o",
-                    json,
-                ],
+                SynthFunction {
+                    function: &power,
+                    frame: v,
+                    ..Default::default()
+                }
+                .command(&["-o", json]),
                 json,
             ),
             (
-                vec![
-                    "synth",
-                    "function",
-                    "--function",
-                    "log10",
-                    "--x",
-                    "1,2",
-                    "--crank",
-                    "-30,30",
-                    "--rocker",
-                    "0,90",
-                    "--frame",
-                    "0.1",
-                    "--least-squares",
-                    v,
-                    "-o",
-                    json,
-                ],
+                SynthFunction::default().command(&["--least-squares", v, "-o", json]),
                 json,
             ),
             (
@@ -927,22 +879,12 @@ fn every_option_of_every_subcommand_survives_hostile_values() {
             vec!["dynamics", one, "--run-up", "--motor", pair],
             vec!["dynamics", two, "--run", "0.2", "--motor", pair],
             vec!["dynamics", two, "--run", "0.2", "--motor2", pair],
-            vec![
-                "synth",
-                "function",
-                "--function",
-                "sqrt",
-                "--x",
-                pair,
-                "--crank",
-                "-30,30",
-                "--rocker",
-                "0,90",
-                "--frame",
-                "0.1",
-                "-o",
-                json,
-            ],
+            SynthFunction {
+                function: "sqrt",
+                x: pair,
+                ..Default::default()
+            }
+            .command(&["-o", json]),
             vec![
                 "synth",
                 "through",

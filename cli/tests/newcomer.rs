@@ -6,6 +6,7 @@
 
 mod common;
 
+use common::synth_function::SynthFunction;
 use common::{assert_one_line_failure, assert_success, number_after, root, tmm, Broken};
 
 #[test]
@@ -50,22 +51,14 @@ fn a_function_generators_report_writes_its_formula() {
         ("log10", "y = log10(x), x from", "-30,30", "0,90"),
     ] {
         let out = dir.join(format!("tmm-cli-test-{}-function.json", std::process::id()));
-        let r = tmm(&[
-            "synth",
-            "function",
-            "--function",
+        let path = out.to_string_lossy();
+        let r = tmm(&SynthFunction {
             function,
-            "--x",
-            "1,2",
-            "--crank",
             crank,
-            "--rocker",
             rocker,
-            "--frame",
-            "0.1",
-            "-o",
-            &out.to_string_lossy(),
-        ]);
+            ..Default::default()
+        }
+        .command(&["-o", &path]));
         std::fs::remove_file(&out).ok();
         assert_success(&r, function);
         assert!(r.stdout.contains(formula), "{function}: {}", r.stdout);
@@ -254,22 +247,7 @@ fn precision_points_read_apart() {
     let out = std::env::temp_dir().join(format!("tmm-cli-ls-{}.json", std::process::id()));
     let n = 1_000_000_usize;
     for (points, listed) in [(Some(n), 8), (None, 3)] {
-        let mut args = vec![
-            "synth",
-            "function",
-            "--function",
-            "log10",
-            "--x",
-            "1,2",
-            "--crank",
-            "-30,30",
-            "--rocker",
-            "0,90",
-            "--frame",
-            "0.1",
-            "-o",
-            out.to_str().unwrap(),
-        ];
+        let mut args = SynthFunction::default().command(&["-o", out.to_str().unwrap()]);
         let count = points.map(|p| p.to_string());
         if let Some(c) = &count {
             args.extend_from_slice(&["--least-squares", c]);

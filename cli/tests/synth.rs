@@ -9,6 +9,7 @@ mod common;
 
 use std::f64::consts::{PI, TAU};
 
+use common::synth_function::SynthFunction;
 use common::{assert_success, parse_csv, tmm, Broken, Run};
 
 /// Runs `tmm synth ARGS -o FILE`: the report (stdout) and the temporary description file.
@@ -297,22 +298,7 @@ fn a_crank_rocker_through_positions_puts_the_rocker_there() {
 #[test]
 fn a_function_generator_is_exact_at_its_chebyshev_points() {
     let (x0, x1, phi0, phi1, psi0, psi1) = (1.0f64, 2.0f64, -30.0, 30.0, 0.0, 90.0);
-    let (_, file) = synth(
-        "function",
-        &[
-            "function",
-            "--function",
-            "log10",
-            "--x",
-            "1,2",
-            "--crank",
-            "-30,30",
-            "--rocker",
-            "0,90",
-            "--frame",
-            "0.1",
-        ],
-    );
+    let (_, file) = synth("function", &SynthFunction::default().args(&[]));
     // The precision points x_j = (x0 + x1)/2 − (x1 − x0)/2·cos((2j − 1)π/6), the crank at
     // the linear image of x_j, the rocker at that of log10 x_j; and x0, x1 between.
     let xs: Vec<f64> = (1..=3)
@@ -628,33 +614,23 @@ fn bad_requirements_are_one_line_naming_the_parameter() {
         &["through", "--frame", "0", "--at", "40,101.4", "100,112.8"],
         &["frame must be positive", "--frame"],
     );
-    let function = |extra: &[&'static str]| {
-        let mut a = vec![
-            "function",
-            "--function",
-            "log10",
-            "--x",
-            "1,2",
-            "--crank",
-            "-30,30",
-            "--rocker",
-            "0,90",
-            "--frame",
-            "0.1",
-        ];
-        a.extend_from_slice(extra);
-        a
-    };
+    let function = |extra: &[&'static str]| SynthFunction::default().args(extra);
     assert_refused(
         &function(&["--least-squares", "2"]),
         &["N = 2", "--least-squares"],
     );
-    let mut flat = function(&[]);
-    flat[4] = "2,2";
-    assert_refused(&flat, &["x0 = x1"]);
-    let mut negative = function(&[]);
-    negative[4] = "-2,-1";
-    assert_refused(&negative, &["f(x0) must be finite", "--function and --x"]);
+    let with_x = |x| {
+        SynthFunction {
+            x,
+            ..Default::default()
+        }
+        .args(&[])
+    };
+    assert_refused(&with_x("2,2"), &["x0 = x1"]);
+    assert_refused(
+        &with_x("-2,-1"),
+        &["f(x0) must be finite", "--function and --x"],
+    );
 }
 
 #[test]

@@ -4,7 +4,9 @@
 //! path's size as the engine analyses its description (any six-bar through the points
 //! passes). `TMM_SYNTH_CASES` sets the number of cases (1 by default; CI runs more). With
 //! the budget counted in full (session 8) and 2 million evaluations, the first 6 in release
-//! are recovered to 6e-15 of the path's size (case 5, which missed before, among them).
+//! were recovered to 6e-15 of the path's size while the designs could end outside
+//! `max_size`; held to the box (session 10), case 3 misses at 5.4e-6 (cases 0–2, 4, 5 are
+//! recovered to 1.0e-15).
 
 use super::path::{centroid_size, prescribed, recoveries_of, Mechanism, Rng};
 use nalgebra::Point2;
@@ -263,4 +265,74 @@ fn the_six_bar_example_is_the_six_bar_it_names() {
         .map(|k| at(0.3 + 0.01 * k as f64).1)
         .fold(f64::INFINITY, f64::min);
     assert!(lowest > 0.3f64.sin(), "{lowest}");
+}
+
+/// `max_size` holds every returned design: in a box of 2 path sizes (less than half the
+/// default 5, where the search's polishes end outside it most often) each design's pivots O1
+/// and O5 lie within the box's coordinates of the points' centroid, its six lengths
+/// (measured between the description's joints, so the report is not taken on trust) and the
+/// offsets of C and P within the box, and its misses are what the engine gives. A box too
+/// small for the tracer to reach the farthest point is refused naming `max_size`.
+#[test]
+fn six_bar_designs_keep_their_box() {
+    let req = PathRequirement::six_bar_example().unwrap();
+    let (c, size) = centroid_size(&req.points);
+    let s = 2.0;
+    let opts = PathOptions::default()
+        .with_max_size(s)
+        .with_min_transmission_angle(0.3)
+        .with_max_evaluations(60_000)
+        .with_designs(3);
+    let designs = six_bar_path_generator(&req, &opts, |_| true).unwrap();
+    let limit = s * size * (1.0 + 1e-12);
+    for d in &designs {
+        let l = &d.synthesis.linkage;
+        let at = |name: &str| {
+            let j = l.joints.iter().find(|j| j.name == name).unwrap();
+            Point2::new(j.at[0], j.at[1])
+        };
+        for pivot in ["O1", "O5"] {
+            let p = at(pivot);
+            assert!(
+                (p.x - c[0]).abs() <= limit && (p.y - c[1]).abs() <= limit,
+                "{pivot} at {p:?}, the box {limit} about {c:?}"
+            );
+        }
+        for (a, b) in [
+            ("O1", "O3"),
+            ("O1", "A"),
+            ("A", "B"),
+            ("O3", "B"),
+            ("C", "E"),
+            ("O5", "E"),
+        ] {
+            let len = (at(a) - at(b)).norm();
+            assert!(len <= limit, "{a}{b} = {len}, the box {limit}");
+        }
+        // C on AB and P on CE, (along, across) each within the box.
+        let offsets = |from: &str, to: &str, point: Point2<f64>| {
+            let (f, t) = (at(from), at(to));
+            let u = (t - f).normalize();
+            let r = point - f;
+            [r.dot(&u), u.x * r.y - u.y * r.x]
+        };
+        let p = l.links.iter().find(|k| k.name == "link CE").unwrap().points[0].at;
+        for v in
+            offsets("A", "B", at("C"))
+                .into_iter()
+                .chain(offsets("C", "E", Point2::new(p[0], p[1])))
+        {
+            assert!(v.abs() <= limit, "offset {v}, the box {limit}");
+        }
+        assert!(d.mean_error.is_finite() && d.max_error >= d.mean_error);
+    }
+    // The tracer of a box s reaches less than (√2 + 1 + √5)·s from the centroid.
+    let tiny = PathOptions::default().with_max_size(0.2);
+    match six_bar_path_generator(&req, &tiny, |_| true) {
+        Err(Error::OutOfRange { name, min, .. }) => {
+            assert!(name.starts_with("max_size"), "{name}");
+            assert!((min - 1.0 / (2f64.sqrt() + 1.0 + 5f64.sqrt())).abs() < 1e-15);
+        }
+        other => panic!("expected max_size refused, got {other:?}"),
+    }
 }

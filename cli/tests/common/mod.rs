@@ -2,6 +2,8 @@
 //! the shape of a failure, and temporary files.
 #![allow(dead_code)] // each test binary uses a part
 
+pub mod synth_function;
+
 use std::path::{Path, PathBuf};
 use std::process::Command;
 

@@ -81,9 +81,9 @@ pub struct PathOptions {
     /// crank and rod), in (1, [`MAX_LINK_RATIO`](super::MAX_LINK_RATIO)]. Default 10.
     pub max_link_ratio: f64,
     /// The largest link length and distance of a pivot from the points' centroid, in units of
-    /// the path's size (the largest distance of a point from the centroid). Default 5. The
-    /// four-bar's and slider-crank's designs keep it; the six-bar's search keeps it, but its
-    /// polish may end outside it.
+    /// the path's size (the largest distance of a point from the centroid). Default 5. Every
+    /// design returned keeps it (the six-bar's box is listed at
+    /// [`six_bar_path_generator`](super::six_bar_path_generator)).
     pub max_size: f64,
     /// The seed of the search (the same seed gives the same designs unless `max_time` cuts
     /// the search short).

@@ -34,7 +34,7 @@ use crate::error::{Error, Result};
 use crate::kinematics::batch::coupler_point;
 use crate::kinematics::{crank, rrr_dyad, Branch, Motion, PointMotion};
 use crate::linkage::{Input, Joint, Link, Linkage, NamedPoint, Output};
-use crate::synthesis::{Report, Synthesis};
+use crate::synthesis::{check, Report, Synthesis};
 use nalgebra::Point2;
 use std::cell::Cell;
 use std::f64::consts::TAU;
@@ -54,6 +54,9 @@ const LUCKY: usize = 5;
 const NEAR: f64 = 1e-3;
 /// The fewest points: 16 unknowns, two equations a point.
 const MIN_POINTS: usize = 8;
+/// The unknowns the box `max_size` bounds: O1 (0, 1), the frame's length and the five
+/// links (3–6, 11, 12), C's offsets (7, 8), O5 (9, 10) and P's offsets (13, 14).
+const BOXED: [usize; 14] = [0, 1, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14];
 
 /// One Stephenson III six-bar (any units).
 #[derive(Debug, Clone, Copy)]
@@ -178,6 +181,13 @@ impl Problem<'_> {
         }
     }
 
+    /// Whether the unknowns `x` are within the box `max_size` (path sizes): the pivots O1 and
+    /// O5 (each coordinate from the points' centroid), the six lengths and the offsets of C
+    /// and P (the search's bounds; the frame's angle and θ0 are free).
+    fn within(&self, x: &[f64]) -> bool {
+        BOXED.iter().all(|&k| x[k].abs() <= self.size)
+    }
+
     /// The crank angles of the points and `step`-spaced samples of the range between them.
     fn angles(&self, theta0: f64, step: f64) -> Vec<f64> {
         let (mn, mx) = min_max(self.delta);
@@ -225,6 +235,12 @@ impl Problem<'_> {
     fn objective(&self, g: &[f64]) -> f64 {
         self.budget.add(1);
         let (x, s) = split(g);
+        // Outside the box (a Lamarckian polish that left it; the evolution's own trials stay
+        // within its bounds, which are the box): refused, so that the population stays in
+        // the box where the designs must end.
+        if !self.within(&x) {
+            return INFEASIBLE * 10.0;
+        }
         self.cost(&x, s, SEARCH_STEP)
     }
 
@@ -244,13 +260,15 @@ impl Problem<'_> {
     }
 
     /// Levenberg–Marquardt on the misses, the link ratio kept; if `within`, each step also
-    /// kept within the other constraints (assembly with γ ≥ \[γ\] over the range as the
-    /// search samples it): a free polish that converges to a design the whole check refuses
-    /// (the points met only past a dead point) is done again within them.
+    /// kept within the other constraints (the box `max_size`, and assembly with γ ≥ \[γ\]
+    /// over the range as the search samples it): a free polish that converges to a design
+    /// the whole check refuses (outside the box, or the points met only past a dead point)
+    /// is done again within them.
     fn lm(&self, x: Vec<f64>, s: [f64; 2], iterations: usize, within: bool) -> Vec<f64> {
         let res = |x: &[f64]| self.residuals(x, s);
         let mut accept = |x: &[f64]| {
             self.lengths_ok(x) == 0.0
+                && (!within || self.within(x))
                 && (!within
                     || self.budget.room(1) && {
                         self.budget.add(1);
@@ -269,13 +287,11 @@ impl Problem<'_> {
         continuation(&res, &mut accept, x, n, 400)
     }
 
-    /// The whole check: the ratio, assembly with γ ≥ \[γ\] every 1° of the range; the mean
-    /// miss where it passes, `None` where it does not (or the budget has no room for it).
-    /// Unlike the four-bar's, it does not hold the polished design within `max_size`: held
-    /// there, seeded case 2 of the recovery test no longer recovers (its polish ends
-    /// outside).
+    /// The whole check: the box `max_size`, the ratio, assembly with γ ≥ \[γ\] every 1° of
+    /// the range; the mean miss where it passes, `None` where it does not (or the budget has
+    /// no room for it).
     fn check(&self, x: &[f64], s: [f64; 2]) -> Option<f64> {
-        if !self.budget.charge(self.budget.check) {
+        if !self.within(x) || !self.budget.charge(self.budget.check) {
             return None;
         }
         Some(self.cost(x, s, CHECK_STEP)).filter(|&c| c < INFEASIBLE)
@@ -358,8 +374,11 @@ impl PathRequirement {
 /// `E`, `O5` (the dyad), the tracer `P` on the link `CE`; its links `frame` (O1, O3, O5),
 /// `crank`, `coupler` (A, B, C), `rocker`, `link CE` and `output` (O5, E), posed at the first
 /// point's crank angle. `max_link_ratio` bounds the six lengths O1O3, O1A, AB, O3B, CE, O5E;
-/// `max_size` the pivots' distances from the points' centroid, the lengths and the offsets
-/// of C and P, in path sizes.
+/// `max_size` (in path sizes) each coordinate of the pivots O1 and O5 from the points'
+/// centroid, the six lengths and the offsets of C on AB and of P on CE (along and across):
+/// a design outside that box is never returned (a polish that ends outside it is done
+/// again with its steps kept inside). A box too small for the tracer to reach the farthest
+/// point (its reach is below 4.65·`max_size` from the centroid) is refused.
 ///
 /// # Example
 /// Eight points (as many as the unknowns allow: a precision-point synthesis) of a known
@@ -384,7 +403,8 @@ impl PathRequirement {
 ///
 /// # Errors
 /// As [`path_generator`](super::path_generator), and [`Error::OutOfRange`] naming `timing`
-/// when it is not prescribed, or `points` for fewer than 8.
+/// when it is not prescribed, `points` for fewer than 8, or `max_size` for a box of at most
+/// 1/(√2 + 1 + √5) ≈ 0.215 path sizes.
 pub fn six_bar_path_generator(
     req: &PathRequirement,
     opts: &PathOptions,
@@ -409,6 +429,20 @@ pub fn six_bar_path_generator(
             ends: crate::Ends::Closed,
         });
     }
+    // The box bounds the tracer's reach: from the centroid, |O5| ≤ √2·s (each coordinate
+    // within s), |E − O5| = O5E ≤ s, and P − E = (along − CE)·u + across·n with along in
+    // [−s, s], CE in (0, s], |across| ≤ s, so |P − E| < √5·s: |P| < (√2 + 1 + √5)·s, and
+    // the farthest point is 1 path size away.
+    let reach = std::f64::consts::SQRT_2 + 1.0 + 5f64.sqrt();
+    if opts.max_size * reach <= 1.0 {
+        return Err(Error::OutOfRange {
+            name: "max_size (path sizes; within a box of s the six-bar's tracer reaches less than 4.65·s from the points' centroid, and the farthest point is 1 away)",
+            value: opts.max_size,
+            min: 1.0 / reach,
+            max: f64::INFINITY,
+            ends: crate::Ends::Open,
+        });
+    }
     let start = Instant::now();
     let (pts, centre, scale) = normalised(&req.points);
     let n = req.points.len();
@@ -431,16 +465,26 @@ pub fn six_bar_path_generator(
     let mut found: Vec<(Vec<f64>, [f64; 2], f64)> = Vec::new();
     search(&pb, opts, &mut found, &mut progress);
     let mut designs = Vec::new();
+    let mut refused = None;
     for (x, s, _) in &found {
-        designs.push(design(&pb, x, *s, centre, scale)?);
+        // A design the engine refuses in the world's units (rounding there, a joint beyond
+        // its range) is left out, the others kept; if none is left, why the last one went.
+        match design(&pb, x, *s, centre, scale) {
+            Ok(d) => designs.push(d),
+            Err(e) => refused = Some(e),
+        }
     }
     if designs.is_empty() {
+        if let Some(e) = refused {
+            return Err(e);
+        }
         return Err(Error::NoMechanism {
             method: "path generation",
             problem: format!(
-                "no six-bar met the constraints (γ ≥ {:.1}°, link ratio ≤ {}, assembly over the range) in {} evaluations and {:.3} s (the budget: {} evaluations, {:.3} s)",
+                "no six-bar met the constraints (γ ≥ {:.1}°, link ratio ≤ {}, within max_size = {} path sizes, assembly over the range) in {} evaluations and {:.3} s (the budget: {} evaluations, {:.3} s)",
                 gamma.to_degrees(),
                 opts.max_link_ratio,
+                opts.max_size,
                 pb.budget.used(),
                 start.elapsed().as_secs_f64(),
                 opts.max_evaluations,
@@ -526,6 +570,8 @@ fn search(
                         && pb.budget.used.get() > 0.5 * pb.budget.max as f64
                         && fit[i] < NEAR
                         && fit[i] < 0.5 * followed;
+                    // Free to leave the box on its way (held inside, it stalls at the box's
+                    // walls); a member polished out of the box is refused by the objective.
                     let x = if follow {
                         followed = fit[i];
                         pb.follow(x, sg)
@@ -565,8 +611,9 @@ fn search(
             let (mut x, mut miss) = if let Some(m) = pb.check(&x, sg) {
                 (x, m)
             } else if let Some(m0) = pb.check(&x0, sg) {
-                // The constrained polish samples the range as the search does: the whole
-                // check may still refuse it, and the start is the design then.
+                // The free polish ended outside the box or past a dead point: done again
+                // within them (the range sampled as the search does). The whole check may
+                // still refuse it, and the start (in the box) is the design then.
                 let y = pb.lm(x0.clone(), sg, 200, true);
                 match pb.check(&y, sg) {
                     Some(m) => (y, m),
@@ -578,6 +625,7 @@ fn search(
             if miss > opts.tolerance {
                 // A near miss where Levenberg–Marquardt stalled in a curved valley of the
                 // ill-conditioned misses: followed down to the points by continuation.
+                // Where it ends outside the box, the check refuses it.
                 let y = pb.lm(pb.follow(x.clone(), sg), sg, 200, false);
                 if let Some(m) = pb.check(&y, sg)
                     && m < miss
@@ -688,6 +736,9 @@ fn design(pb: &Problem, x: &[f64], s: [f64; 2], centre: V, scale: f64) -> Result
             .map(|(n, v)| ((*n).to_owned(), v))
             .collect(),
     };
+    // The engine accepts it (its joints within the synthesis' range, its plan made and
+    // solved at its reference pose), as every synthesis' answer.
+    check::accepted(&linkage)?;
     let n = phis.len() as f64;
     Ok(PathDesign {
         synthesis: Synthesis { linkage, report },
