@@ -1412,3 +1412,42 @@ fn analyse_prints_the_efficiency_where_it_has_a_value_and_a_blank_where_not() {
         rows.len()
     );
 }
+
+/// A load so large that every reaction overflows leaves no row of the table finite: the
+/// program fails naming the overflow (it printed an empty table and exited 0), while a load
+/// 10¹⁰ times smaller still gives every row, every cell finite.
+#[test]
+fn a_load_whose_reactions_overflow_is_a_named_failure_not_an_empty_table() {
+    let text = std::fs::read_to_string(root().join("linkages/four-bar.json")).unwrap();
+    assert!(text.contains("[0.0, -50.0]"));
+    let huge = Broken::new("huge-load", &text.replace("[0.0, -50.0]", "[1e160, 1e160]"));
+    let r = tmm(&[
+        "analyse",
+        &huge.path(),
+        "--positions",
+        "12",
+        "--format",
+        "csv",
+    ]);
+    assert_one_line_failure(&r, &huge.path());
+    assert!(
+        r.stderr.contains("not finite (it overflows)"),
+        "{}",
+        r.stderr
+    );
+    let large = Broken::new(
+        "large-load",
+        &text.replace("[0.0, -50.0]", "[1e150, 1e150]"),
+    );
+    let r = tmm(&[
+        "analyse",
+        &large.path(),
+        "--positions",
+        "12",
+        "--format",
+        "csv",
+    ]);
+    assert_success(&r, "a load of 1e150 N");
+    let (_, rows) = parse_csv(&r.stdout, "a load of 1e150 N");
+    assert_eq!(rows.len(), 12);
+}
