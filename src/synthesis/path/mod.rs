@@ -24,6 +24,7 @@
 //! points can be met exactly; every few generations the best one is polished, and the search
 //! ends as soon as enough distinct designs meet the points to the tolerance.
 
+mod assign;
 mod evolve;
 mod shape;
 mod six_bar;
@@ -384,6 +385,8 @@ struct Problem {
     angles: CrankAngles,
     out: Positions,
     phi: Vec<f64>,
+    /// Free timing's ordered assignment ([`assign`]).
+    assign: assign::Scratch,
 }
 
 fn dims_of(g: &[f64], sigma: f64) -> FourBarDims {
@@ -578,48 +581,13 @@ impl Problem {
                 if n_ok == 0 || (closed && n_ok < m) {
                     return self.penalty(0..m);
                 }
-                let mut sum = 0.0;
-                let mut idx = Vec::with_capacity(self.targets.len());
-                for t in &self.targets {
-                    let (mut best, mut at) = (f64::INFINITY, 0);
-                    for (i, _) in ok.iter().enumerate().filter(|(_, ok)| **ok) {
-                        {
-                            let dd =
-                                (self.out.p_x[i] - t.x).powi(2) + (self.out.p_y[i] - t.y).powi(2);
-                            if dd < best {
-                                best = dd;
-                                at = i;
-                            }
-                        }
-                    }
-                    sum += best.sqrt();
-                    idx.push(at);
-                }
-                let n = self.targets.len() as f64;
-                if closed {
-                    // Once around, in order.
-                    let wind = |sgn: isize| -> usize {
-                        (0..idx.len())
-                            .map(|i| {
-                                let j = (i + 1) % idx.len();
-                                (sgn * (idx[j] as isize - idx[i] as isize)).rem_euclid(m as isize)
-                                    as usize
-                            })
-                            .sum()
-                    };
-                    let turns = wind(1).min(wind(-1)) as f64 / m as f64;
-                    sum / n + 0.2 * (turns - 1.0)
-                } else {
-                    let (start, span) =
-                        arc_of(&idx.iter().map(|&i| self.turn.phi()[i]).collect::<Vec<_>>())
-                            .unwrap_or((0.0, TAU));
-                    let phi = self.turn.phi();
-                    let in_arc = |i: &usize| normalize_angle(phi[*i] - start) <= span;
-                    if (0..m).filter(in_arc).any(|i| !ok[i]) {
-                        return self.penalty((0..m).filter(in_arc));
-                    }
-                    sum / n
-                }
+                let Some(sum) =
+                    self.assign
+                        .ordered(&self.out.p_x[..m], &self.out.p_y[..m], &ok, &self.targets)
+                else {
+                    return self.penalty(0..m);
+                };
+                sum / self.targets.len() as f64
             }
         }
     }
@@ -632,20 +600,29 @@ impl Problem {
         if let Timing::Prescribed(_) = self.timing {
             x.push(g[10]);
         } else {
-            self.out.resize(self.turn.len());
+            let m = self.turn.len();
+            self.out.resize(m);
             self.budget.add(1);
             fill(self.kind, g, sigma, &self.turn, &mut self.out);
-            for t in &self.targets {
-                let mut best = (f64::INFINITY, 0.0);
-                for k in 0..self.turn.len() {
-                    if self.out.status[k] == Lane::Ok {
-                        let dd = (self.out.p_x[k] - t.x).powi(2) + (self.out.p_y[k] - t.y).powi(2);
-                        if dd < best.0 {
-                            best = (dd, self.turn.phi()[k]);
-                        }
-                    }
-                }
-                x.push(best.1);
+            // The targets' samples in order ([`assign`]) over the usable positions, else
+            // over those that assemble (a start the polish may still mend).
+            let usable: Vec<bool> = (0..m).map(|i| self.lane_ok(i)).collect();
+            let assembles: Vec<bool> = (0..m).map(|i| self.out.status[i] == Lane::Ok).collect();
+            let (px, py) = (&self.out.p_x[..m], &self.out.p_y[..m]);
+            let found = self
+                .assign
+                .ordered(px, py, &usable, &self.targets)
+                .is_some()
+                || self
+                    .assign
+                    .ordered(px, py, &assembles, &self.targets)
+                    .is_some();
+            for k in 0..self.targets.len() {
+                x.push(if found {
+                    self.turn.phi()[self.assign.idx[k]]
+                } else {
+                    0.0
+                });
             }
         }
         (x, sigma)
@@ -1471,6 +1448,7 @@ fn generate(
         angles: CrankAngles::default(),
         out: Positions::default(),
         phi: Vec::new(),
+        assign: assign::Scratch::default(),
     };
     let mut found = Found {
         designs: Vec::new(),
