@@ -104,11 +104,11 @@ impl Scratch {
                 cuts.extend(minima(n - 1, 1).into_iter().map(|i| step(i, s)));
             }
             for c in cuts {
-                if let Some(v) = self.programme(ok, n, c, s) {
-                    if v < best {
-                        best = v;
-                        best_idx.clone_from(&self.idx);
-                    }
+                if let Some(v) = self.programme(ok, n, c, s)
+                    && v < best
+                {
+                    best = v;
+                    best_idx.clone_from(&self.idx);
                 }
             }
         }

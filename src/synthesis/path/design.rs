@@ -152,10 +152,7 @@ pub(super) fn design_of(
     let mut report = fb.report(
         "path generator",
         // A turn is given as just under one (the report's arc is half-open).
-        Some((
-            normalize_angle(start - delta),
-            span.min(TAU - 1e-9).max(1e-9),
-        )),
+        Some((normalize_angle(start - delta), span.clamp(1e-9, TAU - 1e-9))),
     )?;
     report
         .dimensions

@@ -58,7 +58,7 @@ impl Problem {
             };
             let y = self.lm(y, sigma, iterations);
             let (before, after) = (self.misses(&x, sigma), self.misses(&y, sigma));
-            if !(after < before) {
+            if after.is_nan() || after >= before {
                 break;
             }
             x = y;
