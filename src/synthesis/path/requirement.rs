@@ -36,7 +36,7 @@ pub struct PathOptions {
     /// \[γ\] and the options common to the synthesis methods.
     pub options: Options,
     /// The largest ratio of the longest to the shortest of the four links (a slider-crank's
-    /// crank and rod), in (1, [`MAX_LINK_RATIO`](super::MAX_LINK_RATIO)]. Default 10.
+    /// crank and rod), in (1, [`MAX_LINK_RATIO`](crate::synthesis::MAX_LINK_RATIO)]. Default 10.
     pub max_link_ratio: f64,
     /// The largest link length and distance of a pivot from the points' centroid, in units of
     /// the path's size (the largest distance of a point from the centroid). Default 5. The
