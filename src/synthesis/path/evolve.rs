@@ -1,7 +1,6 @@
 //! One generation of differential evolution, the step every search of path generation
 //! takes (the four-bar's with prescribed timing, the shapes', the six-bar's).
 
-use super::Rng;
 use std::f64::consts::TAU;
 
 /// One generation of DE/current-to-pbest/1/bin with the scale factor F dithered in
@@ -98,4 +97,23 @@ pub(super) fn population(np: usize, lo: &[f64], hi: &[f64], rng: &mut Rng) -> Ve
                 .collect()
         })
         .collect()
+}
+
+/// splitmix64.
+pub(super) struct Rng(pub(super) u64);
+
+impl Rng {
+    pub(super) fn next(&mut self) -> u64 {
+        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
+        let mut z = self.0;
+        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+        z ^ (z >> 31)
+    }
+    pub(super) fn unit(&mut self) -> f64 {
+        (self.next() >> 11) as f64 / (1u64 << 53) as f64
+    }
+    pub(super) fn below(&mut self, n: usize) -> usize {
+        (self.next() % n as u64) as usize
+    }
 }

@@ -7,7 +7,9 @@
 //! rod l = g5 (g6 unused), the coupler point (along, across) = (g7, g8) on the rod A→B, the
 //! mode σ = the sign of g9 (the slider ahead of the crank pin along the guide for σ > 0).
 
-use super::{min_max, normalize_angle, ordered_arc, PathDesign, Problem, Timing, V};
+use super::angles::normalize_angle;
+use super::results::PathDesign;
+use super::V;
 use crate::error::Result;
 use crate::kinematics::batch::{coupler_point, CrankAngles, Lane, Positions};
 use crate::linkage::{Input, Joint, Link, Linkage, NamedPoint, Output};
@@ -122,44 +124,30 @@ impl Slider {
     }
 }
 
-/// The design in the world of the polished unknowns `x` (mode `sigma`): the description
-/// posed at the first point's crank angle, its report and its misses; `None` where it does
-/// not assemble at a target.
+/// The design in the world of the genes `g` (world units, mode `sigma`) with the crank at
+/// `phis` at the `targets` over the arc (`start`, `span`): the description posed at the first
+/// point's crank angle, its report and its misses; `None` where it does not assemble at a
+/// target.
 pub(super) fn design(
-    pb: &Problem,
-    x: &[f64],
+    g: &[f64],
     sigma: f64,
-    centre: V,
-    scale: f64,
+    phis: &[f64],
+    targets: &[V],
+    (start, span): (f64, f64),
 ) -> Result<Option<PathDesign>> {
-    let mut g = super::gene_vec(x, sigma);
-    g[0] = centre.x + g[0] * scale;
-    g[1] = centre.y + g[1] * scale;
-    for k in [3, 4, 5, 7, 8] {
-        g[k] *= scale;
-    }
-    let s = Slider::of(&g, sigma);
-    let n = pb.targets.len();
-    let phis: Vec<f64> = (0..n).map(|i| normalize_angle(pb.angle_of(x, i))).collect();
+    let s = Slider::of(g, sigma);
+    let n = phis.len();
     let mut poses = Vec::with_capacity(n);
     let (mut sum, mut max) = (0.0, 0.0f64);
-    for (i, &phi) in phis.iter().enumerate() {
+    for (&phi, t) in phis.iter().zip(targets) {
         let Ok(pose) = s.at(phi.cos(), phi.sin()) else {
             return Ok(None);
         };
-        let miss = (pose.2 - (pb.targets[i] * scale + centre)).norm();
+        let miss = (pose.2 - t).norm();
         sum += miss;
         max = max.max(miss);
         poses.push(pose);
     }
-    let (start, span) = match &pb.timing {
-        Timing::ClosedCurve => (0.0, TAU),
-        Timing::Prescribed(_) => {
-            let (mn, mx) = min_max(&(0..n).map(|i| pb.angle_of(x, i)).collect::<Vec<_>>());
-            (mn, mx - mn)
-        }
-        Timing::Free => ordered_arc(&phis).unwrap_or((0.0, 0.0)),
-    };
     let (gamma, at) = s.gamma_over(start, span);
     let strokes = s.strokes();
     let report = Report {
@@ -215,7 +203,7 @@ pub(super) fn design(
         synthesis: Synthesis { linkage, report },
         mean_error: sum / n as f64,
         max_error: max,
-        crank_angles: phis,
+        crank_angles: phis.to_vec(),
         coupler_points: poses.iter().map(|q| xy(q.2)).collect(),
     }))
 }
