@@ -63,6 +63,7 @@ mod crank;
 mod cycle;
 mod extreme;
 mod fold;
+mod fold_point;
 mod grashof;
 mod link;
 mod lu_work;
@@ -113,6 +114,6 @@ pub use triad::{
     TriadPose, TriadState, MAX_TRIAD_MODES, SINGULAR_TRIAD,
 };
 pub use triad_slider::{
-    slider_triad, slider_triad_modes, slider_triad_rates, slider_triad_tracked, SliderTriadDims,
-    SliderTriadModes, SlidingPair, MAX_SLIDER_TRIAD_MODES,
+    slider_triad, slider_triad_modes, slider_triad_position, slider_triad_rates,
+    slider_triad_tracked, SliderTriadDims, SliderTriadModes, SlidingPair, MAX_SLIDER_TRIAD_MODES,
 };
