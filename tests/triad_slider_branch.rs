@@ -7,11 +7,12 @@
 
 use crate::common::fd::{cases, fd2, Rng};
 use crate::triad_slider::{count_by_branches, moved, random_case, size, Case};
-use nalgebra::{Matrix3, Point2, Vector2};
+use nalgebra::{Matrix3, Point2, Vector2, Vector3};
 use tmm::angle::{cross, perp, unit};
 use tmm::kinematics::{
-    slider_triad, slider_triad_modes, slider_triad_position, slider_triad_rates, Guide, Motion,
-    PointMotion, SliderTriadModes, SlidingPair, TriadPose, SINGULAR_BRANCH,
+    slider_triad, slider_triad_continued, slider_triad_modes, slider_triad_position,
+    slider_triad_rates, Guide, Motion, PointMotion, SliderTriadModes, SlidingPair, TriadPose,
+    SINGULAR_BRANCH,
 };
 use tmm::kinetostatics::{SlideAt, SliderTriad};
 use tmm::linkage::{Joint, Link, Linkage, Plan};
@@ -738,5 +739,217 @@ fn a_six_bar_with_a_sliding_triad_placed_at_its_branch_point() {
             if inner { "inner" } else { "outer" }
         );
         assert!(tangent * 5 <= done, "{tangent} tangent of {done}");
+    }
+}
+
+/// The closures of the pose (O, θ) = `x` written out (as [`closure_of`], signed): the slide's
+/// line, then the hinged legs' lengths.
+fn closures(c: &Case, x: Vector3<f64>) -> Vector3<f64> {
+    let o = Point2::new(x.x, x.y);
+    let zt = unit(x.z);
+    let b2 = o + c.dims.l_b1b2 * zt;
+    let b3 = o + c.dims.b3_along * zt + c.dims.b3_across * perp(zt);
+    let slide = match c.dims.pair {
+        SlidingPair::Outer { offset } => {
+            perp(unit(c.first.angle.value)).dot(&(o - c.first.point.p)) - offset
+        }
+        SlidingPair::Inner { angle, offset } => {
+            perp(unit(x.z + angle)).dot(&(c.first.point.p - o)) - offset
+        }
+    };
+    Vector3::new(
+        slide,
+        (b2 - c.a[0]).norm() - c.dims.l[0],
+        (b3 - c.a[1]).norm() - c.dims.l[1],
+    )
+}
+
+/// The ternary link's joints at (O, θ) = `x`.
+fn joints_of(c: &Case, x: Vector3<f64>) -> [Point2<f64>; 3] {
+    let o = Point2::new(x.x, x.y);
+    let zt = unit(x.z);
+    [
+        o,
+        o + c.dims.l_b1b2 * zt,
+        o + c.dims.b3_along * zt + c.dims.b3_across * perp(zt),
+    ]
+}
+
+/// Newton's method on [`closures`] from `x`, its Jacobian by central differences: the
+/// independent solve of the continuation (`None` when it does not converge).
+fn newton(c: &Case, mut x: Vector3<f64>, s: f64) -> Option<Vector3<f64>> {
+    for _ in 0..30 {
+        let g = closures(c, x);
+        let h = [1e-7 * s, 1e-7 * s, 1e-7];
+        let mut j = Matrix3::zeros();
+        for k in 0..3 {
+            let mut e = Vector3::zeros();
+            e[k] = h[k];
+            j.set_column(
+                k,
+                &((closures(c, x + e) - closures(c, x - e)) / (2.0 * h[k])),
+            );
+        }
+        let step = j.lu().solve(&(-g))?;
+        x += step;
+        if step.x.abs().max(step.y.abs()) + s * step.z.abs() <= 1e-15 * s {
+            break;
+        }
+    }
+    (closures(c, x).amax() <= 1e-13 * s).then_some(x)
+}
+
+/// The independent continuation of a course: from `start` at `t0`, in steps 64 times smaller
+/// than `h`, each predicted from the two before (2·x − x_before) and corrected by [`newton`]
+/// on the data `data(t)`; at t = 0 (the node, where Newton's matrix is singular) the
+/// prediction is kept. The ternary link's joints at `t0 + k·h`, k = 0…`n`; `Err(t)` where
+/// Newton's method fails.
+fn continuation(
+    c: &Case,
+    data: &dyn Fn(f64) -> Case,
+    start: &TriadPose,
+    t0: f64,
+    h: f64,
+    n: usize,
+    s: f64,
+) -> Result<Vec<[Point2<f64>; 3]>, f64> {
+    let fine = 64;
+    let mut x = Vector3::new(start.b[0].x, start.b[0].y, start.theta);
+    let mut x_before = x;
+    let mut out = vec![joints_of(c, x)];
+    for k in 1..=n {
+        for j in 1..=fine {
+            let t = t0 + h * ((k - 1) as f64 + j as f64 / fine as f64);
+            let predicted = 2.0 * x - x_before;
+            let next = if t == 0.0 {
+                predicted
+            } else {
+                newton(&data(t), predicted, s).ok_or(t)?
+            };
+            (x_before, x) = (x, next);
+        }
+        out.push(joints_of(c, x));
+    }
+    Ok(out)
+}
+
+/// A course whose data pass *through* a branch point: A2 moves as A2* + t·s·w + γ·t²·s·u
+/// (u along leg 2 at the branch pose, w across it; γ = ±10 towards the side of the two
+/// merging modes), so the data touch the branch set at t = 0 and stay on the side of the
+/// two modes: their two branches cross there (a node, as a Grashof change point's). Walked
+/// in steps of 1e-3 by `slider_triad_continued`, through t = 0 exactly and on a grid that
+/// straddles it (half a step off; the path chosen so that the pair exists all along), the
+/// course stays on
+/// the branch it started on, whose velocity continues: every position off t = 0 agrees
+/// with an independent continuation in steps 64 times smaller (Newton's method on closures
+/// written out here, from the extrapolation of the last two) to 1e-9 of the size (the two
+/// branches part by ≈ 1e-3 of the size a step from the node), and the position at t = 0 is
+/// the branch pose to 1e-12 of the size with the rates refused. Printed beside: how often
+/// the mode nearest the previous position (no extrapolation) leaves the branch.
+#[test]
+fn a_course_through_a_branch_point_keeps_the_branch_whose_velocity_continues() {
+    let n = (cases("TMM_TRIAD_CASES", 500) / 25).max(10);
+    for inner in [false, true] {
+        let mut rng = Rng(if inner { 0xC0DE_5129 } else { 0xC0DE_5128 });
+        let (mut done, mut skipped, mut worst, mut worst_node) = (0, 0, 0.0f64, 0.0f64);
+        let mut naive_left = 0;
+        while done < n {
+            let Some((c, b)) = at_branch_point(&mut rng, inner) else {
+                continue;
+            };
+            let s = size(&c);
+            let u = (b[1] - c.a[0]).normalize();
+            let w = perp(u);
+            let count = |a2: Point2<f64>| {
+                slider_triad_modes(&c.first, [a2, c.a[1]], &c.dims).map_or(0, |m| m.len())
+            };
+            let (plus, minus) = (count(c.a[0] + 1e-6 * s * u), count(c.a[0] - 1e-6 * s * u));
+            if plus == minus {
+                skipped += 1;
+                continue;
+            }
+            let gamma = if plus > minus { 10.0 } else { -10.0 };
+            let more = plus.max(minus);
+            let data = |t: f64| {
+                let mut side = c;
+                side.a[0] = c.a[0] + t * s * w + gamma * t * t * s * u;
+                side
+            };
+            let (h, steps) = (1e-3, 10);
+            // The pair must exist all along the course (else the path leaves the two modes'
+            // side before its end: a fold of the course, not the node alone).
+            let all_along = (0..=4 * steps).all(|k| {
+                let t = h * (k as f64 / 2.0 - steps as f64);
+                t == 0.0 || count(data(t).a[0]) == more
+            });
+            if !all_along {
+                skipped += 1; // the branch set curves more than the path: no node here
+                continue;
+            }
+            done += 1;
+            let branch = TriadPose {
+                b,
+                theta: 0.0,
+                phi: [0.0; 3],
+                det: 0.0,
+            };
+            // On a grid through the node (`shift` 0) and on one that straddles it (0.5).
+            for shift in [0.0, 0.5] {
+                let t0 = (shift - steps as f64) * h;
+                let start = *slider_triad_modes(&data(t0).first, data(t0).a, &c.dims)
+                    .unwrap()
+                    .nearest(&branch);
+                let independent = continuation(&c, &data, &start, t0, h, 2 * steps, s)
+                    .unwrap_or_else(|t| panic!("case {done}: the continuation failed at t {t:e}"));
+                // The course by the engine.
+                let mut poses = vec![start];
+                let mut naive = start;
+                let mut naive_off = false;
+                for k in 1..=2 * steps {
+                    let t = t0 + h * k as f64;
+                    let d = data(t);
+                    let (pose, rates) = if k == 1 {
+                        slider_triad_position(&d.first, d.a, &c.dims, &poses[0]).unwrap()
+                    } else {
+                        slider_triad_continued(&d.first, d.a, &c.dims, &poses[k - 2], &poses[k - 1])
+                            .unwrap()
+                    };
+                    if t == 0.0 {
+                        assert!(
+                            matches!(rates, Some(Error::Singular { .. })),
+                            "case {done}: the rates at the node gave {rates:?}"
+                        );
+                        let off = off_branch(&pose.b, &b) / s;
+                        assert!(off <= 1e-12, "case {done}: the node's pose off by {off:e}");
+                        worst_node = worst_node.max(off);
+                    } else {
+                        let off = off_branch(&pose.b, &independent[k]) / s;
+                        assert!(
+                            off <= 1e-9,
+                            "case {done} ({}), t {t:e}: the course is off the continuation \
+                             by {off:e} of the size",
+                            if inner { "inner" } else { "outer" }
+                        );
+                        worst = worst.max(off);
+                    }
+                    naive = slider_triad_position(&d.first, d.a, &c.dims, &naive)
+                        .unwrap()
+                        .0;
+                    if t != 0.0 && off_branch(&naive.b, &independent[k]) > 1e-6 * s {
+                        naive_off = true;
+                    }
+                    poses.push(pose);
+                }
+                naive_left += usize::from(naive_off);
+            }
+        }
+        println!(
+            "courses through a branch point ({}): {done} cases ({skipped} skipped: no node \
+             along the path), the course on the continuation to {worst:.1e} of the size, the \
+             node's pose to {worst_node:.1e}; the mode nearest the previous position left the \
+             branch in {naive_left}",
+            if inner { "inner" } else { "outer" }
+        );
+        assert!(skipped <= done, "{skipped} skipped, {done} done");
     }
 }

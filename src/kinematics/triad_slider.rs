@@ -65,7 +65,7 @@ type C = Complex<f64>;
 
 // The position where the rates may not exist (a branch point): its own file.
 mod branch;
-pub use branch::slider_triad_position;
+pub use branch::{slider_triad_continued, slider_triad_position};
 
 const GROUP: &str = "triad with a sliding pair";
 const MEASURE: &str = "det(velocity system)/L_T";

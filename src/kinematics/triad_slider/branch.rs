@@ -83,3 +83,37 @@ pub fn slider_triad_position(
         _ => Ok((mode, Some(singular))),
     }
 }
+
+/// The next position of a triad with a sliding pair along a course of its data (arguments
+/// as [`slider_triad_modes`]), continued from the two positions before it, `before` then
+/// `previous`: the mode nearest the pose extrapolated from them (2·previous − before, joint
+/// by joint), as [`slider_triad_position`] gives it (so at a branch point the branch pose,
+/// with the rates' error).
+///
+/// Why the extrapolation and not the previous pose: where the course passes a point where
+/// two modes meet and part again (its data touching the branch set, as a Grashof
+/// change-point four-bar's crank passes its dead centres), the two branches cross there,
+/// x = x* + c₁·t and x = x* + c₂·t, and one step h past it they are |c₁ − c₂|·h apart while
+/// the previous pose, h before it on the first, is as far from both when c₂ = −c₁: the
+/// nearest mode is either. The extrapolated pose is within O(h²) of the branch whose
+/// velocity continues (c₁), and the other is |c₁ − c₂|·h away. Where the course reverses at
+/// a branch point (a rocking input at its lock: the data go up to the branch set and back),
+/// the extrapolation from the branch pose x* and the pose before it, x* + c·√h·n on one
+/// mode, is x* − c·√h·n, the partner mode's pose: the motion continues on the partner, as
+/// it does through a dyad's dead centre.
+///
+/// # Errors
+/// As [`slider_triad_position`].
+pub fn slider_triad_continued(
+    first: &Guide,
+    a: [Point2<f64>; 2],
+    dims: &SliderTriadDims,
+    before: &TriadPose,
+    previous: &TriadPose,
+) -> Result<(TriadPose, Option<Error>)> {
+    let predicted = TriadPose {
+        b: [0, 1, 2].map(|i| previous.b[i] + (previous.b[i] - before.b[i])),
+        ..*previous
+    };
+    slider_triad_position(first, a, dims, &predicted)
+}
