@@ -56,7 +56,7 @@ pub(super) fn fold_point(
         let (g, legs) = closures(o, z);
         let (d_o, d_theta) = newton_step(&legs, &g)?;
         let size = d_o.norm() + legs.lt * d_theta.abs();
-        if !(size <= 0.1 * length) {
+        if size.is_nan() || size > 0.1 * length {
             return None;
         }
         o += d_o;
@@ -69,7 +69,8 @@ pub(super) fn fold_point(
     let (g, legs) = closures(o, z);
     // Quadratic convergence reaches the floor well within the steps; a last step above
     // 1e-12 of the size means the steps did not settle (a fold too flat to locate).
-    if !(last <= 1e-12 * length && g.amax() <= CLOSES * length) {
+    let settled_and_closed = last <= 1e-12 * length && g.amax() <= CLOSES * length;
+    if !settled_and_closed {
         return None;
     }
     Some((o, z, legs.matrix()))
