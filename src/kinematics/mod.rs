@@ -64,6 +64,7 @@ mod cycle;
 mod extreme;
 mod fast_angle;
 mod fold;
+mod fold_point;
 mod grashof;
 mod link;
 mod lu_work;
@@ -115,6 +116,7 @@ pub use triad::{
     TriadPose, TriadState, MAX_TRIAD_MODES, SINGULAR_TRIAD,
 };
 pub use triad_slider::{
-    slider_triad, slider_triad_modes, slider_triad_rates, slider_triad_tracked, SliderTriadDims,
-    SliderTriadModes, SlidingPair, MAX_SLIDER_TRIAD_MODES,
+    slider_triad, slider_triad_continued, slider_triad_modes, slider_triad_position,
+    slider_triad_rates, slider_triad_tracked, SliderTriadDims, SliderTriadModes, SlidingPair,
+    MAX_SLIDER_TRIAD_MODES,
 };

@@ -65,6 +65,10 @@ use nalgebra::{Complex, Matrix3, Point2, Vector2, Vector3};
 
 type C = Complex<f64>;
 
+// The position where the rates may not exist (a branch point): its own file.
+mod branch;
+pub use branch::{slider_triad_continued, slider_triad_position};
+
 const GROUP: &str = "triad with a sliding pair";
 const MEASURE: &str = "det(velocity system)/L_T";
 /// The most assembly modes a triad with a sliding pair can have: the roots of its eliminated

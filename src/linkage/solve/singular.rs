@@ -14,7 +14,10 @@
 //! point, where two of its modes merge and the lines of its binary links meet at one point,
 //! is placed by every mode of its certified bracket (which finds the double root of its
 //! eliminated equation as one mode) and the one nearest its reference mode. A triad with a
-//! sliding pair or a general group is placed only where its equations are regular.
+//! sliding pair is placed so too, and then at the branch pose itself, where its velocity
+//! system is singular ([`slider_triad_position`](crate::kinematics::slider_triad_position):
+//! the scan's double root is only good to √ε of the size, the branch pose to ε). A general
+//! group is placed only where its equations are regular.
 //!
 //! [`Plan::through`] gives the plan that moves on through a dead centre on the dyad's other
 //! mode, as a mechanism carried by its inertia does.
@@ -67,7 +70,7 @@ impl Plan {
     /// # Errors
     /// As [`kinematics`](Self::kinematics), for a position that does not exist (a group that
     /// cannot be assembled by more than rounding) or whose group is neither an RRR nor an RRP
-    /// dyad nor a triad with revolute joints.
+    /// dyad nor a triad (with revolute joints or one sliding pair).
     ///
     /// # Examples
     /// A four-bar stretched straight: at φ = 0 its coupler (2 m) and rocker (1 m) lie along

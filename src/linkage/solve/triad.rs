@@ -27,6 +27,9 @@ use crate::linkage::plan::{Group, TriadPlan};
 use crate::linkage::plan_triad::SliderLeg;
 use nalgebra::{Point2, Vector2};
 
+// A triad with a sliding pair placed at a branch point: its own file.
+mod slider_branch;
+
 impl KinState {
     /// Triad `g` solved in full, in the mode nearest the reference mode (module docs).
     pub(super) fn solve_triad_kinematics(
@@ -91,21 +94,16 @@ impl KinState {
     /// of its three binary links meet at one point), at rest: every mode by the certified
     /// bracket, which finds a double root of the eliminated equation as one mode, and the
     /// one nearest the reference mode (the rule of every solve); `Ok` with the error its
-    /// rates have there. `Err` when the rates do not fail there (the failure was another) or
-    /// for a triad with a sliding pair (not placed so).
+    /// rates have there. `Err` when the rates do not fail there (the failure was another). A
+    /// triad with a sliding pair is placed by `slider_triad_position_only`.
     pub(super) fn triad_position_only(
         &mut self,
         g: usize,
         group: &Group,
         t: &TriadPlan,
     ) -> Result<crate::Error> {
-        if t.slider.is_some() {
-            return Err(crate::Error::Description {
-                item: group.name.clone(),
-                problem: "its rates fail here, and a triad with a sliding pair is placed only \
-                          where they do not"
-                    .to_owned(),
-            });
+        if let Some(leg) = &t.slider {
+            return self.slider_triad_position_only(g, group, t, leg);
         }
         let a = [0, 1, 2].map(|i| self.at(t.known[i], t.a_local[i]));
         let modes = triad_modes(a.map(|m| m.p), &t.dims).map_err(within(&group.name))?;
