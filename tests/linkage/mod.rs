@@ -24,6 +24,8 @@ mod hostile_friction;
 #[cfg(feature = "serde")]
 mod instant_centres;
 mod locks;
+#[cfg(feature = "serde")]
+mod modes;
 mod planning;
 mod singular;
 #[cfg(feature = "serde")]
@@ -40,3 +42,5 @@ mod triad;
 mod two_inputs;
 #[cfg(feature = "serde")]
 mod workspace;
+#[cfg(feature = "serde")]
+mod workspace_boundary;
