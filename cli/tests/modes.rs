@@ -40,6 +40,9 @@ fn check_reports_every_groups_modes_and_the_whole_count() {
             .lines()
             .find(|l| l.trim_start().starts_with("in all:"))
             .unwrap_or_else(|| panic!("{file}: {}", r.stdout));
-        assert!(line.contains(&format!("in all: {whole} ")), "{file}: {line}");
+        assert!(
+            line.contains(&format!("in all: {whole} ")),
+            "{file}: {line}"
+        );
     }
 }

@@ -16,10 +16,9 @@
 //! The boundary lies within a raster cell (and the chord of an input cell's image) of the
 //! true one; the tests check it against closed-form inverse kinematics on a dense grid.
 
-use super::contour::{contours, Grid};
+use super::contour::{contours, Grid, Node};
 use super::plan::{InputPlan, Plan};
 use super::solve::Kinematics;
-use super::workspace_boundary::{area_inside, refine, Axes, Jac, Raster, Reach};
 use crate::error::{Error, Result};
 use crate::kinematics::Motion;
 use nalgebra::{Point2, Vector2};
@@ -92,17 +91,6 @@ pub struct Workspace {
     pub boundary: Vec<Vec<Point2<f64>>>,
     /// The singular curves, mapped to the plane.
     pub singular: Vec<SingularCurve>,
-}
-
-impl Workspace {
-    /// The area inside the outline ([`boundary`](Self::boundary)), m²: every crossing of the
-    /// outline is located to 10⁻¹¹ of the region's span, so this is the area of the region
-    /// to the chords between crossings a raster cell apart (the raster's own
-    /// [`Region::area`] counts whole cells).
-    #[must_use]
-    pub fn area(&self) -> f64 {
-        area_inside(&self.boundary)
-    }
 }
 
 /// A region of the plane on a raster of square cells.
@@ -191,6 +179,23 @@ pub enum Singularity {
     Isolated,
 }
 
+/// The input grid: each axis's first value, step and whether it wraps.
+struct Axes {
+    lo: [f64; 2],
+    step: [f64; 2],
+    grid: Grid,
+}
+
+impl Axes {
+    fn q(&self, (i, j): Node) -> [f64; 2] {
+        #[allow(clippy::cast_precision_loss)]
+        [
+            self.lo[0] + self.step[0] * i as f64,
+            self.lo[1] + self.step[1] * j as f64,
+        ]
+    }
+}
+
 impl Plan {
     /// The workspace of the joint or named point `point` of a linkage with two inputs.
     ///
@@ -261,7 +266,7 @@ impl Plan {
                 problem: "the linkage assembles at no input of the workspace's grid".to_owned(),
             });
         }
-        let (mut region, poles) = fill(&axes, &nodes, &mut at, options.resolution);
+        let (region, poles) = fill(&axes, &nodes, &mut at, options.resolution);
         // Nodes that assemble but no cell of the grid between them (ranges whose angles carry
         // no digit, 1e133 rad wide): no region to hold, and its box would be infinite.
         if !(region.origin.x.is_finite() && region.origin.y.is_finite()) {
@@ -279,21 +284,7 @@ impl Plan {
             det.is_finite().then_some((p, det))
         };
         singular.extend(isolated_curves(&axes, &poles, &mut at));
-        // The outline located by deciding points of the plane (module `workspace_boundary`).
-        let images: Vec<Option<Point2<f64>>> = nodes.iter().map(|n| n.map(|n| n.0)).collect();
-        #[allow(clippy::cast_precision_loss)]
-        let span = region.cell * region.nx.max(region.ny) as f64;
-        let mut reach = Reach::new(&mut jac, &axes, images, 2.0 * region.cell, span);
-        let boundary = refine(
-            &mut Raster {
-                origin: region.origin,
-                cell: region.cell,
-                nx: region.nx,
-                ny: region.ny,
-                cells: &mut region.cells,
-            },
-            &mut reach,
-        );
+        let boundary = outline(&region);
         Ok(Workspace {
             point: point.to_owned(),
             region,
@@ -486,6 +477,8 @@ fn distinct(axes: &Axes, poles: &[[f64; 2]]) -> Vec<[f64; 2]> {
     }
     kept
 }
+
+type Jac<'a> = dyn FnMut([f64; 2]) -> Option<(Point2<f64>, Vector2<f64>, Vector2<f64>)> + 'a;
 
 /// The isolated singular inputs located to full precision: each of `poles` (distinct ones,
 /// located to a split of a grid cell) refined by [`refine_pole`], or kept as it is where the
@@ -775,4 +768,27 @@ fn triangle(region: &mut Region, t: [Point2<f64>; 3], margin: f64) {
             }
         }
     }
+}
+
+/// The outline of the region: marching squares over the cells' centres, each crossing
+/// halfway between a reached centre and one that is not.
+fn outline(region: &Region) -> Vec<Vec<Point2<f64>>> {
+    let grid = Grid {
+        n1: region.nx,
+        n2: region.ny,
+        wrap1: false,
+        wrap2: false,
+    };
+    let mut value = vec![-1.0; region.nx * region.ny];
+    for iy in 0..region.ny {
+        for ix in 0..region.nx {
+            if region.cells[iy * region.nx + ix] {
+                value[grid.index((ix, iy))] = 1.0;
+            }
+        }
+    }
+    contours(grid, &value, |a, b| {
+        let (pa, pb) = (region.centre(a.0, a.1), region.centre(b.0, b.1));
+        Some(Point2::from((pa.coords + pb.coords) / 2.0))
+    })
 }

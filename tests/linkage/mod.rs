@@ -42,5 +42,3 @@ mod triad;
 mod two_inputs;
 #[cfg(feature = "serde")]
 mod workspace;
-#[cfg(feature = "serde")]
-mod workspace_boundary;

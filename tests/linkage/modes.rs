@@ -56,8 +56,8 @@ fn independent(phi: f64, theta: f64, beta: usize) -> Option<(f64, f64)> {
     let a = p("A");
     let (b, c, d) = (p("B"), a + turn(p("C") - a, phi), a + turn(p("D") - a, phi));
     let theta = theta + phi;
-    let h = d + turn(p("H") - d, theta);
-    let i = d + turn(p("I") - d, theta);
+    let h = d + turn(p("H") - p("D"), theta);
+    let i = d + turn(p("I") - p("D"), theta);
     let s1 = if beta & 1 == 0 { 1.0 } else { -1.0 };
     let s2 = if beta & 2 == 0 { 1.0 } else { -1.0 };
     let j = meet(i, (p("J") - p("I")).norm(), b, (p("J") - p("B")).norm(), s1)?;
