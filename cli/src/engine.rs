@@ -11,14 +11,14 @@ use tmm::draw::{self, Course, Diagram, Style};
 use tmm::kinematics::{grashof, Grashof, Motion, Rotation};
 use tmm::kinetostatics::friction::Efficiency;
 use tmm::linkage::{
-    course_inputs, uniform_inputs, Drive, Inputs, LinkId, Linkage, Output, Plan, Tabulate,
-    TwoInputCourse,
+    course_inputs, uniform_inputs, Drive, Inputs, LinkId, Linkage, ModeOptions, ModeSearch, Output,
+    Plan, Tabulate, TwoInputCourse,
 };
 
 use crate::budget;
 use crate::model::{
     typed, Column, DiagramKind, DynamicsRequest, Failure, GroupInfo, InputInfo, InputKind,
-    PictureKind, PictureRequest, Positions, Range, StrokeInfo, Structure, TableData,
+    ModesInfo, PictureKind, PictureRequest, Positions, Range, StrokeInfo, Structure, TableData,
     TwoInputDynamics,
 };
 
@@ -431,7 +431,60 @@ impl Machine {
             grashof: self.grashof(),
             transmission,
             strokes,
+            modes: self.modes(),
         }
+    }
+
+    /// The real assembly modes at the reference input(s): each group's count on the
+    /// engine's assembly before it, and every combination enumerated up to 10⁴ assemblies.
+    fn modes(&self) -> Result<ModesInfo, String> {
+        let plan = &self.plan;
+        let motions: Vec<Motion> = plan
+            .reference_inputs()
+            .into_iter()
+            .map(Motion::fixed)
+            .collect();
+        let inputs = Inputs::from_slice(&motions).map_err(|e| e.to_string())?;
+        let options = ModeOptions::default().with_max_modes(10_000);
+        let groups = plan
+            .mode_counts(inputs, &options)
+            .map_err(|e| e.to_string())?;
+        let exhaustive = !groups
+            .iter()
+            .any(|g| matches!(g.search, ModeSearch::Multistart { .. }));
+        let links = plan.link_names();
+        let groups = groups
+            .into_iter()
+            .map(|g| {
+                let how = match g.search {
+                    ModeSearch::ClosedForm => "closed form, both branches".to_owned(),
+                    ModeSearch::Triad => "every root of the triad's eliminated equation".to_owned(),
+                    ModeSearch::Reduction {
+                        driver,
+                        closing,
+                        samples,
+                        branches,
+                    } => format!(
+                        "every root of one equation in {}'s angle, cut at {} ({branches} \
+                         branch choices, {samples} samples each)",
+                        links[driver], links[closing]
+                    ),
+                    ModeSearch::Multistart { starts } => {
+                        format!("a multistart search of {starts} starts: at least this many")
+                    }
+                };
+                (g.name, g.counts.first().copied().unwrap_or(0), how)
+            })
+            .collect();
+        let total = plan
+            .assembly_modes_with(inputs, &options)
+            .map(|a| a.total())
+            .map_err(|e| e.to_string());
+        Ok(ModesInfo {
+            groups,
+            total,
+            exhaustive,
+        })
     }
 
     /// Whether the crank turns fully, or between which angles it rocks; the slider's travel.

@@ -162,6 +162,22 @@ pub struct Structure {
     pub transmission: Vec<(String, Result<Extreme, String>)>,
     /// The strokes of the described output, or why there are none; `None` without an output.
     pub strokes: Option<Result<StrokeInfo, String>>,
+    /// The real assembly modes at the reference input(s), or why they were not counted.
+    pub modes: Result<ModesInfo, String>,
+}
+
+/// The real assembly modes at the reference input(s) (`Plan::mode_counts`,
+/// `Plan::assembly_modes`).
+#[derive(Debug, Clone, PartialEq)]
+pub struct ModesInfo {
+    /// Per group in attachment order: its name, its number of modes on the engine's
+    /// assembly of the groups before it, and how they were found.
+    pub groups: Vec<(String, usize, String)>,
+    /// The number of assemblies of the whole linkage, every combination of the groups'
+    /// modes enumerated, or why it was not (a budget).
+    pub total: Result<usize, String>,
+    /// Whether every count is exact (no group fell back to a multistart search).
+    pub exhaustive: bool,
 }
 
 /// Which positions to tabulate.

@@ -5,7 +5,7 @@ mod two_inputs;
 
 use std::fmt::Write as _;
 
-use crate::model::{DynamicsReport, InputKind, Range, StrokeInfo, Structure, TableData};
+use crate::model::{DynamicsReport, InputKind, ModesInfo, Range, StrokeInfo, Structure, TableData};
 
 pub use synth::design;
 pub use two_inputs::{mass_matrix, mass_matrix_csv, mass_matrix_json};
@@ -113,6 +113,7 @@ pub fn structure(s: &Structure) -> String {
     if let Some(g) = &s.grashof {
         let _ = writeln!(o, "Grashof: {g}");
     }
+    modes_text(&mut o, &s.modes);
     if !s.transmission.is_empty() {
         let _ = writeln!(o, "smallest transmission angle over a turn:");
         for (name, t) in &s.transmission {
@@ -495,6 +496,81 @@ fn array(items: impl IntoIterator<Item = String>) -> String {
 }
 
 /// `tmm check --format json`: the structure, angles in rad, lengths in m.
+/// The assembly modes at the reference input(s), as text.
+fn modes_text(o: &mut String, m: &Result<ModesInfo, String>) {
+    let m = match m {
+        Ok(m) => m,
+        Err(e) => {
+            let _ = writeln!(o, "assembly modes at the reference input: not counted: {e}");
+            return;
+        }
+    };
+    let _ = writeln!(o, "real assembly modes at the reference input:");
+    for (name, n, how) in &m.groups {
+        let _ = writeln!(o, "  {name}: {n} ({how})");
+    }
+    let product: Option<usize> = m.groups.iter().try_fold(1usize, |p, g| p.checked_mul(g.1));
+    let at_least = if m.exhaustive { "" } else { "at least " };
+    match (&m.total, product) {
+        (Ok(t), Some(p)) if *t == p => {
+            let _ = writeln!(
+                o,
+                "  in all: {at_least}{t} (every combination enumerated; the product of the groups' counts)"
+            );
+        }
+        (Ok(t), _) => {
+            let _ = writeln!(
+                o,
+                "  in all: {at_least}{t} (every combination enumerated; a group's count depends \
+                 on the modes before it)"
+            );
+        }
+        (Err(e), Some(p)) => {
+            let _ = writeln!(
+                o,
+                "  in all: {at_least}{p} as the product of the groups' counts (not enumerated: {e})"
+            );
+        }
+        (Err(e), None) => {
+            let _ = writeln!(o, "  in all: more than 2^64 (not enumerated: {e})");
+        }
+    }
+}
+
+/// The assembly modes as JSON.
+fn modes_json(m: &Result<ModesInfo, String>) -> String {
+    match m {
+        Err(e) => object(&[("error", json_string(e))]),
+        Ok(m) => object(&[
+            (
+                "groups",
+                array(m.groups.iter().map(|(name, n, how)| {
+                    object(&[
+                        ("group", json_string(name)),
+                        ("count", n.to_string()),
+                        ("search", json_string(how)),
+                    ])
+                })),
+            ),
+            (
+                "total",
+                match &m.total {
+                    Ok(t) => t.to_string(),
+                    Err(_) => "null".to_owned(),
+                },
+            ),
+            (
+                "total_error",
+                match &m.total {
+                    Ok(_) => "null".to_owned(),
+                    Err(e) => json_string(e),
+                },
+            ),
+            ("exhaustive", m.exhaustive.to_string()),
+        ]),
+    }
+}
+
 pub fn structure_json(s: &Structure) -> String {
     let inputs = array(s.inputs.iter().map(|i| {
         object(&[
@@ -553,6 +629,7 @@ pub fn structure_json(s: &Structure) -> String {
         ),
         ("transmission", transmission),
         ("strokes", strokes),
+        ("modes", modes_json(&s.modes)),
     ]);
     o.push('\n');
     o

@@ -61,6 +61,8 @@ mod hinges;
 mod indicator;
 pub(crate) mod inputs;
 mod instant_centres;
+mod modes;
+mod modes_reduction;
 mod plan;
 mod plan_general;
 mod plan_triad;
@@ -87,6 +89,7 @@ pub use handle::{JointId, JointRef, LinkId, LinkRef, PointId, PointRef};
 pub use indicator::IndicatorDiagram;
 pub use inputs::{Inputs, MAX_INPUT_COORDINATE};
 pub use instant_centres::{Centre, Found, InstantCentre};
+pub use modes::{AllModes, GroupModes, LinkageMode, ModeOptions, ModeSearch};
 pub use plan::{Group, GroupKind, Plan, Pose};
 pub use solve::{
     Analysis, Balance, Kinematics, Position, PowerCheck, Reaction, Solver, DEAD_CENTRE_DETERMINANT,

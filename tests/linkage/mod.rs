@@ -24,6 +24,8 @@ mod hostile_friction;
 #[cfg(feature = "serde")]
 mod instant_centres;
 mod locks;
+#[cfg(feature = "serde")]
+mod modes;
 mod planning;
 mod singular;
 #[cfg(feature = "serde")]
