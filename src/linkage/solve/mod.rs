@@ -20,6 +20,7 @@ pub(crate) mod spare;
 pub(crate) mod state;
 mod statics;
 pub(crate) mod triad;
+pub(crate) mod unit_frame;
 
 pub use analysis::Analysis;
 pub use checks::PowerCheck;
