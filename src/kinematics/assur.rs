@@ -647,7 +647,8 @@ pub struct GroupWork {
 
 impl HingedGroup {
     /// Newton's method from `q` (in place): true when it converges (the step falls to
-    /// rounding, 4ε of `size`) within `max` steps, each step no more than `size`, the first
+    /// rounding, 4ε of `size`, or stalls within 10⁻¹² of `size` plus 16ε of the known
+    /// points' coordinates) within `max` steps, each step no more than `size`, the first
     /// no more than `first_max` and, once `contract` is set, each at most half the one
     /// before. A step beyond a bound ends the solve at once (a caller that would refuse the
     /// result pays for no further factorisation).
@@ -680,6 +681,14 @@ impl HingedGroup {
         contract: bool,
     ) -> bool {
         let mut last = f64::INFINITY;
+        // The rounding of a position is ε of its coordinates, not of the group's size: a
+        // group drawn far from the origin (10⁶ sizes away) closes only to ε·|p|, and its
+        // steps stall there. The floor below which a stalled step counts as converged.
+        let reach = outer
+            .iter()
+            .map(|p| p.x.abs().max(p.y.abs()))
+            .fold(0.0, f64::max);
+        let floor = 16.0 * f64::EPSILON * reach;
         for i in 0..max {
             self.rotations(q, rot);
             self.residual_into(q, rot, outer, &mut lin.f);
@@ -694,10 +703,10 @@ impl HingedGroup {
                 return false;
             }
             *q += &lin.f;
-            if step <= 4.0 * f64::EPSILON * size || (step >= last && step <= 1e-12 * size) {
+            if step <= 4.0 * f64::EPSILON * size || (step >= last && step <= 1e-12 * size + floor) {
                 return true;
             }
-            if contract && step > 1e-11 * size && step > 0.5 * last {
+            if contract && step > 1e-11 * size + floor && step > 0.5 * last {
                 return false;
             }
             last = step;
