@@ -25,6 +25,8 @@ mod hostile_friction;
 mod instant_centres;
 mod locks;
 mod planning;
+#[cfg(feature = "serde")]
+mod scale;
 mod singular;
 #[cfg(feature = "serde")]
 mod spares;
