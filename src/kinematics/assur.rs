@@ -26,9 +26,13 @@
 //!   the force that b exerts on a, at a hinge to a known point the force of the known link on
 //!   the group's link. So the statics needs no second matrix.
 //!
-//! The conditioning of all three is that of K with its angle columns scaled by the group's
-//! size (so that every column is a length), which vanishes at a dead point or a branch point
-//! of the group. [`HingedGroup::conditioning`] gives σ_min/σ_max (an SVD, for planning and
+//! The conditioning of all three is that of K with its angle columns divided by the group's
+//! size L, which vanishes at a dead point or a branch point of the group. A translation
+//! column ∂f/∂o is a pure number and an angle column ∂f/∂θ = J·R·l a length: K·D, D =
+//! diag(1, 1, 1/L, …), is the Jacobian in the unknowns (o, L·θ), every one a length, so its
+//! entries are pure numbers and its conditioning is the same for the group drawn at any scale
+//! (the angle columns multiplied by L instead would weigh them by L² against the
+//! translations: 10⁻⁶⁰ at L = 10³⁰, a regular group refused as singular). [`HingedGroup::conditioning`] gives σ_min/σ_max (an SVD, for planning and
 //! the mode search); the rates and reactions report the reciprocal 1-norm condition
 //! 1/(‖K‖₁‖K⁻¹‖₁), ‖K⁻¹‖₁ estimated from the LU they solve with anyway (Hager's method: a
 //! few triangular solves, no SVD per solve). The two agree within a factor of the number of
@@ -339,9 +343,13 @@ impl HingedGroup {
         self.track_in(reference, path, size, &mut GroupWork::default())
     }
 
-    /// σ_min/σ_max of K at `q` with its angle columns scaled by `size`.
+    /// σ_min/σ_max of K at `q` with its angle columns divided by `size` (module docs).
     fn conditioning_q(&self, q: &DVector<f64>, size: f64) -> f64 {
-        let k = self.jacobian(q, size);
+        let inverse = size.recip();
+        if !(size > 0.0 && inverse.is_finite()) {
+            return 0.0;
+        }
+        let k = self.jacobian(q, inverse);
         // A non-finite K (an overflowing pose) has no conditioning; the SVD's iteration is
         // bounded all the same.
         if !k.iter().all(|x| x.is_finite()) {
@@ -367,7 +375,7 @@ impl HingedGroup {
         self.conditioning_q(&pose.to_q(), size)
     }
 
-    /// The reciprocal 1-norm condition of K at `q` with its angle columns scaled by `size`
+    /// The reciprocal 1-norm condition of K at `q` with its angle columns divided by `size`
     /// (module docs), from K factorised in `lin` (unscaled: the scaling moves no pivot):
     /// `lin` keeps the factors for the solves that follow, `lin.rot` the links' unit vectors.
     fn factorise_conditioned(&self, q: &DVector<f64>, size: f64, lin: &mut Linear) -> Result<f64> {
@@ -376,7 +384,7 @@ impl HingedGroup {
         self.jacobian_into(q, &lin.rot, 1.0, &mut lin.k);
         // A non-finite K (an overflowing pose) has no conditioning.
         let finite = lin.k.iter().all(|x| x.is_finite());
-        let scale = |i: usize| if i % 3 == 2 { size } else { 1.0 };
+        let scale = |i: usize| if i % 3 == 2 { size.recip() } else { 1.0 };
         // ‖K·D‖₁: the largest column sum.
         let norm = lin
             .k
@@ -384,7 +392,7 @@ impl HingedGroup {
             .enumerate()
             .map(|(c, col)| scale(c) * col.iter().map(|x| x.abs()).sum::<f64>())
             .fold(0.0, f64::max);
-        let c = if finite && norm.is_finite() && size.is_finite() && size > 0.0 {
+        let c = if finite && norm.is_finite() && size > 0.0 && size.recip().is_finite() {
             lin.factorise();
             lin.rcond(&scale, norm)
         } else {
@@ -639,7 +647,8 @@ pub struct GroupWork {
 
 impl HingedGroup {
     /// Newton's method from `q` (in place): true when it converges (the step falls to
-    /// rounding, 4ε of `size`) within `max` steps, each step no more than `size`, the first
+    /// rounding, 4ε of `size`, or stalls within 10⁻¹² of `size` plus 16ε of the known
+    /// points' coordinates) within `max` steps, each step no more than `size`, the first
     /// no more than `first_max` and, once `contract` is set, each at most half the one
     /// before. A step beyond a bound ends the solve at once (a caller that would refuse the
     /// result pays for no further factorisation).
@@ -672,6 +681,14 @@ impl HingedGroup {
         contract: bool,
     ) -> bool {
         let mut last = f64::INFINITY;
+        // The rounding of a position is ε of its coordinates, not of the group's size: a
+        // group drawn far from the origin (10⁶ sizes away) closes only to ε·|p|, and its
+        // steps stall there. The floor below which a stalled step counts as converged.
+        let reach = outer
+            .iter()
+            .map(|p| p.x.abs().max(p.y.abs()))
+            .fold(0.0, f64::max);
+        let floor = 16.0 * f64::EPSILON * reach;
         for i in 0..max {
             self.rotations(q, rot);
             self.residual_into(q, rot, outer, &mut lin.f);
@@ -686,10 +703,10 @@ impl HingedGroup {
                 return false;
             }
             *q += &lin.f;
-            if step <= 4.0 * f64::EPSILON * size || (step >= last && step <= 1e-12 * size) {
+            if step <= 4.0 * f64::EPSILON * size || (step >= last && step <= 1e-12 * size + floor) {
                 return true;
             }
-            if contract && step > 1e-11 * size && step > 0.5 * last {
+            if contract && step > 1e-11 * size + floor && step > 0.5 * last {
                 return false;
             }
             last = step;

@@ -27,6 +27,8 @@ mod locks;
 #[cfg(feature = "serde")]
 mod modes;
 mod planning;
+#[cfg(feature = "serde")]
+mod scale;
 mod singular;
 #[cfg(feature = "serde")]
 mod spares;

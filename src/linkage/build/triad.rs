@@ -5,11 +5,12 @@
 use super::reference::Frame;
 use crate::angle::{cross, direction};
 use crate::error::Result;
-use crate::kinematics::{slider_triad_modes, Branch, Guide, SliderTriadDims, SlidingPair};
-use crate::kinematics::{triad_modes, TriadDims, TriadPose};
+use crate::kinematics::{Branch, Guide, SliderTriadDims, SlidingPair};
+use crate::kinematics::{TriadDims, TriadPose};
 use crate::linkage::description::{JointKind, Linkage};
 use crate::linkage::plan::{bad, Group, GroupKind, TriadPlan};
 use crate::linkage::plan_triad::SliderLeg;
+use crate::linkage::solve::unit_frame::{slider_triad_mode_nearest, triad_mode_nearest};
 use crate::linkage::structure::{Edge, Pair};
 use crate::linkage::structure_triad::TriadFound;
 use nalgebra::{Point2, Vector2};
@@ -57,14 +58,12 @@ pub(super) fn plan_triad(
         phi,
         det: 0.0,
     };
-    let reference = *triad_modes(a, &dims)
-        .map_err(|e| {
-            bad(
-                name.clone(),
-                format!("does not assemble in the reference pose: {e}"),
-            )
-        })?
-        .nearest(&drawn);
+    let reference = triad_mode_nearest(a, &dims, &drawn).map_err(|e| {
+        bad(
+            name.clone(),
+            format!("does not assemble in the reference pose: {e}"),
+        )
+    })?;
     frames[t.ternary] = ternary;
     for i in 0..3 {
         frames[t.binary[i]] = Frame {
@@ -148,14 +147,18 @@ fn plan_slider_triad(
         phi,
         det: 0.0,
     };
-    let reference = *slider_triad_modes(&Guide::fixed(a[0], slide_angle), [a[1], a[2]], &dims)
-        .map_err(|e| {
-            bad(
-                name.clone(),
-                format!("does not assemble in the reference pose: {e}"),
-            )
-        })?
-        .nearest(&drawn);
+    let reference = slider_triad_mode_nearest(
+        &Guide::fixed(a[0], slide_angle),
+        [a[1], a[2]],
+        &dims,
+        &drawn,
+    )
+    .map_err(|e| {
+        bad(
+            name.clone(),
+            format!("does not assemble in the reference pose: {e}"),
+        )
+    })?;
     frames[t.ternary] = ternary;
     frames[t.binary[0]] = Frame {
         origin: if outer_slides { b[0] } else { a[0] },

@@ -22,6 +22,7 @@ pub(crate) mod state;
 mod statics;
 pub(crate) mod triad;
 mod twin;
+pub(crate) mod unit_frame;
 
 pub use analysis::Analysis;
 pub use checks::PowerCheck;

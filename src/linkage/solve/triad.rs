@@ -1,5 +1,7 @@
 //! The triad in one position's solve: its positions and rates by the kinematics' triad
-//! blocks, its reactions by [`Triad::solve`], applied back onto the known links.
+//! blocks (in the triad's own unit frame, [`unit_frame`](super::unit_frame): the same
+//! mechanism at any scale), its reactions by [`Triad::solve`], applied back onto the known
+//! links.
 //!
 //! # Which assembly mode
 //! A triad has up to six assembly modes and no sign that tells them apart. Every solve takes
@@ -17,11 +19,14 @@
 
 use super::analysis::{Analysis, Reaction};
 use super::state::{within, KinState};
+use super::unit_frame::{
+    slider_triad_rates_scaled, slider_triad_scaled, triad_mode_nearest, triad_rates_scaled,
+    triad_scaled,
+};
 use crate::angle::cross;
 use crate::angle::perp;
 use crate::error::Result;
-use crate::kinematics::{slider_triad, slider_triad_rates, Guide, Motion, SlidingPair};
-use crate::kinematics::{triad, triad_modes, triad_rates, LinkMotion, PointMotion, TriadState};
+use crate::kinematics::{Guide, LinkMotion, Motion, PointMotion, SlidingPair, TriadState};
 use crate::kinetostatics::{SlideAt, SliderTriad, Triad};
 use crate::linkage::plan::{Group, TriadPlan};
 use crate::linkage::plan_triad::SliderLeg;
@@ -41,11 +46,11 @@ impl KinState {
         let s = match &t.slider {
             Some(leg) => {
                 let hinged = [1, 2].map(|i| self.at(t.known[i], t.a_local[i]));
-                slider_triad(&self.first_leg(t, leg), hinged, &leg.dims, &t.reference)
+                slider_triad_scaled(&self.first_leg(t, leg), hinged, &leg.dims, &t.reference)
             }
             None => {
                 let a = [0, 1, 2].map(|i| self.at(t.known[i], t.a_local[i]));
-                triad(a, &t.dims, &t.reference)
+                triad_scaled(a, &t.dims, &t.reference)
             }
         }
         .map_err(within(&group.name))?;
@@ -70,11 +75,11 @@ impl KinState {
         let s = match &t.slider {
             Some(leg) => {
                 let hinged = [1, 2].map(|i| self.at(t.known[i], t.a_local[i]));
-                slider_triad_rates(&self.first_leg(t, leg), hinged, &leg.dims, &pose)
+                slider_triad_rates_scaled(&self.first_leg(t, leg), hinged, &leg.dims, &pose)
             }
             None => {
                 let a = [0, 1, 2].map(|i| self.at(t.known[i], t.a_local[i]));
-                triad_rates(a, &t.dims, &pose)
+                triad_rates_scaled(a, &t.dims, &pose)
             }
         }
         .map_err(within(&group.name))?;
@@ -106,10 +111,10 @@ impl KinState {
             return self.slider_triad_position_only(g, group, t, leg);
         }
         let a = [0, 1, 2].map(|i| self.at(t.known[i], t.a_local[i]));
-        let modes = triad_modes(a.map(|m| m.p), &t.dims).map_err(within(&group.name))?;
-        let pose = *modes.nearest(&t.reference);
+        let pose = triad_mode_nearest(a.map(|m| m.p), &t.dims, &t.reference)
+            .map_err(within(&group.name))?;
         let at_rest = a.map(|m| PointMotion::fixed(m.p));
-        let singular = match triad_rates(at_rest, &t.dims, &pose) {
+        let singular = match triad_rates_scaled(at_rest, &t.dims, &pose) {
             Err(e @ crate::Error::Singular { .. }) => e,
             _ => {
                 return Err(crate::Error::Description {
