@@ -8,7 +8,7 @@ use tmm::synthesis::{burmester_points, Dyad, Pose};
 
 /// Five poses of random crank-rockers at crank angles drawn uniformly and sorted over a
 /// spread of 0.8–4.5 rad, one of them moved 10⁻⁴…10⁻² rad from another: both of the
-/// four-bar's dyads are among the points (to 1e-8 m on links of 0.05–0.6 m), every point fits
+/// four-bar's dyads are among the points (to 1e-6 m on links of 0.05–0.6 m), every point fits
 /// the five poses, and there are never more than four.
 #[test]
 fn a_four_bar_comes_back_from_poses_that_nearly_coincide() {
@@ -31,7 +31,7 @@ fn a_four_bar_comes_back_from_poses_that_nearly_coincide() {
             .windows(2)
             .map(|w| w[1] - w[0])
             .fold(f64::INFINITY, f64::min);
-        // Poses a millionth of a radian apart are one pose to the 1e-8 asked.
+        // Poses a millionth of a radian apart are one pose to the accuracy asked.
         if gap < 1e-6 {
             continue;
         }
@@ -72,8 +72,11 @@ fn a_four_bar_comes_back_from_poses_that_nearly_coincide() {
                 .iter()
                 .map(|p| dist(p.centre, own.centre).max(dist(p.circle, own.circle)))
                 .fold(f64::INFINITY, f64::min);
+            // Two poses a gap g apart fix a point only to about ε/g² of the size (the five
+            // equations are nearly four): 1e-6 at the closest gap here, 10⁻⁴ rad; a point lost
+            // (as before the poses were reordered) misses by 10⁻² or more.
             assert!(
-                miss < 1e-8,
+                miss < 1e-6,
                 "{own:?} missed by {miss:e} among {points:?}; crank gap {gap:e}; poses {poses:?}"
             );
             worst = worst.max(miss);
