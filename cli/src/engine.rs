@@ -22,6 +22,9 @@ use crate::model::{
     TwoInputDynamics,
 };
 
+/// The most groups whose assembly modes `tmm check` combines one by one.
+const MODES_ENUMERATED_GROUPS: usize = 16;
+
 /// The largest input angle the program takes, rad. An `f64` near 10⁹ is spaced 1.2·10⁻⁷
 /// apart, so a larger angle (`--at 1e300`) names a crank position no better than to a tenth
 /// of a microradian — at 10¹⁶ not even to a turn: such an angle is refused rather than
@@ -476,10 +479,19 @@ impl Machine {
                 (g.name, g.counts.first().copied().unwrap_or(0), how)
             })
             .collect();
-        let total = plan
-            .assembly_modes_with(inputs, &options)
-            .map(|a| a.total())
-            .map_err(|e| e.to_string());
+        // Every combination is walked only for a linkage of a few groups: a long chain's
+        // 2ⁿ assemblies would take `check` minutes to reach the cap, and its count is the
+        // product of the groups' counts wherever those do not depend on the modes before.
+        let n_groups = plan.groups().len();
+        let total = if n_groups <= MODES_ENUMERATED_GROUPS {
+            plan.assembly_modes_with(inputs, &options)
+                .map(|a| a.total())
+                .map_err(|e| e.to_string())
+        } else {
+            Err(format!(
+                "not enumerated: {n_groups} groups (combinations are walked for at most {MODES_ENUMERATED_GROUPS})"
+            ))
+        };
         Ok(ModesInfo {
             groups,
             total,
