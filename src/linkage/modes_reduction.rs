@@ -1,3 +1,4 @@
+#![allow(clippy::neg_cmp_op_on_partial_ord)] // `!(x > y)` rejects NaN too, on purpose.
 //! Every real assembly mode of a general group (a rigid group of hinges with no closed form)
 //! by a reduction to one equation in one angle.
 //!
@@ -240,6 +241,9 @@ fn frame_through(
     (p1 - turned(angle, l1), angle)
 }
 
+/// Each link's frame: its origin and angle.
+type Frames = Vec<(Point2<f64>, f64)>;
+
 /// The group placed by reduction `r` at driver angle `theta` and branch choice `beta`: the
 /// links' frames and the closure value f_β(θ); `None` where a dyad does not assemble.
 fn place(
@@ -248,7 +252,7 @@ fn place(
     outer: &[Point2<f64>],
     theta: f64,
     beta: usize,
-) -> Option<(Vec<(Point2<f64>, f64)>, f64)> {
+) -> Option<(Frames, f64)> {
     let mut frames = vec![(Point2::origin(), 0.0); g.links];
     let at = |frames: &[(Point2<f64>, f64)], e: End| -> Point2<f64> {
         match e {

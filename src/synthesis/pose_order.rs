@@ -1,3 +1,4 @@
+#![allow(clippy::neg_cmp_op_on_partial_ord)] // `!(x > y)` rejects NaN too, on purpose.
 //! Conditioning of Burmester's points: which pose to take as the reference and which as the
 //! curve's parameter, and a Newton polish of each point on the five poses' own equations.
 //!

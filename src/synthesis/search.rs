@@ -1,3 +1,4 @@
+#![allow(clippy::neg_cmp_op_on_partial_ord)] // `!(x > y)` rejects NaN too, on purpose.
 //! A bounded 1-D maximisation: a dense scan, then golden section between the best sample's
 //! neighbours. The objective may be undefined (`None`) on parts of the interval (designs that
 //! do not exist there); those count as −∞.
