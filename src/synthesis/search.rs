@@ -23,10 +23,7 @@ where
     }
     let (k, v) = best?;
     let value = |x: f64| f(x).filter(|v| v.is_finite()).unwrap_or(f64::NEG_INFINITY);
-    let r = (5f64.sqrt() - 1.0) / 2.0;
-    let (mut a, mut b) = (at(k.saturating_sub(1)), at((k + 1).min(n - 1)));
-    let (mut x1, mut x2) = (b - r * (b - a), a + r * (b - a));
-    let (mut f1, mut f2) = (value(x1), value(x2));
+    let mut g = Golden::new(at(k.saturating_sub(1)), at((k + 1).min(n - 1)), &value);
     // Relative to the interval, but never below the arguments' own spacing: a narrow
     // interval far from zero would otherwise be split for ever.
     let spacing = 4.0 * f64::EPSILON * lo.abs().max(hi.abs());
@@ -34,21 +31,57 @@ where
         .max(spacing)
         .max(f64::MIN_POSITIVE);
     for _ in 0..400 {
-        if !((b - a).abs() > tol) {
+        if !((g.b - g.a).abs() > tol) {
             break;
         }
-        if f1 >= f2 {
-            (b, x2, f2) = (x2, x1, f1);
-            x1 = b - r * (b - a);
-            f1 = value(x1);
-        } else {
-            (a, x1, f1) = (x1, x2, f2);
-            x2 = a + r * (b - a);
-            f2 = value(x2);
+        g.step(&value);
+    }
+    let (x, fx) = if g.f1 >= g.f2 {
+        (g.x1, g.f1)
+    } else {
+        (g.x2, g.f2)
+    };
+    Some(if fx > v { (x, fx) } else { (at(k), v) })
+}
+
+/// A golden-section search for a maximum on [a, b]: its two inner points and their values.
+struct Golden {
+    a: f64,
+    b: f64,
+    x1: f64,
+    x2: f64,
+    f1: f64,
+    f2: f64,
+}
+
+/// The golden ratio's conjugate, (√5 − 1)/2: each step keeps this share of the bracket.
+const GOLDEN: f64 = 0.618_033_988_749_894_8;
+
+impl Golden {
+    fn new(a: f64, b: f64, value: &impl Fn(f64) -> f64) -> Self {
+        let (x1, x2) = (b - GOLDEN * (b - a), a + GOLDEN * (b - a));
+        Self {
+            a,
+            b,
+            x1,
+            x2,
+            f1: value(x1),
+            f2: value(x2),
         }
     }
-    let (x, fx) = if f1 >= f2 { (x1, f1) } else { (x2, f2) };
-    Some(if fx > v { (x, fx) } else { (at(k), v) })
+
+    /// Drops the part of the bracket beyond the lower inner point (one new value).
+    fn step(&mut self, value: &impl Fn(f64) -> f64) {
+        if self.f1 >= self.f2 {
+            (self.b, self.x2, self.f2) = (self.x2, self.x1, self.f1);
+            self.x1 = self.b - GOLDEN * (self.b - self.a);
+            self.f1 = value(self.x1);
+        } else {
+            (self.a, self.x1, self.f1) = (self.x1, self.x2, self.f2);
+            self.x2 = self.a + GOLDEN * (self.b - self.a);
+            self.f2 = value(self.x2);
+        }
+    }
 }
 
 /// Feasible stretches of [`lo`, `hi`] narrower than a scan's step: `margin` is a continuous
@@ -79,39 +112,28 @@ where
         }
     };
     let m: Vec<f64> = (0..n).map(|k| value(at(k))).collect();
-    let r = (5f64.sqrt() - 1.0) / 2.0;
     let mut out = Vec::new();
     for k in 1..n - 1 {
         // A peak (a plateau counts at its first sample) below zero.
         if !(m[k] <= 0.0 && m[k] > m[k - 1] && m[k] >= m[k + 1]) {
             continue;
         }
-        let (mut a, mut b) = (at(k - 1), at(k + 1));
-        let (mut x1, mut x2) = (b - r * (b - a), a + r * (b - a));
-        let (mut f1, mut f2) = (value(x1), value(x2));
+        let mut g = Golden::new(at(k - 1), at(k + 1), &value);
         let mut found = None;
         for _ in 0..200 {
             // The margin is cheap and `ok` is not: `ok` is asked only where the margin says yes.
-            if f1 > 0.0 && ok(x1) {
-                found = Some(x1);
+            if g.f1 > 0.0 && ok(g.x1) {
+                found = Some(g.x1);
                 break;
             }
-            if f2 > 0.0 && ok(x2) {
-                found = Some(x2);
+            if g.f2 > 0.0 && ok(g.x2) {
+                found = Some(g.x2);
                 break;
             }
-            if !(b - a > 1e-15 * (hi - lo).abs()) {
+            if !(g.b - g.a > 1e-15 * (hi - lo).abs()) {
                 break;
             }
-            if f1 >= f2 {
-                (b, x2, f2) = (x2, x1, f1);
-                x1 = b - r * (b - a);
-                f1 = value(x1);
-            } else {
-                (a, x1, f1) = (x1, x2, f2);
-                x2 = a + r * (b - a);
-                f2 = value(x2);
-            }
+            g.step(&value);
         }
         let Some(inside) = found else { continue };
         // The stretch's ends, each between a feasible and an infeasible argument.
