@@ -227,12 +227,7 @@ impl Plan {
         options: &ModeOptions,
     ) -> Result<AllModes> {
         check_samples(options.samples)?;
-        let inputs = inputs.into();
-        let rest: Vec<Motion> = inputs
-            .as_slice()
-            .iter()
-            .map(|m| Motion::fixed(m.value))
-            .collect();
+        let rest = at_rest(inputs.into());
         let mut chain = self.chain.clone();
         let mut first = KinState::new(&chain);
         first.solve_groups(&chain, &rest, &[])?;
@@ -318,12 +313,7 @@ impl Plan {
         options: &ModeOptions,
     ) -> Result<Vec<GroupModes>> {
         check_samples(options.samples)?;
-        let rest: Vec<Motion> = inputs
-            .into()
-            .as_slice()
-            .iter()
-            .map(|m| Motion::fixed(m.value))
-            .collect();
+        let rest = at_rest(inputs.into());
         let mut chain = self.chain.clone();
         let mut engine = KinState::new(&chain);
         engine.solve(&self.chain, &rest)?;
@@ -593,4 +583,13 @@ fn general_modes(
         keep(s);
     }
     Ok(poses.len())
+}
+
+/// The inputs held at their values (no rate): the modes are a property of the pose alone.
+fn at_rest(inputs: Inputs) -> Vec<Motion> {
+    inputs
+        .as_slice()
+        .iter()
+        .map(|m| Motion::fixed(m.value))
+        .collect()
 }

@@ -18,7 +18,7 @@ fn cross(a: Vector2<f64>, b: Vector2<f64>) -> f64 {
 
 /// The point at distance `r1` from `c1` and `r2` from `c2` on the side `side` (+1: left of
 /// c1 → c2).
-fn meet(c1: P, r1: f64, c2: P, r2: f64, side: f64) -> P {
+pub(super) fn meet(c1: P, r1: f64, c2: P, r2: f64, side: f64) -> P {
     let d = c2 - c1;
     let l = d.norm();
     let a = (r1 * r1 - r2 * r2 + l * l) / (2.0 * l);

@@ -6,6 +6,7 @@
 //! other proportions (seeded). The reference is the line itself (P is A's inverse about O),
 //! not the engine.
 
+use super::gallery::meet;
 use crate::common::fd::{cases, Rng};
 use nalgebra::{Point2, Vector2};
 use std::f64::consts::PI;
@@ -25,16 +26,6 @@ fn joint(l: &Linkage, name: &str) -> P {
 fn set(l: &mut Linkage, name: &str, p: P) {
     let j = l.joints.iter_mut().find(|j| j.name == name).unwrap();
     j.at = [p.x, p.y];
-}
-
-/// The point at `r1` from `c1` and `r2` from `c2`, left of c1 → c2 for `side` = +1.
-fn meet(c1: P, r1: f64, c2: P, r2: f64, side: f64) -> P {
-    let d = c2 - c1;
-    let l = d.norm();
-    let a = (r1 * r1 - r2 * r2 + l * l) / (2.0 * l);
-    let h = (r1 * r1 - a * a).max(0.0).sqrt();
-    let u = d / l;
-    c1 + a * u + side * h * Vector2::new(-u.y, u.x)
 }
 
 /// A Peaucellier cell's line and lock angles, from its description alone: O and O1 the
