@@ -89,7 +89,9 @@ pub use handle::{JointId, JointRef, LinkId, LinkRef, PointId, PointRef};
 pub use indicator::IndicatorDiagram;
 pub use inputs::{Inputs, MAX_INPUT_COORDINATE};
 pub use instant_centres::{Centre, Found, InstantCentre};
-pub use modes::{AllModes, GroupModes, LinkageMode, ModeOptions, ModeSearch};
+pub use modes::{
+    AllModes, GroupModes, LinkageMode, ModeOptions, ModeSearch, MULTISTART_SOLVES_PER_START,
+};
 pub use plan::{Group, GroupKind, Plan, Pose};
 pub use solve::{
     Analysis, Balance, Kinematics, Position, PowerCheck, Reaction, Solver, DEAD_CENTRE_DETERMINANT,
