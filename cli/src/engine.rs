@@ -790,10 +790,12 @@ impl Machine {
         for (i, r) in inputs.iter().zip(&results) {
             let why = match r {
                 Err(e) => e.to_string(),
-                Ok(a) if kept < analysed => match a.row().into_iter().find(|(_, v)| !v.is_finite())
-                {
-                    Some((column, _)) => format!("its {column} is not finite (it overflows)"),
-                    None => continue,
+                Ok(a) if kept < analysed => match a.row() {
+                    Err(tmm::Error::In { part, .. }) => {
+                        format!("its {part} is not finite (it overflows)")
+                    }
+                    Err(e) => e.to_string(),
+                    Ok(_) => continue,
                 },
                 Ok(_) => continue,
             };

@@ -74,6 +74,7 @@ mod table;
 mod torsion_range;
 mod track;
 mod workspace;
+mod workspace_boundary;
 
 pub use course::{Course, Sweep};
 pub use course_two::{AnyCourse, Assembly, AssemblyFailure, TwoInputCourse, TwoInputShape};
