@@ -12,7 +12,7 @@ use tmm::kinematics::{grashof, Grashof, Motion, Rotation};
 use tmm::kinetostatics::friction::Efficiency;
 use tmm::linkage::{
     course_inputs, uniform_inputs, Drive, Inputs, LinkId, Linkage, ModeOptions, ModeSearch, Output,
-    Plan, Tabulate, TwoInputCourse,
+    Plan, Tabulate, TwoInputCourse, MULTISTART_SOLVES_PER_START,
 };
 
 use crate::budget;
@@ -449,9 +449,47 @@ impl Machine {
             .collect();
         let inputs = Inputs::from_slice(&motions).map_err(|e| e.to_string())?;
         let options = ModeOptions::default().with_max_modes(10_000);
+        // A multistart search (a general group with no reduction) solves the group's closure
+        // equations from each of its starts: weighed as solves of the linkage before it runs.
+        let multistart = |searches: &[ModeSearch], times: &[f64]| {
+            let mut solves = 0.0;
+            for (s, t) in searches.iter().zip(times) {
+                if let ModeSearch::Multistart { starts } = s {
+                    #[allow(clippy::cast_precision_loss)]
+                    let per = (*starts * MULTISTART_SOLVES_PER_START) as f64;
+                    solves += per * t;
+                }
+            }
+            solves
+        };
+        let searches = plan.mode_searches(&options);
+        let once = vec![1.0; searches.len()];
+        budget::check(
+            multistart(&searches, &once),
+            self.solve_weight(),
+            "the multistart search of a general group's assembly modes",
+            "",
+        )
+        .map_err(|f| f.message)?;
         let groups = plan
             .mode_counts(inputs, &options)
             .map_err(|e| e.to_string())?;
+        // The enumeration searches each group once per assembly of the groups before it.
+        #[allow(clippy::cast_precision_loss)]
+        let before: Vec<f64> = groups
+            .iter()
+            .scan(1.0, |p, g| {
+                let here = *p;
+                *p *= g.counts.first().copied().unwrap_or(0) as f64;
+                Some(here)
+            })
+            .collect();
+        let enumeration_fits = budget::check(
+            multistart(&searches, &before),
+            self.solve_weight(),
+            "the enumeration's multistart searches",
+            "",
+        );
         let exhaustive = !groups
             .iter()
             .any(|g| matches!(g.search, ModeSearch::Multistart { .. }));
@@ -483,7 +521,9 @@ impl Machine {
         // 2ⁿ assemblies would take `check` minutes to reach the cap, and its count is the
         // product of the groups' counts wherever those do not depend on the modes before.
         let n_groups = plan.groups().len();
-        let total = if n_groups <= MODES_ENUMERATED_GROUPS {
+        let total = if let Err(f) = enumeration_fits {
+            Err(f.message)
+        } else if n_groups <= MODES_ENUMERATED_GROUPS {
             plan.assembly_modes_with(inputs, &options)
                 .map(|a| a.total())
                 .map_err(|e| e.to_string())
@@ -750,10 +790,12 @@ impl Machine {
         for (i, r) in inputs.iter().zip(&results) {
             let why = match r {
                 Err(e) => e.to_string(),
-                Ok(a) if kept < analysed => match a.row().into_iter().find(|(_, v)| !v.is_finite())
-                {
-                    Some((column, _)) => format!("its {column} is not finite (it overflows)"),
-                    None => continue,
+                Ok(a) if kept < analysed => match a.row() {
+                    Err(tmm::Error::In { part, .. }) => {
+                        format!("its {part} is not finite (it overflows)")
+                    }
+                    Err(e) => e.to_string(),
+                    Ok(_) => continue,
                 },
                 Ok(_) => continue,
             };

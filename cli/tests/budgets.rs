@@ -173,7 +173,8 @@ fn the_same_command_gives_the_same_output_twice() {
 /// A stage whose work is above the budget is refused before it starts, naming the option and
 /// the most it may ask: a ring of 30 (60 inner joints, weight 1 + 120³/4 = 432 001) may make
 /// ⌊4·10⁸ / 432 001⌋ = 925 solves a stage — its range is not searched (about 2 000 solves),
-/// and 1 000 positions are refused; 257 flywheels of 3 600 positions on the double butterfly
+/// nor its assembly modes (a multistart of 2 000 starts of up to 101 solves each), and 1 000
+/// positions are refused; 257 flywheels of 3 600 positions on the double butterfly
 /// are above its ⌊4·10⁸ / 433⌋ = 923 787 solves, 256 are not.
 #[test]
 fn a_size_above_its_budget_is_refused_naming_the_option_and_the_bound() {
@@ -191,6 +192,16 @@ fn a_size_above_its_budget_is_refused_naming_the_option_and_the_bound() {
         r.stdout
     );
     assert_eq!(number_after(&r.stdout, "above the "), most, "{}", r.stdout);
+    // Its assembly modes: a multistart search (the ring has no reduction to one angle) of
+    // 2000 starts, each up to 101 solves of the group, is not run either.
+    let modes = r
+        .stdout
+        .lines()
+        .find(|l| l.starts_with("assembly modes at the reference input: not counted"))
+        .unwrap_or_else(|| panic!("{}", r.stdout));
+    assert!(modes.contains("multistart"), "{modes}");
+    assert_eq!(number_after(modes, "above the "), most, "{modes}");
+    assert_eq!(number_after(modes, "modes: "), 2000.0 * 101.0, "{modes}");
     for (args, option) in [
         (
             &["analyse", &file, "--positions", "1000"][..],

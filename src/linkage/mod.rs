@@ -74,6 +74,7 @@ mod table;
 mod torsion_range;
 mod track;
 mod workspace;
+mod workspace_boundary;
 
 pub use course::{Course, Sweep};
 pub use course_two::{AnyCourse, Assembly, AssemblyFailure, TwoInputCourse, TwoInputShape};
@@ -89,7 +90,9 @@ pub use handle::{JointId, JointRef, LinkId, LinkRef, PointId, PointRef};
 pub use indicator::IndicatorDiagram;
 pub use inputs::{Inputs, MAX_INPUT_COORDINATE};
 pub use instant_centres::{Centre, Found, InstantCentre};
-pub use modes::{AllModes, GroupModes, LinkageMode, ModeOptions, ModeSearch};
+pub use modes::{
+    AllModes, GroupModes, LinkageMode, ModeOptions, ModeSearch, MULTISTART_SOLVES_PER_START,
+};
 pub use plan::{Group, GroupKind, Plan, Pose};
 pub use solve::{
     Analysis, Balance, Kinematics, Position, PowerCheck, Reaction, Solver, DEAD_CENTRE_DETERMINANT,

@@ -39,6 +39,11 @@ use nalgebra::Point2;
 /// 250 bytes each).
 const MAX_LINK_STATES: usize = 4_000_000;
 
+/// The most solves of a general group's closure equations one start of the multistart
+/// search makes ([`ModeSearch::Multistart`]): a least-squares fit of the origins and up to
+/// 100 Newton steps, each one LU of the group's Jacobian.
+pub const MULTISTART_SOLVES_PER_START: usize = 101;
+
 /// The budgets of [`Plan::assembly_modes_with`].
 ///
 /// # Examples
@@ -298,6 +303,27 @@ impl Plan {
 }
 
 impl Plan {
+    /// The search each group's modes would be found by with `options` (no solve: a triad's
+    /// bracket, a dyad's closed form, a general group's reduction when one exists, else the
+    /// multistart), so that a caller can weigh a search's work before it runs it: a
+    /// multistart makes up to [`MULTISTART_SOLVES_PER_START`] solves of its group's closure
+    /// equations from each start.
+    ///
+    /// # Examples
+    /// ```
+    /// use tmm::linkage::{bundled, ModeOptions, ModeSearch, Plan};
+    /// let plan = Plan::new(&bundled::four_bar())?;
+    /// let s = plan.mode_searches(&ModeOptions::default());
+    /// assert_eq!(s, vec![ModeSearch::ClosedForm]);
+    /// # Ok::<(), tmm::Error>(())
+    /// ```
+    #[must_use]
+    pub fn mode_searches(&self, options: &ModeOptions) -> Vec<ModeSearch> {
+        (0..self.chain.groups.len())
+            .map(|g| search_of(&self.chain, g, options))
+            .collect()
+    }
+
     /// Each group's number of modes on the engine's own assembly of the groups before it
     /// (its known points where the engine's solve puts them), at `inputs`: one search per
     /// group, so linear in the number of groups where [`assembly_modes`](Self::assembly_modes)

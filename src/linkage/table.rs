@@ -44,7 +44,23 @@ pub trait Tabulate {
 
     /// The row as (column name, value) pairs: every name is made, so this is for reading
     /// one row, not for a loop (a [`Table`] takes the values alone).
-    fn row(&self) -> Vec<(String, f64)> {
+    ///
+    /// # Errors
+    /// [`Error::In`](crate::Error::In) naming the first column whose value is not finite (a
+    /// reaction or a power that overflows under a huge load), holding
+    /// [`Error::Overflow`](crate::Error::Overflow): a row never holds an infinity or a NaN.
+    ///
+    /// # Examples
+    /// ```
+    /// use tmm::linkage::{bundled, Plan, Tabulate};
+    /// use tmm::kinematics::Motion;
+    /// let plan = Plan::new(&bundled::four_bar())?;
+    /// let row = plan.kinematics(Motion::new(plan.reference_input(), 1.0, 0.0))?.row()?;
+    /// assert_eq!(row[0].0, "phi_in [rad]");
+    /// assert!(row.iter().all(|(_, v)| v.is_finite()));
+    /// # Ok::<(), tmm::Error>(())
+    /// ```
+    fn row(&self) -> Result<Vec<(String, f64)>> {
         struct Pairs(Vec<(String, f64)>);
         impl Cells for Pairs {
             fn cell(&mut self, name: impl FnOnce() -> String, value: f64) {
@@ -53,7 +69,15 @@ pub trait Tabulate {
         }
         let mut pairs = Pairs(Vec::new());
         self.cells(&mut pairs);
-        pairs.0
+        if let Some((name, _)) = pairs.0.iter().find(|(_, v)| !v.is_finite()) {
+            return Err(crate::Error::In {
+                part: format!("column {name}"),
+                source: Box::new(crate::Error::Overflow {
+                    what: "the value of a table's cell",
+                }),
+            });
+        }
+        Ok(pairs.0)
     }
 }
 

@@ -11,14 +11,20 @@
 //!   five-bar's couplers in line), each crossing bisected to the last assemblable input;
 //! - the **region**: the image of every cell of the input grid (its corners, and where it
 //!   meets the assembly boundary, the bisected points there) filled on a raster of the plane;
-//! - its **boundary**: the raster's outline by marching squares, as closed polylines.
+//! - its **boundary**: the raster's outline by marching squares, as closed polylines, each
+//!   point then moved onto the edge of the reach (bisected on whether a point of the plane is
+//!   reached, decided by Newton's method on P(q) = X: module `workspace_boundary`).
 //!
-//! The boundary lies within a raster cell (and the chord of an input cell's image) of the
-//! true one; the tests check it against closed-form inverse kinematics on a dense grid.
+//! The region's cells lie within about a raster cell of the truth; the boundary's points on
+//! the edge of the reach to about 10⁻¹¹ of the span where the decisions settle them (else
+//! the raster's own outline point stays), and [`Workspace::area`] (inside the boundary)
+//! within the chords between points a cell apart. The tests check both against
+//! closed-form inverse kinematics on a dense grid and a row-by-row area.
 
-use super::contour::{contours, Grid, Node};
+use super::contour::{contours, Grid};
 use super::plan::{InputPlan, Plan};
 use super::solve::Kinematics;
+use super::workspace_boundary::{area_inside, refine, Axes, Jac, Raster, Reach};
 use crate::error::{Error, Result};
 use crate::kinematics::Motion;
 use nalgebra::{Point2, Vector2};
@@ -91,6 +97,19 @@ pub struct Workspace {
     pub boundary: Vec<Vec<Point2<f64>>>,
     /// The singular curves, mapped to the plane.
     pub singular: Vec<SingularCurve>,
+}
+
+impl Workspace {
+    /// The area inside the outline ([`boundary`](Self::boundary)), m²: the outline's points
+    /// are moved onto the edge of the reach (to 10⁻¹¹ of the region's span where a point
+    /// decided reached and one decided not are found within 1.5 cells of the fill's outline;
+    /// elsewhere the fill's own point stays, within about a cell), so this is the area of the
+    /// region to the chords between points a raster cell apart (the raster's own
+    /// [`Region::area`] counts whole cells).
+    #[must_use]
+    pub fn area(&self) -> f64 {
+        area_inside(&self.boundary)
+    }
 }
 
 /// A region of the plane on a raster of square cells.
@@ -179,23 +198,6 @@ pub enum Singularity {
     Isolated,
 }
 
-/// The input grid: each axis's first value, step and whether it wraps.
-struct Axes {
-    lo: [f64; 2],
-    step: [f64; 2],
-    grid: Grid,
-}
-
-impl Axes {
-    fn q(&self, (i, j): Node) -> [f64; 2] {
-        #[allow(clippy::cast_precision_loss)]
-        [
-            self.lo[0] + self.step[0] * i as f64,
-            self.lo[1] + self.step[1] * j as f64,
-        ]
-    }
-}
-
 impl Plan {
     /// The workspace of the joint or named point `point` of a linkage with two inputs.
     ///
@@ -206,7 +208,8 @@ impl Plan {
     /// mapped to the plane); the assembly curves where the linkage stops assembling (each
     /// crossing bisected to the last assemblable input). The region is the image of every
     /// grid cell filled on a raster (a cell split where its map is far from linear), and its
-    /// boundary the raster's outline: within about a raster cell of the true one.
+    /// boundary the raster's outline with each point moved onto the edge of the reach (module
+    /// docs).
     ///
     /// The cost is 2 · `samples`² solves, a few hundred more per curve crossing, and
     /// `resolution`² raster cells.
@@ -284,7 +287,21 @@ impl Plan {
             det.is_finite().then_some((p, det))
         };
         singular.extend(isolated_curves(&axes, &poles, &mut at));
-        let boundary = outline(&region);
+        // The outline located by deciding points of the plane (module `workspace_boundary`).
+        let images: Vec<Option<Point2<f64>>> = nodes.iter().map(|n| n.map(|n| n.0)).collect();
+        #[allow(clippy::cast_precision_loss)]
+        let span = region.cell * region.nx.max(region.ny) as f64;
+        let mut reach = Reach::new(&mut jac, &axes, images, 2.0 * region.cell, span);
+        let boundary = refine(
+            &Raster {
+                origin: region.origin,
+                cell: region.cell,
+                nx: region.nx,
+                ny: region.ny,
+                cells: &region.cells,
+            },
+            &mut reach,
+        );
         Ok(Workspace {
             point: point.to_owned(),
             region,
@@ -477,8 +494,6 @@ fn distinct(axes: &Axes, poles: &[[f64; 2]]) -> Vec<[f64; 2]> {
     }
     kept
 }
-
-type Jac<'a> = dyn FnMut([f64; 2]) -> Option<(Point2<f64>, Vector2<f64>, Vector2<f64>)> + 'a;
 
 /// The isolated singular inputs located to full precision: each of `poles` (distinct ones,
 /// located to a split of a grid cell) refined by [`refine_pole`], or kept as it is where the
@@ -768,27 +783,4 @@ fn triangle(region: &mut Region, t: [Point2<f64>; 3], margin: f64) {
             }
         }
     }
-}
-
-/// The outline of the region: marching squares over the cells' centres, each crossing
-/// halfway between a reached centre and one that is not.
-fn outline(region: &Region) -> Vec<Vec<Point2<f64>>> {
-    let grid = Grid {
-        n1: region.nx,
-        n2: region.ny,
-        wrap1: false,
-        wrap2: false,
-    };
-    let mut value = vec![-1.0; region.nx * region.ny];
-    for iy in 0..region.ny {
-        for ix in 0..region.nx {
-            if region.cells[iy * region.nx + ix] {
-                value[grid.index((ix, iy))] = 1.0;
-            }
-        }
-    }
-    contours(grid, &value, |a, b| {
-        let (pa, pb) = (region.centre(a.0, a.1), region.centre(b.0, b.1));
-        Some(Point2::from((pa.coords + pb.coords) / 2.0))
-    })
 }

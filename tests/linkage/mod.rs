@@ -29,6 +29,8 @@ mod modes;
 mod planning;
 #[cfg(feature = "serde")]
 mod scale;
+#[cfg(feature = "serde")]
+mod scaled_tolerances;
 mod singular;
 #[cfg(feature = "serde")]
 mod spares;
@@ -37,6 +39,8 @@ mod springs;
 mod strokes;
 #[cfg(feature = "serde")]
 mod table;
+#[cfg(feature = "serde")]
+mod table_row;
 mod tracking;
 #[cfg(feature = "serde")]
 mod triad;
@@ -46,3 +50,5 @@ mod twins;
 mod two_inputs;
 #[cfg(feature = "serde")]
 mod workspace;
+#[cfg(feature = "serde")]
+mod workspace_boundary;

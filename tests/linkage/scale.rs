@@ -25,7 +25,7 @@ use tmm::Error;
 const SCALES: [f64; 8] = [1e-150, 1e-100, 1e-30, 1e-6, 1e3, 1e30, 1e100, 1e150];
 
 /// The positions tried along each input.
-const POSITIONS: usize = 36;
+pub(super) const POSITIONS: usize = 36;
 
 /// Positions agree with the scaled unscaled ones to this fraction of the size.
 const POSITION_RELATIVE: f64 = 1e-12;
@@ -56,14 +56,14 @@ const TRANSLATION_ULPS: f64 = 100.0;
 /// One affine change of a description: every point p ↦ s·R(θ)·p + t, every direction and
 /// force turned by θ, every length times s.
 #[derive(Clone, Copy, Debug)]
-struct Change {
+pub(super) struct Change {
     s: f64,
     theta: f64,
     t: [f64; 2],
 }
 
 impl Change {
-    fn scale(s: f64) -> Self {
+    pub(super) fn scale(s: f64) -> Self {
         Self {
             s,
             theta: 0.0,
@@ -114,7 +114,7 @@ impl Change {
     /// stiffness N/m and damping N·s/m unchanged; pressure ×1/s on an area ×s²; a slider's
     /// input speed ×s. Then every point turned by θ and moved by t, every direction, force
     /// and gravity turned.
-    fn apply(&self, l: &Linkage) -> Linkage {
+    pub(super) fn apply(&self, l: &Linkage) -> Linkage {
         let s = self.s;
         let mut l = l.clone();
         let joint_names: Vec<String> = l.joints.iter().map(|j| j.name.clone()).collect();
@@ -202,7 +202,7 @@ impl Change {
 }
 
 /// Every description file under `linkages/`, by name.
-fn files() -> Vec<(String, Linkage)> {
+pub(super) fn files() -> Vec<(String, Linkage)> {
     let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("linkages");
     let mut names: Vec<_> = std::fs::read_dir(&dir)
         .unwrap()
@@ -235,7 +235,7 @@ fn is_slider(plan: &Plan, k: usize) -> bool {
 /// The inputs at position `i` of `POSITIONS` of the unscaled `plan`: each crank at its
 /// reference angle plus i/36 of a turn (the second input of a two-input linkage a quarter turn
 /// behind), each slider ±half the size about its reference, at unit speeds.
-fn unscaled_inputs(plan: &Plan, i: usize) -> Vec<Motion> {
+pub(super) fn unscaled_inputs(plan: &Plan, i: usize) -> Vec<Motion> {
     #[allow(clippy::cast_precision_loss)]
     let u = i as f64 / POSITIONS as f64;
     plan.reference_inputs()
@@ -255,7 +255,7 @@ fn unscaled_inputs(plan: &Plan, i: usize) -> Vec<Motion> {
 
 /// The same inputs on the changed copy: sliders' coordinates and speeds times s, cranks'
 /// angles turned by θ.
-fn changed_inputs(plan: &Plan, c: Change, unscaled: &[Motion]) -> Inputs {
+pub(super) fn changed_inputs(plan: &Plan, c: Change, unscaled: &[Motion]) -> Inputs {
     let m: Vec<Motion> = unscaled
         .iter()
         .enumerate()

@@ -433,7 +433,7 @@ fn csv_holds_every_column_and_reads_back_bit_for_bit() {
     let positions = cycle(&plan, &uniform_inputs(36, 0.0, 10.0, 0.0));
     let table = Table::of(&positions);
     assert_eq!(table.len(), 36);
-    let row = positions[0].as_ref().unwrap().row();
+    let row = positions[0].as_ref().unwrap().row().unwrap();
     assert_eq!(table.columns.len(), row.len());
     for name in [
         "R(frame,crank)@O1",

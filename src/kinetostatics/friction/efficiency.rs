@@ -15,6 +15,17 @@ use crate::error::{finite, Result};
 /// solve is an error naming the joint): on the solution they return, P_lost ≥ 0, so η ≤ 1,
 /// and η ≤ 0 with P_drive > 0 only where the loads themselves give power (P_useful ≤ 0).
 ///
+/// # A negative η: the load helps the motion
+/// η < 0 (with P_drive > 0) where the loads *give* power instead of taking it — a weight on
+/// its way down, a link's inertia load as it slows down, a resistance whose force happens to
+/// push along the motion — and friction takes more than the drive gives: P_lost = P_drive +
+/// (−P_useful), the drive's power and the loads' both lost in the joints. It is neither an
+/// error nor self-locking (the drive still has to push, P_drive > 0), and its size is no
+/// "efficiency" in the usual sense: −η = (power the loads give)/(power the drive gives). Where
+/// the loads give enough that the drive brakes or idles (P_drive ≤ 0), η has no value. Over a
+/// whole steady cycle the weights' and inertia loads' work is zero, so the cycle efficiency is
+/// negative only when the external loads themselves do net work on the machine.
+///
 /// # Examples
 /// ```
 /// use tmm::kinetostatics::friction::Efficiency;
@@ -40,7 +51,9 @@ pub struct Efficiency {
     pub useful: f64,
     /// η = P_useful / P_drive, or `None` where the drive gives no power (P_drive ≤ 0: the
     /// loads drive the machine, and the motor brakes it or idles) or so little that the
-    /// ratio leaves the range of `f64` (a subnormal P_drive).
+    /// ratio leaves the range of `f64` (a subnormal P_drive). At most 1; negative where the
+    /// loads help the motion and friction takes more than the drive gives (see
+    /// [`Efficiency`]'s "A negative η").
     pub eta: Option<f64>,
 }
 
@@ -74,7 +87,8 @@ impl Efficiency {
 
     /// The cycle efficiency from positions at equal time steps over a whole cycle: the useful
     /// work over the drive's work, Σ P_useful / Σ P_drive (the works are the sums times the
-    /// step). `None` when the drive does no net work.
+    /// step). `None` when the drive does no net work; negative when the loads do net work on
+    /// the machine over the cycle and friction takes it and the drive's (see "A negative η").
     #[must_use]
     pub fn cycle(positions: &[Efficiency]) -> Option<f64> {
         let (useful, drive) = positions
