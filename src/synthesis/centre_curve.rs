@@ -453,11 +453,14 @@ pub fn burmester_points(poses: &[Pose; 5], n: usize) -> Result<Vec<Dyad>> {
         };
         let scale = extent + dyad.length();
         // The same point reached from two roots of the scan: each is fixed to its
-        // tolerance (εL over the smallest singular value of the equations), so two within
-        // the sum of theirs are one.
+        // tolerance (εL over the smallest singular value of the equations), and two
+        // polishes of one root have one Jacobian, so one tolerance: two points within twice
+        // the smaller of theirs are one. (The larger would merge a nearly double root, whose
+        // tolerance is wide, with a distinct point far off.)
         let duplicate = out.iter().any(|(o, t)| {
-            (v(o.centre) - v(dyad.centre)).norm() <= tol + t
-                && (v(o.circle) - v(dyad.circle)).norm() <= tol + t
+            let within = 2.0 * tol.min(*t);
+            (v(o.centre) - v(dyad.centre)).norm() <= within
+                && (v(o.circle) - v(dyad.circle)).norm() <= within
         });
         // A dyad a million times longer than the poses' extent is the curve running out to
         // its points at infinity (a slider's), found there only to rounding: not kept.
