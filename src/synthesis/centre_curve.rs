@@ -4,6 +4,7 @@
 //! dyad's standard form and the compatibility condition.
 
 use super::burmester::{check_poses, v, Dyad, Pose};
+use super::pose_newton::PoseEquations;
 use super::pose_order;
 use crate::error::{Error, Result};
 use std::f64::consts::TAU;
@@ -437,27 +438,38 @@ pub fn burmester_points(poses: &[Pose; 5], n: usize) -> Result<Vec<Dyad>> {
             }
         }
     }
-    let mut out: Vec<Dyad> = Vec::new();
+    // Each root polished on the five poses' difference-quotient equations (well conditioned
+    // with poses close together, see `pose_newton`); a start that does not converge to
+    // rounding was not near a Burmester point.
+    let equations = PoseEquations::new(given);
+    let mut out: Vec<(Dyad, f64)> = Vec::new();
     for (beta2, sign, fold) in candidates {
         let Some(dyad) = compat.dyad_with(beta2, sign, fold) else {
             continue;
         };
-        let dyad = pose_order::polished(pose_order::renamed(dyad, &poses[0], given), given);
+        let Some((dyad, tol)) = equations.polish(pose_order::renamed(dyad, &poses[0], given))
+        else {
+            continue;
+        };
         let scale = extent + dyad.length();
-        // The same point reached from two roots of the scan: with two poses close together
-        // the five poses are nearly four, and a point is fixed only to about ε over their
-        // gap, so points within 10⁻⁶ of the scale are taken as one.
-        let duplicate = out.iter().any(|o| {
-            (v(o.centre) - v(dyad.centre)).norm() < 1e-6 * scale
-                && (v(o.circle) - v(dyad.circle)).norm() < 1e-6 * scale
+        // The same point reached from two roots of the scan: each is fixed to its
+        // tolerance (εL over the smallest singular value of the equations), and two
+        // polishes of one root have one Jacobian, so one tolerance: two points within twice
+        // the smaller of theirs are one. (The larger would merge a nearly double root, whose
+        // tolerance is wide, with a distinct point far off.)
+        let duplicate = out.iter().any(|(o, t)| {
+            let within = 2.0 * tol.min(*t);
+            (v(o.centre) - v(dyad.centre)).norm() <= within
+                && (v(o.circle) - v(dyad.circle)).norm() <= within
         });
         // A dyad a million times longer than the poses' extent is the curve running out to
         // its points at infinity (a slider's), found there only to rounding: not kept.
         let finite_dyad = dyad.length() <= 1e6 * extent;
         if dyad.misfit(given) <= 1e-9 * scale && !duplicate && finite_dyad {
-            out.push(dyad);
+            out.push((dyad, tol));
         }
     }
+    let out: Vec<Dyad> = out.into_iter().map(|(d, _)| d).collect();
     // Two centre-point curves in general position meet in at most four real Burmester
     // points; more means they share a piece (for example poses that all turn about one
     // point): a continuum of dyads, not a finite answer.

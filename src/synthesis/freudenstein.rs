@@ -233,8 +233,7 @@ pub fn crank_rocker_through(
         });
     }
     check_positions(positions)?;
-    let design = |k: [f64; 3]| -> Result<FourBar> {
-        let (a, b, c) = lengths(METHOD, d, k)?;
+    let design_of = |(a, b, c): (f64, f64, f64)| -> Result<FourBar> {
         let sigma = one_mode(METHOD, d, a, c, positions)?;
         let fb = FourBar::local(d, a, b, c, sigma);
         fb.proportions(METHOD)?;
@@ -249,6 +248,7 @@ pub fn crank_rocker_through(
         }
         Ok(fb)
     };
+    let design = |k: [f64; 3]| design_of(lengths(METHOD, d, k)?);
     let fb = if positions.len() == 3 {
         design(solve3(positions)?)?
     } else {
@@ -288,7 +288,11 @@ pub fn crank_rocker_through(
             method: METHOD,
             problem: "no crank-rocker (one assembly mode, crank the shortest) passes through these two positions".to_owned(),
         })?;
-        design(k_of(t))?
+        // The chosen a/d's lengths from the geometry (no cancellation), else as scanned.
+        match two_pair_lengths(d, t * d, p, q) {
+            Some(abc) => design_of(abc).or_else(|_| design(k_of(t)))?,
+            None => design(k_of(t))?,
+        }
     };
     let report = fb.report("crank-rocker through given positions", None)?;
     require_transmission(report.min_transmission_angle, required)?;
@@ -300,6 +304,27 @@ pub fn crank_rocker_through(
     )?;
     check::accepted(&linkage)?;
     Ok(Synthesis { linkage, report })
+}
+
+/// The rocker c and the coupler b of the four-bar with the frame d and the crank a through
+/// the pairs `p` and `q`, from the geometry instead of Freudenstein's coefficients: at a ratio
+/// a : d of 1 : 1000, K1 = d/a and K3 ≈ −K1·cos ψ cancel, and b² = a² + c² + d² − 2ac·K3
+/// cancels again, so the pairs were met only to about 3e-10 rad.
+///
+/// Derivation: A_i = a(cos φ_i, sin φ_i), O3 = (d, 0), w_i = O3 − A_i, u_i = (cos ψ_i,
+/// sin ψ_i), B_i = O3 + c·u_i; the coupler keeps its length, |B_1 − A_1|² = |B_2 − A_2|², and
+/// |B_i − A_i|² = |w_i|² + 2c·u_i·w_i + c², so c = (|w_2|² − |w_1|²)/(2(u_1·w_1 − u_2·w_2)),
+/// with |w_2|² − |w_1|² = 2ad(cos φ1 − cos φ2) (|w_i|² = d² − 2ad cos φ_i + a²); then
+/// b = |B_1 − A_1|. `None` unless both are positive and finite.
+fn two_pair_lengths(d: f64, a: f64, p: (f64, f64), q: (f64, f64)) -> Option<(f64, f64, f64)> {
+    let o3 = Vector2::new(d, 0.0);
+    let at = |phi: f64| a * Vector2::new(phi.cos(), phi.sin());
+    let unit = |psi: f64| Vector2::new(psi.cos(), psi.sin());
+    let (w1, w2) = (o3 - at(p.0), o3 - at(q.0));
+    let (u1, u2) = (unit(p.1), unit(q.1));
+    let c = a * d * (p.0.cos() - q.0.cos()) / (u1.dot(&w1) - u2.dot(&w2));
+    let b = (w1 + c * u1).norm();
+    (c > 0.0 && c.is_finite() && b > 0.0 && b.is_finite()).then_some((a, b, c))
 }
 
 /// The samples of a/d in the two-position crank-rocker's scan.

@@ -77,6 +77,7 @@ mod check;
 mod four_bar;
 mod freudenstein;
 mod path;
+mod pose_newton;
 mod pose_order;
 mod quick_return;
 mod search;

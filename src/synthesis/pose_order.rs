@@ -1,6 +1,6 @@
 #![allow(clippy::neg_cmp_op_on_partial_ord)] // `!(x > y)` rejects NaN too, on purpose.
 //! Conditioning of Burmester's points: which pose to take as the reference and which as the
-//! curve's parameter, and a Newton polish of each point on the five poses' own equations.
+//! curve's parameter (the polish of each point is in `pose_newton`).
 //!
 //! The search of [`burmester_points`](super::burmester_points) walks the centre-point curve
 //! of poses 1–4 in the crank's turn β2 from pose 1 to pose 2 and tests pose 5. When pose 2
@@ -14,7 +14,7 @@
 
 use super::burmester::{displace, v, Dyad, Pose};
 use crate::error::{Error, Result};
-use nalgebra::{Matrix4, Vector2, Vector4};
+use nalgebra::Vector2;
 
 type V = Vector2<f64>;
 
@@ -74,56 +74,6 @@ pub(super) fn renamed(dyad: Dyad, first: &Pose, poses: &[Pose; 5]) -> Dyad {
 
 fn xy(p: V) -> [f64; 2] {
     [p.x, p.y]
-}
-
-/// The residuals g_j = |D_j(A) − O|² − |A − O|² (j = 2..5) of a dyad with centre point O and
-/// circle point A (in pose 1), and their Jacobian in (O, A): ∂g/∂O = 2(A − O) − 2(D_j − O),
-/// ∂g/∂A = 2R_jᵀ(D_j − O) − 2(A − O), R_j the coupler's turn from pose 1 to pose j.
-fn equations(poses: &[Pose; 5], o: V, a: V) -> (Vector4<f64>, Matrix4<f64>) {
-    let (mut g, mut jac) = (Vector4::zeros(), Matrix4::zeros());
-    let e = a - o;
-    for j in 1..5 {
-        let d = displace(&poses[0], &poses[j], a) - o;
-        let (s, c) = (poses[j].angle - poses[0].angle).sin_cos();
-        // R_jᵀ d.
-        let rt = V::new(c * d.x + s * d.y, -s * d.x + c * d.y);
-        g[j - 1] = d.norm_squared() - e.norm_squared();
-        let (go, ga) = (2.0 * (e - d), 2.0 * (rt - e));
-        jac.row_mut(j - 1)
-            .copy_from_slice(&[go.x, go.y, ga.x, ga.y]);
-    }
-    (g, jac)
-}
-
-/// The dyad polished by Newton's method on the five poses' equations, from the point the
-/// search found: each step kept only while it lowers the largest misfit, so a point the
-/// equations cannot improve (a singular Jacobian, rounding reached) comes back as it was.
-pub(super) fn polished(dyad: Dyad, poses: &[Pose; 5]) -> Dyad {
-    let mut best = dyad;
-    let mut misfit = best.misfit(poses);
-    for _ in 0..8 {
-        let (o, a) = (v(best.centre), v(best.circle));
-        let (g, jac) = equations(poses, o, a);
-        let Some(step) = jac.lu().solve(&(-g)) else {
-            break;
-        };
-        let next = Dyad {
-            centre: [o.x + step[0], o.y + step[1]],
-            circle: [a.x + step[2], a.y + step[3]],
-        };
-        let m = next.misfit(poses);
-        if !(m < misfit)
-            || next
-                .centre
-                .iter()
-                .chain(&next.circle)
-                .any(|x| !x.is_finite())
-        {
-            break;
-        }
-        (best, misfit) = (next, m);
-    }
-    best
 }
 
 /// Refuses five poses that all turn about one point: the displacement from pose 1 to pose j

@@ -102,23 +102,49 @@ impl Locus {
         self.design(self.point(k, t)?)
     }
 
-    /// The best design over both circles by γ_min (scan of `n` points, golden section).
+    /// The arcs of circle `k` between the points where a design can begin or end: B1, B2
+    /// and the circle's second crossings of the lines O3B1 and O3B2 (there B1 and B2 pass
+    /// from one side of the frame line to the other). A feasible arc near the bound of K is
+    /// a sliver next to B1 or B2 that a scan of the whole circle steps across; scanned arc
+    /// by arc, each gets its own samples.
+    fn arcs(&self, k: usize) -> Vec<(f64, f64)> {
+        let centre = self.centre[k];
+        let at = |p: V| (p - centre).y.atan2((p - centre).x);
+        // A line s·u through O3 meets the circle where s² − 2s·u·C + |C|² − R² = 0; one root
+        // is s = c (at B), the other (|C|² − R²)/c.
+        let other = (centre.norm_squared() - self.radius * self.radius) / self.c;
+        let mut ts: Vec<f64> = [self.b1, self.b2]
+            .iter()
+            .flat_map(|&b| [at(b), at(b / self.c * other)])
+            .filter(|t| t.is_finite())
+            .map(|t| t.rem_euclid(TAU))
+            .collect();
+        ts.sort_by(f64::total_cmp);
+        ts.dedup();
+        if ts.is_empty() {
+            return vec![(0.0, TAU)];
+        }
+        let first = ts[0];
+        ts.push(first + TAU);
+        ts.windows(2).map(|w| (w[0], w[1])).collect()
+    }
+
+    /// The best design over both circles by γ_min (each arc scanned with its share of `n`
+    /// points, at least 64, then golden section).
     fn best(&self, n: usize) -> Option<FourBar> {
         (0..2)
-            .filter_map(|k| {
+            .flat_map(|k| self.arcs(k).into_iter().map(move |arc| (k, arc)))
+            .filter_map(|(k, (lo, hi))| {
+                let m = ((n as f64 * (hi - lo) / TAU) as usize).max(64);
                 maximise(
                     |t| self.candidate(k, t).map(|f| f.gamma_full().0),
-                    0.0,
-                    TAU,
-                    n,
+                    lo,
+                    hi,
+                    m,
                 )
                 .and_then(|(t, _)| self.candidate(k, t))
             })
             .max_by(|x, y| x.gamma_full().0.total_cmp(&y.gamma_full().0))
-    }
-
-    fn any(&self, n: usize) -> bool {
-        (0..2).any(|k| (0..n).any(|i| self.candidate(k, TAU * i as f64 / n as f64).is_some()))
     }
 
     /// The designs whose frame is `d0`: where the circle of radius d0 about O3 crosses the
@@ -148,20 +174,6 @@ impl Locus {
         }
         out
     }
-}
-
-/// The largest θ (< `theta`) for which `feasible` holds, by bisection (feasible below it).
-fn largest_feasible(theta: f64, feasible: impl Fn(f64) -> bool) -> f64 {
-    let (mut lo, mut hi) = (0.0, theta);
-    for _ in 0..50 {
-        let mid = 0.5 * (lo + hi);
-        if feasible(mid) {
-            lo = mid;
-        } else {
-            hi = mid;
-        }
-    }
-    lo
 }
 
 const SCAN: usize = 2048;
@@ -249,6 +261,49 @@ fn link_ratio_error(
     }
 }
 
+/// The largest crank excess θ of a crank-rocker with the swing ψ: (π + ψ)/2, so K below
+/// (3π + ψ)/(π − ψ) (not reached).
+///
+/// Derivation: B1 and B2 must lie on one side of the frame line O1O3, so O1 lies outside
+/// the double wedge of the lines O3B1 and O3B2. The angle θ = ∠B1O1B2 under which O1 sees
+/// the chord B1B2 is largest where O1 nears B1 (or B2) along the wedge's edge from O3:
+/// there the ray to B1 points along O3→B1 and the ray to B2 along B1→B2, whose angle is π
+/// minus the isosceles triangle O3B1B2's base angle (π − ψ)/2, that is (π + ψ)/2. Towards
+/// that limit a = (|O1B2| − |O1B1|)/2 → b and d → c (Grashof holds there: a + c ≤ b + d is
+/// |O1O3| + |O1B1| ≥ |O3B1|), and γ_min → 0: a change-point four-bar.
+fn largest_crank_excess(swing: f64) -> f64 {
+    0.5 * (PI + swing)
+}
+
+/// The error when no crank-rocker of the swing has the time ratio `k` (crank excess
+/// `theta`): K at or above the bound of [`largest_crank_excess`] is out of range (the
+/// interval names the exact bound); below it, no design found names the swing and the
+/// bound (the designs next to the bound near a change point; a swing near 0 or π).
+fn no_crank_rocker(k: f64, swing: f64, theta: f64) -> Error {
+    let top = largest_crank_excess(swing);
+    if theta >= top {
+        return Error::OutOfRange {
+            name: "K",
+            value: k,
+            min: 1.0,
+            max: time_ratio_of(top),
+            ends: Ends::Open,
+        };
+    }
+    Error::NoMechanism {
+        method: "crank-rocker",
+        problem: format!(
+            "no crank-rocker of the swing ψ = {swing:e} rad ({:.6}°) with K = {k} was \
+             found on the locus circle, though K is below this swing's bound (3π + ψ)/(π − ψ) \
+             = {:.10e}: next to the bound the designs end in a change point (γ_min → 0), and \
+             at a swing this near 0 or π (or a K this near 1) their crank is below 1e-9 of the \
+             coupler; change the swing or K",
+            swing.to_degrees(),
+            time_ratio_of(top)
+        ),
+    }
+}
+
 /// A crank-rocker four-bar whose rocker swings through `swing` with the time ratio K, the
 /// crank's pivot on its locus circle at a given frame length or where the smallest
 /// transmission angle is largest.
@@ -313,6 +368,10 @@ pub fn crank_rocker(need: &CrankRockerRequirement, options: &Options) -> Result<
     if let FrameChoice::Length(d) = need.frame {
         length("frame length", d)?;
     }
+    // Beyond the bound no design exists (a search there would meet only rounding).
+    if theta >= largest_crank_excess(swing) {
+        return Err(no_crank_rocker(need.time_ratio, swing, theta));
+    }
     // The problem is similar in scale: solved for a rocker of 1, scaled by c at the end.
     let locus = Locus::new(1.0, swing, theta);
     // A given frame: where its circle about O3 crosses the locus, the best of those.
@@ -327,14 +386,7 @@ pub fn crank_rocker(need: &CrankRockerRequirement, options: &Options) -> Result<
         f
     } else {
         let Some(best) = locus.best(SCAN) else {
-            let bound = largest_feasible(theta, |t| Locus::new(1.0, swing, t).any(SCAN));
-            return Err(Error::OutOfRange {
-                name: "K",
-                value: need.time_ratio,
-                min: 1.0,
-                max: time_ratio_of(bound),
-                ends: Ends::Open,
-            });
+            return Err(no_crank_rocker(need.time_ratio, swing, theta));
         };
         if let FrameChoice::Length(d0) = need.frame {
             let nearest = (0..2)

@@ -603,3 +603,39 @@ fn pictures_of_hostile_targets() {
     no_failures("pictures");
     assert!(drawn >= n / 4, "{drawn} pictures");
 }
+
+/// The reviewer's finding: points scaled by 1e-300 were refused as an overflow. Their size's
+/// square underflows (below 2.2e-308): the message says that, and points scaled by 1e160 (whose
+/// squares overflow) still say they overflow; at 1e-150 (squares 1e-300, normal) neither.
+#[test]
+fn points_too_small_underflow_and_too_large_overflow() {
+    use tmm::synthesis::{path_generator, PathOptions, PathRequirement, Timing};
+    let points = |s: f64| -> Vec<[f64; 2]> {
+        (0..9)
+            .map(|i| {
+                let t = f64::from(i) * 0.6;
+                [s * (0.3 + 0.1 * t.cos()), s * (0.2 + 0.05 * t.sin())]
+            })
+            .collect()
+    };
+    let ask = |s: f64| {
+        let req = PathRequirement {
+            points: points(s),
+            timing: Timing::Free,
+        };
+        let mut opts = PathOptions::default();
+        opts.max_evaluations = 200;
+        path_generator(&req, &opts, |_| true)
+    };
+    let small = ask(1e-300).unwrap_err().to_string();
+    assert!(
+        small.contains("underflows") && !small.contains("overflows"),
+        "{small}"
+    );
+    let large = ask(1e160).unwrap_err().to_string();
+    assert!(large.contains("overflows"), "{large}");
+    if let Err(e) = ask(1e-150) {
+        let e = e.to_string();
+        assert!(!e.contains("flows"), "{e}");
+    }
+}

@@ -130,3 +130,47 @@ fn the_best_offset_near_k_one_is_the_best() {
     assert!((strokes.stroke - h).abs() < 1e-10, "{}", strokes.stroke);
     assert!((strokes.time_ratio - k).abs() < 1e-9);
 }
+
+/// The reviewer's finding: two-pair `crank_rocker_through` designs at a 1 : 1000 ratio met
+/// their pairs only to 2.9e-10 rad (Freudenstein's K1 = d/a and K3 cancel). Pairs read off
+/// the reviewer's four-bar (crank 1.0000867 mm, coupler 1.0000867 m, rocker 1.12 mm, frame
+/// 1 m) and off others near the ratio's edge: whatever design comes back, the engine puts
+/// its rocker at the pairs' angles to 1e-10 rad.
+#[test]
+#[ignore = "not yet (session 11): with the rocker and coupler taken from the geometry the pairs are still missed by 3.0e-10 rad (the bar is 1e-10); the cause (the engine's solve at 1:1000, or the crank's own a/d) is not diagnosed"]
+fn two_pair_designs_at_the_ratio_edge_meet_their_pairs() {
+    use tmm::kinematics::Motion;
+    use tmm::synthesis::crank_rocker_through;
+    let loose = Options::default().with_min_transmission_angle(0.0);
+    let (mut worst, mut designed) = (0.0f64, 0);
+    for (a, b, c) in [
+        (1.0000867e-3, 1.0000867, 1.12e-3),
+        (1.2e-3, 1.0002, 1.5e-3),
+        (2e-3, 0.9998, 2.5e-3),
+    ] {
+        for sigma in [1.0, -1.0] {
+            for (p1, p2) in [(0.3, 2.9), (1.0, 4.0), (2.0, 5.5), (0.5, 3.6)] {
+                let psi = |phi: f64| {
+                    let (_, pb) = super::hinges(1.0, a, b, c, sigma, phi).unwrap();
+                    (pb[1]).atan2(pb[0] - 1.0)
+                };
+                let pairs = [(p1, psi(p1)), (p2, psi(p2))];
+                let Ok(s) = crank_rocker_through(1.0, &pairs, &loose) else {
+                    continue;
+                };
+                let plan = Plan::new(&s.linkage).unwrap();
+                for (phi, want) in pairs {
+                    let got = plan
+                        .output(&Output::Angle("rocker".into()), Motion::fixed(phi))
+                        .unwrap()
+                        .value;
+                    worst = worst.max((got - want).sin().abs());
+                }
+                designed += 1;
+            }
+        }
+    }
+    assert!(designed > 0);
+    assert!(worst <= 1e-10, "pairs missed by {worst:e} rad");
+    eprintln!("two-pair designs near 1:1000: {designed} designed, pairs met to {worst:.1e} rad");
+}

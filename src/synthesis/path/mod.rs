@@ -112,7 +112,8 @@ enum Kind {
 /// for fewer points than the unknowns need (9 free or on a closed curve, 5 with prescribed
 /// timing) or more than 500, or naming a bad option (a budget of no evaluations or no time
 /// among them); [`Error::Overflow`] naming `points` when their coordinates or the path's
-/// size cannot be squared in `f64`; [`Error::NoMechanism`] for coinciding points, or when no
+/// size cannot be squared in `f64`; [`Error::NoMechanism`] for a path so small that its
+/// size's square underflows (the message says so), for coinciding points, or when no
 /// candidate met the constraints (γ, link ratio, assembly over the range) within the budget
 /// (the message gives the evaluations and time spent, and the budget).
 pub fn path_generator(

@@ -41,9 +41,19 @@ pub(super) fn check_requirement(
     // The engine squares lengths and coordinates: a path too large (or too small) for that
     // is no path of `f64` four-bars. A size of 0 is coinciding points, named below.
     let far = pts.iter().map(|p| p.norm()).fold(0.0, f64::max);
-    if !(far * far).is_finite() || (size > 0.0 && size * size < f64::MIN_POSITIVE) {
+    if !(far * far).is_finite() {
         return Err(Error::Overflow {
             what: "points (their coordinates or the path's size)",
+        });
+    }
+    if size > 0.0 && size * size < f64::MIN_POSITIVE {
+        return Err(Error::NoMechanism {
+            method: "path generation",
+            problem: format!(
+                "the path's size {size:e} m underflows: its square is below the smallest \
+                 normal f64 ({:e}); give the points in a smaller unit",
+                f64::MIN_POSITIVE
+            ),
         });
     }
     for i in 0..n {

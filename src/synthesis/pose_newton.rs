@@ -1,0 +1,157 @@
+#![allow(clippy::neg_cmp_op_on_partial_ord)] // `!(x <= y)` rejects NaN too, on purpose.
+//! Burmester's points polished on equations that stay well conditioned when poses nearly
+//! coincide, and the accuracy that is then achievable (which decides when two points are one).
+//!
+//! Conditioning. A dyad (centre point O, circle point A in pose 1) fits pose j when
+//! |D_j(A) − O|² = |A − O|². Written against pose 1, g_j = |D_j − O|² − |D_1 − O|² (j = 2..5),
+//! two poses i, j a gap γ apart (γ: the distance of their points plus the arc of their turn
+//! at the poses' size) give rows g_i, g_j whose difference is O(γ): the 4×4 Jacobian has a
+//! singular value of order γ, while each g is evaluated with a rounding error of order εL²
+//! (L the size). Newton on them then fixes the point only to εL/γ, and the scan's test of the
+//! fifth pose (a miss of order γ·(distance along the curve)) accepts anything within
+//! 10⁻⁹/γ of a root. The difference itself need not lose anything: with r_i = D_i − P_i,
+//!   D_j − D_i = (P_j − P_i) + (R(θ_j − θ_i) − I)·r_i,
+//! where P_j − P_i and θ_j − θ_i are differences of the given numbers (exact when the poses
+//! are close, Sterbenz) and R(δ) − I = [[−2 sin²(δ/2), −sin δ], [sin δ, −2 sin²(δ/2)]] has no
+//! cancellation. So each pair (i, j) of an edge of a tree spanning the five poses gives the
+//! equation h_ij = (D_j − D_i)·(D_i + D_j − 2O)/s_ij = 0 (the difference of squares
+//! factored), s_ij the pair's gap: a difference quotient, the pose's derivative when the gap
+//! shrinks. Its rows are O(1) and independent at any gap, and evaluated to εL. Taking the
+//! tree of least total gap (the minimum spanning tree) puts every near pair on its own edge.
+//!
+//! Achievable accuracy. The poses are data rounded to ε relative; a pair a gap γ apart has
+//! its difference quotient (P_j − P_i)/γ known only to ε/γ relative, so a Burmester point of
+//! the poses a four-bar generated is that four-bar's pivot only to about εL/γ (k = 1 in ε/γᵏ);
+//! three poses within γ of each other make a second difference, εL/γ². For the given numbers
+//! the difference-quotient equations fix each point to about ε·L/σ (σ the smallest singular
+//! value of their Jacobian, O(1) unless two Burmester points nearly merge), and that is the
+//! tolerance within which two polished points are one.
+
+use super::burmester::{v, Dyad, Pose};
+use nalgebra::{Matrix2, Matrix4, Vector2, Vector4};
+
+type V = Vector2<f64>;
+
+/// The rotation by `angle`.
+fn rotation(angle: f64) -> Matrix2<f64> {
+    let (s, c) = angle.sin_cos();
+    Matrix2::new(c, -s, s, c)
+}
+
+/// R(δ) − I without cancellation: cos δ − 1 = −2 sin²(δ/2).
+fn rotation_minus_identity(delta: f64) -> Matrix2<f64> {
+    let h = (0.5 * delta).sin();
+    let (s, c1) = (delta.sin(), -2.0 * h * h);
+    Matrix2::new(c1, -s, s, c1)
+}
+
+/// The four difference-quotient equations of five poses: the edges of their minimum
+/// spanning tree by gap, each with its scale.
+#[derive(Debug, Clone)]
+pub(super) struct PoseEquations {
+    poses: [Pose; 5],
+    /// (i, j, s_ij): the tree's edges and their gaps, m.
+    edges: [(usize, usize, f64); 4],
+    /// The poses' size (largest distance of a pose's point from the first), m.
+    size: f64,
+}
+
+impl PoseEquations {
+    /// The tree of least total gap over the poses (Prim's algorithm), the gap of two poses
+    /// being the distance of their points plus the arc 2|sin(Δθ/2)| at the poses' size (one
+    /// turned on the spot is apart too).
+    pub(super) fn new(poses: &[Pose; 5]) -> Self {
+        let size = poses
+            .iter()
+            .map(|p| (v(p.at) - v(poses[0].at)).norm())
+            .fold(0.0, f64::max);
+        // Poses turning on one spot: the arc at the unit radius gives the gaps a scale
+        // (only their ratios matter to the tree, and they only scale the rows).
+        let radius = if size > 0.0 { size } else { 1.0 };
+        let gap = |i: usize, j: usize| {
+            let (p, q) = (&poses[i], &poses[j]);
+            (v(p.at) - v(q.at)).norm() + radius * (2.0 * (0.5 * (q.angle - p.angle)).sin()).abs()
+        };
+        let mut inside = [true, false, false, false, false];
+        let mut edges = [(0, 0, 0.0); 4];
+        for edge in &mut edges {
+            let mut best = (0, 0, f64::INFINITY);
+            for i in (0..5).filter(|&i| inside[i]) {
+                for j in (0..5).filter(|&j| !inside[j]) {
+                    let g = gap(i, j);
+                    if g < best.2 {
+                        best = (i, j, g);
+                    }
+                }
+            }
+            inside[best.1] = true;
+            *edge = best;
+        }
+        Self {
+            poses: *poses,
+            edges,
+            size,
+        }
+    }
+
+    /// The residuals h (m) at (O, A), their Jacobian in (O, A) and each row's rounding
+    /// scale (|D_j − D_i|/s·(|D_i| + |D_j| + 2|O|), the magnitudes the product is formed of).
+    fn equations(&self, o: V, a: V) -> (Vector4<f64>, Matrix4<f64>, Vector4<f64>) {
+        let first = &self.poses[0];
+        let (mut h, mut jac, mut round) = (Vector4::zeros(), Matrix4::zeros(), Vector4::zeros());
+        let r1 = a - v(first.at);
+        for (row, &(i, j, s)) in self.edges.iter().enumerate() {
+            let (pi, pj) = (&self.poses[i], &self.poses[j]);
+            let ri_turn = rotation(pi.angle - first.angle);
+            let rj_turn = rotation(pj.angle - first.angle);
+            let ri = ri_turn * r1;
+            let (di, dj) = (v(pi.at) + ri, v(pj.at) + rj_turn * r1);
+            let e = rotation_minus_identity(pj.angle - pi.angle);
+            let d = (v(pj.at) - v(pi.at)) + e * ri;
+            let m = di + dj - 2.0 * o;
+            h[row] = d.dot(&m) / s;
+            // ∂d/∂A = E·R_i, ∂m/∂A = R_i + R_j, ∂m/∂O = −2I.
+            let ga = ((e * ri_turn).transpose() * m + (ri_turn + rj_turn).transpose() * d) / s;
+            let go = -2.0 * d / s;
+            jac.row_mut(row).copy_from_slice(&[go.x, go.y, ga.x, ga.y]);
+            round[row] = d.norm() / s * (di.norm() + dj.norm() + 2.0 * o.norm());
+        }
+        (h, jac, round)
+    }
+
+    /// Newton's method on the difference quotients from `dyad`: `Some` with the polished dyad
+    /// and the tolerance within which it is fixed (m), when every residual comes down to
+    /// rounding (64ε of its row's magnitudes: a backward error of that size); `None` when it
+    /// does not (the start was not near a Burmester point).
+    pub(super) fn polish(&self, dyad: Dyad) -> Option<(Dyad, f64)> {
+        let (mut o, mut a) = (v(dyad.centre), v(dyad.circle));
+        let eps = f64::EPSILON;
+        for _ in 0..40 {
+            let (h, jac, round) = self.equations(o, a);
+            let converged = h
+                .iter()
+                .zip(round.iter())
+                .all(|(r, b)| r.abs() <= 64.0 * eps * b);
+            if converged {
+                let sigma = jac.singular_values().min();
+                let scale = self.size + (a - o).norm();
+                // The rows' rounding, εL each (L the scale of O, A and the poses), moves the
+                // root by up to about εL/σ; 2¹⁰ of that for the few operations per row and
+                // the first-order estimate.
+                let tol = 1024.0 * eps * (scale + o.norm() + a.norm()) / sigma;
+                let polished = Dyad {
+                    centre: [o.x, o.y],
+                    circle: [a.x, a.y],
+                };
+                return tol.is_finite().then_some((polished, tol));
+            }
+            let step = jac.lu().solve(&(-h))?;
+            if !step.iter().all(|x| x.is_finite()) {
+                return None;
+            }
+            o += V::new(step[0], step[1]);
+            a += V::new(step[2], step[3]);
+        }
+        None
+    }
+}
