@@ -2,14 +2,11 @@
 //! given points (with or without prescribed crank angles) or traces a closed curve, by a
 //! seeded global search.
 //!
-//! The slider-crank ([`slider`]) is searched as the four-bar is: with prescribed timing over
-//! all its dimensions (eight, a gene of the four-bar's nine unused, and θ0); without timing
-//! over its shapes (the rod in cranks, the guide's offset in cranks, the coupler point in
-//! rods, the mode), placed on the targets by a similarity ([`shape`]; since session 11: the
-//! search over all eight dimensions missed slider free timing's seeded case 88 by 8.2e-3 of
-//! the path's size in its whole budget). Without timing the polish re-assigns a point met on
-//! the wrong pass of the curve by the sampled positions that meet the targets in their order
-//! ([`assign`]).
+//! The slider-crank ([`slider`]) is searched as the four-bar with prescribed timing is, over
+//! all its dimensions (eight, a gene of the four-bar's nine unused), for every timing: without
+//! timing each candidate's turn is matched to the targets by the sampled positions that meet
+//! them in their order ([`assign`]), and its polish re-assigns a point met on the wrong pass of
+//! the curve.
 //!
 //! With prescribed timing the search is differential evolution (DE/current-to-pbest/1/bin
 //! with dithered F) over the nine dimensions of a four-bar with a coupler point, its assembly
@@ -17,7 +14,7 @@
 //! over the range between them in one batch ([`four_bar_positions`]).
 //!
 //! Without it (free timing, a closed curve) the search runs over the *shapes* of four-bars
-//! (or slider-cranks) only — five ratios (four) and the mode — and places each candidate's coupler curve on the targets
+//! only — five ratios and the mode — and places each candidate's coupler curve on the targets
 //! by the similarity that fits best, in closed form ([`shape`]): four of the nine dimensions
 //! need no search, and the crank angles at the targets come with the placement.
 //!
@@ -134,9 +131,8 @@ pub fn path_generator(
 /// (the slider's prismatic joint on the frame's guide, the output its slide), the coupler
 /// point `P` on the rod. The dimensions searched are O1, the guide's direction and its
 /// offset from O1, the crank, the rod and the coupler point (eight; with prescribed timing
-/// also θ0) and the assembly mode, by differential evolution over all of them with
-/// prescribed timing, and without it over the shapes, each placed on the targets by the
-/// similarity that fits it best (as the four-bar's, [`shape`]); the
+/// also θ0) and the assembly mode, by differential evolution over all of them (no placement
+/// by similarity), each candidate evaluated over a turn or at its prescribed angles; the
 /// transmission angle is the rod's with the guide's normal, sin γ = √(l² − h²)/l for the
 /// crank pin at the distance h from the guide. `max_link_ratio` bounds rod/crank and
 /// crank/rod; `max_size` the crank, the rod, the offset, the coupler point's offsets and the
@@ -240,10 +236,10 @@ fn generate(
         scale,
     };
     let evals = match (kind, &req.timing) {
-        (_, Timing::Free | Timing::ClosedCurve) => {
+        (Kind::FourBar, Timing::Free | Timing::ClosedCurve) => {
             shape::search(&mut pb, opts, &mut found, &mut progress)?
         }
-        (_, Timing::Prescribed(_)) => search_timed(&mut pb, opts, &mut found, &mut progress)?,
+        _ => search_timed(&mut pb, opts, &mut found, &mut progress)?,
     };
     let mut designs = found.designs;
     let want = opts.designs.max(1);

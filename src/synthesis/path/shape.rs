@@ -1,9 +1,7 @@
 //! The global stage without prescribed timing: a search over the *shapes* of four-bars —
 //! frame 1, crank, coupler and rocker (by their logarithms), the coupler point in units of the
-//! coupler, the assembly mode — or of slider-cranks — crank 1, the rod (by its logarithm), the
-//! guide's offset, the coupler point in units of the rod, the mode — each candidate's coupler
-//! curve placed on the targets by the similarity (scale, turn, shift) that fits it best, in
-//! closed form.
+//! coupler, the assembly mode — each candidate's coupler curve placed on the targets by the
+//! similarity (scale, turn, shift) that fits it best, in closed form.
 //!
 //! Why: a similarity z ↦ αz + t (α, t complex) maps a four-bar onto a four-bar whose coupler
 //! curve is the image of the first one's, so four of the nine dimensions need no search. For
@@ -23,17 +21,14 @@
 //! its neighbours'. Levenberg–Marquardt on the exact misses, with the crank angles found here
 //! as its start, then finishes.
 
-use super::slider::Slider;
-use super::{Kind, Problem, INFEASIBLE, V};
+use super::{Problem, INFEASIBLE, V};
 use crate::kinematics::batch::{four_bar_positions, CrankAngles, FourBarDims, Positions};
 use crate::kinematics::Branch;
 use nalgebra::{Matrix4, Point2, Vector4};
 use std::f64::consts::TAU;
 
-/// Shape genes of a four-bar: ln crank, ln coupler, ln rocker (frame 1), the coupler point
-/// (along, across) in units of the coupler, the mode's sign. Of a slider-crank: ln rod, the
-/// guide's offset (crank 1, the crank's pivot at the origin, the guide along +x), an unused
-/// gene (held at 0), the coupler point (along, across) in units of the rod, the mode's sign.
+/// Shape genes: ln crank, ln coupler, ln rocker (frame 1), the coupler point (along, across)
+/// in units of the coupler, the mode's sign.
 pub(super) const SHAPE: usize = 6;
 
 /// Start positions on the grid of a cut, and spans (open paths) tried per sense.
@@ -71,7 +66,6 @@ struct Cut {
 
 /// The shape stage's data and scratch space.
 pub(super) struct Shapes {
-    kind: Kind,
     targets: Vec<V>,
     /// Arc-length fraction of each target along the targets' polyline (closed: loop).
     tau: Vec<f64>,
@@ -162,7 +156,6 @@ impl Shapes {
             *x /= total;
         }
         Self {
-            kind: pb.kind,
             targets: pb.targets.clone(),
             tau,
             closed,
@@ -179,60 +172,13 @@ impl Shapes {
         }
     }
 
-    /// Gene bounds of the mechanism `kind` for the link ratio `ratio`. The slider's offset
-    /// within ±`ratio` cranks: a guide farther than the rod (at most `ratio` cranks) from
-    /// every crank pin is out of reach.
-    pub(super) fn bounds(kind: Kind, ratio: f64) -> (Vec<f64>, Vec<f64>) {
+    /// Gene bounds for the link ratio `ratio`.
+    pub(super) fn bounds(ratio: f64) -> (Vec<f64>, Vec<f64>) {
         let l = ratio.ln();
-        match kind {
-            Kind::FourBar => (
-                vec![-l, -l, -l, -3.0, -3.0, -1.0],
-                vec![l, l, l, 3.0, 3.0, 1.0],
-            ),
-            Kind::SliderCrank => (
-                vec![-l, -ratio, 0.0, -3.0, -3.0, -1.0],
-                vec![l, ratio, 0.0, 3.0, 3.0, 1.0],
-            ),
-        }
-    }
-
-    /// The unplaced slider-crank of the shape `h` as [`Problem`]'s genes: O1 at the origin,
-    /// the guide along +x, the crank 1.
-    fn slider_genes(h: &[f64]) -> [f64; 9] {
-        let l = h[0].exp();
-        [0.0, 0.0, 0.0, h[1], 1.0, l, 0.0, h[3] * l, h[4] * l]
-    }
-
-    /// The link lengths of the shape `h` (unplaced): frame, crank, coupler, rocker of a
-    /// four-bar; crank and rod of a slider-crank.
-    fn links(&self, h: &[f64]) -> Vec<f64> {
-        match self.kind {
-            Kind::FourBar => vec![1.0, h[0].exp(), h[1].exp(), h[2].exp()],
-            Kind::SliderCrank => vec![1.0, h[0].exp()],
-        }
-    }
-
-    /// The unplaced coupler curve of the shape `h` over the turn, into `out`.
-    fn positions(&mut self, h: &[f64]) {
-        match self.kind {
-            Kind::FourBar => {
-                let _ = four_bar_positions(&Self::dims(h), &self.turn, self.out.columns_mut());
-            }
-            Kind::SliderCrank => {
-                Slider::of(&Self::slider_genes(h), h[5]).positions(&self.turn, &mut self.out);
-            }
-        }
-    }
-
-    /// The unplaced coupler point's offsets (along, across) from its link's first joint.
-    fn coupler(&self, h: &[f64]) -> V {
-        match self.kind {
-            Kind::FourBar => Self::dims(h).coupler,
-            Kind::SliderCrank => {
-                let g = Self::slider_genes(h);
-                V::new(g[7], g[8])
-            }
-        }
+        (
+            vec![-l, -l, -l, -3.0, -3.0, -1.0],
+            vec![l, l, l, 3.0, 3.0, 1.0],
+        )
     }
 
     fn dims(h: &[f64]) -> FourBarDims {
@@ -267,41 +213,19 @@ impl Shapes {
         pb.budget.add(1);
         let c = self.cut(pb, h).ok()?;
         let (k, turn) = (c.alpha.norm(), c.alpha.y.atan2(c.alpha.x));
-        // The similarity z ↦ αz + t moves the crank's pivot (the origin) to t and turns the
-        // frame (or the guide) by arg α; every length, the slider's signed offset among them
-        // (a turn keeps the guide's left normal its left normal), scales by |α|.
-        let genes = match self.kind {
-            Kind::FourBar => {
-                let d = Self::dims(h);
-                vec![
-                    c.t.x,
-                    c.t.y,
-                    turn.rem_euclid(TAU),
-                    k,
-                    d.l_oa * k,
-                    d.l_ab * k,
-                    d.l_cb * k,
-                    d.coupler.x * k,
-                    d.coupler.y * k,
-                    h[5].signum(),
-                ]
-            }
-            Kind::SliderCrank => {
-                let g = Self::slider_genes(h);
-                vec![
-                    c.t.x,
-                    c.t.y,
-                    turn.rem_euclid(TAU),
-                    g[3] * k,
-                    k,
-                    g[5] * k,
-                    0.0,
-                    g[7] * k,
-                    g[8] * k,
-                    h[5].signum(),
-                ]
-            }
-        };
+        let d = Self::dims(h);
+        let genes = vec![
+            c.t.x,
+            c.t.y,
+            turn.rem_euclid(TAU),
+            k,
+            d.l_oa * k,
+            d.l_ab * k,
+            d.l_cb * k,
+            d.coupler.x * k,
+            d.coupler.y * k,
+            h[5].signum(),
+        ];
         let m = self.turn.len() as f64;
         let first = self.turn.phi()[self.run[0]];
         let phis = self
@@ -313,12 +237,13 @@ impl Shapes {
     }
 
     fn cut(&mut self, pb: &Problem, h: &[f64]) -> Result<Cut, f64> {
-        let l = self.links(h);
+        let l = [1.0, h[0].exp(), h[1].exp(), h[2].exp()];
         let (mn, mx) = super::min_max(&l);
         if mx / mn > pb.ratio || (mx / mn).is_nan() {
             return Err(INFEASIBLE + (mx / mn / pb.ratio).min(1e3));
         }
-        self.positions(h);
+        let d = Self::dims(h);
+        let _ = four_bar_positions(&d, &self.turn, self.out.columns_mut());
         self.runs(pb)?;
         let total = *self.arc.last().unwrap_or(&0.0);
         if total.is_nan() || total <= 0.0 {
@@ -374,25 +299,20 @@ impl Shapes {
         }
         self.fill(best.start, best.span, best.forward);
         self.snap(&mut best);
-        // The placed design within the size bound: its links, its pivots (the frame's
-        // second, (1, 0) unplaced, is the four-bar's; the slider's guide offset instead),
-        // its coupler point's offsets.
+        // The placed design within the size bound.
         let k = best.alpha.norm();
-        let coupler = self.coupler(h);
-        let other = match self.kind {
-            Kind::FourBar => (best.alpha + best.t).norm(),
-            Kind::SliderCrank => k * h[1].abs(),
-        };
-        let far = l
-            .iter()
-            .map(|x| k * x)
-            .chain([
-                best.t.norm(),
-                other,
-                k * coupler.x.abs(),
-                k * coupler.y.abs(),
-            ])
-            .fold(0.0, f64::max);
+        let far = [
+            k * l[0],
+            k * l[1],
+            k * l[2],
+            k * l[3],
+            best.t.norm(),
+            (best.alpha + best.t).norm(),
+            k * d.coupler.x.abs(),
+            k * d.coupler.y.abs(),
+        ]
+        .into_iter()
+        .fold(0.0, f64::max);
         if far.is_nan() || far > pb.size {
             return Err(INFEASIBLE + (far / pb.size).min(1e3));
         }
@@ -651,8 +571,7 @@ fn adopt_with_cognate(
     if let Some((g, phis)) = shapes.place(pb, h) {
         found.adopt(pb, &g, &phis, iterations, tolerance, only_good)?;
     }
-    // A slider-crank's coupler curve has no slider-crank cognate.
-    if found.good(tolerance) > before || !pb.budget.room(5) || pb.kind == Kind::SliderCrank {
+    if found.good(tolerance) > before || !pb.budget.room(5) {
         return Ok(());
     }
     let Some(twins) = cognate(h) else {
@@ -682,7 +601,7 @@ pub(super) fn search(
     progress: &mut dyn FnMut(&super::Progress) -> bool,
 ) -> crate::error::Result<usize> {
     let mut shapes = Shapes::new(pb, opts.positions);
-    let (whole_lo, whole_hi) = Shapes::bounds(pb.kind, pb.ratio);
+    let (whole_lo, whole_hi) = Shapes::bounds(pb.ratio);
     let np = opts.population;
     let want = opts.designs.max(1);
     let mut rng = super::Rng(opts.seed);
