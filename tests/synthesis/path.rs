@@ -489,6 +489,81 @@ fn every_search_keeps_its_evaluation_budget_and_reports_progress() {
     }
 }
 
+/// The points of `req` each moved by up to `by` of the path's size (seeded): no four-bar or
+/// slider-crank passes through them exactly, so a search held to a tolerance of zero runs
+/// its whole budget, restarting whenever a run stagnates.
+pub(super) fn jittered(req: &PathRequirement, by: f64, seed: u64) -> PathRequirement {
+    let (_, size) = centroid_size(&req.points);
+    let mut rng = Rng(seed);
+    PathRequirement {
+        points: req
+            .points
+            .iter()
+            .map(|p| {
+                [
+                    p[0] + by * size * rng.range(-1.0, 1.0),
+                    p[1] + by * size * rng.range(-1.0, 1.0),
+                ]
+            })
+            .collect(),
+        timing: req.timing.clone(),
+    }
+}
+
+/// The best reported through the progress callback of a whole search of `mechanism` on
+/// `req` (tolerance zero, `budget` evaluations, a small population so that its runs
+/// stagnate and restart from fresh populations): it must never rise from one call to the
+/// next, and it ends no worse than the designs' objective allows (finite).
+pub(super) fn best_never_rises(mechanism: Mechanism, req: &PathRequirement, budget: usize) {
+    let mut opts = PathOptions::default()
+        .with_population(12)
+        .with_max_evaluations(budget)
+        .with_designs(1);
+    opts.tolerance = 0.0;
+    let mut bests: Vec<f64> = Vec::new();
+    let record = |p: &tmm::synthesis::Progress| {
+        bests.push(p.best);
+        true
+    };
+    let _ = match mechanism {
+        Mechanism::FourBar => path_generator(req, &opts, record),
+        Mechanism::SliderCrank => slider_crank_path_generator(req, &opts, record),
+        Mechanism::SixBar => six_bar_path_generator(req, &opts, record),
+    };
+    assert!(!bests.is_empty(), "{mechanism:?}: no progress reported");
+    for (k, w) in bests.windows(2).enumerate() {
+        assert!(
+            w[1] <= w[0],
+            "{mechanism:?} {:?}: the best rose at call {}: {:e} after {:e}",
+            req.timing,
+            k + 1,
+            w[1],
+            w[0]
+        );
+    }
+}
+
+#[test]
+fn the_best_reported_never_rises_across_restarts() {
+    let free = {
+        let phis: Vec<f64> = (0..10).map(|k| 0.5 * k as f64).collect();
+        PathRequirement {
+            points: target(&mut Rng(8), &phis),
+            timing: Timing::Free,
+        }
+    };
+    let timed = PathRequirement {
+        points: target(&mut Rng(9), &[0.0, 0.8, 1.6, 2.4, 3.2, 4.0]),
+        timing: Timing::Prescribed(vec![0.0, 0.8, 1.6, 2.4, 3.2, 4.0]),
+    };
+    for req in [closed_target(), free, timed] {
+        let req = jittered(&req, 0.05, 3);
+        for mechanism in [Mechanism::FourBar, Mechanism::SliderCrank] {
+            best_never_rises(mechanism, &req, 20_000);
+        }
+    }
+}
+
 /// Runs the synthesis of `mechanism`.
 fn synthesise(
     mechanism: Mechanism,

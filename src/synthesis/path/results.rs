@@ -13,7 +13,8 @@ pub struct Progress {
     pub evaluations: usize,
     /// The best objective so far, in path sizes: the mean miss at the points with prescribed
     /// timing, the RMS miss of the best-placed coupler curve without (≥ 1000 while no
-    /// candidate is feasible: a penalty then).
+    /// candidate is feasible: a penalty then). The best over every run of the search: it
+    /// never rises from one call to the next, restarts included.
     pub best: f64,
     /// Time since the start.
     pub elapsed: Duration,

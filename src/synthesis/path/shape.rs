@@ -608,6 +608,9 @@ pub(super) fn search(
     let mut generations = 0usize;
     let start = found.start;
     let mut runs = 0usize;
+    // The best over every run: a restart's fresh population starts worse, and the best
+    // reported must never rise.
+    let mut best_ever = f64::INFINITY;
     while pb.budget.room_search(2 * np) {
         let (mut lo, mut hi) = (whole_lo.clone(), whole_hi.clone());
         if runs % PIN_RUNS == 1 {
@@ -652,10 +655,11 @@ pub(super) fn search(
                     return Ok(pb.budget.used());
                 }
             }
+            best_ever = best_ever.min(best);
             let go_on = progress(&super::Progress {
                 generation: generations,
                 evaluations: pb.budget.used(),
-                best,
+                best: best_ever,
                 elapsed: start.elapsed(),
             });
             if !go_on {

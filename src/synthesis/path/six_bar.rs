@@ -542,6 +542,9 @@ fn search(
     };
     let mut generation = 0;
     let mut stopped = false;
+    // The best over every run: a restart's fresh population starts worse, and the best
+    // reported must never rise.
+    let mut best_ever = f64::INFINITY;
     while !stopped && pb.budget.room(2 * np) {
         let mut pop = evolve::population(np, &lo, &hi, &mut rng);
         let mut fit: Vec<f64> = pop.iter().map(|g| pb.objective(g)).collect();
@@ -587,10 +590,11 @@ fn search(
                 }
             }
             let best = fit.iter().copied().fold(f64::INFINITY, f64::min);
+            best_ever = best_ever.min(best);
             if !progress(&Progress {
                 generation,
                 evaluations: pb.budget.used(),
-                best,
+                best: best_ever,
                 elapsed: pb.budget.start.elapsed(),
             }) {
                 stopped = true;

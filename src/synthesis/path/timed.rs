@@ -28,6 +28,9 @@ pub(super) fn search_timed(
     let want = opts.designs.max(1);
     let mut generation = 0;
     let mut stopped = false;
+    // The best over every run: a restart's fresh population starts worse, and the best
+    // reported must never rise.
+    let mut best_ever = f64::INFINITY;
     // Runs of differential evolution from fresh random populations, each until it stagnates,
     // its best candidates polished; until enough designs meet the points to `tolerance` or
     // the budget is spent.
@@ -67,10 +70,11 @@ pub(super) fn search_timed(
                 }
             }
             let best = fit.iter().copied().fold(f64::INFINITY, f64::min);
+            best_ever = best_ever.min(best);
             let go_on = progress(&Progress {
                 generation,
                 evaluations: pb.budget.used(),
-                best,
+                best: best_ever,
                 elapsed: start.elapsed(),
             });
             if !go_on {
