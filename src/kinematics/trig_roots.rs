@@ -109,7 +109,13 @@ fn merge_double(f: &impl Periodic, roots: &mut Roots) {
         // between them must be within its rounding of zero, as for a cluster.
         let (ze, fe) = extremum(f, zm, 0.5 * delta);
         if fe.abs() <= f.tol() {
+            // The double root keeps the stretch its two roots spanned (from the first root
+            // of j to the last of k): where F stays within its rounding of zero across a
+            // stretch (its terms cancelling, the circles nearly coaxal) it may hide more
+            // modes there than the two it shows, which the closures tell apart
+            // ([`Roots::plateau`]).
             roots.z[j] = ze;
+            roots.end[j] = roots.end[k];
             roots.multiple[j] = false;
             roots.double[j] = true;
             gone[k] = true;
@@ -119,6 +125,7 @@ fn merge_double(f: &impl Periodic, roots: &mut Roots) {
     for (j, &gone) in gone.iter().enumerate().take(n) {
         if !gone {
             roots.z[kept] = roots.z[j];
+            roots.start[kept] = roots.start[j];
             roots.end[kept] = roots.end[j];
             roots.multiple[kept] = roots.multiple[j];
             roots.double[kept] = roots.double[j];
@@ -249,7 +256,11 @@ pub(super) struct Roots {
     /// its pose is taken there unpolished if it closes (Newton's method on the closures
     /// would walk to one of the two roots that rounding set apart).
     pub double: [bool; 12],
-    /// The last root pushed to each cluster (the root itself when it is alone).
+    /// The first root pushed to each cluster (the root itself when it is alone; for a
+    /// double root, the first of the two merged).
+    pub start: [C; 12],
+    /// The last root pushed to each cluster (the root itself when it is alone; for a double
+    /// root, the last of the two merged).
     pub end: [C; 12],
 }
 
@@ -270,18 +281,20 @@ impl Roots {
             self.multiple[0] = true;
         } else if self.n < self.z.len() {
             self.z[self.n] = z;
+            self.start[self.n] = z;
             self.end[self.n] = z;
             self.n += 1;
         }
     }
 
-    /// The angles at which a cluster's poses are sought besides its first root: none for a
-    /// cluster narrower than 2·[`CLUSTER`]; across a longer one (a plateau of F within its
-    /// rounding of zero, where the three legs' circles are nearly coaxal and F cannot tell
-    /// its roots apart, though the closures can), every 1e-5 rad up to its end (at most
-    /// 256 samples).
+    /// The angles at which a cluster's poses are sought besides its root: none for a
+    /// cluster (or a double root's merged pair) narrower than 2·[`CLUSTER`]; across a longer
+    /// one (a plateau of F within its rounding of zero, where the three legs' circles are
+    /// nearly coaxal and F cannot tell its roots apart, though the closures can), every
+    /// 1e-5 rad from its first root to its last (at most 257 samples; the first is the root
+    /// itself for a cluster, and skipped).
     pub fn plateau(&self, r: usize) -> impl Iterator<Item = C> {
-        let (z0, z1) = (self.z[r], self.end[r]);
+        let (z0, z1) = (self.start[r], self.end[r]);
         let turn = z0.conj() * z1;
         let span = turn.im.atan2(turn.re).abs();
         let steps = if span > 2.0 * CLUSTER {
@@ -289,8 +302,9 @@ impl Roots {
         } else {
             0
         };
+        let first = usize::from(steps == 0 || self.start[r] == self.z[r]);
         let sign = if turn.im < 0.0 { -1.0 } else { 1.0 };
-        (1..=steps).map(move |k| {
+        (first..=steps).map(move |k| {
             let phi = sign * span * k as f64 / steps as f64;
             z0 * C::new(phi.cos(), phi.sin())
         })
