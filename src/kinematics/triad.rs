@@ -345,6 +345,11 @@ pub fn triad_modes(a: [Point2<f64>; 3], dims: &TriadDims) -> Result<TriadModes> 
         // W vanish together): the closures sort its modes out from samples across it.
         for z in roots.plateau(r) {
             for pose in e.poses(z, true, false, dims).into_iter().flatten() {
+                if roots.double[r]
+                    && !super::trig_roots::regular_mode(triad_rates_at(a, dims, &pose))
+                {
+                    continue;
+                }
                 modes.push_distinct(pose, tol);
             }
         }
@@ -737,6 +742,12 @@ pub fn triad_rates(a: [PointMotion; 3], dims: &TriadDims, pose: &TriadPose) -> R
             what: "triad: rates",
         })
     }
+}
+
+/// [`triad_rates`] of `pose` at rest (only whether it fails matters to the caller).
+#[cold]
+fn triad_rates_at(a: [Point2<f64>; 3], dims: &TriadDims, pose: &TriadPose) -> Result<TriadState> {
+    triad_rates(a.map(PointMotion::fixed), dims, pose)
 }
 
 /// The branch-point test of a posed revolute triad, one rule for its rates

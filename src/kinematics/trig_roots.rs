@@ -311,6 +311,16 @@ impl Roots {
     }
 }
 
+/// Whether a pose sampled across a double root's stretch ([`Roots::plateau`]) is a mode of
+/// its own, from its rates at rest: a pose within rounding of a branch point (its rates
+/// refused as [`Error::Singular`], the data's distance from the fold at most
+/// [`SINGULAR_BRANCH`](super::SINGULAR_BRANCH)) is one of the two modes that rounding split
+/// apart at the double root, which stands for both; a regular pose there (F flat across the
+/// stretch, its terms cancelling) is a mode F could not show.
+pub(super) fn regular_mode<T>(rates: Result<T>) -> bool {
+    !matches!(rates, Err(Error::Singular { .. }))
+}
+
 /// z turned by the angle 2·atan(t): z·(1 + i·t)²/(1 + t²), without a trigonometric function.
 #[inline]
 pub(super) fn along(z: C, t: f64) -> C {
