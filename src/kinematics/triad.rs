@@ -345,12 +345,15 @@ pub fn triad_modes(a: [Point2<f64>; 3], dims: &TriadDims) -> Result<TriadModes> 
         // W vanish together): the closures sort its modes out from samples across it.
         for z in roots.plateau(r) {
             for pose in e.poses(z, true, false, dims).into_iter().flatten() {
-                if roots.double[r]
-                    && !super::trig_roots::regular_mode(triad_rates_at(a, dims, &pose))
-                {
-                    continue;
-                }
                 modes.push_distinct(pose, tol);
+            }
+        }
+        // Across a double root's stretch: only regular poses are modes of their own.
+        for z in roots.stretch(r) {
+            for pose in e.poses(z, true, false, dims).into_iter().flatten() {
+                if super::trig_roots::regular_mode(triad_rates_at(a, dims, &pose)) {
+                    modes.push_distinct(pose, tol);
+                }
             }
         }
     }

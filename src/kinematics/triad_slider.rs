@@ -231,13 +231,6 @@ pub fn slider_triad_modes(
         // A plateau of F within its rounding of zero (as the triad's): samples across it.
         for z in roots.plateau(r) {
             for pose in e.poses(z, true, false).into_iter().flatten() {
-                if roots.double[r] {
-                    let still = Guide::fixed(first.point.p, first.angle.value);
-                    let rates = slider_triad_rates(&still, a.map(PointMotion::fixed), dims, &pose);
-                    if !super::trig_roots::regular_mode(rates) {
-                        continue;
-                    }
-                }
                 modes.push_distinct(pose, tol);
             }
         }

@@ -115,7 +115,7 @@ fn merge_double(f: &impl Periodic, roots: &mut Roots) {
             // modes there than the two it shows, which the closures tell apart
             // ([`Roots::plateau`]).
             roots.z[j] = ze;
-            roots.end[j] = roots.end[k];
+            roots.stretch_end[j] = roots.end[k];
             roots.multiple[j] = false;
             roots.double[j] = true;
             gone[k] = true;
@@ -126,6 +126,7 @@ fn merge_double(f: &impl Periodic, roots: &mut Roots) {
         if !gone {
             roots.z[kept] = roots.z[j];
             roots.start[kept] = roots.start[j];
+            roots.stretch_end[kept] = roots.stretch_end[j];
             roots.end[kept] = roots.end[j];
             roots.multiple[kept] = roots.multiple[j];
             roots.double[kept] = roots.double[j];
@@ -259,9 +260,10 @@ pub(super) struct Roots {
     /// The first root pushed to each cluster (the root itself when it is alone; for a
     /// double root, the first of the two merged).
     pub start: [C; 12],
-    /// The last root pushed to each cluster (the root itself when it is alone; for a double
-    /// root, the last of the two merged).
+    /// The last root pushed to each cluster (the root itself when it is alone).
     pub end: [C; 12],
+    /// The last root of the stretch a double root's two merged roots spanned (else as `end`).
+    pub stretch_end: [C; 12],
 }
 
 /// Roots of F closer than this (rad) are one cluster.
@@ -283,32 +285,47 @@ impl Roots {
             self.z[self.n] = z;
             self.start[self.n] = z;
             self.end[self.n] = z;
+            self.stretch_end[self.n] = z;
             self.n += 1;
         }
     }
 
-    /// The angles at which a cluster's poses are sought besides its root: none for a
-    /// cluster (or a double root's merged pair) narrower than 2·[`CLUSTER`]; across a longer
-    /// one (a plateau of F within its rounding of zero, where the three legs' circles are
-    /// nearly coaxal and F cannot tell its roots apart, though the closures can), every
-    /// 1e-5 rad from its first root to its last (at most 257 samples; the first is the root
-    /// itself for a cluster, and skipped).
+    /// The angles at which a cluster's poses are sought besides its first root: none for a
+    /// cluster narrower than 2·[`CLUSTER`]; across a longer one (a plateau of F within its
+    /// rounding of zero, where the three legs' circles are nearly coaxal and F cannot tell
+    /// its roots apart, though the closures can), every 1e-5 rad up to its end (at most
+    /// 256 samples).
     pub fn plateau(&self, r: usize) -> impl Iterator<Item = C> {
-        let (z0, z1) = (self.start[r], self.end[r]);
-        let turn = z0.conj() * z1;
-        let span = turn.im.atan2(turn.re).abs();
-        let steps = if span > 2.0 * CLUSTER {
-            ((span / 1e-5).ceil() as usize).clamp(1, 256)
-        } else {
-            0
-        };
-        let first = usize::from(steps == 0 || self.start[r] == self.z[r]);
-        let sign = if turn.im < 0.0 { -1.0 } else { 1.0 };
-        (first..=steps).map(move |k| {
-            let phi = sign * span * k as f64 / steps as f64;
-            z0 * C::new(phi.cos(), phi.sin())
-        })
+        samples(self.z[r], self.end[r], 1)
     }
+
+    /// The angles across the stretch a double root's two merged roots spanned, from the
+    /// first to the last, every 1e-5 rad (at most 257 samples); none for a root that is not
+    /// double or a stretch narrower than 2·[`CLUSTER`]. F stays within its rounding of zero
+    /// across it and may hide more modes there than the two it shows (its terms cancelling,
+    /// the circles nearly coaxal); the closures tell them apart ([`regular_mode`]).
+    pub fn stretch(&self, r: usize) -> impl Iterator<Item = C> {
+        let first = if self.double[r] { 0 } else { usize::MAX };
+        samples(self.start[r], self.stretch_end[r], first)
+    }
+}
+
+/// Angles from z0 to z1 every 1e-5 rad at most (at most 256 steps), from step `first`; none
+/// when they are closer than 2·[`CLUSTER`].
+fn samples(z0: C, z1: C, first: usize) -> impl Iterator<Item = C> {
+    let turn = z0.conj() * z1;
+    let span = turn.im.atan2(turn.re).abs();
+    let steps = if span > 2.0 * CLUSTER {
+        ((span / 1e-5).ceil() as usize).clamp(1, 256)
+    } else {
+        0
+    };
+    let first = if steps == 0 { 1 } else { first };
+    let sign = if turn.im < 0.0 { -1.0 } else { 1.0 };
+    (first..=steps).map(move |k| {
+        let phi = sign * span * k as f64 / steps as f64;
+        z0 * C::new(phi.cos(), phi.sin())
+    })
 }
 
 /// Whether a pose sampled across a double root's stretch ([`Roots::plateau`]) is a mode of
