@@ -348,6 +348,14 @@ pub fn triad_modes(a: [Point2<f64>; 3], dims: &TriadDims) -> Result<TriadModes> 
                 modes.push_distinct(pose, tol);
             }
         }
+        // Across a double root's stretch: only regular poses are modes of their own.
+        for z in roots.stretch(r) {
+            for pose in e.poses(z, true, false, dims).into_iter().flatten() {
+                if super::trig_roots::regular_mode(triad_rates_at(a, dims, &pose)) {
+                    modes.push_distinct(pose, tol);
+                }
+            }
+        }
     }
     if modes.is_empty() {
         return Err(Error::NotAssemblable {
@@ -737,6 +745,12 @@ pub fn triad_rates(a: [PointMotion; 3], dims: &TriadDims, pose: &TriadPose) -> R
             what: "triad: rates",
         })
     }
+}
+
+/// [`triad_rates`] of `pose` at rest (only whether it fails matters to the caller).
+#[cold]
+fn triad_rates_at(a: [Point2<f64>; 3], dims: &TriadDims, pose: &TriadPose) -> Result<TriadState> {
+    triad_rates(a.map(PointMotion::fixed), dims, pose)
 }
 
 /// The branch-point test of a posed revolute triad, one rule for its rates

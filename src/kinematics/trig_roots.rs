@@ -109,7 +109,13 @@ fn merge_double(f: &impl Periodic, roots: &mut Roots) {
         // between them must be within its rounding of zero, as for a cluster.
         let (ze, fe) = extremum(f, zm, 0.5 * delta);
         if fe.abs() <= f.tol() {
+            // The double root keeps the stretch its two roots spanned (from the first root
+            // of j to the last of k): where F stays within its rounding of zero across a
+            // stretch (its terms cancelling, the circles nearly coaxal) it may hide more
+            // modes there than the two it shows, which the closures tell apart
+            // ([`Roots::plateau`]).
             roots.z[j] = ze;
+            roots.stretch_end[j] = roots.end[k];
             roots.multiple[j] = false;
             roots.double[j] = true;
             gone[k] = true;
@@ -119,6 +125,8 @@ fn merge_double(f: &impl Periodic, roots: &mut Roots) {
     for (j, &gone) in gone.iter().enumerate().take(n) {
         if !gone {
             roots.z[kept] = roots.z[j];
+            roots.start[kept] = roots.start[j];
+            roots.stretch_end[kept] = roots.stretch_end[j];
             roots.end[kept] = roots.end[j];
             roots.multiple[kept] = roots.multiple[j];
             roots.double[kept] = roots.double[j];
@@ -249,8 +257,13 @@ pub(super) struct Roots {
     /// its pose is taken there unpolished if it closes (Newton's method on the closures
     /// would walk to one of the two roots that rounding set apart).
     pub double: [bool; 12],
+    /// The first root pushed to each cluster (the root itself when it is alone; for a
+    /// double root, the first of the two merged).
+    pub start: [C; 12],
     /// The last root pushed to each cluster (the root itself when it is alone).
     pub end: [C; 12],
+    /// The last root of the stretch a double root's two merged roots spanned (else as `end`).
+    pub stretch_end: [C; 12],
 }
 
 /// Roots of F closer than this (rad) are one cluster.
@@ -270,7 +283,9 @@ impl Roots {
             self.multiple[0] = true;
         } else if self.n < self.z.len() {
             self.z[self.n] = z;
+            self.start[self.n] = z;
             self.end[self.n] = z;
+            self.stretch_end[self.n] = z;
             self.n += 1;
         }
     }
@@ -281,20 +296,46 @@ impl Roots {
     /// its roots apart, though the closures can), every 1e-5 rad up to its end (at most
     /// 256 samples).
     pub fn plateau(&self, r: usize) -> impl Iterator<Item = C> {
-        let (z0, z1) = (self.z[r], self.end[r]);
-        let turn = z0.conj() * z1;
-        let span = turn.im.atan2(turn.re).abs();
-        let steps = if span > 2.0 * CLUSTER {
-            ((span / 1e-5).ceil() as usize).clamp(1, 256)
-        } else {
-            0
-        };
-        let sign = if turn.im < 0.0 { -1.0 } else { 1.0 };
-        (1..=steps).map(move |k| {
-            let phi = sign * span * k as f64 / steps as f64;
-            z0 * C::new(phi.cos(), phi.sin())
-        })
+        samples(self.z[r], self.end[r], 1)
     }
+
+    /// The angles across the stretch a double root's two merged roots spanned, from the
+    /// first to the last, every 1e-5 rad (at most 257 samples); none for a root that is not
+    /// double or a stretch narrower than 2·[`CLUSTER`]. F stays within its rounding of zero
+    /// across it and may hide more modes there than the two it shows (its terms cancelling,
+    /// the circles nearly coaxal); the closures tell them apart ([`regular_mode`]).
+    pub fn stretch(&self, r: usize) -> impl Iterator<Item = C> {
+        let first = if self.double[r] { 0 } else { usize::MAX };
+        samples(self.start[r], self.stretch_end[r], first)
+    }
+}
+
+/// Angles from z0 to z1 every 1e-5 rad at most (at most 256 steps), from step `first`; none
+/// when they are closer than 2·[`CLUSTER`].
+fn samples(z0: C, z1: C, first: usize) -> impl Iterator<Item = C> {
+    let turn = z0.conj() * z1;
+    let span = turn.im.atan2(turn.re).abs();
+    let steps = if span > 2.0 * CLUSTER {
+        ((span / 1e-5).ceil() as usize).clamp(1, 256)
+    } else {
+        0
+    };
+    let first = if steps == 0 { 1 } else { first };
+    let sign = if turn.im < 0.0 { -1.0 } else { 1.0 };
+    (first..=steps).map(move |k| {
+        let phi = sign * span * k as f64 / steps as f64;
+        z0 * C::new(phi.cos(), phi.sin())
+    })
+}
+
+/// Whether a pose sampled across a double root's stretch ([`Roots::plateau`]) is a mode of
+/// its own, from its rates at rest: a pose within rounding of a branch point (its rates
+/// refused as [`Error::Singular`], the data's distance from the fold at most
+/// [`SINGULAR_BRANCH`](super::SINGULAR_BRANCH)) is one of the two modes that rounding split
+/// apart at the double root, which stands for both; a regular pose there (F flat across the
+/// stretch, its terms cancelling) is a mode F could not show.
+pub(super) fn regular_mode<T>(rates: Result<T>) -> bool {
+    !matches!(rates, Err(Error::Singular { .. }))
 }
 
 /// z turned by the angle 2·atan(t): z·(1 + i·t)²/(1 + t²), without a trigonometric function.
