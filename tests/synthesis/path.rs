@@ -675,17 +675,19 @@ fn bad_requirements_of(mechanism: Mechanism, free: usize) {
         })
         .collect();
     assert_eq!(name(&with(many, Timing::ClosedCurve), &opts), "points");
-    // Points whose squares overflow, or whose spread is too small to square, are an
-    // overflow, not coinciding points.
-    for (at, spread) in [(1e300, 1e299), (0.0, 1e300), (0.0, 1e-170)] {
+    // Points whose squares overflow are an overflow; a spread too small to square
+    // underflows (said so); neither is taken for coinciding points.
+    for (at, spread, said) in [
+        (1e300, 1e299, "overflow: points"),
+        (0.0, 1e300, "overflow: points"),
+        (0.0, 1e-170, "m underflows"),
+    ] {
         let p: Vec<[f64; 2]> = pts
             .iter()
             .map(|q| [at + spread * q[0], at + spread * q[1]])
             .collect();
-        assert!(
-            name(&with(p, Timing::ClosedCurve), &opts).starts_with("overflow: points"),
-            "at {at:e}, spread {spread:e}"
-        );
+        let got = name(&with(p, Timing::ClosedCurve), &opts);
+        assert!(got.contains(said), "at {at:e}, spread {spread:e}: {got}");
     }
     let bad = PathOptions::default().with_min_transmission_angle(2.0);
     assert_eq!(name(&good, &bad), "min_transmission_angle");
