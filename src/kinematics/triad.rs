@@ -55,10 +55,12 @@
 //! previous pose's angle, accepted only when a certificate proves that the root it reached is
 //! the mode the full bracket would pick (see its documentation for the rule).
 
+use super::fast_angle::direction_of;
 use super::fold::{split_steps, Leg, Legs};
 use super::link::LinkMotion;
 use super::motion::PointMotion;
 use super::trig_cubic::{n1, Cubic};
+use super::trig_local::nearest_on_arc;
 use super::trig_roots::{checked_roots, unit, CLOSES, SAME_MODE};
 use crate::angle::{cross, direction, perp};
 use crate::error::{finite, finite2, positive, Error, Result};
@@ -375,8 +377,12 @@ pub fn triad_modes(a: [Point2<f64>; 3], dims: &TriadDims) -> Result<TriadModes> 
 ///    polar moment of the ternary link's joints about their centroid), so the rule asks
 ///    D*² < 4·I·sin²(min(δ, π)/2).
 ///
-/// Both hold for small steps along a cycle away from a merger of modes; near one the bracket
-/// decides. `None` also for invalid input (the full path names the error).
+/// Both hold for small steps along a cycle away from a merger of modes. Where they cannot
+/// tell (F flat at the root, as where the radical axes turn parallel and two modes lie close
+/// in θ but far apart in the pose), a second certificate brackets every root of F on the arc
+/// of angles where a mode could be as near the previous pose and compares their poses; where
+/// neither settles it the bracket decides. `None` also for invalid input (the full path
+/// names the error).
 #[must_use]
 pub fn triad_tracked(
     a: [Point2<f64>; 3],
@@ -392,8 +398,8 @@ pub fn triad_tracked(
     let det = velocity_matrix(u, r).determinant() / dims.ternary_size();
     Some(TriadPose {
         b: t.b,
-        theta: direction(Vector2::new(t.z.re, t.z.im)),
-        phi: t.leg.map(direction),
+        theta: direction_of(t.z.re, t.z.im),
+        phi: t.leg.map(|v| direction_of(v.x, v.y)),
         det,
     })
 }
@@ -457,7 +463,17 @@ fn track(a: [Point2<f64>; 3], dims: &TriadDims, previous: &TriadPose) -> Option<
     let moved = (b[0] - previous.b[0]).norm_squared()
         + (b[1] - previous.b[1]).norm_squared()
         + (b[2] - previous.b[2]).norm_squared();
-    let certified = e.cubic.certifies(&root, moved, dims.ternary_moment());
+    let moment = dims.ternary_moment();
+    let certified = e.cubic.certifies(&root, moved, moment)
+        || nearest_on_arc(
+            &e.cubic,
+            &previous.b,
+            &b,
+            z,
+            moment,
+            SAME_MODE * e.length(),
+            |zr| e.poses(zr, false, false, dims).map(|p| p.map(|p| p.b)),
+        );
     certified.then_some(Tracked { z, b, leg, len })
 }
 
@@ -564,12 +580,13 @@ fn rates_fast(a: &[PointMotion; 3], dims: &TriadDims, t: &Tracked) -> Option<Fas
 /// built where it is returned.
 #[inline(always)]
 fn fast_state(a: &[PointMotion; 3], t: &Tracked, q: &FastRates) -> TriadState {
-    let binary = |i: usize| LinkMotion {
-        origin: a[i],
-        angle: direction(t.leg[i]),
-        omega: q.omega[i],
-        epsilon: q.eps[i],
-    };
+    // The four angles first (independent of each other: the processor overlaps them).
+    let theta = direction_of(t.z.re, t.z.im);
+    let phi = [
+        direction_of(t.leg[0].x, t.leg[0].y),
+        direction_of(t.leg[1].x, t.leg[1].y),
+        direction_of(t.leg[2].x, t.leg[2].y),
+    ];
     TriadState {
         b: [
             PointMotion::new(t.b[0], q.vb[0], q.ab[0]),
@@ -578,11 +595,30 @@ fn fast_state(a: &[PointMotion; 3], t: &Tracked, q: &FastRates) -> TriadState {
         ],
         ternary: LinkMotion {
             origin: PointMotion::new(t.b[0], q.v1, q.a1),
-            angle: direction(Vector2::new(t.z.re, t.z.im)),
+            angle: theta,
             omega: q.omega_t,
             epsilon: q.eps_t,
         },
-        binary: [binary(0), binary(1), binary(2)],
+        binary: [
+            LinkMotion {
+                origin: a[0],
+                angle: phi[0],
+                omega: q.omega[0],
+                epsilon: q.eps[0],
+            },
+            LinkMotion {
+                origin: a[1],
+                angle: phi[1],
+                omega: q.omega[1],
+                epsilon: q.eps[1],
+            },
+            LinkMotion {
+                origin: a[2],
+                angle: phi[2],
+                omega: q.omega[2],
+                epsilon: q.eps[2],
+            },
+        ],
         det: q.det,
     }
 }
