@@ -393,24 +393,21 @@ pub fn triad_tracked(
         return None;
     }
     let t = track(a, dims, previous)?;
-    let r = [Vector2::zeros(), t.b[1] - t.b[0], t.b[2] - t.b[0]];
-    let u = [0, 1, 2].map(|i| t.leg[i] / t.len[i]);
-    let det = velocity_matrix(u, r).determinant() / dims.ternary_size();
     Some(TriadPose {
         b: t.b,
         theta: direction_of(t.z.re, t.z.im),
-        phi: t.leg.map(|v| direction_of(v.x, v.y)),
-        det,
+        phi: t.at.leg.map(|v| direction_of(v.x, v.y)),
+        det: t.at.det_k / dims.ternary_size(),
     })
 }
 
-/// A mode reached by the fast path: the ternary link's direction z, the joints, the legs
-/// B_i − A_i and their lengths.
+/// A mode reached by the fast path: the ternary link's direction z, the joints, and the
+/// closures there.
 struct Tracked {
     z: C,
     b: [Point2<f64>; 3],
-    leg: [Vector2<f64>; 3],
-    len: [f64; 3],
+    /// The legs, the velocity system and its inverse at the pose.
+    at: Closures,
 }
 
 /// The fast path (see [`triad_tracked`] for the rule), on valid input.
@@ -437,26 +434,38 @@ fn track(a: [Point2<f64>; 3], dims: &TriadDims, previous: &TriadPose) -> Option<
             q
         }
     };
-    let b = e.joints(b1, z);
-    let leg = [b[0] - a[0], b[1] - a[1], b[2] - a[2]];
-    let len = [leg[0].norm(), leg[1].norm(), leg[2].norm()];
-    // One Newton step of the three closures on (B1, θ) with the velocity system K: the root
+    // Newton's steps of the three closures on (B1, θ) with the velocity system K: the root
     // of F carries the rounding of F's coefficients, the closures that of the geometry.
-    let u = [0, 1, 2].map(|i| leg[i] / len[i]);
-    let r = [Vector2::zeros(), b[1] - b[0], b[2] - b[0]];
-    let (k_inv, _) = inverse3(&velocity_matrix(u, r));
     let l = dims.l;
-    let step = k_inv * Vector3::new(l[0] - len[0], l[1] - len[1], l[2] - len[2]);
-    let z = z * C::new(1.0, step.z);
-    let b = e.joints(b1 + Vector2::new(step.x, step.y), z);
-    let leg = [b[0] - a[0], b[1] - a[1], b[2] - a[2]];
-    let len = [leg[0].norm(), leg[1].norm(), leg[2].norm()];
-    let err = (len[0] - l[0])
-        .abs()
-        .max((len[1] - l[1]).abs())
-        .max((len[2] - l[2]).abs());
-    let closes = err <= 1e-13 * (l[0] + l[1] + l[2]) && step.z.abs() <= 1e-8;
-    if !closes {
+    let length = e.length();
+    let (mut b, mut z) = (e.joints(b1, z), z);
+    let mut at = Closures::new(a, &b, l);
+    let mut first = f64::NAN;
+    for _ in 0..4 {
+        let step = at.k_inv * at.miss;
+        if first.is_nan() {
+            first = step.z;
+        }
+        let zn = turned(z, step.z);
+        let bn = e.joints(b[0] + Vector2::new(step.x, step.y), zn);
+        let next = Closures::new(a, &bn, l);
+        // (NaN is no improvement.)
+        if !(next.err < at.err) {
+            break;
+        }
+        (b, z, at) = (bn, zn, next);
+        if 2.0 * at.reach(length) <= 1e-14 * length {
+            break;
+        }
+    }
+    // The pose goes to the closures' rounding floor, as the bracket's polish does: a pose
+    // left with a closure error e is off by up to ‖K⁻¹‖·e, and where F is flat at the root
+    // (the second certificate's case) F's root, and the pose from it, can be off by 1e-6 of
+    // the size, so that one Newton step left 3.4e-13 of closure error and a pose 2.1e-12 of
+    // the size from the bracket's (seen at |det| = 0.27). Accepted only when the next step
+    // could move it by at most 1e-13 of the size.
+    let residual = at.err;
+    if residual.is_nan() || residual > 1e-13 * length || at.reach(length) > 1e-13 * length {
         return None;
     }
     // The certificate: no other root of F near, and no other mode as near the previous pose.
@@ -464,17 +473,81 @@ fn track(a: [Point2<f64>; 3], dims: &TriadDims, previous: &TriadPose) -> Option<
         + (b[1] - previous.b[1]).norm_squared()
         + (b[2] - previous.b[2]).norm_squared();
     let moment = dims.ternary_moment();
-    let certified = e.cubic.certifies(&root, moved, moment)
+    // The first certificate asks the closures' first step to turn θ by little (the root of F
+    // is the mode's angle); the second reads the mode's own angle.
+    let certified = (first.abs() <= 1e-8 && e.cubic.certifies(&root, moved, moment))
         || nearest_on_arc(
             &e.cubic,
             &previous.b,
             &b,
             z,
             moment,
-            SAME_MODE * e.length(),
+            SAME_MODE * length,
             |zr| e.poses(zr, false, false, dims).map(|p| p.map(|p| p.b)),
         );
-    certified.then_some(Tracked { z, b, leg, len })
+    certified.then_some(Tracked { z, b, at })
+}
+
+/// z turned by the angle s (small): z·(1 + i·s) is a unit to rounding for |s| ≤ 1e-8
+/// (|1 + i·s| − 1 ≤ s²/2); a longer turn is taken as the exact rotation by 2·atan(s/2).
+#[inline]
+fn turned(z: C, s: f64) -> C {
+    if s.abs() <= 1e-8 {
+        z * C::new(1.0, s)
+    } else {
+        super::trig_roots::along(z, 0.5 * s)
+    }
+}
+
+/// The closures of a triad's pose, with the velocity system there (for the next Newton step
+/// and for the rates).
+struct Closures {
+    /// The legs B_i − A_i, their lengths and unit vectors, the arms B_i − B1.
+    leg: [Vector2<f64>; 3],
+    len: [f64; 3],
+    u: [Vector2<f64>; 3],
+    r: [Vector2<f64>; 3],
+    /// l_i − |B_i − A_i| (Newton's right-hand side) and the largest of their magnitudes.
+    miss: Vector3<f64>,
+    err: f64,
+    /// K, its inverse and determinant.
+    k: Matrix3<f64>,
+    k_inv: Matrix3<f64>,
+    det_k: f64,
+}
+
+impl Closures {
+    #[inline]
+    fn new(a: [Point2<f64>; 3], b: &[Point2<f64>; 3], l: [f64; 3]) -> Self {
+        let leg = [b[0] - a[0], b[1] - a[1], b[2] - a[2]];
+        let len = [leg[0].norm(), leg[1].norm(), leg[2].norm()];
+        let miss = Vector3::new(l[0] - len[0], l[1] - len[1], l[2] - len[2]);
+        let u = [leg[0] / len[0], leg[1] / len[1], leg[2] / len[2]];
+        let r = [Vector2::zeros(), b[1] - b[0], b[2] - b[0]];
+        let k = velocity_matrix(u, r);
+        let (k_inv, det_k) = inverse3(&k);
+        Self {
+            leg,
+            len,
+            u,
+            r,
+            miss,
+            err: miss.x.abs().max(miss.y.abs()).max(miss.z.abs()),
+            k,
+            k_inv,
+            det_k,
+        }
+    }
+
+    /// A bound of how far the next Newton step moves a joint, first order:
+    /// |δB_i| ≤ |δB1| + |r_i|·|δθ| with (δB1, δθ) = K⁻¹·G, each component bounded by its row
+    /// of K⁻¹ (absolute sum) times ‖G‖_∞ = `err`, and |r_i| ≤ `arm`.
+    #[inline]
+    fn reach(&self, arm: f64) -> f64 {
+        let ki = &self.k_inv;
+        let row = |i: usize| ki[(i, 0)].abs() + ki[(i, 1)].abs() + ki[(i, 2)].abs();
+        (row(0).max(row(1)) + arm * row(2)) * self.err
+    }
 }
 
 /// The inverse of a 3×3 matrix by its adjugate, and the determinant.
@@ -516,18 +589,11 @@ struct FastRates {
 /// Small on purpose: the caller lays the state out in its return value (no copy of it).
 #[inline]
 fn rates_fast(a: &[PointMotion; 3], dims: &TriadDims, t: &Tracked) -> Option<FastRates> {
-    let b = t.b;
-    let r = [Vector2::zeros(), b[1] - b[0], b[2] - b[0]];
-    let i_len = [1.0 / t.len[0], 1.0 / t.len[1], 1.0 / t.len[2]];
-    let u = [
-        t.leg[0] * i_len[0],
-        t.leg[1] * i_len[1],
-        t.leg[2] * i_len[2],
-    ];
-    let k = velocity_matrix(u, r);
-    let (k_inv, det_k) = inverse3(&k);
+    let c = &t.at;
+    let (u, r, k_inv) = (c.u, c.r, &c.k_inv);
+    let i_len = [1.0 / c.len[0], 1.0 / c.len[1], 1.0 / c.len[2]];
     let lt = dims.ternary_size();
-    let det = det_k / lt;
+    let det = c.det_k / lt;
     let vel = k_inv * Vector3::new(u[0].dot(&a[0].v), u[1].dot(&a[1].v), u[2].dot(&a[2].v));
     let (v1, omega_t) = (Vector2::new(vel.x, vel.y), vel.z);
     let vb = [v1, v1 + omega_t * perp(r[1]), v1 + omega_t * perp(r[2])];
@@ -538,7 +604,7 @@ fn rates_fast(a: &[PointMotion; 3], dims: &TriadDims, t: &Tracked) -> Option<Fas
     ];
     let w2 = omega_t * omega_t;
     let centripetal =
-        |i: usize| u[i].dot(&a[i].a) - t.len[i] * omega[i] * omega[i] + w2 * r[i].dot(&u[i]);
+        |i: usize| u[i].dot(&a[i].a) - c.len[i] * omega[i] * omega[i] + w2 * r[i].dot(&u[i]);
     let acc = k_inv * Vector3::new(centripetal(0), centripetal(1), centripetal(2));
     let (a1, eps_t) = (Vector2::new(acc.x, acc.y), acc.z);
     let ab = [
@@ -562,7 +628,7 @@ fn rates_fast(a: &[PointMotion; 3], dims: &TriadDims, t: &Tracked) -> Option<Fas
     let ok = super::rrr::all_finite([
         vel.x, vel.y, vel.z, acc.x, acc.y, acc.z, omega[0], omega[1], omega[2], eps[0], eps[1],
         eps[2], det,
-    ]) && hinged_legs(u, r, t.len, lt).surely_regular_arms(&k, det, arms);
+    ]) && hinged_legs(u, r, c.len, lt).surely_regular_arms(&c.k, det, arms);
     ok.then_some(FastRates {
         v1,
         omega_t,
@@ -583,9 +649,9 @@ fn fast_state(a: &[PointMotion; 3], t: &Tracked, q: &FastRates) -> TriadState {
     // The four angles first (independent of each other: the processor overlaps them).
     let theta = direction_of(t.z.re, t.z.im);
     let phi = [
-        direction_of(t.leg[0].x, t.leg[0].y),
-        direction_of(t.leg[1].x, t.leg[1].y),
-        direction_of(t.leg[2].x, t.leg[2].y),
+        direction_of(t.at.leg[0].x, t.at.leg[0].y),
+        direction_of(t.at.leg[1].x, t.at.leg[1].y),
+        direction_of(t.at.leg[2].x, t.at.leg[2].y),
     ];
     TriadState {
         b: [
@@ -890,12 +956,14 @@ impl Eliminated {
 
     /// The triad's largest dimension (for closure tolerances), m.
     fn length(&self) -> f64 {
-        self.a
+        // The distances compared squared: one square root (a complex `norm` is a `hypot`).
+        let square = self
+            .a
             .iter()
             .chain(self.beta.iter())
-            .map(|c| c.norm())
-            .chain(self.l)
-            .fold(0.0, f64::max)
+            .map(|c| c.norm_sqr())
+            .fold(0.0, f64::max);
+        square.sqrt().max(self.l[0]).max(self.l[1]).max(self.l[2])
     }
 
     /// W(z) and D(z).
