@@ -439,7 +439,7 @@ fn track(a: [Point2<f64>; 3], dims: &TriadDims, previous: &TriadPose) -> Option<
     let l = dims.l;
     let length = e.length();
     let (mut b, mut z) = (e.joints(b1, z), z);
-    let mut at = Closures::new(a, &b, l);
+    let mut at = Closures::new(a, &b, l).factored(&b);
     let mut first = f64::NAN;
     for _ in 0..4 {
         let step = at.k_inv * at.miss;
@@ -450,11 +450,17 @@ fn track(a: [Point2<f64>; 3], dims: &TriadDims, previous: &TriadPose) -> Option<
         let bn = e.joints(b[0] + Vector2::new(step.x, step.y), zn);
         let next = Closures::new(a, &bn, l);
         // (NaN is no improvement.)
-        if !(next.err < at.err) {
+        let better = next.err < at.err;
+        if !better {
             break;
         }
-        (b, z, at) = (bn, zn, next);
-        if 2.0 * at.reach(length) <= 1e-14 * length {
+        (b, z, at) = (bn, zn, next.factored(&bn));
+        // Newton's error after a step s is of the order of ‖K⁻¹‖·|K′|·s², 1e-18 of the size
+        // times the conditioning for a step of 1e-9 of it: the pose is at its rounding floor
+        // (the usual case, F's root being good to its rounding); or the next step is bounded
+        // below 1e-14 of the size.
+        let shift = step.x.abs().max(step.y.abs()).max(step.z.abs() * length);
+        if shift <= 1e-9 * length || 2.0 * at.reach(length) <= 1e-14 * length {
             break;
         }
     }
@@ -517,26 +523,36 @@ struct Closures {
 }
 
 impl Closures {
+    /// The closures of the pose with joints `b` (K not yet factored: see
+    /// [`factored`](Self::factored)).
     #[inline]
     fn new(a: [Point2<f64>; 3], b: &[Point2<f64>; 3], l: [f64; 3]) -> Self {
         let leg = [b[0] - a[0], b[1] - a[1], b[2] - a[2]];
         let len = [leg[0].norm(), leg[1].norm(), leg[2].norm()];
         let miss = Vector3::new(l[0] - len[0], l[1] - len[1], l[2] - len[2]);
-        let u = [leg[0] / len[0], leg[1] / len[1], leg[2] / len[2]];
-        let r = [Vector2::zeros(), b[1] - b[0], b[2] - b[0]];
-        let k = velocity_matrix(u, r);
-        let (k_inv, det_k) = inverse3(&k);
         Self {
             leg,
             len,
-            u,
-            r,
+            u: Default::default(),
+            r: Default::default(),
             miss,
             err: miss.x.abs().max(miss.y.abs()).max(miss.z.abs()),
-            k,
-            k_inv,
-            det_k,
+            k: Matrix3::zeros(),
+            k_inv: Matrix3::zeros(),
+            det_k: 0.0,
         }
+    }
+
+    /// With the legs' unit vectors, the arms, K, its inverse and determinant, at the pose
+    /// with joints `b` (one that is kept: for the next Newton step or the rates).
+    #[inline]
+    fn factored(mut self, b: &[Point2<f64>; 3]) -> Self {
+        let (leg, len) = (self.leg, self.len);
+        self.u = [leg[0] / len[0], leg[1] / len[1], leg[2] / len[2]];
+        self.r = [Vector2::zeros(), b[1] - b[0], b[2] - b[0]];
+        self.k = velocity_matrix(self.u, self.r);
+        (self.k_inv, self.det_k) = inverse3(&self.k);
+        self
     }
 
     /// A bound of how far the next Newton step moves a joint, first order:

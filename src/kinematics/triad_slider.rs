@@ -392,6 +392,13 @@ fn track(
             break;
         }
         (o, z, g, legs, k) = (on, zn, gn, legs_n, legs_n.matrix());
+        // After a step s Newton's error is of the order of ‖K⁻¹‖·|K′|·s²: 1e-18 of the size
+        // times the conditioning for a step of 1e-9 of it (the usual case, F's root being
+        // good to its rounding), below what any further step could move.
+        let shift = step.x.abs().max(step.y.abs()).max(step.z.abs() * e.length);
+        if shift <= 1e-9 * e.length {
+            break;
+        }
         let bound = (0..3)
             .map(|i| k_inv[(i, 0)].abs() + k_inv[(i, 1)].abs() + k_inv[(i, 2)].abs())
             .fold(0.0, f64::max);
