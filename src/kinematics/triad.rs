@@ -470,8 +470,10 @@ fn track(a: [Point2<f64>; 3], dims: &TriadDims, previous: &TriadPose) -> Option<
     // the size, so that one Newton step left 3.4e-13 of closure error and a pose 2.1e-12 of
     // the size from the bracket's (seen at |det| = 0.27). Accepted only when the next step
     // could move it by at most 1e-13 of the size.
+    // (A NaN reach, K singular at the pose, is not near.)
     let residual = at.err;
-    if residual.is_nan() || residual > 1e-13 * length || at.reach(length) > 1e-13 * length {
+    let near = at.reach(length) <= 1e-13 * length;
+    if residual.is_nan() || residual > 1e-13 * length || !near {
         return None;
     }
     // The certificate: no other root of F near, and no other mode as near the previous pose.
