@@ -62,6 +62,7 @@ mod contour;
 mod crank;
 mod cycle;
 mod extreme;
+mod fast_angle;
 mod fold;
 mod fold_point;
 mod grashof;
@@ -78,6 +79,7 @@ mod transfer;
 mod triad;
 mod triad_slider;
 mod trig_cubic;
+mod trig_local;
 mod trig_roots;
 
 pub use assur::{GroupMotion, GroupPose, GroupReactions, GroupWork, HingeEnd, HingedGroup};
