@@ -62,7 +62,6 @@ mod contour;
 mod crank;
 mod cycle;
 mod extreme;
-mod fast_angle;
 mod fold;
 mod fold_point;
 mod grashof;
@@ -79,7 +78,6 @@ mod transfer;
 mod triad;
 mod triad_slider;
 mod trig_cubic;
-mod trig_local;
 mod trig_roots;
 
 pub use assur::{GroupMotion, GroupPose, GroupReactions, GroupWork, HingeEnd, HingedGroup};

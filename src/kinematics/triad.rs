@@ -55,12 +55,10 @@
 //! previous pose's angle, accepted only when a certificate proves that the root it reached is
 //! the mode the full bracket would pick (see its documentation for the rule).
 
-use super::fast_angle::direction_of;
 use super::fold::{split_steps, Leg, Legs};
 use super::link::LinkMotion;
 use super::motion::PointMotion;
 use super::trig_cubic::{n1, Cubic};
-use super::trig_local::nearest_on_arc;
 use super::trig_roots::{checked_roots, unit, CLOSES, SAME_MODE};
 use crate::angle::{cross, direction, perp};
 use crate::error::{finite, finite2, positive, Error, Result};
@@ -385,12 +383,8 @@ pub fn triad_modes(a: [Point2<f64>; 3], dims: &TriadDims) -> Result<TriadModes> 
 ///    polar moment of the ternary link's joints about their centroid), so the rule asks
 ///    D*² < 4·I·sin²(min(δ, π)/2).
 ///
-/// Both hold for small steps along a cycle away from a merger of modes. Where they cannot
-/// tell (F flat at the root, as where the radical axes turn parallel and two modes lie close
-/// in θ but far apart in the pose), a second certificate brackets every root of F on the arc
-/// of angles where a mode could be as near the previous pose and compares their poses; where
-/// neither settles it the bracket decides. `None` also for invalid input (the full path
-/// names the error).
+/// Both hold for small steps along a cycle away from a merger of modes; near one the bracket
+/// decides. `None` also for invalid input (the full path names the error).
 #[must_use]
 pub fn triad_tracked(
     a: [Point2<f64>; 3],
@@ -401,21 +395,24 @@ pub fn triad_tracked(
         return None;
     }
     let t = track(a, dims, previous)?;
+    let r = [Vector2::zeros(), t.b[1] - t.b[0], t.b[2] - t.b[0]];
+    let u = [0, 1, 2].map(|i| t.leg[i] / t.len[i]);
+    let det = velocity_matrix(u, r).determinant() / dims.ternary_size();
     Some(TriadPose {
         b: t.b,
-        theta: direction_of(t.z.re, t.z.im),
-        phi: t.at.leg.map(|v| direction_of(v.x, v.y)),
-        det: t.at.det_k / dims.ternary_size(),
+        theta: direction(Vector2::new(t.z.re, t.z.im)),
+        phi: t.leg.map(direction),
+        det,
     })
 }
 
-/// A mode reached by the fast path: the ternary link's direction z, the joints, and the
-/// closures there.
+/// A mode reached by the fast path: the ternary link's direction z, the joints, the legs
+/// B_i − A_i and their lengths.
 struct Tracked {
     z: C,
     b: [Point2<f64>; 3],
-    /// The legs, the velocity system and its inverse at the pose.
-    at: Closures,
+    leg: [Vector2<f64>; 3],
+    len: [f64; 3],
 }
 
 /// The fast path (see [`triad_tracked`] for the rule), on valid input.
@@ -442,138 +439,34 @@ fn track(a: [Point2<f64>; 3], dims: &TriadDims, previous: &TriadPose) -> Option<
             q
         }
     };
-    // Newton's steps of the three closures on (B1, θ) with the velocity system K: the root
+    let b = e.joints(b1, z);
+    let leg = [b[0] - a[0], b[1] - a[1], b[2] - a[2]];
+    let len = [leg[0].norm(), leg[1].norm(), leg[2].norm()];
+    // One Newton step of the three closures on (B1, θ) with the velocity system K: the root
     // of F carries the rounding of F's coefficients, the closures that of the geometry.
+    let u = [0, 1, 2].map(|i| leg[i] / len[i]);
+    let r = [Vector2::zeros(), b[1] - b[0], b[2] - b[0]];
+    let (k_inv, _) = inverse3(&velocity_matrix(u, r));
     let l = dims.l;
-    let length = e.length();
-    let (mut b, mut z) = (e.joints(b1, z), z);
-    let mut at = Closures::new(a, &b, l).factored(&b);
-    let mut first = f64::NAN;
-    for _ in 0..4 {
-        let step = at.k_inv * at.miss;
-        if first.is_nan() {
-            first = step.z;
-        }
-        let zn = turned(z, step.z);
-        let bn = e.joints(b[0] + Vector2::new(step.x, step.y), zn);
-        let next = Closures::new(a, &bn, l);
-        // (NaN is no improvement.)
-        let better = next.err < at.err;
-        if !better {
-            break;
-        }
-        (b, z, at) = (bn, zn, next.factored(&bn));
-        // Newton's error after a step s is of the order of ‖K⁻¹‖·|K′|·s², 1e-18 of the size
-        // times the conditioning for a step of 1e-9 of it: the pose is at its rounding floor
-        // (the usual case, F's root being good to its rounding); or the next step is bounded
-        // below 1e-14 of the size.
-        let shift = step.x.abs().max(step.y.abs()).max(step.z.abs() * length);
-        if shift <= 1e-9 * length || 2.0 * at.reach(length) <= 1e-14 * length {
-            break;
-        }
-    }
-    // The pose goes to the closures' rounding floor, as the bracket's polish does: a pose
-    // left with a closure error e is off by up to ‖K⁻¹‖·e, and where F is flat at the root
-    // (the second certificate's case) F's root, and the pose from it, can be off by 1e-6 of
-    // the size, so that one Newton step left 3.4e-13 of closure error and a pose 2.1e-12 of
-    // the size from the bracket's (seen at |det| = 0.27). Accepted only when the next step
-    // could move it by at most 1e-13 of the size.
-    // (A NaN reach, K singular at the pose, is not near.)
-    let residual = at.err;
-    let near = at.reach(length) <= 1e-13 * length;
-    if residual.is_nan() || residual > 1e-13 * length || !near {
+    let step = k_inv * Vector3::new(l[0] - len[0], l[1] - len[1], l[2] - len[2]);
+    let z = z * C::new(1.0, step.z);
+    let b = e.joints(b1 + Vector2::new(step.x, step.y), z);
+    let leg = [b[0] - a[0], b[1] - a[1], b[2] - a[2]];
+    let len = [leg[0].norm(), leg[1].norm(), leg[2].norm()];
+    let err = (len[0] - l[0])
+        .abs()
+        .max((len[1] - l[1]).abs())
+        .max((len[2] - l[2]).abs());
+    let closes = err <= 1e-13 * (l[0] + l[1] + l[2]) && step.z.abs() <= 1e-8;
+    if !closes {
         return None;
     }
     // The certificate: no other root of F near, and no other mode as near the previous pose.
     let moved = (b[0] - previous.b[0]).norm_squared()
         + (b[1] - previous.b[1]).norm_squared()
         + (b[2] - previous.b[2]).norm_squared();
-    let moment = dims.ternary_moment();
-    // The first certificate asks the closures' first step to turn θ by little (the root of F
-    // is the mode's angle); the second reads the mode's own angle.
-    let certified = (first.abs() <= 1e-8 && e.cubic.certifies(&root, moved, moment))
-        || nearest_on_arc(
-            &e.cubic,
-            &previous.b,
-            &b,
-            z,
-            moment,
-            SAME_MODE * length,
-            |zr| e.poses(zr, false, false, dims).map(|p| p.map(|p| p.b)),
-        );
-    certified.then_some(Tracked { z, b, at })
-}
-
-/// z turned by the angle s (small): z·(1 + i·s) is a unit to rounding for |s| ≤ 1e-8
-/// (|1 + i·s| − 1 ≤ s²/2); a longer turn is taken as the exact rotation by 2·atan(s/2).
-#[inline]
-fn turned(z: C, s: f64) -> C {
-    if s.abs() <= 1e-8 {
-        z * C::new(1.0, s)
-    } else {
-        super::trig_roots::along(z, 0.5 * s)
-    }
-}
-
-/// The closures of a triad's pose, with the velocity system there (for the next Newton step
-/// and for the rates).
-struct Closures {
-    /// The legs B_i − A_i, their lengths and unit vectors, the arms B_i − B1.
-    leg: [Vector2<f64>; 3],
-    len: [f64; 3],
-    u: [Vector2<f64>; 3],
-    r: [Vector2<f64>; 3],
-    /// l_i − |B_i − A_i| (Newton's right-hand side) and the largest of their magnitudes.
-    miss: Vector3<f64>,
-    err: f64,
-    /// K, its inverse and determinant.
-    k: Matrix3<f64>,
-    k_inv: Matrix3<f64>,
-    det_k: f64,
-}
-
-impl Closures {
-    /// The closures of the pose with joints `b` (K not yet factored: see
-    /// [`factored`](Self::factored)).
-    #[inline]
-    fn new(a: [Point2<f64>; 3], b: &[Point2<f64>; 3], l: [f64; 3]) -> Self {
-        let leg = [b[0] - a[0], b[1] - a[1], b[2] - a[2]];
-        let len = [leg[0].norm(), leg[1].norm(), leg[2].norm()];
-        let miss = Vector3::new(l[0] - len[0], l[1] - len[1], l[2] - len[2]);
-        Self {
-            leg,
-            len,
-            u: Default::default(),
-            r: Default::default(),
-            miss,
-            err: miss.x.abs().max(miss.y.abs()).max(miss.z.abs()),
-            k: Matrix3::zeros(),
-            k_inv: Matrix3::zeros(),
-            det_k: 0.0,
-        }
-    }
-
-    /// With the legs' unit vectors, the arms, K, its inverse and determinant, at the pose
-    /// with joints `b` (one that is kept: for the next Newton step or the rates).
-    #[inline]
-    fn factored(mut self, b: &[Point2<f64>; 3]) -> Self {
-        let (leg, len) = (self.leg, self.len);
-        self.u = [leg[0] / len[0], leg[1] / len[1], leg[2] / len[2]];
-        self.r = [Vector2::zeros(), b[1] - b[0], b[2] - b[0]];
-        self.k = velocity_matrix(self.u, self.r);
-        (self.k_inv, self.det_k) = inverse3(&self.k);
-        self
-    }
-
-    /// A bound of how far the next Newton step moves a joint, first order:
-    /// |δB_i| ≤ |δB1| + |r_i|·|δθ| with (δB1, δθ) = K⁻¹·G, each component bounded by its row
-    /// of K⁻¹ (absolute sum) times ‖G‖_∞ = `err`, and |r_i| ≤ `arm`.
-    #[inline]
-    fn reach(&self, arm: f64) -> f64 {
-        let ki = &self.k_inv;
-        let row = |i: usize| ki[(i, 0)].abs() + ki[(i, 1)].abs() + ki[(i, 2)].abs();
-        (row(0).max(row(1)) + arm * row(2)) * self.err
-    }
+    let certified = e.cubic.certifies(&root, moved, dims.ternary_moment());
+    certified.then_some(Tracked { z, b, leg, len })
 }
 
 /// The inverse of a 3×3 matrix by its adjugate, and the determinant.
@@ -615,11 +508,18 @@ struct FastRates {
 /// Small on purpose: the caller lays the state out in its return value (no copy of it).
 #[inline]
 fn rates_fast(a: &[PointMotion; 3], dims: &TriadDims, t: &Tracked) -> Option<FastRates> {
-    let c = &t.at;
-    let (u, r, k_inv) = (c.u, c.r, &c.k_inv);
-    let i_len = [1.0 / c.len[0], 1.0 / c.len[1], 1.0 / c.len[2]];
+    let b = t.b;
+    let r = [Vector2::zeros(), b[1] - b[0], b[2] - b[0]];
+    let i_len = [1.0 / t.len[0], 1.0 / t.len[1], 1.0 / t.len[2]];
+    let u = [
+        t.leg[0] * i_len[0],
+        t.leg[1] * i_len[1],
+        t.leg[2] * i_len[2],
+    ];
+    let k = velocity_matrix(u, r);
+    let (k_inv, det_k) = inverse3(&k);
     let lt = dims.ternary_size();
-    let det = c.det_k / lt;
+    let det = det_k / lt;
     let vel = k_inv * Vector3::new(u[0].dot(&a[0].v), u[1].dot(&a[1].v), u[2].dot(&a[2].v));
     let (v1, omega_t) = (Vector2::new(vel.x, vel.y), vel.z);
     let vb = [v1, v1 + omega_t * perp(r[1]), v1 + omega_t * perp(r[2])];
@@ -630,7 +530,7 @@ fn rates_fast(a: &[PointMotion; 3], dims: &TriadDims, t: &Tracked) -> Option<Fas
     ];
     let w2 = omega_t * omega_t;
     let centripetal =
-        |i: usize| u[i].dot(&a[i].a) - c.len[i] * omega[i] * omega[i] + w2 * r[i].dot(&u[i]);
+        |i: usize| u[i].dot(&a[i].a) - t.len[i] * omega[i] * omega[i] + w2 * r[i].dot(&u[i]);
     let acc = k_inv * Vector3::new(centripetal(0), centripetal(1), centripetal(2));
     let (a1, eps_t) = (Vector2::new(acc.x, acc.y), acc.z);
     let ab = [
@@ -654,7 +554,7 @@ fn rates_fast(a: &[PointMotion; 3], dims: &TriadDims, t: &Tracked) -> Option<Fas
     let ok = super::rrr::all_finite([
         vel.x, vel.y, vel.z, acc.x, acc.y, acc.z, omega[0], omega[1], omega[2], eps[0], eps[1],
         eps[2], det,
-    ]) && hinged_legs(u, r, c.len, lt).surely_regular_arms(&c.k, det, arms);
+    ]) && hinged_legs(u, r, t.len, lt).surely_regular_arms(&k, det, arms);
     ok.then_some(FastRates {
         v1,
         omega_t,
@@ -672,13 +572,12 @@ fn rates_fast(a: &[PointMotion; 3], dims: &TriadDims, t: &Tracked) -> Option<Fas
 /// built where it is returned.
 #[inline(always)]
 fn fast_state(a: &[PointMotion; 3], t: &Tracked, q: &FastRates) -> TriadState {
-    // The four angles first (independent of each other: the processor overlaps them).
-    let theta = direction_of(t.z.re, t.z.im);
-    let phi = [
-        direction_of(t.at.leg[0].x, t.at.leg[0].y),
-        direction_of(t.at.leg[1].x, t.at.leg[1].y),
-        direction_of(t.at.leg[2].x, t.at.leg[2].y),
-    ];
+    let binary = |i: usize| LinkMotion {
+        origin: a[i],
+        angle: direction(t.leg[i]),
+        omega: q.omega[i],
+        epsilon: q.eps[i],
+    };
     TriadState {
         b: [
             PointMotion::new(t.b[0], q.vb[0], q.ab[0]),
@@ -687,30 +586,11 @@ fn fast_state(a: &[PointMotion; 3], t: &Tracked, q: &FastRates) -> TriadState {
         ],
         ternary: LinkMotion {
             origin: PointMotion::new(t.b[0], q.v1, q.a1),
-            angle: theta,
+            angle: direction(Vector2::new(t.z.re, t.z.im)),
             omega: q.omega_t,
             epsilon: q.eps_t,
         },
-        binary: [
-            LinkMotion {
-                origin: a[0],
-                angle: phi[0],
-                omega: q.omega[0],
-                epsilon: q.eps[0],
-            },
-            LinkMotion {
-                origin: a[1],
-                angle: phi[1],
-                omega: q.omega[1],
-                epsilon: q.eps[1],
-            },
-            LinkMotion {
-                origin: a[2],
-                angle: phi[2],
-                omega: q.omega[2],
-                epsilon: q.eps[2],
-            },
-        ],
+        binary: [binary(0), binary(1), binary(2)],
         det: q.det,
     }
 }
@@ -988,14 +868,12 @@ impl Eliminated {
 
     /// The triad's largest dimension (for closure tolerances), m.
     fn length(&self) -> f64 {
-        // The distances compared squared: one square root (a complex `norm` is a `hypot`).
-        let square = self
-            .a
+        self.a
             .iter()
             .chain(self.beta.iter())
-            .map(|c| c.norm_sqr())
-            .fold(0.0, f64::max);
-        square.sqrt().max(self.l[0]).max(self.l[1]).max(self.l[2])
+            .map(|c| c.norm())
+            .chain(self.l)
+            .fold(0.0, f64::max)
     }
 
     /// W(z) and D(z).

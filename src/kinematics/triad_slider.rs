@@ -50,16 +50,14 @@
 //! ω_T²·n·(A1 − O), with ṡ the slide's rate along the guide. The sliding link turns with the
 //! link that carries its guide.
 
-use super::fast_angle::direction_of;
 use super::fold::{split_steps, Leg, Legs, BRANCH_MEASURE, SINGULAR_BRANCH};
 use super::link::LinkMotion;
 use super::motion::PointMotion;
 use super::rrp::Guide;
 use super::triad::{inverse3, AssemblyModes, TriadDims, TriadPose, TriadState};
 use super::trig_cubic::{n1, Cubic};
-use super::trig_local::nearest_on_arc;
-use super::trig_roots::{along, checked_roots, unit as unit_c, CLOSES, SAME_MODE};
-use crate::angle::{cross, perp, unit};
+use super::trig_roots::{checked_roots, unit as unit_c, CLOSES, SAME_MODE};
+use crate::angle::{cross, direction, perp, unit};
 use crate::error::{finite, finite2, positive, Error, Result};
 use nalgebra::{Complex, Matrix3, Point2, Vector2, Vector3};
 
@@ -259,9 +257,7 @@ pub fn slider_triad_modes(
 /// cannot be certified to be the mode that
 /// [`slider_triad_modes`]`(first, a, dims)?.`[`nearest`](SliderTriadModes::nearest)`(previous)`
 /// returns (the same two conditions: no other root of F near, and no other mode can be as
-/// near `previous`; or the triad's second certificate, every root of F on the arc where a
-/// mode could be as near, bracketed, and their poses compared). `None` also for invalid
-/// input (the full path names the error).
+/// near `previous`). `None` also for invalid input (the full path names the error).
 #[must_use]
 pub fn slider_triad_tracked(
     first: &Guide,
@@ -323,9 +319,7 @@ struct Tracked {
 /// the line's intersection with the second circle nearer the previous O), Newton steps of
 /// the three closures with the velocity system K (the root of F carries the rounding of F's
 /// coefficients, the closures that of the geometry), then the certificate of
-/// [`Cubic::certifies`](super::trig_cubic::Cubic::certifies), or where it cannot tell (or
-/// the closures' first step turned θ by more than 1e-8: F's root is poor where F is flat)
-/// the second one, [`nearest_on_arc`].
+/// [`Cubic::certifies`](super::trig_cubic::Cubic::certifies).
 ///
 /// The closures' steps go to their rounding floor, as the bracket's polish does: a pose left
 /// at 1e-13 of the size is off by 1e-13/σ along K's near-null direction, where the
@@ -378,13 +372,7 @@ fn track(
             first = step.z;
         }
         let on = o + Vector2::new(step.x, step.y);
-        // z·(1 + i·s) is a unit to rounding for |s| ≤ 1e-8 (|1 + i·s| − 1 ≤ s²/2); a longer
-        // turn (F's root poor where F is flat) is taken as the exact rotation by 2·atan(s/2).
-        let zn = if step.z.abs() <= 1e-8 {
-            z * C::new(1.0, step.z)
-        } else {
-            along(z, 0.5 * step.z)
-        };
+        let zn = z * C::new(1.0, step.z);
         let (gn, legs_n) = e.legs(on, zn);
         // (NaN is no improvement.)
         let better = gn.amax() < g.amax();
@@ -392,13 +380,6 @@ fn track(
             break;
         }
         (o, z, g, legs, k) = (on, zn, gn, legs_n, legs_n.matrix());
-        // After a step s Newton's error is of the order of ‖K⁻¹‖·|K′|·s²: 1e-18 of the size
-        // times the conditioning for a step of 1e-9 of it (the usual case, F's root being
-        // good to its rounding), below what any further step could move.
-        let shift = step.x.abs().max(step.y.abs()).max(step.z.abs() * e.length);
-        if shift <= 1e-9 * e.length {
-            break;
-        }
         let bound = (0..3)
             .map(|i| k_inv[(i, 0)].abs() + k_inv[(i, 1)].abs() + k_inv[(i, 2)].abs())
             .fold(0.0, f64::max);
@@ -407,28 +388,15 @@ fn track(
         }
     }
     let zv = vec(z);
-    let residual = g.amax();
-    if residual.is_nan() || residual > 1e-13 * e.length {
+    if !(g.amax() <= 1e-13 * e.length && first.abs() <= 1e-8) {
         return None;
     }
-    let ours = joints_at(o, zv, &e.beta);
     let moved = (0..3)
-        .map(|i| (ours[i] - previous.b[i]).norm_squared())
+        .map(|i| (o + rotate(zv, e.beta[i]) - previous.b[i].coords).norm_squared())
         .sum::<f64>();
-    let moment = dims.triangle().ternary_moment();
-    // The first certificate asks the closures' first step to turn θ by little (the root of F
-    // is the mode's angle); the second reads the mode's own angle.
-    let certified = (first.abs() <= 1e-8 && e.cubic.certifies(&root, moved, moment))
-        || nearest_on_arc(
-            &e.cubic,
-            &previous.b,
-            &ours,
-            z,
-            moment,
-            SAME_MODE * e.length,
-            |zr| e.poses(zr, false, false).map(|p| p.map(|p| p.b)),
-        );
-    certified.then_some(Tracked { o, z: zv, legs, k })
+    e.cubic
+        .certifies(&root, moved, dims.triangle().ternary_moment())
+        .then_some(Tracked { o, z: zv, legs, k })
 }
 
 /// Positions, velocities and accelerations of a triad with a sliding pair, in the mode
@@ -447,180 +415,20 @@ pub fn slider_triad(
     let p = [a[0].p, a[1].p];
     if valid_input(first, p, dims, previous)
         && let Some(t) = track(first, p, dims, previous)
-        && let Some(q) = rates_fast(first, &a, dims, &t)
+        && let Ok(state) = rates_of(
+            first,
+            &a,
+            dims,
+            joints_at(t.o, t.z, &dims.triangle().local_joints()),
+            direction(t.z),
+            &t.legs,
+            &t.k,
+            true,
+        )
     {
-        return Ok(fast_state(first, &a, dims, &t, &q));
+        return Ok(state);
     }
     slider_triad_checked(first, a, dims, previous)
-}
-
-/// The rates of a tracked mode, before they are laid out as a [`TriadState`].
-struct FastRates {
-    /// The ternary link's joints B1 (= O), B2, B3 with their velocities and accelerations.
-    b: [Point2<f64>; 3],
-    vb: [Vector2<f64>; 3],
-    ab: [Vector2<f64>; 3],
-    omega_t: f64,
-    eps_t: f64,
-    /// The hinged legs' ω and ε.
-    omega: [f64; 2],
-    eps: [f64; 2],
-    det: f64,
-}
-
-/// The velocities and accelerations of a tracked mode (the equations of [`rates_of`]), with
-/// every check folded into one test at the end: `None` wherever [`rates_of`] could fail,
-/// and where the cheap bounds cannot prove the pose off a branch point (the checked path
-/// decides). Small on purpose: the caller lays the state out in its return value.
-#[inline]
-fn rates_fast(
-    first: &Guide,
-    a: &[PointMotion; 2],
-    dims: &SliderTriadDims,
-    t: &Tracked,
-) -> Option<FastRates> {
-    let legs = &t.legs;
-    let o = Point2::from(t.o);
-    let r = [Vector2::zeros(), legs.r[1], legs.r[2]];
-    let b = [o, o + r[1], o + r[2]];
-    let len = [hinged_length(legs.kind[1]), hinged_length(legs.kind[2])];
-    let i_len = [1.0 / len[0], 1.0 / len[1]];
-    let (n, u) = (legs.w[0], [legs.w[1], legs.w[2]]);
-    let d = Vector2::new(n.y, -n.x);
-    let (k_inv, det_k) = inverse3(&t.k);
-    let det = det_k / legs.lt;
-    let (wk, ek) = (first.angle.rate, first.angle.accel);
-    let inner = matches!(dims.pair, SlidingPair::Inner { .. });
-    // The known point at the slide's line: the guide's point of the known link under O
-    // (outer) or A1 (inner).
-    let (vk, ak) = if inner {
-        (first.point.v, first.point.a)
-    } else {
-        let q = t.o - first.point.p.coords;
-        (
-            first.point.v + wk * perp(q),
-            first.point.a + ek * perp(q) - wk * wk * q,
-        )
-    };
-    let vel = k_inv * Vector3::new(n.dot(&vk), u[0].dot(&a[0].v), u[1].dot(&a[1].v));
-    let (v_o, omega_t) = (Vector2::new(vel.x, vel.y), vel.z);
-    let vb = [v_o, v_o + omega_t * perp(r[1]), v_o + omega_t * perp(r[2])];
-    let omega = [
-        perp(u[0]).dot(&(vb[1] - a[0].v)) * i_len[0],
-        perp(u[1]).dot(&(vb[2] - a[1].v)) * i_len[1],
-    ];
-    let w2 = omega_t * omega_t;
-    let first_acc = if inner {
-        let q = legs.r[0];
-        let s_dot = d.dot(&(vk - v_o - omega_t * perp(q)));
-        n.dot(&ak) - 2.0 * omega_t * s_dot + w2 * n.dot(&q)
-    } else {
-        n.dot(&ak) + 2.0 * wk * d.dot(&(v_o - vk))
-    };
-    let acc = k_inv
-        * Vector3::new(
-            first_acc,
-            u[0].dot(&a[0].a) - len[0] * omega[0] * omega[0] + w2 * r[1].dot(&u[0]),
-            u[1].dot(&a[1].a) - len[1] * omega[1] * omega[1] + w2 * r[2].dot(&u[1]),
-        );
-    let (a_o, eps_t) = (Vector2::new(acc.x, acc.y), acc.z);
-    let ab = [
-        a_o,
-        a_o + eps_t * perp(r[1]) - w2 * r[1],
-        a_o + eps_t * perp(r[2]) - w2 * r[2],
-    ];
-    let eps = [
-        perp(u[0]).dot(&(ab[1] - a[0].a)) * i_len[0],
-        perp(u[1]).dot(&(ab[2] - a[1].a)) * i_len[1],
-    ];
-    // The arms' lengths: the ternary link's sides from B1, and for the inner pair the
-    // distance of A1 from O (the slide's line of action passes through A1).
-    let arms = [
-        if inner { legs.r[0].norm() } else { 0.0 },
-        dims.l_b1b2,
-        (dims.b3_along * dims.b3_along + dims.b3_across * dims.b3_across).sqrt(),
-    ];
-    // Non-finite inputs' rates make the solved vectors non-finite (K⁻¹ has no zero column),
-    // and ω_k, ε_k read them directly; the guide's ω, ε enter through vk, ak.
-    let ok = super::rrr::all_finite([
-        vel.x, vel.y, vel.z, acc.x, acc.y, acc.z, omega[0], omega[1], eps[0], eps[1], det, wk, ek,
-    ]) && legs.surely_regular_arms(&t.k, det, arms);
-    ok.then_some(FastRates {
-        b,
-        vb,
-        ab,
-        omega_t,
-        eps_t,
-        omega,
-        eps,
-        det,
-    })
-}
-
-/// The state of a tracked mode from its rates, written out field by field so that it is
-/// built where it is returned.
-#[inline(always)]
-fn fast_state(
-    first: &Guide,
-    a: &[PointMotion; 2],
-    dims: &SliderTriadDims,
-    t: &Tracked,
-    q: &FastRates,
-) -> TriadState {
-    let b = q.b;
-    // The angles first (independent of each other: the processor overlaps them).
-    let theta = direction_of(t.z.x, t.z.y);
-    let phi = [
-        direction_of(b[1].x - a[0].p.x, b[1].y - a[0].p.y),
-        direction_of(b[2].x - a[1].p.x, b[2].y - a[1].p.y),
-    ];
-    let o = PointMotion::new(b[0], q.vb[0], q.ab[0]);
-    let sliding = match dims.pair {
-        SlidingPair::Outer { .. } => LinkMotion {
-            origin: o,
-            angle: first.angle.value,
-            omega: first.angle.rate,
-            epsilon: first.angle.accel,
-        },
-        SlidingPair::Inner { .. } => {
-            let n = t.legs.w[0];
-            LinkMotion {
-                origin: first.point,
-                angle: direction_of(n.y, -n.x),
-                omega: q.omega_t,
-                epsilon: q.eps_t,
-            }
-        }
-    };
-    TriadState {
-        b: [
-            o,
-            PointMotion::new(b[1], q.vb[1], q.ab[1]),
-            PointMotion::new(b[2], q.vb[2], q.ab[2]),
-        ],
-        ternary: LinkMotion {
-            origin: o,
-            angle: theta,
-            omega: q.omega_t,
-            epsilon: q.eps_t,
-        },
-        binary: [
-            sliding,
-            LinkMotion {
-                origin: a[0],
-                angle: phi[0],
-                omega: q.omega[0],
-                epsilon: q.eps[0],
-            },
-            LinkMotion {
-                origin: a[1],
-                angle: phi[1],
-                omega: q.omega[1],
-                epsilon: q.eps[1],
-            },
-        ],
-        det: q.det,
-    }
 }
 
 /// [`slider_triad`] step by step, naming what fails.
@@ -731,7 +539,7 @@ fn rates_of(
     let d = Vector2::new(n.y, -n.x);
     let slide_angle = match dims.pair {
         SlidingPair::Outer { .. } => first.angle.value,
-        SlidingPair::Inner { .. } => direction_of(d.x, d.y),
+        SlidingPair::Inner { .. } => direction(d),
     };
     let det = k.determinant() / legs.lt;
     if !legs.surely_regular(k, det) {
@@ -805,7 +613,7 @@ fn rates_of(
     };
     let hinged = |k: usize| LinkMotion {
         origin: a[k],
-        angle: direction_of(b[k + 1].x - a[k].p.x, b[k + 1].y - a[k].p.y),
+        angle: direction(b[k + 1] - a[k].p),
         omega: omega[k],
         epsilon: eps[k],
     };
@@ -860,11 +668,11 @@ fn pose_at(
     let b = joints_at(o, z, beta);
     TriadPose {
         b,
-        theta: direction_of(z.x, z.y),
+        theta: direction(z),
         phi: [
-            direction_of(slide.x, slide.y),
-            direction_of(b[1].x - a[0].x, b[1].y - a[0].y),
-            direction_of(b[2].x - a[1].x, b[2].y - a[1].y),
+            direction(slide),
+            direction(b[1] - a[0]),
+            direction(b[2] - a[1]),
         ],
         det,
     }
