@@ -423,21 +423,24 @@ fn closed_target() -> PathRequirement {
     }
 }
 
-#[test]
-fn every_search_keeps_its_evaluation_budget_and_reports_progress() {
-    let free = {
-        let phis: Vec<f64> = (0..10).map(|k| 0.5 * k as f64).collect();
-        PathRequirement {
-            points: target(&mut Rng(8), &phis),
-            timing: Timing::Free,
-        }
+/// One requirement of each timing: the closed curve, ten points without timing, six timed.
+fn every_timing() -> [PathRequirement; 3] {
+    let phis: Vec<f64> = (0..10).map(|k| 0.5 * k as f64).collect();
+    let free = PathRequirement {
+        points: target(&mut Rng(8), &phis),
+        timing: Timing::Free,
     };
     let timed = PathRequirement {
         points: target(&mut Rng(9), &[0.0, 0.8, 1.6, 2.4, 3.2, 4.0]),
         timing: Timing::Prescribed(vec![0.0, 0.8, 1.6, 2.4, 3.2, 4.0]),
     };
+    [closed_target(), free, timed]
+}
+
+#[test]
+fn every_search_keeps_its_evaluation_budget_and_reports_progress() {
     let kinds = [Mechanism::FourBar, Mechanism::SliderCrank];
-    for (req, mechanism) in [closed_target(), free, timed]
+    for (req, mechanism) in every_timing()
         .into_iter()
         .flat_map(|r| kinds.map(|m| (r.clone(), m)))
     {
@@ -545,18 +548,7 @@ pub(super) fn best_never_rises(mechanism: Mechanism, req: &PathRequirement, budg
 
 #[test]
 fn the_best_reported_never_rises_across_restarts() {
-    let free = {
-        let phis: Vec<f64> = (0..10).map(|k| 0.5 * k as f64).collect();
-        PathRequirement {
-            points: target(&mut Rng(8), &phis),
-            timing: Timing::Free,
-        }
-    };
-    let timed = PathRequirement {
-        points: target(&mut Rng(9), &[0.0, 0.8, 1.6, 2.4, 3.2, 4.0]),
-        timing: Timing::Prescribed(vec![0.0, 0.8, 1.6, 2.4, 3.2, 4.0]),
-    };
-    for req in [closed_target(), free, timed] {
+    for req in every_timing() {
         let req = jittered(&req, 0.05, 3);
         for mechanism in [Mechanism::FourBar, Mechanism::SliderCrank] {
             best_never_rises(mechanism, &req, 20_000);
