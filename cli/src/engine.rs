@@ -456,7 +456,7 @@ impl Machine {
             for (s, t) in searches.iter().zip(times) {
                 if let ModeSearch::Multistart { starts } = s {
                     #[allow(clippy::cast_precision_loss)]
-                    let per = (*starts * MULTISTART_SOLVES_PER_START) as f64;
+                    let per = *starts as f64 * MULTISTART_SOLVES_PER_START as f64; // no usize overflow
                     solves += per * t;
                 }
             }
