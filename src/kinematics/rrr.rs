@@ -94,12 +94,26 @@ fn rrr_fast(
     let l = l_sq.sqrt();
     // The same closed form as the contour's: x = (l² + a² − b²)/(2l), h² = a² − x².
     let x = 0.5 * (l + (l_ab - l_cb) * (l_ab + l_cb) / l);
-    let h2 = (l_ab - x) * (l_ab + x);
+    // h² from the shorter link's pivot: with x_s its projection (x from A, l − x from C),
+    // h² = (l_s − x_s)(l_s + x_s). x carries an error of about ε·l, which enters h² times
+    // 2·x_s: from the longer link's pivot that is ε·l·l_long against h² ~ l_short², so B
+    // near C (l_CB = l_AB/1000) lost 10⁻¹⁰ of the short link's angle; from the shorter,
+    // ε·l·l_short, the rounding the data carry anyway.
+    let short_c = l_cb < l_ab;
+    let (xs, ls) = if short_c { (l - x, l_cb) } else { (x, l_ab) };
+    let h2 = (ls - xs) * (ls + xs);
     let tol = 16.0 * f64::EPSILON * (l_ab * l_ab + l_cb * l_cb + l_sq);
     let h = h2.sqrt();
     let e = d / l;
-    let r2 = x * e + (branch.sign() * h) * perp(e);
-    let r3 = r2 - d;
+    let across = (branch.sign() * h) * perp(e);
+    // Each link vector from its own projection (B − C = −(l − x)·e + across).
+    let (r2, r3) = if short_c {
+        let r3 = across - xs * e;
+        (r3 + d, r3)
+    } else {
+        let r2 = xs * e + across;
+        (r2, r2 - d)
+    };
     let big_d = cross(r2, r3);
     let det = big_d / (l_ab * l_cb);
     let i_d = 1.0 / big_d;

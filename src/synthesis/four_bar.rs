@@ -107,16 +107,24 @@ impl FourBar {
         if e == 0.0 {
             return None;
         }
-        let along = (b * b - c * c + e * e) / (2.0 * e);
-        let h2 = b * b - along * along;
+        let along = 0.5 * (e + (b - c) * (b + c) / e);
+        // h² = b² − along² = c² − (e − along)², from the shorter link (see below).
+        let (xs, ls) = if c < b { (e - along, c) } else { (along, b) };
+        let h2 = (ls - xs) * (ls + xs);
         if h2 < -1e-12 * b * b {
             return None;
         }
         let u = v / e;
-        Some((
-            s * a,
-            s * (a + along * u + self.sigma * h2.max(0.0).sqrt() * perp(u)),
-        ))
+        let across = self.sigma * h2.max(0.0).sqrt() * perp(u);
+        // B from the shorter of coupler and rocker: the same point, but the rounding of
+        // `along` (≈ ε·e) moves B by ε·e·e/h from A's side and by ε·e·(e − along)/h from
+        // O3's, which matters when the rocker is much shorter than the coupler (B near O3).
+        let b_point = if c < b {
+            V::new(d, 0.0) + across - (e - along) * u
+        } else {
+            a + along * u + across
+        };
+        Some((s * a, s * b_point))
     }
 
     /// The transmission angle (acute, between coupler and rocker) where |AO3| = e: the

@@ -799,3 +799,79 @@ fn within_box(mechanism: Mechanism, d: &tmm::synthesis::PathDesign, centre: [f64
         );
     }
 }
+
+/// [γ] over the whole turn for a crank that turns fully: the engine (and the report) give
+/// γ_min over the turn, so a search that checked it only over the targets' arc could return
+/// a four-bar through the points that breaks [γ] elsewhere. Here the points are those of a
+/// crank-rocker (frame 0.5, crank 0.15, coupler 0.5, rocker 0.4) whose γ is 44.0° at the crank
+/// along the frame (|AO3| = d − a; cos μ = (b² + c² − e²)/(2bc) = 0.71875) and above 50° for
+/// φ in [37.2°, 322.8°] (e² = 0.41 − 0.4·cos 50°, cos φ = (d² + a² − e²)/(2ad) = 0.7967),
+/// ten points from 64° to 296°: with [γ] = 50° it meets [γ] at every point and between them,
+/// not over the turn. Every design returned must meet [γ] over the turn by the engine.
+#[test]
+fn a_full_turn_crank_breaking_the_transmission_angle_outside_the_points_is_rejected() {
+    let original = FourBarDims {
+        o: Point2::new(0.0, 0.0),
+        c: Point2::new(0.5, 0.0),
+        l_oa: 0.15,
+        l_ab: 0.5,
+        l_cb: 0.4,
+        branch: Branch::Plus,
+        coupler: Vector2::new(0.2, 0.1),
+    };
+    let required = 50f64.to_radians();
+    let phis: Vec<f64> = (0..10)
+        .map(|k| 64f64.to_radians() + 0.45 * k as f64)
+        .collect();
+    let angles = CrankAngles::new(&phis);
+    let mut out = Positions::new(phis.len());
+    four_bar_positions(&original, &angles, out.columns_mut()).unwrap();
+    // The original meets [γ] at the points and over their arc (it would pass an arc-only
+    // check, with no miss at all), and breaks it over the turn.
+    for k in 0..=400 {
+        let phi = phis[0] + (phis[9] - phis[0]) * k as f64 / 400.0;
+        let e2 = 0.25 + 0.0225 - 0.15 * phi.cos();
+        let mu = ((0.41 - e2) / 0.4f64).acos();
+        assert!(mu.min(std::f64::consts::PI - mu) > required, "{phi}");
+    }
+    let at_frame = ((0.41 - 0.35f64 * 0.35) / 0.4).acos();
+    assert!((at_frame.to_degrees() - 44.05).abs() < 0.01 && at_frame < required);
+    let req = PathRequirement {
+        points: (0..phis.len()).map(|i| [out.p_x[i], out.p_y[i]]).collect(),
+        timing: Timing::Free,
+    };
+    let opts = PathOptions::default()
+        .with_min_transmission_angle(required)
+        .with_seed(23)
+        .with_max_evaluations(60_000)
+        .with_designs(4);
+    let designs = match path_generator(&req, &opts, |_| true) {
+        Ok(d) => d,
+        // No design met [γ] within the budget: rejected too.
+        Err(tmm::Error::NoMechanism { .. }) => Vec::new(),
+        Err(e) => panic!("{e}"),
+    };
+    for d in &designs {
+        let report = &d.synthesis.report;
+        assert!(
+            report.min_transmission_angle >= required - 1e-9,
+            "reported γ_min {} below [γ] {required}",
+            report.min_transmission_angle
+        );
+        if report.grashof.is_some_and(|g| g.input_turns_fully()) {
+            let plan = Plan::new(&d.synthesis.linkage).unwrap();
+            let (gamma, at) = plan.min_transmission_angle(0).unwrap();
+            assert!(
+                gamma >= required - 1e-9,
+                "the engine's γ_min over the turn {gamma} (at φ = {at}) below [γ] {required}, \
+                 mean miss {:e}",
+                d.mean_error
+            );
+        }
+    }
+    eprintln!(
+        "[γ] over the turn: {} designs, misses {:?}",
+        designs.len(),
+        designs.iter().map(|d| d.mean_error).collect::<Vec<_>>()
+    );
+}

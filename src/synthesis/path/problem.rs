@@ -244,6 +244,13 @@ impl Problem {
         phi.clear();
         phi.extend_from_slice(&phis);
         phi.extend((0..=steps).map(|k| start + span * k as f64 / steps as f64));
+        // A four-bar crank that turns fully is reported (and analysed by the engine) with
+        // γ_min over the whole turn, so [γ] must hold there too, not only over the targets'
+        // arc: its γ extremes are at the crank in line with the frame (FourBar::gamma_full),
+        // two positions more.
+        if self.kind == Kind::FourBar && turns_fully(&g) {
+            phi.extend([g[2], g[2] + std::f64::consts::PI]);
+        }
         angles.set(phi);
         out.resize(phi.len());
         self.budget.add_positions(phi.len());
@@ -260,6 +267,12 @@ impl Problem {
             9
         }
     }
+}
+
+/// Whether the crank of the four-bar of the genes `g` (frame g[3], crank g[4], coupler g[5],
+/// rocker g[6]) turns fully, by Grashof's class as the report reads it.
+fn turns_fully(g: &[f64]) -> bool {
+    crate::kinematics::grashof(g[3], g[4], g[5], g[6]).is_ok_and(|c| c.input_turns_fully())
 }
 
 pub(super) fn gene_vec(x: &[f64], sigma: f64) -> Vec<f64> {
