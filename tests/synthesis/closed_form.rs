@@ -212,9 +212,7 @@ fn five_poses_have_at_most_four_burmester_points_in_pairs() {
 }
 
 /// Double-double arithmetic (the work-precision reference's), for the description's own K.
-#[path = "../work_precision/dd.rs"]
-#[allow(dead_code)]
-mod dd;
+use crate::work_precision::dd;
 
 /// √x in double-double: one Newton step from the f64 root (x > 0).
 fn dd_sqrt(x: dd::Dd) -> dd::Dd {

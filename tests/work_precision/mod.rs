@@ -3,7 +3,7 @@
 //! `benches/examples/work_precision.rs`) and from the CSV files committed beside the charts in
 //! `docs/charts/`.
 
-mod dd;
+pub(crate) mod dd;
 #[allow(dead_code)] // the CSV writers serve the example
 mod dynamics_data;
 mod fit;
