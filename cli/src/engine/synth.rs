@@ -495,9 +495,14 @@ fn coupler_misses(m: &Machine, targets: &[[f64; 2]], angles: &[f64]) -> Misses {
 /// one run to the next (the same command gives the same sentence).
 fn no_design(method: &str, problem: &str, p: &PathRequest) -> Failure {
     let what = problem.find(") in ").map_or(problem, |k| &problem[..=k]);
-    let time = p
-        .time
-        .map_or_else(String::new, |t| format!(" or the {t} s of --time"));
+    // A huge --time (1e308) in exponent form, not as a run of 309 digits.
+    let time = p.time.map_or_else(String::new, |t| {
+        if t < 1e15 {
+            format!(" or the {t} s of --time")
+        } else {
+            format!(" or the {t:e} s of --time")
+        }
+    });
     Failure::new(format!(
         "{method}: {what}, within the {} candidate evaluations of --budget{time}",
         p.budget
