@@ -80,6 +80,7 @@ mod triad;
 mod triad_fast;
 mod triad_newton;
 mod triad_slider;
+mod triad_slider_fast;
 mod trig_cubic;
 mod trig_roots;
 

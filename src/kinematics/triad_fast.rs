@@ -26,7 +26,7 @@ use super::link::LinkMotion;
 use super::motion::PointMotion;
 use super::triad::{hinged_legs, TriadDims, TriadPose, TriadState};
 use super::triad_newton::{
-    certifies, hinged_rounding, rotate, solve, turn, Closures, Eval, Solved,
+    certifies, hinged_rounding, inverse3, rotate, solve, turn, Closures, Eval,
 };
 use crate::angle::{cross, perp};
 use nalgebra::{Matrix3, Point2, Vector2, Vector3};
@@ -45,20 +45,48 @@ struct Hinged {
     round_c: f64,
 }
 
+impl Hinged {
+    /// ρ_i, d_i, g and J at (c, z).
+    #[inline(always)]
+    fn rows(
+        &self,
+        c: Vector2<f64>,
+        z: Vector2<f64>,
+    ) -> (
+        [Vector2<f64>; 3],
+        [Vector2<f64>; 3],
+        Vector3<f64>,
+        Matrix3<f64>,
+    ) {
+        let rho = self.beta.map(|b| rotate(z, b));
+        let d = [0, 1, 2].map(|i| c + rho[i] - self.a[i]);
+        let g = Vector3::new(
+            0.5 * (d[0].norm_squared() - self.l2[0]),
+            0.5 * (d[1].norm_squared() - self.l2[1]),
+            0.5 * (d[2].norm_squared() - self.l2[2]),
+        );
+        let j = Matrix3::new(
+            d[0].x,
+            d[0].y,
+            cross(rho[0], d[0]),
+            d[1].x,
+            d[1].y,
+            cross(rho[1], d[1]),
+            d[2].x,
+            d[2].y,
+            cross(rho[2], d[2]),
+        );
+        (rho, d, g, j)
+    }
+}
+
 impl Closures for Hinged {
     #[inline(always)]
     fn eval(&self, c: Vector2<f64>, z: Vector2<f64>) -> Eval {
-        let row = |i: usize| {
-            let rho = rotate(z, self.beta[i]);
-            let d = c + rho - self.a[i];
-            (0.5 * (d.norm_squared() - self.l2[i]), d, cross(rho, d))
-        };
-        let (r0, r1, r2) = (row(0), row(1), row(2));
+        let (_, _, g, j) = self.rows(c, z);
         Eval {
-            g: Vector3::new(r0.0, r1.0, r2.0),
-            j: Matrix3::new(
-                r0.1.x, r0.1.y, r0.2, r1.1.x, r1.1.y, r1.2, r2.1.x, r2.1.y, r2.2,
-            ),
+            g,
+            j,
             g_round: self.round0 + self.round_c * (c.x.abs() + c.y.abs()),
         }
     }
@@ -67,11 +95,13 @@ impl Closures for Hinged {
 /// A mode reached and certified by the fast path, origin at A1: the last point of
 /// evaluation with its Jacobian (for the rates) and the pose to return.
 pub(super) struct Fast {
-    s: Solved,
+    /// J′⁻¹ and det J′, J′ the Jacobian at the returned pose.
+    j_inv: Matrix3<f64>,
+    det_j: f64,
     /// The returned pose: joints and direction (the last point turned by its last step).
     b: [Point2<f64>; 3],
     z: Vector2<f64>,
-    /// ρ_i and d_i at the last point of evaluation.
+    /// ρ_i and d_i at the returned pose.
     rho: [Vector2<f64>; 3],
     d: [Vector2<f64>; 3],
 }
@@ -105,29 +135,38 @@ pub(super) fn track(a: [Point2<f64>; 3], dims: &TriadDims, previous: &TriadPose)
     let z0 = side / side.norm();
     let c0 = (p[0].coords + p[1].coords + p[2].coords) / 3.0 - origin.coords;
     let s = solve(&closures, c0, z0, moment)?;
-    let rho = beta.map(|b| rotate(s.z, b));
-    let d = [0, 1, 2].map(|i| Vector2::new(s.j[(i, 0)], s.j[(i, 1)]));
+    let rho_p = beta.map(|b| rotate(s.z, b));
     // The certificate at the last point of evaluation p.
     let moved2 = (0..3)
-        .map(|i| (origin + s.c + rho[i] - p[i]).norm_squared())
+        .map(|i| (origin + s.c + rho_p[i] - p[i]).norm_squared())
         .sum::<f64>();
+    let d_p = [0, 1, 2].map(|i| Vector2::new(s.j[(i, 0)], s.j[(i, 1)]));
     let spread = (0..3)
-        .map(|i| d[i].norm_squared() * beta[i].norm_squared())
+        .map(|i| d_p[i].norm_squared() * beta[i].norm_squared())
         .sum::<f64>();
     let curv = 0.5 + PI * PI / (8.0 * moment) * spread.sqrt();
     if !certifies(&s, curv, moved2) {
         return None;
     }
     let (c, z) = (s.c + Vector2::new(s.step.x, s.step.y), turn(s.z, s.step.z));
-    let b = beta.map(|b| origin + c + rotate(z, b));
-    Some(Fast { s, b, z, rho, d })
+    let (rho, d, _, j) = closures.rows(c, z);
+    let (j_inv, det_j) = inverse3(&j);
+    let b = rho.map(|r| origin + c + r);
+    Some(Fast {
+        j_inv,
+        det_j,
+        b,
+        z,
+        rho,
+        d,
+    })
 }
 
 impl Fast {
-    /// det K / L_T (det J = l_1·l_2·l_3·det K).
+    /// det K / L_T (det J′ = l_1·l_2·l_3·det K).
     #[inline(always)]
     fn det(&self, dims: &TriadDims) -> f64 {
-        self.s.det / (dims.l[0] * dims.l[1] * dims.l[2] * dims.ternary_size())
+        self.det_j / (dims.l[0] * dims.l[1] * dims.l[2] * dims.ternary_size())
     }
 
     /// The pose reached.
@@ -149,7 +188,7 @@ impl Fast {
     /// branch-point threshold.
     #[inline(always)]
     pub(super) fn state(&self, a: &[PointMotion; 3], dims: &TriadDims) -> Option<TriadState> {
-        let (rho, d, j_inv) = (&self.rho, &self.d, &self.s.j_inv);
+        let (rho, d, j_inv) = (&self.rho, &self.d, &self.j_inv);
         let il2 = dims.l.map(|l| 1.0 / (l * l));
         let vel = j_inv * Vector3::new(d[0].dot(&a[0].v), d[1].dot(&a[1].v), d[2].dot(&a[2].v));
         let (vc, omega_t) = (Vector2::new(vel.x, vel.y), vel.z);

@@ -46,7 +46,9 @@
 //! about ‖δJ‖/σ ≤ 1e-10 relative (J's rows change by |ΔB_i| ≤ ‖Δ‖_W over the step). At the
 //! root the computed step is rounding, at most ‖g's rounding‖/σ (the *floor*); a step at
 //! twice the floor that is still above 1e-10·σ means σ is too small for that (near a fold),
-//! and the fast path refuses.
+//! and the fast path refuses. The rates are solved with the Jacobian at p + Δ, inverted
+//! again: read from J at p they would be off by up to a part in 10¹⁰, which differences of
+//! the velocities over a cycle's steps amplify.
 
 use nalgebra::{Matrix3, Vector2, Vector3};
 
@@ -71,15 +73,12 @@ pub(super) trait Closures {
     fn eval(&self, c: Vector2<f64>, z: Vector2<f64>) -> Eval;
 }
 
-/// The pose reached: the last point of evaluation p = (c, z), its Jacobian's inverse and
-/// determinant, the last step (below the floor: p + step is the pose to return) and what the
-/// certificate needs.
+/// The pose reached: the last point of evaluation p = (c, z), its Jacobian, the last step (p + step is the pose to return) and what the certificate
+/// needs.
 pub(super) struct Solved {
     pub c: Vector2<f64>,
     pub z: Vector2<f64>,
     pub j: Matrix3<f64>,
-    pub j_inv: Matrix3<f64>,
-    pub det: f64,
     pub step: Vector3<f64>,
     /// σ², the lower bound of J's least singular value in the metric W, squared.
     pub sigma2: f64,
@@ -154,7 +153,7 @@ pub(super) fn solve(
 ) -> Option<Solved> {
     for _ in 0..MAX_STEPS {
         let e = closures.eval(c, z);
-        let (j_inv, det) = inverse3(&e.j);
+        let (j_inv, _) = inverse3(&e.j);
         let step = -(j_inv * e.g);
         // f = ‖W^{1/2}·J⁻¹‖_F² = 1/σ²: the stop rule's comparisons multiplied out by it.
         let f = frobenius2(&j_inv, moment);
@@ -165,8 +164,6 @@ pub(super) fn solve(
                 c,
                 z,
                 j: e.j,
-                j_inv,
-                det,
                 step,
                 sigma2: 1.0 / f,
                 g_norm: e.g.x.abs() + e.g.y.abs() + e.g.z.abs() + e.g_round,
@@ -204,6 +201,14 @@ pub(super) fn hinged_rounding(l: f64, beta1: f64, a1: f64) -> (f64, f64) {
         4.0 * U * (2.0 * l * l + 2.0 * l * (beta1 + a1 + l)),
         8.0 * U * l,
     )
+}
+
+/// The rounding of a sliding leg's closure λ·(n·B − h), linear in the joint: each term of
+/// the product off by about 4u of its size, returned as the part for the terms other than
+/// the centroid, of 1-norm `terms`, and the factor of |c|₁.
+#[inline(always)]
+pub(super) fn line_rounding(lambda: f64, terms: f64) -> (f64, f64) {
+    (4.0 * U * lambda * terms, 4.0 * U * lambda)
 }
 
 #[cfg(test)]
