@@ -26,7 +26,7 @@ use super::link::LinkMotion;
 use super::motion::PointMotion;
 use super::triad::{hinged_legs, TriadDims, TriadPose, TriadState};
 use super::triad_newton::{
-    certifies, hinged_rounding, inverse3, rotate, solve, turn, Closures, Eval,
+    certifies, each3, hinged_rounding, inverse3, rotate, solve, turn, Closures, Eval,
 };
 use crate::angle::{cross, perp};
 use nalgebra::{Matrix3, Point2, Vector2, Vector3};
@@ -58,8 +58,8 @@ impl Hinged {
         Vector3<f64>,
         Matrix3<f64>,
     ) {
-        let rho = self.beta.map(|b| rotate(z, b));
-        let d = [0, 1, 2].map(|i| c + rho[i] - self.a[i]);
+        let rho = each3(|i| rotate(z, self.beta[i]));
+        let d = each3(|i| c + rho[i] - self.a[i]);
         let g = Vector3::new(
             0.5 * (d[0].norm_squared() - self.l2[0]),
             0.5 * (d[1].norm_squared() - self.l2[1]),
@@ -111,7 +111,7 @@ pub(super) struct Fast {
 pub(super) fn track(a: [Point2<f64>; 3], dims: &TriadDims, previous: &TriadPose) -> Option<Fast> {
     let local = dims.local_joints();
     let mean = (local[0] + local[1] + local[2]) / 3.0;
-    let beta = local.map(|b| b - mean);
+    let beta = each3(|i| local[i] - mean);
     let moment = beta[0].norm_squared() + beta[1].norm_squared() + beta[2].norm_squared();
     let origin = a[0];
     let rel = [Vector2::zeros(), a[1] - origin, a[2] - origin];
@@ -126,7 +126,7 @@ pub(super) fn track(a: [Point2<f64>; 3], dims: &TriadDims, previous: &TriadPose)
     let closures = Hinged {
         a: rel,
         beta,
-        l2: l.map(|x| x * x),
+        l2: [l[0] * l[0], l[1] * l[1], l[2] * l[2]],
         round0,
         round_c,
     };
@@ -135,23 +135,25 @@ pub(super) fn track(a: [Point2<f64>; 3], dims: &TriadDims, previous: &TriadPose)
     let z0 = side / side.norm();
     let c0 = (p[0].coords + p[1].coords + p[2].coords) / 3.0 - origin.coords;
     let s = solve(&closures, c0, z0, moment)?;
-    let rho_p = beta.map(|b| rotate(s.z, b));
+    let rho_p = each3(|i| rotate(s.z, beta[i]));
     // The certificate at the last point of evaluation p.
     let moved2 = (0..3)
         .map(|i| (origin + s.c + rho_p[i] - p[i]).norm_squared())
         .sum::<f64>();
-    let d_p = [0, 1, 2].map(|i| Vector2::new(s.j[(i, 0)], s.j[(i, 1)]));
+    let d_p = each3(|i| Vector2::new(s.j[(i, 0)], s.j[(i, 1)]));
     let spread = (0..3)
         .map(|i| d_p[i].norm_squared() * beta[i].norm_squared())
         .sum::<f64>();
     let curv = 0.5 + PI * PI / (8.0 * moment) * spread.sqrt();
-    if !certifies(&s, curv, moved2) {
+    // The group's size: √(Σl_i² + I).
+    let size = (l[0] * l[0] + l[1] * l[1] + l[2] * l[2] + moment).sqrt();
+    if !certifies(&s, curv, moved2, size) {
         return None;
     }
     let (c, z) = (s.c + Vector2::new(s.step.x, s.step.y), turn(s.z, s.step.z));
     let (rho, d, _, j) = closures.rows(c, z);
     let (j_inv, det_j) = inverse3(&j);
-    let b = rho.map(|r| origin + c + r);
+    let b = each3(|i| origin + c + rho[i]);
     Some(Fast {
         j_inv,
         det_j,
@@ -175,7 +177,7 @@ impl Fast {
         TriadPose {
             b,
             theta: direction_of(self.z.x, self.z.y),
-            phi: [0, 1, 2].map(|i| {
+            phi: each3(|i| {
                 let v = b[i] - a[i];
                 direction_of(v.x, v.y)
             }),
@@ -189,23 +191,27 @@ impl Fast {
     #[inline(always)]
     pub(super) fn state(&self, a: &[PointMotion; 3], dims: &TriadDims) -> Option<TriadState> {
         let (rho, d, j_inv) = (&self.rho, &self.d, &self.j_inv);
-        let il2 = dims.l.map(|l| 1.0 / (l * l));
+        let il2 = [
+            1.0 / (dims.l[0] * dims.l[0]),
+            1.0 / (dims.l[1] * dims.l[1]),
+            1.0 / (dims.l[2] * dims.l[2]),
+        ];
         let vel = j_inv * Vector3::new(d[0].dot(&a[0].v), d[1].dot(&a[1].v), d[2].dot(&a[2].v));
         let (vc, omega_t) = (Vector2::new(vel.x, vel.y), vel.z);
-        let vb = [0, 1, 2].map(|i| vc + omega_t * perp(rho[i]));
-        let dv = [0, 1, 2].map(|i| vb[i] - a[i].v);
+        let vb = each3(|i| vc + omega_t * perp(rho[i]));
+        let dv = each3(|i| vb[i] - a[i].v);
         let w2 = omega_t * omega_t;
         let rhs = |i: usize| d[i].dot(&(a[i].a + w2 * rho[i])) - dv[i].norm_squared();
         let acc = j_inv * Vector3::new(rhs(0), rhs(1), rhs(2));
         let (ac, eps_t) = (Vector2::new(acc.x, acc.y), acc.z);
-        let ab = [0, 1, 2].map(|i| ac + eps_t * perp(rho[i]) - w2 * rho[i]);
-        let omega = [0, 1, 2].map(|i| cross(d[i], dv[i]) * il2[i]);
-        let eps = [0, 1, 2].map(|i| cross(d[i], ab[i] - a[i].a) * il2[i]);
+        let ab = each3(|i| ac + eps_t * perp(rho[i]) - w2 * rho[i]);
+        let omega = each3(|i| cross(d[i], dv[i]) * il2[i]);
+        let eps = each3(|i| cross(d[i], ab[i] - a[i].a) * il2[i]);
         let det = self.det(dims);
         // The branch-point test of the rates on K (rows (u_i, r_i × u_i) with r_i = B_i − B1)
         // made from J: u_i = d_i/l_i and r_i × d_i = ρ_i × d_i − ρ_1 × d_i.
-        let u = [0, 1, 2].map(|i| d[i] / dims.l[i]);
-        let r = [0, 1, 2].map(|i| rho[i] - rho[0]);
+        let u = each3(|i| d[i] / dims.l[i]);
+        let r = each3(|i| rho[i] - rho[0]);
         let k = Matrix3::new(
             u[0].x,
             u[0].y,

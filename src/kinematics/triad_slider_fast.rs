@@ -36,7 +36,8 @@ use super::motion::PointMotion;
 use super::rrp::Guide;
 use super::triad::{TriadPose, TriadState};
 use super::triad_newton::{
-    certifies, hinged_rounding, inverse3, line_rounding, rotate, solve, turn, Closures, Eval,
+    certifies, each2, each3, hinged_rounding, inverse3, line_rounding, rotate, solve, turn,
+    Closures, Eval,
 };
 use super::triad_slider::{SliderTriadDims, SlidingPair};
 use crate::angle::{cross, perp};
@@ -85,7 +86,7 @@ impl Sliding {
         Vector3<f64>,
         Matrix3<f64>,
     ) {
-        let rho = self.beta.map(|b| rotate(z, b));
+        let rho = each3(|i| rotate(z, self.beta[i]));
         let d = [c + rho[1] - self.a[0], c + rho[2] - self.a[1]];
         let (g1, w, m) = match self.slide {
             Slide::Outer { n, h } => (
@@ -171,7 +172,7 @@ pub(super) fn track(
 ) -> Option<Fast> {
     let local = dims.triangle().local_joints();
     let mean = (local[0] + local[1] + local[2]) / 3.0;
-    let beta = local.map(|b| b - mean);
+    let beta = each3(|i| local[i] - mean);
     let moment = beta[0].norm_squared() + beta[1].norm_squared() + beta[2].norm_squared();
     let origin = a[0];
     let rel = [Vector2::zeros(), a[1] - origin];
@@ -207,7 +208,7 @@ pub(super) fn track(
         lambda,
         a: rel,
         beta,
-        l2: l.map(|x| x * x),
+        l2: [l[0] * l[0], l[1] * l[1]],
         round0,
         round_c,
     };
@@ -216,7 +217,7 @@ pub(super) fn track(
     let z0 = side / side.norm();
     let c0 = (p[0].coords + p[1].coords + p[2].coords) / 3.0 - origin.coords;
     let s = solve(&closures, c0, z0, moment)?;
-    let rho = beta.map(|b| rotate(s.z, b));
+    let rho = each3(|i| rotate(s.z, beta[i]));
     let moved2 = (0..3)
         .map(|i| (origin + s.c + rho[i] - p[i]).norm_squared())
         .sum::<f64>();
@@ -231,13 +232,15 @@ pub(super) fn track(
     };
     let (h2, h3) = (hinged(0), hinged(1));
     let curv = 0.5 + (slide_coef * slide_coef + h2 * h2 + h3 * h3).sqrt();
-    if !certifies(&s, curv, moved2) {
+    // The group's size: √(λ² + l_2² + l_3² + I).
+    let size = (lambda * lambda + l[0] * l[0] + l[1] * l[1] + moment).sqrt();
+    if !certifies(&s, curv, moved2, size) {
         return None;
     }
     let (c, z) = (s.c + Vector2::new(s.step.x, s.step.y), turn(s.z, s.step.z));
     let (rho, d, _, j) = closures.rows(c, z);
     let (j_inv, det_j) = inverse3(&j);
-    let b = rho.map(|r| origin + c + r);
+    let b = each3(|i| origin + c + rho[i]);
     Some(Fast {
         j_inv,
         det_j,
@@ -300,8 +303,8 @@ impl Fast {
         };
         let vel = j_inv * Vector3::new(v1, d[0].dot(&a[0].v), d[1].dot(&a[1].v));
         let (vc, omega_t) = (Vector2::new(vel.x, vel.y), vel.z);
-        let vb = [0, 1, 2].map(|i| vc + omega_t * perp(rho[i]));
-        let dv = [0, 1].map(|k| vb[k + 1] - a[k].v);
+        let vb = each3(|i| vc + omega_t * perp(rho[i]));
+        let dv = each2(|k| vb[k + 1] - a[k].v);
         let w2 = omega_t * omega_t;
         let a1 = match self.slide {
             Slide::Outer { .. } => {
@@ -319,10 +322,10 @@ impl Fast {
         let rhs = |k: usize| d[k].dot(&(a[k].a + w2 * rho[k + 1])) - dv[k].norm_squared();
         let acc = j_inv * Vector3::new(sign * a1, rhs(0), rhs(1));
         let (ac, eps_t) = (Vector2::new(acc.x, acc.y), acc.z);
-        let ab = [0, 1, 2].map(|i| ac + eps_t * perp(rho[i]) - w2 * rho[i]);
-        let il2 = dims.l.map(|l| 1.0 / (l * l));
-        let omega = [0, 1].map(|k| cross(d[k], dv[k]) * il2[k]);
-        let eps = [0, 1].map(|k| cross(d[k], ab[k + 1] - a[k].a) * il2[k]);
+        let ab = each3(|i| ac + eps_t * perp(rho[i]) - w2 * rho[i]);
+        let il2 = [1.0 / (dims.l[0] * dims.l[0]), 1.0 / (dims.l[1] * dims.l[1])];
+        let omega = each2(|k| cross(d[k], dv[k]) * il2[k]);
+        let eps = each2(|k| cross(d[k], ab[k + 1] - a[k].a) * il2[k]);
         let det = self.det(dims);
         // The branch-point test on K with B1 as the reference point (module
         // `triad_slider`): rows (w, (p − B1) × w).
@@ -344,7 +347,7 @@ impl Fast {
             return None;
         }
         let b = self.b;
-        let bm = [0, 1, 2].map(|i| PointMotion::new(b[i], vb[i], ab[i]));
+        let bm = each3(|i| PointMotion::new(b[i], vb[i], ab[i]));
         let sliding = match self.slide {
             Slide::Outer { .. } => LinkMotion {
                 origin: bm[0],
