@@ -254,6 +254,8 @@ fn the_certificate_refuses_between_two_modes_a_millionth_apart() {
             break;
         }
     }
-    println!("certificate near a branch point: {built} pairs of modes 1e-7..1e-5 of the size apart");
+    println!(
+        "certificate near a branch point: {built} pairs of modes 1e-7..1e-5 of the size apart"
+    );
     assert!(built >= 5, "only {built} pairs built");
 }

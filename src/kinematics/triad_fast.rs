@@ -145,9 +145,7 @@ pub(super) fn track(a: [Point2<f64>; 3], dims: &TriadDims, previous: &TriadPose)
         .map(|i| d_p[i].norm_squared() * beta[i].norm_squared())
         .sum::<f64>();
     let curv = 0.5 + PI * PI / (8.0 * moment) * spread.sqrt();
-    // The group's size: √(Σl_i² + I).
-    let size = (l[0] * l[0] + l[1] * l[1] + l[2] * l[2] + moment).sqrt();
-    if !certifies(&s, curv, moved2, size) {
+    if !certifies(&s, curv, moved2) {
         return None;
     }
     let (c, z) = (s.c + Vector2::new(s.step.x, s.step.y), turn(s.z, s.step.z));

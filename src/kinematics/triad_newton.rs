@@ -194,26 +194,13 @@ pub(super) fn solve(
 
 /// The certificate (module docs): whether the root near the last point of evaluation is
 /// certainly the mode nearest a previous pose `moved2` = D(p, prev)² from it, with the
-/// closures' curvature constant `curv` = C; and, as a rule of its own, whether every other
-/// mode is certainly farther than [`APART`] times the group's `size` (D₊ − D₋ ≥ that).
+/// closures' curvature constant `curv` = C.
 #[inline(always)]
-pub(super) fn certifies(s: &Solved, curv: f64, moved2: f64, size: f64) -> bool {
+pub(super) fn certifies(s: &Solved, curv: f64, moved2: f64) -> bool {
     let disc = 0.98 * s.sigma2 - 4.0 * curv * s.g_norm;
-    let near = APART * size * curv;
     // (NaN fails.)
-    disc > near * near && 4.0 * moved2 * curv * curv < disc
+    disc > 0.0 && 4.0 * moved2 * curv * curv < disc
 }
-
-/// The fast path answers only where every other mode is certainly farther than this part of
-/// the group's size: nearer, the group approaches a fold (two modes merging), where poses
-/// and rates are known only to ε·s/μ (μ the conditioning, [`SINGULAR_BRANCH`]'s model) and
-/// the full scan's polish decides, the rounding the branch tests' allowances are derived
-/// for. (Seen: a mode 1e-8 of the size off a branch point, |μ| = 1.1e-3, whose fast-path
-/// rates were off finite differences by 1.01 of that allowance.) Along a regular cycle the
-/// certified distance is a few percent of the size and more (the bench's triad: 3.7 %).
-///
-/// [`SINGULAR_BRANCH`]: super::SINGULAR_BRANCH
-pub(super) const APART: f64 = 1e-2;
 
 /// The rounding of a hinged leg's closure ½(|B − A|² − l²) evaluated as in the callers:
 /// the joint B = origin + c + z·β̄ is off by about 4u·(|c| + |β̄| + |a|), the leg d = B − A by

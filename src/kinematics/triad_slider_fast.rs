@@ -232,9 +232,7 @@ pub(super) fn track(
     };
     let (h2, h3) = (hinged(0), hinged(1));
     let curv = 0.5 + (slide_coef * slide_coef + h2 * h2 + h3 * h3).sqrt();
-    // The group's size: √(λ² + l_2² + l_3² + I).
-    let size = (lambda * lambda + l[0] * l[0] + l[1] * l[1] + moment).sqrt();
-    if !certifies(&s, curv, moved2, size) {
+    if !certifies(&s, curv, moved2) {
         return None;
     }
     let (c, z) = (s.c + Vector2::new(s.step.x, s.step.y), turn(s.z, s.step.z));
