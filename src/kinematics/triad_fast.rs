@@ -26,7 +26,7 @@ use super::link::LinkMotion;
 use super::motion::PointMotion;
 use super::triad::{hinged_legs, TriadDims, TriadPose, TriadState};
 use super::triad_newton::{
-    certifies, each3, hinged_rounding, inverse3, rotate, solve, turn, Closures, Eval,
+    certifies, each3, hinged_rounding, inverse3, rotate, solve, turn, Closures, Eval, Rows,
 };
 use crate::angle::{cross, perp};
 use nalgebra::{Matrix3, Point2, Vector2, Vector3};
@@ -48,16 +48,7 @@ struct Hinged {
 impl Hinged {
     /// ρ_i, d_i, g and J at (c, z).
     #[inline(always)]
-    fn rows(
-        &self,
-        c: Vector2<f64>,
-        z: Vector2<f64>,
-    ) -> (
-        [Vector2<f64>; 3],
-        [Vector2<f64>; 3],
-        Vector3<f64>,
-        Matrix3<f64>,
-    ) {
+    fn rows(&self, c: Vector2<f64>, z: Vector2<f64>) -> Rows<3> {
         let rho = each3(|i| rotate(z, self.beta[i]));
         let d = each3(|i| c + rho[i] - self.a[i]);
         let g = Vector3::new(

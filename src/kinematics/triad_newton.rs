@@ -67,6 +67,15 @@ pub(super) struct Eval {
     pub g_round: f64,
 }
 
+/// What a group's closures give at a pose: ρ_i = R(θ)·β̄_i, the hinged legs' d = B − A
+/// (`K` of them), the closures g and their Jacobian J.
+pub(super) type Rows<const K: usize> = (
+    [Vector2<f64>; 3],
+    [Vector2<f64>; K],
+    Vector3<f64>,
+    Matrix3<f64>,
+);
+
 /// The closures of a group of the 3rd class in (c, z), for [`solve`].
 pub(super) trait Closures {
     /// g, J and g's rounding at the centroid `c` and direction `z`.

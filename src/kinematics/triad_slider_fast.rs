@@ -37,7 +37,7 @@ use super::rrp::Guide;
 use super::triad::{TriadPose, TriadState};
 use super::triad_newton::{
     certifies, each2, each3, hinged_rounding, inverse3, line_rounding, rotate, solve, turn,
-    Closures, Eval,
+    Closures, Eval, Rows,
 };
 use super::triad_slider::{SliderTriadDims, SlidingPair};
 use crate::angle::{cross, perp};
@@ -76,16 +76,7 @@ struct Sliding {
 impl Sliding {
     /// ρ_i, the hinged legs' d_k, g and J at (c, z).
     #[inline(always)]
-    fn rows(
-        &self,
-        c: Vector2<f64>,
-        z: Vector2<f64>,
-    ) -> (
-        [Vector2<f64>; 3],
-        [Vector2<f64>; 2],
-        Vector3<f64>,
-        Matrix3<f64>,
-    ) {
+    fn rows(&self, c: Vector2<f64>, z: Vector2<f64>) -> Rows<2> {
         let rho = each3(|i| rotate(z, self.beta[i]));
         let d = [c + rho[1] - self.a[0], c + rho[2] - self.a[1]];
         let (g1, w, m) = match self.slide {
