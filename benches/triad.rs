@@ -3,14 +3,15 @@
 //!
 //! - `rrr_dyad`: positions, velocities and accelerations of an RRR dyad (a four-bar's);
 //! - `triad`: the same for a triad, the mode tracked from the previous position (the fast
-//!   path, Newton's method on the eliminated equation with its certificate; the full bracket
-//!   where the certificate fails);
+//!   path, Newton's method on the closures with its certificate, `kinematics/triad_newton.rs`;
+//!   the full bracket where the certificate fails);
 //! - `triad_tracked`: the fast path's positions alone;
 //! - `triad_modes`: every assembly mode by the certified scan (positions only);
 //! - `triad_modes_nearest_rates`: the full path, every mode then the nearest's rates;
 //! - `slider_triad`: the triad with a sliding pair (its first leg a slider on a fixed guide),
 //!   positions, velocities and accelerations, the mode tracked from the previous position
-//!   (its fast path as the triad's; every mode by the certified scan where it fails);
+//!   (its fast path as the triad's, on its own closures; every mode by the certified scan
+//!   where it fails);
 //! - `slider_triad_modes`: every assembly mode of the triad with a sliding pair.
 //!
 //! Before criterion runs, the ratio triad/RRR is measured in alternating rounds (both see the

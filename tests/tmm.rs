@@ -24,6 +24,7 @@ mod linkage;
 mod mechanism;
 mod synthesis;
 mod triad;
+mod triad_fast;
 mod triad_slider;
 mod triad_slider_branch;
 mod unit;

@@ -62,6 +62,7 @@ mod contour;
 mod crank;
 mod cycle;
 mod extreme;
+mod fast_angle;
 mod fold;
 mod fold_point;
 mod grashof;
@@ -76,7 +77,10 @@ mod rrp;
 mod rrr;
 mod transfer;
 mod triad;
+mod triad_fast;
+mod triad_newton;
 mod triad_slider;
+mod triad_slider_fast;
 mod trig_cubic;
 mod trig_roots;
 

@@ -51,9 +51,10 @@
 //!
 //! # Tracking a mode along a cycle
 //! [`TriadModes::nearest`] picks the mode nearest a reference pose, by the distance
-//! D² = Σ|B_i − B_i′|². [`triad_tracked`] is the fast path: Newton's method on F from the
-//! previous pose's angle, accepted only when a certificate proves that the root it reached is
-//! the mode the full bracket would pick (see its documentation for the rule).
+//! D² = Σ|B_i − B_i′|². [`triad_tracked`] is the fast path: Newton's method on the three
+//! closures from the previous pose (F is not formed), accepted only when a certificate proves
+//! that the root it reached is the mode the full bracket would pick (see its documentation
+//! for the rule).
 
 use super::fold::{split_steps, Leg, Legs};
 use super::link::LinkMotion;
@@ -367,23 +368,17 @@ pub fn triad_modes(a: [Point2<f64>; 3], dims: &TriadDims) -> Result<TriadModes> 
     Ok(modes)
 }
 
-/// The fast path of tracking: the mode reached by Newton's method on F(θ) from `previous`'s
-/// angle, or `None` when it cannot be certified to be the mode that
+/// The fast path of tracking: the mode reached by Newton's method on the three closures from
+/// `previous`, or `None` when it cannot be certified to be the mode that
 /// [`triad_modes`]`(a, dims)?.`[`nearest`](TriadModes::nearest)`(previous)` returns.
 ///
-/// The rule. Newton's iterate θ* (a root of F to rounding) is accepted when
-/// 1. no other root of F lies within ρ of θ*, where ρ is the larger of 2|F′(θ*)|/M₂ and the
-///    positive root of |F′(θ*)| = |F″(θ*)|·ρ/2 + M₃·ρ²/6 (M₂ = 2·Σ k²·|F_k| ≥ |F″| and
-///    M₃ = 2·Σ k³·|F_k| ≥ |F‴| everywhere, so by Taylor's theorem |F(θ)| ≥ |F′(θ*)|·d −
-///    M₂·d²/2 > 0, or ≥ |F′(θ*)|·d − |F″(θ*)|·d²/2 − M₃·d³/6 > 0, for 0 < d = |θ − θ*| < ρ;
-///    ρ is shrunk by 0.1 % and by 4|F(θ*)|/|F′(θ*)| for rounding), hence every other
-///    mode's angle is at least δ = ρ − |θ* − θ_prev| from the previous angle; and
-/// 2. the new pose is nearer the previous one than any other mode can be: a mode turned by Δθ
-///    from the previous pose is at least D² ≥ 4·I·sin²(Δθ/2) from it (I = Σ|β_i − β̄|², the
-///    polar moment of the ternary link's joints about their centroid), so the rule asks
-///    D*² < 4·I·sin²(min(δ, π)/2).
-///
-/// Both hold for small steps along a cycle away from a merger of modes; near one the bracket
+/// The unknowns are the ternary link's centroid c and angle θ; the closures
+/// ½(|B_i − A_i|² − l_i²) are exactly quadratic in them (up to the rotation's remainder), so
+/// any other root lies at least D₊ ≈ σ/C from the one reached, by the distance
+/// D² = Σ|B_i − B_i′|² of [`nearest`](TriadModes::nearest) (σ a lower bound of the
+/// Jacobian's least singular value, C the closures' curvature bound). The root is accepted
+/// when twice its distance from `previous` is below D₊ − D₋ (the full rule and its derivation
+/// are in the module `triad_newton`). Near a merger of modes σ vanishes and the bracket
 /// decides. `None` also for invalid input (the full path names the error).
 #[must_use]
 pub fn triad_tracked(
@@ -391,208 +386,10 @@ pub fn triad_tracked(
     dims: &TriadDims,
     previous: &TriadPose,
 ) -> Option<TriadPose> {
-    if !(valid_points(a) && dims.validate().is_ok()) {
+    if !(valid_points(a) && valid_points(previous.b) && dims.validate().is_ok()) {
         return None;
     }
-    let t = track(a, dims, previous)?;
-    let r = [Vector2::zeros(), t.b[1] - t.b[0], t.b[2] - t.b[0]];
-    let u = [0, 1, 2].map(|i| t.leg[i] / t.len[i]);
-    let det = velocity_matrix(u, r).determinant() / dims.ternary_size();
-    Some(TriadPose {
-        b: t.b,
-        theta: direction(Vector2::new(t.z.re, t.z.im)),
-        phi: t.leg.map(direction),
-        det,
-    })
-}
-
-/// A mode reached by the fast path: the ternary link's direction z, the joints, the legs
-/// B_i − A_i and their lengths.
-struct Tracked {
-    z: C,
-    b: [Point2<f64>; 3],
-    leg: [Vector2<f64>; 3],
-    len: [f64; 3],
-}
-
-/// The fast path (see [`triad_tracked`] for the rule), on valid input.
-#[inline]
-fn track(a: [Point2<f64>; 3], dims: &TriadDims, previous: &TriadPose) -> Option<Tracked> {
-    let e = Eliminated::new(a, dims);
-    let d = previous.b[1] - previous.b[0];
-    let z0 = C::new(d.x, d.y) / d.norm();
-    let root = e.cubic.tangent_root(z0)?;
-    let z = root.z;
-    let (wz, dz) = e.w_d(z);
-    let b1 = if dz.abs() > 1e-3 * e.dscale {
-        let pc = C::new(0.0, 1.0) * wz / dz;
-        e.a1 + Vector2::new(pc.re, pc.im)
-    } else {
-        // The radical axes nearly parallel (the circles' centres nearly collinear): B1 from
-        // two of the circles, the intersection nearer the previous B1 (the closures and the
-        // certificate below decide whether it is the mode).
-        let [p, q] = e.two_circles(z)?;
-        let back = previous.b[0] - e.a1;
-        e.a1 + if (p - back).norm_squared() <= (q - back).norm_squared() {
-            p
-        } else {
-            q
-        }
-    };
-    let b = e.joints(b1, z);
-    let leg = [b[0] - a[0], b[1] - a[1], b[2] - a[2]];
-    let len = [leg[0].norm(), leg[1].norm(), leg[2].norm()];
-    // One Newton step of the three closures on (B1, θ) with the velocity system K: the root
-    // of F carries the rounding of F's coefficients, the closures that of the geometry.
-    let u = [0, 1, 2].map(|i| leg[i] / len[i]);
-    let r = [Vector2::zeros(), b[1] - b[0], b[2] - b[0]];
-    let (k_inv, _) = inverse3(&velocity_matrix(u, r));
-    let l = dims.l;
-    let step = k_inv * Vector3::new(l[0] - len[0], l[1] - len[1], l[2] - len[2]);
-    let z = z * C::new(1.0, step.z);
-    let b = e.joints(b1 + Vector2::new(step.x, step.y), z);
-    let leg = [b[0] - a[0], b[1] - a[1], b[2] - a[2]];
-    let len = [leg[0].norm(), leg[1].norm(), leg[2].norm()];
-    let err = (len[0] - l[0])
-        .abs()
-        .max((len[1] - l[1]).abs())
-        .max((len[2] - l[2]).abs());
-    let closes = err <= 1e-13 * (l[0] + l[1] + l[2]) && step.z.abs() <= 1e-8;
-    if !closes {
-        return None;
-    }
-    // The certificate: no other root of F near, and no other mode as near the previous pose.
-    let moved = (b[0] - previous.b[0]).norm_squared()
-        + (b[1] - previous.b[1]).norm_squared()
-        + (b[2] - previous.b[2]).norm_squared();
-    let certified = e.cubic.certifies(&root, moved, dims.ternary_moment());
-    certified.then_some(Tracked { z, b, leg, len })
-}
-
-/// The inverse of a 3×3 matrix by its adjugate, and the determinant.
-#[inline]
-pub(super) fn inverse3(k: &Matrix3<f64>) -> (Matrix3<f64>, f64) {
-    let c00 = k[(1, 1)] * k[(2, 2)] - k[(1, 2)] * k[(2, 1)];
-    let c01 = k[(1, 2)] * k[(2, 0)] - k[(1, 0)] * k[(2, 2)];
-    let c02 = k[(1, 0)] * k[(2, 1)] - k[(1, 1)] * k[(2, 0)];
-    let det = k[(0, 0)] * c00 + k[(0, 1)] * c01 + k[(0, 2)] * c02;
-    let adj = Matrix3::new(
-        c00,
-        k[(0, 2)] * k[(2, 1)] - k[(0, 1)] * k[(2, 2)],
-        k[(0, 1)] * k[(1, 2)] - k[(0, 2)] * k[(1, 1)],
-        c01,
-        k[(0, 0)] * k[(2, 2)] - k[(0, 2)] * k[(2, 0)],
-        k[(0, 2)] * k[(1, 0)] - k[(0, 0)] * k[(1, 2)],
-        c02,
-        k[(0, 1)] * k[(2, 0)] - k[(0, 0)] * k[(2, 1)],
-        k[(0, 0)] * k[(1, 1)] - k[(0, 1)] * k[(1, 0)],
-    );
-    (adj * (1.0 / det), det)
-}
-
-/// The rates of a tracked mode, before they are laid out as a [`TriadState`].
-struct FastRates {
-    v1: Vector2<f64>,
-    omega_t: f64,
-    a1: Vector2<f64>,
-    eps_t: f64,
-    vb: [Vector2<f64>; 3],
-    ab: [Vector2<f64>; 3],
-    omega: [f64; 3],
-    eps: [f64; 3],
-    det: f64,
-}
-
-/// The velocities and accelerations of a tracked mode, with every check folded into one
-/// test at the end (`None` wherever [`triad_rates`] could fail, and near its threshold).
-/// Small on purpose: the caller lays the state out in its return value (no copy of it).
-#[inline]
-fn rates_fast(a: &[PointMotion; 3], dims: &TriadDims, t: &Tracked) -> Option<FastRates> {
-    let b = t.b;
-    let r = [Vector2::zeros(), b[1] - b[0], b[2] - b[0]];
-    let i_len = [1.0 / t.len[0], 1.0 / t.len[1], 1.0 / t.len[2]];
-    let u = [
-        t.leg[0] * i_len[0],
-        t.leg[1] * i_len[1],
-        t.leg[2] * i_len[2],
-    ];
-    let k = velocity_matrix(u, r);
-    let (k_inv, det_k) = inverse3(&k);
-    let lt = dims.ternary_size();
-    let det = det_k / lt;
-    let vel = k_inv * Vector3::new(u[0].dot(&a[0].v), u[1].dot(&a[1].v), u[2].dot(&a[2].v));
-    let (v1, omega_t) = (Vector2::new(vel.x, vel.y), vel.z);
-    let vb = [v1, v1 + omega_t * perp(r[1]), v1 + omega_t * perp(r[2])];
-    let omega = [
-        perp(u[0]).dot(&(vb[0] - a[0].v)) * i_len[0],
-        perp(u[1]).dot(&(vb[1] - a[1].v)) * i_len[1],
-        perp(u[2]).dot(&(vb[2] - a[2].v)) * i_len[2],
-    ];
-    let w2 = omega_t * omega_t;
-    let centripetal =
-        |i: usize| u[i].dot(&a[i].a) - t.len[i] * omega[i] * omega[i] + w2 * r[i].dot(&u[i]);
-    let acc = k_inv * Vector3::new(centripetal(0), centripetal(1), centripetal(2));
-    let (a1, eps_t) = (Vector2::new(acc.x, acc.y), acc.z);
-    let ab = [
-        a1,
-        a1 + eps_t * perp(r[1]) - w2 * r[1],
-        a1 + eps_t * perp(r[2]) - w2 * r[2],
-    ];
-    let eps = [
-        perp(u[0]).dot(&(ab[0] - a[0].a)) * i_len[0],
-        perp(u[1]).dot(&(ab[1] - a[1].a)) * i_len[1],
-        perp(u[2]).dot(&(ab[2] - a[2].a)) * i_len[2],
-    ];
-    // The inputs' rates need no test of their own: K⁻¹ has no zero column, so a non-finite
-    // component of a velocity or an acceleration of A_i makes the solved vector non-finite
-    // (and ω_i, ε_i, which read it directly). The arms' lengths are the ternary link's.
-    let arms = [
-        0.0,
-        dims.l_b1b2,
-        (dims.b3_along * dims.b3_along + dims.b3_across * dims.b3_across).sqrt(),
-    ];
-    let ok = super::rrr::all_finite([
-        vel.x, vel.y, vel.z, acc.x, acc.y, acc.z, omega[0], omega[1], omega[2], eps[0], eps[1],
-        eps[2], det,
-    ]) && hinged_legs(u, r, t.len, lt).surely_regular_arms(&k, det, arms);
-    ok.then_some(FastRates {
-        v1,
-        omega_t,
-        a1,
-        eps_t,
-        vb,
-        ab,
-        omega,
-        eps,
-        det,
-    })
-}
-
-/// The state of a tracked mode from its rates, written out field by field so that it is
-/// built where it is returned.
-#[inline(always)]
-fn fast_state(a: &[PointMotion; 3], t: &Tracked, q: &FastRates) -> TriadState {
-    let binary = |i: usize| LinkMotion {
-        origin: a[i],
-        angle: direction(t.leg[i]),
-        omega: q.omega[i],
-        epsilon: q.eps[i],
-    };
-    TriadState {
-        b: [
-            PointMotion::new(t.b[0], q.vb[0], q.ab[0]),
-            PointMotion::new(t.b[1], q.vb[1], q.ab[1]),
-            PointMotion::new(t.b[2], q.vb[2], q.ab[2]),
-        ],
-        ternary: LinkMotion {
-            origin: PointMotion::new(t.b[0], q.v1, q.a1),
-            angle: direction(Vector2::new(t.z.re, t.z.im)),
-            omega: q.omega_t,
-            epsilon: q.eps_t,
-        },
-        binary: [binary(0), binary(1), binary(2)],
-        det: q.det,
-    }
+    Some(super::triad_fast::track(a, dims, previous)?.pose(&a, dims))
 }
 
 /// Positions, velocities and accelerations of a triad, in the mode nearest `previous`.
@@ -647,10 +444,11 @@ pub fn triad(a: [PointMotion; 3], dims: &TriadDims, previous: &TriadPose) -> Res
         & (dims.l_b1b2 > 0.0)
         & super::rrr::all_finite([dims.l[0], dims.l[1], dims.l[2], dims.l_b1b2]);
     if valid
-        && let Some(t) = track(p, dims, previous)
-        && let Some(q) = rates_fast(&a, dims, &t)
+        && valid_points(previous.b)
+        && let Some(t) = super::triad_fast::track(p, dims, previous)
+        && let Some(state) = t.state(&a, dims)
     {
-        return Ok(fast_state(&a, &t, &q));
+        return Ok(state);
     }
     triad_checked(a, dims, previous)
 }
@@ -770,7 +568,12 @@ pub(crate) fn ensure_off_branch(
 
 /// The legs of a posed revolute triad for the fold's normal form.
 #[inline]
-fn hinged_legs(u: [Vector2<f64>; 3], r: [Vector2<f64>; 3], len: [f64; 3], lt: f64) -> Legs {
+pub(super) fn hinged_legs(
+    u: [Vector2<f64>; 3],
+    r: [Vector2<f64>; 3],
+    len: [f64; 3],
+    lt: f64,
+) -> Legs {
     Legs {
         w: u,
         r,
@@ -978,8 +781,11 @@ impl Eliminated {
         let mut z = z;
         let length = self.length();
         let mut err = self.closure(b1, z);
+        // To the rounding floor: until a step (halved up to six times) no longer reduces the
+        // closure error. (Stopping at 1e-15 of the size left poses 5× the floor off along a
+        // near fold's null direction, which differences of poses over small steps amplify.)
         for _ in 0..steps {
-            if err <= 1e-15 * length {
+            if err == 0.0 {
                 break;
             }
             let (u, r, h) = self.legs(b1, z);

@@ -54,7 +54,7 @@ use super::fold::{split_steps, Leg, Legs, BRANCH_MEASURE, SINGULAR_BRANCH};
 use super::link::LinkMotion;
 use super::motion::PointMotion;
 use super::rrp::Guide;
-use super::triad::{inverse3, AssemblyModes, TriadDims, TriadPose, TriadState};
+use super::triad::{AssemblyModes, TriadDims, TriadPose, TriadState};
 use super::trig_cubic::{n1, Cubic};
 use super::trig_roots::{checked_roots, unit as unit_c, CLOSES, SAME_MODE};
 use crate::angle::{cross, direction, perp, unit};
@@ -128,7 +128,7 @@ pub struct SliderTriadDims {
 impl SliderTriadDims {
     /// The ternary link's triangle as a [`TriadDims`] (its legs 1 long: unused), for
     /// [`TriadDims::ternary_size`].
-    fn triangle(&self) -> TriadDims {
+    pub(super) fn triangle(&self) -> TriadDims {
         TriadDims::new(
             [1.0, self.l[0], self.l[1]],
             self.l_b1b2,
@@ -276,16 +276,7 @@ pub fn slider_triad_tracked(
     if !valid || dims.validate().is_err() {
         return None;
     }
-    let t = track(first, a, dims, previous)?;
-    let n = t.legs.w[0];
-    Some(pose_at(
-        t.o,
-        t.z,
-        &dims.triangle().local_joints(),
-        &a,
-        Vector2::new(n.y, -n.x),
-        t.k.determinant() / t.legs.lt,
-    ))
+    Some(super::triad_slider_fast::track(first, a, dims, previous)?.pose(&a, dims))
 }
 
 /// Whether the positions of the fast path's input are finite and the dimensions valid.
@@ -305,100 +296,6 @@ fn valid_input(
         && dims.validate().is_ok()
 }
 
-/// A mode reached by the fast path: the ternary link's origin O and direction z, with the
-/// legs' lines there and the velocity system K they make (for the pose and the rates).
-struct Tracked {
-    o: Vector2<f64>,
-    z: Vector2<f64>,
-    legs: Legs,
-    k: Matrix3<f64>,
-}
-
-/// The fast path on valid input: Newton's method on F in the half-angle tangent from the
-/// previous direction, O from the linear equations (or, where they are nearly parallel,
-/// the line's intersection with the second circle nearer the previous O), Newton steps of
-/// the three closures with the velocity system K (the root of F carries the rounding of F's
-/// coefficients, the closures that of the geometry), then the certificate of
-/// [`Cubic::certifies`](super::trig_cubic::Cubic::certifies).
-///
-/// The closures' steps go to their rounding floor, as the bracket's polish does: a pose left
-/// at 1e-13 of the size is off by 1e-13/σ along K's near-null direction, where the
-/// bracket's is not (seen: 4e-12 at |det| = 0.055). After each step the next one is bounded
-/// by ‖K⁻¹‖_∞·‖G‖_∞ with the step's K⁻¹ (K moves by the step's relative size, 1e-8 at most
-/// on an accepted pose, so twice that bound holds); below 1e-14 of the size no step can
-/// move the pose by what the bracket's polish would, and the steps stop — usually after
-/// the first, since F's root is already good to its rounding.
-#[inline]
-fn track(
-    first: &Guide,
-    a: [Point2<f64>; 2],
-    dims: &SliderTriadDims,
-    previous: &TriadPose,
-) -> Option<Tracked> {
-    let e = Equation::new(first, a, dims);
-    let d = previous.b[1] - previous.b[0];
-    let z0 = C::new(d.x, d.y) / d.norm();
-    let root = e.cubic.tangent_root(z0)?;
-    let zv = vec(root.z);
-    let (n, h) = e.line(zv);
-    let c = e.centres(zv);
-    let b = 2.0 * (c[1] - c[0]);
-    let s = c[1].norm_squared() - c[0].norm_squared() + e.l[0] * e.l[0] - e.l[1] * e.l[1];
-    let delta = cross(n, b);
-    let mut o = if delta.abs() > 1e-3 * e.dscale {
-        (s * perp(n) - h * perp(b)) / delta
-    } else {
-        // The line against the second circle: of its two intersections, the one nearer the
-        // previous O (the closures and the certificate decide whether it is the mode).
-        let dist = h - n.dot(&c[0]);
-        let foot = c[0] + dist * n;
-        let half = ((e.l[0] - dist) * (e.l[0] + dist)).max(0.0).sqrt() * perp(n);
-        let back = previous.b[0].coords - foot;
-        if (back - half).norm_squared() <= (back + half).norm_squared() {
-            foot + half
-        } else {
-            foot - half
-        }
-    };
-    let mut z = root.z;
-    let (mut g, mut legs) = e.legs(o, z);
-    let mut k = legs.matrix();
-    let floor = 1e-14 * e.length;
-    let mut first = f64::NAN;
-    for _ in 0..4 {
-        let (k_inv, _) = inverse3(&k);
-        let step = k_inv * (-g);
-        if first.is_nan() {
-            first = step.z;
-        }
-        let on = o + Vector2::new(step.x, step.y);
-        let zn = z * C::new(1.0, step.z);
-        let (gn, legs_n) = e.legs(on, zn);
-        // (NaN is no improvement.)
-        let better = gn.amax() < g.amax();
-        if !better {
-            break;
-        }
-        (o, z, g, legs, k) = (on, zn, gn, legs_n, legs_n.matrix());
-        let bound = (0..3)
-            .map(|i| k_inv[(i, 0)].abs() + k_inv[(i, 1)].abs() + k_inv[(i, 2)].abs())
-            .fold(0.0, f64::max);
-        if 2.0 * bound * g.amax() <= floor {
-            break;
-        }
-    }
-    let zv = vec(z);
-    if !(g.amax() <= 1e-13 * e.length && first.abs() <= 1e-8) {
-        return None;
-    }
-    let moved = (0..3)
-        .map(|i| (o + rotate(zv, e.beta[i]) - previous.b[i].coords).norm_squared())
-        .sum::<f64>();
-    e.cubic
-        .certifies(&root, moved, dims.triangle().ternary_moment())
-        .then_some(Tracked { o, z: zv, legs, k })
-}
-
 /// Positions, velocities and accelerations of a triad with a sliding pair, in the mode
 /// nearest `previous`: the fast path [`slider_triad_tracked`] first, else
 /// [`slider_triad_modes`] with [`nearest`](SliderTriadModes::nearest); then
@@ -414,17 +311,8 @@ pub fn slider_triad(
 ) -> Result<TriadState> {
     let p = [a[0].p, a[1].p];
     if valid_input(first, p, dims, previous)
-        && let Some(t) = track(first, p, dims, previous)
-        && let Ok(state) = rates_of(
-            first,
-            &a,
-            dims,
-            joints_at(t.o, t.z, &dims.triangle().local_joints()),
-            direction(t.z),
-            &t.legs,
-            &t.k,
-            true,
-        )
+        && let Some(t) = super::triad_slider_fast::track(first, p, dims, previous)
+        && let Some(state) = t.state(first, &a, dims)
     {
         return Ok(state);
     }

@@ -1,6 +1,5 @@
 //! The eliminated equation shared by the groups of the 3rd class, F(θ) = |W(θ)|² − l²·D(θ)²,
-//! as a real trigonometric polynomial of degree 3 in the ternary link's angle θ (z = e^{iθ}),
-//! and the fast path of tracking one of its roots.
+//! as a real trigonometric polynomial of degree 3 in the ternary link's angle θ (z = e^{iθ}).
 //!
 //! Both the [`triad`](mod@super::triad) and the triad with a sliding pair
 //! ([`triad_slider`](mod@super::triad_slider)) reduce to it: two of the legs' equations are
@@ -12,7 +11,7 @@
 //! |W|² = Σ_{j,k} w_j·conj(w_k)·z^{j−k} has degree 3 and D² degree 2, so F has at most six
 //! real roots: the group's assembly modes.
 
-use super::trig_roots::{along, Periodic};
+use super::trig_roots::Periodic;
 use nalgebra::Complex;
 
 type C = Complex<f64>;
@@ -24,8 +23,6 @@ pub(super) struct Cubic {
     pub f: [C; 4],
     /// M₂ = 2·Σ k²|F_k|, a bound of |F″|.
     pub m2: f64,
-    /// M₃ = 2·Σ k³|F_k|, a bound of |F‴|.
-    pub m3: f64,
     /// Σ|F_k| with F_0 once and the others twice: a bound of |F|.
     pub s: f64,
     /// The rounding level of an evaluation of F.
@@ -61,7 +58,6 @@ impl Cubic {
         Self {
             f,
             m2: 2.0 * (g1 + 4.0 * g2 + 9.0 * g3),
-            m3: 2.0 * (g1 + 8.0 * g2 + 27.0 * g3),
             s: f[0].re.abs() + 2.0 * (g1 + g2 + g3),
             tol: 64.0 * f64::EPSILON * scale,
         }
@@ -107,81 +103,5 @@ impl Periodic for Cubic {
     }
     fn tol(&self) -> f64 {
         self.tol
-    }
-}
-
-/// A root of F reached by Newton's method from a previous direction z0, with what its
-/// isolation certificate needs.
-pub(super) struct TangentRoot {
-    /// The root: the last point of evaluation turned by Newton's last step.
-    pub z: C,
-    /// The last point of evaluation z_l, and F, F′ there.
-    zl: C,
-    f: f64,
-    g: f64,
-    /// A bound of |θ_l − θ_0|, the turn from z0 to z_l.
-    off: f64,
-}
-
-impl Cubic {
-    /// Newton's method on F from z0, each step taken in the half-angle tangent about the
-    /// current point: θ(t) = θ_k + 2·atan(t) has dF/dt = 2F′ at t = 0, so Newton's step is
-    /// t = −F/(2F′) and the next point z_k·(1 + i·t)²/(1 + t²) ([`along`]: no trigonometric
-    /// function; F and F′ from [`eval`](Self::eval), five complex products). It stops after
-    /// a step below 1e-6 in t (quadratic convergence leaves an error of the order of its
-    /// square; the caller polishes the pose); `None` when a step exceeds 1 or 12 steps do
-    /// not get there. |θ_l − θ_0| ≤ Σ 2|t_k| since |2·atan t| ≤ 2|t|.
-    #[inline]
-    pub fn tangent_root(&self, z0: C) -> Option<TangentRoot> {
-        let (mut z, mut off) = (z0, 0.0);
-        for _ in 0..12 {
-            let (f, g) = self.eval(z);
-            let t = -0.5 * f / g;
-            if t.is_nan() || t.abs() > 1.0 {
-                return None;
-            }
-            if t.abs() <= 1e-6 {
-                if self.m2.is_nan() || self.m2 <= 0.0 {
-                    return None;
-                }
-                return Some(TangentRoot {
-                    z: along(z, t),
-                    zl: z,
-                    f,
-                    g,
-                    off,
-                });
-            }
-            z = along(z, t);
-            off += 2.0 * t.abs();
-        }
-        None
-    }
-
-    /// Whether the root `root` is certified to be the mode nearest the previous pose,
-    /// `moved` (D*² = Σ|B_i − B_i′|²) away from it, for a ternary link whose joints have the
-    /// polar moment `moment` (I = Σ|β_i − β̄|²) about their centroid.
-    ///
-    /// 1. No other root of F within ρ of the last evaluation θ_l (the root is within
-    ///    4|F|/|F′| of it), ρ the larger of 2|F′|/M₂ and the positive root of
-    ///    |F′| = |F″(θ_l)|·ρ/2 + M₃·ρ²/6 (Taylor's theorem with M₂ ≥ |F″|, M₃ ≥ |F‴|; ρ shrunk
-    ///    by 0.1 %), so every other mode's angle is at least δ = ρ − |θ_l − θ_prev| from
-    ///    the previous one, |θ_l − θ_prev| bounded by the Newton steps' turns;
-    /// 2. a mode turned by Δθ from the previous pose is at least 4·I·sin²(Δθ/2) from it, so
-    ///    D*² < 4·I·sin²(min(δ, π)/2) proves the root the nearest.
-    #[inline]
-    pub fn certifies(&self, root: &TangentRoot, moved: f64, moment: f64) -> bool {
-        let (f, ga) = (root.f, root.g.abs());
-        let accept = |rho: f64| {
-            let delta = (0.999 * rho - 4.0 * f.abs() / ga - root.off).min(std::f64::consts::PI);
-            let x = 0.5 * delta;
-            // sin x ≥ x − x³/6 for x ≥ 0 (positive up to √6 > π/2).
-            let s = x - x * x * x / 6.0;
-            delta > 0.0 && moved < 0.99 * 4.0 * moment * s * s
-        };
-        accept(2.0 * ga / self.m2) || {
-            let (b2, m3) = (0.5 * self.second(root.zl).abs(), self.m3 / 6.0);
-            accept(2.0 * ga / (b2 + (b2 * b2 + 4.0 * m3 * ga).sqrt()))
-        }
     }
 }
