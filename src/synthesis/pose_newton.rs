@@ -137,7 +137,8 @@ impl PoseEquations {
     }
 
     /// The residuals h (m) at (O, A), their Jacobian in (O, A) and each row's rounding
-    /// scale (|D_j − D_i|/s·(|D_i| + |D_j| + 2|O|), the magnitudes the product is formed of).
+    /// scale ((|P_j − P_i| + |E·r_i|)/s·(|D_i| + |D_j| + 2|O|), the magnitudes the product
+    /// and the sum d = (P_j − P_i) + E·r_i are formed of).
     fn equations(&self, o: V, a: V) -> (Vector4<f64>, Matrix4<f64>, Vector4<f64>) {
         let first = &self.poses[0];
         let (mut h, mut jac, mut round) = (Vector4::zeros(), Matrix4::zeros(), Vector4::zeros());
@@ -149,14 +150,18 @@ impl PoseEquations {
             let ri = ri_turn * r1;
             let (di, dj) = (v(pi.at) + ri, v(pj.at) + rj_turn * r1);
             let e = rotation_minus_identity(pj.angle - pi.angle);
-            let d = (v(pj.at) - v(pi.at)) + e * ri;
+            let (step, turn) = (v(pj.at) - v(pi.at), e * ri);
+            let d = step + turn;
             let m = di + dj - 2.0 * o;
             h[row] = d.dot(&m) / s;
             // ∂d/∂A = E·R_i, ∂m/∂A = R_i + R_j, ∂m/∂O = −2I.
             let ga = ((e * ri_turn).transpose() * m + (ri_turn + rj_turn).transpose() * d) / s;
             let go = -2.0 * d / s;
             jac.row_mut(row).copy_from_slice(&[go.x, go.y, ga.x, ga.y]);
-            round[row] = d.norm() / s * (di.norm() + dj.norm() + 2.0 * o.norm());
+            // d is a sum: its rounding is ε of its terms' sizes, not of its own (the two cancel
+            // where the circle point sits at the close pair's pole, moving by far less than
+            // the poses).
+            round[row] = (step.norm() + turn.norm()) / s * (di.norm() + dj.norm() + 2.0 * o.norm());
         }
         (h, jac, round)
     }

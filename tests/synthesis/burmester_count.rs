@@ -108,10 +108,13 @@ fn miss(points: &[Dyad], own: &Dyad) -> f64 {
         .fold(f64::INFINITY, f64::min)
 }
 
-/// The two rocker pivots session 11's scan lost (each a four-bar's own dyad, so a Burmester
-/// point of its poses) are counted, within the allowance derived from the poses'
-/// conditioning; the scan, kept as the cross-check, still misses both (by the length of a
-/// link: it is not a matter of accuracy).
+/// The two rocker pivots session 11's release sweeps lost (each a four-bar's own dyad, so a
+/// Burmester point of its poses) are counted, within the allowance derived from the poses'
+/// conditioning. Case 0 (five poses within 0.041 rad) the scan, kept as the cross-check,
+/// still misses by the length of a link: its step passes over the root. Case 1 was lost in
+/// the polish, not in the scan: the pivot sits at the close pair's pole (the rocker at its
+/// dead point), where d = (P_j − P_i) + E·r_i cancels, and the polish measured rounding by
+/// |d| instead of its terms; now both find it.
 #[test]
 fn the_two_pivots_the_scan_lost_are_counted() {
     for (k, (poses, own)) in lost_cases().iter().enumerate() {
@@ -129,10 +132,17 @@ fn the_two_pivots_the_scan_lost_are_counted() {
         );
         let scanned = burmester_points_by_scan(poses, 2000).unwrap();
         let m_scan = miss(&scanned, own);
-        assert!(m_scan > 0.1, "case {k}: the scan finds it now ({m_scan:e})");
+        if k == 0 {
+            assert!(m_scan > 0.1, "case {k}: the scan finds it now ({m_scan:e})");
+        } else {
+            assert!(
+                m_scan <= allowed,
+                "case {k}: the scan misses it ({m_scan:e})"
+            );
+        }
         eprintln!(
             "case {k}: counted {} points, the pivot within {m:.1e} (allowed {allowed:.1e}); \
-             the scan's {} points miss it by {m_scan:.2}",
+             the scan's {} points within {m_scan:.2e}",
             counted.len(),
             scanned.len()
         );
