@@ -221,6 +221,9 @@ const ELIMINATIONS: [(f64, [usize; 3], [usize; 3]); 2] = [
 /// out.
 pub(super) fn candidates(equations: &PoseEquations) -> Vec<([f64; 2], [f64; 2])> {
     let (origin, size, pencil) = equations.pencil();
+    if !pencil.iter().all(|m| m.iter().all(|x| x.is_finite())) {
+        return Vec::new();
+    }
     let Some(b) = orthonormal(&pencil) else {
         return Vec::new();
     };
@@ -258,7 +261,10 @@ pub(super) fn candidates(equations: &PoseEquations) -> Vec<([f64; 2], [f64; 2])>
 /// infinity or not finite.
 fn centre(b: &[Matrix4x3<f64>; 3], u: V) -> Option<V> {
     let m = b[0] + b[1] * u.x + b[2] * u.y;
-    let svd = m.svd(false, true);
+    if !m.iter().all(|x| x.is_finite()) {
+        return None;
+    }
+    let svd = nalgebra::SVD::try_new(m, false, true, f64::EPSILON, 1000)?;
     let vt = svd.v_t?;
     let (k, _) = svd.singular_values.argmin();
     let g = vt.row(k);

@@ -180,12 +180,25 @@ impl PoseEquations {
                 .zip(round.iter())
                 .all(|(r, b)| r.abs() <= 64.0 * eps * b);
             if converged {
+                // One more step from where the residuals reached rounding, so that every
+                // start ends at the rounding floor, not anywhere within the stopping rule.
+                if let Some(step) = jac
+                    .lu()
+                    .solve(&(-h))
+                    .filter(|s| s.iter().all(|x| x.is_finite()))
+                {
+                    o += V::new(step[0], step[1]);
+                    a += V::new(step[2], step[3]);
+                }
                 let sigma = jac.singular_values().min();
                 let scale = self.size + (a - o).norm();
-                // The rows' rounding, εL each (L the scale of O, A and the poses), moves the
-                // root by up to about εL/σ; 2¹⁰ of that for the few operations per row and
-                // the first-order estimate.
-                let tol = 1024.0 * eps * (scale + o.norm() + a.norm()) / sigma;
+                // The rows' rounding, εL each (L the scale of O, A and the poses, or the
+                // rows' own magnitudes where they are larger: a far circle point's rows are
+                // products of long vectors), moves the root by up to about εL/σ; 2¹⁰ of that
+                // for the few operations per row and the first-order estimate (it also
+                // covers the stopping rule's 64ε of the magnitudes).
+                let magnitude = (scale + o.norm() + a.norm()).max(round.amax());
+                let tol = 1024.0 * eps * magnitude / sigma;
                 let polished = Dyad {
                     centre: [o.x, o.y],
                     circle: [a.x, a.y],
