@@ -206,11 +206,14 @@ fn every_point_the_scan_finds_is_counted() {
             panic!("{poses:?}");
         };
         assert!(counted.len() <= 4, "{counted:?}; poses {poses:?}");
-        let size = poses
-            .iter()
-            .flat_map(|p| counted.iter().map(move |d| dist(p.at, d.centre)))
-            .fold(1.0, f64::max);
         for s in &scanned {
+            // allowed_miss's L bounds |D_j − O| (the dyad's length) and the poses' distances
+            // from the centre point: a circle point far off (found at 185 m from poses of
+            // 0.4 m) makes it long.
+            let size = poses
+                .iter()
+                .map(|p| dist(p.at, s.centre))
+                .fold(1.0f64.max(s.length()), f64::max);
             let m = miss(&counted, s);
             let allowed = allowed_miss(&poses, s, size);
             assert!(
