@@ -72,6 +72,9 @@
 //! ```
 
 mod burmester;
+mod burmester_five;
+mod burmester_resultant;
+mod burmester_scan;
 mod centre_curve;
 mod check;
 mod four_bar;
@@ -85,7 +88,9 @@ mod search;
 pub use burmester::{
     burmester, centre_point, centre_point_two, circle_point, four_bar_from_dyads, Dyad, Pose,
 };
-pub use centre_curve::{burmester_curves, burmester_points, centre_point_curve};
+pub use burmester_five::burmester_points;
+pub use burmester_scan::burmester_points_by_scan;
+pub use centre_curve::{burmester_curves, centre_point_curve};
 pub use freudenstein::{
     crank_rocker_through, freudenstein_coefficients, function_generator, FunctionGenerator,
     FunctionRequirement, Spacing, StructuralError,

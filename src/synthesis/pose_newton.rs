@@ -28,7 +28,7 @@
 //! tolerance within which two polished points are one.
 
 use super::burmester::{v, Dyad, Pose};
-use nalgebra::{Matrix2, Matrix4, Vector2, Vector4};
+use nalgebra::{Matrix2, Matrix4, Matrix4x3, Vector2, Vector4};
 
 type V = Vector2<f64>;
 
@@ -94,8 +94,51 @@ impl PoseEquations {
         }
     }
 
+    /// The equations as a pencil in the circle point: with u = (A − P1)/L and
+    /// G = (O − P1)/L (P1 the first pose's point, L the poses' size, or 1 m for poses turning
+    /// on one spot), h·L/s-scaled rows read B(u)·(G, 1)ᵀ = 0 where B(u) = B0 + u_x·Bx + u_y·By
+    /// is a 4×3 matrix whose entries are affine in u. Returned: (P1, L, [B0, Bx, By]).
+    ///
+    /// Derivation: D_i = p_i + R_i·u (p_i = (P_i − P1)/L, R_i the turn from pose 1),
+    /// d = D_j − D_i = Δ + E·R_i·u (Δ = (P_j − P_i)/L, E = R(θ_j − θ_i) − I, as in
+    /// [`Self::polish`]) and m = D_i + D_j = σ + (R_i + R_j)·u (σ = p_i + p_j). The row is
+    /// d·(m − 2G)/s' (s' = s/L); d·m = |D_j|² − |D_i|² has no term in |u|² (E·R_i·u·(R_i + R_j)·u
+    /// = |R_j u|² − |R_i u|² = 0), so d·m = Δ·σ + u·((R_i + R_j)ᵀΔ + (E·R_i)ᵀσ): the row is
+    /// [−2dᵀ/s', d·m/s'], affine in u, bilinear with G. A dyad is a u where B(u) has rank ≤ 2
+    /// (its four perpendicular bisectors meet), G then spanning its null space.
+    pub(super) fn pencil(&self) -> (V, f64, [Matrix4x3<f64>; 3]) {
+        let first = &self.poses[0];
+        let origin = v(first.at);
+        let l = if self.size > 0.0 { self.size } else { 1.0 };
+        let mut b = [Matrix4x3::zeros(); 3];
+        for (row, &(i, j, s)) in self.edges.iter().enumerate() {
+            let (pi, pj) = (&self.poses[i], &self.poses[j]);
+            let ri_turn = rotation(pi.angle - first.angle);
+            let rj_turn = rotation(pj.angle - first.angle);
+            let e = rotation_minus_identity(pj.angle - pi.angle) * ri_turn;
+            let delta = (v(pj.at) - v(pi.at)) / l;
+            let sigma = (v(pi.at) - origin + v(pj.at) - origin) / l;
+            let w = (ri_turn + rj_turn).transpose() * delta + e.transpose() * sigma;
+            let s = s / l;
+            b[0].row_mut(row).copy_from_slice(&[
+                -2.0 * delta.x / s,
+                -2.0 * delta.y / s,
+                delta.dot(&sigma) / s,
+            ]);
+            for k in 0..2 {
+                b[k + 1].row_mut(row).copy_from_slice(&[
+                    -2.0 * e[(0, k)] / s,
+                    -2.0 * e[(1, k)] / s,
+                    w[k] / s,
+                ]);
+            }
+        }
+        (origin, l, b)
+    }
+
     /// The residuals h (m) at (O, A), their Jacobian in (O, A) and each row's rounding
-    /// scale (|D_j − D_i|/s·(|D_i| + |D_j| + 2|O|), the magnitudes the product is formed of).
+    /// scale ((|P_j − P_i| + |E·r_i|)/s·(|D_i| + |D_j| + 2|O|), the magnitudes the product
+    /// and the sum d = (P_j − P_i) + E·r_i are formed of).
     fn equations(&self, o: V, a: V) -> (Vector4<f64>, Matrix4<f64>, Vector4<f64>) {
         let first = &self.poses[0];
         let (mut h, mut jac, mut round) = (Vector4::zeros(), Matrix4::zeros(), Vector4::zeros());
@@ -107,14 +150,18 @@ impl PoseEquations {
             let ri = ri_turn * r1;
             let (di, dj) = (v(pi.at) + ri, v(pj.at) + rj_turn * r1);
             let e = rotation_minus_identity(pj.angle - pi.angle);
-            let d = (v(pj.at) - v(pi.at)) + e * ri;
+            let (step, turn) = (v(pj.at) - v(pi.at), e * ri);
+            let d = step + turn;
             let m = di + dj - 2.0 * o;
             h[row] = d.dot(&m) / s;
             // ∂d/∂A = E·R_i, ∂m/∂A = R_i + R_j, ∂m/∂O = −2I.
             let ga = ((e * ri_turn).transpose() * m + (ri_turn + rj_turn).transpose() * d) / s;
             let go = -2.0 * d / s;
             jac.row_mut(row).copy_from_slice(&[go.x, go.y, ga.x, ga.y]);
-            round[row] = d.norm() / s * (di.norm() + dj.norm() + 2.0 * o.norm());
+            // d is a sum: its rounding is ε of its terms' sizes, not of its own (the two cancel
+            // where the circle point sits at the close pair's pole, moving by far less than
+            // the poses).
+            round[row] = (step.norm() + turn.norm()) / s * (di.norm() + dj.norm() + 2.0 * o.norm());
         }
         (h, jac, round)
     }
@@ -133,12 +180,25 @@ impl PoseEquations {
                 .zip(round.iter())
                 .all(|(r, b)| r.abs() <= 64.0 * eps * b);
             if converged {
+                // One more step from where the residuals reached rounding, so that every
+                // start ends at the rounding floor, not anywhere within the stopping rule.
+                if let Some(step) = jac
+                    .lu()
+                    .solve(&(-h))
+                    .filter(|s| s.iter().all(|x| x.is_finite()))
+                {
+                    o += V::new(step[0], step[1]);
+                    a += V::new(step[2], step[3]);
+                }
                 let sigma = jac.singular_values().min();
                 let scale = self.size + (a - o).norm();
-                // The rows' rounding, εL each (L the scale of O, A and the poses), moves the
-                // root by up to about εL/σ; 2¹⁰ of that for the few operations per row and
-                // the first-order estimate.
-                let tol = 1024.0 * eps * (scale + o.norm() + a.norm()) / sigma;
+                // The rows' rounding, εL each (L the scale of O, A and the poses, or the
+                // rows' own magnitudes where they are larger: a far circle point's rows are
+                // products of long vectors), moves the root by up to about εL/σ; 2¹⁰ of that
+                // for the few operations per row and the first-order estimate (it also
+                // covers the stopping rule's 64ε of the magnitudes).
+                let magnitude = (scale + o.norm() + a.norm()).max(round.amax());
+                let tol = 1024.0 * eps * magnitude / sigma;
                 let polished = Dyad {
                     centre: [o.x, o.y],
                     circle: [a.x, a.y],

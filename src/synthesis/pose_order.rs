@@ -1,8 +1,9 @@
 #![allow(clippy::neg_cmp_op_on_partial_ord)] // `!(x > y)` rejects NaN too, on purpose.
-//! Conditioning of Burmester's points: which pose to take as the reference and which as the
-//! curve's parameter (the polish of each point is in `pose_newton`).
+//! Conditioning of the scan for Burmester's points: which pose to take as the reference and
+//! which as the curve's parameter (the polish of each point is in `pose_newton`); and the
+//! refusal of poses that all turn about one point (for the count as well).
 //!
-//! The search of [`burmester_points`](super::burmester_points) walks the centre-point curve
+//! The scan [`burmester_points_by_scan`](super::burmester_points_by_scan) walks the centre-point curve
 //! of poses 1–4 in the crank's turn β2 from pose 1 to pose 2 and tests pose 5. When pose 2
 //! nearly coincides with pose 1, every dyad turns by nearly the same small β2 between them,
 //! so the whole curve is crowded into a sliver of the parameter that a grid over the turn

@@ -17,7 +17,7 @@ use tmm::synthesis::{burmester_points, Dyad, Pose};
 /// apart make two rows differ by O(g) (σ ~ g: the miss grows as ε/g), three within g make
 /// it O(g²), two Burmester points about to merge make it small too. 25 to spare: 10³εL²/σ.
 /// A pivot the search loses misses by 10⁻² or more.
-fn allowed_miss(poses: &[Pose; 5], own: &Dyad, size: f64) -> f64 {
+pub(super) fn allowed_miss(poses: &[Pose; 5], own: &Dyad, size: f64) -> f64 {
     let (o, a) = (
         Vector2::new(own.centre[0], own.centre[1]),
         Vector2::new(own.circle[0], own.circle[1]),
@@ -39,7 +39,7 @@ fn allowed_miss(poses: &[Pose; 5], own: &Dyad, size: f64) -> f64 {
 
 /// The number of cases: `TMM_SYNTH_CASES` × 40 (CI's release sweep sets 100), at least
 /// `least`.
-fn cases(least: usize) -> usize {
+pub(super) fn cases(least: usize) -> usize {
     std::env::var("TMM_SYNTH_CASES")
         .ok()
         .and_then(|s| s.parse::<usize>().ok())

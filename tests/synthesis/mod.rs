@@ -13,6 +13,7 @@ use tmm::synthesis::{
 use tmm::Error;
 
 mod burmester_close;
+mod burmester_count;
 mod closed_form;
 mod hostile_requirements;
 mod link_ratio;

@@ -1,0 +1,135 @@
+#![allow(clippy::neg_cmp_op_on_partial_ord)] // `!(x > 0.0)` rejects NaN too, on purpose.
+//! Burmester's points of five poses: every candidate from the elimination
+//! (`burmester_resultant`), polished on the difference-quotient equations (`pose_newton`),
+//! the duplicates merged and the count checked.
+
+use super::burmester::{check_poses, v, Dyad, Pose};
+use super::burmester_resultant;
+use super::pose_newton::PoseEquations;
+use super::pose_order;
+use crate::error::{Error, Result};
+
+/// Burmester's points of five poses: the dyads that carry the coupler through all five (at
+/// most four; none for some poses).
+///
+/// Derivation (in `burmester_resultant`): a dyad (centre point G, circle point z in the first
+/// pose) fits the poses when four equations, each bilinear in G and z, hold; for a given z
+/// they are four lines in G that must meet, so z makes a 4×3 matrix of affine entries drop
+/// rank. That locus has six points, two of them the circular points at infinity, so at most
+/// four finite ones. Eliminating G and then one coordinate of z leaves a polynomial of degree
+/// seven in the other, whose every root (its companion matrix's eigenvalues) is tried: no
+/// point can be stepped over, as a scan of the curves could
+/// ([`burmester_points_by_scan`](super::burmester_points_by_scan), kept as a cross-check).
+/// Each candidate is polished by Newton's method on equations written as difference
+/// quotients (exact when poses nearly coincide) and kept if it fits all five poses to 1e-9
+/// of its size.
+///
+/// `n` was the scan's number of samples; the count does not use it (it is still checked, so
+/// that a call means what it did).
+///
+/// # Examples
+/// Five poses of the coupler of a four-bar: its two dyads are among Burmester's points.
+/// ```
+/// use tmm::synthesis::{burmester_points, Pose};
+/// // The coupler of the crank-rocker O1 = (0, 0), A, B, O3 = (0.4, 0): five poses read off
+/// // its motion (A on the crank of 0.1 m; B on the rocker of 0.3 m; coupler 0.35 m).
+/// let (a, b, c, d) = (0.1, 0.35, 0.3, 0.4);
+/// // The pose: the coupler point P, 0.1 m left of the middle of AB, and the angle of AB.
+/// let pose = |phi: f64| {
+///     let (ax, ay) = (a * phi.cos(), a * phi.sin());
+///     let (vx, vy) = (d - ax, -ay);
+///     let e = vx.hypot(vy);
+///     let along = (b * b - c * c + e * e) / (2.0 * e);
+///     let h = (b * b - along * along).sqrt();
+///     let (bx, by) = (ax + along * vx / e - h * vy / e, ay + along * vy / e + h * vx / e);
+///     let (ux, uy) = ((bx - ax) / b, (by - ay) / b);
+///     Pose::new([ax + 0.5 * b * ux - 0.1 * uy, ay + 0.5 * b * uy + 0.1 * ux], uy.atan2(ux))
+/// };
+/// let poses = [0.3, 0.9, 1.6, 2.4, 3.0].map(pose);
+/// let points = burmester_points(&poses, 2000)?;
+/// // The crank O1A (centre (0, 0)) and the rocker O3B (centre (0.4, 0)) are among them.
+/// let near = |x: f64, y: f64| points.iter().any(|p| (p.centre[0] - x).hypot(p.centre[1] - y) < 1e-8);
+/// assert!(near(0.0, 0.0) && near(0.4, 0.0));
+/// assert!(points.len() <= 4);
+/// # Ok::<(), tmm::Error>(())
+/// ```
+///
+/// # Errors
+/// [`Error::NonFinite`] for a non-finite number; [`Error::NoMechanism`] for coinciding poses,
+/// for poses that all turn about one point (every coupler point then keeps its distance
+/// from it: a continuum of dyads) and for other degenerate poses that more than four dyads
+/// fit. A dyad more than 10⁶ times longer than the poses' extent (from the first pose) is
+/// not returned: it is a slider's dyad (the bisectors meeting at infinity) found to rounding.
+/// [`Error::OutOfRange`] (`"n"`) for n below 8 or above [`MAX_POINTS`](super::MAX_POINTS).
+pub fn burmester_points(poses: &[Pose; 5], n: usize) -> Result<Vec<Dyad>> {
+    check_poses(poses)?;
+    pose_order::not_about_one_point(poses)?;
+    if !(8..=super::MAX_POINTS).contains(&n) {
+        return Err(Error::OutOfRange {
+            name: "n",
+            value: n as f64,
+            min: 8.0,
+            max: super::MAX_POINTS as f64,
+            ends: crate::Ends::Closed,
+        });
+    }
+    let equations = PoseEquations::new(poses);
+    let starts = burmester_resultant::candidates(&equations)
+        .into_iter()
+        .map(|(centre, circle)| Dyad { centre, circle });
+    kept(&equations, poses, starts)
+}
+
+/// The Burmester points among `starts` (dyads named in the first of `given`): each polished
+/// on `equations` (a start that does not converge to rounding was not near a point), kept if
+/// it fits the five poses to 1e-9 of its size and is not a slider's, duplicates merged; more
+/// than four is an error (a continuum).
+pub(super) fn kept(
+    equations: &PoseEquations,
+    given: &[Pose; 5],
+    starts: impl Iterator<Item = Dyad>,
+) -> Result<Vec<Dyad>> {
+    // The poses' extent from the first given one (the scale of the fit and of duplicates).
+    let extent = given
+        .iter()
+        .map(|p| (v(p.at) - v(given[0].at)).norm())
+        .fold(0.0, f64::max);
+    let mut out: Vec<(Dyad, f64)> = Vec::new();
+    for start in starts {
+        let Some((dyad, tol)) = equations.polish(start) else {
+            continue;
+        };
+        let scale = extent + dyad.length();
+        // The same point reached from two starts: each is fixed to its tolerance (εL over
+        // the smallest singular value of the equations), and two polishes of one root have
+        // one Jacobian, so one tolerance: two points within twice the smaller of theirs are
+        // one. (The larger would merge a nearly double root, whose tolerance is wide, with a
+        // distinct point far off.)
+        let duplicate = out.iter().any(|(o, t)| {
+            let within = 2.0 * tol.min(*t);
+            (v(o.centre) - v(dyad.centre)).norm() <= within
+                && (v(o.circle) - v(dyad.circle)).norm() <= within
+        });
+        // A dyad a million times longer than the poses' extent is a slider's dyad (the
+        // bisectors meeting at infinity) found only to rounding: not kept.
+        let finite_dyad = dyad.length() <= 1e6 * extent;
+        if dyad.misfit(given) <= 1e-9 * scale && !duplicate && finite_dyad {
+            out.push((dyad, tol));
+        }
+    }
+    let out: Vec<Dyad> = out.into_iter().map(|(d, _)| d).collect();
+    // The rank-≤2 locus has at most four finite points (`burmester_resultant`); more means
+    // the equations share a piece (for example poses that all turn about one point): a
+    // continuum of dyads, not a finite answer.
+    if out.len() > 4 {
+        return Err(Error::NoMechanism {
+            method: "Burmester's points",
+            problem: format!(
+                "the five poses are degenerate: {} distinct dyads fit them (at most four in \
+                 general position), so the centre-point curves share a piece",
+                out.len()
+            ),
+        });
+    }
+    Ok(out)
+}
