@@ -24,7 +24,8 @@
 use super::contour::{contours, Grid};
 use super::plan::{InputPlan, Plan};
 use super::solve::Kinematics;
-use super::workspace_boundary::{area_inside, refine, Axes, Jac, Raster, Reach};
+use super::workspace_boundary::{area_inside, refine, Raster};
+use super::workspace_reach::{Axes, Jac, Pole, Reach};
 use crate::error::{Error, Result};
 use crate::kinematics::Motion;
 use nalgebra::{Point2, Vector2};
@@ -286,12 +287,13 @@ impl Plan {
             let det = v1.x * v2.y - v1.y * v2.x;
             det.is_finite().then_some((p, det))
         };
-        singular.extend(isolated_curves(&axes, &poles, &mut at));
+        let (isolated, traces) = isolated_curves(&axes, &poles, &mut at);
+        singular.extend(isolated);
         // The outline located by deciding points of the plane (module `workspace_boundary`).
         let images: Vec<Option<Point2<f64>>> = nodes.iter().map(|n| n.map(|n| n.0)).collect();
         #[allow(clippy::cast_precision_loss)]
         let span = region.cell * region.nx.max(region.ny) as f64;
-        let mut reach = Reach::new(&mut jac, &axes, images, 2.0 * region.cell, span);
+        let mut reach = Reach::new(&mut jac, &axes, images, traces, 2.0 * region.cell, span);
         let boundary = refine(
             &Raster {
                 origin: region.origin,
@@ -562,17 +564,27 @@ fn null_direction(v1: Vector2<f64>, v2: Vector2<f64>) -> Option<Vector2<f64>> {
 
 /// The curves an isolated singular input maps to: round each of `poles` (refined by
 /// [`refine_poles`]), the images of a small circle of inputs about it, an eighth of a grid
-/// step across, in 720 positions, cut where a position fails or the curve jumps.
-fn isolated_curves(axes: &Axes, poles: &[[f64; 2]], at: &mut At<'_>) -> Vec<SingularCurve> {
+/// step across, in 720 positions, cut where a position fails or the curve jumps; with each
+/// pole's trace for the decisions near it (module `workspace_reach`).
+fn isolated_curves(
+    axes: &Axes,
+    poles: &[[f64; 2]],
+    at: &mut At<'_>,
+) -> (Vec<SingularCurve>, Vec<Pole>) {
     let h = axes.step[0].abs().max(axes.step[1].abs());
     let mut out = Vec::new();
+    let mut traces = Vec::new();
     for &q in poles {
         let mut pieces: Vec<Vec<([f64; 2], Point2<f64>)>> = vec![Vec::new()];
+        let mut trace = Vec::new();
         for k in 0..=720 {
             let t = std::f64::consts::TAU * f64::from(k) / 720.0;
             let qk = [q[0] + h / 8.0 * t.cos(), q[1] + h / 8.0 * t.sin()];
             match at(qk) {
-                Some((p, _)) => pieces.last_mut().expect("one piece").push((qk, p)),
+                Some((p, _)) => {
+                    pieces.last_mut().expect("one piece").push((qk, p));
+                    trace.push((t, p));
+                }
                 None => pieces.push(Vec::new()),
             }
         }
@@ -585,8 +597,13 @@ fn isolated_curves(axes: &Axes, poles: &[[f64; 2]], at: &mut At<'_>) -> Vec<Sing
                 });
             }
         }
+        traces.push(Pole {
+            q,
+            radius: h / 8.0,
+            trace,
+        });
     }
-    out
+    (out, traces)
 }
 
 /// A curve cut where it jumps: a step more than 8 times its median step. Near a pole of the
