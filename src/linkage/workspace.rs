@@ -11,15 +11,20 @@
 //!   five-bar's couplers in line), each crossing bisected to the last assemblable input;
 //! - the **region**: the image of every cell of the input grid (its corners, and where it
 //!   meets the assembly boundary, the bisected points there) filled on a raster of the plane;
-//! - its **boundary**: the raster's outline by marching squares, as closed polylines, each
-//!   point then moved onto the edge of the reach (bisected on whether a point of the plane is
-//!   reached, decided by Newton's method on P(q) = X: module `workspace_boundary`).
+//! - its **boundary**: round the raster's outline, a band of cells has its centres decided
+//!   (whether a point of the plane is reached, by Newton's method on P(q) = X, and about a
+//!   pole of the map in polar coordinates: module `workspace_reach`), and the decided
+//!   raster's outline is traced by marching squares, each point bisected between a centre
+//!   reached and a neighbour not (module `workspace_boundary`).
 //!
-//! The region's cells lie within about a raster cell of the truth; the boundary's points on
-//! the edge of the reach to about 10⁻¹¹ of the span where the decisions settle them (else
-//! the raster's own outline point stays), and [`Workspace::area`] (inside the boundary)
-//! within the chords between points a cell apart. The tests check both against
-//! closed-form inverse kinematics on a dense grid and a row-by-row area.
+//! The region's cells lie within about a raster cell of the truth, and next to the outline
+//! they are the decided ones; the boundary's points lie on the edge of the reach to 10⁻¹¹ of
+//! the span where the edge is a fold of the map (a leg stretched or folded), and to the
+//! position's own rounding next to the image of a singular input (couplers in line: about
+//! √ε of the size at a pole, where the point's position carries εL²/|AC|), holes included;
+//! [`Workspace::area`] (inside the boundary) is the reach's to the chords between points a
+//! cell apart. The tests check both against closed-form inverse kinematics on a dense grid
+//! and a row-by-row area.
 
 use super::contour::{contours, Grid};
 use super::plan::{InputPlan, Plan};
@@ -92,7 +97,9 @@ impl WorkspaceOptions {
 pub struct Workspace {
     /// The joint or named point.
     pub point: String,
-    /// The region the point reaches, on a raster.
+    /// The region the point reaches, on a raster: the images of the input grid's cells
+    /// filled, and next to the outline each cell as its centre is decided reached or not
+    /// (the outline goes round exactly these cells).
     pub region: Region,
     /// The region's outline: closed polylines (each ends at its first point), m.
     pub boundary: Vec<Vec<Point2<f64>>>,
@@ -102,11 +109,10 @@ pub struct Workspace {
 
 impl Workspace {
     /// The area inside the outline ([`boundary`](Self::boundary)), m²: the outline's points
-    /// are moved onto the edge of the reach (to 10⁻¹¹ of the region's span where a point
-    /// decided reached and one decided not are found within 1.5 cells of the fill's outline;
-    /// elsewhere the fill's own point stays, within about a cell), so this is the area of the
-    /// region to the chords between points a raster cell apart (the raster's own
-    /// [`Region::area`] counts whole cells).
+    /// lie on the edge of the reach (module docs), so this is the area of the reach to the
+    /// chords between points a raster cell apart (of order (cell/ρ)² relative, ρ the edge's
+    /// radius of curvature) and the tips of cusps thinner than a cell; the raster's own
+    /// [`Region::area`] counts whole cells.
     #[must_use]
     pub fn area(&self) -> f64 {
         area_inside(&self.boundary)
@@ -294,7 +300,7 @@ impl Plan {
         #[allow(clippy::cast_precision_loss)]
         let span = region.cell * region.nx.max(region.ny) as f64;
         let mut reach = Reach::new(&mut jac, &axes, images, traces, 2.0 * region.cell, span);
-        let boundary = refine(
+        let (boundary, cells) = refine(
             &Raster {
                 origin: region.origin,
                 cell: region.cell,
@@ -304,6 +310,7 @@ impl Plan {
             },
             &mut reach,
         );
+        let region = Region { cells, ..region };
         Ok(Workspace {
             point: point.to_owned(),
             region,

@@ -72,8 +72,12 @@ fn neighbours(ix: usize, iy: usize, nx: usize, ny: usize) -> impl Iterator<Item 
         })
 }
 
-/// The region's outline with every crossing located on the edge of the reach (module docs).
-pub(crate) fn refine(region: &Raster<'_>, reach: &mut Reach<'_, '_>) -> Vec<Vec<Point2<f64>>> {
+/// The region's outline with every crossing located on the edge of the reach, and the
+/// raster's cells it goes round (the fill's, with the decided cells' decisions; module docs).
+pub(crate) fn refine(
+    region: &Raster<'_>,
+    reach: &mut Reach<'_, '_>,
+) -> (Vec<Vec<Point2<f64>>>, Vec<bool>) {
     let (nx, ny) = (region.nx, region.ny);
     let grid = Grid {
         n1: nx,
@@ -137,34 +141,61 @@ pub(crate) fn refine(region: &Raster<'_>, reach: &mut Reach<'_, '_>) -> Vec<Vec<
     for &n in &band {
         decide(n, &mut decided, reach);
     }
-    // A cell decided not reached is tried again from every reached neighbour (decided after
-    // it): a missed preimage would put a notch in the outline.
-    for &n in &band {
-        if decided[at(n)] == Decided::Out
-            && neighbours(n.0, n.1, nx, ny).any(|m| matches!(decided[at(m)], Decided::In(_)))
-        {
-            decide(n, &mut decided, reach);
+    // Each cell newly reached is a start for its neighbours: one decided not reached is
+    // tried again from its preimage (a missed preimage would put a notch in the outline),
+    // and one not decided yet past the band (the fill's shortfall, up to GROW cells past the
+    // band) is decided; until no cell changes. A cell is tried again at most once per
+    // neighbour reached.
+    // A cell whose centre is not reached but which holds a node's image (a reached point:
+    // a feature thinner than a cell, the tip of a cusp) is reached, that image standing for
+    // its centre in the crossings.
+    let mut stand_in: Vec<Option<Point2<f64>>> = vec![None; nx * ny];
+    for (p, q) in reach.known() {
+        let u = (p - region.origin) / region.cell;
+        #[allow(clippy::cast_precision_loss)]
+        if !(u.x >= 0.0 && u.y >= 0.0 && u.x < nx as f64 && u.y < ny as f64) {
+            continue;
+        }
+        #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
+        let n = (u.x as usize, u.y as usize);
+        if decided[at(n)] == Decided::Out {
+            decided[at(n)] = Decided::In(q);
+            stand_in[at(n)] = Some(p);
+            band.push(n);
         }
     }
-    // Cells past the band next to reached ones: the fill's shortfalls.
-    for _ in 0..GROW {
-        let mut open = Vec::new();
-        for &n in &band {
-            if matches!(decided[at(n)], Decided::In(_)) {
-                open.extend(
-                    neighbours(n.0, n.1, nx, ny).filter(|&m| decided[at(m)] == Decided::Open),
-                );
+    let mut depth = vec![usize::MAX; nx * ny];
+    for &n in &band {
+        depth[at(n)] = 0;
+    }
+    let mut fresh: Vec<Node> = band
+        .iter()
+        .copied()
+        .filter(|&n| matches!(decided[at(n)], Decided::In(_)))
+        .collect();
+    while !fresh.is_empty() {
+        let mut next: Vec<Node> = Vec::new();
+        for &n in &fresh {
+            for m in neighbours(n.0, n.1, nx, ny) {
+                match decided[at(m)] {
+                    Decided::Out => next.push(m),
+                    Decided::Open if depth[at(n)] < GROW => {
+                        depth[at(m)] = depth[at(m)].min(depth[at(n)] + 1);
+                        next.push(m);
+                    }
+                    _ => {}
+                }
             }
         }
-        open.sort_unstable();
-        open.dedup();
-        if open.is_empty() {
-            break;
+        next.sort_unstable();
+        next.dedup();
+        fresh.clear();
+        for m in next {
+            decide(m, &mut decided, reach);
+            if matches!(decided[at(m)], Decided::In(_)) {
+                fresh.push(m);
+            }
         }
-        for &n in &open {
-            decide(n, &mut decided, reach);
-        }
-        band = open;
     }
     let value: Vec<f64> = (0..nx * ny)
         .map(|k| {
@@ -183,14 +214,28 @@ pub(crate) fn refine(region: &Raster<'_>, reach: &mut Reach<'_, '_>) -> Vec<Vec<
         .collect();
     #[allow(clippy::cast_precision_loss)]
     let span = region.cell * nx.max(ny) as f64;
-    contours(grid, &value, |a, b| {
+    let lines = contours(grid, &value, |a, b| {
         let (a, b) = if value[at(a)] > 0.0 { (a, b) } else { (b, a) };
+        if decided[at(a)] == Decided::Open {
+            decide(a, &mut decided, reach);
+        }
         Some(match decided[at(a)] {
-            Decided::In(q) => crossing(centre(a), q, centre(b), reach, span),
-            // The fill's cell beyond the band: its own outline point.
+            Decided::In(q) => {
+                let from = stand_in[at(a)].unwrap_or_else(|| centre(a));
+                crossing(from, q, centre(b), reach, span)
+            }
+            // The fill's cell past the band, not reached after all: its own outline point.
             _ => Point2::from((centre(a).coords + centre(b).coords) / 2.0),
         })
-    })
+    });
+    // The cells the outline goes round, row by row from the bottom.
+    let mut cells = vec![false; nx * ny];
+    for iy in 0..ny {
+        for ix in 0..nx {
+            cells[iy * nx + ix] = value[at((ix, iy))] > 0.0;
+        }
+    }
+    (lines, cells)
 }
 
 /// Where the reach ends between `inside` (reached, with preimage `q`) and `outside` (decided

@@ -126,6 +126,15 @@ impl<'r, 'j> Reach<'r, 'j> {
         }
     }
 
+    /// The input-grid nodes' images with their inputs: points certainly reached.
+    pub(crate) fn known(&self) -> Vec<(Point2<f64>, [f64; 2])> {
+        self.images
+            .iter()
+            .enumerate()
+            .filter_map(|(k, p)| p.map(|p| (p, self.node_q(k))))
+            .collect()
+    }
+
     /// The inputs of node `k`.
     fn node_q(&self, k: usize) -> [f64; 2] {
         let n2 = self.axes.grid.n2;
