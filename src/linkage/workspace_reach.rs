@@ -212,10 +212,15 @@ impl<'r, 'j> Reach<'r, 'j> {
     /// `v1`, `v2` per unit of each input: 10⁻¹³ of the span, or the position's own rounding
     /// there if larger. A rounding of q by its last bit (ε|qᵢ|) moves P(q) by ε|qᵢ|·|vᵢ|, so
     /// P is not defined closer than that, and it grows without bound near a pole (|vᵢ| ~ 1/r);
-    /// four times the sum allows for the solve's own rounding of as much.
+    /// four times the sum allows for the solve's own rounding of as much. It is capped at
+    /// √ε of the span: near a pole that rounding grows as c₁/r while a point δ off the pole's
+    /// curve has its preimage at r ~ δ/c₂, so a cap t accepts points up to t beyond the curve
+    /// and decides those within c₁c₂/t inside it not reached; the error is least, √(c₁c₂)
+    /// ~ √ε·L, at t of that size (module docs).
     fn tol(&self, q: [f64; 2], v1: Vector2<f64>, v2: Vector2<f64>) -> f64 {
         let moved = q[0].abs() * v1.norm() + q[1].abs() * v2.norm();
-        self.tol.max(4.0 * f64::EPSILON * moved)
+        let cap = f64::EPSILON.sqrt() * 1e13 * self.tol;
+        self.tol.max((4.0 * f64::EPSILON * moved).min(cap))
     }
 
     /// Inputs q = q* + r·e(θ), r > 0, about pole `k` with P(q) − x inside the tolerance, by
