@@ -75,6 +75,7 @@ mod torsion_range;
 mod track;
 mod workspace;
 mod workspace_boundary;
+mod workspace_reach;
 
 pub use course::{Course, Sweep};
 pub use course_two::{AnyCourse, Assembly, AssemblyFailure, TwoInputCourse, TwoInputShape};

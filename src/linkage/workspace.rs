@@ -11,20 +11,26 @@
 //!   five-bar's couplers in line), each crossing bisected to the last assemblable input;
 //! - the **region**: the image of every cell of the input grid (its corners, and where it
 //!   meets the assembly boundary, the bisected points there) filled on a raster of the plane;
-//! - its **boundary**: the raster's outline by marching squares, as closed polylines, each
-//!   point then moved onto the edge of the reach (bisected on whether a point of the plane is
-//!   reached, decided by Newton's method on P(q) = X: module `workspace_boundary`).
+//! - its **boundary**: round the raster's outline, a band of cells has its centres decided
+//!   (whether a point of the plane is reached, by Newton's method on P(q) = X, and about a
+//!   pole of the map in polar coordinates: module `workspace_reach`), and the decided
+//!   raster's outline is traced by marching squares, each point bisected between a centre
+//!   reached and a neighbour not (module `workspace_boundary`).
 //!
-//! The region's cells lie within about a raster cell of the truth; the boundary's points on
-//! the edge of the reach to about 10⁻¹¹ of the span where the decisions settle them (else
-//! the raster's own outline point stays), and [`Workspace::area`] (inside the boundary)
-//! within the chords between points a cell apart. The tests check both against
-//! closed-form inverse kinematics on a dense grid and a row-by-row area.
+//! The region's cells lie within about a raster cell of the truth, and next to the outline
+//! they are the decided ones; the boundary's points lie on the edge of the reach to 10⁻¹¹ of
+//! the span where the edge is a fold of the map (a leg stretched or folded), and to the
+//! position's own rounding next to the image of a singular input (couplers in line: about
+//! √ε of the size at a pole, where the point's position carries εL²/|AC|), holes included;
+//! [`Workspace::area`] (inside the boundary) is the reach's to the chords between points a
+//! cell apart. The tests check both against closed-form inverse kinematics on a dense grid
+//! and a row-by-row area.
 
 use super::contour::{contours, Grid};
 use super::plan::{InputPlan, Plan};
 use super::solve::Kinematics;
-use super::workspace_boundary::{area_inside, refine, Axes, Jac, Raster, Reach};
+use super::workspace_boundary::{area_inside, refine, Raster};
+use super::workspace_reach::{Axes, Jac, Pole, Reach};
 use crate::error::{Error, Result};
 use crate::kinematics::Motion;
 use nalgebra::{Point2, Vector2};
@@ -91,7 +97,9 @@ impl WorkspaceOptions {
 pub struct Workspace {
     /// The joint or named point.
     pub point: String,
-    /// The region the point reaches, on a raster.
+    /// The region the point reaches, on a raster: the images of the input grid's cells
+    /// filled, and next to the outline each cell as its centre is decided reached or not
+    /// (the outline goes round exactly these cells).
     pub region: Region,
     /// The region's outline: closed polylines (each ends at its first point), m.
     pub boundary: Vec<Vec<Point2<f64>>>,
@@ -101,11 +109,10 @@ pub struct Workspace {
 
 impl Workspace {
     /// The area inside the outline ([`boundary`](Self::boundary)), m²: the outline's points
-    /// are moved onto the edge of the reach (to 10⁻¹¹ of the region's span where a point
-    /// decided reached and one decided not are found within 1.5 cells of the fill's outline;
-    /// elsewhere the fill's own point stays, within about a cell), so this is the area of the
-    /// region to the chords between points a raster cell apart (the raster's own
-    /// [`Region::area`] counts whole cells).
+    /// lie on the edge of the reach (module docs), so this is the area of the reach to the
+    /// chords between points a raster cell apart (of order (cell/ρ)² relative, ρ the edge's
+    /// radius of curvature) and the tips of cusps thinner than a cell; the raster's own
+    /// [`Region::area`] counts whole cells.
     #[must_use]
     pub fn area(&self) -> f64 {
         area_inside(&self.boundary)
@@ -286,13 +293,14 @@ impl Plan {
             let det = v1.x * v2.y - v1.y * v2.x;
             det.is_finite().then_some((p, det))
         };
-        singular.extend(isolated_curves(&axes, &poles, &mut at));
+        let (isolated, traces) = isolated_curves(&axes, &poles, &mut at);
+        singular.extend(isolated);
         // The outline located by deciding points of the plane (module `workspace_boundary`).
         let images: Vec<Option<Point2<f64>>> = nodes.iter().map(|n| n.map(|n| n.0)).collect();
         #[allow(clippy::cast_precision_loss)]
         let span = region.cell * region.nx.max(region.ny) as f64;
-        let mut reach = Reach::new(&mut jac, &axes, images, 2.0 * region.cell, span);
-        let boundary = refine(
+        let mut reach = Reach::new(&mut jac, &axes, images, traces, 2.0 * region.cell, span);
+        let (boundary, cells) = refine(
             &Raster {
                 origin: region.origin,
                 cell: region.cell,
@@ -302,6 +310,7 @@ impl Plan {
             },
             &mut reach,
         );
+        let region = Region { cells, ..region };
         Ok(Workspace {
             point: point.to_owned(),
             region,
@@ -562,17 +571,27 @@ fn null_direction(v1: Vector2<f64>, v2: Vector2<f64>) -> Option<Vector2<f64>> {
 
 /// The curves an isolated singular input maps to: round each of `poles` (refined by
 /// [`refine_poles`]), the images of a small circle of inputs about it, an eighth of a grid
-/// step across, in 720 positions, cut where a position fails or the curve jumps.
-fn isolated_curves(axes: &Axes, poles: &[[f64; 2]], at: &mut At<'_>) -> Vec<SingularCurve> {
+/// step across, in 720 positions, cut where a position fails or the curve jumps; with each
+/// pole's trace for the decisions near it (module `workspace_reach`).
+fn isolated_curves(
+    axes: &Axes,
+    poles: &[[f64; 2]],
+    at: &mut At<'_>,
+) -> (Vec<SingularCurve>, Vec<Pole>) {
     let h = axes.step[0].abs().max(axes.step[1].abs());
     let mut out = Vec::new();
+    let mut traces = Vec::new();
     for &q in poles {
         let mut pieces: Vec<Vec<([f64; 2], Point2<f64>)>> = vec![Vec::new()];
+        let mut trace = Vec::new();
         for k in 0..=720 {
             let t = std::f64::consts::TAU * f64::from(k) / 720.0;
             let qk = [q[0] + h / 8.0 * t.cos(), q[1] + h / 8.0 * t.sin()];
             match at(qk) {
-                Some((p, _)) => pieces.last_mut().expect("one piece").push((qk, p)),
+                Some((p, _)) => {
+                    pieces.last_mut().expect("one piece").push((qk, p));
+                    trace.push((t, p));
+                }
                 None => pieces.push(Vec::new()),
             }
         }
@@ -585,8 +604,13 @@ fn isolated_curves(axes: &Axes, poles: &[[f64; 2]], at: &mut At<'_>) -> Vec<Sing
                 });
             }
         }
+        traces.push(Pole {
+            q,
+            radius: h / 8.0,
+            trace,
+        });
     }
-    out
+    (out, traces)
 }
 
 /// A curve cut where it jumps: a step more than 8 times its median step. Near a pole of the
