@@ -26,5 +26,6 @@ mod synthesis;
 mod triad;
 mod triad_slider;
 mod triad_slider_branch;
+mod triad_slider_stretch;
 mod unit;
 mod work_precision;

@@ -234,6 +234,19 @@ pub fn slider_triad_modes(
                 modes.push_distinct(pose, tol);
             }
         }
+        // Across a double root's stretch (F flat, its terms cancelling): only regular poses
+        // are modes of their own, as the triad's ([`Roots::stretch`]); a pose within rounding
+        // of the branch point is the double root's, already taken above or by the plateau's
+        // unfiltered samples between F's extremum and the root.
+        for z in roots.stretch(r) {
+            for pose in e.poses(z, true, false).into_iter().flatten() {
+                let still = Guide::fixed(first.point.p, first.angle.value);
+                let rates = slider_triad_rates(&still, a.map(PointMotion::fixed), dims, &pose);
+                if super::trig_roots::regular_mode(rates) {
+                    modes.push_distinct(pose, tol);
+                }
+            }
+        }
     }
     if modes.is_empty() {
         return Err(Error::NotAssemblable {
