@@ -24,6 +24,7 @@ mod linkage;
 mod mechanism;
 mod synthesis;
 mod triad;
+mod triad_scale;
 mod triad_slider;
 mod triad_slider_branch;
 mod triad_slider_stretch;
