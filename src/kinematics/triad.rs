@@ -60,7 +60,7 @@ use super::fold::{split_steps, Leg, Legs};
 use super::link::LinkMotion;
 use super::motion::PointMotion;
 use super::trig_cubic::{n1, Cubic};
-use super::trig_roots::{checked_roots, unit, CLOSES, SAME_MODE};
+use super::trig_roots::{checked_roots, times_pow2, unit, unit_exponent, CLOSES, SAME_MODE};
 use crate::angle::{cross, direction, perp};
 use crate::error::{finite, finite2, positive, Error, Result};
 use nalgebra::{Complex, Matrix3, Point2, Vector2, Vector3};
@@ -219,6 +219,17 @@ impl<const N: usize> AssemblyModes<N> {
         }
     }
 
+    /// The modes with their joints multiplied by 2^k (angles and the dimensionless `det`
+    /// unchanged): back from the unit frame a search ran in.
+    pub(super) fn scaled(mut self, k: i32) -> Self {
+        for pose in &mut self.poses[..self.count] {
+            pose.b = pose
+                .b
+                .map(|p| Point2::new(times_pow2(p.x, k), times_pow2(p.y, k)));
+        }
+        self
+    }
+
     /// Orders the modes by θ.
     pub(super) fn sort(&mut self) {
         self.poses[..self.count].sort_by(|p, q| p.theta.total_cmp(&q.theta));
@@ -329,6 +340,35 @@ impl TriadState {
 pub fn triad_modes(a: [Point2<f64>; 3], dims: &TriadDims) -> Result<TriadModes> {
     validate_points(a)?;
     dims.validate()?;
+    // Solved in the unit frame (scale-free at any size: the data times a power of two).
+    let k = unit_exponent(a.iter().flat_map(|p| [p.x, p.y]).chain(dims.l).chain([
+        dims.l_b1b2,
+        dims.b3_along,
+        dims.b3_across,
+    ]));
+    let s = |x: f64| times_pow2(x, k);
+    let unit_dims = TriadDims::new(
+        dims.l.map(s),
+        s(dims.l_b1b2),
+        s(dims.b3_along),
+        s(dims.b3_across),
+    );
+    unit_dims.validate().map_err(|_| Error::Overflow {
+        what: "triad: a length underflows to zero against the group's other dimensions",
+    })?;
+    let unit_a = a.map(|p| Point2::new(s(p.x), s(p.y)));
+    match unit_modes(unit_a, &unit_dims) {
+        Ok(modes) => Ok(modes.scaled(-k)),
+        Err(Error::NotAssemblable { group, gap }) => Err(Error::NotAssemblable {
+            group,
+            gap: times_pow2(gap, -k),
+        }),
+        Err(e) => Err(e),
+    }
+}
+
+/// [`triad_modes`] on valid data of the unit frame.
+fn unit_modes(a: [Point2<f64>; 3], dims: &TriadDims) -> Result<TriadModes> {
     let e = Eliminated::new(a, dims);
     let overflow = "triad: eliminated equation";
     let roots = checked_roots(&e.cubic, &e.cubic.f, e.cubic.s, e.scale, GROUP, overflow)?;

@@ -56,7 +56,9 @@ use super::motion::PointMotion;
 use super::rrp::Guide;
 use super::triad::{AssemblyModes, TriadDims, TriadPose, TriadState};
 use super::trig_cubic::{n1, Cubic};
-use super::trig_roots::{checked_roots, unit as unit_c, CLOSES, SAME_MODE};
+use super::trig_roots::{
+    checked_roots, times_pow2, unit as unit_c, unit_exponent, CLOSES, SAME_MODE,
+};
 use crate::angle::{cross, direction, perp, unit};
 use crate::error::{finite, finite2, positive, Error, Result};
 use nalgebra::{Complex, Matrix3, Point2, Vector2, Vector3};
@@ -215,6 +217,53 @@ pub fn slider_triad_modes(
     finite2(["A3.x", "A3.y"], a[1].coords)?;
     finite("guide angle", first.angle.value)?;
     dims.validate()?;
+    // Solved in the unit frame (scale-free at any size: the data times a power of two).
+    let offset = match dims.pair {
+        SlidingPair::Outer { offset } | SlidingPair::Inner { offset, .. } => offset,
+    };
+    let k = unit_exponent(
+        [first.point.p, a[0], a[1]]
+            .iter()
+            .flat_map(|p| [p.x, p.y])
+            .chain(dims.l)
+            .chain([dims.l_b1b2, dims.b3_along, dims.b3_across, offset]),
+    );
+    let s = |x: f64| times_pow2(x, k);
+    let unit_dims = SliderTriadDims {
+        pair: match dims.pair {
+            SlidingPair::Outer { offset } => SlidingPair::Outer { offset: s(offset) },
+            SlidingPair::Inner { angle, offset } => SlidingPair::Inner {
+                angle,
+                offset: s(offset),
+            },
+        },
+        l: dims.l.map(s),
+        l_b1b2: s(dims.l_b1b2),
+        b3_along: s(dims.b3_along),
+        b3_across: s(dims.b3_across),
+    };
+    unit_dims.validate().map_err(|_| Error::Overflow {
+        what: "triad with a sliding pair: a length underflows to zero against the group's \
+               other dimensions",
+    })?;
+    let point = |p: Point2<f64>| Point2::new(s(p.x), s(p.y));
+    let unit_first = Guide::fixed(point(first.point.p), first.angle.value);
+    match unit_modes(&unit_first, a.map(point), &unit_dims) {
+        Ok(modes) => Ok(modes.scaled(-k)),
+        Err(Error::NotAssemblable { group, gap }) => Err(Error::NotAssemblable {
+            group,
+            gap: times_pow2(gap, -k),
+        }),
+        Err(e) => Err(e),
+    }
+}
+
+/// [`slider_triad_modes`] on valid data of the unit frame.
+fn unit_modes(
+    first: &Guide,
+    a: [Point2<f64>; 2],
+    dims: &SliderTriadDims,
+) -> Result<SliderTriadModes> {
     let e = Equation::new(first, a, dims);
     let overflow = "triad with a sliding pair: eliminated equation";
     let roots = checked_roots(&e.cubic, &e.cubic.f, e.cubic.s, e.scale, GROUP, overflow)?;
@@ -232,6 +281,19 @@ pub fn slider_triad_modes(
         for z in roots.plateau(r) {
             for pose in e.poses(z, true, false).into_iter().flatten() {
                 modes.push_distinct(pose, tol);
+            }
+        }
+        // Across a double root's stretch (F flat, its terms cancelling): only regular poses
+        // are modes of their own, as the triad's ([`Roots::stretch`]); a pose within rounding
+        // of the branch point is the double root's, already taken above or by the plateau's
+        // unfiltered samples between F's extremum and the root.
+        for z in roots.stretch(r) {
+            for pose in e.poses(z, true, false).into_iter().flatten() {
+                let still = Guide::fixed(first.point.p, first.angle.value);
+                let rates = slider_triad_rates(&still, a.map(PointMotion::fixed), dims, &pose);
+                if super::trig_roots::regular_mode(rates) {
+                    modes.push_distinct(pose, tol);
+                }
             }
         }
     }

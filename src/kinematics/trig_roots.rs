@@ -338,6 +338,35 @@ pub(super) fn regular_mode<T>(rates: Result<T>) -> bool {
     !matches!(rates, Err(Error::Singular { .. }))
 }
 
+/// The exponent k that brings the largest magnitude among `values` into [1/2, 1) when they
+/// are multiplied by 2^k (0 when they are all zero): a group's data scaled by it solve in the
+/// unit frame, where none of F's products (sixth powers of the lengths) over- or underflows,
+/// and scaling by a power of two adds no rounding (a value leaves the normal range only if
+/// it is below 2⁻¹⁰²² of the largest, far under anything the group can resolve).
+pub(super) fn unit_exponent(values: impl IntoIterator<Item = f64>) -> i32 {
+    let m = values.into_iter().fold(0.0f64, |m, v| m.max(v.abs()));
+    if m > 0.0 && m.is_finite() {
+        -(m.log2().floor() as i32 + 1)
+    } else {
+        0
+    }
+}
+
+/// x·2^k, exact unless the result leaves the normal range; in steps of at most 2^±1000 so
+/// that every factor is representable (k spans up to ±2100 between subnormal and huge data).
+pub(super) fn times_pow2(x: f64, k: i32) -> f64 {
+    let (mut x, mut k) = (x, k);
+    while k > 1000 {
+        x *= 2f64.powi(1000);
+        k -= 1000;
+    }
+    while k < -1000 {
+        x *= 2f64.powi(-1000);
+        k += 1000;
+    }
+    x * 2f64.powi(k)
+}
+
 /// z turned by the angle 2·atan(t): z·(1 + i·t)²/(1 + t²), without a trigonometric function.
 #[inline]
 pub(super) fn along(z: C, t: f64) -> C {
