@@ -20,10 +20,10 @@ use std::hint::black_box;
 use std::time::Duration;
 use tmm::kinematics::batch::{four_bar_positions, CrankAngles, Positions};
 use tmm::synthesis::{
-    burmester, burmester_points, centre_point_curve, crank_rocker, function_generator,
-    path_generator, shaper, six_bar_path_generator, slider_crank, CrankRockerRequirement,
-    FrameChoice, FunctionRequirement, OffsetChoice, Options, PathOptions, PathRequirement, Pose,
-    ShaperRequirement, SliderCrankRequirement, Spacing, Timing,
+    burmester, burmester_points, burmester_points_by_scan, centre_point_curve, crank_rocker,
+    function_generator, path_generator, shaper, six_bar_path_generator, slider_crank,
+    CrankRockerRequirement, FrameChoice, FunctionRequirement, OffsetChoice, Options, PathOptions,
+    PathRequirement, Pose, ShaperRequirement, SliderCrankRequirement, Spacing, Timing,
 };
 
 #[path = "common/yardstick.rs"]
@@ -146,10 +146,14 @@ fn function_generation(c: &mut Criterion) {
     g.measurement_time(Duration::from_secs(2))
         .warm_up_time(Duration::from_millis(500))
         .sample_size(20);
+    // The elimination (every point, no samples) beside the scan it replaced.
+    g.bench_function("count", |b| {
+        b.iter(|| black_box(burmester_points(black_box(&five)).unwrap()));
+    });
     for n in [360usize, 3600] {
         g.throughput(Throughput::Elements(n as u64));
-        g.bench_with_input(BenchmarkId::from_parameter(n), &n, |b, &n| {
-            b.iter(|| black_box(burmester_points(black_box(&five), n).unwrap()));
+        g.bench_with_input(BenchmarkId::new("scan", n), &n, |b, &n| {
+            b.iter(|| black_box(burmester_points_by_scan(black_box(&five), n).unwrap()));
         });
     }
     g.finish();

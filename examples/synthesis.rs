@@ -273,7 +273,7 @@ fn run_example() -> tmm::Result<()> {
         )
     };
     let five = [0.3, 0.9, 1.6, 2.4, 3.0].map(pose);
-    let points = burmester_points(&five, 4000)?;
+    let points = burmester_points(&five)?;
     for p in &points {
         println!(
             "  centre point ({:9.6}, {:9.6}) m, circle point ({:9.6}, {:9.6}) m",

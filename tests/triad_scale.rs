@@ -44,19 +44,22 @@ fn scaled_point(p: PointMotion, f: f64) -> PointMotion {
 fn modes_off(one: &[TriadPose], other: &[TriadPose], f: f64, size: f64) -> Option<f64> {
     (one.len() == other.len()).then(|| {
         one.iter()
-            .map(|m| {
-                other
-                    .iter()
-                    .map(|q| {
-                        (0..3)
-                            .map(|i| (m.b[i] - Point2::from(q.b[i].coords / f)).norm())
-                            .fold(0.0, f64::max)
-                    })
-                    .fold(f64::INFINITY, f64::min)
-            })
+            .map(|m| nearest_off(m, other, f))
             .fold(0.0, f64::max)
             / size
     })
+}
+
+/// The distance of a mode's joints from the nearest mode of `other` scaled back by 1/f, m.
+fn nearest_off(m: &TriadPose, other: &[TriadPose], f: f64) -> f64 {
+    other
+        .iter()
+        .map(|q| {
+            (0..3)
+                .map(|i| (m.b[i] - Point2::from(q.b[i].coords / f)).norm())
+                .fold(0.0, f64::max)
+        })
+        .fold(f64::INFINITY, f64::min)
 }
 
 /// The largest difference of two states' rates (the second's linear rates scaled back by
@@ -167,8 +170,7 @@ fn triads_called_directly_are_scale_free() {
                 // Each mode against its own data-rounding allowance (the scaled data carry
                 // one rounding, which the mode bears through its conditioning).
                 for m in modes.as_slice() {
-                    let one = std::slice::from_ref(m);
-                    let off_m = modes_off(one, other.as_slice(), f, 1.0).unwrap_or(f64::INFINITY);
+                    let off_m = nearest_off(m, other.as_slice(), f);
                     let allowed = 1e-12 * size + rounding_allowance(m, a, &dims);
                     assert!(
                         off_m <= allowed,

@@ -24,9 +24,6 @@ use crate::error::{Error, Result};
 /// quotients (exact when poses nearly coincide) and kept if it fits all five poses to 1e-9
 /// of its size.
 ///
-/// `n` was the scan's number of samples; the count does not use it (it is still checked, so
-/// that a call means what it did).
-///
 /// # Examples
 /// Five poses of the coupler of a four-bar: its two dyads are among Burmester's points.
 /// ```
@@ -46,7 +43,7 @@ use crate::error::{Error, Result};
 ///     Pose::new([ax + 0.5 * b * ux - 0.1 * uy, ay + 0.5 * b * uy + 0.1 * ux], uy.atan2(ux))
 /// };
 /// let poses = [0.3, 0.9, 1.6, 2.4, 3.0].map(pose);
-/// let points = burmester_points(&poses, 2000)?;
+/// let points = burmester_points(&poses)?;
 /// // The crank O1A (centre (0, 0)) and the rocker O3B (centre (0.4, 0)) are among them.
 /// let near = |x: f64, y: f64| points.iter().any(|p| (p.centre[0] - x).hypot(p.centre[1] - y) < 1e-8);
 /// assert!(near(0.0, 0.0) && near(0.4, 0.0));
@@ -60,19 +57,9 @@ use crate::error::{Error, Result};
 /// from it: a continuum of dyads) and for other degenerate poses that more than four dyads
 /// fit. A dyad more than 10⁶ times longer than the poses' extent (from the first pose) is
 /// not returned: it is a slider's dyad (the bisectors meeting at infinity) found to rounding.
-/// [`Error::OutOfRange`] (`"n"`) for n below 8 or above [`MAX_POINTS`](super::MAX_POINTS).
-pub fn burmester_points(poses: &[Pose; 5], n: usize) -> Result<Vec<Dyad>> {
+pub fn burmester_points(poses: &[Pose; 5]) -> Result<Vec<Dyad>> {
     check_poses(poses)?;
     pose_order::not_about_one_point(poses)?;
-    if !(8..=super::MAX_POINTS).contains(&n) {
-        return Err(Error::OutOfRange {
-            name: "n",
-            value: n as f64,
-            min: 8.0,
-            max: super::MAX_POINTS as f64,
-            ends: crate::Ends::Closed,
-        });
-    }
     let equations = PoseEquations::new(poses);
     let starts = burmester_resultant::candidates(&equations)
         .into_iter()

@@ -76,7 +76,7 @@ impl Loop {
 ///     Pose::new([0.33, -0.08], 1.4),
 /// ];
 /// let scanned = burmester_points_by_scan(&poses, 4000)?;
-/// let counted = burmester_points(&poses, 4000)?;
+/// let counted = burmester_points(&poses)?;
 /// assert!(scanned.len() <= counted.len());
 /// # Ok::<(), tmm::Error>(())
 /// ```

@@ -74,7 +74,7 @@ fn recovered(
         .windows(2)
         .map(|w| w[1] - w[0])
         .fold(f64::INFINITY, f64::min);
-    let points = burmester_points(&poses, 2000)
+    let points = burmester_points(&poses)
         .unwrap_or_else(|e| panic!("{e}; crank angles {phis:?} (gap {gap:e}); poses {poses:?}"));
     assert!(points.len() <= 4, "{points:?}");
     let extent = poses
@@ -203,7 +203,7 @@ fn poses_turning_about_one_point_are_refused_naming_it() {
         Pose::new([cx + c * x - s * y, cy + s * x + c * y], 0.4 + t)
     };
     let poses = [0.0, 0.3, 0.7, 1.2, 1.9].map(pose);
-    let e = burmester_points(&poses, 2000).unwrap_err().to_string();
+    let e = burmester_points(&poses).unwrap_err().to_string();
     assert!(
         e.contains("turn about one point") && e.contains("3.000000e-1"),
         "{e}"

@@ -123,7 +123,7 @@ fn the_two_pivots_the_scan_lost_are_counted() {
             .map(|p| dist(p.at, own.centre).max(dist(p.at, [0.0, 0.0])))
             .fold(1.0, f64::max);
         let allowed = allowed_miss(poses, own, size);
-        let counted = burmester_points(poses, 2000).unwrap();
+        let counted = burmester_points(poses).unwrap();
         assert!(counted.len() <= 4, "case {k}: {counted:?}");
         let m = miss(&counted, own);
         assert!(
@@ -200,7 +200,7 @@ fn every_point_the_scan_finds_is_counted() {
             continue;
         };
         let (Ok(counted), Ok(scanned)) = (
-            burmester_points(&poses, 2000),
+            burmester_points(&poses),
             burmester_points_by_scan(&poses, 2000),
         ) else {
             panic!("{poses:?}");
@@ -256,7 +256,7 @@ proptest! {
         let poses: [Pose; 5] = std::array::from_fn(|k| {
             Pose::new([p[k].at[0] + offset.0, p[k].at[1] + offset.1], p[k].angle)
         });
-        let points = burmester_points(&poses, 2000);
+        let points = burmester_points(&poses);
         prop_assume!(points.is_ok());
         let points = points.unwrap();
         prop_assert!(points.len() <= 4, "{:?}", points);

@@ -12,11 +12,11 @@ use std::panic::{catch_unwind, AssertUnwindSafe};
 use tmm::kinematics::{Motion, Rotation};
 use tmm::linkage::{Output, Plan};
 use tmm::synthesis::{
-    burmester, burmester_points, centre_point, centre_point_curve, centre_point_two, circle_point,
-    crank_rocker, crank_rocker_through, four_bar_from_dyads, freudenstein_coefficients,
-    function_generator, shaper, slider_crank, CrankRockerRequirement, Dyad, FrameChoice,
-    FunctionRequirement, OffsetChoice, Options, Pose, ShaperRequirement, SliderCrankRequirement,
-    Spacing, Synthesis, MAX_POINTS,
+    burmester, burmester_points, burmester_points_by_scan, centre_point, centre_point_curve,
+    centre_point_two, circle_point, crank_rocker, crank_rocker_through, four_bar_from_dyads,
+    freudenstein_coefficients, function_generator, shaper, slider_crank, CrankRockerRequirement,
+    Dyad, FrameChoice, FunctionRequirement, OffsetChoice, Options, Pose, ShaperRequirement,
+    SliderCrankRequirement, Spacing, Synthesis, MAX_POINTS,
 };
 
 use crate::common::hostile_gen::{cases, has_non_finite, Gen, SPECIAL};
@@ -497,8 +497,14 @@ fn five_pose_requirements() {
             let s = scale(&mut g);
             let five: [Pose; 5] = poses(&mut g, s);
             let n = [0, 7, 8, 64, 400][(g.next() % 5) as usize];
-            let what = format!("case {case}: burmester_points({five:?}, {n})");
-            if let Ok(points) = no_panic(&what, || burmester_points(&five, n)) {
+            // The scan's sample count is hostile too (the count itself takes none).
+            let scan = format!("case {case}: burmester_points_by_scan({five:?}, {n})");
+            if let Ok(points) = no_panic(&scan, || burmester_points_by_scan(&five, n)) {
+                assert!(points.len() <= 4, "{scan}: {points:?}");
+                points.iter().for_each(|d| check_dyad(&scan, d));
+            }
+            let what = format!("case {case}: burmester_points({five:?})");
+            if let Ok(points) = no_panic(&what, || burmester_points(&five)) {
                 assert!(points.len() <= 4, "{what}: {points:?}");
                 for d in &points {
                     check_dyad(&what, d);

@@ -1300,7 +1300,7 @@ mod five_poses {
                 )
             };
             let poses: [Pose; 5] = std::array::from_fn(|k| pose_of(phis[k]));
-            let points = burmester_points(&poses, 4000).unwrap();
+            let points = burmester_points(&poses).unwrap();
             let (a1, b1) = hinges(d, a, b, c, 1.0, phis[0]).unwrap();
             let crank = Dyad {
                 centre: [0.0, 0.0],
