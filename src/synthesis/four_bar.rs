@@ -48,9 +48,32 @@ pub(crate) struct Extremes {
     pub swing: f64,
 }
 
-/// acos clamped to [−1, 1] (rounding may carry a cosine just past ±1 at a flat position).
-fn acos(x: f64) -> f64 {
-    x.clamp(-1.0, 1.0).acos()
+/// The angle of a triangle between the sides `p` and `q`, opposite the side `o` (rad in
+/// [0, π]), by Kahan's formula for needle-like triangles: with x ≥ y the two sides and
+/// μ = o − (x − y) if y ≥ o, else y − (x − o),
+/// angle = 2·atan √(((x − y) + o)·μ / ((x + (y + o))·((x − o) + y))).
+///
+/// Why not the cos law: acos(1 − δ) loses half the digits of a small angle (its derivative
+/// is 1/sin), and near a change point or a dead point the angles that set K, the swing and
+/// γ_min are small (the reported swing of a crank-rocker next to its K bound was off by
+/// 5e-10 of itself). Each factor here is exact or one rounding of the data, so the angle is
+/// good to a few ulps for every shape. The sides are divided by the largest first (free of
+/// overflow and underflow); a set that is not a triangle by rounding gives the flat angle
+/// nearest to it.
+pub(crate) fn triangle_angle(p: f64, q: f64, o: f64) -> f64 {
+    let s = p.max(q).max(o);
+    if !(s > 0.0) {
+        return 0.0;
+    }
+    let (p, q, o) = (p / s, q / s, o / s);
+    let (x, y) = (p.max(q), p.min(q));
+    let mu = if y >= o { o - (x - y) } else { y - (x - o) };
+    let num = ((x - y) + o) * mu;
+    let den = (x + (y + o)) * ((x - o) + y);
+    if !(num >= 0.0) || !(den > 0.0) {
+        return if o >= 0.5 * (x + y + o) { PI } else { 0.0 };
+    }
+    2.0 * (num / den).sqrt().atan()
 }
 
 impl FourBar {
@@ -128,10 +151,9 @@ impl FourBar {
     }
 
     /// The transmission angle (acute, between coupler and rocker) where |AO3| = e: the
-    /// cosine (b² + c² − e²)/(2bc) in ratios, free of overflow.
+    /// triangle A B O3's angle at B, opposite e.
     fn mu(&self, e: f64) -> f64 {
-        let (b, c) = (self.b, self.c);
-        acute(acos(0.5 * (b / c + c / b - (e / b) * (e / c))))
+        acute(triangle_angle(self.b, self.c, e))
     }
 
     /// The transmission angle at the local crank angle `phi`.
@@ -177,12 +199,8 @@ impl FourBar {
     /// (σ = +1: above it, since then cross(O3 − A, B − A) = d·B_y with A on the line O1B).
     pub fn extremes(&self) -> Extremes {
         let (d, c, s) = (self.d, self.c, self.sigma);
-        // The cosines of the triangle O1 B O3 (|O1B| = r) in ratios, free of overflow.
-        let at = |r: f64| {
-            let alpha = acos(0.5 * (r / d + d / r - (c / r) * (c / d)));
-            let beta = acos(0.5 * (c / d + d / c - (r / c) * (r / d)));
-            (alpha, beta)
-        };
+        // The triangle O1 B O3 (|O1B| = r): α at O1 (opposite c), β at O3 (opposite r).
+        let at = |r: f64| (triangle_angle(r, d, c), triangle_angle(c, d, r));
         let (ae, be) = at(self.a + self.b);
         let (af, bf) = at(self.b - self.a);
         Extremes {

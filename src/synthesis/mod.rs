@@ -79,6 +79,7 @@ mod centre_curve;
 mod check;
 mod four_bar;
 mod freudenstein;
+mod held;
 mod path;
 mod pose_newton;
 mod pose_order;

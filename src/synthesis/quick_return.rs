@@ -3,6 +3,7 @@
 //! offset slider-crank and the shaper (crank, slotted lever, ram).
 
 use super::four_bar::FourBar;
+use super::held;
 use super::search::maximise;
 use super::{
     check, crank_excess, length, require_transmission, time_ratio_of, Options, Report, Synthesis,
@@ -281,12 +282,15 @@ fn largest_crank_excess(swing: f64) -> f64 {
 /// bound (the designs next to the bound near a change point; a swing near 0 or π).
 fn no_crank_rocker(k: f64, swing: f64, theta: f64) -> Error {
     let top = largest_crank_excess(swing);
+    // K* = (π + θ*)/(π − θ*) with θ* = (π + ψ)/2 is (3π + ψ)/(π − ψ): from ψ directly, since
+    // π − θ* rounded loses digits as ψ nears π (4e-12 of K* at ψ = π − 10⁻⁴).
+    let bound = (3.0 * PI + swing) / (PI - swing);
     if theta >= top {
         return Error::OutOfRange {
             name: "K",
             value: k,
             min: 1.0,
-            max: time_ratio_of(top),
+            max: bound,
             ends: Ends::Open,
         };
     }
@@ -299,7 +303,7 @@ fn no_crank_rocker(k: f64, swing: f64, theta: f64) -> Error {
              at a swing this near 0 or π (or a K this near 1) their crank is below 1e-9 of the \
              coupler; change the swing or K",
             swing.to_degrees(),
-            time_ratio_of(top)
+            bound
         ),
     }
 }
@@ -350,8 +354,52 @@ fn no_crank_rocker(k: f64, swing: f64, theta: f64) -> Error {
 /// [`Error::OutOfRange`] for a swing outside (0, π), for K ≤ 1, and for K above the largest
 /// time ratio any crank-rocker of this swing reaches (the interval names it);
 /// [`Error::Infeasible`] for a frame length on which no crank-rocker's pivot lies (with the
-/// nearest that works) and for γ_min below \[γ\] (with the best reachable).
+/// nearest that works) and for γ_min below \[γ\] (with the best reachable);
+/// [`Error::OutOfRange`] (`"K (…)"`, the interval's top the largest K that is held) for a K so
+/// near its bound that no description in f64 holds it to 10⁻¹⁰ as the engine measures it.
+///
+/// The report is computed from the lengths of the description (as the engine reads them off
+/// its joints), and the engine's own K and swing of the description are checked to 10⁻¹⁰
+/// before it is returned.
 pub fn crank_rocker(need: &CrankRockerRequirement, options: &Options) -> Result<Synthesis> {
+    let (s, kept) = crank_rocker_made(need, options)?;
+    if kept {
+        return Ok(s);
+    }
+    // Designed, but K is too near its bound for any f64 description to hold it: say up to
+    // which K one does (the transmission angle aside: that has its own error).
+    let loose = options.with_min_transmission_angle(0.0);
+    let kept_at = |k: f64| {
+        let other = CrankRockerRequirement {
+            time_ratio: k,
+            ..*need
+        };
+        matches!(crank_rocker_made(&other, &loose), Ok((_, true)))
+    };
+    Err(
+        held::k_not_held(need.time_ratio, kept_at).unwrap_or_else(|| Error::NoMechanism {
+            method: "crank-rocker",
+            problem: format!(
+                "its description holds K = {} only to {:.2e} of it (its report: K {:?}, swing \
+                 {:?} rad), not to 1e-10, and neither does the design at a K between 1 and \
+                 this one tried",
+                need.time_ratio,
+                s.report
+                    .time_ratio
+                    .map_or(f64::NAN, |k| (k - need.time_ratio).abs() / need.time_ratio),
+                s.report.time_ratio,
+                s.report.stroke
+            ),
+        }),
+    )
+}
+
+/// [`crank_rocker`]'s design, and whether its description holds K and the swing to
+/// [`held::HELD`] (its report is computed from the description's own lengths).
+fn crank_rocker_made(
+    need: &CrankRockerRequirement,
+    options: &Options,
+) -> Result<(Synthesis, bool)> {
     let c = length("rocker", need.rocker)?;
     let swing = finite("swing", need.swing)?;
     if !(swing > 0.0 && swing < PI) {
@@ -403,18 +451,26 @@ pub fn crank_rocker(need: &CrankRockerRequirement, options: &Options) -> Result<
         }
         best
     };
-    let design = design.scaled(c)?;
+    let design = held::polish_crank_rocker(design, theta, swing).scaled(c)?;
     design.proportions("crank-rocker")?;
-    let report = design.report("crank-rocker", None)?;
-    require_transmission(report.min_transmission_angle, required)?;
     let linkage = design.linkage(
         "synthesised crank-rocker",
         design.extremes().phi_ext,
         Vec::new(),
         None,
     )?;
+    // The report from the lengths the engine reads off the joints, not the design's.
+    let described = held::described_four_bar(&linkage).unwrap_or(design);
+    let report = described.report("crank-rocker", None)?;
+    require_transmission(report.min_transmission_angle, required)?;
     check::accepted(&linkage)?;
-    Ok(Synthesis { linkage, report })
+    // K to 1e-10, or, next to its bound, to three times what one rounding of each length
+    // moves it by (no f64 description does better there); the swing to 1e-10.
+    let k_tol = held::HELD.max(3.0 * held::crank_rocker_k_rounding(&described) / need.time_ratio);
+    let kept = held::held_to(report.time_ratio, need.time_ratio, k_tol)
+        && held::held(report.stroke, swing)
+        && held::engine_holds(&linkage, (need.time_ratio, k_tol), swing);
+    Ok((Synthesis { linkage, report }, kept))
 }
 
 /// Where the guide of a [`slider_crank`] goes.
@@ -549,8 +605,47 @@ fn slider_gamma(a: f64, b: f64, e: f64) -> f64 {
 /// # Errors
 /// [`Error::NonFinite`] / [`Error::NonPositive`] for the stroke or the offset;
 /// [`Error::OutOfRange`] for K outside (1, 3), or above the largest K of the given offset
-/// (θ < arctan(H/e)); [`Error::Infeasible`] for γ_min below \[γ\].
+/// (θ < arctan(H/e)); [`Error::Infeasible`] for γ_min below \[γ\]; [`Error::OutOfRange`]
+/// (`"K (…)"`, the interval's top the largest K that is held) where no description in f64
+/// holds K to 10⁻¹⁰ as the engine measures it (a small given offset with K near 3: the folded
+/// dead centre next to the crank's pivot).
+///
+/// The report is computed from the lengths of the description, and the engine's own K and
+/// stroke of the description are checked to 10⁻¹⁰ before it is returned.
 pub fn slider_crank(need: &SliderCrankRequirement, options: &Options) -> Result<Synthesis> {
+    let (s, kept) = slider_crank_made(need, options)?;
+    if kept {
+        return Ok(s);
+    }
+    // Designed, but no f64 description holds K (the folded dead centre next to the crank's
+    // pivot, or K next to 3): say up to which K one does.
+    let loose = options.with_min_transmission_angle(0.0);
+    let kept_at = |k: f64| {
+        let other = SliderCrankRequirement {
+            time_ratio: k,
+            ..*need
+        };
+        matches!(slider_crank_made(&other, &loose), Ok((_, true)))
+    };
+    Err(
+        held::k_not_held(need.time_ratio, kept_at).unwrap_or_else(|| Error::NoMechanism {
+            method: "offset slider-crank",
+            problem: format!(
+                "its description holds K = {} and the stroke {} m only to the report's K \
+                 {:?} and stroke {:?}, not to 1e-10, and neither does the design at a K \
+                 between 1 and this one tried",
+                need.time_ratio, need.stroke, s.report.time_ratio, s.report.stroke
+            ),
+        }),
+    )
+}
+
+/// [`slider_crank`]'s design, and whether its description holds K and the stroke to
+/// [`held::HELD`] (its report is computed from the description's own lengths).
+fn slider_crank_made(
+    need: &SliderCrankRequirement,
+    options: &Options,
+) -> Result<(Synthesis, bool)> {
     let h = length("stroke", need.stroke)?;
     let theta = crank_excess(need.time_ratio)?;
     let required = options.check()?;
@@ -569,8 +664,13 @@ pub fn slider_crank(need: &SliderCrankRequirement, options: &Options) -> Result<
         OffsetChoice::Given(e) => Some(length("offset", e)? / h),
         OffsetChoice::BestTransmission => None,
     };
+    // The largest offset (per unit stroke) is cot θ = tan(π/2 − θ), and π/2 − θ =
+    // π(3 − K)/(2(K + 1)) from K itself: from θ rounded it loses digits as K nears 3 (4e-7
+    // of it at K = 3 − 10⁻⁹), and an offset just above the bound was designed by rounding.
+    let k = need.time_ratio;
+    let cot = (PI * ((3.0 - k) / (2.0 * (k + 1.0)))).tan();
     if let Some(e) = given
-        && slider_design(1.0, theta, e).is_none()
+        && (e >= cot || slider_design(1.0, theta, e).is_none())
     {
         let k_max = time_ratio_of(e.recip().atan());
         // An offset so large that even K → 1 needs a smaller one: it is the offset to change.
@@ -581,7 +681,7 @@ pub fn slider_crank(need: &SliderCrankRequirement, options: &Options) -> Result<
                 name: "offset",
                 value: e * h,
                 min: 0.0,
-                max: h / theta.tan(),
+                max: h * cot,
                 ends: Ends::Open,
             }
         });
@@ -624,26 +724,6 @@ pub fn slider_crank(need: &SliderCrankRequirement, options: &Options) -> Result<
             crate::error::computed("a dimension of the slider-crank", x)?,
         )?;
     }
-    // The report from the dimensions alone: the dead centres at |O1B| = b ± a on y = e.
-    let far = ((a + b).powi(2) - e * e).sqrt();
-    let near = ((b - a).powi(2) - e * e).sqrt();
-    let achieved_theta = (e / near).atan() - (e / far).atan();
-    let gamma = slider_gamma(a, b, e);
-    let report = Report {
-        kind: "offset slider-crank",
-        time_ratio: Some(time_ratio_of(achieved_theta)),
-        stroke: Some(far - near),
-        min_transmission_angle: gamma,
-        min_transmission_at: 1.5 * PI,
-        grashof: None,
-        dimensions: vec![
-            ("crank O1A".to_owned(), a),
-            ("rod AB".to_owned(), b),
-            ("offset e".to_owned(), e),
-        ],
-    };
-    crate::error::computed("the slider-crank's dimensions", a + b + far + near)?;
-    require_transmission(gamma, required)?;
     let r1 = x1.hypot(e);
     let pin = [a * x1 / r1, a * e / r1];
     let linkage = Linkage {
@@ -665,8 +745,44 @@ pub fn slider_crank(need: &SliderCrankRequirement, options: &Options) -> Result<
         output: Some(Output::Slide("P".to_owned())),
         ..Linkage::default()
     };
+    // The report from the lengths the engine reads off the joints (crank |O1A|, rod |AB|,
+    // the guide's offset B_y): the dead centres at |O1B| = b ± a on y = e, x = √(r² − e²)
+    // factored as √((r − e)(r + e)) (the folded one's r − e cancels when it nears O1).
+    let (o1, pa, pb) = (V::zeros(), V::new(pin[0], pin[1]), V::new(x1, e));
+    let (a, b) = ((pa - o1).norm(), (pb - pa).norm());
+    let inline = |r: f64| ((r - e) * (r + e)).sqrt();
+    let (far, near) = (inline(a + b), inline(b - a));
+    if !(near >= 0.0) {
+        return Err(Error::OutOfRange {
+            name: "offset",
+            value: e,
+            min: 0.0,
+            max: h / theta.tan(),
+            ends: Ends::Open,
+        });
+    }
+    let achieved_theta = e.atan2(near) - e.atan2(far);
+    let gamma = slider_gamma(a, b, e);
+    let report = Report {
+        kind: "offset slider-crank",
+        time_ratio: Some(time_ratio_of(achieved_theta)),
+        stroke: Some(far - near),
+        min_transmission_angle: gamma,
+        min_transmission_at: 1.5 * PI,
+        grashof: None,
+        dimensions: vec![
+            ("crank O1A".to_owned(), a),
+            ("rod AB".to_owned(), b),
+            ("offset e".to_owned(), e),
+        ],
+    };
+    crate::error::computed("the slider-crank's dimensions", a + b + far + near)?;
+    require_transmission(gamma, required)?;
     check::accepted(&linkage)?;
-    Ok(Synthesis { linkage, report })
+    let kept = held::held(report.time_ratio, need.time_ratio)
+        && held::held(report.stroke, need.stroke)
+        && held::engine_holds(&linkage, (need.time_ratio, held::HELD), need.stroke);
+    Ok((Synthesis { linkage, report }, kept))
 }
 
 /// What a [`shaper`] must do.

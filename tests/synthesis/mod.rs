@@ -15,6 +15,7 @@ use tmm::Error;
 mod burmester_close;
 mod burmester_count;
 mod closed_form;
+mod closed_form_review;
 mod hostile_requirements;
 mod link_ratio;
 mod path;
