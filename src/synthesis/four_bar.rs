@@ -1,3 +1,4 @@
+#![allow(clippy::neg_cmp_op_on_partial_ord)] // `!(x > 0.0)` rejects NaN too, on purpose.
 //! The four-bar's geometry in closed form, shared by the synthesis methods: positions, the
 //! rocker's extreme positions, the time ratio, the swing and the smallest transmission angle.
 //!

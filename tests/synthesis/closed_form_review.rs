@@ -99,7 +99,7 @@ fn angle(p: f64, q: f64, o: f64) -> f64 {
     let mu = if y >= o { o - (x - y) } else { y - (x - o) };
     let num = ((x - y) + o) * mu;
     let den = (x + (y + o)) * ((x - o) + y);
-    if !(num >= 0.0) || !(den > 0.0) {
+    if num.is_nan() || num < 0.0 || den.is_nan() || den <= 0.0 {
         // Not a triangle (rounding at a flat one): the nearest flat angle.
         return if o >= x + y - o { PI } else { 0.0 };
     }
@@ -547,7 +547,11 @@ pub fn slider_crank_sweep(fast: bool) -> (Vec<String>, usize) {
             offset: OffsetChoice::BestTransmission,
         };
         match slider_crank(&need, &loose) {
-            Err(Error::OutOfRange { name: "K", max, .. }) if max == 3.0 => {}
+            Err(Error::OutOfRange {
+                name: "K",
+                max: 3.0,
+                ..
+            }) => {}
             other => fails.push(format!("K {k}: {:?}", other.map(|s| s.report))),
         }
     }
