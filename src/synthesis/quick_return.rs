@@ -362,7 +362,34 @@ fn no_crank_rocker(k: f64, swing: f64, theta: f64) -> Error {
 /// its joints), and the engine's own K and swing of the description are checked to 10⁻¹⁰
 /// before it is returned.
 pub fn crank_rocker(need: &CrankRockerRequirement, options: &Options) -> Result<Synthesis> {
-    let (s, kept) = crank_rocker_made(need, options)?;
+    let made = crank_rocker_made(need, options);
+    if let Err(Error::NoMechanism {
+        method: LINK_RATIO,
+        problem,
+    }) = &made
+    {
+        let made_at = |k: f64, o: &Options| {
+            let other = CrankRockerRequirement {
+                time_ratio: k,
+                ..*need
+            };
+            crank_rocker_made(&other, o).is_ok()
+        };
+        return Err(least_k_above(
+            need,
+            made_at,
+            "K (the longest link within 10³ of the shortest)",
+        )
+        .unwrap_or_else(|| Error::NoMechanism {
+            method: "crank-rocker",
+            problem: format!(
+                "{problem}, and no K up to the bound keeps it within that for the swing ψ = \
+                     {} rad",
+                need.swing
+            ),
+        }));
+    }
+    let (s, kept) = made?;
     if kept {
         return Ok(s);
     }
@@ -376,8 +403,23 @@ pub fn crank_rocker(need: &CrankRockerRequirement, options: &Options) -> Result<
         };
         matches!(crank_rocker_made(&other, &loose), Ok((_, true)))
     };
-    Err(
-        held::k_not_held(need.time_ratio, kept_at).unwrap_or_else(|| Error::NoMechanism {
+    let kept_above = |k: f64, o: &Options| {
+        let other = CrankRockerRequirement {
+            time_ratio: k,
+            ..*need
+        };
+        matches!(crank_rocker_made(&other, o), Ok((_, true)))
+    };
+    Err(held::k_not_held(need.time_ratio, kept_at)
+        .or_else(|| {
+            // K next to 1 (θ of a few ulps): held from some K above.
+            least_k_above(
+                need,
+                kept_above,
+                "K (held to 1e-10 by a description in f64 only from the interval's bottom)",
+            )
+        })
+        .unwrap_or_else(|| Error::NoMechanism {
             method: "crank-rocker",
             problem: format!(
                 "its description holds K = {} only to {:.2e} of it (its report: K {:?}, swing \
@@ -390,8 +432,53 @@ pub fn crank_rocker(need: &CrankRockerRequirement, options: &Options) -> Result<
                 s.report.time_ratio,
                 s.report.stroke
             ),
-        }),
-    )
+        }))
+}
+
+/// The method named by a crank-rocker whose links break [`MAX_LINK_RATIO`].
+const LINK_RATIO: &str = "crank-rocker (link ratio)";
+
+/// The error for a crank-rocker that `made_at(K, options)` refuses at its K, next to 1 (the
+/// links break [`MAX_LINK_RATIO`] as the crank shrinks against the rocker, or θ is a few
+/// ulps): [`Error::OutOfRange`] (`name`) for K with the least K above it that `made_at`
+/// accepts (a design is tried at K − 1 times 10, 100, … and at 1 %,
+/// 10 %, 50 % of the way to the bound, the first that keeps it bisected against K), up to
+/// the bound (3π + ψ)/(π − ψ). `None` if none of those is accepted.
+fn least_k_above(
+    need: &CrankRockerRequirement,
+    made_at: impl Fn(f64, &Options) -> bool,
+    name: &'static str,
+) -> Option<Error> {
+    let loose = Options::default().with_min_transmission_angle(0.0);
+    let k = need.time_ratio;
+    let top = (3.0 * PI + need.swing) / (PI - need.swing);
+    let ok = |t: f64| made_at(t, &loose);
+    let mut tries: Vec<f64> = (1..=15)
+        .map(|j| 1.0 + (k - 1.0) * 10f64.powi(j))
+        .chain([0.01, 0.1, 0.5].map(|s| 1.0 + (top - 1.0) * s))
+        .filter(|&t| t > k && t < top)
+        .collect();
+    tries.sort_by(f64::total_cmp);
+    let mut good = tries.into_iter().find(|&t| ok(t))?;
+    let mut bad = k;
+    for _ in 0..60 {
+        let mid = 0.5 * (bad + good);
+        if mid <= bad || mid >= good {
+            break;
+        }
+        if ok(mid) {
+            good = mid;
+        } else {
+            bad = mid;
+        }
+    }
+    Some(Error::OutOfRange {
+        name,
+        value: k,
+        min: good,
+        max: top,
+        ends: Ends::OpenAbove,
+    })
 }
 
 /// [`crank_rocker`]'s design, and whether its description holds K and the swing to
@@ -452,7 +539,7 @@ fn crank_rocker_made(
         best
     };
     let design = held::polish_crank_rocker(design, theta, swing).scaled(c)?;
-    design.proportions("crank-rocker")?;
+    design.proportions(LINK_RATIO)?;
     let linkage = design.linkage(
         "synthesised crank-rocker",
         design.extremes().phi_ext,

@@ -1325,3 +1325,53 @@ fn reviewer_hostile_numbers() {
     let (fails, done) = hostile_sweep();
     report("hostile numbers", &fails, done);
 }
+
+/// K → 1⁺: a crank-rocker whose crank shrinks past 10⁻³ of its rocker, or whose θ is a few
+/// ulps, is refused naming K and the least K that is designed — and that K is designed and
+/// met; a swing that no K serves says so.
+#[test]
+fn reviewer_k_next_to_one_names_the_least_k() {
+    let loose = Options::default().with_min_transmission_angle(0.0);
+    let mut conditioned = 0;
+    let mut fails = Vec::new();
+    for swing_deg in [45.0f64, 90.0] {
+        for k in [1.0 + 1e-15, 1.0 + 1e-12, 1.0 + 1e-9] {
+            let need = CrankRockerRequirement {
+                rocker: 0.3,
+                swing: swing_deg.to_radians(),
+                time_ratio: k,
+                frame: FrameChoice::BestTransmission,
+            };
+            match crank_rocker(&need, &loose) {
+                Ok(s) => review_crank_rocker(&need, &s, &mut fails, &mut conditioned),
+                Err(Error::OutOfRange { name, min, .. }) if name.starts_with('K') && min > k => {
+                    let at_min = CrankRockerRequirement {
+                        time_ratio: min,
+                        ..need
+                    };
+                    match crank_rocker(&at_min, &loose) {
+                        Ok(s) => review_crank_rocker(&at_min, &s, &mut fails, &mut conditioned),
+                        Err(e) => fails.push(format!("{at_min:?}: the least K named fails: {e}")),
+                    }
+                }
+                Err(e) => fails.push(format!("{need:?}: {e}")),
+            }
+        }
+    }
+    let tiny = CrankRockerRequirement {
+        rocker: 0.3,
+        swing: 1e-4,
+        time_ratio: 1.3,
+        frame: FrameChoice::BestTransmission,
+    };
+    match crank_rocker(&tiny, &loose) {
+        Ok(s) => review_crank_rocker(&tiny, &s, &mut fails, &mut conditioned),
+        Err(e) => {
+            let text = e.to_string();
+            if !(text.contains("swing") || text.starts_with('K')) {
+                fails.push(format!("{tiny:?}: {text}"));
+            }
+        }
+    }
+    report("K next to 1", &fails, 7);
+}
