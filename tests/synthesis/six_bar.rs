@@ -7,10 +7,9 @@
 //! were recovered to 6e-15 of the path's size while the designs could end outside
 //! `max_size`; held to the box (session 10), case 3 misses at 5.4e-6 (cases 0–2, 4, 5 are
 //! recovered to 1.0e-15). Session 13, with the RRR dyad from the shorter link's pivot (its
-//! last bits changed): the former search met cases 0, 5, 8, 9 of 0–9; with its polishes
-//! through the link-ratio bound and distinct starts, 7 of 10 (3, 4, 5 miss at 5.4e-6,
-//! 7.1e-5, 2.4e-5). `TMM_SYNTH_JITTER=k` moves every target coordinate by k ulps (see
-//! `recoveries_of`).
+//! last bits changed) the search meets cases 0, 5, 8, 9 of 0–9 (case 3's near miss is an
+//! exact six-bar that breaks \[γ\] over the range, held at the constraint).
+//! `TMM_SYNTH_JITTER=k` moves every target coordinate by k ulps (see `recoveries_of`).
 
 use super::path::{best_never_rises, centroid_size, prescribed, recoveries_of, Mechanism, Rng};
 use nalgebra::Point2;

@@ -228,9 +228,8 @@ impl Problem<'_> {
     /// the whole check refuses (outside the box, or the points met only past a dead point)
     /// is done again within them.
     pub(super) fn lm(&self, x: Vec<f64>, s: [f64; 2], iterations: usize, within: bool) -> Vec<f64> {
-        let res = |x: &[f64]| self.residuals(&self.onto_ratio(x), s);
+        let res = |x: &[f64]| self.residuals(x, s);
         let mut accept = |x: &[f64]| {
-            let x = &self.onto_ratio(x);
             self.lengths_ok(x) == 0.0
                 && (!within || self.within(x))
                 && (!within
@@ -240,53 +239,15 @@ impl Problem<'_> {
                     })
         };
         let n = x.len();
-        self.onto_ratio(&levenberg_marquardt(
-            &res,
-            &mut accept,
-            self.onto_ratio(&x),
-            n,
-            iterations,
-        ))
-    }
-
-    /// `x` with the links shorter than the longest over the ratio bound lengthened to it:
-    /// the polishes work on the unknowns through this map. Why: a member at the bound (the
-    /// search drives many there) is a point where almost every Levenberg–Marquardt step
-    /// breaks the ratio and is refused, so the polish stood still; through the map the
-    /// shortest links' columns vanish while they are held, and the step slides along the
-    /// bound, or leaves it where the misses pull the other way. Within the bound it is `x`.
-    pub(super) fn onto_ratio(&self, x: &[f64]) -> Vec<f64> {
-        const LINKS: [usize; 6] = [3, 4, 5, 6, 11, 12];
-        let mut y = x.to_vec();
-        let longest = LINKS
-            .iter()
-            .map(|&k| x[k])
-            .fold(f64::NEG_INFINITY, f64::max);
-        if !(longest > 0.0 && longest.is_finite()) {
-            return y;
-        }
-        // A hair inside the bound, so that the rounding of the ratio cannot refuse it.
-        let floor = longest / self.ratio * (1.0 + 1e-12);
-        for k in LINKS {
-            if x[k] < floor {
-                y[k] = floor;
-            }
-        }
-        y
+        levenberg_marquardt(&res, &mut accept, x, n, iterations)
     }
 
     /// [`continuation`] from the near miss `x` to the points, the link ratio kept.
     pub(super) fn follow(&self, x: Vec<f64>, s: [f64; 2]) -> Vec<f64> {
-        let res = |x: &[f64]| self.residuals(&self.onto_ratio(x), s);
-        let mut accept = |x: &[f64]| self.lengths_ok(&self.onto_ratio(x)) == 0.0;
+        let res = |x: &[f64]| self.residuals(x, s);
+        let mut accept = |x: &[f64]| self.lengths_ok(x) == 0.0;
         let n = x.len();
-        self.onto_ratio(&continuation(
-            &res,
-            &mut accept,
-            self.onto_ratio(&x),
-            n,
-            400,
-        ))
+        continuation(&res, &mut accept, x, n, 400)
     }
 
     /// The whole check: the box `max_size`, the ratio, assembly with γ ≥ \[γ\] every 1° of

@@ -125,7 +125,7 @@ pub(super) fn search(
         }
         let mut order: Vec<usize> = (0..np).filter(|&i| fit[i] < INFEASIBLE).collect();
         order.sort_by(|&a, &b| fit[a].total_cmp(&fit[b]));
-        for i in distinct(&pop, &order, &lo, &hi, POLISHED) {
+        for &i in order.iter().take(POLISHED) {
             if !pb.budget.room(2) {
                 break;
             }
@@ -162,24 +162,4 @@ pub(super) fn search(
             break;
         }
     }
-}
-
-/// Up to `k` of the members `order` (best first) whose genes differ by more than a
-/// thousandth of the bounds' span in some gene from each member taken before: the end of a
-/// run polishes distinct starts (a run the Lamarckian polish has converged holds many
-/// copies of its best, which would all polish to the same design).
-fn distinct(pop: &[Vec<f64>], order: &[usize], lo: &[f64], hi: &[f64], k: usize) -> Vec<usize> {
-    let mut taken: Vec<usize> = Vec::with_capacity(k);
-    for &i in order {
-        if taken.len() == k {
-            break;
-        }
-        let apart = |j: usize| {
-            (0..lo.len()).any(|g| (pop[i][g] - pop[j][g]).abs() > 1e-3 * (hi[g] - lo[g]))
-        };
-        if taken.iter().all(|&j| apart(j)) {
-            taken.push(i);
-        }
-    }
-    taken
 }
