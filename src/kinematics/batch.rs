@@ -720,14 +720,21 @@ fn lane<const RATES: bool>(d: Dims, phi: f64, cos: f64, sin: f64, rate: [f64; 2]
     let (dx, dy) = (d.cx - ax, d.cy - ay);
     let l_sq = dx * dx + dy * dy;
     let l = l_sq.sqrt();
-    let x = 0.5 * (l + (d.l2 - d.l3) * (d.l2 + d.l3) / l);
-    let h2 = (d.l2 - x) * (d.l2 + x);
+    // h² and the link vectors from the shorter link's pivot, as in rrr_dyad.
+    let short_c = d.l3 < d.l2;
+    let q = (d.l2 - d.l3) * (d.l2 + d.l3) / l;
+    let along = 0.5 * (q + if short_c { -l } else { l });
+    let ls = if short_c { d.l3 } else { d.l2 };
+    let h2 = (ls - along) * (ls + along);
     let tol = 16.0 * f64::EPSILON * (d.l2 * d.l2 + d.l3 * d.l3 + l_sq);
     let h = h2.sqrt();
     let (ex, ey) = (dx / l, dy / l);
     let sh = d.sign * h;
-    let (r2x, r2y) = (x * ex + sh * -ey, x * ey + sh * ex);
-    let (r3x, r3y) = (r2x - dx, r2y - dy);
+    let (vx, vy) = (along * ex + sh * -ey, along * ey + sh * ex);
+    let (cx, cy) = if short_c { (dx, dy) } else { (0.0, 0.0) };
+    let (ax_, ay_) = if short_c { (0.0, 0.0) } else { (dx, dy) };
+    let (r2x, r2y) = (vx + cx, vy + cy);
+    let (r3x, r3y) = (vx - ax_, vy - ay_);
     let big_d = r2x * r3y - r2y * r3x;
     let det = big_d / (d.l2 * d.l3);
     let (bx, by) = (ax + r2x, ay + r2y);

@@ -92,14 +92,28 @@ fn rrr_fast(
     let da = c.a - a.a;
     let l_sq = d.norm_squared();
     let l = l_sq.sqrt();
-    // The same closed form as the contour's: x = (l² + a² − b²)/(2l), h² = a² − x².
-    let x = 0.5 * (l + (l_ab - l_cb) * (l_ab + l_cb) / l);
-    let h2 = (l_ab - x) * (l_ab + x);
+    // The same closed form as the contour's: x = (l² + a² − b²)/(2l), h² = a² − x², but
+    // from the pivot of the shorter link: with q = (a² − b²)/l, its projection is x = (l + q)/2
+    // from A or l − x = (l − q)/2 from C, and h² = (l_s − x_s)(l_s + x_s). Either carries
+    // about ε·l of rounding, which enters h² times 2·x_s: from the longer link's pivot that is
+    // ε·l·l_long against h² ~ l_short², so B near C (l_CB = l_AB/1000) lost 10⁻¹⁰ of the short
+    // link's angle; from the shorter, ε·l·l_short, the rounding the data carry anyway.
+    // Selects, not branches: as fast as the former closed form (a branch cost 10 %).
+    let short_c = l_cb < l_ab;
+    let q = (l_ab - l_cb) * (l_ab + l_cb) / l;
+    // x, or −(l − x) along e from C.
+    let along = 0.5 * (q + if short_c { -l } else { l });
+    let ls = if short_c { l_cb } else { l_ab };
+    let h2 = (ls - along) * (ls + along);
     let tol = 16.0 * f64::EPSILON * (l_ab * l_ab + l_cb * l_cb + l_sq);
     let h = h2.sqrt();
     let e = d / l;
-    let r2 = x * e + (branch.sign() * h) * perp(e);
-    let r3 = r2 - d;
+    // The shorter link's vector from its own projection, the other's by adding or taking
+    // off d = C − A.
+    let v = along * e + (branch.sign() * h) * perp(e);
+    let zero = Vector2::zeros();
+    let r2 = v + if short_c { d } else { zero };
+    let r3 = v - if short_c { zero } else { d };
     let big_d = cross(r2, r3);
     let det = big_d / (l_ab * l_cb);
     let i_d = 1.0 / big_d;

@@ -139,10 +139,10 @@ fn the_best_offset_near_k_one_is_the_best() {
 /// the 3e-10 left after the lengths came from the geometry was B's position put from the
 /// coupler's side, h² = b² − x² with b ≈ x ≈ 1 and h ≈ 1e-3: both in the description's pose
 /// (the design, off its pairs by 2.3e-10) and in the engine's RRR dyad (off the description
-/// by 1.6e-10). From the rocker's side both are within 5e-13 (the data's own rounding,
+/// by 1.6e-10). Both now put B from the shorter link's pivot (session 13 for the engine):
+/// from the rocker's side both are within 5e-13 (the data's own rounding,
 /// ε·d/(c·sin μ) ≈ 3e-13).
 #[test]
-#[ignore = "session 12: the engine's RRR dyad puts B from the longer link's pivot and is off the description by 1.6e-10 rad; the fix (from the shorter pivot) is reverted because it moved the seeded six-bar recoveries off (cases 1, 2, 4)"]
 fn two_pair_designs_at_the_ratio_edge_meet_their_pairs() {
     use tmm::kinematics::Motion;
     use tmm::synthesis::crank_rocker_through;

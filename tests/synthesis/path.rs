@@ -281,8 +281,12 @@ pub(super) fn recoveries_of(
     // `TMM_SYNTH_FIRST` skips the searches of the cases before it (their targets are still
     // drawn, so case k is the same case): to study one case.
     let first = env_or("TMM_SYNTH_FIRST", 0);
+    // `TMM_SYNTH_JITTER` = k scales each target coordinate by (1 + k·2⁻⁵²): the same case
+    // moved by a few ulps, which a search that hangs on the data's last bits would miss.
+    let jitter = 1.0 + env_or("TMM_SYNTH_JITTER", 0) as f64 * f64::EPSILON;
     for case in 0..n {
-        let req = make(&mut rng);
+        let mut req = make(&mut rng);
+        req.points.iter_mut().flatten().for_each(|v| *v *= jitter);
         if case < first {
             continue;
         }

@@ -6,7 +6,10 @@
 //! the budget counted in full (session 8) and 2 million evaluations, the first 6 in release
 //! were recovered to 6e-15 of the path's size while the designs could end outside
 //! `max_size`; held to the box (session 10), case 3 misses at 5.4e-6 (cases 0–2, 4, 5 are
-//! recovered to 1.0e-15).
+//! recovered to 1.0e-15). Session 13, with the RRR dyad from the shorter link's pivot (its
+//! last bits changed) the search meets cases 0, 5, 8, 9 of 0–9 (case 3's near miss, 3.0e-6:
+//! polished freely it leaves the constraints, \[γ\] or assembly over the range).
+//! `TMM_SYNTH_JITTER=k` moves every target coordinate by k ulps (see `recoveries_of`).
 
 use super::path::{best_never_rises, centroid_size, prescribed, recoveries_of, Mechanism, Rng};
 use nalgebra::Point2;

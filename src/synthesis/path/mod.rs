@@ -45,6 +45,8 @@ mod requirement;
 mod results;
 mod shape;
 mod six_bar;
+mod six_bar_problem;
+mod six_bar_search;
 mod slider;
 mod timed;
 mod validate;
