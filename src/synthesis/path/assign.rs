@@ -25,7 +25,8 @@ use super::V;
 /// assignment.
 #[derive(Debug, Default)]
 pub(super) struct Scratch {
-    /// dist[k·m + i]: the distance of target k from sample i.
+    /// dist[k·m + i]: the distance of target k from sample i (its square until the
+    /// programme needs the distances).
     dist: Vec<f64>,
     layer: Vec<f64>,
     next: Vec<f64>,
@@ -46,12 +47,21 @@ impl Scratch {
     /// (m samples evenly round a turn, in increasing crank angle; `ok` the usable ones), in
     /// the targets' order as above; returns the least sum of distances, the samples in
     /// `self.idx`. `None` where no sample is usable.
+    ///
+    /// `above` is a mean distance beyond which the caller has no use for the answer (the
+    /// evolution's trial worse than its member): as soon as the nearest distances of the
+    /// first targets sum to more than `above` per target, that partial sum is returned (its
+    /// mean above `above`, `self.idx` incomplete). It is a lower bound of the answer: every
+    /// ordered assignment's distances are at least the nearest ones, and a sum of
+    /// non-negative terms in floating point never falls as a term is added or grows, so the
+    /// caller's comparison with `above` decides as it would on the whole answer.
     pub(super) fn ordered(
         &mut self,
         px: &[f64],
         py: &[f64],
         ok: &[bool],
         targets: &[V],
+        above: f64,
     ) -> Option<f64> {
         let (n, m) = (targets.len(), ok.len());
         if n == 0 || m == 0 || !ok.iter().any(|&b| b) {
@@ -60,25 +70,38 @@ impl Scratch {
         self.dist.clear();
         self.idx.clear();
         let mut sum = 0.0;
-        for t in targets {
-            let (mut best, mut at) = (f64::INFINITY, 0);
-            for i in 0..m {
-                let d = (px[i] - t.x).hypot(py[i] - t.y);
-                let d = if ok[i] && d.is_finite() {
-                    d
+        // The nearest by the squared distance (no square root or hypot per sample: the
+        // assignment was half the search's time with them); a square that overflows (a
+        // sample beyond 1e154 path sizes) counts as unusable for that target.
+        for (k, t) in targets.iter().enumerate() {
+            self.dist.extend((0..m).map(|i| {
+                let (dx, dy) = (px[i] - t.x, py[i] - t.y);
+                let d2 = dx * dx + dy * dy;
+                if ok[i] && d2.is_finite() {
+                    d2
                 } else {
                     f64::INFINITY
-                };
-                self.dist.push(d);
-                if d < best {
-                    (best, at) = (d, i);
+                }
+            }));
+            let row = &self.dist[k * m..];
+            let (mut best, mut at) = (f64::INFINITY, 0);
+            for (i, &d2) in row.iter().enumerate() {
+                if d2 < best {
+                    (best, at) = (d2, i);
                 }
             }
-            sum += best;
+            sum += best.sqrt();
             self.idx.push(at);
+            if sum / n as f64 > above {
+                return Some(sum);
+            }
         }
         if [1, -1].into_iter().any(|s| in_order(&self.idx, ok, s)) {
             return Some(sum);
+        }
+        // The programme sums distances.
+        for d in &mut self.dist {
+            *d = d.sqrt();
         }
         // The cuts: with an unusable sample, at it (no assignment crosses it, so the one cut
         // is exact in each sense); on a wholly usable turn, about the nearest local minima
@@ -205,7 +228,7 @@ mod tests {
                 .map(|_| V::new(2.0 * unit() - 1.0, 2.0 * unit() - 1.0))
                 .collect();
             let mut s = Scratch::default();
-            let got = s.ordered(&px, &py, &ok, &targets).unwrap();
+            let got = s.ordered(&px, &py, &ok, &targets, f64::INFINITY).unwrap();
             let d = |k: usize, i: usize| (px[i] - targets[k].x).hypot(py[i] - targets[k].y);
             let mut best = f64::INFINITY;
             for a in 0..m {
@@ -227,6 +250,18 @@ mod tests {
             let sum: f64 = s.idx.iter().enumerate().map(|(k, &i)| d(k, i)).sum();
             assert!((sum - got).abs() <= 1e-12);
             assert!([1, -1].into_iter().any(|sg| in_order(&s.idx, &ok, sg)));
+            // Stopped early above a mean: the same answer where it is not above it, a
+            // lower bound above it where it is (the caller decides the same either way).
+            let above = got / 3.0 * (0.5 + unit());
+            let part = s.ordered(&px, &py, &ok, &targets, above).unwrap();
+            if got / 3.0 > above {
+                assert!(
+                    part / 3.0 > above && part <= got,
+                    "case {case}: {part} vs {got}"
+                );
+            } else {
+                assert_eq!(part, got, "case {case}");
+            }
         }
     }
 }

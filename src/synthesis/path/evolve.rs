@@ -17,6 +17,21 @@ pub(super) fn generation(
     rng: &mut Rng,
     f: &mut dyn FnMut(&[f64]) -> f64,
 ) {
+    generation_below(pop, fit, lo, hi, wrap, rng, &mut |x, _| f(x));
+}
+
+/// [`generation`] whose objective `f(trial, above)` is told its member's value `above`: a
+/// trial is kept only at or below it, so `f` may stop as soon as it knows the trial's value
+/// lies above and return any value above (the same generation, less work).
+pub(super) fn generation_below(
+    pop: &mut [Vec<f64>],
+    fit: &mut [f64],
+    lo: &[f64],
+    hi: &[f64],
+    wrap: &[usize],
+    rng: &mut Rng,
+    f: &mut dyn FnMut(&[f64], f64) -> f64,
+) {
     let np = pop.len();
     let dim = lo.len();
     let f_scale = 0.5 + 0.5 * rng.unit();
@@ -51,7 +66,7 @@ pub(super) fn generation(
                 }
             })
             .collect();
-        let ft = f(&trial);
+        let ft = f(&trial, fit[i]);
         if ft <= fit[i] {
             pop[i] = trial;
             fit[i] = ft;

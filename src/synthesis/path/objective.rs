@@ -10,6 +10,14 @@ use crate::kinematics::batch::Lane;
 impl Problem {
     /// The global stage's objective of the genes `g`.
     pub(super) fn objective(&mut self, g: &[f64]) -> f64 {
+        self.objective_below(g, f64::INFINITY)
+    }
+
+    /// [`Problem::objective`] where only a value at or below `above` is of use (the
+    /// evolution's trial against its member): without timing the ordered assignment stops
+    /// as soon as it knows the value is above (returning a value above it, see
+    /// [`assign::Scratch::ordered`](super::assign::Scratch::ordered)).
+    pub(super) fn objective_below(&mut self, g: &[f64], above: f64) -> f64 {
         let p = self.lengths_ok(g);
         if p > 0.0 {
             return p;
@@ -49,10 +57,13 @@ impl Problem {
                 if n_ok == 0 || (closed && n_ok < m) {
                     return self.penalty(0..m);
                 }
-                let Some(sum) =
-                    self.assign
-                        .ordered(&self.out.p_x[..m], &self.out.p_y[..m], &ok, &self.targets)
-                else {
+                let Some(sum) = self.assign.ordered(
+                    &self.out.p_x[..m],
+                    &self.out.p_y[..m],
+                    &ok,
+                    &self.targets,
+                    above,
+                ) else {
                     return self.penalty(0..m);
                 };
                 sum / self.targets.len() as f64
@@ -79,11 +90,11 @@ impl Problem {
             let (px, py) = (&self.out.p_x[..m], &self.out.p_y[..m]);
             let found = self
                 .assign
-                .ordered(px, py, &usable, &self.targets)
+                .ordered(px, py, &usable, &self.targets, f64::INFINITY)
                 .is_some()
                 || self
                     .assign
-                    .ordered(px, py, &assembles, &self.targets)
+                    .ordered(px, py, &assembles, &self.targets, f64::INFINITY)
                     .is_some();
             for k in 0..self.targets.len() {
                 x.push(if found {

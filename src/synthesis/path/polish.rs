@@ -4,6 +4,7 @@
 use super::least_squares::levenberg_marquardt;
 use super::problem::{fill, gene_vec, point_of, Problem};
 use super::requirement::Timing;
+use super::slider::Slider;
 use super::{Kind, REASSIGNMENTS, V};
 use std::f64::consts::TAU;
 
@@ -93,8 +94,13 @@ impl Problem {
             &mut self.out,
         );
         let ok: Vec<bool> = (0..m).map(|i| self.lane_ok(i)).collect();
-        self.assign
-            .ordered(&self.out.p_x[..m], &self.out.p_y[..m], &ok, &self.targets)?;
+        self.assign.ordered(
+            &self.out.p_x[..m],
+            &self.out.p_y[..m],
+            &ok,
+            &self.targets,
+            f64::INFINITY,
+        )?;
         let far = 2.5 * TAU / m as f64;
         let mut y = x.to_vec();
         let mut moved = false;
@@ -119,12 +125,17 @@ pub(super) fn pb_residuals(
 ) -> Option<Vec<f64>> {
     let g = gene_vec(x, sigma);
     let mut r = Vec::with_capacity(2 * targets.len());
+    // The slider-crank's guide (a sine and cosine) once, not per point.
+    let slider = (kind == Kind::SliderCrank).then(|| Slider::of(&g, sigma));
     for (i, t) in targets.iter().enumerate() {
         let phi = match timing {
             Timing::Prescribed(delta) => x[9] + delta[i],
             _ => x[9 + i],
         };
-        let (p, _) = point_of(kind, &g, sigma, phi)?;
+        let p = match &slider {
+            Some(s) => s.at(phi.cos(), phi.sin()).ok()?.2,
+            None => point_of(kind, &g, sigma, phi)?.0,
+        };
         r.push(p.x - t.x);
         r.push(p.y - t.y);
     }

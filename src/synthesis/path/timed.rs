@@ -41,10 +41,18 @@ pub(super) fn search_timed(
         let mut stagnation = evolve::Stagnation::new(1e-6);
         while pb.budget.room_search(np) {
             generation += 1;
-            evolve::generation(&mut pop, &mut fit, &lo, &hi, &[2, 10], &mut rng, &mut |g| {
-                pb.budget.add(1);
-                pb.objective(g)
-            });
+            evolve::generation_below(
+                &mut pop,
+                &mut fit,
+                &lo,
+                &hi,
+                &[2, 10],
+                &mut rng,
+                &mut |g, above| {
+                    pb.budget.add(1);
+                    pb.objective_below(g, above)
+                },
+            );
             if generation % MEMETIC == 0 {
                 // Lamarckian local search: the best member and a random one, polished by
                 // Levenberg–Marquardt, replace themselves where that is better.
