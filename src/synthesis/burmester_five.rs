@@ -5,7 +5,7 @@
 
 use super::burmester::{check_poses, v, Dyad, Pose};
 use super::burmester_resultant;
-use super::pose_newton::PoseEquations;
+use super::pose_newton::{Accuracy, PoseEquations};
 use super::pose_order;
 use crate::error::{Error, Result};
 
@@ -81,27 +81,28 @@ pub(super) fn kept(
         .iter()
         .map(|p| (v(p.at) - v(given[0].at)).norm())
         .fold(0.0, f64::max);
-    let mut out: Vec<(Dyad, f64)> = Vec::new();
+    let mut out: Vec<(Dyad, Accuracy)> = Vec::new();
     for start in starts {
-        let Some((dyad, tol)) = equations.polish(start) else {
+        let Some((dyad, accuracy)) = equations.polish(start) else {
             continue;
         };
         let scale = extent + dyad.length();
-        // The same point reached from two starts: each is fixed to its tolerance (εL over
-        // the smallest singular value of the equations), and two polishes of one root have
-        // one Jacobian, so one tolerance: two points within twice the smaller of theirs are
-        // one. (The larger would merge a nearly double root, whose tolerance is wide, with a
-        // distinct point far off.)
+        // The same point reached from two starts: each polish is within its derived accuracy
+        // of the root (`PoseEquations::accuracy`, from the Jacobian's conditioning at that
+        // point), so two polishes of one root are within the sum of theirs; points farther
+        // apart than that are distinct roots, however far out they lie. (The sum, not a
+        // multiple of the larger: two polishes of one root have one Jacobian and so nearly one
+        // accuracy; a nearly double root's accuracy is wide, and its neighbour's is just as
+        // wide, since the Jacobian nearly vanishes at both.)
         let duplicate = out.iter().any(|(o, t)| {
-            let within = 2.0 * tol.min(*t);
-            (v(o.centre) - v(dyad.centre)).norm() <= within
-                && (v(o.circle) - v(dyad.circle)).norm() <= within
+            (v(o.centre) - v(dyad.centre)).norm() <= t.centre + accuracy.centre
+                && (v(o.circle) - v(dyad.circle)).norm() <= t.circle + accuracy.circle
         });
         // A dyad a million times longer than the poses' extent is a slider's dyad (the
         // bisectors meeting at infinity) found only to rounding: not kept.
         let finite_dyad = dyad.length() <= 1e6 * extent;
         if dyad.misfit(given) <= 1e-9 * scale && !duplicate && finite_dyad {
-            out.push((dyad, tol));
+            out.push((dyad, accuracy));
         }
     }
     let out: Vec<Dyad> = out.into_iter().map(|(d, _)| d).collect();
