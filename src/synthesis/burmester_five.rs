@@ -4,7 +4,8 @@
 //! the duplicates merged and the count checked.
 
 use super::burmester::{check_poses, v, Dyad, Pose};
-use super::burmester_resultant;
+use super::burmester_resultant::{self, Candidates};
+use super::burmester_two_angle;
 use super::pose_newton::{Accuracy, PoseEquations};
 use super::pose_order;
 use crate::error::{Error, Result};
@@ -61,10 +62,42 @@ pub fn burmester_points(poses: &[Pose; 5]) -> Result<Vec<Dyad>> {
     check_poses(poses)?;
     pose_order::not_about_one_point(poses)?;
     let equations = PoseEquations::new(poses);
-    let starts = burmester_resultant::candidates(&equations)
-        .into_iter()
-        .map(|(centre, circle)| Dyad { centre, circle });
-    kept(&equations, poses, starts)
+    match burmester_resultant::candidates(&equations) {
+        Candidates::Found(found) => {
+            let starts = found
+                .into_iter()
+                .map(|(centre, circle)| Dyad { centre, circle });
+            kept(&equations, poses, starts)
+        }
+        // Every elimination degenerates (the minors share a factor). Poses with two angles
+        // only do this; they are solved in closed form (`burmester_two_angle`). Others are
+        // not known to: refused, naming the degeneracy.
+        Candidates::Degenerate => match burmester_two_angle::points(poses) {
+            Some(points) => {
+                let points = points?;
+                let extent = poses
+                    .iter()
+                    .map(|p| (v(p.at) - v(poses[0].at)).norm())
+                    .fold(0.0, f64::max);
+                // As for every count: a slider's dyad (10⁶ extents long) is not returned.
+                Ok(points
+                    .into_iter()
+                    .filter(|d| d.length() <= 1e6 * extent)
+                    .collect())
+            }
+            None => Err(Error::NoMechanism {
+                method: "Burmester's points",
+                problem: "every elimination of the five poses' equations degenerates (each \
+                          pair of 3×3 minors shares a factor, in both directions): the points \
+                          cannot be counted"
+                    .to_owned(),
+            }),
+        },
+        Candidates::Continuum(problem) => Err(Error::NoMechanism {
+            method: "Burmester's points",
+            problem,
+        }),
+    }
 }
 
 /// The Burmester points among `starts` (dyads named in the first of `given`): each polished
