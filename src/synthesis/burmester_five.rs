@@ -4,8 +4,9 @@
 //! the duplicates merged and the count checked.
 
 use super::burmester::{check_poses, v, Dyad, Pose};
-use super::burmester_resultant;
-use super::pose_newton::PoseEquations;
+use super::burmester_resultant::{self, Candidates};
+use super::burmester_two_angle;
+use super::pose_newton::{Accuracy, PoseEquations};
 use super::pose_order;
 use crate::error::{Error, Result};
 
@@ -61,10 +62,42 @@ pub fn burmester_points(poses: &[Pose; 5]) -> Result<Vec<Dyad>> {
     check_poses(poses)?;
     pose_order::not_about_one_point(poses)?;
     let equations = PoseEquations::new(poses);
-    let starts = burmester_resultant::candidates(&equations)
-        .into_iter()
-        .map(|(centre, circle)| Dyad { centre, circle });
-    kept(&equations, poses, starts)
+    match burmester_resultant::candidates(&equations) {
+        Candidates::Found(found) => {
+            let starts = found
+                .into_iter()
+                .map(|(centre, circle)| Dyad { centre, circle });
+            kept(&equations, poses, starts)
+        }
+        // Every elimination degenerates (the minors share a factor). Poses with two angles
+        // only do this; they are solved in closed form (`burmester_two_angle`). Others are
+        // not known to: refused, naming the degeneracy.
+        Candidates::Degenerate => match burmester_two_angle::points(poses) {
+            Some(points) => {
+                let points = points?;
+                let extent = poses
+                    .iter()
+                    .map(|p| (v(p.at) - v(poses[0].at)).norm())
+                    .fold(0.0, f64::max);
+                // As for every count: a slider's dyad (10⁶ extents long) is not returned.
+                Ok(points
+                    .into_iter()
+                    .filter(|d| d.length() <= 1e6 * extent)
+                    .collect())
+            }
+            None => Err(Error::NoMechanism {
+                method: "Burmester's points",
+                problem: "every elimination of the five poses' equations degenerates (each \
+                          pair of 3×3 minors shares a factor, in both directions): the points \
+                          cannot be counted"
+                    .to_owned(),
+            }),
+        },
+        Candidates::Continuum(problem) => Err(Error::NoMechanism {
+            method: "Burmester's points",
+            problem,
+        }),
+    }
 }
 
 /// The Burmester points among `starts` (dyads named in the first of `given`): each polished
@@ -81,27 +114,28 @@ pub(super) fn kept(
         .iter()
         .map(|p| (v(p.at) - v(given[0].at)).norm())
         .fold(0.0, f64::max);
-    let mut out: Vec<(Dyad, f64)> = Vec::new();
+    let mut out: Vec<(Dyad, Accuracy)> = Vec::new();
     for start in starts {
-        let Some((dyad, tol)) = equations.polish(start) else {
+        let Some((dyad, accuracy)) = equations.polish(start) else {
             continue;
         };
         let scale = extent + dyad.length();
-        // The same point reached from two starts: each is fixed to its tolerance (εL over
-        // the smallest singular value of the equations), and two polishes of one root have
-        // one Jacobian, so one tolerance: two points within twice the smaller of theirs are
-        // one. (The larger would merge a nearly double root, whose tolerance is wide, with a
-        // distinct point far off.)
+        // The same point reached from two starts: each polish is within its derived accuracy
+        // of the root (`PoseEquations::accuracy`, from the Jacobian's conditioning at that
+        // point), so two polishes of one root are within the sum of theirs; points farther
+        // apart than that are distinct roots, however far out they lie. (The sum, not a
+        // multiple of the larger: two polishes of one root have one Jacobian and so nearly one
+        // accuracy; a nearly double root's accuracy is wide, and its neighbour's is just as
+        // wide, since the Jacobian nearly vanishes at both.)
         let duplicate = out.iter().any(|(o, t)| {
-            let within = 2.0 * tol.min(*t);
-            (v(o.centre) - v(dyad.centre)).norm() <= within
-                && (v(o.circle) - v(dyad.circle)).norm() <= within
+            (v(o.centre) - v(dyad.centre)).norm() <= t.centre + accuracy.centre
+                && (v(o.circle) - v(dyad.circle)).norm() <= t.circle + accuracy.circle
         });
         // A dyad a million times longer than the poses' extent is a slider's dyad (the
         // bisectors meeting at infinity) found only to rounding: not kept.
         let finite_dyad = dyad.length() <= 1e6 * extent;
         if dyad.misfit(given) <= 1e-9 * scale && !duplicate && finite_dyad {
-            out.push((dyad, tol));
+            out.push((dyad, accuracy));
         }
     }
     let out: Vec<Dyad> = out.into_iter().map(|(d, _)| d).collect();

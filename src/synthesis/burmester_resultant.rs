@@ -86,8 +86,9 @@ impl Frame {
         out
     }
 
-    /// Res_y of the minors of `rows1` and `rows2` at x: the Sylvester determinant.
-    fn resultant(&self, rows1: [usize; 3], rows2: [usize; 3], x: C) -> C {
+    /// Res_y of the minors of `rows1` and `rows2` at x: the Sylvester determinant, and
+    /// Hadamard's bound on it (the product of its rows' norms).
+    fn resultant(&self, rows1: [usize; 3], rows2: [usize; 3], x: C) -> (C, f64) {
         let (f, g) = (self.cubic_in_y(rows1, x), self.cubic_in_y(rows2, x));
         let zero = C::new(0.0, 0.0);
         let m = Matrix6::from_fn(|i, k| {
@@ -98,7 +99,8 @@ impl Frame {
                 _ => zero,
             }
         });
-        m.determinant()
+        let hadamard = m.row_iter().map(|r| r.norm()).product();
+        (m.determinant(), hadamard)
     }
 }
 
@@ -107,20 +109,33 @@ impl Frame {
 /// rounding).
 const SAMPLES: usize = 16;
 
-/// The coefficients (of x⁰..x¹⁵) of Res_y at unit-circle points, by the inverse DFT.
-fn resultant_coefficients(frame: &Frame, rows1: [usize; 3], rows2: [usize; 3]) -> [C; SAMPLES] {
+/// The coefficients (of x⁰..x¹⁵) of Res_y at unit-circle points, by the inverse DFT, and
+/// the rounding noise below which they are zero (derivation): each sampled value is the
+/// determinant of a 6×6 Sylvester matrix whose entries are the cubics' coefficients, sums of
+/// eight 3×3 determinants of order-one numbers (a few ε each); LU's backward error (6ε of each
+/// row, times the growth, small with pivoting) and the entries' own errors (≈ 48ε of each
+/// row's size) perturb the determinant by at most Σ_rows δrow·(the other rows' product), i.e.
+/// about 6·(6 + 48)ε ≤ 512ε of Hadamard's bound H = Π‖row‖; the DFT averages the samples
+/// (no growth), so every coefficient is exact to 512ε·max H.
+fn resultant_coefficients(
+    frame: &Frame,
+    rows1: [usize; 3],
+    rows2: [usize; 3],
+) -> ([C; SAMPLES], f64) {
     let n = SAMPLES as f64;
-    let values: [C; SAMPLES] = std::array::from_fn(|k| {
+    let samples: [(C, f64); SAMPLES] = std::array::from_fn(|k| {
         frame.resultant(rows1, rows2, C::from_polar(1.0, TAU * k as f64 / n))
     });
-    std::array::from_fn(|p| {
-        values
+    let noise = 512.0 * f64::EPSILON * samples.iter().map(|s| s.1).fold(0.0, f64::max);
+    let coefficients = std::array::from_fn(|p| {
+        samples
             .iter()
             .enumerate()
-            .map(|(k, &r)| r * C::from_polar(1.0, -TAU * (k * p % SAMPLES) as f64 / n))
+            .map(|(k, &(r, _))| r * C::from_polar(1.0, -TAU * (k * p % SAMPLES) as f64 / n))
             .sum::<C>()
             / n
-    })
+    });
+    (coefficients, noise)
 }
 
 /// Balances a square matrix by powers of two (Parlett and Reinsch: row and column norms made
@@ -197,7 +212,9 @@ fn orthonormal(b: &[Matrix4x3<f64>; 3]) -> Option<[Matrix4x3<f64>; 3]> {
     let qr = m.qr();
     let diag = qr.r().diagonal();
     let largest = diag.amax();
-    if !(diag.amin() > f64::EPSILON * largest) {
+    // Dependent to rounding: QR's backward error is a few ε of the largest column per
+    // entry, over nine entries (512ε, the noise used for the resultant too).
+    if !(diag.amin() > 512.0 * f64::EPSILON * largest) {
         return None;
     }
     let q = qr.q();
@@ -214,23 +231,73 @@ const ELIMINATIONS: [(f64, [usize; 3], [usize; 3]); 2] = [
     (2.236_068, [2, 3, 0], [2, 3, 1]),
 ];
 
-/// The candidate dyads (centre point, circle point in pose 1, m) of Burmester's points of the
-/// poses behind `equations`: every finite point of the rank-≤2 locus is among them (see the
+/// The other eliminations, tried when one of [`ELIMINATIONS`] degenerates: every pair of the
+/// four minors (any two share two rows) in both frames (the other eliminating direction).
+const OTHERS: [[usize; 3]; 4] = [[0, 1, 2], [0, 1, 3], [0, 2, 3], [1, 2, 3]];
+
+/// What the elimination found.
+#[derive(Debug, Clone)]
+pub(super) enum Candidates {
+    /// Candidate dyads (centre point, circle point in pose 1, m), to be polished: every
+    /// finite point of the rank-≤2 locus is among them.
+    Found(Vec<([f64; 2], [f64; 2])>),
+    /// Every pair of minors, in both directions, has a resultant that vanishes identically
+    /// (all its coefficients below their rounding noise): the minors share a component,
+    /// which need not hold dyads (it may be complex, or at infinity), so the points are
+    /// looked for another way (the caller's).
+    Degenerate,
+    /// The rows are dependent as functions of the circle point, and the remaining minor is
+    /// not a non-zero constant: a curve of dyads (the message says which degeneracy).
+    Continuum(String),
+}
+
+/// The candidate dyads of Burmester's points of the poses behind `equations` (see
+/// [`Candidates`]): every finite point of the rank-≤2 locus is among the found ones (see the
 /// module's derivation), with spurious ones, to be polished and sorted by the caller. A
 /// candidate whose bisectors meet at infinity (a slider's) has no finite centre and is left
 /// out.
-pub(super) fn candidates(equations: &PoseEquations) -> Vec<([f64; 2], [f64; 2])> {
+///
+/// Degeneracies. A resultant vanishes identically when its two cubics share a factor. Five
+/// poses with only two distinct angles do this (checked: every pair of minors, both
+/// directions, 10⁻⁵ of the noise or less): the edges between poses of one angle are pure
+/// translations, whose rows have no term in the circle point in their first two entries, and
+/// every minor then shares a factor; their dyads are still finite (two at most: see the test
+/// `two_angle_poses`). A pure translation makes the rows dependent as functions (each row is
+/// Δ_r ⊗ (…) plus a constant): every minor is the constant det[Δ_r, Δ_r·σ_r] of three
+/// rows, zero exactly when the five points lie on one circle, and then every coupler point is
+/// a circle point (a continuum: the parallelogram's dyads); otherwise no finite dyad fits.
+pub(super) fn candidates(equations: &PoseEquations) -> Candidates {
     let (origin, size, pencil) = equations.pencil();
     if !pencil.iter().all(|m| m.iter().all(|x| x.is_finite())) {
-        return Vec::new();
+        return Candidates::Found(Vec::new());
     }
     let Some(b) = orthonormal(&pencil) else {
-        return Vec::new();
+        return dependent_rows(&pencil);
     };
+    // The standard pair of eliminations; where one degenerates, every other pair and
+    // direction, until two have given candidates (so that one ill-placed root cannot hide a
+    // point, as in the module's derivation).
+    let standard = ELIMINATIONS.map(|(turn, rows1, rows2)| (turn, rows1, rows2));
+    let mut others = Vec::new();
+    for turn in [ELIMINATIONS[0].0, ELIMINATIONS[1].0] {
+        for i in 0..4 {
+            for j in i + 1..4 {
+                others.push((turn, OTHERS[i], OTHERS[j]));
+            }
+        }
+    }
     let mut out = Vec::new();
-    for (turn, rows1, rows2) in ELIMINATIONS {
+    let mut used = 0;
+    for (turn, rows1, rows2) in standard.into_iter().chain(others) {
+        if used == 2 {
+            break;
+        }
         let frame = Frame::new(&b, turn);
-        let coefficients = resultant_coefficients(&frame, rows1, rows2);
+        let (coefficients, noise) = resultant_coefficients(&frame, rows1, rows2);
+        if coefficients.iter().all(|c| c.norm() <= noise) {
+            continue;
+        }
+        used += 1;
         // Degree 7: x⁸ and x⁹ belong to the circular points (module docs).
         let real: Vec<f64> = coefficients[..8].iter().map(|c| c.re).collect();
         for x in roots(&real) {
@@ -253,7 +320,57 @@ pub(super) fn candidates(equations: &PoseEquations) -> Vec<([f64; 2], [f64; 2])>
             }
         }
     }
-    out
+    if used == 0 {
+        Candidates::Degenerate
+    } else {
+        Candidates::Found(out)
+    }
+}
+
+/// The rows are dependent as functions of u: B(u) has rank ≤ 3 everywhere, and rank ≤ 2
+/// where the minor of the independent rows vanishes. Its four 3×3 minors are sampled at
+/// points of the circles |u| = 1 and 2 (the pencil's units: the poses' size); each is zero
+/// to rounding where it is below 512ε of Hadamard's bound of its rows (as for the
+/// resultant). A minor that is a non-zero constant (the same value at every sample, to that
+/// noise) has no zeros: no finite dyad. One that vanishes everywhere, or varies (a curve of
+/// zeros), makes a continuum.
+fn dependent_rows(pencil: &[Matrix4x3<f64>; 3]) -> Candidates {
+    let eps = f64::EPSILON;
+    let mut values = Vec::new();
+    for k in 0..16 {
+        let radius = if k < 8 { 1.0 } else { 2.0 };
+        let u = V::new(0.0, 0.0) + radius * V::new((0.7 * k as f64).cos(), (0.7 * k as f64).sin());
+        let m = pencil[0] + pencil[1] * u.x + pencil[2] * u.y;
+        for rows in OTHERS {
+            let minor = Matrix3::from_fn(|i, c| m[(rows[i], c)]);
+            let hadamard: f64 = minor.row_iter().map(|r| r.norm()).product();
+            values.push((rows, minor.determinant(), 512.0 * eps * hadamard));
+        }
+    }
+    let all_zero = values.iter().all(|(_, d, noise)| d.abs() <= *noise);
+    let constant = OTHERS.iter().all(|rows| {
+        let mine: Vec<(f64, f64)> = values
+            .iter()
+            .filter(|v| v.0 == *rows)
+            .map(|v| (v.1, v.2))
+            .collect();
+        mine.iter()
+            .all(|(d, noise)| (d - mine[0].0).abs() <= noise + mine[0].1)
+    });
+    if !all_zero && constant {
+        return Candidates::Found(Vec::new());
+    }
+    Candidates::Continuum(if all_zero {
+        "the difference-quotient equations are dependent and their rank condition holds for \
+         every circle point (for a pure translation: the five points lie on one circle): \
+         every coupler point is a circle point, infinitely many dyads (a continuum, not a \
+         finite answer)"
+            .to_owned()
+    } else {
+        "the difference-quotient equations are dependent: their rank condition is one \
+         cubic curve, so the dyads form a curve (infinitely many, not a finite answer)"
+            .to_owned()
+    })
 }
 
 /// The centre point (in the pencil's units) of the circle point u: the null vector of B(u)
@@ -296,7 +413,7 @@ mod tests {
             let (_, _, pencil) = eq.pencil();
             let b = orthonormal(&pencil).unwrap();
             for (turn, r1, r2) in ELIMINATIONS {
-                let c = resultant_coefficients(&Frame::new(&b, turn), r1, r2);
+                let (c, _) = resultant_coefficients(&Frame::new(&b, turn), r1, r2);
                 let big = c.iter().map(|c| c.norm()).fold(0.0, f64::max);
                 let high = c[8..].iter().map(|c| c.norm()).fold(0.0, f64::max);
                 assert!(high <= 1e-12 * big, "{high:e} of {big:e}: {c:?}");

@@ -75,6 +75,7 @@ mod burmester;
 mod burmester_five;
 mod burmester_resultant;
 mod burmester_scan;
+mod burmester_two_angle;
 mod centre_curve;
 mod check;
 mod four_bar;

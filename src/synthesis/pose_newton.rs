@@ -167,10 +167,10 @@ impl PoseEquations {
     }
 
     /// Newton's method on the difference quotients from `dyad`: `Some` with the polished dyad
-    /// and the tolerance within which it is fixed (m), when every residual comes down to
-    /// rounding (64ε of its row's magnitudes: a backward error of that size); `None` when it
-    /// does not (the start was not near a Burmester point).
-    pub(super) fn polish(&self, dyad: Dyad) -> Option<(Dyad, f64)> {
+    /// and its [`Accuracy`], when every residual comes down to rounding (64ε of its row's
+    /// magnitudes: a backward error of that size); `None` when it does not (the start was
+    /// not near a Burmester point).
+    pub(super) fn polish(&self, dyad: Dyad) -> Option<(Dyad, Accuracy)> {
         let (mut o, mut a) = (v(dyad.centre), v(dyad.circle));
         let eps = f64::EPSILON;
         for _ in 0..40 {
@@ -181,29 +181,33 @@ impl PoseEquations {
                 .all(|(r, b)| r.abs() <= 64.0 * eps * b);
             if converged {
                 // One more step from where the residuals reached rounding, so that every
-                // start ends at the rounding floor, not anywhere within the stopping rule.
+                // start ends at the rounding floor, not anywhere within the stopping rule;
+                // kept only if it does not raise the residuals (where J is nearly singular
+                // the step along its null direction is rounding, and can throw the point
+                // off).
+                let worst = |h: &Vector4<f64>, round: &Vector4<f64>| {
+                    h.iter()
+                        .zip(round.iter())
+                        .map(|(r, b)| r.abs() / b)
+                        .fold(0.0, f64::max)
+                };
                 if let Some(step) = jac
                     .lu()
                     .solve(&(-h))
                     .filter(|s| s.iter().all(|x| x.is_finite()))
                 {
-                    o += V::new(step[0], step[1]);
-                    a += V::new(step[2], step[3]);
+                    let (o2, a2) = (o + V::new(step[0], step[1]), a + V::new(step[2], step[3]));
+                    let (h2, _, round2) = self.equations(o2, a2);
+                    if worst(&h2, &round2) <= worst(&h, &round) {
+                        (o, a) = (o2, a2);
+                    }
                 }
-                let sigma = jac.singular_values().min();
-                let scale = self.size + (a - o).norm();
-                // The rows' rounding, εL each (L the scale of O, A and the poses, or the
-                // rows' own magnitudes where they are larger: a far circle point's rows are
-                // products of long vectors), moves the root by up to about εL/σ; 2¹⁰ of that
-                // for the few operations per row and the first-order estimate (it also
-                // covers the stopping rule's 64ε of the magnitudes).
-                let magnitude = (scale + o.norm() + a.norm()).max(round.amax());
-                let tol = 1024.0 * eps * magnitude / sigma;
                 let polished = Dyad {
                     centre: [o.x, o.y],
                     circle: [a.x, a.y],
                 };
-                return tol.is_finite().then_some((polished, tol));
+                let accuracy = self.accuracy(o, a)?;
+                return Some((polished, accuracy));
             }
             let step = jac.lu().solve(&(-h))?;
             if !step.iter().all(|x| x.is_finite()) {
@@ -214,4 +218,64 @@ impl PoseEquations {
         }
         None
     }
+
+    /// How far a polished point (O, A) can be from the exact root of the equations as
+    /// evaluated in floating point (derivation): each row h = d·m/s is formed from
+    /// d = (P_j − P_i) + E·r_i (a sum of rotated vectors: a few roundings, each at most ε of
+    /// the terms' sizes) and m = D_i + D_j − 2O (three additions after the rotations), then a
+    /// dot product and a division: its evaluation error is at most about
+    /// 8ε·(|P_j − P_i| + |E·r_i|)/s·(|D_i| + |D_j| + 2|O|) = 8ε·ρ_r (ρ_r the row's rounding
+    /// scale, as in the stopping rule). At the polished point x the computed residual is h,
+    /// so the exact residual is within |h_r| + 8ερ_r of zero in each row, and to first order
+    /// the root x* is x − J⁻¹(h + δh): each of O's and A's two coordinates within
+    /// Σ_r ‖(J⁻¹)_{·,r}‖·(|h_r| + 8ερ_r) (the column r of J⁻¹ restricted to O's or A's rows),
+    /// plus the rounding of the coordinates themselves (ε|O|, ε|A|). The sum over rows (not
+    /// the largest ρ over the smallest singular value of J) keeps each row's own scale: a far
+    /// circle point's rows are large only where its long vectors enter. `None` when J is
+    /// singular (the start reached a double point: not a point to keep).
+    fn accuracy(&self, o: V, a: V) -> Option<Accuracy> {
+        let (h, jac, round) = self.equations(o, a);
+        let inverse = jac.try_inverse()?;
+        let eps = f64::EPSILON;
+        let (mut centre, mut circle) = (0.0, 0.0);
+        for r in 0..4 {
+            let column = inverse.column(r);
+            let row = h[r].abs() + 8.0 * eps * round[r];
+            centre += column.rows(0, 2).norm() * row;
+            circle += column.rows(2, 2).norm() * row;
+        }
+        // The first-order bound needs J⁻¹ to mean something: J's entries are formed with a
+        // few roundings each, so its computed smallest singular value is uncertain by about
+        // ε‖J‖ times a few; where σ_min/σ_max is within 2¹⁰ε of zero, J is singular to working
+        // precision (a dyad nearly a slider's, two points merging), the residual's valley can
+        // run far along the null direction, and no local bound holds: such a point is fixed
+        // only to the wide 2¹⁰εM/σ_min (M the rows' largest magnitude; session 12's tolerance:
+        // the polishes of one such point were seen 16 m apart at 2·10⁵ m, within it).
+        let singular = jac.singular_values();
+        let (low, high) = (singular.min(), singular.max());
+        let grow = if low > 1024.0 * eps * high {
+            1.0
+        } else {
+            let scale = self.size + (a - o).norm();
+            let magnitude = (scale + o.norm() + a.norm()).max(round.amax());
+            let wide = 1024.0 * eps * magnitude / low;
+            (wide / centre.hypot(circle)).max(1.0)
+        };
+        let accuracy = Accuracy {
+            centre: grow * centre + eps * o.norm(),
+            circle: grow * circle + eps * a.norm(),
+        };
+        (accuracy.centre.is_finite() && accuracy.circle.is_finite()).then_some(accuracy)
+    }
+}
+
+/// How far a polished Burmester point can be from the exact root of the equations as
+/// evaluated (see [`PoseEquations::accuracy`] for the derivation), m: two polishes of one root
+/// are within the sum of theirs.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(super) struct Accuracy {
+    /// The bound on the centre point's error, m.
+    pub(super) centre: f64,
+    /// The bound on the circle point's error, m.
+    pub(super) circle: f64,
 }

@@ -14,6 +14,8 @@ use tmm::Error;
 
 mod burmester_close;
 mod burmester_count;
+mod burmester_degenerate;
+mod burmester_far;
 mod closed_form;
 mod closed_form_review;
 mod hostile_requirements;
