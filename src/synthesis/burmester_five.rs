@@ -55,8 +55,11 @@ use crate::error::{Error, Result};
 /// # Errors
 /// [`Error::NonFinite`] for a non-finite number; [`Error::NoMechanism`] for coinciding poses,
 /// for poses that all turn about one point (every coupler point then keeps its distance
-/// from it: a continuum of dyads) and for other degenerate poses that more than four dyads
-/// fit. A dyad more than 10⁶ times longer than the poses' extent (from the first pose) is
+/// from it: a continuum of dyads), for other degenerate poses that more than four dyads
+/// fit, for poses whose dyads form a continuum (e.g. a pure translation along five points of
+/// one circle; the message says "infinitely many"), and for poses whose every elimination degenerates (the points cannot
+/// be counted: the message says so). Poses with exactly two distinct angles are solved in
+/// closed form (at most two dyads). A dyad more than 10⁶ times longer than the poses' extent (from the first pose) is
 /// not returned: it is a slider's dyad (the bisectors meeting at infinity) found to rounding.
 pub fn burmester_points(poses: &[Pose; 5]) -> Result<Vec<Dyad>> {
     check_poses(poses)?;
