@@ -280,9 +280,9 @@ pub(super) fn candidates(equations: &PoseEquations) -> Candidates {
     let standard = ELIMINATIONS.map(|(turn, rows1, rows2)| (turn, rows1, rows2));
     let mut others = Vec::new();
     for turn in [ELIMINATIONS[0].0, ELIMINATIONS[1].0] {
-        for i in 0..4 {
-            for j in i + 1..4 {
-                others.push((turn, OTHERS[i], OTHERS[j]));
+        for (i, &rows1) in OTHERS.iter().enumerate() {
+            for &rows2 in &OTHERS[i + 1..] {
+                others.push((turn, rows1, rows2));
             }
         }
     }

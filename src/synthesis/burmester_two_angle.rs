@@ -89,7 +89,8 @@ pub(super) fn points(poses: &[Pose; 5]) -> Option<Result<Vec<Dyad>>> {
     let e = (m2 - m1).norm();
     let along = 0.5 * e;
     let h2 = rho * rho - along * along;
-    if !(h2 >= 0.0) || !(e > 0.0) {
+    // NaN fails both comparisons: no dyad then either.
+    if h2.is_nan() || h2 < 0.0 || e.is_nan() || e <= 0.0 {
         return Some(Ok(Vec::new()));
     }
     let unit = (m2 - m1) / e;
